@@ -1,0 +1,3 @@
+//! Linear-algebra backends. `serial`: faer sparse LU with symbolic reuse.
+
+pub mod serial;

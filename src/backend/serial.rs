@@ -1,0 +1,71 @@
+//! Serial sparse direct solver (faer): the symbolic LU factorization is computed
+//! once for the fixed pattern and reused for every numeric factorization.
+//! LU rather than Cholesky because the tangent is unsymmetric with friction
+//! (p_T^Y depends on p_N) and indefinite-singular when a body is unsupported.
+
+use crate::assembly::Assembler;
+use crate::error::{Error, Result};
+use faer::linalg::solvers::Solve;
+use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
+use faer::MatMut;
+
+pub struct SerialLu {
+    symbolic_mat: SymbolicSparseColMat<usize>,
+    symbolic_lu: SymbolicLu<usize>,
+    lu: Option<Lu<usize, f64>>,
+    /// Number of numeric factorizations performed.
+    pub factorizations: usize,
+}
+
+impl SerialLu {
+    /// Symbolic analysis (fill-reducing ordering) of the assembler's pattern.
+    pub fn new(asm: &Assembler) -> Result<Self> {
+        let symbolic_mat = SymbolicSparseColMat::new_checked(
+            asm.n,
+            asm.n,
+            asm.col_ptr.clone(),
+            None,
+            asm.row_idx.clone(),
+        );
+        let symbolic_lu = SymbolicLu::try_new(symbolic_mat.as_ref())
+            .map_err(|e| Error::Solver(format!("symbolic LU failed: {e:?}")))?;
+        Ok(SerialLu {
+            symbolic_mat,
+            symbolic_lu,
+            lu: None,
+            factorizations: 0,
+        })
+    }
+
+    /// Numeric factorization of the matrix with the given values.
+    pub fn factor(&mut self, values: &[f64]) -> Result<()> {
+        if values.iter().any(|v| !v.is_finite()) {
+            return Err(Error::Solver("the tangent matrix holds NaN or infinite entries".into()));
+        }
+        let mat = SparseColMatRef::new(self.symbolic_mat.as_ref(), values);
+        let lu = Lu::try_new_with_symbolic(self.symbolic_lu.clone(), mat)
+            .map_err(|e| Error::Solver(format!("numeric LU failed: {e:?}")))?;
+        self.lu = Some(lu);
+        self.factorizations += 1;
+        Ok(())
+    }
+
+    /// Solves in place with the last factorization. A non-finite solution means a
+    /// singular tangent: a body held by nothing (rigid-body motion) or all pairs open.
+    pub fn solve(&self, rhs: &mut [f64]) -> Result<()> {
+        let lu = self
+            .lu
+            .as_ref()
+            .ok_or_else(|| Error::Solver("solve before factor".into()))?;
+        let n = rhs.len();
+        let mat = MatMut::from_column_major_slice_mut(rhs, n, 1);
+        lu.solve_in_place(mat);
+        if rhs.iter().any(|v| !v.is_finite()) {
+            return Err(Error::Solver(
+                "singular tangent matrix: a body can move as a rigid body (missing support, or every interface pair open)".into(),
+            ));
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,325 @@
+//! Case files: the TOML schema (serde, unknown keys rejected) and its validation.
+//!
+//! A case is data, never code: geometry and mesh, materials per body, the
+//! interface law per interface, boundary conditions, loads and solver settings.
+//! The full schema is documented in `docs/case-schema.md`; every field below
+//! carries the same text.
+
+mod validate;
+
+pub use validate::check_case;
+
+use crate::error::{Error, Result};
+use crate::mesh::blocks::{BlockSpec, InterfaceSpec};
+use serde::Deserialize;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// A parsed case file, before validation against its mesh.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Case {
+    /// Name used for the output folder; default: the case folder's name.
+    pub name: Option<String>,
+    /// Free text shown by `asperity check`.
+    pub description: Option<String>,
+    pub model: ModelSpec,
+    pub mesh: MeshSpec,
+    /// Material per body, keyed by body name.
+    pub materials: BTreeMap<String, MaterialSpec>,
+    /// Interface law per interface, keyed by interface name.
+    #[serde(default)]
+    pub interface: BTreeMap<String, InterfaceLawSpec>,
+    #[serde(default)]
+    pub boundary: Vec<BoundarySpec>,
+    #[serde(default)]
+    pub load: Vec<LoadSpec>,
+    #[serde(default)]
+    pub solver: SolverSpec,
+    #[serde(default)]
+    pub output: OutputSpec,
+    /// Where the case was read from (not part of the schema).
+    #[serde(skip)]
+    pub source: PathBuf,
+}
+
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+pub enum Plane {
+    Stress,
+    Strain,
+}
+
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum Integration {
+    /// 3×3 Gauss points (the paper's choice for the 8-node element).
+    #[default]
+    Full,
+    /// 2×2 Gauss points: avoids volumetric locking in plane-strain plastic flow.
+    Reduced,
+}
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ModelSpec {
+    /// "stress" or "strain".
+    pub plane: Plane,
+    /// Thickness in mm (plane stress); plane strain is solved per mm unless given.
+    #[serde(default = "one")]
+    pub thickness: f64,
+    #[serde(default)]
+    pub integration: Integration,
+    /// The mesh is the half x ≥ 0 of a body symmetric about x = 0: loads are
+    /// reported for the whole body (twice the half model's).
+    #[serde(default)]
+    pub symmetric_half: bool,
+}
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshSpec {
+    /// Multiplies every element count (mesh sequences).
+    #[serde(default = "one_usize")]
+    pub refine: usize,
+    pub block: Vec<BlockSpec>,
+    #[serde(default)]
+    pub interface: Vec<InterfaceSpec>,
+}
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSpec {
+    /// Young's modulus E, MPa.
+    pub young: f64,
+    /// Poisson's ratio ν.
+    pub poisson: f64,
+    /// Initial yield stress σ_Y, MPa; omit for an elastic body.
+    pub yield_stress: Option<f64>,
+    /// Plastic modulus H, MPa: σ_y = σ_Y + H ε̄ᵖ (0 = perfectly plastic).
+    #[serde(default)]
+    pub hardening: f64,
+}
+
+/// Normal (and later tangential) law of one interface. The parameters that a law
+/// needs are checked by [`check_case`]; parameters that belong to another law are
+/// rejected there, so a typo cannot pass silently.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InterfaceLawSpec {
+    /// "power" (u_N = c_N p^m, eq. 2.1), "exponential" (p = a (e^{b u} − 1), eq. 2.2
+    /// shifted so p(0) = 0) or "linear" (power law below p_c, u = A p + B above, eq. 2.3).
+    pub law: String,
+    /// c_N in mm/MPa^m (power and linear laws).
+    pub c_n: Option<f64>,
+    /// Exponent m in (0, 1] (power and linear laws).
+    pub m: Option<f64>,
+    /// a in MPa (exponential law).
+    pub a: Option<f64>,
+    /// b in 1/mm (exponential law).
+    pub b: Option<f64>,
+    /// A in mm/MPa: slope of the linear branch (linear law).
+    pub slope: Option<f64>,
+    /// Critical pressure p_c in MPa where the linear branch starts (linear law).
+    pub p_c: Option<f64>,
+    /// "lumped" (row-sum weights 1/6, 2/3, 1/6, eq. 3.30-3.31) or "consistent"
+    /// (Gauss integration along the edge, eq. 3.29).
+    #[serde(default)]
+    pub weights: Weights,
+    /// Initial gap g₀ in mm (positive = open).
+    #[serde(default)]
+    pub gap: f64,
+    /// Reference pressure in MPa for the secant start stiffness (eq. 2.8-2.9);
+    /// default: the mean interface pressure of the applied load at the first step.
+    pub start_pressure: Option<f64>,
+}
+
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum Weights {
+    #[default]
+    Lumped,
+    Consistent,
+}
+
+/// Prescribed displacement on a node set (value at load factor 1; 0 = fixed).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BoundarySpec {
+    /// Node set name, e.g. "foundation.bottom".
+    pub set: String,
+    pub ux: Option<f64>,
+    pub uy: Option<f64>,
+    /// Only nodes with x in [lo, hi] (mm).
+    pub x_range: Option<[f64; 2]>,
+    pub y_range: Option<[f64; 2]>,
+}
+
+/// Uniform pressure on an edge set (value at load factor 1, MPa, pushing into the body).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LoadSpec {
+    /// Edge set name, e.g. "punch.top".
+    pub edges: String,
+    pub pressure: f64,
+    /// Only edges whose midpoint has x in [lo, hi] (mm).
+    pub x_range: Option<[f64; 2]>,
+    pub y_range: Option<[f64; 2]>,
+}
+
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum Method {
+    /// Consistent tangent at every iteration.
+    #[default]
+    FullNewton,
+    /// Solid tangent from the start of the increment, contact matrix updated each iteration.
+    ModifiedNewton,
+    /// Elastic K₀ plus the current contact matrix (eq. 4.8).
+    InitialStiffness,
+}
+
+impl Method {
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::FullNewton => "full-newton",
+            Method::ModifiedNewton => "modified-newton",
+            Method::InitialStiffness => "initial-stiffness",
+        }
+    }
+}
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolverSpec {
+    #[serde(default)]
+    pub method: Method,
+    /// Number of equal load steps from 0 to 1 (after the first one).
+    #[serde(default = "default_increments")]
+    pub increments: usize,
+    /// Size of the first load step (the paper uses about 5%); default 1/increments.
+    pub first_increment: Option<f64>,
+    /// Explicit increasing load factors ending at 1, instead of increments.
+    pub load_factors: Option<Vec<f64>>,
+    /// Iteration limit per attempt; default 30 (full Newton) or 400 (others).
+    pub max_iterations: Option<usize>,
+    /// ‖R‖ ≤ tol · ‖F_ref‖.
+    #[serde(default = "default_residual_tol")]
+    pub residual_tolerance: f64,
+    /// ‖Δu‖∞ ≤ tol · ‖u‖∞.
+    #[serde(default = "default_displacement_tol")]
+    pub displacement_tolerance: f64,
+    /// Halvings allowed for one scheduled increment.
+    #[serde(default = "default_cutbacks")]
+    pub max_cutbacks: usize,
+    /// Locate the load of first yield by root finding inside the increment where it occurs.
+    #[serde(default = "yes")]
+    pub locate_first_yield: bool,
+}
+
+impl Default for SolverSpec {
+    fn default() -> Self {
+        toml::from_str("").expect("the empty solver table has only defaults")
+    }
+}
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSpec {
+    /// Point near which the "center" node is taken (the interface node of the lower
+    /// body closest to it), mm. Default (0, 0).
+    #[serde(default)]
+    pub probe: [f64; 2],
+    /// Write VTU files (every `vtu_every` increments and the last).
+    #[serde(default = "yes")]
+    pub vtu: bool,
+    #[serde(default = "one_usize")]
+    pub vtu_every: usize,
+}
+
+impl Default for OutputSpec {
+    fn default() -> Self {
+        toml::from_str("").expect("the empty output table has only defaults")
+    }
+}
+
+fn one() -> f64 {
+    1.0
+}
+fn one_usize() -> usize {
+    1
+}
+fn yes() -> bool {
+    true
+}
+fn default_increments() -> usize {
+    20
+}
+fn default_residual_tol() -> f64 {
+    1e-8
+}
+fn default_displacement_tol() -> f64 {
+    1e-8
+}
+fn default_cutbacks() -> usize {
+    8
+}
+
+impl Case {
+    /// Reads a case from a `case.toml` file or from a folder holding one.
+    pub fn load(path: &Path) -> Result<Case> {
+        let file = if path.is_dir() {
+            path.join("case.toml")
+        } else {
+            path.to_path_buf()
+        };
+        let text = std::fs::read_to_string(&file).map_err(|e| Error::io(&file, e))?;
+        let mut case = Case::parse(&text, &file.display().to_string())?;
+        case.source = file;
+        Ok(case)
+    }
+
+    /// Parses case text; `place` names it in errors.
+    pub fn parse(text: &str, place: &str) -> Result<Case> {
+        toml::from_str::<Case>(text).map_err(|e| {
+            let at = e
+                .span()
+                .map(|s| {
+                    let (line, col) = line_col(text, s.start);
+                    format!(":{line}:{col}")
+                })
+                .unwrap_or_default();
+            Error::input(
+                format!("{place}{at}"),
+                e.message().trim().replace('\n', " "),
+            )
+        })
+    }
+
+    /// The case name: `name`, else the folder holding the case file, else the file stem.
+    pub fn display_name(&self) -> String {
+        if let Some(n) = &self.name {
+            return n.clone();
+        }
+        let folder = self
+            .source
+            .parent()
+            .and_then(|p| p.file_name())
+            .map(|s| s.to_string_lossy().into_owned());
+        match folder {
+            Some(f) if !f.is_empty() && f != "." => f,
+            _ => self
+                .source
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_else(|| "case".into()),
+        }
+    }
+}
+
+fn line_col(text: &str, offset: usize) -> (usize, usize) {
+    let before = &text[..offset.min(text.len())];
+    let line = before.matches('\n').count() + 1;
+    let col = before.rfind('\n').map_or(offset, |i| offset - i - 1) + 1;
+    (line, col)
+}

@@ -1,0 +1,236 @@
+//! The 8-node serendipity quadrilateral: shape functions, Gauss rules,
+//! Jacobian, and extrapolation of Gauss point values to the nodes.
+//!
+//! ```text
+//!   η
+//!   3 ── 6 ── 2      corners 0..3 counter-clockwise, midsides 4..7
+//!   │         │      N_corner = ¼(1+ξξᵢ)(1+ηηᵢ)(ξξᵢ+ηηᵢ−1)
+//!   7         5  ξ   N_mid(ξᵢ=0) = ½(1−ξ²)(1+ηηᵢ)
+//!   │         │      N_mid(ηᵢ=0) = ½(1+ξξᵢ)(1−η²)
+//!   0 ── 4 ── 1
+//! ```
+
+/// Natural coordinates of the nodes.
+pub const NODE_XI: [[f64; 2]; 8] = [
+    [-1.0, -1.0],
+    [1.0, -1.0],
+    [1.0, 1.0],
+    [-1.0, 1.0],
+    [0.0, -1.0],
+    [1.0, 0.0],
+    [0.0, 1.0],
+    [-1.0, 0.0],
+];
+
+/// Shape function values at (ξ, η).
+pub fn shape(xi: f64, eta: f64) -> [f64; 8] {
+    let mut n = [0.0; 8];
+    for (a, &[xa, ya]) in NODE_XI.iter().enumerate() {
+        n[a] = if a < 4 {
+            0.25 * (1.0 + xi * xa) * (1.0 + eta * ya) * (xi * xa + eta * ya - 1.0)
+        } else if xa == 0.0 {
+            0.5 * (1.0 - xi * xi) * (1.0 + eta * ya)
+        } else {
+            0.5 * (1.0 + xi * xa) * (1.0 - eta * eta)
+        };
+    }
+    n
+}
+
+/// Derivatives (∂N/∂ξ, ∂N/∂η) at (ξ, η).
+pub fn shape_derivs(xi: f64, eta: f64) -> [[f64; 2]; 8] {
+    let mut d = [[0.0; 2]; 8];
+    for (a, &[xa, ya]) in NODE_XI.iter().enumerate() {
+        d[a] = if a < 4 {
+            [
+                0.25 * xa * (1.0 + eta * ya) * (2.0 * xi * xa + eta * ya),
+                0.25 * ya * (1.0 + xi * xa) * (xi * xa + 2.0 * eta * ya),
+            ]
+        } else if xa == 0.0 {
+            [-xi * (1.0 + eta * ya), 0.5 * (1.0 - xi * xi) * ya]
+        } else {
+            [0.5 * xa * (1.0 - eta * eta), -eta * (1.0 + xi * xa)]
+        };
+    }
+    d
+}
+
+/// A tensor-product Gauss rule on [−1, 1]².
+#[derive(Clone, Debug)]
+pub struct GaussRule {
+    pub points: Vec<([f64; 2], f64)>,
+}
+
+/// Gauss–Legendre points and weights on [−1, 1] (n = 1..=4).
+pub fn gauss_1d(n: usize) -> Vec<(f64, f64)> {
+    match n {
+        1 => vec![(0.0, 2.0)],
+        2 => {
+            let a = 1.0 / 3f64.sqrt();
+            vec![(-a, 1.0), (a, 1.0)]
+        }
+        3 => {
+            let a = 0.6f64.sqrt();
+            vec![(-a, 5.0 / 9.0), (0.0, 8.0 / 9.0), (a, 5.0 / 9.0)]
+        }
+        _ => {
+            let r = (6.0f64 / 5.0).sqrt();
+            let (a, b) = ((3.0 / 7.0 - 2.0 / 7.0 * r).sqrt(), (3.0 / 7.0 + 2.0 / 7.0 * r).sqrt());
+            let (wa, wb) = ((18.0 + 30f64.sqrt()) / 36.0, (18.0 - 30f64.sqrt()) / 36.0);
+            vec![(-b, wb), (-a, wa), (a, wa), (b, wb)]
+        }
+    }
+}
+
+fn tensor(n: usize) -> GaussRule {
+    let g = gauss_1d(n);
+    let mut points = Vec::with_capacity(n * n);
+    for &(eta, we) in &g {
+        for &(xi, wx) in &g {
+            points.push(([xi, eta], wx * we));
+        }
+    }
+    GaussRule { points }
+}
+
+/// 2×2 rule (reduced integration).
+pub fn gauss_2x2() -> GaussRule {
+    tensor(2)
+}
+
+/// 3×3 rule (full integration).
+pub fn gauss_3x3() -> GaussRule {
+    tensor(3)
+}
+
+/// det J and physical derivatives dN/dx at (ξ, η). Errs when det J ≤ 1e-12 ×
+/// (element size)², naming the value: the element is inverted or degenerate.
+pub fn physical_derivs(
+    coords: &[[f64; 2]; 8],
+    xi: f64,
+    eta: f64,
+) -> Result<(f64, [[f64; 2]; 8]), String> {
+    let d = shape_derivs(xi, eta);
+    let mut j = [[0.0; 2]; 2]; // j[i][k] = ∂x_i/∂ξ_k
+    for a in 0..8 {
+        for i in 0..2 {
+            for k in 0..2 {
+                j[i][k] += coords[a][i] * d[a][k];
+            }
+        }
+    }
+    let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+    let size2 = (coords[2][0] - coords[0][0]).powi(2) + (coords[2][1] - coords[0][1]).powi(2);
+    if !(det > 1e-12 * size2) {
+        return Err(format!(
+            "Jacobian determinant {det:.3e} at (ξ, η) = ({xi:.3}, {eta:.3}): element inverted or degenerate"
+        ));
+    }
+    let inv = [[j[1][1] / det, -j[0][1] / det], [-j[1][0] / det, j[0][0] / det]];
+    let mut out = [[0.0; 2]; 8];
+    for a in 0..8 {
+        // dN/dx_i = Σ_k dN/dξ_k ∂ξ_k/∂x_i
+        for i in 0..2 {
+            out[a][i] = d[a][0] * inv[0][i] + d[a][1] * inv[1][i];
+        }
+    }
+    Ok((det, out))
+}
+
+/// Values at the 8 nodes from values at the Gauss points of a 2×2 or 3×3 rule:
+/// the bilinear (2×2) or biquadratic-Lagrange (3×3) interpolant through the Gauss
+/// points, evaluated at the nodes.
+pub fn extrapolate_to_nodes(rule: &GaussRule, values: &[f64]) -> [f64; 8] {
+    let n = (rule.points.len() as f64).sqrt().round() as usize;
+    let g: Vec<f64> = gauss_1d(n).iter().map(|p| p.0).collect();
+    let lagrange = |x: f64, i: usize| -> f64 {
+        (0..n).filter(|&k| k != i).map(|k| (x - g[k]) / (g[i] - g[k])).product()
+    };
+    let mut out = [0.0; 8];
+    for (a, &[xa, ya]) in NODE_XI.iter().enumerate() {
+        let mut v = 0.0;
+        for j in 0..n {
+            for i in 0..n {
+                v += lagrange(xa, i) * lagrange(ya, j) * values[j * n + i];
+            }
+        }
+        out[a] = v;
+    }
+    out
+}
+
+/// Shape functions of a quadratic edge [end, mid, end] at s ∈ [−1, 1].
+pub fn edge_shape(s: f64) -> [f64; 3] {
+    [0.5 * s * (s - 1.0), 1.0 - s * s, 0.5 * s * (s + 1.0)]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn partition_of_unity_and_kronecker() {
+        for &(x, y) in &[(0.3, -0.7), (-0.9, 0.1), (0.0, 0.0)] {
+            let s: f64 = shape(x, y).iter().sum();
+            assert!((s - 1.0).abs() < 1e-14);
+            let d = shape_derivs(x, y);
+            assert!(d.iter().map(|v| v[0]).sum::<f64>().abs() < 1e-14);
+        }
+        for (a, &[x, y]) in NODE_XI.iter().enumerate() {
+            let n = shape(x, y);
+            for (b, v) in n.iter().enumerate() {
+                assert!((v - f64::from(u8::from(a == b))).abs() < 1e-14);
+            }
+        }
+    }
+
+    #[test]
+    fn derivatives_match_finite_differences() {
+        let (x, y, h) = (0.31, -0.47, 1e-6);
+        let d = shape_derivs(x, y);
+        let (px, mx, py, my) = (shape(x + h, y), shape(x - h, y), shape(x, y + h), shape(x, y - h));
+        for a in 0..8 {
+            assert!((d[a][0] - (px[a] - mx[a]) / (2.0 * h)).abs() < 1e-9);
+            assert!((d[a][1] - (py[a] - my[a]) / (2.0 * h)).abs() < 1e-9);
+        }
+    }
+
+    #[test]
+    fn gauss_rules_integrate_polynomials_exactly() {
+        for (n, deg) in [(2usize, 3i32), (3, 5), (4, 7)] {
+            let s: f64 = gauss_1d(n).iter().map(|&(x, w)| w * x.powi(deg - 1) * (x + 1.0)).sum();
+            // ∫ x^{d−1}(x+1) over [−1,1]
+            let exact = |p: i32| if p % 2 == 0 { 2.0 / (p as f64 + 1.0) } else { 0.0 };
+            assert!((s - exact(deg) - exact(deg - 1)).abs() < 1e-14, "n = {n}");
+        }
+    }
+
+    #[test]
+    fn area_of_a_straight_sided_element_and_inversion() {
+        let c = [[0.0, 0.0], [3.0, 0.5], [2.5, 2.0], [0.2, 1.5]];
+        let mut x = [[0.0; 2]; 8];
+        x[..4].copy_from_slice(&c);
+        for (k, (a, b)) in [(0, 1), (1, 2), (2, 3), (3, 0)].iter().enumerate() {
+            x[4 + k] = [(c[*a][0] + c[*b][0]) / 2.0, (c[*a][1] + c[*b][1]) / 2.0];
+        }
+        let area: f64 = gauss_3x3().points.iter().map(|&([s, t], w)| w * physical_derivs(&x, s, t).unwrap().0).sum();
+        let shoelace = 0.5 * (0..4).map(|i| c[i][0] * c[(i + 1) % 4][1] - c[(i + 1) % 4][0] * c[i][1]).sum::<f64>();
+        assert!((area - shoelace).abs() < 1e-12);
+        x.swap(1, 3);
+        assert!(physical_derivs(&x, 0.0, 0.0).is_err());
+    }
+
+    #[test]
+    fn extrapolation_reproduces_polynomials() {
+        for (rule, f) in [
+            (gauss_2x2(), (|x: f64, y: f64| 1.0 + 2.0 * x - y + 0.5 * x * y) as fn(f64, f64) -> f64),
+            (gauss_3x3(), |x: f64, y: f64| 1.0 + x * x - 2.0 * y * y + x * y * y),
+        ] {
+            let vals: Vec<f64> = rule.points.iter().map(|&([x, y], _)| f(x, y)).collect();
+            let nodes = extrapolate_to_nodes(&rule, &vals);
+            for (a, &[x, y]) in NODE_XI.iter().enumerate() {
+                assert!((nodes[a] - f(x, y)).abs() < 1e-12);
+            }
+        }
+    }
+}

@@ -1,0 +1,183 @@
+//! The 8-node serendipity solid element, small strain, plane stress or strain.
+//!
+//! ```text
+//!   fᵉ = ∫ Bᵀ σ t dA          Kᵉ = ∫ Bᵀ C B t dA          (eq. 3.23, 4.2)
+//!   B = ⎡∂N/∂x  0    ⎤   per node, strain [εxx, εyy, γxy]
+//!       ⎢0      ∂N/∂y⎥
+//!       ⎣∂N/∂y  ∂N/∂x⎦
+//! ```
+//!
+//! Geometry (dN/dx and det J · w · t per Gauss point) is computed once per
+//! element: the strains are small, so it never changes.
+
+use crate::fem::q8::{physical_derivs, GaussRule};
+use crate::material::{PointState, VonMises};
+use nalgebra::Matrix3;
+
+/// Per-element Gauss point geometry.
+#[derive(Clone, Debug)]
+pub struct ElementGeometry {
+    /// dN_a/dx, dN_a/dy for each Gauss point.
+    pub dndx: Vec<[[f64; 2]; 8]>,
+    /// det J · weight · thickness for each Gauss point.
+    pub dv: Vec<f64>,
+    /// Physical coordinates of each Gauss point.
+    pub x: Vec<[f64; 2]>,
+}
+
+impl ElementGeometry {
+    /// Precomputes the geometry; an Err names the Gauss point with det J ≤ 0.
+    pub fn new(coords: &[[f64; 2]; 8], rule: &GaussRule, thickness: f64) -> Result<Self, String> {
+        let mut g = ElementGeometry {
+            dndx: Vec::with_capacity(rule.points.len()),
+            dv: Vec::with_capacity(rule.points.len()),
+            x: Vec::with_capacity(rule.points.len()),
+        };
+        for (ip, &([xi, eta], w)) in rule.points.iter().enumerate() {
+            let (det, d) = physical_derivs(coords, xi, eta)
+                .map_err(|e| format!("Gauss point {ip}: {e}"))?;
+            let n = crate::fem::q8::shape(xi, eta);
+            let mut x = [0.0; 2];
+            for a in 0..8 {
+                x[0] += n[a] * coords[a][0];
+                x[1] += n[a] * coords[a][1];
+            }
+            g.dndx.push(d);
+            g.dv.push(det * w * thickness);
+            g.x.push(x);
+        }
+        Ok(g)
+    }
+
+    /// Strain [εxx, εyy, γxy] at Gauss point `ip` from element displacements.
+    pub fn strain(&self, ip: usize, ue: &[f64; 16]) -> [f64; 3] {
+        let d = &self.dndx[ip];
+        let mut e = [0.0; 3];
+        for a in 0..8 {
+            let (ux, uy) = (ue[2 * a], ue[2 * a + 1]);
+            e[0] += d[a][0] * ux;
+            e[1] += d[a][1] * uy;
+            e[2] += d[a][1] * ux + d[a][0] * uy;
+        }
+        e
+    }
+}
+
+/// Which material matrix goes into the element tangent.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Tangent {
+    /// Algorithmic tangent of the return mapping (full Newton).
+    Consistent,
+    /// Continuum C_ep at the committed state (modified Newton, eq. 3.13).
+    Continuum,
+    /// Elastic D (initial stiffness, eq. 4.8).
+    Elastic,
+}
+
+/// How stresses are updated.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Response {
+    /// Return mapping (elastic-plastic).
+    Plastic,
+    /// Purely elastic from the committed plastic strain (first-yield location).
+    ElasticOnly,
+}
+
+/// Internal force and (optionally) tangent of one element. `trial` receives the
+/// updated Gauss point states. Errors name the Gauss point.
+#[allow(clippy::too_many_arguments)]
+pub fn element_forces(
+    geom: &ElementGeometry,
+    mat: &VonMises,
+    ue: &[f64; 16],
+    committed: &[PointState],
+    trial: &mut [PointState],
+    response: Response,
+    tangent: Option<Tangent>,
+    fe: &mut [f64; 16],
+    ke: &mut [f64; 256],
+) -> Result<(), String> {
+    fe.fill(0.0);
+    if tangent.is_some() {
+        ke.fill(0.0);
+    }
+    for ip in 0..geom.dv.len() {
+        let eps = geom.strain(ip, ue);
+        let (state, c_alg) = match response {
+            Response::Plastic => mat
+                .update(&committed[ip], &eps)
+                .map_err(|e| format!("Gauss point {ip}: {e}"))?,
+            Response::ElasticOnly => (elastic_state(mat, &committed[ip], &eps), mat.elastic_matrix()),
+        };
+        trial[ip] = state;
+        let dv = geom.dv[ip];
+        let d = &geom.dndx[ip];
+        let s = &state.stress;
+        for a in 0..8 {
+            fe[2 * a] += dv * (d[a][0] * s[0] + d[a][1] * s[2]);
+            fe[2 * a + 1] += dv * (d[a][1] * s[1] + d[a][0] * s[2]);
+        }
+        if let Some(t) = tangent {
+            let c = match t {
+                Tangent::Consistent => c_alg,
+                Tangent::Continuum => mat.continuum_tangent(&committed[ip]),
+                Tangent::Elastic => mat.elastic_matrix(),
+            };
+            add_btcb(d, &c, dv, ke);
+        }
+    }
+    Ok(())
+}
+
+/// Stress from the elastic law only, keeping the committed plastic strain.
+pub fn elastic_state(mat: &VonMises, committed: &PointState, eps: &[f64; 3]) -> PointState {
+    let ep = &committed.plastic_strain;
+    let ee = [eps[0] - ep[0], eps[1] - ep[1], eps[2] - 2.0 * ep[2]];
+    let d = mat.elastic_matrix();
+    let mut s = d * nalgebra::Vector3::new(ee[0], ee[1], ee[2]);
+    let szz = match mat.plane {
+        crate::material::PlaneState::Stress => 0.0,
+        crate::material::PlaneState::Strain => {
+            // ε_zz = 0, so the elastic ε_zz is −εᵖzz; it adds λ·εᵉzz to every normal stress
+            let lambda = mat.young * mat.poisson / ((1.0 + mat.poisson) * (1.0 - 2.0 * mat.poisson));
+            let g2 = mat.young / (1.0 + mat.poisson);
+            s[0] -= lambda * ep[3];
+            s[1] -= lambda * ep[3];
+            lambda * (ee[0] + ee[1] - ep[3]) - g2 * ep[3]
+        }
+    };
+    PointState {
+        stress: [s[0], s[1], s[2], szz],
+        plastic_strain: *ep,
+        peeq: committed.peeq,
+        yielding: false,
+    }
+}
+
+/// ke += Bᵀ C B dv, exploiting the 2-row sparsity of each nodal B block.
+fn add_btcb(d: &[[f64; 2]; 8], c: &Matrix3<f64>, dv: f64, ke: &mut [f64; 256]) {
+    // CB for each node b: 3×2 block
+    let mut cb = [[0.0f64; 6]; 8];
+    for b in 0..8 {
+        let (bx, by) = (d[b][0], d[b][1]);
+        for r in 0..3 {
+            cb[b][2 * r] = c[(r, 0)] * bx + c[(r, 2)] * by;
+            cb[b][2 * r + 1] = c[(r, 1)] * by + c[(r, 2)] * bx;
+        }
+    }
+    for a in 0..8 {
+        let (ax, ay) = (d[a][0], d[a][1]);
+        for b in 0..8 {
+            let m = &cb[b];
+            // rows of Bᵀ for node a: x-dof = [ax, 0, ay], y-dof = [0, ay, ax]
+            let kxx = ax * m[0] + ay * m[4];
+            let kxy = ax * m[1] + ay * m[5];
+            let kyx = ay * m[2] + ax * m[4];
+            let kyy = ay * m[3] + ax * m[5];
+            ke[(2 * a) * 16 + 2 * b] += dv * kxx;
+            ke[(2 * a) * 16 + 2 * b + 1] += dv * kxy;
+            ke[(2 * a + 1) * 16 + 2 * b] += dv * kyx;
+            ke[(2 * a + 1) * 16 + 2 * b + 1] += dv * kyy;
+        }
+    }
+}

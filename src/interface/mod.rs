@@ -1,0 +1,281 @@
+//! The rough interface between body A (upper, "punch") and body B (lower,
+//! "foundation"): spring pairs, their quadrature along the contact edges, and the
+//! per-point residual and tangent (paper sections 2.1, 2.3 and 3.29-3.31).
+//!
+//! ```text
+//!        A:  a0 ──── a1 ──── a2        one contact edge = three node pairs
+//!            ┆        ┆        ┆       (a_i, b_i) at the same position;
+//!        B:  b0 ──── b1 ──── b2        springs act along the normal n (B → A)
+//! ```
+//!
+//! The interface energy is Π = t ∫ φ(u_N(s)) ds with φ' = p_N. Two quadratures of
+//! that integral give the paper's two contact matrices:
+//! * lumped: the nodes themselves, weights L/6, 2L/3, L/6 (row sums of eq. 3.29,
+//!   the matrix (A/30) diag(5, 20, 5) of eq. 3.31): one independent spring per pair;
+//! * consistent: 4-point Gauss along the edge with u_N interpolated quadratically;
+//!   for a linear law this is exactly (k A/30)[4 2 −1; 2 16 2; −1 2 4] (eq. 3.29).
+
+pub mod normal;
+
+use crate::case::Weights;
+use crate::mesh::{Interface, Mesh};
+pub use normal::NormalLaw;
+
+/// A node pair across the interface.
+#[derive(Clone, Debug)]
+pub struct Pair {
+    pub a: usize,
+    pub b: usize,
+    pub x: [f64; 2],
+    /// Unit normal from B into A.
+    pub normal: [f64; 2],
+    /// Tributary (lumped) area, mm².
+    pub area: f64,
+}
+
+/// An integration point of the interface energy.
+#[derive(Clone, Debug)]
+pub struct Point {
+    /// Pairs involved (only the first `len` are used).
+    pub pairs: [usize; 3],
+    pub shape: [f64; 3],
+    pub len: usize,
+    /// Integration weight: area represented, mm².
+    pub area: f64,
+    pub normal: [f64; 2],
+}
+
+/// Open or closed, decided from the approach at the point.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Status {
+    #[default]
+    Open,
+    Closed,
+}
+
+impl Status {
+    pub fn name(self) -> &'static str {
+        match self {
+            Status::Open => "open",
+            Status::Closed => "closed",
+        }
+    }
+}
+
+/// One interface of the model, ready to evaluate.
+#[derive(Clone, Debug)]
+pub struct InterfaceModel {
+    pub name: String,
+    pub body_a: usize,
+    pub body_b: usize,
+    pub law: NormalLaw,
+    pub gap: f64,
+    pub pairs: Vec<Pair>,
+    pub points: Vec<Point>,
+    /// Secant-start reference pressure (MPa) if given in the case.
+    pub start_pressure: Option<f64>,
+}
+
+/// Result of evaluating one point: the approach, pressure and stiffness, and the
+/// local residual on the dofs [A-pairs (x, y)…, B-pairs (x, y)…].
+pub struct PointEval {
+    pub u_n: f64,
+    pub p_n: f64,
+    pub k_n: f64,
+}
+
+impl InterfaceModel {
+    /// Builds pairs and points from a mesh interface.
+    pub fn new(
+        mesh: &Mesh,
+        iface: &Interface,
+        law: NormalLaw,
+        gap: f64,
+        weights: Weights,
+        thickness: f64,
+        start_pressure: Option<f64>,
+    ) -> Self {
+        let mut pairs: Vec<Pair> = Vec::new();
+        let mut index = std::collections::HashMap::new();
+        let mut edge_pairs = Vec::with_capacity(iface.edges.len());
+        for edge in &iface.edges {
+            let mut ids = [0usize; 3];
+            for i in 0..3 {
+                let key = (edge.a[i], edge.b[i]);
+                ids[i] = *index.entry(key).or_insert_with(|| {
+                    pairs.push(Pair {
+                        a: edge.a[i],
+                        b: edge.b[i],
+                        x: mesh.nodes[edge.b[i]],
+                        normal: [0.0; 2],
+                        area: 0.0,
+                    });
+                    pairs.len() - 1
+                });
+            }
+            edge_pairs.push(ids);
+        }
+        let mut points = Vec::new();
+        for (edge, ids) in iface.edges.iter().zip(&edge_pairs) {
+            let xb = [
+                mesh.nodes[edge.b[0]],
+                mesh.nodes[edge.b[1]],
+                mesh.nodes[edge.b[2]],
+            ];
+            // lumped weights and averaged nodal normals
+            for (i, &s) in [-1.0, 0.0, 1.0].iter().enumerate() {
+                let (n, ds) = edge_normal(&xb, s);
+                let w = [1.0 / 3.0, 4.0 / 3.0, 1.0 / 3.0][i] * ds * thickness;
+                let pr = &mut pairs[ids[i]];
+                pr.area += w;
+                pr.normal[0] += w * n[0];
+                pr.normal[1] += w * n[1];
+            }
+            if weights == Weights::Consistent {
+                for (s, wg) in gauss4() {
+                    let (n, ds) = edge_normal(&xb, s);
+                    points.push(Point {
+                        pairs: *ids,
+                        shape: crate::fem::q8::edge_shape(s),
+                        len: 3,
+                        area: wg * ds * thickness,
+                        normal: n,
+                    });
+                }
+            }
+        }
+        for p in &mut pairs {
+            let l = p.normal[0].hypot(p.normal[1]);
+            p.normal = [p.normal[0] / l, p.normal[1] / l];
+        }
+        if weights == Weights::Lumped {
+            points = pairs
+                .iter()
+                .enumerate()
+                .map(|(i, p)| Point {
+                    pairs: [i, i, i],
+                    shape: [1.0, 0.0, 0.0],
+                    len: 1,
+                    area: p.area,
+                    normal: p.normal,
+                })
+                .collect();
+        }
+        InterfaceModel {
+            name: iface.name.clone(),
+            body_a: iface.body_a,
+            body_b: iface.body_b,
+            law,
+            gap,
+            pairs,
+            points,
+            start_pressure,
+        }
+    }
+
+    /// Total nominal area of the interface, mm².
+    pub fn area(&self) -> f64 {
+        self.pairs.iter().map(|p| p.area).sum()
+    }
+
+    /// Approach at a pair (nodal value): u_N = (u_B − u_A)·n − g₀.
+    pub fn pair_approach(&self, pair: &Pair, u: &[f64]) -> f64 {
+        let n = pair.normal;
+        let du = [
+            u[2 * pair.b] - u[2 * pair.a],
+            u[2 * pair.b + 1] - u[2 * pair.a + 1],
+        ];
+        du[0] * n[0] + du[1] * n[1] - self.gap
+    }
+
+    /// Approach at an integration point, interpolated from its pairs.
+    pub fn point_approach(&self, pt: &Point, u: &[f64]) -> f64 {
+        let mut un = -self.gap;
+        for i in 0..pt.len {
+            let pr = &self.pairs[pt.pairs[i]];
+            let du = [u[2 * pr.b] - u[2 * pr.a], u[2 * pr.b + 1] - u[2 * pr.a + 1]];
+            un += pt.shape[i] * (du[0] * pt.normal[0] + du[1] * pt.normal[1]);
+        }
+        un
+    }
+
+    /// The dofs of a point in local order: A pairs (x, y) then B pairs (x, y).
+    pub fn point_dofs(&self, pt: &Point) -> Vec<usize> {
+        let mut d = Vec::with_capacity(4 * pt.len);
+        for i in 0..pt.len {
+            let a = self.pairs[pt.pairs[i]].a;
+            d.extend([2 * a, 2 * a + 1]);
+        }
+        for i in 0..pt.len {
+            let b = self.pairs[pt.pairs[i]].b;
+            d.extend([2 * b, 2 * b + 1]);
+        }
+        d
+    }
+
+    /// Evaluates a point: local residual `r` (len 4·len) and, if given, the local
+    /// tangent `k` (row-major (4·len)²). `k_floor` replaces the stiffness of a pair
+    /// at or below zero approach (the secant start of eq. 2.8-2.9).
+    pub fn eval_point(
+        &self,
+        pt: &Point,
+        u: &[f64],
+        k_floor: Option<f64>,
+        r: &mut [f64],
+        k: Option<&mut [f64]>,
+    ) -> PointEval {
+        let u_n = self.point_approach(pt, u);
+        let (p_n, mut k_n) = self.law.pressure(u_n);
+        if let Some(kf) = k_floor {
+            if u_n <= 0.0 {
+                k_n = kf;
+            }
+        }
+        let n = pt.len;
+        // g: derivative of u_N with respect to local dofs
+        let mut g = [0.0f64; 12];
+        for i in 0..n {
+            let s = pt.shape[i];
+            g[2 * i] = -s * pt.normal[0];
+            g[2 * i + 1] = -s * pt.normal[1];
+            g[2 * n + 2 * i] = s * pt.normal[0];
+            g[2 * n + 2 * i + 1] = s * pt.normal[1];
+        }
+        let nd = 4 * n;
+        for i in 0..nd {
+            r[i] = pt.area * p_n * g[i];
+        }
+        if let Some(k) = k {
+            let c = pt.area * k_n;
+            for i in 0..nd {
+                for j in 0..nd {
+                    k[i * nd + j] = c * g[i] * g[j];
+                }
+            }
+        }
+        PointEval { u_n, p_n, k_n }
+    }
+}
+
+/// Outward normal of body B (pointing into A) and ds/dξ at parameter s of a
+/// quadratic edge walked with B on its left.
+fn edge_normal(x: &[[f64; 2]; 3], s: f64) -> ([f64; 2], f64) {
+    let dn = [s - 0.5, -2.0 * s, s + 0.5];
+    let mut t = [0.0; 2];
+    for i in 0..3 {
+        t[0] += dn[i] * x[i][0];
+        t[1] += dn[i] * x[i][1];
+    }
+    let l = t[0].hypot(t[1]);
+    // The interface edges are ordered with increasing x along B's top, which is
+    // B's boundary walked with B on the right; the normal into A is (−t_y, t_x).
+    ([-t[1] / l, t[0] / l], l)
+}
+
+fn gauss4() -> [(f64, f64); 4] {
+    let a = (3.0 / 7.0 - 2.0 / 7.0 * (6.0f64 / 5.0).sqrt()).sqrt();
+    let b = (3.0 / 7.0 + 2.0 / 7.0 * (6.0f64 / 5.0).sqrt()).sqrt();
+    let wa = (18.0 + 30f64.sqrt()) / 36.0;
+    let wb = (18.0 - 30f64.sqrt()) / 36.0;
+    [(-b, wb), (-a, wa), (a, wa), (b, wb)]
+}

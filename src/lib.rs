@@ -1,0 +1,30 @@
+//! # asperity
+//!
+//! Finite-element analysis of elastic-plastic plane contact across a rough,
+//! compliant interface, after R. Buczkowski and M. Kleiber, "Finite element
+//! analysis of elastic-plastic plane contact problem with nonlinear interface
+//! compliance", J. Theor. Appl. Mech. 30(4), 1992.
+//!
+//! | paper | module |
+//! |---|---|
+//! | 3.2, 3.32: 8-node serendipity quad | [`fem`] |
+//! | 3.8-3.14: von Mises, linear isotropic hardening | [`material`] |
+//! | 2.1-2.11, 3.29-3.31: interface laws and spring pairs | [`interface`] |
+//! | 4.1-4.8: increments, Newton variants, status loop | [`solve`] |
+//!
+//! Units: mm, N, MPa everywhere.
+
+pub mod assembly;
+pub mod backend;
+pub mod case;
+pub mod driver;
+pub mod error;
+pub mod fem;
+pub mod interface;
+pub mod material;
+pub mod mesh;
+pub mod model;
+pub mod output;
+pub mod solve;
+
+pub use error::{Error, Result};

@@ -1,0 +1,106 @@
+//! The `asperity` command line.
+
+use asperity::case::Method;
+use asperity::driver::{self, RunOptions};
+use clap::{Parser, Subcommand, ValueEnum};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// Elastic-plastic contact across a rough, compliant interface (Buczkowski & Kleiber 1992).
+#[derive(Parser)]
+#[command(name = "asperity", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Solve a case and write its results (summary.json, curve.csv, interface/, vtu/).
+    Run {
+        /// Case file (case.toml) or the folder that holds it.
+        case: PathBuf,
+        /// Output folder (default: out/<case name>). Replaced if it exists.
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// No progress lines.
+        #[arg(long)]
+        quiet: bool,
+        /// Override the solution method of the case.
+        #[arg(long, value_enum)]
+        method: Option<MethodArg>,
+        /// Override the mesh refinement factor of the case.
+        #[arg(long)]
+        refine: Option<usize>,
+    },
+    /// Validate a case and print what it would solve (dofs, increments), without solving.
+    Check {
+        /// Case file (case.toml) or the folder that holds it.
+        case: PathBuf,
+    },
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum MethodArg {
+    FullNewton,
+    ModifiedNewton,
+    InitialStiffness,
+}
+
+impl From<MethodArg> for Method {
+    fn from(m: MethodArg) -> Method {
+        match m {
+            MethodArg::FullNewton => Method::FullNewton,
+            MethodArg::ModifiedNewton => Method::ModifiedNewton,
+            MethodArg::InitialStiffness => Method::InitialStiffness,
+        }
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let outcome = match cli.command {
+        Command::Run {
+            case,
+            out,
+            quiet,
+            method,
+            refine,
+        } => {
+            let opts = RunOptions {
+                out,
+                quiet,
+                method: method.map(Into::into),
+                refine,
+            };
+            driver::run(&case, &opts).map(|(dir, _model, result)| {
+                if !quiet {
+                    let last = result.increments.last().map(|i| i.measures).unwrap_or_default();
+                    if let Some(fy) = &result.first_yield {
+                        eprintln!(
+                            "first yield: {:.4} kN ({:.2} MPa mean pressure) in {} at x = {:.3} mm, depth {:.3} mm",
+                            fy.total_load_kn, fy.mean_pressure, fy.body, fy.x, fy.depth
+                        );
+                    }
+                    eprintln!(
+                        "final: {:.4} kN, mean pressure {:.2} MPa, center displacement {:.5} mm; {} increments, {} iterations",
+                        last.total_load_kn,
+                        last.mean_pressure,
+                        last.center_displacement,
+                        result.increments.len(),
+                        result.stats.iterations
+                    );
+                }
+                println!("{}", dir.display());
+            })
+        }
+        Command::Check { case } => driver::check(&case).map(|s| print!("{s}")),
+    };
+    match outcome {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+    }
+}

@@ -1,0 +1,214 @@
+//! Von Mises (Huber-Mises) plasticity with linear isotropic hardening
+//! (paper eqs 3.8-3.14), plane strain and plane stress, small strain.
+//!
+//! ```text
+//!   f = √(3 J₂) − σ_y(ε̄ᵖ),   σ_y = σ_Y + H ε̄ᵖ,   εᵖ̇ = γ̇ ∂f/∂σ   (3.8, 3.11)
+//!   C_ep = C − (C:n ⊗ n:C) / (h + n:C:n),   n = √(3/2) s/σ_y        (3.13, 3.14)
+//! ```
+//! `hardening` is the plastic modulus H (slope of σ_y against ε̄ᵖ). With the unit
+//! normal n of (3.14), n:C:n = 2G and the paper's h in (3.13) is h = 2H/3; the
+//! uniaxial tangent modulus is E H/(E + H).
+//!
+//! * Plane strain (ε_zz = 0): radial return in the 4 components (xx, yy, zz, xy),
+//!   closed form for linear hardening, with the algorithmic tangent.
+//! * Plane stress (σ_zz = 0): the projected return of Simo & Taylor in the
+//!   plane-stress subspace, a scalar Newton iteration for Δγ, and its consistent
+//!   tangent; not a 3D return with σ_zz forced afterwards.
+//!
+//! Strains are total ([εxx, εyy, γxy], engineering shear); the update starts from
+//! the committed plastic strain, so it is path-independent within a load step.
+
+mod plane_stress;
+mod plane_strain;
+
+#[cfg(test)]
+mod tests;
+
+use nalgebra::{Matrix3, Matrix4};
+use std::fmt;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PlaneState {
+    Stress,
+    Strain,
+}
+
+/// State at one Gauss point, committed at the end of a converged increment.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PointState {
+    /// σxx, σyy, σxy, σzz (σzz = 0 in plane stress).
+    pub stress: [f64; 4],
+    /// εᵖxx, εᵖyy, εᵖxy (tensor component), εᵖzz.
+    pub plastic_strain: [f64; 4],
+    /// Accumulated equivalent plastic strain ε̄ᵖ.
+    pub peeq: f64,
+    /// The update that produced this state was plastic (Δγ > 0).
+    pub yielding: bool,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct VonMises {
+    pub young: f64,
+    pub poisson: f64,
+    pub yield_stress: f64,
+    pub hardening: f64,
+    pub plane: PlaneState,
+}
+
+/// A return mapping that failed to converge.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ReturnMapError {
+    pub iterations: usize,
+    pub residual: f64,
+    pub reason: String,
+}
+
+impl fmt::Display for ReturnMapError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "return mapping failed after {} iterations (|φ| = {:.3e}): {}",
+            self.iterations, self.residual, self.reason
+        )
+    }
+}
+
+impl std::error::Error for ReturnMapError {}
+
+impl VonMises {
+    /// Checks E > 0, −1 < ν < 0.5, σ_Y > 0 (may be +∞: elastic), H ≥ 0.
+    pub fn new(
+        young: f64,
+        poisson: f64,
+        yield_stress: f64,
+        hardening: f64,
+        plane: PlaneState,
+    ) -> Result<Self, String> {
+        if !(young.is_finite() && young > 0.0) {
+            return Err(format!("young = {young} must be a positive number (MPa)"));
+        }
+        if !(poisson.is_finite() && poisson > -1.0 && poisson < 0.5) {
+            return Err(format!("poisson = {poisson} must be in (-1, 0.5)"));
+        }
+        if !(yield_stress > 0.0) {
+            return Err(format!("yield_stress = {yield_stress} must be a positive number (MPa)"));
+        }
+        if !(hardening.is_finite() && hardening >= 0.0) {
+            return Err(format!("hardening = {hardening} must be a non-negative number (MPa)"));
+        }
+        Ok(VonMises {
+            young,
+            poisson,
+            yield_stress,
+            hardening,
+            plane,
+        })
+    }
+
+    pub fn shear_modulus(&self) -> f64 {
+        self.young / (2.0 * (1.0 + self.poisson))
+    }
+
+    pub fn bulk_modulus(&self) -> f64 {
+        self.young / (3.0 * (1.0 - 2.0 * self.poisson))
+    }
+
+    /// In-plane elastic matrix D: [σxx σyy σxy] = D [εxx εyy γxy].
+    pub fn elastic_matrix(&self) -> Matrix3<f64> {
+        let (e, nu) = (self.young, self.poisson);
+        match self.plane {
+            PlaneState::Stress => {
+                let c = e / (1.0 - nu * nu);
+                Matrix3::new(c, c * nu, 0.0, c * nu, c, 0.0, 0.0, 0.0, c * (1.0 - nu) / 2.0)
+            }
+            PlaneState::Strain => {
+                let c = e / ((1.0 + nu) * (1.0 - 2.0 * nu));
+                Matrix3::new(
+                    c * (1.0 - nu),
+                    c * nu,
+                    0.0,
+                    c * nu,
+                    c * (1.0 - nu),
+                    0.0,
+                    0.0,
+                    0.0,
+                    c * (1.0 - 2.0 * nu) / 2.0,
+                )
+            }
+        }
+    }
+
+    /// σ_Y + H ε̄ᵖ.
+    pub fn current_yield(&self, state: &PointState) -> f64 {
+        self.yield_stress + self.hardening * state.peeq
+    }
+
+    /// √(3 J₂) of [σxx, σyy, σxy, σzz].
+    pub fn equivalent_stress(s: &[f64; 4]) -> f64 {
+        let (xx, yy, xy, zz) = (s[0], s[1], s[2], s[3]);
+        (0.5 * ((xx - yy).powi(2) + (yy - zz).powi(2) + (zz - xx).powi(2)) + 3.0 * xy * xy).sqrt()
+    }
+
+    /// Return mapping from `committed` for the total strain; returns the new state
+    /// and the algorithmic tangent dσ/dε (in-plane, engineering shear).
+    pub fn update(
+        &self,
+        committed: &PointState,
+        strain: &[f64; 3],
+    ) -> Result<(PointState, Matrix3<f64>), ReturnMapError> {
+        match self.plane {
+            PlaneState::Strain => Ok(plane_strain::update(self, committed, strain)),
+            PlaneState::Stress => plane_stress::update(self, committed, strain),
+        }
+    }
+
+    /// Continuum tangent at a committed state: C_ep (3.13) if the state was
+    /// yielding, else D. In plane stress, the 3D C_ep condensed to σzz = 0.
+    pub fn continuum_tangent(&self, state: &PointState) -> Matrix3<f64> {
+        if !state.yielding {
+            return self.elastic_matrix();
+        }
+        let c = self.continuum_3d(&state.stress);
+        // Voigt order of c: xx, yy, zz, xy
+        let idx = [0usize, 1, 3];
+        match self.plane {
+            PlaneState::Strain => Matrix3::from_fn(|i, j| c[(idx[i], idx[j])]),
+            PlaneState::Stress => {
+                let czz = c[(2, 2)];
+                Matrix3::from_fn(|i, j| c[(idx[i], idx[j])] - c[(idx[i], 2)] * c[(2, idx[j])] / czz)
+            }
+        }
+    }
+
+    /// 3D continuum C_ep in Voigt (xx, yy, zz, xy) with engineering shear strain:
+    /// K 1⊗1 + 2G I_dev − 6G²/(3G + H) N̂⊗N̂, N̂ = s/‖s‖.
+    fn continuum_3d(&self, stress: &[f64; 4]) -> Matrix4<f64> {
+        let (g, k, h) = (self.shear_modulus(), self.bulk_modulus(), self.hardening);
+        let s3 = [stress[0], stress[1], stress[3], stress[2]]; // xx yy zz xy
+        let p = (s3[0] + s3[1] + s3[2]) / 3.0;
+        let s = [s3[0] - p, s3[1] - p, s3[2] - p, s3[3]];
+        let norm = (s[0] * s[0] + s[1] * s[1] + s[2] * s[2] + 2.0 * s[3] * s[3]).sqrt();
+        let mut c = elastic_3d(g, k);
+        if norm > 0.0 {
+            let a = 6.0 * g * g / (3.0 * g + h);
+            for i in 0..4 {
+                for j in 0..4 {
+                    c[(i, j)] -= a * s[i] * s[j] / (norm * norm);
+                }
+            }
+        }
+        c
+    }
+}
+
+/// 3D isotropic elasticity in Voigt (xx, yy, zz, xy), engineering shear strain.
+pub(crate) fn elastic_3d(g: f64, k: f64) -> Matrix4<f64> {
+    let mut c = Matrix4::zeros();
+    for i in 0..3 {
+        for j in 0..3 {
+            c[(i, j)] = k - 2.0 * g / 3.0 + if i == j { 2.0 * g } else { 0.0 };
+        }
+    }
+    c[(3, 3)] = g;
+    c
+}

@@ -1,0 +1,331 @@
+//! The discrete model built from a case: mesh, element geometry, materials,
+//! interfaces, prescribed dofs, external load vector and the sparsity pattern.
+//! Everything here is fixed for the whole run; evolving state lives in
+//! [`crate::solve::State`].
+
+use crate::assembly::{Assembler, DofMap};
+use crate::case::{check_case, Case, Integration, Plane};
+use crate::error::{Error, Result};
+use crate::fem::q8::{self, GaussRule};
+use crate::fem::solid::ElementGeometry;
+use crate::interface::InterfaceModel;
+use crate::material::{PlaneState, VonMises};
+use crate::mesh::{blocks, Mesh};
+
+pub struct Model {
+    pub case: Case,
+    pub name: String,
+    pub mesh: Mesh,
+    pub plane: Plane,
+    pub thickness: f64,
+    pub symmetric_half: bool,
+    pub rule: GaussRule,
+    pub geom: Vec<ElementGeometry>,
+    /// Material per body.
+    pub materials: Vec<VonMises>,
+    pub interfaces: Vec<InterfaceModel>,
+    /// Prescribed dofs and their values at load factor 1.
+    pub prescribed: Vec<(usize, f64)>,
+    /// External nodal forces at load factor 1 (all dofs).
+    pub f_ext: Vec<f64>,
+    pub dofs: DofMap,
+    pub asm: Assembler,
+    /// Index of the first interface block in the assembler (elements come first).
+    pub interface_block_base: Vec<usize>,
+    /// The lower body's interface node nearest to the output probe.
+    pub probe_node: usize,
+    /// y of the probe node: depths are measured below it.
+    pub surface_y: f64,
+}
+
+impl Model {
+    /// Validates the case, generates the mesh and builds the model.
+    pub fn build(case: Case) -> Result<Model> {
+        let place = case.source.display().to_string();
+        let checked = check_case(&case)?;
+        let mesh = blocks::generate(&case.mesh.block, &case.mesh.interface, case.mesh.refine)
+            .map_err(|e| Error::Mesh {
+                place: format!("{place} [mesh]"),
+                message: e.to_string(),
+            })?;
+        mesh.validate().map_err(|e| Error::Mesh {
+            place: place.clone(),
+            message: e.to_string(),
+        })?;
+        let plane = case.model.plane;
+        let thickness = case.model.thickness;
+        let rule = match case.model.integration {
+            Integration::Full => q8::gauss_3x3(),
+            Integration::Reduced => q8::gauss_2x2(),
+        };
+        // materials per body
+        let mut materials = Vec::new();
+        for body in &mesh.bodies {
+            let spec = case.materials.get(body).ok_or_else(|| {
+                Error::input(&place, format!("[materials] has no entry for body \"{body}\""))
+            })?;
+            let ps = match plane {
+                Plane::Stress => PlaneState::Stress,
+                Plane::Strain => PlaneState::Strain,
+            };
+            let mat = VonMises::new(
+                spec.young,
+                spec.poisson,
+                spec.yield_stress.unwrap_or(f64::INFINITY),
+                spec.hardening,
+                ps,
+            )
+            .map_err(|e| Error::input(format!("{place}: [materials.{body}]"), e))?;
+            materials.push(mat);
+        }
+        for name in case.materials.keys() {
+            if !mesh.bodies.contains(name) {
+                return Err(Error::input(
+                    format!("{place}: [materials.{name}]"),
+                    format!("no body named \"{name}\" (bodies: {})", mesh.bodies.join(", ")),
+                ));
+            }
+        }
+        let mut geom = Vec::with_capacity(mesh.elements.len());
+        for (e, el) in mesh.elements.iter().enumerate() {
+            let g = ElementGeometry::new(&mesh.element_coords(e), &rule, thickness).map_err(|m| {
+                Error::Mesh {
+                    place: place.clone(),
+                    message: format!("element {e} of body \"{}\": {m}", mesh.bodies[el.body]),
+                }
+            })?;
+            geom.push(g);
+        }
+        // interfaces
+        let mut interfaces = Vec::new();
+        for iface in &mesh.interfaces {
+            let law = checked.laws.get(&iface.name).ok_or_else(|| {
+                Error::input(&place, format!("[interface] has no law for interface \"{}\"", iface.name))
+            })?;
+            let spec = &case.interface[&iface.name];
+            interfaces.push(InterfaceModel::new(
+                &mesh,
+                iface,
+                *law,
+                spec.gap,
+                spec.weights,
+                thickness,
+                spec.start_pressure,
+            ));
+        }
+        for name in case.interface.keys() {
+            if !mesh.interfaces.iter().any(|i| &i.name == name) {
+                return Err(Error::input(
+                    format!("{place}: [interface.{name}]"),
+                    format!("the mesh has no interface named \"{name}\""),
+                ));
+            }
+        }
+        let prescribed = boundary_conditions(&case, &mesh, &place)?;
+        let f_ext = external_forces(&case, &mesh, thickness, &place)?;
+        check_supports(&mesh, &prescribed, &interfaces, &place)?;
+        let mut mask = vec![false; mesh.num_dofs()];
+        for &(d, _) in &prescribed {
+            mask[d] = true;
+        }
+        let dofs = DofMap::new(mesh.num_dofs(), &mask);
+        let mut blocks: Vec<Vec<usize>> = mesh
+            .elements
+            .iter()
+            .map(|el| el.nodes.iter().flat_map(|&n| [2 * n, 2 * n + 1]).collect())
+            .collect();
+        let mut interface_block_base = Vec::new();
+        for im in &interfaces {
+            interface_block_base.push(blocks.len());
+            blocks.extend(im.points.iter().map(|p| im.point_dofs(p)));
+        }
+        let asm = Assembler::new(&dofs, &blocks);
+        let (probe_node, surface_y) = probe(&case, &mesh, &interfaces);
+        Ok(Model {
+            name: case.display_name(),
+            plane,
+            thickness,
+            symmetric_half: case.model.symmetric_half,
+            rule,
+            geom,
+            materials,
+            interfaces,
+            prescribed,
+            f_ext,
+            dofs,
+            asm,
+            interface_block_base,
+            probe_node,
+            surface_y,
+            mesh,
+            case,
+        })
+    }
+
+    pub fn n_gauss(&self) -> usize {
+        self.rule.points.len()
+    }
+
+    /// Element displacement vector.
+    pub fn element_u(&self, e: usize, u: &[f64]) -> [f64; 16] {
+        let mut ue = [0.0; 16];
+        for (a, &n) in self.mesh.elements[e].nodes.iter().enumerate() {
+            ue[2 * a] = u[2 * n];
+            ue[2 * a + 1] = u[2 * n + 1];
+        }
+        ue
+    }
+
+    /// Factor from the half model's force (N) to kN per mm of thickness of the whole body.
+    pub fn load_scale_kn(&self) -> f64 {
+        let sym = if self.symmetric_half { 2.0 } else { 1.0 };
+        sym / self.thickness / 1000.0
+    }
+}
+
+fn in_range(v: f64, r: &Option<[f64; 2]>) -> bool {
+    r.is_none_or(|[lo, hi]| v >= lo - 1e-9 && v <= hi + 1e-9)
+}
+
+fn boundary_conditions(case: &Case, mesh: &Mesh, place: &str) -> Result<Vec<(usize, f64)>> {
+    let mut out = std::collections::BTreeMap::new();
+    for (i, bc) in case.boundary.iter().enumerate() {
+        let at = format!("{place}: boundary[{i}] (set \"{}\")", bc.set);
+        let nodes = mesh.node_sets.get(&bc.set).ok_or_else(|| {
+            Error::input(
+                &at,
+                format!("no node set \"{}\" (sets: {})", bc.set, names(mesh.node_sets.keys())),
+            )
+        })?;
+        if bc.ux.is_none() && bc.uy.is_none() {
+            return Err(Error::input(&at, "give ux and/or uy"));
+        }
+        let mut count = 0;
+        for &n in nodes {
+            let x = mesh.nodes[n];
+            if !(in_range(x[0], &bc.x_range) && in_range(x[1], &bc.y_range)) {
+                continue;
+            }
+            count += 1;
+            for (c, v) in [bc.ux, bc.uy].iter().enumerate() {
+                if let Some(v) = v {
+                    if !v.is_finite() {
+                        return Err(Error::input(&at, format!("displacement {v} is not finite")));
+                    }
+                    out.insert(2 * n + c, *v);
+                }
+            }
+        }
+        if count == 0 {
+            return Err(Error::input(&at, "selects no node (check x_range / y_range)"));
+        }
+    }
+    Ok(out.into_iter().collect())
+}
+
+fn external_forces(case: &Case, mesh: &Mesh, thickness: f64, place: &str) -> Result<Vec<f64>> {
+    let mut f = vec![0.0; mesh.num_dofs()];
+    let gp = q8::gauss_1d(3);
+    for (i, ld) in case.load.iter().enumerate() {
+        let at = format!("{place}: load[{i}] (edges \"{}\")", ld.edges);
+        let edges = mesh.edge_sets.get(&ld.edges).ok_or_else(|| {
+            Error::input(
+                &at,
+                format!("no edge set \"{}\" (sets: {})", ld.edges, names(mesh.edge_sets.keys())),
+            )
+        })?;
+        if !ld.pressure.is_finite() {
+            return Err(Error::input(&at, format!("pressure {} is not finite", ld.pressure)));
+        }
+        let mut count = 0;
+        for edge in edges {
+            let x: Vec<[f64; 2]> = edge.iter().map(|&n| mesh.nodes[n]).collect();
+            if !(in_range(x[1][0], &ld.x_range) && in_range(x[1][1], &ld.y_range)) {
+                continue;
+            }
+            count += 1;
+            for &(s, w) in &gp {
+                let n = q8::edge_shape(s);
+                let dn = [s - 0.5, -2.0 * s, s + 0.5];
+                let (mut tx, mut ty) = (0.0, 0.0);
+                for k in 0..3 {
+                    tx += dn[k] * x[k][0];
+                    ty += dn[k] * x[k][1];
+                }
+                // body on the left: outward normal × ds = (t_y, −t_x) dξ; pressure pushes inward
+                for k in 0..3 {
+                    f[2 * edge[k]] -= ld.pressure * n[k] * ty * w * thickness;
+                    f[2 * edge[k] + 1] += ld.pressure * n[k] * tx * w * thickness;
+                }
+            }
+        }
+        if count == 0 {
+            return Err(Error::input(&at, "selects no edge (check x_range / y_range)"));
+        }
+    }
+    Ok(f)
+}
+
+/// A body with neither a prescribed dof nor an interface is held by nothing.
+fn check_supports(
+    mesh: &Mesh,
+    prescribed: &[(usize, f64)],
+    interfaces: &[InterfaceModel],
+    place: &str,
+) -> Result<()> {
+    let mut held = vec![false; mesh.bodies.len()];
+    let mut node_body = vec![usize::MAX; mesh.nodes.len()];
+    for el in &mesh.elements {
+        for &n in &el.nodes {
+            node_body[n] = el.body;
+        }
+    }
+    for &(d, _) in prescribed {
+        held[node_body[d / 2]] = true;
+    }
+    // propagate support through interfaces until nothing changes
+    loop {
+        let mut changed = false;
+        for im in interfaces {
+            let (a, b) = (im.body_a, im.body_b);
+            if held[a] != held[b] {
+                held[a] = true;
+                held[b] = true;
+                changed = true;
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    for (b, h) in held.iter().enumerate() {
+        if !h {
+            return Err(Error::input(
+                place,
+                format!(
+                    "body \"{}\" is held by nothing: no boundary condition and no interface to a supported body (rigid-body motion)",
+                    mesh.bodies[b]
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn probe(case: &Case, mesh: &Mesh, interfaces: &[InterfaceModel]) -> (usize, f64) {
+    let p = case.output.probe;
+    let dist = |n: usize| {
+        let x = mesh.nodes[n];
+        (x[0] - p[0]).hypot(x[1] - p[1])
+    };
+    let best = interfaces
+        .iter()
+        .flat_map(|im| im.pairs.iter().map(|pr| pr.b))
+        .min_by(|&a, &b| dist(a).total_cmp(&dist(b)))
+        .unwrap_or_else(|| (0..mesh.nodes.len()).min_by(|&a, &b| dist(a).total_cmp(&dist(b))).unwrap_or(0));
+    (best, mesh.nodes.get(best).map_or(0.0, |x| x[1]))
+}
+
+fn names<'a>(it: impl Iterator<Item = &'a String>) -> String {
+    it.cloned().collect::<Vec<_>>().join(", ")
+}

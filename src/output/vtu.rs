@@ -1,0 +1,142 @@
+//! VTK XML unstructured grid (.vtu, ASCII) per increment and a .pvd series that
+//! ParaView opens. Cells are VTK_QUADRATIC_QUAD (type 23), whose node order is
+//! ours: corners counter-clockwise, then the midsides of edges 0-1, 1-2, 2-3, 3-0.
+
+use crate::fem::q8;
+use crate::material::VonMises;
+use crate::model::Model;
+use crate::solve::State;
+use std::fmt::Write;
+
+const VTK_QUADRATIC_QUAD: u8 = 23;
+
+/// Nodal fields obtained by extrapolating Gauss point values to the nodes of each
+/// element and averaging over the elements that share a node.
+pub struct NodalFields {
+    /// σxx, σyy, σxy, σzz
+    pub stress: Vec<[f64; 4]>,
+    pub von_mises: Vec<f64>,
+    pub peeq: Vec<f64>,
+}
+
+pub fn nodal_fields(model: &Model, state: &State) -> NodalFields {
+    let nn = model.mesh.nodes.len();
+    let ng = model.n_gauss();
+    let mut acc = vec![[0.0f64; 6]; nn];
+    let mut count = vec![0u32; nn];
+    let mut vals = vec![0.0; ng];
+    for (e, el) in model.mesh.elements.iter().enumerate() {
+        let gp = &state.gauss[e * ng..(e + 1) * ng];
+        for c in 0..6 {
+            for (ip, g) in gp.iter().enumerate() {
+                vals[ip] = match c {
+                    0..=3 => g.stress[c],
+                    4 => VonMises::equivalent_stress(&g.stress),
+                    _ => g.peeq,
+                };
+            }
+            let at_nodes = q8::extrapolate_to_nodes(&model.rule, &vals);
+            for (a, &n) in el.nodes.iter().enumerate() {
+                acc[n][c] += at_nodes[a];
+            }
+        }
+        for &n in &el.nodes {
+            count[n] += 1;
+        }
+    }
+    let mut f = NodalFields {
+        stress: Vec::with_capacity(nn),
+        von_mises: Vec::with_capacity(nn),
+        peeq: Vec::with_capacity(nn),
+    };
+    for (a, &c) in acc.iter().zip(&count) {
+        let c = f64::from(c.max(1));
+        f.stress.push([a[0] / c, a[1] / c, a[2] / c, a[3] / c]);
+        f.von_mises.push(a[4] / c);
+        f.peeq.push((a[5] / c).max(0.0));
+    }
+    f
+}
+
+/// The VTU document for one state.
+pub fn vtu(model: &Model, state: &State) -> String {
+    let mesh = &model.mesh;
+    let nf = nodal_fields(model, state);
+    let nn = mesh.nodes.len();
+    let ne = mesh.elements.len();
+    // interface tractions at the nodes of both sides
+    let mut p_n = vec![0.0; nn];
+    let mut status = vec![-1i32; nn];
+    for im in &model.interfaces {
+        for pr in &im.pairs {
+            let un = im.pair_approach(pr, &state.u);
+            let p = im.law.pressure(un).0;
+            for n in [pr.a, pr.b] {
+                p_n[n] = p;
+                status[n] = i32::from(un > 0.0);
+            }
+        }
+    }
+    let mut s = String::with_capacity(200 * nn);
+    s.push_str("<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n<UnstructuredGrid>\n");
+    let _ = writeln!(s, "<Piece NumberOfPoints=\"{nn}\" NumberOfCells=\"{ne}\">");
+    s.push_str("<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
+    for x in &mesh.nodes {
+        let _ = writeln!(s, "{:e} {:e} 0", x[0], x[1]);
+    }
+    s.push_str("</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
+    for el in &mesh.elements {
+        let line: Vec<String> = el.nodes.iter().map(|n| n.to_string()).collect();
+        let _ = writeln!(s, "{}", line.join(" "));
+    }
+    s.push_str("</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
+    for e in 0..ne {
+        let _ = write!(s, "{} ", 8 * (e + 1));
+    }
+    s.push_str("\n</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
+    for _ in 0..ne {
+        let _ = write!(s, "{VTK_QUADRATIC_QUAD} ");
+    }
+    s.push_str("\n</DataArray>\n</Cells>\n<PointData Vectors=\"displacement\" Scalars=\"von_mises\">\n");
+    array(&mut s, "displacement", 3, (0..nn).flat_map(|i| [state.u[2 * i], state.u[2 * i + 1], 0.0]));
+    array(&mut s, "stress", 4, nf.stress.iter().flat_map(|v| v.iter().copied()));
+    array(&mut s, "von_mises", 1, nf.von_mises.iter().copied());
+    array(&mut s, "peeq", 1, nf.peeq.iter().copied());
+    array(&mut s, "contact_pressure", 1, p_n.iter().copied());
+    array(&mut s, "contact_closed", 1, status.iter().map(|&v| f64::from(v)));
+    s.push_str("</PointData>\n<CellData>\n");
+    array(&mut s, "body", 1, mesh.elements.iter().map(|e| e.body as f64));
+    let ng = model.n_gauss();
+    array(
+        &mut s,
+        "max_peeq",
+        1,
+        (0..ne).map(|e| state.gauss[e * ng..(e + 1) * ng].iter().fold(0.0f64, |a, g| a.max(g.peeq))),
+    );
+    s.push_str("</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
+    s
+}
+
+fn array(s: &mut String, name: &str, comps: usize, vals: impl Iterator<Item = f64>) {
+    let _ = writeln!(
+        s,
+        "<DataArray type=\"Float64\" Name=\"{name}\" NumberOfComponents=\"{comps}\" format=\"ascii\">"
+    );
+    for (i, v) in vals.enumerate() {
+        let _ = write!(s, "{v:e}");
+        s.push(if (i + 1) % comps == 0 { '\n' } else { ' ' });
+    }
+    s.push_str("</DataArray>\n");
+}
+
+/// The .pvd collection listing (time = load factor, file name).
+pub fn pvd(entries: &[(f64, String)]) -> String {
+    let mut s = String::from(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n<Collection>\n",
+    );
+    for (t, f) in entries {
+        let _ = writeln!(s, "<DataSet timestep=\"{t}\" part=\"0\" file=\"{f}\"/>");
+    }
+    s.push_str("</Collection>\n</VTKFile>\n");
+    s
+}

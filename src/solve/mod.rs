@@ -1,0 +1,180 @@
+//! The load-increment loop (paper section 4): scheduled load factors, Newton
+//! steps with the status check, automatic cutback of a failed step with the
+//! committed state restored, and the location of first yield.
+
+pub mod newton;
+mod yield_point;
+
+pub use newton::{Engine, Stats};
+pub use yield_point::{max_yield_ratio, FirstYield};
+
+use crate::error::{Error, Result};
+use crate::fem::solid::Response;
+use crate::interface::Status;
+use crate::material::{PointState, VonMises};
+use crate::model::Model;
+
+/// Evolving state: displacements, Gauss point states and interface statuses.
+#[derive(Clone, Debug)]
+pub struct State {
+    pub u: Vec<f64>,
+    pub gauss: Vec<PointState>,
+    pub status: Vec<Status>,
+    /// Sum of the reactions at the dofs with a non-zero prescribed displacement
+    /// (the force needed to impose it), N.
+    pub prescribed_reaction: f64,
+}
+
+impl State {
+    pub fn initial(model: &Model) -> State {
+        let n_points: usize = model.interfaces.iter().map(|i| i.points.len()).sum();
+        State {
+            u: vec![0.0; model.mesh.num_dofs()],
+            gauss: vec![PointState::default(); model.mesh.elements.len() * model.n_gauss()],
+            status: vec![Status::Closed; n_points],
+            prescribed_reaction: 0.0,
+        }
+    }
+}
+
+/// What is recorded for each converged increment.
+#[derive(Clone, Debug)]
+pub struct Increment {
+    pub increment: usize,
+    pub load_factor: f64,
+    pub iterations: usize,
+    /// Failed attempts (cutbacks) before this increment converged.
+    pub cutbacks: usize,
+    pub measures: Measures,
+}
+
+/// Scalar measures of a state.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Measures {
+    /// Normal force carried by the (first) interface, N, model as meshed.
+    pub normal_force: f64,
+    /// Mean contact pressure: normal force / nominal interface area, MPa.
+    pub mean_pressure: f64,
+    /// Whole-body load per mm of thickness, kN.
+    pub total_load_kn: f64,
+    /// Vertical displacement of the probe node, mm (negative = down).
+    pub center_displacement: f64,
+    pub max_peeq: f64,
+    /// See [`State::prescribed_reaction`].
+    pub prescribed_reaction: f64,
+}
+
+impl Measures {
+    pub fn of(model: &Model, state: &State) -> Measures {
+        let mut m = Measures {
+            center_displacement: state.u[2 * model.probe_node + 1],
+            max_peeq: state.gauss.iter().fold(0.0f64, |a, g| a.max(g.peeq)),
+            prescribed_reaction: state.prescribed_reaction,
+            ..Measures::default()
+        };
+        if let Some(im) = model.interfaces.first() {
+            let force: f64 = im
+                .points
+                .iter()
+                .map(|pt| pt.area * im.law.pressure(im.point_approach(pt, &state.u)).0)
+                .sum();
+            m.normal_force = force;
+            m.mean_pressure = force / im.area();
+            m.total_load_kn = force * model.load_scale_kn();
+        }
+        m
+    }
+}
+
+/// Callbacks of a run (progress, output).
+pub trait Observer {
+    fn increment(&mut self, model: &Model, state: &State, inc: &Increment) -> Result<()>;
+    fn cutback(&mut self, _from: f64, _to: f64, _reason: &str) {}
+}
+
+/// The outcome of a run.
+#[derive(Clone, Debug)]
+pub struct RunResult {
+    pub increments: Vec<Increment>,
+    pub first_yield: Option<FirstYield>,
+    pub stats: Stats,
+    pub cutbacks: usize,
+    pub final_state: State,
+}
+
+/// Runs the whole load history of the model.
+pub fn run(model: &Model, observer: &mut dyn Observer) -> Result<RunResult> {
+    let spec = &model.case.solver;
+    let mut engine = Engine::new(model, spec.method)?;
+    let mut committed = State::initial(model);
+    let mut lambda = 0.0;
+    // pending targets, last element first; each with its cut depth
+    let mut pending: Vec<(f64, usize)> = spec.schedule().into_iter().rev().map(|l| (l, 0)).collect();
+    let mut increments = Vec::new();
+    let mut first_yield = None;
+    let mut cutbacks_total = 0;
+    let mut cutbacks_here = 0;
+    let mut elastic_ratio_prev = 0.0;
+    while let Some((target, depth)) = pending.pop() {
+        match engine.step(&committed, target, Response::Plastic) {
+            Ok((trial, iterations)) => {
+                let yielded_now = first_yield.is_none() && trial.gauss.iter().any(|g| g.peeq > 0.0);
+                if yielded_now && spec.locate_first_yield {
+                    first_yield = Some(yield_point::locate(
+                        &mut engine,
+                        &committed,
+                        (lambda, elastic_ratio_prev),
+                        target,
+                    )?);
+                } else if first_yield.is_none() {
+                    elastic_ratio_prev = max_yield_ratio(model, &trial).0;
+                }
+                committed = trial;
+                engine.committed();
+                lambda = target;
+                let inc = Increment {
+                    increment: increments.len() + 1,
+                    load_factor: lambda,
+                    iterations,
+                    cutbacks: cutbacks_here,
+                    measures: Measures::of(model, &committed),
+                };
+                cutbacks_here = 0;
+                observer.increment(model, &committed, &inc)?;
+                increments.push(inc);
+            }
+            Err(reason) => {
+                if depth >= spec.max_cutbacks {
+                    return Err(Error::Convergence {
+                        increment: increments.len() + 1,
+                        load_factor: target,
+                        message: format!("{reason}; gave up after {} cutbacks", spec.max_cutbacks),
+                    });
+                }
+                let mid = 0.5 * (lambda + target);
+                observer.cutback(lambda, target, &reason);
+                cutbacks_total += 1;
+                cutbacks_here += 1;
+                pending.push((target, depth + 1));
+                pending.push((mid, depth + 1));
+            }
+        }
+    }
+    Ok(RunResult {
+        increments,
+        first_yield,
+        stats: engine.stats.clone(),
+        cutbacks: cutbacks_total,
+        final_state: committed,
+    })
+}
+
+/// The yield ratio σ_eq / σ_y of a Gauss point state for a material.
+pub fn yield_ratio(mat: &VonMises, g: &PointState) -> f64 {
+    let y = mat.current_yield(g);
+    if y.is_finite() {
+        VonMises::equivalent_stress(&g.stress) / y
+    } else {
+        0.0
+    }
+}

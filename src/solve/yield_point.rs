@@ -1,0 +1,86 @@
+//! Location of first yield inside the increment where plastic flow first appears.
+//!
+//! Below first yield the response is elastic (with the nonlinear interface), so
+//! g(λ) = max over Gauss points of σ_eq/σ_Y − 1, computed from elastic solves
+//! from the last elastic state, is a smooth function whose root is the first-
+//! yield load. It is found by the Illinois variant of regula falsi to 1e-9 in g.
+
+use super::{yield_ratio, Engine, State};
+use crate::error::{Error, Result};
+use crate::fem::solid::Response;
+use crate::model::Model;
+
+/// Where and at what load the first Gauss point reaches the yield stress.
+#[derive(Clone, Debug)]
+pub struct FirstYield {
+    pub load_factor: f64,
+    pub mean_pressure: f64,
+    pub total_load_kn: f64,
+    pub x: f64,
+    /// Depth below the probe node (the foundation surface), mm.
+    pub depth: f64,
+    pub body: String,
+    pub element: usize,
+}
+
+/// Max yield ratio over all Gauss points and the (element, point) where it occurs.
+pub fn max_yield_ratio(model: &Model, state: &State) -> (f64, usize, usize) {
+    let ng = model.n_gauss();
+    let mut best = (0.0, 0, 0);
+    for (e, el) in model.mesh.elements.iter().enumerate() {
+        let mat = &model.materials[el.body];
+        for ip in 0..ng {
+            let r = yield_ratio(mat, &state.gauss[e * ng + ip]);
+            if r > best.0 {
+                best = (r, e, ip);
+            }
+        }
+    }
+    best
+}
+
+pub(super) fn locate(
+    engine: &mut Engine,
+    last_elastic: &State,
+    (lambda0, ratio0): (f64, f64),
+    lambda1: f64,
+) -> Result<FirstYield> {
+    let model = engine.model;
+    let mut eval = |l: f64| -> Result<(f64, State)> {
+        let (s, _) = engine.step(last_elastic, l, Response::ElasticOnly).map_err(|m| {
+            Error::Convergence {
+                increment: 0,
+                load_factor: l,
+                message: format!("elastic solve while locating first yield: {m}"),
+            }
+        })?;
+        Ok((max_yield_ratio(model, &s).0 - 1.0, s))
+    };
+    let (mut a, mut ga) = (lambda0, ratio0 - 1.0);
+    let (mut b, (mut gb, mut sb)) = (lambda1, eval(lambda1)?);
+    for _ in 0..60 {
+        if gb.abs() < 1e-9 || (b - a).abs() < 1e-12 {
+            break;
+        }
+        let c = b - gb * (b - a) / (gb - ga);
+        let (gc, sc) = eval(c)?;
+        if gc * gb < 0.0 {
+            (a, ga) = (b, gb);
+        } else {
+            ga *= 0.5; // Illinois: keep the retained end from stalling
+        }
+        (b, gb, sb) = (c, gc, sc);
+    }
+    let (_, e, ip) = max_yield_ratio(model, &sb);
+    let m = super::Measures::of(model, &sb);
+    let x = model.geom[e].x[ip];
+    Ok(FirstYield {
+        load_factor: b,
+        mean_pressure: m.mean_pressure,
+        total_load_kn: m.total_load_kn,
+        x: x[0],
+        depth: model.surface_y - x[1],
+        body: model.mesh.bodies[model.mesh.elements[e].body].clone(),
+        element: e,
+    })
+}

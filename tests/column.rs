@@ -1,0 +1,126 @@
+//! Elastic column across a compliant interface against its closed form.
+//!
+//! Two stacked blocks of width w (plane stress, free right side, symmetry on the
+//! left), uniform pressure q on top, bottom held in y. The stress is uniform
+//! (σ_yy = −q), so the FE solution is exact and the top settles by
+//! u = q (h₁ + h₂)/E + c_N q^m (the interface approach of eq. 2.1).
+
+mod common;
+use asperity::solve::{self, Increment, Observer, State};
+use asperity::model::Model;
+
+struct Quiet;
+impl Observer for Quiet {
+    fn increment(&mut self, _: &Model, _: &State, _: &Increment) -> asperity::Result<()> {
+        Ok(())
+    }
+}
+
+fn column(plane: &str, m: f64, weights: &str, law_extra: &str) -> String {
+    format!(
+        r#"
+[model]
+plane = "{plane}"
+thickness = 2.0
+[[mesh.block]]
+body = "top"
+x = [0.0, 10.0]
+nx = [3]
+rx = [0.5]
+y = [0.0, 15.0]
+ny = [3]
+[[mesh.block]]
+body = "bottom"
+x = [0.0, 10.0]
+nx = [3]
+rx = [0.5]
+y = [-25.0, 0.0]
+ny = [4]
+ry = [0.3]
+[[mesh.interface]]
+name = "joint"
+upper = "top"
+lower = "bottom"
+[materials.top]
+young = 70000.0
+poisson = 0.33
+[materials.bottom]
+young = 70000.0
+poisson = 0.33
+[interface.joint]
+law = "power"
+c_n = 0.002
+m = {m}
+weights = "{weights}"
+{law_extra}
+[[boundary]]
+set = "top.left"
+ux = 0.0
+[[boundary]]
+set = "bottom.left"
+ux = 0.0
+[[boundary]]
+set = "bottom.bottom"
+uy = 0.0
+[[load]]
+edges = "top.top"
+pressure = 120.0
+[solver]
+increments = 4
+residual_tolerance = 1e-12
+displacement_tolerance = 1e-12
+"#
+    )
+}
+
+fn settle(text: &str) -> (f64, f64, Model, State) {
+    let model = common::model(text);
+    let r = solve::run(&model, &mut Quiet).unwrap();
+    let st = r.final_state;
+    // top-left corner node: maximum y, x = 0
+    let top = (0..model.mesh.nodes.len())
+        .filter(|&n| model.mesh.nodes[n][0] == 0.0)
+        .max_by(|&a, &b| model.mesh.nodes[a][1].total_cmp(&model.mesh.nodes[b][1]))
+        .unwrap();
+    let u = -st.u[2 * top + 1];
+    let p = r.increments.last().unwrap().measures.mean_pressure;
+    (u, p, model, st)
+}
+
+#[test]
+fn plane_stress_column_matches_closed_form_for_m_half_and_one() {
+    let (q, e, h, c) = (120.0, 70000.0, 40.0, 0.002);
+    for m in [0.5, 1.0] {
+        for w in ["lumped", "consistent"] {
+            let (u, p, model, st) = settle(&column("stress", m, w, ""));
+            let exact = q * h / e + c * q.powf(m);
+            assert!(common::rel(u, exact) < 1e-9, "m={m} {w}: u={u} exact={exact}");
+            assert!(common::rel(p, q) < 1e-9, "mean pressure {p} vs {q}");
+            // every pair carries the same approach c q^m
+            let im = &model.interfaces[0];
+            for pr in &im.pairs {
+                let un = im.pair_approach(pr, &st.u);
+                assert!(common::rel(un, c * q.powf(m)) < 1e-9, "pair at x={}: {un}", pr.x[0]);
+            }
+        }
+    }
+}
+
+#[test]
+fn plane_strain_column_matches_closed_form() {
+    // plane strain with free sides: ε_yy = −q (1 − ν²)/E
+    let (q, e, nu, h, c, m) = (120.0, 70000.0, 0.33, 40.0, 0.002, 0.5);
+    let (u, _, _, _) = settle(&column("strain", m, "lumped", ""));
+    let exact = q * h * (1.0 - nu * nu) / e + c * q.powf(m);
+    assert!(common::rel(u, exact) < 1e-9, "u={u} exact={exact}");
+}
+
+#[test]
+fn initial_gap_adds_to_the_settlement_under_displacement_free_load() {
+    // A closed joint with a prescribed start pressure works with a negative gap
+    // (interference): the approach is c q^m and the settlement drops by the interference.
+    let (q, e, h, c, m, g) = (120.0, 70000.0, 40.0, 0.002, 0.5, -0.01);
+    let (u, _, _, _) = settle(&column("stress", m, "lumped", &format!("gap = {g}")));
+    let exact = q * h / e + c * q.powf(m) + g;
+    assert!(common::rel(u, exact) < 1e-9, "u={u} exact={exact}");
+}

@@ -1,0 +1,158 @@
+//! Finite-difference checks of every analytic tangent: the solid element in both
+//! plane states (elastic and plastic Gauss points), the interface points (lumped
+//! and consistent, every normal law) and the assembled residual of a punch model.
+
+mod common;
+use asperity::case::Method;
+use asperity::fem::q8;
+use asperity::fem::solid::{element_forces, ElementGeometry, Response, Tangent};
+use asperity::material::{PlaneState, PointState, VonMises};
+use asperity::solve::{Engine, State};
+
+fn distorted() -> [[f64; 2]; 8] {
+    let c = [[0.0, 0.0], [2.0, 0.2], [2.3, 1.9], [-0.2, 1.6]];
+    let mut x = [[0.0; 2]; 8];
+    x[..4].copy_from_slice(&c);
+    for (k, (a, b)) in [(0, 1), (1, 2), (2, 3), (3, 0)].iter().enumerate() {
+        x[4 + k] = [(c[*a][0] + c[*b][0]) / 2.0 + 0.05, (c[*a][1] + c[*b][1]) / 2.0 - 0.03];
+    }
+    x
+}
+
+fn check_element(plane: PlaneState, scale: f64, hardening: f64) {
+    let mat = VonMises::new(200000.0, 0.3, 250.0, hardening, plane).unwrap();
+    let geom = ElementGeometry::new(&distorted(), &q8::gauss_3x3(), 1.5).unwrap();
+    let mut ue = [0.0; 16];
+    for (i, u) in ue.iter_mut().enumerate() {
+        *u = scale * ((i as f64 * 0.77).sin() + 0.3 * (i as f64 * 1.3).cos());
+    }
+    // a committed plastic state: load once, then evaluate around a further strain
+    let committed0 = vec![PointState::default(); 9];
+    let mut committed = vec![PointState::default(); 9];
+    let (mut fe, mut ke) = ([0.0; 16], [0.0; 256]);
+    let half: [f64; 16] = std::array::from_fn(|i| 0.6 * ue[i]);
+    element_forces(&geom, &mat, &half, &committed0, &mut committed, Response::Plastic, None, &mut fe, &mut ke).unwrap();
+    let mut trial = committed.clone();
+    element_forces(&geom, &mat, &ue, &committed, &mut trial, Response::Plastic, Some(Tangent::Consistent), &mut fe, &mut ke).unwrap();
+    let plastic = trial.iter().filter(|g| g.yielding).count();
+    let h = 1e-7 * scale;
+    let mut worst: f64 = 0.0;
+    let kmax = ke.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    for j in 0..16 {
+        let (mut up, mut um) = (ue, ue);
+        up[j] += h;
+        um[j] -= h;
+        let (mut fp, mut fm) = ([0.0; 16], [0.0; 16]);
+        let mut t = trial.clone();
+        element_forces(&geom, &mat, &up, &committed, &mut t, Response::Plastic, None, &mut fp, &mut ke.clone()).unwrap();
+        element_forces(&geom, &mat, &um, &committed, &mut t, Response::Plastic, None, &mut fm, &mut ke.clone()).unwrap();
+        for i in 0..16 {
+            let fd = (fp[i] - fm[i]) / (2.0 * h);
+            worst = worst.max((fd - ke[i * 16 + j]).abs() / kmax);
+        }
+    }
+    assert!(worst < 1e-6, "{plane:?} scale {scale} H {hardening}: {plastic} plastic points, FD error {worst:e}");
+}
+
+#[test]
+fn solid_element_tangent_matches_finite_differences() {
+    for plane in [PlaneState::Stress, PlaneState::Strain] {
+        check_element(plane, 1e-5, 2000.0); // elastic
+        check_element(plane, 2e-3, 2000.0); // plastic, hardening
+        check_element(plane, 2e-3, 0.0); // plastic, perfectly plastic
+    }
+}
+
+const PUNCH: &str = include_str!("../cases/punch-plane-stress/case.toml");
+
+#[test]
+fn interface_point_tangents_match_finite_differences() {
+    for (law, weights) in [
+        ("law = \"power\"\nc_n = 0.001\nm = 0.5", "lumped"),
+        ("law = \"power\"\nc_n = 0.001\nm = 0.5", "consistent"),
+        ("law = \"power\"\nc_n = 0.002\nm = 0.3", "consistent"),
+        ("law = \"exponential\"\na = 0.8\nb = 150.0", "lumped"),
+        ("law = \"linear\"\nc_n = 0.001\nm = 0.5\nslope = 1e-5\np_c = 10.0", "consistent"),
+    ] {
+        let text = PUNCH.replace("law = \"power\"\nc_n = 0.001          # mm/MPa^m: 14 µm of approach at 200 MPa\nm = 0.5", &format!("{law}\nweights = \"{weights}\""));
+        assert!(text.contains(weights), "case text substitution failed");
+        let model = common::model(&text);
+        let im = &model.interfaces[0];
+        let mut u = vec![0.0; model.mesh.num_dofs()];
+        for (i, v) in u.iter_mut().enumerate() {
+            *v = 0.004 * ((i as f64 * 0.37).sin() + 0.8);
+        }
+        // push the punch down so most points are closed, some open
+        for pr in &im.pairs {
+            u[2 * pr.a + 1] -= 0.01 * (1.0 + (pr.x[0] * 0.7).sin());
+        }
+        for pt in &im.points {
+            let nd = 4 * pt.len;
+            let dofs = im.point_dofs(pt);
+            let (mut r, mut k) = (vec![0.0; nd], vec![0.0; nd * nd]);
+            let ev = im.eval_point(pt, &u, None, &mut r, Some(&mut k));
+            if ev.u_n.abs() < 1e-6 {
+                continue; // kink of the linear law at zero approach
+            }
+            let kmax = k.iter().fold(1e-30f64, |a, v| a.max(v.abs()));
+            for (j, &d) in dofs.iter().enumerate() {
+                let h = 1e-9;
+                let (mut up, mut um) = (u.clone(), u.clone());
+                up[d] += h;
+                um[d] -= h;
+                let (mut rp, mut rm) = (vec![0.0; nd], vec![0.0; nd]);
+                im.eval_point(pt, &up, None, &mut rp, None);
+                im.eval_point(pt, &um, None, &mut rm, None);
+                for i in 0..nd {
+                    let fd = (rp[i] - rm[i]) / (2.0 * h);
+                    // a repeated dof (lumped points list each pair once) appears once here
+                    let err = (fd - k[i * nd + j]).abs() / kmax;
+                    assert!(err < 1e-5, "{law} {weights}: point u_n={} entry ({i},{j}) fd {fd} k {}", ev.u_n, k[i * nd + j]);
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn assembled_tangent_matches_finite_differences_of_the_residual() {
+    for plane in ["stress", "strain"] {
+        let text = PUNCH.replace("plane = \"stress\"", &format!("plane = \"{plane}\""));
+        let model = common::model(&text);
+        let mut engine = Engine::new(&model, Method::FullNewton).unwrap();
+        let committed = State::initial(&model);
+        // a converged plastic state to linearize around: solve to a high load
+        let (state, _) = engine.step(&committed, 1.0, Response::Plastic).unwrap();
+        assert!(state.gauss.iter().any(|g| g.yielding), "{plane}: no plastic point to test");
+        let mut u = state.u.clone();
+        for (i, v) in u.iter_mut().enumerate() {
+            *v *= 1.0 + 1e-3 * (i as f64).sin();
+        }
+        let (_, vals) = engine.linearize(&committed, &u, 1.0).unwrap();
+        let asm = &model.asm;
+        let kmax = vals.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        // check a spread of columns, including dofs at the interface
+        let free: Vec<usize> = (0..u.len()).filter(|&d| model.dofs.equation(d).is_some()).collect();
+        let picks: Vec<usize> = (0..free.len()).step_by(free.len() / 23 + 1).chain(
+            model.interfaces[0].pairs.iter().flat_map(|p| [2 * p.a + 1, 2 * p.b + 1]).filter_map(|d| model.dofs.equation(d)).take(6),
+        ).collect();
+        for c in picks {
+            let d = free[c];
+            let h = 1e-8 * u.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+            let (mut up, mut um) = (u.clone(), u.clone());
+            up[d] += h;
+            um[d] -= h;
+            let (rp, _) = engine.linearize(&committed, &up, 1.0).unwrap();
+            let (rm, _) = engine.linearize(&committed, &um, 1.0).unwrap();
+            let mut col = vec![0.0; free.len()];
+            for k in asm.col_ptr[c]..asm.col_ptr[c + 1] {
+                col[asm.row_idx[k]] = vals[k];
+            }
+            for (row, &dr) in free.iter().enumerate() {
+                let fd = (rp[dr] - rm[dr]) / (2.0 * h);
+                let err = (fd - col[row]).abs() / kmax;
+                assert!(err < 1e-6, "{plane}: K[{row},{c}] = {} but FD gives {fd}", col[row]);
+            }
+        }
+    }
+}
