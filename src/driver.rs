@@ -34,7 +34,10 @@ pub fn load_model(case_path: &Path, opts: &RunOptions) -> Result<Model> {
 pub fn run(case_path: &Path, opts: &RunOptions) -> Result<(PathBuf, Model, RunResult)> {
     let started = Instant::now();
     let model = load_model(case_path, opts)?;
-    let dir = opts.out.clone().unwrap_or_else(|| Path::new("out").join(&model.name));
+    let dir = opts
+        .out
+        .clone()
+        .unwrap_or_else(|| Path::new("out").join(&model.name));
     let planned = model.case.solver.schedule().len();
     if !opts.quiet {
         eprintln!(
@@ -42,7 +45,11 @@ pub fn run(case_path: &Path, opts: &RunOptions) -> Result<(PathBuf, Model, RunRe
             model.name,
             model.mesh.num_dofs(),
             model.mesh.elements.len(),
-            model.interfaces.iter().map(|i| i.pairs.len()).sum::<usize>(),
+            model
+                .interfaces
+                .iter()
+                .map(|i| i.pairs.len())
+                .sum::<usize>(),
             model.case.solver.method.name(),
             planned
         );

@@ -62,7 +62,10 @@ impl Model {
         let mut materials = Vec::new();
         for body in &mesh.bodies {
             let spec = case.materials.get(body).ok_or_else(|| {
-                Error::input(&place, format!("[materials] has no entry for body \"{body}\""))
+                Error::input(
+                    &place,
+                    format!("[materials] has no entry for body \"{body}\""),
+                )
             })?;
             let ps = match plane {
                 Plane::Stress => PlaneState::Stress,
@@ -82,25 +85,32 @@ impl Model {
             if !mesh.bodies.contains(name) {
                 return Err(Error::input(
                     format!("{place}: [materials.{name}]"),
-                    format!("no body named \"{name}\" (bodies: {})", mesh.bodies.join(", ")),
+                    format!(
+                        "no body named \"{name}\" (bodies: {})",
+                        mesh.bodies.join(", ")
+                    ),
                 ));
             }
         }
         let mut geom = Vec::with_capacity(mesh.elements.len());
         for (e, el) in mesh.elements.iter().enumerate() {
-            let g = ElementGeometry::new(&mesh.element_coords(e), &rule, thickness).map_err(|m| {
-                Error::Mesh {
-                    place: place.clone(),
-                    message: format!("element {e} of body \"{}\": {m}", mesh.bodies[el.body]),
-                }
-            })?;
+            let g =
+                ElementGeometry::new(&mesh.element_coords(e), &rule, thickness).map_err(|m| {
+                    Error::Mesh {
+                        place: place.clone(),
+                        message: format!("element {e} of body \"{}\": {m}", mesh.bodies[el.body]),
+                    }
+                })?;
             geom.push(g);
         }
         // interfaces
         let mut interfaces = Vec::new();
         for iface in &mesh.interfaces {
             let law = checked.laws.get(&iface.name).ok_or_else(|| {
-                Error::input(&place, format!("[interface] has no law for interface \"{}\"", iface.name))
+                Error::input(
+                    &place,
+                    format!("[interface] has no law for interface \"{}\"", iface.name),
+                )
             })?;
             let spec = &case.interface[&iface.name];
             interfaces.push(InterfaceModel::new(
@@ -194,7 +204,11 @@ fn boundary_conditions(case: &Case, mesh: &Mesh, place: &str) -> Result<Vec<(usi
         let nodes = mesh.node_sets.get(&bc.set).ok_or_else(|| {
             Error::input(
                 &at,
-                format!("no node set \"{}\" (sets: {})", bc.set, names(mesh.node_sets.keys())),
+                format!(
+                    "no node set \"{}\" (sets: {})",
+                    bc.set,
+                    names(mesh.node_sets.keys())
+                ),
             )
         })?;
         if bc.ux.is_none() && bc.uy.is_none() {
@@ -217,7 +231,10 @@ fn boundary_conditions(case: &Case, mesh: &Mesh, place: &str) -> Result<Vec<(usi
             }
         }
         if count == 0 {
-            return Err(Error::input(&at, "selects no node (check x_range / y_range)"));
+            return Err(Error::input(
+                &at,
+                "selects no node (check x_range / y_range)",
+            ));
         }
     }
     Ok(out.into_iter().collect())
@@ -231,11 +248,18 @@ fn external_forces(case: &Case, mesh: &Mesh, thickness: f64, place: &str) -> Res
         let edges = mesh.edge_sets.get(&ld.edges).ok_or_else(|| {
             Error::input(
                 &at,
-                format!("no edge set \"{}\" (sets: {})", ld.edges, names(mesh.edge_sets.keys())),
+                format!(
+                    "no edge set \"{}\" (sets: {})",
+                    ld.edges,
+                    names(mesh.edge_sets.keys())
+                ),
             )
         })?;
         if !ld.pressure.is_finite() {
-            return Err(Error::input(&at, format!("pressure {} is not finite", ld.pressure)));
+            return Err(Error::input(
+                &at,
+                format!("pressure {} is not finite", ld.pressure),
+            ));
         }
         let mut count = 0;
         for edge in edges {
@@ -260,20 +284,25 @@ fn external_forces(case: &Case, mesh: &Mesh, thickness: f64, place: &str) -> Res
             }
         }
         if count == 0 {
-            return Err(Error::input(&at, "selects no edge (check x_range / y_range)"));
+            return Err(Error::input(
+                &at,
+                "selects no edge (check x_range / y_range)",
+            ));
         }
     }
     Ok(f)
 }
 
-/// A body with neither a prescribed dof nor an interface is held by nothing.
+/// Every body must be held in x and in y, by its own prescribed dofs or through
+/// an interface (along the interface normal) to a body held in that direction.
+/// Otherwise it could move as a rigid body and the tangent would be singular.
 fn check_supports(
     mesh: &Mesh,
     prescribed: &[(usize, f64)],
     interfaces: &[InterfaceModel],
     place: &str,
 ) -> Result<()> {
-    let mut held = vec![false; mesh.bodies.len()];
+    let mut held = vec![[false; 2]; mesh.bodies.len()];
     let mut node_body = vec![usize::MAX; mesh.nodes.len()];
     for el in &mesh.elements {
         for &n in &el.nodes {
@@ -281,16 +310,18 @@ fn check_supports(
         }
     }
     for &(d, _) in prescribed {
-        held[node_body[d / 2]] = true;
+        held[node_body[d / 2]][d % 2] = true;
     }
-    // propagate support through interfaces until nothing changes
+    // propagate along each interface's dominant normal direction to a fixed point
     loop {
         let mut changed = false;
         for im in interfaces {
+            let n = im.pairs.first().map_or([0.0, 1.0], |p| p.normal);
+            let c = usize::from(n[1].abs() >= n[0].abs());
             let (a, b) = (im.body_a, im.body_b);
-            if held[a] != held[b] {
-                held[a] = true;
-                held[b] = true;
+            if held[a][c] != held[b][c] {
+                held[a][c] = true;
+                held[b][c] = true;
                 changed = true;
             }
         }
@@ -299,14 +330,16 @@ fn check_supports(
         }
     }
     for (b, h) in held.iter().enumerate() {
-        if !h {
-            return Err(Error::input(
-                place,
-                format!(
-                    "body \"{}\" is held by nothing: no boundary condition and no interface to a supported body (rigid-body motion)",
-                    mesh.bodies[b]
-                ),
-            ));
+        for (c, axis) in ["x", "y"].iter().enumerate() {
+            if !h[c] {
+                return Err(Error::input(
+                    place,
+                    format!(
+                        "body \"{}\" is held by nothing in {axis}: no boundary condition on u{axis} and no interface to a body held in {axis} (rigid-body motion)",
+                        mesh.bodies[b]
+                    ),
+                ));
+            }
         }
     }
     Ok(())
@@ -322,7 +355,11 @@ fn probe(case: &Case, mesh: &Mesh, interfaces: &[InterfaceModel]) -> (usize, f64
         .iter()
         .flat_map(|im| im.pairs.iter().map(|pr| pr.b))
         .min_by(|&a, &b| dist(a).total_cmp(&dist(b)))
-        .unwrap_or_else(|| (0..mesh.nodes.len()).min_by(|&a, &b| dist(a).total_cmp(&dist(b))).unwrap_or(0));
+        .unwrap_or_else(|| {
+            (0..mesh.nodes.len())
+                .min_by(|&a, &b| dist(a).total_cmp(&dist(b)))
+                .unwrap_or(0)
+        });
     (best, mesh.nodes.get(best).map_or(0.0, |x| x[1]))
 }
 

@@ -6,8 +6,8 @@
 //! u = q (h₁ + h₂)/E + c_N q^m (the interface approach of eq. 2.1).
 
 mod common;
-use asperity::solve::{self, Increment, Observer, State};
 use asperity::model::Model;
+use asperity::solve::{self, Increment, Observer, State};
 
 struct Quiet;
 impl Observer for Quiet {
@@ -89,18 +89,25 @@ fn settle(text: &str) -> (f64, f64, Model, State) {
 
 #[test]
 fn plane_stress_column_matches_closed_form_for_m_half_and_one() {
-    let (q, e, h, c) = (120.0, 70000.0, 40.0, 0.002);
+    let (q, e, h, c): (f64, f64, f64, f64) = (120.0, 70000.0, 40.0, 0.002);
     for m in [0.5, 1.0] {
         for w in ["lumped", "consistent"] {
             let (u, p, model, st) = settle(&column("stress", m, w, ""));
             let exact = q * h / e + c * q.powf(m);
-            assert!(common::rel(u, exact) < 1e-9, "m={m} {w}: u={u} exact={exact}");
+            assert!(
+                common::rel(u, exact) < 1e-9,
+                "m={m} {w}: u={u} exact={exact}"
+            );
             assert!(common::rel(p, q) < 1e-9, "mean pressure {p} vs {q}");
             // every pair carries the same approach c q^m
             let im = &model.interfaces[0];
             for pr in &im.pairs {
                 let un = im.pair_approach(pr, &st.u);
-                assert!(common::rel(un, c * q.powf(m)) < 1e-9, "pair at x={}: {un}", pr.x[0]);
+                assert!(
+                    common::rel(un, c * q.powf(m)) < 1e-9,
+                    "pair at x={}: {un}",
+                    pr.x[0]
+                );
             }
         }
     }
@@ -109,7 +116,8 @@ fn plane_stress_column_matches_closed_form_for_m_half_and_one() {
 #[test]
 fn plane_strain_column_matches_closed_form() {
     // plane strain with free sides: ε_yy = −q (1 − ν²)/E
-    let (q, e, nu, h, c, m) = (120.0, 70000.0, 0.33, 40.0, 0.002, 0.5);
+    let (q, e, nu, h, c, m): (f64, f64, f64, f64, f64, f64) =
+        (120.0, 70000.0, 0.33, 40.0, 0.002, 0.5);
     let (u, _, _, _) = settle(&column("strain", m, "lumped", ""));
     let exact = q * h * (1.0 - nu * nu) / e + c * q.powf(m);
     assert!(common::rel(u, exact) < 1e-9, "u={u} exact={exact}");
@@ -119,7 +127,8 @@ fn plane_strain_column_matches_closed_form() {
 fn initial_gap_adds_to_the_settlement_under_displacement_free_load() {
     // A closed joint with a prescribed start pressure works with a negative gap
     // (interference): the approach is c q^m and the settlement drops by the interference.
-    let (q, e, h, c, m, g) = (120.0, 70000.0, 40.0, 0.002, 0.5, -0.01);
+    let (q, e, h, c, m, g): (f64, f64, f64, f64, f64, f64) =
+        (120.0, 70000.0, 40.0, 0.002, 0.5, -0.01);
     let (u, _, _, _) = settle(&column("stress", m, "lumped", &format!("gap = {g}")));
     let exact = q * h / e + c * q.powf(m) + g;
     assert!(common::rel(u, exact) < 1e-9, "u={u} exact={exact}");

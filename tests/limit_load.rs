@@ -72,7 +72,10 @@ fn plane_strain_prandtl_limit() {
     let p = limit_pressure("strain", "reduced", -0.25);
     let prandtl = (2.0 + std::f64::consts::PI) * k;
     eprintln!("plane strain limit: {p:.1} MPa, Prandtl {prandtl:.1} MPa");
-    assert!((p - prandtl).abs() < 0.05 * prandtl, "p = {p}, Prandtl = {prandtl}");
+    assert!(
+        (p - prandtl).abs() < 0.05 * prandtl,
+        "p = {p}, Prandtl = {prandtl}"
+    );
 }
 
 #[test]

@@ -14,7 +14,10 @@ fn distorted() -> [[f64; 2]; 8] {
     let mut x = [[0.0; 2]; 8];
     x[..4].copy_from_slice(&c);
     for (k, (a, b)) in [(0, 1), (1, 2), (2, 3), (3, 0)].iter().enumerate() {
-        x[4 + k] = [(c[*a][0] + c[*b][0]) / 2.0 + 0.05, (c[*a][1] + c[*b][1]) / 2.0 - 0.03];
+        x[4 + k] = [
+            (c[*a][0] + c[*b][0]) / 2.0 + 0.05,
+            (c[*a][1] + c[*b][1]) / 2.0 - 0.03,
+        ];
     }
     x
 }
@@ -31,9 +34,31 @@ fn check_element(plane: PlaneState, scale: f64, hardening: f64) {
     let mut committed = vec![PointState::default(); 9];
     let (mut fe, mut ke) = ([0.0; 16], [0.0; 256]);
     let half: [f64; 16] = std::array::from_fn(|i| 0.6 * ue[i]);
-    element_forces(&geom, &mat, &half, &committed0, &mut committed, Response::Plastic, None, &mut fe, &mut ke).unwrap();
+    element_forces(
+        &geom,
+        &mat,
+        &half,
+        &committed0,
+        &mut committed,
+        Response::Plastic,
+        None,
+        &mut fe,
+        &mut ke,
+    )
+    .unwrap();
     let mut trial = committed.clone();
-    element_forces(&geom, &mat, &ue, &committed, &mut trial, Response::Plastic, Some(Tangent::Consistent), &mut fe, &mut ke).unwrap();
+    element_forces(
+        &geom,
+        &mat,
+        &ue,
+        &committed,
+        &mut trial,
+        Response::Plastic,
+        Some(Tangent::Consistent),
+        &mut fe,
+        &mut ke,
+    )
+    .unwrap();
     let plastic = trial.iter().filter(|g| g.yielding).count();
     let h = 1e-7 * scale;
     let mut worst: f64 = 0.0;
@@ -44,14 +69,39 @@ fn check_element(plane: PlaneState, scale: f64, hardening: f64) {
         um[j] -= h;
         let (mut fp, mut fm) = ([0.0; 16], [0.0; 16]);
         let mut t = trial.clone();
-        element_forces(&geom, &mat, &up, &committed, &mut t, Response::Plastic, None, &mut fp, &mut ke.clone()).unwrap();
-        element_forces(&geom, &mat, &um, &committed, &mut t, Response::Plastic, None, &mut fm, &mut ke.clone()).unwrap();
+        element_forces(
+            &geom,
+            &mat,
+            &up,
+            &committed,
+            &mut t,
+            Response::Plastic,
+            None,
+            &mut fp,
+            &mut ke.clone(),
+        )
+        .unwrap();
+        element_forces(
+            &geom,
+            &mat,
+            &um,
+            &committed,
+            &mut t,
+            Response::Plastic,
+            None,
+            &mut fm,
+            &mut ke.clone(),
+        )
+        .unwrap();
         for i in 0..16 {
             let fd = (fp[i] - fm[i]) / (2.0 * h);
             worst = worst.max((fd - ke[i * 16 + j]).abs() / kmax);
         }
     }
-    assert!(worst < 1e-6, "{plane:?} scale {scale} H {hardening}: {plastic} plastic points, FD error {worst:e}");
+    assert!(
+        worst < 1e-6,
+        "{plane:?} scale {scale} H {hardening}: {plastic} plastic points, FD error {worst:e}"
+    );
 }
 
 #[test]
@@ -72,7 +122,10 @@ fn interface_point_tangents_match_finite_differences() {
         ("law = \"power\"\nc_n = 0.001\nm = 0.5", "consistent"),
         ("law = \"power\"\nc_n = 0.002\nm = 0.3", "consistent"),
         ("law = \"exponential\"\na = 0.8\nb = 150.0", "lumped"),
-        ("law = \"linear\"\nc_n = 0.001\nm = 0.5\nslope = 1e-5\np_c = 10.0", "consistent"),
+        (
+            "law = \"linear\"\nc_n = 0.001\nm = 0.5\nslope = 1e-5\np_c = 10.0",
+            "consistent",
+        ),
     ] {
         let text = PUNCH.replace("law = \"power\"\nc_n = 0.001          # mm/MPa^m: 14 µm of approach at 200 MPa\nm = 0.5", &format!("{law}\nweights = \"{weights}\""));
         assert!(text.contains(weights), "case text substitution failed");
@@ -107,7 +160,12 @@ fn interface_point_tangents_match_finite_differences() {
                     let fd = (rp[i] - rm[i]) / (2.0 * h);
                     // a repeated dof (lumped points list each pair once) appears once here
                     let err = (fd - k[i * nd + j]).abs() / kmax;
-                    assert!(err < 1e-5, "{law} {weights}: point u_n={} entry ({i},{j}) fd {fd} k {}", ev.u_n, k[i * nd + j]);
+                    assert!(
+                        err < 1e-5,
+                        "{law} {weights}: point u_n={} entry ({i},{j}) fd {fd} k {}",
+                        ev.u_n,
+                        k[i * nd + j]
+                    );
                 }
             }
         }
@@ -123,7 +181,10 @@ fn assembled_tangent_matches_finite_differences_of_the_residual() {
         let committed = State::initial(&model);
         // a converged plastic state to linearize around: solve to a high load
         let (state, _) = engine.step(&committed, 1.0, Response::Plastic).unwrap();
-        assert!(state.gauss.iter().any(|g| g.yielding), "{plane}: no plastic point to test");
+        assert!(
+            state.gauss.iter().any(|g| g.yielding),
+            "{plane}: no plastic point to test"
+        );
         let mut u = state.u.clone();
         for (i, v) in u.iter_mut().enumerate() {
             *v *= 1.0 + 1e-3 * (i as f64).sin();
@@ -132,10 +193,20 @@ fn assembled_tangent_matches_finite_differences_of_the_residual() {
         let asm = &model.asm;
         let kmax = vals.iter().fold(0.0f64, |a, v| a.max(v.abs()));
         // check a spread of columns, including dofs at the interface
-        let free: Vec<usize> = (0..u.len()).filter(|&d| model.dofs.equation(d).is_some()).collect();
-        let picks: Vec<usize> = (0..free.len()).step_by(free.len() / 23 + 1).chain(
-            model.interfaces[0].pairs.iter().flat_map(|p| [2 * p.a + 1, 2 * p.b + 1]).filter_map(|d| model.dofs.equation(d)).take(6),
-        ).collect();
+        let free: Vec<usize> = (0..u.len())
+            .filter(|&d| model.dofs.equation(d).is_some())
+            .collect();
+        let picks: Vec<usize> = (0..free.len())
+            .step_by(free.len() / 23 + 1)
+            .chain(
+                model.interfaces[0]
+                    .pairs
+                    .iter()
+                    .flat_map(|p| [2 * p.a + 1, 2 * p.b + 1])
+                    .filter_map(|d| model.dofs.equation(d))
+                    .take(6),
+            )
+            .collect();
         for c in picks {
             let d = free[c];
             let h = 1e-8 * u.iter().fold(0.0f64, |a, v| a.max(v.abs()));
@@ -151,7 +222,11 @@ fn assembled_tangent_matches_finite_differences_of_the_residual() {
             for (row, &dr) in free.iter().enumerate() {
                 let fd = (rp[dr] - rm[dr]) / (2.0 * h);
                 let err = (fd - col[row]).abs() / kmax;
-                assert!(err < 1e-6, "{plane}: K[{row},{c}] = {} but FD gives {fd}", col[row]);
+                assert!(
+                    err < 1e-6,
+                    "{plane}: K[{row},{c}] = {} but FD gives {fd}",
+                    col[row]
+                );
             }
         }
     }

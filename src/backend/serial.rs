@@ -41,7 +41,9 @@ impl SerialLu {
     /// Numeric factorization of the matrix with the given values.
     pub fn factor(&mut self, values: &[f64]) -> Result<()> {
         if values.iter().any(|v| !v.is_finite()) {
-            return Err(Error::Solver("the tangent matrix holds NaN or infinite entries".into()));
+            return Err(Error::Solver(
+                "the tangent matrix holds NaN or infinite entries".into(),
+            ));
         }
         let mat = SparseColMatRef::new(self.symbolic_mat.as_ref(), values);
         let lu = Lu::try_new_with_symbolic(self.symbolic_lu.clone(), mat)

@@ -189,6 +189,16 @@ impl Method {
     }
 }
 
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum Acceleration {
+    /// The plain method: u ← u + Δu.
+    None,
+    /// Anderson mixing of the last corrections (see `solve::accelerate`).
+    #[default]
+    Anderson,
+}
+
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SolverSpec {
@@ -212,6 +222,13 @@ pub struct SolverSpec {
     /// Halvings allowed for one scheduled increment.
     #[serde(default = "default_cutbacks")]
     pub max_cutbacks: usize,
+    /// "none" or "anderson": acceleration of the fixed-matrix methods (modified
+    /// Newton, initial stiffness); full Newton is never accelerated.
+    #[serde(default)]
+    pub acceleration: Acceleration,
+    /// History depth of Anderson acceleration.
+    #[serde(default = "default_anderson_depth")]
+    pub anderson_depth: usize,
     /// Locate the load of first yield by root finding inside the increment where it occurs.
     #[serde(default = "yes")]
     pub locate_first_yield: bool,
@@ -260,6 +277,9 @@ fn default_residual_tol() -> f64 {
 }
 fn default_displacement_tol() -> f64 {
     1e-8
+}
+fn default_anderson_depth() -> usize {
+    5
 }
 fn default_cutbacks() -> usize {
     8

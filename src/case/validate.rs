@@ -17,16 +17,26 @@ pub fn check_case(case: &Case) -> Result<Checked> {
     let at = |key: &str| format!("{place}: {key}");
     let t = case.model.thickness;
     if !(t.is_finite() && t > 0.0) {
-        return Err(Error::input(at("[model] thickness"), format!("{t} must be a positive number (mm)")));
+        return Err(Error::input(
+            at("[model] thickness"),
+            format!("{t} must be a positive number (mm)"),
+        ));
     }
     if case.mesh.refine == 0 {
         return Err(Error::input(at("[mesh] refine"), "must be at least 1"));
     }
     for (body, m) in &case.materials {
         let key = format!("[materials.{body}]");
-        for (name, v) in [("young", m.young), ("poisson", m.poisson), ("hardening", m.hardening)] {
+        for (name, v) in [
+            ("young", m.young),
+            ("poisson", m.poisson),
+            ("hardening", m.hardening),
+        ] {
             if !v.is_finite() {
-                return Err(Error::input(at(&format!("{key} {name}")), format!("{v} is not a finite number")));
+                return Err(Error::input(
+                    at(&format!("{key} {name}")),
+                    format!("{v} is not a finite number"),
+                ));
             }
         }
         if let Some(y) = m.yield_stress {
@@ -43,11 +53,17 @@ pub fn check_case(case: &Case) -> Result<Checked> {
         let key = format!("[interface.{name}]");
         let law = normal_law(spec).map_err(|m| Error::input(at(&key), m))?;
         if !spec.gap.is_finite() {
-            return Err(Error::input(at(&format!("{key} gap")), "must be a finite number (mm)"));
+            return Err(Error::input(
+                at(&format!("{key} gap")),
+                "must be a finite number (mm)",
+            ));
         }
         if let Some(p) = spec.start_pressure {
             if !(p.is_finite() && p > 0.0) {
-                return Err(Error::input(at(&format!("{key} start_pressure")), format!("{p} must be positive (MPa)")));
+                return Err(Error::input(
+                    at(&format!("{key} start_pressure")),
+                    format!("{p} must be positive (MPa)"),
+                ));
             }
         }
         laws.insert(name.clone(), law);
@@ -93,11 +109,17 @@ fn normal_law(s: &InterfaceLawSpec) -> std::result::Result<NormalLaw, String> {
 fn check_solver(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
     let s = &case.solver;
     if s.increments == 0 {
-        return Err(Error::input(at("[solver] increments"), "must be at least 1"));
+        return Err(Error::input(
+            at("[solver] increments"),
+            "must be at least 1",
+        ));
     }
     if let Some(f) = s.first_increment {
         if !(f.is_finite() && f > 0.0 && f <= 1.0) {
-            return Err(Error::input(at("[solver] first_increment"), format!("{f} must be in (0, 1]")));
+            return Err(Error::input(
+                at("[solver] first_increment"),
+                format!("{f} must be in (0, 1]"),
+            ));
         }
     }
     if let Some(l) = &s.load_factors {
@@ -116,11 +138,17 @@ fn check_solver(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
         ("displacement_tolerance", s.displacement_tolerance),
     ] {
         if !(v.is_finite() && v > 0.0 && v < 1.0) {
-            return Err(Error::input(at(&format!("[solver] {name}")), format!("{v} must be in (0, 1)")));
+            return Err(Error::input(
+                at(&format!("[solver] {name}")),
+                format!("{v} must be in (0, 1)"),
+            ));
         }
     }
     if s.max_iterations == Some(0) {
-        return Err(Error::input(at("[solver] max_iterations"), "must be at least 1"));
+        return Err(Error::input(
+            at("[solver] max_iterations"),
+            "must be at least 1",
+        ));
     }
     if case.output.vtu_every == 0 {
         return Err(Error::input(at("[output] vtu_every"), "must be at least 1"));

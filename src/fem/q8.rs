@@ -75,7 +75,10 @@ pub fn gauss_1d(n: usize) -> Vec<(f64, f64)> {
         }
         _ => {
             let r = (6.0f64 / 5.0).sqrt();
-            let (a, b) = ((3.0 / 7.0 - 2.0 / 7.0 * r).sqrt(), (3.0 / 7.0 + 2.0 / 7.0 * r).sqrt());
+            let (a, b) = (
+                (3.0 / 7.0 - 2.0 / 7.0 * r).sqrt(),
+                (3.0 / 7.0 + 2.0 / 7.0 * r).sqrt(),
+            );
             let (wa, wb) = ((18.0 + 30f64.sqrt()) / 36.0, (18.0 - 30f64.sqrt()) / 36.0);
             vec![(-b, wb), (-a, wa), (a, wa), (b, wb)]
         }
@@ -126,7 +129,10 @@ pub fn physical_derivs(
             "Jacobian determinant {det:.3e} at (ξ, η) = ({xi:.3}, {eta:.3}): element inverted or degenerate"
         ));
     }
-    let inv = [[j[1][1] / det, -j[0][1] / det], [-j[1][0] / det, j[0][0] / det]];
+    let inv = [
+        [j[1][1] / det, -j[0][1] / det],
+        [-j[1][0] / det, j[0][0] / det],
+    ];
     let mut out = [[0.0; 2]; 8];
     for a in 0..8 {
         // dN/dx_i = Σ_k dN/dξ_k ∂ξ_k/∂x_i
@@ -144,7 +150,10 @@ pub fn extrapolate_to_nodes(rule: &GaussRule, values: &[f64]) -> [f64; 8] {
     let n = (rule.points.len() as f64).sqrt().round() as usize;
     let g: Vec<f64> = gauss_1d(n).iter().map(|p| p.0).collect();
     let lagrange = |x: f64, i: usize| -> f64 {
-        (0..n).filter(|&k| k != i).map(|k| (x - g[k]) / (g[i] - g[k])).product()
+        (0..n)
+            .filter(|&k| k != i)
+            .map(|k| (x - g[k]) / (g[i] - g[k]))
+            .product()
     };
     let mut out = [0.0; 8];
     for (a, &[xa, ya]) in NODE_XI.iter().enumerate() {
@@ -188,7 +197,12 @@ mod tests {
     fn derivatives_match_finite_differences() {
         let (x, y, h) = (0.31, -0.47, 1e-6);
         let d = shape_derivs(x, y);
-        let (px, mx, py, my) = (shape(x + h, y), shape(x - h, y), shape(x, y + h), shape(x, y - h));
+        let (px, mx, py, my) = (
+            shape(x + h, y),
+            shape(x - h, y),
+            shape(x, y + h),
+            shape(x, y - h),
+        );
         for a in 0..8 {
             assert!((d[a][0] - (px[a] - mx[a]) / (2.0 * h)).abs() < 1e-9);
             assert!((d[a][1] - (py[a] - my[a]) / (2.0 * h)).abs() < 1e-9);
@@ -198,9 +212,18 @@ mod tests {
     #[test]
     fn gauss_rules_integrate_polynomials_exactly() {
         for (n, deg) in [(2usize, 3i32), (3, 5), (4, 7)] {
-            let s: f64 = gauss_1d(n).iter().map(|&(x, w)| w * x.powi(deg - 1) * (x + 1.0)).sum();
+            let s: f64 = gauss_1d(n)
+                .iter()
+                .map(|&(x, w)| w * x.powi(deg - 1) * (x + 1.0))
+                .sum();
             // ∫ x^{d−1}(x+1) over [−1,1]
-            let exact = |p: i32| if p % 2 == 0 { 2.0 / (p as f64 + 1.0) } else { 0.0 };
+            let exact = |p: i32| {
+                if p % 2 == 0 {
+                    2.0 / (p as f64 + 1.0)
+                } else {
+                    0.0
+                }
+            };
             assert!((s - exact(deg) - exact(deg - 1)).abs() < 1e-14, "n = {n}");
         }
     }
@@ -213,18 +236,33 @@ mod tests {
         for (k, (a, b)) in [(0, 1), (1, 2), (2, 3), (3, 0)].iter().enumerate() {
             x[4 + k] = [(c[*a][0] + c[*b][0]) / 2.0, (c[*a][1] + c[*b][1]) / 2.0];
         }
-        let area: f64 = gauss_3x3().points.iter().map(|&([s, t], w)| w * physical_derivs(&x, s, t).unwrap().0).sum();
-        let shoelace = 0.5 * (0..4).map(|i| c[i][0] * c[(i + 1) % 4][1] - c[(i + 1) % 4][0] * c[i][1]).sum::<f64>();
+        let area: f64 = gauss_3x3()
+            .points
+            .iter()
+            .map(|&([s, t], w)| w * physical_derivs(&x, s, t).unwrap().0)
+            .sum();
+        let shoelace = 0.5
+            * (0..4)
+                .map(|i| c[i][0] * c[(i + 1) % 4][1] - c[(i + 1) % 4][0] * c[i][1])
+                .sum::<f64>();
         assert!((area - shoelace).abs() < 1e-12);
+        // clockwise numbering: the same element inverted
         x.swap(1, 3);
+        x.swap(4, 7);
+        x.swap(5, 6);
         assert!(physical_derivs(&x, 0.0, 0.0).is_err());
     }
 
     #[test]
     fn extrapolation_reproduces_polynomials() {
         for (rule, f) in [
-            (gauss_2x2(), (|x: f64, y: f64| 1.0 + 2.0 * x - y + 0.5 * x * y) as fn(f64, f64) -> f64),
-            (gauss_3x3(), |x: f64, y: f64| 1.0 + x * x - 2.0 * y * y + x * y * y),
+            (
+                gauss_2x2(),
+                (|x: f64, y: f64| 1.0 + 2.0 * x - y + 0.5 * x * y) as fn(f64, f64) -> f64,
+            ),
+            (gauss_3x3(), |x: f64, y: f64| {
+                1.0 + x * x - 2.0 * y * y + x * y * y
+            }),
         ] {
             let vals: Vec<f64> = rule.points.iter().map(|&([x, y], _)| f(x, y)).collect();
             let nodes = extrapolate_to_nodes(&rule, &vals);

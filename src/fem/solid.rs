@@ -34,8 +34,8 @@ impl ElementGeometry {
             x: Vec::with_capacity(rule.points.len()),
         };
         for (ip, &([xi, eta], w)) in rule.points.iter().enumerate() {
-            let (det, d) = physical_derivs(coords, xi, eta)
-                .map_err(|e| format!("Gauss point {ip}: {e}"))?;
+            let (det, d) =
+                physical_derivs(coords, xi, eta).map_err(|e| format!("Gauss point {ip}: {e}"))?;
             let n = crate::fem::q8::shape(xi, eta);
             let mut x = [0.0; 2];
             for a in 0..8 {
@@ -107,7 +107,10 @@ pub fn element_forces(
             Response::Plastic => mat
                 .update(&committed[ip], &eps)
                 .map_err(|e| format!("Gauss point {ip}: {e}"))?,
-            Response::ElasticOnly => (elastic_state(mat, &committed[ip], &eps), mat.elastic_matrix()),
+            Response::ElasticOnly => (
+                elastic_state(mat, &committed[ip], &eps),
+                mat.elastic_matrix(),
+            ),
         };
         trial[ip] = state;
         let dv = geom.dv[ip];
@@ -139,7 +142,8 @@ pub fn elastic_state(mat: &VonMises, committed: &PointState, eps: &[f64; 3]) -> 
         crate::material::PlaneState::Stress => 0.0,
         crate::material::PlaneState::Strain => {
             // ε_zz = 0, so the elastic ε_zz is −εᵖzz; it adds λ·εᵉzz to every normal stress
-            let lambda = mat.young * mat.poisson / ((1.0 + mat.poisson) * (1.0 - 2.0 * mat.poisson));
+            let lambda =
+                mat.young * mat.poisson / ((1.0 + mat.poisson) * (1.0 - 2.0 * mat.poisson));
             let g2 = mat.young / (1.0 + mat.poisson);
             s[0] -= lambda * ep[3];
             s[1] -= lambda * ep[3];

@@ -18,8 +18,8 @@
 //! Strains are total ([εxx, εyy, γxy], engineering shear); the update starts from
 //! the committed plastic strain, so it is path-independent within a load step.
 
-mod plane_stress;
 mod plane_strain;
+mod plane_stress;
 
 #[cfg(test)]
 mod tests;
@@ -91,10 +91,14 @@ impl VonMises {
             return Err(format!("poisson = {poisson} must be in (-1, 0.5)"));
         }
         if !(yield_stress > 0.0) {
-            return Err(format!("yield_stress = {yield_stress} must be a positive number (MPa)"));
+            return Err(format!(
+                "yield_stress = {yield_stress} must be a positive number (MPa)"
+            ));
         }
         if !(hardening.is_finite() && hardening >= 0.0) {
-            return Err(format!("hardening = {hardening} must be a non-negative number (MPa)"));
+            return Err(format!(
+                "hardening = {hardening} must be a non-negative number (MPa)"
+            ));
         }
         Ok(VonMises {
             young,
@@ -119,7 +123,17 @@ impl VonMises {
         match self.plane {
             PlaneState::Stress => {
                 let c = e / (1.0 - nu * nu);
-                Matrix3::new(c, c * nu, 0.0, c * nu, c, 0.0, 0.0, 0.0, c * (1.0 - nu) / 2.0)
+                Matrix3::new(
+                    c,
+                    c * nu,
+                    0.0,
+                    c * nu,
+                    c,
+                    0.0,
+                    0.0,
+                    0.0,
+                    c * (1.0 - nu) / 2.0,
+                )
             }
             PlaneState::Strain => {
                 let c = e / ((1.0 + nu) * (1.0 - 2.0 * nu));

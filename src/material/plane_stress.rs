@@ -54,7 +54,11 @@ pub(super) fn update(
 ) -> Result<(PointState, Matrix3<f64>), ReturnMapError> {
     let (e, nu, g, h) = (m.young, m.poisson, m.shear_modulus(), m.hardening);
     let ep = c.plastic_strain;
-    let ee = Vector3::new(strain[0] - ep[0], strain[1] - ep[1], strain[2] - 2.0 * ep[2]);
+    let ee = Vector3::new(
+        strain[0] - ep[0],
+        strain[1] - ep[1],
+        strain[2] - 2.0 * ep[2],
+    );
     let d = m.elastic_matrix();
     let st = d * ee;
     let p = p_matrix();
@@ -81,11 +85,13 @@ pub(super) fn update(
     let dg = solve_dgamma(&phi, sy_n)?;
     // stress, plastic strain, tangent
     let cinv = d.try_inverse().unwrap_or_else(Matrix3::zeros);
-    let xi = (cinv + dg * p).try_inverse().ok_or_else(|| ReturnMapError {
-        iterations: 0,
-        residual: f64::NAN,
-        reason: "singular modulus Ξ".into(),
-    })?;
+    let xi = (cinv + dg * p)
+        .try_inverse()
+        .ok_or_else(|| ReturnMapError {
+            iterations: 0,
+            residual: f64::NAN,
+            reason: "singular modulus Ξ".into(),
+        })?;
     let s = xi * ee;
     let (f2, _) = phi.fbar2(dg);
     let sq = (2.0 / 3.0 * f2).sqrt();
@@ -124,7 +130,11 @@ fn solve_dgamma(phi: &Consistency, sy_n: f64) -> Result<f64, ReturnMapError> {
         }
         let mut next = if r.1 < 0.0 { dg - r.0 / r.1 } else { f64::NAN };
         if !(next > lo && next < hi) {
-            next = if hi.is_finite() { 0.5 * (lo + hi) } else { 2.0 * lo.max(1e-12) };
+            next = if hi.is_finite() {
+                0.5 * (lo + hi)
+            } else {
+                2.0 * lo.max(1e-12)
+            };
         }
         dg = next;
         r = phi.phi(dg);

@@ -50,14 +50,22 @@ pub fn graded_axis(
         return err(format!("{axis} needs at least two breakpoints"));
     }
     if breaks.iter().any(|v| !v.is_finite()) || breaks.windows(2).any(|w| w[1] <= w[0]) {
-        return err(format!("{axis} = {breaks:?} must be finite and strictly increasing"));
+        return err(format!(
+            "{axis} = {breaks:?} must be finite and strictly increasing"
+        ));
     }
     let segs = breaks.len() - 1;
     if counts.len() != segs {
-        return err(format!("n{axis} has {} entries but {axis} has {segs} segments", counts.len()));
+        return err(format!(
+            "n{axis} has {} entries but {axis} has {segs} segments",
+            counts.len()
+        ));
     }
     if !ratios.is_empty() && ratios.len() != segs {
-        return err(format!("r{axis} has {} entries but {axis} has {segs} segments", ratios.len()));
+        return err(format!(
+            "r{axis} has {} entries but {axis} has {segs} segments",
+            ratios.len()
+        ));
     }
     let mut out = vec![breaks[0]];
     for s in 0..segs {
@@ -70,7 +78,11 @@ pub fn graded_axis(
             return err(format!("r{axis}[{s}] = {r} must be a positive number"));
         }
         let (a, len) = (breaks[s], breaks[s + 1] - breaks[s]);
-        let q = if n > 1 { r.powf(1.0 / (n - 1) as f64) } else { 1.0 };
+        let q = if n > 1 {
+            r.powf(1.0 / (n - 1) as f64)
+        } else {
+            1.0
+        };
         let sizes: Vec<f64> = (0..n).map(|i| q.powi(i as i32)).collect();
         let total: f64 = sizes.iter().sum();
         let mut x = a;
@@ -122,7 +134,13 @@ pub fn generate(
 
 fn add_block(mesh: &mut Mesh, body: usize, xs: Vec<f64>, ys: Vec<f64>) -> Grid {
     let (ni, nj) = (2 * (xs.len() - 1) + 1, 2 * (ys.len() - 1) + 1);
-    let coord = |v: &[f64], k: usize| if k % 2 == 0 { v[k / 2] } else { 0.5 * (v[k / 2] + v[k / 2 + 1]) };
+    let coord = |v: &[f64], k: usize| {
+        if k % 2 == 0 {
+            v[k / 2]
+        } else {
+            0.5 * (v[k / 2] + v[k / 2 + 1])
+        }
+    };
     let first = mesh.nodes.len();
     let mut ids = vec![vec![usize::MAX; ni]; nj];
     for (j, row) in ids.iter_mut().enumerate() {
@@ -139,14 +157,25 @@ fn add_block(mesh: &mut Mesh, body: usize, xs: Vec<f64>, ys: Vec<f64>) -> Grid {
             let (i, j) = (2 * ei, 2 * ej);
             let n = |di: usize, dj: usize| ids[j + dj][i + di];
             mesh.elements.push(Element {
-                nodes: [n(0, 0), n(2, 0), n(2, 2), n(0, 2), n(1, 0), n(2, 1), n(1, 2), n(0, 1)],
+                nodes: [
+                    n(0, 0),
+                    n(2, 0),
+                    n(2, 2),
+                    n(0, 2),
+                    n(1, 0),
+                    n(2, 1),
+                    n(1, 2),
+                    n(0, 1),
+                ],
                 body,
             });
         }
     }
     let name = mesh.bodies[body].clone();
     let (il, jl) = (ni - 1, nj - 1);
-    let side = |pts: Vec<(usize, usize)>| -> Vec<usize> { pts.into_iter().map(|(i, j)| ids[j][i]).collect() };
+    let side = |pts: Vec<(usize, usize)>| -> Vec<usize> {
+        pts.into_iter().map(|(i, j)| ids[j][i]).collect()
+    };
     let sides: [(&str, Vec<usize>); 4] = [
         ("bottom", side((0..ni).map(|i| (i, 0)).collect())),
         ("right", side((0..nj).map(|j| (il, j)).collect())),
@@ -154,25 +183,36 @@ fn add_block(mesh: &mut Mesh, body: usize, xs: Vec<f64>, ys: Vec<f64>) -> Grid {
         ("left", side((0..nj).rev().map(|j| (0, j)).collect())),
     ];
     for (s, nodes) in sides {
-        let edges: Vec<[usize; 3]> = nodes.windows(3).step_by(2).map(|w| [w[0], w[1], w[2]]).collect();
+        let edges: Vec<[usize; 3]> = nodes
+            .windows(3)
+            .step_by(2)
+            .map(|w| [w[0], w[1], w[2]])
+            .collect();
         let mut set = nodes.clone();
         set.sort_unstable();
         mesh.node_sets.insert(format!("{name}.{s}"), set);
         mesh.edge_sets.insert(format!("{name}.{s}"), edges);
     }
-    mesh.node_sets.insert(format!("{name}.all"), (first..mesh.nodes.len()).collect());
+    mesh.node_sets
+        .insert(format!("{name}.all"), (first..mesh.nodes.len()).collect());
     Grid { first, ids, xs, ys }
 }
 
 fn pair_blocks(mesh: &Mesh, grids: &[Grid], spec: &InterfaceSpec) -> Result<Interface, MeshError> {
     let find = |name: &str| {
         mesh.bodies.iter().position(|b| b == name).ok_or_else(|| {
-            MeshError(format!("interface \"{}\": no block named \"{name}\"", spec.name))
+            MeshError(format!(
+                "interface \"{}\": no block named \"{name}\"",
+                spec.name
+            ))
         })
     };
     let (ua, lb) = (find(&spec.upper)?, find(&spec.lower)?);
     if ua == lb {
-        return Err(MeshError(format!("interface \"{}\": upper and lower are the same block", spec.name)));
+        return Err(MeshError(format!(
+            "interface \"{}\": upper and lower are the same block",
+            spec.name
+        )));
     }
     let (gu, gl) = (&grids[ua], &grids[lb]);
     let (yu, yl) = (gu.ys[0], *gl.ys.last().unwrap_or(&f64::NAN));
@@ -187,7 +227,10 @@ fn pair_blocks(mesh: &Mesh, grids: &[Grid], spec: &InterfaceSpec) -> Result<Inte
     let lo = gu.xs[0].max(gl.xs[0]);
     let hi = gu.xs[gu.xs.len() - 1].min(gl.xs[gl.xs.len() - 1]);
     if hi - lo <= tol {
-        return Err(MeshError(format!("interface \"{}\": the blocks do not overlap in x", spec.name)));
+        return Err(MeshError(format!(
+            "interface \"{}\": the blocks do not overlap in x",
+            spec.name
+        )));
     }
     let inside = |x: f64| x >= lo - tol && x <= hi + tol;
     let upper_row: Vec<usize> = gu.ids[0].clone();
@@ -251,10 +294,30 @@ mod tests {
         };
         (
             vec![
-                b("punch", vec![0., 20.], vec![4], vec![0.25], vec![0., 20.], vec![4], vec![4.0]),
-                b("foundation", vec![0., 20., 60.], vec![4, 5], vec![0.25, 8.0], vec![-60., 0.], vec![6], vec![0.1]),
+                b(
+                    "punch",
+                    vec![0., 20.],
+                    vec![4],
+                    vec![0.25],
+                    vec![0., 20.],
+                    vec![4],
+                    vec![4.0],
+                ),
+                b(
+                    "foundation",
+                    vec![0., 20., 60.],
+                    vec![4, 5],
+                    vec![0.25, 8.0],
+                    vec![-60., 0.],
+                    vec![6],
+                    vec![0.1],
+                ),
             ],
-            vec![InterfaceSpec { name: "contact".into(), upper: "punch".into(), lower: "foundation".into() }],
+            vec![InterfaceSpec {
+                name: "contact".into(),
+                upper: "punch".into(),
+                lower: "foundation".into(),
+            }],
         )
     }
 
@@ -291,13 +354,22 @@ mod tests {
         let (mut bl, ifs) = punch();
         bl[0].nx = vec![3];
         let e = generate(&bl, &ifs, 1).unwrap_err();
-        assert!(e.0.contains("interface \"contact\"") && e.0.contains("partner"), "{e}");
+        assert!(
+            e.0.contains("interface \"contact\"") && e.0.contains("partner"),
+            "{e}"
+        );
         let (mut bl, ifs) = punch();
         bl[1].rx = vec![1.0];
-        assert!(generate(&bl, &ifs, 1).unwrap_err().0.contains("rx has 1 entries"));
+        assert!(generate(&bl, &ifs, 1)
+            .unwrap_err()
+            .0
+            .contains("rx has 1 entries"));
         let (mut bl, ifs) = punch();
         bl[1].x = vec![0.0, 30.0, 20.0];
-        assert!(generate(&bl, &ifs, 1).unwrap_err().0.contains("strictly increasing"));
+        assert!(generate(&bl, &ifs, 1)
+            .unwrap_err()
+            .0
+            .contains("strictly increasing"));
     }
 
     #[test]

@@ -72,7 +72,9 @@ impl Mesh {
             .iter()
             .map(|&(s, w)| {
                 let dn = [s - 0.5, -2.0 * s, s + 0.5];
-                let t = (0..3).fold([0.0, 0.0], |t, i| [t[0] + dn[i] * x[i][0], t[1] + dn[i] * x[i][1]]);
+                let t = (0..3).fold([0.0, 0.0], |t, i| {
+                    [t[0] + dn[i] * x[i][0], t[1] + dn[i] * x[i][1]]
+                });
                 w * t[0].hypot(t[1])
             })
             .sum()
@@ -80,7 +82,9 @@ impl Mesh {
 
     fn centroid(&self, e: usize) -> [f64; 2] {
         let c = self.element_coords(e);
-        let s = c[..4].iter().fold([0.0, 0.0], |s, x| [s[0] + x[0], s[1] + x[1]]);
+        let s = c[..4]
+            .iter()
+            .fold([0.0, 0.0], |s, x| [s[0] + x[0], s[1] + x[1]]);
         [s[0] / 4.0, s[1] / 4.0]
     }
 
@@ -98,7 +102,10 @@ impl Mesh {
         let mut used = vec![false; self.nodes.len()];
         for (e, el) in self.elements.iter().enumerate() {
             if el.body >= self.bodies.len() {
-                return err(format!("element {e} refers to body {} which does not exist", el.body));
+                return err(format!(
+                    "element {e} refers to body {} which does not exist",
+                    el.body
+                ));
             }
             for (a, &n) in el.nodes.iter().enumerate() {
                 if n >= self.nodes.len() {
@@ -122,7 +129,10 @@ impl Mesh {
             }
         }
         if let Some(n) = used.iter().position(|u| !u) {
-            return err(format!("node {n} at {:?} belongs to no element", self.nodes[n]));
+            return err(format!(
+                "node {n} at {:?} belongs to no element",
+                self.nodes[n]
+            ));
         }
         let mut node_body = vec![usize::MAX; self.nodes.len()];
         for el in &self.elements {

@@ -26,14 +26,23 @@ pub struct Writer {
 impl Writer {
     /// Prepares a fresh temporary folder next to `dir`.
     pub fn new(dir: &Path, quiet: bool, planned: usize) -> Result<Writer> {
-        let parent = dir.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+        let parent = dir
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
         std::fs::create_dir_all(parent).map_err(|e| Error::io(parent, e))?;
-        let name = dir.file_name().map_or("out".into(), |n| n.to_string_lossy().into_owned());
+        let name = dir
+            .file_name()
+            .map_or("out".into(), |n| n.to_string_lossy().into_owned());
         let tmp_dir = parent.join(format!(".{name}.partial-{}", std::process::id()));
         if tmp_dir.exists() {
             std::fs::remove_dir_all(&tmp_dir).map_err(|e| Error::io(&tmp_dir, e))?;
         }
-        for d in [tmp_dir.clone(), tmp_dir.join("interface"), tmp_dir.join("vtu")] {
+        for d in [
+            tmp_dir.clone(),
+            tmp_dir.join("interface"),
+            tmp_dir.join("vtu"),
+        ] {
             std::fs::create_dir_all(&d).map_err(|e| Error::io(&d, e))?;
         }
         Ok(Writer {
@@ -54,13 +63,17 @@ impl Writer {
     /// Writes the summary and the curve, then moves the folder into place.
     pub fn finish(self, model: &Model, result: &RunResult, wall: f64) -> Result<PathBuf> {
         let summary = summary(model, result, wall);
-        self.write("summary.json", &(serde_json::to_string_pretty(&summary).unwrap_or_default() + "\n"))?;
+        self.write(
+            "summary.json",
+            &(serde_json::to_string_pretty(&summary).unwrap_or_default() + "\n"),
+        )?;
         self.write("curve.csv", &curve(result))?;
         self.write("results.pvd", &vtu::pvd(&self.pvd))?;
         if self.final_dir.exists() {
             std::fs::remove_dir_all(&self.final_dir).map_err(|e| Error::io(&self.final_dir, e))?;
         }
-        std::fs::rename(&self.tmp_dir, &self.final_dir).map_err(|e| Error::io(&self.final_dir, e))?;
+        std::fs::rename(&self.tmp_dir, &self.final_dir)
+            .map_err(|e| Error::io(&self.final_dir, e))?;
         Ok(self.final_dir)
     }
 
@@ -72,7 +85,10 @@ impl Writer {
 
 impl Observer for Writer {
     fn increment(&mut self, model: &Model, state: &State, inc: &Increment) -> Result<()> {
-        self.write(&format!("interface/{:04}.csv", inc.increment), &interface_csv(model, state))?;
+        self.write(
+            &format!("interface/{:04}.csv", inc.increment),
+            &interface_csv(model, state),
+        )?;
         let every = model.case.output.vtu_every;
         let last = (inc.load_factor - 1.0).abs() < 1e-12;
         if model.case.output.vtu && (inc.increment % every == 0 || last) {

@@ -80,7 +80,9 @@ pub fn vtu(model: &Model, state: &State) -> String {
     let mut s = String::with_capacity(200 * nn);
     s.push_str("<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n<UnstructuredGrid>\n");
     let _ = writeln!(s, "<Piece NumberOfPoints=\"{nn}\" NumberOfCells=\"{ne}\">");
-    s.push_str("<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
+    s.push_str(
+        "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n",
+    );
     for x in &mesh.nodes {
         let _ = writeln!(s, "{:e} {:e} 0", x[0], x[1]);
     }
@@ -97,21 +99,47 @@ pub fn vtu(model: &Model, state: &State) -> String {
     for _ in 0..ne {
         let _ = write!(s, "{VTK_QUADRATIC_QUAD} ");
     }
-    s.push_str("\n</DataArray>\n</Cells>\n<PointData Vectors=\"displacement\" Scalars=\"von_mises\">\n");
-    array(&mut s, "displacement", 3, (0..nn).flat_map(|i| [state.u[2 * i], state.u[2 * i + 1], 0.0]));
-    array(&mut s, "stress", 4, nf.stress.iter().flat_map(|v| v.iter().copied()));
+    s.push_str(
+        "\n</DataArray>\n</Cells>\n<PointData Vectors=\"displacement\" Scalars=\"von_mises\">\n",
+    );
+    array(
+        &mut s,
+        "displacement",
+        3,
+        (0..nn).flat_map(|i| [state.u[2 * i], state.u[2 * i + 1], 0.0]),
+    );
+    array(
+        &mut s,
+        "stress",
+        4,
+        nf.stress.iter().flat_map(|v| v.iter().copied()),
+    );
     array(&mut s, "von_mises", 1, nf.von_mises.iter().copied());
     array(&mut s, "peeq", 1, nf.peeq.iter().copied());
     array(&mut s, "contact_pressure", 1, p_n.iter().copied());
-    array(&mut s, "contact_closed", 1, status.iter().map(|&v| f64::from(v)));
+    array(
+        &mut s,
+        "contact_closed",
+        1,
+        status.iter().map(|&v| f64::from(v)),
+    );
     s.push_str("</PointData>\n<CellData>\n");
-    array(&mut s, "body", 1, mesh.elements.iter().map(|e| e.body as f64));
+    array(
+        &mut s,
+        "body",
+        1,
+        mesh.elements.iter().map(|e| e.body as f64),
+    );
     let ng = model.n_gauss();
     array(
         &mut s,
         "max_peeq",
         1,
-        (0..ne).map(|e| state.gauss[e * ng..(e + 1) * ng].iter().fold(0.0f64, |a, g| a.max(g.peeq))),
+        (0..ne).map(|e| {
+            state.gauss[e * ng..(e + 1) * ng]
+                .iter()
+                .fold(0.0f64, |a, g| a.max(g.peeq))
+        }),
     );
     s.push_str("</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
     s

@@ -2,6 +2,7 @@
 //! steps with the status check, automatic cutback of a failed step with the
 //! committed state restored, and the location of first yield.
 
+mod accelerate;
 pub mod newton;
 mod yield_point;
 
@@ -109,7 +110,8 @@ pub fn run(model: &Model, observer: &mut dyn Observer) -> Result<RunResult> {
     let mut committed = State::initial(model);
     let mut lambda = 0.0;
     // pending targets, last element first; each with its cut depth
-    let mut pending: Vec<(f64, usize)> = spec.schedule().into_iter().rev().map(|l| (l, 0)).collect();
+    let mut pending: Vec<(f64, usize)> =
+        spec.schedule().into_iter().rev().map(|l| (l, 0)).collect();
     let mut increments = Vec::new();
     let mut first_yield = None;
     let mut cutbacks_total = 0;

@@ -12,9 +12,10 @@
 //! paper does. A step converges when the residual and the displacement correction
 //! are small and no interface point changed status in the last iteration.
 
+use super::accelerate::Anderson;
 use super::State;
 use crate::backend::serial::SerialLu;
-use crate::case::Method;
+use crate::case::{Acceleration, Method};
 use crate::fem::solid::{element_forces, Response, Tangent};
 use crate::interface::Status;
 use crate::material::PointState;
@@ -86,6 +87,9 @@ impl<'m> Engine<'m> {
         let limit = spec.iteration_limit();
         let mut last_status: Option<Vec<Status>> = None;
         let mut du_inf = f64::INFINITY;
+        let mut anderson = (method != Method::FullNewton
+            && spec.acceleration == Acceleration::Anderson)
+            .then(|| Anderson::new(spec.anderson_depth));
         for it in 0..=limit {
             let t0 = std::time::Instant::now();
             let solid_tangent = match method {
@@ -95,7 +99,14 @@ impl<'m> Engine<'m> {
                 _ => None,
             };
             let floor = (it == 0).then(|| self.start_stiffness(lambda));
-            let status = self.assemble(committed, &mut trial, lambda, response, solid_tangent, floor)?;
+            let status = self.assemble(
+                committed,
+                &mut trial,
+                lambda,
+                response,
+                solid_tangent,
+                floor,
+            )?;
             self.stats.assembly_seconds += t0.elapsed().as_secs_f64();
             // norms over free dofs; reactions over prescribed dofs
             let (mut r2, mut f2, mut react2) = (0.0, 0.0, 0.0);
@@ -111,7 +122,11 @@ impl<'m> Engine<'m> {
             if !r_norm.is_finite() {
                 return Err(format!("residual is not finite at iteration {it}"));
             }
-            let u_inf = trial.u.iter().fold(0.0f64, |a, v| a.max(v.abs())).max(1e-30);
+            let u_inf = trial
+                .u
+                .iter()
+                .fold(0.0f64, |a, v| a.max(v.abs()))
+                .max(1e-30);
             let same_status = last_status.as_ref() == Some(&status);
             let small_r = r_norm <= spec.residual_tolerance * reference;
             let small_du = it > 0 && du_inf <= spec.displacement_tolerance * u_inf;
@@ -130,11 +145,18 @@ impl<'m> Engine<'m> {
                     "no convergence in {limit} iterations (|R|/|F| = {:.3e}, |du|/|u| = {:.3e}{})",
                     r_norm / reference,
                     du_inf / u_inf,
-                    if same_status { "" } else { ", contact status still changing" }
+                    if same_status {
+                        ""
+                    } else {
+                        ", contact status still changing"
+                    }
                 ));
             }
             if r_norm > 1e10 * reference && it > 2 {
-                return Err(format!("diverged at iteration {it} (|R|/|F| = {:.3e})", r_norm / reference));
+                return Err(format!(
+                    "diverged at iteration {it} (|R|/|F| = {:.3e})",
+                    r_norm / reference
+                ));
             }
             last_status = Some(status);
             // linear solve on the free dofs
@@ -147,6 +169,13 @@ impl<'m> Engine<'m> {
             self.stats.factorizations += 1;
             self.lu.solve(&mut rhs).map_err(|e| e.to_string())?;
             self.stats.solve_seconds += t1.elapsed().as_secs_f64();
+            if let Some(acc) = anderson.as_mut() {
+                let x: Vec<f64> = (0..trial.u.len())
+                    .filter(|&d| m.dofs.equation(d).is_some())
+                    .map(|d| trial.u[d])
+                    .collect();
+                rhs = acc.step(&x, &rhs);
+            }
             du_inf = 0.0;
             for d in 0..trial.u.len() {
                 if let Some(e) = m.dofs.equation(d) {
@@ -170,7 +199,14 @@ impl<'m> Engine<'m> {
     ) -> Result<(Vec<f64>, Vec<f64>), String> {
         let mut trial = committed.clone();
         trial.u.copy_from_slice(u);
-        self.assemble(committed, &mut trial, lambda, Response::Plastic, Some(Tangent::Consistent), None)?;
+        self.assemble(
+            committed,
+            &mut trial,
+            lambda,
+            Response::Plastic,
+            Some(Tangent::Consistent),
+            None,
+        )?;
         Ok((self.r.clone(), self.vals.clone()))
     }
 
@@ -229,9 +265,7 @@ impl<'m> Engine<'m> {
                 &mut fe,
                 &mut ke,
             )
-            .map_err(|msg| {
-                format!("element {e} (body \"{}\"): {msg}", m.mesh.bodies[el.body])
-            })?;
+            .map_err(|msg| format!("element {e} (body \"{}\"): {msg}", m.mesh.bodies[el.body]))?;
             for (a, &n) in el.nodes.iter().enumerate() {
                 self.r[2 * n] += fe[2 * a];
                 self.r[2 * n + 1] += fe[2 * a + 1];
@@ -253,13 +287,27 @@ impl<'m> Engine<'m> {
                 let nd = 4 * pt.len;
                 let un = im.point_approach(pt, &trial.u);
                 let kfloor = kf.filter(|_| un > -1e-12);
-                let ev = im.eval_point(pt, &trial.u, kfloor, &mut rl[..nd], Some(&mut kl[..nd * nd]));
-                status.push(if ev.u_n > 0.0 { Status::Closed } else { Status::Open });
+                let ev = im.eval_point(
+                    pt,
+                    &trial.u,
+                    kfloor,
+                    &mut rl[..nd],
+                    Some(&mut kl[..nd * nd]),
+                );
+                status.push(if ev.u_n > 0.0 {
+                    Status::Closed
+                } else {
+                    Status::Open
+                });
                 let dofs = im.point_dofs(pt);
                 for (k, &d) in dofs.iter().enumerate() {
                     self.r[d] += rl[k];
                 }
-                m.asm.add(m.interface_block_base[i] + j, &kl[..nd * nd], &mut self.vals);
+                m.asm.add(
+                    m.interface_block_base[i] + j,
+                    &kl[..nd * nd],
+                    &mut self.vals,
+                );
             }
         }
         Ok(status)

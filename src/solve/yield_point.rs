@@ -47,13 +47,13 @@ pub(super) fn locate(
 ) -> Result<FirstYield> {
     let model = engine.model;
     let mut eval = |l: f64| -> Result<(f64, State)> {
-        let (s, _) = engine.step(last_elastic, l, Response::ElasticOnly).map_err(|m| {
-            Error::Convergence {
+        let (s, _) = engine
+            .step(last_elastic, l, Response::ElasticOnly)
+            .map_err(|m| Error::Convergence {
                 increment: 0,
                 load_factor: l,
                 message: format!("elastic solve while locating first yield: {m}"),
-            }
-        })?;
+            })?;
         Ok((max_yield_ratio(model, &s).0 - 1.0, s))
     };
     let (mut a, mut ga) = (lambda0, ratio0 - 1.0);
