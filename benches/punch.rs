@@ -8,10 +8,22 @@ use asperity::case::Method;
 use asperity::driver::{self, RunOptions};
 use std::path::PathBuf;
 
-fn run(case: &str, method: Method, refine: usize) -> (asperity::model::Model, asperity::solve::RunResult, f64) {
-    let out = std::env::temp_dir().join(format!("asperity-bench-{case}-{}-{refine}", method.name()));
-    let opts = RunOptions { out: Some(out), quiet: true, method: Some(method), refine: Some(refine) };
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("cases").join(case);
+fn run(
+    case: &str,
+    method: Method,
+    refine: usize,
+) -> (asperity::model::Model, asperity::solve::RunResult, f64) {
+    let out =
+        std::env::temp_dir().join(format!("asperity-bench-{case}-{}-{refine}", method.name()));
+    let opts = RunOptions {
+        out: Some(out),
+        quiet: true,
+        method: Some(method),
+        refine: Some(refine),
+    };
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("cases")
+        .join(case);
     let t = std::time::Instant::now();
     let (_, model, result) = driver::run(&path, &opts).unwrap_or_else(|e| panic!("{case}: {e}"));
     (model, result, t.elapsed().as_secs_f64())
@@ -22,7 +34,11 @@ fn main() {
     println!("| case | method | dofs | increments | iterations | wall time (best of 5) |");
     println!("|---|---|---:|---:|---:|---:|");
     for case in cases {
-        for method in [Method::FullNewton, Method::ModifiedNewton, Method::InitialStiffness] {
+        for method in [
+            Method::FullNewton,
+            Method::ModifiedNewton,
+            Method::InitialStiffness,
+        ] {
             let mut best = f64::INFINITY;
             let mut info = (0, 0, 0);
             for _ in 0..5 {
@@ -30,7 +46,14 @@ fn main() {
                 best = best.min(t);
                 info = (m.mesh.num_dofs(), r.increments.len(), r.stats.iterations);
             }
-            println!("| {case} | {} | {} | {} | {} | {:.3} s |", method.name(), info.0, info.1, info.2, best);
+            println!(
+                "| {case} | {} | {} | {} | {} | {:.3} s |",
+                method.name(),
+                info.0,
+                info.1,
+                info.2,
+                best
+            );
         }
     }
     println!();

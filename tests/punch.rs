@@ -50,11 +50,14 @@ fn plane_stress_yields_first_at_the_surface_near_the_punch_edge_and_plane_strain
         "plane stress first yield at x = {} mm",
         fs.x
     );
-    // plane strain: a few mm below the surface, at a higher load (paper: 9.75 vs 7.17 kN)
+    // plane strain: below the surface Gauss row (several times deeper than plane
+    // stress on the same mesh) and at a higher load (paper: 9.75 vs 7.17 kN). The
+    // depth itself shrinks with the mesh: see README, "Where first yield occurs".
     assert!(
-        fe.depth > 1.0,
-        "plane strain first yield depth {} mm",
-        fe.depth
+        fe.depth > 4.0 * fs.depth,
+        "plane strain first yield depth {} mm vs plane stress {}",
+        fe.depth,
+        fs.depth
     );
     assert!(
         fe.total_load_kn > 1.2 * fs.total_load_kn,
