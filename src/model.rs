@@ -36,6 +36,9 @@ pub struct Model {
     pub probe_node: usize,
     /// y of the probe node: depths are measured below it.
     pub surface_y: f64,
+    /// Force scale for the residual test when nothing is loaded (an open joint
+    /// under prescribed displacement): 1e-6 · E_max · model size · thickness, N.
+    pub force_floor: f64,
 }
 
 impl Model {
@@ -151,6 +154,17 @@ impl Model {
         }
         let asm = Assembler::new(&dofs, &blocks);
         let (probe_node, surface_y) = probe(&case, &mesh, &interfaces);
+        let e_max = materials.iter().fold(0.0f64, |a, m| a.max(m.young));
+        let (lo, hi) = mesh
+            .nodes
+            .iter()
+            .fold(([f64::MAX; 2], [f64::MIN; 2]), |(lo, hi), x| {
+                (
+                    [lo[0].min(x[0]), lo[1].min(x[1])],
+                    [hi[0].max(x[0]), hi[1].max(x[1])],
+                )
+            });
+        let force_floor = 1e-6 * e_max * (hi[0] - lo[0]).hypot(hi[1] - lo[1]) * thickness;
         Ok(Model {
             name: case.display_name(),
             plane,
@@ -167,6 +181,7 @@ impl Model {
             interface_block_base,
             probe_node,
             surface_y,
+            force_floor,
             mesh,
             case,
         })

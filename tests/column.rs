@@ -133,3 +133,69 @@ fn initial_gap_adds_to_the_settlement_under_displacement_free_load() {
     let exact = q * h / e + c * q.powf(m) + g;
     assert!(common::rel(u, exact) < 1e-9, "u={u} exact={exact}");
 }
+
+/// Records every converged increment.
+struct Record(Vec<(f64, f64, Vec<asperity::interface::Status>)>);
+impl Observer for Record {
+    fn increment(&mut self, _: &Model, s: &State, inc: &Increment) -> asperity::Result<()> {
+        self.0.push((
+            inc.load_factor,
+            inc.measures.mean_pressure,
+            s.status.clone(),
+        ));
+        Ok(())
+    }
+}
+
+#[test]
+fn loss_of_contact_and_recontact_follow_the_closed_form() {
+    // top pushed down by δ = 0.05 λ mm across an initial gap g₀ = 0.01 mm, then
+    // lifted (the joint opens again) and pushed back down (re-contact)
+    let (e, h, c, m, g0): (f64, f64, f64, f64, f64) = (70000.0, 40.0, 0.002, 0.5, 0.01);
+    let text = column("stress", m, "lumped", &format!("gap = {g0}"))
+        .replace(
+            "[[load]]\nedges = \"top.top\"\npressure = 120.0\n",
+            "[[boundary]]\nset = \"top.top\"\nuy = -0.05\n",
+        )
+        .replace(
+            "increments = 4",
+            "load_factors = [0.1, 0.3, 0.6, 1.0, 0.5, 0.15, 0.6]",
+        );
+    let model = common::model(&text);
+    let mut rec = Record(Vec::new());
+    solve::run(&model, &mut rec).unwrap();
+    assert_eq!(rec.0.len(), 7);
+    for (lambda, p, status) in &rec.0 {
+        let delta = 0.05 * lambda;
+        // closed form: δ − g₀ = q h/E + c q^m when δ > g₀, else q = 0
+        let q = if delta <= g0 {
+            0.0
+        } else {
+            let mut q: f64 = 10.0;
+            for _ in 0..100 {
+                let f = q * h / e + c * q.powf(m) - (delta - g0);
+                let df = h / e + c * m * q.powf(m - 1.0);
+                q -= f / df;
+            }
+            q
+        };
+        let closed = status
+            .iter()
+            .all(|s| *s == asperity::interface::Status::Closed);
+        let open = status
+            .iter()
+            .all(|s| *s == asperity::interface::Status::Open);
+        if q == 0.0 {
+            assert!(
+                open && *p == 0.0,
+                "λ = {lambda}: expected an open joint, p = {p}"
+            );
+        } else {
+            assert!(closed, "λ = {lambda}: expected a closed joint");
+            assert!(
+                common::rel(*p, q) < 1e-8,
+                "λ = {lambda}: p = {p}, closed form {q}"
+            );
+        }
+    }
+}

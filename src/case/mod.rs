@@ -209,7 +209,7 @@ pub struct SolverSpec {
     pub increments: usize,
     /// Size of the first load step (the paper uses about 5%); default 1/increments.
     pub first_increment: Option<f64>,
-    /// Explicit increasing load factors ending at 1, instead of increments.
+    /// Explicit load factors instead of increments; may decrease (unloading).
     pub load_factors: Option<Vec<f64>>,
     /// Iteration limit per attempt; default 30 (full Newton) or 400 (others).
     pub max_iterations: Option<usize>,

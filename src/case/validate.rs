@@ -124,12 +124,13 @@ fn check_solver(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
     }
     if let Some(l) = &s.load_factors {
         let ok = !l.is_empty()
-            && l.iter().all(|v| v.is_finite() && *v > 0.0)
-            && l.windows(2).all(|w| w[1] > w[0]);
+            && l.iter().all(|v| v.is_finite())
+            && l[0] != 0.0
+            && l.windows(2).all(|w| w[1] != w[0]);
         if !ok {
             return Err(Error::input(
                 at("[solver] load_factors"),
-                "must be a non-empty, strictly increasing list of positive numbers",
+                "must be a non-empty list of finite numbers, the first non-zero and no two neighbours equal (it may go down: unloading)",
             ));
         }
     }

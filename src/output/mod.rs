@@ -90,7 +90,7 @@ impl Observer for Writer {
             &interface_csv(model, state),
         )?;
         let every = model.case.output.vtu_every;
-        let last = (inc.load_factor - 1.0).abs() < 1e-12;
+        let last = inc.increment >= self.planned;
         if model.case.output.vtu && (inc.increment % every == 0 || last) {
             let f = format!("vtu/{:04}.vtu", inc.increment);
             self.write(&f, &vtu::vtu(model, state))?;
@@ -98,7 +98,8 @@ impl Observer for Writer {
         }
         if !self.quiet {
             let el = self.started.elapsed().as_secs_f64();
-            let eta = el / inc.load_factor * (1.0 - inc.load_factor);
+            let done = inc.increment as f64 / self.planned.max(inc.increment) as f64;
+            let eta = el / done * (1.0 - done);
             eprintln!(
                 "  increment {:>3}/{}  λ = {:.4}  load {:8.3} kN  p_mean {:7.2} MPa  iterations {:>3}  peeq {:.2e}  {:6.2} s (≈{:.1} s left)",
                 inc.increment,

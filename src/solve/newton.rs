@@ -118,7 +118,8 @@ impl<'m> Engine<'m> {
                     react2 += self.r[d] * self.r[d];
                 }
             }
-            let (r_norm, reference) = (r2.sqrt(), f2.sqrt().max(react2.sqrt()).max(1e-12));
+            let reference = f2.sqrt().max(react2.sqrt()).max(m.force_floor);
+            let r_norm = r2.sqrt();
             if !r_norm.is_finite() {
                 return Err(format!("residual is not finite at iteration {it}"));
             }
