@@ -124,6 +124,7 @@ impl Model {
                 spec.weights,
                 thickness,
                 spec.start_pressure,
+                checked.tangential.get(&iface.name).copied(),
             ));
         }
         for name in case.interface.keys() {
@@ -332,12 +333,20 @@ fn check_supports(
         let mut changed = false;
         for im in interfaces {
             let n = im.pairs.first().map_or([0.0, 1.0], |p| p.normal);
-            let c = usize::from(n[1].abs() >= n[0].abs());
+            let normal = usize::from(n[1].abs() >= n[0].abs());
+            // springs carry the normal direction, and with friction the tangential one too
+            let dirs: &[usize] = if im.tangential.is_some() {
+                &[0, 1]
+            } else {
+                std::slice::from_ref(&normal)
+            };
             let (a, b) = (im.body_a, im.body_b);
-            if held[a][c] != held[b][c] {
-                held[a][c] = true;
-                held[b][c] = true;
-                changed = true;
+            for &c in dirs {
+                if held[a][c] != held[b][c] {
+                    held[a][c] = true;
+                    held[b][c] = true;
+                    changed = true;
+                }
             }
         }
         if !changed {

@@ -132,6 +132,39 @@ pub struct InterfaceLawSpec {
     /// Reference pressure in MPa for the secant start stiffness (eq. 2.8-2.9);
     /// default: the mean interface pressure of the applied load at the first step.
     pub start_pressure: Option<f64>,
+    /// Tangential compliance and friction (section 2.2, 2.4-2.6); none = frictionless.
+    pub tangential: Option<TangentialSpec>,
+}
+
+/// `[interface.<name>.tangential]`: elastic-plastic shear compliance with
+/// slip-hardening friction. Requires lumped weights (one spring, one history, per pair).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TangentialSpec {
+    /// R: k_T^e = p_N^S / R in MPa/µm with p_N in MPa (eq. 2.6).
+    pub r: f64,
+    /// S, in [0, 1].
+    pub s: f64,
+    /// k_T^p / k_T^e in [0, 1] (1: no micro-slip branch).
+    pub kp_ratio: f64,
+    /// Macroscopic (static) friction coefficient μ_m.
+    pub mu: f64,
+    /// Initial friction coefficient as a fraction of μ_m (eq. 2.21), in (0, 1].
+    #[serde(default = "one")]
+    pub beta: f64,
+    /// Slip-hardening rate n, 1/mm (eq. 2.21).
+    #[serde(default)]
+    pub n: f64,
+    /// p_T^Y / (μ_m p_N): 0.625 per eq. 2.18 (eq. 2.5 says 0.5).
+    #[serde(default = "default_yield_ratio")]
+    pub yield_ratio: f64,
+    /// "return-mapping" (consistent tangent) or "stiffness-modification" (the paper's 2.25-2.26).
+    #[serde(default)]
+    pub scheme: crate::interface::FrictionScheme,
+}
+
+fn default_yield_ratio() -> f64 {
+    0.625
 }
 
 #[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default)]

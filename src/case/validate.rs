@@ -1,14 +1,16 @@
 //! Checks of a parsed case that need no mesh: numbers in range, laws complete,
 //! parameters that belong to another law rejected.
 
+use super::Weights;
 use super::{Case, InterfaceLawSpec};
 use crate::error::{Error, Result};
-use crate::interface::NormalLaw;
+use crate::interface::{FrictionScheme, NormalLaw, TangentialLaw};
 use std::collections::BTreeMap;
 
 /// What validation derives from the case.
 pub struct Checked {
     pub laws: BTreeMap<String, NormalLaw>,
+    pub tangential: BTreeMap<String, (TangentialLaw, FrictionScheme)>,
 }
 
 /// Validates everything that does not depend on the mesh.
@@ -49,6 +51,7 @@ pub fn check_case(case: &Case) -> Result<Checked> {
         }
     }
     let mut laws = BTreeMap::new();
+    let mut tangential = BTreeMap::new();
     for (name, spec) in &case.interface {
         let key = format!("[interface.{name}]");
         let law = normal_law(spec).map_err(|m| Error::input(at(&key), m))?;
@@ -67,9 +70,18 @@ pub fn check_case(case: &Case) -> Result<Checked> {
             }
         }
         laws.insert(name.clone(), law);
+        if let Some(t) = &spec.tangential {
+            let key = format!("{key} tangential");
+            if spec.weights != Weights::Lumped {
+                return Err(Error::input(at(&key), "a tangential law needs weights = \"lumped\" (one spring and one slip history per pair)"));
+            }
+            let law = TangentialLaw::new(t.r, t.s, t.kp_ratio, t.mu, t.beta, t.n, t.yield_ratio)
+                .map_err(|m| Error::input(at(&key), m))?;
+            tangential.insert(name.clone(), (law, t.scheme));
+        }
     }
     check_solver(case, &at)?;
-    Ok(Checked { laws })
+    Ok(Checked { laws, tangential })
 }
 
 fn normal_law(s: &InterfaceLawSpec) -> std::result::Result<NormalLaw, String> {

@@ -16,10 +16,12 @@
 //!   for a linear law this is exactly (k A/30)[4 2 −1; 2 16 2; −1 2 4] (eq. 3.29).
 
 pub mod normal;
+pub mod tangential;
 
 use crate::case::Weights;
 use crate::mesh::{Interface, Mesh};
 pub use normal::NormalLaw;
+pub use tangential::{Slip, SlipState, TangentialLaw};
 
 /// A node pair across the interface.
 #[derive(Clone, Debug)]
@@ -45,21 +47,59 @@ pub struct Point {
     pub normal: [f64; 2],
 }
 
-/// Open or closed, decided from the approach at the point.
+/// Status of an interface point, decided from its approach and shear.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Status {
     #[default]
     Open,
+    /// Closed, no tangential law.
     Closed,
+    Stick,
+    MicroSlip,
+    MacroSlip,
 }
 
 impl Status {
+    /// Normal status: "open" or "closed".
     pub fn name(self) -> &'static str {
         match self {
             Status::Open => "open",
-            Status::Closed => "closed",
+            _ => "closed",
         }
     }
+
+    /// Tangential status: "none", "stick", "micro-slip", "macro-slip" ("free" when open).
+    pub fn tangential_name(self) -> &'static str {
+        match self {
+            Status::Open => "free",
+            Status::Closed => "none",
+            Status::Stick => "stick",
+            Status::MicroSlip => "micro-slip",
+            Status::MacroSlip => "macro-slip",
+        }
+    }
+}
+
+/// Tangential history and last values of one point (committed per increment).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PointState {
+    pub slip: SlipState,
+    /// Shear traction and tangential displacement (for the secant scheme and output).
+    pub p_t: f64,
+    pub u_t: f64,
+    pub mu_f: f64,
+}
+
+/// How the tangential stiffness enters the matrix.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum FrictionScheme {
+    /// Consistent tangent of the return mapping (unsymmetric ∂p_T/∂u_N included).
+    #[default]
+    ReturnMapping,
+    /// The paper's stiffness modification (2.25-2.26): the secant k_T* = Δp_T/Δu_T
+    /// of the increment for slipping springs, k_T^e for sticking ones, no coupling.
+    StiffnessModification,
 }
 
 /// One interface of the model, ready to evaluate.
@@ -74,14 +114,18 @@ pub struct InterfaceModel {
     pub points: Vec<Point>,
     /// Secant-start reference pressure (MPa) if given in the case.
     pub start_pressure: Option<f64>,
+    pub tangential: Option<TangentialLaw>,
+    pub scheme: FrictionScheme,
 }
 
-/// Result of evaluating one point: the approach, pressure and stiffness, and the
-/// local residual on the dofs [A-pairs (x, y)…, B-pairs (x, y)…].
+/// Result of evaluating one point.
 pub struct PointEval {
     pub u_n: f64,
     pub p_n: f64,
     pub k_n: f64,
+    pub status: Status,
+    /// Trial tangential state.
+    pub state: PointState,
 }
 
 impl InterfaceModel {
@@ -94,6 +138,7 @@ impl InterfaceModel {
         weights: Weights,
         thickness: f64,
         start_pressure: Option<f64>,
+        tangential: Option<(TangentialLaw, FrictionScheme)>,
     ) -> Self {
         let mut pairs: Vec<Pair> = Vec::new();
         let mut index = std::collections::HashMap::new();
@@ -170,6 +215,8 @@ impl InterfaceModel {
             pairs,
             points,
             start_pressure,
+            tangential: tangential.map(|t| t.0),
+            scheme: tangential.map(|t| t.1).unwrap_or_default(),
         }
     }
 
@@ -188,15 +235,18 @@ impl InterfaceModel {
         du[0] * n[0] + du[1] * n[1] - self.gap
     }
 
-    /// Approach at an integration point, interpolated from its pairs.
-    pub fn point_approach(&self, pt: &Point, u: &[f64]) -> f64 {
-        let mut un = -self.gap;
+    /// Normal approach and tangential displacement at a point, interpolated from
+    /// its pairs; t = (n_y, −n_x).
+    pub fn point_kinematics(&self, pt: &Point, u: &[f64]) -> (f64, f64) {
+        let (mut un, mut ut) = (-self.gap, 0.0);
+        let (n, t) = (pt.normal, [pt.normal[1], -pt.normal[0]]);
         for i in 0..pt.len {
             let pr = &self.pairs[pt.pairs[i]];
             let du = [u[2 * pr.b] - u[2 * pr.a], u[2 * pr.b + 1] - u[2 * pr.a + 1]];
-            un += pt.shape[i] * (du[0] * pt.normal[0] + du[1] * pt.normal[1]);
+            un += pt.shape[i] * (du[0] * n[0] + du[1] * n[1]);
+            ut += pt.shape[i] * (du[0] * t[0] + du[1] * t[1]);
         }
-        un
+        (un, ut)
     }
 
     /// The dofs of a point in local order: A pairs (x, y) then B pairs (x, y).
@@ -213,47 +263,99 @@ impl InterfaceModel {
         d
     }
 
-    /// Evaluates a point: local residual `r` (len 4·len) and, if given, the local
-    /// tangent `k` (row-major (4·len)²). `k_floor` replaces the stiffness of a pair
-    /// at or below zero approach (the secant start of eq. 2.8-2.9).
+    /// Evaluates a point from its committed state: local residual `r` (len 4·len)
+    /// and, if given, the local tangent `k` (row-major (4·len)²). `k_floor`
+    /// replaces the normal stiffness of a point at or below zero approach (the
+    /// secant start of eq. 2.8-2.9).
     pub fn eval_point(
         &self,
         pt: &Point,
         u: &[f64],
+        committed: &PointState,
         k_floor: Option<f64>,
         r: &mut [f64],
         k: Option<&mut [f64]>,
     ) -> PointEval {
-        let u_n = self.point_approach(pt, u);
-        let (p_n, mut k_n) = self.law.pressure(u_n);
-        if let Some(kf) = k_floor {
-            if u_n <= 0.0 {
-                k_n = kf;
-            }
-        }
+        let (u_n, u_t) = self.point_kinematics(pt, u);
+        let (p_n, k_law) = self.law.pressure(u_n);
+        let k_n = match k_floor {
+            Some(kf) if u_n <= 0.0 => kf,
+            _ => k_law,
+        };
         let n = pt.len;
-        // g: derivative of u_N with respect to local dofs
-        let mut g = [0.0f64; 12];
+        let t = [pt.normal[1], -pt.normal[0]];
+        // gn, gt: derivatives of u_N and u_T with respect to the local dofs
+        let (mut gn, mut gt) = ([0.0f64; 12], [0.0f64; 12]);
         for i in 0..n {
             let s = pt.shape[i];
-            g[2 * i] = -s * pt.normal[0];
-            g[2 * i + 1] = -s * pt.normal[1];
-            g[2 * n + 2 * i] = s * pt.normal[0];
-            g[2 * n + 2 * i + 1] = s * pt.normal[1];
+            for c in 0..2 {
+                gn[2 * i + c] = -s * pt.normal[c];
+                gn[2 * n + 2 * i + c] = s * pt.normal[c];
+                gt[2 * i + c] = -s * t[c];
+                gt[2 * n + 2 * i + c] = s * t[c];
+            }
+        }
+        let mut status = if u_n > 0.0 {
+            Status::Closed
+        } else {
+            Status::Open
+        };
+        let (mut p_t, mut d_ut, mut d_un) = (0.0, 0.0, 0.0);
+        let mut state = PointState { u_t, ..*committed };
+        if let Some(law) = &self.tangential {
+            let ev = law.eval(p_n, k_law, u_t, &committed.slip);
+            (p_t, d_ut, d_un) = (ev.p_t, ev.d_ut, ev.d_un);
+            state = PointState {
+                slip: ev.state,
+                p_t,
+                u_t,
+                mu_f: ev.mu_f,
+            };
+            if u_n > 0.0 {
+                status = match ev.slip {
+                    Slip::Stick => Status::Stick,
+                    Slip::MicroSlip => Status::MicroSlip,
+                    Slip::MacroSlip => Status::MacroSlip,
+                };
+            }
+            if self.scheme == FrictionScheme::StiffnessModification && status != Status::Stick {
+                // secant of the increment (2.25), bounded by the elastic stiffness
+                let du = u_t - committed.u_t;
+                let ke = if p_n > 0.0 {
+                    law.elastic_stiffness(p_n).0
+                } else {
+                    0.0
+                };
+                d_ut = if du.abs() > 1e-14 {
+                    ((p_t - committed.p_t) / du).clamp(0.0, ke)
+                } else {
+                    d_ut
+                };
+                d_un = 0.0;
+            } else if self.scheme == FrictionScheme::StiffnessModification {
+                d_un = 0.0;
+            }
         }
         let nd = 4 * n;
         for i in 0..nd {
-            r[i] = pt.area * p_n * g[i];
+            r[i] = pt.area * (p_n * gn[i] + p_t * gt[i]);
         }
         if let Some(k) = k {
-            let c = pt.area * k_n;
+            let a = pt.area;
             for i in 0..nd {
                 for j in 0..nd {
-                    k[i * nd + j] = c * g[i] * g[j];
+                    k[i * nd + j] =
+                        a * (k_n * gn[i] * gn[j] + gt[i] * (d_ut * gt[j] + d_un * gn[j]));
                 }
             }
         }
-        PointEval { u_n, p_n, k_n }
+        PointEval {
+            u_n,
+            p_n,
+            k_n,
+            status,
+            state,
+        }
     }
 }
 

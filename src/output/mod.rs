@@ -6,6 +6,7 @@
 pub mod vtu;
 
 use crate::error::{Error, Result};
+use crate::interface::Status;
 use crate::model::Model;
 use crate::solve::{Increment, Observer, RunResult, State};
 use serde_json::json;
@@ -123,18 +124,46 @@ impl Observer for Writer {
     }
 }
 
-/// One row per interface pair, ordered along the interface.
+/// One row per interface pair, ordered along the interface. With lumped weights
+/// each pair is one integration point and carries its own tangential state.
 pub fn interface_csv(model: &Model, state: &State) -> String {
-    let mut s = String::from("x_mm,p_n_mpa,u_n_mm,status\n");
+    let mut s = String::from(
+        "x_mm,p_n_mpa,u_n_mm,status,p_t_mpa,u_t_mm,u_t_plastic_mm,mu_f,tangential_status\n",
+    );
+    let mut base = 0;
     for im in &model.interfaces {
-        let mut rows: Vec<_> = im.pairs.iter().collect();
-        rows.sort_by(|a, b| a.x[0].total_cmp(&b.x[0]));
-        for pr in rows {
+        let lumped = im.points.len() == im.pairs.len();
+        let mut rows: Vec<usize> = (0..im.pairs.len()).collect();
+        rows.sort_by(|&a, &b| im.pairs[a].x[0].total_cmp(&im.pairs[b].x[0]));
+        for i in rows {
+            let pr = &im.pairs[i];
             let un = im.pair_approach(pr, &state.u);
             let p = im.law.pressure(un).0;
-            let st = if un > 0.0 { "closed" } else { "open" };
-            let _ = writeln!(s, "{},{:.9e},{:.9e},{st}", pr.x[0], p, un);
+            let (c, st) = if lumped && im.tangential.is_some() {
+                (state.contact[base + i], state.status[base + i])
+            } else {
+                let st = if un > 0.0 {
+                    Status::Closed
+                } else {
+                    Status::Open
+                };
+                (Default::default(), st)
+            };
+            let _ = writeln!(
+                s,
+                "{},{:.9e},{:.9e},{},{:.9e},{:.9e},{:.9e},{:.6},{}",
+                pr.x[0],
+                p,
+                un,
+                st.name(),
+                c.p_t,
+                c.u_t,
+                c.slip.u_p,
+                c.mu_f,
+                st.tangential_name()
+            );
         }
+        base += im.points.len();
     }
     s
 }

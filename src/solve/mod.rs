@@ -21,6 +21,8 @@ pub struct State {
     pub u: Vec<f64>,
     pub gauss: Vec<PointState>,
     pub status: Vec<Status>,
+    /// Tangential state of every interface point (all interfaces, in order).
+    pub contact: Vec<crate::interface::PointState>,
     /// Sum of the reactions at the dofs with a non-zero prescribed displacement
     /// (the force needed to impose it), N.
     pub prescribed_reaction: f64,
@@ -33,6 +35,7 @@ impl State {
             u: vec![0.0; model.mesh.num_dofs()],
             gauss: vec![PointState::default(); model.mesh.elements.len() * model.n_gauss()],
             status: vec![Status::Closed; n_points],
+            contact: vec![crate::interface::PointState::default(); n_points],
             prescribed_reaction: 0.0,
         }
     }
@@ -77,7 +80,7 @@ impl Measures {
             let force: f64 = im
                 .points
                 .iter()
-                .map(|pt| pt.area * im.law.pressure(im.point_approach(pt, &state.u)).0)
+                .map(|pt| pt.area * im.law.pressure(im.point_kinematics(pt, &state.u).0).0)
                 .sum();
             m.normal_force = force;
             m.mean_pressure = force / im.area();

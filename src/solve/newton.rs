@@ -282,24 +282,24 @@ impl<'m> Engine<'m> {
         self.vals.copy_from_slice(&self.solid_vals);
         let mut status = Vec::new();
         let (mut rl, mut kl) = ([0.0; 12], [0.0; 144]);
+        let mut q = 0;
         for (i, im) in m.interfaces.iter().enumerate() {
             let kf = floor.as_ref().map(|f| f[i]);
             for (j, pt) in im.points.iter().enumerate() {
                 let nd = 4 * pt.len;
-                let un = im.point_approach(pt, &trial.u);
+                let un = im.point_kinematics(pt, &trial.u).0;
                 let kfloor = kf.filter(|_| un > -1e-12);
                 let ev = im.eval_point(
                     pt,
                     &trial.u,
+                    &committed.contact[q],
                     kfloor,
                     &mut rl[..nd],
                     Some(&mut kl[..nd * nd]),
                 );
-                status.push(if ev.u_n > 0.0 {
-                    Status::Closed
-                } else {
-                    Status::Open
-                });
+                status.push(ev.status);
+                trial.contact[q] = ev.state;
+                q += 1;
                 let dofs = im.point_dofs(pt);
                 for (k, &d) in dofs.iter().enumerate() {
                     self.r[d] += rl[k];

@@ -1,0 +1,395 @@
+//! Tangential interface law (paper sections 2.2, 2.4-2.6, Fig. 1), per unit area.
+//!
+//! ```text
+//!   k_T^e = p_N^S / R                      elastic shear stiffness (2.6), MPa/µm
+//!   p_T^Y = ρ μ_m p_N                       initial yield, ρ = 0.625 (2.18; 2.5 says ½)
+//!   H = k_T^e k_T^p / (k_T^e − k_T^p)      hardening modulus (2.16)
+//!   μ_F(κ) = μ_m [1 − (1 − β) e^{−n κ}]    slip-hardening friction (2.21)
+//!   |p_T| ≤ Y(κ) = min(p_T^Y + H κ, μ_F(κ) p_N)      micro-slip, then macro-slip (2.22)
+//! ```
+//! p_T = k_T^e (u_T − u_T^p); κ = ∫|du_T^p| is the accumulated plastic slip. The yield
+//! limit grows with κ only, so after unloading and reversal the response stays
+//! elastic until |p_T| exceeds the highest value reached before (the memory of
+//! section 2.2). A backward-Euler return mapping solves
+//! `|p_T^tr| − k_T^e Δκ = Y(κ_n + Δκ)` and its consistent tangent gives
+//! ∂p_T/∂u_T and the unsymmetric coupling ∂p_T/∂u_N (p_T^Y, H, k_T^e depend on p_N).
+//!
+//! Units: with p in MPa, R is such that p_N^S / R is in MPa/µm (the paper's R = 0.9,
+//! S = 0.5 give 15.7 MPa/µm at 200 MPa); internally k_T^e = 1000 p_N^S / R MPa/mm.
+
+/// Parameters of the tangential law.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TangentialLaw {
+    pub r: f64,
+    pub s: f64,
+    /// k_T^p / k_T^e in [0, 1]; 1 = no micro-slip branch.
+    pub kp_ratio: f64,
+    pub mu: f64,
+    pub beta: f64,
+    /// Slip-hardening rate n, 1/mm.
+    pub n: f64,
+    /// ρ = p_T^Y / (μ_m p_N).
+    pub yield_ratio: f64,
+}
+
+/// History of one spring: signed plastic slip and accumulated |slip|, mm.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SlipState {
+    pub u_p: f64,
+    pub kappa: f64,
+}
+
+/// Regime of a closed spring.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Slip {
+    Stick,
+    MicroSlip,
+    MacroSlip,
+}
+
+/// Result of one evaluation.
+#[derive(Clone, Copy, Debug)]
+pub struct TangentialEval {
+    pub p_t: f64,
+    /// ∂p_T/∂u_T
+    pub d_ut: f64,
+    /// ∂p_T/∂u_N
+    pub d_un: f64,
+    pub state: SlipState,
+    pub slip: Slip,
+    pub mu_f: f64,
+}
+
+impl TangentialLaw {
+    /// Checks every parameter; the message names the bad one.
+    pub fn new(
+        r: f64,
+        s: f64,
+        kp_ratio: f64,
+        mu: f64,
+        beta: f64,
+        n: f64,
+        yield_ratio: f64,
+    ) -> Result<Self, String> {
+        let pos = |name: &str, v: f64| {
+            if v.is_finite() && v > 0.0 {
+                Ok(())
+            } else {
+                Err(format!("{name} = {v} must be a positive number"))
+            }
+        };
+        pos("r", r)?;
+        pos("mu", mu)?;
+        if !(s.is_finite() && (0.0..=1.0).contains(&s)) {
+            return Err(format!("s = {s} must be in [0, 1]"));
+        }
+        if !(kp_ratio.is_finite() && (0.0..=1.0).contains(&kp_ratio)) {
+            return Err(format!("kp_ratio = {kp_ratio} must be in [0, 1]"));
+        }
+        if !(beta.is_finite() && beta > 0.0 && beta <= 1.0) {
+            return Err(format!("beta = {beta} must be in (0, 1]"));
+        }
+        if !(n.is_finite() && n >= 0.0) {
+            return Err(format!("n = {n} must be a non-negative number (1/mm)"));
+        }
+        if !(yield_ratio.is_finite() && yield_ratio > 0.0 && yield_ratio <= 1.0) {
+            return Err(format!("yield_ratio = {yield_ratio} must be in (0, 1]"));
+        }
+        Ok(TangentialLaw {
+            r,
+            s,
+            kp_ratio,
+            mu,
+            beta,
+            n,
+            yield_ratio,
+        })
+    }
+
+    /// k_T^e and dk_T^e/dp_N at normal pressure p > 0, MPa/mm.
+    pub fn elastic_stiffness(&self, p: f64) -> (f64, f64) {
+        let k = 1000.0 * p.powf(self.s) / self.r;
+        (k, if self.s == 0.0 { 0.0 } else { self.s * k / p })
+    }
+
+    /// μ_F(κ) and dμ_F/dκ (2.21).
+    pub fn friction(&self, kappa: f64) -> (f64, f64) {
+        let e = (-self.n * kappa).exp();
+        (
+            self.mu * (1.0 - (1.0 - self.beta) * e),
+            self.mu * (1.0 - self.beta) * self.n * e,
+        )
+    }
+
+    /// Yield limit Y(κ) at pressure p, with ∂Y/∂κ, ∂Y/∂p and whether the
+    /// friction cap (macro-slip) is the active branch.
+    fn limit(&self, kappa: f64, p: f64, k: f64, dk: f64) -> (f64, f64, f64, bool) {
+        let (mu_f, dmu) = self.friction(kappa);
+        let cap = (mu_f * p, dmu * p, mu_f);
+        if self.kp_ratio >= 1.0 {
+            return (cap.0, cap.1, cap.2, true);
+        }
+        let q = self.kp_ratio / (1.0 - self.kp_ratio);
+        let (h, dh) = (k * q, dk * q);
+        let y1 = self.yield_ratio * self.mu * p + h * kappa;
+        if y1 < cap.0 {
+            (y1, h, self.yield_ratio * self.mu + dh * kappa, false)
+        } else {
+            (cap.0, cap.1, cap.2, true)
+        }
+    }
+
+    /// Return mapping from `committed` at pressure p (stiffness k_n = dp/du_N) and
+    /// total tangential displacement u_t. An open spring (p ≤ 0) carries no shear
+    /// and slides freely: its plastic slip follows u_t.
+    pub fn eval(&self, p: f64, k_n: f64, u_t: f64, committed: &SlipState) -> TangentialEval {
+        if p <= 0.0 {
+            return TangentialEval {
+                p_t: 0.0,
+                d_ut: 0.0,
+                d_un: 0.0,
+                state: SlipState {
+                    u_p: u_t,
+                    kappa: committed.kappa,
+                },
+                slip: Slip::MacroSlip,
+                mu_f: self.friction(committed.kappa).0,
+            };
+        }
+        let (k, dk) = self.elastic_stiffness(p);
+        let ue = u_t - committed.u_p;
+        let p_tr = k * ue;
+        let a = p_tr.abs();
+        let (y0, ..) = self.limit(committed.kappa, p, k, dk);
+        if a <= y0 {
+            return TangentialEval {
+                p_t: p_tr,
+                d_ut: k,
+                d_un: dk * k_n * ue,
+                state: *committed,
+                slip: Slip::Stick,
+                mu_f: self.friction(committed.kappa).0,
+            };
+        }
+        // g(Δκ) = a − k Δκ − Y(κ_n + Δκ) is decreasing: g(0) > 0 > g(a/k)
+        let g = |dkap: f64| {
+            let (y, yk, ..) = self.limit(committed.kappa + dkap, p, k, dk);
+            (a - k * dkap - y, -k - yk)
+        };
+        let (mut lo, mut hi) = (0.0, a / k);
+        let mut x = 0.0;
+        for _ in 0..100 {
+            let (gv, gd) = g(x);
+            if gv.abs() <= 1e-14 * a {
+                break;
+            }
+            if gv > 0.0 {
+                lo = x;
+            } else {
+                hi = x;
+            }
+            let next = x - gv / gd;
+            x = if next > lo && next < hi {
+                next
+            } else {
+                0.5 * (lo + hi)
+            };
+            if hi - lo <= 1e-16 * (a / k) {
+                break;
+            }
+        }
+        let sgn = p_tr.signum();
+        let kappa = committed.kappa + x;
+        let (y, yk, yp, macro_slip) = self.limit(kappa, p, k, dk);
+        let d_ut = yk * k / (k + yk);
+        let d_un = k_n * sgn * (yk * (sgn * dk * ue - x * dk - yp) / (k + yk) + yp);
+        TangentialEval {
+            p_t: sgn * y,
+            d_ut,
+            d_un,
+            state: SlipState {
+                u_p: committed.u_p + sgn * x,
+                kappa,
+            },
+            slip: if macro_slip {
+                Slip::MacroSlip
+            } else {
+                Slip::MicroSlip
+            },
+            mu_f: self.friction(kappa).0,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn laws() -> Vec<TangentialLaw> {
+        vec![
+            TangentialLaw::new(0.9, 0.5, 1.0, 0.2, 1.0, 275.0, 0.625).unwrap(), // Fig. 7a
+            TangentialLaw::new(0.9, 0.5, 0.05, 0.2, 1.0, 275.0, 0.625).unwrap(), // Fig. 7b
+            TangentialLaw::new(0.9, 0.5, 0.05, 0.2, 0.2, 275.0, 0.625).unwrap(), // Fig. 7c
+            TangentialLaw::new(0.9, 0.0, 0.0, 0.3, 0.5, 100.0, 0.5).unwrap(),
+        ]
+    }
+
+    /// p(u_N) = (u/c)² (power law m = 1/2) so ∂p_T/∂u_N can be checked too.
+    fn pressure(un: f64) -> (f64, f64) {
+        let c = 0.001;
+        ((un / c).powi(2), 2.0 * un / (c * c))
+    }
+
+    #[test]
+    fn consistent_tangent_matches_finite_differences_in_every_regime() {
+        let un = 0.014; // ≈ 196 MPa
+        for law in laws() {
+            let mut seen = Vec::new();
+            for committed in [
+                SlipState::default(),
+                SlipState {
+                    u_p: 1.5e-3,
+                    kappa: 4e-3,
+                },
+            ] {
+                for ut in [2e-4, -7e-4, 1.2e-3, 2.5e-3, 6e-3, -9e-3, 3e-2, -0.08] {
+                    let (p, kn) = pressure(un);
+                    let ev = law.eval(p, kn, ut, &committed);
+                    seen.push(ev.slip);
+                    let h = 1e-9;
+                    let f = |un: f64, ut: f64| {
+                        let (p, kn) = pressure(un);
+                        law.eval(p, kn, ut, &committed).p_t
+                    };
+                    let fd_t = (f(un, ut + h) - f(un, ut - h)) / (2.0 * h);
+                    let fd_n = (f(un + h, ut) - f(un - h, ut)) / (2.0 * h);
+                    let scale = law.elastic_stiffness(p).0;
+                    assert!(
+                        (fd_t - ev.d_ut).abs() < 1e-5 * scale,
+                        "{law:?} {committed:?} ut={ut} {:?}: d_ut {} vs FD {fd_t}",
+                        ev.slip,
+                        ev.d_ut
+                    );
+                    let nscale = ev.d_un.abs().max(scale * 1e-3);
+                    assert!(
+                        (fd_n - ev.d_un).abs() < 1e-5 * nscale.max(fd_n.abs()),
+                        "{law:?} ut={ut} {:?}: d_un {} vs FD {fd_n}",
+                        ev.slip,
+                        ev.d_un
+                    );
+                }
+            }
+            // every regime the law has was exercised
+            // (with k_T^p = 0 the limit stays at ρ μ p_N: micro-slip only, no cap)
+            assert!(seen.contains(&Slip::Stick), "{law:?}: {seen:?}");
+            if law.kp_ratio > 0.0 {
+                assert!(seen.contains(&Slip::MacroSlip), "{law:?}: {seen:?}");
+            }
+            if law.kp_ratio < 1.0 {
+                assert!(seen.contains(&Slip::MicroSlip), "{law:?}: {seen:?}");
+            }
+        }
+    }
+
+    /// Drives one spring through a displacement history at fixed pressure p.
+    fn drive(law: &TangentialLaw, p: f64, path: &[f64]) -> Vec<(f64, TangentialEval)> {
+        let mut st = SlipState::default();
+        let mut out = Vec::new();
+        for &ut in path {
+            let ev = law.eval(p, 0.0, ut, &st);
+            st = ev.state;
+            out.push((ut, ev));
+        }
+        out
+    }
+
+    #[test]
+    fn load_unload_reverse_reload_follows_fig_1() {
+        let law = laws()[1]; // k_T^p = 0.05 k_T^e, β = 1
+        let p = 200.0;
+        let (ke, _) = law.elastic_stiffness(p);
+        let ky = law.yield_ratio * law.mu * p; // 25 MPa
+        let u_y = ky / ke;
+        let kp = law.kp_ratio * ke;
+        let cap = law.mu * p; // 40 MPa
+        let u_cap = u_y + (cap - ky) / kp;
+        // load in small steps to 2 u_cap, unload to 0 shear, reverse, reload
+        let mut path: Vec<f64> = (1..=200).map(|i| 2.0 * u_cap * i as f64 / 200.0).collect();
+        let top = path[path.len() - 1];
+        path.extend((1..=200).map(|i| top - 2.5 * u_cap * i as f64 / 200.0));
+        let res = drive(&law, p, &path);
+        for (ut, ev) in &res[..200] {
+            let expect = if *ut <= u_y {
+                ke * ut
+            } else if *ut <= u_cap {
+                ky + kp * (ut - u_y)
+            } else {
+                cap
+            };
+            assert!(
+                (ev.p_t - expect).abs() < 1e-9 * cap,
+                "loading at u = {ut}: {} vs {expect}",
+                ev.p_t
+            );
+        }
+        // unloading and reversal: elastic with slope k_T^e until the shear reaches −(highest earlier) = −cap
+        let (u_top, ev_top) = res[199];
+        for (ut, ev) in &res[200..] {
+            let elastic = ev_top.p_t + ke * (ut - u_top);
+            if elastic >= -cap {
+                assert!(
+                    (ev.p_t - elastic).abs() < 1e-9 * cap,
+                    "unloading at u = {ut}"
+                );
+                assert_eq!(
+                    ev.state.kappa, ev_top.state.kappa,
+                    "no new plastic slip on reversal below the earlier maximum"
+                );
+            } else {
+                assert!(
+                    (ev.p_t + cap).abs() < 1e-9 * cap,
+                    "reversed macro-slip at −μ p_N"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn slip_hardening_follows_eq_2_21() {
+        let law = laws()[2]; // β = 0.2: starts slipping at 0.2 μ p_N
+        let p = 150.0;
+        let path: Vec<f64> = (1..=400).map(|i| 0.05 * i as f64 / 400.0).collect();
+        for (_, ev) in drive(&law, p, &path) {
+            if ev.slip == Slip::MacroSlip {
+                let mu_f = law.mu * (1.0 - (1.0 - law.beta) * (-law.n * ev.state.kappa).exp());
+                assert!(
+                    (ev.p_t - mu_f * p).abs() < 1e-9 * p,
+                    "p_T = μ_F p_N on macro-slip"
+                );
+                assert!((ev.mu_f - mu_f).abs() < 1e-15);
+            }
+        }
+        let last = drive(&law, p, &path).pop().unwrap().1;
+        assert!(
+            (last.p_t - law.mu * p).abs() < 1e-3 * law.mu * p,
+            "saturates at μ_m p_N: {}",
+            last.p_t
+        );
+    }
+
+    #[test]
+    fn bad_parameters_are_named() {
+        assert!(TangentialLaw::new(0.0, 0.5, 0.05, 0.2, 1.0, 275.0, 0.625)
+            .unwrap_err()
+            .contains("r ="));
+        assert!(TangentialLaw::new(0.9, 0.5, 1.5, 0.2, 1.0, 275.0, 0.625)
+            .unwrap_err()
+            .contains("kp_ratio"));
+        assert!(TangentialLaw::new(0.9, 0.5, 0.05, 0.2, 0.0, 275.0, 0.625)
+            .unwrap_err()
+            .contains("beta"));
+        assert!(TangentialLaw::new(0.9, 0.5, 0.05, -0.2, 1.0, 275.0, 0.625)
+            .unwrap_err()
+            .contains("mu"));
+    }
+}
