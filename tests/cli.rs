@@ -112,6 +112,22 @@ fn bad_inputs_give_one_clear_error_and_exit_2() {
         &PUNCH.replace("yield_stress = 196.0", "yield_stress = nan"),
         "yield_stress",
     );
+    let friction = include_str!("../cases/punch-friction-b/case.toml");
+    rejects(
+        "kp-ratio",
+        &friction.replace("kp_ratio = 0.05", "kp_ratio = 1.5"),
+        "kp_ratio = 1.5 must be in [0, 1]",
+    );
+    rejects(
+        "friction-consistent",
+        &friction.replace("m = 0.5\n", "m = 0.5\nweights = \"consistent\"\n"),
+        "needs weights = \"lumped\"",
+    );
+    rejects(
+        "friction-scheme",
+        &friction.replace("scheme = \"return-mapping\"", "scheme = \"magic\""),
+        "unknown variant `magic`",
+    );
     // a load far beyond the collapse load of a perfectly plastic foundation
     let collapse = PUNCH
         .replace("hardening = 2060.0   # h = E/100", "hardening = 0.0")

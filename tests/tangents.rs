@@ -114,6 +114,8 @@ fn solid_element_tangent_matches_finite_differences() {
 }
 
 const PUNCH: &str = include_str!("../cases/punch-plane-stress/case.toml");
+/// Normal law plus the Fig. 7c tangential law (unsymmetric point tangent).
+const FRICTION: &str = "law = \"power\"\nc_n = 0.001\nm = 0.5\n[interface.contact.tangential]\nr = 0.9\ns = 0.5\nkp_ratio = 0.05\nmu = 0.2\nbeta = 0.2\nn = 275.0";
 
 #[test]
 fn interface_point_tangents_match_finite_differences() {
@@ -126,8 +128,9 @@ fn interface_point_tangents_match_finite_differences() {
             "law = \"linear\"\nc_n = 0.001\nm = 0.5\nslope = 1e-5\np_c = 10.0",
             "consistent",
         ),
+        (FRICTION, "lumped"),
     ] {
-        let text = PUNCH.replace("law = \"power\"\nc_n = 0.001          # mm/MPa^m: 14 µm of approach at 200 MPa\nm = 0.5", &format!("{law}\nweights = \"{weights}\""));
+        let text = PUNCH.replace("law = \"power\"\nc_n = 0.001          # mm/MPa^m: 14 µm of approach at 200 MPa\nm = 0.5", &format!("weights = \"{weights}\"\n{law}"));
         assert!(text.contains(weights), "case text substitution failed");
         let model = common::model(&text);
         let im = &model.interfaces[0];
@@ -143,7 +146,7 @@ fn interface_point_tangents_match_finite_differences() {
             let nd = 4 * pt.len;
             let dofs = im.point_dofs(pt);
             let (mut r, mut k) = (vec![0.0; nd], vec![0.0; nd * nd]);
-            let ev = im.eval_point(pt, &u, None, &mut r, Some(&mut k));
+            let ev = im.eval_point(pt, &u, &Default::default(), None, &mut r, Some(&mut k));
             if ev.u_n.abs() < 1e-6 {
                 continue; // kink of the linear law at zero approach
             }
@@ -154,8 +157,8 @@ fn interface_point_tangents_match_finite_differences() {
                 up[d] += h;
                 um[d] -= h;
                 let (mut rp, mut rm) = (vec![0.0; nd], vec![0.0; nd]);
-                im.eval_point(pt, &up, None, &mut rp, None);
-                im.eval_point(pt, &um, None, &mut rm, None);
+                im.eval_point(pt, &up, &Default::default(), None, &mut rp, None);
+                im.eval_point(pt, &um, &Default::default(), None, &mut rm, None);
                 for i in 0..nd {
                     let fd = (rp[i] - rm[i]) / (2.0 * h);
                     // a repeated dof (lumped points list each pair once) appears once here
@@ -174,8 +177,9 @@ fn interface_point_tangents_match_finite_differences() {
 
 #[test]
 fn assembled_tangent_matches_finite_differences_of_the_residual() {
-    for plane in ["stress", "strain"] {
-        let text = PUNCH.replace("plane = \"stress\"", &format!("plane = \"{plane}\""));
+    let friction = include_str!("../cases/punch-friction-b/case.toml");
+    for (plane, base) in [("stress", PUNCH), ("strain", PUNCH), ("stress", friction)] {
+        let text = base.replace("plane = \"stress\"", &format!("plane = \"{plane}\""));
         let model = common::model(&text);
         let mut engine = Engine::new(&model, Method::FullNewton).unwrap();
         let committed = State::initial(&model);
