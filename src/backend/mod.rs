@@ -1,3 +1,54 @@
-//! Linear-algebra backends. `serial`: faer sparse LU with symbolic reuse.
+//! Linear-algebra backends behind one small trait, so that one Newton loop
+//! ([`crate::solve::Engine`]) drives both:
+//! * `serial`: faer sparse LU with symbolic reuse, one process;
+//! * `petsc` (feature `parallel`): METIS-partitioned elements, an MPIAIJ matrix
+//!   with exact preallocation, KSP from the options database, MPI reductions.
+//!
+//! Every rank holds the whole (replicated) displacement vector and model; each
+//! assembles only the elements and interface points it owns, and [`Backend::sum`]
+//! adds the partial residuals. Decisions that change control flow go through
+//! [`Backend::agree`], so all ranks always take the same branch.
 
+#[cfg(feature = "parallel")]
+pub mod petsc;
 pub mod serial;
+
+use crate::error::Result;
+
+pub trait Backend {
+    /// "serial-faer" or "petsc".
+    fn name(&self) -> &'static str;
+    fn ranks(&self) -> usize {
+        1
+    }
+    fn rank(&self) -> usize {
+        0
+    }
+    fn owns_element(&self, _e: usize) -> bool {
+        true
+    }
+    /// Interface point q (numbered over all interfaces).
+    fn owns_point(&self, _q: usize) -> bool {
+        true
+    }
+    /// Starts a new solid (bodies) matrix.
+    fn begin_solid(&mut self) -> Result<()>;
+    /// Adds an element block; `block` is the assembler's block index.
+    fn add_solid(&mut self, block: usize, dofs: &[usize], k: &[f64]) -> Result<()>;
+    /// The system matrix becomes the last solid matrix; contact blocks follow.
+    fn begin_contact(&mut self) -> Result<()>;
+    fn add_contact(&mut self, block: usize, dofs: &[usize], k: &[f64]) -> Result<()>;
+    /// Solves K x = rhs over the free equations (replicated in and out).
+    fn solve(&mut self, rhs: &[f64], x: &mut [f64]) -> Result<()>;
+    /// Sums a vector over all ranks, in place (replicated result).
+    fn sum(&self, _v: &mut [f64]) {}
+    /// Rank 0's value of a decision, on every rank.
+    fn agree(&self, flag: bool) -> bool {
+        flag
+    }
+    /// The assembled system matrix as CSC values on the model's pattern, where
+    /// the backend keeps one (serial); for checks of the assembled tangent.
+    fn matrix_values(&self) -> Option<&[f64]> {
+        None
+    }
+}

@@ -71,3 +71,53 @@ impl SerialLu {
         Ok(())
     }
 }
+
+/// The serial backend: CSC values on the fixed pattern, factored by [`SerialLu`].
+pub struct SerialBackend<'m> {
+    asm: &'m Assembler,
+    lu: SerialLu,
+    solid: Vec<f64>,
+    /// Values of the last system matrix (for checks of the assembled tangent).
+    pub vals: Vec<f64>,
+}
+
+impl<'m> SerialBackend<'m> {
+    pub fn new(asm: &'m Assembler) -> Result<Self> {
+        Ok(SerialBackend {
+            asm,
+            lu: SerialLu::new(asm)?,
+            solid: vec![0.0; asm.nnz()],
+            vals: vec![0.0; asm.nnz()],
+        })
+    }
+}
+
+impl super::Backend for SerialBackend<'_> {
+    fn name(&self) -> &'static str {
+        "serial-faer"
+    }
+    fn begin_solid(&mut self) -> Result<()> {
+        self.solid.fill(0.0);
+        Ok(())
+    }
+    fn add_solid(&mut self, block: usize, _dofs: &[usize], k: &[f64]) -> Result<()> {
+        self.asm.add(block, k, &mut self.solid);
+        Ok(())
+    }
+    fn begin_contact(&mut self) -> Result<()> {
+        self.vals.copy_from_slice(&self.solid);
+        Ok(())
+    }
+    fn add_contact(&mut self, block: usize, _dofs: &[usize], k: &[f64]) -> Result<()> {
+        self.asm.add(block, k, &mut self.vals);
+        Ok(())
+    }
+    fn matrix_values(&self) -> Option<&[f64]> {
+        Some(&self.vals)
+    }
+    fn solve(&mut self, rhs: &[f64], x: &mut [f64]) -> Result<()> {
+        self.lu.factor(&self.vals)?;
+        x.copy_from_slice(rhs);
+        self.lu.solve(x)
+    }
+}

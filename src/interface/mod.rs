@@ -49,9 +49,10 @@ pub struct Point {
 
 /// Status of an interface point, decided from its approach and shear.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[repr(u8)]
 pub enum Status {
     #[default]
-    Open,
+    Open = 0,
     /// Closed, no tangential law.
     Closed,
     Stick,
@@ -60,6 +61,17 @@ pub enum Status {
 }
 
 impl Status {
+    /// Inverse of `status as u8` (for reductions over ranks).
+    pub fn from_code(c: u8) -> Status {
+        match c {
+            1 => Status::Closed,
+            2 => Status::Stick,
+            3 => Status::MicroSlip,
+            4 => Status::MacroSlip,
+            _ => Status::Open,
+        }
+    }
+
     /// Normal status: "open" or "closed".
     pub fn name(self) -> &'static str {
         match self {

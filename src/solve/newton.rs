@@ -14,7 +14,8 @@
 
 use super::accelerate::Anderson;
 use super::State;
-use crate::backend::serial::SerialLu;
+use crate::backend::serial::SerialBackend;
+use crate::backend::Backend;
 use crate::case::{Acceleration, Method};
 use crate::fem::solid::{element_forces, Response, Tangent};
 use crate::interface::Status;
@@ -33,9 +34,7 @@ pub struct Stats {
 pub struct Engine<'m> {
     pub model: &'m Model,
     pub method: Method,
-    lu: SerialLu,
-    vals: Vec<f64>,
-    solid_vals: Vec<f64>,
+    pub backend: Box<dyn Backend + 'm>,
     /// The cached solid matrix belongs to this committed state (modified Newton)
     /// or to the whole run (initial stiffness).
     solid_valid: bool,
@@ -44,18 +43,24 @@ pub struct Engine<'m> {
 }
 
 impl<'m> Engine<'m> {
+    /// An engine on the serial faer backend.
     pub fn new(model: &'m Model, method: Method) -> crate::error::Result<Self> {
-        let nnz = model.asm.nnz();
-        Ok(Engine {
+        Ok(Self::with_backend(
             model,
             method,
-            lu: SerialLu::new(&model.asm)?,
-            vals: vec![0.0; nnz],
-            solid_vals: vec![0.0; nnz],
+            Box::new(SerialBackend::new(&model.asm)?),
+        ))
+    }
+
+    pub fn with_backend(model: &'m Model, method: Method, backend: Box<dyn Backend + 'm>) -> Self {
+        Engine {
+            model,
+            method,
+            backend,
             solid_valid: false,
             r: vec![0.0; model.mesh.num_dofs()],
             stats: Stats::default(),
-        })
+        }
     }
 
     /// Called when a new state is committed: the modified-Newton matrix is stale.
@@ -66,7 +71,8 @@ impl<'m> Engine<'m> {
     }
 
     /// Solves the step from `committed` to load factor `lambda`. Returns the
-    /// converged trial state and the number of iterations, or a reason.
+    /// converged trial state and the number of iterations, or a reason. Every
+    /// branch is taken on all ranks alike.
     pub fn step(
         &mut self,
         committed: &State,
@@ -90,6 +96,11 @@ impl<'m> Engine<'m> {
         let mut anderson = (method != Method::FullNewton
             && spec.acceleration == Acceleration::Anderson)
             .then(|| Anderson::new(spec.anderson_depth));
+        let free: Vec<usize> = (0..trial.u.len())
+            .filter(|&d| m.dofs.equation(d).is_some())
+            .collect();
+        let mut rhs = vec![0.0; free.len()];
+        let mut du = vec![0.0; free.len()];
         for it in 0..=limit {
             let t0 = std::time::Instant::now();
             let solid_tangent = match method {
@@ -120,7 +131,7 @@ impl<'m> Engine<'m> {
             }
             let reference = f2.sqrt().max(react2.sqrt()).max(m.force_floor);
             let r_norm = r2.sqrt();
-            if !r_norm.is_finite() {
+            if !self.backend.agree(r_norm.is_finite()) {
                 return Err(format!("residual is not finite at iteration {it}"));
             }
             let u_inf = trial
@@ -131,7 +142,9 @@ impl<'m> Engine<'m> {
             let same_status = last_status.as_ref() == Some(&status);
             let small_r = r_norm <= spec.residual_tolerance * reference;
             let small_du = it > 0 && du_inf <= spec.displacement_tolerance * u_inf;
-            if small_r && (small_du || (it == 0 && r_norm == 0.0)) && (same_status || it == 0) {
+            let done =
+                small_r && (small_du || (it == 0 && r_norm == 0.0)) && (same_status || it == 0);
+            if self.backend.agree(done) {
                 trial.status = status;
                 trial.prescribed_reaction = m
                     .prescribed
@@ -139,6 +152,7 @@ impl<'m> Engine<'m> {
                     .filter(|(_, v)| *v != 0.0)
                     .map(|&(d, _)| self.r[d])
                     .sum();
+                self.share_state(&mut trial);
                 return Ok((trial, it));
             }
             if it == limit {
@@ -153,7 +167,7 @@ impl<'m> Engine<'m> {
                     }
                 ));
             }
-            if r_norm > 1e10 * reference && it > 2 {
+            if self.backend.agree(r_norm > 1e10 * reference && it > 2) {
                 return Err(format!(
                     "diverged at iteration {it} (|R|/|F| = {:.3e})",
                     r_norm / reference
@@ -162,42 +176,37 @@ impl<'m> Engine<'m> {
             last_status = Some(status);
             // linear solve on the free dofs
             let t1 = std::time::Instant::now();
-            let mut rhs: Vec<f64> = (0..self.r.len())
-                .filter(|&d| m.dofs.equation(d).is_some())
-                .map(|d| -self.r[d])
-                .collect();
-            self.lu.factor(&self.vals).map_err(|e| e.to_string())?;
+            for (k, &d) in free.iter().enumerate() {
+                rhs[k] = -self.r[d];
+            }
+            self.backend
+                .solve(&rhs, &mut du)
+                .map_err(|e| e.to_string())?;
             self.stats.factorizations += 1;
-            self.lu.solve(&mut rhs).map_err(|e| e.to_string())?;
             self.stats.solve_seconds += t1.elapsed().as_secs_f64();
             if let Some(acc) = anderson.as_mut() {
-                let x: Vec<f64> = (0..trial.u.len())
-                    .filter(|&d| m.dofs.equation(d).is_some())
-                    .map(|d| trial.u[d])
-                    .collect();
-                rhs = acc.step(&x, &rhs);
+                let x: Vec<f64> = free.iter().map(|&d| trial.u[d]).collect();
+                du = acc.step(&x, &du);
             }
             du_inf = 0.0;
-            for d in 0..trial.u.len() {
-                if let Some(e) = m.dofs.equation(d) {
-                    trial.u[d] += rhs[e];
-                    du_inf = du_inf.max(rhs[e].abs());
-                }
+            for (k, &d) in free.iter().enumerate() {
+                trial.u[d] += du[k];
+                du_inf = du_inf.max(du[k].abs());
             }
             self.stats.iterations += 1;
         }
         unreachable!("the loop returns at it == limit")
     }
 
-    /// Residual (all dofs) and consistent tangent values (CSC over the free
-    /// equations, pattern of `model.asm`) at displacement `u` from `committed`.
+    /// Residual (all dofs) and consistent tangent at displacement `u` from
+    /// `committed`; the tangent goes into the backend (serial: its `vals`).
     /// Used by the finite-difference checks of the assembled tangent.
     pub fn linearize(
         &mut self,
         committed: &State,
         u: &[f64],
         lambda: f64,
-    ) -> Result<(Vec<f64>, Vec<f64>), String> {
+    ) -> Result<Vec<f64>, String> {
         let mut trial = committed.clone();
         trial.u.copy_from_slice(u);
         self.assemble(
@@ -208,7 +217,55 @@ impl<'m> Engine<'m> {
             Some(Tangent::Consistent),
             None,
         )?;
-        Ok((self.r.clone(), self.vals.clone()))
+        Ok(self.r.clone())
+    }
+
+    /// Completes the trial Gauss point and interface states on every rank: each
+    /// rank updated only what it owns.
+    fn share_state(&self, trial: &mut State) {
+        if self.backend.ranks() == 1 {
+            return;
+        }
+        let ng = self.model.n_gauss();
+        let mut g = vec![0.0; trial.gauss.len() * 10];
+        for (i, s) in trial.gauss.iter().enumerate() {
+            if self.backend.owns_element(i / ng) {
+                let v = &mut g[10 * i..10 * i + 10];
+                v[..4].copy_from_slice(&s.stress);
+                v[4..8].copy_from_slice(&s.plastic_strain);
+                v[8] = s.peeq;
+                v[9] = f64::from(u8::from(s.yielding));
+            }
+        }
+        self.backend.sum(&mut g);
+        for (i, s) in trial.gauss.iter_mut().enumerate() {
+            let v = &g[10 * i..10 * i + 10];
+            *s = PointState {
+                stress: [v[0], v[1], v[2], v[3]],
+                plastic_strain: [v[4], v[5], v[6], v[7]],
+                peeq: v[8],
+                yielding: v[9] > 0.5,
+            };
+        }
+        let mut c = vec![0.0; trial.contact.len() * 5];
+        for (q, s) in trial.contact.iter().enumerate() {
+            if self.backend.owns_point(q) {
+                c[5 * q..5 * q + 5].copy_from_slice(&[
+                    s.slip.u_p,
+                    s.slip.kappa,
+                    s.p_t,
+                    s.u_t,
+                    s.mu_f,
+                ]);
+            }
+        }
+        self.backend.sum(&mut c);
+        for (q, s) in trial.contact.iter_mut().enumerate() {
+            let v = &c[5 * q..5 * q + 5];
+            s.slip.u_p = v[0];
+            s.slip.kappa = v[1];
+            (s.p_t, s.u_t, s.mu_f) = (v[2], v[3], v[4]);
+        }
     }
 
     /// Secant start stiffness (eq. 2.8-2.9) for pairs at zero approach.
@@ -230,8 +287,8 @@ impl<'m> Engine<'m> {
             .collect()
     }
 
-    /// Residual (into self.r, all dofs) and the requested matrix (into self.vals).
-    /// Returns the interface statuses at `trial.u`.
+    /// Residual (into self.r, all dofs, summed over ranks) and the requested
+    /// matrix (into the backend). Returns the interface statuses at `trial.u`.
     fn assemble(
         &mut self,
         committed: &State,
@@ -243,49 +300,73 @@ impl<'m> Engine<'m> {
     ) -> Result<Vec<Status>, String> {
         let m = self.model;
         let ng = m.n_gauss();
+        let root = self.backend.rank() == 0;
         for (r, f) in self.r.iter_mut().zip(&m.f_ext) {
-            *r = -lambda * f;
+            *r = if root { -lambda * f } else { 0.0 };
         }
-        let target = solid_tangent;
-        if target.is_some() {
-            self.solid_vals.fill(0.0);
+        let be = &mut self.backend;
+        let err = |e: crate::error::Error| e.to_string();
+        if solid_tangent.is_some() {
+            be.begin_solid().map_err(err)?;
         }
         let (mut fe, mut ke) = ([0.0; 16], [0.0; 256]);
+        let mut failure: Option<String> = None;
+        let mut dofs = [0usize; 16];
         for (e, el) in m.mesh.elements.iter().enumerate() {
+            if !be.owns_element(e) {
+                continue;
+            }
             let ue = m.element_u(e, &trial.u);
             let gs = e * ng..(e + 1) * ng;
             let committed_gp: &[PointState] = &committed.gauss[gs.clone()];
-            element_forces(
+            if let Err(msg) = element_forces(
                 &m.geom[e],
                 &m.materials[el.body],
                 &ue,
                 committed_gp,
                 &mut trial.gauss[gs],
                 response,
-                target,
+                solid_tangent,
                 &mut fe,
                 &mut ke,
-            )
-            .map_err(|msg| format!("element {e} (body \"{}\"): {msg}", m.mesh.bodies[el.body]))?;
+            ) {
+                failure = Some(format!(
+                    "element {e} (body \"{}\"): {msg}",
+                    m.mesh.bodies[el.body]
+                ));
+                break;
+            }
             for (a, &n) in el.nodes.iter().enumerate() {
                 self.r[2 * n] += fe[2 * a];
                 self.r[2 * n + 1] += fe[2 * a + 1];
+                dofs[2 * a] = 2 * n;
+                dofs[2 * a + 1] = 2 * n + 1;
             }
-            if target.is_some() {
-                m.asm.add(e, &ke, &mut self.solid_vals);
+            if solid_tangent.is_some() {
+                be.add_solid(e, &dofs, &ke).map_err(err)?;
             }
+        }
+        // a local failure (return mapping) fails the step on every rank
+        let mut failed = [f64::from(u8::from(failure.is_some()))];
+        be.sum(&mut failed);
+        if failed[0] > 0.0 {
+            return Err(failure.unwrap_or_else(|| "a return mapping failed on another rank".into()));
         }
         if let Some(t) = solid_tangent {
             // a consistent matrix is never reused; the others are cached
             self.solid_valid = t != Tangent::Consistent;
         }
-        self.vals.copy_from_slice(&self.solid_vals);
-        let mut status = Vec::new();
+        be.begin_contact().map_err(err)?;
+        let mut codes = vec![0.0; committed.status.len()];
         let (mut rl, mut kl) = ([0.0; 12], [0.0; 144]);
         let mut q = 0;
         for (i, im) in m.interfaces.iter().enumerate() {
             let kf = floor.as_ref().map(|f| f[i]);
             for (j, pt) in im.points.iter().enumerate() {
+                if !be.owns_point(q) {
+                    q += 1;
+                    continue;
+                }
                 let nd = 4 * pt.len;
                 let un = im.point_kinematics(pt, &trial.u).0;
                 let kfloor = kf.filter(|_| un > -1e-12);
@@ -297,20 +378,19 @@ impl<'m> Engine<'m> {
                     &mut rl[..nd],
                     Some(&mut kl[..nd * nd]),
                 );
-                status.push(ev.status);
+                codes[q] = ev.status as u8 as f64;
                 trial.contact[q] = ev.state;
-                q += 1;
-                let dofs = im.point_dofs(pt);
-                for (k, &d) in dofs.iter().enumerate() {
+                let pdofs = im.point_dofs(pt);
+                for (k, &d) in pdofs.iter().enumerate() {
                     self.r[d] += rl[k];
                 }
-                m.asm.add(
-                    m.interface_block_base[i] + j,
-                    &kl[..nd * nd],
-                    &mut self.vals,
-                );
+                be.add_contact(m.interface_block_base[i] + j, &pdofs, &kl[..nd * nd])
+                    .map_err(err)?;
+                q += 1;
             }
         }
-        Ok(status)
+        be.sum(&mut self.r);
+        be.sum(&mut codes);
+        Ok(codes.iter().map(|&c| Status::from_code(c as u8)).collect())
     }
 }

@@ -1,0 +1,380 @@
+//! A small safe layer over PETSc in the petsc-rs style: one RAII type per object
+//! whose `Drop` destroys it, every return code turned into a `Result` at the call
+//! site with `chk(…)?`, and start-up order enforced by borrowing: objects borrow
+//! the [`Petsc`] guard, which borrows the MPI universe.
+//!
+//! This is the only module with `unsafe`.
+
+pub mod ffi;
+
+use crate::error::{Error, Result};
+use std::ffi::CString;
+use std::marker::PhantomData;
+use std::os::raw::{c_char, c_int};
+
+/// Turns a PETSc error code into a `Result`, naming the call.
+fn chk(code: ffi::PetscErrorCode, call: &str) -> Result<()> {
+    if code == 0 {
+        Ok(())
+    } else {
+        Err(Error::Solver(format!(
+            "PETSc {call} failed with error code {code}"
+        )))
+    }
+}
+
+/// PETSc initialized on an already initialized MPI; finalized on drop (MPI stays up).
+pub struct Petsc<'u> {
+    _argv: Vec<CString>,
+    comm: ffi::MPI_Comm,
+    _universe: PhantomData<&'u mpi::environment::Universe>,
+}
+
+impl<'u> Petsc<'u> {
+    /// `args` are PETSc options (e.g. "-ksp_type", "cg"); the program name is added.
+    pub fn init(universe: &'u mpi::environment::Universe, args: &[String]) -> Result<Self> {
+        use mpi::traits::AsRaw;
+        let mut argv: Vec<CString> = std::iter::once("asperity".to_string())
+            .chain(args.iter().cloned())
+            .map(|a| {
+                CString::new(a)
+                    .map_err(|_| Error::input("PETSc options", "an option holds a NUL byte"))
+            })
+            .collect::<Result<_>>()?;
+        let mut ptrs: Vec<*mut c_char> =
+            argv.iter_mut().map(|a| a.as_ptr() as *mut c_char).collect();
+        let mut argc = ptrs.len() as c_int;
+        let mut p = ptrs.as_mut_ptr();
+        // SAFETY: argv strings outlive PETSc (kept in `_argv`); MPI is initialized.
+        chk(
+            unsafe { ffi::PetscInitialize(&mut argc, &mut p, std::ptr::null(), std::ptr::null()) },
+            "PetscInitialize",
+        )?;
+        Ok(Petsc {
+            _argv: argv,
+            comm: universe.world().as_raw(),
+            _universe: PhantomData,
+        })
+    }
+
+    pub fn comm(&self) -> ffi::MPI_Comm {
+        self.comm
+    }
+}
+
+impl Drop for Petsc<'_> {
+    fn drop(&mut self) {
+        // SAFETY: every PETSc object borrows self and has been dropped before.
+        unsafe {
+            ffi::PetscFinalize();
+        }
+    }
+}
+
+/// A distributed vector.
+pub struct PVec<'p> {
+    raw: ffi::Vec,
+    _p: PhantomData<&'p Petsc<'p>>,
+}
+
+impl<'p> PVec<'p> {
+    pub fn new(petsc: &'p Petsc, local: usize, global: usize) -> Result<Self> {
+        let mut raw = std::ptr::null_mut();
+        // SAFETY: out-pointer to a fresh handle.
+        chk(
+            unsafe {
+                ffi::VecCreateMPI(
+                    petsc.comm(),
+                    local as ffi::PetscInt,
+                    global as ffi::PetscInt,
+                    &mut raw,
+                )
+            },
+            "VecCreateMPI",
+        )?;
+        Ok(PVec {
+            raw,
+            _p: PhantomData,
+        })
+    }
+
+    /// Sets entries (global PETSc indices) and assembles.
+    pub fn set(&mut self, idx: &[ffi::PetscInt], vals: &[f64]) -> Result<()> {
+        // SAFETY: idx and vals have the same length.
+        unsafe {
+            chk(ffi::VecSet(self.raw, 0.0), "VecSet")?;
+            chk(
+                ffi::VecSetValues(
+                    self.raw,
+                    idx.len() as ffi::PetscInt,
+                    idx.as_ptr(),
+                    vals.as_ptr(),
+                    ffi::InsertMode_INSERT_VALUES,
+                ),
+                "VecSetValues",
+            )?;
+            chk(ffi::VecAssemblyBegin(self.raw), "VecAssemblyBegin")?;
+            chk(ffi::VecAssemblyEnd(self.raw), "VecAssemblyEnd")
+        }
+    }
+}
+
+impl Drop for PVec<'_> {
+    fn drop(&mut self) {
+        // SAFETY: raw was created by VecCreate* and is destroyed once.
+        unsafe {
+            ffi::VecDestroy(&mut self.raw);
+        }
+    }
+}
+
+/// Gathers a distributed vector onto every rank (VecScatterCreateToAll).
+pub struct ToAll<'p> {
+    scatter: ffi::VecScatter,
+    all: ffi::Vec,
+    _p: PhantomData<&'p Petsc<'p>>,
+}
+
+impl<'p> ToAll<'p> {
+    pub fn new(v: &PVec<'p>) -> Result<Self> {
+        let (mut scatter, mut all) = (std::ptr::null_mut(), std::ptr::null_mut());
+        // SAFETY: v.raw is valid; out-pointers.
+        chk(
+            unsafe { ffi::VecScatterCreateToAll(v.raw, &mut scatter, &mut all) },
+            "VecScatterCreateToAll",
+        )?;
+        Ok(ToAll {
+            scatter,
+            all,
+            _p: PhantomData,
+        })
+    }
+
+    /// Copies the whole of `v` (in PETSc order) into `out`.
+    pub fn gather(&mut self, v: &PVec<'p>, out: &mut [f64]) -> Result<()> {
+        // SAFETY: scatter created for v's layout; the array is restored before return.
+        unsafe {
+            chk(
+                ffi::VecScatterBegin(
+                    self.scatter,
+                    v.raw,
+                    self.all,
+                    ffi::InsertMode_INSERT_VALUES,
+                    ffi::ScatterMode_SCATTER_FORWARD,
+                ),
+                "VecScatterBegin",
+            )?;
+            chk(
+                ffi::VecScatterEnd(
+                    self.scatter,
+                    v.raw,
+                    self.all,
+                    ffi::InsertMode_INSERT_VALUES,
+                    ffi::ScatterMode_SCATTER_FORWARD,
+                ),
+                "VecScatterEnd",
+            )?;
+            let mut a: *const f64 = std::ptr::null();
+            chk(ffi::VecGetArrayRead(self.all, &mut a), "VecGetArrayRead")?;
+            out.copy_from_slice(std::slice::from_raw_parts(a, out.len()));
+            chk(
+                ffi::VecRestoreArrayRead(self.all, &mut a),
+                "VecRestoreArrayRead",
+            )
+        }
+    }
+}
+
+impl Drop for ToAll<'_> {
+    fn drop(&mut self) {
+        // SAFETY: created by VecScatterCreateToAll, destroyed once.
+        unsafe {
+            ffi::VecScatterDestroy(&mut self.scatter);
+            ffi::VecDestroy(&mut self.all);
+        }
+    }
+}
+
+/// A distributed AIJ matrix with exact preallocation; a new nonzero is an error.
+pub struct PMat<'p> {
+    pub raw: ffi::Mat,
+    _p: PhantomData<&'p Petsc<'p>>,
+}
+
+impl<'p> PMat<'p> {
+    pub fn aij(
+        petsc: &'p Petsc,
+        local: usize,
+        global: usize,
+        d_nnz: &[ffi::PetscInt],
+        o_nnz: &[ffi::PetscInt],
+    ) -> Result<Self> {
+        let mut raw = std::ptr::null_mut();
+        let (l, g) = (local as ffi::PetscInt, global as ffi::PetscInt);
+        // SAFETY: nnz arrays have `local` entries.
+        unsafe {
+            chk(
+                ffi::MatCreateAIJ(
+                    petsc.comm(),
+                    l,
+                    l,
+                    g,
+                    g,
+                    0,
+                    d_nnz.as_ptr(),
+                    0,
+                    o_nnz.as_ptr(),
+                    &mut raw,
+                ),
+                "MatCreateAIJ",
+            )?;
+            chk(
+                ffi::MatSetOption(
+                    raw,
+                    ffi::MatOption_MAT_NEW_NONZERO_ALLOCATION_ERR,
+                    ffi::PetscBool_PETSC_TRUE,
+                ),
+                "MatSetOption",
+            )?;
+        }
+        Ok(PMat {
+            raw,
+            _p: PhantomData,
+        })
+    }
+
+    pub fn zero(&mut self) -> Result<()> {
+        // SAFETY: valid matrix.
+        chk(unsafe { ffi::MatZeroEntries(self.raw) }, "MatZeroEntries")
+    }
+
+    /// Adds a dense row-major block; negative indices (prescribed dofs) are skipped by PETSc.
+    pub fn add(&mut self, idx: &[ffi::PetscInt], vals: &[f64]) -> Result<()> {
+        let n = idx.len() as ffi::PetscInt;
+        // SAFETY: vals has n·n entries.
+        chk(
+            unsafe {
+                ffi::MatSetValues(
+                    self.raw,
+                    n,
+                    idx.as_ptr(),
+                    n,
+                    idx.as_ptr(),
+                    vals.as_ptr(),
+                    ffi::InsertMode_ADD_VALUES,
+                )
+            },
+            "MatSetValues",
+        )
+    }
+
+    pub fn assemble(&mut self) -> Result<()> {
+        // SAFETY: valid matrix.
+        unsafe {
+            chk(
+                ffi::MatAssemblyBegin(self.raw, ffi::MatAssemblyType_MAT_FINAL_ASSEMBLY),
+                "MatAssemblyBegin",
+            )?;
+            chk(
+                ffi::MatAssemblyEnd(self.raw, ffi::MatAssemblyType_MAT_FINAL_ASSEMBLY),
+                "MatAssemblyEnd",
+            )
+        }
+    }
+
+    /// self ← other (same nonzero pattern).
+    pub fn copy_from(&mut self, other: &PMat<'p>) -> Result<()> {
+        // SAFETY: both valid, same layout and pattern.
+        chk(
+            unsafe { ffi::MatCopy(other.raw, self.raw, ffi::MatStructure_SAME_NONZERO_PATTERN) },
+            "MatCopy",
+        )
+    }
+
+    /// Mallocs PETSc needed during assembly (0 with exact preallocation).
+    pub fn mallocs(&self) -> Result<f64> {
+        let mut info = ffi::MatInfo::default();
+        // SAFETY: out-pointer.
+        chk(
+            unsafe { ffi::MatGetInfo(self.raw, ffi::MatInfoType_MAT_GLOBAL_SUM, &mut info) },
+            "MatGetInfo",
+        )?;
+        Ok(info.mallocs)
+    }
+}
+
+impl Drop for PMat<'_> {
+    fn drop(&mut self) {
+        // SAFETY: destroyed once.
+        unsafe {
+            ffi::MatDestroy(&mut self.raw);
+        }
+    }
+}
+
+/// A Krylov solver configured from the options database.
+pub struct Ksp<'p> {
+    raw: ffi::KSP,
+    _p: PhantomData<&'p Petsc<'p>>,
+}
+
+impl<'p> Ksp<'p> {
+    /// Default: sparse direct LU by MUMPS; `-ksp_type`, `-pc_type` … override it.
+    pub fn new(petsc: &'p Petsc) -> Result<Self> {
+        let mut raw = std::ptr::null_mut();
+        // SAFETY: out-pointer; PC handle owned by the KSP.
+        unsafe {
+            chk(ffi::KSPCreate(petsc.comm(), &mut raw), "KSPCreate")?;
+            chk(ffi::KSPSetType(raw, c"preonly".as_ptr()), "KSPSetType")?;
+            let mut pc = std::ptr::null_mut();
+            chk(ffi::KSPGetPC(raw, &mut pc), "KSPGetPC")?;
+            chk(ffi::PCSetType(pc, c"lu".as_ptr()), "PCSetType")?;
+            chk(
+                ffi::PCFactorSetMatSolverType(pc, c"mumps".as_ptr()),
+                "PCFactorSetMatSolverType",
+            )?;
+            chk(ffi::KSPSetFromOptions(raw), "KSPSetFromOptions")?;
+        }
+        Ok(Ksp {
+            raw,
+            _p: PhantomData,
+        })
+    }
+
+    /// Solves A x = b; errors if the solve diverged.
+    pub fn solve(&mut self, a: &PMat<'p>, b: &PVec<'p>, x: &mut PVec<'p>) -> Result<usize> {
+        // SAFETY: valid handles with matching layouts.
+        unsafe {
+            chk(
+                ffi::KSPSetOperators(self.raw, a.raw, a.raw),
+                "KSPSetOperators",
+            )?;
+            chk(ffi::KSPSolve(self.raw, b.raw, x.raw), "KSPSolve")?;
+            let mut reason = 0;
+            chk(
+                ffi::KSPGetConvergedReason(self.raw, &mut reason),
+                "KSPGetConvergedReason",
+            )?;
+            let mut its = 0;
+            chk(
+                ffi::KSPGetIterationNumber(self.raw, &mut its),
+                "KSPGetIterationNumber",
+            )?;
+            if reason < 0 {
+                return Err(Error::Solver(format!(
+                    "KSP diverged (reason {reason}) after {its} iterations"
+                )));
+            }
+            Ok(its as usize)
+        }
+    }
+}
+
+impl Drop for Ksp<'_> {
+    fn drop(&mut self) {
+        // SAFETY: destroyed once.
+        unsafe {
+            ffi::KSPDestroy(&mut self.raw);
+        }
+    }
+}
