@@ -4,7 +4,7 @@ use crate::case::{Case, Method};
 use crate::error::Result;
 use crate::model::Model;
 use crate::output::Writer;
-use crate::solve::{self, RunResult};
+use crate::solve::{self, Engine, RunResult};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -29,42 +29,72 @@ pub fn load_model(case_path: &Path, opts: &RunOptions) -> Result<Model> {
     Model::build(case)
 }
 
-/// Runs a case to completion and writes its output folder. Returns the folder,
-/// the model and the result.
+/// Runs a case to completion on the serial backend and writes its output
+/// folder. Returns the folder, the model and the result.
 pub fn run(case_path: &Path, opts: &RunOptions) -> Result<(PathBuf, Model, RunResult)> {
     let started = Instant::now();
     let model = load_model(case_path, opts)?;
+    let engine = Engine::new(&model, model.case.solver.method)?;
+    let (dir, result) = run_model(&model, engine, opts, true, started)?;
+    Ok((dir, model, result))
+}
+
+/// Runs a built model with an engine. `write`: this process writes the output
+/// and prints progress (rank 0 under MPI).
+pub fn run_model(
+    model: &Model,
+    engine: Engine,
+    opts: &RunOptions,
+    write: bool,
+    started: Instant,
+) -> Result<(PathBuf, RunResult)> {
     let dir = opts
         .out
         .clone()
         .unwrap_or_else(|| Path::new("out").join(&model.name));
     let planned = model.case.solver.schedule().len();
+    if !write {
+        let result = solve::run_with(engine, &mut Silent)?;
+        return Ok((dir, result));
+    }
     if !opts.quiet {
         eprintln!(
-            "asperity: {} — {} dofs, {} elements, {} interface pairs, {} ({} increments planned)",
+            "asperity: {} — {} dofs, {} elements, {} interface pairs, {}, {} on {} rank(s) ({} increments planned)",
             model.name,
             model.mesh.num_dofs(),
             model.mesh.elements.len(),
-            model
-                .interfaces
-                .iter()
-                .map(|i| i.pairs.len())
-                .sum::<usize>(),
+            model.interfaces.iter().map(|i| i.pairs.len()).sum::<usize>(),
             model.case.solver.method.name(),
+            engine.backend.name(),
+            engine.backend.ranks(),
             planned
         );
     }
     let mut writer = Writer::new(&dir, opts.quiet, planned)?;
-    match solve::run(&model, &mut writer) {
+    match solve::run_with(engine, &mut writer) {
         Ok(result) => {
             let wall = started.elapsed().as_secs_f64();
-            let dir = writer.finish(&model, &result, wall)?;
-            Ok((dir, model, result))
+            let dir = writer.finish(model, &result, wall)?;
+            Ok((dir, result))
         }
         Err(e) => {
             writer.abandon();
             Err(e)
         }
+    }
+}
+
+/// An observer that does nothing (ranks other than 0).
+struct Silent;
+
+impl crate::solve::Observer for Silent {
+    fn increment(
+        &mut self,
+        _: &Model,
+        _: &crate::solve::State,
+        _: &crate::solve::Increment,
+    ) -> Result<()> {
+        Ok(())
     }
 }
 

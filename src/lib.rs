@@ -25,6 +25,8 @@ pub mod material;
 pub mod mesh;
 pub mod model;
 pub mod output;
+#[cfg(feature = "parallel")]
+pub mod parallel;
 pub mod solve;
 
 pub use error::{Error, Result};

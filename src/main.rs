@@ -32,12 +32,33 @@ enum Command {
         /// Override the mesh refinement factor of the case.
         #[arg(long)]
         refine: Option<usize>,
+        /// Linear-algebra backend: serial (faer), petsc (MPI; needs the `parallel`
+        /// feature), or auto: petsc when started by mpirun with the feature built in.
+        #[arg(long, value_enum, default_value = "auto")]
+        backend: BackendArg,
+        /// PETSc options after `--`, e.g. `-- -ksp_type cg -pc_type gamg -log_view`.
+        #[arg(last = true)]
+        petsc_options: Vec<String>,
     },
     /// Validate a case and print what it would solve (dofs, increments), without solving.
     Check {
         /// Case file (case.toml) or the folder that holds it.
         case: PathBuf,
     },
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum BackendArg {
+    Auto,
+    Serial,
+    Petsc,
+}
+
+/// Launched by mpirun (Open MPI or MPICH/Hydra)?
+fn under_mpirun() -> bool {
+    ["OMPI_COMM_WORLD_SIZE", "PMI_SIZE"]
+        .iter()
+        .any(|v| std::env::var_os(v).is_some())
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -66,6 +87,8 @@ fn main() -> ExitCode {
             quiet,
             method,
             refine,
+            backend,
+            petsc_options,
         } => {
             let opts = RunOptions {
                 out,
@@ -73,6 +96,17 @@ fn main() -> ExitCode {
                 method: method.map(Into::into),
                 refine,
             };
+            let petsc = backend == BackendArg::Petsc
+                || (backend == BackendArg::Auto && cfg!(feature = "parallel") && under_mpirun());
+            if petsc {
+                return run_petsc(&case, &opts, &petsc_options);
+            }
+            if !petsc_options.is_empty() {
+                eprintln!(
+                    "error: PETSc options given but the serial backend runs (use --backend petsc)"
+                );
+                return ExitCode::from(2);
+            }
             driver::run(&case, &opts).map(|(dir, _model, result)| {
                 if !quiet {
                     let last = result.increments.last().map(|i| i.measures).unwrap_or_default();
@@ -103,4 +137,29 @@ fn main() -> ExitCode {
             ExitCode::from(2)
         }
     }
+}
+
+#[cfg(feature = "parallel")]
+fn run_petsc(case: &std::path::Path, opts: &RunOptions, petsc_options: &[String]) -> ExitCode {
+    let (outcome, root) = asperity::parallel::run(case, opts, petsc_options);
+    match outcome {
+        Ok(dir) => {
+            if root {
+                println!("{}", dir.display());
+            }
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            if root {
+                eprintln!("error: {e}");
+            }
+            ExitCode::from(2)
+        }
+    }
+}
+
+#[cfg(not(feature = "parallel"))]
+fn run_petsc(_: &std::path::Path, _: &RunOptions, _: &[String]) -> ExitCode {
+    eprintln!("error: this build has no PETSc backend; rebuild with `cargo build --release --features parallel`");
+    ExitCode::from(2)
 }

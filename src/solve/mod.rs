@@ -99,6 +99,8 @@ pub trait Observer {
 /// The outcome of a run.
 #[derive(Clone, Debug)]
 pub struct RunResult {
+    pub backend: String,
+    pub ranks: usize,
     pub increments: Vec<Increment>,
     pub first_yield: Option<FirstYield>,
     pub stats: Stats,
@@ -106,10 +108,17 @@ pub struct RunResult {
     pub final_state: State,
 }
 
-/// Runs the whole load history of the model.
+/// Runs the whole load history of the model on the serial backend.
 pub fn run(model: &Model, observer: &mut dyn Observer) -> Result<RunResult> {
+    run_with(Engine::new(model, model.case.solver.method)?, observer)
+}
+
+/// Runs the whole load history with a given engine (any backend). Under MPI
+/// every rank calls this; only rank 0's observer writes, and its outcome is
+/// shared so that a failed write stops every rank.
+pub fn run_with(mut engine: Engine, observer: &mut dyn Observer) -> Result<RunResult> {
+    let model = engine.model;
     let spec = &model.case.solver;
-    let mut engine = Engine::new(model, spec.method)?;
     let mut committed = State::initial(model);
     let mut lambda = 0.0;
     // pending targets, last element first; each with its cut depth
@@ -145,7 +154,12 @@ pub fn run(model: &Model, observer: &mut dyn Observer) -> Result<RunResult> {
                     measures: Measures::of(model, &committed),
                 };
                 cutbacks_here = 0;
-                observer.increment(model, &committed, &inc)?;
+                let written = observer.increment(model, &committed, &inc);
+                if !engine.backend.agree(written.is_ok()) {
+                    return Err(written.err().unwrap_or_else(|| {
+                        Error::Solver("writing the output failed on rank 0".into())
+                    }));
+                }
                 increments.push(inc);
             }
             Err(reason) => {
@@ -166,6 +180,8 @@ pub fn run(model: &Model, observer: &mut dyn Observer) -> Result<RunResult> {
         }
     }
     Ok(RunResult {
+        backend: engine.backend.name().to_string(),
+        ranks: engine.backend.ranks(),
         increments,
         first_yield,
         stats: engine.stats.clone(),

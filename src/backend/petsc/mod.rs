@@ -6,6 +6,7 @@
 //! This is the only module with `unsafe`.
 
 pub mod ffi;
+pub mod solver;
 
 use crate::error::{Error, Result};
 use std::ffi::CString;
@@ -262,6 +263,30 @@ impl<'p> PMat<'p> {
                     idx.as_ptr(),
                     vals.as_ptr(),
                     ffi::InsertMode_ADD_VALUES,
+                )
+            },
+            "MatSetValues",
+        )
+    }
+
+    /// Inserts one row (global indices).
+    pub fn set_row(
+        &mut self,
+        row: ffi::PetscInt,
+        cols: &[ffi::PetscInt],
+        vals: &[f64],
+    ) -> Result<()> {
+        // SAFETY: cols and vals have the same length.
+        chk(
+            unsafe {
+                ffi::MatSetValues(
+                    self.raw,
+                    1,
+                    &row,
+                    cols.len() as ffi::PetscInt,
+                    cols.as_ptr(),
+                    vals.as_ptr(),
+                    ffi::InsertMode_INSERT_VALUES,
                 )
             },
             "MatSetValues",
