@@ -46,6 +46,10 @@ pub trait Backend {
     fn agree(&self, flag: bool) -> bool {
         flag
     }
+    /// Counters reported in summary.json under "backend_stats".
+    fn diagnostics(&self) -> Vec<(&'static str, f64)> {
+        Vec::new()
+    }
     /// The assembled system matrix as CSC values on the model's pattern, where
     /// the backend keeps one (serial); for checks of the assembled tangent.
     fn matrix_values(&self) -> Option<&[f64]> {

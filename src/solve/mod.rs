@@ -101,6 +101,7 @@ pub trait Observer {
 pub struct RunResult {
     pub backend: String,
     pub ranks: usize,
+    pub backend_stats: Vec<(String, f64)>,
     pub increments: Vec<Increment>,
     pub first_yield: Option<FirstYield>,
     pub stats: Stats,
@@ -182,6 +183,12 @@ pub fn run_with(mut engine: Engine, observer: &mut dyn Observer) -> Result<RunRe
     Ok(RunResult {
         backend: engine.backend.name().to_string(),
         ranks: engine.backend.ranks(),
+        backend_stats: engine
+            .backend
+            .diagnostics()
+            .into_iter()
+            .map(|(k, v)| (k.to_string(), v))
+            .collect(),
         increments,
         first_yield,
         stats: engine.stats.clone(),

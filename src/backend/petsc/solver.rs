@@ -277,6 +277,16 @@ impl crate::backend::Backend for PetscBackend<'_> {
         }
         Ok(())
     }
+    fn diagnostics(&self) -> Vec<(&'static str, f64)> {
+        vec![
+            ("ksp_iterations", self.ksp_iterations as f64),
+            ("assembly_mallocs", self.mallocs().unwrap_or(f64::NAN)),
+            (
+                "owned_equations_rank0",
+                (self.part.offsets[1] - self.part.offsets[0]) as f64,
+            ),
+        ]
+    }
     fn sum(&self, v: &mut [f64]) {
         let send = v.to_vec();
         self.world

@@ -1,0 +1,206 @@
+//! Serial faer against PETSc on 1 and on 2 MPI ranks, on a refined case with
+//! plasticity and contact opening (`cases/strip-lift-off`, refine 3) and on the
+//! friction punch: same increments, same contact statuses, same first-yield
+//! increment, displacements and interface pressures equal to 1e-6 relative
+//! (the direct solvers agree to round-off; 1e-6 leaves room for Newton stopping
+//! one iteration apart). Also: no mallocs during PETSc assembly, and an error on
+//! one rank ends every rank with one message and exit code 2.
+#![cfg(feature = "parallel")]
+
+mod common;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn mpirun(n: usize, args: &[&str]) -> (i32, String) {
+    let out = Command::new("mpirun")
+        .args(["-n", &n.to_string()])
+        .arg(env!("CARGO_BIN_EXE_asperity"))
+        .args(args)
+        .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
+        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
+        .env("OMPI_MCA_rmaps_base_oversubscribe", "1")
+        .env("OMPI_MCA_mpi_yield_when_idle", "1")
+        .env("OMPI_MCA_hwloc_base_binding_policy", "none")
+        .output()
+        .expect("mpirun is on PATH (apt-get install openmpi-bin)");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stderr).into(),
+    )
+}
+
+fn serial(args: &[&str]) -> (i32, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_asperity"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stderr).into(),
+    )
+}
+
+fn json(dir: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap()
+}
+
+/// (x, p_n, u_n, status) rows of every interface file.
+fn interfaces(dir: &Path) -> Vec<Vec<(f64, f64, f64, String)>> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir.join("interface"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    files.sort();
+    files
+        .iter()
+        .map(|f| {
+            std::fs::read_to_string(f)
+                .unwrap()
+                .lines()
+                .skip(1)
+                .map(|l| {
+                    let v: Vec<&str> = l.split(',').collect();
+                    (
+                        v[0].parse().unwrap(),
+                        v[1].parse().unwrap(),
+                        v[2].parse().unwrap(),
+                        format!("{}/{}", v[3], v[8]),
+                    )
+                })
+                .collect()
+        })
+        .collect()
+}
+
+fn close(a: f64, b: f64, scale: f64) -> bool {
+    (a - b).abs() <= 1e-6 * scale
+}
+
+fn compare(case: &str, refine: &str) {
+    let root = common::scratch(&format!("parallel-{case}"));
+    let case = common::root().join("cases").join(case);
+    let case = case.to_str().unwrap();
+    let out = |n: &str| root.join(n);
+    let (c, e) = serial(&[
+        "run",
+        case,
+        "--refine",
+        refine,
+        "--quiet",
+        "--backend",
+        "serial",
+        "--out",
+        out("serial").to_str().unwrap(),
+    ]);
+    assert_eq!(c, 0, "{e}");
+    let (c, e) = mpirun(
+        1,
+        &[
+            "run",
+            case,
+            "--refine",
+            refine,
+            "--quiet",
+            "--out",
+            out("petsc1").to_str().unwrap(),
+        ],
+    );
+    assert_eq!(c, 0, "{e}");
+    let (c, e) = mpirun(
+        2,
+        &[
+            "run",
+            case,
+            "--refine",
+            refine,
+            "--quiet",
+            "--out",
+            out("petsc2").to_str().unwrap(),
+        ],
+    );
+    assert_eq!(c, 0, "{e}");
+    let s = json(&out("serial"));
+    let s_if = interfaces(&out("serial"));
+    let u_scale = s["final"]["center_displacement_mm"].as_f64().unwrap().abs();
+    for run in ["petsc1", "petsc2"] {
+        let p = json(&out(run));
+        assert_eq!(p["backend"], "petsc");
+        assert_eq!(
+            p["ranks"].as_u64().unwrap(),
+            if run == "petsc1" { 1 } else { 2 }
+        );
+        assert_eq!(
+            p["backend_stats"]["assembly_mallocs"].as_f64().unwrap(),
+            0.0,
+            "{run}: mallocs during assembly"
+        );
+        assert_eq!(p["increments"], s["increments"], "{run}: increments");
+        let (fs, fp) = (&s["first_yield"], &p["first_yield"]);
+        assert!(
+            close(
+                fs["total_load_kn"].as_f64().unwrap(),
+                fp["total_load_kn"].as_f64().unwrap(),
+                1.0
+            ),
+            "{run}: first yield"
+        );
+        assert_eq!(fs["element"], fp["element"], "{run}: first-yield element");
+        let (us, up) = (
+            s["final"]["center_displacement_mm"].as_f64().unwrap(),
+            p["final"]["center_displacement_mm"].as_f64().unwrap(),
+        );
+        assert!(
+            close(us, up, u_scale),
+            "{run}: center displacement {us} vs {up}"
+        );
+        let p_if = interfaces(&out(run));
+        assert_eq!(p_if.len(), s_if.len());
+        for (inc, (a, b)) in s_if.iter().zip(&p_if).enumerate() {
+            let p_scale = a.iter().fold(1e-30f64, |m, r| m.max(r.1.abs()));
+            let u_scale = a.iter().fold(1e-30f64, |m, r| m.max(r.2.abs()));
+            for (ra, rb) in a.iter().zip(b) {
+                assert_eq!(
+                    ra.3,
+                    rb.3,
+                    "{run}: status at x = {} in increment {}",
+                    ra.0,
+                    inc + 1
+                );
+                assert!(
+                    close(ra.1, rb.1, p_scale),
+                    "{run}: p_n at x = {} in increment {}: {} vs {}",
+                    ra.0,
+                    inc + 1,
+                    ra.1,
+                    rb.1
+                );
+                assert!(
+                    close(ra.2, rb.2, u_scale),
+                    "{run}: u_n at x = {} in increment {}",
+                    ra.0,
+                    inc + 1
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn serial_petsc1_and_petsc2_agree_on_a_refined_case_with_plasticity_and_lift_off() {
+    compare("strip-lift-off", "3");
+}
+
+#[test]
+fn serial_petsc1_and_petsc2_agree_with_friction() {
+    compare("punch-friction-b", "1");
+}
+
+#[test]
+fn a_bad_case_ends_every_rank_with_one_message() {
+    let text = include_str!("../cases/punch-plane-stress/case.toml").replace("m = 0.5", "m = 1.5");
+    let case = common::case_dir("parallel-bad", &text);
+    let (code, err) = mpirun(2, &["run", case.to_str().unwrap(), "--quiet"]);
+    assert_eq!(code, 2, "{err}");
+    assert_eq!(err.matches("error:").count(), 1, "{err}");
+    assert!(err.contains("m = 1.5 must be in (0, 1]"), "{err}");
+}
