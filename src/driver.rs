@@ -15,6 +15,8 @@ pub struct RunOptions {
     pub quiet: bool,
     pub method: Option<Method>,
     pub refine: Option<usize>,
+    /// Test hook: make the element loop fail on (rank, assembly number).
+    pub fault: Option<(usize, usize)>,
 }
 
 /// Loads a case and applies command-line overrides.
@@ -34,7 +36,8 @@ pub fn load_model(case_path: &Path, opts: &RunOptions) -> Result<Model> {
 pub fn run(case_path: &Path, opts: &RunOptions) -> Result<(PathBuf, Model, RunResult)> {
     let started = Instant::now();
     let model = load_model(case_path, opts)?;
-    let engine = Engine::new(&model, model.case.solver.method)?;
+    let mut engine = Engine::new(&model, model.case.solver.method)?;
+    engine.fault = opts.fault;
     let (dir, result) = run_model(&model, engine, opts, true, started)?;
     Ok((dir, model, result))
 }

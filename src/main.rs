@@ -36,6 +36,10 @@ enum Command {
         /// feature), or auto: petsc when started by mpirun with the feature built in.
         #[arg(long, value_enum, default_value = "auto")]
         backend: BackendArg,
+        /// Test hook: make the element loop fail on RANK at its N-th assembly
+        /// (every later attempt too), e.g. `1:5`.
+        #[arg(long, value_name = "RANK:N", value_parser = parse_fault, hide = true)]
+        inject_fault: Option<(usize, usize)>,
         /// PETSc options after `--`, e.g. `-- -ksp_type cg -pc_type gamg -log_view`.
         #[arg(last = true)]
         petsc_options: Vec<String>,
@@ -52,6 +56,14 @@ enum BackendArg {
     Auto,
     Serial,
     Petsc,
+}
+
+fn parse_fault(s: &str) -> Result<(usize, usize), String> {
+    let (r, n) = s.split_once(':').ok_or("expected RANK:N")?;
+    Ok((
+        r.parse().map_err(|_| "bad rank")?,
+        n.parse().map_err(|_| "bad N")?,
+    ))
 }
 
 /// Launched by mpirun (Open MPI or MPICH/Hydra)?
@@ -88,6 +100,7 @@ fn main() -> ExitCode {
             method,
             refine,
             backend,
+            inject_fault,
             petsc_options,
         } => {
             let opts = RunOptions {
@@ -95,6 +108,7 @@ fn main() -> ExitCode {
                 quiet,
                 method: method.map(Into::into),
                 refine,
+                fault: inject_fault,
             };
             let petsc = backend == BackendArg::Petsc
                 || (backend == BackendArg::Auto && cfg!(feature = "parallel") && under_mpirun());

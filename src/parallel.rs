@@ -30,7 +30,9 @@ pub fn run(case_path: &Path, opts: &RunOptions, petsc_args: &[String]) -> (Resul
         let result = {
             let model = driver::load_model(case_path, opts)?;
             let backend = PetscBackend::new(&petsc, world.duplicate(), &model)?;
-            let engine = Engine::with_backend(&model, model.case.solver.method, Box::new(backend));
+            let mut engine =
+                Engine::with_backend(&model, model.case.solver.method, Box::new(backend));
+            engine.fault = opts.fault;
             driver::run_model(&model, engine, opts, root, started).map(|(dir, _)| dir)
         };
         drop(petsc);

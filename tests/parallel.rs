@@ -204,3 +204,81 @@ fn a_bad_case_ends_every_rank_with_one_message() {
     assert_eq!(err.matches("error:").count(), 1, "{err}");
     assert!(err.contains("m = 1.5 must be in (0, 1]"), "{err}");
 }
+
+#[test]
+fn a_fault_on_rank_1_ends_every_rank_with_its_message_and_no_output() {
+    let root = common::scratch("parallel-fault");
+    let out = root.join("out");
+    let case = common::root().join("cases/punch-plane-stress");
+    let t = std::time::Instant::now();
+    let (code, err) = mpirun(
+        2,
+        &[
+            "run",
+            case.to_str().unwrap(),
+            "--quiet",
+            "--out",
+            out.to_str().unwrap(),
+            "--inject-fault",
+            "1:30",
+        ],
+    );
+    assert_eq!(code, 2, "{err}");
+    assert_eq!(err.matches("error:").count(), 1, "{err}");
+    assert!(err.contains("rank 1: fault injected on rank 1"), "{err}");
+    assert!(t.elapsed().as_secs() < 30, "took {:?}", t.elapsed());
+    assert!(!out.exists(), "output left behind");
+    let partial = std::fs::read_dir(&root)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .any(|e| e.file_name().to_string_lossy().contains("partial"));
+    assert!(!partial, "partial output left behind");
+}
+
+#[test]
+fn krylov_solvers_from_the_options_database_give_the_same_answer() {
+    let root = common::scratch("parallel-ksp");
+    let case = common::root().join("cases/punch-plane-stress");
+    let case = case.to_str().unwrap();
+    let (c, e) = mpirun(
+        2,
+        &[
+            "run",
+            case,
+            "--quiet",
+            "--out",
+            root.join("lu").to_str().unwrap(),
+        ],
+    );
+    assert_eq!(c, 0, "{e}");
+    let (c, e) = mpirun(
+        2,
+        &[
+            "run",
+            case,
+            "--quiet",
+            "--out",
+            root.join("gmres").to_str().unwrap(),
+            "--",
+            "-ksp_type",
+            "gmres",
+            "-pc_type",
+            "bjacobi",
+            "-ksp_rtol",
+            "1e-12",
+            "-ksp_max_it",
+            "5000",
+        ],
+    );
+    assert_eq!(c, 0, "{e}");
+    let (a, b) = (json(&root.join("lu")), json(&root.join("gmres")));
+    let (ua, ub) = (
+        a["final"]["center_displacement_mm"].as_f64().unwrap(),
+        b["final"]["center_displacement_mm"].as_f64().unwrap(),
+    );
+    assert!(close(ua, ub, ua.abs()), "{ua} vs {ub}");
+    assert!(
+        b["backend_stats"]["ksp_iterations"].as_f64().unwrap()
+            > a["backend_stats"]["ksp_iterations"].as_f64().unwrap()
+    );
+}

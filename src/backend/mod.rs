@@ -46,6 +46,10 @@ pub trait Backend {
     fn agree(&self, flag: bool) -> bool {
         flag
     }
+    /// The message of the lowest rank that has one, on every rank.
+    fn share_message(&self, msg: Option<String>) -> Option<String> {
+        msg
+    }
     /// Counters reported in summary.json under "backend_stats".
     fn diagnostics(&self) -> Vec<(&'static str, f64)> {
         Vec::new()

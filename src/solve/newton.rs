@@ -40,6 +40,9 @@ pub struct Engine<'m> {
     solid_valid: bool,
     r: Vec<f64>,
     pub stats: Stats,
+    /// Test hook: (rank, assembly number) at which the element loop fails.
+    pub fault: Option<(usize, usize)>,
+    assemblies: usize,
 }
 
 impl<'m> Engine<'m> {
@@ -60,6 +63,8 @@ impl<'m> Engine<'m> {
             solid_valid: false,
             r: vec![0.0; model.mesh.num_dofs()],
             stats: Stats::default(),
+            fault: None,
+            assemblies: 0,
         }
     }
 
@@ -346,11 +351,19 @@ impl<'m> Engine<'m> {
                 be.add_solid(e, &dofs, &ke).map_err(err)?;
             }
         }
-        // a local failure (return mapping) fails the step on every rank
-        let mut failed = [f64::from(u8::from(failure.is_some()))];
-        be.sum(&mut failed);
-        if failed[0] > 0.0 {
-            return Err(failure.unwrap_or_else(|| "a return mapping failed on another rank".into()));
+        if self
+            .fault
+            .is_some_and(|(r, a)| r == be.rank() && self.assemblies >= a)
+        {
+            failure = Some(format!(
+                "fault injected on rank {r} (--inject-fault)",
+                r = be.rank()
+            ));
+        }
+        self.assemblies += 1;
+        // a local failure (return mapping) fails the step on every rank, with its message
+        if let Some(msg) = be.share_message(failure) {
+            return Err(msg);
         }
         if let Some(t) = solid_tangent {
             // a consistent matrix is never reused; the others are cached

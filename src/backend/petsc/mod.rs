@@ -51,6 +51,14 @@ impl<'u> Petsc<'u> {
             unsafe { ffi::PetscInitialize(&mut argc, &mut p, std::ptr::null(), std::ptr::null()) },
             "PetscInitialize",
         )?;
+        // errors come back as codes and become one `error:` line; no tracebacks
+        // SAFETY: PETSc is initialized; the handler is a PETSc function.
+        chk(
+            unsafe {
+                ffi::PetscPushErrorHandler(Some(ffi::PetscReturnErrorHandler), std::ptr::null_mut())
+            },
+            "PetscPushErrorHandler",
+        )?;
         Ok(Petsc {
             _argv: argv,
             comm: universe.world().as_raw(),

@@ -220,6 +220,8 @@ impl crate::backend::Backend for PetscBackend<'_> {
         self.part.point_owner[q] == self.rank
     }
     fn begin_solid(&mut self) -> Result<()> {
+        // values may be pending from an attempt that failed midway
+        self.solid.assemble()?;
         self.solid.zero()
     }
     fn add_solid(&mut self, _block: usize, dofs: &[usize], k: &[f64]) -> Result<()> {
@@ -228,6 +230,7 @@ impl crate::backend::Backend for PetscBackend<'_> {
     }
     fn begin_contact(&mut self) -> Result<()> {
         self.solid.assemble()?;
+        self.mat.assemble()?;
         self.mat.copy_from(&self.solid)
     }
     fn add_contact(&mut self, _block: usize, dofs: &[usize], k: &[f64]) -> Result<()> {
@@ -291,6 +294,31 @@ impl crate::backend::Backend for PetscBackend<'_> {
         let send = v.to_vec();
         self.world
             .all_reduce_into(&send[..], v, SystemOperation::sum());
+    }
+    fn share_message(&self, msg: Option<String>) -> Option<String> {
+        let mine = if msg.is_some() {
+            self.rank as i32
+        } else {
+            i32::MAX
+        };
+        let mut first = i32::MAX;
+        self.world
+            .all_reduce_into(&mine, &mut first, SystemOperation::min());
+        if first == i32::MAX {
+            return None;
+        }
+        let root = self.world.process_at_rank(first);
+        let mut bytes = msg.map(String::into_bytes).unwrap_or_default();
+        let mut len = bytes.len() as u64;
+        root.broadcast_into(&mut len);
+        bytes.resize(len as usize, 0);
+        root.broadcast_into(&mut bytes[..]);
+        let text = String::from_utf8_lossy(&bytes).into_owned();
+        Some(if first == 0 {
+            text
+        } else {
+            format!("rank {first}: {text}")
+        })
     }
     fn agree(&self, flag: bool) -> bool {
         let mut f = i32::from(flag);
