@@ -28,5 +28,6 @@ pub mod output;
 #[cfg(feature = "parallel")]
 pub mod parallel;
 pub mod solve;
+pub mod study;
 
 pub use error::{Error, Result};

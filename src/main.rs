@@ -44,6 +44,16 @@ enum Command {
         #[arg(last = true)]
         petsc_options: Vec<String>,
     },
+    /// Regenerate the paper's Figs 5, 6a/6b, 7a-c and 8 from runs of the shipped
+    /// cases, as PNG, SVG and CSV.
+    Figures {
+        /// Folder holding the cases.
+        #[arg(long, default_value = "cases")]
+        cases: PathBuf,
+        /// Output folder.
+        #[arg(long, default_value = "docs/figures")]
+        out: PathBuf,
+    },
     /// Validate a case and print what it would solve (dofs, increments), without solving.
     Check {
         /// Case file (case.toml) or the folder that holds it.
@@ -143,6 +153,11 @@ fn main() -> ExitCode {
             })
         }
         Command::Check { case } => driver::check(&case).map(|s| print!("{s}")),
+        Command::Figures { cases, out } => asperity::study::figures::figures(&cases, &out).map(|files| {
+            for f in files {
+                println!("{}", f.display());
+            }
+        }),
     };
     match outcome {
         Ok(()) => ExitCode::SUCCESS,

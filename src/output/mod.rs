@@ -221,6 +221,7 @@ pub fn summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
         "newton_iterations": r.stats.iterations,
         "factorizations": r.stats.factorizations,
         "wall_seconds": wall,
+        "peak_memory_mb": r.peak_memory_mb,
         "assembly_seconds": r.stats.assembly_seconds,
         "solve_seconds": r.stats.solve_seconds,
         "first_yield": fy,

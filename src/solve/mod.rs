@@ -101,6 +101,8 @@ pub trait Observer {
 pub struct RunResult {
     pub backend: String,
     pub ranks: usize,
+    /// Peak resident memory summed over ranks (VmHWM), MB; 0 where unknown.
+    pub peak_memory_mb: f64,
     pub backend_stats: Vec<(String, f64)>,
     pub increments: Vec<Increment>,
     pub first_yield: Option<FirstYield>,
@@ -180,7 +182,10 @@ pub fn run_with(mut engine: Engine, observer: &mut dyn Observer) -> Result<RunRe
             }
         }
     }
+    let mut memory = [peak_memory_mb()];
+    engine.backend.sum(&mut memory);
     Ok(RunResult {
+        peak_memory_mb: memory[0],
         backend: engine.backend.name().to_string(),
         ranks: engine.backend.ranks(),
         backend_stats: engine
@@ -205,4 +210,16 @@ pub fn yield_ratio(mat: &VonMises, g: &PointState) -> f64 {
     } else {
         0.0
     }
+}
+
+/// Peak resident set size of this process in MB (Linux /proc), 0 elsewhere.
+pub fn peak_memory_mb() -> f64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("VmHWM:"))
+                .and_then(|l| l.split_whitespace().nth(1)?.parse::<f64>().ok())
+        })
+        .map_or(0.0, |kb| kb / 1024.0)
 }

@@ -1,0 +1,4 @@
+//! Studies and pictures: the paper's figures regenerated from our runs.
+
+pub mod figures;
+pub mod plot;

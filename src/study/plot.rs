@@ -1,0 +1,156 @@
+//! Line charts as SVG and PNG (plotters), with the numbers behind each in CSV.
+//!
+//! Text needs a font: [`load_font`] registers DejaVu Sans (or Liberation Sans)
+//! from the system at run time, so the build needs no system library. Without a
+//! font the CSV files are still written and the pictures are skipped.
+
+use crate::error::{Error, Result};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+pub struct Series {
+    pub label: String,
+    pub points: Vec<(f64, f64)>,
+}
+
+/// A chart: lines, plus horizontal/vertical reference lines and labelled marks
+/// (the paper's quoted numbers).
+#[derive(Default)]
+pub struct Chart {
+    pub title: String,
+    pub x_label: String,
+    pub y_label: String,
+    pub series: Vec<Series>,
+    pub hlines: Vec<(f64, String)>,
+    pub vlines: Vec<(f64, String)>,
+    pub marks: Vec<(f64, f64, String)>,
+    /// Legend in the lower left instead of the upper left.
+    pub legend_low: bool,
+}
+
+/// Registers a sans-serif font found on the system; false if none.
+pub fn load_font() -> bool {
+    let candidates = [
+        "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
+        "/usr/share/fonts/TTF/DejaVuSans.ttf",
+        "/usr/share/fonts/dejavu/DejaVuSans.ttf",
+        "/usr/share/fonts/truetype/liberation/LiberationSans-Regular.ttf",
+    ];
+    for c in candidates {
+        if let Ok(bytes) = std::fs::read(c) {
+            let bytes: &'static [u8] = Box::leak(bytes.into_boxed_slice());
+            if plotters::style::register_font("sans-serif", FontStyle::Normal, bytes).is_ok() {
+                return true;
+            }
+        }
+    }
+    false
+}
+
+/// Writes `<stem>.csv` and, with a font, `<stem>.svg` and `<stem>.png`.
+pub fn save(chart: &Chart, stem: &Path, pictures: bool) -> Result<Vec<PathBuf>> {
+    let mut csv = String::from("series,x,y\n");
+    for s in &chart.series {
+        for (x, y) in &s.points {
+            let _ = writeln!(csv, "\"{}\",{x:.9e},{y:.9e}", s.label);
+        }
+    }
+    for (y, l) in &chart.hlines {
+        let _ = writeln!(csv, "\"reference: {l}\",,{y:.9e}");
+    }
+    for (x, l) in &chart.vlines {
+        let _ = writeln!(csv, "\"reference: {l}\",{x:.9e},");
+    }
+    let mut written = vec![stem.with_extension("csv")];
+    std::fs::write(&written[0], csv).map_err(|e| Error::io(&written[0], e))?;
+    if pictures {
+        let svg = stem.with_extension("svg");
+        draw(SVGBackend::new(&svg, (900, 600)).into_drawing_area(), chart)?;
+        let png = stem.with_extension("png");
+        draw(BitMapBackend::new(&png, (900, 600)).into_drawing_area(), chart)?;
+        written.push(svg);
+        written.push(png);
+    }
+    Ok(written)
+}
+
+fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, c: &Chart) -> Result<()> {
+    let e = |m: String| Error::Solver(format!("drawing \"{}\": {m}", c.title));
+    root.fill(&WHITE).map_err(|x| e(x.to_string()))?;
+    let pts = c.series.iter().flat_map(|s| s.points.iter().copied());
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+    for (x, y) in pts.chain(c.marks.iter().map(|m| (m.0, m.1))) {
+        (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
+    }
+    for (y, _) in &c.hlines {
+        (y0, y1) = (y0.min(*y), y1.max(*y));
+    }
+    for (x, _) in &c.vlines {
+        (x0, x1) = (x0.min(*x), x1.max(*x));
+    }
+    let pad = |a: f64, b: f64| if b > a { 0.04 * (b - a) } else { 1.0 };
+    let (px, py) = (pad(x0, x1), pad(y0, y1));
+    let mut chart = ChartBuilder::on(&root)
+        .caption(&c.title, ("sans-serif", 22))
+        .margin(15)
+        .x_label_area_size(45)
+        .y_label_area_size(70)
+        .build_cartesian_2d((x0 - px)..(x1 + px), (y0 - py)..(y1 + py))
+        .map_err(|x| e(x.to_string()))?;
+    chart
+        .configure_mesh()
+        .x_desc(&c.x_label)
+        .y_desc(&c.y_label)
+        .label_style(("sans-serif", 15))
+        .draw()
+        .map_err(|x| e(x.to_string()))?;
+    for (i, s) in c.series.iter().enumerate() {
+        let color = Palette99::pick(i).stroke_width(2);
+        chart
+            .draw_series(LineSeries::new(s.points.iter().copied(), color))
+            .map_err(|x| e(x.to_string()))?
+            .label(&s.label)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], Palette99::pick(i).stroke_width(2)));
+        chart
+            .draw_series(s.points.iter().map(|&p| Circle::new(p, 2, Palette99::pick(i).filled())))
+            .map_err(|x| e(x.to_string()))?;
+    }
+    let grey = RGBColor(90, 90, 90);
+    for (k, (y, l)) in c.hlines.iter().enumerate() {
+        chart
+            .draw_series(LineSeries::new(vec![(x0 - px, *y), (x1 + px, *y)], grey.stroke_width(1)))
+            .map_err(|x| e(x.to_string()))?;
+        // labels staggered along x so that close lines stay readable
+        let lx = x0 + (0.3 + 0.35 * k as f64) * (x1 - x0);
+        chart
+            .draw_series(std::iter::once(Text::new(l.clone(), (lx, *y), ("sans-serif", 14).into_font().color(&grey))))
+            .map_err(|x| e(x.to_string()))?;
+    }
+    for (x, l) in &c.vlines {
+        chart
+            .draw_series(LineSeries::new(vec![(*x, y0 - py), (*x, y1 + py)], grey.stroke_width(1)))
+            .map_err(|x| e(x.to_string()))?;
+        chart
+            .draw_series(std::iter::once(Text::new(l.clone(), (*x, y1), ("sans-serif", 14).into_font().color(&grey))))
+            .map_err(|x| e(x.to_string()))?;
+    }
+    for (x, y, l) in &c.marks {
+        chart
+            .draw_series(std::iter::once(Cross::new((*x, *y), 6, RED.stroke_width(2))))
+            .map_err(|x| e(x.to_string()))?;
+        chart
+            .draw_series(std::iter::once(Text::new(l.clone(), (*x, *y), ("sans-serif", 14).into_font().color(&RED))))
+            .map_err(|x| e(x.to_string()))?;
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .label_font(("sans-serif", 15))
+        .position(if c.legend_low { SeriesLabelPosition::LowerLeft } else { SeriesLabelPosition::UpperLeft })
+        .draw()
+        .map_err(|x| e(x.to_string()))?;
+    root.present().map_err(|x| e(x.to_string()))
+}
