@@ -20,6 +20,7 @@ fn run(
         quiet: true,
         method: Some(method),
         refine: Some(refine),
+        ..RunOptions::default()
     };
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("cases")

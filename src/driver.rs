@@ -17,6 +17,15 @@ pub struct RunOptions {
     pub refine: Option<usize>,
     /// Test hook: make the element loop fail on (rank, assembly number).
     pub fault: Option<(usize, usize)>,
+    /// Override: equal load steps (drops the case's first_increment / load_factors).
+    pub increments: Option<usize>,
+    pub max_cutbacks: Option<usize>,
+    /// Override: ungraded mesh (every size ratio 1) with the same element counts.
+    pub uniform: bool,
+    /// Override: plain fixed-matrix iterations (no Anderson acceleration).
+    pub plain: bool,
+    /// Override: friction scheme of every tangential law.
+    pub friction_scheme: Option<crate::interface::FrictionScheme>,
 }
 
 /// Loads a case and applies command-line overrides.
@@ -27,6 +36,30 @@ pub fn load_model(case_path: &Path, opts: &RunOptions) -> Result<Model> {
     }
     if let Some(r) = opts.refine {
         case.mesh.refine = r;
+    }
+    if let Some(n) = opts.increments {
+        case.solver.increments = n;
+        case.solver.first_increment = None;
+        case.solver.load_factors = None;
+    }
+    if let Some(c) = opts.max_cutbacks {
+        case.solver.max_cutbacks = c;
+    }
+    if opts.plain {
+        case.solver.acceleration = crate::case::Acceleration::None;
+    }
+    if let Some(fs) = opts.friction_scheme {
+        for spec in case.interface.values_mut() {
+            if let Some(t) = spec.tangential.as_mut() {
+                t.scheme = fs;
+            }
+        }
+    }
+    if opts.uniform {
+        for b in &mut case.mesh.block {
+            b.rx.clear();
+            b.ry.clear();
+        }
     }
     Model::build(case)
 }

@@ -32,6 +32,21 @@ enum Command {
         /// Override the mesh refinement factor of the case.
         #[arg(long)]
         refine: Option<usize>,
+        /// Override: this many equal load steps.
+        #[arg(long)]
+        increments: Option<usize>,
+        /// Override: halvings allowed per scheduled step (0: fail at the first failure).
+        #[arg(long)]
+        max_cutbacks: Option<usize>,
+        /// Override: an ungraded mesh with the same element counts.
+        #[arg(long)]
+        uniform: bool,
+        /// Override: no Anderson acceleration of modified Newton / initial stiffness.
+        #[arg(long)]
+        plain: bool,
+        /// Override: friction scheme (return-mapping | stiffness-modification).
+        #[arg(long, value_parser = parse_scheme)]
+        friction_scheme: Option<asperity::interface::FrictionScheme>,
         /// Linear-algebra backend: serial (faer), petsc (MPI; needs the `parallel`
         /// feature), or auto: petsc when started by mpirun with the feature built in.
         #[arg(long, value_enum, default_value = "auto")]
@@ -54,10 +69,61 @@ enum Command {
         #[arg(long, default_value = "docs/figures")]
         out: PathBuf,
     },
+    /// Studies: mesh refinement (accuracy against cost) and load-step stability.
+    #[command(subcommand)]
+    Study(StudyCommand),
     /// Validate a case and print what it would solve (dofs, increments), without solving.
     Check {
         /// Case file (case.toml) or the folder that holds it.
         case: PathBuf,
+    },
+}
+
+#[derive(Subcommand)]
+enum StudyCommand {
+    /// The case on a sequence of meshes for each method and backend; Richardson
+    /// reference; error against dofs and against wall time.
+    Refine {
+        case: PathBuf,
+        /// Refinement factors, at least three, e.g. 1,2,3,4.
+        #[arg(long, value_delimiter = ',', default_value = "1,2,3,4")]
+        levels: Vec<usize>,
+        /// Methods to compare.
+        #[arg(
+            long,
+            value_delimiter = ',',
+            value_enum,
+            default_value = "full-newton,modified-newton,initial-stiffness"
+        )]
+        methods: Vec<MethodArg>,
+        /// Also run PETSc on 1 and 2 ranks (needs the parallel build and mpirun).
+        #[arg(long)]
+        petsc: bool,
+        /// Also run the ungraded mesh (full Newton, serial).
+        #[arg(long)]
+        uniform: bool,
+        #[arg(long, default_value = "docs/figures")]
+        out: PathBuf,
+    },
+    /// Load-step size × method (× friction scheme): converged or not, iterations,
+    /// cutbacks, time; a map of where each method fails.
+    Stability {
+        case: PathBuf,
+        /// Numbers of equal load steps.
+        #[arg(long, value_delimiter = ',', default_value = "1,2,5,10,20,40")]
+        steps: Vec<usize>,
+        #[arg(
+            long,
+            value_delimiter = ',',
+            value_enum,
+            default_value = "full-newton,modified-newton,initial-stiffness"
+        )]
+        methods: Vec<MethodArg>,
+        /// Also vary the friction scheme (cases with a tangential law).
+        #[arg(long)]
+        schemes: bool,
+        #[arg(long, default_value = "docs/figures")]
+        out: PathBuf,
     },
 }
 
@@ -66,6 +132,14 @@ enum BackendArg {
     Auto,
     Serial,
     Petsc,
+}
+
+fn parse_scheme(s: &str) -> Result<asperity::interface::FrictionScheme, String> {
+    match s {
+        "return-mapping" => Ok(asperity::interface::FrictionScheme::ReturnMapping),
+        "stiffness-modification" => Ok(asperity::interface::FrictionScheme::StiffnessModification),
+        _ => Err("expected return-mapping or stiffness-modification".into()),
+    }
 }
 
 fn parse_fault(s: &str) -> Result<(usize, usize), String> {
@@ -109,6 +183,11 @@ fn main() -> ExitCode {
             quiet,
             method,
             refine,
+            increments,
+            max_cutbacks,
+            uniform,
+            plain,
+            friction_scheme,
             backend,
             inject_fault,
             petsc_options,
@@ -119,6 +198,11 @@ fn main() -> ExitCode {
                 method: method.map(Into::into),
                 refine,
                 fault: inject_fault,
+                increments,
+                max_cutbacks,
+                uniform,
+                plain,
+                friction_scheme,
             };
             let petsc = backend == BackendArg::Petsc
                 || (backend == BackendArg::Auto && cfg!(feature = "parallel") && under_mpirun());
@@ -153,11 +237,76 @@ fn main() -> ExitCode {
             })
         }
         Command::Check { case } => driver::check(&case).map(|s| print!("{s}")),
-        Command::Figures { cases, out } => asperity::study::figures::figures(&cases, &out).map(|files| {
-            for f in files {
-                println!("{}", f.display());
+        Command::Study(StudyCommand::Refine {
+            case,
+            levels,
+            methods,
+            petsc,
+            uniform,
+            out,
+        }) => {
+            use asperity::study::refine::{refine, Config};
+            use asperity::study::runner::Which;
+            let mut configs: Vec<Config> = methods
+                .iter()
+                .map(|&m| Config {
+                    method: m.into(),
+                    which: Which::Serial,
+                    uniform: false,
+                })
+                .collect();
+            if petsc {
+                for n in [1, 2] {
+                    configs.push(Config {
+                        method: Method::FullNewton,
+                        which: Which::Petsc(n),
+                        uniform: false,
+                    });
+                }
             }
-        }),
+            if uniform {
+                configs.push(Config {
+                    method: Method::FullNewton,
+                    which: Which::Serial,
+                    uniform: true,
+                });
+            }
+            refine(&case, &levels, &configs, &out).map(|(files, summary)| {
+                print!("{summary}");
+                for f in files {
+                    println!("{}", f.display());
+                }
+            })
+        }
+        Command::Study(StudyCommand::Stability {
+            case,
+            steps,
+            methods,
+            schemes,
+            out,
+        }) => {
+            let methods: Vec<Method> = methods.into_iter().map(Into::into).collect();
+            let sch: &[&str] = if schemes {
+                &["return-mapping", "stiffness-modification"]
+            } else {
+                &[]
+            };
+            asperity::study::stability::stability(&case, &steps, &methods, sch, &out).map(
+                |(files, _, best)| {
+                    println!("{best}");
+                    for f in files {
+                        println!("{}", f.display());
+                    }
+                },
+            )
+        }
+        Command::Figures { cases, out } => {
+            asperity::study::figures::figures(&cases, &out).map(|files| {
+                for f in files {
+                    println!("{}", f.display());
+                }
+            })
+        }
     };
     match outcome {
         Ok(()) => ExitCode::SUCCESS,

@@ -14,7 +14,11 @@ fn rows(path: &std::path::Path) -> Vec<(String, f64, f64)> {
         .map(|l| {
             let (name, rest) = l.rsplit_once("\",").unwrap();
             let (x, y) = rest.split_once(',').unwrap();
-            (name.trim_start_matches('"').to_string(), x.parse().unwrap(), y.parse().unwrap())
+            (
+                name.trim_start_matches('"').to_string(),
+                x.parse().unwrap(),
+                y.parse().unwrap(),
+            )
         })
         .collect()
 }
@@ -36,13 +40,22 @@ fn figures_write_well_formed_data_and_fig_8_hardens() {
         assert!(files.contains(&csv), "{stem}.csv not reported");
         let r = rows(&csv);
         assert!(r.len() >= 20, "{stem}: {} rows", r.len());
-        assert!(r.iter().all(|(_, x, y)| x.is_finite() && y.is_finite()), "{stem}: non-finite value");
+        assert!(
+            r.iter().all(|(_, x, y)| x.is_finite() && y.is_finite()),
+            "{stem}: non-finite value"
+        );
         let series: std::collections::BTreeSet<&str> = r.iter().map(|r| r.0.as_str()).collect();
         assert!(series.len() >= 2, "{stem}: {series:?}");
     }
     // Fig. 8: settlement under the punch centre falls as h grows (E/100 → E/10)
     let r = rows(&out.join("fig8-deflection-hardening.csv"));
     let centre = |h: &str| r.iter().find(|(s, x, _)| s == h && *x == 0.0).unwrap().2;
-    let seq: Vec<f64> = ["h = E/100", "h = E/50", "h = E/20", "h = E/10"].iter().map(|h| centre(h)).collect();
-    assert!(seq.windows(2).all(|w| w[1] > w[0]), "settlements {seq:?} (negative = down)");
+    let seq: Vec<f64> = ["h = E/100", "h = E/50", "h = E/20", "h = E/10"]
+        .iter()
+        .map(|h| centre(h))
+        .collect();
+    assert!(
+        seq.windows(2).all(|w| w[1] > w[0]),
+        "settlements {seq:?} (negative = down)"
+    );
 }

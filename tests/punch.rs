@@ -15,6 +15,7 @@ fn run(case: &str, method: Option<Method>, refine: Option<usize>) -> RunResult {
         quiet: true,
         method,
         refine,
+        ..RunOptions::default()
     };
     let (_, _, r) = driver::run(&common::root().join("cases").join(case), &opts)
         .unwrap_or_else(|e| panic!("{e}"));

@@ -28,7 +28,11 @@ impl Observer for Capture {
         for im in &model.interfaces {
             for (i, pr) in im.pairs.iter().enumerate() {
                 let p_n = im.law.pressure(im.pair_approach(pr, &state.u)).0;
-                let p_t = if im.points.len() == im.pairs.len() { state.contact[base + i].p_t } else { 0.0 };
+                let p_t = if im.points.len() == im.pairs.len() {
+                    state.contact[base + i].p_t
+                } else {
+                    0.0
+                };
                 interface.push((pr.x[0], p_n, p_t));
             }
             base += im.points.len();
@@ -38,11 +42,19 @@ impl Observer for Capture {
         if let Some(im) = model.interfaces.first() {
             let set = format!("{}.top", model.mesh.bodies[im.body_b]);
             if let Some(nodes) = model.mesh.node_sets.get(&set) {
-                surface = nodes.iter().map(|&n| (model.mesh.nodes[n][0], state.u[2 * n + 1])).collect();
+                surface = nodes
+                    .iter()
+                    .map(|&n| (model.mesh.nodes[n][0], state.u[2 * n + 1]))
+                    .collect();
                 surface.sort_by(|a, b| a.0.total_cmp(&b.0));
             }
         }
-        self.0.push(Snapshot { load_factor: inc.load_factor, measures: inc.measures, interface, surface });
+        self.0.push(Snapshot {
+            load_factor: inc.load_factor,
+            measures: inc.measures,
+            interface,
+            surface,
+        });
         Ok(())
     }
 }
@@ -64,7 +76,11 @@ fn quarters(n: usize) -> Vec<usize> {
     (1..=4).map(|k| (k * n / 4).max(1) - 1).collect()
 }
 
-fn profile(snaps: &[Snapshot], pick: &[usize], value: impl Fn(&(f64, f64, f64)) -> f64) -> Vec<Series> {
+fn profile(
+    snaps: &[Snapshot],
+    pick: &[usize],
+    value: impl Fn(&(f64, f64, f64)) -> f64,
+) -> Vec<Series> {
     pick.iter()
         .map(|&i| Series {
             label: format!("P = {:.2} kN", snaps[i].measures.total_load_kn),
@@ -87,7 +103,12 @@ pub fn figures(cases: &Path, out: &Path) -> Result<Vec<PathBuf>> {
     // Fig. 5: load ratio against the settlement of the centre contact node
     let curve = |snaps: &[Snapshot], f: f64| -> Vec<(f64, f64)> {
         std::iter::once((0.0, 0.0))
-            .chain(snaps.iter().map(|s| (-s.measures.center_displacement, s.measures.total_load_kn / f)))
+            .chain(snaps.iter().map(|s| {
+                (
+                    -s.measures.center_displacement,
+                    s.measures.total_load_kn / f,
+                )
+            }))
             .collect()
     };
     let fig5 = Chart {
@@ -95,10 +116,19 @@ pub fn figures(cases: &Path, out: &Path) -> Result<Vec<PathBuf>> {
         x_label: "settlement of the centre contact node (mm)".into(),
         y_label: "r = load / first-yield load".into(),
         series: vec![
-            Series { label: format!("plane stress (r = 1 at {:.2} kN; paper 7.17)", fy(&rs)), points: curve(&ss, fy(&rs)) },
-            Series { label: format!("plane strain (r = 1 at {:.2} kN; paper 9.75)", fy(&re)), points: curve(&se, fy(&re)) },
+            Series {
+                label: format!("plane stress (r = 1 at {:.2} kN; paper 7.17)", fy(&rs)),
+                points: curve(&ss, fy(&rs)),
+            },
+            Series {
+                label: format!("plane strain (r = 1 at {:.2} kN; paper 9.75)", fy(&re)),
+                points: curve(&se, fy(&re)),
+            },
         ],
-        hlines: vec![(1.42, "paper: sharp bend at r = 1.42 (plane stress)".into()), (1.0, "first yield".into())],
+        hlines: vec![
+            (1.42, "paper: sharp bend at r = 1.42 (plane stress)".into()),
+            (1.0, "first yield".into()),
+        ],
         ..Chart::default()
     };
     files.extend(save(&fig5, &out.join("fig5-load-displacement"), pictures)?);
@@ -111,25 +141,50 @@ pub fn figures(cases: &Path, out: &Path) -> Result<Vec<PathBuf>> {
             ..Chart::default()
         };
         if tag == "6a" {
-            c.hlines = vec![(240.0, "paper: mean pressure saturates near 240 MPa".into()), (226.3, "2 σ_Y/√3 = 226 MPa".into())];
+            c.hlines = vec![
+                (240.0, "paper: mean pressure saturates near 240 MPa".into()),
+                (226.3, "2 σ_Y/√3 = 226 MPa".into()),
+            ];
         }
-        files.extend(save(&c, &out.join(format!("fig{tag}-contact-pressure")), pictures)?);
+        files.extend(save(
+            &c,
+            &out.join(format!("fig{tag}-contact-pressure")),
+            pictures,
+        )?);
     }
     // Fig. 7: shear tractions of the three friction cases
-    for (tag, name) in [("7a", "punch-friction-a"), ("7b", "punch-friction-b"), ("7c", "punch-friction-c")] {
+    for (tag, name) in [
+        ("7a", "punch-friction-a"),
+        ("7b", "punch-friction-b"),
+        ("7c", "punch-friction-c"),
+    ] {
         let case = load(cases, name)?;
         let title = case.description.clone().unwrap_or_default();
         let (r, snaps) = capture(case)?;
         let c = Chart {
-            title: format!("Fig. {tag}: shear traction ({})", title.split(": ").last().unwrap_or("")),
+            title: format!(
+                "Fig. {tag}: shear traction ({})",
+                title.split(": ").last().unwrap_or("")
+            ),
             x_label: "x (mm), punch edge at 20".into(),
             y_label: "p_T (MPa)".into(),
             series: profile(&snaps, &quarters(snaps.len()), |r| r.2),
-            marks: vec![(6.0, 0.0, format!("first yield {:.2} kN (paper 7.00 kN with, 7.17 without)", fy(&r)))],
+            marks: vec![(
+                6.0,
+                0.0,
+                format!(
+                    "first yield {:.2} kN (paper 7.00 kN with, 7.17 without)",
+                    fy(&r)
+                ),
+            )],
             legend_low: true,
             ..Chart::default()
         };
-        files.extend(save(&c, &out.join(format!("fig{tag}-shear-traction")), pictures)?);
+        files.extend(save(
+            &c,
+            &out.join(format!("fig{tag}-shear-traction")),
+            pictures,
+        )?);
     }
     // Fig. 8: surface deflection of the foundation against the hardening modulus
     let mut series = Vec::new();
@@ -141,8 +196,13 @@ pub fn figures(cases: &Path, out: &Path) -> Result<Vec<PathBuf>> {
         }
         case.load[0].pressure = 10350.0 / 40.0; // 10.35 kN on the 40 mm punch
         let (_, snaps) = capture(case)?;
-        let last = snaps.last().ok_or_else(|| Error::Solver("no increment converged".into()))?;
-        series.push(Series { label: format!("h = E/{k}"), points: last.surface.clone() });
+        let last = snaps
+            .last()
+            .ok_or_else(|| Error::Solver("no increment converged".into()))?;
+        series.push(Series {
+            label: format!("h = E/{k}"),
+            points: last.surface.clone(),
+        });
     }
     let c = Chart {
         title: "Fig. 8: foundation surface deflection at 10.35 kN against hardening".into(),

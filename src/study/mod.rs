@@ -2,3 +2,6 @@
 
 pub mod figures;
 pub mod plot;
+pub mod refine;
+pub mod runner;
+pub mod stability;

@@ -69,7 +69,10 @@ pub fn save(chart: &Chart, stem: &Path, pictures: bool) -> Result<Vec<PathBuf>> 
         let svg = stem.with_extension("svg");
         draw(SVGBackend::new(&svg, (900, 600)).into_drawing_area(), chart)?;
         let png = stem.with_extension("png");
-        draw(BitMapBackend::new(&png, (900, 600)).into_drawing_area(), chart)?;
+        draw(
+            BitMapBackend::new(&png, (900, 600)).into_drawing_area(),
+            chart,
+        )?;
         written.push(svg);
         written.push(png);
     }
@@ -112,36 +115,67 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, c: &Chart) -> Result<(
             .draw_series(LineSeries::new(s.points.iter().copied(), color))
             .map_err(|x| e(x.to_string()))?
             .label(&s.label)
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], Palette99::pick(i).stroke_width(2)));
+            .legend(move |(x, y)| {
+                PathElement::new(
+                    vec![(x, y), (x + 20, y)],
+                    Palette99::pick(i).stroke_width(2),
+                )
+            });
         chart
-            .draw_series(s.points.iter().map(|&p| Circle::new(p, 2, Palette99::pick(i).filled())))
+            .draw_series(
+                s.points
+                    .iter()
+                    .map(|&p| Circle::new(p, 2, Palette99::pick(i).filled())),
+            )
             .map_err(|x| e(x.to_string()))?;
     }
     let grey = RGBColor(90, 90, 90);
     for (k, (y, l)) in c.hlines.iter().enumerate() {
         chart
-            .draw_series(LineSeries::new(vec![(x0 - px, *y), (x1 + px, *y)], grey.stroke_width(1)))
+            .draw_series(LineSeries::new(
+                vec![(x0 - px, *y), (x1 + px, *y)],
+                grey.stroke_width(1),
+            ))
             .map_err(|x| e(x.to_string()))?;
         // labels staggered along x so that close lines stay readable
         let lx = x0 + (0.3 + 0.35 * k as f64) * (x1 - x0);
         chart
-            .draw_series(std::iter::once(Text::new(l.clone(), (lx, *y), ("sans-serif", 14).into_font().color(&grey))))
+            .draw_series(std::iter::once(Text::new(
+                l.clone(),
+                (lx, *y),
+                ("sans-serif", 14).into_font().color(&grey),
+            )))
             .map_err(|x| e(x.to_string()))?;
     }
     for (x, l) in &c.vlines {
         chart
-            .draw_series(LineSeries::new(vec![(*x, y0 - py), (*x, y1 + py)], grey.stroke_width(1)))
+            .draw_series(LineSeries::new(
+                vec![(*x, y0 - py), (*x, y1 + py)],
+                grey.stroke_width(1),
+            ))
             .map_err(|x| e(x.to_string()))?;
         chart
-            .draw_series(std::iter::once(Text::new(l.clone(), (*x, y1), ("sans-serif", 14).into_font().color(&grey))))
+            .draw_series(std::iter::once(Text::new(
+                l.clone(),
+                (*x, y1),
+                ("sans-serif", 14).into_font().color(&grey),
+            )))
             .map_err(|x| e(x.to_string()))?;
     }
     for (x, y, l) in &c.marks {
         chart
-            .draw_series(std::iter::once(Cross::new((*x, *y), 6, RED.stroke_width(2))))
+            .draw_series(std::iter::once(Cross::new(
+                (*x, *y),
+                6,
+                RED.stroke_width(2),
+            )))
             .map_err(|x| e(x.to_string()))?;
         chart
-            .draw_series(std::iter::once(Text::new(l.clone(), (*x, *y), ("sans-serif", 14).into_font().color(&RED))))
+            .draw_series(std::iter::once(Text::new(
+                l.clone(),
+                (*x, *y),
+                ("sans-serif", 14).into_font().color(&RED),
+            )))
             .map_err(|x| e(x.to_string()))?;
     }
     chart
@@ -149,8 +183,100 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, c: &Chart) -> Result<(
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
         .label_font(("sans-serif", 15))
-        .position(if c.legend_low { SeriesLabelPosition::LowerLeft } else { SeriesLabelPosition::UpperLeft })
+        .position(if c.legend_low {
+            SeriesLabelPosition::LowerLeft
+        } else {
+            SeriesLabelPosition::UpperLeft
+        })
         .draw()
         .map_err(|x| e(x.to_string()))?;
+    root.present().map_err(|x| e(x.to_string()))
+}
+
+/// A grid of cells (rows × columns), each green (ok) or red (failed) with a short
+/// text: the stability map.
+pub struct Grid {
+    pub title: String,
+    pub x_label: String,
+    pub columns: Vec<String>,
+    pub rows: Vec<String>,
+    /// cells[row][column] = (ok, text)
+    pub cells: Vec<Vec<(bool, String)>>,
+}
+
+/// Writes `<stem>.csv` and, with a font, `<stem>.svg` and `<stem>.png`.
+pub fn save_grid(g: &Grid, stem: &Path, pictures: bool) -> Result<Vec<PathBuf>> {
+    let mut csv = String::from("row,column,ok,text\n");
+    for (r, row) in g.cells.iter().enumerate() {
+        for (c, (ok, t)) in row.iter().enumerate() {
+            let _ = writeln!(csv, "\"{}\",\"{}\",{ok},\"{t}\"", g.rows[r], g.columns[c]);
+        }
+    }
+    let mut written = vec![stem.with_extension("csv")];
+    std::fs::write(&written[0], csv).map_err(|e| Error::io(&written[0], e))?;
+    if pictures {
+        let h = 120 + 70 * g.rows.len() as u32;
+        let svg = stem.with_extension("svg");
+        draw_grid(SVGBackend::new(&svg, (1000, h)).into_drawing_area(), g)?;
+        let png = stem.with_extension("png");
+        draw_grid(BitMapBackend::new(&png, (1000, h)).into_drawing_area(), g)?;
+        written.push(svg);
+        written.push(png);
+    }
+    Ok(written)
+}
+
+fn draw_grid<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, g: &Grid) -> Result<()> {
+    let e = |m: String| Error::Solver(format!("drawing \"{}\": {m}", g.title));
+    root.fill(&WHITE).map_err(|x| e(x.to_string()))?;
+    let (w, h) = root.dim_in_pixel();
+    let (left, top) = (330i32, 60i32);
+    let cw = (w as i32 - left - 20) / g.columns.len().max(1) as i32;
+    let ch = (h as i32 - top - 50) / g.rows.len().max(1) as i32;
+    let font = ("sans-serif", 15).into_font();
+    root.draw(&Text::new(
+        g.title.clone(),
+        (20, 15),
+        ("sans-serif", 22).into_font(),
+    ))
+    .map_err(|x| e(x.to_string()))?;
+    for (c, col) in g.columns.iter().enumerate() {
+        root.draw(&Text::new(
+            col.clone(),
+            (left + c as i32 * cw + 10, top - 22),
+            font.clone(),
+        ))
+        .map_err(|x| e(x.to_string()))?;
+    }
+    root.draw(&Text::new(
+        g.x_label.clone(),
+        (left, h as i32 - 30),
+        font.clone(),
+    ))
+    .map_err(|x| e(x.to_string()))?;
+    for (r, row) in g.rows.iter().enumerate() {
+        let y = top + r as i32 * ch;
+        root.draw(&Text::new(row.clone(), (10, y + ch / 2 - 8), font.clone()))
+            .map_err(|x| e(x.to_string()))?;
+        for (c, (ok, text)) in g.cells[r].iter().enumerate() {
+            let x = left + c as i32 * cw;
+            let color = if *ok {
+                RGBColor(170, 220, 170)
+            } else {
+                RGBColor(235, 150, 150)
+            };
+            root.draw(&Rectangle::new(
+                [(x + 2, y + 2), (x + cw - 2, y + ch - 2)],
+                color.filled(),
+            ))
+            .map_err(|x| e(x.to_string()))?;
+            root.draw(&Text::new(
+                text.clone(),
+                (x + 8, y + ch / 2 - 8),
+                ("sans-serif", 13).into_font(),
+            ))
+            .map_err(|x| e(x.to_string()))?;
+        }
+    }
     root.present().map_err(|x| e(x.to_string()))
 }

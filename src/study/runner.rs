@@ -1,0 +1,127 @@
+//! One study point: `asperity run` in a subprocess (serial, or PETSc under
+//! `mpirun -n k`), read back from its summary.json and last interface file.
+
+use std::path::Path;
+use std::process::Command;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Which {
+    Serial,
+    Petsc(usize),
+}
+
+impl Which {
+    pub fn label(self) -> String {
+        match self {
+            Which::Serial => "serial faer".into(),
+            Which::Petsc(n) => format!("PETSc {n} rank{}", if n > 1 { "s" } else { "" }),
+        }
+    }
+
+    /// PETSc runs need the `parallel` build and mpirun.
+    pub fn available(self) -> bool {
+        match self {
+            Which::Serial => true,
+            Which::Petsc(_) => {
+                cfg!(feature = "parallel")
+                    && Command::new("mpirun")
+                        .arg("--version")
+                        .output()
+                        .is_ok_and(|o| o.status.success())
+            }
+        }
+    }
+}
+
+/// What a study needs of one run.
+#[derive(Clone, Debug, Default)]
+pub struct Point {
+    pub dofs: f64,
+    pub wall: f64,
+    pub iterations: f64,
+    pub increments: f64,
+    pub cutbacks: f64,
+    pub first_yield_kn: f64,
+    pub center: f64,
+    pub edge_pressure: f64,
+}
+
+/// Runs `case` with extra `run` arguments; Err carries the run's error line.
+pub fn run(case: &Path, args: &[String], which: Which, dir: &Path) -> Result<Point, String> {
+    let exe = std::env::current_exe().map_err(|e| e.to_string())?;
+    let mut cmd = match which {
+        Which::Serial => {
+            let mut c = Command::new(&exe);
+            c.args(["run", "--backend", "serial"]);
+            c
+        }
+        Which::Petsc(n) => {
+            let mut c = Command::new("mpirun");
+            c.args(["-n", &n.to_string()])
+                .arg(&exe)
+                .args(["run", "--backend", "petsc"]);
+            for (k, v) in [
+                ("OMPI_ALLOW_RUN_AS_ROOT", "1"),
+                ("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1"),
+                ("OMPI_MCA_rmaps_base_oversubscribe", "1"),
+            ] {
+                c.env(k, v);
+            }
+            c
+        }
+    };
+    cmd.arg(case)
+        .args(args)
+        .arg("--quiet")
+        .arg("--out")
+        .arg(dir);
+    let out = cmd
+        .output()
+        .map_err(|e| format!("cannot start {}: {e}", exe.display()))?;
+    if !out.status.success() {
+        let err = String::from_utf8_lossy(&out.stderr);
+        return Err(err
+            .lines()
+            .find(|l| l.starts_with("error:"))
+            .unwrap_or("failed")
+            .to_string());
+    }
+    let text = std::fs::read_to_string(dir.join("summary.json")).map_err(|e| e.to_string())?;
+    let s: serde_json::Value = serde_json::from_str(&text).map_err(|e| e.to_string())?;
+    let f = |v: &serde_json::Value| v.as_f64().unwrap_or(f64::NAN);
+    let mut files: Vec<_> = std::fs::read_dir(dir.join("interface"))
+        .map_err(|e| e.to_string())?
+        .filter_map(|e| e.ok())
+        .map(|e| e.path())
+        .collect();
+    files.sort();
+    let last = files
+        .last()
+        .map(std::fs::read_to_string)
+        .transpose()
+        .map_err(|e| e.to_string())?
+        .unwrap_or_default();
+    // the pair at the largest x: the punch edge
+    let edge = last
+        .lines()
+        .skip(1)
+        .filter_map(|l| {
+            let v: Vec<&str> = l.split(',').collect();
+            Some((
+                v.first()?.parse::<f64>().ok()?,
+                v.get(1)?.parse::<f64>().ok()?,
+            ))
+        })
+        .fold((f64::MIN, f64::NAN), |a, b| if b.0 > a.0 { b } else { a })
+        .1;
+    Ok(Point {
+        dofs: f(&s["dofs"]),
+        wall: f(&s["wall_seconds"]),
+        iterations: f(&s["newton_iterations"]),
+        increments: f(&s["increments"]),
+        cutbacks: f(&s["cutbacks"]),
+        first_yield_kn: f(&s["first_yield"]["total_load_kn"]),
+        center: f(&s["final"]["center_displacement_mm"]),
+        edge_pressure: edge,
+    })
+}
