@@ -24,6 +24,8 @@ pub struct RunOptions {
     pub uniform: bool,
     /// Override: plain fixed-matrix iterations (no Anderson acceleration).
     pub plain: bool,
+    /// Override: fixed or automatic load steps.
+    pub step_control: Option<crate::case::StepControl>,
     /// Override: friction scheme of every tangential law.
     pub friction_scheme: Option<crate::interface::FrictionScheme>,
 }
@@ -38,12 +40,15 @@ pub fn load_model(case_path: &Path, opts: &RunOptions) -> Result<Model> {
         case.mesh.refine = r;
     }
     if let Some(n) = opts.increments {
-        case.solver.increments = n;
+        case.solver.increments = Some(n);
         case.solver.first_increment = None;
         case.solver.load_factors = None;
     }
     if let Some(c) = opts.max_cutbacks {
         case.solver.max_cutbacks = c;
+    }
+    if let Some(sc) = opts.step_control {
+        case.solver.step_control = Some(sc);
     }
     if opts.plain {
         case.solver.acceleration = crate::case::Acceleration::None;
@@ -175,14 +180,30 @@ pub fn check(case_path: &Path) -> Result<String> {
         );
     }
     let sched = c.solver.schedule();
-    s += &format!(
-        "  solver: {}, {} increments (first {:.4}, last {:.4}), ≤ {} iterations each, ≤ {} cutbacks\n",
-        c.solver.method.name(),
-        sched.len(),
-        sched[0],
-        sched[sched.len() - 1],
-        c.solver.iteration_limit(),
-        c.solver.max_cutbacks
-    );
+    match c.solver.step_mode() {
+        crate::case::StepControl::Fixed => {
+            s += &format!(
+                "  solver: {}, {} increments (first {:.4}, last {:.4}), ≤ {} iterations each, ≤ {} cutbacks\n",
+                c.solver.method.name(),
+                sched.len(),
+                sched[0],
+                sched[sched.len() - 1],
+                c.solver.iteration_limit(),
+                c.solver.max_cutbacks
+            );
+        }
+        crate::case::StepControl::Auto => {
+            s += &format!(
+                "  solver: {}, automatic steps to λ = {:.4} (first {:.4}, at most {:.4}, plastic strain ≈ {} per step), ≤ {} iterations each, ≤ {} cutbacks in a row\n",
+                c.solver.method.name(),
+                sched[sched.len() - 1],
+                c.solver.first_increment.unwrap_or(1.0 / c.solver.n_increments() as f64),
+                c.solver.max_increment.unwrap_or(0.25),
+                c.solver.plastic_strain_step,
+                c.solver.iteration_limit(),
+                c.solver.max_cutbacks
+            );
+        }
+    }
     Ok(s)
 }

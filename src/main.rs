@@ -44,6 +44,10 @@ enum Command {
         /// Override: no Anderson acceleration of modified Newton / initial stiffness.
         #[arg(long)]
         plain: bool,
+        /// Override: load steps `fixed` (the case's schedule) or `auto` (adapted to
+        /// iterations and plastic strain; see docs/case-schema.md).
+        #[arg(long, value_parser = parse_step_control)]
+        step_control: Option<asperity::case::StepControl>,
         /// Override: friction scheme (return-mapping | stiffness-modification).
         #[arg(long, value_parser = parse_scheme)]
         friction_scheme: Option<asperity::interface::FrictionScheme>,
@@ -142,6 +146,14 @@ fn parse_scheme(s: &str) -> Result<asperity::interface::FrictionScheme, String> 
     }
 }
 
+fn parse_step_control(s: &str) -> Result<asperity::case::StepControl, String> {
+    match s {
+        "fixed" => Ok(asperity::case::StepControl::Fixed),
+        "auto" => Ok(asperity::case::StepControl::Auto),
+        _ => Err("expected fixed or auto".into()),
+    }
+}
+
 fn parse_fault(s: &str) -> Result<(usize, usize), String> {
     let (r, n) = s.split_once(':').ok_or("expected RANK:N")?;
     Ok((
@@ -187,6 +199,7 @@ fn main() -> ExitCode {
             max_cutbacks,
             uniform,
             plain,
+            step_control,
             friction_scheme,
             backend,
             inject_fault,
@@ -202,6 +215,7 @@ fn main() -> ExitCode {
                 max_cutbacks,
                 uniform,
                 plain,
+                step_control,
                 friction_scheme,
             };
             let petsc = backend == BackendArg::Petsc

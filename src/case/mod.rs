@@ -232,14 +232,36 @@ pub enum Acceleration {
     Anderson,
 }
 
+/// How the load-factor steps are chosen.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum StepControl {
+    /// The schedule as given (`increments`, `first_increment`, `load_factors`),
+    /// halved on failure.
+    #[default]
+    Fixed,
+    /// Steps adapted to the iteration count and the plastic strain increment
+    /// between the waypoints (`load_factors`, else 1); see `solve::stepping`.
+    Auto,
+}
+
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SolverSpec {
     #[serde(default)]
     pub method: Method,
-    /// Number of equal load steps from 0 to 1 (after the first one).
-    #[serde(default = "default_increments")]
-    pub increments: usize,
+    /// "fixed" or "auto"; default: auto when the case gives no schedule
+    /// (`increments`, `first_increment`, `load_factors`), else fixed. See
+    /// [`SolverSpec::step_mode`].
+    pub step_control: Option<StepControl>,
+    /// Auto: the largest load-factor step (default 0.25).
+    pub max_increment: Option<f64>,
+    /// Auto: the target of the largest equivalent plastic strain increment of a step.
+    #[serde(default = "default_plastic_strain_step")]
+    pub plastic_strain_step: f64,
+    /// Number of equal load steps from 0 to 1 (after the first one); default 20.
+    /// Read it with [`SolverSpec::n_increments`].
+    pub increments: Option<usize>,
     /// Size of the first load step (the paper uses about 5%); default 1/increments.
     pub first_increment: Option<f64>,
     /// Explicit load factors instead of increments; may decrease (unloading).
@@ -302,8 +324,8 @@ fn one_usize() -> usize {
 fn yes() -> bool {
     true
 }
-fn default_increments() -> usize {
-    20
+fn default_plastic_strain_step() -> f64 {
+    2e-3
 }
 fn default_residual_tol() -> f64 {
     1e-8

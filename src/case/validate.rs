@@ -120,7 +120,7 @@ fn normal_law(s: &InterfaceLawSpec) -> std::result::Result<NormalLaw, String> {
 
 fn check_solver(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
     let s = &case.solver;
-    if s.increments == 0 {
+    if s.increments == Some(0) {
         return Err(Error::input(
             at("[solver] increments"),
             "must be at least 1",
@@ -157,6 +157,21 @@ fn check_solver(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
             ));
         }
     }
+    if let Some(v) = s.max_increment {
+        if !(v.is_finite() && v > 0.0 && v <= 1.0) {
+            return Err(Error::input(
+                at("[solver] max_increment"),
+                format!("{v} must be in (0, 1]"),
+            ));
+        }
+    }
+    let v = s.plastic_strain_step;
+    if !(v.is_finite() && v > 0.0 && v < 1.0) {
+        return Err(Error::input(
+            at("[solver] plastic_strain_step"),
+            format!("{v} must be in (0, 1)"),
+        ));
+    }
     if s.max_iterations == Some(0) {
         return Err(Error::input(
             at("[solver] max_iterations"),
@@ -175,7 +190,7 @@ impl super::SolverSpec {
         if let Some(l) = &self.load_factors {
             return l.clone();
         }
-        let n = self.increments;
+        let n = self.n_increments();
         match self.first_increment {
             Some(f) if f < 1.0 && n > 1 => {
                 let mut v = vec![f];
@@ -185,6 +200,26 @@ impl super::SolverSpec {
             }
             _ => (1..=n).map(|i| i as f64 / n as f64).collect(),
         }
+    }
+
+    /// Equal load steps of the fixed schedule (default 20).
+    pub fn n_increments(&self) -> usize {
+        self.increments.unwrap_or(20)
+    }
+
+    /// The step control in force: as given, else automatic when the case gives
+    /// no schedule of its own.
+    pub fn step_mode(&self) -> super::StepControl {
+        self.step_control.unwrap_or(
+            if self.increments.is_none()
+                && self.first_increment.is_none()
+                && self.load_factors.is_none()
+            {
+                super::StepControl::Auto
+            } else {
+                super::StepControl::Fixed
+            },
+        )
     }
 
     pub fn iteration_limit(&self) -> usize {

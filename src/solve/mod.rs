@@ -4,6 +4,7 @@
 
 mod accelerate;
 pub mod newton;
+pub mod stepping;
 mod yield_point;
 
 pub use newton::{Engine, Stats};
@@ -124,61 +125,75 @@ pub fn run_with(mut engine: Engine, observer: &mut dyn Observer) -> Result<RunRe
     let spec = &model.case.solver;
     let mut committed = State::initial(model);
     let mut lambda = 0.0;
-    // pending targets, last element first; each with its cut depth
-    let mut pending: Vec<(f64, usize)> =
-        spec.schedule().into_iter().rev().map(|l| (l, 0)).collect();
+    let mut stepper = stepping::Stepper::new(spec);
     let mut increments = Vec::new();
     let mut first_yield = None;
     let mut cutbacks_total = 0;
     let mut cutbacks_here = 0;
     let mut elastic_ratio_prev = 0.0;
-    while let Some((target, depth)) = pending.pop() {
-        match engine.step(&committed, target, Response::Plastic) {
+    let mut next = stepper.next(lambda);
+    while let Some(target) = next {
+        let failure = match engine.step(&committed, target, Response::Plastic) {
             Ok((trial, iterations)) => {
-                let yielded_now = first_yield.is_none() && trial.gauss.iter().any(|g| g.peeq > 0.0);
-                if yielded_now && spec.locate_first_yield {
-                    first_yield = Some(yield_point::locate(
-                        &mut engine,
-                        &committed,
-                        (lambda, elastic_ratio_prev),
-                        target,
-                    )?);
-                } else if first_yield.is_none() {
-                    elastic_ratio_prev = max_yield_ratio(model, &trial).0;
-                }
-                committed = trial;
-                engine.committed();
-                lambda = target;
-                let inc = Increment {
-                    increment: increments.len() + 1,
-                    load_factor: lambda,
-                    iterations,
-                    cutbacks: cutbacks_here,
-                    measures: Measures::of(model, &committed),
-                };
-                cutbacks_here = 0;
-                let written = observer.increment(model, &committed, &inc);
-                if !engine.backend.agree(written.is_ok()) {
-                    return Err(written.err().unwrap_or_else(|| {
-                        Error::Solver("writing the output failed on rank 0".into())
-                    }));
-                }
-                increments.push(inc);
-            }
-            Err(reason) => {
-                if depth >= spec.max_cutbacks {
-                    return Err(Error::Convergence {
+                let dpeeq = trial
+                    .gauss
+                    .iter()
+                    .zip(&committed.gauss)
+                    .fold(0.0f64, |a, (t, c)| a.max(t.peeq - c.peeq));
+                if stepper.accept(lambda, target, iterations, dpeeq) {
+                    let yielded_now =
+                        first_yield.is_none() && trial.gauss.iter().any(|g| g.peeq > 0.0);
+                    if yielded_now && spec.locate_first_yield {
+                        first_yield = Some(yield_point::locate(
+                            &mut engine,
+                            &committed,
+                            (lambda, elastic_ratio_prev),
+                            target,
+                        )?);
+                    } else if first_yield.is_none() {
+                        elastic_ratio_prev = max_yield_ratio(model, &trial).0;
+                    }
+                    committed = trial;
+                    engine.committed();
+                    lambda = target;
+                    let inc = Increment {
                         increment: increments.len() + 1,
-                        load_factor: target,
-                        message: format!("{reason}; gave up after {} cutbacks", spec.max_cutbacks),
-                    });
+                        load_factor: lambda,
+                        iterations,
+                        cutbacks: cutbacks_here,
+                        measures: Measures::of(model, &committed),
+                    };
+                    cutbacks_here = 0;
+                    let written = observer.increment(model, &committed, &inc);
+                    if !engine.backend.agree(written.is_ok()) {
+                        return Err(written.err().unwrap_or_else(|| {
+                            Error::Solver("writing the output failed on rank 0".into())
+                        }));
+                    }
+                    increments.push(inc);
+                    next = stepper.next(lambda);
+                    continue;
                 }
-                let mid = 0.5 * (lambda + target);
+                // converged, but the plastic strain changed too much for an accurate path
+                None
+            }
+            Err(reason) => Some(reason),
+        };
+        let retry = stepper.retry(lambda, target, failure.is_none());
+        let reason = failure.unwrap_or_else(|| "plastic strain increment too large".into());
+        match retry {
+            stepping::Retry::GiveUp => {
+                return Err(Error::Convergence {
+                    increment: increments.len() + 1,
+                    load_factor: target,
+                    message: format!("{reason}; gave up after {} cutbacks", spec.max_cutbacks),
+                });
+            }
+            stepping::Retry::At(t) => {
                 observer.cutback(lambda, target, &reason);
                 cutbacks_total += 1;
                 cutbacks_here += 1;
-                pending.push((target, depth + 1));
-                pending.push((mid, depth + 1));
+                next = Some(t);
             }
         }
     }

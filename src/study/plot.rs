@@ -200,8 +200,10 @@ pub struct Grid {
     pub x_label: String,
     pub columns: Vec<String>,
     pub rows: Vec<String>,
-    /// cells[row][column] = (ok, text)
+    /// cells[row][column] = (ok, text); text lines separated by '\n'
     pub cells: Vec<Vec<(bool, String)>>,
+    /// A cell drawn with a heavy frame (the program's default), with its caption.
+    pub marked: Option<(usize, usize, String)>,
 }
 
 /// Writes `<stem>.csv` and, with a font, `<stem>.svg` and `<stem>.png`.
@@ -209,17 +211,19 @@ pub fn save_grid(g: &Grid, stem: &Path, pictures: bool) -> Result<Vec<PathBuf>> 
     let mut csv = String::from("row,column,ok,text\n");
     for (r, row) in g.cells.iter().enumerate() {
         for (c, (ok, t)) in row.iter().enumerate() {
+            let t = t.replace('\n', "; ");
             let _ = writeln!(csv, "\"{}\",\"{}\",{ok},\"{t}\"", g.rows[r], g.columns[c]);
         }
     }
     let mut written = vec![stem.with_extension("csv")];
     std::fs::write(&written[0], csv).map_err(|e| Error::io(&written[0], e))?;
     if pictures {
-        let h = 120 + 70 * g.rows.len() as u32;
+        let h = 150 + 62 * g.rows.len() as u32;
+        let w = (250 + 135 * g.columns.len() as u32).max(1000);
         let svg = stem.with_extension("svg");
-        draw_grid(SVGBackend::new(&svg, (1000, h)).into_drawing_area(), g)?;
+        draw_grid(SVGBackend::new(&svg, (w, h)).into_drawing_area(), g)?;
         let png = stem.with_extension("png");
-        draw_grid(BitMapBackend::new(&png, (1000, h)).into_drawing_area(), g)?;
+        draw_grid(BitMapBackend::new(&png, (w, h)).into_drawing_area(), g)?;
         written.push(svg);
         written.push(png);
     }
@@ -230,9 +234,9 @@ fn draw_grid<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, g: &Grid) -> Resu
     let e = |m: String| Error::Solver(format!("drawing \"{}\": {m}", g.title));
     root.fill(&WHITE).map_err(|x| e(x.to_string()))?;
     let (w, h) = root.dim_in_pixel();
-    let (left, top) = (330i32, 60i32);
+    let (left, top) = (230i32, 60i32);
     let cw = (w as i32 - left - 20) / g.columns.len().max(1) as i32;
-    let ch = (h as i32 - top - 50) / g.rows.len().max(1) as i32;
+    let ch = (h as i32 - top - 80) / g.rows.len().max(1) as i32;
     let font = ("sans-serif", 15).into_font();
     root.draw(&Text::new(
         g.title.clone(),
@@ -250,10 +254,18 @@ fn draw_grid<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, g: &Grid) -> Resu
     }
     root.draw(&Text::new(
         g.x_label.clone(),
-        (left, h as i32 - 30),
+        (20, h as i32 - 58),
         font.clone(),
     ))
     .map_err(|x| e(x.to_string()))?;
+    if let Some((_, _, caption)) = &g.marked {
+        root.draw(&Text::new(
+            caption.clone(),
+            (20, h as i32 - 32),
+            font.clone(),
+        ))
+        .map_err(|x| e(x.to_string()))?;
+    }
     for (r, row) in g.rows.iter().enumerate() {
         let y = top + r as i32 * ch;
         root.draw(&Text::new(row.clone(), (10, y + ch / 2 - 8), font.clone()))
@@ -270,12 +282,25 @@ fn draw_grid<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, g: &Grid) -> Resu
                 color.filled(),
             ))
             .map_err(|x| e(x.to_string()))?;
-            root.draw(&Text::new(
-                text.clone(),
-                (x + 8, y + ch / 2 - 8),
-                ("sans-serif", 13).into_font(),
-            ))
-            .map_err(|x| e(x.to_string()))?;
+            let lines: Vec<&str> = text.lines().collect();
+            let y0 = y + ch / 2 - 8 * lines.len() as i32;
+            for (i, line) in lines.iter().enumerate() {
+                root.draw(&Text::new(
+                    line.to_string(),
+                    (x + 8, y0 + 16 * i as i32),
+                    ("sans-serif", 13).into_font(),
+                ))
+                .map_err(|x| e(x.to_string()))?;
+            }
+            if g.marked.as_ref().is_some_and(|m| (m.0, m.1) == (r, c)) {
+                for k in 0..3 {
+                    root.draw(&Rectangle::new(
+                        [(x + 2 + k, y + 2 + k), (x + cw - 2 - k, y + ch - 2 - k)],
+                        BLACK.stroke_width(1),
+                    ))
+                    .map_err(|x| e(x.to_string()))?;
+                }
+            }
         }
     }
     root.present().map_err(|x| e(x.to_string()))

@@ -48,7 +48,11 @@ pub struct Point {
 
 /// Runs `case` with extra `run` arguments; Err carries the run's error line.
 pub fn run(case: &Path, args: &[String], which: Which, dir: &Path) -> Result<Point, String> {
-    let exe = std::env::current_exe().map_err(|e| e.to_string())?;
+    // the running asperity, or (from a test harness) the one ASPERITY_EXE names
+    let exe = match std::env::var_os("ASPERITY_EXE") {
+        Some(p) => std::path::PathBuf::from(p),
+        None => std::env::current_exe().map_err(|e| e.to_string())?,
+    };
     let mut cmd = match which {
         Which::Serial => {
             let mut c = Command::new(&exe);

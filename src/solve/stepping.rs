@@ -1,0 +1,312 @@
+//! Which load factor to try next: the fixed schedule of the case, or automatic
+//! step control between waypoints.
+//!
+//! Automatic control (`step_control = "auto"`) adapts the load-factor step to
+//! two measures of the step just taken:
+//! - how hard it was to solve: the Newton iteration count against a target
+//!   (at most the target: may double; up to twice the target: keep; more:
+//!   halve — full Newton only, as the fixed-matrix methods' rate near a limit
+//!   load does not improve with smaller steps);
+//! - how much it changed the path-dependent solution: the largest increment of
+//!   equivalent plastic strain at any Gauss point against `plastic_strain_step`.
+//!   Elastic steps are path-independent and may be large; plastic steps are not.
+//!   A step whose plastic increment exceeds three times the target is redone at
+//!   the size that would have met it (a cutback that costs accuracy nothing).
+//!
+//! A failed step is halved, as in the fixed schedule, with the committed state
+//! restored; `max_cutbacks` bounds consecutive halvings.
+
+use crate::case::{SolverSpec, StepControl};
+
+/// Relative tolerance under which two load factors are the same waypoint.
+const SAME: f64 = 1e-12;
+
+/// The plan of load factors of a run.
+#[derive(Clone, Debug)]
+pub struct Stepper {
+    mode: StepControl,
+    /// Fixed mode: remaining targets, last first, with their cut depth.
+    pending: Vec<(f64, usize)>,
+    /// Auto mode: remaining waypoints, last first.
+    waypoints: Vec<f64>,
+    /// Auto mode: current step size (absolute load-factor change).
+    step: f64,
+    max_step: f64,
+    min_step: f64,
+    target_iterations: f64,
+    /// Full Newton: the iteration count measures the step's nonlinearity.
+    newton: bool,
+    plastic_step: f64,
+    /// Consecutive failures of the current step.
+    failures: usize,
+    max_cutbacks: usize,
+}
+
+/// What the stepper says after a failed or rejected step.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Retry {
+    /// Try this load factor next.
+    At(f64),
+    /// Too many cutbacks: give up.
+    GiveUp,
+}
+
+impl Stepper {
+    pub fn new(spec: &SolverSpec) -> Stepper {
+        let schedule = spec.schedule();
+        let waypoints: Vec<f64> = match &spec.load_factors {
+            Some(l) => l.iter().rev().copied().collect(),
+            None => vec![1.0],
+        };
+        let first = spec
+            .first_increment
+            .unwrap_or(1.0 / spec.n_increments().max(1) as f64);
+        let max_step = spec.max_increment.unwrap_or(0.25);
+        Stepper {
+            mode: spec.step_mode(),
+            pending: schedule.into_iter().rev().map(|l| (l, 0)).collect(),
+            waypoints,
+            step: first.min(max_step),
+            max_step,
+            min_step: first.min(max_step) * 0.5f64.powi(spec.max_cutbacks as i32),
+            target_iterations: match spec.method {
+                crate::case::Method::FullNewton => 6.0,
+                _ => (spec.iteration_limit() as f64 / 8.0).max(4.0),
+            },
+            newton: spec.method == crate::case::Method::FullNewton,
+            plastic_step: spec.plastic_strain_step,
+            failures: 0,
+            max_cutbacks: spec.max_cutbacks,
+        }
+    }
+
+    /// The next load factor to try from `lambda`, or `None` when the history is done.
+    pub fn next(&mut self, lambda: f64) -> Option<f64> {
+        match self.mode {
+            StepControl::Fixed => self.pending.last().map(|p| p.0),
+            StepControl::Auto => {
+                while let Some(&w) = self.waypoints.last() {
+                    if (w - lambda).abs() <= SAME * w.abs().max(1.0) {
+                        self.waypoints.pop();
+                    } else {
+                        break;
+                    }
+                }
+                let w = *self.waypoints.last()?;
+                let dir = (w - lambda).signum();
+                let remaining = (w - lambda).abs();
+                // take the waypoint when the step would leave less than a fifth of a step
+                if remaining <= 1.2 * self.step {
+                    Some(w)
+                } else {
+                    Some(lambda + dir * self.step)
+                }
+            }
+        }
+    }
+
+    /// The step to `target` converged in `iterations` with the largest plastic
+    /// strain increment `dpeeq`. Returns false when an automatic step must be
+    /// redone smaller for accuracy (then call [`Stepper::retry`]).
+    pub fn accept(&mut self, lambda: f64, target: f64, iterations: usize, dpeeq: f64) -> bool {
+        match self.mode {
+            StepControl::Fixed => {
+                self.pending.pop();
+                true
+            }
+            StepControl::Auto => {
+                let taken = (target - lambda).abs();
+                let p = self.plastic_step;
+                if dpeeq > 3.0 * p && taken > self.min_step * 1.000001 {
+                    self.step = (taken * p / dpeeq).max(self.min_step);
+                    return false;
+                }
+                let its = iterations as f64;
+                let by_iterations: f64 = if its <= self.target_iterations {
+                    2.0
+                } else if its <= 2.0 * self.target_iterations || !self.newton {
+                    // the fixed-matrix methods' rate near a limit load does not
+                    // improve with smaller steps: only a failure shrinks theirs
+                    1.0
+                } else {
+                    0.5
+                };
+                let by_plasticity = if dpeeq > 0.0 {
+                    (p / dpeeq).clamp(0.25, 2.0)
+                } else {
+                    2.0
+                };
+                // grow from the step taken (a waypoint may have shortened it)
+                let base = taken.max(self.step.min(taken * 2.0));
+                self.step =
+                    (base * by_iterations.min(by_plasticity)).clamp(self.min_step, self.max_step);
+                self.failures = 0;
+                true
+            }
+        }
+    }
+
+    /// The step to `target` from `lambda` failed (or was rejected): where to go next.
+    pub fn retry(&mut self, lambda: f64, target: f64, rejected_for_accuracy: bool) -> Retry {
+        match self.mode {
+            StepControl::Fixed => {
+                let (t, depth) = self.pending.pop().unwrap_or((target, 0));
+                if depth >= self.max_cutbacks {
+                    return Retry::GiveUp;
+                }
+                let mid = 0.5 * (lambda + t);
+                self.pending.push((t, depth + 1));
+                self.pending.push((mid, depth + 1));
+                Retry::At(mid)
+            }
+            StepControl::Auto => {
+                if !rejected_for_accuracy {
+                    if self.failures >= self.max_cutbacks {
+                        return Retry::GiveUp;
+                    }
+                    self.failures += 1;
+                    self.step = 0.5 * (target - lambda).abs();
+                    if self.step < self.min_step * 0.999999 {
+                        return Retry::GiveUp;
+                    }
+                }
+                match self.next(lambda) {
+                    Some(t) => Retry::At(t),
+                    None => Retry::GiveUp,
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn spec(extra: &str) -> SolverSpec {
+        toml::from_str(extra).unwrap()
+    }
+
+    /// Drives a stepper with a synthetic solver: `its(λ0, λ1)` iterations,
+    /// `dp(λ0, λ1)` plastic increment, failure when `its` exceeds 30.
+    fn drive(
+        s: &mut Stepper,
+        its: impl Fn(f64, f64) -> usize,
+        dp: impl Fn(f64, f64) -> f64,
+    ) -> Result<Vec<f64>, f64> {
+        let mut lambda = 0.0;
+        let mut path = vec![];
+        let mut target = match s.next(lambda) {
+            Some(t) => t,
+            None => return Ok(path),
+        };
+        for _ in 0..10_000 {
+            let n = its(lambda, target);
+            let ok = n <= 30;
+            let retry = if ok {
+                if s.accept(lambda, target, n, dp(lambda, target)) {
+                    lambda = target;
+                    path.push(lambda);
+                    match s.next(lambda) {
+                        Some(t) => {
+                            target = t;
+                            continue;
+                        }
+                        None => return Ok(path),
+                    }
+                }
+                s.retry(lambda, target, true)
+            } else {
+                s.retry(lambda, target, false)
+            };
+            match retry {
+                Retry::At(t) => target = t,
+                Retry::GiveUp => return Err(lambda),
+            }
+        }
+        panic!("no end");
+    }
+
+    #[test]
+    fn fixed_mode_is_the_schedule_and_halves_on_failure() {
+        let mut s = Stepper::new(&spec("increments = 4"));
+        let path = drive(&mut s, |_, _| 3, |_, _| 0.0).unwrap();
+        assert_eq!(path, vec![0.25, 0.5, 0.75, 1.0]);
+        // a step failing above 0.6 unless shorter than 0.1
+        let mut s = Stepper::new(&spec("increments = 4"));
+        let path = drive(
+            &mut s,
+            |a, b| if b > 0.6 && b - a > 0.1 { 99 } else { 3 },
+            |_, _| 0.0,
+        )
+        .unwrap();
+        assert_eq!(
+            path,
+            vec![0.25, 0.5, 0.5625, 0.625, 0.6875, 0.75, 0.8125, 0.875, 0.9375, 1.0]
+        );
+    }
+
+    #[test]
+    fn auto_grows_in_easy_elastic_steps_and_ends_on_the_waypoint() {
+        let mut s = Stepper::new(&spec(
+            "step_control = \"auto\"\nfirst_increment = 0.01\nmax_increment = 0.3",
+        ));
+        let path = drive(&mut s, |_, _| 2, |_, _| 0.0).unwrap();
+        assert_eq!(*path.last().unwrap(), 1.0);
+        // 0.01, 0.03, 0.07, 0.15, then steps capped at 0.3
+        assert!(path.len() <= 8, "{path:?}");
+        for w in path.windows(2) {
+            assert!(w[1] - w[0] <= 0.3 * 1.2 + 1e-12, "{path:?}");
+        }
+    }
+
+    #[test]
+    fn auto_limits_the_plastic_strain_increment() {
+        // plastic strain rate 0.1 per unit load factor above 0.5
+        let dp = |a: f64, b: f64| 0.1 * ((b.max(0.5) - a.max(0.5)).max(0.0));
+        let mut s = Stepper::new(&spec(
+            "step_control = \"auto\"\nfirst_increment = 0.1\nplastic_strain_step = 0.001",
+        ));
+        let path = drive(&mut s, |_, _| 4, dp).unwrap();
+        let mut prev = 0.0;
+        let mut worst: f64 = 0.0;
+        for &l in &path {
+            worst = worst.max(dp(prev, l));
+            prev = l;
+        }
+        // every accepted step within 3x the target, most near it
+        assert!(worst <= 0.003 + 1e-12, "worst {worst} in {path:?}");
+        let plastic_steps = path.iter().filter(|&&l| l > 0.5).count();
+        assert!(
+            (40..=80).contains(&plastic_steps),
+            "{plastic_steps} in {path:?}"
+        );
+    }
+
+    #[test]
+    fn auto_halves_failures_and_gives_up_at_the_floor() {
+        let mut s = Stepper::new(&spec(
+            "step_control = \"auto\"\nfirst_increment = 0.5\nmax_cutbacks = 3",
+        ));
+        // converges only for steps ≤ 0.1
+        let path = drive(&mut s, |a, b| if b - a > 0.1 { 99 } else { 4 }, |_, _| 0.0).unwrap();
+        assert_eq!(*path.last().unwrap(), 1.0);
+        let mut s = Stepper::new(&spec(
+            "step_control = \"auto\"\nfirst_increment = 0.5\nmax_cutbacks = 3",
+        ));
+        // never converges: 0.5, 0.25, 0.125, 0.0625, give up
+        assert_eq!(drive(&mut s, |_, _| 99, |_, _| 0.0), Err(0.0));
+    }
+
+    #[test]
+    fn auto_follows_unloading_waypoints() {
+        let mut s = Stepper::new(&spec(
+            "step_control = \"auto\"\nload_factors = [1.0, 0.2]\nfirst_increment = 0.1",
+        ));
+        let path = drive(&mut s, |_, _| 3, |_, _| 0.0).unwrap();
+        assert!(path.contains(&1.0), "{path:?}");
+        assert_eq!(*path.last().unwrap(), 0.2);
+        let i = path.iter().position(|&l| l == 1.0).unwrap();
+        assert!(path[i + 1..].windows(2).all(|w| w[1] < w[0]), "{path:?}");
+    }
+}
