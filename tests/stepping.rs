@@ -137,3 +137,86 @@ fn the_stability_study_writes_a_well_formed_map() {
     assert!(err(rows[0]) > err(rows[1]), "{csv}");
     assert!(!best.is_empty());
 }
+
+/// Richardson extrapolation on a quantity whose order is known: the final
+/// settlement of the plane-strain punch against the load step. The return
+/// mapping is backward Euler, first order in the step, so the observed order
+/// must be near 1. (The mesh order is not a fair check here: the punch edge is
+/// a singular point and the README discusses the order observed under refinement.)
+#[test]
+fn richardson_order_of_the_load_step_error_is_near_one() {
+    let case = common::root().join("cases/punch-plane-strain");
+    let q: Vec<f64> = [20usize, 40, 80]
+        .iter()
+        .map(|&n| {
+            let opts = RunOptions {
+                out: Some(common::scratch(&format!("stepping-order-{n}")).join("out")),
+                quiet: true,
+                increments: Some(n),
+                ..RunOptions::default()
+            };
+            let r = driver::run(&case, &opts)
+                .unwrap_or_else(|e| panic!("{e}"))
+                .2;
+            settlement(&r)
+        })
+        .collect();
+    let (limit, order) = asperity::study::refine::richardson(
+        [1.0 / 20.0, 1.0 / 40.0, 1.0 / 80.0],
+        [q[0], q[1], q[2]],
+    )
+    .expect("a monotone sequence");
+    eprintln!("settlements {q:?}: order {order:.3}, limit {limit:.6} mm");
+    assert!((0.85..=1.15).contains(&order), "observed order {order}");
+    // the limit lies beyond the finest value, on the side the sequence moves to
+    assert!((limit - q[2]) * (q[2] - q[1]) > 0.0);
+}
+
+/// `study refine` on three small levels, graded and uniform: a data row per
+/// run, finite errors, error falling with refinement on the graded mesh.
+#[test]
+fn the_refine_study_writes_well_formed_data() {
+    use asperity::study::refine::{refine, Config};
+    use asperity::study::runner::Which;
+    std::env::set_var("ASPERITY_EXE", env!("CARGO_BIN_EXE_asperity"));
+    let out = common::scratch("stepping-refine");
+    let configs = [false, true].map(|uniform| Config {
+        method: Method::FullNewton,
+        which: Which::Serial,
+        uniform,
+    });
+    let (files, summary) = refine(
+        &common::root().join("cases/punch-plane-stress"),
+        &[1, 2, 3],
+        &configs,
+        &out,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    assert!(summary.contains("first-yield load"), "{summary}");
+    let data = out.join("refine-data.csv");
+    assert!(files.contains(&data));
+    let csv = std::fs::read_to_string(&data).unwrap();
+    let rows: Vec<Vec<&str>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.rsplit(',').collect())
+        .collect();
+    assert_eq!(rows.len(), 6, "{csv}");
+    // columns from the end: err_edge, err_center, err_first_yield, ...
+    for r in &rows {
+        for v in &r[..3] {
+            let e: f64 = v.parse().unwrap();
+            assert!(e.is_finite() && e >= 0.0, "{csv}");
+        }
+    }
+    // graded rows come first: the first-yield error falls level by level
+    let e: Vec<f64> = rows[..3].iter().map(|r| r[2].parse().unwrap()).collect();
+    assert!(e[0] > e[1] && e[1] > e[2], "{e:?}");
+    for stem in ["refine-first_yield-dofs", "refine-center-time"] {
+        assert!(
+            files.contains(&out.join(format!("{stem}.csv")))
+                || files.iter().any(|f| f.to_string_lossy().contains(stem)),
+            "{stem} missing: {files:?}"
+        );
+    }
+}
