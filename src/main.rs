@@ -89,6 +89,7 @@ enum StudyCommand {
     /// The case on a sequence of meshes for each method and backend; Richardson
     /// reference; error against dofs and against wall time.
     Refine {
+        /// Case file (case.toml) or the folder that holds it.
         case: PathBuf,
         /// Refinement factors, at least three, e.g. 1,2,3,4.
         #[arg(long, value_delimiter = ',', default_value = "1,2,3,4")]
@@ -107,16 +108,19 @@ enum StudyCommand {
         /// Also run the ungraded mesh (full Newton, serial).
         #[arg(long)]
         uniform: bool,
+        /// Folder for the pictures (PNG, SVG) and their CSV data.
         #[arg(long, default_value = "docs/figures")]
         out: PathBuf,
     },
     /// Load-step size × method (× friction scheme): converged or not, iterations,
     /// cutbacks, time; a map of where each method fails.
     Stability {
+        /// Case file (case.toml) or the folder that holds it.
         case: PathBuf,
         /// Numbers of equal load steps.
         #[arg(long, value_delimiter = ',', default_value = "1,2,5,10,20,40")]
         steps: Vec<usize>,
+        /// Methods to compare (each also without acceleration: `plain`).
         #[arg(
             long,
             value_delimiter = ',',
@@ -127,6 +131,7 @@ enum StudyCommand {
         /// Also vary the friction scheme (cases with a tangential law).
         #[arg(long)]
         schemes: bool,
+        /// Folder for the map (PNG, SVG) and its CSV data.
         #[arg(long, default_value = "docs/figures")]
         out: PathBuf,
     },
