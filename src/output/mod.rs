@@ -206,6 +206,12 @@ pub fn summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
         })
     });
     json!({
+        "schema": 1,
+        "asperity_version": env!("CARGO_PKG_VERSION"),
+        "step_control": match model.case.solver.step_mode() {
+            crate::case::StepControl::Fixed => "fixed",
+            crate::case::StepControl::Auto => "auto",
+        },
         "case": model.name,
         "plane": format!("{:?}", model.plane).to_lowercase(),
         "method": model.case.solver.method.name(),

@@ -66,16 +66,27 @@ pub fn vtu(model: &Model, state: &State) -> String {
     let ne = mesh.elements.len();
     // interface tractions at the nodes of both sides
     let mut p_n = vec![0.0; nn];
+    let mut p_t = vec![0.0; nn];
     let mut status = vec![-1i32; nn];
+    let mut base = 0;
     for im in &model.interfaces {
-        for pr in &im.pairs {
+        // shear tractions live at the spring points: one per pair when lumped
+        let lumped = im.points.len() == im.pairs.len() && im.tangential.is_some();
+        for (i, pr) in im.pairs.iter().enumerate() {
             let un = im.pair_approach(pr, &state.u);
             let p = im.law.pressure(un).0;
+            let t = if lumped {
+                state.contact[base + i].p_t
+            } else {
+                0.0
+            };
             for n in [pr.a, pr.b] {
                 p_n[n] = p;
+                p_t[n] = t;
                 status[n] = i32::from(un > 0.0);
             }
         }
+        base += im.points.len();
     }
     let mut s = String::with_capacity(200 * nn);
     s.push_str("<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n<UnstructuredGrid>\n");
@@ -117,6 +128,7 @@ pub fn vtu(model: &Model, state: &State) -> String {
     array(&mut s, "von_mises", 1, nf.von_mises.iter().copied());
     array(&mut s, "peeq", 1, nf.peeq.iter().copied());
     array(&mut s, "contact_pressure", 1, p_n.iter().copied());
+    array(&mut s, "contact_shear", 1, p_t.iter().copied());
     array(
         &mut s,
         "contact_closed",

@@ -1,0 +1,115 @@
+//! `summary.json` matches its documented schema (docs/output.md): every key
+//! written is documented with its type, every documented key is written.
+
+mod common;
+use serde_json::Value;
+use std::collections::BTreeMap;
+
+/// key → type from the summary table of docs/output.md.
+fn documented() -> BTreeMap<String, String> {
+    let doc = std::fs::read_to_string(common::root().join("docs/output.md")).unwrap();
+    let section = doc
+        .split("## `summary.json`")
+        .nth(1)
+        .unwrap()
+        .split("\n## ")
+        .next()
+        .unwrap();
+    section
+        .lines()
+        .filter(|l| l.starts_with("| `"))
+        .map(|l| {
+            let cells: Vec<&str> = l.split('|').map(str::trim).collect();
+            (cells[1].trim_matches('`').to_string(), cells[2].to_string())
+        })
+        .collect()
+}
+
+fn type_of(v: &Value) -> &'static str {
+    match v {
+        Value::Null => "null",
+        Value::Bool(_) => "boolean",
+        Value::Number(n) if n.is_u64() || n.is_i64() => "integer",
+        Value::Number(_) => "number",
+        Value::String(_) => "string",
+        Value::Array(_) => "array",
+        Value::Object(_) => "object",
+    }
+}
+
+/// Every key path of the summary with its JSON type; object members of
+/// `backend_stats` are reported as `backend_stats.*`.
+fn leaves(prefix: &str, v: &Value, out: &mut Vec<(String, &'static str)>) {
+    if let Value::Object(m) = v {
+        for (k, x) in m {
+            let key = if prefix == "backend_stats" {
+                "backend_stats.*".to_string()
+            } else if prefix.is_empty() {
+                k.clone()
+            } else {
+                format!("{prefix}.{k}")
+            };
+            out.push((key.clone(), type_of(x)));
+            leaves(&key, x, out);
+        }
+    }
+}
+
+fn summary_of(tag: &str, case: &std::path::Path, extra: &[&str]) -> Value {
+    let out = common::scratch(&format!("schema-{tag}")).join("out");
+    let st = std::process::Command::new(env!("CARGO_BIN_EXE_asperity"))
+        .arg("run")
+        .arg(case)
+        .args(extra)
+        .arg("--quiet")
+        .arg("--out")
+        .arg(&out)
+        .status()
+        .unwrap();
+    assert!(st.success());
+    serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
+}
+
+fn allowed(doc: &str, actual: &str) -> bool {
+    doc.split(" or ")
+        .any(|t| t == actual || (t == "number" && actual == "integer"))
+}
+
+#[test]
+fn summary_json_matches_the_documented_schema() {
+    let doc = documented();
+    assert!(doc.len() > 30, "the table was not found: {doc:?}");
+    // with first yield (punch) and without (friction case at a fifth of the load)
+    let cases = common::root().join("cases");
+    let with = summary_of("yield", &cases.join("punch-plane-stress"), &[]);
+    let dir = common::scratch("schema-elastic-case");
+    let text = std::fs::read_to_string(cases.join("punch-friction-a/case.toml")).unwrap();
+    let text = text.replace("pressure = 250.0", "pressure = 50.0");
+    assert!(text.contains("pressure = 50.0"));
+    std::fs::write(dir.join("case.toml"), text).unwrap();
+    let without = summary_of("elastic", &dir, &["--increments", "2"]);
+    assert!(without["first_yield"].is_null(), "{without}");
+    let mut seen = std::collections::BTreeSet::new();
+    let mut errors = Vec::new();
+    for s in [&with, &without] {
+        let mut l = Vec::new();
+        leaves("", s, &mut l);
+        for (k, t) in l {
+            match doc.get(&k) {
+                None => errors.push(format!("`{k}` ({t}) is written but not documented")),
+                Some(d) if !allowed(d, t) => {
+                    errors.push(format!("`{k}` is {t}, documented as {d}"))
+                }
+                _ => {}
+            }
+            seen.insert(k);
+        }
+    }
+    for k in doc.keys() {
+        if k != "backend_stats.*" && !seen.contains(k) {
+            errors.push(format!("`{k}` is documented but never written"));
+        }
+    }
+    assert_eq!(with["schema"], 1);
+    assert!(errors.is_empty(), "{}", errors.join("\n"));
+}
