@@ -131,6 +131,9 @@ enum StudyCommand {
         /// Also vary the friction scheme (cases with a tangential law).
         #[arg(long)]
         schemes: bool,
+        /// Stop a run after this many seconds and count it as failed.
+        #[arg(long, default_value_t = 120.0)]
+        time_limit: f64,
         /// Folder for the map (PNG, SVG) and its CSV data.
         #[arg(long, default_value = "docs/figures")]
         out: PathBuf,
@@ -317,6 +320,7 @@ fn main() -> ExitCode {
             steps,
             methods,
             schemes,
+            time_limit,
             out,
         }) => {
             let methods: Vec<Method> = methods.into_iter().map(Into::into).collect();
@@ -325,14 +329,20 @@ fn main() -> ExitCode {
             } else {
                 &[]
             };
-            asperity::study::stability::stability(&case, &steps, &methods, sch, &out).map(
-                |(files, _, best)| {
-                    println!("{best}");
-                    for f in files {
-                        println!("{}", f.display());
-                    }
-                },
+            asperity::study::stability::stability(
+                &case,
+                &steps,
+                &methods,
+                sch,
+                &out,
+                (time_limit > 0.0).then(|| std::time::Duration::from_secs_f64(time_limit)),
             )
+            .map(|(files, _, best)| {
+                println!("{best}");
+                for f in files {
+                    println!("{}", f.display());
+                }
+            })
         }
         Command::Figures { cases, out } => {
             asperity::study::figures::figures(&cases, &out).map(|files| {

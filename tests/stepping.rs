@@ -112,6 +112,7 @@ fn the_stability_study_writes_a_well_formed_map() {
         &[Method::FullNewton],
         &[],
         &out,
+        Some(std::time::Duration::from_secs(300)),
     )
     .unwrap_or_else(|e| panic!("{e}"));
     assert!(files.contains(&out.join("stability-map.csv")));

@@ -48,6 +48,17 @@ pub struct Point {
 
 /// Runs `case` with extra `run` arguments; Err carries the run's error line.
 pub fn run(case: &Path, args: &[String], which: Which, dir: &Path) -> Result<Point, String> {
+    run_limited(case, args, which, dir, None)
+}
+
+/// As [`run`], killing the run after `limit` (Err "stopped after N s").
+pub fn run_limited(
+    case: &Path,
+    args: &[String],
+    which: Which,
+    dir: &Path,
+    limit: Option<std::time::Duration>,
+) -> Result<Point, String> {
     // the running asperity, or (from a test harness) the one ASPERITY_EXE names
     let exe = match std::env::var_os("ASPERITY_EXE") {
         Some(p) => std::path::PathBuf::from(p),
@@ -79,9 +90,30 @@ pub fn run(case: &Path, args: &[String], which: Which, dir: &Path) -> Result<Poi
         .arg("--quiet")
         .arg("--out")
         .arg(dir);
-    let out = cmd
-        .output()
+    // --quiet: stderr carries at most the error line, so a pipe cannot fill up
+    cmd.stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped());
+    let mut child = cmd
+        .spawn()
         .map_err(|e| format!("cannot start {}: {e}", exe.display()))?;
+    let start = std::time::Instant::now();
+    loop {
+        match child.try_wait() {
+            Ok(Some(_)) => break,
+            Ok(None) => {}
+            Err(e) => return Err(e.to_string()),
+        }
+        if limit.is_some_and(|l| start.elapsed() > l) {
+            let _ = child.kill();
+            let _ = child.wait();
+            return Err(format!(
+                "stopped after {:.0} s",
+                limit.unwrap_or_default().as_secs_f64()
+            ));
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    let out = child.wait_with_output().map_err(|e| e.to_string())?;
     if !out.status.success() {
         let err = String::from_utf8_lossy(&out.stderr);
         return Err(err

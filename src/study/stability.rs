@@ -26,6 +26,7 @@ pub fn stability(
     methods: &[Method],
     schemes: &[&str],
     out: &Path,
+    limit: Option<std::time::Duration>,
 ) -> Result<(Vec<PathBuf>, Vec<Outcome>, String)> {
     std::fs::create_dir_all(out).map_err(|e| Error::io(out, e))?;
     let scratch = out.join(".runs");
@@ -72,11 +73,12 @@ pub fn stability(
             let run = |cut: &str, tag: &str| {
                 let mut a = base.clone();
                 a.extend(["--max-cutbacks".into(), cut.into()]);
-                runner::run(
+                runner::run_limited(
                     case,
                     &a,
                     Which::Serial,
                     &scratch.join(format!("{}-{n}-{tag}", label(cfg).replace([',', ' '], "_"))),
+                    limit,
                 )
             };
             let plain = run("0", "plain");
@@ -110,11 +112,12 @@ pub fn stability(
         if cfg.2 {
             a.push("--plain".into());
         }
-        let auto = runner::run(
+        let auto = runner::run_limited(
             case,
             &a,
             Which::Serial,
             &scratch.join(format!("{}-auto", label(cfg).replace([',', ' '], "_"))),
+            limit,
         );
         eprintln!(
             "study: {} with automatic steps: {}",
@@ -179,6 +182,9 @@ pub fn stability(
                             p.cutbacks, p.iterations, p.wall
                         ),
                     ),
+                    (Err(_), Err(e)) if e.starts_with("stopped after") => {
+                        (false, format!("fails; the rescue\n{e}"))
+                    }
                     (Err(_), Err(_)) => (false, "fails even\nwith cutbacks".into()),
                 })
                 .collect()
