@@ -93,7 +93,7 @@ pub fn refine(
         ));
     }
     std::fs::create_dir_all(out).map_err(|e| Error::io(out, e))?;
-    let scratch = out.join(".runs");
+    let scratch = out.join(format!(".runs/refine-{}", std::process::id()));
     let mut rows: Vec<(usize, usize, Point)> = Vec::new(); // (config, level, point)
     for (c, cfg) in configs.iter().enumerate() {
         if !cfg.which.available() {
@@ -126,6 +126,8 @@ pub fn refine(
         }
     }
     let _ = std::fs::remove_dir_all(&scratch);
+    // the parent too, when no other study is using it
+    let _ = std::fs::remove_dir(out.join(".runs"));
     // reference: Richardson on the three finest levels of the first configuration
     let first: Vec<&(usize, usize, Point)> = rows.iter().filter(|r| r.0 == 0).collect();
     let n = first.len();

@@ -29,7 +29,7 @@ pub fn stability(
     limit: Option<std::time::Duration>,
 ) -> Result<(Vec<PathBuf>, Vec<Outcome>, String)> {
     std::fs::create_dir_all(out).map_err(|e| Error::io(out, e))?;
-    let scratch = out.join(".runs");
+    let scratch = out.join(format!(".runs/stability-{}", std::process::id()));
     let mut outcomes = Vec::new();
     // (method, friction scheme, plain = without Anderson acceleration)
     let mut configs: Vec<(Method, Option<&str>, bool)> = Vec::new();
@@ -145,6 +145,8 @@ pub fn stability(
     )
     .map_err(|e| Error::Solver(format!("the reference run ({finest} steps) failed: {e}")))?;
     let _ = std::fs::remove_dir_all(&scratch);
+    // the parent too, when no other study is using it
+    let _ = std::fs::remove_dir(out.join(".runs"));
     let reference = Some(reference.center);
     let err =
         |p: &runner::Point| reference.map_or(f64::NAN, |r| 100.0 * ((p.center - r) / r).abs());
