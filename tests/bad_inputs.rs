@@ -99,9 +99,7 @@ fn judge(what: &str, o: &Outcome, expect: &str, problems: &mut Vec<String>) {
         ));
     }
     if !first.contains(expect) {
-        problems.push(format!(
-            "{what}: expected text {expect:?} not in {first:?}"
-        ));
+        problems.push(format!("{what}: expected text {expect:?} not in {first:?}"));
     }
 }
 
