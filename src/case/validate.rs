@@ -143,12 +143,14 @@ fn check_element_count(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
                     format!("{n} elements in all, more than {MAX_ELEMENTS} elements (the limit)"),
                 ))
             }
-            None => return Err(Error::input(
-                key,
-                format!(
+            None => {
+                return Err(Error::input(
+                    key,
+                    format!(
                     "the element count overflows: more than {MAX_ELEMENTS} elements (the limit)"
                 ),
-            )),
+                ))
+            }
         }
     }
     Ok(())
