@@ -116,26 +116,16 @@ fn plain_folder_name(name: &str) -> bool {
             .any(|c| c == '/' || c == '\\' || c.is_control())
 }
 
-/// The total element count, computed with checked arithmetic, must not pass
-/// [`MAX_ELEMENTS`]: the mesh is never generated for an absurd case.
+/// The total element count must not pass [`MAX_ELEMENTS`]: the mesh is never
+/// generated for an absurd case.
 fn check_element_count(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
-    let refine = case.mesh.refine;
     let mut total: usize = 0;
     for b in &case.mesh.block {
         let key = at(&format!(
             "[[mesh.block]] \"{}\" nx, ny, [mesh] refine",
             b.body
         ));
-        let side = |counts: &[usize]| {
-            counts
-                .iter()
-                .try_fold(0usize, |acc, &n| acc.checked_add(n.checked_mul(refine)?))
-        };
-        let count = side(&b.nx)
-            .zip(side(&b.ny))
-            .and_then(|(x, y)| x.checked_mul(y))
-            .and_then(|n| total.checked_add(n));
-        match count {
+        match block_elements(b, case.mesh.refine).and_then(|n| total.checked_add(n)) {
             Some(n) if n <= MAX_ELEMENTS => total = n,
             Some(n) => {
                 return Err(Error::input(
@@ -147,13 +137,33 @@ fn check_element_count(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
                 return Err(Error::input(
                     key,
                     format!(
-                    "the element count overflows: more than {MAX_ELEMENTS} elements (the limit)"
-                ),
+                        "the element count overflows: more than {MAX_ELEMENTS} elements (the limit)"
+                    ),
                 ))
             }
         }
     }
     Ok(())
+}
+
+/// Elements of one block after refinement, by checked arithmetic (None: overflow).
+fn block_elements(b: &crate::mesh::blocks::BlockSpec, refine: usize) -> Option<usize> {
+    let side = |counts: &[usize]| {
+        counts
+            .iter()
+            .try_fold(0usize, |acc, &n| acc.checked_add(n.checked_mul(refine)?))
+    };
+    side(&b.nx)?.checked_mul(side(&b.ny)?)
+}
+
+impl Case {
+    /// The number of elements the mesh would have (None: it overflows), without
+    /// generating it.
+    pub fn element_count(&self) -> Option<usize> {
+        self.mesh.block.iter().try_fold(0usize, |acc, b| {
+            acc.checked_add(block_elements(b, self.mesh.refine)?)
+        })
+    }
 }
 
 fn normal_law(s: &InterfaceLawSpec) -> std::result::Result<NormalLaw, String> {
