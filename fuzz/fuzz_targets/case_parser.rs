@@ -16,10 +16,7 @@ const BUILD_LIMIT: usize = 20_000;
 
 fn one_line(e: asperity::Error) {
     let line = e.to_string();
-    assert!(
-        !line.contains(['\n', '\r']),
-        "multi-line error: {line:?}"
-    );
+    assert!(!line.contains(['\n', '\r']), "multi-line error: {line:?}");
 }
 
 fuzz_target!(|data: &[u8]| {
