@@ -49,20 +49,42 @@ impl Error {
 }
 
 impl fmt::Display for Error {
+    /// One line: control characters (from file names, keys and values that came
+    /// from the user) are written as escapes such as `\n` or `\u{1b}`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&escape_controls(&self.raw()))
+    }
+}
+
+/// `text` with every control character escaped (`\n`, `\t`, `\u{7}` …), so that
+/// it prints as one line and cannot drive a terminal.
+pub fn escape_controls(text: &str) -> String {
+    let mut s = String::with_capacity(text.len());
+    for c in text.chars() {
+        if c.is_control() {
+            s.extend(c.escape_default());
+        } else {
+            s.push(c);
+        }
+    }
+    s
+}
+
+impl Error {
+    /// The message before escaping.
+    fn raw(&self) -> String {
         match self {
-            Error::Input { place, message } => write!(f, "{place}: {message}"),
-            Error::Mesh { place, message } => write!(f, "mesh {place}: {message}"),
+            Error::Input { place, message } => format!("{place}: {message}"),
+            Error::Mesh { place, message } => format!("mesh {place}: {message}"),
             Error::Convergence {
                 increment,
                 load_factor,
                 message,
-            } => write!(
-                f,
+            } => format!(
                 "increment {increment} (load factor {load_factor:.6}) did not converge: {message}"
             ),
-            Error::Solver(message) => write!(f, "linear solver: {message}"),
-            Error::Io { path, source } => write!(f, "{}: {source}", path.display()),
+            Error::Solver(message) => format!("linear solver: {message}"),
+            Error::Io { path, source } => format!("{}: {source}", path.display()),
         }
     }
 }

@@ -42,6 +42,14 @@ pub struct Model {
 }
 
 impl Model {
+    /// Parses case text and builds its model, reading and writing no file (the
+    /// fuzz target's entry point). `place` names the text in errors.
+    pub fn parse(text: &str, place: &str) -> Result<Model> {
+        let mut case = Case::parse(text, place)?;
+        case.source = place.into();
+        Model::build(case)
+    }
+
     /// Validates the case, generates the mesh and builds the model.
     pub fn build(case: Case) -> Result<Model> {
         let place = case.source.display().to_string();
@@ -137,6 +145,12 @@ impl Model {
         }
         let prescribed = boundary_conditions(&case, &mesh, &place)?;
         let f_ext = external_forces(&case, &mesh, thickness, &place)?;
+        if f_ext.iter().all(|&f| f == 0.0) && prescribed.iter().all(|&(_, v)| v == 0.0) {
+            return Err(Error::input(
+                &place,
+                "nothing loads the model: no [[load]] and no non-zero prescribed displacement in [[boundary]]",
+            ));
+        }
         check_supports(&mesh, &prescribed, &interfaces, &place)?;
         let mut mask = vec![false; mesh.num_dofs()];
         for &(d, _) in &prescribed {
@@ -271,10 +285,13 @@ fn external_forces(case: &Case, mesh: &Mesh, thickness: f64, place: &str) -> Res
                 ),
             )
         })?;
-        if !ld.pressure.is_finite() {
+        if !ld.pressure.is_finite() || ld.pressure == 0.0 {
             return Err(Error::input(
                 &at,
-                format!("pressure {} is not finite", ld.pressure),
+                format!(
+                    "pressure {} must be a finite, non-zero number (MPa)",
+                    ld.pressure
+                ),
             ));
         }
         let mut count = 0;

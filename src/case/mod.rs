@@ -7,7 +7,9 @@
 
 mod validate;
 
-pub use validate::check_case;
+pub use validate::{
+    check_case, MAX_ANDERSON_DEPTH, MAX_CUTBACKS, MAX_ELEMENTS, MAX_INCREMENTS, MAX_ITERATIONS,
+};
 
 use crate::error::{Error, Result};
 use crate::mesh::blocks::{BlockSpec, InterfaceSpec};

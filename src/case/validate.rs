@@ -7,6 +7,19 @@ use crate::error::{Error, Result};
 use crate::interface::{FrictionScheme, NormalLaw, TangentialLaw};
 use std::collections::BTreeMap;
 
+/// Most elements a case may have (all blocks, after `refine`): far beyond any
+/// case this serial-first solver is meant for, and a bound on the memory that a
+/// case file can make the model take before anything is solved.
+pub const MAX_ELEMENTS: usize = 250_000;
+/// Most scheduled load steps (`increments`, or entries of `load_factors`).
+pub const MAX_INCREMENTS: usize = 100_000;
+/// Most halvings of one scheduled step (2^-50 of a step is below any tolerance).
+pub const MAX_CUTBACKS: usize = 50;
+/// Most iterations per attempt.
+pub const MAX_ITERATIONS: usize = 100_000;
+/// Deepest Anderson history.
+pub const MAX_ANDERSON_DEPTH: usize = 100;
+
 /// What validation derives from the case.
 pub struct Checked {
     pub laws: BTreeMap<String, NormalLaw>,
@@ -17,6 +30,14 @@ pub struct Checked {
 pub fn check_case(case: &Case) -> Result<Checked> {
     let place = case.source.display().to_string();
     let at = |key: &str| format!("{place}: {key}");
+    if let Some(name) = &case.name {
+        if !plain_folder_name(name) {
+            return Err(Error::input(
+                at("name"),
+                format!("{name:?} is not a plain folder name (it names out/<name>/: not empty, no / or \\, not . or .., no control characters)"),
+            ));
+        }
+    }
     let t = case.model.thickness;
     if !(t.is_finite() && t > 0.0) {
         return Err(Error::input(
@@ -27,6 +48,7 @@ pub fn check_case(case: &Case) -> Result<Checked> {
     if case.mesh.refine == 0 {
         return Err(Error::input(at("[mesh] refine"), "must be at least 1"));
     }
+    check_element_count(case, &at)?;
     for (body, m) in &case.materials {
         let key = format!("[materials.{body}]");
         for (name, v) in [
@@ -84,6 +106,66 @@ pub fn check_case(case: &Case) -> Result<Checked> {
     Ok(Checked { laws, tangential })
 }
 
+/// A name that can only mean one folder under out/.
+fn plain_folder_name(name: &str) -> bool {
+    !name.is_empty()
+        && name != "."
+        && name != ".."
+        && !name
+            .chars()
+            .any(|c| c == '/' || c == '\\' || c.is_control())
+}
+
+/// The total element count must not pass [`MAX_ELEMENTS`]: the mesh is never
+/// generated for an absurd case.
+fn check_element_count(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
+    let mut total: usize = 0;
+    for b in &case.mesh.block {
+        let key = at(&format!(
+            "[[mesh.block]] \"{}\" nx, ny, [mesh] refine",
+            b.body
+        ));
+        match block_elements(b, case.mesh.refine).and_then(|n| total.checked_add(n)) {
+            Some(n) if n <= MAX_ELEMENTS => total = n,
+            Some(n) => {
+                return Err(Error::input(
+                    key,
+                    format!("{n} elements in all, more than {MAX_ELEMENTS} elements (the limit)"),
+                ))
+            }
+            None => {
+                return Err(Error::input(
+                    key,
+                    format!(
+                        "the element count overflows: more than {MAX_ELEMENTS} elements (the limit)"
+                    ),
+                ))
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Elements of one block after refinement, by checked arithmetic (None: overflow).
+fn block_elements(b: &crate::mesh::blocks::BlockSpec, refine: usize) -> Option<usize> {
+    let side = |counts: &[usize]| {
+        counts
+            .iter()
+            .try_fold(0usize, |acc, &n| acc.checked_add(n.checked_mul(refine)?))
+    };
+    side(&b.nx)?.checked_mul(side(&b.ny)?)
+}
+
+impl Case {
+    /// The number of elements the mesh would have (None: it overflows), without
+    /// generating it.
+    pub fn element_count(&self) -> Option<usize> {
+        self.mesh.block.iter().try_fold(0usize, |acc, b| {
+            acc.checked_add(block_elements(b, self.mesh.refine)?)
+        })
+    }
+}
+
 fn normal_law(s: &InterfaceLawSpec) -> std::result::Result<NormalLaw, String> {
     let given = [
         ("c_n", s.c_n),
@@ -120,10 +202,22 @@ fn normal_law(s: &InterfaceLawSpec) -> std::result::Result<NormalLaw, String> {
 
 fn check_solver(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
     let s = &case.solver;
-    if s.increments == Some(0) {
+    if let Some(n) = s.increments.filter(|&n| n == 0 || n > MAX_INCREMENTS) {
         return Err(Error::input(
             at("[solver] increments"),
-            "must be at least 1",
+            format!("{n} must be in 1..={MAX_INCREMENTS}"),
+        ));
+    }
+    if s.max_cutbacks > MAX_CUTBACKS {
+        return Err(Error::input(
+            at("[solver] max_cutbacks"),
+            format!("{} must be at most {MAX_CUTBACKS}", s.max_cutbacks),
+        ));
+    }
+    if s.anderson_depth > MAX_ANDERSON_DEPTH {
+        return Err(Error::input(
+            at("[solver] anderson_depth"),
+            format!("{} must be at most {MAX_ANDERSON_DEPTH}", s.anderson_depth),
         ));
     }
     if let Some(f) = s.first_increment {
@@ -136,13 +230,14 @@ fn check_solver(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
     }
     if let Some(l) = &s.load_factors {
         let ok = !l.is_empty()
+            && l.len() <= MAX_INCREMENTS
             && l.iter().all(|v| v.is_finite())
             && l[0] != 0.0
             && l.windows(2).all(|w| w[1] != w[0]);
         if !ok {
             return Err(Error::input(
                 at("[solver] load_factors"),
-                "must be a non-empty list of finite numbers, the first non-zero and no two neighbours equal (it may go down: unloading)",
+                format!("must be a non-empty list (at most {MAX_INCREMENTS}) of finite numbers, the first non-zero and no two neighbours equal (it may go down: unloading)"),
             ));
         }
     }
@@ -172,14 +267,23 @@ fn check_solver(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
             format!("{v} must be in (0, 1)"),
         ));
     }
-    if s.max_iterations == Some(0) {
-        return Err(Error::input(
-            at("[solver] max_iterations"),
-            "must be at least 1",
-        ));
+    if let Some(n) = s.max_iterations {
+        if n == 0 || n > MAX_ITERATIONS {
+            return Err(Error::input(
+                at("[solver] max_iterations"),
+                format!("{n} must be in 1..={MAX_ITERATIONS}"),
+            ));
+        }
     }
     if case.output.vtu_every == 0 {
         return Err(Error::input(at("[output] vtu_every"), "must be at least 1"));
+    }
+    let p = case.output.probe;
+    if !(p[0].is_finite() && p[1].is_finite()) {
+        return Err(Error::input(
+            at("[output] probe"),
+            format!("{p:?} must be two finite numbers (mm)"),
+        ));
     }
     Ok(())
 }

@@ -69,7 +69,9 @@ pub fn graded_axis(
     }
     let mut out = vec![breaks[0]];
     for s in 0..segs {
-        let n = counts[s] * refine;
+        let Some(n) = counts[s].checked_mul(refine) else {
+            return err(format!("n{axis}[{s}] × refine overflows"));
+        };
         if n == 0 {
             return err(format!("n{axis}[{s}] must be at least 1"));
         }
@@ -237,9 +239,11 @@ fn pair_blocks(mesh: &Mesh, grids: &[Grid], spec: &InterfaceSpec) -> Result<Inte
     let lower_row: Vec<usize> = gl.ids[gl.ids.len() - 1].clone();
     let partner = |n: usize, row: &[usize], body: &str| -> Result<usize, MeshError> {
         let x = mesh.nodes[n][0];
-        row.iter()
+        // the rows run in increasing x: binary search, not a scan (large meshes)
+        let first = row.partition_point(|&m| mesh.nodes[m][0] < x - tol);
+        row.get(first)
             .copied()
-            .find(|&m| (mesh.nodes[m][0] - x).abs() <= tol)
+            .filter(|&m| (mesh.nodes[m][0] - x).abs() <= tol)
             .ok_or_else(|| {
                 MeshError(format!(
                     "interface \"{}\": node at x = {x} on \"{body}\" has no partner on the other side (the two meshes must match along the interface)",
