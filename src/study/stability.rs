@@ -198,7 +198,7 @@ pub fn stability(
     let grid = Grid {
         title: format!("Where each method fails: {}", case.display()),
         x_label: format!(
-            "green: converges without a cutback (Newton iterations, time, error of the final settlement against {finest} full-Newton steps)"
+            "green: converges (fixed steps: without a cutback); Newton iterations, time, error of the final settlement against {finest} full-Newton steps"
         ),
         columns: steps
             .iter()
