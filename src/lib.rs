@@ -21,10 +21,13 @@ pub mod driver;
 pub mod error;
 pub mod fem;
 pub mod interface;
+pub mod interrupt;
 pub mod material;
 pub mod mesh;
 pub mod model;
 pub mod output;
+pub mod progress;
+pub mod restart;
 #[cfg(feature = "parallel")]
 pub mod parallel;
 pub mod solve;
