@@ -26,10 +26,10 @@ pub mod material;
 pub mod mesh;
 pub mod model;
 pub mod output;
-pub mod progress;
-pub mod restart;
 #[cfg(feature = "parallel")]
 pub mod parallel;
+pub mod progress;
+pub mod restart;
 pub mod solve;
 pub mod study;
 

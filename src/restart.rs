@@ -201,7 +201,10 @@ pub fn encode(model: &Model, ck: &Checkpoint, pvd: &[(f64, String)]) -> Vec<u8> 
     );
     e.text(
         "pvd_file",
-        &pvd.iter().map(|p| p.1.as_str()).collect::<Vec<_>>().join("\n"),
+        &pvd.iter()
+            .map(|p| p.1.as_str())
+            .collect::<Vec<_>>()
+            .join("\n"),
     );
     let mut out = Vec::with_capacity(e.buf.len() + 40);
     out.extend_from_slice(MAGIC);

@@ -133,7 +133,10 @@ fn restart_continues_to_the_uninterrupted_result() {
     let p = part.display().to_string();
     let (code, _, err) = run(&part, &["--stop-after", "3"]);
     assert_eq!(code, 3, "{err}");
-    assert!(err.contains("stopped by stop-after after increment 3/10"), "{err}");
+    assert!(
+        err.contains("stopped by stop-after after increment 3/10"),
+        "{err}"
+    );
     assert_eq!(err.lines().count(), 1, "one line with --quiet: {err}");
     let s = summary(&part);
     assert_eq!(s["complete"], Value::Bool(false));
@@ -165,19 +168,27 @@ fn a_corrupted_truncated_or_foreign_restart_file_is_refused() {
     assert_eq!(code, 3, "{err}");
     let bytes = std::fs::read(good.join("restart.bin")).unwrap();
     let cases: Vec<(&str, Vec<u8>, &str)> = vec![
-        ("flipped", {
-            let mut b = bytes.clone();
-            let i = b.len() / 2;
-            b[i] ^= 0x10;
-            b
-        }, "checksum"),
+        (
+            "flipped",
+            {
+                let mut b = bytes.clone();
+                let i = b.len() / 2;
+                b[i] ^= 0x10;
+                b
+            },
+            "checksum",
+        ),
         ("truncated", bytes[..bytes.len() - 100].to_vec(), "restart"),
         ("empty", Vec::new(), "bad magic"),
-        ("magic", {
-            let mut b = bytes.clone();
-            b[0] = b'X';
-            b
-        }, "bad magic"),
+        (
+            "magic",
+            {
+                let mut b = bytes.clone();
+                b[0] = b'X';
+                b
+            },
+            "bad magic",
+        ),
     ];
     for (name, data, needle) in cases {
         let d = dir.join(name);
@@ -187,8 +198,14 @@ fn a_corrupted_truncated_or_foreign_restart_file_is_refused() {
         let ds = d.display().to_string();
         let (code, _, err) = run(&d, &["--restart", &ds]);
         assert_eq!(code, 2, "{name}: {err}");
-        assert!(err.starts_with("error: ") && err.lines().count() == 1, "{name}: {err}");
-        assert!(err.contains("restart.bin") && err.contains(needle), "{name}: {err}");
+        assert!(
+            err.starts_with("error: ") && err.lines().count() == 1,
+            "{name}: {err}"
+        );
+        assert!(
+            err.contains("restart.bin") && err.contains(needle),
+            "{name}: {err}"
+        );
         assert!(files(&d) == before, "{name}: the folder was changed");
     }
     // another case (here: another load schedule) or a missing file
@@ -196,12 +213,30 @@ fn a_corrupted_truncated_or_foreign_restart_file_is_refused() {
     let c = case();
     let o = dir.join("other").display().to_string();
     let (code, _, err) = asperity(&[
-        "run", &c, "--increments", "12", "--out", &o, "--quiet", "--restart", &g,
+        "run",
+        &c,
+        "--increments",
+        "12",
+        "--out",
+        &o,
+        "--quiet",
+        "--restart",
+        &g,
     ]);
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("different case or mesh"), "{err}");
     let (code, _, err) = asperity(&[
-        "run", &c, "--refine", "2", "--increments", "10", "--out", &o, "--quiet", "--restart", &g,
+        "run",
+        &c,
+        "--refine",
+        "2",
+        "--increments",
+        "10",
+        "--out",
+        &o,
+        "--quiet",
+        "--restart",
+        &g,
     ]);
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("different case or mesh"), "{err}");
@@ -226,7 +261,14 @@ fn json_log_lines_parse_and_carry_their_fields() {
     let out = dir.join("out");
     let (c, o) = (case(), out.display().to_string());
     let (code, _, err) = asperity(&[
-        "run", &c, "--increments", "5", "--out", &o, "--log-format", "json",
+        "run",
+        &c,
+        "--increments",
+        "5",
+        "--out",
+        &o,
+        "--log-format",
+        "json",
     ]);
     assert_eq!(code, 0, "{err}");
     let ev = json_lines(&err);
@@ -238,13 +280,28 @@ fn json_log_lines_parse_and_carry_their_fields() {
     for e in &ev {
         assert!(e["time_s"].is_number(), "{e}");
     }
-    for f in ["case", "dofs", "method", "backend", "ranks", "planned", "resumed_from", "output"] {
+    for f in [
+        "case",
+        "dofs",
+        "method",
+        "backend",
+        "ranks",
+        "planned",
+        "resumed_from",
+        "output",
+    ] {
         assert!(!ev[0][f].is_null(), "start lacks {f}: {}", ev[0]);
     }
     for (k, e) in incs.iter().enumerate() {
         assert_eq!(e["increment"], Value::from(k + 1));
         assert_eq!(e["planned"], Value::from(5));
-        for f in ["load_factor", "total_load_kn", "mean_pressure_mpa", "elapsed_s", "max_peeq"] {
+        for f in [
+            "load_factor",
+            "total_load_kn",
+            "mean_pressure_mpa",
+            "elapsed_s",
+            "max_peeq",
+        ] {
             assert!(e[f].is_number(), "increment lacks {f}: {e}");
         }
         assert!(e["iterations"].is_u64() && e["cutbacks"].is_u64(), "{e}");
@@ -252,13 +309,28 @@ fn json_log_lines_parse_and_carry_their_fields() {
     }
     assert_eq!(incs[4]["eta_s"].as_f64(), Some(0.0));
     let fin = ev.last().unwrap();
-    for f in ["output", "increments", "newton_iterations", "total_load_kn", "wall_seconds"] {
+    for f in [
+        "output",
+        "increments",
+        "newton_iterations",
+        "total_load_kn",
+        "wall_seconds",
+    ] {
         assert!(!fin[f].is_null(), "finish lacks {f}: {fin}");
     }
     // quiet: only the stop event; an error is a JSON event too
     let (code, _, err) = asperity(&[
-        "run", &c, "--increments", "5", "--out", &o, "--log-format", "json", "--quiet",
-        "--stop-after", "2",
+        "run",
+        &c,
+        "--increments",
+        "5",
+        "--out",
+        &o,
+        "--log-format",
+        "json",
+        "--quiet",
+        "--stop-after",
+        "2",
     ]);
     assert_eq!(code, 3, "{err}");
     let ev = json_lines(&err);
@@ -267,9 +339,7 @@ fn json_log_lines_parse_and_carry_their_fields() {
     assert_eq!(ev[0]["stopped_by"], "stop-after");
     assert_eq!(ev[0]["increments"], Value::from(2));
     assert_eq!(ev[0]["exit_code"], Value::from(3));
-    let (code, _, err) = asperity(&[
-        "run", "no/such/case", "--log-format", "json", "--quiet",
-    ]);
+    let (code, _, err) = asperity(&["run", "no/such/case", "--log-format", "json", "--quiet"]);
     assert_eq!(code, 2);
     let ev = json_lines(&err);
     assert_eq!(ev.len(), 1, "{err}");
@@ -360,8 +430,19 @@ fn sigint_stops_at_the_next_increment_and_writes_the_converged_part() {
     // and the partial run resumes
     let o = out.display().to_string();
     let (code, _, err) = asperity(&[
-        "run", &case(), "--refine", "3", "--increments", "40", "--out", &o, "--quiet",
-        "--restart", &o, "--stop-after", &(n + 1).to_string(),
+        "run",
+        &case(),
+        "--refine",
+        "3",
+        "--increments",
+        "40",
+        "--out",
+        &o,
+        "--quiet",
+        "--restart",
+        &o,
+        "--stop-after",
+        &(n + 1).to_string(),
     ]);
     assert_eq!(code, 3, "{err}");
     assert_eq!(summary(&out)["increments"], Value::from(n + 1));

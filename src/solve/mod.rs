@@ -10,9 +10,9 @@ pub use newton::{Engine, Stats};
 pub use yield_point::{max_yield_ratio, FirstYield};
 
 use crate::error::{Error, Result};
-use crate::interrupt::Stop;
 use crate::fem::solid::Response;
 use crate::interface::Status;
+use crate::interrupt::Stop;
 use crate::material::{PointState, VonMises};
 use crate::model::Model;
 
