@@ -71,6 +71,8 @@ impl Writer {
                 .map(|k| format!("interface/{k:04}.csv"))
                 .collect();
             files.extend(r.pvd.iter().map(|p| p.1.clone()));
+            // kept as is if no further increment converges
+            files.push(crate::restart::FILE.to_string());
             for f in files {
                 let (from, to) = (r.dir.join(&f), w.tmp_dir.join(&f));
                 std::fs::copy(&from, &to).map_err(|e| Error::io(&from, e))?;
