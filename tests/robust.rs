@@ -460,3 +460,64 @@ fn sigterm_exits_143_and_a_second_signal_abandons_the_increment() {
     let n = check_partial(&out, "SIGINT", &log);
     eprintln!("SIGINT twice: stopped after {n} increments, {secs:.3} s after the first signal");
 }
+
+/// Size and cost of restart.bin at refine 3 (13,468 dofs), for the docs:
+/// `cargo test --release --test robust -- --ignored --nocapture restart_file_cost`.
+#[test]
+#[ignore]
+fn restart_file_cost() {
+    let text =
+        include_str!("../cases/punch-plane-stress/case.toml").replace("refine = 1", "refine = 3");
+    let model = common::model(&text);
+    let mut ck = asperity::solve::Checkpoint::initial(&model);
+    for (i, v) in ck.committed.u.iter_mut().enumerate() {
+        *v = (i as f64).sin();
+    }
+    let dir = common::scratch("robust-cost");
+    let n = 20;
+    let t = Instant::now();
+    for _ in 0..n {
+        let bytes = asperity::restart::encode(&model, &ck, &[]);
+        std::fs::write(dir.join("restart.bin.tmp"), &bytes).unwrap();
+        std::fs::rename(dir.join("restart.bin.tmp"), dir.join("restart.bin")).unwrap();
+    }
+    let per = t.elapsed().as_secs_f64() / n as f64;
+    let t = Instant::now();
+    for _ in 0..n {
+        std::hint::black_box(asperity::restart::encode(&model, &ck, &[]));
+    }
+    let enc = t.elapsed().as_secs_f64() / n as f64;
+    let t = Instant::now();
+    for _ in 0..n {
+        std::hint::black_box(asperity::restart::fingerprint(&model));
+    }
+    let fp = t.elapsed().as_secs_f64() / n as f64;
+    let big = vec![7u8; size_hint(&model)];
+    let t = Instant::now();
+    for _ in 0..n {
+        std::hint::black_box(asperity::restart::fnv1a(std::hint::black_box(&big)));
+    }
+    let sum = t.elapsed().as_secs_f64() / n as f64;
+    eprintln!(
+        "encode {:.1} ms (fingerprint {:.1} ms, checksum {:.1} ms)",
+        enc * 1e3,
+        fp * 1e3,
+        sum * 1e3
+    );
+    let size = std::fs::metadata(dir.join("restart.bin")).unwrap().len();
+    let t = Instant::now();
+    let (back, _) = asperity::restart::read(&dir, &model).unwrap();
+    let read = t.elapsed().as_secs_f64();
+    assert_eq!(back.committed.u, ck.committed.u);
+    eprintln!(
+        "{} dofs: restart.bin {:.2} MB, encode+write {:.1} ms, read+check {:.1} ms",
+        model.mesh.num_dofs(),
+        size as f64 / 1e6,
+        per * 1e3,
+        read * 1e3
+    );
+}
+
+fn size_hint(model: &asperity::model::Model) -> usize {
+    8 * (model.mesh.num_dofs() + 10 * model.mesh.elements.len() * model.n_gauss())
+}

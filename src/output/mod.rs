@@ -23,6 +23,8 @@ pub struct Writer {
     planned: usize,
     /// The temporary folder was moved into place (or must not be removed).
     done: bool,
+    /// Fingerprint of the model for restart.bin (computed once).
+    fingerprint: Option<u64>,
 }
 
 /// Where a resumed run takes its earlier increments from.
@@ -65,6 +67,7 @@ impl Writer {
             log,
             planned,
             done: false,
+            fingerprint: None,
         };
         if let Some(r) = resume {
             let mut files: Vec<String> = (1..=r.increments)
@@ -226,7 +229,10 @@ impl Observer for Writer {
     }
 
     fn checkpoint(&mut self, model: &Model, ck: &Checkpoint) -> Result<()> {
-        let bytes = crate::restart::encode(model, ck, &self.pvd);
+        let fp = *self
+            .fingerprint
+            .get_or_insert_with(|| crate::restart::fingerprint(model));
+        let bytes = crate::restart::encode_with(fp, ck, &self.pvd);
         let tmp = self.tmp_dir.join(".restart.bin.tmp");
         std::fs::write(&tmp, &bytes).map_err(|e| Error::io(&tmp, e))?;
         let p = self.tmp_dir.join(crate::restart::FILE);
