@@ -161,7 +161,7 @@ pub fn run_model(
         Ok(result) => {
             let wall = started.elapsed().as_secs_f64();
             let dir = writer.finish(model, &result, wall)?;
-            report_end(&log, model, &dir, &result, wall, opts);
+            report_end(&log, model, &dir, &result, wall);
             Ok((dir, result))
         }
         Err(e) => {
@@ -172,7 +172,7 @@ pub fn run_model(
 }
 
 /// The `finish` (progress) or `stop` (always) event of a run that wrote `dir`.
-fn report_end(log: &Log, model: &Model, dir: &Path, r: &RunResult, wall: f64, opts: &RunOptions) {
+fn report_end(log: &Log, model: &Model, dir: &Path, r: &RunResult, wall: f64) {
     let last = r.increments.last();
     let m = last.map(|i| i.measures).unwrap_or_default();
     let lambda = last.map_or(0.0, |i| i.load_factor);
@@ -208,7 +208,6 @@ fn report_end(log: &Log, model: &Model, dir: &Path, r: &RunResult, wall: f64, op
         );
         return;
     }
-    let _ = opts;
     log.progress(
         "finish",
         json!({

@@ -248,6 +248,26 @@ fn a_corrupted_truncated_or_foreign_restart_file_is_refused() {
     no_partial_left(&dir);
 }
 
+#[test]
+fn an_existing_folder_is_replaced_only_by_a_finished_run() {
+    let dir = common::scratch("robust-atomic");
+    let out = dir.join("out");
+    std::fs::create_dir_all(&out).unwrap();
+    std::fs::write(out.join("marker"), "old").unwrap();
+    // fails in the middle of the run (every assembly from the 12th on)
+    let (code, _, err) = run(&out, &["--inject-fault", "0:12"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("fault injected"), "{err}");
+    assert_eq!(std::fs::read_to_string(out.join("marker")).unwrap(), "old");
+    assert_eq!(std::fs::read_dir(&out).unwrap().count(), 1);
+    no_partial_left(&dir);
+    // a stopped run is a finished one: it replaces the folder
+    let (code, _, err) = run(&out, &["--stop-after", "1"]);
+    assert_eq!(code, 3, "{err}");
+    assert!(!out.join("marker").exists() && out.join("summary.json").is_file());
+    no_partial_left(&dir);
+}
+
 fn json_lines(stderr: &str) -> Vec<Value> {
     stderr
         .lines()
