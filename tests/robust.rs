@@ -368,9 +368,15 @@ fn json_log_lines_parse_and_carry_their_fields() {
 }
 
 /// Starts a slow run (refine 3, 13,468 dofs, 40 increments) with JSON progress,
-/// waits for `after` increment events, sends `signals` and returns the exit
-/// code, the output folder and the seconds from the first signal to the exit.
-fn interrupted_run(tag: &str, signals: &[i32], after: usize) -> (i32, PathBuf, f64, String) {
+/// waits for `after` increment events and then `delay_ms` (to land inside the
+/// next increment), sends `signals` 20 ms apart and returns the exit code, the
+/// output folder and the seconds from the first signal to the exit.
+fn interrupted_run(
+    tag: &str,
+    signals: &[i32],
+    after: usize,
+    delay_ms: u64,
+) -> (i32, PathBuf, f64, String) {
     let dir = common::scratch(tag);
     let out = dir.join("out");
     let mut child = bin()
@@ -405,11 +411,14 @@ fn interrupted_run(tag: &str, signals: &[i32], after: usize) -> (i32, PathBuf, f
         }
     }
     assert_eq!(seen, after, "the run ended early: {log}");
+    std::thread::sleep(Duration::from_millis(delay_ms));
     let t = Instant::now();
-    for &s in signals {
+    for (k, &s) in signals.iter().enumerate() {
+        if k > 0 {
+            std::thread::sleep(Duration::from_millis(20));
+        }
         // SAFETY: plain kill(2) on our own child.
         assert_eq!(unsafe { libc::kill(child.id() as i32, s) }, 0);
-        std::thread::sleep(Duration::from_millis(20));
     }
     for line in lines {
         log += &line.unwrap();
@@ -443,10 +452,12 @@ fn check_partial(out: &Path, signal: &str, log: &str) -> usize {
 
 #[test]
 fn sigint_stops_at_the_next_increment_and_writes_the_converged_part() {
-    let (code, out, secs, log) = interrupted_run("robust-sigint", &[libc::SIGINT], 2);
+    let (code, out, secs, log) = interrupted_run("robust-sigint", &[libc::SIGINT], 2, 150);
     assert_eq!(code, 130, "{log}");
     let n = check_partial(&out, "SIGINT", &log);
     eprintln!("SIGINT: stopped after {n} increments, {secs:.3} s after the signal");
+    // the signal came 150 ms into increment 3: that increment is finished
+    assert_eq!(n, 3);
     // and the partial run resumes
     let o = out.display().to_string();
     let (code, _, err) = asperity(&[
@@ -470,15 +481,17 @@ fn sigint_stops_at_the_next_increment_and_writes_the_converged_part() {
 
 #[test]
 fn sigterm_exits_143_and_a_second_signal_abandons_the_increment() {
-    let (code, out, secs, log) = interrupted_run("robust-sigterm", &[libc::SIGTERM], 1);
+    let (code, out, secs, log) = interrupted_run("robust-sigterm", &[libc::SIGTERM], 1, 0);
     assert_eq!(code, 143, "{log}");
     check_partial(&out, "SIGTERM", &log);
     eprintln!("SIGTERM: {secs:.3} s after the signal");
     let (code, out, secs, log) =
-        interrupted_run("robust-sigint-twice", &[libc::SIGINT, libc::SIGINT], 1);
+        interrupted_run("robust-sigint-twice", &[libc::SIGINT, libc::SIGINT], 1, 150);
     assert_eq!(code, 130, "{log}");
     let n = check_partial(&out, "SIGINT", &log);
     eprintln!("SIGINT twice: stopped after {n} increments, {secs:.3} s after the first signal");
+    // the second signal abandoned increment 2
+    assert_eq!(n, 1);
 }
 
 /// Size and cost of restart.bin at refine 3 (13,468 dofs), for the docs:
