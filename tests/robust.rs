@@ -435,7 +435,7 @@ fn check_partial(out: &Path, signal: &str, log: &str) -> usize {
     assert_eq!(s["complete"], Value::Bool(false), "{s}");
     assert_eq!(s["stopped_by"], Value::String(signal.into()), "{s}");
     let n = s["increments"].as_u64().unwrap() as usize;
-    assert!(n >= 1 && n < 40, "{n} increments");
+    assert!((1..40).contains(&n), "{n} increments");
     let curve = std::fs::read_to_string(out.join("curve.csv")).unwrap();
     assert_eq!(curve.lines().count(), n + 1);
     let interface = std::fs::read_dir(out.join("interface")).unwrap().count();
