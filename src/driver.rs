@@ -3,8 +3,10 @@
 use crate::case::{Case, Method};
 use crate::error::Result;
 use crate::model::Model;
-use crate::output::Writer;
-use crate::solve::{self, Engine, RunResult};
+use crate::output::{Resume, Writer};
+use crate::progress::{Log, LogFormat};
+use crate::solve::{self, Checkpoint, Control, Engine, RunResult};
+use serde_json::json;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -28,6 +30,12 @@ pub struct RunOptions {
     pub step_control: Option<crate::case::StepControl>,
     /// Override: friction scheme of every tangential law.
     pub friction_scheme: Option<crate::interface::FrictionScheme>,
+    /// Continue from the `restart.bin` in this output folder.
+    pub restart: Option<PathBuf>,
+    /// Test hook: stop (like SIGINT, but exit 3) after this many increments.
+    pub stop_after: Option<usize>,
+    /// Progress line format.
+    pub log_format: LogFormat,
 }
 
 /// Loads a case and applies command-line overrides.
@@ -81,7 +89,8 @@ pub fn run(case_path: &Path, opts: &RunOptions) -> Result<(PathBuf, Model, RunRe
 }
 
 /// Runs a built model with an engine. `write`: this process writes the output
-/// and prints progress (rank 0 under MPI).
+/// and prints progress (rank 0 under MPI). With `opts.restart` every rank reads
+/// the checkpoint and continues from it.
 pub fn run_model(
     model: &Model,
     engine: Engine,
@@ -93,29 +102,77 @@ pub fn run_model(
         .out
         .clone()
         .unwrap_or_else(|| Path::new("out").join(&model.name));
-    let planned = model.case.solver.schedule().len();
+    // 0: automatic step control, the count is not known in advance
+    let planned = solve::stepping::Stepper::planned(&model.case.solver).unwrap_or(0);
+    let control = Control {
+        stop_after: opts.stop_after,
+    };
+    let (start, pvd) = match &opts.restart {
+        Some(from) => crate::restart::read(from, model)?,
+        None => (Checkpoint::initial(model), Vec::new()),
+    };
     if !write {
-        let result = solve::run_with(engine, &mut Silent)?;
+        let result = solve::run_from(engine, &mut Silent, start, control)?;
         return Ok((dir, result));
     }
-    if !opts.quiet {
-        eprintln!(
-            "asperity: {} — {} dofs, {} elements, {} interface pairs, {}, {} on {} rank(s) ({} increments planned)",
-            model.name,
-            model.mesh.num_dofs(),
-            model.mesh.elements.len(),
-            model.interfaces.iter().map(|i| i.pairs.len()).sum::<usize>(),
-            model.case.solver.method.name(),
-            engine.backend.name(),
-            engine.backend.ranks(),
-            planned
-        );
-    }
-    let mut writer = Writer::new(&dir, opts.quiet, planned)?;
-    match solve::run_with(engine, &mut writer) {
+    let mut log = Log::new(opts.log_format, opts.quiet);
+    let lambda_end = start.stepper.final_target(start.lambda);
+    log.range(start.lambda, lambda_end);
+    let pairs: usize = model.interfaces.iter().map(|i| i.pairs.len()).sum();
+    let resumed = start.increments.len();
+    log.progress(
+        "start",
+        json!({
+            "case": model.name,
+            "dofs": model.mesh.num_dofs(),
+            "elements": model.mesh.elements.len(),
+            "interface_pairs": pairs,
+            "method": model.case.solver.method.name(),
+            "backend": engine.backend.name(),
+            "ranks": engine.backend.ranks(),
+            "planned": planned,
+            "resumed_from": resumed,
+            "load_factor": start.lambda,
+            "output": dir.display().to_string(),
+        }),
+        || {
+            let mut line = format!(
+                "asperity: {} — {} dofs, {} elements, {} interface pairs, {}, {} on {} rank(s) ({})",
+                model.name,
+                model.mesh.num_dofs(),
+                model.mesh.elements.len(),
+                pairs,
+                model.case.solver.method.name(),
+                engine.backend.name(),
+                engine.backend.ranks(),
+                if planned > 0 {
+                    format!("{planned} increments planned")
+                } else {
+                    "automatic steps".to_string()
+                }
+            );
+            if let Some(from) = &opts.restart {
+                line += &format!(
+                    "; resuming after increment {resumed} (λ = {:.4}) from {}",
+                    start.lambda,
+                    from.display()
+                );
+            }
+            line
+        },
+    );
+    let resume = opts.restart.as_deref().map(|d| Resume {
+        dir: d,
+        increments: resumed,
+        pvd,
+    });
+    let mut writer = Writer::new(&dir, log.clone(), planned, resume)?;
+    writer.final_load_factor = lambda_end;
+    match solve::run_from(engine, &mut writer, start, control) {
         Ok(result) => {
             let wall = started.elapsed().as_secs_f64();
             let dir = writer.finish(model, &result, wall)?;
+            report_end(&log, model, &dir, &result, wall);
             Ok((dir, result))
         }
         Err(e) => {
@@ -123,6 +180,78 @@ pub fn run_model(
             Err(e)
         }
     }
+}
+
+/// The `finish` (progress) or `stop` (always) event of a run that wrote `dir`.
+fn report_end(log: &Log, model: &Model, dir: &Path, r: &RunResult, wall: f64) {
+    let last = r.increments.last();
+    let m = last.map(|i| i.measures).unwrap_or_default();
+    let lambda = last.map_or(0.0, |i| i.load_factor);
+    let planned = solve::stepping::Stepper::planned(&model.case.solver);
+    let fy = r.first_yield.as_ref();
+    if let Some(stop) = r.stopped {
+        let case = model.case.source.display().to_string();
+        log.always(
+            "stop",
+            json!({
+                "stopped_by": stop.name(),
+                "increments": r.increments.len(),
+                "planned": planned,
+                "load_factor": lambda,
+                "total_load_kn": m.total_load_kn,
+                "output": dir.display().to_string(),
+                "restart": dir.join(crate::restart::FILE).display().to_string(),
+                "exit_code": stop.exit_code(),
+            }),
+            || {
+                format!(
+                    "stopped by {} after increment {}/{} (λ = {:.4}, {:.3} kN): partial results in {}; continue with `asperity run {} --restart {}`",
+                    stop.name(),
+                    r.increments.len(),
+                    planned.map_or("auto".into(), |p| p.max(r.increments.len()).to_string()),
+                    lambda,
+                    m.total_load_kn,
+                    dir.display(),
+                    case,
+                    dir.display()
+                )
+            },
+        );
+        return;
+    }
+    log.progress(
+        "finish",
+        json!({
+            "output": dir.display().to_string(),
+            "increments": r.increments.len(),
+            "newton_iterations": r.stats.iterations,
+            "cutbacks": r.cutbacks,
+            "load_factor": lambda,
+            "total_load_kn": m.total_load_kn,
+            "mean_pressure_mpa": m.mean_pressure,
+            "center_displacement_mm": m.center_displacement,
+            "first_yield_kn": fy.map(|f| f.total_load_kn),
+            "wall_seconds": crate::progress::round3(wall),
+        }),
+        || {
+            let mut s = String::new();
+            if let Some(fy) = fy {
+                s += &format!(
+                    "first yield: {:.4} kN ({:.2} MPa mean pressure) in {} at x = {:.3} mm, depth {:.3} mm\n",
+                    fy.total_load_kn, fy.mean_pressure, fy.body, fy.x, fy.depth
+                );
+            }
+            s += &format!(
+                "final: {:.4} kN, mean pressure {:.2} MPa, center displacement {:.5} mm; {} increments, {} iterations",
+                m.total_load_kn,
+                m.mean_pressure,
+                m.center_displacement,
+                r.increments.len(),
+                r.stats.iterations
+            );
+            s
+        },
+    );
 }
 
 /// An observer that does nothing (ranks other than 0).

@@ -21,12 +21,15 @@ pub mod driver;
 pub mod error;
 pub mod fem;
 pub mod interface;
+pub mod interrupt;
 pub mod material;
 pub mod mesh;
 pub mod model;
 pub mod output;
 #[cfg(feature = "parallel")]
 pub mod parallel;
+pub mod progress;
+pub mod restart;
 pub mod solve;
 pub mod study;
 

@@ -2,6 +2,8 @@
 
 use asperity::case::Method;
 use asperity::driver::{self, RunOptions};
+use asperity::progress::{Log, LogFormat};
+use asperity::solve::RunResult;
 use clap::{Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -23,9 +25,18 @@ enum Command {
         /// Output folder (default: out/<case name>). Replaced if it exists.
         #[arg(long)]
         out: Option<PathBuf>,
-        /// No progress lines.
+        /// No progress lines (a stop or an error is still reported).
         #[arg(long)]
         quiet: bool,
+        /// Format of the progress lines on stderr: text, or json (one object per line).
+        #[arg(long, value_enum, default_value = "text")]
+        log_format: LogFormatArg,
+        /// Continue the stopped run whose output folder is DIR (its restart.bin).
+        #[arg(long, value_name = "DIR")]
+        restart: Option<PathBuf>,
+        /// Test hook: stop like SIGINT after N converged increments (exit 3).
+        #[arg(long, value_name = "N", hide = true)]
+        stop_after: Option<usize>,
         /// Override the solution method of the case.
         #[arg(long, value_enum)]
         method: Option<MethodArg>,
@@ -141,6 +152,12 @@ enum StudyCommand {
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum LogFormatArg {
+    Text,
+    Json,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
 enum BackendArg {
     Auto,
     Serial,
@@ -214,6 +231,9 @@ fn main() -> ExitCode {
             case,
             out,
             quiet,
+            log_format,
+            restart,
+            stop_after,
             method,
             refine,
             increments,
@@ -226,6 +246,10 @@ fn main() -> ExitCode {
             inject_fault,
             petsc_options,
         } => {
+            let log_format = match log_format {
+                LogFormatArg::Text => LogFormat::Text,
+                LogFormatArg::Json => LogFormat::Json,
+            };
             let opts = RunOptions {
                 out,
                 quiet,
@@ -238,7 +262,13 @@ fn main() -> ExitCode {
                 plain,
                 step_control,
                 friction_scheme,
+                restart,
+                stop_after,
+                log_format,
             };
+            if let Err(e) = asperity::interrupt::install() {
+                eprintln!("warning: no SIGINT/SIGTERM handler ({e}); an interrupt kills the run");
+            }
             let petsc = backend == BackendArg::Petsc
                 || (backend == BackendArg::Auto
                     && cfg!(feature = "parallel")
@@ -247,31 +277,18 @@ fn main() -> ExitCode {
                 return run_petsc(&case, &opts, &petsc_options);
             }
             if !petsc_options.is_empty() {
-                eprintln!(
-                    "error: PETSc options given but the serial backend runs (use --backend petsc)"
+                return fail(
+                    log_format,
+                    "PETSc options given but the serial backend runs (use --backend petsc)",
                 );
-                return ExitCode::from(2);
             }
-            driver::run(&case, &opts).map(|(dir, _model, result)| {
-                if !quiet {
-                    let last = result.increments.last().map(|i| i.measures).unwrap_or_default();
-                    if let Some(fy) = &result.first_yield {
-                        eprintln!(
-                            "first yield: {:.4} kN ({:.2} MPa mean pressure) in {} at x = {:.3} mm, depth {:.3} mm",
-                            fy.total_load_kn, fy.mean_pressure, fy.body, fy.x, fy.depth
-                        );
-                    }
-                    eprintln!(
-                        "final: {:.4} kN, mean pressure {:.2} MPa, center displacement {:.5} mm; {} increments, {} iterations",
-                        last.total_load_kn,
-                        last.mean_pressure,
-                        last.center_displacement,
-                        result.increments.len(),
-                        result.stats.iterations
-                    );
+            return match driver::run(&case, &opts) {
+                Ok((dir, _model, result)) => {
+                    println!("{}", dir.display());
+                    exit_code(&result)
                 }
-                println!("{}", dir.display());
-            })
+                Err(e) => fail(log_format, &e.to_string()),
+            };
         }
         Command::Check { case } => driver::check(&case).map(|s| print!("{s}")),
         Command::Study(StudyCommand::Refine {
@@ -361,19 +378,36 @@ fn main() -> ExitCode {
     }
 }
 
+/// 0 for a complete run; 130 / 143 after SIGINT / SIGTERM; 3 after --stop-after.
+fn exit_code(result: &RunResult) -> ExitCode {
+    result
+        .stopped
+        .map_or(ExitCode::SUCCESS, |s| ExitCode::from(s.exit_code()))
+}
+
+/// Reports an error (one `error: …` line, or an `error` JSON event) and exits 2.
+fn fail(format: LogFormat, message: &str) -> ExitCode {
+    Log::new(format, false).always(
+        "error",
+        serde_json::json!({"message": message, "exit_code": 2}),
+        || format!("error: {message}"),
+    );
+    ExitCode::from(2)
+}
+
 #[cfg(feature = "parallel")]
 fn run_petsc(case: &std::path::Path, opts: &RunOptions, petsc_options: &[String]) -> ExitCode {
     let (outcome, root) = asperity::parallel::run(case, opts, petsc_options);
     match outcome {
-        Ok(dir) => {
+        Ok((dir, result)) => {
             if root {
                 println!("{}", dir.display());
             }
-            ExitCode::SUCCESS
+            exit_code(&result)
         }
         Err(e) => {
             if root {
-                eprintln!("error: {e}");
+                return fail(opts.log_format, &e.to_string());
             }
             ExitCode::from(2)
         }
@@ -381,7 +415,9 @@ fn run_petsc(case: &std::path::Path, opts: &RunOptions, petsc_options: &[String]
 }
 
 #[cfg(not(feature = "parallel"))]
-fn run_petsc(_: &std::path::Path, _: &RunOptions, _: &[String]) -> ExitCode {
-    eprintln!("error: this build has no PETSc backend; rebuild with `cargo build --release --features parallel`");
-    ExitCode::from(2)
+fn run_petsc(_: &std::path::Path, opts: &RunOptions, _: &[String]) -> ExitCode {
+    fail(
+        opts.log_format,
+        "this build has no PETSc backend; rebuild with `cargo build --release --features parallel`",
+    )
 }

@@ -15,7 +15,11 @@ use std::time::Instant;
 
 /// Runs a case on the PETSc backend. Returns the output folder (on rank 0) and
 /// whether this process is rank 0.
-pub fn run(case_path: &Path, opts: &RunOptions, petsc_args: &[String]) -> (Result<PathBuf>, bool) {
+pub fn run(
+    case_path: &Path,
+    opts: &RunOptions,
+    petsc_args: &[String],
+) -> (Result<(PathBuf, crate::solve::RunResult)>, bool) {
     let started = Instant::now();
     let Some(universe) = mpi::initialize() else {
         return (
@@ -33,7 +37,7 @@ pub fn run(case_path: &Path, opts: &RunOptions, petsc_args: &[String]) -> (Resul
             let mut engine =
                 Engine::with_backend(&model, model.case.solver.method, Box::new(backend));
             engine.fault = opts.fault;
-            driver::run_model(&model, engine, opts, root, started).map(|(dir, _)| dir)
+            driver::run_model(&model, engine, opts, root, started)
         };
         drop(petsc);
         result

@@ -42,6 +42,9 @@ pub trait Backend {
     fn solve(&mut self, rhs: &[f64], x: &mut [f64]) -> Result<()>;
     /// Sums a vector over all ranks, in place (replicated result).
     fn sum(&self, _v: &mut [f64]) {}
+    /// Element-wise maximum of a vector over all ranks, in place (replicated
+    /// result); serial: unchanged. Used for collective stop decisions.
+    fn max(&self, _v: &mut [f64]) {}
     /// Rank 0's value of a decision, on every rank.
     fn agree(&self, flag: bool) -> bool {
         flag

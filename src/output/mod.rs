@@ -8,25 +8,41 @@ pub mod vtu;
 use crate::error::{Error, Result};
 use crate::interface::Status;
 use crate::model::Model;
-use crate::solve::{Increment, Observer, RunResult, State};
+use crate::progress::Log;
+use crate::solve::{Checkpoint, Increment, Observer, RunResult, State};
 use serde_json::json;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
 /// Writes the per-increment files of a run and reports progress.
 pub struct Writer {
     final_dir: PathBuf,
     tmp_dir: PathBuf,
     pvd: Vec<(f64, String)>,
-    quiet: bool,
-    started: Instant,
+    log: Log,
     planned: usize,
+    /// The load factor the history ends at (its increment always gets a VTU).
+    pub final_load_factor: f64,
+    /// The temporary folder was moved into place (or must not be removed).
+    done: bool,
+    /// Fingerprint of the model for restart.bin (computed once).
+    fingerprint: Option<u64>,
+}
+
+/// Where a resumed run takes its earlier increments from.
+pub struct Resume<'a> {
+    /// The output folder of the stopped run (holds restart.bin).
+    pub dir: &'a Path,
+    /// Converged increments restored from it.
+    pub increments: usize,
+    /// Its VTU series so far.
+    pub pvd: Vec<(f64, String)>,
 }
 
 impl Writer {
-    /// Prepares a fresh temporary folder next to `dir`.
-    pub fn new(dir: &Path, quiet: bool, planned: usize) -> Result<Writer> {
+    /// Prepares a fresh temporary folder `.NAME.partial-PID` next to `dir`;
+    /// with `resume`, copies the earlier increments' files into it.
+    pub fn new(dir: &Path, log: Log, planned: usize, resume: Option<Resume>) -> Result<Writer> {
         let parent = dir
             .parent()
             .filter(|p| !p.as_os_str().is_empty())
@@ -46,14 +62,30 @@ impl Writer {
         ] {
             std::fs::create_dir_all(&d).map_err(|e| Error::io(&d, e))?;
         }
-        Ok(Writer {
+        let mut w = Writer {
             final_dir: dir.to_path_buf(),
             tmp_dir,
             pvd: Vec::new(),
-            quiet,
-            started: Instant::now(),
+            log,
             planned,
-        })
+            final_load_factor: f64::NAN,
+            done: false,
+            fingerprint: None,
+        };
+        if let Some(r) = resume {
+            let mut files: Vec<String> = (1..=r.increments)
+                .map(|k| format!("interface/{k:04}.csv"))
+                .collect();
+            files.extend(r.pvd.iter().map(|p| p.1.clone()));
+            // kept as is if no further increment converges
+            files.push(crate::restart::FILE.to_string());
+            for f in files {
+                let (from, to) = (r.dir.join(&f), w.tmp_dir.join(&f));
+                std::fs::copy(&from, &to).map_err(|e| Error::io(&from, e))?;
+            }
+            w.pvd = r.pvd;
+        }
+        Ok(w)
     }
 
     fn write(&self, rel: &str, text: &str) -> Result<()> {
@@ -61,8 +93,10 @@ impl Writer {
         std::fs::write(&p, text).map_err(|e| Error::io(&p, e))
     }
 
-    /// Writes the summary and the curve, then moves the folder into place.
-    pub fn finish(self, model: &Model, result: &RunResult, wall: f64) -> Result<PathBuf> {
+    /// Writes the summary and the curve, then moves the folder into place:
+    /// `.NAME.partial-PID` replaces NAME in one rename (an existing NAME is
+    /// swapped out atomically where the system allows it, then removed).
+    pub fn finish(mut self, model: &Model, result: &RunResult, wall: f64) -> Result<PathBuf> {
         let summary = summary(model, result, wall);
         self.write(
             "summary.json",
@@ -70,18 +104,75 @@ impl Writer {
         )?;
         self.write("curve.csv", &curve(result))?;
         self.write("results.pvd", &vtu::pvd(&self.pvd))?;
-        if self.final_dir.exists() {
-            std::fs::remove_dir_all(&self.final_dir).map_err(|e| Error::io(&self.final_dir, e))?;
-        }
-        std::fs::rename(&self.tmp_dir, &self.final_dir)
-            .map_err(|e| Error::io(&self.final_dir, e))?;
-        Ok(self.final_dir)
+        replace_dir(&self.tmp_dir, &self.final_dir)?;
+        self.done = true;
+        Ok(self.final_dir.clone())
     }
 
     /// Removes the temporary folder (failed run).
-    pub fn abandon(self) {
-        let _ = std::fs::remove_dir_all(&self.tmp_dir);
+    pub fn abandon(self) {}
+
+    /// The progress log.
+    pub fn log(&self) -> &Log {
+        &self.log
     }
+}
+
+impl Drop for Writer {
+    fn drop(&mut self) {
+        if !self.done {
+            let _ = std::fs::remove_dir_all(&self.tmp_dir);
+        }
+    }
+}
+
+/// Moves folder `from` to `to`, replacing `to` if it exists. On Linux the two
+/// are exchanged with one `renameat2(RENAME_EXCHANGE)`, so `to` is at every
+/// moment either the old or the new complete folder; elsewhere the old folder
+/// is first renamed aside (a crash in between leaves it as `.NAME.old-PID`).
+fn replace_dir(from: &Path, to: &Path) -> Result<()> {
+    if !to.exists() {
+        return std::fs::rename(from, to).map_err(|e| Error::io(to, e));
+    }
+    #[cfg(target_os = "linux")]
+    {
+        use std::ffi::CString;
+        use std::os::unix::ffi::OsStrExt;
+        let a = CString::new(from.as_os_str().as_bytes()).ok();
+        let b = CString::new(to.as_os_str().as_bytes()).ok();
+        if let (Some(a), Some(b)) = (a, b) {
+            // SAFETY: two valid NUL-terminated paths; no memory is shared.
+            let rc = unsafe {
+                libc::renameat2(
+                    libc::AT_FDCWD,
+                    a.as_ptr(),
+                    libc::AT_FDCWD,
+                    b.as_ptr(),
+                    libc::RENAME_EXCHANGE,
+                )
+            };
+            if rc == 0 {
+                // `from` now holds the old folder
+                let _ = std::fs::remove_dir_all(from);
+                return Ok(());
+            }
+        }
+    }
+    let name = to
+        .file_name()
+        .map_or("out".into(), |n| n.to_string_lossy().into_owned());
+    let old = to
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."))
+        .join(format!(".{name}.old-{}", std::process::id()));
+    std::fs::rename(to, &old).map_err(|e| Error::io(to, e))?;
+    if let Err(e) = std::fs::rename(from, to) {
+        let _ = std::fs::rename(&old, to);
+        return Err(Error::io(to, e));
+    }
+    let _ = std::fs::remove_dir_all(&old);
+    Ok(())
 }
 
 impl Observer for Writer {
@@ -91,36 +182,65 @@ impl Observer for Writer {
             &interface_csv(model, state),
         )?;
         let every = model.case.output.vtu_every;
-        let last = inc.increment >= self.planned;
+        let last = (self.planned > 0 && inc.increment >= self.planned)
+            || (inc.load_factor - self.final_load_factor).abs() <= 1e-12;
         if model.case.output.vtu && (inc.increment % every == 0 || last) {
             let f = format!("vtu/{:04}.vtu", inc.increment);
             self.write(&f, &vtu::vtu(model, state))?;
             self.pvd.push((inc.load_factor, f));
         }
-        if !self.quiet {
-            let el = self.started.elapsed().as_secs_f64();
-            let done = inc.increment as f64 / self.planned.max(inc.increment) as f64;
-            let eta = el / done * (1.0 - done);
-            eprintln!(
-                "  increment {:>3}/{}  λ = {:.4}  load {:8.3} kN  p_mean {:7.2} MPa  iterations {:>3}  peeq {:.2e}  {:6.2} s (≈{:.1} s left)",
-                inc.increment,
-                self.planned.max(inc.increment),
-                inc.load_factor,
-                inc.measures.total_load_kn,
-                inc.measures.mean_pressure,
-                inc.iterations,
-                inc.measures.max_peeq,
-                el,
-                eta
-            );
-        }
+        let el = self.log.elapsed();
+        let eta = self.log.eta(inc.load_factor);
+        let planned = (self.planned > 0).then(|| self.planned.max(inc.increment));
+        self.log.progress(
+            "increment",
+            json!({
+                "increment": inc.increment,
+                "planned": planned,
+                "load_factor": inc.load_factor,
+                "total_load_kn": inc.measures.total_load_kn,
+                "mean_pressure_mpa": inc.measures.mean_pressure,
+                "iterations": inc.iterations,
+                "cutbacks": inc.cutbacks,
+                "max_peeq": inc.measures.max_peeq,
+                "elapsed_s": crate::progress::round3(el),
+                "eta_s": eta.map(crate::progress::round3),
+            }),
+            || {
+                format!(
+                    "  increment {:>3}/{}  λ = {:.4}  load {:8.3} kN  p_mean {:7.2} MPa  iterations {:>3}  peeq {:.2e}  {:6.2} s (≈{} left)",
+                    inc.increment,
+                    planned.map_or("auto".to_string(), |p| p.to_string()),
+                    inc.load_factor,
+                    inc.measures.total_load_kn,
+                    inc.measures.mean_pressure,
+                    inc.iterations,
+                    inc.measures.max_peeq,
+                    el,
+                    eta.map_or("?".into(), |t| format!("{t:.1} s"))
+                )
+            },
+        );
         Ok(())
     }
 
     fn cutback(&mut self, from: f64, to: f64, reason: &str) {
-        if !self.quiet {
-            eprintln!("  cutback: step {from:.4} → {to:.4} failed ({reason}); halving it");
-        }
+        self.log.progress(
+            "cutback",
+            json!({"from": from, "to": to, "next_to": 0.5 * (from + to), "reason": reason}),
+            || format!("  cutback: step {from:.4} → {to:.4} failed ({reason}); halving it"),
+        );
+    }
+
+    fn checkpoint(&mut self, model: &Model, ck: &Checkpoint) -> Result<()> {
+        let fp = *self
+            .fingerprint
+            .get_or_insert_with(|| crate::restart::fingerprint(model));
+        let bytes = crate::restart::encode_with(fp, ck, &self.pvd);
+        let tmp = self.tmp_dir.join(".restart.bin.tmp");
+        std::fs::write(&tmp, &bytes).map_err(|e| Error::io(&tmp, e))?;
+        let p = self.tmp_dir.join(crate::restart::FILE);
+        std::fs::rename(&tmp, &p).map_err(|e| Error::io(&p, e))
     }
 }
 
@@ -213,6 +333,8 @@ pub fn summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
             crate::case::StepControl::Auto => "auto",
         },
         "case": model.name,
+        "complete": r.stopped.is_none(),
+        "stopped_by": r.stopped.map(|s| s.name()),
         "plane": format!("{:?}", model.plane).to_lowercase(),
         "method": model.case.solver.method.name(),
         "backend": r.backend,

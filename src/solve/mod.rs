@@ -13,6 +13,7 @@ pub use yield_point::{max_yield_ratio, FirstYield};
 use crate::error::{Error, Result};
 use crate::fem::solid::Response;
 use crate::interface::Status;
+use crate::interrupt::Stop;
 use crate::material::{PointState, VonMises};
 use crate::model::Model;
 
@@ -95,6 +96,61 @@ impl Measures {
 pub trait Observer {
     fn increment(&mut self, model: &Model, state: &State, inc: &Increment) -> Result<()>;
     fn cutback(&mut self, _from: f64, _to: f64, _reason: &str) {}
+    /// Called after every converged increment with everything needed to resume
+    /// the run from it (the writer stores it as `restart.bin`).
+    fn checkpoint(&mut self, _model: &Model, _ck: &Checkpoint) -> Result<()> {
+        Ok(())
+    }
+}
+
+/// The committed state of the increment loop: enough to continue a run exactly
+/// as if it had not been interrupted.
+#[derive(Clone, Debug)]
+pub struct Checkpoint {
+    pub committed: State,
+    /// Load factor of the committed state.
+    pub lambda: f64,
+    /// Size of the last converged step (load factor), 0 before the first.
+    pub last_step: f64,
+    /// The load steps still to take (fixed schedule or automatic control).
+    pub stepper: stepping::Stepper,
+    /// Converged increments so far (the rows of curve.csv).
+    pub increments: Vec<Increment>,
+    pub first_yield: Option<FirstYield>,
+    /// Max yield ratio of the last elastic increment (for locating first yield).
+    pub elastic_ratio_prev: f64,
+    pub cutbacks_total: usize,
+    /// Cutbacks since the last converged increment.
+    pub cutbacks_here: usize,
+    /// Newton iterations and factorizations so far.
+    pub iterations: usize,
+    pub factorizations: usize,
+}
+
+impl Checkpoint {
+    /// The start of a run: nothing converged, the whole schedule pending.
+    pub fn initial(model: &Model) -> Checkpoint {
+        Checkpoint {
+            committed: State::initial(model),
+            lambda: 0.0,
+            last_step: 0.0,
+            stepper: stepping::Stepper::new(&model.case.solver),
+            increments: Vec::new(),
+            first_yield: None,
+            elastic_ratio_prev: 0.0,
+            cutbacks_total: 0,
+            cutbacks_here: 0,
+            iterations: 0,
+            factorizations: 0,
+        }
+    }
+}
+
+/// How a run may stop early.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Control {
+    /// Stop (like SIGINT) once this many increments have converged.
+    pub stop_after: Option<usize>,
 }
 
 /// The outcome of a run.
@@ -110,6 +166,10 @@ pub struct RunResult {
     pub stats: Stats,
     pub cutbacks: usize,
     pub final_state: State,
+    /// Why the run stopped before the end of its schedule (None: complete).
+    pub stopped: Option<Stop>,
+    /// Increments taken over from a restart file (0: a fresh run).
+    pub resumed_from: usize,
 }
 
 /// Runs the whole load history of the model on the serial backend.
@@ -120,80 +180,131 @@ pub fn run(model: &Model, observer: &mut dyn Observer) -> Result<RunResult> {
 /// Runs the whole load history with a given engine (any backend). Under MPI
 /// every rank calls this; only rank 0's observer writes, and its outcome is
 /// shared so that a failed write stops every rank.
-pub fn run_with(mut engine: Engine, observer: &mut dyn Observer) -> Result<RunResult> {
+pub fn run_with(engine: Engine, observer: &mut dyn Observer) -> Result<RunResult> {
+    let start = Checkpoint::initial(engine.model);
+    run_from(engine, observer, start, Control::default())
+}
+
+/// Runs the load history from a checkpoint (the initial one or one read from
+/// `restart.bin`). Stops early, with `stopped` set, at an increment boundary
+/// after a SIGINT/SIGTERM (any rank) or `control.stop_after` increments; a
+/// second signal abandons the increment in progress.
+pub fn run_from(
+    mut engine: Engine,
+    observer: &mut dyn Observer,
+    start: Checkpoint,
+    control: Control,
+) -> Result<RunResult> {
     let model = engine.model;
     let spec = &model.case.solver;
-    let mut committed = State::initial(model);
-    let mut lambda = 0.0;
-    let mut stepper = stepping::Stepper::new(spec);
-    let mut increments = Vec::new();
-    let mut first_yield = None;
-    let mut cutbacks_total = 0;
-    let mut cutbacks_here = 0;
-    let mut elastic_ratio_prev = 0.0;
-    let mut next = stepper.next(lambda);
-    while let Some(target) = next {
-        let failure = match engine.step(&committed, target, Response::Plastic) {
+    let resumed_from = start.increments.len();
+    let mut ck = start;
+    engine.stats.iterations = ck.iterations;
+    engine.stats.factorizations = ck.factorizations;
+    let mut stopped = None;
+    let mut last_reason = String::new();
+    while let Some(target) = ck.stepper.next(ck.lambda) {
+        // increment boundary: a collective stop decision
+        if let Some(n) = control.stop_after {
+            if ck.increments.len() >= n {
+                stopped = Some(Stop::StopAfter(n));
+                break;
+            }
+        }
+        let mut flag = [
+            crate::interrupt::requested() as f64,
+            f64::from(crate::interrupt::first_signal()),
+        ];
+        engine.backend.max(&mut flag);
+        if flag[0] >= 1.0 {
+            stopped = Some(Stop::Signal(flag[1] as i32));
+            break;
+        }
+        // the stepper is only changed once the step's fate is known, so an
+        // interrupted step leaves it (and the checkpoint) as it was
+        let why = match engine.step(&ck.committed, target, Response::Plastic) {
             Ok((trial, iterations)) => {
+                // identical on every rank: Gauss states are shared after a step
                 let dpeeq = trial
                     .gauss
                     .iter()
-                    .zip(&committed.gauss)
+                    .zip(&ck.committed.gauss)
                     .fold(0.0f64, |a, (t, c)| a.max(t.peeq - c.peeq));
-                if stepper.accept(lambda, target, iterations, dpeeq) {
+                if ck.stepper.too_plastic(ck.lambda, target, dpeeq) {
+                    stepping::Why::TooPlastic(dpeeq)
+                } else {
                     let yielded_now =
-                        first_yield.is_none() && trial.gauss.iter().any(|g| g.peeq > 0.0);
+                        ck.first_yield.is_none() && trial.gauss.iter().any(|g| g.peeq > 0.0);
                     if yielded_now && spec.locate_first_yield {
-                        first_yield = Some(yield_point::locate(
+                        match yield_point::locate(
                             &mut engine,
-                            &committed,
-                            (lambda, elastic_ratio_prev),
+                            &ck.committed,
+                            (ck.lambda, ck.elastic_ratio_prev),
                             target,
-                        )?);
-                    } else if first_yield.is_none() {
-                        elastic_ratio_prev = max_yield_ratio(model, &trial).0;
+                        ) {
+                            Ok(fy) => ck.first_yield = Some(fy),
+                            Err(_) if engine.interrupted => {
+                                stopped = Some(Stop::Signal(engine.interrupt_signal));
+                                break;
+                            }
+                            Err(e) => return Err(e),
+                        }
+                    } else if ck.first_yield.is_none() {
+                        ck.elastic_ratio_prev = max_yield_ratio(model, &trial).0;
                     }
-                    committed = trial;
+                    ck.stepper.accepted(ck.lambda, target, iterations, dpeeq);
+                    ck.committed = trial;
                     engine.committed();
-                    lambda = target;
+                    ck.last_step = target - ck.lambda;
+                    ck.lambda = target;
                     let inc = Increment {
-                        increment: increments.len() + 1,
-                        load_factor: lambda,
+                        increment: ck.increments.len() + 1,
+                        load_factor: ck.lambda,
                         iterations,
-                        cutbacks: cutbacks_here,
-                        measures: Measures::of(model, &committed),
+                        cutbacks: ck.cutbacks_here,
+                        measures: Measures::of(model, &ck.committed),
                     };
-                    cutbacks_here = 0;
-                    let written = observer.increment(model, &committed, &inc);
+                    ck.cutbacks_here = 0;
+                    ck.iterations = engine.stats.iterations;
+                    ck.factorizations = engine.stats.factorizations;
+                    let written = observer.increment(model, &ck.committed, &inc);
+                    ck.increments.push(inc);
+                    let written = written.and_then(|()| observer.checkpoint(model, &ck));
                     if !engine.backend.agree(written.is_ok()) {
                         return Err(written.err().unwrap_or_else(|| {
                             Error::Solver("writing the output failed on rank 0".into())
                         }));
                     }
-                    increments.push(inc);
-                    next = stepper.next(lambda);
                     continue;
                 }
-                // converged, but the plastic strain changed too much for an accurate path
-                None
             }
-            Err(reason) => Some(reason),
+            Err(_) if engine.interrupted => {
+                stopped = Some(Stop::Signal(engine.interrupt_signal));
+                break;
+            }
+            Err(reason) => {
+                last_reason = reason;
+                stepping::Why::Failed
+            }
         };
-        let retry = stepper.retry(lambda, target, failure.is_none());
-        let reason = failure.unwrap_or_else(|| "plastic strain increment too large".into());
-        match retry {
+        let reason = match why {
+            stepping::Why::Failed => std::mem::take(&mut last_reason),
+            stepping::Why::TooPlastic(d) => {
+                format!("largest plastic strain increment {d:.2e} above 3 × plastic_strain_step")
+            }
+        };
+        match ck.stepper.retry(ck.lambda, target, why) {
             stepping::Retry::GiveUp => {
                 return Err(Error::Convergence {
-                    increment: increments.len() + 1,
+                    increment: ck.increments.len() + 1,
                     load_factor: target,
                     message: format!("{reason}; gave up after {} cutbacks", spec.max_cutbacks),
                 });
             }
-            stepping::Retry::At(t) => {
-                observer.cutback(lambda, target, &reason);
-                cutbacks_total += 1;
-                cutbacks_here += 1;
-                next = Some(t);
+            stepping::Retry::At(_) => {
+                observer.cutback(ck.lambda, target, &reason);
+                ck.cutbacks_total += 1;
+                ck.cutbacks_here += 1;
             }
         }
     }
@@ -209,11 +320,13 @@ pub fn run_with(mut engine: Engine, observer: &mut dyn Observer) -> Result<RunRe
             .into_iter()
             .map(|(k, v)| (k.to_string(), v))
             .collect(),
-        increments,
-        first_yield,
+        increments: ck.increments,
+        first_yield: ck.first_yield,
         stats: engine.stats.clone(),
-        cutbacks: cutbacks_total,
-        final_state: committed,
+        cutbacks: ck.cutbacks_total,
+        final_state: ck.committed,
+        stopped,
+        resumed_from,
     })
 }
 

@@ -43,6 +43,11 @@ pub struct Engine<'m> {
     /// Test hook: (rank, assembly number) at which the element loop fails.
     pub fault: Option<(usize, usize)>,
     assemblies: usize,
+    /// The last step was abandoned because of a second stop request
+    /// (SIGINT/SIGTERM on any rank); see [`crate::interrupt`].
+    pub interrupted: bool,
+    /// The signal behind it (the largest number over the ranks).
+    pub interrupt_signal: i32,
 }
 
 impl<'m> Engine<'m> {
@@ -65,6 +70,8 @@ impl<'m> Engine<'m> {
             stats: Stats::default(),
             fault: None,
             assemblies: 0,
+            interrupted: false,
+            interrupt_signal: 0,
         }
     }
 
@@ -107,6 +114,17 @@ impl<'m> Engine<'m> {
         let mut rhs = vec![0.0; free.len()];
         let mut du = vec![0.0; free.len()];
         for it in 0..=limit {
+            // a second stop request abandons the step (collectively)
+            let mut flag = [
+                crate::interrupt::requested() as f64,
+                f64::from(crate::interrupt::first_signal()),
+            ];
+            self.backend.max(&mut flag);
+            if flag[0] >= 2.0 {
+                self.interrupted = true;
+                self.interrupt_signal = flag[1] as i32;
+                return Err(format!("interrupted at iteration {it}"));
+            }
             let t0 = std::time::Instant::now();
             let solid_tangent = match method {
                 Method::FullNewton => Some(Tangent::Consistent),

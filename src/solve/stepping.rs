@@ -24,13 +24,13 @@ const SAME: f64 = 1e-12;
 /// The plan of load factors of a run.
 #[derive(Clone, Debug)]
 pub struct Stepper {
-    mode: StepControl,
+    pub(crate) mode: StepControl,
     /// Fixed mode: remaining targets, last first, with their cut depth.
-    pending: Vec<(f64, usize)>,
+    pub(crate) pending: Vec<(f64, usize)>,
     /// Auto mode: remaining waypoints, last first.
-    waypoints: Vec<f64>,
+    pub(crate) waypoints: Vec<f64>,
     /// Auto mode: current step size (absolute load-factor change).
-    step: f64,
+    pub(crate) step: f64,
     max_step: f64,
     min_step: f64,
     target_iterations: f64,
@@ -38,8 +38,17 @@ pub struct Stepper {
     newton: bool,
     plastic_step: f64,
     /// Consecutive failures of the current step.
-    failures: usize,
+    pub(crate) failures: usize,
     max_cutbacks: usize,
+}
+
+/// Why a step is redone.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Why {
+    /// It did not converge (or failed otherwise).
+    Failed,
+    /// It converged with this largest plastic strain increment, too large.
+    TooPlastic(f64),
 }
 
 /// What the stepper says after a failed or rejected step.
@@ -80,6 +89,19 @@ impl Stepper {
         }
     }
 
+    /// The load factor the history ends at.
+    pub fn final_target(&self, lambda: f64) -> f64 {
+        match self.mode {
+            StepControl::Fixed => self.pending.first().map_or(lambda, |p| p.0),
+            StepControl::Auto => self.waypoints.first().copied().unwrap_or(lambda),
+        }
+    }
+
+    /// Increments planned: the schedule's length, or None for automatic control.
+    pub fn planned(spec: &SolverSpec) -> Option<usize> {
+        (spec.step_mode() == StepControl::Fixed).then(|| spec.schedule().len())
+    }
+
     /// The next load factor to try from `lambda`, or `None` when the history is done.
     pub fn next(&mut self, lambda: f64) -> Option<f64> {
         match self.mode {
@@ -105,22 +127,26 @@ impl Stepper {
         }
     }
 
+    /// Must a converged step to `target` be redone smaller because its largest
+    /// plastic strain increment `dpeeq` is too large for an accurate path?
+    /// (Automatic control only; then call [`Stepper::retry`] with
+    /// [`Why::TooPlastic`].)
+    pub fn too_plastic(&self, lambda: f64, target: f64, dpeeq: f64) -> bool {
+        self.mode == StepControl::Auto
+            && dpeeq > 3.0 * self.plastic_step
+            && (target - lambda).abs() > self.min_step * 1.000001
+    }
+
     /// The step to `target` converged in `iterations` with the largest plastic
-    /// strain increment `dpeeq`. Returns false when an automatic step must be
-    /// redone smaller for accuracy (then call [`Stepper::retry`]).
-    pub fn accept(&mut self, lambda: f64, target: f64, iterations: usize, dpeeq: f64) -> bool {
+    /// strain increment `dpeeq`, and is kept.
+    pub fn accepted(&mut self, lambda: f64, target: f64, iterations: usize, dpeeq: f64) {
         match self.mode {
             StepControl::Fixed => {
                 self.pending.pop();
-                true
             }
             StepControl::Auto => {
                 let taken = (target - lambda).abs();
                 let p = self.plastic_step;
-                if dpeeq > 3.0 * p && taken > self.min_step * 1.000001 {
-                    self.step = (taken * p / dpeeq).max(self.min_step);
-                    return false;
-                }
                 let its = iterations as f64;
                 let by_iterations: f64 = if its <= self.target_iterations {
                     2.0
@@ -141,13 +167,12 @@ impl Stepper {
                 self.step =
                     (base * by_iterations.min(by_plasticity)).clamp(self.min_step, self.max_step);
                 self.failures = 0;
-                true
             }
         }
     }
 
     /// The step to `target` from `lambda` failed (or was rejected): where to go next.
-    pub fn retry(&mut self, lambda: f64, target: f64, rejected_for_accuracy: bool) -> Retry {
+    pub fn retry(&mut self, lambda: f64, target: f64, why: Why) -> Retry {
         match self.mode {
             StepControl::Fixed => {
                 let (t, depth) = self.pending.pop().unwrap_or((target, 0));
@@ -160,14 +185,20 @@ impl Stepper {
                 Retry::At(mid)
             }
             StepControl::Auto => {
-                if !rejected_for_accuracy {
-                    if self.failures >= self.max_cutbacks {
-                        return Retry::GiveUp;
+                match why {
+                    Why::TooPlastic(dpeeq) => {
+                        let taken = (target - lambda).abs();
+                        self.step = (taken * self.plastic_step / dpeeq).max(self.min_step);
                     }
-                    self.failures += 1;
-                    self.step = 0.5 * (target - lambda).abs();
-                    if self.step < self.min_step * 0.999999 {
-                        return Retry::GiveUp;
+                    Why::Failed => {
+                        if self.failures >= self.max_cutbacks {
+                            return Retry::GiveUp;
+                        }
+                        self.failures += 1;
+                        self.step = 0.5 * (target - lambda).abs();
+                        if self.step < self.min_step * 0.999999 {
+                            return Retry::GiveUp;
+                        }
                     }
                 }
                 match self.next(lambda) {
@@ -204,7 +235,9 @@ mod tests {
             let n = its(lambda, target);
             let ok = n <= 30;
             let retry = if ok {
-                if s.accept(lambda, target, n, dp(lambda, target)) {
+                let d = dp(lambda, target);
+                if !s.too_plastic(lambda, target, d) {
+                    s.accepted(lambda, target, n, d);
                     lambda = target;
                     path.push(lambda);
                     match s.next(lambda) {
@@ -215,9 +248,9 @@ mod tests {
                         None => return Ok(path),
                     }
                 }
-                s.retry(lambda, target, true)
+                s.retry(lambda, target, Why::TooPlastic(d))
             } else {
-                s.retry(lambda, target, false)
+                s.retry(lambda, target, Why::Failed)
             };
             match retry {
                 Retry::At(t) => target = t,

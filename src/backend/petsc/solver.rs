@@ -295,6 +295,11 @@ impl crate::backend::Backend for PetscBackend<'_> {
         self.world
             .all_reduce_into(&send[..], v, SystemOperation::sum());
     }
+    fn max(&self, v: &mut [f64]) {
+        let send = v.to_vec();
+        self.world
+            .all_reduce_into(&send[..], v, SystemOperation::max());
+    }
     fn share_message(&self, msg: Option<String>) -> Option<String> {
         let mine = if msg.is_some() {
             self.rank as i32

@@ -1,0 +1,472 @@
+//! `restart.bin`: the committed state of a run after a converged increment, so
+//! that `asperity run CASE --restart DIR` continues exactly where it stopped.
+//!
+//! Layout (all integers and floats little-endian; floats as their exact IEEE-754
+//! bits, so a resumed run is bit-for-bit the uninterrupted one):
+//!
+//! ```text
+//! magic        8 bytes  "ASPRSTRT"
+//! version      u32      1
+//! reserved     u32      0
+//! fingerprint  u64      FNV-1a of the effective case (after command-line
+//!                       overrides) and the mesh; a restart with another case
+//!                       or mesh is refused
+//! sections     u32      count, then per section:
+//!                name   u16 length + UTF-8
+//!                kind   u8   1 = f64, 2 = u64, 3 = u8, 4 = UTF-8 text
+//!                count  u64  number of elements (bytes for text)
+//!                data
+//! checksum     u64      FNV-1a (64-bit state, over 64-bit words, see
+//!                       [`fnv1a`]) of every byte before it
+//! ```
+//!
+//! Sections: `increment`, `load_factor`, `last_step`, `pending_load_factor`,
+//! `pending_depth` (fixed schedule), `auto_waypoints`, `auto_step`,
+//! `auto_failures` (automatic step control), `cutbacks` (total, since the last increment),
+//! `elastic_ratio_prev`, `counters` (Newton iterations, factorizations), `u`,
+//! `gauss` (10 per Gauss point: σxx σyy σxy σzz, εᵖ ×4, ε̄ᵖ, yielding),
+//! `status` (interface status codes), `contact` (5 per interface point:
+//! plastic slip, max shear memory κ, p_T, u_T, μ_F), `prescribed_reaction`,
+//! `curve` (10 per increment: number, load factor, iterations, cutbacks, normal
+//! force, mean pressure, load kN, centre displacement, max ε̄ᵖ, prescribed
+//! reaction), `first_yield` (load factor, mean pressure, load kN, x, depth,
+//! element) with `first_yield_body`, and the VTU series `pvd_load_factor`,
+//! `pvd_file` (names separated by newlines). Unknown sections are ignored.
+
+use crate::error::{Error, Result};
+use crate::interface::Status;
+use crate::material::PointState;
+use crate::model::Model;
+use crate::solve::{Checkpoint, FirstYield, Increment, Measures};
+use std::collections::BTreeMap;
+use std::path::Path;
+
+pub const MAGIC: &[u8; 8] = b"ASPRSTRT";
+pub const VERSION: u32 = 1;
+pub const FILE: &str = "restart.bin";
+
+/// FNV-1a with 64-bit state applied to 64-bit little-endian words (8× fewer
+/// multiplications than byte-wise FNV-1a), the last `len % 8` bytes one by one.
+pub fn fnv1a(bytes: &[u8]) -> u64 {
+    const PRIME: u64 = 0x0000_0100_0000_01b3;
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    let words = bytes.chunks_exact(8);
+    let tail = words.remainder();
+    for w in words {
+        h ^= u64::from_le_bytes(w.try_into().unwrap());
+        h = h.wrapping_mul(PRIME);
+    }
+    for &b in tail {
+        h ^= u64::from(b);
+        h = h.wrapping_mul(PRIME);
+    }
+    h
+}
+
+/// Fingerprint of what a run solves: the effective case (without its file
+/// location and free-text description) and the mesh.
+pub fn fingerprint(model: &Model) -> u64 {
+    let mut case = model.case.clone();
+    case.source = Default::default();
+    case.description = None;
+    let mut bytes = format!("{case:?}").into_bytes();
+    for n in &model.mesh.nodes {
+        for v in n.iter() {
+            bytes.extend_from_slice(&v.to_le_bytes());
+        }
+    }
+    for el in &model.mesh.elements {
+        bytes.extend_from_slice(&(el.body as u64).to_le_bytes());
+        for &n in el.nodes.iter() {
+            bytes.extend_from_slice(&(n as u64).to_le_bytes());
+        }
+    }
+    bytes.extend_from_slice(&(model.mesh.num_dofs() as u64).to_le_bytes());
+    fnv1a(&bytes)
+}
+
+enum Data {
+    F64(Vec<f64>),
+    U64(Vec<u64>),
+    U8(Vec<u8>),
+    Text(String),
+}
+
+struct Encoder {
+    buf: Vec<u8>,
+    sections: u32,
+}
+
+impl Encoder {
+    fn section(&mut self, name: &str, kind: u8, count: usize) {
+        self.sections += 1;
+        self.buf
+            .extend_from_slice(&(name.len() as u16).to_le_bytes());
+        self.buf.extend_from_slice(name.as_bytes());
+        self.buf.push(kind);
+        self.buf.extend_from_slice(&(count as u64).to_le_bytes());
+    }
+    fn f64s(&mut self, name: &str, v: &[f64]) {
+        self.section(name, 1, v.len());
+        let at = self.buf.len();
+        self.buf.resize(at + 8 * v.len(), 0);
+        for (c, x) in self.buf[at..].chunks_exact_mut(8).zip(v) {
+            c.copy_from_slice(&x.to_le_bytes());
+        }
+    }
+    fn u64s(&mut self, name: &str, v: &[u64]) {
+        self.section(name, 2, v.len());
+        for x in v {
+            self.buf.extend_from_slice(&x.to_le_bytes());
+        }
+    }
+    fn bytes(&mut self, name: &str, v: &[u8]) {
+        self.section(name, 3, v.len());
+        self.buf.extend_from_slice(v);
+    }
+    fn text(&mut self, name: &str, v: &str) {
+        self.section(name, 4, v.len());
+        self.buf.extend_from_slice(v.as_bytes());
+    }
+}
+
+/// Serializes a checkpoint and the VTU series written so far.
+pub fn encode(model: &Model, ck: &Checkpoint, pvd: &[(f64, String)]) -> Vec<u8> {
+    encode_with(fingerprint(model), ck, pvd)
+}
+
+/// [`encode`] with the model's fingerprint computed once by the caller.
+pub fn encode_with(fingerprint: u64, ck: &Checkpoint, pvd: &[(f64, String)]) -> Vec<u8> {
+    let mut e = Encoder {
+        buf: Vec::with_capacity(
+            1024 + 8 * ck.committed.u.len()
+                + 80 * ck.committed.gauss.len()
+                + 41 * ck.committed.contact.len()
+                + 80 * ck.increments.len()
+                + 16 * ck.stepper.pending.len()
+                + 8 * ck.stepper.waypoints.len(),
+        ),
+        sections: 0,
+    };
+    let s = &ck.committed;
+    e.u64s("increment", &[ck.increments.len() as u64]);
+    e.f64s("load_factor", &[ck.lambda]);
+    e.f64s("last_step", &[ck.last_step]);
+    e.f64s(
+        "pending_load_factor",
+        &ck.stepper.pending.iter().map(|p| p.0).collect::<Vec<_>>(),
+    );
+    e.u64s(
+        "pending_depth",
+        &ck.stepper
+            .pending
+            .iter()
+            .map(|p| p.1 as u64)
+            .collect::<Vec<_>>(),
+    );
+    e.f64s("auto_waypoints", &ck.stepper.waypoints);
+    e.f64s("auto_step", &[ck.stepper.step]);
+    e.u64s("auto_failures", &[ck.stepper.failures as u64]);
+    e.u64s(
+        "cutbacks",
+        &[ck.cutbacks_total as u64, ck.cutbacks_here as u64],
+    );
+    e.f64s("elastic_ratio_prev", &[ck.elastic_ratio_prev]);
+    e.u64s(
+        "counters",
+        &[ck.iterations as u64, ck.factorizations as u64],
+    );
+    e.f64s("u", &s.u);
+    let mut g = Vec::with_capacity(10 * s.gauss.len());
+    for p in &s.gauss {
+        g.extend_from_slice(&p.stress);
+        g.extend_from_slice(&p.plastic_strain);
+        g.push(p.peeq);
+        g.push(if p.yielding { 1.0 } else { 0.0 });
+    }
+    e.f64s("gauss", &g);
+    e.bytes(
+        "status",
+        &s.status.iter().map(|&st| st as u8).collect::<Vec<_>>(),
+    );
+    let mut c = Vec::with_capacity(5 * s.contact.len());
+    for p in &s.contact {
+        c.extend_from_slice(&[p.slip.u_p, p.slip.kappa, p.p_t, p.u_t, p.mu_f]);
+    }
+    e.f64s("contact", &c);
+    e.f64s("prescribed_reaction", &[s.prescribed_reaction]);
+    let mut rows = Vec::with_capacity(10 * ck.increments.len());
+    for inc in &ck.increments {
+        let m = &inc.measures;
+        rows.extend_from_slice(&[
+            inc.increment as f64,
+            inc.load_factor,
+            inc.iterations as f64,
+            inc.cutbacks as f64,
+            m.normal_force,
+            m.mean_pressure,
+            m.total_load_kn,
+            m.center_displacement,
+            m.max_peeq,
+            m.prescribed_reaction,
+        ]);
+    }
+    e.f64s("curve", &rows);
+    if let Some(fy) = &ck.first_yield {
+        e.f64s(
+            "first_yield",
+            &[
+                fy.load_factor,
+                fy.mean_pressure,
+                fy.total_load_kn,
+                fy.x,
+                fy.depth,
+                fy.element as f64,
+            ],
+        );
+        e.text("first_yield_body", &fy.body);
+    }
+    e.f64s(
+        "pvd_load_factor",
+        &pvd.iter().map(|p| p.0).collect::<Vec<_>>(),
+    );
+    e.text(
+        "pvd_file",
+        &pvd.iter()
+            .map(|p| p.1.as_str())
+            .collect::<Vec<_>>()
+            .join("\n"),
+    );
+    let mut out = Vec::with_capacity(e.buf.len() + 40);
+    out.extend_from_slice(MAGIC);
+    out.extend_from_slice(&VERSION.to_le_bytes());
+    out.extend_from_slice(&0u32.to_le_bytes());
+    out.extend_from_slice(&fingerprint.to_le_bytes());
+    out.extend_from_slice(&e.sections.to_le_bytes());
+    out.extend_from_slice(&e.buf);
+    let sum = fnv1a(&out);
+    out.extend_from_slice(&sum.to_le_bytes());
+    out
+}
+
+/// Reads `restart.bin` in `dir` for `model`: the checkpoint and the VTU series.
+pub fn read(dir: &Path, model: &Model) -> Result<(Checkpoint, Vec<(f64, String)>)> {
+    let path = dir.join(FILE);
+    let bytes = std::fs::read(&path).map_err(|e| Error::io(&path, e))?;
+    decode(&bytes, model).map_err(|m| Error::input(path.display().to_string(), m))
+}
+
+struct Reader<'a> {
+    b: &'a [u8],
+    at: usize,
+}
+
+impl<'a> Reader<'a> {
+    fn take(&mut self, n: usize) -> std::result::Result<&'a [u8], String> {
+        if n > self.b.len() - self.at {
+            return Err("truncated restart file".into());
+        }
+        let s = &self.b[self.at..self.at + n];
+        self.at += n;
+        Ok(s)
+    }
+    fn u16(&mut self) -> std::result::Result<u16, String> {
+        Ok(u16::from_le_bytes(self.take(2)?.try_into().unwrap()))
+    }
+    fn u32(&mut self) -> std::result::Result<u32, String> {
+        Ok(u32::from_le_bytes(self.take(4)?.try_into().unwrap()))
+    }
+    fn u64(&mut self) -> std::result::Result<u64, String> {
+        Ok(u64::from_le_bytes(self.take(8)?.try_into().unwrap()))
+    }
+}
+
+/// Decodes and checks a restart file against the model it is meant for.
+pub fn decode(
+    bytes: &[u8],
+    model: &Model,
+) -> std::result::Result<(Checkpoint, Vec<(f64, String)>), String> {
+    if bytes.len() < 8 || &bytes[..8] != MAGIC {
+        return Err("not an asperity restart file (bad magic)".into());
+    }
+    if bytes.len() < 36 {
+        return Err("truncated restart file".into());
+    }
+    let (body, tail) = bytes.split_at(bytes.len() - 8);
+    let stored = u64::from_le_bytes(tail.try_into().unwrap());
+    let mut r = Reader { b: body, at: 8 };
+    let version = r.u32()?;
+    if version != VERSION {
+        return Err(format!(
+            "restart file version {version}, this build reads version {VERSION}"
+        ));
+    }
+    if stored != fnv1a(body) {
+        return Err("checksum mismatch: the restart file is corrupted or truncated".into());
+    }
+    let _reserved = r.u32()?;
+    let fp = r.u64()?;
+    if fp != fingerprint(model) {
+        return Err(
+            "written for a different case or mesh (fingerprint mismatch): restart with the same case file and the same command-line overrides".into(),
+        );
+    }
+    let n = r.u32()?;
+    let mut map: BTreeMap<String, Data> = BTreeMap::new();
+    for _ in 0..n {
+        let len = r.u16()? as usize;
+        let name = String::from_utf8_lossy(r.take(len)?).into_owned();
+        let kind = r.take(1)?[0];
+        let count = usize::try_from(r.u64()?).map_err(|_| "bad section size")?;
+        let width = match kind {
+            1 | 2 => 8,
+            3 | 4 => 1,
+            k => return Err(format!("section {name}: unknown kind {k}")),
+        };
+        let raw = r.take(count.checked_mul(width).ok_or("bad section size")?)?;
+        let data = match kind {
+            1 => Data::F64(
+                raw.chunks_exact(8)
+                    .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
+                    .collect(),
+            ),
+            2 => Data::U64(
+                raw.chunks_exact(8)
+                    .map(|c| u64::from_le_bytes(c.try_into().unwrap()))
+                    .collect(),
+            ),
+            3 => Data::U8(raw.to_vec()),
+            _ => Data::Text(
+                String::from_utf8(raw.to_vec()).map_err(|_| format!("section {name}: bad text"))?,
+            ),
+        };
+        map.insert(name, data);
+    }
+    if r.at != body.len() {
+        return Err("trailing bytes after the last section".into());
+    }
+    let f = |name: &str, len: Option<usize>| -> std::result::Result<&Vec<f64>, String> {
+        match map.get(name) {
+            Some(Data::F64(v)) if len.is_none_or(|l| l == v.len()) => Ok(v),
+            Some(Data::F64(v)) => Err(format!(
+                "section {name} has {} values, the model needs {}",
+                v.len(),
+                len.unwrap_or(0)
+            )),
+            _ => Err(format!("section {name} (f64) missing")),
+        }
+    };
+    let u = |name: &str| -> std::result::Result<&Vec<u64>, String> {
+        match map.get(name) {
+            Some(Data::U64(v)) => Ok(v),
+            _ => Err(format!("section {name} (u64) missing")),
+        }
+    };
+    let text = |name: &str| -> std::result::Result<&str, String> {
+        match map.get(name) {
+            Some(Data::Text(v)) => Ok(v),
+            _ => Err(format!("section {name} (text) missing")),
+        }
+    };
+    let mut ck = Checkpoint::initial(model);
+    let ng = ck.committed.gauss.len();
+    let np = ck.committed.status.len();
+    let nu = ck.committed.u.len();
+    let increments = *u("increment")?.first().ok_or("empty increment")? as usize;
+    ck.lambda = f("load_factor", Some(1))?[0];
+    ck.last_step = f("last_step", Some(1))?[0];
+    let pl = f("pending_load_factor", None)?;
+    let pd = u("pending_depth")?;
+    if pl.len() != pd.len() {
+        return Err("pending schedule: lengths differ".into());
+    }
+    ck.stepper.pending = pl.iter().zip(pd).map(|(&l, &d)| (l, d as usize)).collect();
+    ck.stepper.waypoints = f("auto_waypoints", None)?.clone();
+    ck.stepper.step = f("auto_step", Some(1))?[0];
+    ck.stepper.failures = *u("auto_failures")?.first().ok_or("empty auto_failures")? as usize;
+    let cb = u("cutbacks")?;
+    let ct = u("counters")?;
+    if cb.len() != 2 || ct.len() != 2 {
+        return Err("cutbacks/counters: expected 2 values".into());
+    }
+    (ck.cutbacks_total, ck.cutbacks_here) = (cb[0] as usize, cb[1] as usize);
+    (ck.iterations, ck.factorizations) = (ct[0] as usize, ct[1] as usize);
+    ck.elastic_ratio_prev = f("elastic_ratio_prev", Some(1))?[0];
+    ck.committed.u.copy_from_slice(f("u", Some(nu))?);
+    for (p, v) in ck
+        .committed
+        .gauss
+        .iter_mut()
+        .zip(f("gauss", Some(10 * ng))?.chunks_exact(10))
+    {
+        *p = PointState {
+            stress: [v[0], v[1], v[2], v[3]],
+            plastic_strain: [v[4], v[5], v[6], v[7]],
+            peeq: v[8],
+            yielding: v[9] != 0.0,
+        };
+    }
+    match map.get("status") {
+        Some(Data::U8(v)) if v.len() == np => {
+            ck.committed.status = v.iter().map(|&c| Status::from_code(c)).collect();
+        }
+        _ => return Err(format!("section status: expected {np} codes")),
+    }
+    for (p, v) in ck
+        .committed
+        .contact
+        .iter_mut()
+        .zip(f("contact", Some(5 * np))?.chunks_exact(5))
+    {
+        p.slip.u_p = v[0];
+        p.slip.kappa = v[1];
+        (p.p_t, p.u_t, p.mu_f) = (v[2], v[3], v[4]);
+    }
+    ck.committed.prescribed_reaction = f("prescribed_reaction", Some(1))?[0];
+    let rows = f("curve", Some(10 * increments))?;
+    ck.increments = rows
+        .chunks_exact(10)
+        .map(|v| Increment {
+            increment: v[0] as usize,
+            load_factor: v[1],
+            iterations: v[2] as usize,
+            cutbacks: v[3] as usize,
+            measures: Measures {
+                normal_force: v[4],
+                mean_pressure: v[5],
+                total_load_kn: v[6],
+                center_displacement: v[7],
+                max_peeq: v[8],
+                prescribed_reaction: v[9],
+            },
+        })
+        .collect();
+    if map.contains_key("first_yield") {
+        let v = f("first_yield", Some(6))?;
+        ck.first_yield = Some(FirstYield {
+            load_factor: v[0],
+            mean_pressure: v[1],
+            total_load_kn: v[2],
+            x: v[3],
+            depth: v[4],
+            element: v[5] as usize,
+            body: text("first_yield_body")?.to_string(),
+        });
+    }
+    let pl = f("pvd_load_factor", None)?;
+    let pf = text("pvd_file")?;
+    let files: Vec<&str> = if pf.is_empty() {
+        Vec::new()
+    } else {
+        pf.split('\n').collect()
+    };
+    if files.len() != pl.len() {
+        return Err("VTU series: lengths differ".into());
+    }
+    let pvd = pl
+        .iter()
+        .zip(files)
+        .map(|(&l, f)| (l, f.to_string()))
+        .collect();
+    Ok((ck, pvd))
+}
