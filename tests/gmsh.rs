@@ -40,7 +40,10 @@ fn ascii_and_binary_files_give_identical_models() {
     for (i, (x, y)) in ma.nodes.iter().zip(&mb.nodes).enumerate() {
         for k in 0..2 {
             let d = (x[k] - y[k]).abs();
-            assert!(d <= 1e-15 * x[k].abs().max(1.0) * 10.0, "node {i}: {x:?} vs {y:?}");
+            assert!(
+                d <= 1e-15 * x[k].abs().max(1.0) * 10.0,
+                "node {i}: {x:?} vs {y:?}"
+            );
         }
     }
     assert_eq!(ma.bodies, mb.bodies);
@@ -56,8 +59,15 @@ fn ascii_and_binary_files_give_identical_models() {
     assert_eq!(pairs(&a), pairs(&b));
     assert_eq!(a.prescribed, b.prescribed);
     let fmax = a.f_ext.iter().fold(0.0f64, |m, f| m.max(f.abs()));
-    let df = a.f_ext.iter().zip(&b.f_ext).fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
-    assert!(df <= 1e-12 * fmax, "load vectors differ by {df:e} (max {fmax})");
+    let df = a
+        .f_ext
+        .iter()
+        .zip(&b.f_ext)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+    assert!(
+        df <= 1e-12 * fmax,
+        "load vectors differ by {df:e} (max {fmax})"
+    );
     assert_eq!(a.probe_node, b.probe_node);
 }
 
@@ -89,8 +99,11 @@ fn run(case: &str) -> RunResult {
 
 #[test]
 fn punch_gmsh_gives_the_answer_of_punch_plane_stress() {
-    let g = driver::load_model(&common::root().join("cases/punch-gmsh"), &RunOptions::default())
-        .unwrap();
+    let g = driver::load_model(
+        &common::root().join("cases/punch-gmsh"),
+        &RunOptions::default(),
+    )
+    .unwrap();
     let p = driver::load_model(
         &common::root().join("cases/punch-plane-stress"),
         &RunOptions::default(),
@@ -103,16 +116,25 @@ fn punch_gmsh_gives_the_answer_of_punch_plane_stress() {
     // Gmsh's geometric progression and its second-order nodes are computed
     // differently from ours: nodes differ by up to ~2.4e-7 mm (measured).
     let d = node_distance(&g.mesh, &p.mesh);
+    eprintln!("largest node distance, Gmsh vs generated: {d:.3e} mm");
     assert!(d < 1e-6, "nodes differ by {d:e} mm");
     let (rg, rp) = (run("punch-gmsh"), run("punch-plane-stress"));
-    let (fg, fp) = (rg.first_yield.clone().unwrap(), rp.first_yield.clone().unwrap());
+    let (fg, fp) = (
+        rg.first_yield.clone().unwrap(),
+        rp.first_yield.clone().unwrap(),
+    );
     // A node perturbation of 2.4e-7 mm against element sizes of 0.5 mm or more
     // moves the answers by ~1e-9 relative (measured: first yield 1.2e-9, centre
     // displacement 2.0e-9); the first-yield load is located to 1e-9 in σ_eq/σ_Y.
     // 2e-8 leaves a margin of 10 and still catches any real difference (one
     // misplaced node or a wrong pairing changes them by 1e-4 or more).
     let rel = common::rel(fg.total_load_kn, fp.total_load_kn);
-    assert!(rel < 2e-8, "first yield {} vs {} kN", fg.total_load_kn, fp.total_load_kn);
+    assert!(
+        rel < 2e-8,
+        "first yield {} vs {} kN",
+        fg.total_load_kn,
+        fp.total_load_kn
+    );
     assert_eq!(fg.body, fp.body);
     assert!((fg.x - fp.x).abs() < 1e-6 && (fg.depth - fp.depth).abs() < 1e-6);
     let (ug, up) = (
@@ -148,7 +170,13 @@ fn rejects(name: &str, mesh: &[u8], edit: &dyn Fn(&str) -> String, needles: &[&s
     std::fs::write(dir.join("mesh.msh"), mesh).unwrap();
     let out = dir.join("out");
     let o = Command::new(env!("CARGO_BIN_EXE_asperity"))
-        .args(["run", dir.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"])
+        .args([
+            "run",
+            dir.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+        ])
         .output()
         .unwrap();
     let err = String::from_utf8_lossy(&o.stderr);
@@ -204,7 +232,12 @@ fn missing_physical_group_is_named() {
     rejects(
         "missing-physical",
         ascii().as_bytes(),
-        &|s| s.replace("upper_curve = \"punch.bottom\"", "upper_curve = \"punch.base\""),
+        &|s| {
+            s.replace(
+                "upper_curve = \"punch.bottom\"",
+                "upper_curve = \"punch.base\"",
+            )
+        },
         &[
             "[[mesh.interface]] \"contact\"",
             "physical curve \"punch.base\" not found in",
@@ -214,7 +247,12 @@ fn missing_physical_group_is_named() {
     rejects(
         "surface-as-curve",
         ascii().as_bytes(),
-        &|s| s.replace("lower_curve = \"foundation.top\"", "lower_curve = \"foundation\""),
+        &|s| {
+            s.replace(
+                "lower_curve = \"foundation.top\"",
+                "lower_curve = \"foundation\"",
+            )
+        },
         &["\"foundation\" is a physical surface (dimension 2)"],
     );
 }
