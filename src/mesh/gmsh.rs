@@ -792,6 +792,21 @@ pub fn build_mesh(msh: &MshFile, interfaces: &[InterfaceSpec], place: &str) -> R
             mesh.elements.push(Element { nodes: n, body });
         }
     }
+    let mut node_body = vec![usize::MAX; mesh.nodes.len()];
+    for el in &mesh.elements {
+        for &n in &el.nodes {
+            if node_body[n] != usize::MAX && node_body[n] != el.body {
+                return mesh_err(
+                    file,
+                    format!(
+                        "node {} at ({}, {}) belongs to both bodies \"{}\" and \"{}\": bodies in contact need their own nodes along the interface (Gmsh: separate points and curves there, Geometry.AutoCoherence = 0)",
+                        tag_of[n], mesh.nodes[n][0], mesh.nodes[n][1], mesh.bodies[node_body[n]], mesh.bodies[el.body]
+                    ),
+                );
+            }
+            node_body[n] = el.body;
+        }
+    }
     for (b, name) in mesh.bodies.iter().enumerate() {
         let mut set: Vec<usize> = mesh
             .elements
@@ -1242,6 +1257,17 @@ mod tests {
             .to_string();
         assert!(
             e.contains("upper = \"foundation\" but upper_curve lies on body \"punch\""),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn bodies_sharing_nodes_are_rejected() {
+        // the foundation's first element takes the punch's corner node 1 instead of its own 10
+        let text = TINY.replace("12 5 6 9 10 15 21 18 20 ", "12 5 6 9 1 15 21 18 20 ");
+        let e = err(text.as_bytes());
+        assert!(
+            e.contains("node 1 at (0, 0) belongs to both bodies \"punch\" and \"foundation\""),
             "{e}"
         );
     }
