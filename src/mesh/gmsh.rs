@@ -535,7 +535,7 @@ fn nodes(c: &mut Cursor, msh: &mut MshFile, tag_index: &mut HashMap<u64, usize>)
         let extra = if parametric == 1 { dim as usize } else { 0 };
         let per = c.item_bytes(0, 1, 3 + extra);
         let n = c.count("the number of nodes in the block", per)?;
-        read = read.checked_add(n).unwrap_or(usize::MAX);
+        read = read.saturating_add(n);
         if read > total {
             return c.err(
                 at,
@@ -611,7 +611,7 @@ fn elements(c: &mut Cursor, msh: &mut MshFile, tag_index: &HashMap<u64, usize>) 
         let (at, etype) = c.int("an element type")?;
         let Some((nn, tdim, _)) = element_type(etype) else {
             let hint = match etype {
-                1 | 2 | 3 => ": the mesh is first order; set Mesh.ElementOrder = 2 and Mesh.SecondOrderIncomplete = 1",
+                1..=3 => ": the mesh is first order; set Mesh.ElementOrder = 2 and Mesh.SecondOrderIncomplete = 1",
                 9 => ": mesh the surfaces with quadrangles (Recombine Surface, or Mesh.RecombineAll = 1)",
                 10 => ": set Mesh.SecondOrderIncomplete = 1 for 8-node quadrangles",
                 _ => "",
@@ -632,7 +632,7 @@ fn elements(c: &mut Cursor, msh: &mut MshFile, tag_index: &HashMap<u64, usize>) 
         }
         let per = c.item_bytes(0, 1 + nn, 0);
         let n = c.count("the number of elements in the block", per)?;
-        read = read.checked_add(n).unwrap_or(usize::MAX);
+        read = read.saturating_add(n);
         if read > total {
             return c.err(
                 at,
