@@ -69,6 +69,12 @@ pub fn load_model(case_path: &Path, opts: &RunOptions) -> Result<Model> {
         }
     }
     if opts.uniform {
+        if case.mesh.file.is_some() {
+            return Err(crate::error::Error::input(
+                format!("{}: [mesh] file", case.source.display()),
+                "--uniform cannot regrade a mesh read from a file",
+            ));
+        }
         for b in &mut case.mesh.block {
             b.rx.clear();
             b.ry.clear();

@@ -10,7 +10,7 @@ use crate::fem::q8::{self, GaussRule};
 use crate::fem::solid::ElementGeometry;
 use crate::interface::InterfaceModel;
 use crate::material::{PlaneState, VonMises};
-use crate::mesh::{blocks, Mesh};
+use crate::mesh::{blocks, gmsh, Mesh};
 
 pub struct Model {
     pub case: Case,
@@ -54,11 +54,17 @@ impl Model {
     pub fn build(case: Case) -> Result<Model> {
         let place = case.source.display().to_string();
         let checked = check_case(&case)?;
-        let mesh = blocks::generate(&case.mesh.block, &case.mesh.interface, case.mesh.refine)
-            .map_err(|e| Error::Mesh {
-                place: format!("{place} [mesh]"),
-                message: e.to_string(),
-            })?;
+        let mesh = match &case.mesh.file {
+            Some(file) => {
+                let dir = case.source.parent().unwrap_or(std::path::Path::new(""));
+                gmsh::read(&dir.join(file), &case.mesh.interface, &place)?
+            }
+            None => blocks::generate(&case.mesh.block, &case.mesh.interface, case.mesh.refine)
+                .map_err(|e| Error::Mesh {
+                    place: format!("{place} [mesh]"),
+                    message: e.to_string(),
+                })?,
+        };
         mesh.validate().map_err(|e| Error::Mesh {
             place: place.clone(),
             message: e.to_string(),

@@ -81,9 +81,12 @@ pub struct ModelSpec {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MeshSpec {
-    /// Multiplies every element count (mesh sequences).
+    /// Multiplies every element count (mesh sequences); must be 1 for a file mesh.
     #[serde(default = "one_usize")]
     pub refine: usize,
+    /// A Gmsh `.msh` 4.1 file (relative to the case folder) instead of blocks.
+    pub file: Option<PathBuf>,
+    #[serde(default)]
     pub block: Vec<BlockSpec>,
     #[serde(default)]
     pub interface: Vec<InterfaceSpec>,

@@ -48,6 +48,23 @@ pub fn check_case(case: &Case) -> Result<Checked> {
     if case.mesh.refine == 0 {
         return Err(Error::input(at("[mesh] refine"), "must be at least 1"));
     }
+    if case.mesh.file.is_some() {
+        if !case.mesh.block.is_empty() {
+            return Err(Error::input(
+                at("[mesh]"),
+                "give either file or [[mesh.block]], not both",
+            ));
+        }
+        if case.mesh.refine != 1 {
+            return Err(Error::input(
+                at("[mesh] refine"),
+                format!(
+                    "refine = {} (or --refine) cannot refine a mesh read from a file; refine it in Gmsh",
+                    case.mesh.refine
+                ),
+            ));
+        }
+    }
     check_element_count(case, &at)?;
     for (body, m) in &case.materials {
         let key = format!("[materials.{body}]");

@@ -27,13 +27,20 @@ pub struct BlockSpec {
     pub ry: Vec<f64>,
 }
 
-/// Contact between the bottom of block `upper` and the top of block `lower`.
+/// Contact between the bottom of block `upper` and the top of block `lower`
+/// (generated meshes), or between the physical curves `upper_curve` and
+/// `lower_curve` (meshes read from a file; `upper` / `lower` then optional,
+/// checked against the bodies the curves lie on).
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct InterfaceSpec {
     pub name: String,
-    pub upper: String,
-    pub lower: String,
+    pub upper: Option<String>,
+    pub lower: Option<String>,
+    /// File meshes: physical curve on the upper body (its bottom).
+    pub upper_curve: Option<String>,
+    /// File meshes: physical curve on the lower body (its top).
+    pub lower_curve: Option<String>,
 }
 
 /// Corner coordinates along one axis from breakpoints, counts and ratios.
@@ -114,7 +121,9 @@ pub fn generate(
         return Err(MeshError("refine must be at least 1".into()));
     }
     if blocks.is_empty() {
-        return Err(MeshError("no [[mesh.block]] given".into()));
+        return Err(MeshError(
+            "no [[mesh.block]] given (and no `file`): give one or the other".into(),
+        ));
     }
     let mut mesh = Mesh::default();
     let mut grids = Vec::new();
@@ -209,7 +218,19 @@ fn pair_blocks(mesh: &Mesh, grids: &[Grid], spec: &InterfaceSpec) -> Result<Inte
             ))
         })
     };
-    let (ua, lb) = (find(&spec.upper)?, find(&spec.lower)?);
+    if spec.upper_curve.is_some() || spec.lower_curve.is_some() {
+        return Err(MeshError(format!(
+            "interface \"{}\": upper_curve / lower_curve name physical curves of a mesh file ([mesh] file); generated blocks use upper / lower",
+            spec.name
+        )));
+    }
+    let (Some(upper), Some(lower)) = (&spec.upper, &spec.lower) else {
+        return Err(MeshError(format!(
+            "interface \"{}\": give upper and lower (block names)",
+            spec.name
+        )));
+    };
+    let (ua, lb) = (find(upper)?, find(lower)?);
     if ua == lb {
         return Err(MeshError(format!(
             "interface \"{}\": upper and lower are the same block",
@@ -223,7 +244,7 @@ fn pair_blocks(mesh: &Mesh, grids: &[Grid], spec: &InterfaceSpec) -> Result<Inte
     if (yu - yl).abs() > tol {
         return Err(MeshError(format!(
             "interface \"{}\": the bottom of \"{}\" is at y = {yu} but the top of \"{}\" is at y = {yl}",
-            spec.name, spec.upper, spec.lower
+            spec.name, upper, lower
         )));
     }
     let lo = gu.xs[0].max(gl.xs[0]);
@@ -252,7 +273,7 @@ fn pair_blocks(mesh: &Mesh, grids: &[Grid], spec: &InterfaceSpec) -> Result<Inte
             })
     };
     for &n in lower_row.iter().filter(|&&n| inside(mesh.nodes[n][0])) {
-        partner(n, &upper_row, &spec.lower)?;
+        partner(n, &upper_row, lower)?;
     }
     let mut edges = Vec::new();
     for w in upper_row.windows(3).step_by(2) {
@@ -260,16 +281,16 @@ fn pair_blocks(mesh: &Mesh, grids: &[Grid], spec: &InterfaceSpec) -> Result<Inte
             if inside(mesh.nodes[w[1]][0]) {
                 return Err(MeshError(format!(
                     "interface \"{}\": an element edge of \"{}\" straddles the end of the overlap at x = {}",
-                    spec.name, spec.upper, mesh.nodes[w[1]][0]
+                    spec.name, upper, mesh.nodes[w[1]][0]
                 )));
             }
             continue;
         }
         let a = [w[0], w[1], w[2]];
         let b = [
-            partner(a[0], &lower_row, &spec.upper)?,
-            partner(a[1], &lower_row, &spec.upper)?,
-            partner(a[2], &lower_row, &spec.upper)?,
+            partner(a[0], &lower_row, upper)?,
+            partner(a[1], &lower_row, upper)?,
+            partner(a[2], &lower_row, upper)?,
         ];
         edges.push(ContactEdge { a, b });
     }
@@ -319,8 +340,10 @@ mod tests {
             ],
             vec![InterfaceSpec {
                 name: "contact".into(),
-                upper: "punch".into(),
-                lower: "foundation".into(),
+                upper: Some("punch".into()),
+                lower: Some("foundation".into()),
+                upper_curve: None,
+                lower_curve: None,
             }],
         )
     }

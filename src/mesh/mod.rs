@@ -2,6 +2,7 @@
 //! interfaces made of paired (coincident, distinct) nodes.
 
 pub mod blocks;
+pub mod gmsh;
 
 use crate::fem::q8;
 use std::collections::BTreeMap;
