@@ -113,6 +113,10 @@ enum StudyCommand {
             default_value = "full-newton,modified-newton,initial-stiffness"
         )]
         methods: Vec<MethodArg>,
+        /// Levels for modified Newton and initial stiffness (default: --levels);
+        /// they reach the same answers as full Newton at several times the cost.
+        #[arg(long, value_delimiter = ',')]
+        slow_levels: Option<Vec<usize>>,
         /// Also run PETSc on 1 and 2 ranks (needs the parallel build and mpirun).
         #[arg(long)]
         petsc: bool,
@@ -295,6 +299,7 @@ fn main() -> ExitCode {
             case,
             levels,
             methods,
+            slow_levels,
             petsc,
             uniform,
             out,
@@ -305,6 +310,9 @@ fn main() -> ExitCode {
                 .iter()
                 .map(|&m| Config {
                     method: m.into(),
+                    levels: (!matches!(m, MethodArg::FullNewton))
+                        .then(|| slow_levels.clone())
+                        .flatten(),
                     which: Which::Serial,
                     uniform: false,
                 })
@@ -313,6 +321,7 @@ fn main() -> ExitCode {
                 for n in [1, 2] {
                     configs.push(Config {
                         method: Method::FullNewton,
+                        levels: None,
                         which: Which::Petsc(n),
                         uniform: false,
                     });
@@ -321,6 +330,7 @@ fn main() -> ExitCode {
             if uniform {
                 configs.push(Config {
                     method: Method::FullNewton,
+                    levels: None,
                     which: Which::Serial,
                     uniform: true,
                 });

@@ -183,6 +183,7 @@ fn the_refine_study_writes_well_formed_data() {
     let out = common::scratch("stepping-refine");
     let configs = [false, true].map(|uniform| Config {
         method: Method::FullNewton,
+        levels: None,
         which: Which::Serial,
         uniform,
     });
