@@ -387,10 +387,20 @@ fn two_runs_on_two_ranks_give_identical_files() {
             std::fs::read(dirs[0].join(f)).unwrap(),
             std::fs::read(dirs[1].join(f)).unwrap(),
         );
-        assert!(a == b, "{} differs between two identical 2-rank runs", f.display());
+        assert!(
+            a == b,
+            "{} differs between two identical 2-rank runs",
+            f.display()
+        );
     }
     let (sa, sb) = (json(&dirs[0]), json(&dirs[1]));
-    for k in ["increments", "newton_iterations", "cutbacks", "first_yield", "final"] {
+    for k in [
+        "increments",
+        "newton_iterations",
+        "cutbacks",
+        "first_yield",
+        "final",
+    ] {
         assert_eq!(sa[k], sb[k], "summary.json {k}");
     }
 }
