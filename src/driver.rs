@@ -36,6 +36,8 @@ pub struct RunOptions {
     pub stop_after: Option<usize>,
     /// Progress line format.
     pub log_format: LogFormat,
+    /// PETSc backend only: drive the steps with SNES (default) or the built-in loop.
+    pub snes: bool,
 }
 
 /// Loads a case and applies command-line overrides.

@@ -71,6 +71,12 @@ enum Command {
         /// (every later attempt too), e.g. `1:5`.
         #[arg(long, value_name = "RANK:N", value_parser = parse_fault, hide = true)]
         inject_fault: Option<(usize, usize)>,
+        /// PETSc backend: the nonlinear solver of each load step. snes (default):
+        /// PETSc's SNES (newtonls, full steps) calling our residual, tangent and
+        /// convergence rules, so `-snes_monitor`, `-snes_linesearch_type` … apply;
+        /// builtin: our own Newton loop calling KSP. Both take the same iterates.
+        #[arg(long, value_enum, default_value = "snes")]
+        nonlinear: NonlinearArg,
         /// PETSc options after `--`, e.g. `-- -ksp_type cg -pc_type gamg -log_view`.
         #[arg(last = true)]
         petsc_options: Vec<String>,
@@ -162,6 +168,12 @@ enum LogFormatArg {
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum NonlinearArg {
+    Snes,
+    Builtin,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
 enum BackendArg {
     Auto,
     Serial,
@@ -248,6 +260,7 @@ fn main() -> ExitCode {
             friction_scheme,
             backend,
             inject_fault,
+            nonlinear,
             petsc_options,
         } => {
             let log_format = match log_format {
@@ -269,6 +282,7 @@ fn main() -> ExitCode {
                 restart,
                 stop_after,
                 log_format,
+                snes: nonlinear == NonlinearArg::Snes,
             };
             if let Err(e) = asperity::interrupt::install() {
                 eprintln!("warning: no SIGINT/SIGTERM handler ({e}); an interrupt kills the run");
@@ -407,7 +421,10 @@ fn fail(format: LogFormat, message: &str) -> ExitCode {
 
 #[cfg(feature = "parallel")]
 fn run_petsc(case: &std::path::Path, opts: &RunOptions, petsc_options: &[String]) -> ExitCode {
-    let (outcome, root) = asperity::parallel::run(case, opts, petsc_options);
+    let report = |e: &asperity::error::Error| {
+        fail(opts.log_format, &e.to_string());
+    };
+    let (outcome, root) = asperity::parallel::run(case, opts, petsc_options, &report);
     match outcome {
         Ok((dir, result)) => {
             if root {
@@ -415,12 +432,7 @@ fn run_petsc(case: &std::path::Path, opts: &RunOptions, petsc_options: &[String]
             }
             exit_code(&result)
         }
-        Err(e) => {
-            if root {
-                return fail(opts.log_format, &e.to_string());
-            }
-            ExitCode::from(2)
-        }
+        Err(_) => ExitCode::from(2),
     }
 }
 

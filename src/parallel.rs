@@ -5,27 +5,31 @@
 //! alike) → backend → run. Objects drop in reverse order: PETSc finalizes before
 //! MPI. Only rank 0 writes output and prints; every error ends every rank.
 
-use crate::backend::petsc::{solver::PetscBackend, Petsc};
+use crate::backend::petsc::{snes::SnesSolver, solver::PetscBackend, Petsc};
 use crate::driver::{self, RunOptions};
 use crate::error::{Error, Result};
+use crate::solve::nonlinear::NonlinearSolver;
 use crate::solve::Engine;
 use mpi::traits::*;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// Runs a case on the PETSc backend. Returns the output folder (on rank 0) and
-/// whether this process is rank 0.
+/// whether this process is rank 0. On an error, rank 0 calls `report` and every
+/// rank waits for it at a barrier before MPI finalizes: a rank that exited with
+/// code 2 first would make mpirun kill rank 0 before its message is out. (Errors
+/// are collective by construction, so every rank reaches the barrier.)
 pub fn run(
     case_path: &Path,
     opts: &RunOptions,
     petsc_args: &[String],
+    report: &dyn Fn(&Error),
 ) -> (Result<(PathBuf, crate::solve::RunResult)>, bool) {
     let started = Instant::now();
     let Some(universe) = mpi::initialize() else {
-        return (
-            Err(Error::Solver("MPI could not be initialized".into())),
-            true,
-        );
+        let e = Error::Solver("MPI could not be initialized".into());
+        report(&e);
+        return (Err(e), true);
     };
     let world = universe.world();
     let root = world.rank() == 0;
@@ -34,13 +38,33 @@ pub fn run(
         let result = {
             let model = driver::load_model(case_path, opts)?;
             let backend = PetscBackend::new(&petsc, world.duplicate(), &model)?;
+            let snes = if opts.snes {
+                let (lo, hi) = backend.owned_range();
+                Some(SnesSolver::new(
+                    &petsc,
+                    backend.system_matrix(),
+                    &backend.part.petsc_index,
+                    lo,
+                    hi,
+                    model.case.solver.iteration_limit(),
+                )?)
+            } else {
+                None
+            };
             let mut engine =
                 Engine::with_backend(&model, model.case.solver.method, Box::new(backend));
+            engine.nonlinear = snes.map(|s| Box::new(s) as Box<dyn NonlinearSolver>);
             engine.fault = opts.fault;
             driver::run_model(&model, engine, opts, root, started)
         };
         drop(petsc);
         result
     })();
+    if let Err(e) = &outcome {
+        if root {
+            report(e);
+        }
+        world.barrier();
+    }
     (outcome, root)
 }

@@ -4,6 +4,7 @@
 
 mod accelerate;
 pub mod newton;
+pub mod nonlinear;
 pub mod stepping;
 mod yield_point;
 
@@ -157,6 +158,8 @@ pub struct Control {
 #[derive(Clone, Debug)]
 pub struct RunResult {
     pub backend: String,
+    /// "builtin" or "snes".
+    pub nonlinear_solver: String,
     pub ranks: usize,
     /// Peak resident memory summed over ranks (VmHWM), MB; 0 where unknown.
     pub peak_memory_mb: f64,
@@ -314,12 +317,27 @@ pub fn run_from(
         peak_memory_mb: memory[0],
         backend: engine.backend.name().to_string(),
         ranks: engine.backend.ranks(),
-        backend_stats: engine
-            .backend
-            .diagnostics()
-            .into_iter()
-            .map(|(k, v)| (k.to_string(), v))
-            .collect(),
+        nonlinear_solver: engine
+            .nonlinear
+            .as_ref()
+            .map_or("builtin", |s| s.name())
+            .to_string(),
+        backend_stats: {
+            // counters of the same name (ksp_iterations) add up
+            let mut stats: Vec<(String, f64)> = Vec::new();
+            let nonlinear = engine
+                .nonlinear
+                .as_ref()
+                .map(|s| s.diagnostics())
+                .unwrap_or_default();
+            for (k, v) in engine.backend.diagnostics().into_iter().chain(nonlinear) {
+                match stats.iter_mut().find(|(n, _)| n == k) {
+                    Some((_, total)) => *total += v,
+                    None => stats.push((k.to_string(), v)),
+                }
+            }
+            stats
+        },
         increments: ck.increments,
         first_yield: ck.first_yield,
         stats: engine.stats.clone(),

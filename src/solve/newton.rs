@@ -13,6 +13,7 @@
 //! are small and no interface point changed status in the last iteration.
 
 use super::accelerate::Anderson;
+use super::nonlinear::{NonlinearSolver, Problem, Verdict};
 use super::State;
 use crate::backend::serial::SerialBackend;
 use crate::backend::Backend;
@@ -32,6 +33,9 @@ pub struct Stats {
 }
 
 pub struct Engine<'m> {
+    /// A solver that replaces the built-in iteration loop (PETSc SNES); dropped
+    /// before the backend whose matrix it holds.
+    pub nonlinear: Option<Box<dyn NonlinearSolver + 'm>>,
     pub model: &'m Model,
     pub method: Method,
     pub backend: Box<dyn Backend + 'm>,
@@ -62,6 +66,7 @@ impl<'m> Engine<'m> {
 
     pub fn with_backend(model: &'m Model, method: Method, backend: Box<dyn Backend + 'm>) -> Self {
         Engine {
+            nonlinear: None,
             model,
             method,
             backend,
@@ -84,141 +89,50 @@ impl<'m> Engine<'m> {
 
     /// Solves the step from `committed` to load factor `lambda`. Returns the
     /// converged trial state and the number of iterations, or a reason. Every
-    /// branch is taken on all ranks alike.
+    /// branch is taken on all ranks alike. The iterations are the built-in loop
+    /// below, or the engine's [`NonlinearSolver`] (PETSc SNES) when it has one;
+    /// both call the same [`StepProblem`].
     pub fn step(
         &mut self,
         committed: &State,
         lambda: f64,
         response: Response,
     ) -> Result<(State, usize), String> {
-        let m = self.model;
-        let spec = &m.case.solver;
-        let mut trial = committed.clone();
-        for &(d, v) in &m.prescribed {
-            trial.u[d] = lambda * v;
-        }
-        let method = if response == Response::ElasticOnly {
-            Method::FullNewton
-        } else {
-            self.method
-        };
-        let limit = spec.iteration_limit();
-        let mut last_status: Option<Vec<Status>> = None;
-        let mut du_inf = f64::INFINITY;
-        let mut anderson = (method != Method::FullNewton
-            && spec.acceleration == Acceleration::Anderson)
-            .then(|| Anderson::new(spec.anderson_depth));
-        let free: Vec<usize> = (0..trial.u.len())
-            .filter(|&d| m.dofs.equation(d).is_some())
-            .collect();
-        let mut rhs = vec![0.0; free.len()];
-        let mut du = vec![0.0; free.len()];
-        for it in 0..=limit {
-            // a second stop request abandons the step (collectively)
-            let mut flag = [
-                crate::interrupt::requested() as f64,
-                f64::from(crate::interrupt::first_signal()),
-            ];
-            self.backend.max(&mut flag);
-            if flag[0] >= 2.0 {
-                self.interrupted = true;
-                self.interrupt_signal = flag[1] as i32;
-                return Err(format!("interrupted at iteration {it}"));
-            }
+        if let Some(mut solver) = self.nonlinear.take() {
             let t0 = std::time::Instant::now();
-            let solid_tangent = match method {
-                Method::FullNewton => Some(Tangent::Consistent),
-                Method::ModifiedNewton if !self.solid_valid => Some(Tangent::Continuum),
-                Method::InitialStiffness if !self.solid_valid => Some(Tangent::Elastic),
-                _ => None,
-            };
-            let floor = (it == 0).then(|| self.start_stiffness(lambda));
-            let status = self.assemble(
-                committed,
-                &mut trial,
-                lambda,
-                response,
-                solid_tangent,
-                floor,
-            )?;
-            self.stats.assembly_seconds += t0.elapsed().as_secs_f64();
-            // norms over free dofs; reactions over prescribed dofs
-            let (mut r2, mut f2, mut react2) = (0.0, 0.0, 0.0);
-            for d in 0..self.r.len() {
-                if m.dofs.equation(d).is_some() {
-                    r2 += self.r[d] * self.r[d];
-                    f2 += (lambda * m.f_ext[d]).powi(2);
-                } else {
-                    react2 += self.r[d] * self.r[d];
-                }
+            let mut p = StepProblem::new(self, committed, lambda, response);
+            let solved = solver.solve(&mut p);
+            let inside = p.evaluate_seconds();
+            let result = p.finish(solved);
+            self.stats.solve_seconds += (t0.elapsed().as_secs_f64() - inside).max(0.0);
+            self.nonlinear = Some(solver);
+            return result;
+        }
+        let mut p = StepProblem::new(self, committed, lambda, response);
+        let mut x = p.initial();
+        let n = x.len();
+        let (mut r, mut du) = (vec![0.0; n], vec![0.0; n]);
+        let mut it = 0;
+        let solved = loop {
+            if !p.evaluate(&x, &mut r) || p.verdict(it) == Verdict::Stop {
+                break Ok(());
             }
-            let reference = f2.sqrt().max(react2.sqrt()).max(m.force_floor);
-            let r_norm = r2.sqrt();
-            if !self.backend.agree(r_norm.is_finite()) {
-                return Err(format!("residual is not finite at iteration {it}"));
-            }
-            let u_inf = trial
-                .u
-                .iter()
-                .fold(0.0f64, |a, v| a.max(v.abs()))
-                .max(1e-30);
-            let same_status = last_status.as_ref() == Some(&status);
-            let small_r = r_norm <= spec.residual_tolerance * reference;
-            let small_du = it > 0 && du_inf <= spec.displacement_tolerance * u_inf;
-            let done =
-                small_r && (small_du || (it == 0 && r_norm == 0.0)) && (same_status || it == 0);
-            if self.backend.agree(done) {
-                trial.status = status;
-                trial.prescribed_reaction = m
-                    .prescribed
-                    .iter()
-                    .filter(|(_, v)| *v != 0.0)
-                    .map(|&(d, _)| self.r[d])
-                    .sum();
-                self.share_state(&mut trial);
-                return Ok((trial, it));
-            }
-            if it == limit {
-                return Err(format!(
-                    "no convergence in {limit} iterations (|R|/|F| = {:.3e}, |du|/|u| = {:.3e}{})",
-                    r_norm / reference,
-                    du_inf / u_inf,
-                    if same_status {
-                        ""
-                    } else {
-                        ", contact status still changing"
-                    }
-                ));
-            }
-            if self.backend.agree(r_norm > 1e10 * reference && it > 2) {
-                return Err(format!(
-                    "diverged at iteration {it} (|R|/|F| = {:.3e})",
-                    r_norm / reference
-                ));
-            }
-            last_status = Some(status);
             // linear solve on the free dofs
             let t1 = std::time::Instant::now();
-            for (k, &d) in free.iter().enumerate() {
-                rhs[k] = -self.r[d];
+            for v in r.iter_mut() {
+                *v = -*v;
             }
-            self.backend
-                .solve(&rhs, &mut du)
-                .map_err(|e| e.to_string())?;
-            self.stats.factorizations += 1;
-            self.stats.solve_seconds += t1.elapsed().as_secs_f64();
-            if let Some(acc) = anderson.as_mut() {
-                let x: Vec<f64> = free.iter().map(|&d| trial.u[d]).collect();
-                du = acc.step(&x, &du);
+            if let Err(e) = p.engine.backend.solve(&r, &mut du) {
+                break Err(e.to_string());
             }
-            du_inf = 0.0;
-            for (k, &d) in free.iter().enumerate() {
-                trial.u[d] += du[k];
-                du_inf = du_inf.max(du[k].abs());
+            p.engine.stats.solve_seconds += t1.elapsed().as_secs_f64();
+            p.correct(&x, &mut du);
+            for (xk, dk) in x.iter_mut().zip(&du) {
+                *xk += dk;
             }
-            self.stats.iterations += 1;
-        }
-        unreachable!("the loop returns at it == limit")
+            it += 1;
+        };
+        p.finish(solved)
     }
 
     /// Residual (all dofs) and consistent tangent at displacement `u` from
@@ -423,5 +337,236 @@ impl<'m> Engine<'m> {
         be.sum(&mut self.r);
         be.sum(&mut codes);
         Ok(codes.iter().map(|&c| Status::from_code(c as u8)).collect())
+    }
+}
+
+/// One load step as a [`Problem`]: the paper's residual, tangent, convergence
+/// rules and status check, driven by the built-in loop or by SNES.
+pub struct StepProblem<'a, 'm> {
+    engine: &'a mut Engine<'m>,
+    committed: &'a State,
+    trial: State,
+    lambda: f64,
+    response: Response,
+    method: Method,
+    free: Vec<usize>,
+    evaluations: usize,
+    evaluate_seconds: f64,
+    status: Vec<Status>,
+    last_status: Option<Vec<Status>>,
+    du_inf: f64,
+    r_norm: f64,
+    reference: f64,
+    anderson: Option<Anderson>,
+    /// Set when the problem stops: the iteration count, or why it failed.
+    outcome: Option<Result<usize, String>>,
+}
+
+impl<'a, 'm> StepProblem<'a, 'm> {
+    pub fn new(
+        engine: &'a mut Engine<'m>,
+        committed: &'a State,
+        lambda: f64,
+        response: Response,
+    ) -> Self {
+        let m = engine.model;
+        let spec = &m.case.solver;
+        let mut trial = committed.clone();
+        for &(d, v) in &m.prescribed {
+            trial.u[d] = lambda * v;
+        }
+        let method = if response == Response::ElasticOnly {
+            Method::FullNewton
+        } else {
+            engine.method
+        };
+        let anderson = (method != Method::FullNewton
+            && spec.acceleration == Acceleration::Anderson)
+            .then(|| Anderson::new(spec.anderson_depth));
+        let free: Vec<usize> = (0..trial.u.len())
+            .filter(|&d| m.dofs.equation(d).is_some())
+            .collect();
+        StepProblem {
+            engine,
+            committed,
+            trial,
+            lambda,
+            response,
+            method,
+            free,
+            evaluations: 0,
+            evaluate_seconds: 0.0,
+            status: Vec::new(),
+            last_status: None,
+            du_inf: f64::INFINITY,
+            r_norm: f64::NAN,
+            reference: 1.0,
+            anderson,
+            outcome: None,
+        }
+    }
+
+    /// The converged state, or why the step failed (`solved`: the solver's own
+    /// failure, if any).
+    fn finish(self, solved: Result<(), String>) -> Result<(State, usize), String> {
+        match self.outcome {
+            Some(Ok(it)) => Ok((self.trial, it)),
+            Some(Err(msg)) => Err(msg),
+            None => Err(solved
+                .err()
+                .unwrap_or_else(|| "the nonlinear solver stopped without a verdict".into())),
+        }
+    }
+}
+
+impl Problem for StepProblem<'_, '_> {
+    fn size(&self) -> usize {
+        self.free.len()
+    }
+
+    fn initial(&self) -> Vec<f64> {
+        self.free.iter().map(|&d| self.trial.u[d]).collect()
+    }
+
+    fn evaluate(&mut self, x: &[f64], r: &mut [f64]) -> bool {
+        let t0 = std::time::Instant::now();
+        for (k, &d) in self.free.iter().enumerate() {
+            self.trial.u[d] = x[k];
+        }
+        let e = &mut *self.engine;
+        let solid_tangent = match self.method {
+            Method::FullNewton => Some(Tangent::Consistent),
+            Method::ModifiedNewton if !e.solid_valid => Some(Tangent::Continuum),
+            Method::InitialStiffness if !e.solid_valid => Some(Tangent::Elastic),
+            _ => None,
+        };
+        let floor = (self.evaluations == 0).then(|| e.start_stiffness(self.lambda));
+        self.evaluations += 1;
+        let assembled = e.assemble(
+            self.committed,
+            &mut self.trial,
+            self.lambda,
+            self.response,
+            solid_tangent,
+            floor,
+        );
+        let dt = t0.elapsed().as_secs_f64();
+        e.stats.assembly_seconds += dt;
+        self.evaluate_seconds += dt;
+        match assembled {
+            Ok(status) => self.status = status,
+            Err(msg) => {
+                self.outcome = Some(Err(msg));
+                return false;
+            }
+        }
+        // norms over free dofs; reactions over prescribed dofs
+        let m = e.model;
+        let (mut r2, mut f2, mut react2) = (0.0, 0.0, 0.0);
+        for d in 0..e.r.len() {
+            if m.dofs.equation(d).is_some() {
+                r2 += e.r[d] * e.r[d];
+                f2 += (self.lambda * m.f_ext[d]).powi(2);
+            } else {
+                react2 += e.r[d] * e.r[d];
+            }
+        }
+        self.reference = f2.sqrt().max(react2.sqrt()).max(m.force_floor);
+        self.r_norm = r2.sqrt();
+        for (k, &d) in self.free.iter().enumerate() {
+            r[k] = e.r[d];
+        }
+        true
+    }
+
+    fn verdict(&mut self, it: usize) -> Verdict {
+        let e = &mut *self.engine;
+        let m = e.model;
+        let spec = &m.case.solver;
+        let limit = spec.iteration_limit();
+        // a second stop request abandons the step (collectively)
+        let mut flag = [
+            crate::interrupt::requested() as f64,
+            f64::from(crate::interrupt::first_signal()),
+        ];
+        e.backend.max(&mut flag);
+        if flag[0] >= 2.0 {
+            e.interrupted = true;
+            e.interrupt_signal = flag[1] as i32;
+            self.outcome = Some(Err(format!("interrupted at iteration {it}")));
+            return Verdict::Stop;
+        }
+        let (r_norm, reference) = (self.r_norm, self.reference);
+        if !e.backend.agree(r_norm.is_finite()) {
+            self.outcome = Some(Err(format!("residual is not finite at iteration {it}")));
+            return Verdict::Stop;
+        }
+        let u_inf = self
+            .trial
+            .u
+            .iter()
+            .fold(0.0f64, |a, v| a.max(v.abs()))
+            .max(1e-30);
+        let same_status = self.last_status.as_ref() == Some(&self.status);
+        let small_r = r_norm <= spec.residual_tolerance * reference;
+        let small_du = it > 0 && self.du_inf <= spec.displacement_tolerance * u_inf;
+        let done = small_r && (small_du || (it == 0 && r_norm == 0.0)) && (same_status || it == 0);
+        if e.backend.agree(done) {
+            self.trial.status = std::mem::take(&mut self.status);
+            self.trial.prescribed_reaction = m
+                .prescribed
+                .iter()
+                .filter(|(_, v)| *v != 0.0)
+                .map(|&(d, _)| e.r[d])
+                .sum();
+            e.share_state(&mut self.trial);
+            self.outcome = Some(Ok(it));
+            return Verdict::Stop;
+        }
+        if it >= limit {
+            self.outcome = Some(Err(format!(
+                "no convergence in {limit} iterations (|R|/|F| = {:.3e}, |du|/|u| = {:.3e}{})",
+                r_norm / reference,
+                self.du_inf / u_inf,
+                if same_status {
+                    ""
+                } else {
+                    ", contact status still changing"
+                }
+            )));
+            return Verdict::Stop;
+        }
+        if e.backend.agree(r_norm > 1e10 * reference && it > 2) {
+            self.outcome = Some(Err(format!(
+                "diverged at iteration {it} (|R|/|F| = {:.3e})",
+                r_norm / reference
+            )));
+            return Verdict::Stop;
+        }
+        self.last_status = Some(std::mem::take(&mut self.status));
+        Verdict::Continue
+    }
+
+    fn correct(&mut self, x: &[f64], du: &mut [f64]) {
+        let e = &mut *self.engine;
+        e.stats.factorizations += 1;
+        if let Some(acc) = self.anderson.as_mut() {
+            let mixed = acc.step(x, du);
+            du.copy_from_slice(&mixed);
+        }
+        self.du_inf = du.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        e.stats.iterations += 1;
+    }
+
+    fn stopped(&self) -> bool {
+        self.outcome.is_some()
+    }
+
+    fn converged(&self) -> bool {
+        matches!(self.outcome, Some(Ok(_)))
+    }
+
+    fn evaluate_seconds(&self) -> f64 {
+        self.evaluate_seconds
     }
 }

@@ -6,6 +6,7 @@
 //! This is the only module with `unsafe`.
 
 pub mod ffi;
+pub mod snes;
 pub mod solver;
 
 use crate::error::{Error, Result};
@@ -161,12 +162,18 @@ impl<'p> ToAll<'p> {
 
     /// Copies the whole of `v` (in PETSc order) into `out`.
     pub fn gather(&mut self, v: &PVec<'p>, out: &mut [f64]) -> Result<()> {
+        self.gather_raw(v.raw, out)
+    }
+
+    /// As [`ToAll::gather`], for a vector handle PETSc passed to a callback
+    /// (same layout as the vector the scatter was made for).
+    pub fn gather_raw(&mut self, v: ffi::Vec, out: &mut [f64]) -> Result<()> {
         // SAFETY: scatter created for v's layout; the array is restored before return.
         unsafe {
             chk(
                 ffi::VecScatterBegin(
                     self.scatter,
-                    v.raw,
+                    v,
                     self.all,
                     ffi::InsertMode_INSERT_VALUES,
                     ffi::ScatterMode_SCATTER_FORWARD,
@@ -176,7 +183,7 @@ impl<'p> ToAll<'p> {
             chk(
                 ffi::VecScatterEnd(
                     self.scatter,
-                    v.raw,
+                    v,
                     self.all,
                     ffi::InsertMode_INSERT_VALUES,
                     ffi::ScatterMode_SCATTER_FORWARD,

@@ -197,6 +197,19 @@ impl<'p> PetscBackend<'p> {
         }
     }
 
+    /// This rank's rows: PETSc global indices lo..hi.
+    pub fn owned_range(&self) -> (usize, usize) {
+        (
+            self.part.offsets[self.rank],
+            self.part.offsets[self.rank + 1],
+        )
+    }
+
+    /// The system matrix (solid + contact), for a SNES that solves with it.
+    pub fn system_matrix(&self) -> ffi::Mat {
+        self.mat.raw
+    }
+
     /// Mallocs during assembly of the system matrix (0 with exact preallocation).
     pub fn mallocs(&self) -> Result<f64> {
         Ok(self.mat.mallocs()? + self.solid.mallocs()?)
