@@ -118,12 +118,14 @@ impl<'m> Engine<'m> {
                 break Ok(());
             }
             // linear solve on the free dofs
+            // K du = −r, solved as K y = r, du = −y (the same operations as
+            // SNES, so both paths take bit-identical iterates)
             let t1 = std::time::Instant::now();
-            for v in r.iter_mut() {
-                *v = -*v;
-            }
             if let Err(e) = p.engine.backend.solve(&r, &mut du) {
                 break Err(e.to_string());
+            }
+            for v in du.iter_mut() {
+                *v = -*v;
             }
             p.engine.stats.solve_seconds += t1.elapsed().as_secs_f64();
             p.correct(&x, &mut du);
