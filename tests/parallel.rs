@@ -271,16 +271,38 @@ fn krylov_solvers_from_the_options_database_give_the_same_answer() {
         ],
     );
     assert_eq!(c, 0, "{e}");
-    let (a, b) = (json(&root.join("lu")), json(&root.join("gmres")));
-    let (ua, ub) = (
-        a["final"]["center_displacement_mm"].as_f64().unwrap(),
-        b["final"]["center_displacement_mm"].as_f64().unwrap(),
+    // algebraic multigrid with the rigid-body near-null space
+    let (c, e) = mpirun(
+        2,
+        &[
+            "run",
+            case,
+            "--quiet",
+            "--out",
+            root.join("gamg").to_str().unwrap(),
+            "--",
+            "-ksp_type",
+            "gmres",
+            "-pc_type",
+            "gamg",
+            "-ksp_rtol",
+            "1e-10",
+            "-ksp_max_it",
+            "2000",
+        ],
     );
-    assert!(close(ua, ub, ua.abs()), "{ua} vs {ub}");
-    assert!(
-        b["backend_stats"]["ksp_iterations"].as_f64().unwrap()
-            > a["backend_stats"]["ksp_iterations"].as_f64().unwrap()
-    );
+    assert_eq!(c, 0, "{e}");
+    let a = json(&root.join("lu"));
+    let ua = a["final"]["center_displacement_mm"].as_f64().unwrap();
+    for run in ["gmres", "gamg"] {
+        let b = json(&root.join(run));
+        let ub = b["final"]["center_displacement_mm"].as_f64().unwrap();
+        assert!(close(ua, ub, ua.abs()), "{run}: {ua} vs {ub}");
+        assert!(
+            b["backend_stats"]["ksp_iterations"].as_f64().unwrap()
+                > a["backend_stats"]["ksp_iterations"].as_f64().unwrap()
+        );
+    }
 }
 
 /// `--stop-after` under `mpirun -n 2` stops every rank at the same increment
@@ -571,4 +593,60 @@ fn a_load_snes_cannot_converge_ends_every_rank_cleanly() {
     assert_eq!(code, 2, "{err}");
     assert_eq!(err.matches("error:").count(), 1, "{err}");
     assert!(!out.exists(), "output folder left behind");
+}
+
+/// The near-null space handed to GAMG: three orthonormal vectors that are the
+/// rigid-body modes on the free equations (translation x, translation y, and a
+/// rotation whose x part is linear in −y and y part linear in x).
+#[test]
+fn the_rigid_body_modes_are_orthonormal_rigid_motions() {
+    use asperity::backend::petsc::solver::Partition;
+    let text =
+        std::fs::read_to_string(common::root().join("cases/punch-plane-stress/case.toml")).unwrap();
+    let model = common::model(&text);
+    let part = Partition::new(&model, 1).unwrap();
+    let modes = part.rigid_body_modes(&model, 0);
+    assert_eq!(modes.len(), 3);
+    for (i, a) in modes.iter().enumerate() {
+        assert_eq!(a.len(), model.dofs.n_eq);
+        for (j, b) in modes.iter().enumerate() {
+            let d: f64 = a.iter().zip(b).map(|(x, y)| x * y).sum();
+            let want = if i == j { 1.0 } else { 0.0 };
+            assert!((d - want).abs() < 1e-12, "mode {i}·mode {j} = {d}");
+        }
+    }
+    // a free node's x and y entries of the rotation differ by the linear law:
+    // the mode lies in span{tx, ty, (−y, x)}; check by least squares residual
+    let nodes = &model.mesh.nodes;
+    let mut rows = Vec::new();
+    for (i, p) in nodes.iter().enumerate() {
+        for comp in 0..2 {
+            if let Some(e) = model.dofs.equation(2 * i + comp) {
+                let r = if comp == 0 { -p[1] } else { p[0] };
+                rows.push((comp, r, modes[2][part.petsc_index[e] as usize]));
+            }
+        }
+    }
+    // fit modes[2] = a·[comp==0] + b·[comp==1] + c·r
+    let mut m = nalgebra::Matrix3::<f64>::zeros();
+    let mut v = nalgebra::Vector3::<f64>::zeros();
+    for &(comp, r, y) in &rows {
+        let f = nalgebra::Vector3::new(
+            if comp == 0 { 1.0 } else { 0.0 },
+            if comp == 1 { 1.0 } else { 0.0 },
+            r,
+        );
+        m += f * f.transpose();
+        v += f * y;
+    }
+    let c = m.lu().solve(&v).unwrap();
+    let resid: f64 = rows
+        .iter()
+        .map(|&(comp, r, y)| {
+            let fit = if comp == 0 { c[0] } else { c[1] } + c[2] * r;
+            (fit - y).powi(2)
+        })
+        .sum();
+    assert!(resid.sqrt() < 1e-12, "rotation mode not rigid: {resid}");
+    assert!(c[2].abs() > 0.0);
 }

@@ -259,6 +259,66 @@ impl<'p> PMat<'p> {
         })
     }
 
+    /// Attaches a near-null space (e.g. rigid-body modes) for algebraic multigrid:
+    /// `local[k]` is this rank's owned part of vector k, which must be orthonormal
+    /// over all ranks. The matrix keeps its own reference; ours are released.
+    pub fn set_near_null_space(&mut self, petsc: &'p Petsc, local: &[Vec<f64>]) -> Result<()> {
+        let n_local = local.first().map_or(0, |v| v.len());
+        let mut vecs = Vec::with_capacity(local.len());
+        for part in local {
+            let mut v = std::ptr::null_mut();
+            // SAFETY: out-pointer to a fresh vector with `n_local` owned entries,
+            // filled through its array and restored before use.
+            unsafe {
+                chk(
+                    ffi::VecCreateMPI(
+                        petsc.comm(),
+                        n_local as ffi::PetscInt,
+                        ffi::PETSC_DETERMINE as ffi::PetscInt,
+                        &mut v,
+                    ),
+                    "VecCreateMPI",
+                )?;
+                vecs.push(v);
+                let mut a: *mut f64 = std::ptr::null_mut();
+                chk(ffi::VecGetArray(v, &mut a), "VecGetArray")?;
+                std::slice::from_raw_parts_mut(a, n_local).copy_from_slice(part);
+                chk(ffi::VecRestoreArray(v, &mut a), "VecRestoreArray")?;
+            }
+        }
+        let mut nsp = std::ptr::null_mut();
+        // SAFETY: `vecs` holds valid vectors; the null space references them, the
+        // matrix references the null space, so destroying ours afterwards is safe.
+        let result = unsafe {
+            chk(
+                ffi::MatNullSpaceCreate(
+                    petsc.comm(),
+                    ffi::PetscBool_PETSC_FALSE,
+                    vecs.len() as ffi::PetscInt,
+                    vecs.as_ptr(),
+                    &mut nsp,
+                ),
+                "MatNullSpaceCreate",
+            )
+            .and_then(|_| {
+                chk(
+                    ffi::MatSetNearNullSpace(self.raw, nsp),
+                    "MatSetNearNullSpace",
+                )
+            })
+        };
+        // SAFETY: each handle is destroyed once (null handles are ignored).
+        unsafe {
+            if !nsp.is_null() {
+                ffi::MatNullSpaceDestroy(&mut nsp);
+            }
+            for mut v in vecs {
+                ffi::VecDestroy(&mut v);
+            }
+        }
+        result
+    }
+
     pub fn zero(&mut self) -> Result<()> {
         // SAFETY: valid matrix.
         chk(unsafe { ffi::MatZeroEntries(self.raw) }, "MatZeroEntries")

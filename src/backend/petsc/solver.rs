@@ -21,6 +21,60 @@ pub struct Partition {
 }
 
 impl Partition {
+    /// The three in-plane rigid-body modes (x and y translation, rotation about
+    /// the centroid) over the free equations, orthonormalized (modified
+    /// Gram-Schmidt on the replicated vectors, so every rank gets the same), as
+    /// this rank's owned parts in PETSc order: the near-null space that lets
+    /// GAMG (`-pc_type gamg`) build coarse spaces for elasticity.
+    pub fn rigid_body_modes(&self, model: &Model, rank: usize) -> Vec<Vec<f64>> {
+        let nodes = &model.mesh.nodes;
+        let n = model.dofs.n_eq;
+        let c = nodes
+            .iter()
+            .fold([0.0, 0.0], |a, p| [a[0] + p[0], a[1] + p[1]]);
+        let c = [c[0] / nodes.len() as f64, c[1] / nodes.len() as f64];
+        let mut modes = vec![vec![0.0; n]; 3];
+        for (i, p) in nodes.iter().enumerate() {
+            for comp in 0..2 {
+                if let Some(e) = model.dofs.equation(2 * i + comp) {
+                    modes[comp][e] = 1.0;
+                    modes[2][e] = if comp == 0 {
+                        -(p[1] - c[1])
+                    } else {
+                        p[0] - c[0]
+                    };
+                }
+            }
+        }
+        for k in 0..3 {
+            for j in 0..k {
+                let (done, rest) = modes.split_at_mut(k);
+                let d: f64 = done[j].iter().zip(&rest[0]).map(|(a, b)| a * b).sum();
+                for (b, a) in rest[0].iter_mut().zip(&done[j]) {
+                    *b -= d * a;
+                }
+            }
+            let norm = modes[k].iter().map(|v| v * v).sum::<f64>().sqrt();
+            if norm > 0.0 {
+                modes[k].iter_mut().for_each(|v| *v /= norm);
+            }
+        }
+        let (lo, hi) = (self.offsets[rank], self.offsets[rank + 1]);
+        modes
+            .iter()
+            .map(|m| {
+                let mut local = vec![0.0; hi - lo];
+                for (e, &v) in m.iter().enumerate() {
+                    let p = self.petsc_index[e] as usize;
+                    if (lo..hi).contains(&p) {
+                        local[p - lo] = v;
+                    }
+                }
+                local
+            })
+            .collect()
+    }
+
     /// METIS k-way partition of the element dual graph (corner nodes); a node
     /// belongs to the lowest rank among its elements, an equation to its node's
     /// rank, an interface point to the rank of its first pair's lower node.
@@ -163,6 +217,7 @@ impl<'p> PetscBackend<'p> {
         }
         solid.assemble()?;
         mat.assemble()?;
+        mat.set_near_null_space(petsc, &part.rigid_body_modes(model, rank))?;
         let b = PVec::new(petsc, local, n)?;
         let x = PVec::new(petsc, local, n)?;
         let to_all = ToAll::new(&x)?;
