@@ -1,19 +1,26 @@
 #!/usr/bin/env bash
 # Mesh-refinement series of cases/punch-plane-stress-fine for the serial faer
-# backend and PETSc (MUMPS LU) on 1 and 2 MPI ranks. Prints a Markdown table.
+# backend and PETSc (MUMPS LU by default) on 1 and 2 MPI ranks. Prints a
+# Markdown table and the fitted growth exponent of time per Newton iteration.
 # Needs the parallel build: cargo build --release --features parallel
-# Usage: benches/scaling.sh "2 4 8 12" [max refine for serial]
+# Usage: benches/scaling.sh "2 4 8 12" [max refine for serial] [-- asperity run options]
+#   e.g. benches/scaling.sh "2 4 8 12 18 26" 8 --increments 5
+# PETSC_OPTS="-ksp_type gmres -pc_type gamg" passes options to PETSc.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 levels=${1:-"2 4 8 12"}
 serial_max=${2:-8}
+shift $(( $# < 2 ? $# : 2 ))
+[ "${1:-}" = "--" ] && shift
+extra=("$@")
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 bin=./target/release/asperity
 out=target/scaling
 mkdir -p "$out"
 field() { python3 -c "import json,sys; d=json.load(open('$1')); v=d; [v:=v[k] for k in '$2'.split('.')]; print(v)"; }
-echo "| refine | dofs | backend | ranks | increments | Newton its | KSP its | wall (s) | solve (s) | assembly (s) | peak memory (MB) | bytes/dof |"
+echo "| refine | dofs | backend | ranks | increments | Newton its | KSP its | wall (s) | s per Newton it | it / linear solve | peak memory (MB) | bytes/dof |"
 echo "|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+fits=()
 for r in $levels; do
     runs=("petsc 1" "petsc 2")
     [ "$r" -le "$serial_max" ] && runs=("serial 1" "${runs[@]}")
@@ -21,16 +28,33 @@ for r in $levels; do
         set -- $run
         dir="$out/r$r-$1-$2"
         if [ "$1" = serial ]; then
-            $bin run cases/punch-plane-stress-fine --refine "$r" --backend serial --quiet --out "$dir" >/dev/null
+            $bin run cases/punch-plane-stress-fine --refine "$r" --backend serial --quiet --out "$dir" "${extra[@]}" >/dev/null
         else
-            mpirun -n "$2" $bin run cases/punch-plane-stress-fine --refine "$r" --quiet --out "$dir" >/dev/null
+            # shellcheck disable=SC2086
+            mpirun -n "$2" $bin run cases/punch-plane-stress-fine --refine "$r" --quiet --out "$dir" "${extra[@]}" -- ${PETSC_OPTS:-} >/dev/null
         fi
         s="$dir/summary.json"
-        dofs=$(field "$s" dofs)
-        mem=$(field "$s" peak_memory_mb)
-        ksp=$( [ "$1" = serial ] && echo "-" || field "$s" backend_stats.ksp_iterations )
-        printf "| %s | %s | %s | %s | %s | %s | %s | %.1f | %.1f | %.1f | %.0f | %.0f |\n" "$r" "$dofs" "$1" "$2" \
-            "$(field "$s" increments)" "$(field "$s" newton_iterations)" "$ksp" "$(field "$s" wall_seconds)" \
-            "$(field "$s" solve_seconds)" "$(field "$s" assembly_seconds)" "$mem" "$(python3 -c "print($mem*1048576/$dofs)")"
+        python3 - "$s" "$r" "$1" "$2" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1])); r, be, n = sys.argv[2:5]
+its = s["newton_iterations"]; wall = s["wall_seconds"]; solve = s["solve_seconds"]
+ksp = s["backend_stats"].get("ksp_iterations", "-")
+ksp = "-" if be == "serial" else f"{ksp:.0f}"
+mem = s["peak_memory_mb"]
+print(f"| {r} | {s['dofs']} | {be} | {n} | {s['increments']} | {its} | {ksp} | {wall:.1f} | "
+      f"{wall/its:.3f} | {wall/solve:.2f} | {mem:.0f} | {mem*1048576/s['dofs']:.0f} |")
+PY
+        fits+=("$1-$2 $(field "$s" dofs) $(python3 -c "import json; s=json.load(open('$s')); print(s['wall_seconds']/s['newton_iterations'])")")
     done
 done
+printf '%s\n' "${fits[@]}" | python3 -c '
+import sys, math, collections
+d = collections.defaultdict(list)
+for l in sys.stdin:
+    k, n, t = l.split(); d[k].append((math.log(float(n)), math.log(float(t))))
+for k, v in d.items():
+    if len(v) < 2: continue
+    mx = sum(x for x, _ in v) / len(v); my = sum(y for _, y in v) / len(v)
+    b = sum((x - mx) * (y - my) for x, y in v) / sum((x - mx) ** 2 for x, _ in v)
+    print(f"{k}: time per Newton iteration grows as N^{b:.2f}")
+'

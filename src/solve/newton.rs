@@ -118,8 +118,9 @@ impl<'m> Engine<'m> {
                 break Ok(());
             }
             // linear solve on the free dofs
-            // K du = −r, solved as K y = r, du = −y (the same operations as
-            // SNES, so both paths take bit-identical iterates)
+            // K du = −r, solved as K y = r, du = −y: the operations SNES does,
+            // so both paths take bit-identical iterates (a distributed MUMPS
+            // solve of −r is not bitwise the negated solve of r)
             let t1 = std::time::Instant::now();
             if let Err(e) = p.engine.backend.solve(&r, &mut du) {
                 break Err(e.to_string());
