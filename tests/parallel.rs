@@ -11,8 +11,9 @@ mod common;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-fn mpirun(n: usize, args: &[&str]) -> (i32, String) {
-    let out = Command::new("mpirun")
+/// `mpirun -n N asperity ARGS`, as root and oversubscribed where needed.
+fn mpirun_output(n: usize, args: &[&str]) -> std::process::Output {
+    Command::new("mpirun")
         .args(["-n", &n.to_string()])
         .arg(env!("CARGO_BIN_EXE_asperity"))
         .args(args)
@@ -22,7 +23,12 @@ fn mpirun(n: usize, args: &[&str]) -> (i32, String) {
         .env("OMPI_MCA_mpi_yield_when_idle", "1")
         .env("OMPI_MCA_hwloc_base_binding_policy", "none")
         .output()
-        .expect("mpirun is on PATH (apt-get install openmpi-bin)");
+        .expect("mpirun is on PATH (apt-get install openmpi-bin)")
+}
+
+/// Exit code and stderr of `mpirun -n N asperity ARGS`.
+fn mpirun(n: usize, args: &[&str]) -> (i32, String) {
+    let out = mpirun_output(n, args);
     (
         out.status.code().unwrap_or(-1),
         String::from_utf8_lossy(&out.stderr).into(),
@@ -195,6 +201,31 @@ fn serial_petsc1_and_petsc2_agree_with_friction() {
     compare("punch-friction-b", "1");
 }
 
+/// Runs `case` on 2 ranks into `root/out` (plus `extra` options), expecting
+/// failure: exit code 2, exactly one `error:` line, and neither an output
+/// folder nor a partial one left behind. Returns stderr.
+fn fails_cleanly_on_two_ranks(root: &Path, case: &Path, extra: &[&str]) -> String {
+    let out = root.join("out");
+    let mut args = vec![
+        "run",
+        case.to_str().unwrap(),
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    let (code, err) = mpirun(2, &args);
+    assert_eq!(code, 2, "{err}");
+    assert_eq!(err.matches("error:").count(), 1, "{err}");
+    assert!(!out.exists(), "output left behind");
+    let partial = std::fs::read_dir(root)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .any(|e| e.file_name().to_string_lossy().contains("partial"));
+    assert!(!partial, "partial output left behind");
+    err
+}
+
 #[test]
 fn a_bad_case_ends_every_rank_with_one_message() {
     let text = include_str!("../cases/punch-plane-stress/case.toml").replace("m = 0.5", "m = 1.5");
@@ -208,90 +239,47 @@ fn a_bad_case_ends_every_rank_with_one_message() {
 #[test]
 fn a_fault_on_rank_1_ends_every_rank_with_its_message_and_no_output() {
     let root = common::scratch("parallel-fault");
-    let out = root.join("out");
     let case = common::root().join("cases/punch-plane-stress");
     let t = std::time::Instant::now();
-    let (code, err) = mpirun(
-        2,
-        &[
-            "run",
-            case.to_str().unwrap(),
-            "--quiet",
-            "--out",
-            out.to_str().unwrap(),
-            "--inject-fault",
-            "1:30",
-        ],
-    );
-    assert_eq!(code, 2, "{err}");
-    assert_eq!(err.matches("error:").count(), 1, "{err}");
+    let err = fails_cleanly_on_two_ranks(&root, &case, &["--inject-fault", "1:30"]);
     assert!(err.contains("rank 1: fault injected on rank 1"), "{err}");
     assert!(t.elapsed().as_secs() < 30, "took {:?}", t.elapsed());
-    assert!(!out.exists(), "output left behind");
-    let partial = std::fs::read_dir(&root)
-        .unwrap()
-        .filter_map(|e| e.ok())
-        .any(|e| e.file_name().to_string_lossy().contains("partial"));
-    assert!(!partial, "partial output left behind");
+}
+
+/// punch-plane-stress on 2 ranks into `dir`, with PETSc options; panics on failure.
+fn punch_on_two_ranks(dir: &Path, petsc: &[&str]) -> std::process::Output {
+    let case = common::root().join("cases/punch-plane-stress");
+    let mut args = vec![
+        "run",
+        case.to_str().unwrap(),
+        "--quiet",
+        "--out",
+        dir.to_str().unwrap(),
+        "--",
+    ];
+    args.extend_from_slice(petsc);
+    let out = mpirun_output(2, &args);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out
 }
 
 #[test]
 fn krylov_solvers_from_the_options_database_give_the_same_answer() {
     let root = common::scratch("parallel-ksp");
-    let case = common::root().join("cases/punch-plane-stress");
-    let case = case.to_str().unwrap();
-    let (c, e) = mpirun(
-        2,
-        &[
-            "run",
-            case,
-            "--quiet",
-            "--out",
-            root.join("lu").to_str().unwrap(),
-        ],
-    );
-    assert_eq!(c, 0, "{e}");
-    let (c, e) = mpirun(
-        2,
-        &[
-            "run",
-            case,
-            "--quiet",
-            "--out",
-            root.join("gmres").to_str().unwrap(),
-            "--",
-            "-ksp_type",
-            "gmres",
-            "-pc_type",
-            "bjacobi",
-            "-ksp_rtol",
-            "1e-12",
-            "-ksp_max_it",
-            "5000",
-        ],
-    );
-    assert_eq!(c, 0, "{e}");
+    punch_on_two_ranks(&root.join("lu"), &[]);
+    #[rustfmt::skip]
+    punch_on_two_ranks(&root.join("gmres"), &[
+        "-ksp_type", "gmres", "-pc_type", "bjacobi", "-ksp_rtol", "1e-12", "-ksp_max_it", "5000",
+    ]);
     // algebraic multigrid with the rigid-body near-null space
-    let (c, e) = mpirun(
-        2,
-        &[
-            "run",
-            case,
-            "--quiet",
-            "--out",
-            root.join("gamg").to_str().unwrap(),
-            "--",
-            "-ksp_type",
-            "gmres",
-            "-pc_type",
-            "gamg",
-            "-ksp_rtol",
-            "1e-10",
-            "-ksp_max_it",
-            "2000",
-        ],
-    );
-    assert_eq!(c, 0, "{e}");
+    #[rustfmt::skip]
+    punch_on_two_ranks(&root.join("gamg"), &[
+        "-ksp_type", "gmres", "-pc_type", "gamg", "-ksp_rtol", "1e-10", "-ksp_max_it", "2000",
+    ]);
     let a = json(&root.join("lu"));
     let ua = a["final"]["center_displacement_mm"].as_f64().unwrap();
     for run in ["gmres", "gamg"] {
@@ -515,54 +503,13 @@ fn snes_and_the_builtin_loop_take_the_same_iterates_for_all_three_methods() {
 #[test]
 fn snes_options_from_the_command_line_apply() {
     let root = common::scratch("parallel-snes-options");
-    let case = common::root().join("cases/punch-plane-stress");
-    let case = case.to_str().unwrap();
-    let (c, e) = mpirun(
-        2,
-        &[
-            "run",
-            case,
-            "--quiet",
-            "--out",
-            root.join("a").to_str().unwrap(),
-        ],
-    );
-    assert_eq!(c, 0, "{e}");
-    let out = Command::new("mpirun")
-        .args(["-n", "2"])
-        .arg(env!("CARGO_BIN_EXE_asperity"))
-        .args([
-            "run",
-            case,
-            "--quiet",
-            "--out",
-            root.join("b").to_str().unwrap(),
-            "--",
-            "-snes_monitor",
-            "-snes_linesearch_type",
-            "bt",
-            "-ksp_type",
-            "gmres",
-            "-pc_type",
-            "bjacobi",
-            "-ksp_rtol",
-            "1e-12",
-            "-ksp_max_it",
-            "5000",
-        ])
-        .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
-        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
-        .env("OMPI_MCA_rmaps_base_oversubscribe", "1")
-        .env("OMPI_MCA_mpi_yield_when_idle", "1")
-        .env("OMPI_MCA_hwloc_base_binding_policy", "none")
-        .output()
-        .unwrap();
+    punch_on_two_ranks(&root.join("a"), &[]);
+    #[rustfmt::skip]
+    let out = punch_on_two_ranks(&root.join("b"), &[
+        "-snes_monitor", "-snes_linesearch_type", "bt", "-ksp_type", "gmres",
+        "-pc_type", "bjacobi", "-ksp_rtol", "1e-12", "-ksp_max_it", "5000",
+    ]);
     let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
     let (a, b) = (json(&root.join("a")), json(&root.join("b")));
     // One monitor line per SNES iteration plus one per solve (iteration 0),
     // printed by rank 0 only: twice as many would mean both ranks print.
@@ -594,20 +541,8 @@ fn snes_options_from_the_command_line_apply() {
 fn a_load_snes_cannot_converge_ends_every_rank_cleanly() {
     let root = common::scratch("parallel-snes-fail");
     let case = common::root().join("tests/bad_inputs/85-cannot-converge");
-    let out = root.join("out");
-    let (code, err) = mpirun(
-        2,
-        &[
-            "run",
-            case.to_str().unwrap(),
-            "--quiet",
-            "--out",
-            out.to_str().unwrap(),
-        ],
-    );
-    assert_eq!(code, 2, "{err}");
-    assert_eq!(err.matches("error:").count(), 1, "{err}");
-    assert!(!out.exists(), "output folder left behind");
+    let err = fails_cleanly_on_two_ranks(&root, &case, &[]);
+    assert!(err.contains("did not converge"), "{err}");
 }
 
 /// The near-null space handed to GAMG: three orthonormal vectors that are the

@@ -418,6 +418,25 @@ pub struct Ksp<'p> {
     _p: PhantomData<&'p Petsc<'p>>,
 }
 
+/// The default linear solver of a KSP, before the options database is read:
+/// `preonly` with a sparse direct LU by MUMPS.
+///
+/// # Safety
+/// `ksp` must be a valid KSP handle.
+unsafe fn direct_lu_defaults(ksp: ffi::KSP) -> Result<()> {
+    // SAFETY: valid KSP (caller); the PC handle is owned by the KSP.
+    unsafe {
+        chk(ffi::KSPSetType(ksp, c"preonly".as_ptr()), "KSPSetType")?;
+        let mut pc = std::ptr::null_mut();
+        chk(ffi::KSPGetPC(ksp, &mut pc), "KSPGetPC")?;
+        chk(ffi::PCSetType(pc, c"lu".as_ptr()), "PCSetType")?;
+        chk(
+            ffi::PCFactorSetMatSolverType(pc, c"mumps".as_ptr()),
+            "PCFactorSetMatSolverType",
+        )
+    }
+}
+
 impl<'p> Ksp<'p> {
     /// Default: sparse direct LU by MUMPS; `-ksp_type`, `-pc_type` … override it.
     pub fn new(petsc: &'p Petsc) -> Result<Self> {
@@ -425,14 +444,7 @@ impl<'p> Ksp<'p> {
         // SAFETY: out-pointer; PC handle owned by the KSP.
         unsafe {
             chk(ffi::KSPCreate(petsc.comm(), &mut raw), "KSPCreate")?;
-            chk(ffi::KSPSetType(raw, c"preonly".as_ptr()), "KSPSetType")?;
-            let mut pc = std::ptr::null_mut();
-            chk(ffi::KSPGetPC(raw, &mut pc), "KSPGetPC")?;
-            chk(ffi::PCSetType(pc, c"lu".as_ptr()), "PCSetType")?;
-            chk(
-                ffi::PCFactorSetMatSolverType(pc, c"mumps".as_ptr()),
-                "PCFactorSetMatSolverType",
-            )?;
+            direct_lu_defaults(raw)?;
             chk(ffi::KSPSetFromOptions(raw), "KSPSetFromOptions")?;
         }
         Ok(Ksp {

@@ -307,14 +307,7 @@ impl<'p> SnesSolver<'p> {
             )?;
             let mut ksp = std::ptr::null_mut();
             chk(ffi::SNESGetKSP(raw, &mut ksp), "SNESGetKSP")?;
-            chk(ffi::KSPSetType(ksp, c"preonly".as_ptr()), "KSPSetType")?;
-            let mut pc = std::ptr::null_mut();
-            chk(ffi::KSPGetPC(ksp, &mut pc), "KSPGetPC")?;
-            chk(ffi::PCSetType(pc, c"lu".as_ptr()), "PCSetType")?;
-            chk(
-                ffi::PCFactorSetMatSolverType(pc, c"mumps".as_ptr()),
-                "PCFactorSetMatSolverType",
-            )?;
+            super::direct_lu_defaults(ksp)?;
             chk(
                 ffi::SNESSetFunction(raw, solver.f.raw, Some(function_cb), std::ptr::null_mut()),
                 "SNESSetFunction",
