@@ -1,0 +1,344 @@
+//! A parsed [`MshFile`] to the solver's [`Mesh`]: physical surfaces to bodies,
+//! physical curves to node and edge sets, interface curves paired node by node.
+
+use super::parse::MshFile;
+use crate::error::{Error, Result};
+use crate::mesh::blocks::InterfaceSpec;
+use crate::mesh::{ContactEdge, Element, Interface, Mesh};
+use std::collections::{BTreeMap, HashMap};
+
+fn mesh_err<T>(place: &str, message: impl Into<String>) -> Result<T> {
+    Err(Error::Mesh {
+        place: place.to_string(),
+        message: message.into(),
+    })
+}
+
+/// Builds the mesh from a parsed file.
+pub fn build_mesh(msh: &MshFile, interfaces: &[InterfaceSpec], place: &str) -> Result<Mesh> {
+    let file = msh.name.as_str();
+    // physical surfaces → bodies, in order of their tags
+    let mut block_body: Vec<Option<usize>> = vec![None; msh.blocks.len()];
+    let mut body_tags: Vec<i32> = Vec::new();
+    for (k, b) in msh.blocks.iter().enumerate() {
+        if b.dim != 2 || b.tags.is_empty() {
+            continue;
+        }
+        let Some(phys) = msh.entities.get(&(2, b.entity)) else {
+            return mesh_err(
+                &b.at,
+                format!("surface entity {} is not listed in $Entities", b.entity),
+            );
+        };
+        match phys.as_slice() {
+            [] => {
+                return mesh_err(
+                    &b.at,
+                    format!("surface entity {} has elements but is in no physical surface (every body must be a named physical surface)", b.entity),
+                )
+            }
+            [t] => {
+                if !msh.physical_names.contains_key(&(2, *t)) {
+                    return mesh_err(
+                        file,
+                        format!("physical surface {t} has no name in $PhysicalNames (bodies are named by their physical names)"),
+                    );
+                }
+                if !body_tags.contains(t) {
+                    body_tags.push(*t);
+                }
+                block_body[k] = Some(*t as usize); // replaced by the body index below
+            }
+            more => {
+                return mesh_err(
+                    &b.at,
+                    format!("surface entity {} is in physical surfaces {more:?}; it must belong to exactly one (one body)", b.entity),
+                )
+            }
+        }
+    }
+    if body_tags.is_empty() {
+        return mesh_err(
+            file,
+            "no 8-node quadrangles in any physical surface: the mesh has no body",
+        );
+    }
+    body_tags.sort_unstable();
+    for (k, b) in msh.blocks.iter().enumerate() {
+        if let Some(t) = block_body[k] {
+            let tag = t as i32;
+            block_body[k] = body_tags.iter().position(|&x| x == tag);
+            let _ = b;
+        }
+    }
+    let mut mesh = Mesh {
+        bodies: body_tags
+            .iter()
+            .map(|t| msh.physical_names[&(2, *t)].clone())
+            .collect(),
+        ..Mesh::default()
+    };
+    // nodes used by body elements, numbered in file order
+    let mut new_id = vec![usize::MAX; msh.nodes.len()];
+    for (k, b) in msh.blocks.iter().enumerate() {
+        if block_body[k].is_some() {
+            for &n in &b.conn {
+                new_id[n] = 0;
+            }
+        }
+    }
+    let mut tag_of = Vec::new();
+    for (i, id) in new_id.iter_mut().enumerate() {
+        if *id == 0 {
+            *id = mesh.nodes.len();
+            mesh.nodes.push(msh.nodes[i]);
+            tag_of.push(msh.node_tags[i]);
+        }
+    }
+    // elements, counter-clockwise
+    for (k, b) in msh.blocks.iter().enumerate() {
+        let Some(body) = block_body[k] else { continue };
+        for conn in b.conn.chunks_exact(8) {
+            let mut n: [usize; 8] = std::array::from_fn(|a| new_id[conn[a]]);
+            let x: [[f64; 2]; 4] = std::array::from_fn(|a| mesh.nodes[n[a]]);
+            let area2: f64 = (0..4)
+                .map(|a| {
+                    let (p, q) = (x[a], x[(a + 1) % 4]);
+                    p[0] * q[1] - q[0] * p[1]
+                })
+                .sum();
+            if area2 < 0.0 {
+                // clockwise: walk the corners the other way round
+                n = [n[0], n[3], n[2], n[1], n[7], n[6], n[5], n[4]];
+            }
+            mesh.elements.push(Element { nodes: n, body });
+        }
+    }
+    let mut node_body = vec![usize::MAX; mesh.nodes.len()];
+    for el in &mesh.elements {
+        for &n in &el.nodes {
+            if node_body[n] != usize::MAX && node_body[n] != el.body {
+                return mesh_err(
+                    file,
+                    format!(
+                        "node {} at ({}, {}) belongs to both bodies \"{}\" and \"{}\": bodies in contact need their own nodes along the interface (Gmsh: separate points and curves there, Geometry.AutoCoherence = 0)",
+                        tag_of[n], mesh.nodes[n][0], mesh.nodes[n][1], mesh.bodies[node_body[n]], mesh.bodies[el.body]
+                    ),
+                );
+            }
+            node_body[n] = el.body;
+        }
+    }
+    for (b, name) in mesh.bodies.iter().enumerate() {
+        let mut set: Vec<usize> = mesh
+            .elements
+            .iter()
+            .filter(|e| e.body == b)
+            .flat_map(|e| e.nodes)
+            .collect();
+        set.sort_unstable();
+        set.dedup();
+        mesh.node_sets.insert(format!("{name}.all"), set);
+    }
+    // element edges: sorted corner pair → (element, local edge)
+    let mut edge_of: HashMap<(usize, usize), (usize, usize)> = HashMap::new();
+    for (e, el) in mesh.elements.iter().enumerate() {
+        for i in 0..4 {
+            let (p, q) = (el.nodes[i], el.nodes[(i + 1) % 4]);
+            edge_of.entry((p.min(q), p.max(q))).or_insert((e, i));
+        }
+    }
+    // physical curves → node sets and edge sets (edges walked with the body on the left)
+    let mut curve_body: BTreeMap<String, usize> = BTreeMap::new();
+    for b in msh.blocks.iter().filter(|b| b.dim == 1) {
+        let Some(phys) = msh.entities.get(&(1, b.entity)) else {
+            return mesh_err(
+                &b.at,
+                format!("curve entity {} is not listed in $Entities", b.entity),
+            );
+        };
+        for t in phys {
+            let Some(name) = msh.physical_names.get(&(1, *t)) else {
+                return mesh_err(
+                    file,
+                    format!("physical curve {t} has no name in $PhysicalNames (node sets are named by physical names)"),
+                );
+            };
+            if mesh.bodies.iter().any(|b| format!("{b}.all") == *name) {
+                return mesh_err(
+                    file,
+                    format!("physical curve \"{name}\" has the name of a body's own node set"),
+                );
+            }
+            let mut edges = Vec::new();
+            let mut nodes = Vec::new();
+            for (k, conn) in b.conn.chunks_exact(3).enumerate() {
+                let ids: [usize; 3] = std::array::from_fn(|a| new_id[conn[a]]);
+                if let Some(a) = ids.iter().position(|&i| i == usize::MAX) {
+                    return mesh_err(
+                        &b.at,
+                        format!(
+                            "line element {} of physical curve \"{name}\": node {} is on no body element",
+                            b.tags[k], msh.node_tags[conn[a]]
+                        ),
+                    );
+                }
+                let [p, q, mid] = ids;
+                let edge = edge_of.get(&(p.min(q), p.max(q))).and_then(|&(e, i)| {
+                    let el = &mesh.elements[e];
+                    (el.nodes[4 + i] == mid)
+                        .then(|| ([el.nodes[i], mid, el.nodes[(i + 1) % 4]], el.body))
+                });
+                let Some((edge, body)) = edge else {
+                    return mesh_err(
+                        &b.at,
+                        format!(
+                            "line element {} of physical curve \"{name}\" is not an edge of any quadrangle",
+                            b.tags[k]
+                        ),
+                    );
+                };
+                if *curve_body.entry(name.clone()).or_insert(body) != body {
+                    return mesh_err(
+                        file,
+                        format!(
+                            "physical curve \"{name}\" lies on two bodies; a set must be on one"
+                        ),
+                    );
+                }
+                edges.push(edge);
+                nodes.extend(edge);
+            }
+            let set = mesh.node_sets.entry(name.clone()).or_default();
+            set.extend(nodes);
+            set.sort_unstable();
+            set.dedup();
+            mesh.edge_sets
+                .entry(name.clone())
+                .or_default()
+                .extend(edges);
+        }
+    }
+    for spec in interfaces {
+        let iface = pair_curves(msh, &mesh, &curve_body, &tag_of, spec, place)?;
+        mesh.interfaces.push(iface);
+    }
+    Ok(mesh)
+}
+
+fn pair_curves(
+    msh: &MshFile,
+    mesh: &Mesh,
+    curve_body: &BTreeMap<String, usize>,
+    tag_of: &[u64],
+    spec: &InterfaceSpec,
+    place: &str,
+) -> Result<Interface> {
+    let at = format!("{place}: [[mesh.interface]] \"{}\"", spec.name);
+    let bad = |m: String| Error::input(&at, m);
+    let (Some(upper), Some(lower)) = (&spec.upper_curve, &spec.lower_curve) else {
+        return Err(bad(
+            "a mesh read from a file needs upper_curve and lower_curve (physical curve names)"
+                .into(),
+        ));
+    };
+    let curve = |name: &str| -> Result<usize> {
+        if let Some(&b) = curve_body.get(name) {
+            return Ok(b);
+        }
+        if let Some((&(d, _), _)) = msh.physical_names.iter().find(|(_, n)| *n == name) {
+            let what = [
+                "a physical point",
+                "a physical curve",
+                "a physical surface",
+                "a physical volume",
+            ][d.clamp(0, 3) as usize];
+            return Err(bad(format!(
+                "\"{name}\" is {what} (dimension {d}) in {}, not a physical curve of 3-node lines",
+                msh.name
+            )));
+        }
+        Err(bad(format!(
+            "physical curve \"{name}\" not found in {} (physical curves: {})",
+            msh.name,
+            curve_body.keys().cloned().collect::<Vec<_>>().join(", ")
+        )))
+    };
+    let (ua, lb) = (curve(upper)?, curve(lower)?);
+    for (given, body, side) in [(&spec.upper, ua, "upper"), (&spec.lower, lb, "lower")] {
+        if let Some(g) = given {
+            if *g != mesh.bodies[body] {
+                return Err(bad(format!(
+                    "{side} = \"{g}\" but {side}_curve lies on body \"{}\"",
+                    mesh.bodies[body]
+                )));
+            }
+        }
+    }
+    if ua == lb {
+        return Err(bad(format!(
+            "upper_curve \"{upper}\" and lower_curve \"{lower}\" are on the same body \"{}\"",
+            mesh.bodies[ua]
+        )));
+    }
+    let a_edges = &mesh.edge_sets[upper];
+    let b_edges = &mesh.edge_sets[lower];
+    let h = a_edges
+        .iter()
+        .chain(b_edges)
+        .map(|e| {
+            let (p, q) = (mesh.nodes[e[0]], mesh.nodes[e[2]]);
+            (p[0] - q[0]).hypot(p[1] - q[1])
+        })
+        .fold(f64::INFINITY, f64::min);
+    let tol = 1e-9 * h;
+    let b_nodes = &mesh.node_sets[lower];
+    let a_nodes = &mesh.node_sets[upper];
+    let near = |x: [f64; 2], set: &[usize]| {
+        set.iter()
+            .copied()
+            .find(|&m| (mesh.nodes[m][0] - x[0]).hypot(mesh.nodes[m][1] - x[1]) <= tol)
+    };
+    let unpaired = |n: usize, on: &str, other: &str| -> Result<Interface> {
+        let x = mesh.nodes[n];
+        Err(bad(format!(
+            "node {} at ({}, {}) of curve \"{on}\" in {} has no partner on curve \"{other}\" within {tol:.1e} mm (the two sides must have coincident nodes)",
+            tag_of[n], x[0], x[1], msh.name
+        )))
+    };
+    let mut edges = Vec::with_capacity(a_edges.len());
+    for e in a_edges {
+        let mut b = [0; 3];
+        for i in 0..3 {
+            match near(mesh.nodes[e[i]], b_nodes) {
+                Some(m) => b[i] = m,
+                None => return unpaired(e[i], upper, lower),
+            }
+        }
+        edges.push(ContactEdge { a: *e, b });
+    }
+    // nodes of the lower curve within the extent of the upper one must be paired too
+    let (lo, hi) = a_nodes.iter().fold(
+        ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
+        |(lo, hi), &n| {
+            let x = mesh.nodes[n];
+            (
+                [lo[0].min(x[0]), lo[1].min(x[1])],
+                [hi[0].max(x[0]), hi[1].max(x[1])],
+            )
+        },
+    );
+    for &n in b_nodes {
+        let x = mesh.nodes[n];
+        let inside = (0..2).all(|k| x[k] >= lo[k] - tol && x[k] <= hi[k] + tol);
+        if inside && near(x, a_nodes).is_none() {
+            return unpaired(n, lower, upper);
+        }
+    }
+    Ok(Interface {
+        name: spec.name.clone(),
+        body_a: ua,
+        body_b: lb,
+        edges,
+    })
+}
