@@ -39,13 +39,11 @@ pub fn run(
             let model = driver::load_model(case_path, opts)?;
             let backend = PetscBackend::new(&petsc, world.duplicate(), &model)?;
             let snes = if opts.snes {
-                let (lo, hi) = backend.owned_range();
                 Some(SnesSolver::new(
                     &petsc,
                     backend.system_matrix(),
-                    &backend.part.petsc_index,
-                    lo,
-                    hi,
+                    &backend.part,
+                    world.rank() as usize,
                     model.case.solver.iteration_limit(),
                 )?)
             } else {

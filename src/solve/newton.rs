@@ -423,10 +423,6 @@ impl<'a, 'm> StepProblem<'a, 'm> {
 }
 
 impl Problem for StepProblem<'_, '_> {
-    fn size(&self) -> usize {
-        self.free.len()
-    }
-
     fn initial(&self) -> Vec<f64> {
         self.free.iter().map(|&d| self.trial.u[d]).collect()
     }

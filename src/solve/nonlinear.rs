@@ -22,8 +22,6 @@ pub enum Verdict {
 }
 
 pub trait Problem {
-    /// Number of free equations.
-    fn size(&self) -> usize;
     /// The starting iterate (free equations, the model's equation order).
     fn initial(&self) -> Vec<f64>;
     /// Residual at `x` into `r` (both replicated, equation order); assembles the

@@ -108,24 +108,25 @@ impl<'p> PVec<'p> {
         })
     }
 
-    /// Sets entries (global PETSc indices) and assembles.
-    pub fn set(&mut self, idx: &[ffi::PetscInt], vals: &[f64]) -> Result<()> {
-        // SAFETY: idx and vals have the same length.
-        unsafe {
-            chk(ffi::VecSet(self.raw, 0.0), "VecSet")?;
-            chk(
-                ffi::VecSetValues(
-                    self.raw,
-                    idx.len() as ffi::PetscInt,
-                    idx.as_ptr(),
-                    vals.as_ptr(),
-                    ffi::InsertMode_INSERT_VALUES,
-                ),
-                "VecSetValues",
-            )?;
-            chk(ffi::VecAssemblyBegin(self.raw), "VecAssemblyBegin")?;
-            chk(ffi::VecAssemblyEnd(self.raw), "VecAssemblyEnd")
+    /// Writes the owned entries of `src` (equation order) into this vector:
+    /// `owned` pairs each local position with its equation.
+    pub fn write_owned(&mut self, owned: &[(usize, usize)], src: &[f64]) -> Result<()> {
+        write_owned(self.raw, owned, src)
+    }
+}
+
+/// [`PVec::write_owned`] for a vector handle PETSc passed to a callback.
+pub(crate) fn write_owned(v: ffi::Vec, owned: &[(usize, usize)], src: &[f64]) -> Result<()> {
+    let mut a: *mut f64 = std::ptr::null_mut();
+    // SAFETY: v is a valid vector whose local part has `owned.len()` entries;
+    // the array is restored before return.
+    unsafe {
+        chk(ffi::VecGetArray(v, &mut a), "VecGetArray")?;
+        let local = std::slice::from_raw_parts_mut(a, owned.len());
+        for &(k, e) in owned {
+            local[k] = src[e];
         }
+        chk(ffi::VecRestoreArray(v, &mut a), "VecRestoreArray")
     }
 }
 

@@ -19,6 +19,7 @@
 //! KSP of the linear backend (`preonly` + MUMPS LU). With these defaults SNES
 //! takes the same iterates as the built-in loop, to round-off.
 
+use super::solver::Partition;
 use super::{chk, ffi, PVec, Petsc, ToAll};
 use crate::error::{Error, Result};
 use crate::solve::nonlinear::{NonlinearSolver, Problem, Verdict};
@@ -56,17 +57,7 @@ impl Layout<'_> {
 
     /// Writes the owned entries of `src` (equation order) into `v`.
     fn write(&self, src: &[f64], v: ffi::Vec) -> Result<()> {
-        let mut a: *mut f64 = std::ptr::null_mut();
-        // SAFETY: v is a valid vector whose local part has `owned.len()` entries;
-        // the array is restored before return.
-        unsafe {
-            chk(ffi::VecGetArray(v, &mut a), "VecGetArray")?;
-            let local = std::slice::from_raw_parts_mut(a, self.owned.len());
-            for &(k, e) in &self.owned {
-                local[k] = src[e];
-            }
-            chk(ffi::VecRestoreArray(v, &mut a), "VecRestoreArray")
-        }
+        super::write_owned(v, &self.owned, src)
     }
 }
 
@@ -154,7 +145,8 @@ unsafe extern "C" fn jacobian_cb(
                 ));
             }
         }
-        for m in if a == p { vec![a] } else { vec![a, p] } {
+        let both = [a, p];
+        for &m in &both[..if a == p { 1 } else { 2 }] {
             // SAFETY: valid matrix handles from PETSc.
             unsafe {
                 chk(
@@ -250,25 +242,19 @@ pub struct SnesSolver<'p> {
 
 impl<'p> SnesSolver<'p> {
     /// `mat`: the backend's system matrix (SNES takes a reference to it);
-    /// `petsc_index`: free equation → PETSc global index; `lo..hi` this rank's rows.
+    /// `part`: the backend's partition; `rank`: this process.
     pub fn new(
         petsc: &'p Petsc,
         mat: ffi::Mat,
-        petsc_index: &[ffi::PetscInt],
-        lo: usize,
-        hi: usize,
+        part: &Partition,
+        rank: usize,
         max_iterations: usize,
     ) -> Result<Self> {
-        let n = petsc_index.len();
-        let x = PVec::new(petsc, hi - lo, n)?;
-        let f = PVec::new(petsc, hi - lo, n)?;
+        let n = part.petsc_index.len();
+        let owned = part.owned(rank);
+        let x = PVec::new(petsc, owned.len(), n)?;
+        let f = PVec::new(petsc, owned.len(), n)?;
         let to_all = ToAll::new(&x)?;
-        let owned = petsc_index
-            .iter()
-            .enumerate()
-            .filter(|(_, &p)| (p as usize) >= lo && (p as usize) < hi)
-            .map(|(e, &p)| (p as usize - lo, e))
-            .collect();
         let mut raw = std::ptr::null_mut();
         // SAFETY: out-pointers to fresh handles; the KSP and PC belong to the SNES.
         unsafe {
@@ -280,7 +266,7 @@ impl<'p> SnesSolver<'p> {
                 f,
                 layout: Layout {
                     to_all,
-                    petsc_index: petsc_index.to_vec(),
+                    petsc_index: part.petsc_index.clone(),
                     owned,
                     gathered: vec![0.0; n],
                     x: vec![0.0; n],

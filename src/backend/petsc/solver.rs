@@ -21,6 +21,18 @@ pub struct Partition {
 }
 
 impl Partition {
+    /// (position in this rank's local array, equation) of every equation that
+    /// `rank` owns, in equation order.
+    pub fn owned(&self, rank: usize) -> Vec<(usize, usize)> {
+        let (lo, hi) = (self.offsets[rank], self.offsets[rank + 1]);
+        self.petsc_index
+            .iter()
+            .enumerate()
+            .filter(|(_, &p)| (lo..hi).contains(&(p as usize)))
+            .map(|(e, &p)| (p as usize - lo, e))
+            .collect()
+    }
+
     /// The three in-plane rigid-body modes (x and y translation, rotation about
     /// the centroid) over the free equations, orthonormalized (modified
     /// Gram-Schmidt on the replicated vectors, so every rank gets the same), as
@@ -59,16 +71,13 @@ impl Partition {
                 modes[k].iter_mut().for_each(|v| *v /= norm);
             }
         }
-        let (lo, hi) = (self.offsets[rank], self.offsets[rank + 1]);
+        let owned = self.owned(rank);
         modes
             .iter()
             .map(|m| {
-                let mut local = vec![0.0; hi - lo];
-                for (e, &v) in m.iter().enumerate() {
-                    let p = self.petsc_index[e] as usize;
-                    if (lo..hi).contains(&p) {
-                        local[p - lo] = v;
-                    }
+                let mut local = vec![0.0; owned.len()];
+                for &(k, e) in &owned {
+                    local[k] = m[e];
                 }
                 local
             })
@@ -178,6 +187,8 @@ pub struct PetscBackend<'p> {
     ranks: usize,
     model: &'p Model,
     pub part: Partition,
+    /// (local position, equation) of this rank's equations.
+    owned: Vec<(usize, usize)>,
     solid: PMat<'p>,
     mat: PMat<'p>,
     ksp: Ksp<'p>,
@@ -226,6 +237,7 @@ impl<'p> PetscBackend<'p> {
             rank,
             ranks,
             model,
+            owned: part.owned(rank),
             part,
             solid,
             mat,
@@ -250,14 +262,6 @@ impl<'p> PetscBackend<'p> {
                     .map_or(-1, |e| self.part.petsc_index[e]),
             );
         }
-    }
-
-    /// This rank's rows: PETSc global indices lo..hi.
-    pub fn owned_range(&self) -> (usize, usize) {
-        (
-            self.part.offsets[self.rank],
-            self.part.offsets[self.rank + 1],
-        )
     }
 
     /// The system matrix (solid + contact), for a SNES that solves with it.
@@ -307,20 +311,7 @@ impl crate::backend::Backend for PetscBackend<'_> {
     }
     fn solve(&mut self, rhs: &[f64], x: &mut [f64]) -> Result<()> {
         self.mat.assemble()?;
-        let (lo, hi) = (
-            self.part.offsets[self.rank],
-            self.part.offsets[self.rank + 1],
-        );
-        let mut idx = Vec::with_capacity(hi - lo);
-        let mut vals = Vec::with_capacity(hi - lo);
-        for (e, &v) in rhs.iter().enumerate() {
-            let p = self.part.petsc_index[e];
-            if (p as usize) >= lo && (p as usize) < hi {
-                idx.push(p);
-                vals.push(v);
-            }
-        }
-        self.b.set(&idx, &vals)?;
+        self.b.write_owned(&self.owned, rhs)?;
         let result = self.ksp.solve(&self.mat, &self.b, &mut self.x);
         // the outcome is collective: fail everywhere if it failed anywhere
         let ok = i32::from(result.is_ok());
