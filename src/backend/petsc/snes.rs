@@ -79,10 +79,16 @@ struct Ctx<'a, 'p> {
 
 /// Runs a callback body; a returned error or a panic becomes PETSC_ERR_USER
 /// with the message kept in the context.
-fn guard(ctx: *mut c_void, what: &str, body: impl FnOnce(&mut Ctx) -> Result<()>) -> i32 {
-    // SAFETY: ctx is the `Ctx` that `SnesSolver::solve` passed to PETSc and that
-    // outlives the SNESSolve call during which PETSc invokes the callbacks.
-    let ctx = unsafe { &mut *(ctx as *mut Ctx) };
+fn guard(slot: *mut c_void, what: &str, body: impl FnOnce(&mut Ctx) -> Result<()>) -> i32 {
+    // SAFETY: `slot` is the solver's boxed `Slot`, registered once and alive as
+    // long as the SNES; during `SnesSolver::solve` it points at that call's `Ctx`
+    // (on its frame), and it is null at any other time.
+    let ctx = unsafe { (*(slot as *const Slot)).get() as *mut Ctx };
+    if ctx.is_null() {
+        return ffi::PETSC_ERR_USER as i32;
+    }
+    // SAFETY: see above; only one callback runs at a time.
+    let ctx = unsafe { &mut *ctx };
     match catch_unwind(AssertUnwindSafe(|| body(ctx))) {
         Ok(Ok(())) => 0,
         Ok(Err(e)) => {
@@ -229,10 +235,15 @@ unsafe extern "C" fn postcheck_cb(
     })
 }
 
+/// Where the callbacks find the current solve's [`Ctx`]: registered with PETSc
+/// once (so that options such as `-snes_fd` that replace a callback stick) and
+/// pointed at the context for the duration of each `SNESSolve`.
+type Slot = std::cell::Cell<*mut c_void>;
+
 /// A SNES bound to the backend's system matrix.
 pub struct SnesSolver<'p> {
     raw: ffi::SNES,
-    mat: ffi::Mat,
+    slot: Box<Slot>,
     x: PVec<'p>,
     f: PVec<'p>,
     layout: Layout<'p>,
@@ -261,7 +272,7 @@ impl<'p> SnesSolver<'p> {
             chk(ffi::SNESCreate(petsc.comm(), &mut raw), "SNESCreate")?;
             let solver = SnesSolver {
                 raw,
-                mat,
+                slot: Box::new(Slot::new(std::ptr::null_mut())),
                 x,
                 f,
                 layout: Layout {
@@ -294,15 +305,28 @@ impl<'p> SnesSolver<'p> {
             let mut ksp = std::ptr::null_mut();
             chk(ffi::SNESGetKSP(raw, &mut ksp), "SNESGetKSP")?;
             super::direct_lu_defaults(ksp)?;
+            let p = &*solver.slot as *const Slot as *mut c_void;
             chk(
-                ffi::SNESSetFunction(raw, solver.f.raw, Some(function_cb), std::ptr::null_mut()),
+                ffi::SNESSetFunction(raw, solver.f.raw, Some(function_cb), p),
                 "SNESSetFunction",
             )?;
             chk(
-                ffi::SNESSetJacobian(raw, mat, mat, Some(jacobian_cb), std::ptr::null_mut()),
+                ffi::SNESSetJacobian(raw, mat, mat, Some(jacobian_cb), p),
                 "SNESSetJacobian",
             )?;
             chk(ffi::SNESSetFromOptions(raw), "SNESSetFromOptions")?;
+            // after the options: the convergence test and the post-check belong
+            // to the SNES and line search the options chose
+            chk(
+                ffi::SNESSetConvergenceTest(raw, Some(converged_cb), p, None),
+                "SNESSetConvergenceTest",
+            )?;
+            let mut ls = std::ptr::null_mut();
+            chk(ffi::SNESGetLineSearch(raw, &mut ls), "SNESGetLineSearch")?;
+            chk(
+                ffi::SNESLineSearchSetPostCheck(ls, Some(postcheck_cb), p),
+                "SNESLineSearchSetPostCheck",
+            )?;
             Ok(solver)
         }
     }
@@ -323,30 +347,13 @@ impl NonlinearSolver for SnesSolver<'_> {
             evaluated: false,
             error: None,
         };
-        let p = &mut ctx as *mut Ctx as *mut c_void;
         let raw = self.raw;
+        self.slot.set(&mut ctx as *mut Ctx as *mut c_void);
         // SAFETY: `ctx` lives on this frame for the whole SNESSolve call and is
-        // reached only through the callbacks during it; the handles are valid.
+        // reached only through the callbacks during it (the slot is cleared
+        // after); the handles are valid.
         let solved = unsafe {
             (|| -> Result<ffi::SNESConvergedReason> {
-                chk(
-                    ffi::SNESSetFunction(raw, self.f.raw, Some(function_cb), p),
-                    "SNESSetFunction",
-                )?;
-                chk(
-                    ffi::SNESSetJacobian(raw, self.mat, self.mat, Some(jacobian_cb), p),
-                    "SNESSetJacobian",
-                )?;
-                chk(
-                    ffi::SNESSetConvergenceTest(raw, Some(converged_cb), p, None),
-                    "SNESSetConvergenceTest",
-                )?;
-                let mut ls = std::ptr::null_mut();
-                chk(ffi::SNESGetLineSearch(raw, &mut ls), "SNESGetLineSearch")?;
-                chk(
-                    ffi::SNESLineSearchSetPostCheck(ls, Some(postcheck_cb), p),
-                    "SNESLineSearchSetPostCheck",
-                )?;
                 chk(
                     ffi::SNESSolve(raw, std::ptr::null_mut(), self.x.raw),
                     "SNESSolve",
@@ -370,6 +377,7 @@ impl NonlinearSolver for SnesSolver<'_> {
                 Ok(reason)
             })()
         };
+        self.slot.set(std::ptr::null_mut());
         if let Some(e) = ctx.error.take() {
             return Err(e);
         }
