@@ -3,7 +3,7 @@
 //! Everything here is fixed for the whole run; evolving state lives in
 //! [`crate::solve::State`].
 
-use crate::assembly::{Assembler, DofMap};
+use crate::assembly::{Blocks, DofMap, Pattern};
 use crate::case::{check_case, Case, Integration, Plane};
 use crate::error::{Error, Result};
 use crate::fem::q8::{self, GaussRule};
@@ -20,7 +20,6 @@ pub struct Model {
     pub thickness: f64,
     pub symmetric_half: bool,
     pub rule: GaussRule,
-    pub geom: Vec<ElementGeometry>,
     /// Material per body.
     pub materials: Vec<VonMises>,
     pub interfaces: Vec<InterfaceModel>,
@@ -29,8 +28,10 @@ pub struct Model {
     /// External nodal forces at load factor 1 (all dofs).
     pub f_ext: Vec<f64>,
     pub dofs: DofMap,
-    pub asm: Assembler,
-    /// Index of the first interface block in the assembler (elements come first).
+    /// Sparsity of the tangent over the free equations, every potential contact
+    /// coupling included.
+    pub pattern: Pattern,
+    /// Index of the first interface block in [`Model::blocks`] (elements come first).
     pub interface_block_base: Vec<usize>,
     /// The lower body's interface node nearest to the output probe.
     pub probe_node: usize,
@@ -109,16 +110,15 @@ impl Model {
                 ));
             }
         }
-        let mut geom = Vec::with_capacity(mesh.elements.len());
+        // every element's Jacobian checked once; the geometry itself is
+        // recomputed when needed (Model::geometry)
         for (e, el) in mesh.elements.iter().enumerate() {
-            let g =
-                ElementGeometry::new(&mesh.element_coords(e), &rule, thickness).map_err(|m| {
-                    Error::Mesh {
-                        place: place.clone(),
-                        message: format!("element {e} of body \"{}\": {m}", mesh.bodies[el.body]),
-                    }
-                })?;
-            geom.push(g);
+            ElementGeometry::new(&mesh.element_coords(e), &rule, thickness).map_err(|m| {
+                Error::Mesh {
+                    place: place.clone(),
+                    message: format!("element {e} of body \"{}\": {m}", mesh.bodies[el.body]),
+                }
+            })?;
         }
         // interfaces
         let mut interfaces = Vec::new();
@@ -163,17 +163,9 @@ impl Model {
             mask[d] = true;
         }
         let dofs = DofMap::new(mesh.num_dofs(), &mask);
-        let mut blocks: Vec<Vec<usize>> = mesh
-            .elements
-            .iter()
-            .map(|el| el.nodes.iter().flat_map(|&n| [2 * n, 2 * n + 1]).collect())
-            .collect();
-        let mut interface_block_base = Vec::new();
-        for im in &interfaces {
-            interface_block_base.push(blocks.len());
-            blocks.extend(im.points.iter().map(|p| im.point_dofs(p)));
-        }
-        let asm = Assembler::new(&dofs, &blocks);
+        let (blocks, interface_block_base) = block_dofs(&mesh, &interfaces);
+        let pattern = Pattern::new(&dofs, &blocks);
+        drop(blocks);
         let (probe_node, surface_y) = probe(&case, &mesh, &interfaces);
         let e_max = materials.iter().fold(0.0f64, |a, m| a.max(m.young));
         let (lo, hi) = mesh
@@ -192,13 +184,12 @@ impl Model {
             thickness,
             symmetric_half: case.model.symmetric_half,
             rule,
-            geom,
             materials,
             interfaces,
             prescribed,
             f_ext,
             dofs,
-            asm,
+            pattern,
             interface_block_base,
             probe_node,
             surface_y,
@@ -206,6 +197,18 @@ impl Model {
             mesh,
             case,
         })
+    }
+
+    /// The dof lists of every element, then every interface point (rebuilt
+    /// on demand: only the serial backend keeps per-block data).
+    pub fn blocks(&self) -> Blocks {
+        block_dofs(&self.mesh, &self.interfaces).0
+    }
+
+    /// Gauss point geometry of element e (checked valid when the model was built).
+    pub fn geometry(&self, e: usize) -> ElementGeometry {
+        ElementGeometry::new(&self.mesh.element_coords(e), &self.rule, self.thickness)
+            .expect("element geometry was checked when the model was built")
     }
 
     pub fn n_gauss(&self) -> usize {
@@ -227,6 +230,23 @@ impl Model {
         let sym = if self.symmetric_half { 2.0 } else { 1.0 };
         sym / self.thickness / 1000.0
     }
+}
+
+/// Element and interface-point dof lists, and the index of each interface's
+/// first block.
+fn block_dofs(mesh: &Mesh, interfaces: &[InterfaceModel]) -> (Blocks, Vec<usize>) {
+    let mut blocks = Blocks::new();
+    for el in &mesh.elements {
+        blocks.push(el.nodes.iter().flat_map(|&n| [2 * n, 2 * n + 1]));
+    }
+    let mut base = Vec::new();
+    for im in interfaces {
+        base.push(blocks.len());
+        for p in &im.points {
+            blocks.push(im.point_dofs(p));
+        }
+    }
+    (blocks, base)
 }
 
 fn in_range(v: f64, r: &Option<[f64; 2]>) -> bool {

@@ -39,6 +39,7 @@ use crate::material::PointState;
 use crate::model::Model;
 use crate::solve::{Checkpoint, FirstYield, Increment, Measures};
 use std::collections::BTreeMap;
+use std::io::Write;
 use std::path::Path;
 
 pub const MAGIC: &[u8; 8] = b"ASPRSTRT";
@@ -48,19 +49,65 @@ pub const FILE: &str = "restart.bin";
 /// FNV-1a with 64-bit state applied to 64-bit little-endian words (8× fewer
 /// multiplications than byte-wise FNV-1a), the last `len % 8` bytes one by one.
 pub fn fnv1a(bytes: &[u8]) -> u64 {
-    const PRIME: u64 = 0x0000_0100_0000_01b3;
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    let words = bytes.chunks_exact(8);
-    let tail = words.remainder();
-    for w in words {
-        h ^= u64::from_le_bytes(w.try_into().unwrap());
-        h = h.wrapping_mul(PRIME);
+    let mut f = Fnv::default();
+    f.update(bytes);
+    f.finish()
+}
+
+const FNV_PRIME: u64 = 0x0000_0100_0000_01b3;
+
+/// [`fnv1a`] fed in pieces: the same value for any split of the same bytes.
+struct Fnv {
+    h: u64,
+    pending: [u8; 8],
+    n: usize,
+}
+
+impl Default for Fnv {
+    fn default() -> Self {
+        Fnv {
+            h: 0xcbf2_9ce4_8422_2325,
+            pending: [0; 8],
+            n: 0,
+        }
     }
-    for &b in tail {
-        h ^= u64::from(b);
-        h = h.wrapping_mul(PRIME);
+}
+
+impl Fnv {
+    fn word(&mut self, w: [u8; 8]) {
+        self.h ^= u64::from_le_bytes(w);
+        self.h = self.h.wrapping_mul(FNV_PRIME);
     }
-    h
+
+    fn update(&mut self, mut b: &[u8]) {
+        if self.n > 0 {
+            let take = (8 - self.n).min(b.len());
+            self.pending[self.n..self.n + take].copy_from_slice(&b[..take]);
+            self.n += take;
+            b = &b[take..];
+            if self.n < 8 {
+                return;
+            }
+            self.word(self.pending);
+            self.n = 0;
+        }
+        let words = b.chunks_exact(8);
+        let tail = words.remainder();
+        for w in words {
+            self.word(w.try_into().expect("8 bytes"));
+        }
+        self.pending[..tail.len()].copy_from_slice(tail);
+        self.n = tail.len();
+    }
+
+    fn finish(&self) -> u64 {
+        let mut h = self.h;
+        for &b in &self.pending[..self.n] {
+            h ^= u64::from(b);
+            h = h.wrapping_mul(FNV_PRIME);
+        }
+        h
+    }
 }
 
 /// Fingerprint of what a run solves: the effective case (without its file
@@ -92,41 +139,65 @@ enum Data {
     Text(String),
 }
 
-struct Encoder {
-    buf: Vec<u8>,
+/// Writes sections to `w` (the hashing file writer, or a sink that only
+/// counts them).
+struct Encoder<'w> {
+    w: &'w mut dyn Write,
+    fnv: Option<Fnv>,
     sections: u32,
 }
 
-impl Encoder {
-    fn section(&mut self, name: &str, kind: u8, count: usize) {
+impl Encoder<'_> {
+    fn put(&mut self, b: &[u8]) -> std::io::Result<()> {
+        if let Some(f) = &mut self.fnv {
+            f.update(b);
+        }
+        self.w.write_all(b)
+    }
+    fn section(&mut self, name: &str, kind: u8, count: usize) -> std::io::Result<()> {
         self.sections += 1;
-        self.buf
-            .extend_from_slice(&(name.len() as u16).to_le_bytes());
-        self.buf.extend_from_slice(name.as_bytes());
-        self.buf.push(kind);
-        self.buf.extend_from_slice(&(count as u64).to_le_bytes());
+        self.put(&(name.len() as u16).to_le_bytes())?;
+        self.put(name.as_bytes())?;
+        self.put(&[kind])?;
+        self.put(&(count as u64).to_le_bytes())
     }
-    fn f64s(&mut self, name: &str, v: &[f64]) {
-        self.section(name, 1, v.len());
-        let at = self.buf.len();
-        self.buf.resize(at + 8 * v.len(), 0);
-        for (c, x) in self.buf[at..].chunks_exact_mut(8).zip(v) {
-            c.copy_from_slice(&x.to_le_bytes());
-        }
-    }
-    fn u64s(&mut self, name: &str, v: &[u64]) {
-        self.section(name, 2, v.len());
+    /// `count` values from `v`, converted in chunks (nothing held whole).
+    fn f64_iter(
+        &mut self,
+        name: &str,
+        count: usize,
+        v: impl Iterator<Item = f64>,
+    ) -> std::io::Result<()> {
+        self.section(name, 1, count)?;
+        let mut chunk = [0u8; 8 * 512];
+        let mut k = 0;
         for x in v {
-            self.buf.extend_from_slice(&x.to_le_bytes());
+            chunk[8 * k..8 * k + 8].copy_from_slice(&x.to_le_bytes());
+            k += 1;
+            if k == 512 {
+                self.put(&chunk)?;
+                k = 0;
+            }
         }
+        self.put(&chunk[..8 * k])
     }
-    fn bytes(&mut self, name: &str, v: &[u8]) {
-        self.section(name, 3, v.len());
-        self.buf.extend_from_slice(v);
+    fn f64s(&mut self, name: &str, v: &[f64]) -> std::io::Result<()> {
+        self.f64_iter(name, v.len(), v.iter().copied())
     }
-    fn text(&mut self, name: &str, v: &str) {
-        self.section(name, 4, v.len());
-        self.buf.extend_from_slice(v.as_bytes());
+    fn u64s(&mut self, name: &str, v: &[u64]) -> std::io::Result<()> {
+        self.section(name, 2, v.len())?;
+        for x in v {
+            self.put(&x.to_le_bytes())?;
+        }
+        Ok(())
+    }
+    fn bytes(&mut self, name: &str, v: &[u8]) -> std::io::Result<()> {
+        self.section(name, 3, v.len())?;
+        self.put(v)
+    }
+    fn text(&mut self, name: &str, v: &str) -> std::io::Result<()> {
+        self.section(name, 4, v.len())?;
+        self.put(v.as_bytes())
     }
 }
 
@@ -137,25 +208,52 @@ pub fn encode(model: &Model, ck: &Checkpoint, pvd: &[(f64, String)]) -> Vec<u8> 
 
 /// [`encode`] with the model's fingerprint computed once by the caller.
 pub fn encode_with(fingerprint: u64, ck: &Checkpoint, pvd: &[(f64, String)]) -> Vec<u8> {
-    let mut e = Encoder {
-        buf: Vec::with_capacity(
-            1024 + 8 * ck.committed.u.len()
-                + 80 * ck.committed.gauss.len()
-                + 41 * ck.committed.contact.len()
-                + 80 * ck.increments.len()
-                + 16 * ck.stepper.pending.len()
-                + 8 * ck.stepper.waypoints.len(),
-        ),
+    let mut out = Vec::new();
+    write_to(&mut out, fingerprint, ck, pvd).expect("writing to memory cannot fail");
+    out
+}
+
+/// Streams the restart file to `w`: the header (its section count found by a
+/// first pass into a sink), the sections and the checksum, hashed on the way,
+/// so no copy of the state is built in memory (at 1M dofs it is 130 MB).
+pub fn write_to(
+    w: &mut dyn Write,
+    fingerprint: u64,
+    ck: &Checkpoint,
+    pvd: &[(f64, String)],
+) -> std::io::Result<()> {
+    let mut sink = std::io::sink();
+    let mut count = Encoder {
+        w: &mut sink,
+        fnv: None,
         sections: 0,
     };
+    sections(&mut count, ck, pvd)?;
+    let n = count.sections;
+    let mut e = Encoder {
+        w,
+        fnv: Some(Fnv::default()),
+        sections: 0,
+    };
+    e.put(MAGIC)?;
+    e.put(&VERSION.to_le_bytes())?;
+    e.put(&0u32.to_le_bytes())?;
+    e.put(&fingerprint.to_le_bytes())?;
+    e.put(&n.to_le_bytes())?;
+    sections(&mut e, ck, pvd)?;
+    let sum = e.fnv.as_ref().map_or(0, Fnv::finish);
+    e.w.write_all(&sum.to_le_bytes())
+}
+
+fn sections(e: &mut Encoder, ck: &Checkpoint, pvd: &[(f64, String)]) -> std::io::Result<()> {
     let s = &ck.committed;
-    e.u64s("increment", &[ck.increments.len() as u64]);
-    e.f64s("load_factor", &[ck.lambda]);
-    e.f64s("last_step", &[ck.last_step]);
+    e.u64s("increment", &[ck.increments.len() as u64])?;
+    e.f64s("load_factor", &[ck.lambda])?;
+    e.f64s("last_step", &[ck.last_step])?;
     e.f64s(
         "pending_load_factor",
         &ck.stepper.pending.iter().map(|p| p.0).collect::<Vec<_>>(),
-    );
+    )?;
     e.u64s(
         "pending_depth",
         &ck.stepper
@@ -163,38 +261,44 @@ pub fn encode_with(fingerprint: u64, ck: &Checkpoint, pvd: &[(f64, String)]) -> 
             .iter()
             .map(|p| p.1 as u64)
             .collect::<Vec<_>>(),
-    );
-    e.f64s("auto_waypoints", &ck.stepper.waypoints);
-    e.f64s("auto_step", &[ck.stepper.step]);
-    e.u64s("auto_failures", &[ck.stepper.failures as u64]);
+    )?;
+    e.f64s("auto_waypoints", &ck.stepper.waypoints)?;
+    e.f64s("auto_step", &[ck.stepper.step])?;
+    e.u64s("auto_failures", &[ck.stepper.failures as u64])?;
     e.u64s(
         "cutbacks",
         &[ck.cutbacks_total as u64, ck.cutbacks_here as u64],
-    );
-    e.f64s("elastic_ratio_prev", &[ck.elastic_ratio_prev]);
+    )?;
+    e.f64s("elastic_ratio_prev", &[ck.elastic_ratio_prev])?;
     e.u64s(
         "counters",
         &[ck.iterations as u64, ck.factorizations as u64],
-    );
-    e.f64s("u", &s.u);
-    let mut g = Vec::with_capacity(10 * s.gauss.len());
-    for p in &s.gauss {
-        g.extend_from_slice(&p.stress);
-        g.extend_from_slice(&p.plastic_strain);
-        g.push(p.peeq);
-        g.push(if p.yielding { 1.0 } else { 0.0 });
-    }
-    e.f64s("gauss", &g);
+    )?;
+    e.f64s("u", &s.u)?;
+    e.f64_iter(
+        "gauss",
+        10 * s.gauss.len(),
+        s.gauss.iter().flat_map(|p| {
+            let mut v = [0.0; 10];
+            v[..4].copy_from_slice(&p.stress);
+            v[4..8].copy_from_slice(&p.plastic_strain);
+            v[8] = p.peeq;
+            v[9] = if p.yielding { 1.0 } else { 0.0 };
+            v
+        }),
+    )?;
     e.bytes(
         "status",
         &s.status.iter().map(|&st| st as u8).collect::<Vec<_>>(),
-    );
-    let mut c = Vec::with_capacity(5 * s.contact.len());
-    for p in &s.contact {
-        c.extend_from_slice(&[p.slip.u_p, p.slip.kappa, p.p_t, p.u_t, p.mu_f]);
-    }
-    e.f64s("contact", &c);
-    e.f64s("prescribed_reaction", &[s.prescribed_reaction]);
+    )?;
+    e.f64_iter(
+        "contact",
+        5 * s.contact.len(),
+        s.contact
+            .iter()
+            .flat_map(|p| [p.slip.u_p, p.slip.kappa, p.p_t, p.u_t, p.mu_f]),
+    )?;
+    e.f64s("prescribed_reaction", &[s.prescribed_reaction])?;
     let mut rows = Vec::with_capacity(10 * ck.increments.len());
     for inc in &ck.increments {
         let m = &inc.measures;
@@ -211,7 +315,7 @@ pub fn encode_with(fingerprint: u64, ck: &Checkpoint, pvd: &[(f64, String)]) -> 
             m.prescribed_reaction,
         ]);
     }
-    e.f64s("curve", &rows);
+    e.f64s("curve", &rows)?;
     if let Some(fy) = &ck.first_yield {
         e.f64s(
             "first_yield",
@@ -223,30 +327,20 @@ pub fn encode_with(fingerprint: u64, ck: &Checkpoint, pvd: &[(f64, String)]) -> 
                 fy.depth,
                 fy.element as f64,
             ],
-        );
-        e.text("first_yield_body", &fy.body);
+        )?;
+        e.text("first_yield_body", &fy.body)?;
     }
     e.f64s(
         "pvd_load_factor",
         &pvd.iter().map(|p| p.0).collect::<Vec<_>>(),
-    );
+    )?;
     e.text(
         "pvd_file",
         &pvd.iter()
             .map(|p| p.1.as_str())
             .collect::<Vec<_>>()
             .join("\n"),
-    );
-    let mut out = Vec::with_capacity(e.buf.len() + 40);
-    out.extend_from_slice(MAGIC);
-    out.extend_from_slice(&VERSION.to_le_bytes());
-    out.extend_from_slice(&0u32.to_le_bytes());
-    out.extend_from_slice(&fingerprint.to_le_bytes());
-    out.extend_from_slice(&e.sections.to_le_bytes());
-    out.extend_from_slice(&e.buf);
-    let sum = fnv1a(&out);
-    out.extend_from_slice(&sum.to_le_bytes());
-    out
+    )
 }
 
 /// Reads `restart.bin` in `dir` for `model`: the checkpoint and the VTU series.
@@ -469,4 +563,28 @@ pub fn decode(
         .map(|(&l, f)| (l, f.to_string()))
         .collect();
     Ok((ck, pvd))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The streamed checksum equals the one-shot checksum for any split of
+    /// the bytes, word-aligned or not.
+    #[test]
+    fn the_streamed_checksum_does_not_depend_on_the_split() {
+        let bytes: Vec<u8> = (0..1000u32).map(|i| (i * 37 % 251) as u8).collect();
+        let whole = fnv1a(&bytes);
+        for step in [1, 3, 7, 8, 9, 64, 999] {
+            let mut f = Fnv::default();
+            for piece in bytes.chunks(step) {
+                f.update(piece);
+            }
+            assert_eq!(f.finish(), whole, "pieces of {step}");
+        }
+        // and a change anywhere changes it
+        let mut other = bytes.clone();
+        other[997] ^= 1;
+        assert_ne!(fnv1a(&other), whole);
+    }
 }

@@ -195,7 +195,7 @@ fn assembled_tangent_matches_finite_differences_of_the_residual() {
         }
         engine.linearize(&committed, &u, 1.0).unwrap();
         let vals = engine.backend.matrix_values().unwrap().to_vec();
-        let asm = &model.asm;
+        let pattern = &model.pattern;
         let kmax = vals.iter().fold(0.0f64, |a, v| a.max(v.abs()));
         // check a spread of columns, including dofs at the interface
         let free: Vec<usize> = (0..u.len())
@@ -221,8 +221,8 @@ fn assembled_tangent_matches_finite_differences_of_the_residual() {
             let rp = engine.linearize(&committed, &up, 1.0).unwrap();
             let rm = engine.linearize(&committed, &um, 1.0).unwrap();
             let mut col = vec![0.0; free.len()];
-            for k in asm.col_ptr[c]..asm.col_ptr[c + 1] {
-                col[asm.row_idx[k]] = vals[k];
+            for k in pattern.col_ptr[c]..pattern.col_ptr[c + 1] {
+                col[pattern.row_idx[k] as usize] = vals[k];
             }
             for (row, &dr) in free.iter().enumerate() {
                 let fd = (rp[dr] - rm[dr]) / (2.0 * h);

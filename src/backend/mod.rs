@@ -31,11 +31,18 @@ pub trait Backend {
     fn owns_point(&self, _q: usize) -> bool {
         true
     }
+    /// Whether the solid matrix is reused under new spring blocks (modified
+    /// Newton, initial stiffness): then it is kept apart from the system
+    /// matrix. Without reuse (full Newton, the default) the element blocks go
+    /// straight into the system matrix and the second matrix is not held.
+    /// Called once, before any assembly.
+    fn reuse_solid(&mut self, _reuse: bool) {}
     /// Starts a new solid (bodies) matrix.
     fn begin_solid(&mut self) -> Result<()>;
     /// Adds an element block; `block` is the assembler's block index.
     fn add_solid(&mut self, block: usize, dofs: &[usize], k: &[f64]) -> Result<()>;
     /// The system matrix becomes the last solid matrix; contact blocks follow.
+    /// Without reuse it must follow a `begin_solid` and the element blocks.
     fn begin_contact(&mut self) -> Result<()>;
     fn add_contact(&mut self, block: usize, dofs: &[usize], k: &[f64]) -> Result<()>;
     /// Solves K x = rhs over the free equations (replicated in and out).

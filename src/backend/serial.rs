@@ -3,8 +3,9 @@
 //! LU rather than Cholesky because the tangent is unsymmetric with friction
 //! (p_T^Y depends on p_N) and indefinite-singular when a body is unsupported.
 
-use crate::assembly::Assembler;
+use crate::assembly::{Assembler, Pattern};
 use crate::error::{Error, Result};
+use crate::model::Model;
 use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
@@ -19,14 +20,14 @@ pub struct SerialLu {
 }
 
 impl SerialLu {
-    /// Symbolic analysis (fill-reducing ordering) of the assembler's pattern.
-    pub fn new(asm: &Assembler) -> Result<Self> {
+    /// Symbolic analysis (fill-reducing ordering) of the pattern.
+    pub fn new(pattern: &Pattern) -> Result<Self> {
         let symbolic_mat = SymbolicSparseColMat::new_checked(
-            asm.n,
-            asm.n,
-            asm.col_ptr.clone(),
+            pattern.n,
+            pattern.n,
+            pattern.col_ptr.clone(),
             None,
-            asm.row_idx.clone(),
+            pattern.row_idx.iter().map(|&r| r as usize).collect(),
         );
         let symbolic_lu = SymbolicLu::try_new(symbolic_mat.as_ref())
             .map_err(|e| Error::Solver(format!("symbolic LU failed: {e:?}")))?;
@@ -73,39 +74,48 @@ impl SerialLu {
 }
 
 /// The serial backend: CSC values on the fixed pattern, factored by [`SerialLu`].
-pub struct SerialBackend<'m> {
-    asm: &'m Assembler,
+pub struct SerialBackend {
+    asm: Assembler,
     lu: SerialLu,
-    solid: Vec<f64>,
+    /// The solid part, kept apart only when a method re-adds the springs to
+    /// a reused solid matrix (see [`super::Backend::reuse_solid`]).
+    solid: Option<Vec<f64>>,
     /// Values of the last system matrix (for checks of the assembled tangent).
     pub vals: Vec<f64>,
 }
 
-impl<'m> SerialBackend<'m> {
-    pub fn new(asm: &'m Assembler) -> Result<Self> {
+impl SerialBackend {
+    pub fn new(model: &Model) -> Result<Self> {
+        let pattern = &model.pattern;
         Ok(SerialBackend {
-            asm,
-            lu: SerialLu::new(asm)?,
-            solid: vec![0.0; asm.nnz()],
-            vals: vec![0.0; asm.nnz()],
+            asm: Assembler::new(pattern, &model.dofs, &model.blocks()),
+            lu: SerialLu::new(pattern)?,
+            solid: Some(vec![0.0; pattern.nnz()]),
+            vals: vec![0.0; pattern.nnz()],
         })
     }
 }
 
-impl super::Backend for SerialBackend<'_> {
+impl super::Backend for SerialBackend {
     fn name(&self) -> &'static str {
         "serial-faer"
     }
+    fn reuse_solid(&mut self, reuse: bool) {
+        self.solid = reuse.then(|| vec![0.0; self.vals.len()]);
+    }
     fn begin_solid(&mut self) -> Result<()> {
-        self.solid.fill(0.0);
+        self.solid.as_mut().unwrap_or(&mut self.vals).fill(0.0);
         Ok(())
     }
     fn add_solid(&mut self, block: usize, _dofs: &[usize], k: &[f64]) -> Result<()> {
-        self.asm.add(block, k, &mut self.solid);
+        self.asm
+            .add(block, k, self.solid.as_mut().unwrap_or(&mut self.vals));
         Ok(())
     }
     fn begin_contact(&mut self) -> Result<()> {
-        self.vals.copy_from_slice(&self.solid);
+        if let Some(solid) = &self.solid {
+            self.vals.copy_from_slice(solid);
+        }
         Ok(())
     }
     fn add_contact(&mut self, block: usize, _dofs: &[usize], k: &[f64]) -> Result<()> {

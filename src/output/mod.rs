@@ -186,7 +186,13 @@ impl Observer for Writer {
             || (inc.load_factor - self.final_load_factor).abs() <= 1e-12;
         if model.case.output.vtu && (inc.increment % every == 0 || last) {
             let f = format!("vtu/{:04}.vtu", inc.increment);
-            self.write(&f, &vtu::vtu(model, state))?;
+            let p = self.tmp_dir.join(&f);
+            let write = || -> std::io::Result<()> {
+                let mut w = std::io::BufWriter::new(std::fs::File::create(&p)?);
+                vtu::write_vtu(&mut w, model, state)?;
+                std::io::Write::flush(&mut w)
+            };
+            write().map_err(|e| Error::io(&p, e))?;
             self.pvd.push((inc.load_factor, f));
         }
         let el = self.log.elapsed();
@@ -236,9 +242,13 @@ impl Observer for Writer {
         let fp = *self
             .fingerprint
             .get_or_insert_with(|| crate::restart::fingerprint(model));
-        let bytes = crate::restart::encode_with(fp, ck, &self.pvd);
         let tmp = self.tmp_dir.join(".restart.bin.tmp");
-        std::fs::write(&tmp, &bytes).map_err(|e| Error::io(&tmp, e))?;
+        let write = || -> std::io::Result<()> {
+            let mut w = std::io::BufWriter::new(std::fs::File::create(&tmp)?);
+            crate::restart::write_to(&mut w, fp, ck, &self.pvd)?;
+            std::io::Write::flush(&mut w)
+        };
+        write().map_err(|e| Error::io(&tmp, e))?;
         let p = self.tmp_dir.join(crate::restart::FILE);
         std::fs::rename(&tmp, &p).map_err(|e| Error::io(&p, e))
     }

@@ -58,8 +58,9 @@ pub fn nodal_fields(model: &Model, state: &State) -> NodalFields {
     f
 }
 
-/// The VTU document for one state.
-pub fn vtu(model: &Model, state: &State) -> String {
+/// Writes the VTU document for one state to `w` as it goes (the document of a
+/// 1M-dof model is about 150 MB; it is never held in memory).
+pub fn write_vtu(w: &mut dyn std::io::Write, model: &Model, state: &State) -> std::io::Result<()> {
     let mesh = &model.mesh;
     let nf = nodal_fields(model, state);
     let nn = mesh.nodes.len();
@@ -88,63 +89,56 @@ pub fn vtu(model: &Model, state: &State) -> String {
         }
         base += im.points.len();
     }
-    let mut s = String::with_capacity(200 * nn);
-    s.push_str("<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n<UnstructuredGrid>\n");
-    let _ = writeln!(s, "<Piece NumberOfPoints=\"{nn}\" NumberOfCells=\"{ne}\">");
-    s.push_str(
-        "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n",
-    );
+    w.write_all(b"<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n<UnstructuredGrid>\n")?;
+    writeln!(w, "<Piece NumberOfPoints=\"{nn}\" NumberOfCells=\"{ne}\">")?;
+    w.write_all(
+        b"<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n",
+    )?;
     for x in &mesh.nodes {
-        let _ = writeln!(s, "{:e} {:e} 0", x[0], x[1]);
+        writeln!(w, "{:e} {:e} 0", x[0], x[1])?;
     }
-    s.push_str("</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
+    w.write_all(b"</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n")?;
     for el in &mesh.elements {
-        let line: Vec<String> = el.nodes.iter().map(|n| n.to_string()).collect();
-        let _ = writeln!(s, "{}", line.join(" "));
+        let n = &el.nodes;
+        writeln!(
+            w,
+            "{} {} {} {} {} {} {} {}",
+            n[0], n[1], n[2], n[3], n[4], n[5], n[6], n[7]
+        )?;
     }
-    s.push_str("</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
+    w.write_all(b"</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n")?;
     for e in 0..ne {
-        let _ = write!(s, "{} ", 8 * (e + 1));
+        write!(w, "{} ", 8 * (e + 1))?;
     }
-    s.push_str("\n</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
+    w.write_all(b"\n</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n")?;
     for _ in 0..ne {
-        let _ = write!(s, "{VTK_QUADRATIC_QUAD} ");
+        write!(w, "{VTK_QUADRATIC_QUAD} ")?;
     }
-    s.push_str(
-        "\n</DataArray>\n</Cells>\n<PointData Vectors=\"displacement\" Scalars=\"von_mises\">\n",
-    );
+    w.write_all(
+        b"\n</DataArray>\n</Cells>\n<PointData Vectors=\"displacement\" Scalars=\"von_mises\">\n",
+    )?;
     array(
-        &mut s,
+        w,
         "displacement",
         3,
         (0..nn).flat_map(|i| [state.u[2 * i], state.u[2 * i + 1], 0.0]),
-    );
+    )?;
     array(
-        &mut s,
+        w,
         "stress",
         4,
         nf.stress.iter().flat_map(|v| v.iter().copied()),
-    );
-    array(&mut s, "von_mises", 1, nf.von_mises.iter().copied());
-    array(&mut s, "peeq", 1, nf.peeq.iter().copied());
-    array(&mut s, "contact_pressure", 1, p_n.iter().copied());
-    array(&mut s, "contact_shear", 1, p_t.iter().copied());
-    array(
-        &mut s,
-        "contact_closed",
-        1,
-        status.iter().map(|&v| f64::from(v)),
-    );
-    s.push_str("</PointData>\n<CellData>\n");
-    array(
-        &mut s,
-        "body",
-        1,
-        mesh.elements.iter().map(|e| e.body as f64),
-    );
+    )?;
+    array(w, "von_mises", 1, nf.von_mises.iter().copied())?;
+    array(w, "peeq", 1, nf.peeq.iter().copied())?;
+    array(w, "contact_pressure", 1, p_n.iter().copied())?;
+    array(w, "contact_shear", 1, p_t.iter().copied())?;
+    array(w, "contact_closed", 1, status.iter().map(|&v| f64::from(v)))?;
+    w.write_all(b"</PointData>\n<CellData>\n")?;
+    array(w, "body", 1, mesh.elements.iter().map(|e| e.body as f64))?;
     let ng = model.n_gauss();
     array(
-        &mut s,
+        w,
         "max_peeq",
         1,
         (0..ne).map(|e| {
@@ -152,21 +146,25 @@ pub fn vtu(model: &Model, state: &State) -> String {
                 .iter()
                 .fold(0.0f64, |a, g| a.max(g.peeq))
         }),
-    );
-    s.push_str("</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
-    s
+    )?;
+    w.write_all(b"</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n")
 }
 
-fn array(s: &mut String, name: &str, comps: usize, vals: impl Iterator<Item = f64>) {
-    let _ = writeln!(
-        s,
+fn array(
+    w: &mut dyn std::io::Write,
+    name: &str,
+    comps: usize,
+    vals: impl Iterator<Item = f64>,
+) -> std::io::Result<()> {
+    writeln!(
+        w,
         "<DataArray type=\"Float64\" Name=\"{name}\" NumberOfComponents=\"{comps}\" format=\"ascii\">"
-    );
+    )?;
     for (i, v) in vals.enumerate() {
-        let _ = write!(s, "{v:e}");
-        s.push(if (i + 1) % comps == 0 { '\n' } else { ' ' });
+        write!(w, "{v:e}")?;
+        w.write_all(if (i + 1) % comps == 0 { b"\n" } else { b" " })?;
     }
-    s.push_str("</DataArray>\n");
+    w.write_all(b"</DataArray>\n")
 }
 
 /// The .pvd collection listing (time = load factor, file name).

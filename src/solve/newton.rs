@@ -60,11 +60,16 @@ impl<'m> Engine<'m> {
         Ok(Self::with_backend(
             model,
             method,
-            Box::new(SerialBackend::new(&model.asm)?),
+            Box::new(SerialBackend::new(model)?),
         ))
     }
 
-    pub fn with_backend(model: &'m Model, method: Method, backend: Box<dyn Backend + 'm>) -> Self {
+    pub fn with_backend(
+        model: &'m Model,
+        method: Method,
+        mut backend: Box<dyn Backend + 'm>,
+    ) -> Self {
+        backend.reuse_solid(method != Method::FullNewton);
         Engine {
             nonlinear: None,
             model,
@@ -260,7 +265,7 @@ impl<'m> Engine<'m> {
             let gs = e * ng..(e + 1) * ng;
             let committed_gp: &[PointState] = &committed.gauss[gs.clone()];
             if let Err(msg) = element_forces(
-                &m.geom[e],
+                &m.geometry(e),
                 &m.materials[el.body],
                 &ue,
                 committed_gp,

@@ -73,7 +73,7 @@ pub(super) fn locate(
     }
     let (_, e, ip) = max_yield_ratio(model, &sb);
     let m = super::Measures::of(model, &sb);
-    let x = model.geom[e].x[ip];
+    let x = model.geometry(e).x[ip];
     Ok(FirstYield {
         load_factor: b,
         mean_pressure: m.mean_pressure,

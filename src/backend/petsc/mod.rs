@@ -109,7 +109,8 @@ impl<'p> PVec<'p> {
     }
 
     /// Writes the owned entries of `src` (equation order) into this vector:
-    /// `owned` pairs each local position with its equation.
+    /// `owned` pairs each local position with its equation; the other local
+    /// entries (prescribed dofs) become zero.
     pub fn write_owned(&mut self, owned: &[(usize, usize)], src: &[f64]) -> Result<()> {
         write_owned(self.raw, owned, src)
     }
@@ -118,11 +119,15 @@ impl<'p> PVec<'p> {
 /// [`PVec::write_owned`] for a vector handle PETSc passed to a callback.
 pub(crate) fn write_owned(v: ffi::Vec, owned: &[(usize, usize)], src: &[f64]) -> Result<()> {
     let mut a: *mut f64 = std::ptr::null_mut();
-    // SAFETY: v is a valid vector whose local part has `owned.len()` entries;
-    // the array is restored before return.
+    let mut n: ffi::PetscInt = 0;
+    // SAFETY: v is a valid vector with `n` local entries, every position in
+    // `owned` below n; the array is restored before return.
     unsafe {
+        chk(ffi::VecGetLocalSize(v, &mut n), "VecGetLocalSize")?;
         chk(ffi::VecGetArray(v, &mut a), "VecGetArray")?;
-        let local = std::slice::from_raw_parts_mut(a, owned.len());
+        let local = std::slice::from_raw_parts_mut(a, n as usize);
+        // prescribed dofs (not in `owned`) are zero
+        local.fill(0.0);
         for &(k, e) in owned {
             local[k] = src[e];
         }
@@ -219,31 +224,40 @@ pub struct PMat<'p> {
 }
 
 impl<'p> PMat<'p> {
+    /// `local` of `global` rows on this rank, block size `bs` (dofs per node,
+    /// for multigrid), `d_nnz`/`o_nnz` nonzeros per owned row in the diagonal
+    /// and off-diagonal blocks.
     pub fn aij(
         petsc: &'p Petsc,
         local: usize,
         global: usize,
+        bs: usize,
         d_nnz: &[ffi::PetscInt],
         o_nnz: &[ffi::PetscInt],
     ) -> Result<Self> {
         let mut raw = std::ptr::null_mut();
         let (l, g) = (local as ffi::PetscInt, global as ffi::PetscInt);
-        // SAFETY: nnz arrays have `local` entries.
+        // SAFETY: out-pointer to a fresh handle (kept in `mat` at once, so an
+        // early return destroys it); nnz arrays have `local` entries.
         unsafe {
+            chk(ffi::MatCreate(petsc.comm(), &mut raw), "MatCreate")?;
+            let mat = PMat {
+                raw,
+                _p: PhantomData,
+            };
+            chk(ffi::MatSetSizes(raw, l, l, g, g), "MatSetSizes")?;
             chk(
-                ffi::MatCreateAIJ(
-                    petsc.comm(),
-                    l,
-                    l,
-                    g,
-                    g,
-                    0,
-                    d_nnz.as_ptr(),
-                    0,
-                    o_nnz.as_ptr(),
-                    &mut raw,
-                ),
-                "MatCreateAIJ",
+                ffi::MatSetBlockSize(raw, bs as ffi::PetscInt),
+                "MatSetBlockSize",
+            )?;
+            chk(ffi::MatSetType(raw, c"aij".as_ptr()), "MatSetType")?;
+            chk(
+                ffi::MatSeqAIJSetPreallocation(raw, 0, d_nnz.as_ptr()),
+                "MatSeqAIJSetPreallocation",
+            )?;
+            chk(
+                ffi::MatMPIAIJSetPreallocation(raw, 0, d_nnz.as_ptr(), 0, o_nnz.as_ptr()),
+                "MatMPIAIJSetPreallocation",
             )?;
             chk(
                 ffi::MatSetOption(
@@ -253,11 +267,8 @@ impl<'p> PMat<'p> {
                 ),
                 "MatSetOption",
             )?;
+            Ok(mat)
         }
-        Ok(PMat {
-            raw,
-            _p: PhantomData,
-        })
     }
 
     /// Attaches a near-null space (e.g. rigid-body modes) for algebraic multigrid:

@@ -263,8 +263,9 @@ impl<'p> SnesSolver<'p> {
     ) -> Result<Self> {
         let n = part.petsc_index.len();
         let owned = part.owned(rank);
-        let x = PVec::new(petsc, owned.len(), n)?;
-        let f = PVec::new(petsc, owned.len(), n)?;
+        let (local, global) = (part.local_len(rank), part.global_len());
+        let x = PVec::new(petsc, local, global)?;
+        let f = PVec::new(petsc, local, global)?;
         let to_all = ToAll::new(&x)?;
         let mut raw = std::ptr::null_mut();
         // SAFETY: out-pointers to fresh handles; the KSP and PC belong to the SNES.
@@ -279,7 +280,7 @@ impl<'p> SnesSolver<'p> {
                     to_all,
                     petsc_index: part.petsc_index.clone(),
                     owned,
-                    gathered: vec![0.0; n],
+                    gathered: vec![0.0; global],
                     x: vec![0.0; n],
                     r: vec![0.0; n],
                     scratch: vec![0.0; n],

@@ -16,6 +16,10 @@ pub struct Partition {
     pub point_owner: Vec<usize>,
     /// Free equation → PETSc global index (rank-contiguous).
     pub petsc_index: Vec<ffi::PetscInt>,
+    /// Mesh dof → PETSc global index. PETSc numbers every dof, prescribed ones
+    /// too (as identity rows), two per node in node order within each rank, so
+    /// the matrix has block size 2 and algebraic multigrid aggregates nodes.
+    pub dof_index: Vec<ffi::PetscInt>,
     /// First PETSc index of each rank, and the total (len = ranks + 1).
     pub offsets: Vec<usize>,
 }
@@ -33,32 +37,71 @@ impl Partition {
             .collect()
     }
 
-    /// The three in-plane rigid-body modes (x and y translation, rotation about
-    /// the centroid) over the free equations, orthonormalized (modified
-    /// Gram-Schmidt on the replicated vectors, so every rank gets the same), as
-    /// this rank's owned parts in PETSc order: the near-null space that lets
-    /// GAMG (`-pc_type gamg`) build coarse spaces for elasticity.
+    /// Rows (PETSc indices) `rank` owns.
+    pub fn local_len(&self, rank: usize) -> usize {
+        self.offsets[rank + 1] - self.offsets[rank]
+    }
+
+    /// Rows of the PETSc system: every dof of the mesh.
+    pub fn global_len(&self) -> usize {
+        self.dof_index.len()
+    }
+
+    /// PETSc rows of the prescribed dofs `rank` owns: identity rows of the
+    /// system, zero in every right-hand side and solution.
+    pub fn prescribed_rows(&self, model: &Model, rank: usize) -> Vec<ffi::PetscInt> {
+        let (lo, hi) = (self.offsets[rank], self.offsets[rank + 1]);
+        (0..self.dof_index.len())
+            .filter(|&d| model.dofs.equation(d).is_none())
+            .map(|d| self.dof_index[d])
+            .filter(|&p| (lo..hi).contains(&(p as usize)))
+            .collect()
+    }
+
+    /// The in-plane rigid-body modes of each body separately (x and y
+    /// translation, rotation about the body's centroid; three per body) over
+    /// every dof in PETSc order, orthonormalized (modified Gram-Schmidt on the
+    /// replicated vectors, so every rank gets the same), as this rank's owned
+    /// parts: the near-null space for algebraic multigrid (`-pc_type gamg`).
+    /// Per body, because the interface springs let one body move almost
+    /// rigidly against the other: with the modes of the whole assembly only,
+    /// GAMG needed 190 Krylov iterations per solve on punch-plane-stress-fine
+    /// at refine 4, with these 79.
     pub fn rigid_body_modes(&self, model: &Model, rank: usize) -> Vec<Vec<f64>> {
-        let nodes = &model.mesh.nodes;
-        let n = model.dofs.n_eq;
-        let c = nodes
-            .iter()
-            .fold([0.0, 0.0], |a, p| [a[0] + p[0], a[1] + p[1]]);
-        let c = [c[0] / nodes.len() as f64, c[1] / nodes.len() as f64];
-        let mut modes = vec![vec![0.0; n]; 3];
-        for (i, p) in nodes.iter().enumerate() {
-            for comp in 0..2 {
-                if let Some(e) = model.dofs.equation(2 * i + comp) {
-                    modes[comp][e] = 1.0;
-                    modes[2][e] = if comp == 0 {
-                        -(p[1] - c[1])
-                    } else {
-                        p[0] - c[0]
-                    };
-                }
+        let mesh = &model.mesh;
+        let nodes = &mesh.nodes;
+        let n = self.global_len();
+        let nb = mesh.bodies.len().max(1);
+        let mut body_of = vec![0usize; nodes.len()];
+        for el in &mesh.elements {
+            for &v in &el.nodes {
+                body_of[v] = el.body;
             }
         }
-        for k in 0..3 {
+        // centroid and node count per body
+        let mut c = vec![[0.0f64; 3]; nb];
+        for (i, p) in nodes.iter().enumerate() {
+            let g = &mut c[body_of[i]];
+            g[0] += p[0];
+            g[1] += p[1];
+            g[2] += 1.0;
+        }
+        let mut modes = vec![vec![0.0; n]; 3 * nb];
+        for (i, p) in nodes.iter().enumerate() {
+            let b = body_of[i];
+            let cb = [c[b][0] / c[b][2], c[b][1] / c[b][2]];
+            let (ix, iy) = (
+                self.dof_index[2 * i] as usize,
+                self.dof_index[2 * i + 1] as usize,
+            );
+            modes[3 * b][ix] = 1.0;
+            modes[3 * b + 1][iy] = 1.0;
+            modes[3 * b + 2][ix] = -(p[1] - cb[1]);
+            modes[3 * b + 2][iy] = p[0] - cb[0];
+        }
+        // bodies without nodes give zero vectors: drop them
+        modes.retain(|m| m.iter().any(|&v| v != 0.0));
+        for k in 0..modes.len() {
             for j in 0..k {
                 let (done, rest) = modes.split_at_mut(k);
                 let d: f64 = done[j].iter().zip(&rest[0]).map(|(a, b)| a * b).sum();
@@ -71,16 +114,10 @@ impl Partition {
                 modes[k].iter_mut().for_each(|v| *v /= norm);
             }
         }
-        let owned = self.owned(rank);
+        let lo = self.offsets[rank];
         modes
             .iter()
-            .map(|m| {
-                let mut local = vec![0.0; owned.len()];
-                for &(k, e) in &owned {
-                    local[k] = m[e];
-                }
-                local
-            })
+            .map(|m| m[lo..lo + self.local_len(rank)].to_vec())
             .collect()
     }
 
@@ -123,32 +160,34 @@ impl Partition {
                     .map(|pt| node_owner[im.pairs[pt.pairs[0]].b])
             })
             .collect();
-        // equations sorted by (owner, equation)
-        let n_eq = model.dofs.n_eq;
-        let mut eq_owner = vec![0usize; n_eq];
-        for d in 0..mesh.num_dofs() {
-            if let Some(e) = model.dofs.equation(d) {
-                eq_owner[e] = node_owner[d / 2];
-            }
-        }
+        // dofs sorted by (owner, node, component); a node nothing uses goes to rank 0
+        let nd = mesh.num_dofs();
         let mut offsets = vec![0usize; ranks + 1];
-        for &o in &eq_owner {
-            offsets[o + 1] += 1;
+        for &o in &node_owner {
+            offsets[o.min(ranks - 1) + 1] += 2;
         }
         for r in 0..ranks {
             offsets[r + 1] += offsets[r];
         }
         let mut next = offsets.clone();
-        let mut petsc_index = vec![0 as ffi::PetscInt; n_eq];
-        for e in 0..n_eq {
-            let o = eq_owner[e];
-            petsc_index[e] = next[o] as ffi::PetscInt;
-            next[o] += 1;
+        let mut dof_index = vec![0 as ffi::PetscInt; nd];
+        for (v, &o) in node_owner.iter().enumerate() {
+            let o = o.min(ranks - 1);
+            dof_index[2 * v] = next[o] as ffi::PetscInt;
+            dof_index[2 * v + 1] = next[o] as ffi::PetscInt + 1;
+            next[o] += 2;
+        }
+        let mut petsc_index = vec![0 as ffi::PetscInt; model.dofs.n_eq];
+        for (d, &p) in dof_index.iter().enumerate() {
+            if let Some(e) = model.dofs.equation(d) {
+                petsc_index[e] = p;
+            }
         }
         Ok(Partition {
             element_owner,
             point_owner,
             petsc_index,
+            dof_index,
             offsets,
         })
     }
@@ -162,20 +201,23 @@ impl Partition {
     ) -> (Vec<ffi::PetscInt>, Vec<ffi::PetscInt>) {
         let (lo, hi) = (self.offsets[rank], self.offsets[rank + 1]);
         let (mut d, mut o) = (vec![0; hi - lo], vec![0; hi - lo]);
-        let asm = &model.asm;
-        for c in 0..asm.n {
+        let pattern = &model.pattern;
+        for c in 0..pattern.n {
             let row = self.petsc_index[c] as usize;
             if row < lo || row >= hi {
                 continue;
             }
-            for k in asm.col_ptr[c]..asm.col_ptr[c + 1] {
-                let col = self.petsc_index[asm.row_idx[k]] as usize;
+            for &r in pattern.rows(c) {
+                let col = self.petsc_index[r as usize] as usize;
                 if col >= lo && col < hi {
                     d[row - lo] += 1;
                 } else {
                     o[row - lo] += 1;
                 }
             }
+        }
+        for p in self.prescribed_rows(model, rank) {
+            d[p as usize - lo] = 1;
         }
         (d, o)
     }
@@ -189,7 +231,13 @@ pub struct PetscBackend<'p> {
     pub part: Partition,
     /// (local position, equation) of this rank's equations.
     owned: Vec<(usize, usize)>,
-    solid: PMat<'p>,
+    /// Owned rows of prescribed dofs: 1 on the diagonal, nothing else.
+    prescribed: Vec<ffi::PetscInt>,
+    petsc: &'p Petsc<'p>,
+    /// The solid part, kept apart only when a method reuses it under new
+    /// springs ([`crate::backend::Backend::reuse_solid`]); otherwise element
+    /// blocks go straight into `mat` and this second matrix is not held.
+    solid: Option<PMat<'p>>,
     mat: PMat<'p>,
     ksp: Ksp<'p>,
     b: PVec<'p>,
@@ -199,6 +247,43 @@ pub struct PetscBackend<'p> {
     idx: Vec<ffi::PetscInt>,
     /// Krylov iterations over the run.
     pub ksp_iterations: usize,
+    keep_solid: bool,
+    /// Without a kept solid matrix: element blocks were just added to `mat`.
+    solid_fresh: bool,
+}
+
+/// Fixes a matrix's nonzero structure once: explicit zeros over the whole
+/// pattern of this rank's rows, 1 on the prescribed rows' diagonal.
+fn fix_pattern(
+    mat: &mut PMat<'_>,
+    model: &Model,
+    part: &Partition,
+    rank: usize,
+    prescribed: &[ffi::PetscInt],
+) -> Result<()> {
+    let pattern = &model.pattern;
+    let (lo, hi) = (part.offsets[rank], part.offsets[rank + 1]);
+    let mut cols = Vec::new();
+    let mut zeros = Vec::new();
+    for c in 0..pattern.n {
+        let row = part.petsc_index[c];
+        if (row as usize) < lo || (row as usize) >= hi {
+            continue;
+        }
+        cols.clear();
+        cols.extend(
+            pattern
+                .rows(c)
+                .iter()
+                .map(|&r| part.petsc_index[r as usize]),
+        );
+        zeros.resize(cols.len(), 0.0);
+        mat.set_row(row, &cols, &zeros)?;
+    }
+    for &p in prescribed {
+        mat.set_row(p, &[p], &[1.0])?;
+    }
+    mat.assemble()
 }
 
 impl<'p> PetscBackend<'p> {
@@ -206,28 +291,11 @@ impl<'p> PetscBackend<'p> {
         let (rank, ranks) = (world.rank() as usize, world.size() as usize);
         let part = Partition::new(model, ranks)?;
         let (d, o) = part.preallocation(model, rank);
-        let local = part.offsets[rank + 1] - part.offsets[rank];
-        let n = model.dofs.n_eq;
-        let mut solid = PMat::aij(petsc, local, n, &d, &o)?;
-        let mut mat = PMat::aij(petsc, local, n, &d, &o)?;
-        // fix the nonzero structure once: explicit zeros over the whole pattern
-        let asm = &model.asm;
-        let (lo, hi) = (part.offsets[rank], part.offsets[rank + 1]);
-        for c in 0..asm.n {
-            let row = part.petsc_index[c];
-            if (row as usize) < lo || (row as usize) >= hi {
-                continue;
-            }
-            let cols: Vec<ffi::PetscInt> = asm.row_idx[asm.col_ptr[c]..asm.col_ptr[c + 1]]
-                .iter()
-                .map(|&r| part.petsc_index[r])
-                .collect();
-            let zeros = vec![0.0; cols.len()];
-            solid.set_row(row, &cols, &zeros)?;
-            mat.set_row(row, &cols, &zeros)?;
-        }
-        solid.assemble()?;
-        mat.assemble()?;
+        let local = part.local_len(rank);
+        let n = part.global_len();
+        let mut mat = PMat::aij(petsc, local, n, 2, &d, &o)?;
+        let prescribed = part.prescribed_rows(model, rank);
+        fix_pattern(&mut mat, model, &part, rank, &prescribed)?;
         mat.set_near_null_space(petsc, &part.rigid_body_modes(model, rank))?;
         let b = PVec::new(petsc, local, n)?;
         let x = PVec::new(petsc, local, n)?;
@@ -238,8 +306,10 @@ impl<'p> PetscBackend<'p> {
             ranks,
             model,
             owned: part.owned(rank),
+            prescribed,
+            petsc,
             part,
-            solid,
+            solid: None,
             mat,
             ksp: Ksp::new(petsc)?,
             b,
@@ -248,6 +318,8 @@ impl<'p> PetscBackend<'p> {
             gathered: vec![0.0; n],
             idx: Vec::with_capacity(24),
             ksp_iterations: 0,
+            keep_solid: false,
+            solid_fresh: false,
         })
     }
 
@@ -271,7 +343,11 @@ impl<'p> PetscBackend<'p> {
 
     /// Mallocs during assembly of the system matrix (0 with exact preallocation).
     pub fn mallocs(&self) -> Result<f64> {
-        Ok(self.mat.mallocs()? + self.solid.mallocs()?)
+        let solid = match &self.solid {
+            Some(s) => s.mallocs()?,
+            None => 0.0,
+        };
+        Ok(self.mat.mallocs()? + solid)
     }
 }
 
@@ -291,19 +367,57 @@ impl crate::backend::Backend for PetscBackend<'_> {
     fn owns_point(&self, q: usize) -> bool {
         self.part.point_owner[q] == self.rank
     }
+    fn reuse_solid(&mut self, reuse: bool) {
+        self.keep_solid = reuse;
+    }
     fn begin_solid(&mut self) -> Result<()> {
+        if self.keep_solid && self.solid.is_none() {
+            let (d, o) = self.part.preallocation(self.model, self.rank);
+            let local = self.part.local_len(self.rank);
+            let mut solid = PMat::aij(self.petsc, local, self.part.global_len(), 2, &d, &o)?;
+            fix_pattern(
+                &mut solid,
+                self.model,
+                &self.part,
+                self.rank,
+                &self.prescribed,
+            )?;
+            self.solid = Some(solid);
+        }
+        let target = self.solid.as_mut().unwrap_or(&mut self.mat);
         // values may be pending from an attempt that failed midway
-        self.solid.assemble()?;
-        self.solid.zero()
+        target.assemble()?;
+        target.zero()?;
+        // added (not inserted): element blocks are added next, and PETSc
+        // does not mix the two modes between assemblies
+        for &p in &self.prescribed {
+            target.add(&[p], &[1.0])?;
+        }
+        self.solid_fresh = true;
+        Ok(())
     }
     fn add_solid(&mut self, _block: usize, dofs: &[usize], k: &[f64]) -> Result<()> {
         self.indices(dofs);
-        self.solid.add(&self.idx, k)
+        self.solid
+            .as_mut()
+            .unwrap_or(&mut self.mat)
+            .add(&self.idx, k)
     }
     fn begin_contact(&mut self) -> Result<()> {
-        self.solid.assemble()?;
-        self.mat.assemble()?;
-        self.mat.copy_from(&self.solid)
+        match &mut self.solid {
+            Some(solid) => {
+                solid.assemble()?;
+                self.mat.assemble()?;
+                self.mat.copy_from(solid)
+            }
+            None if self.solid_fresh => {
+                self.solid_fresh = false;
+                Ok(())
+            }
+            None => Err(Error::Solver(
+                "internal: springs added to a solid matrix that was not kept (reuse_solid)".into(),
+            )),
+        }
     }
     fn add_contact(&mut self, _block: usize, dofs: &[usize], k: &[f64]) -> Result<()> {
         self.indices(dofs);
@@ -343,10 +457,7 @@ impl crate::backend::Backend for PetscBackend<'_> {
         vec![
             ("ksp_iterations", self.ksp_iterations as f64),
             ("assembly_mallocs", self.mallocs().unwrap_or(f64::NAN)),
-            (
-                "owned_equations_rank0",
-                (self.part.offsets[1] - self.part.offsets[0]) as f64,
-            ),
+            ("owned_equations_rank0", self.part.owned(0).len() as f64),
         ]
     }
     fn sum(&self, v: &mut [f64]) {
