@@ -9,7 +9,8 @@
 # (--stop-after N ends the run after N increments with exit code 3, accepted here.)
 # "s per Newton it" and "it / linear solve" use the assembly and solve times
 # of summary.json, so start-up and output writing do not count.
-# PETSC_OPTS="-ksp_type gmres -pc_type gamg" passes options to PETSc.
+# PETSC_OPTS="-ksp_type gmres -pc_type gamg" passes options to PETSc;
+# BIN=path runs another build of asperity; OUT=dir keeps runs apart.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 levels=${1:-"2 4 8 12"}
@@ -18,8 +19,8 @@ shift $(( $# < 2 ? $# : 2 ))
 [ "${1:-}" = "--" ] && shift
 extra=("$@")
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
-bin=./target/release/asperity
-out=target/scaling
+bin=${BIN:-./target/release/asperity}
+out=${OUT:-target/scaling}
 mkdir -p "$out"
 field() { python3 -c "import json,sys; d=json.load(open('$1')); v=d; [v:=v[k] for k in '$2'.split('.')]; print(v)"; }
 echo "| refine | dofs | backend | ranks | increments | Newton its | KSP its | wall (s) | s per Newton it | Newton it / linear solve | peak memory (MB) | bytes/dof |"

@@ -5,7 +5,7 @@
 //! alike) → backend → run. Objects drop in reverse order: PETSc finalizes before
 //! MPI. Only rank 0 writes output and prints; every error ends every rank.
 
-use crate::backend::petsc::{snes::SnesSolver, solver::PetscBackend, Petsc};
+use crate::backend::petsc::{snes::SnesSolver, solver::PetscBackend, LinearDefault, Petsc};
 use crate::driver::{self, RunOptions};
 use crate::error::{Error, Result};
 use crate::solve::nonlinear::NonlinearSolver;
@@ -37,7 +37,8 @@ pub fn run(
         let petsc = Petsc::init(&universe, petsc_args)?;
         let result = {
             let model = driver::load_model(case_path, opts)?;
-            let backend = PetscBackend::new(&petsc, world.duplicate(), &model)?;
+            let linear = LinearDefault::for_model(&model);
+            let backend = PetscBackend::new(&petsc, world.duplicate(), &model, linear)?;
             let snes = if opts.snes {
                 Some(SnesSolver::new(
                     &petsc,
@@ -45,6 +46,7 @@ pub fn run(
                     &backend.part,
                     world.rank() as usize,
                     model.case.solver.iteration_limit(),
+                    linear,
                 )?)
             } else {
                 None

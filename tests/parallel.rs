@@ -282,6 +282,13 @@ fn krylov_solvers_from_the_options_database_give_the_same_answer() {
     ]);
     let a = json(&root.join("lu"));
     let ua = a["final"]["center_displacement_mm"].as_f64().unwrap();
+    // summary.json names the solver that ran
+    assert_eq!(a["linear_solver"], "preonly + lu (mumps)");
+    assert_eq!(
+        json(&root.join("gmres"))["linear_solver"],
+        "gmres + bjacobi"
+    );
+    assert_eq!(json(&root.join("gamg"))["linear_solver"], "gmres + gamg");
     for run in ["gmres", "gamg"] {
         let b = json(&root.join(run));
         let ub = b["final"]["center_displacement_mm"].as_f64().unwrap();
@@ -616,4 +623,25 @@ fn the_rigid_body_modes_are_orthonormal_rigid_motions_of_each_body() {
         }
     }
     assert_eq!(rotation_seen, [true, true], "each body has a rotation mode");
+}
+
+/// The PETSc default linear solver follows the size: MUMPS LU below
+/// `LinearDefault::MULTIGRID_FROM` dofs, GAMG above it, inside CG for the
+/// symmetric tangent of a case without a tangential law.
+#[test]
+fn the_default_linear_solver_follows_the_size_of_the_model() {
+    use asperity::backend::petsc::LinearDefault;
+    let text =
+        std::fs::read_to_string(common::root().join("cases/punch-plane-stress-fine/case.toml"))
+            .unwrap();
+    let at = |refine: usize| {
+        let model = common::model(&text.replace("refine = 8", &format!("refine = {refine}")));
+        (model.mesh.num_dofs(), LinearDefault::for_model(&model))
+    };
+    let (small, d) = at(12);
+    assert!(small < LinearDefault::MULTIGRID_FROM);
+    assert_eq!(d, LinearDefault::DirectLu);
+    let (big, d) = at(18);
+    assert!(big >= LinearDefault::MULTIGRID_FROM);
+    assert_eq!(d, LinearDefault::Multigrid { symmetric: true });
 }

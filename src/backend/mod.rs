@@ -60,6 +60,10 @@ pub trait Backend {
     fn share_message(&self, msg: Option<String>) -> Option<String> {
         msg
     }
+    /// The linear solver, as summary.json reports it.
+    fn linear_solver(&self) -> String {
+        "faer sparse LU".into()
+    }
     /// Counters reported in summary.json under "backend_stats".
     fn diagnostics(&self) -> Vec<(&'static str, f64)> {
         Vec::new()

@@ -350,6 +350,7 @@ pub fn summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
         "backend": r.backend,
         "ranks": r.ranks,
         "nonlinear_solver": r.nonlinear_solver,
+        "linear_solver": r.linear_solver,
         "backend_stats": r.backend_stats.iter().cloned().collect::<std::collections::BTreeMap<_, _>>(),
         "dofs": model.mesh.num_dofs(),
         "equations": model.dofs.n_eq,

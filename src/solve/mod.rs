@@ -160,6 +160,8 @@ pub struct RunResult {
     pub backend: String,
     /// "builtin" or "snes".
     pub nonlinear_solver: String,
+    /// e.g. "faer sparse LU", "preonly + lu (mumps)", "cg + gamg".
+    pub linear_solver: String,
     pub ranks: usize,
     /// Peak resident memory summed over ranks (VmHWM), MB; 0 where unknown.
     pub peak_memory_mb: f64,
@@ -317,6 +319,11 @@ pub fn run_from(
         peak_memory_mb: memory[0],
         backend: engine.backend.name().to_string(),
         ranks: engine.backend.ranks(),
+        linear_solver: engine
+            .nonlinear
+            .as_ref()
+            .and_then(|s| s.linear_solver())
+            .unwrap_or_else(|| engine.backend.linear_solver()),
         nonlinear_solver: engine
             .nonlinear
             .as_ref()

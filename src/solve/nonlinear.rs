@@ -48,6 +48,10 @@ pub trait NonlinearSolver {
     /// Iterates from `problem.initial()` until the problem says stop. An `Err`
     /// is a failure of the solver itself (linear solve, line search).
     fn solve(&mut self, problem: &mut dyn Problem) -> Result<(), String>;
+    /// The linear solver inside, when it is not the backend's.
+    fn linear_solver(&self) -> Option<String> {
+        None
+    }
     /// Counters reported in summary.json under "backend_stats" (added to the
     /// backend's counters of the same name).
     fn diagnostics(&self) -> Vec<(&'static str, f64)> {

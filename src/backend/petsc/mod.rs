@@ -430,39 +430,130 @@ pub struct Ksp<'p> {
     _p: PhantomData<&'p Petsc<'p>>,
 }
 
-/// The default linear solver of a KSP, before the options database is read:
-/// `preonly` with a sparse direct LU by MUMPS.
+/// The linear solver a KSP starts from, before the options database (any
+/// `-ksp_*`/`-pc_*` option on the command line overrides it).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LinearDefault {
+    /// Sparse direct LU by MUMPS, one application (`preonly`).
+    DirectLu,
+    /// Smoothed-aggregation multigrid (GAMG, with the per-body rigid-body
+    /// near-null space) inside CG when the tangent is symmetric (no
+    /// tangential interface law), GMRES otherwise; relative tolerance 1e-10
+    /// so that the Newton iterates match a direct solve to round-off.
+    Multigrid { symmetric: bool },
+}
+
+impl LinearDefault {
+    /// Systems of at least this many rows (all dofs) get multigrid: below it
+    /// MUMPS is faster on this machine, above it GAMG is faster and needs
+    /// less than half the memory (README, Scaling).
+    pub const MULTIGRID_FROM: usize = 400_000;
+
+    pub fn for_model(model: &crate::model::Model) -> Self {
+        if model.mesh.num_dofs() >= Self::MULTIGRID_FROM {
+            LinearDefault::Multigrid {
+                symmetric: model.interfaces.iter().all(|i| i.tangential.is_none()),
+            }
+        } else {
+            LinearDefault::DirectLu
+        }
+    }
+}
+
+/// Applies a [`LinearDefault`] to a KSP (before KSPSetFromOptions).
 ///
 /// # Safety
 /// `ksp` must be a valid KSP handle.
-unsafe fn direct_lu_defaults(ksp: ffi::KSP) -> Result<()> {
+unsafe fn linear_defaults(ksp: ffi::KSP, choice: LinearDefault) -> Result<()> {
     // SAFETY: valid KSP (caller); the PC handle is owned by the KSP.
     unsafe {
-        chk(ffi::KSPSetType(ksp, c"preonly".as_ptr()), "KSPSetType")?;
         let mut pc = std::ptr::null_mut();
         chk(ffi::KSPGetPC(ksp, &mut pc), "KSPGetPC")?;
-        chk(ffi::PCSetType(pc, c"lu".as_ptr()), "PCSetType")?;
-        chk(
-            ffi::PCFactorSetMatSolverType(pc, c"mumps".as_ptr()),
-            "PCFactorSetMatSolverType",
-        )
+        match choice {
+            LinearDefault::DirectLu => {
+                chk(ffi::KSPSetType(ksp, c"preonly".as_ptr()), "KSPSetType")?;
+                chk(ffi::PCSetType(pc, c"lu".as_ptr()), "PCSetType")?;
+                chk(
+                    ffi::PCFactorSetMatSolverType(pc, c"mumps".as_ptr()),
+                    "PCFactorSetMatSolverType",
+                )
+            }
+            LinearDefault::Multigrid { symmetric } => {
+                let t = if symmetric { c"cg" } else { c"gmres" };
+                chk(ffi::KSPSetType(ksp, t.as_ptr()), "KSPSetType")?;
+                chk(ffi::PCSetType(pc, c"gamg".as_ptr()), "PCSetType")?;
+                chk(
+                    ffi::KSPSetTolerances(
+                        ksp,
+                        1e-10,
+                        ffi::PETSC_DEFAULT as f64,
+                        ffi::PETSC_DEFAULT as f64,
+                        2000,
+                    ),
+                    "KSPSetTolerances",
+                )
+            }
+        }
+    }
+}
+
+/// "ksp type + pc type" of a configured KSP, e.g. "preonly + lu (mumps)", "cg + gamg".
+///
+/// # Safety
+/// `ksp` must be a valid KSP handle.
+unsafe fn describe(ksp: ffi::KSP) -> String {
+    let text = |p: *const std::os::raw::c_char| {
+        if p.is_null() {
+            "?".to_string()
+        } else {
+            // SAFETY: PETSc type names are NUL-terminated static strings.
+            unsafe { std::ffi::CStr::from_ptr(p) }
+                .to_string_lossy()
+                .into_owned()
+        }
+    };
+    // SAFETY: valid KSP (caller); out-pointers; strings owned by PETSc.
+    unsafe {
+        let (mut kt, mut pt) = (std::ptr::null(), std::ptr::null());
+        let mut pc = std::ptr::null_mut();
+        if ffi::KSPGetType(ksp, &mut kt) != 0 || ffi::KSPGetPC(ksp, &mut pc) != 0 {
+            return "?".into();
+        }
+        if ffi::PCGetType(pc, &mut pt) != 0 {
+            return text(kt);
+        }
+        let mut out = format!("{} + {}", text(kt), text(pt));
+        let mut st = std::ptr::null();
+        if matches!(text(pt).as_str(), "lu" | "cholesky")
+            && ffi::PCFactorGetMatSolverType(pc, &mut st) == 0
+            && !st.is_null()
+        {
+            out += &format!(" ({})", text(st));
+        }
+        out
     }
 }
 
 impl<'p> Ksp<'p> {
-    /// Default: sparse direct LU by MUMPS; `-ksp_type`, `-pc_type` … override it.
-    pub fn new(petsc: &'p Petsc) -> Result<Self> {
+    /// Starts from `choice`; `-ksp_type`, `-pc_type` … override it.
+    pub fn new(petsc: &'p Petsc, choice: LinearDefault) -> Result<Self> {
         let mut raw = std::ptr::null_mut();
         // SAFETY: out-pointer; PC handle owned by the KSP.
         unsafe {
             chk(ffi::KSPCreate(petsc.comm(), &mut raw), "KSPCreate")?;
-            direct_lu_defaults(raw)?;
+            linear_defaults(raw, choice)?;
             chk(ffi::KSPSetFromOptions(raw), "KSPSetFromOptions")?;
         }
         Ok(Ksp {
             raw,
             _p: PhantomData,
         })
+    }
+
+    /// The configured solver, e.g. "preonly + lu (mumps)".
+    pub fn describe(&self) -> String {
+        // SAFETY: valid KSP.
+        unsafe { describe(self.raw) }
     }
 
     /// Solves A x = b; errors if the solve diverged.

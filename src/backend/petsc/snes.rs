@@ -260,6 +260,7 @@ impl<'p> SnesSolver<'p> {
         part: &Partition,
         rank: usize,
         max_iterations: usize,
+        linear: super::LinearDefault,
     ) -> Result<Self> {
         let n = part.petsc_index.len();
         let owned = part.owned(rank);
@@ -305,7 +306,7 @@ impl<'p> SnesSolver<'p> {
             )?;
             let mut ksp = std::ptr::null_mut();
             chk(ffi::SNESGetKSP(raw, &mut ksp), "SNESGetKSP")?;
-            super::direct_lu_defaults(ksp)?;
+            super::linear_defaults(ksp, linear)?;
             let p = &*solver.slot as *const Slot as *mut c_void;
             chk(
                 ffi::SNESSetFunction(raw, solver.f.raw, Some(function_cb), p),
@@ -393,6 +394,17 @@ impl NonlinearSolver for SnesSolver<'_> {
             return Err(format!("SNES diverged: {}", reason_name(reason)));
         }
         Ok(())
+    }
+
+    fn linear_solver(&self) -> Option<String> {
+        let mut ksp = std::ptr::null_mut();
+        // SAFETY: valid SNES; the KSP belongs to it.
+        unsafe {
+            if ffi::SNESGetKSP(self.raw, &mut ksp) != 0 {
+                return None;
+            }
+            Some(super::describe(ksp))
+        }
     }
 
     fn diagnostics(&self) -> Vec<(&'static str, f64)> {

@@ -3,7 +3,7 @@
 //! element and every potential contact coupling, and KSP from the options
 //! database (default: MUMPS LU).
 
-use super::{ffi, Ksp, PMat, PVec, Petsc, ToAll};
+use super::{ffi, Ksp, LinearDefault, PMat, PVec, Petsc, ToAll};
 use crate::error::{Error, Result};
 use crate::model::Model;
 use mpi::collective::SystemOperation;
@@ -287,7 +287,13 @@ fn fix_pattern(
 }
 
 impl<'p> PetscBackend<'p> {
-    pub fn new(petsc: &'p Petsc, world: SimpleCommunicator, model: &'p Model) -> Result<Self> {
+    /// `linear`: the KSP's starting point (the options database overrides it).
+    pub fn new(
+        petsc: &'p Petsc,
+        world: SimpleCommunicator,
+        model: &'p Model,
+        linear: LinearDefault,
+    ) -> Result<Self> {
         let (rank, ranks) = (world.rank() as usize, world.size() as usize);
         let part = Partition::new(model, ranks)?;
         let (d, o) = part.preallocation(model, rank);
@@ -311,7 +317,7 @@ impl<'p> PetscBackend<'p> {
             part,
             solid: None,
             mat,
-            ksp: Ksp::new(petsc)?,
+            ksp: Ksp::new(petsc, linear)?,
             b,
             x,
             to_all,
@@ -452,6 +458,9 @@ impl crate::backend::Backend for PetscBackend<'_> {
             ));
         }
         Ok(())
+    }
+    fn linear_solver(&self) -> String {
+        self.ksp.describe()
     }
     fn diagnostics(&self) -> Vec<(&'static str, f64)> {
         vec![
