@@ -90,7 +90,7 @@ impl SerialBackend {
         Ok(SerialBackend {
             asm: Assembler::new(pattern, &model.dofs, &model.blocks()),
             lu: SerialLu::new(pattern)?,
-            solid: Some(vec![0.0; pattern.nnz()]),
+            solid: None,
             vals: vec![0.0; pattern.nnz()],
         })
     }

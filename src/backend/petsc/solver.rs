@@ -1,7 +1,7 @@
 //! The PETSc backend: METIS partition of the elements, equation ownership in
 //! contiguous PETSc ranges, an MPIAIJ matrix preallocated exactly for every
 //! element and every potential contact coupling, and KSP from the options
-//! database (default: MUMPS LU).
+//! database (default: [`LinearDefault`], by size).
 
 use super::{ffi, Ksp, LinearDefault, PMat, PVec, Petsc, ToAll};
 use crate::error::{Error, Result};
@@ -64,9 +64,9 @@ impl Partition {
     /// replicated vectors, so every rank gets the same), as this rank's owned
     /// parts: the near-null space for algebraic multigrid (`-pc_type gamg`).
     /// Per body, because the interface springs let one body move almost
-    /// rigidly against the other: with the modes of the whole assembly only,
-    /// GAMG needed 190 Krylov iterations per solve on punch-plane-stress-fine
-    /// at refine 4, with these 79.
+    /// rigidly against the other (README, Solver: GMRES + GAMG at refine 4
+    /// took 190 Krylov iterations per solve with the modes of the assembly,
+    /// 92 with these and block size 2).
     pub fn rigid_body_modes(&self, model: &Model, rank: usize) -> Vec<Vec<f64>> {
         let mesh = &model.mesh;
         let nodes = &mesh.nodes;
@@ -160,11 +160,12 @@ impl Partition {
                     .map(|pt| node_owner[im.pairs[pt.pairs[0]].b])
             })
             .collect();
-        // dofs sorted by (owner, node, component); a node nothing uses goes to rank 0
+        // dofs sorted by (owner, node, component); every node has an owner
+        // because Mesh::validate refuses nodes that belong to no element
         let nd = mesh.num_dofs();
         let mut offsets = vec![0usize; ranks + 1];
         for &o in &node_owner {
-            offsets[o.min(ranks - 1) + 1] += 2;
+            offsets[o + 1] += 2;
         }
         for r in 0..ranks {
             offsets[r + 1] += offsets[r];
@@ -172,7 +173,6 @@ impl Partition {
         let mut next = offsets.clone();
         let mut dof_index = vec![0 as ffi::PetscInt; nd];
         for (v, &o) in node_owner.iter().enumerate() {
-            let o = o.min(ranks - 1);
             dof_index[2 * v] = next[o] as ffi::PetscInt;
             dof_index[2 * v + 1] = next[o] as ffi::PetscInt + 1;
             next[o] += 2;
@@ -193,11 +193,13 @@ impl Partition {
     }
 
     /// Exact diagonal / off-diagonal nonzeros per owned row of `rank`, from the
-    /// model's pattern (symmetric, so a column's rows are the row's columns).
+    /// model's pattern (symmetric, so a column's rows are the row's columns);
+    /// `prescribed`: this rank's [`Partition::prescribed_rows`], one entry each.
     pub fn preallocation(
         &self,
         model: &Model,
         rank: usize,
+        prescribed: &[ffi::PetscInt],
     ) -> (Vec<ffi::PetscInt>, Vec<ffi::PetscInt>) {
         let (lo, hi) = (self.offsets[rank], self.offsets[rank + 1]);
         let (mut d, mut o) = (vec![0; hi - lo], vec![0; hi - lo]);
@@ -216,7 +218,7 @@ impl Partition {
                 }
             }
         }
-        for p in self.prescribed_rows(model, rank) {
+        for &p in prescribed {
             d[p as usize - lo] = 1;
         }
         (d, o)
@@ -248,8 +250,6 @@ pub struct PetscBackend<'p> {
     /// Krylov iterations over the run.
     pub ksp_iterations: usize,
     keep_solid: bool,
-    /// Without a kept solid matrix: element blocks were just added to `mat`.
-    solid_fresh: bool,
 }
 
 /// Fixes a matrix's nonzero structure once: explicit zeros over the whole
@@ -296,11 +296,11 @@ impl<'p> PetscBackend<'p> {
     ) -> Result<Self> {
         let (rank, ranks) = (world.rank() as usize, world.size() as usize);
         let part = Partition::new(model, ranks)?;
-        let (d, o) = part.preallocation(model, rank);
+        let prescribed = part.prescribed_rows(model, rank);
+        let (d, o) = part.preallocation(model, rank, &prescribed);
         let local = part.local_len(rank);
         let n = part.global_len();
         let mut mat = PMat::aij(petsc, local, n, 2, &d, &o)?;
-        let prescribed = part.prescribed_rows(model, rank);
         fix_pattern(&mut mat, model, &part, rank, &prescribed)?;
         mat.set_near_null_space(petsc, &part.rigid_body_modes(model, rank))?;
         let b = PVec::new(petsc, local, n)?;
@@ -325,7 +325,6 @@ impl<'p> PetscBackend<'p> {
             idx: Vec::with_capacity(24),
             ksp_iterations: 0,
             keep_solid: false,
-            solid_fresh: false,
         })
     }
 
@@ -378,7 +377,9 @@ impl crate::backend::Backend for PetscBackend<'_> {
     }
     fn begin_solid(&mut self) -> Result<()> {
         if self.keep_solid && self.solid.is_none() {
-            let (d, o) = self.part.preallocation(self.model, self.rank);
+            let (d, o) = self
+                .part
+                .preallocation(self.model, self.rank, &self.prescribed);
             let local = self.part.local_len(self.rank);
             let mut solid = PMat::aij(self.petsc, local, self.part.global_len(), 2, &d, &o)?;
             fix_pattern(
@@ -399,7 +400,6 @@ impl crate::backend::Backend for PetscBackend<'_> {
         for &p in &self.prescribed {
             target.add(&[p], &[1.0])?;
         }
-        self.solid_fresh = true;
         Ok(())
     }
     fn add_solid(&mut self, _block: usize, dofs: &[usize], k: &[f64]) -> Result<()> {
@@ -410,19 +410,15 @@ impl crate::backend::Backend for PetscBackend<'_> {
             .add(&self.idx, k)
     }
     fn begin_contact(&mut self) -> Result<()> {
+        // without a kept solid matrix the element blocks are already in `mat`
+        // (the engine reassembles them before every contact pass then)
         match &mut self.solid {
             Some(solid) => {
                 solid.assemble()?;
                 self.mat.assemble()?;
                 self.mat.copy_from(solid)
             }
-            None if self.solid_fresh => {
-                self.solid_fresh = false;
-                Ok(())
-            }
-            None => Err(Error::Solver(
-                "internal: springs added to a solid matrix that was not kept (reuse_solid)".into(),
-            )),
+            None => Ok(()),
         }
     }
     fn add_contact(&mut self, _block: usize, dofs: &[usize], k: &[f64]) -> Result<()> {
