@@ -90,7 +90,12 @@ pub fn load_model(case_path: &Path, opts: &RunOptions) -> Result<Model> {
 pub fn run(case_path: &Path, opts: &RunOptions) -> Result<(PathBuf, Model, RunResult)> {
     let started = Instant::now();
     let model = load_model(case_path, opts)?;
+    let at_model = crate::solve::peak_memory_mb();
     let mut engine = Engine::new(&model, model.case.solver.method)?;
+    engine.stats.memory_mb = vec![
+        ("model", at_model),
+        ("setup", crate::solve::peak_memory_mb()),
+    ];
     engine.fault = opts.fault;
     let (dir, result) = run_model(&model, engine, opts, true, started)?;
     Ok((dir, model, result))

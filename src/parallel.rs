@@ -37,6 +37,7 @@ pub fn run(
         let petsc = Petsc::init(&universe, petsc_args)?;
         let result = {
             let model = driver::load_model(case_path, opts)?;
+            let at_model = crate::solve::peak_memory_mb();
             let linear = LinearDefault::for_model(&model);
             let backend = PetscBackend::new(&petsc, world.duplicate(), &model, linear)?;
             let snes = if opts.snes {
@@ -54,6 +55,10 @@ pub fn run(
             let mut engine =
                 Engine::with_backend(&model, model.case.solver.method, Box::new(backend));
             engine.nonlinear = snes.map(|s| Box::new(s) as Box<dyn NonlinearSolver>);
+            engine.stats.memory_mb = vec![
+                ("model", at_model),
+                ("setup", crate::solve::peak_memory_mb()),
+            ];
             engine.fault = opts.fault;
             driver::run_model(&model, engine, opts, root, started)
         };

@@ -111,5 +111,16 @@ fn summary_json_matches_the_documented_schema() {
         }
     }
     assert_eq!(with["schema"], 1);
+    // memory stages: peaks so far, so in stage order and never above the run's peak
+    for s in [&with, &without] {
+        let m = &s["memory_stages_mb"];
+        let mut last = 0.0;
+        for stage in ["model", "setup", "first_assembly", "first_increment"] {
+            let v = m[stage].as_f64().unwrap_or_else(|| panic!("{stage}: {m}"));
+            assert!(v > 0.0 && v >= last, "{stage}: {m}");
+            last = v;
+        }
+        assert!(last <= s["peak_memory_mb"].as_f64().unwrap(), "{s}");
+    }
     assert!(errors.is_empty(), "{}", errors.join("\n"));
 }

@@ -362,6 +362,7 @@ pub fn summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
         "factorizations": r.stats.factorizations,
         "wall_seconds": wall,
         "peak_memory_mb": r.peak_memory_mb,
+        "memory_stages_mb": r.stats.memory_mb.iter().map(|&(k, v)| (k, v)).collect::<std::collections::BTreeMap<_, _>>(),
         "assembly_seconds": r.stats.assembly_seconds,
         "solve_seconds": r.stats.solve_seconds,
         "first_yield": fy,

@@ -274,6 +274,12 @@ pub fn run_from(
                     ck.factorizations = engine.stats.factorizations;
                     let written = observer.increment(model, &ck.committed, &inc);
                     ck.increments.push(inc);
+                    if ck.increments.len() == resumed_from + 1 {
+                        engine
+                            .stats
+                            .memory_mb
+                            .push(("first_increment", peak_memory_mb()));
+                    }
                     let written = written.and_then(|()| observer.checkpoint(model, &ck));
                     if !engine.backend.agree(written.is_ok()) {
                         return Err(written.err().unwrap_or_else(|| {
@@ -313,8 +319,14 @@ pub fn run_from(
             }
         }
     }
-    let mut memory = [peak_memory_mb()];
+    // the peak and every stage, summed over ranks (every rank passed the same stages)
+    let mut memory: Vec<f64> = std::iter::once(peak_memory_mb())
+        .chain(engine.stats.memory_mb.iter().map(|s| s.1))
+        .collect();
     engine.backend.sum(&mut memory);
+    for (s, m) in engine.stats.memory_mb.iter_mut().zip(&memory[1..]) {
+        s.1 = *m;
+    }
     Ok(RunResult {
         peak_memory_mb: memory[0],
         backend: engine.backend.name().to_string(),

@@ -30,6 +30,10 @@ pub struct Stats {
     pub factorizations: usize,
     pub assembly_seconds: f64,
     pub solve_seconds: f64,
+    /// Peak memory of this process when each stage was reached, MB: "model",
+    /// "setup" (backend and solver objects), "first_assembly",
+    /// "first_increment" (solved and written); summed over ranks in the result.
+    pub memory_mb: Vec<(&'static str, f64)>,
 }
 
 pub struct Engine<'m> {
@@ -249,6 +253,9 @@ impl<'m> Engine<'m> {
         for (r, f) in self.r.iter_mut().zip(&m.f_ext) {
             *r = if root { -lambda * f } else { 0.0 };
         }
+        // backends keep the solid matrix apart only for the fixed-matrix methods
+        // (Backend::reuse_solid): full Newton reassembles it every time
+        debug_assert!(solid_tangent.is_some() || self.method != Method::FullNewton);
         let be = &mut self.backend;
         let err = |e: crate::error::Error| e.to_string();
         if solid_tangent.is_some() {
@@ -343,6 +350,11 @@ impl<'m> Engine<'m> {
             }
         }
         be.sum(&mut self.r);
+        if self.assemblies == 1 {
+            self.stats
+                .memory_mb
+                .push(("first_assembly", super::peak_memory_mb()));
+        }
         be.sum(&mut codes);
         Ok(codes.iter().map(|&c| Status::from_code(c as u8)).collect())
     }
