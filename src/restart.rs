@@ -139,20 +139,22 @@ enum Data {
     Text(String),
 }
 
-/// Writes sections to `w` (the hashing file writer, or a sink that only
-/// counts them).
+/// Writes sections to a writer, hashing them on the way; without a writer it
+/// only counts the sections (and skips the payloads).
 struct Encoder<'w> {
-    w: &'w mut dyn Write,
-    fnv: Option<Fnv>,
+    out: Option<(&'w mut dyn Write, Fnv)>,
     sections: u32,
 }
 
 impl Encoder<'_> {
     fn put(&mut self, b: &[u8]) -> std::io::Result<()> {
-        if let Some(f) = &mut self.fnv {
-            f.update(b);
+        match &mut self.out {
+            Some((w, f)) => {
+                f.update(b);
+                w.write_all(b)
+            }
+            None => Ok(()),
         }
-        self.w.write_all(b)
     }
     fn section(&mut self, name: &str, kind: u8, count: usize) -> std::io::Result<()> {
         self.sections += 1;
@@ -169,6 +171,9 @@ impl Encoder<'_> {
         v: impl Iterator<Item = f64>,
     ) -> std::io::Result<()> {
         self.section(name, 1, count)?;
+        if self.out.is_none() {
+            return Ok(());
+        }
         let mut chunk = [0u8; 8 * 512];
         let mut k = 0;
         for x in v {
@@ -214,7 +219,7 @@ pub fn encode_with(fingerprint: u64, ck: &Checkpoint, pvd: &[(f64, String)]) -> 
 }
 
 /// Streams the restart file to `w`: the header (its section count found by a
-/// first pass into a sink), the sections and the checksum, hashed on the way,
+/// first, counting pass that skips the payloads), the sections and the checksum, hashed on the way,
 /// so no copy of the state is built in memory (at 1M dofs it is 130 MB).
 pub fn write_to(
     w: &mut dyn Write,
@@ -222,17 +227,14 @@ pub fn write_to(
     ck: &Checkpoint,
     pvd: &[(f64, String)],
 ) -> std::io::Result<()> {
-    let mut sink = std::io::sink();
     let mut count = Encoder {
-        w: &mut sink,
-        fnv: None,
+        out: None,
         sections: 0,
     };
     sections(&mut count, ck, pvd)?;
     let n = count.sections;
     let mut e = Encoder {
-        w,
-        fnv: Some(Fnv::default()),
+        out: Some((w, Fnv::default())),
         sections: 0,
     };
     e.put(MAGIC)?;
@@ -241,8 +243,10 @@ pub fn write_to(
     e.put(&fingerprint.to_le_bytes())?;
     e.put(&n.to_le_bytes())?;
     sections(&mut e, ck, pvd)?;
-    let sum = e.fnv.as_ref().map_or(0, Fnv::finish);
-    e.w.write_all(&sum.to_le_bytes())
+    match e.out {
+        Some((w, f)) => w.write_all(&f.finish().to_le_bytes()),
+        None => Ok(()),
+    }
 }
 
 fn sections(e: &mut Encoder, ck: &Checkpoint, pvd: &[(f64, String)]) -> std::io::Result<()> {
