@@ -23,6 +23,9 @@ use crate::interface::Status;
 use crate::material::PointState;
 use crate::model::Model;
 
+/// Points per reduction in `Engine::share_state`.
+const SHARE_CHUNK: usize = 8192;
+
 /// Counters over a whole run.
 #[derive(Clone, Debug, Default)]
 pub struct Stats {
@@ -170,50 +173,66 @@ impl<'m> Engine<'m> {
     }
 
     /// Completes the trial Gauss point and interface states on every rank: each
-    /// rank updated only what it owns.
+    /// rank updated only what it owns. Summed in chunks of [`SHARE_CHUNK`]
+    /// points, so the only extra memory is one chunk (a whole-array buffer of
+    /// 10 doubles per Gauss point, plus MPI's copy of it, was 2 x 120 B per dof
+    /// on every rank).
     fn share_state(&self, trial: &mut State) {
         if self.backend.ranks() == 1 {
             return;
         }
         let ng = self.model.n_gauss();
-        let mut g = vec![0.0; trial.gauss.len() * 10];
-        for (i, s) in trial.gauss.iter().enumerate() {
-            if self.backend.owns_element(i / ng) {
-                let v = &mut g[10 * i..10 * i + 10];
-                v[..4].copy_from_slice(&s.stress);
-                v[4..8].copy_from_slice(&s.plastic_strain);
-                v[8] = s.peeq;
-                v[9] = f64::from(u8::from(s.yielding));
+        let mut g = Vec::with_capacity(SHARE_CHUNK * 10);
+        let mut start = 0;
+        while start < trial.gauss.len() {
+            let end = (start + SHARE_CHUNK).min(trial.gauss.len());
+            g.clear();
+            g.resize((end - start) * 10, 0.0);
+            for (k, s) in trial.gauss[start..end].iter().enumerate() {
+                if self.backend.owns_element((start + k) / ng) {
+                    let v = &mut g[10 * k..10 * k + 10];
+                    v[..4].copy_from_slice(&s.stress);
+                    v[4..8].copy_from_slice(&s.plastic_strain);
+                    v[8] = s.peeq;
+                    v[9] = f64::from(u8::from(s.yielding));
+                }
             }
-        }
-        self.backend.sum(&mut g);
-        for (i, s) in trial.gauss.iter_mut().enumerate() {
-            let v = &g[10 * i..10 * i + 10];
-            *s = PointState {
-                stress: [v[0], v[1], v[2], v[3]],
-                plastic_strain: [v[4], v[5], v[6], v[7]],
-                peeq: v[8],
-                yielding: v[9] > 0.5,
-            };
-        }
-        let mut c = vec![0.0; trial.contact.len() * 5];
-        for (q, s) in trial.contact.iter().enumerate() {
-            if self.backend.owns_point(q) {
-                c[5 * q..5 * q + 5].copy_from_slice(&[
-                    s.slip.u_p,
-                    s.slip.kappa,
-                    s.p_t,
-                    s.u_t,
-                    s.mu_f,
-                ]);
+            self.backend.sum(&mut g);
+            for (k, s) in trial.gauss[start..end].iter_mut().enumerate() {
+                let v = &g[10 * k..10 * k + 10];
+                *s = PointState {
+                    stress: [v[0], v[1], v[2], v[3]],
+                    plastic_strain: [v[4], v[5], v[6], v[7]],
+                    peeq: v[8],
+                    yielding: v[9] > 0.5,
+                };
             }
+            start = end;
         }
-        self.backend.sum(&mut c);
-        for (q, s) in trial.contact.iter_mut().enumerate() {
-            let v = &c[5 * q..5 * q + 5];
-            s.slip.u_p = v[0];
-            s.slip.kappa = v[1];
-            (s.p_t, s.u_t, s.mu_f) = (v[2], v[3], v[4]);
+        let mut start = 0;
+        while start < trial.contact.len() {
+            let end = (start + SHARE_CHUNK).min(trial.contact.len());
+            g.clear();
+            g.resize((end - start) * 5, 0.0);
+            for (k, s) in trial.contact[start..end].iter().enumerate() {
+                if self.backend.owns_point(start + k) {
+                    g[5 * k..5 * k + 5].copy_from_slice(&[
+                        s.slip.u_p,
+                        s.slip.kappa,
+                        s.p_t,
+                        s.u_t,
+                        s.mu_f,
+                    ]);
+                }
+            }
+            self.backend.sum(&mut g);
+            for (k, s) in trial.contact[start..end].iter_mut().enumerate() {
+                let v = &g[5 * k..5 * k + 5];
+                s.slip.u_p = v[0];
+                s.slip.kappa = v[1];
+                (s.p_t, s.u_t, s.mu_f) = (v[2], v[3], v[4]);
+            }
+            start = end;
         }
     }
 

@@ -286,7 +286,21 @@ fn fix_pattern(
     mat.assemble()
 }
 
+/// Doubles per MPI reduction in [`PetscBackend::reduce`].
+const REDUCE_CHUNK: usize = 1 << 16;
+
 impl<'p> PetscBackend<'p> {
+    /// Reduces `v` over all ranks in place, in chunks of [`REDUCE_CHUNK`], so
+    /// the send copy (and MPI's temporaries) stay small for long vectors.
+    fn reduce(&self, v: &mut [f64], op: SystemOperation) {
+        let mut send = Vec::with_capacity(REDUCE_CHUNK.min(v.len()));
+        for chunk in v.chunks_mut(REDUCE_CHUNK) {
+            send.clear();
+            send.extend_from_slice(chunk);
+            self.world.all_reduce_into(&send[..], chunk, op);
+        }
+    }
+
     /// `linear`: the KSP's starting point (the options database overrides it).
     pub fn new(
         petsc: &'p Petsc,
@@ -466,14 +480,10 @@ impl crate::backend::Backend for PetscBackend<'_> {
         ]
     }
     fn sum(&self, v: &mut [f64]) {
-        let send = v.to_vec();
-        self.world
-            .all_reduce_into(&send[..], v, SystemOperation::sum());
+        self.reduce(v, SystemOperation::sum());
     }
     fn max(&self, v: &mut [f64]) {
-        let send = v.to_vec();
-        self.world
-            .all_reduce_into(&send[..], v, SystemOperation::max());
+        self.reduce(v, SystemOperation::max());
     }
     fn share_message(&self, msg: Option<String>) -> Option<String> {
         let mine = if msg.is_some() {
