@@ -302,7 +302,7 @@ pub fn check(case_path: &Path) -> Result<String> {
         model.mesh.elements.len(),
         model.mesh.num_dofs(),
         model.dofs.n_eq,
-        model.pattern.nnz()
+        model.pattern().nnz()
     );
     for (b, name) in model.mesh.bodies.iter().enumerate() {
         let m = &model.materials[b];

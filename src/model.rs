@@ -28,9 +28,6 @@ pub struct Model {
     /// External nodal forces at load factor 1 (all dofs).
     pub f_ext: Vec<f64>,
     pub dofs: DofMap,
-    /// Sparsity of the tangent over the free equations, every potential contact
-    /// coupling included.
-    pub pattern: Pattern,
     /// Index of the first interface block in [`Model::blocks`] (elements come first).
     pub interface_block_base: Vec<usize>,
     /// The lower body's interface node nearest to the output probe.
@@ -164,7 +161,6 @@ impl Model {
         }
         let dofs = DofMap::new(mesh.num_dofs(), &mask);
         let (blocks, interface_block_base) = block_dofs(&mesh, &interfaces);
-        let pattern = Pattern::new(&dofs, &blocks);
         drop(blocks);
         let (probe_node, surface_y) = probe(&case, &mesh, &interfaces);
         let e_max = materials.iter().fold(0.0f64, |a, m| a.max(m.young));
@@ -189,7 +185,6 @@ impl Model {
             prescribed,
             f_ext,
             dofs,
-            pattern,
             interface_block_base,
             probe_node,
             surface_y,
@@ -203,6 +198,19 @@ impl Model {
     /// on demand: only the serial backend keeps per-block data).
     pub fn blocks(&self) -> Blocks {
         block_dofs(&self.mesh, &self.interfaces).0
+    }
+
+    /// Sparsity of the tangent over the free equations, every potential contact
+    /// coupling included (built on demand, O(nonzeros): the serial backend
+    /// builds it once and keeps what it needs).
+    pub fn pattern(&self) -> Pattern {
+        Pattern::new(&self.dofs, &self.blocks())
+    }
+
+    /// The columns of [`Model::pattern`] that `keep` selects (one PETSc
+    /// rank's equations), the others empty.
+    pub fn pattern_of(&self, keep: impl Fn(usize) -> bool) -> Pattern {
+        Pattern::columns(&self.dofs, &self.blocks(), keep)
     }
 
     /// Gauss point geometry of element e (checked valid when the model was built).

@@ -195,7 +195,7 @@ fn assembled_tangent_matches_finite_differences_of_the_residual() {
         }
         engine.linearize(&committed, &u, 1.0).unwrap();
         let vals = engine.backend.matrix_values().unwrap().to_vec();
-        let pattern = &model.pattern;
+        let pattern = &model.pattern();
         let kmax = vals.iter().fold(0.0f64, |a, v| a.max(v.abs()));
         // check a spread of columns, including dofs at the interface
         let free: Vec<usize> = (0..u.len())

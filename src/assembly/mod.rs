@@ -5,6 +5,8 @@
 //! pattern (CSC, n_eq × n_eq) is built once from every element and every
 //! interface point, including all potential contact couplings, so it never
 //! changes: the serial backend keeps its symbolic factorization for the whole run.
+//! It is built by the backend that needs it (not held by the model): the serial
+//! backend builds it whole, each PETSc rank only the columns it owns.
 //!
 //! For the serial backend each local block (element or interface point) gets a
 //! precomputed list of positions into the value array ([`Assembler`]), so
@@ -89,13 +91,20 @@ pub struct Pattern {
 }
 
 impl Pattern {
+    /// Every column.
     pub fn new(map: &DofMap, blocks: &Blocks) -> Self {
+        Self::columns(map, blocks, |_| true)
+    }
+
+    /// Only the columns `keep` selects (the others are empty): a rank's part
+    /// of the (symmetric) pattern, whose column c lists row c's couplings.
+    pub fn columns(map: &DofMap, blocks: &Blocks, keep: impl Fn(usize) -> bool) -> Self {
         let n = map.n_eq;
-        // equation → blocks that hold it (counting sort)
+        // equation → blocks that hold it (counting sort), kept columns only
         let mut inc_ptr = vec![0usize; n + 1];
         for &d in &blocks.dofs {
             let e = map.eq[d as usize];
-            if e != NONE {
+            if e != NONE && keep(e as usize) {
                 inc_ptr[e as usize + 1] += 1;
             }
         }
@@ -107,7 +116,7 @@ impl Pattern {
         for b in 0..blocks.len() {
             for &d in blocks.get(b) {
                 let e = map.eq[d as usize];
-                if e != NONE {
+                if e != NONE && keep(e as usize) {
                     inc[next[e as usize]] = b as u32;
                     next[e as usize] += 1;
                 }
@@ -224,5 +233,11 @@ mod tests {
             }
         }
         assert_eq!(dense, [[1., 3., 0.], [7., 19., 20.], [0., 30., 40.]]);
+        // a part holds exactly the selected columns of the whole
+        let part = Pattern::columns(&map, &blocks, |c| c != 1);
+        assert_eq!(part.rows(0), pattern.rows(0));
+        assert!(part.rows(1).is_empty());
+        assert_eq!(part.rows(2), pattern.rows(2));
+        assert_eq!(part.nnz(), pattern.nnz() - pattern.rows(1).len());
     }
 }

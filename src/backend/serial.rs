@@ -86,9 +86,10 @@ pub struct SerialBackend {
 
 impl SerialBackend {
     pub fn new(model: &Model) -> Result<Self> {
-        let pattern = &model.pattern;
+        let blocks = model.blocks();
+        let pattern = &Pattern::new(&model.dofs, &blocks);
         Ok(SerialBackend {
-            asm: Assembler::new(pattern, &model.dofs, &model.blocks()),
+            asm: Assembler::new(pattern, &model.dofs, &blocks),
             lu: SerialLu::new(pattern)?,
             solid: None,
             vals: vec![0.0; pattern.nnz()],

@@ -4,6 +4,7 @@
 //! database (default: [`LinearDefault`], by size).
 
 use super::{ffi, Ksp, LinearDefault, PMat, PVec, Petsc, ToAll};
+use crate::assembly::Pattern;
 use crate::error::{Error, Result};
 use crate::model::Model;
 use mpi::collective::SystemOperation;
@@ -192,18 +193,25 @@ impl Partition {
         })
     }
 
-    /// Exact diagonal / off-diagonal nonzeros per owned row of `rank`, from the
-    /// model's pattern (symmetric, so a column's rows are the row's columns);
+    /// The columns of the tangent's pattern whose equations `rank` owns (by
+    /// symmetry, the couplings of its rows): built for preallocation and
+    /// dropped, so no rank holds the whole pattern.
+    pub fn owned_pattern(&self, model: &Model, rank: usize) -> Pattern {
+        let (lo, hi) = (self.offsets[rank], self.offsets[rank + 1]);
+        model.pattern_of(|c| (lo..hi).contains(&(self.petsc_index[c] as usize)))
+    }
+
+    /// Exact diagonal / off-diagonal nonzeros per owned row of `rank`, from
+    /// its [`Partition::owned_pattern`] (a column's rows are the row's columns);
     /// `prescribed`: this rank's [`Partition::prescribed_rows`], one entry each.
     pub fn preallocation(
         &self,
-        model: &Model,
+        pattern: &Pattern,
         rank: usize,
         prescribed: &[ffi::PetscInt],
     ) -> (Vec<ffi::PetscInt>, Vec<ffi::PetscInt>) {
         let (lo, hi) = (self.offsets[rank], self.offsets[rank + 1]);
         let (mut d, mut o) = (vec![0; hi - lo], vec![0; hi - lo]);
-        let pattern = &model.pattern;
         for c in 0..pattern.n {
             let row = self.petsc_index[c] as usize;
             if row < lo || row >= hi {
@@ -256,12 +264,11 @@ pub struct PetscBackend<'p> {
 /// pattern of this rank's rows, 1 on the prescribed rows' diagonal.
 fn fix_pattern(
     mat: &mut PMat<'_>,
-    model: &Model,
+    pattern: &Pattern,
     part: &Partition,
     rank: usize,
     prescribed: &[ffi::PetscInt],
 ) -> Result<()> {
-    let pattern = &model.pattern;
     let (lo, hi) = (part.offsets[rank], part.offsets[rank + 1]);
     let mut cols = Vec::new();
     let mut zeros = Vec::new();
@@ -311,11 +318,13 @@ impl<'p> PetscBackend<'p> {
         let (rank, ranks) = (world.rank() as usize, world.size() as usize);
         let part = Partition::new(model, ranks)?;
         let prescribed = part.prescribed_rows(model, rank);
-        let (d, o) = part.preallocation(model, rank, &prescribed);
+        let pattern = part.owned_pattern(model, rank);
+        let (d, o) = part.preallocation(&pattern, rank, &prescribed);
         let local = part.local_len(rank);
         let n = part.global_len();
         let mut mat = PMat::aij(petsc, local, n, 2, &d, &o)?;
-        fix_pattern(&mut mat, model, &part, rank, &prescribed)?;
+        fix_pattern(&mut mat, &pattern, &part, rank, &prescribed)?;
+        drop(pattern);
         mat.set_near_null_space(petsc, &part.rigid_body_modes(model, rank))?;
         let b = PVec::new(petsc, local, n)?;
         let x = PVec::new(petsc, local, n)?;
@@ -391,14 +400,15 @@ impl crate::backend::Backend for PetscBackend<'_> {
     }
     fn begin_solid(&mut self) -> Result<()> {
         if self.keep_solid && self.solid.is_none() {
+            let pattern = self.part.owned_pattern(self.model, self.rank);
             let (d, o) = self
                 .part
-                .preallocation(self.model, self.rank, &self.prescribed);
+                .preallocation(&pattern, self.rank, &self.prescribed);
             let local = self.part.local_len(self.rank);
             let mut solid = PMat::aij(self.petsc, local, self.part.global_len(), 2, &d, &o)?;
             fix_pattern(
                 &mut solid,
-                self.model,
+                &pattern,
                 &self.part,
                 self.rank,
                 &self.prescribed,
