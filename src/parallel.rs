@@ -46,6 +46,7 @@ pub fn run(
                     backend.system_matrix(),
                     &backend.part,
                     world.rank() as usize,
+                    world.size() as usize,
                     model.case.solver.iteration_limit(),
                     linear,
                 )?)

@@ -251,6 +251,74 @@ pub struct SnesSolver<'p> {
     nonlinear_iterations: usize,
 }
 
+/// PETSc's Newton iterations per preconditioner build within one load step
+/// under [`multigrid_tuning`] (SNES rebuilds at the first Jacobian of every
+/// solve, and the lag does not persist across solves).
+pub const MULTIGRID_LAG: ffi::PetscInt = 1000;
+
+/// When the preconditioner is GAMG, three settings that the options database
+/// can override one by one (README, Scaling, has the measurements):
+/// * plain (unsmoothed) aggregation, `-pc_gamg_agg_nsmooths 0`: sparser
+///   prolongators and coarse operators; about 1.5x the Krylov iterations of
+///   smoothed aggregation but a cheaper setup and a far smaller one;
+/// * the preconditioner built once per load step, `-snes_lag_preconditioner`
+///   [`MULTIGRID_LAG`]: the Newton step still solves the current tangent to
+///   the Krylov tolerance, only the preconditioner lags;
+/// * on more than one rank, Galerkin products by the all-at-once algorithm,
+///   `-matptap_via allatonce`: PETSc's default parallel product keeps A·P and
+///   explicit transposes of P for reuse (+1.1 KB per dof over two ranks at
+///   209k dofs); the all-at-once numeric product is slower, which the lag
+///   pays for. (PETSc's sequential product has no such variant.)
+///
+/// # Safety
+/// `snes` and its `ksp` must be valid handles, after SNESSetFromOptions.
+unsafe fn multigrid_tuning(snes: ffi::SNES, ksp: ffi::KSP, ranks: usize) -> Result<()> {
+    // SAFETY: valid handles (caller); NUL-terminated option names; the PC is
+    // owned by the KSP and its type string by PETSc.
+    unsafe {
+        let mut pc = std::ptr::null_mut();
+        chk(ffi::KSPGetPC(ksp, &mut pc), "KSPGetPC")?;
+        let mut pt = std::ptr::null();
+        chk(ffi::PCGetType(pc, &mut pt), "PCGetType")?;
+        if pt.is_null() || std::ffi::CStr::from_ptr(pt).to_bytes() != b"gamg" {
+            return Ok(());
+        }
+        let given = |name: &std::ffi::CStr| -> Result<bool> {
+            let mut has = ffi::PetscBool_PETSC_FALSE;
+            chk(
+                ffi::PetscOptionsHasName(
+                    std::ptr::null_mut(),
+                    std::ptr::null(),
+                    name.as_ptr(),
+                    &mut has,
+                ),
+                "PetscOptionsHasName",
+            )?;
+            Ok(has == ffi::PetscBool_PETSC_TRUE)
+        };
+        if !given(c"-pc_gamg_agg_nsmooths")? {
+            chk(ffi::PCGAMGSetNSmooths(pc, 0), "PCGAMGSetNSmooths")?;
+        }
+        if !given(c"-snes_lag_preconditioner")? {
+            chk(
+                ffi::SNESSetLagPreconditioner(snes, MULTIGRID_LAG),
+                "SNESSetLagPreconditioner",
+            )?;
+        }
+        if ranks > 1 && !given(c"-matptap_via")? {
+            chk(
+                ffi::PetscOptionsSetValue(
+                    std::ptr::null_mut(),
+                    c"-matptap_via".as_ptr(),
+                    c"allatonce".as_ptr(),
+                ),
+                "PetscOptionsSetValue",
+            )?;
+        }
+        Ok(())
+    }
+}
+
 impl<'p> SnesSolver<'p> {
     /// `mat`: the backend's system matrix (SNES takes a reference to it);
     /// `part`: the backend's partition; `rank`: this process.
@@ -259,6 +327,7 @@ impl<'p> SnesSolver<'p> {
         mat: ffi::Mat,
         part: &Partition,
         rank: usize,
+        ranks: usize,
         max_iterations: usize,
         linear: super::LinearDefault,
     ) -> Result<Self> {
@@ -317,6 +386,7 @@ impl<'p> SnesSolver<'p> {
                 "SNESSetJacobian",
             )?;
             chk(ffi::SNESSetFromOptions(raw), "SNESSetFromOptions")?;
+            multigrid_tuning(raw, ksp, ranks)?;
             // after the options: the convergence test and the post-check belong
             // to the SNES and line search the options chose
             chk(
