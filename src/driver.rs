@@ -38,6 +38,8 @@ pub struct RunOptions {
     pub log_format: LogFormat,
     /// PETSc backend only: drive the steps with SNES (default) or the built-in loop.
     pub snes: bool,
+    /// PETSc backend only: the memory-lean GAMG settings (`--memory lean`).
+    pub lean_memory: bool,
 }
 
 /// Loads a case and applies command-line overrides.

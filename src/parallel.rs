@@ -40,6 +40,12 @@ pub fn run(
             let at_model = crate::solve::peak_memory_mb();
             let linear = LinearDefault::for_model(&model);
             let backend = PetscBackend::new(&petsc, world.duplicate(), &model, linear)?;
+            if opts.lean_memory && !opts.snes {
+                return Err(Error::Solver(
+                    "--memory lean needs the SNES nonlinear solver (drop --nonlinear builtin)"
+                        .into(),
+                ));
+            }
             let snes = if opts.snes {
                 Some(SnesSolver::new(
                     &petsc,
@@ -49,6 +55,7 @@ pub fn run(
                     world.size() as usize,
                     model.case.solver.iteration_limit(),
                     linear,
+                    opts.lean_memory,
                 )?)
             } else {
                 None

@@ -249,18 +249,22 @@ pub struct SnesSolver<'p> {
     layout: Layout<'p>,
     linear_iterations: usize,
     nonlinear_iterations: usize,
+    /// `--memory lean` took effect (the preconditioner is GAMG); reported
+    /// with the linear solver.
+    lean_memory: bool,
 }
 
 /// PETSc's Newton iterations per preconditioner build within one load step
-/// under [`multigrid_tuning`] (SNES rebuilds at the first Jacobian of every
+/// under [`lean_multigrid`] (SNES rebuilds at the first Jacobian of every
 /// solve, and the lag does not persist across solves).
 pub const MULTIGRID_LAG: ffi::PetscInt = 1000;
 
-/// When the preconditioner is GAMG, three settings that the options database
-/// can override one by one (README, Scaling, has the measurements):
+/// `--memory lean` with GAMG as the preconditioner: three settings, each of
+/// which the options database can override (README, Scaling, has the
+/// measurements). Returns whether they were applied (the PC is GAMG).
 /// * plain (unsmoothed) aggregation, `-pc_gamg_agg_nsmooths 0`: sparser
-///   prolongators and coarse operators; about 1.5x the Krylov iterations of
-///   smoothed aggregation but a cheaper setup and a far smaller one;
+///   prolongators and coarse operators, a smaller and cheaper setup, about
+///   1.5-2x the Krylov iterations of smoothed aggregation;
 /// * the preconditioner built once per load step, `-snes_lag_preconditioner`
 ///   [`MULTIGRID_LAG`]: the Newton step still solves the current tangent to
 ///   the Krylov tolerance, only the preconditioner lags;
@@ -272,7 +276,7 @@ pub const MULTIGRID_LAG: ffi::PetscInt = 1000;
 ///
 /// # Safety
 /// `snes` and its `ksp` must be valid handles, after SNESSetFromOptions.
-unsafe fn multigrid_tuning(snes: ffi::SNES, ksp: ffi::KSP, ranks: usize) -> Result<()> {
+unsafe fn lean_multigrid(snes: ffi::SNES, ksp: ffi::KSP, ranks: usize) -> Result<bool> {
     // SAFETY: valid handles (caller); NUL-terminated option names; the PC is
     // owned by the KSP and its type string by PETSc.
     unsafe {
@@ -281,7 +285,7 @@ unsafe fn multigrid_tuning(snes: ffi::SNES, ksp: ffi::KSP, ranks: usize) -> Resu
         let mut pt = std::ptr::null();
         chk(ffi::PCGetType(pc, &mut pt), "PCGetType")?;
         if pt.is_null() || std::ffi::CStr::from_ptr(pt).to_bytes() != b"gamg" {
-            return Ok(());
+            return Ok(false);
         }
         let given = |name: &std::ffi::CStr| -> Result<bool> {
             let mut has = ffi::PetscBool_PETSC_FALSE;
@@ -315,7 +319,7 @@ unsafe fn multigrid_tuning(snes: ffi::SNES, ksp: ffi::KSP, ranks: usize) -> Resu
                 "PetscOptionsSetValue",
             )?;
         }
-        Ok(())
+        Ok(true)
     }
 }
 
@@ -330,6 +334,7 @@ impl<'p> SnesSolver<'p> {
         ranks: usize,
         max_iterations: usize,
         linear: super::LinearDefault,
+        lean: bool,
     ) -> Result<Self> {
         let n = part.petsc_index.len();
         let owned = part.owned(rank);
@@ -341,7 +346,7 @@ impl<'p> SnesSolver<'p> {
         // SAFETY: out-pointers to fresh handles; the KSP and PC belong to the SNES.
         unsafe {
             chk(ffi::SNESCreate(petsc.comm(), &mut raw), "SNESCreate")?;
-            let solver = SnesSolver {
+            let mut solver = SnesSolver {
                 raw,
                 slot: Box::new(Slot::new(std::ptr::null_mut())),
                 x,
@@ -358,6 +363,7 @@ impl<'p> SnesSolver<'p> {
                 },
                 linear_iterations: 0,
                 nonlinear_iterations: 0,
+                lean_memory: false,
             };
             chk(ffi::SNESSetType(raw, c"newtonls".as_ptr()), "SNESSetType")?;
             let mut ls = std::ptr::null_mut();
@@ -386,7 +392,7 @@ impl<'p> SnesSolver<'p> {
                 "SNESSetJacobian",
             )?;
             chk(ffi::SNESSetFromOptions(raw), "SNESSetFromOptions")?;
-            multigrid_tuning(raw, ksp, ranks)?;
+            solver.lean_memory = lean && lean_multigrid(raw, ksp, ranks)?;
             // after the options: the convergence test and the post-check belong
             // to the SNES and line search the options chose
             chk(
@@ -473,7 +479,12 @@ impl NonlinearSolver for SnesSolver<'_> {
             if ffi::SNESGetKSP(self.raw, &mut ksp) != 0 {
                 return None;
             }
-            Some(super::describe(ksp))
+            let kind = super::describe(ksp);
+            Some(if self.lean_memory {
+                kind + " (memory lean)"
+            } else {
+                kind
+            })
         }
     }
 
