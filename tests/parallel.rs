@@ -78,6 +78,25 @@ fn interfaces(dir: &Path) -> Vec<Vec<(f64, f64, f64, String)>> {
         .collect()
 }
 
+/// A named DataArray of the last .vtu file of a run, as numbers.
+fn last_vtu_array(dir: &Path, name: &str) -> Vec<f64> {
+    let mut files: Vec<_> = std::fs::read_dir(dir.join("vtu"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "vtu"))
+        .collect();
+    files.sort();
+    let text = std::fs::read_to_string(files.last().expect("a .vtu file")).unwrap();
+    let start = text
+        .find(&format!("Name=\"{name}\""))
+        .unwrap_or_else(|| panic!("no {name} array"));
+    let body = &text[start..];
+    let body = &body[body.find('>').unwrap() + 1..body.find("</DataArray>").unwrap()];
+    body.split_whitespace()
+        .map(|v| v.parse().unwrap())
+        .collect()
+}
+
 fn close(a: f64, b: f64, scale: f64) -> bool {
     (a - b).abs() <= 1e-6 * scale
 }
@@ -159,6 +178,29 @@ fn compare(case: &str, refine: &str) {
             close(us, up, u_scale),
             "{run}: center displacement {us} vs {up}"
         );
+        // fields from the Gauss states, which each rank holds only for its
+        // own elements and rank 0 gathers to write
+        for field in ["peeq", "von_mises", "stress"] {
+            let (a, b) = (
+                last_vtu_array(&out("serial"), field),
+                last_vtu_array(&out(run), field),
+            );
+            assert_eq!(a.len(), b.len(), "{run}: {field} length");
+            let scale = a.iter().fold(1e-30f64, |m, v| m.max(v.abs()));
+            for (i, (x, y)) in a.iter().zip(&b).enumerate() {
+                assert!(close(*x, *y, scale), "{run}: {field}[{i}] {x} vs {y}");
+            }
+        }
+        let (ps, pp) = (
+            s["final"]["max_peeq"].as_f64().unwrap(),
+            p["final"]["max_peeq"].as_f64().unwrap(),
+        );
+        assert_eq!(
+            ps > 0.0,
+            !s["first_yield"].is_null(),
+            "yielded iff first yield"
+        );
+        assert!(close(ps, pp, ps.max(1e-30)), "{run}: max peeq {ps} vs {pp}");
         let p_if = interfaces(&out(run));
         assert_eq!(p_if.len(), s_if.len());
         for (inc, (a, b)) in s_if.iter().zip(&p_if).enumerate() {

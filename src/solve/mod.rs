@@ -9,7 +9,7 @@ pub mod stepping;
 mod yield_point;
 
 pub use newton::{Engine, Stats};
-pub use yield_point::{max_yield_ratio, FirstYield};
+pub use yield_point::FirstYield;
 
 use crate::error::{Error, Result};
 use crate::fem::solid::Response;
@@ -22,6 +22,9 @@ use crate::model::Model;
 #[derive(Clone, Debug)]
 pub struct State {
     pub u: Vec<f64>,
+    /// Gauss point states, element by element: of every element in a whole
+    /// state (one process, restart files, what the writer sees), of the
+    /// elements a rank owns inside an MPI run ([`Engine::localize`]).
     pub gauss: Vec<PointState>,
     pub status: Vec<Status>,
     /// Tangential state of every interface point (all interfaces, in order).
@@ -170,6 +173,7 @@ pub struct RunResult {
     pub first_yield: Option<FirstYield>,
     pub stats: Stats,
     pub cutbacks: usize,
+    /// The last committed state (under MPI: with this rank's Gauss states).
     pub final_state: State,
     /// Why the run stopped before the end of its schedule (None: complete).
     pub stopped: Option<Stop>,
@@ -204,6 +208,7 @@ pub fn run_from(
     let spec = &model.case.solver;
     let resumed_from = start.increments.len();
     let mut ck = start;
+    engine.localize(&mut ck.committed);
     engine.stats.iterations = ck.iterations;
     engine.stats.factorizations = ck.factorizations;
     let mut stopped = None;
@@ -229,17 +234,19 @@ pub fn run_from(
         // interrupted step leaves it (and the checkpoint) as it was
         let why = match engine.step(&ck.committed, target, Response::Plastic) {
             Ok((trial, iterations)) => {
-                // identical on every rank: Gauss states are shared after a step
-                let dpeeq = trial
-                    .gauss
-                    .iter()
-                    .zip(&ck.committed.gauss)
-                    .fold(0.0f64, |a, (t, c)| a.max(t.peeq - c.peeq));
+                // each rank holds its elements' Gauss states: maxima over all ranks
+                let dpeeq = engine.max_over_points(
+                    trial
+                        .gauss
+                        .iter()
+                        .zip(&ck.committed.gauss)
+                        .map(|(t, c)| t.peeq - c.peeq),
+                );
                 if ck.stepper.too_plastic(ck.lambda, target, dpeeq) {
                     stepping::Why::TooPlastic(dpeeq)
                 } else {
-                    let yielded_now =
-                        ck.first_yield.is_none() && trial.gauss.iter().any(|g| g.peeq > 0.0);
+                    let yielded_now = ck.first_yield.is_none()
+                        && engine.max_over_points(trial.gauss.iter().map(|g| g.peeq)) > 0.0;
                     if yielded_now && spec.locate_first_yield {
                         match yield_point::locate(
                             &mut engine,
@@ -255,7 +262,7 @@ pub fn run_from(
                             Err(e) => return Err(e),
                         }
                     } else if ck.first_yield.is_none() {
-                        ck.elastic_ratio_prev = max_yield_ratio(model, &trial).0;
+                        ck.elastic_ratio_prev = engine.max_yield_ratio(&trial).0;
                     }
                     ck.stepper.accepted(ck.lambda, target, iterations, dpeeq);
                     ck.committed = trial;
@@ -267,11 +274,16 @@ pub fn run_from(
                         load_factor: ck.lambda,
                         iterations,
                         cutbacks: ck.cutbacks_here,
-                        measures: Measures::of(model, &ck.committed),
+                        measures: engine.measures(&ck.committed),
                     };
                     ck.cutbacks_here = 0;
                     ck.iterations = engine.stats.iterations;
                     ck.factorizations = engine.stats.factorizations;
+                    // the writer (rank 0) sees every element's Gauss states
+                    // for as long as it writes
+                    let local = engine
+                        .gather_gauss(&ck.committed)
+                        .map(|full| std::mem::replace(&mut ck.committed.gauss, full));
                     let written = observer.increment(model, &ck.committed, &inc);
                     ck.increments.push(inc);
                     if ck.increments.len() == resumed_from + 1 {
@@ -281,6 +293,9 @@ pub fn run_from(
                             .push(("first_increment", peak_memory_mb()));
                     }
                     let written = written.and_then(|()| observer.checkpoint(model, &ck));
+                    if let Some(local) = local {
+                        ck.committed.gauss = local;
+                    }
                     if !engine.backend.agree(written.is_ok()) {
                         return Err(written.err().unwrap_or_else(|| {
                             Error::Solver("writing the output failed on rank 0".into())

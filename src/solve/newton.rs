@@ -23,7 +23,7 @@ use crate::interface::Status;
 use crate::material::PointState;
 use crate::model::Model;
 
-/// Points per reduction in `Engine::share_state`.
+/// Points per reduction in `Engine::share_state` and `Engine::gather_gauss`.
 const SHARE_CHUNK: usize = 8192;
 
 /// Counters over a whole run.
@@ -59,6 +59,10 @@ pub struct Engine<'m> {
     pub interrupted: bool,
     /// The signal behind it (the largest number over the ranks).
     pub interrupt_signal: i32,
+    /// The elements whose Gauss states this process holds, ascending: all of
+    /// them on one process, the owned ones under MPI. A state's `gauss` holds
+    /// these elements' points in this order ([`Engine::localize`]).
+    held: Vec<u32>,
 }
 
 impl<'m> Engine<'m> {
@@ -77,6 +81,10 @@ impl<'m> Engine<'m> {
         mut backend: Box<dyn Backend + 'm>,
     ) -> Self {
         backend.reuse_solid(method != Method::FullNewton);
+        let held = (0..model.mesh.elements.len())
+            .filter(|&e| backend.owns_element(e))
+            .map(|e| e as u32)
+            .collect();
         Engine {
             nonlinear: None,
             model,
@@ -89,7 +97,118 @@ impl<'m> Engine<'m> {
             assemblies: 0,
             interrupted: false,
             interrupt_signal: 0,
+            held,
         }
+    }
+
+    /// Whether this process holds every element's Gauss states.
+    fn holds_all(&self) -> bool {
+        self.held.len() == self.model.mesh.elements.len()
+    }
+
+    /// Drops from a whole state (every element's Gauss points, as built by
+    /// [`State::initial`] or read from a restart file) the Gauss states of
+    /// the elements this process does not hold; unchanged on one process.
+    pub fn localize(&self, state: &mut State) {
+        let ng = self.model.n_gauss();
+        if self.holds_all() || state.gauss.len() != self.model.mesh.elements.len() * ng {
+            return;
+        }
+        let mut local = Vec::with_capacity(self.held.len() * ng);
+        for &e in &self.held {
+            let e = e as usize;
+            local.extend_from_slice(&state.gauss[e * ng..(e + 1) * ng]);
+        }
+        state.gauss = local;
+    }
+
+    /// Every element's Gauss states, in element order, on rank 0 (collective;
+    /// `None` on the other ranks and when this process holds them all
+    /// already). Gathered in chunks, so the only transient beyond the result
+    /// is one chunk.
+    pub fn gather_gauss(&self, state: &State) -> Option<Vec<PointState>> {
+        if self.holds_all() {
+            return None;
+        }
+        let ng = self.model.n_gauss();
+        let ne = self.model.mesh.elements.len();
+        let root = self.backend.rank() == 0;
+        let mut full = if root {
+            Vec::with_capacity(ne * ng)
+        } else {
+            Vec::new()
+        };
+        let per = (SHARE_CHUNK / ng).max(1);
+        let mut g = Vec::with_capacity(per * ng * 10);
+        let mut k = 0; // next held element
+        let mut e0 = 0;
+        while e0 < ne {
+            let e1 = (e0 + per).min(ne);
+            g.clear();
+            g.resize((e1 - e0) * ng * 10, 0.0);
+            while k < self.held.len() && (self.held[k] as usize) < e1 {
+                let e = self.held[k] as usize;
+                for ip in 0..ng {
+                    let s = &state.gauss[k * ng + ip];
+                    let v = &mut g[10 * ((e - e0) * ng + ip)..][..10];
+                    v[..4].copy_from_slice(&s.stress);
+                    v[4..8].copy_from_slice(&s.plastic_strain);
+                    v[8] = s.peeq;
+                    v[9] = f64::from(u8::from(s.yielding));
+                }
+                k += 1;
+            }
+            self.backend.sum(&mut g);
+            if root {
+                full.extend(g.chunks_exact(10).map(|v| PointState {
+                    stress: [v[0], v[1], v[2], v[3]],
+                    plastic_strain: [v[4], v[5], v[6], v[7]],
+                    peeq: v[8],
+                    yielding: v[9] > 0.5,
+                }));
+            }
+            e0 = e1;
+        }
+        root.then_some(full)
+    }
+
+    /// Max yield ratio over every Gauss point of the model (all ranks) and the
+    /// (element, point) where it occurs: the lowest such index on ties, as
+    /// one process finds it.
+    pub fn max_yield_ratio(&self, state: &State) -> (f64, usize, usize) {
+        let local = super::yield_point::max_yield_ratio(self.model, state, &self.held);
+        if self.holds_all() {
+            return local;
+        }
+        let ng = self.model.n_gauss();
+        let mut best = [local.0];
+        self.backend.max(&mut best);
+        let mut key = [if local.0 == best[0] && local.0 > 0.0 {
+            -((local.1 * ng + local.2) as f64)
+        } else {
+            f64::NEG_INFINITY
+        }];
+        self.backend.max(&mut key);
+        if key[0] == f64::NEG_INFINITY {
+            return (best[0], 0, 0);
+        }
+        let i = (-key[0]) as usize;
+        (best[0], i / ng, i % ng)
+    }
+
+    /// Largest value of `f` over the Gauss points of every rank (0 when none
+    /// is positive).
+    pub fn max_over_points(&self, values: impl Iterator<Item = f64>) -> f64 {
+        let mut m = [values.fold(0.0f64, f64::max)];
+        self.backend.max(&mut m);
+        m[0]
+    }
+
+    /// [`Measures::of`] with the largest plastic strain taken over all ranks.
+    pub fn measures(&self, state: &State) -> super::Measures {
+        let mut m = super::Measures::of(self.model, state);
+        m.max_peeq = self.max_over_points(state.gauss.iter().map(|g| g.peeq));
+        m
     }
 
     /// Called when a new state is committed: the modified-Newton matrix is stale.
@@ -172,43 +291,14 @@ impl<'m> Engine<'m> {
         Ok(self.r.clone())
     }
 
-    /// Completes the trial Gauss point and interface states on every rank: each
-    /// rank updated only what it owns. Summed in chunks of [`SHARE_CHUNK`]
-    /// points, so the only extra memory is one chunk (a whole-array buffer of
-    /// 10 doubles per Gauss point, plus MPI's copy of it, was 2 x 120 B per dof
-    /// on every rank).
+    /// Completes the trial interface states on every rank: each rank updated
+    /// only the points it owns. Summed in chunks of [`SHARE_CHUNK`] points.
+    /// (Gauss states stay with the rank that owns the element.)
     fn share_state(&self, trial: &mut State) {
         if self.backend.ranks() == 1 {
             return;
         }
-        let ng = self.model.n_gauss();
-        let mut g = Vec::with_capacity(SHARE_CHUNK * 10);
-        let mut start = 0;
-        while start < trial.gauss.len() {
-            let end = (start + SHARE_CHUNK).min(trial.gauss.len());
-            g.clear();
-            g.resize((end - start) * 10, 0.0);
-            for (k, s) in trial.gauss[start..end].iter().enumerate() {
-                if self.backend.owns_element((start + k) / ng) {
-                    let v = &mut g[10 * k..10 * k + 10];
-                    v[..4].copy_from_slice(&s.stress);
-                    v[4..8].copy_from_slice(&s.plastic_strain);
-                    v[8] = s.peeq;
-                    v[9] = f64::from(u8::from(s.yielding));
-                }
-            }
-            self.backend.sum(&mut g);
-            for (k, s) in trial.gauss[start..end].iter_mut().enumerate() {
-                let v = &g[10 * k..10 * k + 10];
-                *s = PointState {
-                    stress: [v[0], v[1], v[2], v[3]],
-                    plastic_strain: [v[4], v[5], v[6], v[7]],
-                    peeq: v[8],
-                    yielding: v[9] > 0.5,
-                };
-            }
-            start = end;
-        }
+        let mut g = Vec::with_capacity(SHARE_CHUNK * 5);
         let mut start = 0;
         while start < trial.contact.len() {
             let end = (start + SHARE_CHUNK).min(trial.contact.len());
@@ -283,12 +373,11 @@ impl<'m> Engine<'m> {
         let (mut fe, mut ke) = ([0.0; 16], [0.0; 256]);
         let mut failure: Option<String> = None;
         let mut dofs = [0usize; 16];
-        for (e, el) in m.mesh.elements.iter().enumerate() {
-            if !be.owns_element(e) {
-                continue;
-            }
+        for (k, &e) in self.held.iter().enumerate() {
+            let e = e as usize;
+            let el = &m.mesh.elements[e];
             let ue = m.element_u(e, &trial.u);
-            let gs = e * ng..(e + 1) * ng;
+            let gs = k * ng..(k + 1) * ng;
             let committed_gp: &[PointState] = &committed.gauss[gs.clone()];
             if let Err(msg) = element_forces(
                 &m.geometry(e),

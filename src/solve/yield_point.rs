@@ -23,14 +23,17 @@ pub struct FirstYield {
     pub element: usize,
 }
 
-/// Max yield ratio over all Gauss points and the (element, point) where it occurs.
-pub fn max_yield_ratio(model: &Model, state: &State) -> (f64, usize, usize) {
+/// Max yield ratio over the Gauss points of the `held` elements (whose points
+/// `state.gauss` holds, in this order) and the (element, point) where it
+/// occurs; [`Engine::max_yield_ratio`] takes it over every rank.
+pub fn max_yield_ratio(model: &Model, state: &State, held: &[u32]) -> (f64, usize, usize) {
     let ng = model.n_gauss();
     let mut best = (0.0, 0, 0);
-    for (e, el) in model.mesh.elements.iter().enumerate() {
-        let mat = &model.materials[el.body];
+    for (k, &e) in held.iter().enumerate() {
+        let e = e as usize;
+        let mat = &model.materials[model.mesh.elements[e].body];
         for ip in 0..ng {
-            let r = yield_ratio(mat, &state.gauss[e * ng + ip]);
+            let r = yield_ratio(mat, &state.gauss[k * ng + ip]);
             if r > best.0 {
                 best = (r, e, ip);
             }
@@ -54,7 +57,7 @@ pub(super) fn locate(
                 load_factor: l,
                 message: format!("elastic solve while locating first yield: {m}"),
             })?;
-        Ok((max_yield_ratio(model, &s).0 - 1.0, s))
+        Ok((engine.max_yield_ratio(&s).0 - 1.0, s))
     };
     let (mut a, mut ga) = (lambda0, ratio0 - 1.0);
     let (mut b, (mut gb, mut sb)) = (lambda1, eval(lambda1)?);
@@ -71,8 +74,8 @@ pub(super) fn locate(
         }
         (b, gb, sb) = (c, gc, sc);
     }
-    let (_, e, ip) = max_yield_ratio(model, &sb);
-    let m = super::Measures::of(model, &sb);
+    let (_, e, ip) = engine.max_yield_ratio(&sb);
+    let m = engine.measures(&sb);
     let x = model.geometry(e).x[ip];
     Ok(FirstYield {
         load_factor: b,
