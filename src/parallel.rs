@@ -34,18 +34,19 @@ pub fn run(
     let world = universe.world();
     let root = world.rank() == 0;
     let outcome = (|| {
+        if opts.lean_memory && !opts.snes {
+            return Err(Error::Input {
+                place: "command line".into(),
+                message: "--memory lean needs the SNES nonlinear solver (drop --nonlinear builtin)"
+                    .into(),
+            });
+        }
         let petsc = Petsc::init(&universe, petsc_args)?;
         let result = {
             let model = driver::load_model(case_path, opts)?;
             let at_model = crate::solve::peak_memory_mb();
             let linear = LinearDefault::for_model(&model);
             let backend = PetscBackend::new(&petsc, world.duplicate(), &model, linear)?;
-            if opts.lean_memory && !opts.snes {
-                return Err(Error::Solver(
-                    "--memory lean needs the SNES nonlinear solver (drop --nonlinear builtin)"
-                        .into(),
-                ));
-            }
             let snes = if opts.snes {
                 Some(SnesSolver::new(
                     &petsc,

@@ -342,6 +342,68 @@ fn krylov_solvers_from_the_options_database_give_the_same_answer() {
     }
 }
 
+/// `--memory lean` with GAMG applies its three settings (seen in PETSc's own
+/// views), names itself in summary.json, and changes the answer only within
+/// the solver tolerance; it is refused with the built-in Newton loop and on
+/// the serial backend.
+#[test]
+fn memory_lean_applies_its_gamg_settings_and_gives_the_same_answer() {
+    let root = common::scratch("parallel-lean");
+    let case = common::root().join("cases/punch-plane-stress");
+    punch_on_two_ranks(&root.join("lu"), &[]);
+    let lean = root.join("lean");
+    #[rustfmt::skip]
+    let out = mpirun_output(2, &[
+        "run", case.to_str().unwrap(), "--quiet", "--out", lean.to_str().unwrap(),
+        "--memory", "lean", "--",
+        "-ksp_type", "gmres", "-pc_type", "gamg", "-ksp_rtol", "1e-10", "-ksp_max_it", "2000",
+        "-snes_view",
+    ]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for setting in [
+        "rebuilt every 1000 new Jacobians",
+        "Number smoothing steps 0",
+        "using allatonce MatPtAP() implementation",
+    ] {
+        assert!(text.contains(setting), "no '{setting}' in:\n{text}");
+    }
+    let (a, b) = (json(&root.join("lu")), json(&lean));
+    assert_eq!(b["linear_solver"], "gmres + gamg (memory lean)");
+    assert_eq!(a["increments"], b["increments"]);
+    for key in ["center_displacement_mm", "max_peeq"] {
+        let (x, y) = (
+            a["final"][key].as_f64().unwrap(),
+            b["final"][key].as_f64().unwrap(),
+        );
+        assert!(close(x, y, x.abs()), "{key}: {x} vs {y}");
+    }
+    std::fs::create_dir_all(root.join("builtin")).unwrap();
+    let err = fails_cleanly_on_two_ranks(
+        &root.join("builtin"),
+        &case,
+        &["--memory", "lean", "--nonlinear", "builtin"],
+    );
+    assert!(err.contains("--memory lean needs the SNES"), "{err}");
+    let (code, err) = serial(&[
+        "run",
+        case.to_str().unwrap(),
+        "--backend",
+        "serial",
+        "--memory",
+        "lean",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("--memory lean applies to the PETSc backend"),
+        "{err}"
+    );
+}
+
 /// `--stop-after` under `mpirun -n 2` stops every rank at the same increment
 /// (collective decision), writes a partial folder, and `--restart` continues it
 /// to the uninterrupted run's result (to round-off: the Krylov history is not
