@@ -78,10 +78,9 @@ enum Command {
         #[arg(long, value_enum, default_value = "snes")]
         nonlinear: NonlinearArg,
         /// PETSc backend with GAMG: lean trades time for memory (plain
-        /// aggregation, the preconditioner built once per load step, and on
-        /// more than one rank all-at-once Galerkin products): about 2.0 instead
-        /// of 3.4 KB per dof over two ranks at 1M dofs, 1.4-1.5x the time per
-        /// Newton iteration (README, Scaling). Needs `--nonlinear snes`.
+        /// aggregation with W-cycles, the preconditioner built once per load
+        /// step, and on more than one rank all-at-once Galerkin products);
+        /// README, Scaling, has the measurements. Needs `--nonlinear snes`.
         #[arg(long, value_enum, default_value = "fast")]
         memory: MemoryArg,
         /// PETSc options after `--`, e.g. `-- -ksp_type cg -pc_type gamg -log_view`.

@@ -342,7 +342,7 @@ fn krylov_solvers_from_the_options_database_give_the_same_answer() {
     }
 }
 
-/// `--memory lean` with GAMG applies its three settings (seen in PETSc's own
+/// `--memory lean` with GAMG applies its four settings (seen in PETSc's own
 /// views), names itself in summary.json, and changes the answer only within
 /// the solver tolerance; it is refused with the built-in Newton loop and on
 /// the serial backend.
@@ -368,6 +368,7 @@ fn memory_lean_applies_its_gamg_settings_and_gives_the_same_answer() {
     for setting in [
         "rebuilt every 1000 new Jacobians",
         "Number smoothing steps 0",
+        "cycles=w",
         "using allatonce MatPtAP() implementation",
     ] {
         assert!(text.contains(setting), "no '{setting}' in:\n{text}");

@@ -4,9 +4,10 @@
 //! * `petsc` (feature `parallel`): METIS-partitioned elements, an MPIAIJ matrix
 //!   with exact preallocation, KSP from the options database, MPI reductions.
 //!
-//! Every rank holds the whole (replicated) displacement vector and model; each
-//! assembles only the elements and interface points it owns, and [`Backend::sum`]
-//! adds the partial residuals. Decisions that change control flow go through
+//! Every rank holds the whole (replicated) displacement vector and model, and
+//! the Gauss states of its own elements only; each assembles only the elements
+//! and interface points it owns, and [`Backend::sum`] adds the partial
+//! residuals. Decisions that change control flow go through
 //! [`Backend::agree`], so all ranks always take the same branch.
 
 #[cfg(feature = "parallel")]
