@@ -259,14 +259,20 @@ pub struct SnesSolver<'p> {
 /// solve, and the lag does not persist across solves).
 pub const MULTIGRID_LAG: ffi::PetscInt = 1000;
 
-/// `--memory lean` with GAMG as the preconditioner: four settings, each of
+/// Most multigrid levels under [`lean_multigrid`].
+pub const LEAN_LEVELS: ffi::PetscInt = 6;
+
+/// `--memory lean` with GAMG as the preconditioner: five settings, each of
 /// which the options database can override (README, Scaling, has the
 /// measurements). Returns whether they were applied (the PC is GAMG).
 /// * plain (unsmoothed) aggregation, `-pc_gamg_agg_nsmooths 0`: sparser
 ///   prolongators and coarse operators, a smaller and cheaper setup;
 /// * W-cycles, `-pc_mg_cycle_type w`: plain aggregation's V-cycle needs more
 ///   Krylov iterations as the mesh grows (105 -> 229 per solve from 23.7k to
-///   1.05M dofs), its W-cycle about as many at every size (96 -> 115);
+///   1.05M dofs), its W-cycle about as many at every size (96 -> 121), on at
+///   most [`LEAN_LEVELS`] levels (`-pc_mg_levels`): a W-cycle visits level l
+///   2^l times, and GAMG's default eight levels at 1.05M dofs cost 700,000
+///   tiny, latency-bound products per load step on two ranks;
 /// * the preconditioner built once per load step, `-snes_lag_preconditioner`
 ///   [`MULTIGRID_LAG`]: the Newton step still solves the current tangent to
 ///   the Krylov tolerance, only the preconditioner lags;
@@ -304,6 +310,9 @@ unsafe fn lean_multigrid(snes: ffi::SNES, ksp: ffi::KSP, ranks: usize) -> Result
         };
         if !given(c"-pc_gamg_agg_nsmooths")? {
             chk(ffi::PCGAMGSetNSmooths(pc, 0), "PCGAMGSetNSmooths")?;
+        }
+        if !given(c"-pc_mg_levels")? {
+            chk(ffi::PCGAMGSetNlevels(pc, LEAN_LEVELS), "PCGAMGSetNlevels")?;
         }
         // GAMG creates its levels at setup, which reads the cycle type from
         // the options database (PCMGSetCycleType needs the levels)
