@@ -123,11 +123,13 @@ impl<'m> Engine<'m> {
     }
 
     /// Every element's Gauss states, in element order, on rank 0 (collective;
-    /// `None` on the other ranks and when this process holds them all
+    /// `None` on the other ranks and on one process, which holds them all
     /// already). Gathered in chunks, so the only transient beyond the result
     /// is one chunk.
     pub fn gather_gauss(&self, state: &State) -> Option<Vec<PointState>> {
-        if self.holds_all() {
+        // decided on the rank count, the same everywhere (a rank may hold
+        // every element while another holds none)
+        if self.backend.ranks() == 1 {
             return None;
         }
         let ng = self.model.n_gauss();
@@ -177,7 +179,7 @@ impl<'m> Engine<'m> {
     /// one process finds it.
     pub fn max_yield_ratio(&self, state: &State) -> (f64, usize, usize) {
         let local = super::yield_point::max_yield_ratio(self.model, state, &self.held);
-        if self.holds_all() {
+        if self.backend.ranks() == 1 {
             return local;
         }
         let ng = self.model.n_gauss();
