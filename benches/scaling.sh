@@ -10,7 +10,9 @@
 # "s per Newton it" and "it / linear solve" use the assembly and solve times
 # of summary.json, so start-up and output writing do not count.
 # PETSC_OPTS="-ksp_type gmres -pc_type gamg" passes options to PETSc;
-# BIN=path runs another build of asperity; OUT=dir keeps runs apart.
+# BIN=path runs another build of asperity; OUT=dir keeps runs apart;
+# REPEAT=n runs every point n times (one row each) and fits the median time of
+# each point (single runs on a shared virtual machine spread by up to 30%).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 levels=${1:-"2 4 8 12"}
@@ -31,15 +33,18 @@ for r in $levels; do
     [ "$r" -le "$serial_max" ] && runs=("serial 1" "${runs[@]}")
     for run in "${runs[@]}"; do
         set -- $run
-        dir="$out/r$r-$1-$2"
-        if [ "$1" = serial ]; then
-            $bin run cases/punch-plane-stress-fine --refine "$r" --backend serial --quiet --out "$dir" "${extra[@]}" >/dev/null || [ $? -eq 3 ]
-        else
-            # shellcheck disable=SC2086
-            mpirun -n "$2" $bin run cases/punch-plane-stress-fine --refine "$r" --quiet --out "$dir" "${extra[@]}" -- ${PETSC_OPTS:-} >/dev/null 2>&1 || [ $? -eq 3 ]
-        fi
-        s="$dir/summary.json"
-        python3 - "$s" "$r" "$1" "$2" <<'PY'
+        times=()
+        for rep in $(seq 1 "${REPEAT:-1}"); do
+            dir="$out/r$r-$1-$2"
+            [ "${REPEAT:-1}" -gt 1 ] && dir="$dir-$rep"
+            if [ "$1" = serial ]; then
+                $bin run cases/punch-plane-stress-fine --refine "$r" --backend serial --quiet --out "$dir" "${extra[@]}" >/dev/null || [ $? -eq 3 ]
+            else
+                # shellcheck disable=SC2086
+                mpirun -n "$2" $bin run cases/punch-plane-stress-fine --refine "$r" --quiet --out "$dir" "${extra[@]}" -- ${PETSC_OPTS:-} >/dev/null 2>&1 || [ $? -eq 3 ]
+            fi
+            s="$dir/summary.json"
+            python3 - "$s" "$r" "$1" "$2" <<'PY'
 import json, sys
 s = json.load(open(sys.argv[1])); r, be, n = sys.argv[2:5]
 its = s["newton_iterations"]; wall = s["wall_seconds"]; solve = s["solve_seconds"]
@@ -50,7 +55,10 @@ mem = s["peak_memory_mb"]
 print(f"| {r} | {s['dofs']} | {be} | {n} | {s['increments']} | {its} | {ksp} | {wall:.1f} | "
       f"{work/its:.3f} | {work/solve:.2f} | {mem:.0f} | {mem*1048576/s['dofs']:.0f} |")
 PY
-        fits+=("$1-$2 $(field "$s" dofs) $(python3 -c "import json; s=json.load(open('$s')); print((s['solve_seconds']+s['assembly_seconds'])/s['newton_iterations'])")")
+            times+=("$(python3 -c "import json; s=json.load(open('$s')); print((s['solve_seconds']+s['assembly_seconds'])/s['newton_iterations'])")")
+        done
+        median=$(printf '%s\n' "${times[@]}" | sort -g | python3 -c 'import sys; v=[float(l) for l in sys.stdin]; print(v[len(v)//2])')
+        fits+=("$1-$2 $(field "$s" dofs) $median")
     done
 done
 printf '%s\n' "${fits[@]}" | python3 -c '
