@@ -1,0 +1,36 @@
+//! An error on one rank ends every rank with one message, exit code 2 and no
+//! output.
+
+use crate::common;
+use crate::support::*;
+
+#[test]
+fn a_bad_case_ends_every_rank_with_one_message() {
+    let text =
+        include_str!("../../cases/punch-plane-stress/case.toml").replace("m = 0.5", "m = 1.5");
+    let case = common::case_dir("parallel-bad", &text);
+    let (code, err) = mpirun(2, &["run", case.to_str().unwrap(), "--quiet"]);
+    assert_eq!(code, 2, "{err}");
+    assert_eq!(err.matches("error:").count(), 1, "{err}");
+    assert!(err.contains("m = 1.5 must be in (0, 1]"), "{err}");
+}
+
+#[test]
+fn a_fault_on_rank_1_ends_every_rank_with_its_message_and_no_output() {
+    let root = common::scratch("parallel-fault");
+    let case = common::root().join("cases/punch-plane-stress");
+    let t = std::time::Instant::now();
+    let err = fails_cleanly_on_two_ranks(&root, &case, &["--inject-fault", "1:30"]);
+    assert!(err.contains("rank 1: fault injected on rank 1"), "{err}");
+    assert!(t.elapsed().as_secs() < 30, "took {:?}", t.elapsed());
+}
+
+/// A load that cannot converge, solved by SNES on 2 ranks: exit code 2, one
+/// message, no output folder.
+#[test]
+fn a_load_snes_cannot_converge_ends_every_rank_cleanly() {
+    let root = common::scratch("parallel-snes-fail");
+    let case = common::root().join("tests/bad_inputs/85-cannot-converge");
+    let err = fails_cleanly_on_two_ranks(&root, &case, &[]);
+    assert!(err.contains("did not converge"), "{err}");
+}

@@ -1,0 +1,233 @@
+//! Linear solvers: the size-following default, options from the command line,
+//! `--memory lean`, and the near-null space handed to GAMG.
+
+use crate::common;
+use crate::support::*;
+
+#[test]
+fn krylov_solvers_from_the_options_database_give_the_same_answer() {
+    let root = common::scratch("parallel-ksp");
+    punch_on_two_ranks(&root.join("lu"), &[]);
+    #[rustfmt::skip]
+    punch_on_two_ranks(&root.join("gmres"), &[
+        "-ksp_type", "gmres", "-pc_type", "bjacobi", "-ksp_rtol", "1e-12", "-ksp_max_it", "5000",
+    ]);
+    // algebraic multigrid with the rigid-body near-null space
+    #[rustfmt::skip]
+    punch_on_two_ranks(&root.join("gamg"), &[
+        "-ksp_type", "gmres", "-pc_type", "gamg", "-ksp_rtol", "1e-10", "-ksp_max_it", "2000",
+    ]);
+    let a = json(&root.join("lu"));
+    let ua = a["final"]["center_displacement_mm"].as_f64().unwrap();
+    // summary.json names the solver that ran
+    assert_eq!(a["linear_solver"], "preonly + lu (mumps)");
+    assert_eq!(
+        json(&root.join("gmres"))["linear_solver"],
+        "gmres + bjacobi"
+    );
+    assert_eq!(json(&root.join("gamg"))["linear_solver"], "gmres + gamg");
+    for run in ["gmres", "gamg"] {
+        let b = json(&root.join(run));
+        let ub = b["final"]["center_displacement_mm"].as_f64().unwrap();
+        assert!(close(ua, ub, ua.abs()), "{run}: {ua} vs {ub}");
+        assert!(
+            b["backend_stats"]["ksp_iterations"].as_f64().unwrap()
+                > a["backend_stats"]["ksp_iterations"].as_f64().unwrap()
+        );
+    }
+}
+
+/// `--memory lean` with GAMG applies its four settings (seen in PETSc's own
+/// views), names itself in summary.json, and changes the answer only within
+/// the solver tolerance; it is refused with the built-in Newton loop and on
+/// the serial backend.
+#[test]
+fn memory_lean_applies_its_gamg_settings_and_gives_the_same_answer() {
+    let root = common::scratch("parallel-lean");
+    let case = common::root().join("cases/punch-plane-stress");
+    punch_on_two_ranks(&root.join("lu"), &[]);
+    let lean = root.join("lean");
+    #[rustfmt::skip]
+    let out = mpirun_output(2, &[
+        "run", case.to_str().unwrap(), "--quiet", "--out", lean.to_str().unwrap(),
+        "--memory", "lean", "--",
+        "-ksp_type", "gmres", "-pc_type", "gamg", "-ksp_rtol", "1e-10", "-ksp_max_it", "2000",
+        "-snes_view",
+    ]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for setting in [
+        "rebuilt every 1000 new Jacobians",
+        "Number smoothing steps 0",
+        "cycles=w",
+        "using allatonce MatPtAP() implementation",
+    ] {
+        assert!(text.contains(setting), "no '{setting}' in:\n{text}");
+    }
+    let (a, b) = (json(&root.join("lu")), json(&lean));
+    assert_eq!(b["linear_solver"], "gmres + gamg (memory lean)");
+    assert_eq!(a["increments"], b["increments"]);
+    for key in ["center_displacement_mm", "max_peeq"] {
+        let (x, y) = (
+            a["final"][key].as_f64().unwrap(),
+            b["final"][key].as_f64().unwrap(),
+        );
+        assert!(close(x, y, x.abs()), "{key}: {x} vs {y}");
+    }
+    std::fs::create_dir_all(root.join("builtin")).unwrap();
+    let err = fails_cleanly_on_two_ranks(
+        &root.join("builtin"),
+        &case,
+        &["--memory", "lean", "--nonlinear", "builtin"],
+    );
+    assert!(err.contains("--memory lean needs the SNES"), "{err}");
+    let (code, err) = serial(&[
+        "run",
+        case.to_str().unwrap(),
+        "--backend",
+        "serial",
+        "--memory",
+        "lean",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("--memory lean applies to the PETSc backend"),
+        "{err}"
+    );
+}
+
+/// SNES options from the command line reach the solver: `-snes_monitor`
+/// prints once per iteration from rank 0 only, and a backtracking line search
+/// with an iterative KSP still converges to the same answer (1e-6).
+#[test]
+fn snes_options_from_the_command_line_apply() {
+    let root = common::scratch("parallel-snes-options");
+    punch_on_two_ranks(&root.join("a"), &[]);
+    #[rustfmt::skip]
+    let out = punch_on_two_ranks(&root.join("b"), &[
+        "-snes_monitor", "-snes_linesearch_type", "bt", "-ksp_type", "gmres",
+        "-pc_type", "bjacobi", "-ksp_rtol", "1e-12", "-ksp_max_it", "5000",
+    ]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let (a, b) = (json(&root.join("a")), json(&root.join("b")));
+    // One monitor line per SNES iteration plus one per solve (iteration 0),
+    // printed by rank 0 only: twice as many would mean both ranks print.
+    let lines: Vec<&str> = stdout
+        .lines()
+        .filter(|l| l.contains("SNES Function norm"))
+        .collect();
+    let solves = lines
+        .iter()
+        .filter(|l| l.trim_start().starts_with("0 SNES Function norm"))
+        .count();
+    let its = b["backend_stats"]["snes_iterations"].as_f64().unwrap() as usize;
+    assert!(solves >= a["increments"].as_u64().unwrap() as usize);
+    assert_eq!(
+        lines.len(),
+        solves + its,
+        "monitor lines vs SNES iterations"
+    );
+    let (ua, ub) = (
+        a["final"]["center_displacement_mm"].as_f64().unwrap(),
+        b["final"]["center_displacement_mm"].as_f64().unwrap(),
+    );
+    assert!(close(ua, ub, ua.abs()), "{ua} vs {ub}");
+}
+
+/// The near-null space handed to GAMG: three rigid-body modes per body
+/// (the interface springs let each body move almost rigidly against the
+/// other), orthonormal over every dof in PETSc order; restricted to one body,
+/// each vector is a rigid motion of it: a translation plus a multiple of (−y, x).
+#[test]
+fn the_rigid_body_modes_are_orthonormal_rigid_motions_of_each_body() {
+    use asperity::backend::petsc::solver::Partition;
+    let text =
+        std::fs::read_to_string(common::root().join("cases/punch-plane-stress/case.toml")).unwrap();
+    let model = common::model(&text);
+    let part = Partition::new(&model, 1).unwrap();
+    let modes = part.rigid_body_modes(&model, 0);
+    assert_eq!(model.mesh.bodies.len(), 2);
+    assert_eq!(modes.len(), 6);
+    for (i, a) in modes.iter().enumerate() {
+        assert_eq!(a.len(), model.mesh.num_dofs());
+        for (j, b) in modes.iter().enumerate() {
+            let d: f64 = a.iter().zip(b).map(|(x, y)| x * y).sum();
+            let want = if i == j { 1.0 } else { 0.0 };
+            assert!((d - want).abs() < 1e-12, "mode {i}·mode {j} = {d}");
+        }
+    }
+    let mut body_of = vec![0; model.mesh.nodes.len()];
+    for el in &model.mesh.elements {
+        for &n in &el.nodes {
+            body_of[n] = el.body;
+        }
+    }
+    let nodes = &model.mesh.nodes;
+    let mut rotation_seen = [false; 2];
+    for (k, mode) in modes.iter().enumerate() {
+        for body in 0..2 {
+            // fit mode = a·[comp==0] + b·[comp==1] + c·r over this body's dofs
+            let mut rows = Vec::new();
+            for (i, p) in nodes.iter().enumerate() {
+                if body_of[i] != body {
+                    continue;
+                }
+                for comp in 0..2 {
+                    let r = if comp == 0 { -p[1] } else { p[0] };
+                    let y = mode[part.dof_index[2 * i + comp] as usize];
+                    rows.push((comp, r, y));
+                }
+            }
+            let mut m = nalgebra::Matrix3::<f64>::zeros();
+            let mut v = nalgebra::Vector3::<f64>::zeros();
+            for &(comp, r, y) in &rows {
+                let f = nalgebra::Vector3::new(
+                    if comp == 0 { 1.0 } else { 0.0 },
+                    if comp == 1 { 1.0 } else { 0.0 },
+                    r,
+                );
+                m += f * f.transpose();
+                v += f * y;
+            }
+            let c = m.lu().solve(&v).unwrap();
+            let resid: f64 = rows
+                .iter()
+                .map(|&(comp, r, y)| {
+                    let fit = if comp == 0 { c[0] } else { c[1] } + c[2] * r;
+                    (fit - y).powi(2)
+                })
+                .sum();
+            assert!(
+                resid.sqrt() < 1e-12,
+                "mode {k} is not rigid on body {body}: {resid}"
+            );
+            rotation_seen[body] |= c[2].abs() > 1e-6;
+        }
+    }
+    assert_eq!(rotation_seen, [true, true], "each body has a rotation mode");
+}
+
+/// The PETSc default linear solver follows the size: MUMPS LU below
+/// `LinearDefault::MULTIGRID_FROM` dofs, GAMG above it, inside CG for the
+/// symmetric tangent of a case without a tangential law.
+#[test]
+fn the_default_linear_solver_follows_the_size_of_the_model() {
+    use asperity::backend::petsc::LinearDefault;
+    let text =
+        std::fs::read_to_string(common::root().join("cases/punch-plane-stress-fine/case.toml"))
+            .unwrap();
+    let at = |refine: usize| {
+        let model = common::model(&text.replace("refine = 8", &format!("refine = {refine}")));
+        (model.mesh.num_dofs(), LinearDefault::for_model(&model))
+    };
+    let (small, d) = at(12);
+    assert!(small < LinearDefault::MULTIGRID_FROM);
+    assert_eq!(d, LinearDefault::DirectLu);
+    let (big, d) = at(18);
+    assert!(big >= LinearDefault::MULTIGRID_FROM);
+    assert_eq!(d, LinearDefault::Multigrid { symmetric: true });
+}
