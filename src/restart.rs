@@ -281,15 +281,8 @@ fn sections(e: &mut Encoder, ck: &Checkpoint, pvd: &[(f64, String)]) -> std::io:
     e.f64s("u", &s.u)?;
     e.f64_iter(
         "gauss",
-        10 * s.gauss.len(),
-        s.gauss.iter().flat_map(|p| {
-            let mut v = [0.0; 10];
-            v[..4].copy_from_slice(&p.stress);
-            v[4..8].copy_from_slice(&p.plastic_strain);
-            v[8] = p.peeq;
-            v[9] = if p.yielding { 1.0 } else { 0.0 };
-            v
-        }),
+        PointState::PACKED * s.gauss.len(),
+        s.gauss.iter().flat_map(PointState::pack),
     )?;
     e.bytes(
         "status",
@@ -495,14 +488,9 @@ pub fn decode(
         .committed
         .gauss
         .iter_mut()
-        .zip(f("gauss", Some(10 * ng))?.chunks_exact(10))
+        .zip(f("gauss", Some(PointState::PACKED * ng))?.chunks_exact(PointState::PACKED))
     {
-        *p = PointState {
-            stress: [v[0], v[1], v[2], v[3]],
-            plastic_strain: [v[4], v[5], v[6], v[7]],
-            peeq: v[8],
-            yielding: v[9] != 0.0,
-        };
+        *p = PointState::unpack(v);
     }
     match map.get("status") {
         Some(Data::U8(v)) if v.len() == np => {

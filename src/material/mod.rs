@@ -46,6 +46,32 @@ pub struct PointState {
     pub yielding: bool,
 }
 
+impl PointState {
+    /// Doubles per state in [`PointState::pack`].
+    pub const PACKED: usize = 10;
+
+    /// σ (4), εᵖ (4), ε̄ᵖ, yielding as 0/1: the layout of restart files and of
+    /// the MPI gather of Gauss states.
+    pub fn pack(&self) -> [f64; Self::PACKED] {
+        let mut v = [0.0; Self::PACKED];
+        v[..4].copy_from_slice(&self.stress);
+        v[4..8].copy_from_slice(&self.plastic_strain);
+        v[8] = self.peeq;
+        v[9] = f64::from(u8::from(self.yielding));
+        v
+    }
+
+    /// The inverse of [`PointState::pack`] (`v` holds at least `PACKED` values).
+    pub fn unpack(v: &[f64]) -> Self {
+        PointState {
+            stress: [v[0], v[1], v[2], v[3]],
+            plastic_strain: [v[4], v[5], v[6], v[7]],
+            peeq: v[8],
+            yielding: v[9] > 0.5,
+        }
+    }
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct VonMises {
     pub young: f64,

@@ -140,34 +140,25 @@ impl<'m> Engine<'m> {
         } else {
             Vec::new()
         };
+        const W: usize = PointState::PACKED;
         let per = (SHARE_CHUNK / ng).max(1);
-        let mut g = Vec::with_capacity(per * ng * 10);
+        let mut g = Vec::with_capacity(per * ng * W);
         let mut k = 0; // next held element
         let mut e0 = 0;
         while e0 < ne {
             let e1 = (e0 + per).min(ne);
             g.clear();
-            g.resize((e1 - e0) * ng * 10, 0.0);
+            g.resize((e1 - e0) * ng * W, 0.0);
             while k < self.held.len() && (self.held[k] as usize) < e1 {
-                let e = self.held[k] as usize;
-                for ip in 0..ng {
-                    let s = &state.gauss[k * ng + ip];
-                    let v = &mut g[10 * ((e - e0) * ng + ip)..][..10];
-                    v[..4].copy_from_slice(&s.stress);
-                    v[4..8].copy_from_slice(&s.plastic_strain);
-                    v[8] = s.peeq;
-                    v[9] = f64::from(u8::from(s.yielding));
+                let at = (self.held[k] as usize - e0) * ng * W;
+                for (ip, s) in state.gauss[k * ng..(k + 1) * ng].iter().enumerate() {
+                    g[at + ip * W..][..W].copy_from_slice(&s.pack());
                 }
                 k += 1;
             }
             self.backend.sum(&mut g);
             if root {
-                full.extend(g.chunks_exact(10).map(|v| PointState {
-                    stress: [v[0], v[1], v[2], v[3]],
-                    plastic_strain: [v[4], v[5], v[6], v[7]],
-                    peeq: v[8],
-                    yielding: v[9] > 0.5,
-                }));
+                full.extend(g.chunks_exact(W).map(PointState::unpack));
             }
             e0 = e1;
         }
@@ -198,8 +189,8 @@ impl<'m> Engine<'m> {
         (best[0], i / ng, i % ng)
     }
 
-    /// Largest value of `f` over the Gauss points of every rank (0 when none
-    /// is positive).
+    /// Largest of `values` (one per held Gauss point) over every rank, 0 when
+    /// none is positive.
     pub fn max_over_points(&self, values: impl Iterator<Item = f64>) -> f64 {
         let mut m = [values.fold(0.0f64, f64::max)];
         self.backend.max(&mut m);
