@@ -145,7 +145,9 @@ fn main() {
         LEN * 8 / 1_000_000
     );
     println!();
-    println!("| kernel | 1 thread | 2 threads (sum) | ratio (median of trial pairs) | ratio range |");
+    println!(
+        "| kernel | 1 thread | 2 threads (sum) | ratio (median of trial pairs) | ratio range |"
+    );
     println!("|---|---:|---:|---:|---:|");
     let mut arrays = [Arrays::new(), Arrays::new()];
     for kernel in [Kernel::Read, Kernel::Triad, Kernel::Compute] {
