@@ -497,6 +497,73 @@ unsafe fn linear_defaults(ksp: ffi::KSP, choice: LinearDefault) -> Result<()> {
     }
 }
 
+/// Whether `name` (e.g. `c"-pc_gamg_use_sa_esteig"`) was given in the options
+/// database (the command line after `--`).
+fn option_given(name: &std::ffi::CStr) -> Result<bool> {
+    let mut has = ffi::PetscBool_PETSC_FALSE;
+    // SAFETY: NUL-terminated name; out-pointer.
+    chk(
+        unsafe {
+            ffi::PetscOptionsHasName(
+                std::ptr::null_mut(),
+                std::ptr::null(),
+                name.as_ptr(),
+                &mut has,
+            )
+        },
+        "PetscOptionsHasName",
+    )?;
+    Ok(has == ffi::PetscBool_PETSC_TRUE)
+}
+
+/// Puts `name value` into the options database unless the command line gave
+/// `name`: a default for an option that PETSc reads only when it sets up.
+fn default_option(name: &std::ffi::CStr, value: &std::ffi::CStr) -> Result<()> {
+    if !option_given(name)? {
+        // SAFETY: NUL-terminated strings; PETSc copies them.
+        chk(
+            unsafe {
+                ffi::PetscOptionsSetValue(std::ptr::null_mut(), name.as_ptr(), value.as_ptr())
+            },
+            "PetscOptionsSetValue",
+        )?;
+    }
+    Ok(())
+}
+
+/// asperity's default for GAMG, whichever way GAMG was chosen (the size
+/// default or `-pc_type gamg`), unless the command line sets it: the
+/// Chebyshev smoothers estimate their own eigenvalue bounds
+/// (`-pc_gamg_use_sa_esteig false`) instead of reusing the estimate made while
+/// smoothing the prolongators. With the reused estimate, CG + GAMG met an
+/// indefinite preconditioner (`DIVERGED_INDEFINITE_PC`) in the plastic steps of
+/// `cases/punch-plane-stress-fine` (twice at refine 4, a run given up after 8
+/// cutbacks at 99% of the load at refine 8) where MUMPS converged; with the
+/// smoothers' own estimates the iterates follow MUMPS's (README, Parallel).
+/// Returns whether the preconditioner is GAMG.
+///
+/// # Safety
+/// `ksp` must be a valid KSP handle, after KSPSetFromOptions.
+unsafe fn gamg_defaults(ksp: ffi::KSP) -> Result<bool> {
+    // SAFETY: valid KSP (caller); the PC and its type string belong to PETSc.
+    unsafe {
+        let mut pc = std::ptr::null_mut();
+        chk(ffi::KSPGetPC(ksp, &mut pc), "KSPGetPC")?;
+        let mut pt = std::ptr::null();
+        chk(ffi::PCGetType(pc, &mut pt), "PCGetType")?;
+        if pt.is_null() || std::ffi::CStr::from_ptr(pt).to_bytes() != b"gamg" {
+            return Ok(false);
+        }
+        if !option_given(c"-pc_gamg_use_sa_esteig")? {
+            chk(
+                ffi::PCGAMGSetUseSAEstEig(pc, ffi::PetscBool_PETSC_FALSE),
+                "PCGAMGSetUseSAEstEig",
+            )?;
+        }
+        Ok(true)
+    }
+}
+
 /// "ksp type + pc type" of a configured KSP, e.g. "preonly + lu (mumps)", "cg + gamg".
 ///
 /// # Safety
@@ -543,6 +610,7 @@ impl<'p> Ksp<'p> {
             chk(ffi::KSPCreate(petsc.comm(), &mut raw), "KSPCreate")?;
             linear_defaults(raw, choice)?;
             chk(ffi::KSPSetFromOptions(raw), "KSPSetFromOptions")?;
+            gamg_defaults(raw)?;
         }
         Ok(Ksp {
             raw,
