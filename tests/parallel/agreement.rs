@@ -9,11 +9,10 @@ use std::path::PathBuf;
 fn compare(case: &str, refine: &str) {
     let root = common::scratch(&format!("parallel-{case}"));
     let case = common::root().join("cases").join(case);
-    let case = case.to_str().unwrap();
     let out = |n: &str| root.join(n);
     let (c, e) = serial(&[
         "run",
-        case,
+        case.to_str().unwrap(),
         "--refine",
         refine,
         "--quiet",
@@ -23,32 +22,9 @@ fn compare(case: &str, refine: &str) {
         out("serial").to_str().unwrap(),
     ]);
     assert_eq!(c, 0, "{e}");
-    let (c, e) = mpirun(
-        1,
-        &[
-            "run",
-            case,
-            "--refine",
-            refine,
-            "--quiet",
-            "--out",
-            out("petsc1").to_str().unwrap(),
-        ],
-    );
-    assert_eq!(c, 0, "{e}");
-    let (c, e) = mpirun(
-        2,
-        &[
-            "run",
-            case,
-            "--refine",
-            refine,
-            "--quiet",
-            "--out",
-            out("petsc2").to_str().unwrap(),
-        ],
-    );
-    assert_eq!(c, 0, "{e}");
+    for (n, name) in [(1, "petsc1"), (2, "petsc2")] {
+        run_on(n, &case, &out(name), &["--refine", refine]);
+    }
     let s = json(&out("serial"));
     let s_if = interfaces(&out("serial"));
     let u_scale = s["final"]["center_displacement_mm"].as_f64().unwrap().abs();
@@ -225,24 +201,10 @@ fn two_runs_on_two_ranks_give_identical_files() {
     let case = common::root().join("cases/punch-friction-b");
     let dirs = [root.join("a"), root.join("b")];
     for d in &dirs {
-        let (code, err) = mpirun(
-            2,
-            &[
-                "run",
-                case.to_str().unwrap(),
-                "--quiet",
-                "--backend",
-                "petsc",
-                "--out",
-                d.to_str().unwrap(),
-                "--",
-                "-pc_type",
-                "redundant",
-                "-redundant_pc_type",
-                "lu",
-            ],
-        );
-        assert_eq!(code, 0, "{err}");
+        #[rustfmt::skip]
+        run_on(2, &case, d, &[
+            "--backend", "petsc", "--", "-pc_type", "redundant", "-redundant_pc_type", "lu",
+        ]);
     }
     let mut files = vec![PathBuf::from("curve.csv")];
     for sub in ["interface", "vtu"] {
@@ -292,31 +254,15 @@ fn two_runs_on_two_ranks_give_identical_files() {
 fn snes_and_the_builtin_loop_take_the_same_iterates_for_all_three_methods() {
     let root = common::scratch("parallel-snes");
     let case = common::root().join("cases/punch-plane-stress");
-    let case = case.to_str().unwrap();
     for method in ["full-newton", "modified-newton", "initial-stiffness"] {
         let mut dirs = Vec::new();
         for nl in ["snes", "builtin"] {
             let dir = root.join(format!("{method}-{nl}"));
-            let (c, e) = mpirun(
-                2,
-                &[
-                    "run",
-                    case,
-                    "--quiet",
-                    "--method",
-                    method,
-                    "--nonlinear",
-                    nl,
-                    "--out",
-                    dir.to_str().unwrap(),
-                    "--",
-                    "-pc_type",
-                    "redundant",
-                    "-redundant_pc_type",
-                    "lu",
-                ],
-            );
-            assert_eq!(c, 0, "{method} {nl}: {e}");
+            #[rustfmt::skip]
+            run_on(2, &case, &dir, &[
+                "--method", method, "--nonlinear", nl,
+                "--", "-pc_type", "redundant", "-redundant_pc_type", "lu",
+            ]);
             assert_eq!(json(&dir)["nonlinear_solver"], nl);
             dirs.push(dir);
         }

@@ -48,18 +48,12 @@ fn memory_lean_applies_its_gamg_settings_and_gives_the_same_answer() {
     punch_on_two_ranks(&root.join("lu"), &[]);
     let lean = root.join("lean");
     #[rustfmt::skip]
-    let out = mpirun_output(2, &[
-        "run", case.to_str().unwrap(), "--quiet", "--out", lean.to_str().unwrap(),
+    let out = run_on(2, &case, &lean, &[
         "--memory", "lean", "--",
         "-ksp_type", "gmres", "-pc_type", "gamg", "-ksp_rtol", "1e-10", "-ksp_max_it", "2000",
         "-snes_view",
     ]);
     let text = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
     for setting in [
         "rebuilt every 1000 new Jacobians",
         "Number smoothing steps 0",
@@ -247,24 +241,10 @@ fn cg_with_gamg_follows_lu_through_the_plastic_steps() {
     let root = common::scratch("parallel-gamg-plastic");
     let case = common::root().join("cases/punch-plane-stress-fine");
     let run = |name: &str, extra: &[&str]| {
-        let dir = root.join(name);
-        let mut args = vec![
-            "run",
-            case.to_str().unwrap(),
-            "--refine",
-            "4",
-            "--quiet",
-            "--out",
-            dir.to_str().unwrap(),
-        ];
+        let mut args = vec!["--refine", "4"];
         args.extend_from_slice(extra);
-        let out = mpirun_output(2, &args);
-        assert!(
-            out.status.success(),
-            "{name}: {}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        json(&dir)
+        run_on(2, &case, &root.join(name), &args);
+        json(&root.join(name))
     };
     let lu = run("lu", &[]);
     assert_eq!(lu["linear_solver"], "preonly + lu (mumps)");

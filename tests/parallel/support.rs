@@ -119,25 +119,33 @@ pub fn fails_cleanly_on_two_ranks(root: &Path, case: &Path, extra: &[&str]) -> S
     err
 }
 
-/// punch-plane-stress on 2 ranks into `dir`, with PETSc options; panics on failure.
-pub fn punch_on_two_ranks(dir: &Path, petsc: &[&str]) -> std::process::Output {
-    let case = common::root().join("cases/punch-plane-stress");
+/// `asperity run CASE --quiet --out DIR EXTRA…` on `n` ranks; panics with
+/// stderr if it fails.
+pub fn run_on(n: usize, case: &Path, dir: &Path, extra: &[&str]) -> std::process::Output {
     let mut args = vec![
         "run",
         case.to_str().unwrap(),
         "--quiet",
         "--out",
         dir.to_str().unwrap(),
-        "--",
     ];
-    args.extend_from_slice(petsc);
-    let out = mpirun_output(2, &args);
+    args.extend_from_slice(extra);
+    let out = mpirun_output(n, &args);
     assert!(
         out.status.success(),
-        "{}",
+        "{} on {n} rank(s): {}",
+        case.display(),
         String::from_utf8_lossy(&out.stderr)
     );
     out
+}
+
+/// punch-plane-stress on 2 ranks into `dir`, with PETSc options; panics on failure.
+pub fn punch_on_two_ranks(dir: &Path, petsc: &[&str]) -> std::process::Output {
+    let case = common::root().join("cases/punch-plane-stress");
+    let mut extra = vec!["--"];
+    extra.extend_from_slice(petsc);
+    run_on(2, &case, dir, &extra)
 }
 
 /// Every file a run writes except `summary.json` (which holds wall times).
