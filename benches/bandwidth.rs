@@ -40,9 +40,9 @@ impl Kernel {
         }
     }
 
-    /// Bytes moved per element per pass (compute: flops per update, one update
-    /// per element and pass).
-    fn bytes(self) -> f64 {
+    /// What one element and pass counts for in the reported rate: bytes moved
+    /// (read, triad) or flops (compute: one update of two flops).
+    fn work(self) -> f64 {
         match self {
             Kernel::Read => 8.0,
             Kernel::Triad => 24.0,
@@ -132,7 +132,7 @@ fn trial(arrays: &mut [Arrays], threads: usize, kernel: Kernel) -> f64 {
             .collect();
         handles
             .into_iter()
-            .map(|h| kernel.bytes() * (PASSES * LEN) as f64 / h.join().expect("trial") / 1e9)
+            .map(|h| kernel.work() * (PASSES * LEN) as f64 / h.join().expect("trial") / 1e9)
             .sum()
     })
 }
