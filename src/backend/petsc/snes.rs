@@ -259,9 +259,6 @@ pub struct SnesSolver<'p> {
 /// solve, and the lag does not persist across solves).
 pub const MULTIGRID_LAG: ffi::PetscInt = 1000;
 
-/// Most multigrid levels under [`lean_multigrid`].
-pub const LEAN_LEVELS: ffi::PetscInt = 6;
-
 /// The Chebyshev smoothers' eigenvalue interval under [`lean_multigrid`]
 /// (`-mg_levels_ksp_chebyshev_esteig a,b,c,d`: [b λ, d λ] for the estimate λ):
 /// 1.5 λ at the top instead of PETSc's 1.1 λ, because the preconditioner
@@ -273,45 +270,28 @@ pub const LEAN_LEVELS: ffi::PetscInt = 6;
 /// at refine 8; with 1.5 the iterates follow MUMPS's.
 pub const LEAN_ESTEIG: &std::ffi::CStr = c"0,0.1,0,1.5";
 
-/// `--memory lean` with GAMG as the preconditioner: six settings, each of
+/// `--memory lean` with GAMG as the preconditioner: three settings, each of
 /// which the options database can override (README, Scaling, has the
 /// measurements). The caller has checked that the PC is GAMG.
-/// * plain (unsmoothed) aggregation, `-pc_gamg_agg_nsmooths 0`: sparser
-///   prolongators and coarse operators, a smaller and cheaper setup;
-/// * W-cycles, `-pc_mg_cycle_type w`: plain aggregation's V-cycle needs more
-///   Krylov iterations as the mesh grows (105 -> 229 per solve from 23.7k to
-///   1.05M dofs), its W-cycle about as many at every size (96 -> 121), on at
-///   most [`LEAN_LEVELS`] levels (`-pc_mg_levels`): a W-cycle visits level l
-///   2^l times: on GAMG's default eight levels a two-rank load step at 1.05M
-///   dofs made 697,000 products, most on small levels where ranks wait;
-/// * the preconditioner built once per load step, `-snes_lag_preconditioner`
-///   [`MULTIGRID_LAG`]: the Newton step still solves the current tangent to
-///   the Krylov tolerance, only the preconditioner lags; the smoothers'
-///   eigenvalue interval widened to cover the drift ([`LEAN_ESTEIG`]);
 /// * on more than one rank, Galerkin products by the all-at-once algorithm,
 ///   `-matptap_via allatonce`: PETSc's default parallel product keeps A·P and
-///   explicit transposes of P for reuse (+1.1 KB per dof over two ranks at
-///   209k dofs); the all-at-once numeric product is slower, which the lag
-///   pays for. (PETSc's sequential product has no such variant.)
+///   explicit transposes of P for reuse (570 B per dof over two ranks at 1.05M
+///   dofs); the all-at-once numeric product is slower (+4 s of 14 per Newton
+///   iteration there when redone every iteration). (PETSc's sequential
+///   product has no such variant.)
+/// * which the preconditioner built once per load step pays for,
+///   `-snes_lag_preconditioner` [`MULTIGRID_LAG`]: the Newton step still
+///   solves the current tangent to the Krylov tolerance, only the
+///   preconditioner lags;
+/// * the smoothers' eigenvalue interval widened to cover the drift of the
+///   tangent within the step ([`LEAN_ESTEIG`]).
 ///
 /// # Safety
-/// `snes` and its `ksp` must be valid handles, after SNESSetFromOptions.
-unsafe fn lean_multigrid(snes: ffi::SNES, ksp: ffi::KSP, ranks: usize) -> Result<()> {
-    // SAFETY: valid handles (caller); NUL-terminated option names; the PC is
-    // owned by the KSP.
+/// `snes` must be a valid handle, after SNESSetFromOptions.
+unsafe fn lean_multigrid(snes: ffi::SNES, ranks: usize) -> Result<()> {
+    // SAFETY: valid handle (caller); NUL-terminated option names.
     unsafe {
-        let mut pc = std::ptr::null_mut();
-        chk(ffi::KSPGetPC(ksp, &mut pc), "KSPGetPC")?;
-        if !option_given(c"-pc_gamg_agg_nsmooths")? {
-            chk(ffi::PCGAMGSetNSmooths(pc, 0), "PCGAMGSetNSmooths")?;
-        }
-        if !option_given(c"-pc_mg_levels")? {
-            chk(ffi::PCGAMGSetNlevels(pc, LEAN_LEVELS), "PCGAMGSetNlevels")?;
-        }
-        // options read when GAMG sets up (the cycle type and the smoothers
-        // need the levels, which GAMG creates then; the product type is read
-        // per product)
-        default_option(c"-pc_mg_cycle_type", c"w")?;
+        // read when GAMG sets up its levels' smoothers and per product
         default_option(c"-mg_levels_ksp_chebyshev_esteig", LEAN_ESTEIG)?;
         if ranks > 1 {
             default_option(c"-matptap_via", c"allatonce")?;
@@ -397,7 +377,7 @@ impl<'p> SnesSolver<'p> {
             chk(ffi::SNESSetFromOptions(raw), "SNESSetFromOptions")?;
             let gamg = gamg_defaults(ksp)?;
             if lean && gamg {
-                lean_multigrid(raw, ksp, ranks)?;
+                lean_multigrid(raw, ranks)?;
             }
             solver.lean_memory = lean && gamg;
             // after the options: the convergence test and the post-check belong

@@ -59,48 +59,40 @@ impl Partition {
             .collect()
     }
 
-    /// The in-plane rigid-body modes of each body separately (x and y
-    /// translation, rotation about the body's centroid; three per body) over
-    /// every dof in PETSc order, orthonormalized (modified Gram-Schmidt on the
-    /// replicated vectors, so every rank gets the same), as this rank's owned
-    /// parts: the near-null space for algebraic multigrid (`-pc_type gamg`).
-    /// Per body, because the interface springs let one body move almost
-    /// rigidly against the other (README, Solver: GMRES + GAMG at refine 4
-    /// took 190 Krylov iterations per solve with the modes of the assembly,
-    /// 92 with these and block size 2).
+    /// The three in-plane rigid-body modes of the assembly (x and y
+    /// translation, rotation about the centroid of the nodes) over every dof in
+    /// PETSc order, orthonormalized (modified Gram-Schmidt on the replicated
+    /// vectors, so every rank gets the same), as this rank's owned parts: the
+    /// near-null space for algebraic multigrid (`-pc_type gamg`).
+    ///
+    /// Of the assembly, not of each body, although the soft interface lets one
+    /// body move almost rigidly against the other: GAMG builds its coarse space
+    /// aggregate by aggregate from these vectors restricted to the aggregate,
+    /// and with [`super::GAMG_THRESHOLD`] dropping the interface springs from
+    /// the aggregation graph every aggregate lies in one body, where the three
+    /// restricted modes are that body's rigid motions. Per-body vectors (six)
+    /// gave every aggregate six coarse unknowns, three of them zero on it:
+    /// twice the coarse unknowns and operator complexity 1.44 against 1.15
+    /// (README, Parallel, has the measurements).
     pub fn rigid_body_modes(&self, model: &Model, rank: usize) -> Vec<Vec<f64>> {
-        let mesh = &model.mesh;
-        let nodes = &mesh.nodes;
+        let nodes = &model.mesh.nodes;
         let n = self.global_len();
-        let nb = mesh.bodies.len().max(1);
-        let mut body_of = vec![0usize; nodes.len()];
-        for el in &mesh.elements {
-            for &v in &el.nodes {
-                body_of[v] = el.body;
-            }
-        }
-        // centroid and node count per body
-        let mut c = vec![[0.0f64; 3]; nb];
+        let m = nodes.len().max(1) as f64;
+        let c = nodes
+            .iter()
+            .fold([0.0f64; 2], |c, p| [c[0] + p[0] / m, c[1] + p[1] / m]);
+        let mut modes = vec![vec![0.0; n]; 3];
         for (i, p) in nodes.iter().enumerate() {
-            let g = &mut c[body_of[i]];
-            g[0] += p[0];
-            g[1] += p[1];
-            g[2] += 1.0;
-        }
-        let mut modes = vec![vec![0.0; n]; 3 * nb];
-        for (i, p) in nodes.iter().enumerate() {
-            let b = body_of[i];
-            let cb = [c[b][0] / c[b][2], c[b][1] / c[b][2]];
             let (ix, iy) = (
                 self.dof_index[2 * i] as usize,
                 self.dof_index[2 * i + 1] as usize,
             );
-            modes[3 * b][ix] = 1.0;
-            modes[3 * b + 1][iy] = 1.0;
-            modes[3 * b + 2][ix] = -(p[1] - cb[1]);
-            modes[3 * b + 2][iy] = p[0] - cb[0];
+            modes[0][ix] = 1.0;
+            modes[1][iy] = 1.0;
+            modes[2][ix] = -(p[1] - c[1]);
+            modes[2][iy] = p[0] - c[0];
         }
-        // bodies without nodes give zero vectors: drop them
+        // an empty mesh gives zero vectors: drop them
         modes.retain(|m| m.iter().any(|&v| v != 0.0));
         for k in 0..modes.len() {
             for j in 0..k {
