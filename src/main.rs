@@ -77,9 +77,9 @@ enum Command {
         /// builtin: our own Newton loop calling KSP. Both take the same iterates.
         #[arg(long, value_enum, default_value = "snes")]
         nonlinear: NonlinearArg,
-        /// PETSc backend with GAMG: lean trades time for memory (plain
-        /// aggregation with W-cycles, the preconditioner built once per load
-        /// step, and on more than one rank all-at-once Galerkin products);
+        /// PETSc backend with GAMG: lean trades time for memory (on more than
+        /// one rank all-at-once Galerkin products, paid for by building the
+        /// preconditioner once per load step, with a wider smoother interval);
         /// README, Scaling, has the measurements. Needs `--nonlinear snes`.
         #[arg(long, value_enum, default_value = "fast")]
         memory: MemoryArg,
