@@ -238,7 +238,9 @@ fn the_default_linear_solver_follows_the_size_of_the_model() {
 /// the prolongator smoothing; 1.1 times the estimate under the lagged
 /// preconditioner of `--memory lean`) CG met an indefinite preconditioner here
 /// and cut back where LU did not (116 iterations, 3 cutbacks, 7 increments
-/// against 134, 2, 6), and at refine 8 gave up at 99% of the load.
+/// against 134, 2, 6), and at refine 8 gave up at 99% of the load. With CG
+/// outside, the smoothers' eigenvalue estimates are made by CG as well (seen
+/// in `-snes_view`; the lean test above sees GMRES under an outer GMRES).
 #[test]
 fn cg_with_gamg_follows_lu_through_the_plastic_steps() {
     let root = common::scratch("parallel-gamg-plastic");
@@ -246,10 +248,13 @@ fn cg_with_gamg_follows_lu_through_the_plastic_steps() {
     let run = |name: &str, extra: &[&str]| {
         let mut args = vec!["--refine", "4"];
         args.extend_from_slice(extra);
-        run_on(2, &case, &root.join(name), &args);
-        json(&root.join(name))
+        let out = run_on(2, &case, &root.join(name), &args);
+        (
+            json(&root.join(name)),
+            String::from_utf8_lossy(&out.stdout).into_owned(),
+        )
     };
-    let lu = run("lu", &[]);
+    let (lu, _) = run("lu", &[]);
     assert_eq!(lu["linear_solver"], "preonly + lu (mumps)");
     assert!(lu["final"]["max_peeq"].as_f64().unwrap() > 0.05, "{lu}");
     let gamg = [
@@ -262,10 +267,21 @@ fn cg_with_gamg_follows_lu_through_the_plastic_steps() {
         "1e-10",
         "-ksp_max_it",
         "2000",
+        "-snes_view",
     ];
     let lean: Vec<&str> = ["--memory", "lean"].iter().chain(&gamg).copied().collect();
-    for (name, extra) in [("fast", &gamg[..]), ("lean", &lean[..])] {
-        let b = run(name, extra);
+    for (name, extra, transform) in [
+        ("fast", &gamg[..], "[0. 0.1; 0. 1.1]"),
+        ("lean", &lean[..], "[0. 0.1; 0. 1.5]"),
+    ] {
+        let (b, view) = run(name, extra);
+        // the smoothers' eigenvalue estimates are made by CG, as the outer solve
+        let cg = format!("eigenvalues estimated using cg with transform: {transform}");
+        assert!(
+            view.contains(&cg),
+            "{name}: no '{cg}' in the -snes_view output"
+        );
+        assert!(!view.contains("estimated using gmres"), "{name}");
         for key in ["increments", "cutbacks", "newton_iterations"] {
             assert_eq!(lu[key], b[key], "{name}: {key}");
         }
