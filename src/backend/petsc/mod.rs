@@ -542,6 +542,16 @@ fn default_option(name: &std::ffi::CStr, value: &std::ffi::CStr) -> Result<()> {
     Ok(())
 }
 
+/// Whether a PETSc type name (from `KSPGetType`, `PCGetType`; null when unset)
+/// is `name`.
+///
+/// # Safety
+/// `p` is null or a NUL-terminated string.
+unsafe fn type_is(p: *const std::os::raw::c_char, name: &[u8]) -> bool {
+    // SAFETY: checked non-null; NUL-terminated (caller).
+    !p.is_null() && unsafe { std::ffi::CStr::from_ptr(p) }.to_bytes() == name
+}
+
 /// asperity's default for GAMG, whichever way GAMG was chosen (the size
 /// default or `-pc_type gamg`), unless the command line sets it: the
 /// Chebyshev smoothers estimate their own eigenvalue bounds
@@ -569,7 +579,7 @@ unsafe fn gamg_defaults(ksp: ffi::KSP) -> Result<bool> {
         chk(ffi::KSPGetPC(ksp, &mut pc), "KSPGetPC")?;
         let mut pt = std::ptr::null();
         chk(ffi::PCGetType(pc, &mut pt), "PCGetType")?;
-        if pt.is_null() || std::ffi::CStr::from_ptr(pt).to_bytes() != b"gamg" {
+        if !type_is(pt, b"gamg") {
             return Ok(false);
         }
         if !option_given(c"-pc_gamg_use_sa_esteig")? {
@@ -580,7 +590,7 @@ unsafe fn gamg_defaults(ksp: ffi::KSP) -> Result<bool> {
         }
         let mut kt = std::ptr::null();
         chk(ffi::KSPGetType(ksp, &mut kt), "KSPGetType")?;
-        if !kt.is_null() && std::ffi::CStr::from_ptr(kt).to_bytes() == b"cg" {
+        if type_is(kt, b"cg") {
             default_option(c"-mg_levels_esteig_ksp_type", c"cg")?;
         }
         if !option_given(c"-pc_gamg_threshold")? {
