@@ -219,6 +219,16 @@ impl Model {
             .expect("element geometry was checked when the model was built")
     }
 
+    /// Whether the assembled tangent is symmetric, as the model's laws make
+    /// it: the solids' tangents (elastic, continuum and consistent von Mises
+    /// with associative flow) and the normal springs are; a tangential law
+    /// makes it unsymmetric under the return-mapping scheme (p_T depends on
+    /// p_N, eq. 2.18-2.21) but not under stiffness modification (eq. 2.25,
+    /// no p_T-p_N coupling). Chooses the serial factorization.
+    pub fn symmetric_tangent(&self) -> bool {
+        self.interfaces.iter().all(|i| i.symmetric_tangent())
+    }
+
     pub fn n_gauss(&self) -> usize {
         self.rule.points.len()
     }

@@ -20,7 +20,9 @@
 //!                       [`fnv1a`]) of every byte before it
 //! ```
 //!
-//! Sections: `increment`, `load_factor`, `last_step`, `pending_load_factor`,
+//! Sections: `increment`, `load_factor`, `last_step`, `last_du` (the last
+//! increment's displacement change, the predictor's direction; may be absent),
+//! `pending_load_factor`,
 //! `pending_depth` (fixed schedule), `auto_waypoints`, `auto_step`,
 //! `auto_failures` (automatic step control), `cutbacks` (total, since the last increment),
 //! `elastic_ratio_prev`, `counters` (Newton iterations, factorizations), `u`,
@@ -254,6 +256,7 @@ fn sections(e: &mut Encoder, ck: &Checkpoint, pvd: &[(f64, String)]) -> std::io:
     e.u64s("increment", &[ck.increments.len() as u64])?;
     e.f64s("load_factor", &[ck.lambda])?;
     e.f64s("last_step", &[ck.last_step])?;
+    e.f64s("last_du", &ck.last_du)?;
     e.f64s(
         "pending_load_factor",
         &ck.stepper.pending.iter().map(|p| p.0).collect::<Vec<_>>(),
@@ -466,6 +469,17 @@ pub fn decode(
     let increments = *u("increment")?.first().ok_or("empty increment")? as usize;
     ck.lambda = f("load_factor", Some(1))?[0];
     ck.last_step = f("last_step", Some(1))?[0];
+    // the predictor's direction; absent from files of earlier builds (the
+    // next increment then starts from the committed state)
+    if let Some(Data::F64(v)) = map.get("last_du") {
+        if !v.is_empty() && v.len() != nu {
+            return Err(format!(
+                "section last_du has {} values, the model needs {nu}",
+                v.len()
+            ));
+        }
+        ck.last_du = v.clone();
+    }
     let pl = f("pending_load_factor", None)?;
     let pd = u("pending_depth")?;
     if pl.len() != pd.len() {

@@ -1,27 +1,103 @@
-//! Serial sparse direct solver (faer): the symbolic LU factorization is computed
-//! once for the fixed pattern and reused for every numeric factorization.
-//! LU rather than Cholesky because the tangent is unsymmetric with friction
-//! (p_T^Y depends on p_N) and indefinite-singular when a body is unsupported.
+//! Serial sparse direct solver (faer) on the model's fixed pattern: the
+//! symbolic analysis is done once per run, the numeric factor is written into
+//! buffers that are reused by every Newton iteration.
+//!
+//! Which factorization runs is decided from the model, not by testing the
+//! matrix ([`crate::model::Model::symmetric_tangent`]):
+//! * a symmetric tangent (no tangential law, or the stiffness-modification
+//!   friction scheme of eq. 2.25) is factored by sparse Cholesky `L Lᵀ` under
+//!   an approximate-minimum-degree ordering. It is positive definite wherever
+//!   the model is stable; when it is not (a limit load with no hardening, a
+//!   body about to lose its support), the Cholesky stops at a non-positive
+//!   pivot and the same matrix is factored by LU within the same iteration;
+//! * an unsymmetric tangent (the return-mapping friction scheme: p_T^Y depends
+//!   on p_N, eq. 2.18-2.21) is factored by LU with partial pivoting under a
+//!   COLAMD column ordering, as before.
+//!
+//! A singular tangent (a body that can move as a rigid body) gives a
+//! non-finite LU solution, reported as such. Measurements: docs/performance.md,
+//! "Serial direct solver".
 
 use crate::assembly::{Assembler, Pattern};
 use crate::error::{Error, Result};
 use crate::model::Model;
-use faer::linalg::solvers::Solve;
-use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::sparse::linalg::cholesky::{
+    factorize_symbolic_cholesky, LltRef, SymbolicCholesky, SymmetricOrdering,
+};
+use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, SymbolicLu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
-use faer::MatMut;
+use faer::{Conj, MatMut, Par, Side};
 
-pub struct SerialLu {
-    symbolic_mat: SymbolicSparseColMat<usize>,
-    symbolic_lu: SymbolicLu<usize>,
-    lu: Option<Lu<usize, f64>>,
-    /// Number of numeric factorizations performed.
-    pub factorizations: usize,
+/// The factorization a symmetric or unsymmetric tangent gets.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Factorization {
+    /// Sparse Cholesky `L Lᵀ` (AMD ordering), LU where it meets a
+    /// non-positive pivot.
+    Cholesky,
+    /// Sparse LU with partial pivoting (COLAMD ordering).
+    Lu,
 }
 
-impl SerialLu {
-    /// Symbolic analysis (fill-reducing ordering) of the pattern.
-    pub fn new(pattern: &Pattern) -> Result<Self> {
+impl Factorization {
+    /// How summary.json names it (`linear_solver`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Factorization::Cholesky => "faer sparse Cholesky (LU where not positive definite)",
+            Factorization::Lu => "faer sparse LU",
+        }
+    }
+}
+
+/// The Cholesky path: symbolic analysis, factor values and workspace.
+struct Cholesky {
+    symbolic: SymbolicCholesky<usize>,
+    /// Values of L, overwritten by every numeric factorization.
+    values: Vec<f64>,
+    /// Workspace of the numeric factorization and the solve.
+    work: MemBuffer,
+}
+
+/// The LU path (also the Cholesky path's fallback), built when first needed.
+struct Lu {
+    symbolic: SymbolicLu<usize>,
+    /// Reused by every numeric factorization (its buffers grow once).
+    numeric: NumericLu<usize, f64>,
+    work: MemBuffer,
+}
+
+/// Which factor holds the last matrix.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Held {
+    None,
+    Cholesky,
+    Lu,
+}
+
+/// A sparse direct solver on a fixed pattern (both triangles stored).
+pub struct SerialDirect {
+    symbolic_mat: SymbolicSparseColMat<usize>,
+    kind: Factorization,
+    cholesky: Option<Cholesky>,
+    lu: Option<Lu>,
+    held: Held,
+    /// Numeric factorizations performed (of either kind).
+    pub factorizations: usize,
+    /// Cholesky factorizations that met a non-positive pivot and were redone by LU.
+    pub fallbacks: usize,
+}
+
+fn oom(what: &str) -> Error {
+    Error::Solver(format!(
+        "out of memory while allocating the {what}: the model is too large for this machine's memory with the serial solver"
+    ))
+}
+
+impl SerialDirect {
+    /// Symbolic analysis (fill-reducing ordering, elimination tree, factor
+    /// structure) of the pattern for the given factorization.
+    pub fn new(pattern: &Pattern, kind: Factorization) -> Result<Self> {
         let symbolic_mat = SymbolicSparseColMat::new_checked(
             pattern.n,
             pattern.n,
@@ -29,17 +105,76 @@ impl SerialLu {
             None,
             pattern.row_idx.iter().map(|&r| r as usize).collect(),
         );
-        let symbolic_lu = SymbolicLu::try_new(symbolic_mat.as_ref())
-            .map_err(|e| Error::Solver(format!("symbolic LU failed: {e:?}")))?;
-        Ok(SerialLu {
+        let mut s = SerialDirect {
             symbolic_mat,
-            symbolic_lu,
+            kind,
+            cholesky: None,
             lu: None,
+            held: Held::None,
             factorizations: 0,
+            fallbacks: 0,
+        };
+        match kind {
+            Factorization::Cholesky => s.cholesky = Some(s.analyse_cholesky()?),
+            Factorization::Lu => s.lu = Some(s.analyse_lu()?),
+        }
+        Ok(s)
+    }
+
+    fn analyse_cholesky(&self) -> Result<Cholesky> {
+        let symbolic = factorize_symbolic_cholesky(
+            self.symbolic_mat.as_ref(),
+            Side::Lower,
+            SymmetricOrdering::Amd,
+            Default::default(),
+        )
+        .map_err(|e| Error::Solver(format!("symbolic Cholesky failed: {e:?}")))?;
+        let mut values = Vec::new();
+        values
+            .try_reserve_exact(symbolic.len_val())
+            .map_err(|_| oom("Cholesky factor"))?;
+        values.resize(symbolic.len_val(), 0.0);
+        let req = StackReq::any_of(&[
+            symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
+            symbolic.solve_in_place_scratch::<f64>(1, Par::Seq),
+        ]);
+        let work = MemBuffer::try_new(req).map_err(|_| oom("Cholesky workspace"))?;
+        Ok(Cholesky {
+            symbolic,
+            values,
+            work,
         })
     }
 
-    /// Numeric factorization of the matrix with the given values.
+    fn analyse_lu(&self) -> Result<Lu> {
+        let symbolic = factorize_symbolic_lu(self.symbolic_mat.as_ref(), Default::default())
+            .map_err(|e| Error::Solver(format!("symbolic LU failed: {e:?}")))?;
+        let req = StackReq::any_of(&[
+            symbolic.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default()),
+            symbolic.solve_in_place_scratch::<f64>(1, Par::Seq),
+        ]);
+        let work = MemBuffer::try_new(req).map_err(|_| oom("LU workspace"))?;
+        Ok(Lu {
+            symbolic,
+            numeric: NumericLu::new(),
+            work,
+        })
+    }
+
+    /// The factorization chosen for this pattern.
+    pub fn kind(&self) -> Factorization {
+        self.kind
+    }
+
+    /// Size of the Cholesky factor's values (0 on the LU path), MB.
+    pub fn factor_mb(&self) -> f64 {
+        self.cholesky
+            .as_ref()
+            .map_or(0.0, |c| c.values.len() as f64 * 8.0 / 1e6)
+    }
+
+    /// Numeric factorization of the matrix with the given values (CSC on the
+    /// pattern, both triangles). The Cholesky path reads the lower triangle.
     pub fn factor(&mut self, values: &[f64]) -> Result<()> {
         if values.iter().any(|v| !v.is_finite()) {
             return Err(Error::Solver(
@@ -47,23 +182,73 @@ impl SerialLu {
             ));
         }
         let mat = SparseColMatRef::new(self.symbolic_mat.as_ref(), values);
-        let lu = Lu::try_new_with_symbolic(self.symbolic_lu.clone(), mat)
-            .map_err(|e| Error::Solver(format!("numeric LU failed: {e:?}")))?;
-        self.lu = Some(lu);
+        self.held = Held::None;
         self.factorizations += 1;
+        if let Some(c) = self.cholesky.as_mut() {
+            let done = c.symbolic.factorize_numeric_llt::<f64>(
+                &mut c.values,
+                mat,
+                Side::Lower,
+                LltRegularization::default(),
+                Par::Seq,
+                MemStack::new(&mut c.work),
+                Default::default(),
+            );
+            if done.is_ok() {
+                self.held = Held::Cholesky;
+                return Ok(());
+            }
+            // not positive definite: the same matrix by LU, this iteration
+            self.fallbacks += 1;
+        }
+        if self.lu.is_none() {
+            self.lu = Some(self.analyse_lu()?);
+        }
+        let lu = self.lu.as_mut().expect("LU analysed above");
+        lu.symbolic
+            .factorize_numeric_lu::<f64>(
+                &mut lu.numeric,
+                mat,
+                Par::Seq,
+                MemStack::new(&mut lu.work),
+                Default::default(),
+            )
+            .map_err(|e| match e {
+                faer::sparse::linalg::LuError::Generic(faer::sparse::FaerError::OutOfMemory) => {
+                    oom("LU factor")
+                }
+                e => Error::Solver(format!("numeric LU failed: {e:?}")),
+            })?;
+        self.held = Held::Lu;
         Ok(())
     }
 
     /// Solves in place with the last factorization. A non-finite solution means a
     /// singular tangent: a body held by nothing (rigid-body motion) or all pairs open.
-    pub fn solve(&self, rhs: &mut [f64]) -> Result<()> {
-        let lu = self
-            .lu
-            .as_ref()
-            .ok_or_else(|| Error::Solver("solve before factor".into()))?;
+    pub fn solve(&mut self, rhs: &mut [f64]) -> Result<()> {
         let n = rhs.len();
         let mat = MatMut::from_column_major_slice_mut(rhs, n, 1);
-        lu.solve_in_place(mat);
+        match self.held {
+            Held::None => return Err(Error::Solver("solve before factor".into())),
+            Held::Cholesky => {
+                let c = self.cholesky.as_mut().expect("held");
+                LltRef::new(&c.symbolic, &c.values).solve_in_place_with_conj(
+                    Conj::No,
+                    mat,
+                    Par::Seq,
+                    MemStack::new(&mut c.work),
+                );
+            }
+            Held::Lu => {
+                let lu = self.lu.as_mut().expect("held");
+                LuRef::new_unchecked(&lu.symbolic, &lu.numeric).solve_in_place_with_conj(
+                    Conj::No,
+                    mat,
+                    Par::Seq,
+                    MemStack::new(&mut lu.work),
+                );
+            }
+        }
         if rhs.iter().any(|v| !v.is_finite()) {
             return Err(Error::Solver(
                 "singular tangent matrix: a body can move as a rigid body (missing support, or every interface pair open)".into(),
@@ -73,10 +258,10 @@ impl SerialLu {
     }
 }
 
-/// The serial backend: CSC values on the fixed pattern, factored by [`SerialLu`].
+/// The serial backend: CSC values on the fixed pattern, factored by [`SerialDirect`].
 pub struct SerialBackend {
     asm: Assembler,
-    lu: SerialLu,
+    direct: SerialDirect,
     /// The solid part, kept apart only when a method re-adds the springs to
     /// a reused solid matrix (see [`super::Backend::reuse_solid`]).
     solid: Option<Vec<f64>>,
@@ -85,12 +270,24 @@ pub struct SerialBackend {
 }
 
 impl SerialBackend {
+    /// The backend with the factorization the model's tangent calls for.
     pub fn new(model: &Model) -> Result<Self> {
+        let kind = if model.symmetric_tangent() {
+            Factorization::Cholesky
+        } else {
+            Factorization::Lu
+        };
+        Self::with_factorization(model, kind)
+    }
+
+    /// The backend with a given factorization (LU works for every model;
+    /// Cholesky only for a symmetric tangent).
+    pub fn with_factorization(model: &Model, kind: Factorization) -> Result<Self> {
         let blocks = model.blocks();
         let pattern = &Pattern::new(&model.dofs, &blocks);
         Ok(SerialBackend {
             asm: Assembler::new(pattern, &model.dofs, &blocks),
-            lu: SerialLu::new(pattern)?,
+            direct: SerialDirect::new(pattern, kind)?,
             solid: None,
             vals: vec![0.0; pattern.nnz()],
         })
@@ -127,8 +324,20 @@ impl super::Backend for SerialBackend {
         Some(&self.vals)
     }
     fn solve(&mut self, rhs: &[f64], x: &mut [f64]) -> Result<()> {
-        self.lu.factor(&self.vals)?;
+        self.direct.factor(&self.vals)?;
         x.copy_from_slice(rhs);
-        self.lu.solve(x)
+        self.direct.solve(x)
+    }
+    fn linear_solver(&self) -> String {
+        self.direct.kind().name().into()
+    }
+    fn diagnostics(&self) -> Vec<(&'static str, f64)> {
+        match self.direct.kind() {
+            Factorization::Cholesky => vec![
+                ("lu_fallbacks", self.direct.fallbacks as f64),
+                ("cholesky_factor_mb", self.direct.factor_mb()),
+            ],
+            Factorization::Lu => Vec::new(),
+        }
     }
 }

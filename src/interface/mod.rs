@@ -275,6 +275,13 @@ impl InterfaceModel {
         d
     }
 
+    /// Whether this interface's spring tangents are symmetric: without a
+    /// tangential law, or under the stiffness-modification scheme, whose
+    /// tangent has no ∂p_T/∂u_N term (see [`InterfaceModel::eval_point`]).
+    pub fn symmetric_tangent(&self) -> bool {
+        self.tangential.is_none() || self.scheme == FrictionScheme::StiffnessModification
+    }
+
     /// Evaluates a point from its committed state: local residual `r` (len 4·len)
     /// and, if given, the local tangent `k` (row-major (4·len)²). `k_floor`
     /// replaces the normal stiffness of a point at or below zero approach (the

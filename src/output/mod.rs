@@ -360,6 +360,7 @@ pub fn summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
         "cutbacks": r.cutbacks,
         "newton_iterations": r.stats.iterations,
         "factorizations": r.stats.factorizations,
+        "predictor_restarts": r.stats.predictor_restarts,
         "wall_seconds": wall,
         "peak_memory_mb": r.peak_memory_mb,
         "memory_stages_mb": r.stats.memory_mb.iter().map(|&(k, v)| (k, v)).collect::<std::collections::BTreeMap<_, _>>(),

@@ -116,6 +116,9 @@ pub struct Checkpoint {
     pub lambda: f64,
     /// Size of the last converged step (load factor), 0 before the first.
     pub last_step: f64,
+    /// Displacement change of the last converged increment (all dofs; empty
+    /// before the first): the predictor's direction ([`predict`]).
+    pub last_du: Vec<f64>,
     /// The load steps still to take (fixed schedule or automatic control).
     pub stepper: stepping::Stepper,
     /// Converged increments so far (the rows of curve.csv).
@@ -138,6 +141,7 @@ impl Checkpoint {
             committed: State::initial(model),
             lambda: 0.0,
             last_step: 0.0,
+            last_du: Vec::new(),
             stepper: stepping::Stepper::new(&model.case.solver),
             increments: Vec::new(),
             first_yield: None,
@@ -232,7 +236,17 @@ pub fn run_from(
         }
         // the stepper is only changed once the step's fate is known, so an
         // interrupted step leaves it (and the checkpoint) as it was
-        let why = match engine.step(&ck.committed, target, Response::Plastic) {
+        let start = predict(&ck.committed, &ck.last_du, ck.last_step, target - ck.lambda);
+        let mut outcome =
+            engine.step_from(&ck.committed, target, Response::Plastic, start.as_deref());
+        if start.is_some() && outcome.is_err() && !engine.interrupted {
+            // the extrapolated start led astray (a status change the last
+            // increment did not foresee): the same step from the committed
+            // state, as without a predictor, before any cutback
+            engine.stats.predictor_restarts += 1;
+            outcome = engine.step(&ck.committed, target, Response::Plastic);
+        }
+        let why = match outcome {
             Ok((trial, iterations)) => {
                 // each rank holds its elements' Gauss states: maxima over all ranks
                 let dpeeq = engine.max_over_points(
@@ -265,6 +279,9 @@ pub fn run_from(
                         ck.elastic_ratio_prev = engine.max_yield_ratio(&trial).0;
                     }
                     ck.stepper.accepted(ck.lambda, target, iterations, dpeeq);
+                    ck.last_du.clear();
+                    ck.last_du
+                        .extend(trial.u.iter().zip(&ck.committed.u).map(|(a, b)| a - b));
                     ck.committed = trial;
                     engine.committed();
                     ck.last_step = target - ck.lambda;
@@ -380,6 +397,30 @@ pub fn run_from(
         stopped,
         resumed_from,
     })
+}
+
+/// The predictor of an increment: the committed displacements plus the last
+/// converged increment's change scaled to this step,
+/// `u₀ = u_n + (Δλ / Δλ_prev) (u_n − u_{n−1})` (linear extrapolation along the
+/// load path). Newton then starts within O(Δλ²) of the solution instead of
+/// O(Δλ) and saves about one iteration per increment. `None` before the first
+/// increment. The secant start of eq. 2.8-2.9 still applies to every pair the
+/// prediction leaves at zero approach (the first evaluation's stiffness
+/// floor, [`newton`]); the converged state does not depend on the start
+/// beyond the Newton tolerance.
+pub fn predict(committed: &State, last_du: &[f64], last_step: f64, step: f64) -> Option<Vec<f64>> {
+    if last_du.len() != committed.u.len() || last_step <= 0.0 || step <= 0.0 {
+        return None;
+    }
+    let scale = step / last_step;
+    Some(
+        committed
+            .u
+            .iter()
+            .zip(last_du)
+            .map(|(u, d)| u + scale * d)
+            .collect(),
+    )
 }
 
 /// The yield ratio σ_eq / σ_y of a Gauss point state for a material.

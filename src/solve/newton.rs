@@ -31,6 +31,9 @@ const SHARE_CHUNK: usize = 8192;
 pub struct Stats {
     pub iterations: usize,
     pub factorizations: usize,
+    /// Steps whose predicted start failed and that were solved again from
+    /// the committed state (see [`super::predict`]).
+    pub predictor_restarts: usize,
     pub assembly_seconds: f64,
     pub solve_seconds: f64,
     /// Peak memory of this process when each stage was reached, MB: "model",
@@ -222,9 +225,23 @@ impl<'m> Engine<'m> {
         lambda: f64,
         response: Response,
     ) -> Result<(State, usize), String> {
+        self.step_from(committed, lambda, response, None)
+    }
+
+    /// [`Engine::step`] with the iteration started at `start` (all dofs; its
+    /// free dofs are used, the prescribed ones take their values at `lambda`)
+    /// instead of at the committed displacements: the predictor of
+    /// [`super::predict`].
+    pub fn step_from(
+        &mut self,
+        committed: &State,
+        lambda: f64,
+        response: Response,
+        start: Option<&[f64]>,
+    ) -> Result<(State, usize), String> {
         if let Some(mut solver) = self.nonlinear.take() {
             let t0 = std::time::Instant::now();
-            let mut p = StepProblem::new(self, committed, lambda, response);
+            let mut p = StepProblem::new(self, committed, lambda, response, start);
             let solved = solver.solve(&mut p);
             let inside = p.evaluate_seconds();
             let result = p.finish(solved);
@@ -232,7 +249,7 @@ impl<'m> Engine<'m> {
             self.nonlinear = Some(solver);
             return result;
         }
-        let mut p = StepProblem::new(self, committed, lambda, response);
+        let mut p = StepProblem::new(self, committed, lambda, response, start);
         let mut x = p.initial();
         let n = x.len();
         let (mut r, mut du) = (vec![0.0; n], vec![0.0; n]);
@@ -476,6 +493,8 @@ pub struct StepProblem<'a, 'm> {
     status: Vec<Status>,
     last_status: Option<Vec<Status>>,
     du_inf: f64,
+    /// ‖Δu‖∞ of the correction before the last (∞ before the second).
+    du_prev_inf: f64,
     r_norm: f64,
     reference: f64,
     anderson: Option<Anderson>,
@@ -489,10 +508,14 @@ impl<'a, 'm> StepProblem<'a, 'm> {
         committed: &'a State,
         lambda: f64,
         response: Response,
+        start: Option<&[f64]>,
     ) -> Self {
         let m = engine.model;
         let spec = &m.case.solver;
         let mut trial = committed.clone();
+        if let Some(start) = start {
+            trial.u.copy_from_slice(start);
+        }
         for &(d, v) in &m.prescribed {
             trial.u[d] = lambda * v;
         }
@@ -520,10 +543,28 @@ impl<'a, 'm> StepProblem<'a, 'm> {
             status: Vec::new(),
             last_status: None,
             du_inf: f64::INFINITY,
+            du_prev_inf: f64::INFINITY,
             r_norm: f64::NAN,
             reference: 1.0,
             anderson,
             outcome: None,
+        }
+    }
+
+    /// The error of the current iterate that the displacement test bounds:
+    /// the last correction ‖Δu_k‖∞, or, where the iteration contracts fast
+    /// (θ = ‖Δu_k‖∞ / ‖Δu_{k−1}‖∞ < 1/2), the a-posteriori bound of a
+    /// contraction, θ/(1−θ) ‖Δu_k‖∞ (the distance from x_k to the fixed
+    /// point; Banach). The last correction alone measures the error of the
+    /// iterate before it, so a quadratically converging Newton iteration
+    /// would take one more solve than the tolerance asks for; where θ ≥ 1/2
+    /// the last correction is the smaller bound and stays the test.
+    fn error_estimate(&self) -> f64 {
+        let theta = self.du_inf / self.du_prev_inf;
+        if theta < 0.5 {
+            theta / (1.0 - theta) * self.du_inf
+        } else {
+            self.du_inf
         }
     }
 
@@ -597,6 +638,7 @@ impl Problem for StepProblem<'_, '_> {
     }
 
     fn verdict(&mut self, it: usize) -> Verdict {
+        let error = self.error_estimate();
         let e = &mut *self.engine;
         let m = e.model;
         let spec = &m.case.solver;
@@ -626,7 +668,7 @@ impl Problem for StepProblem<'_, '_> {
             .max(1e-30);
         let same_status = self.last_status.as_ref() == Some(&self.status);
         let small_r = r_norm <= spec.residual_tolerance * reference;
-        let small_du = it > 0 && self.du_inf <= spec.displacement_tolerance * u_inf;
+        let small_du = it > 0 && error <= spec.displacement_tolerance * u_inf;
         let done = small_r && (small_du || (it == 0 && r_norm == 0.0)) && (same_status || it == 0);
         if e.backend.agree(done) {
             self.trial.status = std::mem::take(&mut self.status);
@@ -671,6 +713,7 @@ impl Problem for StepProblem<'_, '_> {
             let mixed = acc.step(x, du);
             du.copy_from_slice(&mixed);
         }
+        self.du_prev_inf = self.du_inf;
         self.du_inf = du.iter().fold(0.0f64, |a, v| a.max(v.abs()));
         e.stats.iterations += 1;
     }

@@ -49,14 +49,33 @@ pub(super) fn locate(
     lambda1: f64,
 ) -> Result<FirstYield> {
     let model = engine.model;
+    // the two latest solutions (load factor, displacements): each solve
+    // starts from their linear inter- or extrapolation to its load factor
+    let mut known: Vec<(f64, Vec<f64>)> = vec![(lambda0, last_elastic.u.clone())];
     let mut eval = |l: f64| -> Result<(f64, State)> {
+        let start = match known.as_slice() {
+            [.., (l0, u0), (l1, u1)] if (l1 - l0).abs() > 0.0 => {
+                let t = (l - l1) / (l1 - l0);
+                Some(
+                    u1.iter()
+                        .zip(u0)
+                        .map(|(b, a)| b + t * (b - a))
+                        .collect::<Vec<f64>>(),
+                )
+            }
+            _ => None,
+        };
         let (s, _) = engine
-            .step(last_elastic, l, Response::ElasticOnly)
+            .step_from(last_elastic, l, Response::ElasticOnly, start.as_deref())
             .map_err(|m| Error::Convergence {
                 increment: 0,
                 load_factor: l,
                 message: format!("elastic solve while locating first yield: {m}"),
             })?;
+        if known.len() == 2 {
+            known.remove(0);
+        }
+        known.push((l, s.u.clone()));
         Ok((engine.max_yield_ratio(&s).0 - 1.0, s))
     };
     let (mut a, mut ga) = (lambda0, ratio0 - 1.0);
