@@ -1,6 +1,11 @@
 //! Automatic step control on the punch: more accurate than the fixed schedule
-//! at a similar cost, the same path for every method, and `study stability`
-//! producing well-formed data on a small grid.
+//! at a similar cost with every method, and `study stability` producing
+//! well-formed data on a small grid.
+//!
+//! (Full and modified Newton do not take the same automatic path: the step
+//! grows with the iteration count, which differs between the methods, so
+//! their answers agree to the path accuracy the control is set to, not to
+//! the Newton tolerance; both are held to that accuracy.)
 
 mod common;
 use asperity::case::{Method, StepControl};
@@ -52,6 +57,18 @@ fn automatic_steps_beat_the_fixed_schedule_in_accuracy_per_iteration() {
         auto.increments.len()
     );
     assert!(ea < ef / 5.0, "auto {ea} vs fixed {ef}");
+    // modified Newton's automatic path is as accurate
+    let modified = run(
+        "auto-modified",
+        RunOptions {
+            method: Some(Method::ModifiedNewton),
+            step_control: Some(StepControl::Auto),
+            ..RunOptions::default()
+        },
+    );
+    let em = ((settlement(&modified) - r) / r).abs();
+    eprintln!("modified Newton, auto: settlement error {em:.2e}");
+    assert!(em < ef / 5.0, "auto (modified Newton) {em} vs fixed {ef}");
     assert!(na < 2 * nf, "auto needs {na} iterations against {nf}");
     // first yield is located by root finding, independent of the steps
     let (fa, ff) = (
@@ -61,25 +78,6 @@ fn automatic_steps_beat_the_fixed_schedule_in_accuracy_per_iteration() {
     assert!((fa - ff).abs() < 1e-6 * ff, "{fa} vs {ff}");
     // the run ends on the full load
     assert_eq!(auto.increments.last().unwrap().load_factor, 1.0);
-}
-
-#[test]
-fn automatic_steps_take_the_same_path_with_every_method() {
-    let results: Vec<RunResult> = [Method::FullNewton, Method::ModifiedNewton]
-        .into_iter()
-        .map(|m| {
-            run(
-                &format!("auto-{m:?}"),
-                RunOptions {
-                    method: Some(m),
-                    step_control: Some(StepControl::Auto),
-                    ..RunOptions::default()
-                },
-            )
-        })
-        .collect();
-    let (a, b) = (settlement(&results[0]), settlement(&results[1]));
-    assert!((a - b).abs() < 1e-6 * a.abs(), "{a} vs {b}");
 }
 
 #[test]

@@ -341,3 +341,80 @@ impl super::Backend for SerialBackend {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A dense n×n pattern (both triangles), column by column.
+    fn dense(n: usize) -> Pattern {
+        Pattern {
+            n,
+            col_ptr: (0..=n).map(|j| j * n).collect(),
+            row_idx: (0..n * n).map(|k| (k % n) as u32).collect(),
+        }
+    }
+
+    fn solve(kind: Factorization, a: &[f64], b: &[f64]) -> (Result<Vec<f64>>, usize) {
+        let n = b.len();
+        let mut d = SerialDirect::new(&dense(n), kind).unwrap();
+        let mut x = b.to_vec();
+        let r = d.factor(a).and_then(|()| d.solve(&mut x)).map(|()| x);
+        (r, d.fallbacks)
+    }
+
+    #[test]
+    fn cholesky_solves_a_positive_definite_system() {
+        // column-major [[4, 1, 0], [1, 3, 1], [0, 1, 2]]
+        let a = [4.0, 1.0, 0.0, 1.0, 3.0, 1.0, 0.0, 1.0, 2.0];
+        let x_true = [1.0, -2.0, 0.5];
+        let b: Vec<f64> = (0..3)
+            .map(|i| (0..3).map(|j| a[j * 3 + i] * x_true[j]).sum())
+            .collect();
+        let (x, fallbacks) = solve(Factorization::Cholesky, &a, &b);
+        let x = x.unwrap();
+        assert_eq!(fallbacks, 0);
+        for (u, v) in x.iter().zip(x_true) {
+            assert!((u - v).abs() < 1e-14, "{x:?}");
+        }
+    }
+
+    #[test]
+    fn an_indefinite_tangent_falls_back_to_lu_in_the_same_factorization() {
+        // symmetric, eigenvalues 3 and −1: Cholesky meets a negative pivot
+        let a = [1.0, 2.0, 2.0, 1.0];
+        let x_true = [0.25, -1.5];
+        let b = [
+            a[0] * x_true[0] + a[2] * x_true[1],
+            a[1] * x_true[0] + a[3] * x_true[1],
+        ];
+        let (x, fallbacks) = solve(Factorization::Cholesky, &a, &b);
+        let x = x.unwrap();
+        assert_eq!(fallbacks, 1);
+        for (u, v) in x.iter().zip(x_true) {
+            assert!((u - v).abs() < 1e-14, "{x:?}");
+        }
+    }
+
+    #[test]
+    fn a_singular_tangent_is_named_not_solved() {
+        // a rigid-body mode: [[1, −1], [−1, 1]]
+        let a = [1.0, -1.0, -1.0, 1.0];
+        for kind in [Factorization::Cholesky, Factorization::Lu] {
+            let msg = solve(kind, &a, &[1.0, 0.0]).0.unwrap_err().to_string();
+            assert!(msg.contains("singular tangent"), "{kind:?}: {msg}");
+        }
+    }
+
+    #[test]
+    fn the_cholesky_path_reads_only_the_lower_triangle() {
+        // the upper triangle holds garbage: the symmetric lower one is solved
+        let a = [2.0, 1.0, 99.0, 2.0];
+        let (x, _) = solve(Factorization::Cholesky, &a, &[3.0, 3.0]);
+        let x = x.unwrap();
+        assert!(
+            (x[0] - 1.0).abs() < 1e-14 && (x[1] - 1.0).abs() < 1e-14,
+            "{x:?}"
+        );
+    }
+}
