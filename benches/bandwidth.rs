@@ -1,6 +1,7 @@
 //! Memory bandwidth of this machine for one core and for two at once: the
 //! ceiling of a two-rank speed-up for code that streams memory, as the sparse
-//! matrix-vector products of the Krylov solves do (README, Scaling).
+//! matrix-vector products of the Krylov solves do (docs/performance.md, "Two
+//! cores, one memory bus").
 //!
 //! `cargo bench --bench bandwidth` prints, for two kernels over arrays far
 //! larger than the caches, the median bandwidth of one thread, of two threads

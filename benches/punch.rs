@@ -2,7 +2,8 @@
 //!
 //! `cargo bench --bench punch` prints two Markdown tables: timings of the shipped
 //! cases (best of 5 runs, all three methods) and the first-yield loads of the
-//! refinement sequence beside the paper's values. The README quotes its output.
+//! refinement sequence beside the paper's values. docs/performance.md quotes the
+//! first, docs/verification.md the second.
 
 use asperity::case::Method;
 use asperity::driver::{self, RunOptions};

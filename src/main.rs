@@ -80,7 +80,7 @@ enum Command {
         /// PETSc backend with GAMG: lean trades time for memory (on more than
         /// one rank all-at-once Galerkin products, paid for by building the
         /// preconditioner once per load step, with a wider smoother interval);
-        /// README, Scaling, has the measurements. Needs `--nonlinear snes`.
+        /// docs/performance.md has the measurements. Needs `--nonlinear snes`.
         #[arg(long, value_enum, default_value = "fast")]
         memory: MemoryArg,
         /// PETSc options after `--`, e.g. `-- -ksp_type cg -pc_type gamg -log_view`.
@@ -218,8 +218,8 @@ fn parse_fault(s: &str) -> Result<(usize, usize), String> {
 
 /// Size above which `--backend auto` picks PETSc (MUMPS) on one rank over faer
 /// when built with the `parallel` feature: faer's LU peaks near 23 KB per dof
-/// (2.2 GB at 93.5k dofs) against 4.9 KB for MUMPS, for 18% less time (README,
-/// "Choosing the backend").
+/// (2.2 GB at 93.5k dofs) against 4.9 KB for MUMPS, for 18% less time
+/// (docs/performance.md, "Choosing the backend by size").
 const AUTO_PETSC_DOFS: usize = 150_000;
 
 /// Does the case (with its overrides) have at least [`AUTO_PETSC_DOFS`] dofs?

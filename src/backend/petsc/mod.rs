@@ -438,7 +438,7 @@ pub struct Ksp<'p> {
 /// aggregate, are the rigid motions of the body it lies in. At 209k dofs on
 /// two ranks (fast GAMG) this took CG from 134 to 86-121 iterations per solve
 /// and the operator complexity from 1.44 (per-body modes, threshold 0) to
-/// 1.15 (README, Parallel).
+/// 1.15 (docs/performance.md, "GAMG settings").
 pub const GAMG_THRESHOLD: f64 = 0.01;
 
 /// The linear solver a KSP starts from, before the options database (any
@@ -457,7 +457,7 @@ pub enum LinearDefault {
 impl LinearDefault {
     /// Systems of at least this many rows (all dofs) get multigrid: below it
     /// MUMPS is faster on this machine, above it GAMG is faster and needs
-    /// less than half the memory (README, Scaling).
+    /// less than half the memory (docs/performance.md, "MUMPS LU").
     pub const MULTIGRID_FROM: usize = 400_000;
 
     pub fn for_model(model: &crate::model::Model) -> Self {
@@ -560,12 +560,13 @@ unsafe fn type_is(p: *const std::os::raw::c_char, name: &[u8]) -> bool {
 /// indefinite preconditioner (`DIVERGED_INDEFINITE_PC`) in the plastic steps of
 /// `cases/punch-plane-stress-fine` (twice at refine 4, a run given up after 8
 /// cutbacks at 99% of the load at refine 8) where MUMPS converged; with the
-/// smoothers' own estimates the iterates follow MUMPS's (README, Parallel).
+/// smoothers' own estimates the iterates follow MUMPS's (docs/performance.md,
+/// "GAMG settings").
 /// When the outer Krylov method is CG (the tangent is symmetric), those
 /// estimates are made by CG too (`-mg_levels_esteig_ksp_type cg`) instead of
 /// PETSc's GMRES, whose basis vectors every level's estimator keeps after
 /// setup: at 209k dofs on two ranks the peak fell from 544 to 519 MB with the
-/// same Krylov iterations and time (README, Parallel).
+/// same Krylov iterations and time (docs/performance.md, "GAMG settings").
 /// And the aggregation graph drops couplings weaker than [`GAMG_THRESHOLD`]
 /// (`-pc_gamg_threshold`).
 /// Returns whether the preconditioner is GAMG.

@@ -271,8 +271,9 @@ pub const MULTIGRID_LAG: ffi::PetscInt = 1000;
 pub const LEAN_ESTEIG: &std::ffi::CStr = c"0,0.1,0,1.5";
 
 /// `--memory lean` with GAMG as the preconditioner: three settings, each of
-/// which the options database can override (README, Scaling, has the
-/// measurements). The caller has checked that the PC is GAMG.
+/// which the options database can override (docs/performance.md, "GAMG,
+/// `--memory lean`", has the measurements). The caller has checked that the
+/// PC is GAMG.
 /// * on more than one rank, Galerkin products by the all-at-once algorithm,
 ///   `-matptap_via allatonce`: PETSc's default parallel product keeps A·P and
 ///   explicit transposes of P for reuse (570 B per dof over two ranks at 1.05M

@@ -73,7 +73,7 @@ impl Partition {
     /// restricted modes are that body's rigid motions. Per-body vectors (six)
     /// gave every aggregate six coarse unknowns, three of them zero on it:
     /// twice the coarse unknowns and operator complexity 1.44 against 1.15
-    /// (README, Parallel, has the measurements).
+    /// (docs/performance.md, "GAMG settings", has the measurements).
     pub fn rigid_body_modes(&self, model: &Model, rank: usize) -> Vec<Vec<f64>> {
         let nodes = &model.mesh.nodes;
         let n = self.global_len();
