@@ -19,8 +19,9 @@ fn krylov_solvers_from_the_options_database_give_the_same_answer() {
     ]);
     let a = json(&root.join("lu"));
     let ua = a["final"]["center_displacement_mm"].as_f64().unwrap();
-    // summary.json names the solver that ran
-    assert_eq!(a["linear_solver"], "preonly + lu (mumps)");
+    // summary.json names the solver that ran: MUMPS's Cholesky for the
+    // symmetric tangent of a case without a tangential law
+    assert_eq!(a["linear_solver"], "preonly + cholesky (mumps)");
     assert_eq!(
         json(&root.join("gmres"))["linear_solver"],
         "gmres + bjacobi"
@@ -209,9 +210,10 @@ fn the_rigid_body_modes_are_orthonormal_rigid_motions_of_the_assembly() {
     );
 }
 
-/// The PETSc default linear solver follows the size: MUMPS LU below
-/// `LinearDefault::MULTIGRID_FROM` dofs, GAMG above it, inside CG for the
-/// symmetric tangent of a case without a tangential law.
+/// The PETSc default linear solver follows the size: MUMPS below
+/// `LinearDefault::MULTIGRID_FROM` dofs, GAMG above it, Cholesky and CG for the
+/// symmetric tangent of a case without a tangential law, LU and GMRES for the
+/// return-mapping friction scheme's unsymmetric one.
 #[test]
 fn the_default_linear_solver_follows_the_size_of_the_model() {
     use asperity::backend::petsc::LinearDefault;
@@ -224,7 +226,13 @@ fn the_default_linear_solver_follows_the_size_of_the_model() {
     };
     let (small, d) = at(12);
     assert!(small < LinearDefault::MULTIGRID_FROM);
-    assert_eq!(d, LinearDefault::DirectLu);
+    assert_eq!(d, LinearDefault::Direct { symmetric: true });
+    let friction =
+        std::fs::read_to_string(common::root().join("cases/punch-friction-b/case.toml")).unwrap();
+    assert_eq!(
+        LinearDefault::for_model(&common::model(&friction)),
+        LinearDefault::Direct { symmetric: false }
+    );
     let (big, d) = at(18);
     assert!(big >= LinearDefault::MULTIGRID_FROM);
     assert_eq!(d, LinearDefault::Multigrid { symmetric: true });
@@ -255,7 +263,7 @@ fn cg_with_gamg_follows_lu_through_the_plastic_steps() {
         )
     };
     let (lu, _) = run("lu", &[]);
-    assert_eq!(lu["linear_solver"], "preonly + lu (mumps)");
+    assert_eq!(lu["linear_solver"], "preonly + cholesky (mumps)");
     assert!(lu["final"]["max_peeq"].as_f64().unwrap() > 0.05, "{lu}");
     let gamg = [
         "--",

@@ -271,6 +271,22 @@ impl<'p> PMat<'p> {
         }
     }
 
+    /// Declares the matrix symmetric for good (every assembly keeps it so):
+    /// MUMPS's Cholesky then reads one triangle, GAMG and CG may rely on it.
+    pub fn set_symmetric(&mut self) -> Result<()> {
+        for option in [
+            ffi::MatOption_MAT_SYMMETRIC,
+            ffi::MatOption_MAT_SYMMETRY_ETERNAL,
+        ] {
+            // SAFETY: valid matrix handle.
+            chk(
+                unsafe { ffi::MatSetOption(self.raw, option, ffi::PetscBool_PETSC_TRUE) },
+                "MatSetOption",
+            )?;
+        }
+        Ok(())
+    }
+
     /// Attaches a near-null space (e.g. rigid-body modes) for algebraic multigrid:
     /// `local[k]` is this rank's owned part of vector k, which must be orthonormal
     /// over all ranks. The matrix keeps its own reference; ours are released.
@@ -445,8 +461,12 @@ pub const GAMG_THRESHOLD: f64 = 0.01;
 /// `-ksp_*`/`-pc_*` option on the command line overrides it).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LinearDefault {
-    /// Sparse direct LU by MUMPS, one application (`preonly`).
-    DirectLu,
+    /// Sparse direct factorization by MUMPS, one application (`preonly`):
+    /// Cholesky (MUMPS's symmetric LDLᵀ with pivoting, so an indefinite
+    /// tangent near collapse is still factored) when the model states a
+    /// symmetric tangent ([`crate::model::Model::symmetric_tangent`]), LU
+    /// otherwise (docs/performance.md, "MUMPS Cholesky").
+    Direct { symmetric: bool },
     /// Smoothed-aggregation multigrid (GAMG, with the rigid-body near-null
     /// space and [`GAMG_THRESHOLD`]) inside CG when the tangent is symmetric (no
     /// tangential interface law), GMRES otherwise; relative tolerance 1e-10
@@ -461,12 +481,11 @@ impl LinearDefault {
     pub const MULTIGRID_FROM: usize = 400_000;
 
     pub fn for_model(model: &crate::model::Model) -> Self {
+        let symmetric = model.symmetric_tangent();
         if model.mesh.num_dofs() >= Self::MULTIGRID_FROM {
-            LinearDefault::Multigrid {
-                symmetric: model.interfaces.iter().all(|i| i.tangential.is_none()),
-            }
+            LinearDefault::Multigrid { symmetric }
         } else {
-            LinearDefault::DirectLu
+            LinearDefault::Direct { symmetric }
         }
     }
 }
@@ -481,9 +500,10 @@ unsafe fn linear_defaults(ksp: ffi::KSP, choice: LinearDefault) -> Result<()> {
         let mut pc = std::ptr::null_mut();
         chk(ffi::KSPGetPC(ksp, &mut pc), "KSPGetPC")?;
         match choice {
-            LinearDefault::DirectLu => {
+            LinearDefault::Direct { symmetric } => {
+                let t = if symmetric { c"cholesky" } else { c"lu" };
                 chk(ffi::KSPSetType(ksp, c"preonly".as_ptr()), "KSPSetType")?;
-                chk(ffi::PCSetType(pc, c"lu".as_ptr()), "PCSetType")?;
+                chk(ffi::PCSetType(pc, t.as_ptr()), "PCSetType")?;
                 chk(
                     ffi::PCFactorSetMatSolverType(pc, c"mumps".as_ptr()),
                     "PCFactorSetMatSolverType",

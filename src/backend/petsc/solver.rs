@@ -316,6 +316,9 @@ impl<'p> PetscBackend<'p> {
         let n = part.global_len();
         let mut mat = PMat::aij(petsc, local, n, 2, &d, &o)?;
         fix_pattern(&mut mat, &pattern, &part, rank, &prescribed)?;
+        if model.symmetric_tangent() {
+            mat.set_symmetric()?;
+        }
         drop(pattern);
         mat.set_near_null_space(petsc, &part.rigid_body_modes(model, rank))?;
         let b = PVec::new(petsc, local, n)?;
