@@ -150,7 +150,7 @@ impl Range {
         Err(Error::input(place, self.refusal(v)))
     }
 
-    /// "1e-310 is far outside any engineering use: the thickness must be within 1e-6 … 1e6 mm".
+    /// "1e-310 is far outside any engineering use (the thickness: 1e-6 … 1e6 mm in magnitude)".
     pub fn refusal(&self, v: f64) -> String {
         let unit = if self.unit.is_empty() {
             String::new()
@@ -158,15 +158,12 @@ impl Range {
             format!(" {}", self.unit)
         };
         let within = if self.lo == 0.0 {
-            format!("at most {:e} in size", self.hi)
+            format!("at most {:e}{unit}", self.hi)
         } else {
-            format!(
-                "{:e} to {:e} in size (or 0 where 0 is allowed)",
-                self.lo, self.hi
-            )
+            format!("{:e} … {:e}{unit}", self.lo, self.hi)
         };
         format!(
-            "{v:e} is far outside any engineering use: {} must be {within}{unit}",
+            "{v:e} is far outside any engineering use ({}: {within} in magnitude)",
             self.quantity
         )
     }

@@ -35,7 +35,7 @@ pub fn check_case(case: &Case) -> Result<Checked> {
         if !plain_folder_name(name) {
             return Err(Error::input(
                 at("name"),
-                format!("{name:?} is not a plain folder name (it names out/<name>/: not empty, no / or \\, not . or .., no control characters)"),
+                format!("{name:?} is not a plain folder name (it names out/<name>/: not empty, at most {MAX_NAME_BYTES} bytes, no / or \\, not . or .., no control characters)"),
             ));
         }
     }

@@ -14,7 +14,7 @@ use super::{Case, MAX_ELEMENTS};
 use crate::error::{clip, Error, Result};
 use crate::fem::q8;
 use crate::mesh::Mesh;
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 
 fn mesh_err(place: &str, message: String) -> Error {
     Error::Mesh {
@@ -284,7 +284,7 @@ fn elements_overlap(mesh: &Mesh, place: &str) -> Result<()> {
                 })
         })
         .collect();
-    let mut grid: HashMap<(usize, usize), Vec<usize>> = HashMap::new();
+    let mut grid: BTreeMap<(usize, usize), Vec<usize>> = BTreeMap::new();
     for (e, (l, h)) in boxes.iter().enumerate() {
         for i in cell(l[0], 0)..=cell(h[0], 0) {
             for j in cell(l[1], 1)..=cell(h[1], 1) {
@@ -309,7 +309,9 @@ fn elements_overlap(mesh: &Mesh, place: &str) -> Result<()> {
     let mut seen = std::collections::HashSet::new();
     for cands in grid.values() {
         for (ia, &a) in cands.iter().enumerate() {
-            for &b in &cands[..ia] {
+            for &b0 in &cands[..ia] {
+                // the lower-numbered element first (messages independent of the order)
+                let (a, b) = (a.min(b0), a.max(b0));
                 let (ea, eb) = (&mesh.elements[a], &mesh.elements[b]);
                 if ea.body == eb.body {
                     continue;
