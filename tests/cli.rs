@@ -141,3 +141,20 @@ fn oversized_case_and_mesh_files_are_refused_before_reading() {
     );
     assert!(started.elapsed().as_secs_f64() < 5.0);
 }
+
+/// One prescribed value per node and direction: the same value from two
+/// entries is allowed (a corner in two fixed sets), two values are refused
+/// (tests/bad_inputs/110-boundary-two-values).
+#[test]
+fn the_same_prescribed_value_twice_is_allowed() {
+    let dir = common::scratch("same-value-twice");
+    let text =
+        std::fs::read_to_string(common::root().join("cases/punch-plane-stress/case.toml")).unwrap();
+    let extra = "\n[[boundary]]\nset = \"foundation.all\"\nuy = 0.0\ny_range = [-60.0, -60.0]\n";
+    let text = text.replacen("\n[[load]]", &format!("{extra}\n[[load]]"), 1);
+    assert!(text.contains("foundation.all"));
+    std::fs::write(dir.join("case.toml"), text).unwrap();
+    let (code, out, err) = asperity(&["check", dir.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("valid"), "{out}");
+}
