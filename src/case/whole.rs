@@ -425,3 +425,70 @@ pub fn check_symmetry_supports(
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::blocks::{generate, BlockSpec};
+
+    fn block(body: &str, x: [f64; 2], nx: usize, y: [f64; 2], ny: usize) -> BlockSpec {
+        BlockSpec {
+            body: body.into(),
+            x: x.to_vec(),
+            nx: vec![nx],
+            rx: vec![],
+            y: y.to_vec(),
+            ny: vec![ny],
+            ry: vec![],
+        }
+    }
+
+    #[test]
+    fn touching_bodies_pass_overlapping_ones_are_found_even_as_a_sliver() {
+        let touching = generate(
+            &[
+                block("a", [0.0, 20.0], 4, [0.0, 10.0], 2),
+                block("b", [0.0, 40.0], 8, [-10.0, 0.0], 2),
+            ],
+            &[],
+            1,
+        )
+        .unwrap();
+        elements_overlap(&touching, "t").unwrap();
+        // a strip 0.1 thick, node columns aligned: no Gauss point inside, but
+        // nodes of one are strictly inside elements of the other
+        for (dy, dx) in [(0.1, 0.0), (5.0, 0.0), (0.1, 1.3), (10.0, 0.0)] {
+            let m = generate(
+                &[
+                    block("a", [dx, 20.0 + dx], 4, [-dy, 10.0 - dy], 2),
+                    block("b", [0.0, 40.0], 8, [-10.0, 0.0], 2),
+                ],
+                &[],
+                1,
+            )
+            .unwrap();
+            let e = elements_overlap(&m, "t").unwrap_err().to_string();
+            assert!(e.contains("overlap"), "{dy} {dx}: {e}");
+        }
+    }
+
+    /// The overlap search at the element cap: 250 000 elements, two bodies.
+    #[test]
+    fn the_overlap_search_is_fast_at_the_element_cap() {
+        let m = generate(
+            &[
+                block("a", [0.0, 100.0], 500, [0.0, 50.0], 250),
+                block("b", [0.0, 100.0], 500, [-50.0, 0.0], 250),
+            ],
+            &[],
+            1,
+        )
+        .unwrap();
+        assert_eq!(m.elements.len(), 250_000);
+        let t = std::time::Instant::now();
+        elements_overlap(&m, "t").unwrap();
+        let s = t.elapsed().as_secs_f64();
+        println!("overlap search, 250 000 elements: {s:.2} s");
+        assert!(s < 20.0, "{s} s");
+    }
+}
