@@ -362,7 +362,11 @@ fn main() -> ExitCode {
             if petsc {
                 return run_petsc(&case, &opts, &petsc_options);
             }
-            if let Some((size, _, said)) = launcher().filter(|l| l.0 > 1) {
+            if let Some((size, rank, said)) = launcher().filter(|l| l.0 > 1) {
+                // every process exits 2; rank 0 alone says why
+                if rank > 0 {
+                    return ExitCode::from(2);
+                }
                 return fail(
                     log_format,
                     &format!("the serial backend under an MPI launcher with {size} processes ({said}) would run {size} independent solves into one output folder; use --backend petsc (or auto)"),

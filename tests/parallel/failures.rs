@@ -51,3 +51,16 @@ fn a_model_wrong_as_a_whole_is_refused_once_on_two_ranks() {
         assert!(err.contains(needle), "{name}: {err}");
     }
 }
+
+/// `--backend serial` under `mpirun -n 2` would run two independent serial
+/// solves into one folder: both ranks exit 2, one message, nothing written.
+#[test]
+fn the_serial_backend_under_mpirun_is_refused() {
+    let root = common::scratch("parallel-serial-backend");
+    let case = common::root().join("cases/punch-plane-stress");
+    let err = fails_cleanly_on_two_ranks(&root, &case, &["--backend", "serial"]);
+    assert!(
+        err.contains("the serial backend under an MPI launcher with 2 processes"),
+        "{err}"
+    );
+}
