@@ -278,12 +278,24 @@ fn refuse_serial_build_under_mpi() -> Option<ExitCode> {
         return None;
     }
     let (size, rank, said) = launcher().filter(|l| l.0 > 1)?;
-    if rank == 0 {
-        eprintln!(
-            "error: started by an MPI launcher as {size} processes ({said}), but this asperity was built without the `parallel` feature: each process would run its own serial solve into the same output folder; build it with `cargo build --release --features parallel`, or start it without mpirun"
-        );
+    if rank > 0 {
+        return Some(ExitCode::from(2));
     }
-    Some(ExitCode::from(2))
+    // before the command line is parsed: `--log-format json` looked up by hand
+    let args: Vec<String> = std::env::args().collect();
+    let json = args
+        .windows(2)
+        .any(|w| w[0] == "--log-format" && w[1] == "json")
+        || args.iter().any(|a| a == "--log-format=json");
+    let format = if json {
+        LogFormat::Json
+    } else {
+        LogFormat::Text
+    };
+    Some(fail(
+        format,
+        &format!("started by an MPI launcher as {size} processes ({said}), but this asperity was built without the `parallel` feature: each process would run its own serial solve into the same output folder; build it with `cargo build --release --features parallel`, or start it without mpirun"),
+    ))
 }
 
 #[derive(Clone, Copy, ValueEnum)]

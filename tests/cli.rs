@@ -100,6 +100,20 @@ fn a_serial_build_under_mpirun_refuses() {
         assert_eq!((code, err.as_str()), (2, ""), "{env:?}");
     }
     assert!(!out.exists());
+    // with --log-format json: one JSON error event
+    let mut json_args = args.to_vec();
+    json_args.extend(["--log-format", "json"]);
+    let (code, _, err) = asperity_env(&json_args, &[("OMPI_COMM_WORLD_SIZE", "4")]);
+    assert_eq!(code, 2, "{err}");
+    let v: serde_json::Value = serde_json::from_str(err.trim()).expect(&err);
+    assert_eq!(v["event"], "error", "{err}");
+    assert!(
+        v["message"]
+            .as_str()
+            .unwrap()
+            .contains("--features parallel"),
+        "{err}"
+    );
     // `check` too; a world of one process is a plain serial run
     let (code, _, err) = asperity_env(&["check", case], &[("OMPI_COMM_WORLD_SIZE", "4")]);
     assert_eq!(code, 2, "{err}");
