@@ -50,10 +50,68 @@ impl Error {
 
 impl fmt::Display for Error {
     /// One line: control characters (from file names, keys and values that came
-    /// from the user) are written as escapes such as `\n` or `\u{1b}`.
+    /// from the user) are written as escapes such as `\n` or `\u{1b}`; a quoted
+    /// value longer than [`MAX_QUOTE`] characters is cut to that, and the whole
+    /// line to [`MAX_LINE`] (a 10 MB string in a case file is not echoed).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&escape_controls(&self.raw()))
+        f.write_str(&bounded(&escape_controls(&self.raw())))
     }
+}
+
+/// Most characters of one value (a name, a string, a key) quoted in a message.
+pub const MAX_QUOTE: usize = 80;
+/// Most characters of a whole error line.
+pub const MAX_LINE: usize = 2000;
+
+/// `text` cut to [`MAX_QUOTE`] characters, with `…(N characters)` when cut.
+pub fn clip(text: &str) -> String {
+    let n = text.chars().count();
+    if n <= MAX_QUOTE {
+        return text.to_string();
+    }
+    let head: String = text.chars().take(MAX_QUOTE).collect();
+    format!("{head}…({n} characters)")
+}
+
+/// A message with every quoted run (between `"` or between backticks) clipped
+/// to [`MAX_QUOTE`] characters, then the whole cut to [`MAX_LINE`].
+pub fn bounded(text: &str) -> String {
+    let mut out = String::with_capacity(text.len().min(4 * MAX_LINE));
+    let mut rest = text;
+    while let Some(open) = rest.find(['"', '`']) {
+        let q = rest.as_bytes()[open] as char;
+        out.push_str(&rest[..=open]);
+        rest = &rest[open + 1..];
+        // the closing quote: not one escaped by a backslash (Debug-quoted strings)
+        let mut close = None;
+        let mut escaped = false;
+        for (i, c) in rest.char_indices() {
+            if escaped {
+                escaped = false;
+            } else if c == '\\' && q == '"' {
+                escaped = true;
+            } else if c == q {
+                close = Some(i);
+                break;
+            }
+        }
+        let end = close.unwrap_or(rest.len());
+        out.push_str(&clip(&rest[..end]));
+        match close {
+            Some(i) => {
+                out.push(q);
+                rest = &rest[i + 1..];
+            }
+            None => rest = "",
+        }
+    }
+    out.push_str(rest);
+    let n = out.chars().count();
+    if n > MAX_LINE {
+        let head: String = out.chars().take(MAX_LINE).collect();
+        return format!("{head}…({} more characters)", n - MAX_LINE);
+    }
+    out
 }
 
 /// `text` with every control character escaped (`\n`, `\t`, `\u{7}` …), so that
@@ -90,3 +148,32 @@ impl Error {
 }
 
 impl std::error::Error for Error {}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn long_values_are_clipped_short_ones_kept() {
+        let long = "x".repeat(10_000_000);
+        let e = Error::input(
+            "case.toml:3:13",
+            format!("invalid type: string \"{long}\", expected f64"),
+        );
+        let s = e.to_string();
+        assert!(s.len() < 300, "{}", s.len());
+        assert!(s.contains("…(10000000 characters)\", expected f64"), "{s}");
+        let e = Error::input("case.toml", "no node set \"a.left\" (sets: `b`)");
+        assert_eq!(
+            e.to_string(),
+            "case.toml: no node set \"a.left\" (sets: `b`)"
+        );
+        // an escaped quote inside a Debug-quoted value does not end it
+        let v = format!("{:?}", format!("ab\"{}", "y".repeat(200)));
+        let s = Error::input("p", format!("name {v} bad")).to_string();
+        assert!(s.ends_with("characters)\" bad"), "{s}");
+        // unquoted text: the line is cut
+        let s = Error::input("p", "z ".repeat(5000)).to_string();
+        assert!(s.chars().count() < MAX_LINE + 40, "{}", s.len());
+    }
+}

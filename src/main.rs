@@ -235,6 +235,69 @@ fn under_mpirun() -> bool {
         .any(|v| std::env::var_os(v).is_some())
 }
 
+/// What an MPI launcher told this process: the world size it announced (at
+/// least rank + 1 when only a rank is set), this process's rank, and the
+/// variable that said so. None when no launcher variable is set. Open MPI sets
+/// OMPI_COMM_WORLD_SIZE / _RANK, MPICH's Hydra (and Slurm's PMI) PMI_SIZE /
+/// PMI_RANK, PMIx launchers PMIX_RANK.
+fn launcher() -> Option<(usize, usize, String)> {
+    let num = |v: &str| {
+        std::env::var(v)
+            .ok()
+            .and_then(|s| s.trim().parse::<usize>().ok())
+    };
+    let mut found: Option<(usize, usize, String)> = None;
+    for (size_var, rank_var) in [
+        (Some("OMPI_COMM_WORLD_SIZE"), "OMPI_COMM_WORLD_RANK"),
+        (Some("PMI_SIZE"), "PMI_RANK"),
+        (None, "PMIX_RANK"),
+    ] {
+        let size = size_var.and_then(num);
+        let rank = num(rank_var);
+        if size.is_none() && rank.is_none() {
+            continue;
+        }
+        let rank = rank.unwrap_or(0);
+        let size = size.unwrap_or(0).max(rank + 1);
+        let said = match size_var.filter(|v| num(v).is_some()) {
+            Some(v) => format!("{v}={size}"),
+            None => format!("{rank_var}={rank}"),
+        };
+        if found.as_ref().is_none_or(|f| size > f.0) {
+            found = Some((size, rank, said));
+        }
+    }
+    found
+}
+
+/// A build without the `parallel` feature started as several MPI processes
+/// would run that many independent serial solves into one output folder:
+/// refused (exit 2), the message printed once, by rank 0.
+fn refuse_serial_build_under_mpi() -> Option<ExitCode> {
+    if cfg!(feature = "parallel") {
+        return None;
+    }
+    let (size, rank, said) = launcher().filter(|l| l.0 > 1)?;
+    if rank > 0 {
+        return Some(ExitCode::from(2));
+    }
+    // before the command line is parsed: `--log-format json` looked up by hand
+    let args: Vec<String> = std::env::args().collect();
+    let json = args
+        .windows(2)
+        .any(|w| w[0] == "--log-format" && w[1] == "json")
+        || args.iter().any(|a| a == "--log-format=json");
+    let format = if json {
+        LogFormat::Json
+    } else {
+        LogFormat::Text
+    };
+    Some(fail(
+        format,
+        &format!("started by an MPI launcher as {size} processes ({said}), but this asperity was built without the `parallel` feature: each process would run its own serial solve into the same output folder; build it with `cargo build --release --features parallel`, or start it without mpirun"),
+    ))
+}
+
 #[derive(Clone, Copy, ValueEnum)]
 enum MethodArg {
     FullNewton,
@@ -253,6 +316,9 @@ impl From<MethodArg> for Method {
 }
 
 fn main() -> ExitCode {
+    if let Some(code) = refuse_serial_build_under_mpi() {
+        return code;
+    }
     let cli = Cli::parse();
     let outcome = match cli.command {
         Command::Run {
@@ -307,6 +373,16 @@ fn main() -> ExitCode {
                     && (under_mpirun() || large(&case, &opts)));
             if petsc {
                 return run_petsc(&case, &opts, &petsc_options);
+            }
+            if let Some((size, rank, said)) = launcher().filter(|l| l.0 > 1) {
+                // every process exits 2; rank 0 alone says why
+                if rank > 0 {
+                    return ExitCode::from(2);
+                }
+                return fail(
+                    log_format,
+                    &format!("the serial backend under an MPI launcher with {size} processes ({said}) would run {size} independent solves into one output folder; use --backend petsc (or auto)"),
+                );
             }
             if opts.lean_memory {
                 return fail(

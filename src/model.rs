@@ -4,7 +4,7 @@
 //! [`crate::solve::State`].
 
 use crate::assembly::{Blocks, DofMap, Pattern};
-use crate::case::{check_case, Case, Integration, Plane};
+use crate::case::{check_case, whole, Case, Integration, Plane};
 use crate::error::{Error, Result};
 use crate::fem::q8::{self, GaussRule};
 use crate::fem::solid::ElementGeometry;
@@ -67,6 +67,7 @@ impl Model {
             place: place.clone(),
             message: e.to_string(),
         })?;
+        whole::check_mesh(&case, &mesh, &place)?;
         let plane = case.model.plane;
         let thickness = case.model.thickness;
         let rule = match case.model.integration {
@@ -155,6 +156,7 @@ impl Model {
             ));
         }
         check_supports(&mesh, &prescribed, &interfaces, &place)?;
+        whole::check_symmetry_supports(&case, &mesh, &prescribed, &place)?;
         let mut mask = vec![false; mesh.num_dofs()];
         for &(d, _) in &prescribed {
             mask[d] = true;
@@ -271,8 +273,13 @@ fn in_range(v: f64, r: &Option<[f64; 2]>) -> bool {
     r.is_none_or(|[lo, hi]| v >= lo - 1e-9 && v <= hi + 1e-9)
 }
 
+/// The prescribed dofs and their values. A dof may be named by several
+/// `[[boundary]]` entries only with the same value (a corner in two fixed
+/// sets); two different values for one node and direction are refused, naming
+/// both entries (docs/case-schema.md, "Prescribed values").
 fn boundary_conditions(case: &Case, mesh: &Mesh, place: &str) -> Result<Vec<(usize, f64)>> {
-    let mut out = std::collections::BTreeMap::new();
+    // dof → (value, index of the first entry that set it)
+    let mut out: std::collections::BTreeMap<usize, (f64, usize)> = Default::default();
     for (i, bc) in case.boundary.iter().enumerate() {
         let at = format!("{place}: boundary[{i}] (set \"{}\")", bc.set);
         let nodes = mesh.node_sets.get(&bc.set).ok_or_else(|| {
@@ -300,7 +307,20 @@ fn boundary_conditions(case: &Case, mesh: &Mesh, place: &str) -> Result<Vec<(usi
                     if !v.is_finite() {
                         return Err(Error::input(&at, format!("displacement {v} is not finite")));
                     }
-                    out.insert(2 * n + c, *v);
+                    let (first, _) = *out.entry(2 * n + c).or_insert((*v, i));
+                    if first != *v {
+                        let j = out[&(2 * n + c)].1;
+                        return Err(Error::input(
+                            format!("{at} u{}", ["x", "y"][c]),
+                            format!(
+                                "gives node {n} at ({}, {}) u{} = {v}, but boundary[{j}] (set \"{}\") already gives it {first}: one prescribed value per node and direction",
+                                x[0],
+                                x[1],
+                                ["x", "y"][c],
+                                crate::error::clip(&case.boundary[j].set)
+                            ),
+                        ));
+                    }
                 }
             }
         }
@@ -311,7 +331,7 @@ fn boundary_conditions(case: &Case, mesh: &Mesh, place: &str) -> Result<Vec<(usi
             ));
         }
     }
-    Ok(out.into_iter().collect())
+    Ok(out.into_iter().map(|(d, (v, _))| (d, v)).collect())
 }
 
 fn external_forces(case: &Case, mesh: &Mesh, thickness: f64, place: &str) -> Result<Vec<f64>> {
@@ -448,6 +468,12 @@ fn probe(case: &Case, mesh: &Mesh, interfaces: &[InterfaceModel]) -> (usize, f64
     (best, mesh.nodes.get(best).map_or(0.0, |x| x[1]))
 }
 
+/// A list of names for a message: each clipped, at most 30 of them.
 fn names<'a>(it: impl Iterator<Item = &'a String>) -> String {
-    it.cloned().collect::<Vec<_>>().join(", ")
+    let all: Vec<&String> = it.collect();
+    let mut s: Vec<String> = all.iter().take(30).map(|n| crate::error::clip(n)).collect();
+    if all.len() > 30 {
+        s.push(format!("… {} more", all.len() - 30));
+    }
+    s.join(", ")
 }

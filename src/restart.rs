@@ -346,7 +346,9 @@ fn sections(e: &mut Encoder, ck: &Checkpoint, pvd: &[(f64, String)]) -> std::io:
 /// Reads `restart.bin` in `dir` for `model`: the checkpoint and the VTU series.
 pub fn read(dir: &Path, model: &Model) -> Result<(Checkpoint, Vec<(f64, String)>)> {
     let path = dir.join(FILE);
-    let bytes = std::fs::read(&path).map_err(|e| Error::io(&path, e))?;
+    // a regular file only (not a FIFO or a device that never ends); the bound
+    // is far above any checkpoint of a model within the element cap
+    let bytes = crate::case::read_input(&path, 64 << 30, "restart file")?;
     decode(&bytes, model).map_err(|m| Error::input(path.display().to_string(), m))
 }
 

@@ -43,3 +43,132 @@ fn check_describes_the_case_without_solving() {
         "{out}"
     );
 }
+
+/// The binary with extra environment variables.
+fn asperity_env(args: &[&str], env: &[(&str, &str)]) -> (i32, String, String) {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_asperity"));
+    cmd.args(args);
+    for v in [
+        "OMPI_COMM_WORLD_SIZE",
+        "OMPI_COMM_WORLD_RANK",
+        "PMI_SIZE",
+        "PMI_RANK",
+        "PMIX_RANK",
+    ] {
+        cmd.env_remove(v);
+    }
+    cmd.envs(env.iter().copied());
+    let out = cmd.output().unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into(),
+        String::from_utf8_lossy(&out.stderr).into(),
+    )
+}
+
+/// A build without the `parallel` feature started by `mpirun -n 4` would run
+/// four serial solves into one output folder: every process exits with 2, rank
+/// 0 says why (once) and names the feature; nothing is written. One process
+/// (size 1) runs as usual.
+#[cfg(not(feature = "parallel"))]
+#[test]
+fn a_serial_build_under_mpirun_refuses() {
+    let case = common::root().join("cases/punch-plane-stress");
+    let case = case.to_str().unwrap();
+    let out = common::scratch("serial-under-mpirun").join("out");
+    let args = ["run", case, "--quiet", "--out", out.to_str().unwrap()];
+    for env in [
+        &[("OMPI_COMM_WORLD_SIZE", "4"), ("OMPI_COMM_WORLD_RANK", "0")][..],
+        &[("PMI_SIZE", "4"), ("PMI_RANK", "0")],
+    ] {
+        let (code, stdout, err) = asperity_env(&args, env);
+        assert_eq!(code, 2, "{env:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(
+            err.starts_with("error: started by an MPI launcher as 4 processes")
+                && err.contains("cargo build --release --features parallel"),
+            "{err}"
+        );
+        assert!(stdout.is_empty() && !out.exists(), "{stdout}");
+    }
+    // the other ranks exit 2 without a word (one message, not four)
+    for env in [
+        &[("OMPI_COMM_WORLD_SIZE", "4"), ("OMPI_COMM_WORLD_RANK", "3")][..],
+        &[("PMIX_RANK", "2")],
+    ] {
+        let (code, _, err) = asperity_env(&args, env);
+        assert_eq!((code, err.as_str()), (2, ""), "{env:?}");
+    }
+    assert!(!out.exists());
+    // with --log-format json: one JSON error event
+    let mut json_args = args.to_vec();
+    json_args.extend(["--log-format", "json"]);
+    let (code, _, err) = asperity_env(&json_args, &[("OMPI_COMM_WORLD_SIZE", "4")]);
+    assert_eq!(code, 2, "{err}");
+    let v: serde_json::Value = serde_json::from_str(err.trim()).expect(&err);
+    assert_eq!(v["event"], "error", "{err}");
+    assert!(
+        v["message"]
+            .as_str()
+            .unwrap()
+            .contains("--features parallel"),
+        "{err}"
+    );
+    // `check` too; a world of one process is a plain serial run
+    let (code, _, err) = asperity_env(&["check", case], &[("OMPI_COMM_WORLD_SIZE", "4")]);
+    assert_eq!(code, 2, "{err}");
+    let (code, out, err) = asperity_env(
+        &["check", case],
+        &[("OMPI_COMM_WORLD_SIZE", "1"), ("OMPI_COMM_WORLD_RANK", "0")],
+    );
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("valid"), "{out}");
+}
+
+/// Input files are read with a bound: a case file over 16 MiB and a mesh file
+/// over 256 MiB are refused from their size (sparse files here: nothing is
+/// read), naming the file and the limit.
+#[test]
+fn oversized_case_and_mesh_files_are_refused_before_reading() {
+    let dir = common::scratch("oversized-inputs");
+    let case = dir.join("big-case.toml");
+    let f = std::fs::File::create(&case).unwrap();
+    f.set_len((16 << 20) + 1).unwrap();
+    let (code, _, err) = asperity(&["check", case.to_str().unwrap()]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("big-case.toml: the case file has 16777217 bytes or more, more than the limit of 16777216 bytes (16 MiB)"),
+        "{err}"
+    );
+    let mesh_case = dir.join("mesh-case");
+    std::fs::create_dir_all(&mesh_case).unwrap();
+    let text = std::fs::read_to_string(common::root().join("cases/punch-gmsh/case.toml")).unwrap();
+    std::fs::write(mesh_case.join("case.toml"), text).unwrap();
+    let f = std::fs::File::create(mesh_case.join("mesh.msh")).unwrap();
+    f.set_len((256 << 20) + 1).unwrap();
+    let started = std::time::Instant::now();
+    let (code, _, err) = asperity(&["run", mesh_case.to_str().unwrap(), "--quiet"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("mesh.msh: the mesh file has 268435457 bytes or more, more than the limit of 268435456 bytes (256 MiB)"),
+        "{err}"
+    );
+    assert!(started.elapsed().as_secs_f64() < 5.0);
+}
+
+/// One prescribed value per node and direction: the same value from two
+/// entries is allowed (a corner in two fixed sets), two values are refused
+/// (tests/bad_inputs/110-boundary-two-values).
+#[test]
+fn the_same_prescribed_value_twice_is_allowed() {
+    let dir = common::scratch("same-value-twice");
+    let text =
+        std::fs::read_to_string(common::root().join("cases/punch-plane-stress/case.toml")).unwrap();
+    let extra = "\n[[boundary]]\nset = \"foundation.all\"\nuy = 0.0\ny_range = [-60.0, -60.0]\n";
+    let text = text.replacen("\n[[load]]", &format!("{extra}\n[[load]]"), 1);
+    assert!(text.contains("foundation.all"));
+    std::fs::write(dir.join("case.toml"), text).unwrap();
+    let (code, out, err) = asperity(&["check", dir.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("valid"), "{out}");
+}

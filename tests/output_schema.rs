@@ -89,6 +89,29 @@ fn summary_json_matches_the_documented_schema() {
     std::fs::write(dir.join("case.toml"), text).unwrap();
     let without = summary_of("elastic", &dir, &["--increments", "2"]);
     assert!(without["first_yield"].is_null(), "{without}");
+    // curve.csv: load_ratio is 0 in every row of a run that never yields
+    // (docs/output.md), a number below 1 before the first yield otherwise
+    for (tag, never) in [("elastic", true), ("yield", false)] {
+        let csv = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+            .join(format!("schema-{tag}"))
+            .join("out/curve.csv");
+        let csv = std::fs::read_to_string(csv).unwrap();
+        let ratios: Vec<f64> = csv
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').nth(4).unwrap().parse().unwrap())
+            .collect();
+        assert!(!ratios.is_empty(), "{csv}");
+        for r in &ratios {
+            assert!(r.is_finite() && (!never || *r == 0.0), "{tag}: {csv}");
+        }
+        if !never {
+            assert!(
+                ratios[0] > 0.0 && ratios[0] < 1.0 && ratios.last() > Some(&1.0),
+                "{csv}"
+            );
+        }
+    }
     let mut seen = std::collections::BTreeSet::new();
     let mut errors = Vec::new();
     for s in [&with, &without] {

@@ -238,6 +238,20 @@ fn a_corrupted_truncated_or_foreign_restart_file_is_refused() {
         );
         assert!(files(&d) == before, "{name}: the folder was changed");
     }
+    // a restart.bin that is not a regular file (a device that never ends)
+    #[cfg(unix)]
+    {
+        let d = dir.join("device");
+        std::fs::create_dir_all(&d).unwrap();
+        std::os::unix::fs::symlink("/dev/zero", d.join("restart.bin")).unwrap();
+        let ds = d.display().to_string();
+        let (code, _, err) = run(&d, &["--restart", &ds]);
+        assert_eq!(code, 2, "{err}");
+        assert!(
+            err.contains("restart.bin: is a device, FIFO or socket, not a regular file"),
+            "{err}"
+        );
+    }
     // another case (here: another load schedule) or a missing file
     let g = good.display().to_string();
     let c = case();

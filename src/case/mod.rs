@@ -5,10 +5,13 @@
 //! The full schema is documented in `docs/case-schema.md`; every field below
 //! carries the same text.
 
+pub mod ranges;
 mod validate;
+pub mod whole;
 
 pub use validate::{
     check_case, MAX_ANDERSON_DEPTH, MAX_CUTBACKS, MAX_ELEMENTS, MAX_INCREMENTS, MAX_ITERATIONS,
+    MAX_NAME_BYTES,
 };
 
 use crate::error::{Error, Result};
@@ -189,7 +192,9 @@ pub struct BoundarySpec {
     pub ux: Option<f64>,
     pub uy: Option<f64>,
     /// Only nodes with x in [lo, hi] (mm).
+    #[serde(default, deserialize_with = "two_numbers_opt")]
     pub x_range: Option<[f64; 2]>,
+    #[serde(default, deserialize_with = "two_numbers_opt")]
     pub y_range: Option<[f64; 2]>,
 }
 
@@ -201,8 +206,28 @@ pub struct LoadSpec {
     pub edges: String,
     pub pressure: f64,
     /// Only edges whose midpoint has x in [lo, hi] (mm).
+    #[serde(default, deserialize_with = "two_numbers_opt")]
     pub x_range: Option<[f64; 2]>,
+    #[serde(default, deserialize_with = "two_numbers_opt")]
     pub y_range: Option<[f64; 2]>,
+}
+
+/// Exactly two numbers: serde's fixed-size arrays would drop a third one
+/// silently (`probe = [1, 2, 3]` read as `[1, 2]`).
+fn two_numbers<'de, D: serde::Deserializer<'de>>(d: D) -> std::result::Result<[f64; 2], D::Error> {
+    let v: Vec<f64> = Vec::deserialize(d)?;
+    <[f64; 2]>::try_from(v.as_slice()).map_err(|_| {
+        serde::de::Error::custom(format!(
+            "expected exactly 2 numbers ([x, y] or [lo, hi]), found {}",
+            v.len()
+        ))
+    })
+}
+
+fn two_numbers_opt<'de, D: serde::Deserializer<'de>>(
+    d: D,
+) -> std::result::Result<Option<[f64; 2]>, D::Error> {
+    two_numbers(d).map(Some)
 }
 
 #[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default)]
@@ -305,7 +330,7 @@ impl Default for SolverSpec {
 pub struct OutputSpec {
     /// Point near which the "center" node is taken (the interface node of the lower
     /// body closest to it), mm. Default (0, 0).
-    #[serde(default)]
+    #[serde(default, deserialize_with = "two_numbers")]
     pub probe: [f64; 2],
     /// Write VTU files (every `vtu_every` increments and the last).
     #[serde(default = "yes")]
@@ -353,7 +378,13 @@ impl Case {
         } else {
             path.to_path_buf()
         };
-        let text = std::fs::read_to_string(&file).map_err(|e| Error::io(&file, e))?;
+        let bytes = read_input(&file, MAX_CASE_BYTES, "case file")?;
+        let text = String::from_utf8(bytes).map_err(|e| {
+            Error::input(
+                file.display().to_string(),
+                format!("the case file is not valid UTF-8 text ({})", e.utf8_error()),
+            )
+        })?;
         let mut case = Case::parse(&text, &file.display().to_string())?;
         case.source = file;
         Ok(case)
@@ -395,6 +426,59 @@ impl Case {
                 .unwrap_or_else(|| "case".into()),
         }
     }
+}
+
+/// Largest case file read (a case is a few kB; 100 000 `load_factors` take ~2 MB).
+pub const MAX_CASE_BYTES: u64 = 16 << 20;
+/// Largest mesh file read: over 7 times the ASCII `.msh` of a mesh at the
+/// element cap (about 130 bytes per element and its nodes).
+pub const MAX_MESH_BYTES: u64 = 256 << 20;
+
+/// Reads an input file of at most `limit` bytes. Anything that is not a regular
+/// file (a folder, a device such as `/dev/zero`, a FIFO) is refused before it
+/// is opened, so nothing is read without end; the bound is checked on the
+/// size and again while reading (a file that grows).
+pub fn read_input(path: &Path, limit: u64, what: &str) -> Result<Vec<u8>> {
+    use std::io::Read;
+    let meta = std::fs::metadata(path).map_err(|e| Error::io(path, e))?;
+    let kind = |m: &std::fs::Metadata| {
+        let t = m.file_type();
+        if t.is_dir() {
+            "a folder"
+        } else {
+            "a device, FIFO or socket"
+        }
+    };
+    let too_big = |n: u64| {
+        Error::input(
+            path.display().to_string(),
+            format!(
+                "the {what} has {n} bytes or more, more than the limit of {limit} bytes ({} MiB)",
+                limit >> 20
+            ),
+        )
+    };
+    if !meta.is_file() {
+        return Err(Error::input(
+            path.display().to_string(),
+            format!(
+                "is {}, not a regular file: a {what} must be a file",
+                kind(&meta)
+            ),
+        ));
+    }
+    if meta.len() > limit {
+        return Err(too_big(meta.len()));
+    }
+    let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
+    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    file.take(limit + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| Error::io(path, e))?;
+    if bytes.len() as u64 > limit {
+        return Err(too_big(limit + 1));
+    }
+    Ok(bytes)
 }
 
 fn line_col(text: &str, offset: usize) -> (usize, usize) {

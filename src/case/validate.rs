@@ -1,6 +1,7 @@
 //! Checks of a parsed case that need no mesh: numbers in range, laws complete,
 //! parameters that belong to another law rejected.
 
+use super::ranges;
 use super::Weights;
 use super::{Case, InterfaceLawSpec};
 use crate::error::{Error, Result};
@@ -34,7 +35,7 @@ pub fn check_case(case: &Case) -> Result<Checked> {
         if !plain_folder_name(name) {
             return Err(Error::input(
                 at("name"),
-                format!("{name:?} is not a plain folder name (it names out/<name>/: not empty, no / or \\, not . or .., no control characters)"),
+                format!("{name:?} is not a plain folder name (it names out/<name>/: not empty, at most {MAX_NAME_BYTES} bytes, no / or \\, not . or .., no control characters)"),
             ));
         }
     }
@@ -45,6 +46,7 @@ pub fn check_case(case: &Case) -> Result<Checked> {
             format!("{t} must be a positive number (mm)"),
         ));
     }
+    ranges::THICKNESS.check(at("[model] thickness"), t)?;
     if case.mesh.refine == 0 {
         return Err(Error::input(at("[mesh] refine"), "must be at least 1"));
     }
@@ -66,6 +68,30 @@ pub fn check_case(case: &Case) -> Result<Checked> {
         }
     }
     check_element_count(case, &at)?;
+    check_names(case, &at)?;
+    for b in &case.mesh.block {
+        for (axis, v) in
+            b.x.iter()
+                .map(|v| ("x", v))
+                .chain(b.y.iter().map(|v| ("y", v)))
+        {
+            ranges::COORDINATE.check(
+                at(&format!("[[mesh.block]] \"{}\" {axis}", clip(&b.body))),
+                *v,
+            )?;
+        }
+    }
+    for (i, bc) in case.boundary.iter().enumerate() {
+        for (k, v) in [("ux", bc.ux), ("uy", bc.uy)] {
+            ranges::DISPLACEMENT.check(at(&format!("boundary[{i}] {k}")), v.unwrap_or(0.0))?;
+        }
+    }
+    for (i, ld) in case.load.iter().enumerate() {
+        ranges::PRESSURE.check(at(&format!("load[{i}] pressure")), ld.pressure)?;
+    }
+    for v in case.output.probe {
+        ranges::COORDINATE.check(at("[output] probe"), v)?;
+    }
     for (body, m) in &case.materials {
         let key = format!("[materials.{body}]");
         for (name, v) in [
@@ -88,6 +114,17 @@ pub fn check_case(case: &Case) -> Result<Checked> {
                 ));
             }
         }
+        for (name, v, range) in [
+            ("young", m.young, &ranges::MODULUS),
+            (
+                "yield_stress",
+                m.yield_stress.unwrap_or(0.0),
+                &ranges::YIELD_STRESS,
+            ),
+            ("hardening", m.hardening, &ranges::HARDENING),
+        ] {
+            range.check(at(&format!("{key} {name}")), v)?;
+        }
     }
     let mut laws = BTreeMap::new();
     let mut tangential = BTreeMap::new();
@@ -108,6 +145,17 @@ pub fn check_case(case: &Case) -> Result<Checked> {
                 ));
             }
         }
+        for (k, v, range) in [
+            ("c_n", spec.c_n, &ranges::COMPLIANCE),
+            ("a", spec.a, &ranges::PRESSURE),
+            ("b", spec.b, &ranges::EXP_RATE),
+            ("slope", spec.slope, &ranges::SLOPE),
+            ("p_c", spec.p_c, &ranges::PRESSURE),
+            ("gap", Some(spec.gap), &ranges::DISPLACEMENT),
+            ("start_pressure", spec.start_pressure, &ranges::PRESSURE),
+        ] {
+            range.check(at(&format!("{key} {k}")), v.unwrap_or(0.0))?;
+        }
         laws.insert(name.clone(), law);
         if let Some(t) = &spec.tangential {
             let key = format!("{key} tangential");
@@ -116,6 +164,13 @@ pub fn check_case(case: &Case) -> Result<Checked> {
             }
             let law = TangentialLaw::new(t.r, t.s, t.kp_ratio, t.mu, t.beta, t.n, t.yield_ratio)
                 .map_err(|m| Error::input(at(&key), m))?;
+            for (k, v, range) in [
+                ("r", t.r, &ranges::SHEAR_R),
+                ("mu", t.mu, &ranges::FRICTION),
+                ("n", t.n, &ranges::SLIP_RATE),
+            ] {
+                range.check(at(&format!("{key} {k}")), v)?;
+            }
             tangential.insert(name.clone(), (law, t.scheme));
         }
     }
@@ -123,14 +178,65 @@ pub fn check_case(case: &Case) -> Result<Checked> {
     Ok(Checked { laws, tangential })
 }
 
+/// Longest case name in bytes (a folder name; most file systems stop at 255).
+pub const MAX_NAME_BYTES: usize = 255;
+
 /// A name that can only mean one folder under out/.
 fn plain_folder_name(name: &str) -> bool {
     !name.is_empty()
+        && name.len() <= MAX_NAME_BYTES
         && name != "."
         && name != ".."
         && !name
             .chars()
             .any(|c| c == '/' || c == '\\' || c.is_control())
+}
+
+/// At most [`crate::error::MAX_QUOTE`] characters of a name, for messages.
+pub fn clip(name: &str) -> String {
+    crate::error::clip(name)
+}
+
+/// Body and interface names of the mesh specification: not empty (a body ""
+/// would make sets named ".left"), no surrounding blanks, and every interface
+/// name once (two interfaces of one name would both take the law of that
+/// name: every pair twice).
+fn check_names(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
+    let blank = |n: &str| n.trim().is_empty() || n.trim() != n;
+    for (i, b) in case.mesh.block.iter().enumerate() {
+        if blank(&b.body) {
+            return Err(Error::input(
+                at(&format!("mesh.block[{i}] body")),
+                format!(
+                    "\"{}\" is not a usable body name (empty, blank, or with blanks around it): it names the sets <body>.left, .right, .top, .bottom, .all and [materials.<body>]",
+                    clip(&b.body)
+                ),
+            ));
+        }
+    }
+    let mut seen = std::collections::BTreeSet::new();
+    for (i, spec) in case.mesh.interface.iter().enumerate() {
+        if blank(&spec.name) {
+            return Err(Error::input(
+                at(&format!("mesh.interface[{i}] name")),
+                format!(
+                    "\"{}\" is not a usable interface name (empty, blank, or with blanks around it): it keys [interface.<name>]",
+                    clip(&spec.name)
+                ),
+            ));
+        }
+        if !seen.insert(spec.name.as_str()) {
+            return Err(Error::input(
+                at(&format!("mesh.interface[{i}] name")),
+                format!(
+                    "two [[mesh.interface]] entries are named \"{}\": each would take the law [interface.{}] and every pair would get its springs twice; give each interface its own name",
+                    clip(&spec.name),
+                    clip(&spec.name)
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// The total element count must not pass [`MAX_ELEMENTS`]: the mesh is never

@@ -305,7 +305,8 @@ pub fn curve(result: &RunResult) -> String {
     );
     for inc in &result.increments {
         let m = &inc.measures;
-        let ratio = fy.map_or(f64::NAN, |f| m.total_load_kn / f);
+        // docs/output.md: 0 when the run never yields (no first-yield load)
+        let ratio = fy.map_or(0.0, |f| m.total_load_kn / f);
         let _ = writeln!(
             s,
             "{},{:.9},{:.9e},{:.9e},{:.9},{:.9e},{:.9e},{}",

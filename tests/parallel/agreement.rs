@@ -7,7 +7,13 @@ use crate::support::*;
 use std::path::PathBuf;
 
 fn compare(case: &str, refine: &str) {
-    let root = common::scratch(&format!("parallel-{case}"));
+    compare_on(case, refine, &[1, 2]);
+}
+
+/// The serial answer against PETSc on each of `ranks` ranks.
+fn compare_on(case: &str, refine: &str, ranks: &[usize]) {
+    let tag: Vec<String> = ranks.iter().map(|n| n.to_string()).collect();
+    let root = common::scratch(&format!("parallel-{case}-{}", tag.join("-")));
     let case = common::root().join("cases").join(case);
     let out = |n: &str| root.join(n);
     let (c, e) = serial(&[
@@ -22,19 +28,18 @@ fn compare(case: &str, refine: &str) {
         out("serial").to_str().unwrap(),
     ]);
     assert_eq!(c, 0, "{e}");
-    for (n, name) in [(1, "petsc1"), (2, "petsc2")] {
-        run_on(n, &case, &out(name), &["--refine", refine]);
+    let runs: Vec<(usize, String)> = ranks.iter().map(|&n| (n, format!("petsc{n}"))).collect();
+    for (n, name) in &runs {
+        run_on(*n, &case, &out(name), &["--refine", refine]);
     }
     let s = json(&out("serial"));
     let s_if = interfaces(&out("serial"));
     let u_scale = s["final"]["center_displacement_mm"].as_f64().unwrap().abs();
-    for run in ["petsc1", "petsc2"] {
+    for (n, run) in &runs {
+        let run = run.as_str();
         let p = json(&out(run));
         assert_eq!(p["backend"], "petsc");
-        assert_eq!(
-            p["ranks"].as_u64().unwrap(),
-            if run == "petsc1" { 1 } else { 2 }
-        );
+        assert_eq!(p["ranks"].as_u64().unwrap(), *n as u64);
         assert_eq!(
             p["backend_stats"]["assembly_mallocs"].as_f64().unwrap(),
             0.0,
@@ -122,6 +127,45 @@ fn serial_petsc1_and_petsc2_agree_on_a_refined_case_with_plasticity_and_lift_off
 #[test]
 fn serial_petsc1_and_petsc2_agree_with_friction() {
     compare("punch-friction-b", "1");
+}
+
+/// Four ranks (oversubscribed on a small machine): the partition puts a rank
+/// where it holds no interface point at all and splits a body between ranks
+/// (both checked here on the very partition the run uses: METIS is
+/// deterministic), and the answer is still the serial one, to the same 1e-6.
+#[test]
+fn serial_and_petsc4_agree_where_a_rank_holds_no_interface_point() {
+    use asperity::backend::petsc::solver::Partition;
+    let (case, refine) = ("strip-lift-off", "2");
+    let opts = asperity::driver::RunOptions {
+        refine: Some(refine.parse().unwrap()),
+        ..Default::default()
+    };
+    let model =
+        asperity::driver::load_model(&common::root().join("cases").join(case), &opts).unwrap();
+    let part = Partition::new(&model, 4).unwrap();
+    let without_points: Vec<usize> = (0..4).filter(|r| !part.point_owner.contains(r)).collect();
+    assert!(
+        !without_points.is_empty(),
+        "every rank holds interface points: the test would not test that"
+    );
+    let bodies = model.mesh.bodies.len();
+    let mut ranks_of_body = vec![std::collections::BTreeSet::new(); bodies];
+    for (e, el) in model.mesh.elements.iter().enumerate() {
+        ranks_of_body[el.body].insert(part.element_owner[e]);
+    }
+    assert!(
+        ranks_of_body.iter().any(|r| r.len() > 1),
+        "no body is split between ranks: {ranks_of_body:?}"
+    );
+    assert!(
+        (0..4).all(|r| part.element_owner.contains(&r)),
+        "a rank without elements"
+    );
+    println!(
+        "4 ranks: ranks {without_points:?} hold no interface point; ranks per body {ranks_of_body:?}"
+    );
+    compare_on(case, refine, &[4]);
 }
 
 /// `--stop-after` under `mpirun -n 2` stops every rank at the same increment

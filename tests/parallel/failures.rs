@@ -34,3 +34,33 @@ fn a_load_snes_cannot_converge_ends_every_rank_cleanly() {
     let err = fails_cleanly_on_two_ranks(&root, &case, &[]);
     assert!(err.contains("did not converge"), "{err}");
 }
+
+/// The whole-model checks run on every rank (each builds the model from the
+/// same file): a case valid key by key but wrong as a whole (two interfaces
+/// over the same node pairs; a mesh reaching x < 0 with symmetric_half) ends
+/// both ranks with exit code 2 and one message, no output.
+#[test]
+fn a_model_wrong_as_a_whole_is_refused_once_on_two_ranks() {
+    for (name, needle) in [
+        ("101-interface-pairs-twice", "both pair the nodes at"),
+        ("107-symmetric-half-negative-x", "lies at x < 0"),
+    ] {
+        let root = common::scratch(&format!("parallel-whole-{name}"));
+        let case = common::root().join("tests/bad_inputs").join(name);
+        let err = fails_cleanly_on_two_ranks(&root, &case, &[]);
+        assert!(err.contains(needle), "{name}: {err}");
+    }
+}
+
+/// `--backend serial` under `mpirun -n 2` would run two independent serial
+/// solves into one folder: both ranks exit 2, one message, nothing written.
+#[test]
+fn the_serial_backend_under_mpirun_is_refused() {
+    let root = common::scratch("parallel-serial-backend");
+    let case = common::root().join("cases/punch-plane-stress");
+    let err = fails_cleanly_on_two_ranks(&root, &case, &["--backend", "serial"]);
+    assert!(
+        err.contains("the serial backend under an MPI launcher with 2 processes"),
+        "{err}"
+    );
+}

@@ -24,7 +24,7 @@ pub use build::build_mesh;
 pub use parse::{parse_msh, ElementBlock, MshFile};
 
 use super::Mesh;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::mesh::blocks::InterfaceSpec;
 use std::path::Path;
 
@@ -32,7 +32,7 @@ use std::path::Path;
 /// node and edge sets from physical curves, and the interfaces.
 /// `place` names the case (for errors about its keys).
 pub fn read(path: &Path, interfaces: &[InterfaceSpec], place: &str) -> Result<Mesh> {
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    let bytes = crate::case::read_input(path, crate::case::MAX_MESH_BYTES, "mesh file")?;
     let msh = parse_msh(&bytes, &path.display().to_string())?;
     build_mesh(&msh, interfaces, place)
 }
