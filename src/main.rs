@@ -63,8 +63,9 @@ enum Command {
         #[arg(long, value_parser = parse_scheme)]
         friction_scheme: Option<asperity::interface::FrictionScheme>,
         /// Linear-algebra backend: serial (faer), petsc (MPI; needs the `parallel`
-        /// feature), or auto: with the feature built in, petsc when started by
-        /// mpirun or when the case has 150,000 dofs or more (memory), else serial.
+        /// feature), or auto: petsc when started by mpirun (with the feature built
+        /// in), else serial, which is faster on one process at every size and
+        /// needs about 3 KB per dof (docs/performance.md, "Choosing the backend").
         #[arg(long, value_enum, default_value = "auto")]
         backend: BackendArg,
         /// Test hook: make the element loop fail on RANK at its N-th assembly
@@ -216,18 +217,6 @@ fn parse_fault(s: &str) -> Result<(usize, usize), String> {
     ))
 }
 
-/// Size above which `--backend auto` picks PETSc (MUMPS) on one rank over faer
-/// when built with the `parallel` feature: faer's LU peaks near 23 KB per dof
-/// (2.2 GB at 93.5k dofs) against 4.9 KB for MUMPS, for 18% less time
-/// (docs/performance.md, "Choosing the backend by size").
-const AUTO_PETSC_DOFS: usize = 150_000;
-
-/// Does the case (with its overrides) have at least [`AUTO_PETSC_DOFS`] dofs?
-/// A case that does not load is left to the serial path, which reports it.
-fn large(case: &std::path::Path, opts: &RunOptions) -> bool {
-    driver::load_model(case, opts).is_ok_and(|m| m.mesh.num_dofs() >= AUTO_PETSC_DOFS)
-}
-
 /// Launched by mpirun (Open MPI or MPICH/Hydra)?
 fn under_mpirun() -> bool {
     ["OMPI_COMM_WORLD_SIZE", "PMI_SIZE"]
@@ -367,10 +356,12 @@ fn main() -> ExitCode {
             if let Err(e) = asperity::interrupt::install() {
                 eprintln!("warning: no SIGINT/SIGTERM handler ({e}); an interrupt kills the run");
             }
+            // auto: PETSc only under mpirun; on one process the serial
+            // Cholesky is 3-6x faster than PETSc at every size up to the
+            // element cap, in about as much memory (docs/performance.md,
+            // "Choosing the backend")
             let petsc = backend == BackendArg::Petsc
-                || (backend == BackendArg::Auto
-                    && cfg!(feature = "parallel")
-                    && (under_mpirun() || large(&case, &opts)));
+                || (backend == BackendArg::Auto && cfg!(feature = "parallel") && under_mpirun());
             if petsc {
                 return run_petsc(&case, &opts, &petsc_options);
             }
