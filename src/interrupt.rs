@@ -32,6 +32,7 @@ fn on_signal(sig: i32) {
 }
 
 /// Installs the SIGINT and SIGTERM handlers (once per process).
+#[allow(unsafe_code)] // signal_hook's registration, see the SAFETY note
 pub fn install() -> std::io::Result<()> {
     let mut result = Ok(());
     INSTALL.call_once(|| {

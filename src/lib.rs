@@ -13,6 +13,13 @@
 //! | 4.1-4.8: increments, Newton variants, status loop | [`solve`] |
 //!
 //! Units: mm, N, MPa everywhere.
+//!
+//! `unsafe` is denied in the whole crate except the PETSc layer
+//! ([`backend`]`::petsc`, feature `parallel`) and two documented system calls:
+//! the signal handler's registration ([`interrupt::install`]) and the atomic
+//! swap of the output folder (`renameat2`, [`output`]).
+
+#![deny(unsafe_code)]
 
 pub mod assembly;
 pub mod backend;

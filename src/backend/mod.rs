@@ -11,6 +11,7 @@
 //! [`Backend::agree`], so all ranks always take the same branch.
 
 #[cfg(feature = "parallel")]
+#[allow(unsafe_code)] // the FFI layer: every call carries its SAFETY note
 pub mod petsc;
 pub mod serial;
 

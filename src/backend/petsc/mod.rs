@@ -3,7 +3,9 @@
 //! site with `chk(…)?`, and start-up order enforced by borrowing: objects borrow
 //! the [`Petsc`] guard, which borrows the MPI universe.
 //!
-//! This is the only module with `unsafe`.
+//! The crate denies `unsafe` (`#![deny(unsafe_code)]` in lib.rs); this module
+//! is allowed it, as are two documented system calls (the signal handler's
+//! registration and the output folder's atomic swap).
 
 pub mod ffi;
 pub mod snes;
