@@ -25,6 +25,13 @@ pub enum Error {
     },
     /// A singular or otherwise failed linear solve.
     Solver(String),
+    /// Results that could not be written or drawn (a failed write on another
+    /// rank, a figure the plotting library refused).
+    Output(String),
+    /// MPI or the parallel set-up failed.
+    Parallel(String),
+    /// A study (refine, stability, figures) whose runs did not give what it needs.
+    Study(String),
     /// A file system failure.
     Io {
         path: PathBuf,
@@ -142,6 +149,9 @@ impl Error {
                 "increment {increment} (load factor {load_factor:.6}) did not converge: {message}"
             ),
             Error::Solver(message) => format!("linear solver: {message}"),
+            Error::Output(message) => format!("output: {message}"),
+            Error::Parallel(message) => format!("MPI: {message}"),
+            Error::Study(message) => format!("study: {message}"),
             Error::Io { path, source } => format!("{}: {source}", path.display()),
         }
     }

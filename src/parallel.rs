@@ -27,7 +27,7 @@ pub fn run(
 ) -> (Result<(PathBuf, crate::solve::RunResult)>, bool) {
     let started = Instant::now();
     let Some(universe) = mpi::initialize() else {
-        let e = Error::Solver("MPI could not be initialized".into());
+        let e = Error::Parallel("MPI could not be initialized".into());
         report(&e);
         return (Err(e), true);
     };

@@ -315,7 +315,7 @@ pub fn run_from(
                     }
                     if !engine.backend.agree(written.is_ok()) {
                         return Err(written.err().unwrap_or_else(|| {
-                            Error::Solver("writing the output failed on rank 0".into())
+                            Error::Output("writing the output failed on rank 0".into())
                         }));
                     }
                     continue;

@@ -198,7 +198,7 @@ pub fn figures(cases: &Path, out: &Path) -> Result<Vec<PathBuf>> {
         let (_, snaps) = capture(case)?;
         let last = snaps
             .last()
-            .ok_or_else(|| Error::Solver("no increment converged".into()))?;
+            .ok_or_else(|| Error::Study("no increment converged".into()))?;
         series.push(Series {
             label: format!("h = E/{k}"),
             points: last.surface.clone(),

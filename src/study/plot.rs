@@ -80,7 +80,7 @@ pub fn save(chart: &Chart, stem: &Path, pictures: bool) -> Result<Vec<PathBuf>> 
 }
 
 fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, c: &Chart) -> Result<()> {
-    let e = |m: String| Error::Solver(format!("drawing \"{}\": {m}", c.title));
+    let e = |m: String| Error::Output(format!("drawing \"{}\": {m}", c.title));
     root.fill(&WHITE).map_err(|x| e(x.to_string()))?;
     let pts = c.series.iter().flat_map(|s| s.points.iter().copied());
     let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
@@ -231,7 +231,7 @@ pub fn save_grid(g: &Grid, stem: &Path, pictures: bool) -> Result<Vec<PathBuf>> 
 }
 
 fn draw_grid<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, g: &Grid) -> Result<()> {
-    let e = |m: String| Error::Solver(format!("drawing \"{}\": {m}", g.title));
+    let e = |m: String| Error::Output(format!("drawing \"{}\": {m}", g.title));
     root.fill(&WHITE).map_err(|x| e(x.to_string()))?;
     let (w, h) = root.dim_in_pixel();
     let (left, top) = (230i32, 60i32);

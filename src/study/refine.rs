@@ -124,7 +124,7 @@ pub fn refine(
             }
             let dir = scratch.join(format!("c{c}-r{l}"));
             let p = runner::run(case, &args, cfg.which, &dir)
-                .map_err(|m| Error::Solver(format!("{} at refine {l}: {m}", cfg.label())))?;
+                .map_err(|m| Error::Study(format!("{} at refine {l}: {m}", cfg.label())))?;
             eprintln!(
                 "study: {} refine {l}: {} dofs, {:.2} s",
                 cfg.label(),

@@ -143,7 +143,7 @@ pub fn stability(
         Which::Serial,
         &scratch.join("reference"),
     )
-    .map_err(|e| Error::Solver(format!("the reference run ({finest} steps) failed: {e}")))?;
+    .map_err(|e| Error::Study(format!("the reference run ({finest} steps) failed: {e}")))?;
     let _ = std::fs::remove_dir_all(&scratch);
     // the parent too, when no other study is using it
     let _ = std::fs::remove_dir(out.join(".runs"));
