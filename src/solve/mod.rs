@@ -5,6 +5,7 @@
 mod accelerate;
 pub mod newton;
 pub mod nonlinear;
+pub mod stabilize;
 pub mod stepping;
 mod yield_point;
 
