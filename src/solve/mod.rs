@@ -180,6 +180,8 @@ pub struct RunResult {
     pub stopped: Option<Stop>,
     /// Increments taken over from a restart file (0: a fresh run).
     pub resumed_from: usize,
+    /// The contact stabilization's account, when any step used it.
+    pub stabilization: Option<stabilize::Report>,
 }
 
 /// Runs the whole load history of the model on the serial backend.
@@ -335,6 +337,7 @@ pub fn run_from(
             }
         }
     }
+    let stabilization = stabilize::final_report(&engine, &ck.committed);
     // the peak and every stage, summed over ranks (every rank passed the same stages)
     let mut memory: Vec<f64> = std::iter::once(peak_memory_mb())
         .chain(engine.stats.memory_mb.iter().map(|s| s.1))
@@ -380,6 +383,7 @@ pub fn run_from(
         final_state: ck.committed,
         stopped,
         resumed_from,
+        stabilization,
     })
 }
 

@@ -236,10 +236,7 @@ impl<'m> Engine<'m> {
         lambda: f64,
         response: Response,
     ) -> Result<(State, usize), String> {
-        if let Some(result) = super::stabilize::step(self, committed, lambda, response) {
-            return result;
-        }
-        self.plain_step(committed, lambda, response)
+        super::stabilize::step(self, committed, lambda, response)
     }
 
     /// The step without the stabilization's choice (it may still hold springs

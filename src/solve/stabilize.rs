@@ -259,14 +259,6 @@ impl Stabilizer {
         })
     }
 
-    /// Whether the step from `committed` to `lambda` is to be stabilized.
-    fn needed(&self, model: &Model, committed: &State, lambda: f64) -> bool {
-        self.enabled
-            && (self.sticky
-                || self.unloaded(lambda).is_some()
-                || !self.floating(model, &committed.u).is_empty())
-    }
-
     /// The physical reason a step from `committed` to `lambda` may have no
     /// solution, if there is one: a body held by nothing.
     pub fn explain(&self, model: &Model, committed: &State, lambda: f64) -> Option<String> {
@@ -421,6 +413,16 @@ fn internal_energy(engine: &Engine, state: &State) -> f64 {
     v[0]
 }
 
+/// The account of a run for summary.json, with the internal energy of the
+/// final state taken into the reference (collective); `None` when no step
+/// used the stabilization.
+pub fn final_report(engine: &Engine, last: &State) -> Option<Report> {
+    let st = engine.stabilizer.as_ref().filter(|s| s.used > 0)?;
+    let mut report = st.report.clone();
+    report.internal = report.internal.max(internal_energy(engine, last));
+    Some(report)
+}
+
 /// The base spring stiffness of every interface for a step from `committed`
 /// to `lambda` (MPa/mm): k₀ = p_ref / (g_open + u(p_ref)).
 fn base_springs(engine: &Engine, committed: &State, lambda: f64) -> Vec<f64> {
@@ -445,21 +447,38 @@ fn base_springs(engine: &Engine, committed: &State, lambda: f64) -> Vec<f64> {
         .collect()
 }
 
-/// [`Engine::step`] through the stabilization when the step needs it; `None`
-/// when it does not (the caller then takes the plain step).
+/// [`Engine::step`]: the plain step, or the stabilized one when the committed
+/// state leaves a body floating (or follows an accepted stabilized state);
+/// a plain step to zero load on an interface-held body that fails is retried
+/// stabilized. With `stabilization = "off"` a failure names the floating body.
 pub(super) fn step(
     engine: &mut Engine,
     committed: &State,
     lambda: f64,
     response: Response,
-) -> Option<Result<(State, usize), String>> {
-    let st = engine.stabilizer.as_mut()?;
+) -> Result<(State, usize), String> {
+    let Some(st) = engine.stabilizer.as_mut() else {
+        return engine.plain_step(committed, lambda, response);
+    };
     st.pending = None;
-    let needed = st.needed(engine.model, committed, lambda);
-    if !engine.backend.agree(needed) {
-        return None;
+    let needed = st.enabled && (st.sticky || !st.floating(engine.model, &committed.u).is_empty());
+    if engine.backend.agree(needed) {
+        return stabilized_step(engine, committed, lambda, response);
     }
-    Some(stabilized_step(engine, committed, lambda, response))
+    let plain = engine.plain_step(committed, lambda, response);
+    let Err(e) = plain else { return plain };
+    if engine.interrupted {
+        return Err(e);
+    }
+    let st = engine.stabilizer.as_ref().expect("checked above");
+    let retry = st.enabled && st.unloaded(lambda).is_some();
+    if engine.backend.agree(retry) {
+        return stabilized_step(engine, committed, lambda, response);
+    }
+    match st.explain(engine.model, committed, lambda) {
+        Some(why) => Err(format!("{why} ({e})")),
+        None => Err(e),
+    }
 }
 
 fn stabilized_step(
