@@ -265,6 +265,11 @@ impl Stabilizer {
         let unloaded = self.unloaded(lambda);
         let floating = self.floating(model, &committed.u);
         let b = unloaded.or(floating.first().copied())?;
+        // λ as short as it is exact to six places: "0", "0.5", "0.000195"
+        let lambda = format!("{lambda:.6}")
+            .trim_end_matches('0')
+            .trim_end_matches('.')
+            .to_string();
         let name = &model.mesh.bodies[b];
         let via: Vec<&str> = model
             .interfaces
@@ -279,13 +284,13 @@ impl Stabilizer {
         };
         Some(if floating.contains(&b) {
             format!(
-                "body \"{name}\" is not in contact at the start of the step to λ = {lambda:.6} \
+                "body \"{name}\" is not in contact at the start of the step to λ = {lambda} \
                  (every pair of {via} is open) and nothing else holds it: its boundary \
                  conditions leave a rigid-body motion free"
             )
         } else {
             format!(
-                "body \"{name}\" carries no load at λ = {lambda:.6} and is held only through \
+                "body \"{name}\" carries no load at λ = {lambda} and is held only through \
                  {via}: at zero contact force nothing fixes its position"
             )
         })
