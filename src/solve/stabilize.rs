@@ -91,7 +91,7 @@ pub struct Report {
 #[derive(Clone, Debug)]
 pub struct Stabilizer {
     bodies: Vec<Body>,
-    /// Bodies whose boundary conditions leave a rigid motion free.
+    /// Bodies with an interface whose boundary conditions leave a rigid motion free.
     loose: Vec<bool>,
     enabled: bool,
     /// Spring stiffness per interface (MPa/mm) while a stabilized solve runs.
@@ -185,7 +185,17 @@ impl Stabilizer {
                 bodies[b].load += model.f_ext[2 * n].hypot(model.f_ext[2 * n + 1]);
             }
         }
-        let loose = bodies.iter().map(|b| !fixes_all(&b.bc)).collect();
+        // a body without an interface and without enough supports is a
+        // mechanism no interface spring can hold (and mostly refused up front)
+        let loose = (0..nb)
+            .map(|b| {
+                !fixes_all(&bodies[b].bc)
+                    && model
+                        .interfaces
+                        .iter()
+                        .any(|im| im.body_a == b || im.body_b == b)
+            })
+            .collect();
         Stabilizer {
             bodies,
             loose,
@@ -465,10 +475,15 @@ pub(super) fn step(
     let Some(st) = engine.stabilizer.as_mut() else {
         return engine.plain_step(committed, lambda, response);
     };
-    st.pending = None;
+    // the account follows the steps that may be committed (the run's own);
+    // the elastic sub-steps that locate first yield leave it alone
+    let main = response == Response::Plastic;
+    if main {
+        st.pending = None;
+    }
     let needed = st.enabled && (st.sticky || !st.floating(engine.model, &committed.u).is_empty());
     if engine.backend.agree(needed) {
-        return stabilized_step(engine, committed, lambda, response);
+        return stabilized_step(engine, committed, lambda, response, main);
     }
     let plain = engine.plain_step(committed, lambda, response);
     let Err(e) = plain else { return plain };
@@ -478,7 +493,7 @@ pub(super) fn step(
     let st = engine.stabilizer.as_ref().expect("checked above");
     let retry = st.enabled && st.unloaded(lambda).is_some();
     if engine.backend.agree(retry) {
-        return stabilized_step(engine, committed, lambda, response);
+        return stabilized_step(engine, committed, lambda, response, main);
     }
     match st.explain(engine.model, committed, lambda) {
         Some(why) => Err(format!("{why} ({e})")),
@@ -491,6 +506,7 @@ fn stabilized_step(
     committed: &State,
     lambda: f64,
     response: Response,
+    main: bool,
 ) -> Result<(State, usize), String> {
     let m = engine.model;
     let base = base_springs(engine, committed, lambda);
@@ -523,7 +539,9 @@ fn stabilized_step(
             engine.stabilizer.as_mut().expect("checked").guess = Some(state.u.clone());
             match engine.plain_step(committed, lambda, response) {
                 Ok((exact, its)) => {
-                    engine.stabilizer.as_mut().expect("checked").pending = Some((false, 0.0));
+                    if main {
+                        engine.stabilizer.as_mut().expect("checked").pending = Some((false, 0.0));
+                    }
                     return Ok((exact, iterations + its));
                 }
                 Err(e) if engine.interrupted => return Err(e),
@@ -550,7 +568,9 @@ fn stabilized_step(
         .backend
         .agree(total <= limit && st.report.internal > 0.0)
     {
-        st.pending = Some((true, w));
+        if main {
+            st.pending = Some((true, w));
+        }
         Ok((state, iterations))
     } else {
         Err(format!(
