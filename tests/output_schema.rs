@@ -89,9 +89,13 @@ fn summary_json_matches_the_documented_schema() {
     std::fs::write(dir.join("case.toml"), text).unwrap();
     let without = summary_of("elastic", &dir, &["--increments", "2"]);
     assert!(without["first_yield"].is_null(), "{without}");
+    // a gap closed under force control: the stabilization's report
+    let gap = summary_of("gap", &cases.join("punch-gap"), &[]);
+    assert!(gap["stabilization"].is_object(), "{gap}");
+    assert!(with.get("stabilization").is_none(), "{with}");
     let mut seen = std::collections::BTreeSet::new();
     let mut errors = Vec::new();
-    for s in [&with, &without] {
+    for s in [&with, &without, &gap] {
         let mut l = Vec::new();
         leaves("", s, &mut l);
         for (k, t) in l {

@@ -39,9 +39,10 @@
 //!
 //! Which steps use it: those whose committed state leaves a body held only
 //! through open pairs (approach below −1e-12 mm, where the secant start does
-//! not reach), those that take an interface-held body to zero load, and the
-//! step after an accepted stabilized state. Every other step runs exactly as
-//! without this module. All decisions are taken from replicated data and
+//! not reach). Every other step is first the plain step, exactly as without
+//! this module; only if it fails, in a model with a body held only through an
+//! interface, is it retried stabilized. A loaded body is accepted released
+//! only; the stabilized answer itself only at zero load (3. above). All decisions are taken from replicated data and
 //! confirmed through `Backend::agree`; the springs are assembled with the
 //! interface points each rank owns.
 
@@ -100,8 +101,6 @@ pub struct Stabilizer {
     pub(super) guess: Option<Vec<f64>>,
     /// Filled by the last step, moved into the report when it is committed.
     pending: Option<(bool, f64)>,
-    /// The committed state was accepted with the springs acting.
-    sticky: bool,
     pub report: Report,
     /// Steps that used the stabilization at all (committed or not).
     pub used: usize,
@@ -203,7 +202,6 @@ impl Stabilizer {
             springs: None,
             guess: None,
             pending: None,
-            sticky: false,
             report: Report {
                 limit: model.case.solver.stabilization_energy,
                 ..Report::default()
@@ -315,9 +313,6 @@ impl Stabilizer {
             } else {
                 self.report.released += 1;
             }
-            self.sticky = stabilized;
-        } else {
-            self.sticky = false;
         }
     }
 }
@@ -481,9 +476,9 @@ pub(super) fn step(
     if main {
         st.pending = None;
     }
-    let needed = st.enabled && (st.sticky || !st.floating(engine.model, &committed.u).is_empty());
+    let needed = st.enabled && !st.floating(engine.model, &committed.u).is_empty();
     if engine.backend.agree(needed) {
-        return stabilized_step(engine, committed, lambda, response, main);
+        return stabilized_step(engine, committed, lambda, response, main, None);
     }
     let plain = engine.plain_step(committed, lambda, response);
     let Err(e) = plain else { return plain };
@@ -491,9 +486,9 @@ pub(super) fn step(
         return Err(e);
     }
     let st = engine.stabilizer.as_ref().expect("checked above");
-    let retry = st.enabled && st.unloaded(lambda).is_some();
+    let retry = st.enabled && st.loose.iter().any(|&l| l);
     if engine.backend.agree(retry) {
-        return stabilized_step(engine, committed, lambda, response, main);
+        return stabilized_step(engine, committed, lambda, response, main, Some(e));
     }
     match st.explain(engine.model, committed, lambda) {
         Some(why) => Err(format!("{why} ({e})")),
@@ -507,6 +502,7 @@ fn stabilized_step(
     lambda: f64,
     response: Response,
     main: bool,
+    prior: Option<String>,
 ) -> Result<(State, usize), String> {
     let m = engine.model;
     let base = base_springs(engine, committed, lambda);
@@ -552,12 +548,22 @@ fn stabilized_step(
         last = Some((state, ks));
     }
     let st = engine.stabilizer.as_ref().expect("checked");
-    let why = st
-        .explain(m, committed, lambda)
-        .unwrap_or_else(|| "a body is held only by the contact stabilization".into());
-    let Some((state, ks)) = last else {
-        return Err(format!("{why}; {failure}"));
+    let why = st.explain(m, committed, lambda);
+    let (Some((state, ks)), false) = (last, loaded) else {
+        // a loaded body: only a released answer is accepted
+        let failure = if failure.is_empty() {
+            "no stabilized solution rested on closed pairs".to_string()
+        } else {
+            failure
+        };
+        return Err(match (why, prior) {
+            (Some(why), Some(prior)) => format!("{why} ({prior}; with stabilization: {failure})"),
+            (Some(why), None) => format!("{why} ({failure})"),
+            (None, Some(prior)) => format!("{prior} (retried with stabilization: {failure})"),
+            (None, None) => failure,
+        });
     };
+    let why = why.unwrap_or_else(|| "a body is held only by the contact stabilization".into());
     let w = spring_work(engine, &ks, &committed.u, &state.u);
     let e_now = internal_energy(engine, committed).max(internal_energy(engine, &state));
     let st = engine.stabilizer.as_mut().expect("checked");
