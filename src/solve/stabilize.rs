@@ -39,12 +39,13 @@
 //!
 //! Which steps use it: those whose committed state leaves a body held only
 //! through open pairs (approach below −1e-12 mm, where the secant start does
-//! not reach). Every other step is first the plain step, exactly as without
-//! this module; only if it fails, in a model with a body held only through an
-//! interface, is it retried stabilized. A loaded body is accepted released
-//! only; the stabilized answer itself only at zero load (3. above). All decisions are taken from replicated data and
-//! confirmed through `Backend::agree`; the springs are assembled with the
-//! interface points each rank owns.
+//! not reach). Every other step is the plain step, exactly as without this
+//! module; only if it fails when it takes a body held only through an
+//! interface to zero load is it retried stabilized. A loaded body is accepted
+//! released only; the stabilized answer itself only at zero load (3. above). All
+//! decisions are taken from replicated data and confirmed through
+//! `Backend::agree`; the springs are assembled with the interface points each
+//! rank owns.
 
 use super::newton::Engine;
 use super::State;
@@ -486,7 +487,8 @@ pub(super) fn step(
         return Err(e);
     }
     let st = engine.stabilizer.as_ref().expect("checked above");
-    let retry = st.enabled && st.loose.iter().any(|&l| l);
+    // only at zero load: any other failure is cut back exactly as before
+    let retry = st.enabled && st.unloaded(lambda).is_some();
     if engine.backend.agree(retry) {
         return stabilized_step(engine, committed, lambda, response, main, Some(e));
     }
