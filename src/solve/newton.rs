@@ -228,6 +228,7 @@ impl<'m> Engine<'m> {
     /// branch is taken on all ranks alike. The iterations are the built-in loop
     /// below, or the engine's [`NonlinearSolver`] (PETSc SNES) when it has one;
     /// both call the same [`StepProblem`].
+    ///
     /// A step that would leave a body floating goes through the contact
     /// stabilization ([`super::stabilize`]); every other step is the plain one.
     pub fn step(
