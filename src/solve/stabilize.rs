@@ -595,3 +595,46 @@ fn stabilized_step(
         ))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn body() -> Body {
+        Body {
+            centre: [10.0, 10.0],
+            size: 20.0,
+            bc: [0.0; 6],
+            load: 0.0,
+            driven: false,
+        }
+    }
+
+    #[test]
+    fn rows_fix_the_rigid_motions_they_should() {
+        let b = body();
+        // u_x = 0 along the left edge: x translation and rotation, not y
+        let mut g = [0.0; 6];
+        for y in [0.0, 5.0, 10.0, 20.0] {
+            add_row(&mut g, b.row([0.0, y], [1.0, 0.0]));
+        }
+        assert!(!fixes_all(&g));
+        // one vertical support more fixes all three
+        let mut h = g;
+        add_row(&mut h, b.row([3.0, 0.0], [0.0, 1.0]));
+        assert!(fixes_all(&h));
+        // normal springs along a horizontal interface: y and rotation, with
+        // the left edge's x: all three
+        let mut s = g;
+        for x in [0.0, 10.0, 20.0] {
+            add_row(&mut s, b.row([x, 0.0], [0.0, 1.0]));
+        }
+        assert!(fixes_all(&s));
+        // vertical springs at one point only leave the rotation free without x
+        let mut one = [0.0; 6];
+        add_row(&mut one, b.row([5.0, 0.0], [0.0, 1.0]));
+        add_row(&mut one, b.row([5.0, 0.0], [0.0, 1.0]));
+        assert!(!fixes_all(&one));
+        assert!(!fixes_all(&[0.0; 6]));
+    }
+}
