@@ -123,6 +123,27 @@ fn a_uniform_gap_only_shifts_the_punch() {
         (1, 0),
         "only the first step floats"
     );
+
+    // automatic steps: the step control sees the released solve's iterations,
+    // so it takes the same steps as without the gap
+    let auto = |t: &str| {
+        let t = t
+            .replace("increments = 20\n", "")
+            .replace("first_increment = 0.05", "");
+        solve(&common::model(&t))
+    };
+    let (ga, fa) = (auto(&gap_case()), auto(&flush_text));
+    assert_eq!(ga.increments.len(), fa.increments.len());
+    for (a, b) in ga.increments.iter().zip(&fa.increments) {
+        // steps chosen from plastic strain increments equal to round-off
+        assert!(common::rel(a.load_factor, b.load_factor) < 1e-12);
+        assert!(
+            common::rel(
+                a.measures.center_displacement,
+                b.measures.center_displacement
+            ) < 1e-6
+        );
+    }
 }
 
 /// punch-plane-stress with an elastic foundation, loaded, unloaded to zero and

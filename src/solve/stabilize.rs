@@ -512,6 +512,9 @@ fn stabilized_step(
     st.used += 1;
     let loaded = st.unloaded(lambda).is_none();
     let mut guess: Option<Vec<f64>> = None;
+    // the iterations reported (curve.csv, automatic step control) are those
+    // of the solve whose answer is kept: the release, or the last stabilized
+    // solve at zero load; summary.json's newton_iterations counts them all
     let mut iterations = 0;
     let mut last: Option<(State, Vec<f64>)> = None;
     let mut failure = String::new();
@@ -531,7 +534,7 @@ fn stabilized_step(
                 break;
             }
         };
-        iterations += its;
+        iterations = its;
         let held = st.floating(m, &state.u).is_empty();
         if engine.backend.agree(loaded && held) {
             engine.stabilizer.as_mut().expect("checked").guess = Some(state.u.clone());
@@ -540,7 +543,7 @@ fn stabilized_step(
                     if main {
                         engine.stabilizer.as_mut().expect("checked").pending = Some((false, 0.0));
                     }
-                    return Ok((exact, iterations + its));
+                    return Ok((exact, its));
                 }
                 Err(e) if engine.interrupted => return Err(e),
                 Err(e) => failure = format!("release of the stabilization failed: {e}"),
