@@ -240,3 +240,32 @@ fn without_stabilization_the_failure_names_the_floating_body() {
         .to_string();
     assert!(e.contains("body \"punch\" carries no load at λ = 0"), "{e}");
 }
+
+#[test]
+fn reloading_after_unloading_a_plastic_foundation_to_zero() {
+    // the plain step to λ = 0 converges, leaving pairs touching at ~1e-17 MPa;
+    // the reloading step from there diverged before the stabilization (its
+    // tangent is 2p/u of that pressure) and is now stabilized and released
+    let text = std::fs::read_to_string(common::root().join("cases/punch-plane-stress/case.toml"))
+        .unwrap()
+        .replace(
+            "increments = 20\n",
+            "load_factors = [0.2, 0.4, 0.6, 0.8, 1.0, 0.5, 0.0, 0.5, 1.0]\n",
+        )
+        .replace("first_increment = 0.05", "");
+    let r = solve(&common::model(&text));
+    assert_eq!(r.increments.len(), 9);
+    let st = r.stabilization.as_ref().expect("the reload needs it");
+    assert_eq!((st.released, st.stabilized), (1, 0), "{st:?}");
+    let (zero, again, before) = (&r.increments[6], &r.increments[7], &r.increments[5]);
+    assert_eq!(zero.load_factor, 0.0);
+    assert!(zero.measures.normal_force.abs() < 1e-9);
+    // back at λ = 0.5 close to the unloading branch's state (reverse
+    // plasticity at unloading is the only difference)
+    assert!(
+        common::rel(
+            again.measures.center_displacement,
+            before.measures.center_displacement
+        ) < 1e-5
+    );
+}

@@ -39,7 +39,7 @@
 //!
 //! Which steps use it: those whose committed state leaves a body held only
 //! through open pairs (approach below −1e-12 mm, where the secant start does
-//! not reach). Every other step is the plain step, exactly as without this
+//! not reach) or pairs touching without pressure ([`SUPPORT`]). Every other step is the plain step, exactly as without this
 //! module; only if it fails when it takes a body held only through an
 //! interface to zero load is it retried stabilized. A loaded body is accepted
 //! released only; the stabilized answer itself only at zero load (3. above). All
@@ -60,6 +60,12 @@ const LEVELS: i32 = 4;
 /// An approach above this counts as contact able to carry load (mm): the
 /// first iteration of a step gives such pairs the secant start stiffness.
 const TOUCH: f64 = -1e-12;
+
+/// A closed pair supports a body when its pressure is at least this fraction
+/// of the step's reference pressure: a pair left touching at a pressure of
+/// 10⁻¹⁷ MPa after unloading to zero has a tangent (2p/u for m = 1/2) too
+/// small to carry the next load step.
+const SUPPORT: f64 = 1e-8;
 
 /// Rigid-body constraint data of one body: centroid, size and the Gram matrix
 /// of the rows its boundary conditions impose on (t_x, t_y, θ·L).
@@ -211,14 +217,21 @@ impl Stabilizer {
         }
     }
 
-    /// The bodies not held at displacement `u`: neither by their boundary
-    /// conditions nor through pairs in contact (approach > −1e-12 mm) with a
-    /// held body; ascending.
-    pub fn floating(&self, model: &Model, u: &[f64]) -> Vec<usize> {
+    /// The bodies not held at displacement `u` in a step to `lambda`: neither
+    /// by their boundary conditions nor through supporting pairs with a held
+    /// body (approach in (−1e-12, 0] mm, where the secant start applies, or
+    /// closed with a pressure of at least [`SUPPORT`] × the step's reference
+    /// pressure); ascending.
+    pub fn floating(&self, model: &Model, u: &[f64], lambda: f64) -> Vec<usize> {
         let mut held: Vec<bool> = self.loose.iter().map(|l| !l).collect();
         if held.iter().all(|&h| h) {
             return Vec::new();
         }
+        let p_min: Vec<f64> = model
+            .interfaces
+            .iter()
+            .map(|im| SUPPORT * reference_pressure(model, im, lambda))
+            .collect();
         loop {
             let mut changed = false;
             for b in 0..self.bodies.len() {
@@ -227,7 +240,7 @@ impl Stabilizer {
                 }
                 let body = &self.bodies[b];
                 let mut g = body.bc;
-                for im in &model.interfaces {
+                for (i, im) in model.interfaces.iter().enumerate() {
                     let other = if im.body_a == b {
                         im.body_b
                     } else if im.body_b == b {
@@ -240,7 +253,12 @@ impl Stabilizer {
                     }
                     for pr in &im.pairs {
                         let un = im.pair_approach(pr, u);
-                        if un > TOUCH {
+                        let supports = if un > 0.0 {
+                            im.law.pressure(un).0 >= p_min[i]
+                        } else {
+                            un > TOUCH
+                        };
+                        if supports {
                             add_row(&mut g, body.row(pr.x, pr.normal));
                             if im.tangential.is_some() && un > 0.0 {
                                 add_row(&mut g, body.row(pr.x, [pr.normal[1], -pr.normal[0]]));
@@ -272,7 +290,7 @@ impl Stabilizer {
     /// solution, if there is one: a body held by nothing.
     pub fn explain(&self, model: &Model, committed: &State, lambda: f64) -> Option<String> {
         let unloaded = self.unloaded(lambda);
-        let floating = self.floating(model, &committed.u);
+        let floating = self.floating(model, &committed.u, lambda);
         let b = unloaded.or(floating.first().copied())?;
         // λ as short as it is exact to six places: "0", "0.5", "0.000195"
         let lambda = format!("{lambda:.6}")
@@ -294,8 +312,8 @@ impl Stabilizer {
         Some(if floating.contains(&b) {
             format!(
                 "body \"{name}\" is not in contact at the start of the step to λ = {lambda} \
-                 (every pair of {via} is open) and nothing else holds it: its boundary \
-                 conditions leave a rigid-body motion free"
+                 (every pair of {via} is open, or closed without pressure) and nothing else \
+                 holds it: its boundary conditions leave a rigid-body motion free"
             )
         } else {
             format!(
@@ -434,6 +452,19 @@ pub fn final_report(engine: &Engine, last: &State) -> Option<Report> {
     Some(report)
 }
 
+/// The reference pressure of an interface in a step to `lambda` (MPa): the
+/// case's `start_pressure`, else the mean pressure of the applied load, at
+/// least 1 MPa; the one of the secant start (eq. 2.8-2.9, `Engine`).
+fn reference_pressure(m: &Model, im: &InterfaceModel, lambda: f64) -> f64 {
+    im.start_pressure.unwrap_or_else(|| {
+        let n = im.pairs.first().map_or([0.0, 1.0], |p| p.normal);
+        let f: f64 = (0..m.mesh.nodes.len())
+            .map(|i| m.f_ext[2 * i] * n[0] + m.f_ext[2 * i + 1] * n[1])
+            .sum();
+        (lambda * f.abs() / im.area()).max(1.0)
+    })
+}
+
 /// The base spring stiffness of every interface for a step from `committed`
 /// to `lambda` (MPa/mm): k₀ = p_ref / (g_open + u(p_ref)).
 fn base_springs(engine: &Engine, committed: &State, lambda: f64) -> Vec<f64> {
@@ -441,13 +472,7 @@ fn base_springs(engine: &Engine, committed: &State, lambda: f64) -> Vec<f64> {
     m.interfaces
         .iter()
         .map(|im| {
-            let p_ref = im.start_pressure.unwrap_or_else(|| {
-                let n = im.pairs.first().map_or([0.0, 1.0], |p| p.normal);
-                let f: f64 = (0..m.mesh.nodes.len())
-                    .map(|i| m.f_ext[2 * i] * n[0] + m.f_ext[2 * i + 1] * n[1])
-                    .sum();
-                (lambda * f.abs() / im.area()).max(1.0)
-            });
+            let p_ref = reference_pressure(m, im, lambda);
             let open = im
                 .pairs
                 .iter()
@@ -477,7 +502,7 @@ pub(super) fn step(
     if main {
         st.pending = None;
     }
-    let needed = st.enabled && !st.floating(engine.model, &committed.u).is_empty();
+    let needed = st.enabled && !st.floating(engine.model, &committed.u, lambda).is_empty();
     if engine.backend.agree(needed) {
         return stabilized_step(engine, committed, lambda, response, main, None);
     }
@@ -535,7 +560,7 @@ fn stabilized_step(
             }
         };
         iterations = its;
-        let held = st.floating(m, &state.u).is_empty();
+        let held = st.floating(m, &state.u, lambda).is_empty();
         if engine.backend.agree(loaded && held) {
             engine.stabilizer.as_mut().expect("checked").guess = Some(state.u.clone());
             match engine.plain_step(committed, lambda, response) {
