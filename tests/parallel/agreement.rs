@@ -41,6 +41,13 @@ fn compare(case: &str, refine: &str) {
             "{run}: mallocs during assembly"
         );
         assert_eq!(p["increments"], s["increments"], "{run}: increments");
+        // the contact stabilization took the same steps (absent on both without a gap)
+        for k in ["steps_released", "steps_stabilized"] {
+            assert_eq!(
+                p["stabilization"][k], s["stabilization"][k],
+                "{run}: stabilization {k}"
+            );
+        }
         let (fs, fp) = (&s["first_yield"], &p["first_yield"]);
         assert!(
             close(
@@ -122,6 +129,12 @@ fn serial_petsc1_and_petsc2_agree_on_a_refined_case_with_plasticity_and_lift_off
 #[test]
 fn serial_petsc1_and_petsc2_agree_with_friction() {
     compare("punch-friction-b", "1");
+}
+
+#[test]
+fn serial_petsc1_and_petsc2_agree_across_a_gap_closed_under_force_control() {
+    // the first step is stabilized and released (src/solve/stabilize.rs)
+    compare("punch-gap", "1");
 }
 
 /// `--stop-after` under `mpirun -n 2` stops every rank at the same increment
