@@ -112,9 +112,13 @@ fn summary_json_matches_the_documented_schema() {
             );
         }
     }
+    // a gap closed under force control: the stabilization's report
+    let gap = summary_of("gap", &cases.join("punch-gap"), &[]);
+    assert!(gap["stabilization"].is_object(), "{gap}");
+    assert!(with.get("stabilization").is_none(), "{with}");
     let mut seen = std::collections::BTreeSet::new();
     let mut errors = Vec::new();
-    for s in [&with, &without] {
+    for s in [&with, &without, &gap] {
         let mut l = Vec::new();
         leaves("", s, &mut l);
         for (k, t) in l {

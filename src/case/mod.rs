@@ -262,6 +262,18 @@ pub enum Acceleration {
     Anderson,
 }
 
+/// Contact stabilization of floating bodies (`solve::stabilize`).
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum Stabilization {
+    /// Used only in the steps that need it: a body held only through open
+    /// interface pairs, or carrying no load.
+    #[default]
+    Auto,
+    /// Never: such steps fail, with the floating body named.
+    Off,
+}
+
 /// How the load-factor steps are chosen.
 #[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default)]
 #[serde(rename_all = "kebab-case")]
@@ -317,6 +329,14 @@ pub struct SolverSpec {
     /// Locate the load of first yield by root finding inside the increment where it occurs.
     #[serde(default = "yes")]
     pub locate_first_yield: bool,
+    /// "auto" or "off": contact stabilization of bodies held only through open
+    /// interface pairs, or at zero load (see `solve::stabilize`).
+    #[serde(default)]
+    pub stabilization: Stabilization,
+    /// Largest allowed ratio of the energy dissipated by the stabilization to
+    /// the largest internal energy of the run; default 1e-3.
+    #[serde(default = "default_stabilization_energy")]
+    pub stabilization_energy: f64,
 }
 
 impl Default for SolverSpec {
@@ -362,6 +382,9 @@ fn default_residual_tol() -> f64 {
 }
 fn default_displacement_tol() -> f64 {
     1e-8
+}
+fn default_stabilization_energy() -> f64 {
+    1e-3
 }
 fn default_anderson_depth() -> usize {
     5

@@ -383,6 +383,13 @@ fn check_solver(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
             ));
         }
     }
+    let v = s.stabilization_energy;
+    if !(v.is_finite() && v > 0.0 && v <= 1.0) {
+        return Err(Error::input(
+            at("[solver] stabilization_energy"),
+            format!("{v} must be in (0, 1]"),
+        ));
+    }
     let v = s.plastic_strain_step;
     if !(v.is_finite() && v > 0.0 && v < 1.0) {
         return Err(Error::input(

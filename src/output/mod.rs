@@ -337,7 +337,7 @@ pub fn summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
             "element": f.element,
         })
     });
-    json!({
+    let mut s = json!({
         "schema": 1,
         "asperity_version": env!("CARGO_PKG_VERSION"),
         "step_control": match model.case.solver.step_mode() {
@@ -376,5 +376,17 @@ pub fn summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
             "center_displacement_mm": last.center_displacement,
             "max_peeq": last.max_peeq,
         },
-    })
+    });
+    // only runs where some step needed it (a case without one writes what it always did)
+    if let Some(st) = &r.stabilization {
+        s["stabilization"] = json!({
+            "steps_released": st.released,
+            "steps_stabilized": st.stabilized,
+            "dissipated_energy_nmm": st.dissipated,
+            "internal_energy_nmm": st.internal,
+            "energy_ratio": if st.internal > 0.0 { st.dissipated / st.internal } else { 0.0 },
+            "energy_limit": st.limit,
+        });
+    }
+    s
 }

@@ -5,6 +5,7 @@
 mod accelerate;
 pub mod newton;
 pub mod nonlinear;
+pub mod stabilize;
 pub mod stepping;
 mod yield_point;
 
@@ -183,6 +184,8 @@ pub struct RunResult {
     pub stopped: Option<Stop>,
     /// Increments taken over from a restart file (0: a fresh run).
     pub resumed_from: usize,
+    /// The contact stabilization's account, when any step used it.
+    pub stabilization: Option<stabilize::Report>,
 }
 
 /// Runs the whole load history of the model on the serial backend.
@@ -351,6 +354,7 @@ pub fn run_from(
             }
         }
     }
+    let stabilization = stabilize::final_report(&engine, &ck.committed);
     // the peak and every stage, summed over ranks (every rank passed the same stages)
     let mut memory: Vec<f64> = std::iter::once(peak_memory_mb())
         .chain(engine.stats.memory_mb.iter().map(|s| s.1))
@@ -396,6 +400,7 @@ pub fn run_from(
         final_state: ck.committed,
         stopped,
         resumed_from,
+        stabilization,
     })
 }
 

@@ -14,6 +14,7 @@
 
 use super::accelerate::Anderson;
 use super::nonlinear::{NonlinearSolver, Problem, Verdict};
+use super::stabilize::Stabilizer;
 use super::State;
 use crate::backend::serial::SerialBackend;
 use crate::backend::Backend;
@@ -66,6 +67,8 @@ pub struct Engine<'m> {
     /// them on one process, the owned ones under MPI. A state's `gauss` holds
     /// these elements' points in this order ([`Engine::localize`]).
     held: Vec<u32>,
+    /// Contact stabilization of floating bodies ([`super::stabilize`]).
+    pub stabilizer: Option<Stabilizer>,
 }
 
 impl<'m> Engine<'m> {
@@ -101,7 +104,13 @@ impl<'m> Engine<'m> {
             interrupted: false,
             interrupt_signal: 0,
             held,
+            stabilizer: Some(Stabilizer::new(model)),
         }
+    }
+
+    /// The elements whose Gauss states this process holds, ascending.
+    pub fn held_elements(&self) -> &[u32] {
+        &self.held
     }
 
     /// Whether this process holds every element's Gauss states.
@@ -212,6 +221,9 @@ impl<'m> Engine<'m> {
         if self.method == Method::ModifiedNewton {
             self.solid_valid = false;
         }
+        if let Some(st) = self.stabilizer.as_mut() {
+            st.commit();
+        }
     }
 
     /// Solves the step from `committed` to load factor `lambda`. Returns the
@@ -219,6 +231,9 @@ impl<'m> Engine<'m> {
     /// branch is taken on all ranks alike. The iterations are the built-in loop
     /// below, or the engine's [`NonlinearSolver`] (PETSc SNES) when it has one;
     /// both call the same [`StepProblem`].
+    ///
+    /// A step that would leave a body floating goes through the contact
+    /// stabilization ([`super::stabilize`]); every other step is the plain one.
     pub fn step(
         &mut self,
         committed: &State,
@@ -231,7 +246,8 @@ impl<'m> Engine<'m> {
     /// [`Engine::step`] with the iteration started at `start` (all dofs; its
     /// free dofs are used, the prescribed ones take their values at `lambda`)
     /// instead of at the committed displacements: the predictor of
-    /// [`super::predict`].
+    /// [`super::predict`]. A step that [`super::stabilize`] takes over starts
+    /// from its own states instead.
     pub fn step_from(
         &mut self,
         committed: &State,
@@ -239,6 +255,20 @@ impl<'m> Engine<'m> {
         response: Response,
         start: Option<&[f64]>,
     ) -> Result<(State, usize), String> {
+        super::stabilize::step(self, committed, lambda, response, start)
+    }
+
+    /// The step without the stabilization's choice (it may still hold springs
+    /// or a start guess set by [`super::stabilize`], which overrides `start`).
+    pub(super) fn plain_step(
+        &mut self,
+        committed: &State,
+        lambda: f64,
+        response: Response,
+        start: Option<&[f64]>,
+    ) -> Result<(State, usize), String> {
+        let guess = self.stabilizer.as_mut().and_then(|s| s.guess.take());
+        let start = guess.as_deref().or(start);
         if let Some(mut solver) = self.nonlinear.take() {
             let t0 = std::time::Instant::now();
             let mut p = StepProblem::new(self, committed, lambda, response, start);
@@ -437,6 +467,7 @@ impl<'m> Engine<'m> {
         be.begin_contact().map_err(err)?;
         let mut codes = vec![0.0; committed.status.len()];
         let (mut rl, mut kl) = ([0.0; 12], [0.0; 144]);
+        let springs = self.stabilizer.as_ref().and_then(|s| s.springs.as_deref());
         let mut q = 0;
         for (i, im) in m.interfaces.iter().enumerate() {
             let kf = floor.as_ref().map(|f| f[i]);
@@ -456,6 +487,17 @@ impl<'m> Engine<'m> {
                     &mut rl[..nd],
                     Some(&mut kl[..nd * nd]),
                 );
+                if let Some(ks) = springs {
+                    super::stabilize::add_point(
+                        im,
+                        pt,
+                        ks[i],
+                        &committed.u,
+                        &trial.u,
+                        &mut rl[..nd],
+                        &mut kl[..nd * nd],
+                    );
+                }
                 codes[q] = ev.status as u8 as f64;
                 trial.contact[q] = ev.state;
                 let pdofs = im.point_dofs(pt);

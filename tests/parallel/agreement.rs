@@ -46,6 +46,13 @@ fn compare_on(case: &str, refine: &str, ranks: &[usize]) {
             "{run}: mallocs during assembly"
         );
         assert_eq!(p["increments"], s["increments"], "{run}: increments");
+        // the contact stabilization took the same steps (absent on both without a gap)
+        for k in ["steps_released", "steps_stabilized"] {
+            assert_eq!(
+                p["stabilization"][k], s["stabilization"][k],
+                "{run}: stabilization {k}"
+            );
+        }
         let (fs, fp) = (&s["first_yield"], &p["first_yield"]);
         assert!(
             close(
@@ -166,6 +173,12 @@ fn serial_and_petsc4_agree_where_a_rank_holds_no_interface_point() {
         "4 ranks: ranks {without_points:?} hold no interface point; ranks per body {ranks_of_body:?}"
     );
     compare_on(case, refine, &[4]);
+}
+
+#[test]
+fn serial_petsc1_and_petsc2_agree_across_a_gap_closed_under_force_control() {
+    // the first step is stabilized and released (src/solve/stabilize.rs)
+    compare("punch-gap", "1");
 }
 
 /// `--stop-after` under `mpirun -n 2` stops every rank at the same increment

@@ -1,0 +1,669 @@
+//! Force control across gaps and floating bodies: contact stabilization that is
+//! released before a step is accepted.
+//!
+//! Under a pressure load, a body held only through the interface (the punch:
+//! its supports fix x, nothing fixes y) has no stiffness in its free rigid
+//! motion while every pair it touches is open, an initial gap g₀ > 0; at zero
+//! load its position is not fixed by equilibrium at all (unloading to λ = 0).
+//! Newton's matrix is then singular. The remedy is the contact stabilization
+//! of Abaqus (Abaqus Analysis User's Guide, "Automatic stabilization of rigid
+//! body motions in contact problems", *CONTACT CONTROLS, STABILIZE): a damping
+//! layer across the interface. With the pseudo-time of a static step that
+//! damper is a spring to the last converged position: at every interface point
+//!
+//! ```text
+//!   f_s = k_s A (Δd_N n + Δd_T t),   Δd = (u_B − u_A) − (u_B − u_A)_committed
+//!   K_s = k_s A (g_N g_Nᵀ + g_T g_Tᵀ)   (g: derivatives of d_N, d_T, as for the law)
+//! ```
+//!
+//! integrated with the interface's own quadrature. Abaqus ramps that damping
+//! to zero by the end of its step; here it is removed outright, so that the
+//! accepted answer never depends on it:
+//!
+//! 1. *stabilized solve* with k_s = k₀, k₀ = p_ref / (g_open + u(p_ref)) (the
+//!    secant that closes the largest opening g_open and compresses the
+//!    asperities to the step's mean pressure p_ref, as in the secant start of
+//!    eq. 2.8-2.9); then k₀/10², k₀/10⁴, k₀/10⁶, each from the previous solution;
+//! 2. *release*: as soon as a stabilized solution holds every body through
+//!    closed pairs and boundary conditions, the same step is solved again
+//!    without the springs, from that solution. If it converges, that is the
+//!    step's answer, to the Newton tolerance the answer of any other path to
+//!    the same equilibrium (displacement control included).
+//! 3. When no release is possible (the body carries no load at this load
+//!    factor: its position is indeterminate), the last stabilized solution is
+//!    accepted if the energy the springs dissipated over the run, W_s = Σ
+//!    k_s A |Δd|² per accepted step (the work of a damper moving at constant
+//!    rate over the step), stays below `stabilization_energy` times the
+//!    largest internal energy of the run; otherwise the step fails with the
+//!    body named.
+//!
+//! Which steps use it: those whose committed state leaves a body held only
+//! through open pairs (approach below −1e-12 mm, where the secant start does
+//! not reach) or pairs touching without pressure ([`SUPPORT`]). Every other step is the plain step, exactly as without this
+//! module; only if it fails when it takes a body held only through an
+//! interface to zero load is it retried stabilized. A loaded body is accepted
+//! released only; the stabilized answer itself only at zero load (3. above). All
+//! decisions are taken from replicated data and confirmed through
+//! `Backend::agree`; the springs are assembled with the interface points each
+//! rank owns.
+
+use super::newton::Engine;
+use super::State;
+use crate::case::Stabilization;
+use crate::fem::solid::Response;
+use crate::interface::{InterfaceModel, Point};
+use crate::model::Model;
+
+/// Stabilized solves before giving up: k₀, k₀/10², k₀/10⁴, k₀/10⁶.
+const LEVELS: i32 = 4;
+
+/// An approach above this counts as contact able to carry load (mm): the
+/// first iteration of a step gives such pairs the secant start stiffness.
+const TOUCH: f64 = -1e-12;
+
+/// A closed pair supports a body when its pressure is at least this fraction
+/// of the step's reference pressure: a pair left touching at a pressure of
+/// 10⁻¹⁷ MPa after unloading to zero has a tangent (2p/u for m = 1/2) too
+/// small to carry the next load step.
+const SUPPORT: f64 = 1e-8;
+
+/// Rigid-body constraint data of one body: centroid, size and the Gram matrix
+/// of the rows its boundary conditions impose on (t_x, t_y, θ·L).
+#[derive(Clone, Debug)]
+struct Body {
+    centre: [f64; 2],
+    size: f64,
+    bc: [f64; 6],
+    /// Force of the pressure loads at load factor 1 (N, |f_ext| over the body).
+    load: f64,
+    /// A non-zero prescribed displacement acts on it.
+    driven: bool,
+}
+
+/// What the run reports about stabilization (summary.json "stabilization").
+#[derive(Clone, Debug, Default)]
+pub struct Report {
+    /// Steps that started stabilized and were released (exact answer).
+    pub released: usize,
+    /// Steps accepted with the springs still acting (no release possible).
+    pub stabilized: usize,
+    /// Energy dissipated by the springs in accepted steps, N·mm.
+    pub dissipated: f64,
+    /// Largest internal energy seen (strain + plastic work + interface), N·mm.
+    pub internal: f64,
+    /// The limit on dissipated / internal.
+    pub limit: f64,
+}
+
+/// The stabilization of one engine.
+#[derive(Clone, Debug)]
+pub struct Stabilizer {
+    bodies: Vec<Body>,
+    /// Bodies with an interface whose boundary conditions leave a rigid motion free.
+    loose: Vec<bool>,
+    enabled: bool,
+    /// Spring stiffness per interface (MPa/mm) while a stabilized solve runs.
+    pub(super) springs: Option<Vec<f64>>,
+    /// Start of the next solve (all dofs) instead of the committed state.
+    pub(super) guess: Option<Vec<f64>>,
+    /// Filled by the last step, moved into the report when it is committed.
+    pending: Option<(bool, f64)>,
+    pub report: Report,
+    /// Steps that used the stabilization at all (committed or not).
+    pub used: usize,
+}
+
+fn det3(g: &[f64; 6]) -> f64 {
+    // packed symmetric [g00, g01, g02, g11, g12, g22]
+    let [a, b, c, d, e, f] = *g;
+    a * (d * f - e * e) - b * (b * f - e * c) + c * (b * e - d * c)
+}
+
+/// Whether the rows gathered in a Gram matrix fix all three rigid motions.
+fn fixes_all(g: &[f64; 6]) -> bool {
+    let tr = g[0] + g[3] + g[5];
+    tr > 0.0 && det3(g) > 1e-9 * (tr / 3.0).powi(3)
+}
+
+fn add_row(g: &mut [f64; 6], r: [f64; 3]) {
+    g[0] += r[0] * r[0];
+    g[1] += r[0] * r[1];
+    g[2] += r[0] * r[2];
+    g[3] += r[1] * r[1];
+    g[4] += r[1] * r[2];
+    g[5] += r[2] * r[2];
+}
+
+impl Body {
+    /// The constraint row of a displacement along unit vector `e` at `x`.
+    fn row(&self, x: [f64; 2], e: [f64; 2]) -> [f64; 3] {
+        let (rx, ry) = (
+            (x[0] - self.centre[0]) / self.size,
+            (x[1] - self.centre[1]) / self.size,
+        );
+        [e[0], e[1], e[1] * rx - e[0] * ry]
+    }
+}
+
+impl Stabilizer {
+    pub fn new(model: &Model) -> Stabilizer {
+        let mesh = &model.mesh;
+        let nb = mesh.bodies.len();
+        let mut body_of = vec![usize::MAX; mesh.nodes.len()];
+        for el in &mesh.elements {
+            for &n in &el.nodes {
+                body_of[n] = el.body;
+            }
+        }
+        let mut lo = vec![[f64::INFINITY; 2]; nb];
+        let mut hi = vec![[f64::NEG_INFINITY; 2]; nb];
+        for (n, x) in mesh.nodes.iter().enumerate() {
+            if let Some(b) = body_of.get(n).copied().filter(|&b| b < nb) {
+                for c in 0..2 {
+                    lo[b][c] = lo[b][c].min(x[c]);
+                    hi[b][c] = hi[b][c].max(x[c]);
+                }
+            }
+        }
+        let mut bodies: Vec<Body> = (0..nb)
+            .map(|b| Body {
+                centre: [0.5 * (lo[b][0] + hi[b][0]), 0.5 * (lo[b][1] + hi[b][1])],
+                size: (hi[b][0] - lo[b][0])
+                    .max(hi[b][1] - lo[b][1])
+                    .max(f64::MIN_POSITIVE),
+                bc: [0.0; 6],
+                load: 0.0,
+                driven: false,
+            })
+            .collect();
+        for &(d, v) in &model.prescribed {
+            let n = d / 2;
+            let Some(b) = body_of.get(n).copied().filter(|&b| b < nb) else {
+                continue;
+            };
+            let e = if d % 2 == 0 { [1.0, 0.0] } else { [0.0, 1.0] };
+            let r = bodies[b].row(mesh.nodes[n], e);
+            add_row(&mut bodies[b].bc, r);
+            bodies[b].driven |= v != 0.0;
+        }
+        for (n, &b) in body_of.iter().enumerate() {
+            if b < nb {
+                bodies[b].load += model.f_ext[2 * n].hypot(model.f_ext[2 * n + 1]);
+            }
+        }
+        // a body without an interface and without enough supports is a
+        // mechanism no interface spring can hold (and mostly refused up front)
+        let loose = (0..nb)
+            .map(|b| {
+                !fixes_all(&bodies[b].bc)
+                    && model
+                        .interfaces
+                        .iter()
+                        .any(|im| im.body_a == b || im.body_b == b)
+            })
+            .collect();
+        Stabilizer {
+            bodies,
+            loose,
+            enabled: model.case.solver.stabilization == Stabilization::Auto,
+            springs: None,
+            guess: None,
+            pending: None,
+            report: Report {
+                limit: model.case.solver.stabilization_energy,
+                ..Report::default()
+            },
+            used: 0,
+        }
+    }
+
+    /// The bodies not held at displacement `u` in a step to `lambda`: neither
+    /// by their boundary conditions nor through supporting pairs with a held
+    /// body (approach in (−1e-12, 0] mm, where the secant start applies, or
+    /// closed with a pressure of at least [`SUPPORT`] × the step's reference
+    /// pressure); ascending.
+    pub fn floating(&self, model: &Model, u: &[f64], lambda: f64) -> Vec<usize> {
+        let mut held: Vec<bool> = self.loose.iter().map(|l| !l).collect();
+        if held.iter().all(|&h| h) {
+            return Vec::new();
+        }
+        let p_min: Vec<f64> = model
+            .interfaces
+            .iter()
+            .map(|im| SUPPORT * reference_pressure(model, im, lambda))
+            .collect();
+        loop {
+            let mut changed = false;
+            for b in 0..self.bodies.len() {
+                if held[b] {
+                    continue;
+                }
+                let body = &self.bodies[b];
+                let mut g = body.bc;
+                for (i, im) in model.interfaces.iter().enumerate() {
+                    let other = if im.body_a == b {
+                        im.body_b
+                    } else if im.body_b == b {
+                        im.body_a
+                    } else {
+                        continue;
+                    };
+                    if !held[other] {
+                        continue;
+                    }
+                    for pr in &im.pairs {
+                        let un = im.pair_approach(pr, u);
+                        let supports = if un > 0.0 {
+                            im.law.pressure(un).0 >= p_min[i]
+                        } else {
+                            un > TOUCH
+                        };
+                        if supports {
+                            add_row(&mut g, body.row(pr.x, pr.normal));
+                            if im.tangential.is_some() && un > 0.0 {
+                                add_row(&mut g, body.row(pr.x, [pr.normal[1], -pr.normal[0]]));
+                            }
+                        }
+                    }
+                }
+                if fixes_all(&g) {
+                    held[b] = true;
+                    changed = true;
+                }
+            }
+            if !changed {
+                break;
+            }
+        }
+        (0..held.len()).filter(|&b| !held[b]).collect()
+    }
+
+    /// Whether a body held only through interfaces carries no load at `lambda`.
+    fn unloaded(&self, lambda: f64) -> Option<usize> {
+        (0..self.bodies.len()).find(|&b| {
+            let body = &self.bodies[b];
+            self.loose[b] && (lambda == 0.0 || (body.load == 0.0 && !body.driven))
+        })
+    }
+
+    /// The physical reason a step from `committed` to `lambda` may have no
+    /// solution, if there is one: a body held by nothing.
+    pub fn explain(&self, model: &Model, committed: &State, lambda: f64) -> Option<String> {
+        let unloaded = self.unloaded(lambda);
+        let floating = self.floating(model, &committed.u, lambda);
+        let b = unloaded.or(floating.first().copied())?;
+        // λ as short as it is exact to six places: "0", "0.5", "0.000195"
+        let lambda = format!("{lambda:.6}")
+            .trim_end_matches('0')
+            .trim_end_matches('.')
+            .to_string();
+        let name = &model.mesh.bodies[b];
+        let via: Vec<&str> = model
+            .interfaces
+            .iter()
+            .filter(|im| im.body_a == b || im.body_b == b)
+            .map(|im| im.name.as_str())
+            .collect();
+        let via = if via.is_empty() {
+            "no interface".to_string()
+        } else {
+            format!("interface \"{}\"", via.join("\", \""))
+        };
+        Some(if floating.contains(&b) {
+            format!(
+                "body \"{name}\" is not in contact at the start of the step to λ = {lambda} \
+                 (every pair of {via} is open, or closed without pressure) and nothing else \
+                 holds it: its boundary conditions leave a rigid-body motion free"
+            )
+        } else {
+            format!(
+                "body \"{name}\" carries no load at λ = {lambda} and is held only through \
+                 {via}: at zero contact force nothing fixes its position"
+            )
+        })
+    }
+
+    /// Called when the engine's last step is committed.
+    pub(super) fn commit(&mut self) {
+        if let Some((stabilized, w)) = self.pending.take() {
+            if stabilized {
+                self.report.stabilized += 1;
+                self.report.dissipated += w;
+            } else {
+                self.report.released += 1;
+            }
+        }
+    }
+}
+
+/// Adds the stabilization spring of one interface point to its local residual
+/// `r` and matrix `k` (the layout of [`InterfaceModel::eval_point`]): stiffness
+/// `ks` per area on the change of the relative displacement since `committed`.
+/// Abaqus-style contact stabilization (see the module documentation).
+pub fn add_point(
+    im: &InterfaceModel,
+    pt: &Point,
+    ks: f64,
+    committed: &[f64],
+    u: &[f64],
+    r: &mut [f64],
+    k: &mut [f64],
+) {
+    let (dn, dt) = increment(im, pt, committed, u);
+    let n = pt.len;
+    let t = [pt.normal[1], -pt.normal[0]];
+    let (mut gn, mut gt) = ([0.0f64; 12], [0.0f64; 12]);
+    for i in 0..n {
+        let s = pt.shape[i];
+        for c in 0..2 {
+            gn[2 * i + c] = -s * pt.normal[c];
+            gn[2 * n + 2 * i + c] = s * pt.normal[c];
+            gt[2 * i + c] = -s * t[c];
+            gt[2 * n + 2 * i + c] = s * t[c];
+        }
+    }
+    let nd = 4 * n;
+    let a = pt.area * ks;
+    for i in 0..nd {
+        r[i] += a * (dn * gn[i] + dt * gt[i]);
+        for j in 0..nd {
+            k[i * nd + j] += a * (gn[i] * gn[j] + gt[i] * gt[j]);
+        }
+    }
+}
+
+/// Change of the normal and tangential relative displacement at a point.
+fn increment(im: &InterfaceModel, pt: &Point, committed: &[f64], u: &[f64]) -> (f64, f64) {
+    let (n1, t1) = im.point_kinematics(pt, u);
+    let (n0, t0) = im.point_kinematics(pt, committed);
+    (n1 - n0, t1 - t0)
+}
+
+/// Work of the springs `ks` over the step from `committed` to `u`, N·mm:
+/// Σ k_s A |Δd|² over the points this rank owns, summed over ranks.
+fn spring_work(engine: &Engine, ks: &[f64], committed: &[f64], u: &[f64]) -> f64 {
+    let m = engine.model;
+    let mut w = 0.0;
+    let mut q = 0;
+    for (i, im) in m.interfaces.iter().enumerate() {
+        for pt in &im.points {
+            if engine.backend.owns_point(q) {
+                let (dn, dt) = increment(im, pt, committed, u);
+                w += ks[i] * pt.area * (dn * dn + dt * dt);
+            }
+            q += 1;
+        }
+    }
+    let mut v = [w];
+    engine.backend.sum(&mut v);
+    v[0]
+}
+
+/// Internal energy of a state, N·mm: elastic strain energy ½ σ:C⁻¹:σ and
+/// plastic work σ_Y ε̄ᵖ + ½ H (ε̄ᵖ)² (linear isotropic hardening, associated
+/// von Mises flow: the dissipation rate is σ_y dε̄ᵖ) over the Gauss points
+/// this rank holds, plus the energy stored in the normal springs of the
+/// interface, ∫ φ(u_N) dA with φ' = p_N; summed over ranks.
+fn internal_energy(engine: &Engine, state: &State) -> f64 {
+    let m = engine.model;
+    let ng = m.n_gauss();
+    let mut w = 0.0;
+    for (k, &e) in engine.held_elements().iter().enumerate() {
+        let e = e as usize;
+        let mat = &m.materials[m.mesh.elements[e].body];
+        let geo = m.geometry(e);
+        for ip in 0..ng {
+            let g = &state.gauss[k * ng + ip];
+            let s = g.stress;
+            let nu = mat.poisson;
+            let elastic = (s[0] * s[0] + s[1] * s[1] + s[3] * s[3]
+                - 2.0 * nu * (s[0] * s[1] + s[1] * s[3] + s[3] * s[0])
+                + 2.0 * (1.0 + nu) * s[2] * s[2])
+                / (2.0 * mat.young);
+            let plastic = if mat.yield_stress.is_finite() {
+                mat.yield_stress * g.peeq + 0.5 * mat.hardening * g.peeq * g.peeq
+            } else {
+                0.0
+            };
+            w += (elastic + plastic) * geo.dv[ip];
+        }
+    }
+    let mut q = 0;
+    for im in &m.interfaces {
+        for pt in &im.points {
+            if engine.backend.owns_point(q) {
+                w += pt.area * im.law.energy(im.point_kinematics(pt, &state.u).0);
+            }
+            q += 1;
+        }
+    }
+    let mut v = [w];
+    engine.backend.sum(&mut v);
+    v[0]
+}
+
+/// The account of a run for summary.json, with the internal energy of the
+/// final state taken into the reference (collective); `None` when no step
+/// used the stabilization.
+pub fn final_report(engine: &Engine, last: &State) -> Option<Report> {
+    let st = engine.stabilizer.as_ref().filter(|s| s.used > 0)?;
+    let mut report = st.report.clone();
+    report.internal = report.internal.max(internal_energy(engine, last));
+    Some(report)
+}
+
+/// The reference pressure of an interface in a step to `lambda` (MPa): the
+/// case's `start_pressure`, else the mean pressure of the applied load, at
+/// least 1 MPa; the one of the secant start (eq. 2.8-2.9, `Engine`).
+fn reference_pressure(m: &Model, im: &InterfaceModel, lambda: f64) -> f64 {
+    im.start_pressure.unwrap_or_else(|| {
+        let n = im.pairs.first().map_or([0.0, 1.0], |p| p.normal);
+        let f: f64 = (0..m.mesh.nodes.len())
+            .map(|i| m.f_ext[2 * i] * n[0] + m.f_ext[2 * i + 1] * n[1])
+            .sum();
+        (lambda * f.abs() / im.area()).max(1.0)
+    })
+}
+
+/// The base spring stiffness of every interface for a step from `committed`
+/// to `lambda` (MPa/mm): k₀ = p_ref / (g_open + u(p_ref)).
+fn base_springs(engine: &Engine, committed: &State, lambda: f64) -> Vec<f64> {
+    let m = engine.model;
+    m.interfaces
+        .iter()
+        .map(|im| {
+            let p_ref = reference_pressure(m, im, lambda);
+            let open = im
+                .pairs
+                .iter()
+                .map(|p| -im.pair_approach(p, &committed.u))
+                .fold(0.0f64, f64::max);
+            p_ref / (open + im.law.approach(p_ref))
+        })
+        .collect()
+}
+
+/// [`Engine::step`]: the plain step, or the stabilized one when the committed
+/// state leaves a body floating (or follows an accepted stabilized state);
+/// a plain step to zero load on an interface-held body that fails is retried
+/// stabilized. With `stabilization = "off"` a failure names the floating body.
+pub(super) fn step(
+    engine: &mut Engine,
+    committed: &State,
+    lambda: f64,
+    response: Response,
+    start: Option<&[f64]>,
+) -> Result<(State, usize), String> {
+    let Some(st) = engine.stabilizer.as_mut() else {
+        return engine.plain_step(committed, lambda, response, start);
+    };
+    // the account follows the steps that may be committed (the run's own);
+    // the elastic sub-steps that locate first yield leave it alone
+    let main = response == Response::Plastic;
+    if main {
+        st.pending = None;
+    }
+    let needed = st.enabled && !st.floating(engine.model, &committed.u, lambda).is_empty();
+    if engine.backend.agree(needed) {
+        return stabilized_step(engine, committed, lambda, response, main, None);
+    }
+    let plain = engine.plain_step(committed, lambda, response, start);
+    let Err(e) = plain else { return plain };
+    if engine.interrupted {
+        return Err(e);
+    }
+    let st = engine.stabilizer.as_ref().expect("checked above");
+    // only at zero load: any other failure is cut back exactly as before
+    let retry = st.enabled && st.unloaded(lambda).is_some();
+    if engine.backend.agree(retry) {
+        return stabilized_step(engine, committed, lambda, response, main, Some(e));
+    }
+    match st.explain(engine.model, committed, lambda) {
+        Some(why) => Err(format!("{why} ({e})")),
+        None => Err(e),
+    }
+}
+
+fn stabilized_step(
+    engine: &mut Engine,
+    committed: &State,
+    lambda: f64,
+    response: Response,
+    main: bool,
+    prior: Option<String>,
+) -> Result<(State, usize), String> {
+    let m = engine.model;
+    let base = base_springs(engine, committed, lambda);
+    let st = engine.stabilizer.as_mut().expect("checked by the caller");
+    st.used += 1;
+    let loaded = st.unloaded(lambda).is_none();
+    let mut guess: Option<Vec<f64>> = None;
+    // the iterations reported (curve.csv, automatic step control) are those
+    // of the solve whose answer is kept: the release, or the last stabilized
+    // solve at zero load; summary.json's newton_iterations counts them all
+    let mut iterations = 0;
+    let mut last: Option<(State, Vec<f64>)> = None;
+    let mut failure = String::new();
+    for level in 0..LEVELS {
+        let ks: Vec<f64> = base.iter().map(|k| k * 1e-2f64.powi(level)).collect();
+        let st = engine.stabilizer.as_mut().expect("checked");
+        st.springs = Some(ks.clone());
+        st.guess = guess.take();
+        let solved = engine.plain_step(committed, lambda, response, None);
+        let st = engine.stabilizer.as_mut().expect("checked");
+        st.springs = None;
+        let (state, its) = match solved {
+            Ok(s) => s,
+            Err(e) if engine.interrupted => return Err(e),
+            Err(e) => {
+                failure = format!("stabilized solve (k_s = {:.3e} MPa/mm) failed: {e}", ks[0]);
+                break;
+            }
+        };
+        iterations = its;
+        let held = st.floating(m, &state.u, lambda).is_empty();
+        if engine.backend.agree(loaded && held) {
+            engine.stabilizer.as_mut().expect("checked").guess = Some(state.u.clone());
+            match engine.plain_step(committed, lambda, response, None) {
+                Ok((exact, its)) => {
+                    if main {
+                        engine.stabilizer.as_mut().expect("checked").pending = Some((false, 0.0));
+                    }
+                    return Ok((exact, its));
+                }
+                Err(e) if engine.interrupted => return Err(e),
+                Err(e) => failure = format!("release of the stabilization failed: {e}"),
+            }
+        }
+        guess = Some(state.u.clone());
+        last = Some((state, ks));
+    }
+    let st = engine.stabilizer.as_ref().expect("checked");
+    let why = st.explain(m, committed, lambda);
+    let (Some((state, ks)), false) = (last, loaded) else {
+        // a loaded body: only a released answer is accepted
+        let failure = if failure.is_empty() {
+            "no stabilized solution rested on closed pairs".to_string()
+        } else {
+            failure
+        };
+        return Err(match (why, prior) {
+            (Some(why), Some(prior)) => format!("{why} ({prior}; with stabilization: {failure})"),
+            (Some(why), None) => format!("{why} ({failure})"),
+            (None, Some(prior)) => format!("{prior} (retried with stabilization: {failure})"),
+            (None, None) => failure,
+        });
+    };
+    let why = why.unwrap_or_else(|| "a body is held only by the contact stabilization".into());
+    let w = spring_work(engine, &ks, &committed.u, &state.u);
+    let e_now = internal_energy(engine, committed).max(internal_energy(engine, &state));
+    let st = engine.stabilizer.as_mut().expect("checked");
+    st.report.internal = st.report.internal.max(e_now);
+    let total = st.report.dissipated + w;
+    let limit = st.report.limit * st.report.internal;
+    if engine
+        .backend
+        .agree(total <= limit && st.report.internal > 0.0)
+    {
+        if main {
+            st.pending = Some((true, w));
+        }
+        Ok((state, iterations))
+    } else {
+        Err(format!(
+            "{why}; holding it would take the contact stabilization {total:.3e} N·mm of \
+             dissipated energy, above stabilization_energy = {} × the internal energy \
+             {:.3e} N·mm{}",
+            st.report.limit,
+            st.report.internal,
+            if failure.is_empty() {
+                String::new()
+            } else {
+                format!(" ({failure})")
+            }
+        ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn body() -> Body {
+        Body {
+            centre: [10.0, 10.0],
+            size: 20.0,
+            bc: [0.0; 6],
+            load: 0.0,
+            driven: false,
+        }
+    }
+
+    #[test]
+    fn rows_fix_the_rigid_motions_they_should() {
+        let b = body();
+        // u_x = 0 along the left edge: x translation and rotation, not y
+        let mut g = [0.0; 6];
+        for y in [0.0, 5.0, 10.0, 20.0] {
+            add_row(&mut g, b.row([0.0, y], [1.0, 0.0]));
+        }
+        assert!(!fixes_all(&g));
+        // one vertical support more fixes all three
+        let mut h = g;
+        add_row(&mut h, b.row([3.0, 0.0], [0.0, 1.0]));
+        assert!(fixes_all(&h));
+        // normal springs along a horizontal interface: y and rotation, with
+        // the left edge's x: all three
+        let mut s = g;
+        for x in [0.0, 10.0, 20.0] {
+            add_row(&mut s, b.row([x, 0.0], [0.0, 1.0]));
+        }
+        assert!(fixes_all(&s));
+        // vertical springs at one point only leave the rotation free without x
+        let mut one = [0.0; 6];
+        add_row(&mut one, b.row([5.0, 0.0], [0.0, 1.0]));
+        add_row(&mut one, b.row([5.0, 0.0], [0.0, 1.0]));
+        assert!(!fixes_all(&one));
+        assert!(!fixes_all(&[0.0; 6]));
+    }
+}
