@@ -32,6 +32,9 @@ pub enum Error {
     Parallel(String),
     /// A study (refine, stability, figures) whose runs did not give what it needs.
     Study(String),
+    /// The run needs more memory than the machine has (estimated up front from
+    /// the factorization's symbolic analysis, or an allocation that failed).
+    Memory(String),
     /// A file system failure.
     Io {
         path: PathBuf,
@@ -152,6 +155,7 @@ impl Error {
             Error::Output(message) => format!("output: {message}"),
             Error::Parallel(message) => format!("MPI: {message}"),
             Error::Study(message) => format!("study: {message}"),
+            Error::Memory(message) => format!("memory: {message}"),
             Error::Io { path, source } => format!("{}: {source}", path.display()),
         }
     }

@@ -126,3 +126,62 @@ fn summary_json_names_the_factorization() {
         }
     }
 }
+
+/// A factorization that does not fit the memory budget is refused before the
+/// first increment, with the estimate in one clear line (exit code 2, no
+/// output folder); `ASPERITY_MEMORY_LIMIT_MB` sets the budget (default: the
+/// machine's available memory).
+#[test]
+fn a_factor_that_does_not_fit_is_refused_up_front() {
+    let root = common::root();
+    let bin = env!("CARGO_BIN_EXE_asperity");
+    for (case, limit, expect) in [
+        (
+            "punch-plane-stress",
+            "0.3",
+            "memory: the serial Cholesky factor and its workspace need 1.",
+        ),
+        (
+            "punch-friction-b",
+            "0.3",
+            "memory: the serial LU factor needs at least",
+        ),
+        (
+            "punch-plane-stress",
+            "abc",
+            "ASPERITY_MEMORY_LIMIT_MB: expected a positive number",
+        ),
+        (
+            "punch-plane-stress",
+            "-5",
+            "ASPERITY_MEMORY_LIMIT_MB: expected a positive number",
+        ),
+    ] {
+        let out = common::scratch(&format!("memory-{case}-{limit}")).join("out");
+        let o = std::process::Command::new(bin)
+            .args(["run", "--quiet", "--out"])
+            .arg(&out)
+            .arg(root.join("cases").join(case))
+            .env("ASPERITY_MEMORY_LIMIT_MB", limit)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{case} {limit}: {err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.contains(expect), "{case} {limit}: {err}");
+        assert!(
+            !out.exists(),
+            "{case} {limit}: an output folder was written"
+        );
+    }
+    // a budget that fits runs
+    let out = common::scratch("memory-fits").join("out");
+    let o = std::process::Command::new(bin)
+        .args(["run", "--quiet", "--increments", "2", "--out"])
+        .arg(&out)
+        .arg(root.join("cases/punch-plane-stress"))
+        .env("ASPERITY_MEMORY_LIMIT_MB", "50")
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}

@@ -147,7 +147,6 @@ fn punch_gmsh_gives_the_answer_of_punch_plane_stress() {
     assert_eq!(its(&rg), its(&rp), "Newton iterations of the increments");
     // all iterations, the first-yield search included (summary.json's newton_iterations)
     assert_eq!(rg.stats.iterations, rp.stats.iterations);
-    assert_eq!(rg.stats.iterations, 121);
     assert_eq!(rg.cutbacks + rp.cutbacks, 0);
 }
 

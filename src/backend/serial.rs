@@ -91,9 +91,67 @@ pub struct SerialDirect {
 }
 
 fn oom(what: &str) -> Error {
-    Error::Solver(format!(
-        "out of memory while allocating the {what}: the model is too large for this machine's memory with the serial solver"
+    Error::Memory(format!(
+        "allocating the {what} failed: the model is too large for this machine's memory with the serial solver (fewer elements, or the PETSc backend on several ranks)"
     ))
+}
+
+/// Environment variable that caps the memory a serial run may plan for, MB
+/// (default: the machine's available memory, `MemAvailable` of /proc/meminfo).
+pub const MEMORY_LIMIT_VAR: &str = "ASPERITY_MEMORY_LIMIT_MB";
+
+/// The memory a run may plan for, bytes: [`MEMORY_LIMIT_VAR`] if set, else
+/// the available memory (Linux), else unbounded.
+fn memory_budget() -> Result<Option<f64>> {
+    if let Ok(v) = std::env::var(MEMORY_LIMIT_VAR) {
+        let mb: f64 = v
+            .trim()
+            .parse()
+            .ok()
+            .filter(|m: &f64| *m > 0.0 && m.is_finite())
+            .ok_or_else(|| {
+                Error::input(
+                    MEMORY_LIMIT_VAR,
+                    format!("expected a positive number of MB, got \"{v}\""),
+                )
+            })?;
+        return Ok(Some(mb * 1048576.0));
+    }
+    Ok(std::fs::read_to_string("/proc/meminfo").ok().and_then(|s| {
+        s.lines()
+            .find(|l| l.starts_with("MemAvailable:"))
+            .and_then(|l| l.split_whitespace().nth(1)?.parse::<f64>().ok())
+            .map(|kb| kb * 1024.0)
+    }))
+}
+
+/// Refuses a factorization whose planned memory exceeds the budget, before
+/// any of it is allocated.
+fn check_memory(what: &str, bytes: f64, exact: bool) -> Result<()> {
+    if let Some(budget) = memory_budget()? {
+        if bytes > budget {
+            let size = |b: f64| {
+                if b >= 1073741824.0 {
+                    format!("{:.2} GB", b / 1073741824.0)
+                } else {
+                    format!("{:.1} MB", b / 1048576.0)
+                }
+            };
+            return Err(Error::Memory(format!(
+                "the serial {what} {} {}{} (from its symbolic analysis) but {} {}: use fewer elements, or the PETSc backend on several ranks (--features parallel, mpirun)",
+                if what.contains(" and ") { "need" } else { "needs" },
+                if exact { "" } else { "at least " },
+                size(bytes),
+                size(budget),
+                if std::env::var_os(MEMORY_LIMIT_VAR).is_some() {
+                    format!("is allowed ({MEMORY_LIMIT_VAR})")
+                } else {
+                    "is available".to_string()
+                },
+            )));
+        }
+    }
+    Ok(())
 }
 
 impl SerialDirect {
@@ -137,15 +195,20 @@ impl SerialDirect {
             },
         )
         .map_err(|e| Error::Solver(format!("symbolic Cholesky failed: {e:?}")))?;
+        let req = StackReq::any_of(&[
+            symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
+            symbolic.solve_in_place_scratch::<f64>(1, Par::Seq),
+        ]);
+        check_memory(
+            "Cholesky factor and its workspace",
+            (symbolic.len_val() * 8 + req.size_bytes()) as f64,
+            true,
+        )?;
         let mut values = Vec::new();
         values
             .try_reserve_exact(symbolic.len_val())
             .map_err(|_| oom("Cholesky factor"))?;
         values.resize(symbolic.len_val(), 0.0);
-        let req = StackReq::any_of(&[
-            symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
-            symbolic.solve_in_place_scratch::<f64>(1, Par::Seq),
-        ]);
         let work = MemBuffer::try_new(req).map_err(|_| oom("Cholesky workspace"))?;
         Ok(Cholesky {
             symbolic,
@@ -155,6 +218,18 @@ impl SerialDirect {
     }
 
     fn analyse_lu(&self) -> Result<Lu> {
+        // L and U hold at least the fill of a Cholesky factor of the pattern
+        // under its best ordering (the pattern is structurally symmetric):
+        // a lower bound of the LU factor, refused up front if even that
+        // does not fit
+        if let Ok(chol) = factorize_symbolic_cholesky(
+            self.symbolic_mat.as_ref(),
+            Side::Lower,
+            SymmetricOrdering::Amd,
+            Default::default(),
+        ) {
+            check_memory("LU factor", (2 * chol.len_val() * 8) as f64, false)?;
+        }
         let symbolic = factorize_symbolic_lu(self.symbolic_mat.as_ref(), Default::default())
             .map_err(|e| Error::Solver(format!("symbolic LU failed: {e:?}")))?;
         let req = StackReq::any_of(&[

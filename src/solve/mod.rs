@@ -242,12 +242,18 @@ pub fn run_from(
         let start = predict(&ck.committed, &ck.last_du, ck.last_step, target - ck.lambda);
         let mut outcome =
             engine.step_from(&ck.committed, target, Response::Plastic, start.as_deref());
+        if let Some(e) = engine.fatal.take() {
+            return Err(e);
+        }
         if start.is_some() && outcome.is_err() && !engine.interrupted {
             // the extrapolated start led astray (a status change the last
             // increment did not foresee): the same step from the committed
             // state, as without a predictor, before any cutback
             engine.stats.predictor_restarts += 1;
             outcome = engine.step(&ck.committed, target, Response::Plastic);
+            if let Some(e) = engine.fatal.take() {
+                return Err(e);
+            }
         }
         let why = match outcome {
             Ok((trial, iterations)) => {

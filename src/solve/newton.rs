@@ -63,6 +63,9 @@ pub struct Engine<'m> {
     pub interrupted: bool,
     /// The signal behind it (the largest number over the ranks).
     pub interrupt_signal: i32,
+    /// A failure that no cutback can cure (memory ran out in a
+    /// factorization): the run ends with it.
+    pub fatal: Option<crate::error::Error>,
     /// The elements whose Gauss states this process holds, ascending: all of
     /// them on one process, the owned ones under MPI. A state's `gauss` holds
     /// these elements' points in this order ([`Engine::localize`]).
@@ -103,6 +106,7 @@ impl<'m> Engine<'m> {
             assemblies: 0,
             interrupted: false,
             interrupt_signal: 0,
+            fatal: None,
             held,
             stabilizer: Some(Stabilizer::new(model)),
         }
@@ -294,7 +298,12 @@ impl<'m> Engine<'m> {
             // solve of −r is not bitwise the negated solve of r)
             let t1 = std::time::Instant::now();
             if let Err(e) = p.engine.backend.solve(&r, &mut du) {
-                break Err(e.to_string());
+                let msg = e.to_string();
+                if matches!(e, crate::error::Error::Memory(_)) {
+                    // no smaller step needs less memory: the run ends here
+                    p.engine.fatal = Some(e);
+                }
+                break Err(msg);
             }
             for v in du.iter_mut() {
                 *v = -*v;
