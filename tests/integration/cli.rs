@@ -44,7 +44,8 @@ fn check_describes_the_case_without_solving() {
     );
 }
 
-/// The binary with extra environment variables.
+/// The binary with extra environment variables (used by the serial-build test below).
+#[cfg(not(feature = "parallel"))]
 fn asperity_env(args: &[&str], env: &[(&str, &str)]) -> (i32, String, String) {
     let mut cmd = Command::new(env!("CARGO_BIN_EXE_asperity"));
     cmd.args(args);
