@@ -227,8 +227,8 @@ mod tests {
         asm.add(1, &[10., 20., 30., 40.], &mut vals);
         // dense reconstruction over equations (dof 0 → 0, dof 2 → 1, dof 3 → 2)
         let mut dense = [[0.0; 3]; 3];
-        for c in 0..3 {
-            for k in pattern.col_ptr[c]..pattern.col_ptr[c + 1] {
+        for (c, col) in pattern.col_ptr.windows(2).enumerate() {
+            for k in col[0]..col[1] {
                 dense[pattern.row_idx[k] as usize][c] += vals[k];
             }
         }

@@ -124,6 +124,7 @@ pub fn physical_derivs(
     }
     let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
     let size2 = (coords[2][0] - coords[0][0]).powi(2) + (coords[2][1] - coords[0][1]).powi(2);
+    #[allow(clippy::neg_cmp_op_on_partial_ord)] // !(x > tol) is meant to be true for NaN
     if !(det > 1e-12 * size2) {
         return Err(format!(
             "Jacobian determinant {det:.3e} at (ξ, η) = ({xi:.3}, {eta:.3}): element inverted or degenerate"

@@ -142,6 +142,7 @@ pub struct PointEval {
 
 impl InterfaceModel {
     /// Builds pairs and points from a mesh interface.
+    #[allow(clippy::too_many_arguments)] // the case's interface settings, each used once here
     pub fn new(
         mesh: &Mesh,
         iface: &Interface,
@@ -157,9 +158,9 @@ impl InterfaceModel {
         let mut edge_pairs = Vec::with_capacity(iface.edges.len());
         for edge in &iface.edges {
             let mut ids = [0usize; 3];
-            for i in 0..3 {
+            for (i, id) in ids.iter_mut().enumerate() {
                 let key = (edge.a[i], edge.b[i]);
-                ids[i] = *index.entry(key).or_insert_with(|| {
+                *id = *index.entry(key).or_insert_with(|| {
                     pairs.push(Pair {
                         a: edge.a[i],
                         b: edge.b[i],

@@ -116,6 +116,7 @@ impl VonMises {
         if !(poisson.is_finite() && poisson > -1.0 && poisson < 0.5) {
             return Err(format!("poisson = {poisson} must be in (-1, 0.5)"));
         }
+        #[allow(clippy::neg_cmp_op_on_partial_ord)] // NaN must be rejected too
         if !(yield_stress > 0.0) {
             return Err(format!(
                 "yield_stress = {yield_stress} must be a positive number (MPa)"

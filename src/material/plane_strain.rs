@@ -37,6 +37,7 @@ pub(super) fn update(
     let f = q - sy;
     let pressure = k * vol;
     let idx = [0usize, 1, 3];
+    #[allow(clippy::neg_cmp_op_on_partial_ord)] // !(x > tol) is meant to be true for NaN
     if !(f > 1e-12 * sy) {
         let s = [st[0] + pressure, st[1] + pressure, st[3], st[2] + pressure];
         let d = elastic_3d(g, k);

@@ -64,6 +64,7 @@ pub(super) fn update(
     let p = p_matrix();
     let sy_n = m.current_yield(c);
     let f_trial = 0.5 * st.dot(&(p * st)) - sy_n * sy_n / 3.0;
+    #[allow(clippy::neg_cmp_op_on_partial_ord)] // !(x > tol) is meant to be true for NaN
     if !(f_trial > 1e-12 * sy_n * sy_n) {
         let state = PointState {
             stress: [st[0], st[1], st[2], 0.0],

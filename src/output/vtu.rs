@@ -27,6 +27,7 @@ pub fn nodal_fields(model: &Model, state: &State) -> NodalFields {
     let mut vals = vec![0.0; ng];
     for (e, el) in model.mesh.elements.iter().enumerate() {
         let gp = &state.gauss[e * ng..(e + 1) * ng];
+        #[allow(clippy::needless_range_loop)] // c numbers the field (σ components, Mises, PEEQ)
         for c in 0..6 {
             for (ip, g) in gp.iter().enumerate() {
                 vals[ip] = match c {

@@ -174,8 +174,9 @@ impl<'p> ToAll<'p> {
     }
 
     /// As [`ToAll::gather`], for a vector handle PETSc passed to a callback
-    /// (same layout as the vector the scatter was made for).
-    pub fn gather_raw(&mut self, v: ffi::Vec, out: &mut [f64]) -> Result<()> {
+    /// (same layout as the vector the scatter was made for). Crate-private: it
+    /// takes a raw handle, which safe code outside could not vouch for.
+    pub(crate) fn gather_raw(&mut self, v: ffi::Vec, out: &mut [f64]) -> Result<()> {
         // SAFETY: scatter created for v's layout; the array is restored before return.
         unsafe {
             chk(

@@ -309,8 +309,10 @@ unsafe fn lean_multigrid(snes: ffi::SNES, ranks: usize) -> Result<()> {
 
 impl<'p> SnesSolver<'p> {
     /// `mat`: the backend's system matrix (SNES takes a reference to it);
-    /// `part`: the backend's partition; `rank`: this process.
-    pub fn new(
+    /// `part`: the backend's partition; `rank`: this process. Crate-private: it
+    /// takes a raw matrix handle, which safe code outside could not vouch for.
+    #[allow(clippy::too_many_arguments)] // FFI-facing: the SNES set-up reads each one once
+    pub(crate) fn new(
         petsc: &'p Petsc,
         mat: ffi::Mat,
         part: &Partition,

@@ -2,7 +2,7 @@
 //! compliant joint, the Fig. 7 punch cases against the paper's conclusions 3-6
 //! (section 6), and the two friction schemes reaching the same answer.
 
-mod common;
+use crate::common;
 use asperity::driver::{self, RunOptions};
 use asperity::model::Model;
 use asperity::solve::{self, Increment, Observer, RunResult, State};

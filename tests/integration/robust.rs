@@ -2,7 +2,7 @@
 //! restart from `restart.bin` giving the uninterrupted run's files bit for bit,
 //! corrupted restart files refused, JSON log lines, and run-to-run determinism.
 
-mod common;
+use crate::common;
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::io::{BufRead, BufReader};
@@ -551,12 +551,12 @@ fn sigterm_exits_143_and_a_second_signal_abandons_the_increment() {
 }
 
 /// Size and cost of restart.bin at refine 3 (13,468 dofs), for the docs:
-/// `cargo test --release --test robust -- --ignored --nocapture restart_file_cost`.
+/// `cargo test --release --test integration -- --ignored --nocapture restart_file_cost`.
 #[test]
 #[ignore]
 fn restart_file_cost() {
-    let text =
-        include_str!("../cases/punch-plane-stress/case.toml").replace("refine = 1", "refine = 3");
+    let text = include_str!("../../cases/punch-plane-stress/case.toml")
+        .replace("refine = 1", "refine = 3");
     let model = common::model(&text);
     let mut ck = asperity::solve::Checkpoint::initial(&model);
     for (i, v) in ck.committed.u.iter_mut().enumerate() {

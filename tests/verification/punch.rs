@@ -3,7 +3,7 @@
 //! the plane-stress mean pressure saturating, a converging mesh sequence of
 //! first-yield loads, and the three solution methods agreeing.
 
-mod common;
+use crate::common;
 use asperity::case::Method;
 use asperity::driver::{self, RunOptions};
 use asperity::solve::RunResult;

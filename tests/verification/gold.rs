@@ -37,7 +37,7 @@
 //! intended; review the diff of every expected.json before committing it):
 //!
 //! ```sh
-//! ASPERITY_BLESS=1 cargo test --release --test gold
+//! ASPERITY_BLESS=1 cargo test --release --test verification gold::
 //! ```
 //!
 //! runs every case and rewrites its expected.json from the summary.json it
@@ -45,9 +45,9 @@
 //! and the commit. The values are never typed by hand.
 //!
 //! Comparisons with the paper and with peer codes stay separate, with their own
-//! documented tolerances (tests/punch.rs, tests/friction.rs, the README).
+//! documented tolerances (tests/verification/punch.rs, tests/verification/friction.rs, the README).
 
-mod common;
+use crate::common;
 use serde_json::{json, Map, Value};
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -301,7 +301,7 @@ fn write_expected(g: &Gold, summary: &Value, shown: &str) {
     let doc = json!({
         "case": g.case,
         "source": {
-            "command": "ASPERITY_BLESS=1 cargo test --release --test gold",
+            "command": "ASPERITY_BLESS=1 cargo test --release --test verification gold::",
             "run": shown,
             "date": utc_now(),
             "commit": commit(),
@@ -334,7 +334,7 @@ fn check(case: &str) {
     let path = expected_path(case);
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| {
         panic!(
-            "{}: {e}; generate it with ASPERITY_BLESS=1 cargo test --release --test gold",
+            "{}: {e}; generate it with ASPERITY_BLESS=1 cargo test --release --test verification gold::",
             path.display()
         )
     });
@@ -425,7 +425,10 @@ fn every_shipped_case_has_gold_values() {
     folders.sort();
     let mut listed: Vec<String> = CASES.iter().map(|g| g.case.to_string()).collect();
     listed.sort();
-    assert_eq!(folders, listed, "cases/ and tests/gold.rs CASES differ");
+    assert_eq!(
+        folders, listed,
+        "cases/ and tests/verification/gold.rs CASES differ"
+    );
     for g in &CASES {
         let dir: &Path = &common::root().join("cases").join(g.case);
         if !bless() {
@@ -438,8 +441,8 @@ fn every_shipped_case_has_gold_values() {
         let readme = std::fs::read_to_string(dir.join("README.md"))
             .unwrap_or_else(|e| panic!("cases/{}/README.md: {e}", g.case));
         assert!(
-            readme.contains("expected.json") && readme.contains("tests/gold.rs"),
-            "cases/{}/README.md does not point to expected.json and tests/gold.rs",
+            readme.contains("expected.json") && readme.contains("tests/verification/gold.rs"),
+            "cases/{}/README.md does not point to expected.json and tests/verification/gold.rs",
             g.case
         );
     }

@@ -5,7 +5,7 @@
 //! Skips (with a message) only when python3 or meshio is missing; ci/python-deps
 //! installs meshio.
 
-mod common;
+use crate::common;
 use std::process::Command;
 
 fn meshio_available() -> bool {

@@ -2,7 +2,7 @@
 //! plane states (elastic and plastic Gauss points), the interface points (lumped
 //! and consistent, every normal law) and the assembled residual of a punch model.
 
-mod common;
+use crate::common;
 use asperity::case::Method;
 use asperity::fem::q8;
 use asperity::fem::solid::{element_forces, ElementGeometry, Response, Tangent};
@@ -113,7 +113,7 @@ fn solid_element_tangent_matches_finite_differences() {
     }
 }
 
-const PUNCH: &str = include_str!("../cases/punch-plane-stress/case.toml");
+const PUNCH: &str = include_str!("../../cases/punch-plane-stress/case.toml");
 /// Normal law plus the Fig. 7c tangential law (unsymmetric point tangent).
 const FRICTION: &str = "law = \"power\"\nc_n = 0.001\nm = 0.5\n[interface.contact.tangential]\nr = 0.9\ns = 0.5\nkp_ratio = 0.05\nmu = 0.2\nbeta = 0.2\nn = 275.0";
 
@@ -177,7 +177,7 @@ fn interface_point_tangents_match_finite_differences() {
 
 #[test]
 fn assembled_tangent_matches_finite_differences_of_the_residual() {
-    let friction = include_str!("../cases/punch-friction-b/case.toml");
+    let friction = include_str!("../../cases/punch-friction-b/case.toml");
     for (plane, base) in [("stress", PUNCH), ("strain", PUNCH), ("stress", friction)] {
         let text = base.replace("plane = \"stress\"", &format!("plane = \"{plane}\""));
         let model = common::model(&text);

@@ -5,7 +5,7 @@
 //! (σ_yy = −q), so the FE solution is exact and the top settles by
 //! u = q (h₁ + h₂)/E + c_N q^m (the interface approach of eq. 2.1).
 
-mod common;
+use crate::common;
 use asperity::model::Model;
 use asperity::solve::{self, Increment, Observer, State};
 

@@ -2,7 +2,7 @@
 //! checked), and Fig. 8 shows the paper's trend: the foundation settles less as
 //! the hardening modulus grows.
 
-mod common;
+use crate::common;
 use asperity::study::figures::figures;
 
 fn rows(path: &std::path::Path) -> Vec<(String, f64, f64)> {

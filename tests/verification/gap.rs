@@ -4,7 +4,7 @@
 //! stabilization's dissipated energy stays within its stated fraction; a run
 //! that cannot be solved names the floating body.
 
-mod common;
+use crate::common;
 use asperity::model::Model;
 use asperity::solve::{self, Increment, Observer, RunResult, State};
 
@@ -202,8 +202,7 @@ fn unloading_to_zero_is_held_by_the_stabilization_within_its_energy_limit() {
         "[solver]\nstabilization_energy = 1e-15\nmax_cutbacks = 1\n",
     );
     let e = solve::run(&common::model(&strict), &mut Quiet)
-        .err()
-        .expect("cannot meet the limit")
+        .expect_err("cannot meet the limit")
         .to_string();
     eprintln!("{e}");
     assert!(e.contains("body \"punch\" carries no load"), "{e}");
@@ -220,8 +219,7 @@ fn without_stabilization_the_failure_names_the_floating_body() {
         "[solver]\nstabilization = \"off\"\nmax_cutbacks = 1\n",
     );
     let e = solve::run(&common::model(&text), &mut Quiet)
-        .err()
-        .expect("a floating punch cannot be solved without stabilization")
+        .expect_err("a floating punch cannot be solved without stabilization")
         .to_string();
     eprintln!("{e}");
     assert!(

@@ -1,15 +1,15 @@
 //! The serial backend's factorizations: Cholesky where the model says the
 //! tangent is symmetric, LU otherwise, and both on the same iterates.
 
-mod common;
+use crate::common;
 use asperity::backend::serial::{Factorization, SerialBackend};
 use asperity::case::Method;
 use asperity::fem::solid::Response;
 use asperity::model::Model;
 use asperity::solve::{Engine, State};
 
-const PUNCH: &str = include_str!("../cases/punch-plane-stress/case.toml");
-const FRICTION_RM: &str = include_str!("../cases/punch-friction-b/case.toml");
+const PUNCH: &str = include_str!("../../cases/punch-plane-stress/case.toml");
+const FRICTION_RM: &str = include_str!("../../cases/punch-friction-b/case.toml");
 
 /// Largest |K_ij − K_ji| over max |K| of the assembled tangent at a plastic
 /// state near the full load.

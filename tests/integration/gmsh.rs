@@ -2,16 +2,16 @@
 //! punch-gmsh case (Gmsh's copy of punch-plane-stress's mesh) gives
 //! punch-plane-stress's answer, and broken meshes give one clear error line.
 //!
-//! `cargo test --release --test gmsh`
+//! `cargo test --release --test integration gmsh::`
 
-mod common;
+use crate::common;
 use asperity::driver::{self, RunOptions};
 use asperity::model::Model;
 use asperity::solve::RunResult;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-const CASE: &str = include_str!("../cases/punch-gmsh/case.toml");
+const CASE: &str = include_str!("../../cases/punch-gmsh/case.toml");
 
 fn data(name: &str) -> PathBuf {
     common::root().join("tests").join("data").join(name)

@@ -1,8 +1,8 @@
 //! The command line on good and bad input: one clear error line, exit code 2,
 //! no panic and no output folder left behind. The bad case files themselves are
-//! the corpus under tests/bad_inputs/ (tests/bad_inputs.rs).
+//! the corpus under tests/bad_inputs/ (tests/integration/bad_inputs.rs).
 
-mod common;
+use crate::common;
 use std::process::Command;
 
 fn asperity(args: &[&str]) -> (i32, String, String) {
@@ -19,7 +19,7 @@ fn asperity(args: &[&str]) -> (i32, String, String) {
 
 // Bad case files (unknown keys, wrong types, impossible values, broken meshes,
 // unsupported bodies, a load that cannot converge …) live in the corpus
-// tests/bad_inputs/, run by tests/bad_inputs.rs.
+// tests/bad_inputs/, run by tests/integration/bad_inputs.rs.
 
 #[test]
 fn a_case_that_is_not_there_is_an_error() {
@@ -44,7 +44,8 @@ fn check_describes_the_case_without_solving() {
     );
 }
 
-/// The binary with extra environment variables.
+/// The binary with extra environment variables (used by the serial-build test below).
+#[cfg(not(feature = "parallel"))]
 fn asperity_env(args: &[&str], env: &[(&str, &str)]) -> (i32, String, String) {
     let mut cmd = Command::new(env!("CARGO_BIN_EXE_asperity"));
     cmd.args(args);

@@ -7,7 +7,7 @@
 //! their answers agree to the path accuracy the control is set to, not to
 //! the Newton tolerance; both are held to that accuracy.)
 
-mod common;
+use crate::common;
 use asperity::case::{Method, StepControl};
 use asperity::driver::{self, RunOptions};
 use asperity::solve::RunResult;

@@ -1,7 +1,7 @@
 //! `summary.json` matches its documented schema (docs/output.md): every key
 //! written is documented with its type, every documented key is written.
 
-mod common;
+use crate::common;
 use serde_json::Value;
 use std::collections::BTreeMap;
 

@@ -46,7 +46,7 @@
 //! 50-59 s wall for the two tests on a 2-core machine loaded by other jobs
 //! (load average 5, 2026-11-24); plane stress ×4 is the longest run.
 
-mod common;
+use crate::common;
 use asperity::model::Model;
 use asperity::solve::{self, Increment, Observer, State};
 

@@ -12,8 +12,8 @@ fn patch() -> (Vec<[f64; 2]>, Vec<[usize; 8]>) {
     // 5×5 grid of candidate points (corners and midsides), centres unused
     let mut nodes = Vec::new();
     let mut id = [[usize::MAX; 5]; 5];
-    for j in 0..5 {
-        for i in 0..5 {
+    for (j, row) in id.iter_mut().enumerate() {
+        for (i, slot) in row.iter_mut().enumerate() {
             if i % 2 == 1 && j % 2 == 1 {
                 continue;
             }
@@ -22,7 +22,7 @@ fn patch() -> (Vec<[f64; 2]>, Vec<[usize; 8]>) {
                 x += 0.23 * ((i * 3 + j) as f64).sin();
                 y += 0.19 * ((i + 5 * j) as f64).cos();
             }
-            id[j][i] = nodes.len();
+            *slot = nodes.len();
             nodes.push([x, y]);
         }
     }

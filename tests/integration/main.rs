@@ -1,0 +1,19 @@
+//! Integration tests: the program as a user meets it. The command line and its
+//! errors, `--help`, the bad-input corpus, the output files and their schema,
+//! interrupts and restarts, Gmsh meshes, `asperity figures`, the VTU output read
+//! by a real reader, and the documentation's links. One test binary (it links
+//! the crate once); one module per concern. Run with
+//! `cargo test --release --test integration`.
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod bad_inputs;
+mod cli;
+mod figures;
+mod gmsh;
+mod help;
+mod links;
+mod output_schema;
+mod robust;
+mod vtu_reader;

@@ -1,0 +1,20 @@
+//! Verification tests: the numbers. Closed forms (column, patch, limit load),
+//! the paper's punch and friction conclusions, finite-difference checks of the
+//! tangents, step control, the serial factorizations and the regression gold
+//! values of every shipped case (docs/verification.md has the table). One test
+//! binary (it links the crate once); one module per concern. Run with
+//! `cargo test --release --test verification`.
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod column;
+mod factorization;
+mod friction;
+mod gap;
+mod gold;
+mod limit_load;
+mod patch;
+mod punch;
+mod stepping;
+mod tangents;
