@@ -205,161 +205,238 @@ pub fn run_with(engine: Engine, observer: &mut dyn Observer) -> Result<RunResult
 /// `restart.bin`). Stops early, with `stopped` set, at an increment boundary
 /// after a SIGINT/SIGTERM (any rank) or `control.stop_after` increments; a
 /// second signal abandons the increment in progress.
+///
+/// Each pass of the loop: the collective stop decision, one attempt at the
+/// next load factor ([`attempt`]), then either its acceptance ([`accept`]:
+/// first yield, commit, output) or a cutback ([`cut_back`]). The stepper is
+/// only changed once the step's fate is known, so an interrupted step leaves
+/// it (and the checkpoint) as it was.
 pub fn run_from(
     mut engine: Engine,
     observer: &mut dyn Observer,
     start: Checkpoint,
     control: Control,
 ) -> Result<RunResult> {
-    let model = engine.model;
-    let spec = &model.case.solver;
     let resumed_from = start.increments.len();
     let mut ck = start;
     engine.localize(&mut ck.committed);
     engine.stats.iterations = ck.iterations;
     engine.stats.factorizations = ck.factorizations;
     let mut stopped = None;
-    let mut last_reason = String::new();
     while let Some(target) = ck.stepper.next(ck.lambda) {
-        // increment boundary: a collective stop decision
-        if let Some(n) = control.stop_after {
-            if ck.increments.len() >= n {
-                stopped = Some(Stop::StopAfter(n));
-                break;
-            }
-        }
-        let mut flag = [
-            crate::interrupt::requested() as f64,
-            f64::from(crate::interrupt::first_signal()),
-        ];
-        engine.backend.max(&mut flag);
-        if flag[0] >= 1.0 {
-            stopped = Some(Stop::Signal(flag[1] as i32));
+        if let Some(stop) = stop_at_boundary(&engine, &ck, control) {
+            stopped = Some(stop);
             break;
         }
-        // the stepper is only changed once the step's fate is known, so an
-        // interrupted step leaves it (and the checkpoint) as it was
-        let start = predict(&ck.committed, &ck.last_du, ck.last_step, target - ck.lambda);
-        let mut outcome =
-            engine.step_from(&ck.committed, target, Response::Plastic, start.as_deref());
-        if let Some(e) = engine.fatal.take() {
-            return Err(e);
-        }
-        if start.is_some() && outcome.is_err() && !engine.interrupted {
-            // the extrapolated start led astray (a status change the last
-            // increment did not foresee): the same step from the committed
-            // state, as without a predictor, before any cutback
-            engine.stats.predictor_restarts += 1;
-            outcome = engine.step(&ck.committed, target, Response::Plastic);
-            if let Some(e) = engine.fatal.take() {
-                return Err(e);
-            }
-        }
-        let why = match outcome {
+        let why = match attempt(&mut engine, &ck, target)? {
             Ok((trial, iterations)) => {
-                // each rank holds its elements' Gauss states: maxima over all ranks
-                let dpeeq = engine.max_over_points(
-                    trial
-                        .gauss
-                        .iter()
-                        .zip(&ck.committed.gauss)
-                        .map(|(t, c)| t.peeq - c.peeq),
-                );
-                if ck.stepper.too_plastic(ck.lambda, target, dpeeq) {
-                    stepping::Why::TooPlastic(dpeeq)
-                } else {
-                    let yielded_now = ck.first_yield.is_none()
-                        && engine.max_over_points(trial.gauss.iter().map(|g| g.peeq)) > 0.0;
-                    if yielded_now && spec.locate_first_yield {
-                        match yield_point::locate(
-                            &mut engine,
-                            &ck.committed,
-                            (ck.lambda, ck.elastic_ratio_prev),
-                            target,
-                        ) {
-                            Ok(fy) => ck.first_yield = Some(fy),
-                            Err(_) if engine.interrupted => {
-                                stopped = Some(Stop::Signal(engine.interrupt_signal));
-                                break;
-                            }
-                            Err(e) => return Err(e),
+                match accept(&mut engine, observer, &mut ck, trial, target, iterations)? {
+                    Accepted::Yes => {
+                        if ck.increments.len() == resumed_from + 1 {
+                            engine
+                                .stats
+                                .memory_mb
+                                .push(("first_increment", peak_memory_mb()));
                         }
-                    } else if ck.first_yield.is_none() {
-                        ck.elastic_ratio_prev = engine.max_yield_ratio(&trial).0;
+                        continue;
                     }
-                    ck.stepper.accepted(ck.lambda, target, iterations, dpeeq);
-                    ck.last_du.clear();
-                    ck.last_du
-                        .extend(trial.u.iter().zip(&ck.committed.u).map(|(a, b)| a - b));
-                    ck.committed = trial;
-                    engine.committed();
-                    ck.last_step = target - ck.lambda;
-                    ck.lambda = target;
-                    let inc = Increment {
-                        increment: ck.increments.len() + 1,
-                        load_factor: ck.lambda,
-                        iterations,
-                        cutbacks: ck.cutbacks_here,
-                        measures: engine.measures(&ck.committed),
-                    };
-                    ck.cutbacks_here = 0;
-                    ck.iterations = engine.stats.iterations;
-                    ck.factorizations = engine.stats.factorizations;
-                    // the writer (rank 0) sees every element's Gauss states
-                    // for as long as it writes
-                    let local = engine
-                        .gather_gauss(&ck.committed)
-                        .map(|full| std::mem::replace(&mut ck.committed.gauss, full));
-                    let written = observer.increment(model, &ck.committed, &inc);
-                    ck.increments.push(inc);
-                    if ck.increments.len() == resumed_from + 1 {
-                        engine
-                            .stats
-                            .memory_mb
-                            .push(("first_increment", peak_memory_mb()));
+                    Accepted::Interrupted(signal) => {
+                        stopped = Some(Stop::Signal(signal));
+                        break;
                     }
-                    let written = written.and_then(|()| observer.checkpoint(model, &ck));
-                    if let Some(local) = local {
-                        ck.committed.gauss = local;
-                    }
-                    if !engine.backend.agree(written.is_ok()) {
-                        return Err(written.err().unwrap_or_else(|| {
-                            Error::Output("writing the output failed on rank 0".into())
-                        }));
-                    }
-                    continue;
+                    Accepted::No(why) => why,
                 }
             }
             Err(_) if engine.interrupted => {
                 stopped = Some(Stop::Signal(engine.interrupt_signal));
                 break;
             }
-            Err(reason) => {
-                last_reason = reason;
-                stepping::Why::Failed
-            }
+            Err(reason) => (stepping::Why::Failed, reason),
         };
-        let reason = match why {
-            stepping::Why::Failed => std::mem::take(&mut last_reason),
-            stepping::Why::TooPlastic(d) => {
-                format!("largest plastic strain increment {d:.2e} above 3 × plastic_strain_step")
-            }
-        };
-        match ck.stepper.retry(ck.lambda, target, why) {
-            stepping::Retry::GiveUp => {
-                return Err(Error::Convergence {
-                    increment: ck.increments.len() + 1,
-                    load_factor: target,
-                    message: format!("{reason}; gave up after {} cutbacks", spec.max_cutbacks),
-                });
-            }
-            stepping::Retry::At(_) => {
-                observer.cutback(ck.lambda, target, &reason);
-                ck.cutbacks_total += 1;
-                ck.cutbacks_here += 1;
-            }
+        cut_back(&mut ck, observer, target, why)?;
+    }
+    Ok(finish(engine, ck, stopped, resumed_from))
+}
+
+/// The stop decision at an increment boundary, collective: `--stop-after`
+/// reached, or a stop signal on any rank.
+fn stop_at_boundary(engine: &Engine, ck: &Checkpoint, control: Control) -> Option<Stop> {
+    if let Some(n) = control.stop_after {
+        if ck.increments.len() >= n {
+            return Some(Stop::StopAfter(n));
         }
     }
+    let mut flag = [
+        crate::interrupt::requested() as f64,
+        f64::from(crate::interrupt::first_signal()),
+    ];
+    engine.backend.max(&mut flag);
+    (flag[0] >= 1.0).then(|| Stop::Signal(flag[1] as i32))
+}
+
+/// One step to `target` from the committed state: from the predictor's start,
+/// and again from the committed state when that fails (before any cutback).
+/// The outer error is a failure no cutback can cure (memory).
+fn attempt(
+    engine: &mut Engine,
+    ck: &Checkpoint,
+    target: f64,
+) -> Result<std::result::Result<(State, usize), String>> {
+    let start = predict(&ck.committed, &ck.last_du, ck.last_step, target - ck.lambda);
+    let mut outcome = engine.step_from(&ck.committed, target, Response::Plastic, start.as_deref());
+    if let Some(e) = engine.fatal.take() {
+        return Err(e);
+    }
+    if start.is_some() && outcome.is_err() && !engine.interrupted {
+        // the extrapolated start led astray (a status change the last
+        // increment did not foresee): the same step from the committed
+        // state, as without a predictor, before any cutback
+        engine.stats.predictor_restarts += 1;
+        outcome = engine.step(&ck.committed, target, Response::Plastic);
+        if let Some(e) = engine.fatal.take() {
+            return Err(e);
+        }
+    }
+    Ok(outcome)
+}
+
+/// What became of a converged step.
+enum Accepted {
+    /// Committed and written.
+    Yes,
+    /// Redone smaller, for this reason.
+    No((stepping::Why, String)),
+    /// A second stop signal abandoned the first-yield search.
+    Interrupted(i32),
+}
+
+/// A converged step to `target`: rejected when its plastic strain increment
+/// is too large for the automatic control, else first yield located inside it
+/// (if it is there), the state committed, the increment recorded and written.
+fn accept(
+    engine: &mut Engine,
+    observer: &mut dyn Observer,
+    ck: &mut Checkpoint,
+    trial: State,
+    target: f64,
+    iterations: usize,
+) -> Result<Accepted> {
+    let model = engine.model;
+    // each rank holds its elements' Gauss states: maxima over all ranks
+    let dpeeq = engine.max_over_points(
+        trial
+            .gauss
+            .iter()
+            .zip(&ck.committed.gauss)
+            .map(|(t, c)| t.peeq - c.peeq),
+    );
+    if ck.stepper.too_plastic(ck.lambda, target, dpeeq) {
+        let reason =
+            format!("largest plastic strain increment {dpeeq:.2e} above 3 × plastic_strain_step");
+        return Ok(Accepted::No((stepping::Why::TooPlastic(dpeeq), reason)));
+    }
+    let yielded_now = ck.first_yield.is_none()
+        && engine.max_over_points(trial.gauss.iter().map(|g| g.peeq)) > 0.0;
+    if yielded_now && model.case.solver.locate_first_yield {
+        match yield_point::locate(
+            engine,
+            &ck.committed,
+            (ck.lambda, ck.elastic_ratio_prev),
+            target,
+        ) {
+            Ok(fy) => ck.first_yield = Some(fy),
+            Err(_) if engine.interrupted => {
+                return Ok(Accepted::Interrupted(engine.interrupt_signal))
+            }
+            Err(e) => return Err(e),
+        }
+    } else if ck.first_yield.is_none() {
+        ck.elastic_ratio_prev = engine.max_yield_ratio(&trial).0;
+    }
+    ck.stepper.accepted(ck.lambda, target, iterations, dpeeq);
+    ck.last_du.clear();
+    ck.last_du
+        .extend(trial.u.iter().zip(&ck.committed.u).map(|(a, b)| a - b));
+    ck.committed = trial;
+    engine.committed();
+    ck.last_step = target - ck.lambda;
+    ck.lambda = target;
+    let inc = Increment {
+        increment: ck.increments.len() + 1,
+        load_factor: ck.lambda,
+        iterations,
+        cutbacks: ck.cutbacks_here,
+        measures: engine.measures(&ck.committed),
+    };
+    ck.cutbacks_here = 0;
+    ck.iterations = engine.stats.iterations;
+    ck.factorizations = engine.stats.factorizations;
+    write_increment(engine, observer, ck, inc)?;
+    Ok(Accepted::Yes)
+}
+
+/// Records a committed increment and hands it to the observer (rank 0
+/// writes), with the checkpoint; a failed write on rank 0 ends every rank.
+fn write_increment(
+    engine: &Engine,
+    observer: &mut dyn Observer,
+    ck: &mut Checkpoint,
+    inc: Increment,
+) -> Result<()> {
+    let model = engine.model;
+    // the writer (rank 0) sees every element's Gauss states for as long as
+    // it writes
+    let local = engine
+        .gather_gauss(&ck.committed)
+        .map(|full| std::mem::replace(&mut ck.committed.gauss, full));
+    let written = observer.increment(model, &ck.committed, &inc);
+    ck.increments.push(inc);
+    let written = written.and_then(|()| observer.checkpoint(model, ck));
+    if let Some(local) = local {
+        ck.committed.gauss = local;
+    }
+    if !engine.backend.agree(written.is_ok()) {
+        return Err(written
+            .err()
+            .unwrap_or_else(|| Error::Output("writing the output failed on rank 0".into())));
+    }
+    Ok(())
+}
+
+/// A failed or rejected step: the stepper's next try, or the end of the run
+/// when the cutbacks are used up.
+fn cut_back(
+    ck: &mut Checkpoint,
+    observer: &mut dyn Observer,
+    target: f64,
+    (why, reason): (stepping::Why, String),
+) -> Result<()> {
+    match ck.stepper.retry(ck.lambda, target, why) {
+        stepping::Retry::GiveUp => Err(Error::Convergence {
+            increment: ck.increments.len() + 1,
+            load_factor: target,
+            message: format!(
+                "{reason}; gave up after {} cutbacks",
+                ck.stepper.max_cutbacks()
+            ),
+        }),
+        stepping::Retry::At(_) => {
+            observer.cutback(ck.lambda, target, &reason);
+            ck.cutbacks_total += 1;
+            ck.cutbacks_here += 1;
+            Ok(())
+        }
+    }
+}
+
+/// The outcome of a run from the engine's counters and the last checkpoint;
+/// memory summed over the ranks (collective).
+fn finish(
+    mut engine: Engine,
+    ck: Checkpoint,
+    stopped: Option<Stop>,
+    resumed_from: usize,
+) -> RunResult {
     let stabilization = stabilize::final_report(&engine, &ck.committed);
     // the peak and every stage, summed over ranks (every rank passed the same stages)
     let mut memory: Vec<f64> = std::iter::once(peak_memory_mb())
@@ -369,7 +446,7 @@ pub fn run_from(
     for (s, m) in engine.stats.memory_mb.iter_mut().zip(&memory[1..]) {
         s.1 = *m;
     }
-    Ok(RunResult {
+    RunResult {
         peak_memory_mb: memory[0],
         backend: engine.backend.name().to_string(),
         ranks: engine.backend.ranks(),
@@ -383,22 +460,7 @@ pub fn run_from(
             .as_ref()
             .map_or("builtin", |s| s.name())
             .to_string(),
-        backend_stats: {
-            // counters of the same name (ksp_iterations) add up
-            let mut stats: Vec<(String, f64)> = Vec::new();
-            let nonlinear = engine
-                .nonlinear
-                .as_ref()
-                .map(|s| s.diagnostics())
-                .unwrap_or_default();
-            for (k, v) in engine.backend.diagnostics().into_iter().chain(nonlinear) {
-                match stats.iter_mut().find(|(n, _)| n == k) {
-                    Some((_, total)) => *total += v,
-                    None => stats.push((k.to_string(), v)),
-                }
-            }
-            stats
-        },
+        backend_stats: backend_stats(&engine),
         increments: ck.increments,
         first_yield: ck.first_yield,
         stats: engine.stats.clone(),
@@ -407,7 +469,25 @@ pub fn run_from(
         stopped,
         resumed_from,
         stabilization,
-    })
+    }
+}
+
+/// The backend's and the nonlinear solver's counters; counters of the same
+/// name (ksp_iterations) add up.
+fn backend_stats(engine: &Engine) -> Vec<(String, f64)> {
+    let mut stats: Vec<(String, f64)> = Vec::new();
+    let nonlinear = engine
+        .nonlinear
+        .as_ref()
+        .map(|s| s.diagnostics())
+        .unwrap_or_default();
+    for (k, v) in engine.backend.diagnostics().into_iter().chain(nonlinear) {
+        match stats.iter_mut().find(|(n, _)| n == k) {
+            Some((_, total)) => *total += v,
+            None => stats.push((k.to_string(), v)),
+        }
+    }
+    stats
 }
 
 /// The predictor of an increment: the committed displacements plus the last

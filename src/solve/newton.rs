@@ -26,6 +26,17 @@ use crate::model::Model;
 
 /// Points per reduction in `Engine::share_state` and `Engine::gather_gauss`.
 const SHARE_CHUNK: usize = 8192;
+/// Approach (mm) above which a pair counts as "at zero approach or beyond" for
+/// the secant start of eq. 2.8-2.9 in the first iteration of a step.
+const ZERO_APPROACH: f64 = 1e-12;
+/// A residual this many times the reference, after the first iterations, is
+/// divergence: the step is abandoned without waiting for the iteration limit.
+const DIVERGENCE: f64 = 1e10;
+/// Iterations before the divergence test applies.
+const DIVERGENCE_AFTER: usize = 2;
+/// Contraction factor under which the displacement test uses the
+/// contraction's error bound ([`StepProblem::error_estimate`]).
+const FAST_CONTRACTION: f64 = 0.5;
 
 /// Counters over a whole run.
 #[derive(Clone, Debug, Default)]
@@ -406,7 +417,6 @@ impl<'m> Engine<'m> {
         floor: Option<Vec<f64>>,
     ) -> Result<Vec<Status>, String> {
         let m = self.model;
-        let ng = m.n_gauss();
         let root = self.backend.rank() == 0;
         for (r, f) in self.r.iter_mut().zip(&m.f_ext) {
             *r = if root { -lambda * f } else { 0.0 };
@@ -414,6 +424,41 @@ impl<'m> Engine<'m> {
         // backends keep the solid matrix apart only for the fixed-matrix methods
         // (Backend::reuse_solid): full Newton reassembles it every time
         debug_assert!(solid_tangent.is_some() || self.method != Method::FullNewton);
+        let failure = self.assemble_solids(committed, trial, response, solid_tangent)?;
+        self.assemblies += 1;
+        // a local failure (return mapping) fails the step on every rank, with its message
+        if let Some(msg) = self.backend.share_message(failure) {
+            return Err(msg);
+        }
+        if let Some(t) = solid_tangent {
+            // a consistent matrix is never reused; the others are cached
+            self.solid_valid = t != Tangent::Consistent;
+        }
+        let mut codes = self.assemble_interfaces(committed, trial, floor.as_deref())?;
+        let be = &mut self.backend;
+        be.sum(&mut self.r);
+        if self.assemblies == 1 {
+            self.stats
+                .memory_mb
+                .push(("first_assembly", super::peak_memory_mb()));
+        }
+        be.sum(&mut codes);
+        Ok(codes.iter().map(|&c| Status::from_code(c as u8)).collect())
+    }
+
+    /// The element loop over the held elements: internal forces into
+    /// `self.r`, Gauss states into `trial`, element tangents into the backend
+    /// when `solid_tangent` asks for them. Returns this rank's failure (a
+    /// return mapping, or an injected fault), not yet shared.
+    fn assemble_solids(
+        &mut self,
+        committed: &State,
+        trial: &mut State,
+        response: Response,
+        solid_tangent: Option<Tangent>,
+    ) -> Result<Option<String>, String> {
+        let m = self.model;
+        let ng = m.n_gauss();
         let be = &mut self.backend;
         let err = |e: crate::error::Error| e.to_string();
         if solid_tangent.is_some() {
@@ -464,22 +509,30 @@ impl<'m> Engine<'m> {
                 r = be.rank()
             ));
         }
-        self.assemblies += 1;
-        // a local failure (return mapping) fails the step on every rank, with its message
-        if let Some(msg) = be.share_message(failure) {
-            return Err(msg);
-        }
-        if let Some(t) = solid_tangent {
-            // a consistent matrix is never reused; the others are cached
-            self.solid_valid = t != Tangent::Consistent;
-        }
+        Ok(failure)
+    }
+
+    /// The spring loop over the interface points this rank owns: contact
+    /// forces into `self.r`, tangential states into `trial`, point tangents
+    /// (with the stabilization's springs when it has them) into the backend.
+    /// `floor`: the secant start stiffness per interface (first iteration).
+    /// Returns the status code of every point (0 where another rank owns it).
+    fn assemble_interfaces(
+        &mut self,
+        committed: &State,
+        trial: &mut State,
+        floor: Option<&[f64]>,
+    ) -> Result<Vec<f64>, String> {
+        let m = self.model;
+        let be = &mut self.backend;
+        let err = |e: crate::error::Error| e.to_string();
         be.begin_contact().map_err(err)?;
         let mut codes = vec![0.0; committed.status.len()];
         let (mut rl, mut kl) = ([0.0; 12], [0.0; 144]);
         let springs = self.stabilizer.as_ref().and_then(|s| s.springs.as_deref());
         let mut q = 0;
         for (i, im) in m.interfaces.iter().enumerate() {
-            let kf = floor.as_ref().map(|f| f[i]);
+            let kf = floor.map(|f| f[i]);
             for (j, pt) in im.points.iter().enumerate() {
                 if !be.owns_point(q) {
                     q += 1;
@@ -487,7 +540,7 @@ impl<'m> Engine<'m> {
                 }
                 let nd = 4 * pt.len;
                 let un = im.point_kinematics(pt, &trial.u).0;
-                let kfloor = kf.filter(|_| un > -1e-12);
+                let kfloor = kf.filter(|_| un > -ZERO_APPROACH);
                 let ev = im.eval_point(
                     pt,
                     &trial.u,
@@ -518,14 +571,7 @@ impl<'m> Engine<'m> {
                 q += 1;
             }
         }
-        be.sum(&mut self.r);
-        if self.assemblies == 1 {
-            self.stats
-                .memory_mb
-                .push(("first_assembly", super::peak_memory_mb()));
-        }
-        be.sum(&mut codes);
-        Ok(codes.iter().map(|&c| Status::from_code(c as u8)).collect())
+        Ok(codes)
     }
 }
 
@@ -612,7 +658,7 @@ impl<'a, 'm> StepProblem<'a, 'm> {
     /// the last correction is the smaller bound and stays the test.
     fn error_estimate(&self) -> f64 {
         let theta = self.du_inf / self.du_prev_inf;
-        if theta < 0.5 {
+        if theta < FAST_CONTRACTION {
             theta / (1.0 - theta) * self.du_inf
         } else {
             self.du_inf
@@ -746,7 +792,9 @@ impl Problem for StepProblem<'_, '_> {
             )));
             return Verdict::Stop;
         }
-        if e.backend.agree(r_norm > 1e10 * reference && it > 2) {
+        if e.backend
+            .agree(r_norm > DIVERGENCE * reference && it > DIVERGENCE_AFTER)
+        {
             self.outcome = Some(Err(format!(
                 "diverged at iteration {it} (|R|/|F| = {:.3e})",
                 r_norm / reference

@@ -20,6 +20,25 @@ use crate::case::{SolverSpec, StepControl};
 
 /// Relative tolerance under which two load factors are the same waypoint.
 const SAME: f64 = 1e-12;
+/// Largest automatic step (load factor) unless `max_increment` says otherwise.
+const MAX_STEP: f64 = 0.25;
+/// Full Newton's iteration target: at most this many, the step may double; up
+/// to twice as many, it is kept; more, it is halved.
+const NEWTON_TARGET_ITERATIONS: f64 = 6.0;
+/// The fixed-matrix methods' target: this fraction of the iteration limit,
+/// but at least [`MIN_FIXED_TARGET`].
+const FIXED_TARGET_FRACTION: f64 = 1.0 / 8.0;
+const MIN_FIXED_TARGET: f64 = 4.0;
+/// A step whose largest plastic strain increment exceeds this many times
+/// `plastic_strain_step` is redone.
+const TOO_PLASTIC: f64 = 3.0;
+/// The bounds of the plastic-strain factor of the next step.
+const PLASTIC_FACTOR: (f64, f64) = (0.25, 2.0);
+/// The step grows at most by this factor.
+const GROWTH: f64 = 2.0;
+/// The waypoint is taken when it is at most this many steps away (no sliver
+/// of a step before it).
+const WAYPOINT_REACH: f64 = 1.2;
 
 /// The plan of load factors of a run.
 #[derive(Clone, Debug)]
@@ -70,7 +89,7 @@ impl Stepper {
         let first = spec
             .first_increment
             .unwrap_or(1.0 / spec.n_increments().max(1) as f64);
-        let max_step = spec.max_increment.unwrap_or(0.25);
+        let max_step = spec.max_increment.unwrap_or(MAX_STEP);
         Stepper {
             mode: spec.step_mode(),
             pending: schedule.into_iter().rev().map(|l| (l, 0)).collect(),
@@ -79,14 +98,19 @@ impl Stepper {
             max_step,
             min_step: first.min(max_step) * 0.5f64.powi(spec.max_cutbacks as i32),
             target_iterations: match spec.method {
-                crate::case::Method::FullNewton => 6.0,
-                _ => (spec.iteration_limit() as f64 / 8.0).max(4.0),
+                crate::case::Method::FullNewton => NEWTON_TARGET_ITERATIONS,
+                _ => (spec.iteration_limit() as f64 * FIXED_TARGET_FRACTION).max(MIN_FIXED_TARGET),
             },
             newton: spec.method == crate::case::Method::FullNewton,
             plastic_step: spec.plastic_strain_step,
             failures: 0,
             max_cutbacks: spec.max_cutbacks,
         }
+    }
+
+    /// Halvings allowed for one step before the run gives up.
+    pub fn max_cutbacks(&self) -> usize {
+        self.max_cutbacks
     }
 
     /// The load factor the history ends at.
@@ -118,7 +142,7 @@ impl Stepper {
                 let dir = (w - lambda).signum();
                 let remaining = (w - lambda).abs();
                 // take the waypoint when the step would leave less than a fifth of a step
-                if remaining <= 1.2 * self.step {
+                if remaining <= WAYPOINT_REACH * self.step {
                     Some(w)
                 } else {
                     Some(lambda + dir * self.step)
@@ -133,7 +157,7 @@ impl Stepper {
     /// [`Why::TooPlastic`].)
     pub fn too_plastic(&self, lambda: f64, target: f64, dpeeq: f64) -> bool {
         self.mode == StepControl::Auto
-            && dpeeq > 3.0 * self.plastic_step
+            && dpeeq > TOO_PLASTIC * self.plastic_step
             && (target - lambda).abs() > self.min_step * 1.000001
     }
 
@@ -149,7 +173,7 @@ impl Stepper {
                 let p = self.plastic_step;
                 let its = iterations as f64;
                 let by_iterations: f64 = if its <= self.target_iterations {
-                    2.0
+                    GROWTH
                 } else if its <= 2.0 * self.target_iterations || !self.newton {
                     // the fixed-matrix methods' rate near a limit load does not
                     // improve with smaller steps: only a failure shrinks theirs
@@ -158,12 +182,12 @@ impl Stepper {
                     0.5
                 };
                 let by_plasticity = if dpeeq > 0.0 {
-                    (p / dpeeq).clamp(0.25, 2.0)
+                    (p / dpeeq).clamp(PLASTIC_FACTOR.0, PLASTIC_FACTOR.1)
                 } else {
-                    2.0
+                    GROWTH
                 };
                 // grow from the step taken (a waypoint may have shortened it)
-                let base = taken.max(self.step.min(taken * 2.0));
+                let base = taken.max(self.step.min(taken * GROWTH));
                 self.step =
                     (base * by_iterations.min(by_plasticity)).clamp(self.min_step, self.max_step);
                 self.failures = 0;
