@@ -87,18 +87,39 @@ pub fn load_model(case_path: &Path, opts: &RunOptions) -> Result<Model> {
     Model::build(case)
 }
 
+/// The serial backend's engine for a model, with the given method: the
+/// backend factory of a run on one process (the factorization follows the
+/// model's [`Model::symmetric_tangent`]).
+pub fn serial_engine(model: &Model, method: Method) -> Result<Engine<'_>> {
+    let backend = crate::backend::serial::SerialBackend::new(model)?;
+    Ok(Engine::with_backend(model, method, Box::new(backend)))
+}
+
+/// Runs the whole load history of a built model on the serial backend, with
+/// the model's method, reporting to `observer` (no output folder).
+pub fn solve(model: &Model, observer: &mut dyn solve::Observer) -> Result<RunResult> {
+    solve::run_with(serial_engine(model, model.case.solver.method)?, observer)
+}
+
+/// The one place an engine is made ready for a run, whatever its backend:
+/// the memory stages so far ("model" when the model was built, "setup" now,
+/// after the backend and solver objects) and the fault-injection test hook.
+pub fn prepare(engine: &mut Engine, opts: &RunOptions, at_model: f64) {
+    engine.stats.memory_mb = vec![
+        ("model", at_model),
+        ("setup", crate::solve::peak_memory_mb()),
+    ];
+    engine.fault = opts.fault;
+}
+
 /// Runs a case to completion on the serial backend and writes its output
 /// folder. Returns the folder, the model and the result.
 pub fn run(case_path: &Path, opts: &RunOptions) -> Result<(PathBuf, Model, RunResult)> {
     let started = Instant::now();
     let model = load_model(case_path, opts)?;
     let at_model = crate::solve::peak_memory_mb();
-    let mut engine = Engine::new(&model, model.case.solver.method)?;
-    engine.stats.memory_mb = vec![
-        ("model", at_model),
-        ("setup", crate::solve::peak_memory_mb()),
-    ];
-    engine.fault = opts.fault;
+    let mut engine = serial_engine(&model, model.case.solver.method)?;
+    prepare(&mut engine, opts, at_model);
     let (dir, result) = run_model(&model, engine, opts, true, started)?;
     Ok((dir, model, result))
 }

@@ -64,11 +64,7 @@ pub fn run(
             let mut engine =
                 Engine::with_backend(&model, model.case.solver.method, Box::new(backend));
             engine.nonlinear = snes.map(|s| Box::new(s) as Box<dyn NonlinearSolver>);
-            engine.stats.memory_mb = vec![
-                ("model", at_model),
-                ("setup", crate::solve::peak_memory_mb()),
-            ];
-            engine.fault = opts.fault;
+            driver::prepare(&mut engine, opts, at_model);
             driver::run_model(&model, engine, opts, root, started)
         };
         drop(petsc);

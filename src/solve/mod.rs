@@ -188,11 +188,6 @@ pub struct RunResult {
     pub stabilization: Option<stabilize::Report>,
 }
 
-/// Runs the whole load history of the model on the serial backend.
-pub fn run(model: &Model, observer: &mut dyn Observer) -> Result<RunResult> {
-    run_with(Engine::new(model, model.case.solver.method)?, observer)
-}
-
 /// Runs the whole load history with a given engine (any backend). Under MPI
 /// every rank calls this; only rank 0's observer writes, and its outcome is
 /// shared so that a failed write stops every rank.

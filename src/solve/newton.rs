@@ -16,7 +16,6 @@ use super::accelerate::Anderson;
 use super::nonlinear::{NonlinearSolver, Problem, Verdict};
 use super::stabilize::Stabilizer;
 use super::State;
-use crate::backend::serial::SerialBackend;
 use crate::backend::Backend;
 use crate::case::{Acceleration, Method};
 use crate::fem::solid::{element_forces, Response, Tangent};
@@ -86,15 +85,8 @@ pub struct Engine<'m> {
 }
 
 impl<'m> Engine<'m> {
-    /// An engine on the serial faer backend.
-    pub fn new(model: &'m Model, method: Method) -> crate::error::Result<Self> {
-        Ok(Self::with_backend(
-            model,
-            method,
-            Box::new(SerialBackend::new(model)?),
-        ))
-    }
-
+    /// An engine on a backend (the caller's factory: [`crate::driver::serial_engine`]
+    /// for the serial one, `parallel::run` for PETSc).
     pub fn with_backend(
         model: &'m Model,
         method: Method,

@@ -5,7 +5,7 @@ use super::plot::{load_font, save, Chart, Series};
 use crate::case::Case;
 use crate::error::{Error, Result};
 use crate::model::Model;
-use crate::solve::{self, Increment, Measures, Observer, RunResult, State};
+use crate::solve::{Increment, Measures, Observer, RunResult, State};
 use std::path::{Path, PathBuf};
 
 /// What is kept of every converged increment.
@@ -63,7 +63,7 @@ impl Observer for Capture {
 pub fn capture(case: Case) -> Result<(RunResult, Vec<Snapshot>)> {
     let model = Model::build(case)?;
     let mut cap = Capture::default();
-    let r = solve::run(&model, &mut cap)?;
+    let r = crate::driver::solve(&model, &mut cap)?;
     Ok((r, cap.0))
 }
 

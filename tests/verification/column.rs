@@ -7,7 +7,7 @@
 
 use crate::common;
 use asperity::model::Model;
-use asperity::solve::{self, Increment, Observer, State};
+use asperity::solve::{Increment, Observer, State};
 
 struct Quiet;
 impl Observer for Quiet {
@@ -75,7 +75,7 @@ displacement_tolerance = 1e-12
 
 fn settle(text: &str) -> (f64, f64, Model, State) {
     let model = common::model(text);
-    let r = solve::run(&model, &mut Quiet).unwrap();
+    let r = asperity::driver::solve(&model, &mut Quiet).unwrap();
     let st = r.final_state;
     // top-left corner node: maximum y, x = 0
     let top = (0..model.mesh.nodes.len())
@@ -163,7 +163,7 @@ fn loss_of_contact_and_recontact_follow_the_closed_form() {
         );
     let model = common::model(&text);
     let mut rec = Record(Vec::new());
-    solve::run(&model, &mut rec).unwrap();
+    asperity::driver::solve(&model, &mut rec).unwrap();
     assert_eq!(rec.0.len(), 7);
     for (lambda, p, status) in &rec.0 {
         let delta = 0.05 * lambda;

@@ -5,7 +5,7 @@
 use crate::common;
 use asperity::driver::{self, RunOptions};
 use asperity::model::Model;
-use asperity::solve::{self, Increment, Observer, RunResult, State};
+use asperity::solve::{Increment, Observer, RunResult, State};
 
 struct Record(Vec<(f64, f64)>);
 impl Observer for Record {
@@ -73,7 +73,7 @@ increments = 50
     );
     let model = common::model(&text);
     let mut rec = Record(Vec::new());
-    solve::run(&model, &mut rec).unwrap_or_else(|e| panic!("{e}"));
+    asperity::driver::solve(&model, &mut rec).unwrap_or_else(|e| panic!("{e}"));
     let ratios: Vec<f64> = rec
         .0
         .iter()

@@ -48,7 +48,7 @@
 
 use crate::common;
 use asperity::model::Model;
-use asperity::solve::{self, Increment, Observer, State};
+use asperity::solve::{Increment, Observer, State};
 
 struct Quiet;
 impl Observer for Quiet {
@@ -108,7 +108,7 @@ uy = {settlement}
     );
     let started = std::time::Instant::now();
     let model = common::model(&text);
-    let r = solve::run(&model, &mut Quiet).unwrap_or_else(|e| panic!("{e}"));
+    let r = asperity::driver::solve(&model, &mut Quiet).unwrap_or_else(|e| panic!("{e}"));
     let last = r.increments.last().unwrap();
     assert!(last.load_factor == 1.0);
     // reaction on the punch: sum of the residual at the prescribed settlement dofs

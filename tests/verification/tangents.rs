@@ -7,7 +7,7 @@ use asperity::case::Method;
 use asperity::fem::q8;
 use asperity::fem::solid::{element_forces, ElementGeometry, Response, Tangent};
 use asperity::material::{PlaneState, PointState, VonMises};
-use asperity::solve::{Engine, State};
+use asperity::solve::State;
 
 fn distorted() -> [[f64; 2]; 8] {
     let c = [[0.0, 0.0], [2.0, 0.2], [2.3, 1.9], [-0.2, 1.6]];
@@ -181,7 +181,7 @@ fn assembled_tangent_matches_finite_differences_of_the_residual() {
     for (plane, base) in [("stress", PUNCH), ("strain", PUNCH), ("stress", friction)] {
         let text = base.replace("plane = \"stress\"", &format!("plane = \"{plane}\""));
         let model = common::model(&text);
-        let mut engine = Engine::new(&model, Method::FullNewton).unwrap();
+        let mut engine = asperity::driver::serial_engine(&model, Method::FullNewton).unwrap();
         let committed = State::initial(&model);
         // a converged plastic state to linearize around: solve to a high load
         let (state, _) = engine.step(&committed, 1.0, Response::Plastic).unwrap();
