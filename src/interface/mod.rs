@@ -18,7 +18,6 @@
 pub mod normal;
 pub mod tangential;
 
-use crate::case::Weights;
 use crate::mesh::{Interface, Mesh};
 pub use normal::NormalLaw;
 pub use tangential::{Slip, SlipState, TangentialLaw};
@@ -100,6 +99,18 @@ pub struct PointState {
     pub p_t: f64,
     pub u_t: f64,
     pub mu_f: f64,
+}
+
+/// Quadrature of the interface energy along a contact edge (the case's
+/// `weights`): the nodes themselves or 4-point Gauss (see the module comment).
+#[derive(Clone, Copy, Debug, serde::Deserialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum Weights {
+    /// Row-sum weights 1/6, 2/3, 1/6 (eq. 3.30-3.31): one spring per pair.
+    #[default]
+    Lumped,
+    /// Gauss integration along the edge (eq. 3.29).
+    Consistent,
 }
 
 /// How the tangential stiffness enters the matrix.
