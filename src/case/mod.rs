@@ -15,6 +15,7 @@ pub use validate::{
 };
 
 pub use crate::interface::{FrictionScheme, Weights};
+pub use crate::material::Plane;
 pub use crate::solve::{Acceleration, Method, Stabilization, StepControl};
 
 use crate::error::{Error, Result};
@@ -49,13 +50,6 @@ pub struct Case {
     /// Where the case was read from (not part of the schema).
     #[serde(skip)]
     pub source: PathBuf,
-}
-
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "kebab-case")]
-pub enum Plane {
-    Stress,
-    Strain,
 }
 
 #[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default)]
