@@ -4,12 +4,12 @@
 //! [`crate::solve::State`].
 
 use crate::assembly::{Blocks, DofMap, Pattern};
-use crate::case::{check_case, whole, Case, Integration, Plane};
+use crate::case::{check_case, whole, Case, Integration};
 use crate::error::{Error, Result};
 use crate::fem::q8::{self, GaussRule};
 use crate::fem::solid::ElementGeometry;
 use crate::interface::InterfaceModel;
-use crate::material::{PlaneState, VonMises};
+use crate::material::{Plane, VonMises};
 use crate::mesh::{blocks, gmsh, Mesh};
 
 pub struct Model {
@@ -83,16 +83,12 @@ impl Model {
                     format!("[materials] has no entry for body \"{body}\""),
                 )
             })?;
-            let ps = match plane {
-                Plane::Stress => PlaneState::Stress,
-                Plane::Strain => PlaneState::Strain,
-            };
             let mat = VonMises::new(
                 spec.young,
                 spec.poisson,
                 spec.yield_stress.unwrap_or(f64::INFINITY),
                 spec.hardening,
-                ps,
+                plane,
             )
             .map_err(|e| Error::input(format!("{place}: [materials.{body}]"), e))?;
             materials.push(mat);

@@ -27,7 +27,8 @@
 //! `auto_failures` (automatic step control), `cutbacks` (total, since the last increment),
 //! `elastic_ratio_prev`, `counters` (Newton iterations, factorizations), `u`,
 //! `gauss` (10 per Gauss point: σxx σyy σxy σzz, εᵖ ×4, ε̄ᵖ, yielding),
-//! `status` (interface status codes), `contact` (5 per interface point:
+//! `status` (interface status codes), `contact` (5 per interface point, as
+//! [`crate::interface::PointState::pack`] lays them out:
 //! plastic slip, max shear memory κ, p_T, u_T, μ_F), `prescribed_reaction`,
 //! `curve` (10 per increment: number, load factor, iterations, cutbacks, normal
 //! force, mean pressure, load kN, centre displacement, max ε̄ᵖ, prescribed
@@ -36,7 +37,7 @@
 //! `pvd_file` (names separated by newlines). Unknown sections are ignored.
 
 use crate::error::{Error, Result};
-use crate::interface::Status;
+use crate::interface::{PointState as ContactState, Status};
 use crate::material::PointState;
 use crate::model::Model;
 use crate::solve::{Checkpoint, FirstYield, Increment, Measures};
@@ -293,10 +294,8 @@ fn sections(e: &mut Encoder, ck: &Checkpoint, pvd: &[(f64, String)]) -> std::io:
     )?;
     e.f64_iter(
         "contact",
-        5 * s.contact.len(),
-        s.contact
-            .iter()
-            .flat_map(|p| [p.slip.u_p, p.slip.kappa, p.p_t, p.u_t, p.mu_f]),
+        ContactState::PACKED * s.contact.len(),
+        s.contact.iter().flat_map(ContactState::pack),
     )?;
     e.f64s("prescribed_reaction", &[s.prescribed_reaction])?;
     let mut rows = Vec::with_capacity(10 * ck.increments.len());
@@ -518,11 +517,9 @@ pub fn decode(
         .committed
         .contact
         .iter_mut()
-        .zip(f("contact", Some(5 * np))?.chunks_exact(5))
+        .zip(f("contact", Some(ContactState::PACKED * np))?.chunks_exact(ContactState::PACKED))
     {
-        p.slip.u_p = v[0];
-        p.slip.kappa = v[1];
-        (p.p_t, p.u_t, p.mu_f) = (v[2], v[3], v[4]);
+        *p = ContactState::unpack(v);
     }
     ck.committed.prescribed_reaction = f("prescribed_reaction", Some(1))?[0];
     let rows = f("curve", Some(10 * increments))?;

@@ -14,6 +14,10 @@ pub use validate::{
     MAX_NAME_BYTES,
 };
 
+pub use crate::interface::{FrictionScheme, Weights};
+pub use crate::material::Plane;
+pub use crate::solve::{Acceleration, Method, Stabilization, StepControl};
+
 use crate::error::{Error, Result};
 use crate::mesh::blocks::{BlockSpec, InterfaceSpec};
 use serde::Deserialize;
@@ -46,13 +50,6 @@ pub struct Case {
     /// Where the case was read from (not part of the schema).
     #[serde(skip)]
     pub source: PathBuf,
-}
-
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "kebab-case")]
-pub enum Plane {
-    Stress,
-    Strain,
 }
 
 #[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default)]
@@ -168,19 +165,11 @@ pub struct TangentialSpec {
     pub yield_ratio: f64,
     /// "return-mapping" (consistent tangent) or "stiffness-modification" (the paper's 2.25-2.26).
     #[serde(default)]
-    pub scheme: crate::interface::FrictionScheme,
+    pub scheme: FrictionScheme,
 }
 
 fn default_yield_ratio() -> f64 {
     0.625
-}
-
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default)]
-#[serde(rename_all = "kebab-case")]
-pub enum Weights {
-    #[default]
-    Lumped,
-    Consistent,
 }
 
 /// Prescribed displacement on a node set (value at load factor 1; 0 = fixed).
@@ -228,63 +217,6 @@ fn two_numbers_opt<'de, D: serde::Deserializer<'de>>(
     d: D,
 ) -> std::result::Result<Option<[f64; 2]>, D::Error> {
     two_numbers(d).map(Some)
-}
-
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default)]
-#[serde(rename_all = "kebab-case")]
-pub enum Method {
-    /// Consistent tangent at every iteration.
-    #[default]
-    FullNewton,
-    /// Solid tangent from the start of the increment, contact matrix updated each iteration.
-    ModifiedNewton,
-    /// Elastic K₀ plus the current contact matrix (eq. 4.8).
-    InitialStiffness,
-}
-
-impl Method {
-    pub fn name(self) -> &'static str {
-        match self {
-            Method::FullNewton => "full-newton",
-            Method::ModifiedNewton => "modified-newton",
-            Method::InitialStiffness => "initial-stiffness",
-        }
-    }
-}
-
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default)]
-#[serde(rename_all = "kebab-case")]
-pub enum Acceleration {
-    /// The plain method: u ← u + Δu.
-    None,
-    /// Anderson mixing of the last corrections (see `solve::accelerate`).
-    #[default]
-    Anderson,
-}
-
-/// Contact stabilization of floating bodies (`solve::stabilize`).
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default)]
-#[serde(rename_all = "kebab-case")]
-pub enum Stabilization {
-    /// Used only in the steps that need it: a body held only through open
-    /// interface pairs, or carrying no load.
-    #[default]
-    Auto,
-    /// Never: such steps fail, with the floating body named.
-    Off,
-}
-
-/// How the load-factor steps are chosen.
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default)]
-#[serde(rename_all = "kebab-case")]
-pub enum StepControl {
-    /// The schedule as given (`increments`, `first_increment`, `load_factors`),
-    /// halved on failure.
-    #[default]
-    Fixed,
-    /// Steps adapted to the iteration count and the plastic strain increment
-    /// between the waypoints (`load_factors`, else 1); see `solve::stepping`.
-    Auto,
 }
 
 #[derive(Clone, Debug, Deserialize)]

@@ -153,8 +153,8 @@ pub fn elastic_state(mat: &VonMises, committed: &PointState, eps: &[f64; 3]) -> 
     let d = mat.elastic_matrix();
     let mut s = d * nalgebra::Vector3::new(ee[0], ee[1], ee[2]);
     let szz = match mat.plane {
-        crate::material::PlaneState::Stress => 0.0,
-        crate::material::PlaneState::Strain => {
+        crate::material::Plane::Stress => 0.0,
+        crate::material::Plane::Strain => {
             // ε_zz = 0, so the elastic ε_zz is −εᵖzz; it adds λ·εᵉzz to every normal stress
             let lambda =
                 mat.young * mat.poisson / ((1.0 + mat.poisson) * (1.0 - 2.0 * mat.poisson));

@@ -18,7 +18,6 @@
 pub mod normal;
 pub mod tangential;
 
-use crate::case::Weights;
 use crate::mesh::{Interface, Mesh};
 pub use normal::NormalLaw;
 pub use tangential::{Slip, SlipState, TangentialLaw};
@@ -100,6 +99,48 @@ pub struct PointState {
     pub p_t: f64,
     pub u_t: f64,
     pub mu_f: f64,
+}
+
+impl PointState {
+    /// Doubles per state in [`PointState::pack`].
+    pub const PACKED: usize = 5;
+
+    /// Plastic slip u_p, slip memory κ, p_T, u_T, μ_F: the layout of restart
+    /// files and of the MPI exchange of interface states.
+    pub fn pack(&self) -> [f64; Self::PACKED] {
+        [
+            self.slip.u_p,
+            self.slip.kappa,
+            self.p_t,
+            self.u_t,
+            self.mu_f,
+        ]
+    }
+
+    /// The inverse of [`PointState::pack`] (`v` holds at least `PACKED` values).
+    pub fn unpack(v: &[f64]) -> Self {
+        PointState {
+            slip: SlipState {
+                u_p: v[0],
+                kappa: v[1],
+            },
+            p_t: v[2],
+            u_t: v[3],
+            mu_f: v[4],
+        }
+    }
+}
+
+/// Quadrature of the interface energy along a contact edge (the case's
+/// `weights`): the nodes themselves or 4-point Gauss (see the module comment).
+#[derive(Clone, Copy, Debug, serde::Deserialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum Weights {
+    /// Row-sum weights 1/6, 2/3, 1/6 (eq. 3.30-3.31): one spring per pair.
+    #[default]
+    Lumped,
+    /// Gauss integration along the edge (eq. 3.29).
+    Consistent,
 }
 
 /// How the tangential stiffness enters the matrix.
@@ -400,4 +441,34 @@ fn gauss4() -> [(f64, f64); 4] {
     let wa = (18.0 + 30f64.sqrt()) / 36.0;
     let wb = (18.0 - 30f64.sqrt()) / 36.0;
     [(-b, wb), (-a, wa), (a, wa), (b, wb)]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn point_state_pack_round_trips_in_the_restart_order() {
+        let s = PointState {
+            slip: SlipState {
+                u_p: -1.5e-3,
+                kappa: 4e-3,
+            },
+            p_t: -12.25,
+            u_t: 7.0e-4,
+            mu_f: 0.3,
+        };
+        let v = s.pack();
+        assert_eq!(v.len(), PointState::PACKED);
+        assert_eq!(v, [-1.5e-3, 4e-3, -12.25, 7.0e-4, 0.3]);
+        assert_eq!(PointState::unpack(&v), s);
+        // one state in a longer buffer (a chunk of a packed array)
+        let mut buf = [9.0; 3 * PointState::PACKED];
+        buf[PointState::PACKED..2 * PointState::PACKED].copy_from_slice(&v);
+        assert_eq!(PointState::unpack(&buf[PointState::PACKED..]), s);
+        assert_eq!(
+            PointState::unpack(&PointState::default().pack()),
+            PointState::default()
+        );
+    }
 }

@@ -27,9 +27,14 @@ mod tests;
 use nalgebra::{Matrix3, Matrix4};
 use std::fmt;
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum PlaneState {
+/// The plane idealization of the 2D model (the case's `[model] plane`,
+/// "stress" or "strain").
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Plane {
+    /// σ_zz = 0 (thin bodies; the thickness scales the forces).
     Stress,
+    /// ε_zz = 0 (long bodies; solved per unit thickness unless one is given).
     Strain,
 }
 
@@ -78,7 +83,7 @@ pub struct VonMises {
     pub poisson: f64,
     pub yield_stress: f64,
     pub hardening: f64,
-    pub plane: PlaneState,
+    pub plane: Plane,
 }
 
 /// A return mapping that failed to converge.
@@ -108,7 +113,7 @@ impl VonMises {
         poisson: f64,
         yield_stress: f64,
         hardening: f64,
-        plane: PlaneState,
+        plane: Plane,
     ) -> Result<Self, String> {
         if !(young.is_finite() && young > 0.0) {
             return Err(format!("young = {young} must be a positive number (MPa)"));
@@ -148,7 +153,7 @@ impl VonMises {
     pub fn elastic_matrix(&self) -> Matrix3<f64> {
         let (e, nu) = (self.young, self.poisson);
         match self.plane {
-            PlaneState::Stress => {
+            Plane::Stress => {
                 let c = e / (1.0 - nu * nu);
                 Matrix3::new(
                     c,
@@ -162,7 +167,7 @@ impl VonMises {
                     c * (1.0 - nu) / 2.0,
                 )
             }
-            PlaneState::Strain => {
+            Plane::Strain => {
                 let c = e / ((1.0 + nu) * (1.0 - 2.0 * nu));
                 Matrix3::new(
                     c * (1.0 - nu),
@@ -198,8 +203,8 @@ impl VonMises {
         strain: &[f64; 3],
     ) -> Result<(PointState, Matrix3<f64>), ReturnMapError> {
         match self.plane {
-            PlaneState::Strain => Ok(plane_strain::update(self, committed, strain)),
-            PlaneState::Stress => plane_stress::update(self, committed, strain),
+            Plane::Strain => Ok(plane_strain::update(self, committed, strain)),
+            Plane::Stress => plane_stress::update(self, committed, strain),
         }
     }
 
@@ -213,8 +218,8 @@ impl VonMises {
         // Voigt order of c: xx, yy, zz, xy
         let idx = [0usize, 1, 3];
         match self.plane {
-            PlaneState::Strain => Matrix3::from_fn(|i, j| c[(idx[i], idx[j])]),
-            PlaneState::Stress => {
+            Plane::Strain => Matrix3::from_fn(|i, j| c[(idx[i], idx[j])]),
+            Plane::Stress => {
                 let czz = c[(2, 2)];
                 Matrix3::from_fn(|i, j| c[(idx[i], idx[j])] - c[(idx[i], 2)] * c[(2, idx[j])] / czz)
             }

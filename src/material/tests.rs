@@ -3,7 +3,7 @@
 
 use super::*;
 
-fn mat(plane: PlaneState, h: f64) -> VonMises {
+fn mat(plane: Plane, h: f64) -> VonMises {
     VonMises::new(200000.0, 0.3, 250.0, h, plane).unwrap()
 }
 
@@ -36,7 +36,7 @@ fn consistent_tangent_matches_finite_differences() {
         [-5e-3, 4e-3, -2e-3],      // mixed signs
         [3e-3, 3e-3, 0.0],         // equibiaxial
     ];
-    for plane in [PlaneState::Stress, PlaneState::Strain] {
+    for plane in [Plane::Stress, Plane::Strain] {
         for h in [0.0, 2000.0, 50000.0] {
             let m = mat(plane, h);
             // from a virgin state and from a committed plastic state
@@ -56,7 +56,7 @@ fn consistent_tangent_matches_finite_differences() {
 
 #[test]
 fn yield_consistency_and_plane_stress_sigma_zz() {
-    for plane in [PlaneState::Stress, PlaneState::Strain] {
+    for plane in [Plane::Stress, Plane::Strain] {
         let m = mat(plane, 3000.0);
         for eps in [[5e-3, -1e-3, 2e-3], [-4e-3, -4e-3, 1e-2], [1e-2, 2e-3, 0.0]] {
             let (s, _) = m.update(&PointState::default(), &eps).unwrap();
@@ -67,7 +67,7 @@ fn yield_consistency_and_plane_stress_sigma_zz() {
                 "{plane:?}: {q} vs {}",
                 m.current_yield(&s)
             );
-            if plane == PlaneState::Stress {
+            if plane == Plane::Stress {
                 assert_eq!(s.stress[3], 0.0);
             }
             let ep = s.plastic_strain;
@@ -81,7 +81,7 @@ fn yield_consistency_and_plane_stress_sigma_zz() {
 
 #[test]
 fn continuum_tangent_is_the_limit_of_the_consistent_one() {
-    for plane in [PlaneState::Stress, PlaneState::Strain] {
+    for plane in [Plane::Stress, Plane::Strain] {
         let m = mat(plane, 2000.0);
         let eps = [3e-3, -1e-3, 1e-3];
         let (c, _) = m.update(&PointState::default(), &eps).unwrap();
@@ -116,7 +116,7 @@ fn uniaxial_plane_stress(m: &VonMises, exx: f64) -> PointState {
 #[test]
 fn plane_stress_uniaxial_tension_follows_the_bilinear_curve() {
     let (e, h, sy) = (200000.0, 2000.0, 250.0);
-    let m = mat(PlaneState::Stress, h);
+    let m = mat(Plane::Stress, h);
     for exx in [0.5 * sy / e, 3e-3, 1e-2] {
         let s = uniaxial_plane_stress(&m, exx);
         let ey = sy / e;
@@ -138,7 +138,7 @@ fn plane_stress_uniaxial_tension_follows_the_bilinear_curve() {
 
 #[test]
 fn plane_strain_pure_shear_yields_at_k_and_stays_there_when_perfectly_plastic() {
-    let m = mat(PlaneState::Strain, 0.0);
+    let m = mat(Plane::Strain, 0.0);
     let g = m.shear_modulus();
     let k = 250.0 / 3f64.sqrt();
     let gamma_y = k / g;
@@ -156,7 +156,7 @@ fn plane_strain_pure_shear_yields_at_k_and_stays_there_when_perfectly_plastic() 
 #[test]
 fn plane_strain_uniaxial_strain_onset_of_yield() {
     // εxx only: σyy = σzz = ν/(1−ν) σxx, yield when σxx − σyy = σ_Y
-    let m = mat(PlaneState::Strain, 0.0);
+    let m = mat(Plane::Strain, 0.0);
     let (e, nu) = (m.young, m.poisson);
     let c11 = e * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu));
     let onset = 250.0 / (c11 * (1.0 - nu / (1.0 - nu)));
@@ -179,7 +179,7 @@ fn plane_strain_uniaxial_strain_onset_of_yield() {
 
 #[test]
 fn one_radial_step_equals_many_small_ones_in_plane_strain() {
-    let m = mat(PlaneState::Strain, 5000.0);
+    let m = mat(Plane::Strain, 5000.0);
     let dir = [2e-3, -1.5e-3, 1e-3];
     let (big, _) = m.update(&PointState::default(), &dir).unwrap();
     // proportional path from the yield point: deviatoric direction stays fixed
@@ -203,7 +203,7 @@ fn one_radial_step_equals_many_small_ones_in_plane_strain() {
 
 #[test]
 fn bad_parameters_are_named_and_infinite_yield_is_elastic() {
-    let ps = PlaneState::Stress;
+    let ps = Plane::Stress;
     assert!(VonMises::new(-1.0, 0.3, 1.0, 0.0, ps)
         .unwrap_err()
         .contains("young"));
@@ -220,7 +220,7 @@ fn bad_parameters_are_named_and_infinite_yield_is_elastic() {
     assert!(VonMises::new(1.0, 0.3, 1.0, -1.0, ps)
         .unwrap_err()
         .contains("hardening"));
-    for plane in [PlaneState::Stress, PlaneState::Strain] {
+    for plane in [Plane::Stress, Plane::Strain] {
         let m = VonMises::new(1000.0, 0.3, f64::INFINITY, 0.0, plane).unwrap();
         let (s, c) = m
             .update(&PointState::default(), &[10.0, -3.0, 4.0])

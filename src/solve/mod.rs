@@ -5,11 +5,13 @@
 mod accelerate;
 pub mod newton;
 pub mod nonlinear;
+pub mod settings;
 pub mod stabilize;
 pub mod stepping;
 mod yield_point;
 
 pub use newton::{Engine, Stats};
+pub use settings::{Acceleration, Method, Stabilization, StepControl};
 pub use yield_point::FirstYield;
 
 use crate::error::{Error, Result};

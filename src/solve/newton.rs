@@ -350,29 +350,21 @@ impl<'m> Engine<'m> {
         if self.backend.ranks() == 1 {
             return;
         }
-        let mut g = Vec::with_capacity(SHARE_CHUNK * 5);
+        const W: usize = crate::interface::PointState::PACKED;
+        let mut g = Vec::with_capacity(SHARE_CHUNK * W);
         let mut start = 0;
         while start < trial.contact.len() {
             let end = (start + SHARE_CHUNK).min(trial.contact.len());
             g.clear();
-            g.resize((end - start) * 5, 0.0);
+            g.resize((end - start) * W, 0.0);
             for (k, s) in trial.contact[start..end].iter().enumerate() {
                 if self.backend.owns_point(start + k) {
-                    g[5 * k..5 * k + 5].copy_from_slice(&[
-                        s.slip.u_p,
-                        s.slip.kappa,
-                        s.p_t,
-                        s.u_t,
-                        s.mu_f,
-                    ]);
+                    g[W * k..W * (k + 1)].copy_from_slice(&s.pack());
                 }
             }
             self.backend.sum(&mut g);
             for (k, s) in trial.contact[start..end].iter_mut().enumerate() {
-                let v = &g[5 * k..5 * k + 5];
-                s.slip.u_p = v[0];
-                s.slip.kappa = v[1];
-                (s.p_t, s.u_t, s.mu_f) = (v[2], v[3], v[4]);
+                *s = crate::interface::PointState::unpack(&g[W * k..W * (k + 1)]);
             }
             start = end;
         }

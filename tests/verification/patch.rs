@@ -4,7 +4,7 @@
 
 use asperity::fem::q8::{gauss_2x2, gauss_3x3};
 use asperity::fem::solid::{element_forces, ElementGeometry, Response, Tangent};
-use asperity::material::{PlaneState, PointState, VonMises};
+use asperity::material::{Plane, PointState, VonMises};
 use nalgebra::{DMatrix, DVector};
 
 /// 2×2 elements on [0,4]² with the centre node and midsides moved off-grid.
@@ -59,7 +59,7 @@ fn linear_fields_are_reproduced_to_round_off() {
         .iter()
         .map(|x| x[0] == 0.0 || x[0] == 4.0 || x[1] == 0.0 || x[1] == 4.0)
         .collect();
-    for plane in [PlaneState::Stress, PlaneState::Strain] {
+    for plane in [Plane::Stress, Plane::Strain] {
         for rule in [gauss_3x3(), gauss_2x2()] {
             let mat = VonMises::new(100000.0, 0.25, f64::INFINITY, 0.0, plane).unwrap();
             let ng = rule.points.len();

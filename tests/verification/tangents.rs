@@ -6,7 +6,7 @@ use crate::common;
 use asperity::case::Method;
 use asperity::fem::q8;
 use asperity::fem::solid::{element_forces, ElementGeometry, Response, Tangent};
-use asperity::material::{PlaneState, PointState, VonMises};
+use asperity::material::{Plane, PointState, VonMises};
 use asperity::solve::State;
 
 fn distorted() -> [[f64; 2]; 8] {
@@ -22,7 +22,7 @@ fn distorted() -> [[f64; 2]; 8] {
     x
 }
 
-fn check_element(plane: PlaneState, scale: f64, hardening: f64) {
+fn check_element(plane: Plane, scale: f64, hardening: f64) {
     let mat = VonMises::new(200000.0, 0.3, 250.0, hardening, plane).unwrap();
     let geom = ElementGeometry::new(&distorted(), &q8::gauss_3x3(), 1.5).unwrap();
     let mut ue = [0.0; 16];
@@ -106,7 +106,7 @@ fn check_element(plane: PlaneState, scale: f64, hardening: f64) {
 
 #[test]
 fn solid_element_tangent_matches_finite_differences() {
-    for plane in [PlaneState::Stress, PlaneState::Strain] {
+    for plane in [Plane::Stress, Plane::Strain] {
         check_element(plane, 1e-5, 2000.0); // elastic
         check_element(plane, 2e-3, 2000.0); // plastic, hardening
         check_element(plane, 2e-3, 0.0); // plastic, perfectly plastic

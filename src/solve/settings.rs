@@ -1,0 +1,63 @@
+//! Solver settings chosen in a case's `[solver]` table: the iteration method,
+//! its acceleration, the step control and the contact stabilization. The case
+//! file spells them in kebab-case (`method = "modified-newton"`); `case`
+//! re-exports them.
+
+use serde::Deserialize;
+
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum Method {
+    /// Consistent tangent at every iteration.
+    #[default]
+    FullNewton,
+    /// Solid tangent from the start of the increment, contact matrix updated each iteration.
+    ModifiedNewton,
+    /// Elastic K₀ plus the current contact matrix (eq. 4.8).
+    InitialStiffness,
+}
+
+impl Method {
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::FullNewton => "full-newton",
+            Method::ModifiedNewton => "modified-newton",
+            Method::InitialStiffness => "initial-stiffness",
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum Acceleration {
+    /// The plain method: u ← u + Δu.
+    None,
+    /// Anderson mixing of the last corrections (see `solve::accelerate`).
+    #[default]
+    Anderson,
+}
+
+/// Contact stabilization of floating bodies (`solve::stabilize`).
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum Stabilization {
+    /// Used only in the steps that need it: a body held only through open
+    /// interface pairs, or carrying no load.
+    #[default]
+    Auto,
+    /// Never: such steps fail, with the floating body named.
+    Off,
+}
+
+/// How the load-factor steps are chosen.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum StepControl {
+    /// The schedule as given (`increments`, `first_increment`, `load_factors`),
+    /// halved on failure.
+    #[default]
+    Fixed,
+    /// Steps adapted to the iteration count and the plastic strain increment
+    /// between the waypoints (`load_factors`, else 1); see `solve::stepping`.
+    Auto,
+}
