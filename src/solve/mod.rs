@@ -3,6 +3,7 @@
 //! committed state restored, and the location of first yield.
 
 mod accelerate;
+pub mod failure;
 pub mod newton;
 pub mod nonlinear;
 pub mod settings;
@@ -10,6 +11,7 @@ pub mod stabilize;
 pub mod stepping;
 mod yield_point;
 
+pub use failure::StepFailure;
 pub use newton::{Engine, Stats};
 pub use settings::{Acceleration, Method, Stabilization, StepControl};
 pub use yield_point::FirstYield;
@@ -244,11 +246,11 @@ pub fn run_from(
                     Accepted::No(why) => why,
                 }
             }
-            Err(_) if engine.interrupted => {
-                stopped = Some(Stop::Signal(engine.interrupt_signal));
+            Err(StepFailure::Interrupted { signal, .. }) => {
+                stopped = Some(Stop::Signal(signal));
                 break;
             }
-            Err(reason) => (stepping::Why::Failed, reason),
+            Err(failure) => (stepping::Why::Failed, failure.to_string()),
         };
         cut_back(&mut ck, observer, target, why)?;
     }
@@ -278,23 +280,25 @@ fn attempt(
     engine: &mut Engine,
     ck: &Checkpoint,
     target: f64,
-) -> Result<std::result::Result<(State, usize), String>> {
+) -> Result<std::result::Result<(State, usize), StepFailure>> {
     let start = predict(&ck.committed, &ck.last_du, ck.last_step, target - ck.lambda);
     let mut outcome = engine.step_from(&ck.committed, target, Response::Plastic, start.as_deref());
-    if let Some(e) = engine.fatal.take() {
-        return Err(e);
-    }
-    if start.is_some() && outcome.is_err() && !engine.interrupted {
+    if start.is_some()
+        && outcome
+            .as_ref()
+            .is_err_and(|f| f.signal().is_none() && !f.is_fatal())
+    {
         // the extrapolated start led astray (a status change the last
         // increment did not foresee): the same step from the committed
         // state, as without a predictor, before any cutback
         engine.stats.predictor_restarts += 1;
         outcome = engine.step(&ck.committed, target, Response::Plastic);
-        if let Some(e) = engine.fatal.take() {
-            return Err(e);
-        }
     }
-    Ok(outcome)
+    match outcome {
+        // no smaller step needs less memory: the run ends here
+        Err(f) if f.is_fatal() => Err(f.into_error()),
+        outcome => Ok(outcome),
+    }
 }
 
 /// What became of a converged step.
@@ -342,10 +346,16 @@ fn accept(
             target,
         ) {
             Ok(fy) => ck.first_yield = Some(fy),
-            Err(_) if engine.interrupted => {
-                return Ok(Accepted::Interrupted(engine.interrupt_signal))
+            Err((_, StepFailure::Interrupted { signal, .. })) => {
+                return Ok(Accepted::Interrupted(signal))
             }
-            Err(e) => return Err(e),
+            Err((load_factor, f)) => {
+                return Err(Error::Convergence {
+                    increment: 0,
+                    load_factor,
+                    message: format!("elastic solve while locating first yield: {f}"),
+                })
+            }
         }
     } else if ck.first_yield.is_none() {
         ck.elastic_ratio_prev = engine.max_yield_ratio(&trial).0;

@@ -13,6 +13,7 @@
 //! are small and no interface point changed status in the last iteration.
 
 use super::accelerate::Anderson;
+use super::failure::StepFailure;
 use super::nonlinear::{NonlinearSolver, Problem, Verdict};
 use super::stabilize::Stabilizer;
 use super::State;
@@ -68,14 +69,6 @@ pub struct Engine<'m> {
     /// Test hook: (rank, assembly number) at which the element loop fails.
     pub fault: Option<(usize, usize)>,
     assemblies: usize,
-    /// The last step was abandoned because of a second stop request
-    /// (SIGINT/SIGTERM on any rank); see [`crate::interrupt`].
-    pub interrupted: bool,
-    /// The signal behind it (the largest number over the ranks).
-    pub interrupt_signal: i32,
-    /// A failure that no cutback can cure (memory ran out in a
-    /// factorization): the run ends with it.
-    pub fatal: Option<crate::error::Error>,
     /// The elements whose Gauss states this process holds, ascending: all of
     /// them on one process, the owned ones under MPI. A state's `gauss` holds
     /// these elements' points in this order ([`Engine::localize`]).
@@ -107,9 +100,6 @@ impl<'m> Engine<'m> {
             stats: Stats::default(),
             fault: None,
             assemblies: 0,
-            interrupted: false,
-            interrupt_signal: 0,
-            fatal: None,
             held,
             stabilizer: Some(Stabilizer::new(model)),
         }
@@ -246,7 +236,7 @@ impl<'m> Engine<'m> {
         committed: &State,
         lambda: f64,
         response: Response,
-    ) -> Result<(State, usize), String> {
+    ) -> Result<(State, usize), StepFailure> {
         self.step_from(committed, lambda, response, None)
     }
 
@@ -261,7 +251,7 @@ impl<'m> Engine<'m> {
         lambda: f64,
         response: Response,
         start: Option<&[f64]>,
-    ) -> Result<(State, usize), String> {
+    ) -> Result<(State, usize), StepFailure> {
         super::stabilize::step(self, committed, lambda, response, start)
     }
 
@@ -273,13 +263,13 @@ impl<'m> Engine<'m> {
         lambda: f64,
         response: Response,
         start: Option<&[f64]>,
-    ) -> Result<(State, usize), String> {
+    ) -> Result<(State, usize), StepFailure> {
         let guess = self.stabilizer.as_mut().and_then(|s| s.guess.take());
         let start = guess.as_deref().or(start);
         if let Some(mut solver) = self.nonlinear.take() {
             let t0 = std::time::Instant::now();
             let mut p = StepProblem::new(self, committed, lambda, response, start);
-            let solved = solver.solve(&mut p);
+            let solved = solver.solve(&mut p).map_err(StepFailure::Solver);
             let inside = p.evaluate_seconds();
             let result = p.finish(solved);
             self.stats.solve_seconds += (t0.elapsed().as_secs_f64() - inside).max(0.0);
@@ -301,12 +291,7 @@ impl<'m> Engine<'m> {
             // solve of −r is not bitwise the negated solve of r)
             let t1 = std::time::Instant::now();
             if let Err(e) = p.engine.backend.solve(&r, &mut du) {
-                let msg = e.to_string();
-                if matches!(e, crate::error::Error::Memory(_)) {
-                    // no smaller step needs less memory: the run ends here
-                    p.engine.fatal = Some(e);
-                }
-                break Err(msg);
+                break Err(StepFailure::Linear(e));
             }
             for v in du.iter_mut() {
                 *v = -*v;
@@ -329,7 +314,7 @@ impl<'m> Engine<'m> {
         committed: &State,
         u: &[f64],
         lambda: f64,
-    ) -> Result<Vec<f64>, String> {
+    ) -> Result<Vec<f64>, StepFailure> {
         let mut trial = committed.clone();
         trial.u.copy_from_slice(u);
         self.assemble(
@@ -399,7 +384,7 @@ impl<'m> Engine<'m> {
         response: Response,
         solid_tangent: Option<Tangent>,
         floor: Option<Vec<f64>>,
-    ) -> Result<Vec<Status>, String> {
+    ) -> Result<Vec<Status>, StepFailure> {
         let m = self.model;
         let root = self.backend.rank() == 0;
         for (r, f) in self.r.iter_mut().zip(&m.f_ext) {
@@ -412,7 +397,7 @@ impl<'m> Engine<'m> {
         self.assemblies += 1;
         // a local failure (return mapping) fails the step on every rank, with its message
         if let Some(msg) = self.backend.share_message(failure) {
-            return Err(msg);
+            return Err(StepFailure::Element(msg));
         }
         if let Some(t) = solid_tangent {
             // a consistent matrix is never reused; the others are cached
@@ -440,11 +425,11 @@ impl<'m> Engine<'m> {
         trial: &mut State,
         response: Response,
         solid_tangent: Option<Tangent>,
-    ) -> Result<Option<String>, String> {
+    ) -> Result<Option<String>, StepFailure> {
         let m = self.model;
         let ng = m.n_gauss();
         let be = &mut self.backend;
-        let err = |e: crate::error::Error| e.to_string();
+        let err = StepFailure::Linear;
         if solid_tangent.is_some() {
             be.begin_solid().map_err(err)?;
         }
@@ -506,10 +491,10 @@ impl<'m> Engine<'m> {
         committed: &State,
         trial: &mut State,
         floor: Option<&[f64]>,
-    ) -> Result<Vec<f64>, String> {
+    ) -> Result<Vec<f64>, StepFailure> {
         let m = self.model;
         let be = &mut self.backend;
-        let err = |e: crate::error::Error| e.to_string();
+        let err = StepFailure::Linear;
         be.begin_contact().map_err(err)?;
         let mut codes = vec![0.0; committed.status.len()];
         let (mut rl, mut kl) = ([0.0; 12], [0.0; 144]);
@@ -580,7 +565,7 @@ pub struct StepProblem<'a, 'm> {
     reference: f64,
     anderson: Option<Anderson>,
     /// Set when the problem stops: the iteration count, or why it failed.
-    outcome: Option<Result<usize, String>>,
+    outcome: Option<Result<usize, StepFailure>>,
 }
 
 impl<'a, 'm> StepProblem<'a, 'm> {
@@ -651,13 +636,13 @@ impl<'a, 'm> StepProblem<'a, 'm> {
 
     /// The converged state, or why the step failed (`solved`: the solver's own
     /// failure, if any).
-    fn finish(self, solved: Result<(), String>) -> Result<(State, usize), String> {
+    fn finish(self, solved: Result<(), StepFailure>) -> Result<(State, usize), StepFailure> {
         match self.outcome {
             Some(Ok(it)) => Ok((self.trial, it)),
-            Some(Err(msg)) => Err(msg),
-            None => Err(solved
-                .err()
-                .unwrap_or_else(|| "the nonlinear solver stopped without a verdict".into())),
+            Some(Err(failure)) => Err(failure),
+            None => Err(solved.err().unwrap_or_else(|| {
+                StepFailure::Solver("the nonlinear solver stopped without a verdict".into())
+            })),
         }
     }
 }
@@ -731,14 +716,15 @@ impl Problem for StepProblem<'_, '_> {
         ];
         e.backend.max(&mut flag);
         if flag[0] >= 2.0 {
-            e.interrupted = true;
-            e.interrupt_signal = flag[1] as i32;
-            self.outcome = Some(Err(format!("interrupted at iteration {it}")));
+            self.outcome = Some(Err(StepFailure::Interrupted {
+                iteration: it,
+                signal: flag[1] as i32,
+            }));
             return Verdict::Stop;
         }
         let (r_norm, reference) = (self.r_norm, self.reference);
         if !e.backend.agree(r_norm.is_finite()) {
-            self.outcome = Some(Err(format!("residual is not finite at iteration {it}")));
+            self.outcome = Some(Err(StepFailure::NotFinite { iteration: it }));
             return Verdict::Stop;
         }
         let u_inf = self
@@ -764,25 +750,21 @@ impl Problem for StepProblem<'_, '_> {
             return Verdict::Stop;
         }
         if it >= limit {
-            self.outcome = Some(Err(format!(
-                "no convergence in {limit} iterations (|R|/|F| = {:.3e}, |du|/|u| = {:.3e}{})",
-                r_norm / reference,
-                self.du_inf / u_inf,
-                if same_status {
-                    ""
-                } else {
-                    ", contact status still changing"
-                }
-            )));
+            self.outcome = Some(Err(StepFailure::NoConvergence {
+                limit,
+                residual: r_norm / reference,
+                correction: self.du_inf / u_inf,
+                status_changing: !same_status,
+            }));
             return Verdict::Stop;
         }
         if e.backend
             .agree(r_norm > DIVERGENCE * reference && it > DIVERGENCE_AFTER)
         {
-            self.outcome = Some(Err(format!(
-                "diverged at iteration {it} (|R|/|F| = {:.3e})",
-                r_norm / reference
-            )));
+            self.outcome = Some(Err(StepFailure::Diverged {
+                iteration: it,
+                residual: r_norm / reference,
+            }));
             return Verdict::Stop;
         }
         self.last_status = Some(std::mem::take(&mut self.status));

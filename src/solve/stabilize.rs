@@ -48,7 +48,7 @@
 //! rank owns.
 
 use super::newton::Engine;
-use super::State;
+use super::{State, StepFailure};
 use crate::case::Stabilization;
 use crate::fem::solid::Response;
 use crate::interface::{InterfaceModel, Point};
@@ -493,7 +493,7 @@ pub(super) fn step(
     lambda: f64,
     response: Response,
     start: Option<&[f64]>,
-) -> Result<(State, usize), String> {
+) -> Result<(State, usize), StepFailure> {
     let Some(st) = engine.stabilizer.as_mut() else {
         return engine.plain_step(committed, lambda, response, start);
     };
@@ -509,17 +509,24 @@ pub(super) fn step(
     }
     let plain = engine.plain_step(committed, lambda, response, start);
     let Err(e) = plain else { return plain };
-    if engine.interrupted {
+    if e.signal().is_some() || e.is_fatal() {
         return Err(e);
     }
     let st = engine.stabilizer.as_ref().expect("checked above");
     // only at zero load: any other failure is cut back exactly as before
     let retry = st.enabled && st.unloaded(lambda).is_some();
     if engine.backend.agree(retry) {
-        return stabilized_step(engine, committed, lambda, response, main, Some(e));
+        return stabilized_step(
+            engine,
+            committed,
+            lambda,
+            response,
+            main,
+            Some(e.to_string()),
+        );
     }
     match st.explain(engine.model, committed, lambda) {
-        Some(why) => Err(format!("{why} ({e})")),
+        Some(why) => Err(StepFailure::Unheld(format!("{why} ({e})"))),
         None => Err(e),
     }
 }
@@ -531,7 +538,7 @@ fn stabilized_step(
     response: Response,
     main: bool,
     prior: Option<String>,
-) -> Result<(State, usize), String> {
+) -> Result<(State, usize), StepFailure> {
     let m = engine.model;
     let base = base_springs(engine, committed, lambda);
     let st = engine.stabilizer.as_mut().expect("checked by the caller");
@@ -554,7 +561,7 @@ fn stabilized_step(
         st.springs = None;
         let (state, its) = match solved {
             Ok(s) => s,
-            Err(e) if engine.interrupted => return Err(e),
+            Err(e) if e.signal().is_some() || e.is_fatal() => return Err(e),
             Err(e) => {
                 failure = format!("stabilized solve (k_s = {:.3e} MPa/mm) failed: {e}", ks[0]);
                 break;
@@ -571,7 +578,7 @@ fn stabilized_step(
                     }
                     return Ok((exact, its));
                 }
-                Err(e) if engine.interrupted => return Err(e),
+                Err(e) if e.signal().is_some() || e.is_fatal() => return Err(e),
                 Err(e) => failure = format!("release of the stabilization failed: {e}"),
             }
         }
@@ -587,12 +594,12 @@ fn stabilized_step(
         } else {
             failure
         };
-        return Err(match (why, prior) {
+        return Err(StepFailure::Unheld(match (why, prior) {
             (Some(why), Some(prior)) => format!("{why} ({prior}; with stabilization: {failure})"),
             (Some(why), None) => format!("{why} ({failure})"),
             (None, Some(prior)) => format!("{prior} (retried with stabilization: {failure})"),
             (None, None) => failure,
-        });
+        }));
     };
     let why = why.unwrap_or_else(|| "a body is held only by the contact stabilization".into());
     let w = spring_work(engine, &ks, &committed.u, &state.u);
@@ -610,7 +617,7 @@ fn stabilized_step(
         }
         Ok((state, iterations))
     } else {
-        Err(format!(
+        Err(StepFailure::Unheld(format!(
             "{why}; holding it would take the contact stabilization {total:.3e} N·mm of \
              dissipated energy, above stabilization_energy = {} × the internal energy \
              {:.3e} N·mm{}",
@@ -621,7 +628,7 @@ fn stabilized_step(
             } else {
                 format!(" ({failure})")
             }
-        ))
+        )))
     }
 }
 

@@ -5,8 +5,8 @@
 //! from the last elastic state, is a smooth function whose root is the first-
 //! yield load. It is found by the Illinois variant of regula falsi to 1e-9 in g.
 
-use super::{yield_ratio, Engine, State};
-use crate::error::{Error, Result};
+use super::{yield_ratio, Engine, State, StepFailure};
+
 use crate::fem::solid::Response;
 use crate::model::Model;
 
@@ -47,12 +47,12 @@ pub(super) fn locate(
     last_elastic: &State,
     (lambda0, ratio0): (f64, f64),
     lambda1: f64,
-) -> Result<FirstYield> {
+) -> std::result::Result<FirstYield, (f64, StepFailure)> {
     let model = engine.model;
     // the two latest solutions (load factor, displacements): each solve
     // starts from their linear inter- or extrapolation to its load factor
     let mut known: Vec<(f64, Vec<f64>)> = vec![(lambda0, last_elastic.u.clone())];
-    let mut eval = |l: f64| -> Result<(f64, State)> {
+    let mut eval = |l: f64| -> std::result::Result<(f64, State), (f64, StepFailure)> {
         let start = match known.as_slice() {
             [.., (l0, u0), (l1, u1)] if (l1 - l0).abs() > 0.0 => {
                 let t = (l - l1) / (l1 - l0);
@@ -67,11 +67,7 @@ pub(super) fn locate(
         };
         let (s, _) = engine
             .step_from(last_elastic, l, Response::ElasticOnly, start.as_deref())
-            .map_err(|m| Error::Convergence {
-                increment: 0,
-                load_factor: l,
-                message: format!("elastic solve while locating first yield: {m}"),
-            })?;
+            .map_err(|f| (l, f))?;
         if known.len() == 2 {
             known.remove(0);
         }
