@@ -98,7 +98,7 @@ pub fn serial_engine(model: &Model, method: Method) -> Result<Engine<'_>> {
 /// Runs the whole load history of a built model on the serial backend, with
 /// the model's method, reporting to `observer` (no output folder).
 pub fn solve(model: &Model, observer: &mut dyn solve::Observer) -> Result<RunResult> {
-    solve::run_with(serial_engine(model, model.case.solver.method)?, observer)
+    solve::run_with(serial_engine(model, model.solver.method)?, observer)
 }
 
 /// The one place an engine is made ready for a run, whatever its backend:
@@ -118,7 +118,7 @@ pub fn run(case_path: &Path, opts: &RunOptions) -> Result<(PathBuf, Model, RunRe
     let started = Instant::now();
     let model = load_model(case_path, opts)?;
     let at_model = crate::solve::peak_memory_mb();
-    let mut engine = serial_engine(&model, model.case.solver.method)?;
+    let mut engine = serial_engine(&model, model.solver.method)?;
     prepare(&mut engine, opts, at_model);
     let (dir, result) = run_model(&model, engine, opts, true, started)?;
     Ok((dir, model, result))
@@ -139,7 +139,7 @@ pub fn run_model(
         .clone()
         .unwrap_or_else(|| Path::new("out").join(&model.name));
     // 0: automatic step control, the count is not known in advance
-    let planned = solve::stepping::Stepper::planned(&model.case.solver).unwrap_or(0);
+    let planned = solve::stepping::Stepper::planned(&model.solver).unwrap_or(0);
     let control = Control {
         stop_after: opts.stop_after,
     };
@@ -163,7 +163,7 @@ pub fn run_model(
             "dofs": model.mesh.num_dofs(),
             "elements": model.mesh.elements.len(),
             "interface_pairs": pairs,
-            "method": model.case.solver.method.name(),
+            "method": model.solver.method.name(),
             "backend": engine.backend.name(),
             "ranks": engine.backend.ranks(),
             "planned": planned,
@@ -178,7 +178,7 @@ pub fn run_model(
                 model.mesh.num_dofs(),
                 model.mesh.elements.len(),
                 pairs,
-                model.case.solver.method.name(),
+                model.solver.method.name(),
                 engine.backend.name(),
                 engine.backend.ranks(),
                 if planned > 0 {
@@ -223,10 +223,10 @@ fn report_end(log: &Log, model: &Model, dir: &Path, r: &RunResult, wall: f64) {
     let last = r.increments.last();
     let m = last.map(|i| i.measures).unwrap_or_default();
     let lambda = last.map_or(0.0, |i| i.load_factor);
-    let planned = solve::stepping::Stepper::planned(&model.case.solver);
+    let planned = solve::stepping::Stepper::planned(&model.solver);
     let fy = r.first_yield.as_ref();
     if let Some(stop) = r.stopped {
-        let case = model.case.source.display().to_string();
+        let case = model.source.display().to_string();
         log.always(
             "stop",
             json!({
@@ -307,16 +307,15 @@ impl crate::solve::Observer for Silent {
 /// `asperity check`: validates a case and describes what would be solved.
 pub fn check(case_path: &Path) -> Result<String> {
     let model = load_model(case_path, &RunOptions::default())?;
-    let c = &model.case;
     let mut s = format!("{}: valid\n", model.name);
-    if let Some(d) = &c.description {
+    if let Some(d) = &model.description {
         s += &format!("  {}\n", d.trim());
     }
     s += &format!(
         "  plane {:?}, thickness {} mm, {:?} integration ({} Gauss points per element)\n",
         model.plane,
         model.thickness,
-        c.model.integration,
+        model.integration,
         model.n_gauss()
     );
     s += &format!(
@@ -344,29 +343,29 @@ pub fn check(case_path: &Path) -> Result<String> {
             im.law
         );
     }
-    let sched = c.solver.schedule();
-    match c.solver.step_mode() {
+    let sched = model.solver.schedule();
+    match model.solver.step_mode() {
         crate::case::StepControl::Fixed => {
             s += &format!(
                 "  solver: {}, {} increments (first {:.4}, last {:.4}), ≤ {} iterations each, ≤ {} cutbacks\n",
-                c.solver.method.name(),
+                model.solver.method.name(),
                 sched.len(),
                 sched[0],
                 sched[sched.len() - 1],
-                c.solver.iteration_limit(),
-                c.solver.max_cutbacks
+                model.solver.iteration_limit(),
+                model.solver.max_cutbacks
             );
         }
         crate::case::StepControl::Auto => {
             s += &format!(
                 "  solver: {}, automatic steps to λ = {:.4} (first {:.4}, at most {:.4}, plastic strain ≈ {} per step), ≤ {} iterations each, ≤ {} cutbacks in a row\n",
-                c.solver.method.name(),
+                model.solver.method.name(),
                 sched[sched.len() - 1],
-                c.solver.first_increment.unwrap_or(1.0 / c.solver.n_increments() as f64),
-                c.solver.max_increment.unwrap_or(0.25),
-                c.solver.plastic_strain_step,
-                c.solver.iteration_limit(),
-                c.solver.max_cutbacks
+                model.solver.first_increment.unwrap_or(1.0 / model.solver.n_increments() as f64),
+                model.solver.max_increment.unwrap_or(0.25),
+                model.solver.plastic_strain_step,
+                model.solver.iteration_limit(),
+                model.solver.max_cutbacks
             );
         }
     }

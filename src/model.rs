@@ -13,7 +13,20 @@ use crate::material::{Plane, VonMises};
 use crate::mesh::{blocks, gmsh, Mesh};
 
 pub struct Model {
-    pub case: Case,
+    /// The solution settings (method, schedule, tolerances, cutbacks, ...).
+    pub solver: crate::case::SolverSpec,
+    /// What is written, and how often.
+    pub output: crate::case::OutputSpec,
+    /// The case file the model came from (the text's name for [`Model::parse`]).
+    pub source: std::path::PathBuf,
+    /// The case's free-text description.
+    pub description: Option<String>,
+    /// Full or reduced Gauss integration of the elements ([`Model::rule`] is the rule).
+    pub integration: Integration,
+    /// The effective case (after command-line overrides) without its location
+    /// and description, as text: what a restart file's fingerprint identifies
+    /// besides the mesh ([`crate::restart::fingerprint`]).
+    pub case_key: String,
     pub name: String,
     pub mesh: Mesh,
     pub plane: Plane,
@@ -188,7 +201,17 @@ impl Model {
             surface_y,
             force_floor,
             mesh,
-            case,
+            solver: case.solver.clone(),
+            output: case.output.clone(),
+            source: case.source.clone(),
+            description: case.description.clone(),
+            integration: case.model.integration,
+            case_key: {
+                let mut key = case.clone();
+                key.source = Default::default();
+                key.description = None;
+                format!("{key:?}")
+            },
         })
     }
 

@@ -54,15 +54,14 @@ pub fn run(
                     &backend.part,
                     world.rank() as usize,
                     world.size() as usize,
-                    model.case.solver.iteration_limit(),
+                    model.solver.iteration_limit(),
                     linear,
                     opts.lean_memory,
                 )?)
             } else {
                 None
             };
-            let mut engine =
-                Engine::with_backend(&model, model.case.solver.method, Box::new(backend));
+            let mut engine = Engine::with_backend(&model, model.solver.method, Box::new(backend));
             engine.nonlinear = snes.map(|s| Box::new(s) as Box<dyn NonlinearSolver>);
             driver::prepare(&mut engine, opts, at_model);
             driver::run_model(&model, engine, opts, root, started)

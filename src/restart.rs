@@ -116,10 +116,7 @@ impl Fnv {
 /// Fingerprint of what a run solves: the effective case (without its file
 /// location and free-text description) and the mesh.
 pub fn fingerprint(model: &Model) -> u64 {
-    let mut case = model.case.clone();
-    case.source = Default::default();
-    case.description = None;
-    let mut bytes = format!("{case:?}").into_bytes();
+    let mut bytes = model.case_key.clone().into_bytes();
     for n in &model.mesh.nodes {
         for v in n.iter() {
             bytes.extend_from_slice(&v.to_le_bytes());

@@ -182,10 +182,10 @@ impl Observer for Writer {
             &format!("interface/{:04}.csv", inc.increment),
             &interface_csv(model, state),
         )?;
-        let every = model.case.output.vtu_every;
+        let every = model.output.vtu_every;
         let last = (self.planned > 0 && inc.increment >= self.planned)
             || (inc.load_factor - self.final_load_factor).abs() <= 1e-12;
-        if model.case.output.vtu && (inc.increment % every == 0 || last) {
+        if model.output.vtu && (inc.increment % every == 0 || last) {
             let f = format!("vtu/{:04}.vtu", inc.increment);
             let p = self.tmp_dir.join(&f);
             let write = || -> std::io::Result<()> {
@@ -340,7 +340,7 @@ pub fn summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
     let mut s = json!({
         "schema": 1,
         "asperity_version": env!("CARGO_PKG_VERSION"),
-        "step_control": match model.case.solver.step_mode() {
+        "step_control": match model.solver.step_mode() {
             crate::case::StepControl::Fixed => "fixed",
             crate::case::StepControl::Auto => "auto",
         },
@@ -348,7 +348,7 @@ pub fn summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
         "complete": r.stopped.is_none(),
         "stopped_by": r.stopped.map(|s| s.name()),
         "plane": format!("{:?}", model.plane).to_lowercase(),
-        "method": model.case.solver.method.name(),
+        "method": model.solver.method.name(),
         "backend": r.backend,
         "ranks": r.ranks,
         "nonlinear_solver": r.nonlinear_solver,

@@ -147,7 +147,7 @@ impl Checkpoint {
             lambda: 0.0,
             last_step: 0.0,
             last_du: Vec::new(),
-            stepper: stepping::Stepper::new(&model.case.solver),
+            stepper: stepping::Stepper::new(&model.solver),
             increments: Vec::new(),
             first_yield: None,
             elastic_ratio_prev: 0.0,
@@ -338,7 +338,7 @@ fn accept(
     }
     let yielded_now = ck.first_yield.is_none()
         && engine.max_over_points(trial.gauss.iter().map(|g| g.peeq)) > 0.0;
-    if yielded_now && model.case.solver.locate_first_yield {
+    if yielded_now && model.solver.locate_first_yield {
         match yield_point::locate(
             engine,
             &ck.committed,

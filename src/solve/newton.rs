@@ -577,7 +577,7 @@ impl<'a, 'm> StepProblem<'a, 'm> {
         start: Option<&[f64]>,
     ) -> Self {
         let m = engine.model;
-        let spec = &m.case.solver;
+        let spec = &m.solver;
         let mut trial = committed.clone();
         if let Some(start) = start {
             trial.u.copy_from_slice(start);
@@ -707,7 +707,7 @@ impl Problem for StepProblem<'_, '_> {
         let error = self.error_estimate();
         let e = &mut *self.engine;
         let m = e.model;
-        let spec = &m.case.solver;
+        let spec = &m.solver;
         let limit = spec.iteration_limit();
         // a second stop request abandons the step (collectively)
         let mut flag = [

@@ -205,12 +205,12 @@ impl Stabilizer {
         Stabilizer {
             bodies,
             loose,
-            enabled: model.case.solver.stabilization == Stabilization::Auto,
+            enabled: model.solver.stabilization == Stabilization::Auto,
             springs: None,
             guess: None,
             pending: None,
             report: Report {
-                limit: model.case.solver.stabilization_energy,
+                limit: model.solver.stabilization_energy,
                 ..Report::default()
             },
             used: 0,
