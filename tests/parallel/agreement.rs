@@ -306,7 +306,7 @@ fn two_runs_on_two_ranks_give_identical_files() {
 /// side). The linear solver here is PETSc's LU on the gathered matrix
 /// (`-pc_type redundant`), which is deterministic; MUMPS on 2 ranks sums
 /// contributions in message-arrival order, so under load two runs, either
-/// path, differ at round-off (see the README on determinism).
+/// path, differ at round-off (docs/running.md, "Determinism").
 #[test]
 fn snes_and_the_builtin_loop_take_the_same_iterates_for_all_three_methods() {
     let root = common::scratch("parallel-snes");

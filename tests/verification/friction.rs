@@ -172,7 +172,7 @@ fn the_paper_conclusions_3_to_6_on_the_fig_7_cases() {
         );
     }
     // ... but not against frictionless contact: there friction raises the edge
-    // pressure in this model (see README); checked so that a change is noticed
+    // pressure in this model (docs/verification.md, "Friction: the Fig. 7 cases"); checked so that a change is noticed
     let mid = n / 2;
     let (p0, pa) = (interface(&out0, mid), interface(&out_a, mid));
     assert!(pa[pa.len() - 1].1 > p0[p0.len() - 1].1);

@@ -45,7 +45,7 @@
 //! and the commit. The values are never typed by hand.
 //!
 //! Comparisons with the paper and with peer codes stay separate, with their own
-//! documented tolerances (tests/verification/punch.rs, tests/verification/friction.rs, the README).
+//! documented tolerances (tests/verification/punch.rs, tests/verification/friction.rs, docs/verification.md).
 
 use crate::common;
 use serde_json::{json, Map, Value};

@@ -53,7 +53,7 @@ fn plane_stress_yields_first_at_the_surface_near_the_punch_edge_and_plane_strain
     );
     // plane strain: below the surface Gauss row (several times deeper than plane
     // stress on the same mesh) and at a higher load (paper: 9.75 vs 7.17 kN). The
-    // depth itself shrinks with the mesh: see README, "Where first yield occurs".
+    // depth itself shrinks with the mesh: see docs/verification.md, "Why our first-yield loads are 14-20% below the paper's".
     assert!(
         fe.depth > 4.0 * fs.depth,
         "plane strain first yield depth {} mm vs plane stress {}",

@@ -141,7 +141,7 @@ fn the_stability_study_writes_a_well_formed_map() {
 /// settlement of the plane-strain punch against the load step. The return
 /// mapping is backward Euler, first order in the step, so the observed order
 /// must be near 1. (The mesh order is not a fair check here: the punch edge is
-/// a singular point and the README discusses the order observed under refinement.)
+/// a singular point and docs/verification.md ("Accuracy against mesh and time") discusses the order observed under refinement.)
 #[test]
 fn richardson_order_of_the_load_step_error_is_near_one() {
     let case = common::root().join("cases/punch-plane-strain");
