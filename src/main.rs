@@ -4,7 +4,7 @@ use asperity::case::Method;
 use asperity::driver::{self, RunOptions};
 use asperity::progress::{Log, LogFormat};
 use asperity::solve::RunResult;
-use clap::{Parser, Subcommand, ValueEnum};
+use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -19,75 +19,7 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     /// Solve a case and write its results (summary.json, curve.csv, interface/, vtu/).
-    Run {
-        /// Case file (case.toml) or the folder that holds it.
-        case: PathBuf,
-        /// Output folder (default: out/<case name>). Replaced if it exists.
-        #[arg(long)]
-        out: Option<PathBuf>,
-        /// No progress lines (a stop or an error is still reported).
-        #[arg(long)]
-        quiet: bool,
-        /// Format of the progress lines on stderr: text, or json (one object per line).
-        #[arg(long, value_enum, default_value = "text")]
-        log_format: LogFormatArg,
-        /// Continue the stopped run whose output folder is DIR (its restart.bin).
-        #[arg(long, value_name = "DIR")]
-        restart: Option<PathBuf>,
-        /// Test hook: stop like SIGINT after N converged increments (exit 3).
-        #[arg(long, value_name = "N", hide = true)]
-        stop_after: Option<usize>,
-        /// Override the solution method of the case.
-        #[arg(long, value_enum)]
-        method: Option<MethodArg>,
-        /// Override the mesh refinement factor of the case.
-        #[arg(long)]
-        refine: Option<usize>,
-        /// Override: this many equal load steps.
-        #[arg(long)]
-        increments: Option<usize>,
-        /// Override: halvings allowed per scheduled step (0: fail at the first failure).
-        #[arg(long)]
-        max_cutbacks: Option<usize>,
-        /// Override: an ungraded mesh with the same element counts.
-        #[arg(long)]
-        uniform: bool,
-        /// Override: no Anderson acceleration of modified Newton / initial stiffness.
-        #[arg(long)]
-        plain: bool,
-        /// Override: load steps `fixed` (the case's schedule) or `auto` (adapted to
-        /// iterations and plastic strain; see docs/case-schema.md).
-        #[arg(long, value_parser = parse_step_control)]
-        step_control: Option<asperity::case::StepControl>,
-        /// Override: friction scheme (return-mapping | stiffness-modification).
-        #[arg(long, value_parser = parse_scheme)]
-        friction_scheme: Option<asperity::interface::FrictionScheme>,
-        /// Linear-algebra backend: serial (faer), petsc (MPI; needs the `parallel`
-        /// feature), or auto: petsc when started by mpirun (with the feature built
-        /// in), else serial, which is faster on one process at every size and
-        /// needs about 3 KB per dof (docs/performance.md, "Choosing the backend").
-        #[arg(long, value_enum, default_value = "auto")]
-        backend: BackendArg,
-        /// Test hook: make the element loop fail on RANK at its N-th assembly
-        /// (every later attempt too), e.g. `1:5`.
-        #[arg(long, value_name = "RANK:N", value_parser = parse_fault, hide = true)]
-        inject_fault: Option<(usize, usize)>,
-        /// PETSc backend: the nonlinear solver of each load step. snes (default):
-        /// PETSc's SNES (newtonls, full steps) calling our residual, tangent and
-        /// convergence rules, so `-snes_monitor`, `-snes_linesearch_type` … apply;
-        /// builtin: our own Newton loop calling KSP. Both take the same iterates.
-        #[arg(long, value_enum, default_value = "snes")]
-        nonlinear: NonlinearArg,
-        /// PETSc backend with GAMG: lean trades time for memory (on more than
-        /// one rank all-at-once Galerkin products, paid for by building the
-        /// preconditioner once per load step, with a wider smoother interval);
-        /// docs/performance.md has the measurements. Needs `--nonlinear snes`.
-        #[arg(long, value_enum, default_value = "fast")]
-        memory: MemoryArg,
-        /// PETSc options after `--`, e.g. `-- -ksp_type cg -pc_type gamg -log_view`.
-        #[arg(last = true)]
-        petsc_options: Vec<String>,
-    },
+    Run(RunArgs),
     /// Regenerate the paper's Figs 5, 6a/6b, 7a-c and 8 from runs of the shipped
     /// cases, as PNG, SVG and CSV.
     Figures {
@@ -106,6 +38,78 @@ enum Command {
         /// Case file (case.toml) or the folder that holds it.
         case: PathBuf,
     },
+}
+
+/// The arguments of `asperity run`.
+#[derive(Args)]
+struct RunArgs {
+    /// Case file (case.toml) or the folder that holds it.
+    case: PathBuf,
+    /// Output folder (default: out/<case name>). Replaced if it exists.
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// No progress lines (a stop or an error is still reported).
+    #[arg(long)]
+    quiet: bool,
+    /// Format of the progress lines on stderr: text, or json (one object per line).
+    #[arg(long, value_enum, default_value = "text")]
+    log_format: LogFormatArg,
+    /// Continue the stopped run whose output folder is DIR (its restart.bin).
+    #[arg(long, value_name = "DIR")]
+    restart: Option<PathBuf>,
+    /// Test hook: stop like SIGINT after N converged increments (exit 3).
+    #[arg(long, value_name = "N", hide = true)]
+    stop_after: Option<usize>,
+    /// Override the solution method of the case.
+    #[arg(long, value_enum)]
+    method: Option<MethodArg>,
+    /// Override the mesh refinement factor of the case.
+    #[arg(long)]
+    refine: Option<usize>,
+    /// Override: this many equal load steps.
+    #[arg(long)]
+    increments: Option<usize>,
+    /// Override: halvings allowed per scheduled step (0: fail at the first failure).
+    #[arg(long)]
+    max_cutbacks: Option<usize>,
+    /// Override: an ungraded mesh with the same element counts.
+    #[arg(long)]
+    uniform: bool,
+    /// Override: no Anderson acceleration of modified Newton / initial stiffness.
+    #[arg(long)]
+    plain: bool,
+    /// Override: load steps `fixed` (the case's schedule) or `auto` (adapted to
+    /// iterations and plastic strain; see docs/case-schema.md).
+    #[arg(long, value_parser = parse_step_control)]
+    step_control: Option<asperity::case::StepControl>,
+    /// Override: friction scheme (return-mapping | stiffness-modification).
+    #[arg(long, value_parser = parse_scheme)]
+    friction_scheme: Option<asperity::interface::FrictionScheme>,
+    /// Linear-algebra backend: serial (faer), petsc (MPI; needs the `parallel`
+    /// feature), or auto: petsc when started by mpirun (with the feature built
+    /// in), else serial, which is faster on one process at every size and
+    /// needs about 3 KB per dof (docs/performance.md, "Choosing the backend").
+    #[arg(long, value_enum, default_value = "auto")]
+    backend: BackendArg,
+    /// Test hook: make the element loop fail on RANK at its N-th assembly
+    /// (every later attempt too), e.g. `1:5`.
+    #[arg(long, value_name = "RANK:N", value_parser = parse_fault, hide = true)]
+    inject_fault: Option<(usize, usize)>,
+    /// PETSc backend: the nonlinear solver of each load step. snes (default):
+    /// PETSc's SNES (newtonls, full steps) calling our residual, tangent and
+    /// convergence rules, so `-snes_monitor`, `-snes_linesearch_type` … apply;
+    /// builtin: our own Newton loop calling KSP. Both take the same iterates.
+    #[arg(long, value_enum, default_value = "snes")]
+    nonlinear: NonlinearArg,
+    /// PETSc backend with GAMG: lean trades time for memory (on more than
+    /// one rank all-at-once Galerkin products, paid for by building the
+    /// preconditioner once per load step, with a wider smoother interval);
+    /// docs/performance.md has the measurements. Needs `--nonlinear snes`.
+    #[arg(long, value_enum, default_value = "fast")]
+    memory: MemoryArg,
+    /// PETSc options after `--`, e.g. `-- -ksp_type cg -pc_type gamg -log_view`.
+    #[arg(last = true)]
+    petsc_options: Vec<String>,
 }
 
 #[derive(Subcommand)]
@@ -310,91 +314,7 @@ fn main() -> ExitCode {
     }
     let cli = Cli::parse();
     let outcome = match cli.command {
-        Command::Run {
-            case,
-            out,
-            quiet,
-            log_format,
-            restart,
-            stop_after,
-            method,
-            refine,
-            increments,
-            max_cutbacks,
-            uniform,
-            plain,
-            step_control,
-            friction_scheme,
-            backend,
-            inject_fault,
-            nonlinear,
-            memory,
-            petsc_options,
-        } => {
-            let log_format = match log_format {
-                LogFormatArg::Text => LogFormat::Text,
-                LogFormatArg::Json => LogFormat::Json,
-            };
-            let opts = RunOptions {
-                out,
-                quiet,
-                method: method.map(Into::into),
-                refine,
-                fault: inject_fault,
-                increments,
-                max_cutbacks,
-                uniform,
-                plain,
-                step_control,
-                friction_scheme,
-                restart,
-                stop_after,
-                log_format,
-                snes: nonlinear == NonlinearArg::Snes,
-                lean_memory: memory == MemoryArg::Lean,
-            };
-            if let Err(e) = asperity::interrupt::install() {
-                eprintln!("warning: no SIGINT/SIGTERM handler ({e}); an interrupt kills the run");
-            }
-            // auto: PETSc only under mpirun; on one process the serial
-            // Cholesky is 3-6x faster than PETSc at every size up to the
-            // element cap, in about as much memory (docs/performance.md,
-            // "Choosing the backend")
-            let petsc = backend == BackendArg::Petsc
-                || (backend == BackendArg::Auto && cfg!(feature = "parallel") && under_mpirun());
-            if petsc {
-                return run_petsc(&case, &opts, &petsc_options);
-            }
-            if let Some((size, rank, said)) = launcher().filter(|l| l.0 > 1) {
-                // every process exits 2; rank 0 alone says why
-                if rank > 0 {
-                    return ExitCode::from(2);
-                }
-                return fail(
-                    log_format,
-                    &format!("the serial backend under an MPI launcher with {size} processes ({said}) would run {size} independent solves into one output folder; use --backend petsc (or auto)"),
-                );
-            }
-            if opts.lean_memory {
-                return fail(
-                    log_format,
-                    "--memory lean applies to the PETSc backend, but the serial backend runs (use --backend petsc)",
-                );
-            }
-            if !petsc_options.is_empty() {
-                return fail(
-                    log_format,
-                    "PETSc options given but the serial backend runs (use --backend petsc)",
-                );
-            }
-            return match driver::run(&case, &opts) {
-                Ok((dir, _model, result)) => {
-                    println!("{}", dir.display());
-                    exit_code(&result)
-                }
-                Err(e) => fail(log_format, &e.to_string()),
-            };
-        }
+        Command::Run(args) => return run(args),
         Command::Check { case } => driver::check(&case).map(|s| print!("{s}")),
         Command::Study(StudyCommand::Refine {
             case,
@@ -404,45 +324,7 @@ fn main() -> ExitCode {
             petsc,
             uniform,
             out,
-        }) => {
-            use asperity::study::refine::{refine, Config};
-            use asperity::study::runner::Which;
-            let mut configs: Vec<Config> = methods
-                .iter()
-                .map(|&m| Config {
-                    method: m.into(),
-                    levels: (!matches!(m, MethodArg::FullNewton))
-                        .then(|| slow_levels.clone())
-                        .flatten(),
-                    which: Which::Serial,
-                    uniform: false,
-                })
-                .collect();
-            if petsc {
-                for n in [1, 2] {
-                    configs.push(Config {
-                        method: Method::FullNewton,
-                        levels: None,
-                        which: Which::Petsc(n),
-                        uniform: false,
-                    });
-                }
-            }
-            if uniform {
-                configs.push(Config {
-                    method: Method::FullNewton,
-                    levels: None,
-                    which: Which::Serial,
-                    uniform: true,
-                });
-            }
-            refine(&case, &levels, &configs, &out).map(|(files, summary)| {
-                print!("{summary}");
-                for f in files {
-                    println!("{}", f.display());
-                }
-            })
-        }
+        }) => study_refine(&case, &levels, &methods, slow_levels, petsc, uniform, &out),
         Command::Study(StudyCommand::Stability {
             case,
             steps,
@@ -450,35 +332,8 @@ fn main() -> ExitCode {
             schemes,
             time_limit,
             out,
-        }) => {
-            let methods: Vec<Method> = methods.into_iter().map(Into::into).collect();
-            let sch: &[&str] = if schemes {
-                &["return-mapping", "stiffness-modification"]
-            } else {
-                &[]
-            };
-            asperity::study::stability::stability(
-                &case,
-                &steps,
-                &methods,
-                sch,
-                &out,
-                (time_limit > 0.0).then(|| std::time::Duration::from_secs_f64(time_limit)),
-            )
-            .map(|(files, _, best)| {
-                println!("{best}");
-                for f in files {
-                    println!("{}", f.display());
-                }
-            })
-        }
-        Command::Figures { cases, out } => {
-            asperity::study::figures::figures(&cases, &out).map(|files| {
-                for f in files {
-                    println!("{}", f.display());
-                }
-            })
-        }
+        }) => study_stability(&case, &steps, methods, schemes, time_limit, &out),
+        Command::Figures { cases, out } => figures(&cases, &out),
     };
     match outcome {
         Ok(()) => ExitCode::SUCCESS,
@@ -487,6 +342,188 @@ fn main() -> ExitCode {
             ExitCode::from(2)
         }
     }
+}
+
+impl From<LogFormatArg> for LogFormat {
+    fn from(f: LogFormatArg) -> LogFormat {
+        match f {
+            LogFormatArg::Text => LogFormat::Text,
+            LogFormatArg::Json => LogFormat::Json,
+        }
+    }
+}
+
+impl RunArgs {
+    /// The run's settings, as the driver takes them.
+    fn options(&self) -> RunOptions {
+        RunOptions {
+            out: self.out.clone(),
+            quiet: self.quiet,
+            method: self.method.map(Into::into),
+            refine: self.refine,
+            fault: self.inject_fault,
+            increments: self.increments,
+            max_cutbacks: self.max_cutbacks,
+            uniform: self.uniform,
+            plain: self.plain,
+            step_control: self.step_control,
+            friction_scheme: self.friction_scheme,
+            restart: self.restart.clone(),
+            stop_after: self.stop_after,
+            log_format: self.log_format.into(),
+            snes: self.nonlinear == NonlinearArg::Snes,
+            lean_memory: self.memory == MemoryArg::Lean,
+        }
+    }
+}
+
+/// `asperity run`: the interrupt handler, then the backend's solve.
+fn run(args: RunArgs) -> ExitCode {
+    let opts = args.options();
+    if let Err(e) = asperity::interrupt::install() {
+        eprintln!("warning: no SIGINT/SIGTERM handler ({e}); an interrupt kills the run");
+    }
+    if petsc_chosen(args.backend) {
+        return run_petsc(&args.case, &opts, &args.petsc_options);
+    }
+    if let Some(code) = refuse_serial(&opts, &args.petsc_options) {
+        return code;
+    }
+    match driver::run(&args.case, &opts) {
+        Ok((dir, _model, result)) => {
+            println!("{}", dir.display());
+            exit_code(&result)
+        }
+        Err(e) => fail(opts.log_format, &e.to_string()),
+    }
+}
+
+/// Does `--backend` pick PETSc? auto: PETSc only under mpirun; on one process
+/// the serial Cholesky is 3-6x faster than PETSc at every size up to the
+/// element cap, in about as much memory (docs/performance.md, "Choosing the
+/// backend").
+fn petsc_chosen(backend: BackendArg) -> bool {
+    backend == BackendArg::Petsc
+        || (backend == BackendArg::Auto && cfg!(feature = "parallel") && under_mpirun())
+}
+
+/// The serial backend refuses several MPI processes (every process exits 2;
+/// rank 0 alone says why) and options that only PETSc takes (exit 2).
+fn refuse_serial(opts: &RunOptions, petsc_options: &[String]) -> Option<ExitCode> {
+    if let Some((size, rank, said)) = launcher().filter(|l| l.0 > 1) {
+        if rank > 0 {
+            return Some(ExitCode::from(2));
+        }
+        return Some(fail(
+            opts.log_format,
+            &format!("the serial backend under an MPI launcher with {size} processes ({said}) would run {size} independent solves into one output folder; use --backend petsc (or auto)"),
+        ));
+    }
+    if opts.lean_memory {
+        return Some(fail(
+            opts.log_format,
+            "--memory lean applies to the PETSc backend, but the serial backend runs (use --backend petsc)",
+        ));
+    }
+    if !petsc_options.is_empty() {
+        return Some(fail(
+            opts.log_format,
+            "PETSc options given but the serial backend runs (use --backend petsc)",
+        ));
+    }
+    None
+}
+
+/// `asperity study refine`: every method asked for on the serial backend
+/// (modified Newton and initial stiffness on `slow_levels` when given), then
+/// PETSc on 1 and 2 ranks and the ungraded mesh when asked for; prints the
+/// summary and the files written.
+fn study_refine(
+    case: &std::path::Path,
+    levels: &[usize],
+    methods: &[MethodArg],
+    slow_levels: Option<Vec<usize>>,
+    petsc: bool,
+    uniform: bool,
+    out: &std::path::Path,
+) -> asperity::error::Result<()> {
+    use asperity::study::refine::{refine, Config};
+    use asperity::study::runner::Which;
+    let mut configs: Vec<Config> = methods
+        .iter()
+        .map(|&m| Config {
+            method: m.into(),
+            levels: (!matches!(m, MethodArg::FullNewton))
+                .then(|| slow_levels.clone())
+                .flatten(),
+            which: Which::Serial,
+            uniform: false,
+        })
+        .collect();
+    if petsc {
+        for n in [1, 2] {
+            configs.push(Config {
+                method: Method::FullNewton,
+                levels: None,
+                which: Which::Petsc(n),
+                uniform: false,
+            });
+        }
+    }
+    if uniform {
+        configs.push(Config {
+            method: Method::FullNewton,
+            levels: None,
+            which: Which::Serial,
+            uniform: true,
+        });
+    }
+    refine(case, levels, &configs, out).map(|(files, summary)| {
+        print!("{summary}");
+        for f in files {
+            println!("{}", f.display());
+        }
+    })
+}
+
+/// `asperity study stability`: prints the recommendation and the files written.
+fn study_stability(
+    case: &std::path::Path,
+    steps: &[usize],
+    methods: Vec<MethodArg>,
+    schemes: bool,
+    time_limit: f64,
+    out: &std::path::Path,
+) -> asperity::error::Result<()> {
+    let methods: Vec<Method> = methods.into_iter().map(Into::into).collect();
+    let sch: &[&str] = if schemes {
+        &["return-mapping", "stiffness-modification"]
+    } else {
+        &[]
+    };
+    asperity::study::stability::stability(
+        case,
+        steps,
+        &methods,
+        sch,
+        out,
+        (time_limit > 0.0).then(|| std::time::Duration::from_secs_f64(time_limit)),
+    )
+    .map(|(files, _, best)| {
+        println!("{best}");
+        for f in files {
+            println!("{}", f.display());
+        }
+    })
+}
+
+/// `asperity figures`: prints the files written.
+fn figures(cases: &std::path::Path, out: &std::path::Path) -> asperity::error::Result<()> {
+    asperity::study::figures::figures(cases, out).map(|files| {
+        for f in files {
+            println!("{}", f.display());
+        }
+    })
 }
 
 /// 0 for a complete run; 130 / 143 after SIGINT / SIGTERM; 3 after --stop-after.

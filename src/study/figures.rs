@@ -89,40 +89,51 @@ fn profile(
         .collect()
 }
 
-/// Writes every figure into `out`; returns the files written.
-pub fn figures(cases: &Path, out: &Path) -> Result<Vec<PathBuf>> {
-    std::fs::create_dir_all(out).map_err(|e| Error::io(out, e))?;
-    let pictures = load_font();
-    if !pictures {
-        eprintln!("figures: no system font found (DejaVu Sans); writing the CSV data only");
-    }
-    let mut files = Vec::new();
-    let (rs, ss) = capture(load(cases, "punch-plane-stress")?)?;
-    let (re, se) = capture(load(cases, "punch-plane-strain")?)?;
-    let fy = |r: &RunResult| r.first_yield.as_ref().map_or(f64::NAN, |f| f.total_load_kn);
-    // Fig. 5: load ratio against the settlement of the centre contact node
-    let curve = |snaps: &[Snapshot], f: f64| -> Vec<(f64, f64)> {
-        std::iter::once((0.0, 0.0))
-            .chain(snaps.iter().map(|s| {
-                (
-                    -s.measures.center_displacement,
-                    s.measures.total_load_kn / f,
-                )
-            }))
-            .collect()
-    };
+/// The first-yield load of a run (kN; NaN when it never yields).
+fn first_yield(r: &RunResult) -> f64 {
+    r.first_yield.as_ref().map_or(f64::NAN, |f| f.total_load_kn)
+}
+
+/// Load ratio (load over the first-yield load `f`) against the settlement of
+/// the centre contact node, from the origin.
+fn load_ratio_curve(snaps: &[Snapshot], f: f64) -> Vec<(f64, f64)> {
+    std::iter::once((0.0, 0.0))
+        .chain(snaps.iter().map(|s| {
+            (
+                -s.measures.center_displacement,
+                s.measures.total_load_kn / f,
+            )
+        }))
+        .collect()
+}
+
+/// Fig. 5: load ratio against the settlement of the centre contact node, plane
+/// stress and plane strain.
+fn fig5(
+    out: &Path,
+    stress: &(RunResult, Vec<Snapshot>),
+    strain: &(RunResult, Vec<Snapshot>),
+    pictures: bool,
+) -> Result<Vec<PathBuf>> {
+    let ((rs, ss), (re, se)) = (stress, strain);
     let fig5 = Chart {
         title: "Fig. 5: load ratio r against centre displacement".into(),
         x_label: "settlement of the centre contact node (mm)".into(),
         y_label: "r = load / first-yield load".into(),
         series: vec![
             Series {
-                label: format!("plane stress (r = 1 at {:.2} kN; paper 7.17)", fy(&rs)),
-                points: curve(&ss, fy(&rs)),
+                label: format!(
+                    "plane stress (r = 1 at {:.2} kN; paper 7.17)",
+                    first_yield(rs)
+                ),
+                points: load_ratio_curve(ss, first_yield(rs)),
             },
             Series {
-                label: format!("plane strain (r = 1 at {:.2} kN; paper 9.75)", fy(&re)),
-                points: curve(&se, fy(&re)),
+                label: format!(
+                    "plane strain (r = 1 at {:.2} kN; paper 9.75)",
+                    first_yield(re)
+                ),
+                points: load_ratio_curve(se, first_yield(re)),
             },
         ],
         hlines: vec![
@@ -131,8 +142,13 @@ pub fn figures(cases: &Path, out: &Path) -> Result<Vec<PathBuf>> {
         ],
         ..Chart::default()
     };
-    files.extend(save(&fig5, &out.join("fig5-load-displacement"), pictures)?);
-    for (tag, snaps, what) in [("6a", &ss, "plane stress"), ("6b", &se, "plane strain")] {
+    save(&fig5, &out.join("fig5-load-displacement"), pictures)
+}
+
+/// Figs 6a and 6b: contact pressure at four stages, plane stress and plane strain.
+fn fig6(out: &Path, ss: &[Snapshot], se: &[Snapshot], pictures: bool) -> Result<Vec<PathBuf>> {
+    let mut files = Vec::new();
+    for (tag, snaps, what) in [("6a", ss, "plane stress"), ("6b", se, "plane strain")] {
         let mut c = Chart {
             title: format!("Fig. {tag}: contact pressure, {what}"),
             x_label: "x (mm), punch edge at 20".into(),
@@ -152,7 +168,12 @@ pub fn figures(cases: &Path, out: &Path) -> Result<Vec<PathBuf>> {
             pictures,
         )?);
     }
-    // Fig. 7: shear tractions of the three friction cases
+    Ok(files)
+}
+
+/// Figs 7a-c: shear tractions of the three friction cases.
+fn fig7(cases: &Path, out: &Path, pictures: bool) -> Result<Vec<PathBuf>> {
+    let mut files = Vec::new();
     for (tag, name) in [
         ("7a", "punch-friction-a"),
         ("7b", "punch-friction-b"),
@@ -174,7 +195,7 @@ pub fn figures(cases: &Path, out: &Path) -> Result<Vec<PathBuf>> {
                 0.0,
                 format!(
                     "first yield {:.2} kN (paper 7.00 kN with, 7.17 without)",
-                    fy(&r)
+                    first_yield(&r)
                 ),
             )],
             legend_low: true,
@@ -186,7 +207,12 @@ pub fn figures(cases: &Path, out: &Path) -> Result<Vec<PathBuf>> {
             pictures,
         )?);
     }
-    // Fig. 8: surface deflection of the foundation against the hardening modulus
+    Ok(files)
+}
+
+/// Fig. 8: surface deflection of the foundation at 10.35 kN against the
+/// hardening modulus (plane stress, h = E/100 … E/10).
+fn fig8(cases: &Path, out: &Path, pictures: bool) -> Result<Vec<PathBuf>> {
     let mut series = Vec::new();
     for k in [100.0, 50.0, 20.0, 10.0] {
         let mut case = load(cases, "punch-plane-stress")?;
@@ -212,6 +238,22 @@ pub fn figures(cases: &Path, out: &Path) -> Result<Vec<PathBuf>> {
         vlines: vec![(20.0, "punch edge".into())],
         ..Chart::default()
     };
-    files.extend(save(&c, &out.join("fig8-deflection-hardening"), pictures)?);
+    save(&c, &out.join("fig8-deflection-hardening"), pictures)
+}
+
+/// Writes every figure into `out`; returns the files written.
+pub fn figures(cases: &Path, out: &Path) -> Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(out).map_err(|e| Error::io(out, e))?;
+    let pictures = load_font();
+    if !pictures {
+        eprintln!("figures: no system font found (DejaVu Sans); writing the CSV data only");
+    }
+    let mut files = Vec::new();
+    let stress = capture(load(cases, "punch-plane-stress")?)?;
+    let strain = capture(load(cases, "punch-plane-strain")?)?;
+    files.extend(fig5(out, &stress, &strain, pictures)?);
+    files.extend(fig6(out, &stress.1, &strain.1, pictures)?);
+    files.extend(fig7(cases, out, pictures)?);
+    files.extend(fig8(cases, out, pictures)?);
     Ok(files)
 }

@@ -81,22 +81,19 @@ fn value(p: &Point, q: &str) -> f64 {
     }
 }
 
-/// Runs the study; returns the files written and a Markdown summary.
-pub fn refine(
+/// One run of the study: (configuration index, refinement level, its point).
+type Row = (usize, usize, Point);
+
+/// Every configuration at each of its levels (configurations that cannot
+/// run here skipped), with automatic steps: the load-step error (first order;
+/// 0.8% of the settlement with 20 fixed steps) must not hide the mesh error.
+fn run_levels(
     case: &Path,
     levels: &[usize],
     configs: &[Config],
-    out: &Path,
-) -> Result<(Vec<PathBuf>, String)> {
-    if levels.len() < 3 {
-        return Err(Error::input(
-            "--levels",
-            "give at least three levels for Richardson extrapolation",
-        ));
-    }
-    std::fs::create_dir_all(out).map_err(|e| Error::io(out, e))?;
-    let scratch = out.join(format!(".runs/refine-{}", std::process::id()));
-    let mut rows: Vec<(usize, usize, Point)> = Vec::new(); // (config, level, point)
+    scratch: &Path,
+) -> Result<Vec<Row>> {
+    let mut rows: Vec<Row> = Vec::new();
     for (c, cfg) in configs.iter().enumerate() {
         if !cfg.which.available() {
             eprintln!(
@@ -109,8 +106,6 @@ pub fn refine(
             if cfg.levels.as_ref().is_some_and(|v| !v.contains(&l)) {
                 continue;
             }
-            // automatic steps: the load-step error (first order; 0.8% of the
-            // settlement with 20 fixed steps) must not hide the mesh error
             let mut args = vec![
                 "--refine".to_string(),
                 l.to_string(),
@@ -134,11 +129,14 @@ pub fn refine(
             rows.push((c, l, p));
         }
     }
-    let _ = std::fs::remove_dir_all(&scratch);
-    // the parent too, when no other study is using it
-    let _ = std::fs::remove_dir(out.join(".runs"));
-    // reference: Richardson on the three finest levels of the first configuration
-    let first: Vec<&(usize, usize, Point)> = rows.iter().filter(|r| r.0 == 0).collect();
+    Ok(rows)
+}
+
+/// Reference values, one per quantity: Richardson on the three finest levels
+/// of the first configuration (its finest value when the sequence is not
+/// monotone); with the Markdown table that reports them.
+fn references(rows: &[Row]) -> (Vec<f64>, String) {
+    let first: Vec<&Row> = rows.iter().filter(|r| r.0 == 0).collect();
     let n = first.len();
     let mut refs = Vec::new();
     let mut summary = String::from("| quantity | reference (Richardson) | observed order in h | finest level |\n|---|---:|---:|---:|\n");
@@ -158,14 +156,16 @@ pub fn refine(
         let _ = writeln!(summary, "| {name} | {qs:.6} | {p:.2} | {:.6} |", v[2]);
         refs.push(qs);
     }
-    // data and pictures
-    let pictures = load_font();
-    let mut files = Vec::new();
+    (refs, summary)
+}
+
+/// refine-data.csv: a line per run, its values and relative errors.
+fn write_data(out: &Path, rows: &[Row], configs: &[Config], refs: &[f64]) -> Result<PathBuf> {
     let mut csv = String::from("config,refine,dofs,wall_seconds,iterations,first_yield_kn,center_displacement_mm,edge_pressure_mpa,err_first_yield,err_center,err_edge\n");
-    for (c, l, p) in &rows {
+    for (c, l, p) in rows {
         let e: Vec<f64> = QUANTITIES
             .iter()
-            .zip(&refs)
+            .zip(refs)
             .map(|((q, _), r)| ((value(p, q) - r) / r).abs())
             .collect();
         let _ = writeln!(
@@ -185,8 +185,20 @@ pub fn refine(
     }
     let data = out.join("refine-data.csv");
     std::fs::write(&data, csv).map_err(|e| Error::io(&data, e))?;
-    files.push(data);
-    for ((q, name), r) in QUANTITIES.iter().zip(&refs) {
+    Ok(data)
+}
+
+/// For each quantity, error against dofs and against wall time (log-log), a
+/// series per configuration with two runs or more, labelled with its slope.
+fn charts(
+    out: &Path,
+    rows: &[Row],
+    configs: &[Config],
+    refs: &[f64],
+    pictures: bool,
+) -> Result<Vec<PathBuf>> {
+    let mut files = Vec::new();
+    for ((q, name), r) in QUANTITIES.iter().zip(refs) {
         for (axis, label) in [("dofs", "log10 dofs"), ("time", "log10 wall time (s)")] {
             let mut series = Vec::new();
             for (c, cfg) in configs.iter().enumerate() {
@@ -223,6 +235,33 @@ pub fn refine(
             )?);
         }
     }
+    Ok(files)
+}
+
+/// Runs the study; returns the files written and a Markdown summary.
+pub fn refine(
+    case: &Path,
+    levels: &[usize],
+    configs: &[Config],
+    out: &Path,
+) -> Result<(Vec<PathBuf>, String)> {
+    if levels.len() < 3 {
+        return Err(Error::input(
+            "--levels",
+            "give at least three levels for Richardson extrapolation",
+        ));
+    }
+    std::fs::create_dir_all(out).map_err(|e| Error::io(out, e))?;
+    let scratch = out.join(format!(".runs/refine-{}", std::process::id()));
+    let rows = run_levels(case, levels, configs, &scratch)?;
+    let _ = std::fs::remove_dir_all(&scratch);
+    // the parent too, when no other study is using it
+    let _ = std::fs::remove_dir(out.join(".runs"));
+    let (refs, summary) = references(&rows);
+    // data and pictures
+    let pictures = load_font();
+    let mut files = vec![write_data(out, &rows, configs, &refs)?];
+    files.extend(charts(out, &rows, configs, &refs, pictures)?);
     Ok((files, summary))
 }
 
