@@ -373,11 +373,29 @@ impl<'a> Reader<'a> {
     }
 }
 
+/// A decoding step's outcome: the error is the message shown to the user.
+type Decoded<T> = std::result::Result<T, String>;
+
 /// Decodes and checks a restart file against the model it is meant for.
 pub fn decode(
     bytes: &[u8],
     model: &Model,
 ) -> std::result::Result<(Checkpoint, Vec<(f64, String)>), String> {
+    let mut r = check_header(bytes, model)?;
+    let s = Sections(read_sections(&mut r)?);
+    let mut ck = Checkpoint::initial(model);
+    let increments = *s.u("increment")?.first().ok_or("empty increment")? as usize;
+    restore_stepper(&mut ck, &s)?;
+    restore_state(&mut ck, &s)?;
+    ck.increments = restore_curve(&s, increments)?;
+    ck.first_yield = restore_first_yield(&s)?;
+    let pvd = restore_vtu_series(&s)?;
+    Ok((ck, pvd))
+}
+
+/// Checks the magic, the version, the checksum and the fingerprint; the
+/// reader is left at the section count, over the bytes before the checksum.
+fn check_header<'a>(bytes: &'a [u8], model: &Model) -> Decoded<Reader<'a>> {
     if bytes.len() < 8 || &bytes[..8] != MAGIC {
         return Err("not an asperity restart file (bad magic)".into());
     }
@@ -403,6 +421,12 @@ pub fn decode(
             "written for a different case or mesh (fingerprint mismatch): restart with the same case file and the same command-line overrides".into(),
         );
     }
+    Ok(r)
+}
+
+/// Reads the section table by name; the sections must end where the
+/// checksum begins.
+fn read_sections(r: &mut Reader) -> Decoded<BTreeMap<String, Data>> {
     let n = r.u32()?;
     let mut map: BTreeMap<String, Data> = BTreeMap::new();
     for _ in 0..n {
@@ -434,11 +458,19 @@ pub fn decode(
         };
         map.insert(name, data);
     }
-    if r.at != body.len() {
+    if r.at != r.b.len() {
         return Err("trailing bytes after the last section".into());
     }
-    let f = |name: &str, len: Option<usize>| -> std::result::Result<&Vec<f64>, String> {
-        match map.get(name) {
+    Ok(map)
+}
+
+/// The decoded sections, looked up by name and kind.
+struct Sections(BTreeMap<String, Data>);
+
+impl Sections {
+    /// The f64 section `name`, of exactly `len` values when given.
+    fn f(&self, name: &str, len: Option<usize>) -> Decoded<&Vec<f64>> {
+        match self.0.get(name) {
             Some(Data::F64(v)) if len.is_none_or(|l| l == v.len()) => Ok(v),
             Some(Data::F64(v)) => Err(format!(
                 "section {name} has {} values, the model needs {}",
@@ -447,29 +479,32 @@ pub fn decode(
             )),
             _ => Err(format!("section {name} (f64) missing")),
         }
-    };
-    let u = |name: &str| -> std::result::Result<&Vec<u64>, String> {
-        match map.get(name) {
+    }
+    /// The u64 section `name`.
+    fn u(&self, name: &str) -> Decoded<&Vec<u64>> {
+        match self.0.get(name) {
             Some(Data::U64(v)) => Ok(v),
             _ => Err(format!("section {name} (u64) missing")),
         }
-    };
-    let text = |name: &str| -> std::result::Result<&str, String> {
-        match map.get(name) {
+    }
+    /// The text section `name`.
+    fn text(&self, name: &str) -> Decoded<&str> {
+        match self.0.get(name) {
             Some(Data::Text(v)) => Ok(v),
             _ => Err(format!("section {name} (text) missing")),
         }
-    };
-    let mut ck = Checkpoint::initial(model);
-    let ng = ck.committed.gauss.len();
-    let np = ck.committed.status.len();
+    }
+}
+
+/// The load stepping: load factor, last step and predictor direction, the
+/// pending schedule, the automatic step control, cutbacks and counters.
+fn restore_stepper(ck: &mut Checkpoint, s: &Sections) -> Decoded<()> {
     let nu = ck.committed.u.len();
-    let increments = *u("increment")?.first().ok_or("empty increment")? as usize;
-    ck.lambda = f("load_factor", Some(1))?[0];
-    ck.last_step = f("last_step", Some(1))?[0];
+    ck.lambda = s.f("load_factor", Some(1))?[0];
+    ck.last_step = s.f("last_step", Some(1))?[0];
     // the predictor's direction; absent from files of earlier builds (the
     // next increment then starts from the committed state)
-    if let Some(Data::F64(v)) = map.get("last_du") {
+    if let Some(Data::F64(v)) = s.0.get("last_du") {
         if !v.is_empty() && v.len() != nu {
             return Err(format!(
                 "section last_du has {} values, the model needs {nu}",
@@ -478,49 +513,58 @@ pub fn decode(
         }
         ck.last_du = v.clone();
     }
-    let pl = f("pending_load_factor", None)?;
-    let pd = u("pending_depth")?;
+    let pl = s.f("pending_load_factor", None)?;
+    let pd = s.u("pending_depth")?;
     if pl.len() != pd.len() {
         return Err("pending schedule: lengths differ".into());
     }
     ck.stepper.pending = pl.iter().zip(pd).map(|(&l, &d)| (l, d as usize)).collect();
-    ck.stepper.waypoints = f("auto_waypoints", None)?.clone();
-    ck.stepper.step = f("auto_step", Some(1))?[0];
-    ck.stepper.failures = *u("auto_failures")?.first().ok_or("empty auto_failures")? as usize;
-    let cb = u("cutbacks")?;
-    let ct = u("counters")?;
+    ck.stepper.waypoints = s.f("auto_waypoints", None)?.clone();
+    ck.stepper.step = s.f("auto_step", Some(1))?[0];
+    ck.stepper.failures = *s.u("auto_failures")?.first().ok_or("empty auto_failures")? as usize;
+    let cb = s.u("cutbacks")?;
+    let ct = s.u("counters")?;
     if cb.len() != 2 || ct.len() != 2 {
         return Err("cutbacks/counters: expected 2 values".into());
     }
     (ck.cutbacks_total, ck.cutbacks_here) = (cb[0] as usize, cb[1] as usize);
     (ck.iterations, ck.factorizations) = (ct[0] as usize, ct[1] as usize);
-    ck.elastic_ratio_prev = f("elastic_ratio_prev", Some(1))?[0];
-    ck.committed.u.copy_from_slice(f("u", Some(nu))?);
-    for (p, v) in ck
-        .committed
-        .gauss
-        .iter_mut()
-        .zip(f("gauss", Some(PointState::PACKED * ng))?.chunks_exact(PointState::PACKED))
-    {
+    ck.elastic_ratio_prev = s.f("elastic_ratio_prev", Some(1))?[0];
+    Ok(())
+}
+
+/// The committed state: displacements, Gauss points, interface status and
+/// contact state, and the prescribed reaction, each sized for the model.
+fn restore_state(ck: &mut Checkpoint, s: &Sections) -> Decoded<()> {
+    let c = &mut ck.committed;
+    let (ng, np, nu) = (c.gauss.len(), c.status.len(), c.u.len());
+    c.u.copy_from_slice(s.f("u", Some(nu))?);
+    for (p, v) in c.gauss.iter_mut().zip(
+        s.f("gauss", Some(PointState::PACKED * ng))?
+            .chunks_exact(PointState::PACKED),
+    ) {
         *p = PointState::unpack(v);
     }
-    match map.get("status") {
+    match s.0.get("status") {
         Some(Data::U8(v)) if v.len() == np => {
-            ck.committed.status = v.iter().map(|&c| Status::from_code(c)).collect();
+            c.status = v.iter().map(|&code| Status::from_code(code)).collect();
         }
         _ => return Err(format!("section status: expected {np} codes")),
     }
-    for (p, v) in ck
-        .committed
-        .contact
-        .iter_mut()
-        .zip(f("contact", Some(ContactState::PACKED * np))?.chunks_exact(ContactState::PACKED))
-    {
+    for (p, v) in c.contact.iter_mut().zip(
+        s.f("contact", Some(ContactState::PACKED * np))?
+            .chunks_exact(ContactState::PACKED),
+    ) {
         *p = ContactState::unpack(v);
     }
-    ck.committed.prescribed_reaction = f("prescribed_reaction", Some(1))?[0];
-    let rows = f("curve", Some(10 * increments))?;
-    ck.increments = rows
+    c.prescribed_reaction = s.f("prescribed_reaction", Some(1))?[0];
+    Ok(())
+}
+
+/// The load curve: one row of 10 values per converged increment.
+fn restore_curve(s: &Sections, increments: usize) -> Decoded<Vec<Increment>> {
+    let rows = s.f("curve", Some(10 * increments))?;
+    Ok(rows
         .chunks_exact(10)
         .map(|v| Increment {
             increment: v[0] as usize,
@@ -536,21 +580,30 @@ pub fn decode(
                 prescribed_reaction: v[9],
             },
         })
-        .collect();
-    if map.contains_key("first_yield") {
-        let v = f("first_yield", Some(6))?;
-        ck.first_yield = Some(FirstYield {
-            load_factor: v[0],
-            mean_pressure: v[1],
-            total_load_kn: v[2],
-            x: v[3],
-            depth: v[4],
-            element: v[5] as usize,
-            body: text("first_yield_body")?.to_string(),
-        });
+        .collect())
+}
+
+/// The first yield, if the run had reached it.
+fn restore_first_yield(s: &Sections) -> Decoded<Option<FirstYield>> {
+    if !s.0.contains_key("first_yield") {
+        return Ok(None);
     }
-    let pl = f("pvd_load_factor", None)?;
-    let pf = text("pvd_file")?;
+    let v = s.f("first_yield", Some(6))?;
+    Ok(Some(FirstYield {
+        load_factor: v[0],
+        mean_pressure: v[1],
+        total_load_kn: v[2],
+        x: v[3],
+        depth: v[4],
+        element: v[5] as usize,
+        body: s.text("first_yield_body")?.to_string(),
+    }))
+}
+
+/// The VTU series written so far: (load factor, file name) pairs.
+fn restore_vtu_series(s: &Sections) -> Decoded<Vec<(f64, String)>> {
+    let pl = s.f("pvd_load_factor", None)?;
+    let pf = s.text("pvd_file")?;
     let files: Vec<&str> = if pf.is_empty() {
         Vec::new()
     } else {
@@ -559,12 +612,11 @@ pub fn decode(
     if files.len() != pl.len() {
         return Err("VTU series: lengths differ".into());
     }
-    let pvd = pl
+    Ok(pl
         .iter()
         .zip(files)
         .map(|(&l, f)| (l, f.to_string()))
-        .collect();
-    Ok((ck, pvd))
+        .collect())
 }
 
 #[cfg(test)]

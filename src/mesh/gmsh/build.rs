@@ -17,7 +17,29 @@ fn mesh_err<T>(place: &str, message: impl Into<String>) -> Result<T> {
 /// Builds the mesh from a parsed file.
 pub fn build_mesh(msh: &MshFile, interfaces: &[InterfaceSpec], place: &str) -> Result<Mesh> {
     let file = msh.name.as_str();
-    // physical surfaces → bodies, in order of their tags
+    let (block_body, body_tags) = assign_bodies(msh, file)?;
+    let mut mesh = Mesh {
+        bodies: body_tags
+            .iter()
+            .map(|t| msh.physical_names[&(2, *t)].clone())
+            .collect(),
+        ..Mesh::default()
+    };
+    let (new_id, tag_of) = add_body_nodes(msh, &block_body, &mut mesh);
+    add_elements(msh, &block_body, &new_id, &mut mesh);
+    check_bodies_apart(&mesh, &tag_of, file)?;
+    add_body_node_sets(&mut mesh);
+    let curve_body = add_curve_sets(msh, &new_id, &mut mesh, file)?;
+    for spec in interfaces {
+        let iface = pair_curves(msh, &mesh, &curve_body, &tag_of, spec, place)?;
+        mesh.interfaces.push(iface);
+    }
+    Ok(mesh)
+}
+
+/// Physical surfaces → bodies, in order of their tags: per element block its
+/// body index (none for blocks outside the bodies), and the bodies' tags.
+fn assign_bodies(msh: &MshFile, file: &str) -> Result<(Vec<Option<usize>>, Vec<i32>)> {
     let mut block_body: Vec<Option<usize>> = vec![None; msh.blocks.len()];
     let mut body_tags: Vec<i32> = Vec::new();
     for (k, b) in msh.blocks.iter().enumerate() {
@@ -64,21 +86,22 @@ pub fn build_mesh(msh: &MshFile, interfaces: &[InterfaceSpec], place: &str) -> R
         );
     }
     body_tags.sort_unstable();
-    for (k, b) in msh.blocks.iter().enumerate() {
-        if let Some(t) = block_body[k] {
+    for body in block_body.iter_mut() {
+        if let Some(t) = *body {
             let tag = t as i32;
-            block_body[k] = body_tags.iter().position(|&x| x == tag);
-            let _ = b;
+            *body = body_tags.iter().position(|&x| x == tag);
         }
     }
-    let mut mesh = Mesh {
-        bodies: body_tags
-            .iter()
-            .map(|t| msh.physical_names[&(2, *t)].clone())
-            .collect(),
-        ..Mesh::default()
-    };
-    // nodes used by body elements, numbered in file order
+    Ok((block_body, body_tags))
+}
+
+/// The nodes used by body elements, numbered in file order: per file node
+/// its new number (`usize::MAX` if unused), and per new node its file tag.
+fn add_body_nodes(
+    msh: &MshFile,
+    block_body: &[Option<usize>],
+    mesh: &mut Mesh,
+) -> (Vec<usize>, Vec<u64>) {
     let mut new_id = vec![usize::MAX; msh.nodes.len()];
     for (k, b) in msh.blocks.iter().enumerate() {
         if block_body[k].is_some() {
@@ -95,7 +118,11 @@ pub fn build_mesh(msh: &MshFile, interfaces: &[InterfaceSpec], place: &str) -> R
             tag_of.push(msh.node_tags[i]);
         }
     }
-    // elements, counter-clockwise
+    (new_id, tag_of)
+}
+
+/// The body elements, counter-clockwise.
+fn add_elements(msh: &MshFile, block_body: &[Option<usize>], new_id: &[usize], mesh: &mut Mesh) {
     for (k, b) in msh.blocks.iter().enumerate() {
         let Some(body) = block_body[k] else { continue };
         for conn in b.conn.chunks_exact(8) {
@@ -114,6 +141,10 @@ pub fn build_mesh(msh: &MshFile, interfaces: &[InterfaceSpec], place: &str) -> R
             mesh.elements.push(Element { nodes: n, body });
         }
     }
+}
+
+/// Refuses a node shared by two bodies (bodies in contact need their own nodes).
+fn check_bodies_apart(mesh: &Mesh, tag_of: &[u64], file: &str) -> Result<()> {
     let mut node_body = vec![usize::MAX; mesh.nodes.len()];
     for el in &mesh.elements {
         for &n in &el.nodes {
@@ -129,6 +160,11 @@ pub fn build_mesh(msh: &MshFile, interfaces: &[InterfaceSpec], place: &str) -> R
             node_body[n] = el.body;
         }
     }
+    Ok(())
+}
+
+/// Each body's own node set, `<body>.all`.
+fn add_body_node_sets(mesh: &mut Mesh) {
     for (b, name) in mesh.bodies.iter().enumerate() {
         let mut set: Vec<usize> = mesh
             .elements
@@ -140,7 +176,10 @@ pub fn build_mesh(msh: &MshFile, interfaces: &[InterfaceSpec], place: &str) -> R
         set.dedup();
         mesh.node_sets.insert(format!("{name}.all"), set);
     }
-    // element edges: sorted corner pair → (element, local edge)
+}
+
+/// The element edges: sorted corner pair → (element, local edge).
+fn edge_index(mesh: &Mesh) -> HashMap<(usize, usize), (usize, usize)> {
     let mut edge_of: HashMap<(usize, usize), (usize, usize)> = HashMap::new();
     for (e, el) in mesh.elements.iter().enumerate() {
         for i in 0..4 {
@@ -148,7 +187,18 @@ pub fn build_mesh(msh: &MshFile, interfaces: &[InterfaceSpec], place: &str) -> R
             edge_of.entry((p.min(q), p.max(q))).or_insert((e, i));
         }
     }
-    // physical curves → node sets and edge sets (edges walked with the body on the left)
+    edge_of
+}
+
+/// Physical curves → node sets and edge sets (edges walked with the body on
+/// the left); returns the body each curve lies on.
+fn add_curve_sets(
+    msh: &MshFile,
+    new_id: &[usize],
+    mesh: &mut Mesh,
+    file: &str,
+) -> Result<BTreeMap<String, usize>> {
+    let edge_of = edge_index(mesh);
     let mut curve_body: BTreeMap<String, usize> = BTreeMap::new();
     for b in msh.blocks.iter().filter(|b| b.dim == 1) {
         let Some(phys) = msh.entities.get(&(1, b.entity)) else {
@@ -219,13 +269,10 @@ pub fn build_mesh(msh: &MshFile, interfaces: &[InterfaceSpec], place: &str) -> R
                 .extend(edges);
         }
     }
-    for spec in interfaces {
-        let iface = pair_curves(msh, &mesh, &curve_body, &tag_of, spec, place)?;
-        mesh.interfaces.push(iface);
-    }
-    Ok(mesh)
+    Ok(curve_body)
 }
 
+/// Pairs the interface's upper and lower physical curves node by node.
 fn pair_curves(
     msh: &MshFile,
     mesh: &Mesh,
@@ -242,29 +289,10 @@ fn pair_curves(
                 .into(),
         ));
     };
-    let curve = |name: &str| -> Result<usize> {
-        if let Some(&b) = curve_body.get(name) {
-            return Ok(b);
-        }
-        if let Some((&(d, _), _)) = msh.physical_names.iter().find(|(_, n)| *n == name) {
-            let what = [
-                "a physical point",
-                "a physical curve",
-                "a physical surface",
-                "a physical volume",
-            ][d.clamp(0, 3) as usize];
-            return Err(bad(format!(
-                "\"{name}\" is {what} (dimension {d}) in {}, not a physical curve of 3-node lines",
-                msh.name
-            )));
-        }
-        Err(bad(format!(
-            "physical curve \"{name}\" not found in {} (physical curves: {})",
-            msh.name,
-            curve_body.keys().cloned().collect::<Vec<_>>().join(", ")
-        )))
-    };
-    let (ua, lb) = (curve(upper)?, curve(lower)?);
+    let (ua, lb) = (
+        curve_on_body(msh, curve_body, upper, &at)?,
+        curve_on_body(msh, curve_body, lower, &at)?,
+    );
     for (given, body, side) in [(&spec.upper, ua, "upper"), (&spec.lower, lb, "lower")] {
         if let Some(g) = given {
             if *g != mesh.bodies[body] {
@@ -281,6 +309,61 @@ fn pair_curves(
             mesh.bodies[ua]
         )));
     }
+    Ok(Interface {
+        name: spec.name.clone(),
+        body_a: ua,
+        body_b: lb,
+        edges: coincident_edges(msh, mesh, tag_of, upper, lower, &at)?,
+    })
+}
+
+/// The body the physical curve `name` lies on; an error naming what `name`
+/// is instead, or the curves there are, if it is not a physical curve.
+fn curve_on_body(
+    msh: &MshFile,
+    curve_body: &BTreeMap<String, usize>,
+    name: &str,
+    at: &str,
+) -> Result<usize> {
+    if let Some(&b) = curve_body.get(name) {
+        return Ok(b);
+    }
+    if let Some((&(d, _), _)) = msh.physical_names.iter().find(|(_, n)| *n == name) {
+        let what = [
+            "a physical point",
+            "a physical curve",
+            "a physical surface",
+            "a physical volume",
+        ][d.clamp(0, 3) as usize];
+        return Err(Error::input(
+            at,
+            format!(
+                "\"{name}\" is {what} (dimension {d}) in {}, not a physical curve of 3-node lines",
+                msh.name
+            ),
+        ));
+    }
+    Err(Error::input(
+        at,
+        format!(
+            "physical curve \"{name}\" not found in {} (physical curves: {})",
+            msh.name,
+            curve_body.keys().cloned().collect::<Vec<_>>().join(", ")
+        ),
+    ))
+}
+
+/// The contact edges: each edge of the upper curve with the coincident nodes
+/// of the lower one (within 1e-9 of the shortest edge); the lower curve's
+/// nodes within the extent of the upper one must all have a partner too.
+fn coincident_edges(
+    msh: &MshFile,
+    mesh: &Mesh,
+    tag_of: &[u64],
+    upper: &str,
+    lower: &str,
+    at: &str,
+) -> Result<Vec<ContactEdge>> {
     let a_edges = &mesh.edge_sets[upper];
     let b_edges = &mesh.edge_sets[lower];
     let h = a_edges
@@ -299,9 +382,9 @@ fn pair_curves(
             .copied()
             .find(|&m| (mesh.nodes[m][0] - x[0]).hypot(mesh.nodes[m][1] - x[1]) <= tol)
     };
-    let unpaired = |n: usize, on: &str, other: &str| -> Result<Interface> {
+    let unpaired = |n: usize, on: &str, other: &str| -> Result<Vec<ContactEdge>> {
         let x = mesh.nodes[n];
-        Err(bad(format!(
+        Err(Error::input(at, format!(
             "node {} at ({}, {}) of curve \"{on}\" in {} has no partner on curve \"{other}\" within {tol:.1e} mm (the two sides must have coincident nodes)",
             tag_of[n], x[0], x[1], msh.name
         )))
@@ -335,10 +418,5 @@ fn pair_curves(
             return unpaired(n, lower, upper);
         }
     }
-    Ok(Interface {
-        name: spec.name.clone(),
-        body_a: ua,
-        body_b: lb,
-        edges,
-    })
+    Ok(edges)
 }
