@@ -46,6 +46,29 @@ pub struct Point {
     pub normal: [f64; 2],
 }
 
+impl Point {
+    /// The derivatives of the relative approach u_N and slip u_T (eq. 3.29-3.31:
+    /// B's minus A's displacement, interpolated by the edge's shape
+    /// functions, along the normal and the tangent t = (n_y, −n_x)) with
+    /// respect to the point's local dofs (A pairs (x, y), then B pairs); the
+    /// first 4·len entries of each are used.
+    pub fn gradients(&self) -> ([f64; 12], [f64; 12]) {
+        let n = self.len;
+        let t = [self.normal[1], -self.normal[0]];
+        let (mut gn, mut gt) = ([0.0f64; 12], [0.0f64; 12]);
+        for i in 0..n {
+            let s = self.shape[i];
+            for c in 0..2 {
+                gn[2 * i + c] = -s * self.normal[c];
+                gn[2 * n + 2 * i + c] = s * self.normal[c];
+                gt[2 * i + c] = -s * t[c];
+                gt[2 * n + 2 * i + c] = s * t[c];
+            }
+        }
+        (gn, gt)
+    }
+}
+
 /// Status of an interface point, decided from its approach and shear.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 #[repr(u8)]
@@ -344,18 +367,8 @@ impl InterfaceModel {
             _ => k_law,
         };
         let n = pt.len;
-        let t = [pt.normal[1], -pt.normal[0]];
         // gn, gt: derivatives of u_N and u_T with respect to the local dofs
-        let (mut gn, mut gt) = ([0.0f64; 12], [0.0f64; 12]);
-        for i in 0..n {
-            let s = pt.shape[i];
-            for c in 0..2 {
-                gn[2 * i + c] = -s * pt.normal[c];
-                gn[2 * n + 2 * i + c] = s * pt.normal[c];
-                gt[2 * i + c] = -s * t[c];
-                gt[2 * n + 2 * i + c] = s * t[c];
-            }
-        }
+        let (gn, gt) = pt.gradients();
         let mut status = if u_n > 0.0 {
             Status::Closed
         } else {

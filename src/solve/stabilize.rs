@@ -351,17 +351,7 @@ pub fn add_point(
 ) {
     let (dn, dt) = increment(im, pt, committed, u);
     let n = pt.len;
-    let t = [pt.normal[1], -pt.normal[0]];
-    let (mut gn, mut gt) = ([0.0f64; 12], [0.0f64; 12]);
-    for i in 0..n {
-        let s = pt.shape[i];
-        for c in 0..2 {
-            gn[2 * i + c] = -s * pt.normal[c];
-            gn[2 * n + 2 * i + c] = s * pt.normal[c];
-            gt[2 * i + c] = -s * t[c];
-            gt[2 * n + 2 * i + c] = s * t[c];
-        }
-    }
+    let (gn, gt) = pt.gradients();
     let nd = 4 * n;
     let a = pt.area * ks;
     for i in 0..nd {
