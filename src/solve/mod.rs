@@ -365,7 +365,11 @@ fn accept(
     ck.last_du
         .extend(trial.u.iter().zip(&ck.committed.u).map(|(a, b)| a - b));
     ck.committed = trial;
-    engine.committed();
+    if !engine.committed() {
+        // a stabilized or released step closed a gap by a rigid motion: the
+        // next step starts from the committed state, not an extrapolation
+        ck.last_du.clear();
+    }
     ck.last_step = target - ck.lambda;
     ck.lambda = target;
     let inc = Increment {

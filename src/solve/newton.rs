@@ -214,13 +214,14 @@ impl<'m> Engine<'m> {
     }
 
     /// Called when a new state is committed: the modified-Newton matrix is stale.
-    pub fn committed(&mut self) {
+    /// Returns whether the step was a plain one: a step that the contact
+    /// stabilization held or released moved a body rigidly (a gap closing),
+    /// which the next step's predictor must not extrapolate.
+    pub fn committed(&mut self) -> bool {
         if self.method == Method::ModifiedNewton {
             self.solid_valid = false;
         }
-        if let Some(st) = self.stabilizer.as_mut() {
-            st.commit();
-        }
+        self.stabilizer.as_mut().is_none_or(|st| st.commit())
     }
 
     /// Solves the step from `committed` to load factor `lambda`. Returns the

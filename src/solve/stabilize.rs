@@ -323,16 +323,19 @@ impl Stabilizer {
         })
     }
 
-    /// Called when the engine's last step is committed.
-    pub(super) fn commit(&mut self) {
-        if let Some((stabilized, w)) = self.pending.take() {
-            if stabilized {
-                self.report.stabilized += 1;
-                self.report.dissipated += w;
-            } else {
-                self.report.released += 1;
-            }
+    /// Called when the engine's last step is committed; whether that step
+    /// was a plain one (neither stabilized nor released).
+    pub(super) fn commit(&mut self) -> bool {
+        let Some((stabilized, w)) = self.pending.take() else {
+            return true;
+        };
+        if stabilized {
+            self.report.stabilized += 1;
+            self.report.dissipated += w;
+        } else {
+            self.report.released += 1;
         }
+        false
     }
 }
 
