@@ -270,7 +270,7 @@ impl<'m> Engine<'m> {
         if let Some(mut solver) = self.nonlinear.take() {
             let t0 = std::time::Instant::now();
             let mut p = StepProblem::new(self, committed, lambda, response, start);
-            let solved = solver.solve(&mut p).map_err(StepFailure::Solver);
+            let solved = solver.solve(&mut p);
             let inside = p.evaluate_seconds();
             let result = p.finish(solved);
             self.stats.solve_seconds += (t0.elapsed().as_secs_f64() - inside).max(0.0);

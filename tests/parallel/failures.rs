@@ -64,3 +64,25 @@ fn the_serial_backend_under_mpirun_is_refused() {
         "{err}"
     );
 }
+
+/// A MUMPS factorization that cannot get its memory ends the run at once with
+/// one `memory:` line, on both nonlinear paths: no cutbacks (a smaller step
+/// needs the same factor). MUMPS's work space is starved with ICNTL(14) = −99
+/// (INFOG(1) = −9, which PETSc reports as PC_FACTOR_OUTMEMORY).
+#[test]
+fn a_factorization_out_of_memory_ends_the_run_without_cutbacks() {
+    let case = common::root().join("cases/punch-plane-stress");
+    for nl in ["snes", "builtin"] {
+        let root = common::scratch(&format!("parallel-oom-{nl}"));
+        let err = fails_cleanly_on_two_ranks(
+            &root,
+            &case,
+            &["--nonlinear", nl, "--", "-mat_mumps_icntl_14", "-99"],
+        );
+        assert!(
+            err.contains("memory: the direct factorization (MUMPS) could not allocate"),
+            "{nl}: {err}"
+        );
+        assert!(!err.contains("cutback"), "{nl}: {err}");
+    }
+}

@@ -628,6 +628,33 @@ unsafe fn gamg_defaults(ksp: ffi::KSP) -> Result<bool> {
     }
 }
 
+/// Whether the KSP's preconditioner failed for want of memory: a direct
+/// factorization (MUMPS) that could not allocate its factor or work arrays
+/// (`PC_FACTOR_OUTMEMORY`, from MUMPS's INFOG(1) = −8, −9, −11…−15). A smaller
+/// load step would need the same factor, so the run ends instead of cutting
+/// back.
+///
+/// # Safety
+/// `ksp` must be a valid KSP handle.
+pub(crate) unsafe fn pc_out_of_memory(ksp: ffi::KSP) -> bool {
+    // SAFETY: valid KSP (caller); out-pointers; the PC belongs to the KSP.
+    unsafe {
+        let mut pc = std::ptr::null_mut();
+        let mut reason: ffi::PCFailedReason = 0;
+        ffi::KSPGetPC(ksp, &mut pc) == 0
+            && ffi::PCGetFailedReason(pc, &mut reason) == 0
+            && reason == ffi::PCFailedReason_PC_FACTOR_OUTMEMORY
+    }
+}
+
+/// The message of a factorization that ran out of memory under PETSc.
+pub(crate) fn out_of_memory_error() -> Error {
+    Error::Memory(
+        "the direct factorization (MUMPS) could not allocate its factor: the model is too large for the memory of these ranks (more ranks, or -pc_type gamg)"
+            .into(),
+    )
+}
+
 /// "ksp type + pc type" of a configured KSP, e.g. "preonly + lu (mumps)", "cg + gamg".
 ///
 /// # Safety
@@ -708,6 +735,9 @@ impl<'p> Ksp<'p> {
                 "KSPGetIterationNumber",
             )?;
             if reason < 0 {
+                if pc_out_of_memory(self.raw) {
+                    return Err(out_of_memory_error());
+                }
                 return Err(Error::Solver(format!(
                     "KSP diverged (reason {reason}) after {its} iterations"
                 )));

@@ -23,6 +23,7 @@ use super::solver::Partition;
 use super::{chk, default_option, ffi, gamg_defaults, option_given, PVec, Petsc, ToAll};
 use crate::error::{Error, Result};
 use crate::solve::nonlinear::{NonlinearSolver, Problem, Verdict};
+use crate::solve::StepFailure;
 use std::os::raw::c_void;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
@@ -405,9 +406,9 @@ impl NonlinearSolver for SnesSolver<'_> {
         "snes"
     }
 
-    fn solve(&mut self, problem: &mut dyn Problem) -> std::result::Result<(), String> {
+    fn solve(&mut self, problem: &mut dyn Problem) -> std::result::Result<(), StepFailure> {
         let start = problem.initial();
-        let err = |e: Error| e.to_string();
+        let err = |e: Error| StepFailure::Solver(e.to_string());
         self.layout.write(&start, self.x.raw).map_err(err)?;
         let mut ctx = Ctx {
             layout: &mut self.layout,
@@ -447,17 +448,27 @@ impl NonlinearSolver for SnesSolver<'_> {
         };
         self.slot.set(std::ptr::null_mut());
         if let Some(e) = ctx.error.take() {
-            return Err(e);
+            return Err(StepFailure::Solver(e));
         }
         let reason = solved.map_err(err)?;
         if reason > 0 && !ctx.problem.converged() {
-            return Err(format!(
+            return Err(StepFailure::Solver(format!(
                 "SNES stopped ({}) before the step's convergence rules were met",
                 reason_name(reason)
-            ));
+            )));
         }
         if reason < 0 && !ctx.problem.stopped() {
-            return Err(format!("SNES diverged: {}", reason_name(reason)));
+            let mut ksp = std::ptr::null_mut();
+            // SAFETY: valid SNES; the KSP belongs to it.
+            let oom =
+                unsafe { ffi::SNESGetKSP(self.raw, &mut ksp) == 0 && super::pc_out_of_memory(ksp) };
+            if oom {
+                return Err(StepFailure::Linear(super::out_of_memory_error()));
+            }
+            return Err(StepFailure::Solver(format!(
+                "SNES diverged: {}",
+                reason_name(reason)
+            )));
         }
         Ok(())
     }
