@@ -1,0 +1,276 @@
+//! The step problem: the paper's residual, tangent, convergence rules and
+//! status check for one load step (eq. 4.1-4.8), as the [`Problem`] that the
+//! built-in Newton loop ([`Engine::step`]) or PETSc's SNES drives.
+
+use super::Engine;
+use crate::case::{Acceleration, Method};
+use crate::fem::solid::{Response, Tangent};
+use crate::interface::Status;
+use crate::solve::accelerate::Anderson;
+use crate::solve::failure::StepFailure;
+use crate::solve::nonlinear::{Problem, Verdict};
+use crate::solve::State;
+
+/// A residual this many times the reference, after the first iterations, is
+/// divergence: the step is abandoned without waiting for the iteration limit.
+const DIVERGENCE: f64 = 1e10;
+/// Iterations before the divergence test applies.
+const DIVERGENCE_AFTER: usize = 2;
+/// Contraction factor under which the displacement test uses the
+/// contraction's error bound ([`StepProblem::error_estimate`]).
+const FAST_CONTRACTION: f64 = 0.5;
+
+/// One load step as a [`Problem`]: the paper's residual, tangent, convergence
+/// rules and status check, driven by the built-in loop or by SNES.
+pub struct StepProblem<'a, 'm> {
+    pub(super) engine: &'a mut Engine<'m>,
+    committed: &'a State,
+    trial: State,
+    lambda: f64,
+    response: Response,
+    method: Method,
+    free: Vec<usize>,
+    evaluations: usize,
+    evaluate_seconds: f64,
+    status: Vec<Status>,
+    last_status: Option<Vec<Status>>,
+    du_inf: f64,
+    /// ‖Δu‖∞ of the correction before the last (∞ before the second).
+    du_prev_inf: f64,
+    r_norm: f64,
+    reference: f64,
+    anderson: Option<Anderson>,
+    /// Set when the problem stops: the iteration count, or why it failed.
+    outcome: Option<Result<usize, StepFailure>>,
+}
+
+impl<'a, 'm> StepProblem<'a, 'm> {
+    pub fn new(
+        engine: &'a mut Engine<'m>,
+        committed: &'a State,
+        lambda: f64,
+        response: Response,
+        start: Option<&[f64]>,
+    ) -> Self {
+        let m = engine.model;
+        let spec = &m.solver;
+        let mut trial = committed.clone();
+        if let Some(start) = start {
+            trial.u.copy_from_slice(start);
+        }
+        for &(d, v) in &m.prescribed {
+            trial.u[d] = lambda * v;
+        }
+        let method = if response == Response::ElasticOnly {
+            Method::FullNewton
+        } else {
+            engine.method
+        };
+        let anderson = (method != Method::FullNewton
+            && spec.acceleration == Acceleration::Anderson)
+            .then(|| Anderson::new(spec.anderson_depth));
+        let free: Vec<usize> = (0..trial.u.len())
+            .filter(|&d| m.dofs.equation(d).is_some())
+            .collect();
+        StepProblem {
+            engine,
+            committed,
+            trial,
+            lambda,
+            response,
+            method,
+            free,
+            evaluations: 0,
+            evaluate_seconds: 0.0,
+            status: Vec::new(),
+            last_status: None,
+            du_inf: f64::INFINITY,
+            du_prev_inf: f64::INFINITY,
+            r_norm: f64::NAN,
+            reference: 1.0,
+            anderson,
+            outcome: None,
+        }
+    }
+
+    /// The error of the current iterate that the displacement test bounds:
+    /// the last correction ‖Δu_k‖∞, or, where the iteration contracts fast
+    /// (θ = ‖Δu_k‖∞ / ‖Δu_{k−1}‖∞ < 1/2), the a-posteriori bound of a
+    /// contraction, θ/(1−θ) ‖Δu_k‖∞ (the distance from x_k to the fixed
+    /// point; Banach). The last correction alone measures the error of the
+    /// iterate before it, so a quadratically converging Newton iteration
+    /// would take one more solve than the tolerance asks for; where θ ≥ 1/2
+    /// the last correction is the smaller bound and stays the test.
+    fn error_estimate(&self) -> f64 {
+        let theta = self.du_inf / self.du_prev_inf;
+        if theta < FAST_CONTRACTION {
+            theta / (1.0 - theta) * self.du_inf
+        } else {
+            self.du_inf
+        }
+    }
+
+    /// The converged state, or why the step failed (`solved`: the solver's own
+    /// failure, if any).
+    pub(super) fn finish(
+        self,
+        solved: Result<(), StepFailure>,
+    ) -> Result<(State, usize), StepFailure> {
+        match self.outcome {
+            Some(Ok(it)) => Ok((self.trial, it)),
+            Some(Err(failure)) => Err(failure),
+            None => Err(solved.err().unwrap_or_else(|| {
+                StepFailure::Solver("the nonlinear solver stopped without a verdict".into())
+            })),
+        }
+    }
+}
+
+impl Problem for StepProblem<'_, '_> {
+    fn initial(&self) -> Vec<f64> {
+        self.free.iter().map(|&d| self.trial.u[d]).collect()
+    }
+
+    fn evaluate(&mut self, x: &[f64], r: &mut [f64]) -> bool {
+        let t0 = std::time::Instant::now();
+        for (k, &d) in self.free.iter().enumerate() {
+            self.trial.u[d] = x[k];
+        }
+        let e = &mut *self.engine;
+        let solid_tangent = match self.method {
+            Method::FullNewton => Some(Tangent::Consistent),
+            Method::ModifiedNewton if !e.solid_valid => Some(Tangent::Continuum),
+            Method::InitialStiffness if !e.solid_valid => Some(Tangent::Elastic),
+            _ => None,
+        };
+        let floor = (self.evaluations == 0).then(|| e.start_stiffness(self.lambda));
+        self.evaluations += 1;
+        let assembled = e.assemble(
+            self.committed,
+            &mut self.trial,
+            self.lambda,
+            self.response,
+            solid_tangent,
+            floor,
+        );
+        let dt = t0.elapsed().as_secs_f64();
+        e.stats.assembly_seconds += dt;
+        self.evaluate_seconds += dt;
+        match assembled {
+            Ok(status) => self.status = status,
+            Err(msg) => {
+                self.outcome = Some(Err(msg));
+                return false;
+            }
+        }
+        // norms over free dofs; reactions over prescribed dofs
+        let m = e.model;
+        let (mut r2, mut f2, mut react2) = (0.0, 0.0, 0.0);
+        for d in 0..e.r.len() {
+            if m.dofs.equation(d).is_some() {
+                r2 += e.r[d] * e.r[d];
+                f2 += (self.lambda * m.f_ext[d]).powi(2);
+            } else {
+                react2 += e.r[d] * e.r[d];
+            }
+        }
+        self.reference = f2.sqrt().max(react2.sqrt()).max(m.force_floor);
+        self.r_norm = r2.sqrt();
+        for (k, &d) in self.free.iter().enumerate() {
+            r[k] = e.r[d];
+        }
+        true
+    }
+
+    fn verdict(&mut self, it: usize) -> Verdict {
+        let error = self.error_estimate();
+        let e = &mut *self.engine;
+        let m = e.model;
+        let spec = &m.solver;
+        let limit = spec.iteration_limit();
+        // a second stop request abandons the step (collectively)
+        let mut flag = [
+            crate::interrupt::requested() as f64,
+            f64::from(crate::interrupt::first_signal()),
+        ];
+        e.backend.max(&mut flag);
+        if flag[0] >= 2.0 {
+            self.outcome = Some(Err(StepFailure::Interrupted {
+                iteration: it,
+                signal: flag[1] as i32,
+            }));
+            return Verdict::Stop;
+        }
+        let (r_norm, reference) = (self.r_norm, self.reference);
+        if !e.backend.agree(r_norm.is_finite()) {
+            self.outcome = Some(Err(StepFailure::NotFinite { iteration: it }));
+            return Verdict::Stop;
+        }
+        let u_inf = self
+            .trial
+            .u
+            .iter()
+            .fold(0.0f64, |a, v| a.max(v.abs()))
+            .max(1e-30);
+        let same_status = self.last_status.as_ref() == Some(&self.status);
+        let small_r = r_norm <= spec.residual_tolerance * reference;
+        let small_du = it > 0 && error <= spec.displacement_tolerance * u_inf;
+        let done = small_r && (small_du || (it == 0 && r_norm == 0.0)) && (same_status || it == 0);
+        if e.backend.agree(done) {
+            self.trial.status = std::mem::take(&mut self.status);
+            self.trial.prescribed_reaction = m
+                .prescribed
+                .iter()
+                .filter(|(_, v)| *v != 0.0)
+                .map(|&(d, _)| e.r[d])
+                .sum();
+            e.share_state(&mut self.trial);
+            self.outcome = Some(Ok(it));
+            return Verdict::Stop;
+        }
+        if it >= limit {
+            self.outcome = Some(Err(StepFailure::NoConvergence {
+                limit,
+                residual: r_norm / reference,
+                correction: self.du_inf / u_inf,
+                status_changing: !same_status,
+            }));
+            return Verdict::Stop;
+        }
+        if e.backend
+            .agree(r_norm > DIVERGENCE * reference && it > DIVERGENCE_AFTER)
+        {
+            self.outcome = Some(Err(StepFailure::Diverged {
+                iteration: it,
+                residual: r_norm / reference,
+            }));
+            return Verdict::Stop;
+        }
+        self.last_status = Some(std::mem::take(&mut self.status));
+        Verdict::Continue
+    }
+
+    fn correct(&mut self, x: &[f64], du: &mut [f64]) {
+        let e = &mut *self.engine;
+        e.stats.factorizations += 1;
+        if let Some(acc) = self.anderson.as_mut() {
+            let mixed = acc.step(x, du);
+            du.copy_from_slice(&mixed);
+        }
+        self.du_prev_inf = self.du_inf;
+        self.du_inf = du.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        e.stats.iterations += 1;
+    }
+
+    fn stopped(&self) -> bool {
+        self.outcome.is_some()
+    }
+
+    fn converged(&self) -> bool {
+        matches!(self.outcome, Some(Ok(_)))
+    }
+
+    fn evaluate_seconds(&self) -> f64 {
+        self.evaluate_seconds
+    }
+}
