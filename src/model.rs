@@ -31,6 +31,8 @@ pub struct Model {
     pub mesh: Mesh,
     pub plane: Plane,
     pub thickness: f64,
+    /// Thickness or revolution: the out-of-plane measure of every integral.
+    pub section: crate::fem::Section,
     pub symmetric_half: bool,
     pub rule: GaussRule,
     /// Material per body.
@@ -189,6 +191,10 @@ impl Model {
             name: case.display_name(),
             plane,
             thickness,
+            section: crate::fem::Section {
+                axisymmetric: false,
+                thickness,
+            },
             symmetric_half: case.model.symmetric_half,
             rule,
             materials,
@@ -248,6 +254,19 @@ impl Model {
     /// no p_T-p_N coupling). Chooses the serial factorization.
     pub fn symmetric_tangent(&self) -> bool {
         self.interfaces.iter().all(|i| i.symmetric_tangent())
+    }
+
+    /// Pseudo-times of every history breakpoint, ascending: where the load
+    /// path may turn (empty when the case has no history).
+    pub fn breakpoints(&self) -> Vec<f64> {
+        Vec::new()
+    }
+
+    /// The value of every history of the case at pseudo-time t, in a fixed
+    /// order (empty when the case has no history): two times with equal
+    /// values have the same applied loads.
+    pub fn history_values(&self, _t: f64) -> Vec<f64> {
+        Vec::new()
     }
 
     pub fn n_gauss(&self) -> usize {
