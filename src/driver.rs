@@ -311,13 +311,21 @@ pub fn check(case_path: &Path) -> Result<String> {
     if let Some(d) = &model.description {
         s += &format!("  {}\n", d.trim());
     }
-    s += &format!(
-        "  plane {:?}, thickness {} mm, {:?} integration ({} Gauss points per element)\n",
-        model.plane,
-        model.thickness,
-        model.integration,
-        model.n_gauss()
-    );
+    if model.section.axisymmetric {
+        s += &format!(
+            "  plane Axisymmetric (x = r, y = z; forces, areas and kN for the full revolution), {:?} integration ({} Gauss points per element)\n",
+            model.integration,
+            model.n_gauss()
+        );
+    } else {
+        s += &format!(
+            "  plane {:?}, thickness {} mm, {:?} integration ({} Gauss points per element)\n",
+            model.plane,
+            model.thickness,
+            model.integration,
+            model.n_gauss()
+        );
+    }
     s += &format!(
         "  mesh: {} nodes, {} elements, {} dofs ({} free), {} nonzeros in the tangent\n",
         model.mesh.nodes.len(),

@@ -84,7 +84,11 @@ impl Model {
         })?;
         whole::check_mesh(&case, &mesh, &place)?;
         let plane = case.model.plane;
-        let thickness = case.model.thickness;
+        let thickness = case.model.thickness.value();
+        let section = crate::fem::Section {
+            axisymmetric: plane == Plane::Axisymmetric,
+            thickness,
+        };
         let rule = match case.model.integration {
             Integration::Full => q8::gauss_3x3(),
             Integration::Reduced => q8::gauss_2x2(),
@@ -122,7 +126,7 @@ impl Model {
         // every element's Jacobian checked once; the geometry itself is
         // recomputed when needed (Model::geometry)
         for (e, el) in mesh.elements.iter().enumerate() {
-            ElementGeometry::new(&mesh.element_coords(e), &rule, thickness).map_err(|m| {
+            ElementGeometry::with_section(&mesh.element_coords(e), &rule, &section).map_err(|m| {
                 Error::Mesh {
                     place: place.clone(),
                     message: format!("element {e} of body \"{}\": {m}", mesh.bodies[el.body]),
@@ -145,7 +149,7 @@ impl Model {
                 *law,
                 spec.gap,
                 spec.weights,
-                thickness,
+                section,
                 spec.start_pressure,
                 checked.tangential.get(&iface.name).copied(),
             ));
@@ -159,14 +163,15 @@ impl Model {
             }
         }
         let prescribed = boundary_conditions(&case, &mesh, &place)?;
-        let f_ext = external_forces(&case, &mesh, thickness, &place)?;
+        let prescribed = crate::case::axis::hold_axis(&case, &mesh, prescribed, &place)?;
+        let f_ext = external_forces(&case, &mesh, &section, &place)?;
         if f_ext.iter().all(|&f| f == 0.0) && prescribed.iter().all(|&(_, v)| v == 0.0) {
             return Err(Error::input(
                 &place,
                 "nothing loads the model: no [[load]] and no non-zero prescribed displacement in [[boundary]]",
             ));
         }
-        check_supports(&mesh, &prescribed, &interfaces, &place)?;
+        check_supports(&mesh, &prescribed, &interfaces, section.axisymmetric, &place)?;
         whole::check_symmetry_supports(&case, &mesh, &prescribed, &place)?;
         let mut mask = vec![false; mesh.num_dofs()];
         for &(d, _) in &prescribed {
@@ -186,15 +191,18 @@ impl Model {
                     [hi[0].max(x[0]), hi[1].max(x[1])],
                 )
             });
-        let force_floor = 1e-6 * e_max * (hi[0] - lo[0]).hypot(hi[1] - lo[1]) * thickness;
+        // out-of-plane measure: the thickness, or the outer circumference 2π r_max
+        let measure = if section.axisymmetric {
+            section.measure(hi)
+        } else {
+            thickness
+        };
+        let force_floor = 1e-6 * e_max * (hi[0] - lo[0]).hypot(hi[1] - lo[1]) * measure;
         Ok(Model {
             name: case.display_name(),
             plane,
             thickness,
-            section: crate::fem::Section {
-                axisymmetric: false,
-                thickness,
-            },
+            section,
             symmetric_half: case.model.symmetric_half,
             rule,
             materials,
@@ -242,7 +250,7 @@ impl Model {
 
     /// Gauss point geometry of element e (checked valid when the model was built).
     pub fn geometry(&self, e: usize) -> ElementGeometry {
-        ElementGeometry::new(&self.mesh.element_coords(e), &self.rule, self.thickness)
+        ElementGeometry::with_section(&self.mesh.element_coords(e), &self.rule, &self.section)
             .expect("element geometry was checked when the model was built")
     }
 
@@ -283,8 +291,12 @@ impl Model {
         ue
     }
 
-    /// Factor from the half model's force (N) to kN per mm of thickness of the whole body.
+    /// Factor from the half model's force (N) to kN per mm of thickness of the
+    /// whole body; in axisymmetry, from the force of the full revolution (N) to kN.
     pub fn load_scale_kn(&self) -> f64 {
+        if self.section.axisymmetric {
+            return 1.0 / 1000.0;
+        }
         let sym = if self.symmetric_half { 2.0 } else { 1.0 };
         sym / self.thickness / 1000.0
     }
@@ -372,7 +384,12 @@ fn boundary_conditions(case: &Case, mesh: &Mesh, place: &str) -> Result<Vec<(usi
     Ok(out.into_iter().map(|(d, (v, _))| (d, v)).collect())
 }
 
-fn external_forces(case: &Case, mesh: &Mesh, thickness: f64, place: &str) -> Result<Vec<f64>> {
+fn external_forces(
+    case: &Case,
+    mesh: &Mesh,
+    section: &crate::fem::Section,
+    place: &str,
+) -> Result<Vec<f64>> {
     let mut f = vec![0.0; mesh.num_dofs()];
     let gp = q8::gauss_1d(3);
     for (i, ld) in case.load.iter().enumerate() {
@@ -411,10 +428,11 @@ fn external_forces(case: &Case, mesh: &Mesh, thickness: f64, place: &str) -> Res
                     tx += dn[k] * x[k][0];
                     ty += dn[k] * x[k][1];
                 }
+                let xg = [0, 1].map(|c| (0..3).map(|k| n[k] * x[k][c]).sum::<f64>());
                 // body on the left: outward normal × ds = (t_y, −t_x) dξ; pressure pushes inward
                 for k in 0..3 {
-                    f[2 * edge[k]] -= ld.pressure * n[k] * ty * w * thickness;
-                    f[2 * edge[k] + 1] += ld.pressure * n[k] * tx * w * thickness;
+                    f[2 * edge[k]] -= ld.pressure * n[k] * ty * w * section.measure(xg);
+                    f[2 * edge[k] + 1] += ld.pressure * n[k] * tx * w * section.measure(xg);
                 }
             }
         }
@@ -429,15 +447,19 @@ fn external_forces(case: &Case, mesh: &Mesh, thickness: f64, place: &str) -> Res
 }
 
 /// Every body must be held in x and in y, by its own prescribed dofs or through
-/// an interface (along the interface normal) to a body held in that direction.
+/// an interface (along the interface normal) to a body held in that direction;
+/// in axisymmetry every body is held in x = r.
 /// Otherwise it could move as a rigid body and the tangent would be singular.
 fn check_supports(
     mesh: &Mesh,
     prescribed: &[(usize, f64)],
     interfaces: &[InterfaceModel],
+    axisymmetric: bool,
     place: &str,
 ) -> Result<()> {
-    let mut held = vec![[false; 2]; mesh.bodies.len()];
+    // a body of revolution cannot move rigidly in r: u_r = c strains it by c/r
+    // in the hoop direction (and nodes on the axis are held by u_r = 0)
+    let mut held = vec![[axisymmetric, false]; mesh.bodies.len()];
     let mut node_body = vec![usize::MAX; mesh.nodes.len()];
     for el in &mesh.elements {
         for &n in &el.nodes {

@@ -5,6 +5,7 @@
 //! The full schema is documented in `docs/case-schema.md`; every field below
 //! carries the same text.
 
+pub mod axis;
 pub mod ranges;
 mod validate;
 pub mod whole;
@@ -65,17 +66,39 @@ pub enum Integration {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ModelSpec {
-    /// "stress" or "strain".
+    /// "stress", "strain" or "axisymmetric" (x = r, y = z).
     pub plane: Plane,
-    /// Thickness in mm (plane stress); plane strain is solved per mm unless given.
-    #[serde(default = "one")]
-    pub thickness: f64,
+    /// Thickness in mm (plane stress); plane strain is solved per mm unless
+    /// given; refused in axisymmetry (the full revolution is the body).
+    #[serde(default)]
+    pub thickness: Thickness,
     #[serde(default)]
     pub integration: Integration,
     /// The mesh is the half x ≥ 0 of a body symmetric about x = 0: loads are
     /// reported for the whole body (twice the half model's).
     #[serde(default)]
     pub symmetric_half: bool,
+}
+
+/// `[model] thickness` as given (None: not in the case file).
+#[derive(Clone, Copy, Default, Deserialize, PartialEq)]
+#[serde(transparent)]
+pub struct Thickness(pub Option<f64>);
+
+impl Thickness {
+    /// The thickness in mm: as given, else 1.
+    pub fn value(self) -> f64 {
+        self.0.unwrap_or(1.0)
+    }
+}
+
+/// Shows the value ([`Thickness::value`]) as a plain number: the effective
+/// case's text (a restart file's fingerprint, [`crate::restart::fingerprint`])
+/// stays what it was when the key was a number with default 1.
+impl std::fmt::Debug for Thickness {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        std::fmt::Debug::fmt(&self.value(), f)
+    }
 }
 
 #[derive(Clone, Debug, Deserialize)]

@@ -27,6 +27,27 @@ pub struct Checked {
     pub tangential: BTreeMap<String, (TangentialLaw, FrictionScheme)>,
 }
 
+/// `plane = "axisymmetric"`: the body is the full revolution, so no thickness,
+/// and no half model about x = 0 (the axis is not a symmetry plane).
+fn check_axisymmetric(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
+    if case.model.plane != crate::material::Plane::Axisymmetric {
+        return Ok(());
+    }
+    if let Some(t) = case.model.thickness.0 {
+        return Err(Error::input(
+            at("[model] thickness"),
+            format!("thickness = {t} is not allowed with plane = \"axisymmetric\": the model is the full revolution about x = 0 (forces and areas are for the whole body); remove the key"),
+        ));
+    }
+    if case.model.symmetric_half {
+        return Err(Error::input(
+            at("[model] symmetric_half"),
+            "is true, but plane = \"axisymmetric\": an axisymmetric model is already the whole body of revolution about x = r = 0 (the axis is not a symmetry plane); remove the key",
+        ));
+    }
+    Ok(())
+}
+
 /// Validates everything that does not depend on the mesh.
 pub fn check_case(case: &Case) -> Result<Checked> {
     let place = case.source.display().to_string();
@@ -39,7 +60,8 @@ pub fn check_case(case: &Case) -> Result<Checked> {
             ));
         }
     }
-    let t = case.model.thickness;
+    check_axisymmetric(case, &at)?;
+    let t = case.model.thickness.value();
     if !(t.is_finite() && t > 0.0) {
         return Err(Error::input(
             at("[model] thickness"),

@@ -37,7 +37,7 @@ fn extent(mesh: &Mesh) -> ([f64; 2], [f64; 2]) {
 }
 
 /// Geometric tolerance: 1e-9 of the model's size.
-fn tolerance(mesh: &Mesh) -> f64 {
+pub(crate) fn tolerance(mesh: &Mesh) -> f64 {
     let (lo, hi) = extent(mesh);
     1e-9 * (hi[0] - lo[0]).hypot(hi[1] - lo[1])
 }
@@ -62,7 +62,34 @@ pub fn check_mesh(case: &Case, mesh: &Mesh, place: &str) -> Result<()> {
     if case.model.symmetric_half {
         symmetric_half(mesh, place)?;
     }
+    if case.model.plane == crate::material::Plane::Axisymmetric {
+        axisymmetric_half_plane(mesh, place)?;
+    }
     Ok(())
+}
+
+/// `plane = "axisymmetric"`: x is the radius, so no node may lie at r < 0
+/// (beyond the geometric tolerance: such a node is on the axis).
+fn axisymmetric_half_plane(mesh: &Mesh, place: &str) -> Result<()> {
+    let tol = tolerance(mesh);
+    let Some(n) = mesh.nodes.iter().position(|x| x[0] < -tol) else {
+        return Ok(());
+    };
+    let x = mesh.nodes[n];
+    let body = mesh
+        .elements
+        .iter()
+        .find(|el| el.nodes.contains(&n))
+        .map_or("?", |el| mesh.bodies[el.body].as_str());
+    Err(Error::input(
+        format!("{place}: [model] plane"),
+        format!(
+            "is \"axisymmetric\" (x is the radius r ≥ 0), but body \"{}\" has node {n} at (x = {}, y = {}), r < 0: mesh the half plane x ≥ 0 only, with the axis at x = 0",
+            clip(body),
+            x[0],
+            x[1]
+        ),
+    ))
 }
 
 /// Body and interface names: not empty, unique; no node pair in two interfaces.

@@ -205,7 +205,10 @@ pub struct PointEval {
 }
 
 impl InterfaceModel {
-    /// Builds pairs and points from a mesh interface.
+    /// Builds pairs and points from a mesh interface. Each quadrature point's
+    /// area is its weight along the edge times `section.measure(x)`: the
+    /// thickness, or 2π r of the full revolution in axisymmetry (r at the node
+    /// for lumped weights, at the Gauss point for consistent ones).
     #[allow(clippy::too_many_arguments)] // the case's interface settings, each used once here
     pub fn new(
         mesh: &Mesh,
@@ -213,7 +216,7 @@ impl InterfaceModel {
         law: NormalLaw,
         gap: f64,
         weights: Weights,
-        thickness: f64,
+        section: crate::fem::Section,
         start_pressure: Option<f64>,
         tangential: Option<(TangentialLaw, FrictionScheme)>,
     ) -> Self {
@@ -247,20 +250,28 @@ impl InterfaceModel {
             // lumped weights and averaged nodal normals
             for (i, &s) in [-1.0, 0.0, 1.0].iter().enumerate() {
                 let (n, ds) = edge_normal(&xb, s);
-                let w = [1.0 / 3.0, 4.0 / 3.0, 1.0 / 3.0][i] * ds * thickness;
+                let w = [1.0 / 3.0, 4.0 / 3.0, 1.0 / 3.0][i] * ds * section.measure(xb[i]);
+                // the normal is averaged along the edge alone (2π r is 0 on the axis)
+                let wn = if section.axisymmetric {
+                    [1.0 / 3.0, 4.0 / 3.0, 1.0 / 3.0][i] * ds
+                } else {
+                    w
+                };
                 let pr = &mut pairs[ids[i]];
                 pr.area += w;
-                pr.normal[0] += w * n[0];
-                pr.normal[1] += w * n[1];
+                pr.normal[0] += wn * n[0];
+                pr.normal[1] += wn * n[1];
             }
             if weights == Weights::Consistent {
                 for (s, wg) in gauss4() {
                     let (n, ds) = edge_normal(&xb, s);
+                    let shape = crate::fem::q8::edge_shape(s);
+                    let x = [0, 1].map(|c| (0..3).map(|k| shape[k] * xb[k][c]).sum::<f64>());
                     points.push(Point {
                         pairs: *ids,
-                        shape: crate::fem::q8::edge_shape(s),
+                        shape,
                         len: 3,
-                        area: wg * ds * thickness,
+                        area: wg * ds * section.measure(x),
                         normal: n,
                     });
                 }

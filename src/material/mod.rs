@@ -1,5 +1,5 @@
 //! Von Mises (Huber-Mises) plasticity with linear isotropic hardening
-//! (paper eqs 3.8-3.14), plane strain and plane stress, small strain.
+//! (paper eqs 3.8-3.14), plane strain, plane stress and axisymmetry, small strain.
 //!
 //! ```text
 //!   f = √(3 J₂) − σ_y(ε̄ᵖ),   σ_y = σ_Y + H ε̄ᵖ,   εᵖ̇ = γ̇ ∂f/∂σ   (3.8, 3.11)
@@ -14,10 +14,14 @@
 //! * Plane stress (σ_zz = 0): the projected return of Simo & Taylor in the
 //!   plane-stress subspace, a scalar Newton iteration for Δγ, and its consistent
 //!   tangent; not a 3D return with σ_zz forced afterwards.
+//! * Axisymmetric (x = r, y = z): the same radial return with the hoop strain
+//!   ε_θθ = u_r/r as the given fourth component ([`VonMises::update_axisymmetric`],
+//!   4×4 tangents; module `axisymmetric`).
 //!
 //! Strains are total ([εxx, εyy, γxy], engineering shear); the update starts from
 //! the committed plastic strain, so it is path-independent within a load step.
 
+mod axisymmetric;
 mod plane_strain;
 mod plane_stress;
 
@@ -28,7 +32,7 @@ use nalgebra::{Matrix3, Matrix4};
 use std::fmt;
 
 /// The plane idealization of the 2D model (the case's `[model] plane`,
-/// "stress" or "strain").
+/// "stress", "strain" or "axisymmetric").
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Plane {
@@ -36,12 +40,17 @@ pub enum Plane {
     Stress,
     /// ε_zz = 0 (long bodies; solved per unit thickness unless one is given).
     Strain,
+    /// A body of revolution about x = 0 (x = r, y = z), loaded symmetrically:
+    /// the fourth strain and stress component is the hoop one (θθ), and every
+    /// integral is over the full revolution.
+    Axisymmetric,
 }
 
 /// State at one Gauss point, committed at the end of a converged increment.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PointState {
-    /// σxx, σyy, σxy, σzz (σzz = 0 in plane stress).
+    /// σxx, σyy, σxy, σzz (σzz = 0 in plane stress; the hoop stress σ_θθ in
+    /// axisymmetry, where x = r and y = z).
     pub stress: [f64; 4],
     /// εᵖxx, εᵖyy, εᵖxy (tensor component), εᵖzz.
     pub plastic_strain: [f64; 4],
@@ -149,7 +158,8 @@ impl VonMises {
         self.young / (3.0 * (1.0 - 2.0 * self.poisson))
     }
 
-    /// In-plane elastic matrix D: [σxx σyy σxy] = D [εxx εyy γxy].
+    /// In-plane elastic matrix D: [σxx σyy σxy] = D [εxx εyy γxy] (in
+    /// axisymmetry: at zero hoop strain, the plane-strain matrix).
     pub fn elastic_matrix(&self) -> Matrix3<f64> {
         let (e, nu) = (self.young, self.poisson);
         match self.plane {
@@ -167,7 +177,7 @@ impl VonMises {
                     c * (1.0 - nu) / 2.0,
                 )
             }
-            Plane::Strain => {
+            Plane::Strain | Plane::Axisymmetric => {
                 let c = e / ((1.0 + nu) * (1.0 - 2.0 * nu));
                 Matrix3::new(
                     c * (1.0 - nu),
@@ -205,7 +215,47 @@ impl VonMises {
         match self.plane {
             Plane::Strain => Ok(plane_strain::update(self, committed, strain)),
             Plane::Stress => plane_stress::update(self, committed, strain),
+            Plane::Axisymmetric => {
+                let e4 = [strain[0], strain[1], strain[2], 0.0];
+                let (state, c) = axisymmetric::update(self, committed, &e4);
+                Ok((state, c.fixed_view::<3, 3>(0, 0).into_owned()))
+            }
         }
+    }
+
+    /// Axisymmetric return mapping (radial return, eqs 3.8-3.11; Simo & Hughes
+    /// box 3.2) from `committed` for the total strain [ε_rr, ε_zz, γ_rz, ε_θθ]:
+    /// the new state (stress [σ_rr, σ_zz, σ_rz, σ_θθ]) and the algorithmic
+    /// tangent dσ/dε, 4×4 in that order. Used by every plane setting alike (the
+    /// hoop strain is given, whatever `plane` says); the axisymmetric element's.
+    pub fn update_axisymmetric(
+        &self,
+        committed: &PointState,
+        strain: &[f64; 4],
+    ) -> (PointState, Matrix4<f64>) {
+        axisymmetric::update(self, committed, strain)
+    }
+
+    /// The 3D isotropic elastic matrix in the order (rr, zz, rz, θθ), engineering
+    /// shear: [σ_rr σ_zz σ_rz σ_θθ] = D [ε_rr ε_zz γ_rz ε_θθ] (eq. 3.9's C).
+    pub fn elastic_matrix_4(&self) -> Matrix4<f64> {
+        axisymmetric::external(&elastic_3d(self.shear_modulus(), self.bulk_modulus()))
+    }
+
+    /// Stress from the elastic law alone, keeping the committed plastic strain,
+    /// for the axisymmetric strain [ε_rr, ε_zz, γ_rz, ε_θθ] (no return mapping:
+    /// first-yield location).
+    pub fn elastic_state_axisymmetric(&self, committed: &PointState, strain: &[f64; 4]) -> PointState {
+        axisymmetric::elastic(self, committed, strain)
+    }
+
+    /// Continuum tangent C_ep (3.13) at a committed state, 4×4 in the order
+    /// (rr, zz, rz, θθ): C_ep if the state was yielding, else D.
+    pub fn continuum_tangent_4(&self, state: &PointState) -> Matrix4<f64> {
+        if !state.yielding {
+            return self.elastic_matrix_4();
+        }
+        axisymmetric::external(&self.continuum_3d(&state.stress))
     }
 
     /// Continuum tangent at a committed state: C_ep (3.13) if the state was
@@ -218,7 +268,7 @@ impl VonMises {
         // Voigt order of c: xx, yy, zz, xy
         let idx = [0usize, 1, 3];
         match self.plane {
-            Plane::Strain => Matrix3::from_fn(|i, j| c[(idx[i], idx[j])]),
+            Plane::Strain | Plane::Axisymmetric => Matrix3::from_fn(|i, j| c[(idx[i], idx[j])]),
             Plane::Stress => {
                 let czz = c[(2, 2)];
                 Matrix3::from_fn(|i, j| c[(idx[i], idx[j])] - c[(idx[i], 2)] * c[(2, idx[j])] / czz)

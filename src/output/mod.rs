@@ -377,6 +377,9 @@ pub fn summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
             "max_peeq": last.max_peeq,
         },
     });
+    if model.section.axisymmetric {
+        s["forces"] = json!("full revolution: forces, areas and kN are for the whole body of revolution (2π r)");
+    }
     // only runs where some step needed it (a case without one writes what it always did)
     if let Some(st) = &r.stabilization {
         s["stabilization"] = json!({

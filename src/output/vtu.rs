@@ -13,7 +13,7 @@ const VTK_QUADRATIC_QUAD: u8 = 23;
 /// Nodal fields obtained by extrapolating Gauss point values to the nodes of each
 /// element and averaging over the elements that share a node.
 pub struct NodalFields {
-    /// σxx, σyy, σxy, σzz
+    /// σxx, σyy, σxy, σzz (σ_rr, σ_zz, σ_rz, σ_θθ in axisymmetry)
     pub stress: Vec<[f64; 4]>,
     pub von_mises: Vec<f64>,
     pub peeq: Vec<f64>,
@@ -130,6 +130,10 @@ pub fn write_vtu(w: &mut dyn std::io::Write, model: &Model, state: &State) -> st
         4,
         nf.stress.iter().flat_map(|v| v.iter().copied()),
     )?;
+    if model.section.axisymmetric {
+        // x = r, y = z: the fourth stress component is the hoop stress σ_θθ
+        array(w, "hoop_stress", 1, nf.stress.iter().map(|v| v[3]))?;
+    }
     array(w, "von_mises", 1, nf.von_mises.iter().copied())?;
     array(w, "peeq", 1, nf.peeq.iter().copied())?;
     array(w, "contact_pressure", 1, p_n.iter().copied())?;
