@@ -229,3 +229,100 @@ fn bad_parameters_are_named_and_infinite_yield_is_elastic() {
         assert!((c - m.elastic_matrix()).amax() < 1e-12 * c.amax());
     }
 }
+
+/// Worst relative difference between the axisymmetric algorithmic tangent
+/// (4×4, rr zz rz θθ) and central differences of the stress.
+fn fd_check_axisymmetric(m: &VonMises, committed: &PointState, eps: [f64; 4]) -> f64 {
+    let (_, c) = m.update_axisymmetric(committed, &eps);
+    let scale = eps.iter().fold(1e-6f64, |a, v| a.max(v.abs()));
+    let h = 1e-7 * scale;
+    let mut worst: f64 = 0.0;
+    let cmax = c.amax();
+    for j in 0..4 {
+        let (mut p, mut q) = (eps, eps);
+        p[j] += h;
+        q[j] -= h;
+        let sp = m.update_axisymmetric(committed, &p).0.stress;
+        let sq = m.update_axisymmetric(committed, &q).0.stress;
+        for i in 0..4 {
+            let fd = (sp[i] - sq[i]) / (2.0 * h);
+            worst = worst.max((fd - c[(i, j)]).abs() / cmax);
+        }
+    }
+    worst
+}
+
+#[test]
+fn axisymmetric_consistent_tangent_matches_finite_differences() {
+    let paths = [
+        [1e-4, -2e-5, 3e-5, 4e-5],         // elastic
+        [1.6e-3, -0.3e-3, 0.2e-3, -0.4e-3], // just past yield
+        [8e-3, -1e-3, 6e-3, 2e-3],          // deep plastic, shear
+        [-5e-3, 4e-3, -2e-3, 3e-3],         // mixed signs
+        [0.0, 0.0, 0.0, 6e-3],              // hoop strain alone
+    ];
+    let mut plastic = 0;
+    for h in [0.0, 2000.0, 50000.0] {
+        let m = mat(Plane::Axisymmetric, h);
+        let pre = m
+            .update_axisymmetric(&PointState::default(), &[2e-3, 0.0, 1e-3, -1e-3])
+            .0;
+        for c in [PointState::default(), pre] {
+            for eps in paths {
+                plastic += usize::from(m.update_axisymmetric(&c, &eps).0.yielding);
+                let e = fd_check_axisymmetric(&m, &c, eps);
+                assert!(e < 1e-6, "H={h} eps={eps:?}: FD error {e:e}");
+            }
+        }
+    }
+    assert!(plastic >= 18, "only {plastic} of the checked updates were plastic");
+}
+
+#[test]
+fn axisymmetric_return_with_zero_hoop_strain_is_plane_strain() {
+    let (ps, ax) = (mat(Plane::Strain, 3000.0), mat(Plane::Axisymmetric, 3000.0));
+    for eps in [[5e-3, -1e-3, 2e-3], [-4e-3, -4e-3, 1e-2], [1e-4, 0.0, 0.0]] {
+        let (a, ca) = ps.update(&PointState::default(), &eps).unwrap();
+        let (b, cb) = ax.update_axisymmetric(&PointState::default(), &[eps[0], eps[1], eps[2], 0.0]);
+        for i in 0..4 {
+            assert!((a.stress[i] - b.stress[i]).abs() < 1e-12 * 250.0, "{a:?} {b:?}");
+            assert!((a.plastic_strain[i] - b.plastic_strain[i]).abs() < 1e-15);
+        }
+        assert_eq!(a.yielding, b.yielding);
+        for i in 0..3 {
+            for j in 0..3 {
+                assert!((ca[(i, j)] - cb[(i, j)]).abs() < 1e-10 * ca.amax());
+            }
+        }
+    }
+}
+
+#[test]
+fn axisymmetric_yield_consistency_elastic_state_and_continuum_limit() {
+    let m = mat(Plane::Axisymmetric, 3000.0);
+    let eps = [3e-3, -1e-3, 1e-3, 2e-3];
+    let (s, _) = m.update_axisymmetric(&PointState::default(), &eps);
+    assert!(s.yielding);
+    let q = VonMises::equivalent_stress(&s.stress);
+    assert!((q - m.current_yield(&s)).abs() < 1e-10 * q);
+    let ep = s.plastic_strain;
+    assert!((ep[0] + ep[1] + ep[3]).abs() < 1e-15, "plastic flow is isochoric");
+    // the elastic law from the returned plastic strain gives the returned stress
+    let e = m.elastic_state_axisymmetric(&s, &eps);
+    for i in 0..4 {
+        assert!((e.stress[i] - s.stress[i]).abs() < 1e-9 * 250.0);
+    }
+    // C_ep (3.13) is the limit of the algorithmic tangent as Δγ → 0
+    let cont = m.continuum_tangent_4(&s);
+    let e2 = eps.map(|v| v * (1.0 + 1e-9));
+    let (_, alg) = m.update_axisymmetric(&s, &e2);
+    assert!((cont - alg).amax() < 1e-5 * cont.amax(), "\n{cont}\n{alg}");
+    // elastic 4×4 D: Hooke's law in 3D
+    let d = m.elastic_matrix_4();
+    let (e_, nu) = (m.young, m.poisson);
+    let c11 = e_ * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu));
+    let c12 = e_ * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
+    for (i, j, v) in [(0, 0, c11), (3, 3, c11), (0, 3, c12), (1, 3, c12), (2, 2, m.shear_modulus()), (2, 3, 0.0)] {
+        assert!((d[(i, j)] - v).abs() < 1e-10 * c11, "D[{i},{j}] = {} vs {v}", d[(i, j)]);
+    }
+}

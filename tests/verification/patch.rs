@@ -8,7 +8,7 @@ use asperity::material::{Plane, PointState, VonMises};
 use nalgebra::{DMatrix, DVector};
 
 /// 2×2 elements on [0,4]² with the centre node and midsides moved off-grid.
-fn patch() -> (Vec<[f64; 2]>, Vec<[usize; 8]>) {
+pub(crate) fn patch() -> (Vec<[f64; 2]>, Vec<[usize; 8]>) {
     // 5×5 grid of candidate points (corners and midsides), centres unused
     let mut nodes = Vec::new();
     let mut id = [[usize::MAX; 5]; 5];

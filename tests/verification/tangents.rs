@@ -22,9 +22,24 @@ fn distorted() -> [[f64; 2]; 8] {
     x
 }
 
+/// The distorted element moved to x ≥ `r0` (its left corner at x = r0): an
+/// axisymmetric element (r0 = 0: touching the axis with one corner).
+fn distorted_at(r0: f64) -> [[f64; 2]; 8] {
+    let mut x = distorted();
+    for p in &mut x {
+        p[0] += r0 + 0.2;
+    }
+    x
+}
+
 fn check_element(plane: Plane, scale: f64, hardening: f64) {
-    let mat = VonMises::new(200000.0, 0.3, 250.0, hardening, plane).unwrap();
     let geom = ElementGeometry::new(&distorted(), &q8::gauss_3x3(), 1.5).unwrap();
+    check_element_geometry(plane, &geom, scale, hardening);
+}
+
+fn check_element_geometry(plane: Plane, geom: &ElementGeometry, scale: f64, hardening: f64) {
+    let geom = geom.clone();
+    let mat = VonMises::new(200000.0, 0.3, 250.0, hardening, plane).unwrap();
     let mut ue = [0.0; 16];
     for (i, u) in ue.iter_mut().enumerate() {
         *u = scale * ((i as f64 * 0.77).sin() + 0.3 * (i as f64 * 1.3).cos());
@@ -102,6 +117,23 @@ fn check_element(plane: Plane, scale: f64, hardening: f64) {
         worst < 1e-6,
         "{plane:?} scale {scale} H {hardening}: {plastic} plastic points, FD error {worst:e}"
     );
+}
+
+#[test]
+fn axisymmetric_element_tangent_matches_finite_differences() {
+    let section = asperity::fem::Section {
+        axisymmetric: true,
+        thickness: 1.0,
+    };
+    for r0 in [0.0, 0.5, 40.0] {
+        let x = distorted_at(r0);
+        for rule in [q8::gauss_3x3(), q8::gauss_2x2()] {
+            let geom = ElementGeometry::with_section(&x, &rule, &section).unwrap();
+            check_element_geometry(Plane::Axisymmetric, &geom, 1e-5 * (1.0 + r0), 2000.0);
+            check_element_geometry(Plane::Axisymmetric, &geom, 2e-3 * (1.0 + r0), 2000.0);
+            check_element_geometry(Plane::Axisymmetric, &geom, 2e-3 * (1.0 + r0), 0.0);
+        }
+    }
 }
 
 #[test]

