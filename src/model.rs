@@ -126,12 +126,12 @@ impl Model {
         // every element's Jacobian checked once; the geometry itself is
         // recomputed when needed (Model::geometry)
         for (e, el) in mesh.elements.iter().enumerate() {
-            ElementGeometry::with_section(&mesh.element_coords(e), &rule, &section).map_err(|m| {
-                Error::Mesh {
+            ElementGeometry::with_section(&mesh.element_coords(e), &rule, &section).map_err(
+                |m| Error::Mesh {
                     place: place.clone(),
                     message: format!("element {e} of body \"{}\": {m}", mesh.bodies[el.body]),
-                }
-            })?;
+                },
+            )?;
         }
         // interfaces
         let mut interfaces = Vec::new();
@@ -171,7 +171,13 @@ impl Model {
                 "nothing loads the model: no [[load]] and no non-zero prescribed displacement in [[boundary]]",
             ));
         }
-        check_supports(&mesh, &prescribed, &interfaces, section.axisymmetric, &place)?;
+        check_supports(
+            &mesh,
+            &prescribed,
+            &interfaces,
+            section.axisymmetric,
+            &place,
+        )?;
         whole::check_symmetry_supports(&case, &mesh, &prescribed, &place)?;
         let mut mask = vec![false; mesh.num_dofs()];
         for &(d, _) in &prescribed {

@@ -59,7 +59,7 @@ fn nonzero_on_axis(case: &Case, mesh: &Mesh, n: usize, v: f64, place: &str) -> E
     Error::input(
         at,
         format!(
-            "gives node {n} at ({}, {}) on the axis r = 0 ux = {v}: with plane = \"axisymmetric\" a node on the axis cannot move radially (u_r = 0 is prescribed there automatically)",
+            "gives ux = {v} to node {n} at ({}, {}) on the axis r = 0: with plane = \"axisymmetric\" a node on the axis cannot move radially (u_r = 0 is prescribed there automatically; give ux = 0 or nothing)",
             x[0], x[1]
         ),
     )

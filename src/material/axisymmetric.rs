@@ -34,10 +34,14 @@ pub(super) fn external(d: &Matrix4<f64>) -> Matrix4<f64> {
 
 /// Return mapping from the committed state `c` for the total strain
 /// [ε_rr, ε_zz, γ_rz, ε_θθ]; the new state and the algorithmic tangent dσ/dε.
-pub(super) fn update(m: &VonMises, c: &PointState, strain: &[f64; 4]) -> (PointState, Matrix4<f64>) {
+pub(super) fn update(
+    m: &VonMises,
+    c: &PointState,
+    strain: &[f64; 4],
+) -> (PointState, Matrix4<f64>) {
     let (g, k, h) = (m.shear_modulus(), m.bulk_modulus(), m.hardening);
     let ep = c.plastic_strain; // rr zz rz(tensor) θθ
-    // elastic strain, Voigt rr zz θθ rz (tensor shear)
+                               // elastic strain, Voigt rr zz θθ rz (tensor shear)
     let ee = [
         strain[0] - ep[0],
         strain[1] - ep[1],
@@ -45,9 +49,8 @@ pub(super) fn update(m: &VonMises, c: &PointState, strain: &[f64; 4]) -> (PointS
         0.5 * strain[2] - ep[2],
     ];
     let vol = ee[0] + ee[1] + ee[2];
-    let st: [f64; 4] = std::array::from_fn(|i| {
-        2.0 * g * if i < 3 { ee[i] - vol / 3.0 } else { ee[i] }
-    });
+    let st: [f64; 4] =
+        std::array::from_fn(|i| 2.0 * g * if i < 3 { ee[i] - vol / 3.0 } else { ee[i] });
     let norm = (st[0] * st[0] + st[1] * st[1] + st[2] * st[2] + 2.0 * st[3] * st[3]).sqrt();
     let q = 1.5f64.sqrt() * norm;
     let sy = m.current_yield(c);

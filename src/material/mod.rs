@@ -245,7 +245,11 @@ impl VonMises {
     /// Stress from the elastic law alone, keeping the committed plastic strain,
     /// for the axisymmetric strain [ε_rr, ε_zz, γ_rz, ε_θθ] (no return mapping:
     /// first-yield location).
-    pub fn elastic_state_axisymmetric(&self, committed: &PointState, strain: &[f64; 4]) -> PointState {
+    pub fn elastic_state_axisymmetric(
+        &self,
+        committed: &PointState,
+        strain: &[f64; 4],
+    ) -> PointState {
         axisymmetric::elastic(self, committed, strain)
     }
 

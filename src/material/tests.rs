@@ -255,7 +255,7 @@ fn fd_check_axisymmetric(m: &VonMises, committed: &PointState, eps: [f64; 4]) ->
 #[test]
 fn axisymmetric_consistent_tangent_matches_finite_differences() {
     let paths = [
-        [1e-4, -2e-5, 3e-5, 4e-5],         // elastic
+        [1e-4, -2e-5, 3e-5, 4e-5],          // elastic
         [1.6e-3, -0.3e-3, 0.2e-3, -0.4e-3], // just past yield
         [8e-3, -1e-3, 6e-3, 2e-3],          // deep plastic, shear
         [-5e-3, 4e-3, -2e-3, 3e-3],         // mixed signs
@@ -275,7 +275,10 @@ fn axisymmetric_consistent_tangent_matches_finite_differences() {
             }
         }
     }
-    assert!(plastic >= 18, "only {plastic} of the checked updates were plastic");
+    assert!(
+        plastic >= 18,
+        "only {plastic} of the checked updates were plastic"
+    );
 }
 
 #[test]
@@ -283,9 +286,13 @@ fn axisymmetric_return_with_zero_hoop_strain_is_plane_strain() {
     let (ps, ax) = (mat(Plane::Strain, 3000.0), mat(Plane::Axisymmetric, 3000.0));
     for eps in [[5e-3, -1e-3, 2e-3], [-4e-3, -4e-3, 1e-2], [1e-4, 0.0, 0.0]] {
         let (a, ca) = ps.update(&PointState::default(), &eps).unwrap();
-        let (b, cb) = ax.update_axisymmetric(&PointState::default(), &[eps[0], eps[1], eps[2], 0.0]);
+        let (b, cb) =
+            ax.update_axisymmetric(&PointState::default(), &[eps[0], eps[1], eps[2], 0.0]);
         for i in 0..4 {
-            assert!((a.stress[i] - b.stress[i]).abs() < 1e-12 * 250.0, "{a:?} {b:?}");
+            assert!(
+                (a.stress[i] - b.stress[i]).abs() < 1e-12 * 250.0,
+                "{a:?} {b:?}"
+            );
             assert!((a.plastic_strain[i] - b.plastic_strain[i]).abs() < 1e-15);
         }
         assert_eq!(a.yielding, b.yielding);
@@ -306,7 +313,10 @@ fn axisymmetric_yield_consistency_elastic_state_and_continuum_limit() {
     let q = VonMises::equivalent_stress(&s.stress);
     assert!((q - m.current_yield(&s)).abs() < 1e-10 * q);
     let ep = s.plastic_strain;
-    assert!((ep[0] + ep[1] + ep[3]).abs() < 1e-15, "plastic flow is isochoric");
+    assert!(
+        (ep[0] + ep[1] + ep[3]).abs() < 1e-15,
+        "plastic flow is isochoric"
+    );
     // the elastic law from the returned plastic strain gives the returned stress
     let e = m.elastic_state_axisymmetric(&s, &eps);
     for i in 0..4 {
@@ -322,7 +332,18 @@ fn axisymmetric_yield_consistency_elastic_state_and_continuum_limit() {
     let (e_, nu) = (m.young, m.poisson);
     let c11 = e_ * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu));
     let c12 = e_ * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
-    for (i, j, v) in [(0, 0, c11), (3, 3, c11), (0, 3, c12), (1, 3, c12), (2, 2, m.shear_modulus()), (2, 3, 0.0)] {
-        assert!((d[(i, j)] - v).abs() < 1e-10 * c11, "D[{i},{j}] = {} vs {v}", d[(i, j)]);
+    for (i, j, v) in [
+        (0, 0, c11),
+        (3, 3, c11),
+        (0, 3, c12),
+        (1, 3, c12),
+        (2, 2, m.shear_modulus()),
+        (2, 3, 0.0),
+    ] {
+        assert!(
+            (d[(i, j)] - v).abs() < 1e-10 * c11,
+            "D[{i},{j}] = {} vs {v}",
+            d[(i, j)]
+        );
     }
 }

@@ -378,7 +378,9 @@ pub fn summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
         },
     });
     if model.section.axisymmetric {
-        s["forces"] = json!("full revolution: forces, areas and kN are for the whole body of revolution (2π r)");
+        s["forces"] = json!(
+            "full revolution: forces, areas and kN are for the whole body of revolution (2π r)"
+        );
     }
     // only runs where some step needed it (a case without one writes what it always did)
     if let Some(st) = &r.stabilization {

@@ -8,6 +8,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod axisymmetric;
 mod bad_inputs;
 mod cli;
 mod figures;

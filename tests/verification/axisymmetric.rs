@@ -90,7 +90,11 @@ fn axisymmetric_patch_test_reproduces_u_r_ar_u_z_bz() {
     let mat = VonMises::new(100000.0, 0.25, f64::INFINITY, 0.0, Plane::Axisymmetric).unwrap();
     let sig = mat.elastic_matrix_4() * Vector4::new(a, b, 0.0, a);
     // full integration on curved edges; 2×2 is exact on straight-sided elements
-    for (rule, straight) in [(gauss_3x3(), false), (gauss_3x3(), true), (gauss_2x2(), true)] {
+    for (rule, straight) in [
+        (gauss_3x3(), false),
+        (gauss_3x3(), true),
+        (gauss_2x2(), true),
+    ] {
         for r0 in [0.0, 2.5] {
             let (nodes, els) = axisymmetric_patch(r0, straight);
             let n = nodes.len();
@@ -118,18 +122,28 @@ fn axisymmetric_patch_test_reproduces_u_r_ar_u_z_bz() {
             for (r, &d) in free.iter().enumerate() {
                 u[d] = sol[r];
             }
-            let what = format!("{} points, straight {straight}, r0 = {r0}", rule.points.len());
+            let what = format!(
+                "{} points, straight {straight}, r0 = {r0}",
+                rule.points.len()
+            );
             for (i, x) in nodes.iter().enumerate() {
                 let v = exact(*x);
                 let err = (u[2 * i] - v[0]).abs().max((u[2 * i + 1] - v[1]).abs());
-                assert!(err < 1e-10 * a.abs() * 4.0, "{what}: node {i} error {err:e}");
+                assert!(
+                    err < 1e-10 * a.abs() * 4.0,
+                    "{what}: node {i} error {err:e}"
+                );
             }
             // constant strain, hoop strain u_r/r = a included, and stress D ε
             let (_, states) = assemble(&nodes, &els, &rule, &mat, &u);
             for g in &states {
                 for c in 0..4 {
                     let err = (g.stress[c] - sig[c]).abs();
-                    assert!(err < 1e-10 * sig.amax(), "{what}: {:?} vs {sig:?}", g.stress);
+                    assert!(
+                        err < 1e-10 * sig.amax(),
+                        "{what}: {:?} vs {sig:?}",
+                        g.stress
+                    );
                 }
             }
         }
@@ -192,7 +206,13 @@ fn thick_cylinder_under_internal_pressure_matches_lame() {
     for (n, x) in model.mesh.nodes.iter().enumerate() {
         if x[0] == a || x[0] == b {
             let err = common::rel(st.u[2 * n], u_r(x[0]));
-            assert!(err < 1e-6, "u_r at r = {}: {} vs {} ({err:e})", x[0], st.u[2 * n], u_r(x[0]));
+            assert!(
+                err < 1e-6,
+                "u_r at r = {}: {} vs {} ({err:e})",
+                x[0],
+                st.u[2 * n],
+                u_r(x[0])
+            );
             assert!(st.u[2 * n + 1].abs() < 1e-12 * u_r(a), "u_z at node {n}");
         }
     }
@@ -207,12 +227,227 @@ fn thick_cylinder_under_internal_pressure_matches_lame() {
             (r_min, r_max) = (r_min.min(r), r_max.max(r));
             let s = st.gauss[e * ng + ip].stress;
             let err = common::rel(s[3], hoop(r));
-            assert!(err < 1e-6, "σ_θθ at r = {r}: {} vs {} ({err:e})", s[3], hoop(r));
-            assert!((s[0] - radial(r)).abs() < 1e-6 * p, "σ_rr at r = {r}: {} vs {}", s[0], radial(r));
+            assert!(
+                err < 1e-6,
+                "σ_θθ at r = {r}: {} vs {} ({err:e})",
+                s[3],
+                hoop(r)
+            );
+            assert!(
+                (s[0] - radial(r)).abs() < 1e-6 * p,
+                "σ_rr at r = {r}: {} vs {}",
+                s[0],
+                radial(r)
+            );
             // plane strain in z: σ_zz = ν (σ_rr + σ_θθ) = 2ν A
-            assert!((s[1] - 2.0 * nu * big_a).abs() < 1e-6 * p, "σ_zz at r = {r}: {}", s[1]);
+            assert!(
+                (s[1] - 2.0 * nu * big_a).abs() < 1e-6 * p,
+                "σ_zz at r = {r}: {}",
+                s[1]
+            );
         }
     }
     // the points nearest the inner and outer radius were among them
     assert!(r_min < a + 0.01 * (b - a) && r_max > b - 0.05 * (b - a));
+}
+
+/// A solid cylinder 0 ≤ r ≤ radius, 0 ≤ z ≤ length, on a frictionless base
+/// (uz = 0 at z = 0; u_r = 0 on the axis is automatic), loaded on its top face
+/// by `top` (a [[load]] or a [[boundary]] entry).
+fn cylinder(radius: f64, length: f64, yield_stress: f64, hardening: f64, top: &str) -> String {
+    format!(
+        r#"
+[model]
+plane = "axisymmetric"
+[[mesh.block]]
+body = "rod"
+x = [0.0, {radius}]
+nx = [4]
+rx = [0.5]
+y = [0.0, {length}]
+ny = [5]
+ry = [1.5]
+[materials.rod]
+young = 200000.0
+poisson = 0.3
+yield_stress = {yield_stress}
+hardening = {hardening}
+[[boundary]]
+set = "rod.bottom"
+uy = 0.0
+{top}
+[solver]
+increments = 5
+residual_tolerance = 1e-12
+displacement_tolerance = 1e-12
+[output]
+vtu = false
+"#
+    )
+}
+
+#[test]
+fn solid_cylinder_under_axial_load_is_uniaxial_on_the_axis_too() {
+    let (radius, length, p, e, nu): (f64, f64, f64, f64, f64) = (5.0, 12.0, 80.0, 200000.0, 0.3);
+    let load = format!("[[load]]\nedges = \"rod.top\"\npressure = {p}");
+    let (model, st) = solve(&cylinder(radius, length, 1e6, 0.0, &load));
+    // the load is the full revolution's: F = p π R²
+    let fz: f64 = (0..model.mesh.nodes.len())
+        .map(|n| model.f_ext[2 * n + 1])
+        .sum();
+    let force = p * std::f64::consts::PI * radius * radius;
+    assert!(common::rel(-fz, force) < 1e-12, "F = {fz} vs {force}");
+    // σ_zz = −F/(π R²) everywhere, the other components zero
+    for g in &st.gauss {
+        let s = g.stress;
+        assert!(
+            common::rel(s[1], -force / (std::f64::consts::PI * radius * radius)) < 1e-10,
+            "{s:?}"
+        );
+        for c in [0, 2, 3] {
+            assert!(s[c].abs() < 1e-10 * p, "{s:?}");
+        }
+    }
+    // u_z = ε_zz z, u_r = −ν ε_zz r (u_r = 0 on the axis)
+    let ezz = -p / e;
+    let mut on_axis = 0;
+    for (n, x) in model.mesh.nodes.iter().enumerate() {
+        let (ur, uz) = (st.u[2 * n], st.u[2 * n + 1]);
+        assert!(
+            (ur + nu * ezz * x[0]).abs() < 1e-10 * nu * p / e * radius,
+            "u_r at {x:?}: {ur}"
+        );
+        assert!(
+            (uz - ezz * x[1]).abs() < 1e-10 * p / e * length,
+            "u_z at {x:?}: {uz}"
+        );
+        if x[0] == 0.0 {
+            on_axis += 1;
+            assert_eq!(ur, 0.0, "node {n} on the axis");
+        }
+    }
+    assert_eq!(on_axis, 11, "nodes on the axis");
+}
+
+#[test]
+fn solid_cylinder_compressed_beyond_yield_follows_the_bilinear_curve() {
+    let (radius, length, e, nu, sy, h): (f64, f64, f64, f64, f64, f64) =
+        (5.0, 12.0, 200000.0, 0.3, 250.0, 2000.0);
+    // 4 times the yield strain, shortening by a prescribed top displacement
+    let eps = -4.0 * sy / e;
+    let top = format!("[[boundary]]\nset = \"rod.top\"\nuy = {}", eps * length);
+    let (model, st) = solve(&cylinder(radius, length, sy, h, &top));
+    // σ = σ_Y + E H/(E + H) (ε − σ_Y/E) in compression
+    let sigma = -(sy + e * h / (e + h) * (-eps - sy / e));
+    let plastic_zz = eps - sigma / e;
+    for g in &st.gauss {
+        let s = g.stress;
+        assert!(g.yielding, "every point yields");
+        assert!(common::rel(s[1], sigma) < 1e-8, "σ_zz {} vs {sigma}", s[1]);
+        for c in [0, 2, 3] {
+            assert!(s[c].abs() < 1e-8 * sy, "{s:?}");
+        }
+        assert!(
+            common::rel(g.peeq, -plastic_zz) < 1e-8,
+            "ε̄ᵖ {} vs {}",
+            g.peeq,
+            -plastic_zz
+        );
+    }
+    // lateral strain: elastic −ν σ/E plus isochoric plastic −½ εᵖ_zz
+    let e_rr = -nu * sigma / e - 0.5 * plastic_zz;
+    for (n, x) in model.mesh.nodes.iter().enumerate() {
+        assert!(
+            (st.u[2 * n] - e_rr * x[0]).abs() < 1e-8 * e_rr.abs() * radius,
+            "u_r at {x:?}: {} vs {}",
+            st.u[2 * n],
+            e_rr * x[0]
+        );
+    }
+}
+
+/// Two stacked solid cylinders (radius R) pressed together by q on the top face
+/// across a compliant interface: the springs are weighted by 2π r, so the
+/// interface area is π R², the mean pressure q, every pair's approach c_N q^m
+/// (eq. 2.1) and the reported load the full revolution's q π R².
+#[test]
+fn stacked_cylinders_weight_the_interface_by_the_full_revolution() {
+    let (radius, q, c, m): (f64, f64, f64, f64) = (8.0, 120.0, 0.002, 0.5);
+    for weights in ["lumped", "consistent"] {
+        let text = format!(
+            r#"
+[model]
+plane = "axisymmetric"
+[[mesh.block]]
+body = "top"
+x = [0.0, {radius}]
+nx = [3]
+rx = [0.5]
+y = [0.0, 15.0]
+ny = [3]
+[[mesh.block]]
+body = "bottom"
+x = [0.0, {radius}]
+nx = [3]
+rx = [0.5]
+y = [-25.0, 0.0]
+ny = [4]
+ry = [0.3]
+[[mesh.interface]]
+name = "joint"
+upper = "top"
+lower = "bottom"
+[materials.top]
+young = 70000.0
+poisson = 0.33
+[materials.bottom]
+young = 70000.0
+poisson = 0.33
+[interface.joint]
+law = "power"
+c_n = {c}
+m = {m}
+weights = "{weights}"
+[[boundary]]
+set = "bottom.bottom"
+uy = 0.0
+[[load]]
+edges = "top.top"
+pressure = {q}
+[solver]
+increments = 4
+residual_tolerance = 1e-12
+displacement_tolerance = 1e-12
+"#
+        );
+        let model = common::model(&text);
+        let r = asperity::driver::solve(&model, &mut Quiet).unwrap();
+        let im = &model.interfaces[0];
+        let area = std::f64::consts::PI * radius * radius;
+        assert!(
+            common::rel(im.area(), area) < 1e-12,
+            "{weights}: area {} vs {area}",
+            im.area()
+        );
+        let last = r.increments.last().unwrap().measures;
+        assert!(
+            common::rel(last.mean_pressure, q) < 1e-9,
+            "{weights}: p {}",
+            last.mean_pressure
+        );
+        let kn = q * area / 1000.0;
+        assert!(
+            common::rel(last.total_load_kn, kn) < 1e-9,
+            "{weights}: {} kN vs {kn}",
+            last.total_load_kn
+        );
+        for pr in &im.pairs {
+            let un = im.pair_approach(pr, &r.final_state.u);
+            assert!(
+                common::rel(un, c * q.powf(m)) < 1e-9,
+                "{weights}: pair at r = {}: {un}",
+                pr.x[0]
+            );
+        }
+    }
 }
