@@ -32,8 +32,8 @@ pub fn hold_axis(
         }
         match given.get(&(2 * n)) {
             None => prescribed.push((2 * n, 0.0)),
-            Some(&v) if v == 0.0 => {}
-            Some(&v) => return Err(nonzero_on_axis(case, mesh, n, v, place)),
+            Some(&v) if v != 0.0 => return Err(nonzero_on_axis(case, mesh, n, v, place)),
+            Some(_) => {}
         }
     }
     prescribed.sort_by_key(|&(d, _)| d);
