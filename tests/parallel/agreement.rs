@@ -10,11 +10,19 @@ fn compare(case: &str, refine: &str) {
     compare_on(case, refine, &[1, 2]);
 }
 
-/// The serial answer against PETSc on each of `ranks` ranks.
+/// The serial answer against PETSc on each of `ranks` ranks. `case` names a
+/// folder of cases/, or (with a /) a folder relative to the project root.
 fn compare_on(case: &str, refine: &str, ranks: &[usize]) {
     let tag: Vec<String> = ranks.iter().map(|n| n.to_string()).collect();
-    let root = common::scratch(&format!("parallel-{case}-{}", tag.join("-")));
-    let case = common::root().join("cases").join(case);
+    let root = common::scratch(&format!(
+        "parallel-{}-{}",
+        case.replace('/', "-"),
+        tag.join("-")
+    ));
+    let case = match case.contains('/') {
+        true => common::root().join(case),
+        false => common::root().join("cases").join(case),
+    };
     let out = |n: &str| root.join(n);
     let (c, e) = serial(&[
         "run",
@@ -129,6 +137,13 @@ fn compare_on(case: &str, refine: &str, ranks: &[usize]) {
 #[test]
 fn serial_petsc1_and_petsc2_agree_on_a_refined_case_with_plasticity_and_lift_off() {
     compare("strip-lift-off", "3");
+}
+
+/// Axisymmetric (x = r): the element's hoop row and 2π r weights, the
+/// automatic u_r = 0 on the axis, plasticity under a rough contact.
+#[test]
+fn serial_petsc1_and_petsc2_agree_on_an_axisymmetric_punch() {
+    compare("tests/data/axisymmetric-punch", "1");
 }
 
 #[test]
