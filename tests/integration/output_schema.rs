@@ -116,9 +116,16 @@ fn summary_json_matches_the_documented_schema() {
     let gap = summary_of("gap", &cases.join("punch-gap"), &[]);
     assert!(gap["stabilization"].is_object(), "{gap}");
     assert!(with.get("stabilization").is_none(), "{with}");
+    // axisymmetric: the full-revolution statement
+    let axi = common::root().join("tests/data/axisymmetric-punch");
+    let axi = summary_of("axisymmetric", &axi, &[]);
+    assert!(
+        axi["forces"].is_string() && with.get("forces").is_none(),
+        "{axi}"
+    );
     let mut seen = std::collections::BTreeSet::new();
     let mut errors = Vec::new();
-    for s in [&with, &without, &gap] {
+    for s in [&with, &without, &gap, &axi] {
         let mut l = Vec::new();
         leaves("", s, &mut l);
         for (k, t) in l {
