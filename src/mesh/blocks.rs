@@ -34,7 +34,7 @@ pub struct BlockSpec {
 /// (generated meshes, a vertical interface: A = left, B = right), or between the physical curves `upper_curve` and
 /// `lower_curve` (meshes read from a file; `upper` / `lower` then optional,
 /// checked against the bodies the curves lie on).
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct InterfaceSpec {
     pub name: String,
@@ -52,6 +52,25 @@ pub struct InterfaceSpec {
     /// contact (body B).
     #[serde(default)]
     pub right: Option<String>,
+}
+
+/// As derived, but `left` / `right` only when given: the text of a case
+/// without them is what it was before they existed, and so is its restart
+/// fingerprint ([`crate::restart::fingerprint`]), so that restart files of
+/// earlier builds stay usable.
+impl std::fmt::Debug for InterfaceSpec {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let mut d = f.debug_struct("InterfaceSpec");
+        d.field("name", &self.name)
+            .field("upper", &self.upper)
+            .field("lower", &self.lower)
+            .field("upper_curve", &self.upper_curve)
+            .field("lower_curve", &self.lower_curve);
+        if self.left.is_some() || self.right.is_some() {
+            d.field("left", &self.left).field("right", &self.right);
+        }
+        d.finish()
+    }
 }
 
 /// Corner coordinates along one axis from breakpoints, counts and ratios.
@@ -260,7 +279,14 @@ struct Facing<'a> {
     b_range: [f64; 2],
 }
 
-fn facing<'a>(grids: &[Grid], ia: usize, ib: usize, a: &'a str, b: &'a str, vertical: bool) -> Facing<'a> {
+fn facing<'a>(
+    grids: &[Grid],
+    ia: usize,
+    ib: usize,
+    a: &'a str,
+    b: &'a str,
+    vertical: bool,
+) -> Facing<'a> {
     let (ga, gb) = (&grids[ia], &grids[ib]);
     let range = |v: &[f64]| [v[0], v[v.len() - 1]];
     if vertical {
@@ -309,7 +335,11 @@ fn pair_blocks(mesh: &Mesh, grids: &[Grid], spec: &InterfaceSpec) -> Result<Inte
     let (a, b, vertical) = sides_of(spec)?;
     let (ia, ib) = (find(a)?, find(b)?);
     if ia == ib {
-        let what = if vertical { "left and right" } else { "upper and lower" };
+        let what = if vertical {
+            "left and right"
+        } else {
+            "upper and lower"
+        };
         return Err(MeshError(format!(
             "interface \"{}\": {what} are the same block",
             spec.name
@@ -512,9 +542,21 @@ mod tests {
     fn shaft_hub_base() -> (Vec<BlockSpec>, Vec<InterfaceSpec>) {
         (
             vec![
-                block("shaft", vec![0., 10.], vec![2], vec![0., 10., 30., 40.], vec![2, 4, 1]),
+                block(
+                    "shaft",
+                    vec![0., 10.],
+                    vec![2],
+                    vec![0., 10., 30., 40.],
+                    vec![2, 4, 1],
+                ),
                 block("hub", vec![10., 30.], vec![4], vec![10., 30.], vec![4]),
-                block("base", vec![10., 20., 30.], vec![2, 2], vec![-10., 10.], vec![2]),
+                block(
+                    "base",
+                    vec![10., 20., 30.],
+                    vec![2, 2],
+                    vec![-10., 10.],
+                    vec![2],
+                ),
             ],
             vec![
                 iface("fit", [None, None, Some("shaft"), Some("hub")]),
@@ -536,7 +578,10 @@ mod tests {
         let mut last_y = 10.0;
         for e in &fit.edges {
             let y = e.a.map(|n| m.nodes[n][1]);
-            assert!(y[0] == last_y && y[0] < y[1] && y[1] < y[2], "{y:?} after {last_y}");
+            assert!(
+                y[0] == last_y && y[0] < y[1] && y[1] < y[2],
+                "{y:?} after {last_y}"
+            );
             last_y = y[2];
             for i in 0..3 {
                 let (xa, xb) = (m.nodes[e.a[i]], m.nodes[e.b[i]]);
@@ -577,7 +622,11 @@ mod tests {
         check(
             &bl,
             &ifs[..1],
-            &["interface \"fit\"", "the right side of \"shaft\" is at x = 10", "the left side of \"hub\" is at x = 11"],
+            &[
+                "interface \"fit\"",
+                "the right side of \"shaft\" is at x = 10",
+                "the left side of \"hub\" is at x = 11",
+            ],
         );
         // the hub above the shaft: no overlap in y
         let (mut bl, ifs) = shaft_hub_base();
@@ -592,7 +641,11 @@ mod tests {
         bl[0].ny = vec![1, 4, 1];
         bl[1].y = vec![5., 15., 30.];
         bl[1].ny = vec![1, 3];
-        check(&bl, &ifs[..1], &["straddles the end of the overlap at y = "]);
+        check(
+            &bl,
+            &ifs[..1],
+            &["straddles the end of the overlap at y = "],
+        );
         // mixed and incomplete specifications
         let (bl, _) = shaft_hub_base();
         let mixed = iface("fit", [Some("shaft"), None, None, Some("hub")]);
@@ -605,6 +658,17 @@ mod tests {
         check(&bl, &[same], &["left and right are the same block"]);
         let unknown = iface("fit", [None, None, Some("shaft"), Some("sleeve")]);
         check(&bl, &[unknown], &["no block named \"sleeve\""]);
+    }
+
+    #[test]
+    fn the_debug_text_of_a_horizontal_spec_is_unchanged_by_left_and_right() {
+        let (_, ifs) = punch();
+        assert_eq!(
+            format!("{:?}", ifs[0]),
+            "InterfaceSpec { name: \"contact\", upper: Some(\"punch\"), lower: Some(\"foundation\"), upper_curve: None, lower_curve: None }"
+        );
+        let v = iface("fit", [None, None, Some("shaft"), Some("hub")]);
+        assert!(format!("{v:?}").ends_with("left: Some(\"shaft\"), right: Some(\"hub\") }"));
     }
 
     #[test]
