@@ -209,8 +209,8 @@ pub fn hysteresis(
     }
     let chart = Chart {
         title: format!("{}: tangential force against slip", model.name),
-        x_label: "slip of A relative to B along the joint, mean u_T (mm)".into(),
-        y_label: "tangential force F_T (N)".into(),
+        x_label: "ū_T: mean slip of A relative to B along t (mm)".into(),
+        y_label: "F_T: tangential force dragging A along t (N)".into(),
         series,
         ..Chart::default()
     };

@@ -285,7 +285,7 @@ fn pair_curves(
     let bad = |m: String| Error::input(&at, m);
     if spec.left.is_some() || spec.right.is_some() {
         return Err(bad(
-            "left / right name blocks of a generated mesh ([[mesh.block]]); a mesh read from a file pairs upper_curve with lower_curve (on any side: A is the body of upper_curve)"
+            "left / right name blocks of a generated mesh ([[mesh.block]]); a mesh read from a file pairs upper_curve (body A) with lower_curve (body B)"
                 .into(),
         ));
     }
