@@ -342,13 +342,18 @@ pub fn check(case_path: &Path) -> Result<String> {
         );
     }
     for im in &model.interfaces {
+        let t = crate::interface::joint::direction(im);
         s += &format!(
-            "  interface {}: {} pairs, {} points, area {:.4} mm², law {:?}\n",
+            "  interface {}: {} pairs, {} points, area {:.4} mm², law {:?}; A = {}, B = {}, joint direction t = ({}, {})\n",
             im.name,
             im.pairs.len(),
             im.points.len(),
             im.area(),
-            im.law
+            im.law,
+            model.mesh.bodies[im.body_a],
+            model.mesh.bodies[im.body_b],
+            t[0],
+            t[1]
         );
     }
     let sched = model.solver.schedule();

@@ -33,10 +33,17 @@
 //! `curve` (10 per increment: number, load factor, iterations, cutbacks, normal
 //! force, mean pressure, load kN, centre displacement, max ε̄ᵖ, prescribed
 //! reaction), `first_yield` (load factor, mean pressure, load kN, x, depth,
-//! element) with `first_yield_body`, and the VTU series `pvd_load_factor`,
-//! `pvd_file` (names separated by newlines). Unknown sections are ignored.
+//! element) with `first_yield_body`, the VTU series `pvd_load_factor`,
+//! `pvd_file` (names separated by newlines), `joint_totals` (2 per interface:
+//! frictional dissipation and tangential work so far) and `joints` (11 per
+//! interface and increment, as [`crate::interface::joint::JointMeasures::pack`]
+//! lays them out). Unknown sections are ignored; `last_du`, `joint_totals` and
+//! `joints` may be absent (files of earlier builds: the joint energies then
+//! restart from zero and the earlier increments have no joint rows, written
+//! as NaN rows of `joints` from then on).
 
 use crate::error::{Error, Result};
+use crate::interface::joint::{JointMeasures, JointTotals};
 use crate::interface::{PointState as ContactState, Status};
 use crate::material::PointState;
 use crate::model::Model;
@@ -327,6 +334,31 @@ fn sections(e: &mut Encoder, ck: &Checkpoint, pvd: &[(f64, String)]) -> std::io:
         e.text("first_yield_body", &fy.body)?;
     }
     e.f64s(
+        "joint_totals",
+        &ck.joint_totals
+            .iter()
+            .flat_map(|t| [t.dissipation, t.work])
+            .collect::<Vec<_>>(),
+    )?;
+    // an increment without joint measures (restored from a file of an
+    // earlier build) is a row of NaN
+    let n = ck.joint_totals.len();
+    let none = vec![JointMeasures::unpack(&[f64::NAN; JointMeasures::PACKED]); n];
+    e.f64_iter(
+        "joints",
+        JointMeasures::PACKED * n * ck.increments.len(),
+        ck.increments
+            .iter()
+            .map(|i| {
+                if i.joints.len() == n {
+                    &i.joints
+                } else {
+                    &none
+                }
+            })
+            .flat_map(|j| j.iter().flat_map(JointMeasures::pack)),
+    )?;
+    e.f64s(
         "pvd_load_factor",
         &pvd.iter().map(|p| p.0).collect::<Vec<_>>(),
     )?;
@@ -388,6 +420,7 @@ pub fn decode(
     restore_stepper(&mut ck, &s)?;
     restore_state(&mut ck, &s)?;
     ck.increments = restore_curve(&s, increments)?;
+    restore_joints(&mut ck, &s, model.interfaces.len())?;
     ck.first_yield = restore_first_yield(&s)?;
     let pvd = restore_vtu_series(&s)?;
     Ok((ck, pvd))
@@ -579,8 +612,38 @@ fn restore_curve(s: &Sections, increments: usize) -> Decoded<Vec<Increment>> {
                 max_peeq: v[8],
                 prescribed_reaction: v[9],
             },
+            joints: Vec::new(),
         })
         .collect())
+}
+
+/// The joint energy totals and every increment's joint measures, when the
+/// file has them (a file of an earlier build has neither: the totals start
+/// from zero, the earlier increments keep no joint measures).
+fn restore_joints(ck: &mut Checkpoint, s: &Sections, interfaces: usize) -> Decoded<()> {
+    if s.0.contains_key("joint_totals") {
+        let v = s.f("joint_totals", Some(2 * interfaces))?;
+        ck.joint_totals = v
+            .chunks_exact(2)
+            .map(|t| JointTotals {
+                dissipation: t[0],
+                work: t[1],
+            })
+            .collect();
+    }
+    if s.0.contains_key("joints") {
+        let w = JointMeasures::PACKED * interfaces;
+        let v = s.f("joints", Some(w * ck.increments.len()))?;
+        for (inc, row) in ck.increments.iter_mut().zip(v.chunks_exact(w.max(1))) {
+            if !row[0].is_nan() {
+                inc.joints = row
+                    .chunks_exact(JointMeasures::PACKED)
+                    .map(JointMeasures::unpack)
+                    .collect();
+            }
+        }
+    }
+    Ok(())
 }
 
 /// The first yield, if the run had reached it.

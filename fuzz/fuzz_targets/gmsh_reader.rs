@@ -23,6 +23,8 @@ fuzz_target!(|data: &[u8]| {
                 lower: None,
                 upper_curve: Some("punch.bottom".into()),
                 lower_curve: Some("foundation.top".into()),
+                left: None,
+                right: None,
             };
             for specs in [&[][..], std::slice::from_ref(&spec)] {
                 match build_mesh(&msh, specs, "fuzz.toml") {

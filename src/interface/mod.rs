@@ -1,5 +1,5 @@
-//! The rough interface between body A (upper, "punch") and body B (lower,
-//! "foundation"): spring pairs, their quadrature along the contact edges, and the
+//! The rough interface between body A (upper, "punch", or left) and body B
+//! (lower, "foundation", or right): spring pairs, their quadrature along the contact edges, and the
 //! per-point residual and tangent (paper sections 2.1, 2.3 and 3.29-3.31).
 //!
 //! ```text
@@ -15,6 +15,7 @@
 //! * consistent: 4-point Gauss along the edge with u_N interpolated quadratically;
 //!   for a linear law this is exactly (k A/30)[4 2 −1; 2 16 2; −1 2 4] (eq. 3.29).
 
+pub mod joint;
 pub mod normal;
 pub mod tangential;
 
@@ -445,7 +446,7 @@ impl InterfaceModel {
 }
 
 /// Outward normal of body B (pointing into A) and ds/dξ at parameter s of a
-/// quadratic edge walked with B on its left.
+/// quadratic contact edge walked with B on its right (A on its left).
 fn edge_normal(x: &[[f64; 2]; 3], s: f64) -> ([f64; 2], f64) {
     let dn = [s - 0.5, -2.0 * s, s + 0.5];
     let mut t = [0.0; 2];
@@ -454,8 +455,11 @@ fn edge_normal(x: &[[f64; 2]; 3], s: f64) -> ([f64; 2], f64) {
         t[1] += dn[i] * x[i][1];
     }
     let l = t[0].hypot(t[1]);
-    // The interface edges are ordered with increasing x along B's top, which is
-    // B's boundary walked with B on the right; the normal into A is (−t_y, t_x).
+    // Contact edges are walked with B on the right: along B's top in increasing
+    // x (horizontal interface, A above: n = +y) or along B's left side in
+    // increasing y (vertical interface, A to the left: n = −x). The normal
+    // into A, on the left of the walk direction t, is (−t_y, t_x); the
+    // internal tangent (n_y, −n_x) is then t itself.
     ([-t[1] / l, t[0] / l], l)
 }
 

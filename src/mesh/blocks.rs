@@ -1,6 +1,7 @@
 //! Structured meshes of rectangular blocks with geometric grading, one body per
 //! block, and contact interfaces between the bottom of one block and the top of
-//! another (nodes paired, not merged).
+//! another (horizontal) or between the right side of one block and the left
+//! side of another (vertical), nodes paired, not merged.
 //!
 //! Each block gets the node sets and edge sets `<body>.bottom`, `.right`, `.top`,
 //! `.left` (edges walked with the body on the left) and the node set `<body>.all`.
@@ -28,10 +29,12 @@ pub struct BlockSpec {
 }
 
 /// Contact between the bottom of block `upper` and the top of block `lower`
-/// (generated meshes), or between the physical curves `upper_curve` and
+/// (generated meshes, a horizontal interface: A = upper, B = lower), between
+/// the right side of block `left` and the left side of block `right`
+/// (generated meshes, a vertical interface: A = left, B = right), or between the physical curves `upper_curve` and
 /// `lower_curve` (meshes read from a file; `upper` / `lower` then optional,
 /// checked against the bodies the curves lie on).
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct InterfaceSpec {
     pub name: String,
@@ -41,6 +44,33 @@ pub struct InterfaceSpec {
     pub upper_curve: Option<String>,
     /// File meshes: physical curve on the lower body (its top).
     pub lower_curve: Option<String>,
+    /// Generated meshes, vertical interface: the block whose right side is
+    /// in contact (body A).
+    #[serde(default)]
+    pub left: Option<String>,
+    /// Generated meshes, vertical interface: the block whose left side is in
+    /// contact (body B).
+    #[serde(default)]
+    pub right: Option<String>,
+}
+
+/// As derived, but `left` / `right` only when given: the text of a case
+/// without them is what it was before they existed, and so is its restart
+/// fingerprint ([`crate::restart::fingerprint`]), so that restart files of
+/// earlier builds stay usable.
+impl std::fmt::Debug for InterfaceSpec {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let mut d = f.debug_struct("InterfaceSpec");
+        d.field("name", &self.name)
+            .field("upper", &self.upper)
+            .field("lower", &self.lower)
+            .field("upper_curve", &self.upper_curve)
+            .field("lower_curve", &self.lower_curve);
+        if self.left.is_some() || self.right.is_some() {
+            d.field("left", &self.left).field("right", &self.right);
+        }
+        d.finish()
+    }
 }
 
 /// Corner coordinates along one axis from breakpoints, counts and ratios.
@@ -105,7 +135,6 @@ pub fn graded_axis(
 }
 
 struct Grid {
-    first: usize,
     ids: Vec<Vec<usize>>, // ids[j][i], usize::MAX for element centres
     xs: Vec<f64>,
     ys: Vec<f64>,
@@ -206,7 +235,92 @@ fn add_block(mesh: &mut Mesh, body: usize, xs: Vec<f64>, ys: Vec<f64>) -> Grid {
     }
     mesh.node_sets
         .insert(format!("{name}.all"), (first..mesh.nodes.len()).collect());
-    Grid { first, ids, xs, ys }
+    Grid { ids, xs, ys }
+}
+
+/// The blocks an interface pairs: body A, body B and whether the interface is
+/// vertical (`left` / `right`) rather than horizontal (`upper` / `lower`).
+fn sides_of(spec: &InterfaceSpec) -> Result<(&str, &str, bool), MeshError> {
+    let err = |m: &str| Err(MeshError(format!("interface \"{}\": {m}", spec.name)));
+    if spec.upper_curve.is_some() || spec.lower_curve.is_some() {
+        return err("upper_curve / lower_curve name physical curves of a mesh file ([mesh] file); generated blocks use upper / lower or left / right");
+    }
+    let horizontal = spec.upper.is_some() || spec.lower.is_some();
+    let vertical = spec.left.is_some() || spec.right.is_some();
+    if horizontal && vertical {
+        return err("give either upper and lower (a horizontal interface: the bottom of upper on the top of lower) or left and right (a vertical one: the right side of left against the left side of right), not both");
+    }
+    match (&spec.upper, &spec.lower, &spec.left, &spec.right) {
+        (Some(a), Some(b), None, None) => Ok((a, b, false)),
+        (None, None, Some(a), Some(b)) => Ok((a, b, true)),
+        _ if vertical => err("give left and right (block names: the right side of left against the left side of right)"),
+        _ => err("give upper and lower (block names) for a horizontal interface, or left and right for a vertical one"),
+    }
+}
+
+/// The facing sides of two blocks: A's and B's nodes along the interface in
+/// walk order (B on the right: increasing x on a horizontal interface,
+/// increasing y on a vertical one), and what the messages call them.
+struct Facing<'a> {
+    a: &'a str,
+    b: &'a str,
+    a_line: Vec<usize>,
+    b_line: Vec<usize>,
+    /// The coordinate along the interface: 0 (x, horizontal) or 1 (y, vertical).
+    along: usize,
+    /// Where each side lies across the interface (y or x).
+    a_at: f64,
+    b_at: f64,
+    /// "the bottom" / "the top", or "the right side" / "the left side".
+    a_side: &'static str,
+    b_side: &'static str,
+    /// The blocks' extents along the interface.
+    a_range: [f64; 2],
+    b_range: [f64; 2],
+}
+
+fn facing<'a>(
+    grids: &[Grid],
+    ia: usize,
+    ib: usize,
+    a: &'a str,
+    b: &'a str,
+    vertical: bool,
+) -> Facing<'a> {
+    let (ga, gb) = (&grids[ia], &grids[ib]);
+    let range = |v: &[f64]| [v[0], v[v.len() - 1]];
+    if vertical {
+        // A's right column and B's left column, bottom to top
+        let il = ga.ids[0].len() - 1;
+        Facing {
+            a,
+            b,
+            a_line: ga.ids.iter().map(|row| row[il]).collect(),
+            b_line: gb.ids.iter().map(|row| row[0]).collect(),
+            along: 1,
+            a_at: ga.xs[ga.xs.len() - 1],
+            b_at: gb.xs[0],
+            a_side: "the right side",
+            b_side: "the left side",
+            a_range: range(&ga.ys),
+            b_range: range(&gb.ys),
+        }
+    } else {
+        // A's bottom row and B's top row, left to right
+        Facing {
+            a,
+            b,
+            a_line: ga.ids[0].clone(),
+            b_line: gb.ids[gb.ids.len() - 1].clone(),
+            along: 0,
+            a_at: ga.ys[0],
+            b_at: gb.ys[gb.ys.len() - 1],
+            a_side: "the bottom",
+            b_side: "the top",
+            a_range: range(&ga.xs),
+            b_range: range(&gb.xs),
+        }
+    }
 }
 
 fn pair_blocks(mesh: &Mesh, grids: &[Grid], spec: &InterfaceSpec) -> Result<Interface, MeshError> {
@@ -218,89 +332,86 @@ fn pair_blocks(mesh: &Mesh, grids: &[Grid], spec: &InterfaceSpec) -> Result<Inte
             ))
         })
     };
-    if spec.upper_curve.is_some() || spec.lower_curve.is_some() {
+    let (a, b, vertical) = sides_of(spec)?;
+    let (ia, ib) = (find(a)?, find(b)?);
+    if ia == ib {
+        let what = if vertical {
+            "left and right"
+        } else {
+            "upper and lower"
+        };
         return Err(MeshError(format!(
-            "interface \"{}\": upper_curve / lower_curve name physical curves of a mesh file ([mesh] file); generated blocks use upper / lower",
+            "interface \"{}\": {what} are the same block",
             spec.name
         )));
     }
-    let (Some(upper), Some(lower)) = (&spec.upper, &spec.lower) else {
-        return Err(MeshError(format!(
-            "interface \"{}\": give upper and lower (block names)",
-            spec.name
-        )));
-    };
-    let (ua, lb) = (find(upper)?, find(lower)?);
-    if ua == lb {
-        return Err(MeshError(format!(
-            "interface \"{}\": upper and lower are the same block",
-            spec.name
-        )));
-    }
-    let (gu, gl) = (&grids[ua], &grids[lb]);
-    let (yu, yl) = (gu.ys[0], *gl.ys.last().unwrap_or(&f64::NAN));
-    let size = (gu.xs[gu.xs.len() - 1] - gu.xs[0]).max(gl.xs[gl.xs.len() - 1] - gl.xs[0]);
+    let f = facing(grids, ia, ib, a, b, vertical);
+    Ok(Interface {
+        name: spec.name.clone(),
+        body_a: ia,
+        body_b: ib,
+        edges: match_sides(mesh, &spec.name, &f)?,
+    })
+}
+
+/// The contact edges between two facing sides: A's edges within the overlap
+/// of the two sides, each with B's nodes at the same positions.
+fn match_sides(mesh: &Mesh, name: &str, f: &Facing) -> Result<Vec<ContactEdge>, MeshError> {
+    let k = f.along;
+    let (along, across) = (["x", "y"][k], ["x", "y"][1 - k]);
+    let err = |m: String| Err(MeshError(format!("interface \"{name}\": {m}")));
+    let size = (f.a_range[1] - f.a_range[0]).max(f.b_range[1] - f.b_range[0]);
     let tol = 1e-9 * size;
-    if (yu - yl).abs() > tol {
-        return Err(MeshError(format!(
-            "interface \"{}\": the bottom of \"{}\" is at y = {yu} but the top of \"{}\" is at y = {yl}",
-            spec.name, upper, lower
-        )));
+    if (f.a_at - f.b_at).abs() > tol {
+        return err(format!(
+            "{} of \"{}\" is at {across} = {} but {} of \"{}\" is at {across} = {} (the sides do not face each other)",
+            f.a_side, f.a, f.a_at, f.b_side, f.b, f.b_at
+        ));
     }
-    let lo = gu.xs[0].max(gl.xs[0]);
-    let hi = gu.xs[gu.xs.len() - 1].min(gl.xs[gl.xs.len() - 1]);
+    let lo = f.a_range[0].max(f.b_range[0]);
+    let hi = f.a_range[1].min(f.b_range[1]);
     if hi - lo <= tol {
-        return Err(MeshError(format!(
-            "interface \"{}\": the blocks do not overlap in x",
-            spec.name
-        )));
+        return err(format!("the blocks do not overlap in {along}"));
     }
-    let inside = |x: f64| x >= lo - tol && x <= hi + tol;
-    let upper_row: Vec<usize> = gu.ids[0].clone();
-    let lower_row: Vec<usize> = gl.ids[gl.ids.len() - 1].clone();
-    let partner = |n: usize, row: &[usize], body: &str| -> Result<usize, MeshError> {
-        let x = mesh.nodes[n][0];
-        // the rows run in increasing x: binary search, not a scan (large meshes)
-        let first = row.partition_point(|&m| mesh.nodes[m][0] < x - tol);
-        row.get(first)
+    let at = |n: usize| mesh.nodes[n][k];
+    let inside = |v: f64| v >= lo - tol && v <= hi + tol;
+    let partner = |n: usize, line: &[usize], body: &str| -> Result<usize, MeshError> {
+        let v = at(n);
+        // the lines run in increasing coordinate: binary search, not a scan (large meshes)
+        let first = line.partition_point(|&m| at(m) < v - tol);
+        line.get(first)
             .copied()
-            .filter(|&m| (mesh.nodes[m][0] - x).abs() <= tol)
+            .filter(|&m| (at(m) - v).abs() <= tol)
             .ok_or_else(|| {
                 MeshError(format!(
-                    "interface \"{}\": node at x = {x} on \"{body}\" has no partner on the other side (the two meshes must match along the interface)",
-                    spec.name
+                    "interface \"{name}\": node at {along} = {v} on \"{body}\" has no partner on the other side (the two meshes must match along the interface)"
                 ))
             })
     };
-    for &n in lower_row.iter().filter(|&&n| inside(mesh.nodes[n][0])) {
-        partner(n, &upper_row, lower)?;
+    for &n in f.b_line.iter().filter(|&&n| inside(at(n))) {
+        partner(n, &f.a_line, f.b)?;
     }
     let mut edges = Vec::new();
-    for w in upper_row.windows(3).step_by(2) {
-        if !(inside(mesh.nodes[w[0]][0]) && inside(mesh.nodes[w[2]][0])) {
-            if inside(mesh.nodes[w[1]][0]) {
-                return Err(MeshError(format!(
-                    "interface \"{}\": an element edge of \"{}\" straddles the end of the overlap at x = {}",
-                    spec.name, upper, mesh.nodes[w[1]][0]
-                )));
+    for w in f.a_line.windows(3).step_by(2) {
+        if !(inside(at(w[0])) && inside(at(w[2]))) {
+            if inside(at(w[1])) {
+                return err(format!(
+                    "an element edge of \"{}\" straddles the end of the overlap at {along} = {}",
+                    f.a,
+                    at(w[1])
+                ));
             }
             continue;
         }
         let a = [w[0], w[1], w[2]];
         let b = [
-            partner(a[0], &lower_row, upper)?,
-            partner(a[1], &lower_row, upper)?,
-            partner(a[2], &lower_row, upper)?,
+            partner(a[0], &f.b_line, f.a)?,
+            partner(a[1], &f.b_line, f.a)?,
+            partner(a[2], &f.b_line, f.a)?,
         ];
         edges.push(ContactEdge { a, b });
     }
-    let _ = (gu.first, gl.first);
-    Ok(Interface {
-        name: spec.name.clone(),
-        body_a: ua,
-        body_b: lb,
-        edges,
-    })
+    Ok(edges)
 }
 
 #[cfg(test)]
@@ -344,6 +455,8 @@ mod tests {
                 lower: Some("foundation".into()),
                 upper_curve: None,
                 lower_curve: None,
+                left: None,
+                right: None,
             }],
         )
     }
@@ -397,6 +510,165 @@ mod tests {
             .unwrap_err()
             .0
             .contains("strictly increasing"));
+    }
+
+    fn block(body: &str, x: Vec<f64>, nx: Vec<usize>, y: Vec<f64>, ny: Vec<usize>) -> BlockSpec {
+        BlockSpec {
+            body: body.into(),
+            x,
+            nx,
+            rx: Vec::new(),
+            y,
+            ny,
+            ry: Vec::new(),
+        }
+    }
+
+    fn iface(name: &str, sides: [Option<&str>; 4]) -> InterfaceSpec {
+        let s = |i: usize| sides[i].map(String::from);
+        InterfaceSpec {
+            name: name.into(),
+            upper: s(0),
+            lower: s(1),
+            upper_curve: None,
+            lower_curve: None,
+            left: s(2),
+            right: s(3),
+        }
+    }
+
+    /// A shaft (x ≤ 10) in a hub (x ≥ 10, 10 ≤ y ≤ 30) that sits on a base
+    /// (y ≤ 10): one vertical and one horizontal interface.
+    fn shaft_hub_base() -> (Vec<BlockSpec>, Vec<InterfaceSpec>) {
+        (
+            vec![
+                block(
+                    "shaft",
+                    vec![0., 10.],
+                    vec![2],
+                    vec![0., 10., 30., 40.],
+                    vec![2, 4, 1],
+                ),
+                block("hub", vec![10., 30.], vec![4], vec![10., 30.], vec![4]),
+                block(
+                    "base",
+                    vec![10., 20., 30.],
+                    vec![2, 2],
+                    vec![-10., 10.],
+                    vec![2],
+                ),
+            ],
+            vec![
+                iface("fit", [None, None, Some("shaft"), Some("hub")]),
+                iface("seat", [Some("hub"), Some("base"), None, None]),
+            ],
+        )
+    }
+
+    #[test]
+    fn a_vertical_interface_pairs_the_right_side_of_left_with_the_left_side_of_right() {
+        let (bl, ifs) = shaft_hub_base();
+        let m = generate(&bl, &ifs, 1).unwrap();
+        m.validate().unwrap();
+        assert_eq!(m.interfaces.len(), 2);
+        let fit = &m.interfaces[0];
+        assert_eq!((fit.body_a, fit.body_b), (0, 1));
+        // four hub elements along 10 ≤ y ≤ 30, walked upwards (B on the right)
+        assert_eq!(fit.edges.len(), 4);
+        let mut last_y = 10.0;
+        for e in &fit.edges {
+            let y = e.a.map(|n| m.nodes[n][1]);
+            assert!(
+                y[0] == last_y && y[0] < y[1] && y[1] < y[2],
+                "{y:?} after {last_y}"
+            );
+            last_y = y[2];
+            for i in 0..3 {
+                let (xa, xb) = (m.nodes[e.a[i]], m.nodes[e.b[i]]);
+                assert_eq!(xa, xb);
+                assert_ne!(e.a[i], e.b[i]);
+                assert_eq!(xa[0], 10.0);
+                assert!(m.node_sets["shaft.right"].binary_search(&e.a[i]).is_ok());
+                assert!(m.node_sets["hub.left"].binary_search(&e.b[i]).is_ok());
+            }
+        }
+        assert_eq!(last_y, 30.0);
+        assert_eq!(m.nodes[fit.edges[0].a[0]][1], 10.0);
+        assert_eq!(m.nodes[fit.edges[3].a[2]][1], 30.0);
+        // the horizontal one as before: hub bottom on base top, increasing x
+        let seat = &m.interfaces[1];
+        assert_eq!((seat.body_a, seat.body_b), (1, 2));
+        assert_eq!(seat.edges.len(), 4);
+        for w in seat.edges.windows(2) {
+            assert!(m.nodes[w[0].a[2]][0] <= m.nodes[w[1].a[0]][0]);
+        }
+        assert!(seat
+            .edges
+            .iter()
+            .all(|e| e.a.iter().all(|&n| m.nodes[n][1] == 10.0)));
+    }
+
+    #[test]
+    fn vertical_interface_errors_are_named() {
+        let check = |bl: &[BlockSpec], ifs: &[InterfaceSpec], want: &[&str]| {
+            let e = generate(bl, ifs, 1).unwrap_err().0;
+            for w in want {
+                assert!(e.contains(w), "{e:?} lacks {w:?}");
+            }
+        };
+        // the hub moved away from the shaft: the sides do not face each other
+        let (mut bl, ifs) = shaft_hub_base();
+        bl[1].x = vec![11., 30.];
+        check(
+            &bl,
+            &ifs[..1],
+            &[
+                "interface \"fit\"",
+                "the right side of \"shaft\" is at x = 10",
+                "the left side of \"hub\" is at x = 11",
+            ],
+        );
+        // the hub above the shaft: no overlap in y
+        let (mut bl, ifs) = shaft_hub_base();
+        bl[1].y = vec![40., 60.];
+        check(&bl, &ifs[..1], &["do not overlap in y"]);
+        // a coarser hub: unmatched nodes
+        let (mut bl, ifs) = shaft_hub_base();
+        bl[1].ny = vec![3];
+        check(&bl, &ifs[..1], &["node at y = ", "no partner"]);
+        // the shaft's element edge crosses the hub's end
+        let (mut bl, ifs) = shaft_hub_base();
+        bl[0].ny = vec![1, 4, 1];
+        bl[1].y = vec![5., 15., 30.];
+        bl[1].ny = vec![1, 3];
+        check(
+            &bl,
+            &ifs[..1],
+            &["straddles the end of the overlap at y = "],
+        );
+        // mixed and incomplete specifications
+        let (bl, _) = shaft_hub_base();
+        let mixed = iface("fit", [Some("shaft"), None, None, Some("hub")]);
+        check(&bl, &[mixed], &["interface \"fit\"", "not both"]);
+        let half = iface("fit", [None, None, Some("shaft"), None]);
+        check(&bl, &[half], &["give left and right"]);
+        let none = iface("fit", [None, None, None, None]);
+        check(&bl, &[none], &["give upper and lower", "or left and right"]);
+        let same = iface("fit", [None, None, Some("hub"), Some("hub")]);
+        check(&bl, &[same], &["left and right are the same block"]);
+        let unknown = iface("fit", [None, None, Some("shaft"), Some("sleeve")]);
+        check(&bl, &[unknown], &["no block named \"sleeve\""]);
+    }
+
+    #[test]
+    fn the_debug_text_of_a_horizontal_spec_is_unchanged_by_left_and_right() {
+        let (_, ifs) = punch();
+        assert_eq!(
+            format!("{:?}", ifs[0]),
+            "InterfaceSpec { name: \"contact\", upper: Some(\"punch\"), lower: Some(\"foundation\"), upper_curve: None, lower_curve: None }"
+        );
+        let v = iface("fit", [None, None, Some("shaft"), Some("hub")]);
+        assert!(format!("{v:?}").ends_with("left: Some(\"shaft\"), right: Some(\"hub\") }"));
     }
 
     #[test]

@@ -1,8 +1,10 @@
-//! Results on disk: `summary.json`, `curve.csv`, `interface/<increment>.csv` and
-//! a VTU/PVD series. Everything is written into a hidden sibling folder that is
+//! Results on disk: `summary.json`, `curve.csv`, `interface/<increment>.csv`,
+//! the joint outputs (`joints.csv`, `cycles.csv`, the hysteresis figure:
+//! [`joints`]) and a VTU/PVD series. Everything is written into a hidden sibling folder that is
 //! renamed into place only when the run succeeds, so a failed run leaves no
 //! partial output folder behind.
 
+pub mod joints;
 pub mod vtu;
 
 use crate::error::{Error, Result};
@@ -103,6 +105,10 @@ impl Writer {
             &(serde_json::to_string_pretty(&summary).unwrap_or_default() + "\n"),
         )?;
         self.write("curve.csv", &curve(result))?;
+        let cycles = joints::run_cycles(model, result);
+        self.write("joints.csv", &joints::joints_csv(model, result))?;
+        self.write("cycles.csv", &joints::cycles_csv(model, &cycles))?;
+        joints::hysteresis(model, result, &cycles, &self.tmp_dir)?;
         self.write("results.pvd", &vtu::pvd(&self.pvd))?;
         replace_dir(&self.tmp_dir, &self.final_dir)?;
         self.done = true;
@@ -255,17 +261,23 @@ impl Observer for Writer {
     }
 }
 
-/// One row per interface pair, ordered along the interface. With lumped weights
-/// each pair is one integration point and carries its own tangential state.
+/// One row per interface pair, interface by interface, each ordered along
+/// the interface by its arc length s (from its first pair, in the walk
+/// direction: increasing x on a horizontal interface, increasing y on a
+/// vertical one). With lumped weights each pair is one integration point and
+/// carries its own tangential state (internal convention,
+/// [`crate::interface::joint`]).
 pub fn interface_csv(model: &Model, state: &State) -> String {
     let mut s = String::from(
-        "x_mm,p_n_mpa,u_n_mm,status,p_t_mpa,u_t_mm,u_t_plastic_mm,mu_f,tangential_status\n",
+        "x_mm,p_n_mpa,u_n_mm,status,p_t_mpa,u_t_mm,u_t_plastic_mm,mu_f,tangential_status,y_mm,s_mm,interface\n",
     );
     let mut base = 0;
-    for im in &model.interfaces {
+    for (im, iface) in model.interfaces.iter().zip(&model.mesh.interfaces) {
         let lumped = im.points.len() == im.pairs.len();
+        let arc = crate::interface::joint::arc_lengths(&model.mesh, iface, im);
+        let name = joints::csv_field(&im.name);
         let mut rows: Vec<usize> = (0..im.pairs.len()).collect();
-        rows.sort_by(|&a, &b| im.pairs[a].x[0].total_cmp(&im.pairs[b].x[0]));
+        rows.sort_by(|&a, &b| arc[a].total_cmp(&arc[b]));
         for i in rows {
             let pr = &im.pairs[i];
             let un = im.pair_approach(pr, &state.u);
@@ -282,7 +294,7 @@ pub fn interface_csv(model: &Model, state: &State) -> String {
             };
             let _ = writeln!(
                 s,
-                "{},{:.9e},{:.9e},{},{:.9e},{:.9e},{:.9e},{:.6},{}",
+                "{},{:.9e},{:.9e},{},{:.9e},{:.9e},{:.9e},{:.6},{},{},{:.9e},{name}",
                 pr.x[0],
                 p,
                 un,
@@ -291,7 +303,9 @@ pub fn interface_csv(model: &Model, state: &State) -> String {
                 c.u_t,
                 c.slip.u_p,
                 c.mu_f,
-                st.tangential_name()
+                st.tangential_name(),
+                pr.x[1],
+                arc[i],
             );
         }
         base += im.points.len();
@@ -382,6 +396,7 @@ pub fn summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
             "full revolution: forces, areas and kN are for the whole body of revolution (2π r)"
         );
     }
+    s["joints"] = joints::summary(model, r, &joints::run_cycles(model, r));
     // only runs where some step needed it (a case without one writes what it always did)
     if let Some(st) = &r.stabilization {
         s["stabilization"] = json!({

@@ -18,6 +18,7 @@ pub use yield_point::FirstYield;
 
 use crate::error::{Error, Result};
 use crate::fem::solid::Response;
+use crate::interface::joint::{self, JointMeasures, JointTotals};
 use crate::interface::Status;
 use crate::interrupt::Stop;
 use crate::material::{PointState, VonMises};
@@ -61,6 +62,10 @@ pub struct Increment {
     /// Failed attempts (cutbacks) before this increment converged.
     pub cutbacks: usize,
     pub measures: Measures,
+    /// Joint quantities of every interface, in order
+    /// ([`crate::interface::joint`]); empty for increments restored from a
+    /// restart file of an earlier build.
+    pub joints: Vec<JointMeasures>,
 }
 
 /// Scalar measures of a state.
@@ -137,6 +142,8 @@ pub struct Checkpoint {
     /// Newton iterations and factorizations so far.
     pub iterations: usize,
     pub factorizations: usize,
+    /// Frictional dissipation and tangential work of every interface so far.
+    pub joint_totals: Vec<JointTotals>,
 }
 
 impl Checkpoint {
@@ -155,6 +162,7 @@ impl Checkpoint {
             cutbacks_here: 0,
             iterations: 0,
             factorizations: 0,
+            joint_totals: vec![JointTotals::default(); model.interfaces.len()],
         }
     }
 }
@@ -364,6 +372,14 @@ fn accept(
     ck.last_du.clear();
     ck.last_du
         .extend(trial.u.iter().zip(&ck.committed.u).map(|(a, b)| a - b));
+    // every rank holds every point's tangential state (share_state): the
+    // same totals everywhere
+    joint::accumulate(
+        &model.interfaces,
+        &ck.committed.contact,
+        &trial.contact,
+        &mut ck.joint_totals,
+    );
     ck.committed = trial;
     if !engine.committed() {
         // a stabilized or released step closed a gap by a rigid motion: the
@@ -378,6 +394,14 @@ fn accept(
         iterations,
         cutbacks: ck.cutbacks_here,
         measures: engine.measures(&ck.committed),
+        joints: joint::measures(
+            &model.interfaces,
+            model.section,
+            &ck.committed.u,
+            &ck.committed.status,
+            &ck.committed.contact,
+            &ck.joint_totals,
+        ),
     };
     ck.cutbacks_here = 0;
     ck.iterations = engine.stats.iterations;

@@ -30,8 +30,14 @@ pub struct Chart {
     pub legend_low: bool,
 }
 
-/// Registers a sans-serif font found on the system; false if none.
+/// Registers a sans-serif font found on the system (once per process: later
+/// calls return the first answer); false if none.
 pub fn load_font() -> bool {
+    static LOADED: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+    *LOADED.get_or_init(register_font)
+}
+
+fn register_font() -> bool {
     let candidates = [
         "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
         "/usr/share/fonts/TTF/DejaVuSans.ttf",

@@ -14,6 +14,7 @@ mod cli;
 mod figures;
 mod gmsh;
 mod help;
+mod joints;
 mod links;
 mod output_schema;
 mod robust;

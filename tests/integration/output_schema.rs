@@ -38,8 +38,14 @@ fn type_of(v: &Value) -> &'static str {
 }
 
 /// Every key path of the summary with its JSON type; object members of
-/// `backend_stats` are reported as `backend_stats.*`.
+/// `backend_stats` are reported as `backend_stats.*`, the members of objects
+/// in an array `a` as `a[].member`.
 fn leaves(prefix: &str, v: &Value, out: &mut Vec<(String, &'static str)>) {
+    if let Value::Array(items) = v {
+        for x in items {
+            leaves(&format!("{prefix}[]"), x, out);
+        }
+    }
     if let Value::Object(m) = v {
         for (k, x) in m {
             let key = if prefix == "backend_stats" {
@@ -125,7 +131,25 @@ fn summary_json_matches_the_documented_schema() {
     );
     let mut seen = std::collections::BTreeSet::new();
     let mut errors = Vec::new();
-    for s in [&with, &without, &gap, &axi] {
+    // a closed load cycle needs a load history: the summary's cycle object
+    // from a synthetic cycle (src/output/joints.rs writes it the same way)
+    let cycle = asperity::output::joints::cycle_json(
+        1,
+        &asperity::interface::joint::Cycle {
+            start_increment: 2,
+            end_increment: 9,
+            start_time: 1.0,
+            end_time: 4.0,
+            dissipation: 0.5,
+            work: 0.5,
+            secant_stiffness: Some(1e4),
+            force_range: [-30.0, 30.0],
+            slip_range: [-0.01, 0.01],
+        },
+    );
+    let mut with_cycle = with.clone();
+    with_cycle["joints"][0]["cycles"] = Value::Array(vec![cycle]);
+    for s in [&with_cycle, &without, &gap, &axi] {
         let mut l = Vec::new();
         leaves("", s, &mut l);
         for (k, t) in l {

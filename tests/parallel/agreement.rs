@@ -131,6 +131,50 @@ fn compare_on(case: &str, refine: &str, ranks: &[usize]) {
                 );
             }
         }
+        compare_joints(run, &s["joints"], &p["joints"]);
+    }
+}
+
+/// The joint outputs of the last increment (src/interface/joint.rs, summed
+/// on every rank from the shared point states): forces to 1e-6 of the normal
+/// force, mean displacements of the larger of the two, status measures of
+/// the interface's length, energies of the work.
+fn compare_joints(run: &str, s: &serde_json::Value, p: &serde_json::Value) {
+    let (s, p) = (s.as_array().unwrap(), p.as_array().unwrap());
+    assert_eq!(s.len(), p.len(), "{run}: joints");
+    for (a, b) in s.iter().zip(p) {
+        let (fa, fb) = (&a["final"], &b["final"]);
+        let g = |v: &serde_json::Value, k: &str| v[k].as_f64().unwrap();
+        let measures = [
+            "open_measure",
+            "closed_measure",
+            "stick_measure",
+            "micro_slip_measure",
+            "macro_slip_measure",
+        ];
+        let groups: [(&[&str], f64); 4] = [
+            (
+                &["normal_force_n", "tangential_force_n"],
+                g(fa, "normal_force_n").abs(),
+            ),
+            (
+                &["mean_approach_mm", "mean_slip_mm"],
+                g(fa, "mean_approach_mm")
+                    .abs()
+                    .max(g(fa, "mean_slip_mm").abs()),
+            ),
+            (&measures, measures.iter().map(|k| g(fa, k)).sum()),
+            (
+                &["dissipation_nmm", "work_nmm"],
+                g(fa, "work_nmm").abs().max(1e-30),
+            ),
+        ];
+        for (keys, scale) in groups {
+            for k in keys {
+                let (x, y) = (g(fa, k), g(fb, k));
+                assert!(close(x, y, scale), "{run}: joint {k} {x} vs {y}");
+            }
+        }
     }
 }
 
@@ -278,7 +322,7 @@ fn two_runs_on_two_ranks_give_identical_files() {
             "--backend", "petsc", "--", "-pc_type", "redundant", "-redundant_pc_type", "lu",
         ]);
     }
-    let mut files = vec![PathBuf::from("curve.csv")];
+    let mut files = vec![PathBuf::from("curve.csv"), PathBuf::from("joints.csv")];
     for sub in ["interface", "vtu"] {
         let mut names: Vec<PathBuf> = std::fs::read_dir(dirs[0].join(sub))
             .unwrap()

@@ -283,6 +283,12 @@ fn pair_curves(
 ) -> Result<Interface> {
     let at = format!("{place}: [[mesh.interface]] \"{}\"", spec.name);
     let bad = |m: String| Error::input(&at, m);
+    if spec.left.is_some() || spec.right.is_some() {
+        return Err(bad(
+            "left / right name blocks of a generated mesh ([[mesh.block]]); a mesh read from a file pairs upper_curve (body A) with lower_curve (body B)"
+                .into(),
+        ));
+    }
     let (Some(upper), Some(lower)) = (&spec.upper_curve, &spec.lower_curve) else {
         return Err(bad(
             "a mesh read from a file needs upper_curve and lower_curve (physical curve names)"

@@ -51,6 +51,8 @@ mod tests {
             lower: None,
             upper_curve: Some("punch.bottom".into()),
             lower_curve: Some("foundation.top".into()),
+            left: None,
+            right: None,
         }
     }
 

@@ -1,0 +1,472 @@
+//! The joint as a designer reads it: per interface and per increment the
+//! resultant forces, the mean approach and slip, how much of the interface is
+//! open, sticking or slipping, and the frictional energy dissipated so far;
+//! per closed load cycle its dissipation and secant stiffness.
+//!
+//! ```text
+//!   horizontal interface                 vertical interface
+//!   (A = upper, B = lower)               (A = left, B = right)
+//!
+//!         body A                           body A │ body B
+//!     ───────────────  ← interface                │
+//!         body B          walked in +x     n ◄────┤ walked in +y
+//!                                                 │ ▲ t
+//!     n = +y (from B into A), t = +x       n = −x, t = +y
+//! ```
+//!
+//! Internal convention (the per-pair interface CSVs, [`super::PointState`]):
+//! u_T = (u_B − u_A)·t and p_T is the shear B's springs carry along t, so
+//! moving A in +t relative to B gives u_T < 0 and p_T < 0.
+//!
+//! Joint convention (these outputs): the motion and drag of A relative to B
+//! along t, ū_T = −Σ A u_T / Σ A and F_T = −Σ A p_T. Dragging A in +t gives
+//! ū_T > 0 and F_T > 0 (a loop that starts in the first quadrant); F_T is the
+//! tangential force applied to A that the joint resists. Normal force F_N = Σ
+//! A p_N (compressive positive) and mean approach ū_N = Σ A u_N / Σ A have one
+//! sign in both conventions.
+//!
+//! Energies, N·mm, accumulated over committed increments by the trapezoid
+//! rule at every integration point (A its area):
+//! * dissipation D = Σ A ½ (p_T,n + p_T,n+1)(u_p,n+1 − u_p,n), the frictional
+//!   work on the plastic slip u_p (positive: slip follows the shear);
+//! * work W = Σ A ½ (p_T,n + p_T,n+1)(u_T,n+1 − u_T,n), the tangential work
+//!   done on the interface. With p_T = k_T^e (u_T − u_p) and k_T^e constant,
+//!   W − D is the trapezoid of the elastic energy, exact for a linear
+//!   function: over a cycle that returns every spring to its start W = D.
+//!
+//! Both conventions give the same energies (both factors change sign).
+
+use super::{InterfaceModel, PointState, Status};
+use crate::fem::Section;
+use crate::mesh::{Interface, Mesh};
+
+/// One interface's joint quantities at one increment, in the joint
+/// convention (see the module comment). Forces in N for the model as meshed
+/// (thickness t, or the full revolution in axisymmetry); measures in mm
+/// (plane: length of interface) or mm² (axisymmetric: area).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct JointMeasures {
+    /// F_N = Σ A p_N, compressive positive, N.
+    pub normal_force: f64,
+    /// F_T = −Σ A p_T: the drag of A relative to B along t, N.
+    pub tangential_force: f64,
+    /// ū_N = Σ A u_N / Σ A (positive = closing), mm.
+    pub mean_approach: f64,
+    /// ū_T = −Σ A u_T / Σ A: A's motion relative to B along t, mm.
+    pub mean_slip: f64,
+    /// Measure of the points in each status.
+    pub open: f64,
+    pub closed: f64,
+    pub stick: f64,
+    pub micro_slip: f64,
+    pub macro_slip: f64,
+    /// Frictional energy dissipated so far, N·mm.
+    pub dissipation: f64,
+    /// Tangential work done on the interface so far, N·mm.
+    pub work: f64,
+}
+
+impl JointMeasures {
+    /// Doubles per interface and increment in [`JointMeasures::pack`].
+    pub const PACKED: usize = 11;
+
+    /// The layout of the `joints` section of restart files: the fields in
+    /// declaration order.
+    pub fn pack(&self) -> [f64; Self::PACKED] {
+        [
+            self.normal_force,
+            self.tangential_force,
+            self.mean_approach,
+            self.mean_slip,
+            self.open,
+            self.closed,
+            self.stick,
+            self.micro_slip,
+            self.macro_slip,
+            self.dissipation,
+            self.work,
+        ]
+    }
+
+    /// The inverse of [`JointMeasures::pack`] (`v` holds at least `PACKED` values).
+    pub fn unpack(v: &[f64]) -> Self {
+        JointMeasures {
+            normal_force: v[0],
+            tangential_force: v[1],
+            mean_approach: v[2],
+            mean_slip: v[3],
+            open: v[4],
+            closed: v[5],
+            stick: v[6],
+            micro_slip: v[7],
+            macro_slip: v[8],
+            dissipation: v[9],
+            work: v[10],
+        }
+    }
+}
+
+/// Running energy totals of one interface (kept in the checkpoint).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct JointTotals {
+    /// D so far, N·mm.
+    pub dissipation: f64,
+    /// W so far, N·mm.
+    pub work: f64,
+}
+
+/// The dissipation and work of one point of area `area` over one increment
+/// from `before` to `after` (trapezoid rule, see the module comment).
+pub fn point_energy(area: f64, before: &PointState, after: &PointState) -> (f64, f64) {
+    let p = 0.5 * (before.p_t + after.p_t);
+    (
+        area * p * (after.slip.u_p - before.slip.u_p),
+        area * p * (after.u_t - before.u_t),
+    )
+}
+
+/// Adds the energies of an accepted increment (committed → trial tangential
+/// states of every interface point, all interfaces in order) to the running
+/// totals, one per interface. Every MPI rank holds every point's state after
+/// the step, so every rank computes the same totals.
+pub fn accumulate(
+    interfaces: &[InterfaceModel],
+    committed: &[PointState],
+    trial: &[PointState],
+    totals: &mut [JointTotals],
+) {
+    let mut q = 0;
+    for (im, tot) in interfaces.iter().zip(totals.iter_mut()) {
+        for pt in &im.points {
+            let (d, w) = point_energy(pt.area, &committed[q], &trial[q]);
+            tot.dissipation += d;
+            tot.work += w;
+            q += 1;
+        }
+    }
+}
+
+/// What one integration point contributes to its interface's measures.
+#[derive(Clone, Copy, Debug)]
+pub struct PointSample {
+    pub area: f64,
+    pub p_n: f64,
+    pub u_n: f64,
+    /// Internal convention: (u_B − u_A)·t and B's shear along t.
+    pub u_t: f64,
+    pub p_t: f64,
+    pub status: Status,
+}
+
+/// Sums point samples into joint measures (joint convention); `per_measure`
+/// turns an area into the reported measure (1/thickness for plane models).
+pub fn aggregate(
+    samples: impl Iterator<Item = PointSample>,
+    per_measure: f64,
+    totals: JointTotals,
+) -> JointMeasures {
+    let mut m = JointMeasures {
+        dissipation: totals.dissipation,
+        work: totals.work,
+        ..JointMeasures::default()
+    };
+    let mut area = 0.0;
+    for s in samples {
+        area += s.area;
+        m.normal_force += s.area * s.p_n;
+        m.tangential_force -= s.area * s.p_t;
+        m.mean_approach += s.area * s.u_n;
+        m.mean_slip -= s.area * s.u_t;
+        let a = s.area * per_measure;
+        match s.status {
+            Status::Open => m.open += a,
+            Status::Closed => m.closed += a,
+            Status::Stick => m.stick += a,
+            Status::MicroSlip => m.micro_slip += a,
+            Status::MacroSlip => m.macro_slip += a,
+        }
+    }
+    if area > 0.0 {
+        m.mean_approach /= area;
+        m.mean_slip /= area;
+    }
+    m
+}
+
+/// The joint measures of every interface in a committed state (`u` all
+/// dofs; `status` and `contact` every point of every interface in order).
+pub fn measures(
+    interfaces: &[InterfaceModel],
+    section: Section,
+    u: &[f64],
+    status: &[Status],
+    contact: &[PointState],
+    totals: &[JointTotals],
+) -> Vec<JointMeasures> {
+    // plane: areas are length × thickness; axisymmetric: areas of revolution
+    let per_measure = if section.axisymmetric {
+        1.0
+    } else {
+        1.0 / section.thickness
+    };
+    let mut base = 0;
+    let mut out = Vec::with_capacity(interfaces.len());
+    for (i, im) in interfaces.iter().enumerate() {
+        let samples = im.points.iter().enumerate().map(|(j, pt)| {
+            let (u_n, u_t) = im.point_kinematics(pt, u);
+            PointSample {
+                area: pt.area,
+                p_n: im.law.pressure(u_n).0,
+                u_n,
+                u_t,
+                p_t: contact[base + j].p_t,
+                status: status[base + j],
+            }
+        });
+        let tot = totals.get(i).copied().unwrap_or_default();
+        out.push(aggregate(samples, per_measure, tot));
+        base += im.points.len();
+    }
+    out
+}
+
+/// The joint direction t of an interface: the internal tangent (n_y, −n_x)
+/// at its first pair (+x on a horizontal interface, +y on a vertical one).
+pub fn direction(im: &InterfaceModel) -> [f64; 2] {
+    im.pairs
+        .first()
+        // + 0.0: no negative zero
+        .map_or([1.0, 0.0], |p| [p.normal[1] + 0.0, -p.normal[0] + 0.0])
+}
+
+/// Length of the piece ξ ∈ [from, to] of a quadratic edge (3-point Gauss).
+fn piece_length(x: &[[f64; 2]; 3], from: f64, to: f64) -> f64 {
+    let (mid, half) = (0.5 * (from + to), 0.5 * (to - from));
+    crate::fem::q8::gauss_1d(3)
+        .iter()
+        .map(|&(g, w)| {
+            let s = mid + half * g;
+            let dn = [s - 0.5, -2.0 * s, s + 0.5];
+            let t = (0..3).fold([0.0, 0.0], |t, i| {
+                [t[0] + dn[i] * x[i][0], t[1] + dn[i] * x[i][1]]
+            });
+            w * half * t[0].hypot(t[1])
+        })
+        .sum()
+}
+
+/// The arc length s of every pair of an interface (index as `im.pairs`),
+/// mm, from its first pair along the walk direction (B on the right). The
+/// edges are chained end to start; pieces that do not join (an interface
+/// interrupted, or edges listed out of order in a mesh file) follow one
+/// another by the position of their start along the interface's mean
+/// direction, s continuing across a break by the straight distance.
+pub fn arc_lengths(mesh: &Mesh, iface: &Interface, im: &InterfaceModel) -> Vec<f64> {
+    use std::collections::HashMap;
+    let index: HashMap<(usize, usize), usize> = im
+        .pairs
+        .iter()
+        .enumerate()
+        .map(|(i, p)| ((p.a, p.b), i))
+        .collect();
+    let pair = |e: &crate::mesh::ContactEdge, i: usize| index.get(&(e.a[i], e.b[i])).copied();
+    // edge by its start pair; a chain starts where no edge ends
+    let mut by_start: HashMap<usize, usize> = HashMap::new();
+    let mut ends = std::collections::HashSet::new();
+    let mut dir = [0.0; 2];
+    for (k, e) in iface.edges.iter().enumerate() {
+        if let (Some(s), Some(t)) = (pair(e, 0), pair(e, 2)) {
+            by_start.entry(s).or_insert(k);
+            ends.insert(t);
+        }
+        let (p, q) = (mesh.nodes[e.b[0]], mesh.nodes[e.b[2]]);
+        dir = [dir[0] + q[0] - p[0], dir[1] + q[1] - p[1]];
+    }
+    let along = |n: usize| mesh.nodes[n][0] * dir[0] + mesh.nodes[n][1] * dir[1];
+    let mut starts: Vec<usize> = iface
+        .edges
+        .iter()
+        .enumerate()
+        .filter(|(_, e)| pair(e, 0).is_some_and(|s| !ends.contains(&s)))
+        .map(|(k, _)| k)
+        .collect();
+    starts.sort_by(|&a, &b| along(iface.edges[a].b[0]).total_cmp(&along(iface.edges[b].b[0])));
+    let mut s = vec![f64::NAN; im.pairs.len()];
+    let mut done = vec![false; iface.edges.len()];
+    let mut at = 0.0;
+    let mut last: Option<[f64; 2]> = None;
+    // the chains from their starts, then any closed loop left over
+    let order: Vec<usize> = starts.into_iter().chain(0..iface.edges.len()).collect();
+    for first in order {
+        let mut k = first;
+        while !done[k] {
+            done[k] = true;
+            let e = &iface.edges[k];
+            let x: [[f64; 2]; 3] = std::array::from_fn(|i| mesh.nodes[e.b[i]]);
+            if let Some(p) = last {
+                at += (x[0][0] - p[0]).hypot(x[0][1] - p[1]);
+            }
+            let ids: [Option<usize>; 3] = std::array::from_fn(|i| pair(e, i));
+            let marks = [
+                at,
+                at + piece_length(&x, -1.0, 0.0),
+                at + piece_length(&x, -1.0, 1.0),
+            ];
+            for (id, mark) in ids.iter().zip(marks) {
+                if let Some(&id) = id.as_ref() {
+                    if s[id].is_nan() {
+                        s[id] = mark;
+                    }
+                }
+            }
+            at = marks[2];
+            last = Some(x[2]);
+            match ids[2].and_then(|t| by_start.get(&t)) {
+                Some(&next) => k = next,
+                None => break,
+            }
+        }
+    }
+    // every pair lies on an edge; 0 only for a pair no edge names
+    s.iter()
+        .map(|v| if v.is_nan() { 0.0 } else { *v })
+        .collect()
+}
+
+/// A closed load cycle of one interface (see [`cycle_windows`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Cycle {
+    /// Increment numbers (1-based, as in the output) where it starts and ends.
+    pub start_increment: usize,
+    pub end_increment: usize,
+    pub start_time: f64,
+    pub end_time: f64,
+    /// D at the end minus D at the start, N·mm.
+    pub dissipation: f64,
+    /// W at the end minus W at the start, N·mm.
+    pub work: f64,
+    /// ΔF_T / Δū_T between the increments of the cycle's largest and
+    /// smallest F_T (of those, the largest and the smallest ū_T: the loop's
+    /// tips when it slides at the extreme forces), N/mm; None when they have
+    /// the same ū_T.
+    pub secant_stiffness: Option<f64>,
+    /// Smallest and largest F_T over the cycle's increments, N.
+    pub force_range: [f64; 2],
+    /// Smallest and largest ū_T over the cycle's increments, mm.
+    pub slip_range: [f64; 2],
+}
+
+/// The closed load cycles of a run: pairs (i, j) of indices into `marks`,
+/// one entry per committed increment, `Some(history values)` where its
+/// pseudo-time is a history breakpoint. A cycle closes at a marked j when
+/// its values equal those of the latest marked i before it, at or after the
+/// end of the previous cycle, and the values differ at some marked
+/// increment in between. Values are equal within 1e-12 of the largest
+/// magnitude each history takes at the marked increments.
+pub fn cycle_windows(marks: &[Option<Vec<f64>>]) -> Vec<(usize, usize)> {
+    let width = marks.iter().flatten().map(Vec::len).max().unwrap_or(0);
+    let mut scale = vec![0.0f64; width];
+    for v in marks.iter().flatten() {
+        for (s, x) in scale.iter_mut().zip(v) {
+            *s = s.max(x.abs());
+        }
+    }
+    let equal = |a: &[f64], b: &[f64]| {
+        a.len() == b.len()
+            && a.iter()
+                .zip(b)
+                .zip(&scale)
+                .all(|((x, y), s)| (x - y).abs() <= 1e-12 * s)
+    };
+    let marked: Vec<(usize, &Vec<f64>)> = marks
+        .iter()
+        .enumerate()
+        .filter_map(|(k, v)| v.as_ref().map(|v| (k, v)))
+        .collect();
+    let mut out = Vec::new();
+    let mut from = 0; // index into `marked` of the previous cycle's end
+    for jm in 0..marked.len() {
+        let (j, vj) = marked[jm];
+        let Some(im) = (from..jm).rev().find(|&im| equal(marked[im].1, vj)) else {
+            continue;
+        };
+        if marked[im + 1..jm].iter().any(|(_, v)| !equal(v, vj)) {
+            out.push((marked[im].0, j));
+            from = jm;
+        }
+    }
+    out
+}
+
+/// The cycle of one interface over the increments `i..=j` of `rows`
+/// (pseudo-time and joint measures per committed increment, in order).
+pub fn cycle_of(rows: &[(f64, JointMeasures)], (i, j): (usize, usize)) -> Cycle {
+    let span = &rows[i..=j];
+    // ties (a plateau of macro-slip) broken by ū_T: the loop's tips
+    let by_force = |a: &&(f64, JointMeasures), b: &&(f64, JointMeasures)| {
+        (a.1.tangential_force.total_cmp(&b.1.tangential_force))
+            .then(a.1.mean_slip.total_cmp(&b.1.mean_slip))
+    };
+    let hi = span.iter().max_by(by_force).map_or(rows[j].1, |r| r.1);
+    let lo = span.iter().min_by(by_force).map_or(rows[j].1, |r| r.1);
+    let ds = hi.mean_slip - lo.mean_slip;
+    let slip = span.iter().map(|r| r.1.mean_slip);
+    Cycle {
+        start_increment: i + 1,
+        end_increment: j + 1,
+        start_time: rows[i].0,
+        end_time: rows[j].0,
+        dissipation: rows[j].1.dissipation - rows[i].1.dissipation,
+        work: rows[j].1.work - rows[i].1.work,
+        secant_stiffness: (ds != 0.0).then(|| (hi.tangential_force - lo.tangential_force) / ds),
+        force_range: [lo.tangential_force, hi.tangential_force],
+        slip_range: [
+            slip.clone().fold(f64::INFINITY, f64::min),
+            slip.fold(f64::NEG_INFINITY, f64::max),
+        ],
+    }
+}
+
+/// Whether pseudo-time `t` is one of the sorted `breakpoints` (within 1e-12
+/// of the last one's magnitude: the stepping lands on them exactly or nearly).
+pub fn at_breakpoint(t: f64, breakpoints: &[f64]) -> bool {
+    let scale = breakpoints.iter().fold(1.0f64, |a, b| a.max(b.abs()));
+    let k = breakpoints.partition_point(|&b| b < t - 1e-12 * scale);
+    breakpoints
+        .get(k)
+        .is_some_and(|&b| (b - t).abs() <= 1e-12 * scale)
+}
+
+/// The closed cycles of every interface of a run: `times` and `joints` (one
+/// entry per interface) per committed increment, `breakpoints` and
+/// `values` the model's histories ([`crate::model::Model::breakpoints`],
+/// [`crate::model::Model::history_values`]). Increments without joint
+/// measures (resumed from a restart file of an earlier build) end the search.
+pub fn cycles(
+    times: &[f64],
+    joints: &[&[JointMeasures]],
+    breakpoints: &[f64],
+    values: impl Fn(f64) -> Vec<f64>,
+    interfaces: usize,
+) -> Vec<Vec<Cycle>> {
+    let n = joints
+        .iter()
+        .position(|j| j.len() != interfaces)
+        .unwrap_or(joints.len())
+        .min(times.len());
+    let marks: Vec<Option<Vec<f64>>> = times[..n]
+        .iter()
+        .map(|&t| at_breakpoint(t, breakpoints).then(|| values(t)))
+        .collect();
+    let windows = cycle_windows(&marks);
+    (0..interfaces)
+        .map(|k| {
+            let rows: Vec<(f64, JointMeasures)> =
+                (0..n).map(|r| (times[r], joints[r][k])).collect();
+            windows.iter().map(|&w| cycle_of(&rows, w)).collect()
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,245 @@
+use super::*;
+use crate::interface::{SlipState, TangentialLaw};
+
+/// A spring's states along a path of u_T at constant p_N, from the real
+/// tangential law (committed state carried from step to step).
+fn walk(law: &TangentialLaw, p_n: f64, path: &[f64]) -> Vec<PointState> {
+    let mut states = vec![PointState::default()];
+    for &u_t in path {
+        let prev = *states.last().unwrap();
+        let ev = law.eval(p_n, 0.0, u_t, &prev.slip);
+        states.push(PointState {
+            slip: ev.state,
+            p_t: ev.p_t,
+            u_t,
+            mu_f: ev.mu_f,
+        });
+    }
+    states
+}
+
+fn energies(area: f64, states: &[PointState]) -> (f64, f64) {
+    states.windows(2).fold((0.0, 0.0), |(d, w), s| {
+        let (dd, dw) = point_energy(area, &s[0], &s[1]);
+        (d + dd, w + dw)
+    })
+}
+
+#[test]
+fn work_minus_dissipation_is_the_stored_elastic_energy_on_any_path() {
+    // slip hardening, micro-slip and the friction cap all visited
+    let law = TangentialLaw::new(0.9, 0.5, 0.05, 0.2, 0.6, 275.0, 0.625).unwrap();
+    let p_n = 150.0;
+    let k = law.elastic_stiffness(p_n).0;
+    let area = 2.5;
+    let mut path = Vec::new();
+    for (a, n) in [
+        (0.0, 0usize),
+        (0.03, 17),
+        (-0.02, 23),
+        (0.045, 31),
+        (0.001, 9),
+    ] {
+        let from = path.last().copied().unwrap_or(0.0);
+        path.extend((1..=n).map(|i| from + (a - from) * i as f64 / n as f64));
+    }
+    let states = walk(&law, p_n, &path);
+    let (d, w) = energies(area, &states);
+    let last = states.last().unwrap();
+    let stored = area * last.p_t * last.p_t / (2.0 * k);
+    assert!(d > 0.0, "the path slips: D = {d}");
+    assert!(
+        (w - d - stored).abs() <= 1e-12 * w.abs().max(d),
+        "W {w} − D {d} = {} vs stored {stored}",
+        w - d
+    );
+}
+
+#[test]
+fn an_elastic_perfectly_plastic_loop_dissipates_the_limit_times_the_slip() {
+    // p_T = k (u_T − u_p) with |p_T| ≤ Y: a loop through the kinks that
+    // returns the spring to its start (u_T = u_p = p_T = 0)
+    let (k, y, area): (f64, f64, f64) = (40.0, 2.0, 1.5);
+    let mut states = vec![PointState::default()];
+    let mut up: f64 = 0.0;
+    let mut slip: f64 = 0.0;
+    for u_t in [0.05, 0.1, 0.0, -0.1, 0.0, 0.05, 0.0] {
+        let trial = k * (u_t - up);
+        if trial.abs() > y {
+            let new = u_t - y * trial.signum() / k;
+            slip += (new - up).abs();
+            up = new;
+        }
+        states.push(PointState {
+            slip: SlipState {
+                u_p: up,
+                kappa: slip,
+            },
+            p_t: k * (u_t - up),
+            u_t,
+            mu_f: 0.0,
+        });
+    }
+    let end = states.last().unwrap();
+    assert!(end.u_t == 0.0 && end.slip.u_p.abs() < 1e-15 && end.p_t.abs() < 1e-12);
+    let (d, w) = energies(area, &states);
+    let expected = area * y * slip;
+    assert!(slip > 0.1, "{slip}");
+    assert!(
+        (d - expected).abs() <= 1e-12 * expected,
+        "{d} vs {expected}"
+    );
+    assert!((w - d).abs() <= 1e-12 * d, "W {w} vs D {d}");
+}
+
+#[test]
+fn aggregation_reports_the_joint_convention_and_the_measures() {
+    let s = |area, p_n, u_n, u_t, p_t, status| PointSample {
+        area,
+        p_n,
+        u_n,
+        u_t,
+        p_t,
+        status,
+    };
+    // thickness 2: measures are areas / 2
+    let samples = [
+        s(2.0, 100.0, 0.01, -0.002, -15.0, Status::Stick),
+        s(4.0, 50.0, 0.005, -0.004, -10.0, Status::MicroSlip),
+        s(1.0, 0.0, -0.001, -0.006, 0.0, Status::Open),
+        s(3.0, 20.0, 0.002, -0.001, -4.0, Status::MacroSlip),
+        s(6.0, 30.0, 0.003, 0.0, 0.0, Status::Closed),
+    ];
+    let totals = JointTotals {
+        dissipation: 3.5,
+        work: 4.0,
+    };
+    let m = aggregate(samples.iter().copied(), 0.5, totals);
+    let area: f64 = samples.iter().map(|p| p.area).sum();
+    let sum = |f: &dyn Fn(&PointSample) -> f64| samples.iter().map(|p| p.area * f(p)).sum::<f64>();
+    assert_eq!(m.normal_force, sum(&|p| p.p_n));
+    // A moved in +t relative to B: internal u_T, p_T < 0, joint values > 0
+    assert!(m.tangential_force > 0.0 && m.mean_slip > 0.0);
+    assert_eq!(m.tangential_force, -sum(&|p| p.p_t));
+    assert!((m.mean_slip + sum(&|p| p.u_t) / area).abs() < 1e-18);
+    assert!((m.mean_approach - sum(&|p| p.u_n) / area).abs() < 1e-18);
+    assert_eq!(
+        [m.open, m.closed, m.stick, m.micro_slip, m.macro_slip],
+        [0.5, 3.0, 1.0, 2.0, 1.5]
+    );
+    assert_eq!((m.dissipation, m.work), (3.5, 4.0));
+    assert_eq!(JointMeasures::unpack(&m.pack()), m);
+}
+
+fn marks(v: &[Option<f64>]) -> Vec<Option<Vec<f64>>> {
+    // two histories: a constant preload and the given tangential factor
+    v.iter().map(|x| x.map(|x| vec![1.0, x])).collect()
+}
+
+#[test]
+fn cycles_close_where_the_history_values_return() {
+    let (a, b, c) = (Some(0.0), Some(1.0), Some(-1.0));
+    // out and back: one cycle
+    assert_eq!(cycle_windows(&marks(&[a, None, b, None, a])), vec![(0, 4)]);
+    // a hold is no cycle
+    assert!(cycle_windows(&marks(&[a, None, a, a])).is_empty());
+    // the latest equal breakpoint decides: a hold at B, then back to A
+    assert_eq!(cycle_windows(&marks(&[a, b, b, a])), vec![(0, 3)]);
+    assert_eq!(
+        cycle_windows(&marks(&[a, b, a, b, a])),
+        vec![(0, 2), (2, 4)]
+    );
+    // a full swing 0 → +1 → −1 → 0, twice
+    assert_eq!(
+        cycle_windows(&marks(&[a, b, c, a, b, c, a])),
+        vec![(0, 3), (3, 6)]
+    );
+    // a cycle never reaches back before the end of the previous one
+    assert_eq!(cycle_windows(&marks(&[b, a, b, c, a])), vec![(0, 2)]);
+    // within 1e-12 of the history's magnitude: equal; beyond: not
+    let near = |e: f64| {
+        vec![
+            Some(vec![2.0, 0.0]),
+            Some(vec![2.0, 3.0]),
+            Some(vec![2.0, e]),
+        ]
+    };
+    assert_eq!(cycle_windows(&near(1e-12)), vec![(0, 2)]);
+    assert!(cycle_windows(&near(1e-9)).is_empty());
+    // no histories: every value list empty, never a cycle
+    assert!(cycle_windows(&[Some(vec![]), Some(vec![]), None, Some(vec![])]).is_empty());
+    assert!(cycle_windows(&[]).is_empty());
+}
+
+#[test]
+fn a_cycle_reports_its_dissipation_stiffness_and_ranges() {
+    // a parallelogram loop: stick with stiffness k up to ±f, slip at ±f
+    let (k, f, d) = (5000.0, 40.0, 0.02);
+    let pts = [
+        (0.0, 0.0),
+        (f / k, f),
+        (d, f),
+        (d - 2.0 * f / k, -f),
+        (-d, -f),
+        (-d + 2.0 * f / k, f),
+        (0.0, f),
+    ];
+    // energies: any increasing synthetic totals
+    let rows: Vec<(f64, JointMeasures)> = pts
+        .iter()
+        .enumerate()
+        .map(|(i, &(u, force))| {
+            let jm = JointMeasures {
+                tangential_force: force,
+                mean_slip: u,
+                dissipation: 7.0 + (i * i) as f64,
+                work: 8.0 + (i * i * i) as f64,
+                ..JointMeasures::default()
+            };
+            (i as f64 * 0.5, jm)
+        })
+        .collect();
+    let c = cycle_of(&rows, (1, 5));
+    assert_eq!((c.start_increment, c.end_increment), (2, 6));
+    assert_eq!((c.start_time, c.end_time), (0.5, 2.5));
+    assert_eq!(c.dissipation, rows[5].1.dissipation - rows[1].1.dissipation);
+    assert_eq!(c.work, rows[5].1.work - rows[1].1.work);
+    assert_eq!(c.force_range, [-f, f]);
+    assert_eq!(c.slip_range, [-d, d]);
+    // tip to tip: the largest force at the largest slip, the smallest at the smallest
+    let secant = 2.0 * f / (2.0 * d);
+    assert!((c.secant_stiffness.unwrap() - secant).abs() <= 1e-12 * secant.abs());
+    // a span where the force never changes slip: no stiffness
+    let flat = cycle_of(&rows[..2], (0, 0));
+    assert_eq!(flat.secant_stiffness, None);
+}
+
+#[test]
+fn cycles_of_a_run_use_only_breakpoint_increments() {
+    let times = [0.5, 1.0, 1.5, 2.0, 2.5, 3.0];
+    let rows: Vec<Vec<JointMeasures>> = (0..times.len())
+        .map(|i| {
+            let v = JointMeasures {
+                tangential_force: (i as f64 * 1.3).sin(),
+                mean_slip: (i as f64 * 0.7).cos(),
+                dissipation: i as f64,
+                ..JointMeasures::default()
+            };
+            vec![v, v]
+        })
+        .collect();
+    let refs: Vec<&[JointMeasures]> = rows.iter().map(Vec::as_slice).collect();
+    // a tangential history 0 at t = 1, 1 at t = 2, 0 at t = 3 (t = 1.5, 2.5 between)
+    let values = |t: f64| vec![1.0 - (t - 2.0).abs()];
+    let cycles = cycles(&times, &refs, &[1.0, 2.0, 3.0], values, 2);
+    assert_eq!(cycles.len(), 2);
+    assert_eq!(cycles[0].len(), 1);
+    let c = &cycles[0][0];
+    assert_eq!((c.start_increment, c.end_increment), (2, 6));
+    assert_eq!(c.dissipation, 4.0);
+    // without histories: none
+    let none = super::cycles(&times, &refs, &[], |_| Vec::new(), 2);
+    assert!(none.iter().all(Vec::is_empty));
+    assert!(at_breakpoint(2.0, &[1.0, 2.0, 3.0]) && !at_breakpoint(2.5, &[1.0, 2.0, 3.0]));
+    assert!(at_breakpoint(2.0 + 1e-14, &[1.0, 2.0, 3.0]));
+}

@@ -1,0 +1,218 @@
+//! The joint outputs of a run ([`crate::interface::joint`]): `joints.csv`
+//! (per increment and interface), `cycles.csv` (per closed load cycle and
+//! interface), the `joints` entry of `summary.json` and the hysteresis
+//! figure (tangential force against slip) of a run with a cycle.
+
+use crate::error::Result;
+use crate::interface::joint::{self, Cycle, JointMeasures};
+use crate::model::Model;
+use crate::solve::RunResult;
+use serde_json::{json, Value};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// A CSV field: as is, or quoted (quotes doubled) when it holds a comma, a
+/// quote or a line break.
+pub fn csv_field(s: &str) -> String {
+    if s.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
+}
+
+/// The closed load cycles of every interface of a run (empty lists without
+/// histories).
+pub fn run_cycles(model: &Model, r: &RunResult) -> Vec<Vec<Cycle>> {
+    let times: Vec<f64> = r.increments.iter().map(|i| i.load_factor).collect();
+    let joints: Vec<&[JointMeasures]> = r.increments.iter().map(|i| i.joints.as_slice()).collect();
+    joint::cycles(
+        &times,
+        &joints,
+        &model.breakpoints(),
+        |t| model.history_values(t),
+        model.interfaces.len(),
+    )
+}
+
+/// `mm` for plane models (lengths of interface), `mm2` in axisymmetry (areas).
+fn measure_unit(model: &Model) -> &'static str {
+    if model.section.axisymmetric {
+        "mm2"
+    } else {
+        "mm"
+    }
+}
+
+pub const JOINTS_HEADER: &str = "increment,time,interface,normal_force_n,tangential_force_n,mean_approach_mm,mean_slip_mm,open_measure,closed_measure,stick_measure,micro_slip_measure,macro_slip_measure,dissipation_nmm,work_nmm\n";
+
+/// `joints.csv`: one row per committed increment and interface (increments
+/// without joint measures, restored from an older restart file, are skipped).
+pub fn joints_csv(model: &Model, r: &RunResult) -> String {
+    let mut s = String::from(JOINTS_HEADER);
+    for inc in &r.increments {
+        for (im, m) in model.interfaces.iter().zip(&inc.joints) {
+            let _ = writeln!(
+                s,
+                "{},{:.9},{},{}",
+                inc.increment,
+                inc.load_factor,
+                csv_field(&im.name),
+                m.pack()
+                    .iter()
+                    .map(|v| format!("{v:.9e}"))
+                    .collect::<Vec<_>>()
+                    .join(",")
+            );
+        }
+    }
+    s
+}
+
+pub const CYCLES_HEADER: &str = "interface,cycle,start_increment,end_increment,start_time,end_time,dissipation_nmm,work_nmm,secant_stiffness_n_per_mm,force_min_n,force_max_n,slip_min_mm,slip_max_mm\n";
+
+/// `cycles.csv`: one row per closed load cycle and interface (the header
+/// alone when there is none); an empty stiffness where it is undefined.
+pub fn cycles_csv(model: &Model, cycles: &[Vec<Cycle>]) -> String {
+    let mut s = String::from(CYCLES_HEADER);
+    for (im, list) in model.interfaces.iter().zip(cycles) {
+        for (k, c) in list.iter().enumerate() {
+            let _ = writeln!(
+                s,
+                "{},{},{},{},{:.9},{:.9},{:.9e},{:.9e},{},{:.9e},{:.9e},{:.9e},{:.9e}",
+                csv_field(&im.name),
+                k + 1,
+                c.start_increment,
+                c.end_increment,
+                c.start_time,
+                c.end_time,
+                c.dissipation,
+                c.work,
+                c.secant_stiffness
+                    .map_or(String::new(), |v| format!("{v:.9e}")),
+                c.force_range[0],
+                c.force_range[1],
+                c.slip_range[0],
+                c.slip_range[1],
+            );
+        }
+    }
+    s
+}
+
+/// One cycle as a `summary.json` object (the keys of `cycles.csv`).
+pub fn cycle_json(number: usize, c: &Cycle) -> Value {
+    json!({
+        "cycle": number,
+        "start_increment": c.start_increment,
+        "end_increment": c.end_increment,
+        "start_time": c.start_time,
+        "end_time": c.end_time,
+        "dissipation_nmm": c.dissipation,
+        "work_nmm": c.work,
+        "secant_stiffness_n_per_mm": c.secant_stiffness,
+        "force_min_n": c.force_range[0],
+        "force_max_n": c.force_range[1],
+        "slip_min_mm": c.slip_range[0],
+        "slip_max_mm": c.slip_range[1],
+    })
+}
+
+/// The joint measures of one increment as a `summary.json` object.
+fn measures_json(time: f64, m: &JointMeasures) -> Value {
+    json!({
+        "time": time,
+        "normal_force_n": m.normal_force,
+        "tangential_force_n": m.tangential_force,
+        "mean_approach_mm": m.mean_approach,
+        "mean_slip_mm": m.mean_slip,
+        "open_measure": m.open,
+        "closed_measure": m.closed,
+        "stick_measure": m.stick,
+        "micro_slip_measure": m.micro_slip,
+        "macro_slip_measure": m.macro_slip,
+        "dissipation_nmm": m.dissipation,
+        "work_nmm": m.work,
+    })
+}
+
+/// The `joints` entry of `summary.json`: per interface its bodies, joint
+/// direction, the last increment's measures and the closed cycles.
+pub fn summary(model: &Model, r: &RunResult, cycles: &[Vec<Cycle>]) -> Value {
+    let last = r.increments.last();
+    let list: Vec<Value> = model
+        .interfaces
+        .iter()
+        .enumerate()
+        .map(|(k, im)| {
+            let fin = last
+                .and_then(|i| i.joints.get(k).map(|m| measures_json(i.load_factor, m)))
+                .unwrap_or(Value::Null);
+            let cyc: Vec<Value> = cycles
+                .get(k)
+                .map(|l| {
+                    l.iter()
+                        .enumerate()
+                        .map(|(n, c)| cycle_json(n + 1, c))
+                        .collect()
+                })
+                .unwrap_or_default();
+            json!({
+                "interface": im.name,
+                "body_a": model.mesh.bodies[im.body_a],
+                "body_b": model.mesh.bodies[im.body_b],
+                "direction": joint::direction(im),
+                "measure_unit": measure_unit(model),
+                "final": fin,
+                "cycles": cyc,
+            })
+        })
+        .collect();
+    Value::Array(list)
+}
+
+/// The hysteresis figure `hysteresis.svg` / `.png` (with the points in
+/// `hysteresis.csv`) in `dir`: F_T against ū_T from the start of the run, one
+/// line per interface with a closed cycle. Nothing when no interface has a
+/// cycle; the CSV alone when no font is found.
+pub fn hysteresis(
+    model: &Model,
+    r: &RunResult,
+    cycles: &[Vec<Cycle>],
+    dir: &Path,
+) -> Result<Vec<PathBuf>> {
+    use crate::study::plot::{load_font, save, Chart, Series};
+    let series: Vec<Series> =
+        model
+            .interfaces
+            .iter()
+            .enumerate()
+            .filter(|(k, _)| cycles.get(*k).is_some_and(|c| !c.is_empty()))
+            .map(|(k, im)| {
+                let n = cycles[k].len();
+                Series {
+                    label: format!(
+                        "{} ({n} closed cycle{})",
+                        im.name,
+                        if n == 1 { "" } else { "s" }
+                    ),
+                    points: std::iter::once((0.0, 0.0))
+                        .chain(r.increments.iter().filter_map(|i| {
+                            i.joints.get(k).map(|m| (m.mean_slip, m.tangential_force))
+                        }))
+                        .collect(),
+                }
+            })
+            .collect();
+    if series.is_empty() {
+        return Ok(Vec::new());
+    }
+    let chart = Chart {
+        title: format!("{}: tangential force against slip", model.name),
+        x_label: "ū_T: mean slip of A relative to B along t (mm)".into(),
+        y_label: "F_T: tangential force dragging A along t (N)".into(),
+        series,
+        ..Chart::default()
+    };
+    save(&chart, &dir.join("hysteresis"), load_font())
+}
