@@ -139,7 +139,8 @@ pub fn run_model(
         .clone()
         .unwrap_or_else(|| Path::new("out").join(&model.name));
     // 0: automatic step control, the count is not known in advance
-    let planned = solve::stepping::Stepper::planned(&model.solver).unwrap_or(0);
+    let planned =
+        solve::stepping::Stepper::planned(&model.solver, &model.breakpoints()).unwrap_or(0);
     let control = Control {
         stop_after: opts.stop_after,
     };
@@ -223,7 +224,7 @@ fn report_end(log: &Log, model: &Model, dir: &Path, r: &RunResult, wall: f64) {
     let last = r.increments.last();
     let m = last.map(|i| i.measures).unwrap_or_default();
     let lambda = last.map_or(0.0, |i| i.load_factor);
-    let planned = solve::stepping::Stepper::planned(&model.solver);
+    let planned = solve::stepping::Stepper::planned(&model.solver, &model.breakpoints());
     let fy = r.first_yield.as_ref();
     if let Some(stop) = r.stopped {
         let case = model.source.display().to_string();

@@ -387,6 +387,7 @@ pub fn decode(
     let increments = *s.u("increment")?.first().ok_or("empty increment")? as usize;
     restore_stepper(&mut ck, &s)?;
     restore_state(&mut ck, &s)?;
+    ck.committed.time = ck.lambda;
     ck.increments = restore_curve(&s, increments)?;
     ck.first_yield = restore_first_yield(&s)?;
     let pvd = restore_vtu_series(&s)?;

@@ -58,8 +58,9 @@ impl<'a, 'm> StepProblem<'a, 'm> {
         if let Some(start) = start {
             trial.u.copy_from_slice(start);
         }
-        for &(d, v) in &m.prescribed {
-            trial.u[d] = lambda * v;
+        trial.time = lambda;
+        for (d, v) in m.prescribed_at(lambda) {
+            trial.u[d] = v;
         }
         let method = if response == Response::ElasticOnly {
             Method::FullNewton
@@ -165,11 +166,13 @@ impl Problem for StepProblem<'_, '_> {
         }
         // norms over free dofs; reactions over prescribed dofs
         let m = e.model;
+        e.load_at(self.lambda);
+        let load = &e.load;
         let (mut r2, mut f2, mut react2) = (0.0, 0.0, 0.0);
         for d in 0..e.r.len() {
             if m.dofs.equation(d).is_some() {
                 r2 += e.r[d] * e.r[d];
-                f2 += (self.lambda * m.f_ext[d]).powi(2);
+                f2 += load[d].powi(2);
             } else {
                 react2 += e.r[d] * e.r[d];
             }
