@@ -12,6 +12,8 @@
 pub const MAX_TIME: f64 = 1.0e4;
 /// Most points of one history.
 pub const MAX_POINTS: usize = 10_000;
+/// The largest magnitude of a history's value (a factor on the loads).
+pub const MAX_VALUE: f64 = 1.0e6;
 
 /// A piecewise-linear table t → factor, held at its first value before the
 /// first time and at its last value after the last time (as Abaqus
@@ -55,6 +57,11 @@ impl History {
             };
             if !(t.is_finite() && v.is_finite()) {
                 return Err(format!("point {i} [{t}, {v}] is not two finite numbers"));
+            }
+            if v.abs() > MAX_VALUE {
+                return Err(format!(
+                    "point {i}: value {v:e} is far outside any engineering use (a factor: at most {MAX_VALUE:e} in magnitude)"
+                ));
             }
             if !(0.0..=MAX_TIME).contains(&t) {
                 return Err(format!(
@@ -101,6 +108,21 @@ impl History {
     pub fn end(&self) -> f64 {
         self.points[self.points.len() - 1].0
     }
+}
+
+/// Every point's time of these histories, ascending and without repeats,
+/// with 0 and 1 (the default ramp's points); empty without histories.
+pub fn breakpoints(histories: &[History]) -> Vec<f64> {
+    if histories.is_empty() {
+        return Vec::new();
+    }
+    let mut t: Vec<f64> = [0.0, 1.0]
+        .into_iter()
+        .chain(histories.iter().flat_map(|h| h.times()))
+        .collect();
+    t.sort_by(f64::total_cmp);
+    t.dedup();
+    t
 }
 
 #[cfg(test)]

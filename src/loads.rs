@@ -116,7 +116,7 @@ pub fn build(case: &Case, mesh: &Mesh, section: Section, place: &str) -> Result<
     }
     let prescribed = boundary_conditions(case, mesh, place, &mut res)?;
     for (i, fs) in case.force.iter().enumerate() {
-        let at = format!("{place}: force[{i}] (nodes \"{}\")", clip(&fs.nodes));
+        let at = format!("{place}: force[{i}] (nodes \"{}\")", fs.nodes);
         let h = res.resolve(fs.history.as_ref(), &format!("{at} history"))?;
         let f = pattern(&mut patterns, h, mesh.num_dofs());
         concentrated_force(fs, mesh, &at, f)?;
@@ -134,6 +134,20 @@ pub fn build(case: &Case, mesh: &Mesh, section: Section, place: &str) -> Result<
             format!("{place}: [solver] load_factors"),
             "cannot be given with load histories ([history], or `history` / `gap_history` on a load, boundary, force or interface): the histories say how the loads change; remove load_factors",
         ));
+    }
+    let breakpoints = crate::history::breakpoints(&histories);
+    if let Some(n) = crate::solve::stepping::Stepper::planned(&case.solver, &breakpoints) {
+        if n > crate::case::MAX_INCREMENTS {
+            return Err(Error::input(
+                format!("{place}: [solver] increments"),
+                format!(
+                    "{} steps per unit of pseudo-time through the histories (to t = {}) make {n} increments, more than {}",
+                    case.solver.n_increments(),
+                    breakpoints.last().copied().unwrap_or(1.0),
+                    crate::case::MAX_INCREMENTS
+                ),
+            ));
+        }
     }
     let (prescribed, prescribed_history) = prescribed.into_iter().unzip();
     Ok(Loads {
@@ -178,7 +192,7 @@ fn edge_traction(
             at,
             format!(
                 "no edge set \"{}\" (sets: {})",
-                clip(&ld.edges),
+                ld.edges,
                 names(mesh.edge_sets.keys())
             ),
         )
@@ -253,7 +267,7 @@ fn concentrated_force(
             at,
             format!(
                 "no node set \"{}\" (sets: {})",
-                clip(&fs.nodes),
+                fs.nodes,
                 names(mesh.node_sets.keys())
             ),
         )
@@ -309,7 +323,7 @@ fn boundary_conditions(
                 &at,
                 format!(
                     "no node set \"{}\" (sets: {})",
-                    clip(&bc.set),
+                    bc.set,
                     names(mesh.node_sets.keys())
                 ),
             )

@@ -286,16 +286,7 @@ impl Model {
     /// path may turn (empty when the case has no history). With histories,
     /// 0 and 1 (the default ramp's points) are among them.
     pub fn breakpoints(&self) -> Vec<f64> {
-        if self.histories.is_empty() {
-            return Vec::new();
-        }
-        let mut t: Vec<f64> = [0.0, 1.0]
-            .into_iter()
-            .chain(self.histories.iter().flat_map(|h| h.times()))
-            .collect();
-        t.sort_by(f64::total_cmp);
-        t.dedup();
-        t
+        crate::history::breakpoints(&self.histories)
     }
 
     /// The value of every history of the case at pseudo-time t, in a fixed

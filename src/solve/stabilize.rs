@@ -642,8 +642,8 @@ mod tests {
             centre: [10.0, 10.0],
             size: 20.0,
             bc: [0.0; 6],
-            load: 0.0,
-            driven: false,
+            load: Vec::new(),
+            driven: Vec::new(),
         }
     }
 

@@ -204,9 +204,24 @@ impl Stepper {
         }
     }
 
-    /// Increments planned: the schedule's length, or None for automatic control.
+    /// Increments planned: the schedule's length (counted, not built), or
+    /// None for automatic control.
     pub fn planned(spec: &SolverSpec, breakpoints: &[f64]) -> Option<usize> {
-        (spec.step_mode() == StepControl::Fixed).then(|| Stepper::schedule(spec, breakpoints).len())
+        if spec.step_mode() != StepControl::Fixed {
+            return None;
+        }
+        let ways = waypoints(breakpoints);
+        if ways.is_empty() {
+            return Some(spec.schedule().len());
+        }
+        let first = spec.first_increment.filter(|&f| f < ways[0]);
+        let mut a = first.unwrap_or(0.0);
+        let mut n = usize::from(first.is_some());
+        for &b in &ways {
+            n = n.saturating_add(segment_steps(b - a, spec.n_increments()));
+            a = b;
+        }
+        Some(n)
     }
 
     /// The next load factor to try from `lambda`, or `None` when the history is done.
