@@ -13,6 +13,7 @@ mod factorization;
 mod friction;
 mod gap;
 mod gold;
+mod histories;
 mod limit_load;
 mod patch;
 mod punch;
