@@ -184,11 +184,33 @@ fn default_yield_ratio() -> f64 {
 }
 
 /// A load's history: the name of a `[history]` entry, or a table given in place.
-#[derive(Clone, Debug, Deserialize, PartialEq)]
-#[serde(untagged)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum HistoryRef {
     Name(String),
     Table(Vec<Vec<f64>>),
+}
+
+impl<'de> Deserialize<'de> for HistoryRef {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        struct Visit;
+        impl<'de> serde::de::Visitor<'de> for Visit {
+            type Value = HistoryRef;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("the name of a [history] entry or a table [[time, value], ...]")
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> std::result::Result<HistoryRef, E> {
+                Ok(HistoryRef::Name(v.to_string()))
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(
+                self,
+                seq: A,
+            ) -> std::result::Result<HistoryRef, A::Error> {
+                Vec::deserialize(serde::de::value::SeqAccessDeserializer::new(seq))
+                    .map(HistoryRef::Table)
+            }
+        }
+        d.deserialize_any(Visit)
+    }
 }
 
 /// Prescribed displacement on a node set (value at factor 1; 0 = fixed).

@@ -169,7 +169,10 @@ fn punch(pressure: f64, yield_stress: &str, history: &str) -> String {
             .unwrap()
             .replace("gap = 1e30\n", "")
             .replace("yield_stress = 196.0\n", yield_stress)
-            .replace("increments = 4\nfirst_increment = 0.05\n", "increments = 8\n")
+            .replace(
+                "increments = 4\nfirst_increment = 0.05\n",
+                "increments = 8\n",
+            )
             .replace(
                 "pressure = 250.0\n",
                 &format!("pressure = {pressure}\nhistory = {history}\n"),
@@ -445,11 +448,7 @@ fn fixed_steps_split_each_segment_and_stop_at_every_breakpoint() {
         Some(path.len())
     );
     for (a, b, n) in [(0.0, 0.3, 3), (0.3, 1.0, 7), (1.0, 2.5, 15), (2.5, 3.0, 5)] {
-        let inside: Vec<f64> = path
-            .iter()
-            .copied()
-            .filter(|&t| t > a && t <= b)
-            .collect();
+        let inside: Vec<f64> = path.iter().copied().filter(|&t| t > a && t <= b).collect();
         assert_eq!(inside.len(), n, "segment {a} → {b}: {inside:?}");
         let steps: Vec<f64> = std::iter::once(a)
             .chain(inside.iter().copied())
