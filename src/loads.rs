@@ -304,6 +304,9 @@ fn concentrated_force(
     Ok(())
 }
 
+/// A prescribed dof and its value at factor 1, and its history.
+type Prescribed = ((usize, f64), Option<usize>);
+
 /// The prescribed dofs, their values and histories. A dof may be named by
 /// several `[[boundary]]` entries only with the same value and history (a
 /// corner in two fixed sets); two different ones for one node and direction
@@ -313,7 +316,7 @@ fn boundary_conditions(
     mesh: &Mesh,
     place: &str,
     res: &mut Resolver,
-) -> Result<Vec<((usize, f64), Option<usize>)>> {
+) -> Result<Vec<Prescribed>> {
     // dof → (value, history, index of the first entry that set it)
     let mut out: BTreeMap<usize, (f64, Option<usize>, usize)> = Default::default();
     for (i, bc) in case.boundary.iter().enumerate() {

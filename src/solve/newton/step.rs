@@ -167,14 +167,13 @@ impl Problem for StepProblem<'_, '_> {
         // norms over free dofs; reactions over prescribed dofs
         let m = e.model;
         e.load_at(self.lambda);
-        let load = &e.load;
         let (mut r2, mut f2, mut react2) = (0.0, 0.0, 0.0);
-        for d in 0..e.r.len() {
+        for (d, (&r, &f)) in e.r.iter().zip(&e.load).enumerate() {
             if m.dofs.equation(d).is_some() {
-                r2 += e.r[d] * e.r[d];
-                f2 += load[d].powi(2);
+                r2 += r * r;
+                f2 += f.powi(2);
             } else {
-                react2 += e.r[d] * e.r[d];
+                react2 += r * r;
             }
         }
         self.reference = f2.sqrt().max(react2.sqrt()).max(m.force_floor);
