@@ -344,9 +344,25 @@ pub fn check(case_path: &Path) -> Result<String> {
             im.law
         );
     }
-    let sched = model.solver.schedule();
+    let breakpoints = model.breakpoints();
+    if !breakpoints.is_empty() {
+        s += &format!(
+            "  load histories: {}, breakpoints at t = {}; the run ends at t = {}\n",
+            model.histories.len(),
+            breakpoints
+                .iter()
+                .map(|t| t.to_string())
+                .collect::<Vec<_>>()
+                .join(", "),
+            solve::stepping::waypoints(&breakpoints)
+                .last()
+                .copied()
+                .unwrap_or(1.0)
+        );
+    }
     match model.solver.step_mode() {
         crate::case::StepControl::Fixed => {
+            let sched = solve::stepping::Stepper::schedule(&model.solver, &breakpoints);
             s += &format!(
                 "  solver: {}, {} increments (first {:.4}, last {:.4}), ≤ {} iterations each, ≤ {} cutbacks\n",
                 model.solver.method.name(),
@@ -361,7 +377,7 @@ pub fn check(case_path: &Path) -> Result<String> {
             s += &format!(
                 "  solver: {}, automatic steps to λ = {:.4} (first {:.4}, at most {:.4}, plastic strain ≈ {} per step), ≤ {} iterations each, ≤ {} cutbacks in a row\n",
                 model.solver.method.name(),
-                sched[sched.len() - 1],
+                solve::stepping::Stepper::for_model(&model).final_target(0.0),
                 model.solver.first_increment.unwrap_or(1.0 / model.solver.n_increments() as f64),
                 model.solver.max_increment.unwrap_or(0.25),
                 model.solver.plastic_strain_step,

@@ -520,3 +520,98 @@ fn a_run_with_histories_steps_on_every_breakpoint_in_both_modes() {
         assert_eq!(*path.last().unwrap(), 2.2, "{solver}: {path:?}");
     }
 }
+
+/// A slider pressed on a base and sheared back and forth over a rough,
+/// frictional joint: preload, then a tangential cycle into slip.
+const SLIDEWAY: &str = r#"
+[model]
+plane = "strain"
+[[mesh.block]]
+body = "slider"
+x = [0.0, 10.0]
+nx = [6]
+y = [0.0, 4.0]
+ny = [2]
+[[mesh.block]]
+body = "base"
+x = [0.0, 10.0]
+nx = [6]
+y = [-6.0, 0.0]
+ny = [3]
+[[mesh.interface]]
+name = "joint"
+upper = "slider"
+lower = "base"
+[materials.slider]
+young = 210000.0
+poisson = 0.3
+[materials.base]
+young = 210000.0
+poisson = 0.3
+[interface.joint]
+law = "power"
+c_n = 0.001
+m = 0.5
+[interface.joint.tangential]
+r = 0.9
+s = 0.5
+kp_ratio = 0.05
+mu = 0.2
+[history]
+shear = [[1, 0], [2, 1], [3, -1], [4, 0]]
+[[boundary]]
+set = "base.bottom"
+ux = 0.0
+uy = 0.0
+[[load]]
+edges = "slider.top"
+pressure = 50.0
+[[load]]
+edges = "slider.top"
+shear = 9.0
+history = "shear"
+[solver]
+{solver}
+[output]
+vtu = false
+"#;
+
+#[test]
+fn a_run_with_histories_stopped_and_restarted_takes_the_same_steps() {
+    use asperity::driver::{self, RunOptions};
+    for (tag, solver) in [
+        ("fixed", "increments = 4"),
+        ("auto", "step_control = \"auto\"\nmax_increment = 0.25"),
+    ] {
+        let case = common::case_dir(
+            &format!("histories-restart-{tag}"),
+            &SLIDEWAY.replace("{solver}", solver),
+        );
+        let dir = case.parent().unwrap().to_path_buf();
+        let go = |out: &str, restart: bool, stop_after: Option<usize>| {
+            let out = dir.join(out);
+            let opts = RunOptions {
+                out: Some(out.clone()),
+                quiet: true,
+                restart: restart.then(|| out.clone()),
+                stop_after,
+                ..RunOptions::default()
+            };
+            driver::run(&case, &opts).unwrap_or_else(|e| panic!("{tag}: {e}"));
+            std::fs::read_to_string(out.join("curve.csv")).unwrap()
+        };
+        let full = go("full", false, None);
+        // stopped inside the shear cycle, after the reversal at t = 2
+        let part = go("part", false, Some(9));
+        assert_eq!(part.lines().count(), 1 + 9, "{tag}");
+        let resumed = go("part", true, None);
+        assert_eq!(full, resumed, "{tag}");
+        let times: Vec<f64> = full
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').nth(1).unwrap().parse().unwrap())
+            .collect();
+        stops_at_every_breakpoint(&times, &[1.0, 2.0, 3.0, 4.0]);
+        assert_eq!(*times.last().unwrap(), 4.0, "{tag}: {times:?}");
+    }
+}
