@@ -291,7 +291,14 @@ fn attempt(
     ck: &Checkpoint,
     target: f64,
 ) -> Result<std::result::Result<(State, usize), StepFailure>> {
-    let start = predict(&ck.committed, &ck.last_du, ck.last_step, target - ck.lambda);
+    // at a history breakpoint the load path may turn: the last increment
+    // says nothing about the next one
+    let turning = engine.model.breakpoints().contains(&ck.lambda);
+    let start = if turning {
+        None
+    } else {
+        predict(&ck.committed, &ck.last_du, ck.last_step, target - ck.lambda)
+    };
     let mut outcome = engine.step_from(&ck.committed, target, Response::Plastic, start.as_deref());
     if start.is_some()
         && outcome
