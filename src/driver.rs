@@ -139,7 +139,8 @@ pub fn run_model(
         .clone()
         .unwrap_or_else(|| Path::new("out").join(&model.name));
     // 0: automatic step control, the count is not known in advance
-    let planned = solve::stepping::Stepper::planned(&model.solver).unwrap_or(0);
+    let planned =
+        solve::stepping::Stepper::planned(&model.solver, &model.breakpoints()).unwrap_or(0);
     let control = Control {
         stop_after: opts.stop_after,
     };
@@ -223,7 +224,7 @@ fn report_end(log: &Log, model: &Model, dir: &Path, r: &RunResult, wall: f64) {
     let last = r.increments.last();
     let m = last.map(|i| i.measures).unwrap_or_default();
     let lambda = last.map_or(0.0, |i| i.load_factor);
-    let planned = solve::stepping::Stepper::planned(&model.solver);
+    let planned = solve::stepping::Stepper::planned(&model.solver, &model.breakpoints());
     let fy = r.first_yield.as_ref();
     if let Some(stop) = r.stopped {
         let case = model.source.display().to_string();
@@ -356,9 +357,25 @@ pub fn check(case_path: &Path) -> Result<String> {
             t[1]
         );
     }
-    let sched = model.solver.schedule();
+    let breakpoints = model.breakpoints();
+    if !breakpoints.is_empty() {
+        s += &format!(
+            "  load histories: {}, breakpoints at t = {}; the run ends at t = {}\n",
+            model.histories.len(),
+            breakpoints
+                .iter()
+                .map(|t| t.to_string())
+                .collect::<Vec<_>>()
+                .join(", "),
+            solve::stepping::waypoints(&breakpoints)
+                .last()
+                .copied()
+                .unwrap_or(1.0)
+        );
+    }
     match model.solver.step_mode() {
         crate::case::StepControl::Fixed => {
+            let sched = solve::stepping::Stepper::schedule(&model.solver, &breakpoints);
             s += &format!(
                 "  solver: {}, {} increments (first {:.4}, last {:.4}), ≤ {} iterations each, ≤ {} cutbacks\n",
                 model.solver.method.name(),
@@ -373,7 +390,7 @@ pub fn check(case_path: &Path) -> Result<String> {
             s += &format!(
                 "  solver: {}, automatic steps to λ = {:.4} (first {:.4}, at most {:.4}, plastic strain ≈ {} per step), ≤ {} iterations each, ≤ {} cutbacks in a row\n",
                 model.solver.method.name(),
-                sched[sched.len() - 1],
+                solve::stepping::Stepper::for_model(&model).final_target(0.0),
                 model.solver.first_increment.unwrap_or(1.0 / model.solver.n_increments() as f64),
                 model.solver.max_increment.unwrap_or(0.25),
                 model.solver.plastic_strain_step,

@@ -38,10 +38,23 @@ pub struct Model {
     /// Material per body.
     pub materials: Vec<VonMises>,
     pub interfaces: Vec<InterfaceModel>,
-    /// Prescribed dofs and their values at load factor 1.
+    /// Prescribed dofs and their values at factor 1 (the value at
+    /// pseudo-time t: [`Model::prescribed_at`]).
     pub prescribed: Vec<(usize, f64)>,
-    /// External nodal forces at load factor 1 (all dofs).
+    /// The history of each prescribed dof (`None`: the load factor, or the
+    /// default ramp); parallel to [`Model::prescribed`].
+    pub prescribed_history: Vec<Option<usize>>,
+    /// External nodal forces at factor 1 (all dofs) of the loads without a
+    /// history of their own: those of the load factor t, or of the default
+    /// ramp in a case with histories (the force at pseudo-time t:
+    /// [`Model::external_force`]).
     pub f_ext: Vec<f64>,
+    /// External nodal forces at factor 1 of the loads with histories, one
+    /// vector per history ([`Model::patterns`]).
+    pub loads: Vec<crate::loads::LoadPattern>,
+    /// Every history of the case: the named ones in name order, then those
+    /// given in place (empty: the case has none, and t is the load factor).
+    pub histories: Vec<crate::history::History>,
     pub dofs: DofMap,
     /// Index of the first interface block in [`Model::blocks`] (elements come first).
     pub interface_block_base: Vec<usize>,
@@ -134,7 +147,7 @@ impl Model {
             )?;
         }
         // interfaces
-        let mut interfaces = Vec::new();
+        let mut interfaces: Vec<InterfaceModel> = Vec::new();
         for iface in &mesh.interfaces {
             let law = checked.laws.get(&iface.name).ok_or_else(|| {
                 Error::input(
@@ -162,13 +175,37 @@ impl Model {
                 ));
             }
         }
-        let prescribed = boundary_conditions(&case, &mesh, &place)?;
-        let prescribed = crate::case::axis::hold_axis(&case, &mesh, prescribed, &place)?;
-        let f_ext = external_forces(&case, &mesh, &section, &place)?;
-        if f_ext.iter().all(|&f| f == 0.0) && prescribed.iter().all(|&(_, v)| v == 0.0) {
+        let mut loads = crate::loads::build(&case, &mesh, section, &place)?;
+        let f_ext = loads.patterns.remove(0).f;
+        for im in interfaces.iter_mut() {
+            im.gap_history = loads
+                .gap_history
+                .get(&im.name)
+                .map(|&h| loads.histories[h].clone());
+        }
+        // u_r = 0 on the axis of an axisymmetric model (no history: always 0)
+        let given: std::collections::HashMap<usize, Option<usize>> = loads
+            .prescribed
+            .iter()
+            .zip(&loads.prescribed_history)
+            .map(|(&(d, _), &h)| (d, h))
+            .collect();
+        let prescribed = crate::case::axis::hold_axis(&case, &mesh, loads.prescribed, &place)?;
+        loads.prescribed_history = prescribed
+            .iter()
+            .map(|(d, _)| given.get(d).copied().flatten())
+            .collect();
+        let interference = interfaces
+            .iter()
+            .any(|im| im.gap < 0.0 || (im.gap != 0.0 && im.gap_history.is_some()));
+        if f_ext.iter().all(|&f| f == 0.0)
+            && loads.patterns.iter().all(|p| p.f.iter().all(|&f| f == 0.0))
+            && prescribed.iter().all(|&(_, v)| v == 0.0)
+            && !interference
+        {
             return Err(Error::input(
                 &place,
-                "nothing loads the model: no [[load]] and no non-zero prescribed displacement in [[boundary]]",
+                "nothing loads the model: no [[load]], no [[force]], no non-zero prescribed displacement in [[boundary]] and no interference (negative gap) or gap_history",
             ));
         }
         check_supports(
@@ -214,7 +251,10 @@ impl Model {
             materials,
             interfaces,
             prescribed,
+            prescribed_history: loads.prescribed_history,
             f_ext,
+            loads: loads.patterns,
+            histories: loads.histories,
             dofs,
             interface_block_base,
             probe_node,
@@ -226,12 +266,7 @@ impl Model {
             source: case.source.clone(),
             description: case.description.clone(),
             integration: case.model.integration,
-            case_key: {
-                let mut key = case.clone();
-                key.source = Default::default();
-                key.description = None;
-                format!("{key:?}")
-            },
+            case_key: case.key(),
         })
     }
 
@@ -271,16 +306,98 @@ impl Model {
     }
 
     /// Pseudo-times of every history breakpoint, ascending: where the load
-    /// path may turn (empty when the case has no history).
+    /// path may turn (empty when the case has no history). With histories,
+    /// 0 and 1 (the default ramp's points) are among them.
     pub fn breakpoints(&self) -> Vec<f64> {
-        Vec::new()
+        crate::history::breakpoints(&self.histories)
     }
 
     /// The value of every history of the case at pseudo-time t, in a fixed
     /// order (empty when the case has no history): two times with equal
     /// values have the same applied loads.
-    pub fn history_values(&self, _t: f64) -> Vec<f64> {
-        Vec::new()
+    pub fn history_values(&self, t: f64) -> Vec<f64> {
+        self.histories.iter().map(|h| h.value(t)).collect()
+    }
+
+    /// The factor of a load with history `h` at pseudo-time t: the history's
+    /// value; without one, t itself (a case without histories: the load
+    /// factor) or the default ramp [[0, 0], [1, 1]] held at 1.
+    pub fn factor(&self, h: Option<usize>, t: f64) -> f64 {
+        match h {
+            Some(i) => self.histories[i].value(t),
+            None if self.histories.is_empty() => t,
+            None => t.clamp(0.0, 1.0),
+        }
+    }
+
+    /// Every load pattern: its history and its forces at factor 1 (all
+    /// dofs); [`Model::f_ext`] first, with no history of its own.
+    pub fn patterns(&self) -> impl Iterator<Item = (Option<usize>, &[f64])> + '_ {
+        std::iter::once((None, self.f_ext.as_slice()))
+            .chain(self.loads.iter().map(|p| (p.history, p.f.as_slice())))
+    }
+
+    /// The external nodal forces at pseudo-time t (all dofs) into `out`:
+    /// Σ_p h_p(t) f_p, exactly t · f_ext in a case without histories.
+    pub fn external_force(&self, t: f64, out: &mut [f64]) {
+        let a = self.factor(None, t);
+        for (o, f) in out.iter_mut().zip(&self.f_ext) {
+            *o = a * f;
+        }
+        for p in &self.loads {
+            let a = self.factor(p.history, t);
+            for (o, f) in out.iter_mut().zip(&p.f) {
+                *o += a * f;
+            }
+        }
+    }
+
+    /// The prescribed dofs and their values at pseudo-time t.
+    pub fn prescribed_at(&self, t: f64) -> impl Iterator<Item = (usize, f64)> + '_ {
+        self.prescribed
+            .iter()
+            .zip(&self.prescribed_history)
+            .map(move |(&(d, v), &h)| (d, self.factor(h, t) * v))
+    }
+
+    /// The gap of interface `i` at pseudo-time t (mm): g₀, or g₀ · h(t)
+    /// with a gap history.
+    pub fn gap_at(&self, i: usize, t: f64) -> f64 {
+        self.interfaces[i].gap_at(t)
+    }
+
+    /// The reference pressure of interface `i` in a step to pseudo-time t
+    /// (MPa): the case's `start_pressure`, else the mean pressure of the
+    /// applied load normal to the interface, at least 1 MPa; with no such
+    /// load and an interference, the law's pressure at the interference.
+    /// The secant start of eq. 2.8-2.9 and the contact stabilization's
+    /// spring scale use it.
+    pub fn reference_pressure(&self, i: usize, t: f64) -> f64 {
+        let im = &self.interfaces[i];
+        im.start_pressure.unwrap_or_else(|| {
+            let n = im.pairs.first().map_or([0.0, 1.0], |p| p.normal);
+            let normal = |f: &[f64]| -> f64 {
+                (0..self.mesh.nodes.len())
+                    .map(|i| f[2 * i] * n[0] + f[2 * i + 1] * n[1])
+                    .sum()
+            };
+            let p = if self.histories.is_empty() {
+                // the load factor times the pattern's normal resultant, as always
+                t * normal(&self.f_ext).abs() / im.area()
+            } else {
+                let f: f64 = self
+                    .patterns()
+                    .map(|(h, f)| self.factor(h, t) * normal(f))
+                    .sum();
+                f.abs() / im.area()
+            };
+            let gap = im.gap_at(t);
+            if p == 0.0 && gap < 0.0 {
+                im.law.pressure(-gap).0.max(1.0)
+            } else {
+                p.max(1.0)
+            }
+        })
     }
 
     pub fn n_gauss(&self) -> usize {
@@ -323,133 +440,6 @@ fn block_dofs(mesh: &Mesh, interfaces: &[InterfaceModel]) -> (Blocks, Vec<usize>
         }
     }
     (blocks, base)
-}
-
-fn in_range(v: f64, r: &Option<[f64; 2]>) -> bool {
-    r.is_none_or(|[lo, hi]| v >= lo - 1e-9 && v <= hi + 1e-9)
-}
-
-/// The prescribed dofs and their values. A dof may be named by several
-/// `[[boundary]]` entries only with the same value (a corner in two fixed
-/// sets); two different values for one node and direction are refused, naming
-/// both entries (docs/case-schema.md, "Prescribed values").
-fn boundary_conditions(case: &Case, mesh: &Mesh, place: &str) -> Result<Vec<(usize, f64)>> {
-    // dof → (value, index of the first entry that set it)
-    let mut out: std::collections::BTreeMap<usize, (f64, usize)> = Default::default();
-    for (i, bc) in case.boundary.iter().enumerate() {
-        let at = format!("{place}: boundary[{i}] (set \"{}\")", bc.set);
-        let nodes = mesh.node_sets.get(&bc.set).ok_or_else(|| {
-            Error::input(
-                &at,
-                format!(
-                    "no node set \"{}\" (sets: {})",
-                    bc.set,
-                    names(mesh.node_sets.keys())
-                ),
-            )
-        })?;
-        if bc.ux.is_none() && bc.uy.is_none() {
-            return Err(Error::input(&at, "give ux and/or uy"));
-        }
-        let mut count = 0;
-        for &n in nodes {
-            let x = mesh.nodes[n];
-            if !(in_range(x[0], &bc.x_range) && in_range(x[1], &bc.y_range)) {
-                continue;
-            }
-            count += 1;
-            for (c, v) in [bc.ux, bc.uy].iter().enumerate() {
-                if let Some(v) = v {
-                    if !v.is_finite() {
-                        return Err(Error::input(&at, format!("displacement {v} is not finite")));
-                    }
-                    let (first, _) = *out.entry(2 * n + c).or_insert((*v, i));
-                    if first != *v {
-                        let j = out[&(2 * n + c)].1;
-                        return Err(Error::input(
-                            format!("{at} u{}", ["x", "y"][c]),
-                            format!(
-                                "gives node {n} at ({}, {}) u{} = {v}, but boundary[{j}] (set \"{}\") already gives it {first}: one prescribed value per node and direction",
-                                x[0],
-                                x[1],
-                                ["x", "y"][c],
-                                crate::error::clip(&case.boundary[j].set)
-                            ),
-                        ));
-                    }
-                }
-            }
-        }
-        if count == 0 {
-            return Err(Error::input(
-                &at,
-                "selects no node (check x_range / y_range)",
-            ));
-        }
-    }
-    Ok(out.into_iter().map(|(d, (v, _))| (d, v)).collect())
-}
-
-fn external_forces(
-    case: &Case,
-    mesh: &Mesh,
-    section: &crate::fem::Section,
-    place: &str,
-) -> Result<Vec<f64>> {
-    let mut f = vec![0.0; mesh.num_dofs()];
-    let gp = q8::gauss_1d(3);
-    for (i, ld) in case.load.iter().enumerate() {
-        let at = format!("{place}: load[{i}] (edges \"{}\")", ld.edges);
-        let edges = mesh.edge_sets.get(&ld.edges).ok_or_else(|| {
-            Error::input(
-                &at,
-                format!(
-                    "no edge set \"{}\" (sets: {})",
-                    ld.edges,
-                    names(mesh.edge_sets.keys())
-                ),
-            )
-        })?;
-        if !ld.pressure.is_finite() || ld.pressure == 0.0 {
-            return Err(Error::input(
-                &at,
-                format!(
-                    "pressure {} must be a finite, non-zero number (MPa)",
-                    ld.pressure
-                ),
-            ));
-        }
-        let mut count = 0;
-        for edge in edges {
-            let x: Vec<[f64; 2]> = edge.iter().map(|&n| mesh.nodes[n]).collect();
-            if !(in_range(x[1][0], &ld.x_range) && in_range(x[1][1], &ld.y_range)) {
-                continue;
-            }
-            count += 1;
-            for &(s, w) in &gp {
-                let n = q8::edge_shape(s);
-                let dn = [s - 0.5, -2.0 * s, s + 0.5];
-                let (mut tx, mut ty) = (0.0, 0.0);
-                for k in 0..3 {
-                    tx += dn[k] * x[k][0];
-                    ty += dn[k] * x[k][1];
-                }
-                let xg = [0, 1].map(|c| (0..3).map(|k| n[k] * x[k][c]).sum::<f64>());
-                // body on the left: outward normal × ds = (t_y, −t_x) dξ; pressure pushes inward
-                for k in 0..3 {
-                    f[2 * edge[k]] -= ld.pressure * n[k] * ty * w * section.measure(xg);
-                    f[2 * edge[k] + 1] += ld.pressure * n[k] * tx * w * section.measure(xg);
-                }
-            }
-        }
-        if count == 0 {
-            return Err(Error::input(
-                &at,
-                "selects no edge (check x_range / y_range)",
-            ));
-        }
-    }
-    Ok(f)
 }
 
 /// Every body must be held in x and in y, by its own prescribed dofs or through
@@ -532,14 +522,4 @@ fn probe(case: &Case, mesh: &Mesh, interfaces: &[InterfaceModel]) -> (usize, f64
                 .unwrap_or(0)
         });
     (best, mesh.nodes.get(best).map_or(0.0, |x| x[1]))
-}
-
-/// A list of names for a message: each clipped, at most 30 of them.
-fn names<'a>(it: impl Iterator<Item = &'a String>) -> String {
-    let all: Vec<&String> = it.collect();
-    let mut s: Vec<String> = all.iter().take(30).map(|n| crate::error::clip(n)).collect();
-    if all.len() > 30 {
-        s.push(format!("… {} more", all.len() - 30));
-    }
-    s.join(", ")
 }

@@ -419,6 +419,7 @@ pub fn decode(
     let increments = *s.u("increment")?.first().ok_or("empty increment")? as usize;
     restore_stepper(&mut ck, &s)?;
     restore_state(&mut ck, &s)?;
+    ck.committed.time = ck.lambda;
     ck.increments = restore_curve(&s, increments)?;
     restore_joints(&mut ck, &s, model.interfaces.len())?;
     ck.first_yield = restore_first_yield(&s)?;

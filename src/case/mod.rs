@@ -51,6 +51,14 @@ pub struct Case {
     /// Where the case was read from (not part of the schema).
     #[serde(skip)]
     pub source: PathBuf,
+    // the keys added with load histories come last: a case without them
+    // keeps the restart fingerprint it had before (`Case::key`)
+    /// Concentrated forces on node sets.
+    #[serde(default)]
+    pub force: Vec<ForceSpec>,
+    /// Named load histories (pseudo-time → factor), referenced by name.
+    #[serde(default)]
+    pub history: BTreeMap<String, Vec<Vec<f64>>>,
 }
 
 #[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default)]
@@ -162,6 +170,9 @@ pub struct InterfaceLawSpec {
     pub start_pressure: Option<f64>,
     /// Tangential compliance and friction (section 2.2, 2.4-2.6); none = frictionless.
     pub tangential: Option<TangentialSpec>,
+    /// The gap at pseudo-time t is g₀ · h(t) (an interference pressed in
+    /// gradually); none: g₀ from the start.
+    pub gap_history: Option<HistoryRef>,
 }
 
 /// `[interface.<name>.tangential]`: elastic-plastic shear compliance with
@@ -195,7 +206,37 @@ fn default_yield_ratio() -> f64 {
     0.625
 }
 
-/// Prescribed displacement on a node set (value at load factor 1; 0 = fixed).
+/// A load's history: the name of a `[history]` entry, or a table given in place.
+#[derive(Clone, Debug, PartialEq)]
+pub enum HistoryRef {
+    Name(String),
+    Table(Vec<Vec<f64>>),
+}
+
+impl<'de> Deserialize<'de> for HistoryRef {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        struct Visit;
+        impl<'de> serde::de::Visitor<'de> for Visit {
+            type Value = HistoryRef;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("the name of a [history] entry or a table [[time, value], ...]")
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> std::result::Result<HistoryRef, E> {
+                Ok(HistoryRef::Name(v.to_string()))
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(
+                self,
+                seq: A,
+            ) -> std::result::Result<HistoryRef, A::Error> {
+                Vec::deserialize(serde::de::value::SeqAccessDeserializer::new(seq))
+                    .map(HistoryRef::Table)
+            }
+        }
+        d.deserialize_any(Visit)
+    }
+}
+
+/// Prescribed displacement on a node set (value at factor 1; 0 = fixed).
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BoundarySpec {
@@ -208,20 +249,50 @@ pub struct BoundarySpec {
     pub x_range: Option<[f64; 2]>,
     #[serde(default, deserialize_with = "two_numbers_opt")]
     pub y_range: Option<[f64; 2]>,
+    /// The factor's history; none: the load factor (or the default ramp).
+    pub history: Option<HistoryRef>,
 }
 
-/// Uniform pressure on an edge set (value at load factor 1, MPa, pushing into the body).
+/// Uniform traction on an edge set (values at factor 1, MPa): a pressure
+/// pushing into the body and a shear along the edge's tangent.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LoadSpec {
     /// Edge set name, e.g. "punch.top".
     pub edges: String,
+    #[serde(default)]
     pub pressure: f64,
     /// Only edges whose midpoint has x in [lo, hi] (mm).
     #[serde(default, deserialize_with = "two_numbers_opt")]
     pub x_range: Option<[f64; 2]>,
     #[serde(default, deserialize_with = "two_numbers_opt")]
     pub y_range: Option<[f64; 2]>,
+    /// Shear traction along t = (n_y, −n_x), the outward normal turned
+    /// clockwise (+x on a top edge).
+    #[serde(default)]
+    pub shear: f64,
+    /// The factor's history; none: the load factor (or the default ramp).
+    pub history: Option<HistoryRef>,
+}
+
+/// A concentrated force at every node of a node set (N, at factor 1; for
+/// the model's thickness, or the whole revolution in axisymmetry).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ForceSpec {
+    /// Node set name, e.g. "punch.top".
+    pub nodes: String,
+    #[serde(default)]
+    pub fx: f64,
+    #[serde(default)]
+    pub fy: f64,
+    /// Only nodes with x in [lo, hi] (mm).
+    #[serde(default, deserialize_with = "two_numbers_opt")]
+    pub x_range: Option<[f64; 2]>,
+    #[serde(default, deserialize_with = "two_numbers_opt")]
+    pub y_range: Option<[f64; 2]>,
+    /// The factor's history; none: the load factor (or the default ramp).
+    pub history: Option<HistoryRef>,
 }
 
 /// Exactly two numbers: serde's fixed-size arrays would drop a third one
@@ -383,6 +454,33 @@ impl Case {
                 e.message().trim().replace('\n', " "),
             )
         })
+    }
+
+    /// The effective case without its location and description, as text:
+    /// what a restart file's fingerprint identifies besides the mesh. A case
+    /// that uses none of the keys of load histories (`[history]`,
+    /// `[[force]]`, `shear`, `history`, `gap_history`) has the text it had
+    /// before they existed, so its older restart files still resume.
+    pub fn key(&self) -> String {
+        let mut key = self.clone();
+        key.source = Default::default();
+        key.description = None;
+        let full = format!("{key:?}");
+        let new_keys = !key.history.is_empty()
+            || !key.force.is_empty()
+            || key
+                .load
+                .iter()
+                .any(|l| l.shear != 0.0 || l.history.is_some())
+            || key.boundary.iter().any(|b| b.history.is_some())
+            || key.interface.values().any(|i| i.gap_history.is_some());
+        if new_keys {
+            return full;
+        }
+        full.replace(", shear: 0.0, history: None }", " }")
+            .replace(", history: None }", " }")
+            .replace(", gap_history: None }", " }")
+            .replace(", force: [], history: {} }", " }")
     }
 
     /// The case name: `name`, else the folder holding the case file, else the file stem.

@@ -67,6 +67,13 @@ pub const PRESSURE: Range = Range {
     lo: 1e-6,
     hi: 1e6,
 };
+/// Concentrated forces (`[[force]] fx`, `fy`): 1 µN to 1 TN.
+pub const FORCE: Range = Range {
+    quantity: "a force",
+    unit: "N",
+    lo: 1e-6,
+    hi: 1e12,
+};
 /// Non-zero prescribed displacements and gaps.
 pub const DISPLACEMENT: Range = Range {
     quantity: "a displacement or gap",
@@ -117,7 +124,7 @@ pub const SLIP_RATE: Range = Range {
 };
 
 /// Every range, in the order of the documentation's table.
-pub const ALL: [&Range; 14] = [
+pub const ALL: [&Range; 15] = [
     &COORDINATE,
     &ELEMENT_SIZE,
     &THICKNESS,
@@ -125,6 +132,7 @@ pub const ALL: [&Range; 14] = [
     &YIELD_STRESS,
     &HARDENING,
     &PRESSURE,
+    &FORCE,
     &DISPLACEMENT,
     &COMPLIANCE,
     &SLOPE,

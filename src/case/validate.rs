@@ -110,6 +110,12 @@ pub fn check_case(case: &Case) -> Result<Checked> {
     }
     for (i, ld) in case.load.iter().enumerate() {
         ranges::PRESSURE.check(at(&format!("load[{i}] pressure")), ld.pressure)?;
+        ranges::PRESSURE.check(at(&format!("load[{i}] shear")), ld.shear)?;
+    }
+    for (i, f) in case.force.iter().enumerate() {
+        for (k, v) in [("fx", f.fx), ("fy", f.fy)] {
+            ranges::FORCE.check(at(&format!("force[{i}] {k}")), v)?;
+        }
     }
     for v in case.output.probe {
         ranges::COORDINATE.check(at("[output] probe"), v)?;

@@ -186,7 +186,11 @@ pub struct InterfaceModel {
     pub body_a: usize,
     pub body_b: usize,
     pub law: NormalLaw,
+    /// Initial gap g₀, mm (positive = open): the gap at every pseudo-time
+    /// without a gap history ([`InterfaceModel::gap_at`]).
     pub gap: f64,
+    /// The gap at pseudo-time t is g₀ · h(t) (set by the model after `new`).
+    pub gap_history: Option<crate::history::History>,
     pub pairs: Vec<Pair>,
     pub points: Vec<Point>,
     /// Secant-start reference pressure (MPa) if given in the case.
@@ -301,6 +305,7 @@ impl InterfaceModel {
             body_b: iface.body_b,
             law,
             gap,
+            gap_history: None,
             pairs,
             points,
             start_pressure,
@@ -314,20 +319,39 @@ impl InterfaceModel {
         self.pairs.iter().map(|p| p.area).sum()
     }
 
-    /// Approach at a pair (nodal value): u_N = (u_B − u_A)·n − g₀.
+    /// The gap at pseudo-time t, mm: g₀, or g₀ · h(t) with a gap history.
+    pub fn gap_at(&self, t: f64) -> f64 {
+        match &self.gap_history {
+            None => self.gap,
+            Some(h) => self.gap * h.value(t),
+        }
+    }
+
+    /// Approach at a pair (nodal value): u_N = (u_B − u_A)·n − g₀, with the
+    /// initial gap g₀ ([`InterfaceModel::pair_approach_at`] takes the gap at t).
     pub fn pair_approach(&self, pair: &Pair, u: &[f64]) -> f64 {
+        self.pair_approach_at(pair, u, self.gap)
+    }
+
+    /// Approach at a pair across the given gap: u_N = (u_B − u_A)·n − gap.
+    pub fn pair_approach_at(&self, pair: &Pair, u: &[f64], gap: f64) -> f64 {
         let n = pair.normal;
         let du = [
             u[2 * pair.b] - u[2 * pair.a],
             u[2 * pair.b + 1] - u[2 * pair.a + 1],
         ];
-        du[0] * n[0] + du[1] * n[1] - self.gap
+        du[0] * n[0] + du[1] * n[1] - gap
     }
 
     /// Normal approach and tangential displacement at a point, interpolated from
-    /// its pairs; t = (n_y, −n_x).
+    /// its pairs; t = (n_y, −n_x); across the initial gap g₀.
     pub fn point_kinematics(&self, pt: &Point, u: &[f64]) -> (f64, f64) {
-        let (mut un, mut ut) = (-self.gap, 0.0);
+        self.point_kinematics_at(pt, u, self.gap)
+    }
+
+    /// [`InterfaceModel::point_kinematics`] across the given gap.
+    pub fn point_kinematics_at(&self, pt: &Point, u: &[f64], gap: f64) -> (f64, f64) {
+        let (mut un, mut ut) = (-gap, 0.0);
         let (n, t) = (pt.normal, [pt.normal[1], -pt.normal[0]]);
         for i in 0..pt.len {
             let pr = &self.pairs[pt.pairs[i]];
@@ -362,7 +386,8 @@ impl InterfaceModel {
     /// Evaluates a point from its committed state: local residual `r` (len 4·len)
     /// and, if given, the local tangent `k` (row-major (4·len)²). `k_floor`
     /// replaces the normal stiffness of a point at or below zero approach (the
-    /// secant start of eq. 2.8-2.9).
+    /// secant start of eq. 2.8-2.9). Across the initial gap g₀; the solver
+    /// calls [`InterfaceModel::eval_point_at`] with the gap at its pseudo-time.
     pub fn eval_point(
         &self,
         pt: &Point,
@@ -372,7 +397,22 @@ impl InterfaceModel {
         r: &mut [f64],
         k: Option<&mut [f64]>,
     ) -> PointEval {
-        let (u_n, u_t) = self.point_kinematics(pt, u);
+        self.eval_point_at(pt, u, self.gap, committed, k_floor, r, k)
+    }
+
+    /// [`InterfaceModel::eval_point`] across the given gap.
+    #[allow(clippy::too_many_arguments)] // eval_point's arguments and the gap
+    pub fn eval_point_at(
+        &self,
+        pt: &Point,
+        u: &[f64],
+        gap: f64,
+        committed: &PointState,
+        k_floor: Option<f64>,
+        r: &mut [f64],
+        k: Option<&mut [f64]>,
+    ) -> PointEval {
+        let (u_n, u_t) = self.point_kinematics_at(pt, u, gap);
         let (p_n, k_law) = self.law.pressure(u_n);
         let k_n = match k_floor {
             Some(kf) if u_n <= 0.0 => kf,

@@ -280,7 +280,7 @@ pub fn interface_csv(model: &Model, state: &State) -> String {
         rows.sort_by(|&a, &b| arc[a].total_cmp(&arc[b]));
         for i in rows {
             let pr = &im.pairs[i];
-            let un = im.pair_approach(pr, &state.u);
+            let un = im.pair_approach_at(pr, &state.u, im.gap_at(state.time));
             let p = im.law.pressure(un).0;
             let (c, st) = if lumped && im.tangential.is_some() {
                 (state.contact[base + i], state.status[base + i])

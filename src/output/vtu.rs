@@ -75,7 +75,7 @@ pub fn write_vtu(w: &mut dyn std::io::Write, model: &Model, state: &State) -> st
         // shear tractions live at the spring points: one per pair when lumped
         let lumped = im.points.len() == im.pairs.len() && im.tangential.is_some();
         for (i, pr) in im.pairs.iter().enumerate() {
-            let un = im.pair_approach(pr, &state.u);
+            let un = im.pair_approach_at(pr, &state.u, im.gap_at(state.time));
             let p = im.law.pressure(un).0;
             let t = if lumped {
                 state.contact[base + i].p_t

@@ -38,6 +38,9 @@ pub struct State {
     /// Sum of the reactions at the dofs with a non-zero prescribed displacement
     /// (the force needed to impose it), N.
     pub prescribed_reaction: f64,
+    /// The pseudo-time of the state (the load factor without histories):
+    /// where its loads, prescribed values and gaps are taken.
+    pub time: f64,
 }
 
 impl State {
@@ -49,6 +52,7 @@ impl State {
             status: vec![Status::Closed; n_points],
             contact: vec![crate::interface::PointState::default(); n_points],
             prescribed_reaction: 0.0,
+            time: 0.0,
         }
     }
 }
@@ -93,10 +97,16 @@ impl Measures {
             ..Measures::default()
         };
         if let Some(im) = model.interfaces.first() {
+            let gap = im.gap_at(state.time);
             let force: f64 = im
                 .points
                 .iter()
-                .map(|pt| pt.area * im.law.pressure(im.point_kinematics(pt, &state.u).0).0)
+                .map(|pt| {
+                    pt.area
+                        * im.law
+                            .pressure(im.point_kinematics_at(pt, &state.u, gap).0)
+                            .0
+                })
                 .sum();
             m.normal_force = force;
             m.mean_pressure = force / im.area();
@@ -154,7 +164,7 @@ impl Checkpoint {
             lambda: 0.0,
             last_step: 0.0,
             last_du: Vec::new(),
-            stepper: stepping::Stepper::new(&model.solver),
+            stepper: stepping::Stepper::for_model(model),
             increments: Vec::new(),
             first_yield: None,
             elastic_ratio_prev: 0.0,
@@ -289,7 +299,14 @@ fn attempt(
     ck: &Checkpoint,
     target: f64,
 ) -> Result<std::result::Result<(State, usize), StepFailure>> {
-    let start = predict(&ck.committed, &ck.last_du, ck.last_step, target - ck.lambda);
+    // at a history breakpoint the load path may turn: the last increment
+    // says nothing about the next one
+    let turning = engine.model.breakpoints().contains(&ck.lambda);
+    let start = if turning {
+        None
+    } else {
+        predict(&ck.committed, &ck.last_du, ck.last_step, target - ck.lambda)
+    };
     let mut outcome = engine.step_from(&ck.committed, target, Response::Plastic, start.as_deref());
     if start.is_some()
         && outcome

@@ -74,10 +74,10 @@ struct Body {
     centre: [f64; 2],
     size: f64,
     bc: [f64; 6],
-    /// Force of the pressure loads at load factor 1 (N, |f_ext| over the body).
-    load: f64,
-    /// A non-zero prescribed displacement acts on it.
-    driven: bool,
+    /// Force of each load pattern at factor 1 (N, Σ |f| over the body's nodes).
+    load: Vec<f64>,
+    /// The histories of the non-zero prescribed displacements acting on it.
+    driven: Vec<Option<usize>>,
 }
 
 /// What the run reports about stabilization (summary.json "stabilization").
@@ -172,11 +172,11 @@ impl Stabilizer {
                     .max(hi[b][1] - lo[b][1])
                     .max(f64::MIN_POSITIVE),
                 bc: [0.0; 6],
-                load: 0.0,
-                driven: false,
+                load: vec![0.0; model.patterns().count()],
+                driven: Vec::new(),
             })
             .collect();
-        for &(d, v) in &model.prescribed {
+        for (&(d, v), &h) in model.prescribed.iter().zip(&model.prescribed_history) {
             let n = d / 2;
             let Some(b) = body_of.get(n).copied().filter(|&b| b < nb) else {
                 continue;
@@ -184,11 +184,15 @@ impl Stabilizer {
             let e = if d % 2 == 0 { [1.0, 0.0] } else { [0.0, 1.0] };
             let r = bodies[b].row(mesh.nodes[n], e);
             add_row(&mut bodies[b].bc, r);
-            bodies[b].driven |= v != 0.0;
+            if v != 0.0 && !bodies[b].driven.contains(&h) {
+                bodies[b].driven.push(h);
+            }
         }
-        for (n, &b) in body_of.iter().enumerate() {
-            if b < nb {
-                bodies[b].load += model.f_ext[2 * n].hypot(model.f_ext[2 * n + 1]);
+        for (p, (_, f)) in model.patterns().enumerate() {
+            for (n, &b) in body_of.iter().enumerate() {
+                if b < nb {
+                    bodies[b].load[p] += f[2 * n].hypot(f[2 * n + 1]);
+                }
             }
         }
         // a body without an interface and without enough supports is a
@@ -227,10 +231,8 @@ impl Stabilizer {
         if held.iter().all(|&h| h) {
             return Vec::new();
         }
-        let p_min: Vec<f64> = model
-            .interfaces
-            .iter()
-            .map(|im| SUPPORT * reference_pressure(model, im, lambda))
+        let p_min: Vec<f64> = (0..model.interfaces.len())
+            .map(|i| SUPPORT * model.reference_pressure(i, lambda))
             .collect();
         loop {
             let mut changed = false;
@@ -251,8 +253,9 @@ impl Stabilizer {
                     if !held[other] {
                         continue;
                     }
+                    let gap = im.gap_at(lambda);
                     for pr in &im.pairs {
-                        let un = im.pair_approach(pr, u);
+                        let un = im.pair_approach_at(pr, u, gap);
                         let supports = if un > 0.0 {
                             im.law.pressure(un).0 >= p_min[i]
                         } else {
@@ -278,18 +281,32 @@ impl Stabilizer {
         (0..held.len()).filter(|&b| !held[b]).collect()
     }
 
-    /// Whether a body held only through interfaces carries no load at `lambda`.
-    fn unloaded(&self, lambda: f64) -> Option<usize> {
+    /// Whether a body held only through interfaces carries no load at
+    /// pseudo-time `lambda`: every load pattern and prescribed displacement
+    /// acting on it at factor 0 there (all of them at λ = 0 without
+    /// histories), and no interference on its interfaces.
+    fn unloaded(&self, model: &Model, lambda: f64) -> Option<usize> {
         (0..self.bodies.len()).find(|&b| {
             let body = &self.bodies[b];
-            self.loose[b] && (lambda == 0.0 || (body.load == 0.0 && !body.driven))
+            let off = |h: Option<usize>| model.factor(h, lambda) == 0.0;
+            self.loose[b]
+                && body
+                    .load
+                    .iter()
+                    .zip(model.patterns())
+                    .all(|(&l, (h, _))| l == 0.0 || off(h))
+                && body.driven.iter().all(|&h| off(h))
+                && !model
+                    .interfaces
+                    .iter()
+                    .any(|im| (im.body_a == b || im.body_b == b) && im.gap_at(lambda) < 0.0)
         })
     }
 
     /// The physical reason a step from `committed` to `lambda` may have no
     /// solution, if there is one: a body held by nothing.
     pub fn explain(&self, model: &Model, committed: &State, lambda: f64) -> Option<String> {
-        let unloaded = self.unloaded(lambda);
+        let unloaded = self.unloaded(model, lambda);
         let floating = self.floating(model, &committed.u, lambda);
         let b = unloaded.or(floating.first().copied())?;
         // λ as short as it is exact to six places: "0", "0.5", "0.000195"
@@ -423,9 +440,10 @@ fn internal_energy(engine: &Engine, state: &State) -> f64 {
     }
     let mut q = 0;
     for im in &m.interfaces {
+        let gap = im.gap_at(state.time);
         for pt in &im.points {
             if engine.backend.owns_point(q) {
-                w += pt.area * im.law.energy(im.point_kinematics(pt, &state.u).0);
+                w += pt.area * im.law.energy(im.point_kinematics_at(pt, &state.u, gap).0);
             }
             q += 1;
         }
@@ -445,31 +463,21 @@ pub fn final_report(engine: &Engine, last: &State) -> Option<Report> {
     Some(report)
 }
 
-/// The reference pressure of an interface in a step to `lambda` (MPa): the
-/// case's `start_pressure`, else the mean pressure of the applied load, at
-/// least 1 MPa; the one of the secant start (eq. 2.8-2.9, `Engine`).
-fn reference_pressure(m: &Model, im: &InterfaceModel, lambda: f64) -> f64 {
-    im.start_pressure.unwrap_or_else(|| {
-        let n = im.pairs.first().map_or([0.0, 1.0], |p| p.normal);
-        let f: f64 = (0..m.mesh.nodes.len())
-            .map(|i| m.f_ext[2 * i] * n[0] + m.f_ext[2 * i + 1] * n[1])
-            .sum();
-        (lambda * f.abs() / im.area()).max(1.0)
-    })
-}
-
 /// The base spring stiffness of every interface for a step from `committed`
 /// to `lambda` (MPa/mm): k₀ = p_ref / (g_open + u(p_ref)).
 fn base_springs(engine: &Engine, committed: &State, lambda: f64) -> Vec<f64> {
     let m = engine.model;
     m.interfaces
         .iter()
-        .map(|im| {
-            let p_ref = reference_pressure(m, im, lambda);
+        .enumerate()
+        .map(|(i, im)| {
+            // the secant start's reference pressure (eq. 2.8-2.9, `Engine`)
+            let p_ref = m.reference_pressure(i, lambda);
+            let gap = im.gap_at(lambda);
             let open = im
                 .pairs
                 .iter()
-                .map(|p| -im.pair_approach(p, &committed.u))
+                .map(|p| -im.pair_approach_at(p, &committed.u, gap))
                 .fold(0.0f64, f64::max);
             p_ref / (open + im.law.approach(p_ref))
         })
@@ -507,7 +515,7 @@ pub(super) fn step(
     }
     let st = engine.stabilizer.as_ref().expect("checked above");
     // only at zero load: any other failure is cut back exactly as before
-    let retry = st.enabled && st.unloaded(lambda).is_some();
+    let retry = st.enabled && st.unloaded(engine.model, lambda).is_some();
     if engine.backend.agree(retry) {
         return stabilized_step(
             engine,
@@ -536,7 +544,7 @@ fn stabilized_step(
     let base = base_springs(engine, committed, lambda);
     let st = engine.stabilizer.as_mut().expect("checked by the caller");
     st.used += 1;
-    let loaded = st.unloaded(lambda).is_none();
+    let loaded = st.unloaded(m, lambda).is_none();
     let mut guess: Option<Vec<f64>> = None;
     // the iterations reported (curve.csv, automatic step control) are those
     // of the solve whose answer is kept: the release, or the last stabilized
@@ -634,8 +642,8 @@ mod tests {
             centre: [10.0, 10.0],
             size: 20.0,
             bc: [0.0; 6],
-            load: 0.0,
-            driven: false,
+            load: Vec::new(),
+            driven: Vec::new(),
         }
     }
 

@@ -27,7 +27,8 @@ impl Observer for Capture {
         let mut base = 0;
         for im in &model.interfaces {
             for (i, pr) in im.pairs.iter().enumerate() {
-                let p_n = im.law.pressure(im.pair_approach(pr, &state.u)).0;
+                let un = im.pair_approach_at(pr, &state.u, im.gap_at(state.time));
+                let p_n = im.law.pressure(un).0;
                 let p_t = if im.points.len() == im.pairs.len() {
                     state.contact[base + i].p_t
                 } else {

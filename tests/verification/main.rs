@@ -14,6 +14,7 @@ mod factorization;
 mod friction;
 mod gap;
 mod gold;
+mod histories;
 mod joints;
 mod limit_load;
 mod patch;

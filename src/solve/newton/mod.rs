@@ -2,7 +2,7 @@
 //! section 4, eq. 4.1-4.8), for the three methods.
 //!
 //! ```text
-//!   R(u) = f_int(u) + f_c(u) − λ f_ext           (4.1)
+//!   R(u) = f_int(u) + f_c(u; g(t)) − f(t)      (4.1; f(t) = λ f_ext without histories)
 //!   K Δu = −R,  u ← u + Δu                        (4.4, 4.7)
 //!   K = K_AB^{E-P}(u) + K_c(u)        full Newton (4.6)
 //!     = K_AB^{ep}(start of step) + K_c(u)  modified Newton
@@ -59,6 +59,9 @@ pub struct Engine<'m> {
     /// or to the whole run (initial stiffness).
     solid_valid: bool,
     r: Vec<f64>,
+    /// The external force at pseudo-time `load_time` (all dofs).
+    load: Vec<f64>,
+    load_time: f64,
     pub stats: Stats,
     /// Test hook: (rank, assembly number) at which the element loop fails.
     pub fault: Option<(usize, usize)>,
@@ -91,6 +94,8 @@ impl<'m> Engine<'m> {
             backend,
             solid_valid: false,
             r: vec![0.0; model.mesh.num_dofs()],
+            load: vec![0.0; model.mesh.num_dofs()],
+            load_time: f64::NAN,
             stats: Stats::default(),
             fault: None,
             assemblies: 0,
@@ -198,6 +203,15 @@ impl<'m> Engine<'m> {
         let mut m = [values.fold(0.0f64, f64::max)];
         self.backend.max(&mut m);
         m[0]
+    }
+
+    /// The external force at pseudo-time t (all dofs), computed once per t.
+    pub fn load_at(&mut self, t: f64) -> &[f64] {
+        if self.load_time.to_bits() != t.to_bits() {
+            self.model.external_force(t, &mut self.load);
+            self.load_time = t;
+        }
+        &self.load
     }
 
     /// [`Measures::of`] with the largest plastic strain taken over all ranks.
@@ -312,6 +326,7 @@ impl<'m> Engine<'m> {
     ) -> Result<Vec<f64>, StepFailure> {
         let mut trial = committed.clone();
         trial.u.copy_from_slice(u);
+        trial.time = lambda;
         self.assemble(
             committed,
             &mut trial,
@@ -350,21 +365,16 @@ impl<'m> Engine<'m> {
         }
     }
 
-    /// Secant start stiffness (eq. 2.8-2.9) for pairs at zero approach.
+    /// Secant start stiffness (eq. 2.8-2.9) for pairs at zero approach, at
+    /// the reference pressure of a step to pseudo-time `lambda`
+    /// ([`Model::reference_pressure`]).
     fn start_stiffness(&self, lambda: f64) -> Vec<f64> {
         let m = self.model;
-        m.interfaces
-            .iter()
-            .map(|im| {
-                let p_ref = im.start_pressure.unwrap_or_else(|| {
-                    // mean interface pressure of the applied load at this load factor
-                    let n = im.pairs.first().map_or([0.0, 1.0], |p| p.normal);
-                    let f: f64 = (0..m.mesh.nodes.len())
-                        .map(|i| m.f_ext[2 * i] * n[0] + m.f_ext[2 * i + 1] * n[1])
-                        .sum();
-                    (lambda * f.abs() / im.area()).max(1.0)
-                });
-                im.law.secant_stiffness(p_ref)
+        (0..m.interfaces.len())
+            .map(|i| {
+                m.interfaces[i]
+                    .law
+                    .secant_stiffness(m.reference_pressure(i, lambda))
             })
             .collect()
     }
@@ -380,10 +390,10 @@ impl<'m> Engine<'m> {
         solid_tangent: Option<Tangent>,
         floor: Option<Vec<f64>>,
     ) -> Result<Vec<Status>, StepFailure> {
-        let m = self.model;
         let root = self.backend.rank() == 0;
-        for (r, f) in self.r.iter_mut().zip(&m.f_ext) {
-            *r = if root { -lambda * f } else { 0.0 };
+        self.load_at(lambda);
+        for (r, f) in self.r.iter_mut().zip(&self.load) {
+            *r = if root { -f } else { 0.0 };
         }
         // backends keep the solid matrix apart only for the fixed-matrix methods
         // (Backend::reuse_solid): full Newton reassembles it every time
@@ -497,17 +507,19 @@ impl<'m> Engine<'m> {
         let mut q = 0;
         for (i, im) in m.interfaces.iter().enumerate() {
             let kf = floor.map(|f| f[i]);
+            let gap = im.gap_at(trial.time);
             for (j, pt) in im.points.iter().enumerate() {
                 if !be.owns_point(q) {
                     q += 1;
                     continue;
                 }
                 let nd = 4 * pt.len;
-                let un = im.point_kinematics(pt, &trial.u).0;
+                let un = im.point_kinematics_at(pt, &trial.u, gap).0;
                 let kfloor = kf.filter(|_| un > -ZERO_APPROACH);
-                let ev = im.eval_point(
+                let ev = im.eval_point_at(
                     pt,
                     &trial.u,
+                    gap,
                     &committed.contact[q],
                     kfloor,
                     &mut rl[..nd],

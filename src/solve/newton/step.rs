@@ -58,8 +58,9 @@ impl<'a, 'm> StepProblem<'a, 'm> {
         if let Some(start) = start {
             trial.u.copy_from_slice(start);
         }
-        for &(d, v) in &m.prescribed {
-            trial.u[d] = lambda * v;
+        trial.time = lambda;
+        for (d, v) in m.prescribed_at(lambda) {
+            trial.u[d] = v;
         }
         let method = if response == Response::ElasticOnly {
             Method::FullNewton
@@ -165,13 +166,14 @@ impl Problem for StepProblem<'_, '_> {
         }
         // norms over free dofs; reactions over prescribed dofs
         let m = e.model;
+        e.load_at(self.lambda);
         let (mut r2, mut f2, mut react2) = (0.0, 0.0, 0.0);
-        for d in 0..e.r.len() {
+        for (d, (&r, &f)) in e.r.iter().zip(&e.load).enumerate() {
             if m.dofs.equation(d).is_some() {
-                r2 += e.r[d] * e.r[d];
-                f2 += (self.lambda * m.f_ext[d]).powi(2);
+                r2 += r * r;
+                f2 += f.powi(2);
             } else {
-                react2 += e.r[d] * e.r[d];
+                react2 += r * r;
             }
         }
         self.reference = f2.sqrt().max(react2.sqrt()).max(m.force_floor);
