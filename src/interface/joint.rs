@@ -193,11 +193,14 @@ pub fn aggregate(
     m
 }
 
-/// The joint measures of every interface in a committed state (`u` all
-/// dofs; `status` and `contact` every point of every interface in order).
+/// The joint measures of every interface in a committed state at
+/// pseudo-time `time` (`u` all dofs; `status` and `contact` every point of
+/// every interface in order); approaches across the gap at that time.
+#[allow(clippy::too_many_arguments)] // the state's parts, each used once
 pub fn measures(
     interfaces: &[InterfaceModel],
     section: Section,
+    time: f64,
     u: &[f64],
     status: &[Status],
     contact: &[PointState],
@@ -212,8 +215,9 @@ pub fn measures(
     let mut base = 0;
     let mut out = Vec::with_capacity(interfaces.len());
     for (i, im) in interfaces.iter().enumerate() {
-        let samples = im.points.iter().enumerate().map(|(j, pt)| {
-            let (u_n, u_t) = im.point_kinematics(pt, u);
+        let gap = im.gap_at(time);
+        let samples = im.points.iter().enumerate().map(move |(j, pt)| {
+            let (u_n, u_t) = im.point_kinematics_at(pt, u, gap);
             PointSample {
                 area: pt.area,
                 p_n: im.law.pressure(u_n).0,

@@ -414,6 +414,7 @@ fn accept(
         joints: joint::measures(
             &model.interfaces,
             model.section,
+            ck.lambda,
             &ck.committed.u,
             &ck.committed.status,
             &ck.committed.contact,

@@ -176,6 +176,15 @@ impl Stabilizer {
                 driven: Vec::new(),
             })
             .collect();
+        if model.section.axisymmetric {
+            // a body of revolution has one rigid motion, along the axis: a
+            // radial translation strains it around the hoop, and it cannot
+            // rotate in the meridian plane
+            for b in &mut bodies {
+                add_row(&mut b.bc, [1.0, 0.0, 0.0]);
+                add_row(&mut b.bc, [0.0, 0.0, 1.0]);
+            }
+        }
         for (&(d, v), &h) in model.prescribed.iter().zip(&model.prescribed_history) {
             let n = d / 2;
             let Some(b) = body_of.get(n).copied().filter(|&b| b < nb) else {
