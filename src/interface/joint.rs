@@ -194,10 +194,12 @@ pub fn aggregate(
 }
 
 /// The joint measures of every interface in a committed state (`u` all
-/// dofs; `status` and `contact` every point of every interface in order).
+/// dofs at pseudo-time `time`, whose gaps the approach is taken across;
+/// `status` and `contact` every point of every interface in order).
 pub fn measures(
     interfaces: &[InterfaceModel],
     section: Section,
+    time: f64,
     u: &[f64],
     status: &[Status],
     contact: &[PointState],
@@ -212,8 +214,11 @@ pub fn measures(
     let mut base = 0;
     let mut out = Vec::with_capacity(interfaces.len());
     for (i, im) in interfaces.iter().enumerate() {
+        // the gap at the state's pseudo-time (an interference pressed in
+        // by its gap_history), as the solver and the interface CSV take it
+        let gap = im.gap_at(time);
         let samples = im.points.iter().enumerate().map(|(j, pt)| {
-            let (u_n, u_t) = im.point_kinematics(pt, u);
+            let (u_n, u_t) = im.point_kinematics_at(pt, u, gap);
             PointSample {
                 area: pt.area,
                 p_n: im.law.pressure(u_n).0,
