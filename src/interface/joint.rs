@@ -193,10 +193,9 @@ pub fn aggregate(
     m
 }
 
-/// The joint measures of every interface in a committed state at
-/// pseudo-time `time` (`u` all dofs; `status` and `contact` every point of
-/// every interface in order); approaches across the gap at that time.
-#[allow(clippy::too_many_arguments)] // the state's parts, each used once
+/// The joint measures of every interface in a committed state (`u` all
+/// dofs at pseudo-time `time`, whose gaps the approach is taken across;
+/// `status` and `contact` every point of every interface in order).
 pub fn measures(
     interfaces: &[InterfaceModel],
     section: Section,
@@ -215,8 +214,10 @@ pub fn measures(
     let mut base = 0;
     let mut out = Vec::with_capacity(interfaces.len());
     for (i, im) in interfaces.iter().enumerate() {
+        // the gap at the state's pseudo-time (an interference pressed in
+        // by its gap_history), as the solver and the interface CSV take it
         let gap = im.gap_at(time);
-        let samples = im.points.iter().enumerate().map(move |(j, pt)| {
+        let samples = im.points.iter().enumerate().map(|(j, pt)| {
             let (u_n, u_t) = im.point_kinematics_at(pt, u, gap);
             PointSample {
                 area: pt.area,

@@ -414,7 +414,7 @@ fn accept(
         joints: joint::measures(
             &model.interfaces,
             model.section,
-            ck.lambda,
+            ck.committed.time,
             &ck.committed.u,
             &ck.committed.status,
             &ck.committed.contact,

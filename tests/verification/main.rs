@@ -10,6 +10,7 @@ mod common;
 
 mod axisymmetric;
 mod column;
+mod cycles;
 mod factorization;
 mod friction;
 mod gap;
@@ -19,5 +20,6 @@ mod joints;
 mod limit_load;
 mod patch;
 mod punch;
+mod shrink_fit;
 mod stepping;
 mod tangents;
