@@ -11,6 +11,7 @@
 //! | 3.8-3.14: von Mises, linear isotropic hardening | [`material`] |
 //! | 2.1-2.11, 3.29-3.31: interface laws and spring pairs | [`interface`] |
 //! | 4.1-4.8: increments, Newton variants, status loop | [`solve`] |
+//! | eq. 2.1 from the surface (Greenwood-Williamson, McCool) | [`calibrate`] |
 //!
 //! Units: mm, N, MPa everywhere.
 //!
@@ -23,6 +24,7 @@
 
 pub mod assembly;
 pub mod backend;
+pub mod calibrate;
 pub mod case;
 pub mod driver;
 pub mod error;

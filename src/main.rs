@@ -33,6 +33,17 @@ enum Command {
     /// Studies: mesh refinement (accuracy against cost) and load-step stability.
     #[command(subcommand)]
     Study(StudyCommand),
+    /// An interface law from the surface: Greenwood-Williamson parameters or a
+    /// measured profile → load-approach curve, best power law over a pressure
+    /// range, and ready-to-paste [interface.*] tables (docs/calibration.md).
+    Calibrate {
+        /// Input file (materials, surface, fit range).
+        input: PathBuf,
+        /// Output folder: curve.csv, curve.svg/.png, fit.json, interface.toml.
+        /// Replaced if it exists.
+        #[arg(long)]
+        out: PathBuf,
+    },
     /// Validate a case and print what it would solve (dofs, increments), without solving.
     Check {
         /// Case file (case.toml) or the folder that holds it.
@@ -334,6 +345,9 @@ fn main() -> ExitCode {
             out,
         }) => study_stability(&case, &steps, methods, schemes, time_limit, &out),
         Command::Figures { cases, out } => figures(&cases, &out),
+        Command::Calibrate { input, out } => {
+            asperity::calibrate::run(&input, &out).map(|(_, summary)| println!("{summary}"))
+        }
     };
     match outcome {
         Ok(()) => ExitCode::SUCCESS,

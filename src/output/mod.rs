@@ -137,7 +137,7 @@ impl Drop for Writer {
 /// moment either the old or the new complete folder; elsewhere the old folder
 /// is first renamed aside (a crash in between leaves it as `.NAME.old-PID`).
 #[allow(unsafe_code)] // renameat2(RENAME_EXCHANGE), see the SAFETY note
-fn replace_dir(from: &Path, to: &Path) -> Result<()> {
+pub fn replace_dir(from: &Path, to: &Path) -> Result<()> {
     if !to.exists() {
         return std::fs::rename(from, to).map_err(|e| Error::io(to, e));
     }

@@ -85,6 +85,21 @@ pub fn save(chart: &Chart, stem: &Path, pictures: bool) -> Result<Vec<PathBuf>> 
     Ok(written)
 }
 
+/// Writes `<stem>.svg` and `<stem>.png` when `pictures` (a font was found),
+/// without the CSV of [`save`] (for callers that write their own data file).
+pub fn save_pictures(chart: &Chart, stem: &Path, pictures: bool) -> Result<()> {
+    if pictures {
+        let svg = stem.with_extension("svg");
+        draw(SVGBackend::new(&svg, (900, 600)).into_drawing_area(), chart)?;
+        let png = stem.with_extension("png");
+        draw(
+            BitMapBackend::new(&png, (900, 600)).into_drawing_area(),
+            chart,
+        )?;
+    }
+    Ok(())
+}
+
 fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, c: &Chart) -> Result<()> {
     let e = |m: String| Error::Output(format!("drawing \"{}\": {m}", c.title));
     root.fill(&WHITE).map_err(|x| e(x.to_string()))?;

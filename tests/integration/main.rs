@@ -10,6 +10,7 @@ mod common;
 
 mod axisymmetric;
 mod bad_inputs;
+mod calibrate;
 mod cli;
 mod figures;
 mod gmsh;

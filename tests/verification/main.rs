@@ -9,6 +9,7 @@
 mod common;
 
 mod axisymmetric;
+mod calibration;
 mod column;
 mod cycles;
 mod factorization;

@@ -1,0 +1,234 @@
+//! `asperity calibrate` as a user meets it: the worked example end to end
+//! (the files, the power-law snippet pasted into a shipped case and checked,
+//! the table snippet's shape), a measured profile, and bad inputs (one
+//! `error:` line, exit code 2, no output folder).
+
+use crate::common;
+use std::path::Path;
+use std::process::Command;
+
+fn asperity(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_asperity"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into(),
+        String::from_utf8_lossy(&out.stderr).into(),
+    )
+}
+
+fn calibrate(input: &Path, out: &Path) -> (i32, String, String) {
+    asperity(&[
+        "calibrate",
+        input.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ])
+}
+
+#[test]
+fn the_example_writes_a_curve_a_fit_and_pasteable_laws() {
+    let dir = common::scratch("calibrate-example");
+    let out = dir.join("out");
+    let (code, stdout, err) =
+        calibrate(&common::root().join("docs/calibration/example.toml"), &out);
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("c_n = "), "{stdout}");
+    for f in ["curve.csv", "fit.json", "interface.toml"] {
+        assert!(out.join(f).is_file(), "{f}");
+    }
+    // no temporary folder left beside it
+    let left: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(left, vec!["out".to_string()], "{left:?}");
+    let csv = std::fs::read_to_string(out.join("curve.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(lines.next(), Some("approach_mm,pressure_mpa"));
+    let pts: Vec<(f64, f64)> = lines
+        .map(|l| {
+            let (a, b) = l.split_once(',').unwrap();
+            (a.parse().unwrap(), b.parse().unwrap())
+        })
+        .collect();
+    assert!(pts.len() > 100);
+    assert!(pts.windows(2).all(|w| w[1].0 > w[0].0 && w[1].1 > w[0].1));
+    let fit: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("fit.json")).unwrap()).unwrap();
+    let (c_n, m) = (fit["c_n"].as_f64().unwrap(), fit["m"].as_f64().unwrap());
+    assert!(
+        fit["max_relative_error_approach"].as_f64().unwrap() < 0.05,
+        "{fit}"
+    );
+    assert_eq!(fit["pressure_range_mpa"], serde_json::json!([10.0, 200.0]));
+
+    // interface.toml is TOML with two [interface.*] tables
+    let text = std::fs::read_to_string(out.join("interface.toml")).unwrap();
+    let v: toml::Table = toml::from_str(&text).unwrap();
+    let iface = v["interface"].as_table().unwrap();
+    let power = iface["calibrated_power"].as_table().unwrap();
+    assert_eq!(power["law"].as_str(), Some("power"));
+    assert!((power["c_n"].as_float().unwrap() / c_n - 1.0).abs() < 1e-6);
+    assert!((power["m"].as_float().unwrap() - m).abs() < 1e-6);
+    let table = iface["calibrated_table"].as_table().unwrap();
+    assert_eq!(table["law"].as_str(), Some("table"));
+    let rows: Vec<(f64, f64)> = table["table"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| {
+            let r = r.as_array().unwrap();
+            (r[0].as_float().unwrap(), r[1].as_float().unwrap())
+        })
+        .collect();
+    assert_eq!(rows.len(), 10);
+    assert!(rows[0].0 > 0.0 && rows[0].1 == 10.0 && rows[9].1 == 200.0);
+    assert!(rows.windows(2).all(|w| w[1].0 > w[0].0 && w[1].1 > w[0].1));
+
+    // the power snippet pasted into a shipped case: parsed and checked
+    let case =
+        std::fs::read_to_string(common::root().join("cases/punch-plane-stress/case.toml")).unwrap();
+    let start = case.find("[interface.contact]").unwrap();
+    let end = start + case[start..].find("\n[[").unwrap();
+    let snippet_start = text.find("[interface.calibrated_power]").unwrap();
+    let snippet_end = snippet_start + text[snippet_start..].find("\n\n").unwrap();
+    let snippet = text[snippet_start..snippet_end]
+        .replace("[interface.calibrated_power]", "[interface.contact]");
+    let pasted = format!("{}{}\n{}", &case[..start], snippet, &case[end..]);
+    let parsed = asperity::case::Case::parse(&pasted, "pasted.toml").unwrap();
+    assert_eq!(
+        parsed.interface["contact"].c_n,
+        Some(power["c_n"].as_float().unwrap())
+    );
+    let path = common::case_dir("calibrate-pasted", &pasted);
+    let (code, _, err) = asperity(&["check", path.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+}
+
+#[test]
+fn a_measured_profile_gives_its_summit_parameters() {
+    let dir = common::scratch("calibrate-profile");
+    // three harmonics, whole periods: m0, m2, m4 known (finite-difference bias < 1%)
+    let n = 4000;
+    let dx = 1e-3;
+    let len = n as f64 * dx;
+    let modes = [(1e-3, 10.0), (3e-4, 47.0), (1e-4, 180.0)];
+    let mut text = String::from("# heights in mm, one per line, spacing 1 µm\n");
+    for i in 0..n {
+        let x = i as f64 * dx;
+        let z: f64 = modes
+            .iter()
+            .map(|(a, j)| a * (2.0 * std::f64::consts::PI * j * x / len + 0.4).sin())
+            .sum();
+        text.push_str(&format!("{z:.12e}\n"));
+    }
+    std::fs::write(dir.join("profile.csv"), text).unwrap();
+    let input = dir.join("surface.toml");
+    std::fs::write(
+        &input,
+        "[materials]\na = { young = 206000.0, poisson = 0.3 }\nb = { young = 206000.0, poisson = 0.3 }\n\
+         [surface]\nmodel = \"profile\"\nfile = \"profile.csv\"\nsampling = 1e-3\nkind = \"line\"\ndetrend = \"mean\"\n\
+         [fit]\npressure = [10.0, 200.0]\n",
+    )
+    .unwrap();
+    let (code, _, err) = calibrate(&input, &dir.join("out"));
+    assert_eq!(code, 0, "{err}");
+    let fit: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("out/fit.json")).unwrap()).unwrap();
+    let m0: f64 = modes.iter().map(|(a, _)| a * a / 2.0).sum();
+    let got = fit["profile"]["m0_mm2"].as_f64().unwrap();
+    assert!((got / m0 - 1.0).abs() < 1e-3, "{got} vs {m0}");
+    let pi = std::f64::consts::PI;
+    let m2: f64 = modes
+        .iter()
+        .map(|(a, j)| a * a / 2.0 * (2.0 * pi * j / len).powi(2))
+        .sum();
+    let m4: f64 = modes
+        .iter()
+        .map(|(a, j)| a * a / 2.0 * (2.0 * pi * j / len).powi(4))
+        .sum();
+    let eta = m4 / (6.0 * pi * 3f64.sqrt() * m2);
+    let got = fit["gw"]["density_per_mm2"].as_f64().unwrap();
+    assert!((got / eta - 1.0).abs() < 0.02, "{got} vs {eta}");
+}
+
+fn bad(name: &str, input: &str, expect: &str) {
+    let dir = common::scratch(&format!("calibrate-bad-{name}"));
+    std::fs::write(dir.join("empty.csv"), "# nothing\n").unwrap();
+    let path = dir.join("surface.toml");
+    std::fs::write(&path, input).unwrap();
+    let (code, out, err) = calibrate(&path, &dir.join("out"));
+    assert_eq!(code, 2, "{name}: {out} {err}");
+    assert_eq!(err.lines().count(), 1, "{name}: {err}");
+    assert!(err.starts_with("error: "), "{name}: {err}");
+    assert!(err.contains(expect), "{name}: {err}");
+    assert!(!dir.join("out").exists(), "{name}");
+}
+
+const MATERIALS: &str =
+    "[materials]\na = { young = 206000.0, poisson = 0.3 }\nb = { young = 206000.0, poisson = 0.3 }\n";
+const GW: &str = "[surface]\nmodel = \"gw\"\ndensity = 2e3\nradius = 0.05\nsigma = 1e-3\n";
+const FIT: &str = "[fit]\npressure = [10.0, 200.0]\n";
+
+#[test]
+fn bad_inputs_are_one_error_line_and_exit_2() {
+    bad(
+        "unknown-key",
+        &format!("{MATERIALS}{GW}colour = 3\n{FIT}"),
+        "unknown field `colour`",
+    );
+    bad(
+        "negative-sigma",
+        &format!(
+            "{MATERIALS}{}{FIT}",
+            GW.replace("sigma = 1e-3", "sigma = -1e-3")
+        ),
+        "surface.sigma: must be a positive finite number",
+    );
+    bad(
+        "empty-profile",
+        &format!("{MATERIALS}[surface]\nmodel = \"profile\"\nfile = \"empty.csv\"\nsampling = 1e-3\n{FIT}"),
+        "too few heights: 0",
+    );
+    bad(
+        "range-reversed",
+        &format!("{MATERIALS}{GW}[fit]\npressure = [200.0, 10.0]\n"),
+        "fit.pressure: lo 200 must be below hi 10",
+    );
+    bad(
+        "range-equal",
+        &format!("{MATERIALS}{GW}[fit]\npressure = [10.0, 10.0]\n"),
+        "must be below hi",
+    );
+    bad(
+        "no-hardness",
+        &format!("{MATERIALS}{GW}asperities = \"elastic-plastic\"\n{FIT}"),
+        "needs the hardness",
+    );
+    bad(
+        "distribution-unknown",
+        &format!("{MATERIALS}{GW}distribution = \"weibull\"\n{FIT}"),
+        "unknown \"weibull\"",
+    );
+    bad(
+        "model-unknown",
+        &format!("{MATERIALS}[surface]\nmodel = \"fractal\"\n{FIT}"),
+        "fractal",
+    );
+    bad(
+        "missing-fit",
+        &format!("{MATERIALS}{GW}"),
+        "missing field `fit`",
+    );
+    bad(
+        "poisson-half",
+        &format!("{}{GW}{FIT}", MATERIALS.replacen("0.3", "0.5", 1)),
+        "materials.a.poisson",
+    );
+    let (code, _, err) = asperity(&["calibrate", "no/such/file.toml", "--out", "x"]);
+    assert_eq!(code, 2);
+    assert!(err.starts_with("error: no/such/file.toml"), "{err}");
+}
