@@ -78,7 +78,12 @@ const CHECKED: [&str; 14] = [
 /// The joint cases (issue 18) also check their `joints` array: per interface
 /// the final forces, approach, slip, status measures, dissipation and work,
 /// and every closed load cycle. The older cases keep the fields above only.
-const JOINT_CASES: [&str; 3] = ["shrink-fit", "slideway-cycles", "bolted-flange"];
+const JOINT_CASES: [&str; 4] = [
+    "shrink-fit",
+    "slideway-cycles",
+    "bolted-flange",
+    "shrink-fit-roughness",
+];
 
 /// The checked fields of a case.
 fn checked(case: &str) -> Vec<&'static str> {
@@ -100,7 +105,7 @@ struct Gold {
     prefix: Option<&'static str>,
 }
 
-const CASES: [Gold; 12] = [
+const CASES: [Gold; 13] = [
     Gold {
         case: "punch-plane-stress",
         args: &[],
@@ -158,6 +163,11 @@ const CASES: [Gold; 12] = [
     },
     Gold {
         case: "bolted-flange",
+        args: &[],
+        prefix: None,
+    },
+    Gold {
+        case: "shrink-fit-roughness",
         args: &[],
         prefix: None,
     },
@@ -504,4 +514,9 @@ fn slideway_cycles() {
 #[test]
 fn bolted_flange() {
     check("bolted-flange");
+}
+
+#[test]
+fn shrink_fit_roughness() {
+    check("shrink-fit-roughness");
 }

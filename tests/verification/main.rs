@@ -21,6 +21,7 @@ mod joints;
 mod limit_load;
 mod patch;
 mod punch;
+mod roughness;
 mod shrink_fit;
 mod stepping;
 mod tangents;
