@@ -22,4 +22,5 @@ mod patch;
 mod punch;
 mod shrink_fit;
 mod stepping;
+mod tables;
 mod tangents;
