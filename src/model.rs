@@ -159,12 +159,12 @@ impl Model {
             interfaces.push(InterfaceModel::new(
                 &mesh,
                 iface,
-                *law,
+                law.clone(),
                 spec.gap,
                 spec.weights,
                 section,
                 spec.start_pressure,
-                checked.tangential.get(&iface.name).copied(),
+                checked.tangential.get(&iface.name).cloned(),
             ));
         }
         for name in case.interface.keys() {

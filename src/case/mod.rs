@@ -144,7 +144,8 @@ pub struct MaterialSpec {
 #[serde(deny_unknown_fields)]
 pub struct InterfaceLawSpec {
     /// "power" (u_N = c_N p^m, eq. 2.1), "exponential" (p = a (e^{b u} − 1), eq. 2.2
-    /// shifted so p(0) = 0) or "linear" (power law below p_c, u = A p + B above, eq. 2.3).
+    /// shifted so p(0) = 0), "linear" (power law below p_c, u = A p + B above, eq. 2.3)
+    /// or "table" (measured points, `table`).
     pub law: String,
     /// c_N in mm/MPa^m (power and linear laws).
     pub c_n: Option<f64>,
@@ -158,6 +159,10 @@ pub struct InterfaceLawSpec {
     pub slope: Option<f64>,
     /// Critical pressure p_c in MPa where the linear branch starts (linear law).
     pub p_c: Option<f64>,
+    /// Measured points [[u_N mm, p MPa], ...] (table law): both columns positive
+    /// and strictly increasing, at least 2 rows (a first row [0, 0] is the
+    /// implied origin); interpolated monotonically, see docs/case-schema.md.
+    pub table: Option<Vec<Vec<f64>>>,
     /// "lumped" (row-sum weights 1/6, 2/3, 1/6, eq. 3.30-3.31) or "consistent"
     /// (Gauss integration along the edge, eq. 3.29).
     #[serde(default)]
@@ -177,13 +182,17 @@ pub struct InterfaceLawSpec {
 
 /// `[interface.<name>.tangential]`: elastic-plastic shear compliance with
 /// slip-hardening friction. Requires lumped weights (one spring, one history, per pair).
-#[derive(Clone, Debug, Deserialize)]
+/// Its `Debug` text (part of [`Case::key`]) is the one it had before `k_table`
+/// existed when R and S are given: older restart files still resume.
+#[derive(Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TangentialSpec {
-    /// R: k_T^e = p_N^S / R in MPa/µm with p_N in MPa (eq. 2.6).
-    pub r: f64,
-    /// S, in [0, 1].
-    pub s: f64,
+    /// R: k_T^e = p_N^S / R in MPa/µm with p_N in MPa (eq. 2.6); not with `k_table`.
+    pub r: Option<f64>,
+    /// S, in [0, 1]; not with `k_table`.
+    pub s: Option<f64>,
+    /// Measured [[p_N MPa, k_T^e MPa/µm], ...] in place of `r` and `s`.
+    pub k_table: Option<Vec<Vec<f64>>>,
     /// k_T^p / k_T^e in [0, 1] (1: no micro-slip branch).
     pub kp_ratio: f64,
     /// Macroscopic (static) friction coefficient μ_m.
@@ -200,6 +209,26 @@ pub struct TangentialSpec {
     /// "return-mapping" (consistent tangent) or "stiffness-modification" (the paper's 2.25-2.26).
     #[serde(default)]
     pub scheme: FrictionScheme,
+}
+
+impl std::fmt::Debug for TangentialSpec {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        let mut d = f.debug_struct("TangentialSpec");
+        match (self.r, self.s, &self.k_table) {
+            (Some(r), Some(s), None) => d.field("r", &r).field("s", &s),
+            _ => d
+                .field("r", &self.r)
+                .field("s", &self.s)
+                .field("k_table", &self.k_table),
+        };
+        d.field("kp_ratio", &self.kp_ratio)
+            .field("mu", &self.mu)
+            .field("beta", &self.beta)
+            .field("n", &self.n)
+            .field("yield_ratio", &self.yield_ratio)
+            .field("scheme", &self.scheme)
+            .finish()
+    }
 }
 
 fn default_yield_ratio() -> f64 {
@@ -460,12 +489,13 @@ impl Case {
     /// what a restart file's fingerprint identifies besides the mesh. A case
     /// that uses none of the keys of load histories (`[history]`,
     /// `[[force]]`, `shear`, `history`, `gap_history`) has the text it had
-    /// before they existed, so its older restart files still resume.
+    /// before they existed, so its older restart files still resume; the same
+    /// for an interface without a `table` (its `table: None` is left out).
     pub fn key(&self) -> String {
         let mut key = self.clone();
         key.source = Default::default();
         key.description = None;
-        let full = format!("{key:?}");
+        let full = format!("{key:?}").replace(", table: None,", ",");
         let new_keys = !key.history.is_empty()
             || !key.force.is_empty()
             || key

@@ -184,16 +184,49 @@ pub fn check_case(case: &Case) -> Result<Checked> {
         ] {
             range.check(at(&format!("{key} {k}")), v.unwrap_or(0.0))?;
         }
+        for (i, row) in spec.table.iter().flatten().enumerate() {
+            let row_key = |k: &str| at(&format!("{key} table row {} {k}", i + 1));
+            ranges::DISPLACEMENT.check(row_key("u_N"), row[0])?;
+            ranges::PRESSURE.check(row_key("p"), row[1])?;
+        }
         laws.insert(name.clone(), law);
         if let Some(t) = &spec.tangential {
             let key = format!("{key} tangential");
             if spec.weights != Weights::Lumped {
                 return Err(Error::input(at(&key), "a tangential law needs weights = \"lumped\" (one spring and one slip history per pair)"));
             }
-            let law = TangentialLaw::new(t.r, t.s, t.kp_ratio, t.mu, t.beta, t.n, t.yield_ratio)
-                .map_err(|m| Error::input(at(&key), m))?;
+            let law = match (&t.k_table, t.r, t.s) {
+                (None, Some(r), Some(s)) => {
+                    TangentialLaw::new(r, s, t.kp_ratio, t.mu, t.beta, t.n, t.yield_ratio)
+                        .map_err(|m| Error::input(at(&key), m))?
+                }
+                (Some(rows), None, None) => {
+                    let key = format!("{key} k_table");
+                    let rows =
+                        table_rows(rows, "p_N", "k_T").map_err(|m| Error::input(at(&key), m))?;
+                    for (i, &(p, _)) in rows.iter().enumerate() {
+                        ranges::PRESSURE.check(at(&format!("{key} row {} p_N", i + 1)), p)?;
+                    }
+                    TangentialLaw::with_k_table(&rows, t.kp_ratio, t.mu, t.beta, t.n, t.yield_ratio)
+                        .map_err(|m| Error::input(at(&key), m))?
+                }
+                (Some(_), r, _) => {
+                    let k = if r.is_some() { "r" } else { "s" };
+                    return Err(Error::input(
+                        at(&format!("{key} {k}")),
+                        format!("`{k}` is not allowed with `k_table`: give either r and s (k_T^e = p^S/R) or k_table, not both"),
+                    ));
+                }
+                (None, r, _) => {
+                    let k = if r.is_none() { "r" } else { "s" };
+                    return Err(Error::input(
+                        at(&key),
+                        format!("needs `{k}`: give r and s (k_T^e = p^S/R, eq. 2.6) or k_table = [[p_N, k_T], ...]"),
+                    ));
+                }
+            };
             for (k, v, range) in [
-                ("r", t.r, &ranges::SHEAR_R),
+                ("r", t.r.unwrap_or(0.0), &ranges::SHEAR_R),
                 ("mu", t.mu, &ranges::FRICTION),
                 ("n", t.n, &ranges::SLIP_RATE),
             ] {
@@ -319,6 +352,7 @@ impl Case {
 
 fn normal_law(s: &InterfaceLawSpec) -> std::result::Result<NormalLaw, String> {
     let given = [
+        ("table", s.table.as_ref().map(|_| 0.0)),
         ("c_n", s.c_n),
         ("m", s.m),
         ("a", s.a),
@@ -330,9 +364,10 @@ fn normal_law(s: &InterfaceLawSpec) -> std::result::Result<NormalLaw, String> {
         "power" => (&["c_n", "m"], "power"),
         "exponential" => (&["a", "b"], "exponential"),
         "linear" => (&["c_n", "m", "slope", "p_c"], "linear"),
+        "table" => (&["table"], "table"),
         other => {
             return Err(format!(
-                "law = \"{other}\" is not a known law (power, exponential, linear)"
+                "law = \"{other}\" is not a known law (power, exponential, linear, table)"
             ))
         }
     };
@@ -347,8 +382,37 @@ fn normal_law(s: &InterfaceLawSpec) -> std::result::Result<NormalLaw, String> {
     match law {
         "power" => NormalLaw::new_power(g(s.c_n), g(s.m)),
         "exponential" => NormalLaw::new_exponential(g(s.a), g(s.b)),
+        "table" => {
+            let rows = table_rows(s.table.as_deref().unwrap_or(&[]), "u_N", "p")
+                .map_err(|m| format!("table: {m}"))?;
+            NormalLaw::new_table(&rows).map_err(|m| format!("table: {m}"))
+        }
         _ => NormalLaw::new_linear(g(s.c_n), g(s.m), g(s.slope), g(s.p_c)),
     }
+}
+
+/// Most rows of a `table` or `k_table` (a bound on what a case file can make the model hold).
+pub const MAX_TABLE_ROWS: usize = 10_000;
+
+/// The rows of a two-column table as pairs; the message names the row (1-based).
+fn table_rows(rows: &[Vec<f64>], a: &str, b: &str) -> std::result::Result<Vec<(f64, f64)>, String> {
+    if rows.len() > MAX_TABLE_ROWS {
+        return Err(format!(
+            "{} rows, more than {MAX_TABLE_ROWS} (the limit)",
+            rows.len()
+        ));
+    }
+    rows.iter()
+        .enumerate()
+        .map(|(i, r)| match r.as_slice() {
+            &[x, y] => Ok((x, y)),
+            _ => Err(format!(
+                "row {}: {} numbers, expected 2 ([{a}, {b}])",
+                i + 1,
+                r.len()
+            )),
+        })
+        .collect()
 }
 
 fn check_solver(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {

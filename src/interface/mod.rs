@@ -17,6 +17,7 @@
 
 pub mod joint;
 pub mod normal;
+pub mod table;
 pub mod tangential;
 
 use crate::mesh::{Interface, Mesh};
@@ -309,8 +310,8 @@ impl InterfaceModel {
             pairs,
             points,
             start_pressure,
+            scheme: tangential.as_ref().map(|t| t.1).unwrap_or_default(),
             tangential: tangential.map(|t| t.0),
-            scheme: tangential.map(|t| t.1).unwrap_or_default(),
         }
     }
 

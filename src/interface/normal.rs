@@ -10,12 +10,21 @@
 //!                u = A p + B      for p ≥ p_c, B = c_N p_c^m − A p_c (continuity)
 //! ```
 //!
+//!
+//! `law = "table"` interpolates measured points (u_N, p) monotonically (see
+//! [`super::table`]: a power law through the origin below the first point,
+//! Fritsch-Butland monotone cubic Hermite between points, linear beyond the last).
+//!
 //! For u_N ≤ 0 the pair is open: p = 0, k = 0 (loss of contact, section 2.3).
 //! The power law has k = 0 at u = 0 when m < 1, so the first iteration of a
 //! load step uses the secant stiffness k = p_ref / u(p_ref) (eq. 2.8-2.9).
 
+use super::table::Monotone;
+use std::sync::Arc;
+
 /// A normal compliance law. Parameters are validated by [`NormalLaw::new_power`] & co.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// `Clone` (not `Copy`): a table holds its points (shared, behind an `Arc`).
+#[derive(Clone, Debug, PartialEq)]
 pub enum NormalLaw {
     Power {
         c: f64,
@@ -31,6 +40,8 @@ pub enum NormalLaw {
         slope: f64,
         p_c: f64,
     },
+    /// Measured (u_N, p) points, interpolated monotonically.
+    Table(Arc<Monotone>),
 }
 
 impl NormalLaw {
@@ -74,12 +85,28 @@ impl NormalLaw {
         Ok(NormalLaw::Linear { c, m, slope, p_c })
     }
 
+    /// Measured points (u_N mm, p MPa), the origin implied: at least 2, both
+    /// columns positive and strictly increasing, finite. A first row (0, 0) is
+    /// the origin itself and is dropped. Below the first point p = p₁ (u/u₁)^{1/m₁},
+    /// m₁ = ln(u₂/u₁)/ln(p₂/p₁) clamped to (0, 1] (the paper's power law 2.1 near
+    /// u = 0); above the last point linear with the end stiffness.
+    pub fn new_table(rows: &[(f64, f64)]) -> Result<Self, String> {
+        let rows = match rows.first() {
+            Some(&(u, p)) if u == 0.0 && p == 0.0 => &rows[1..],
+            _ => rows,
+        };
+        // q = 1/m ≥ 1: m in (0, 1]
+        let t = Monotone::new(rows, true, (1.0, f64::INFINITY), ("u_N", "p"))?;
+        Ok(NormalLaw::Table(Arc::new(t)))
+    }
+
     /// Pressure and stiffness (p, dp/du) at approach u. Open (u ≤ 0): (0, 0).
     pub fn pressure(&self, u: f64) -> (f64, f64) {
         if u <= 0.0 {
             return (0.0, 0.0);
         }
         match *self {
+            NormalLaw::Table(ref t) => t.eval(u),
             NormalLaw::Power { c, m } => power(c, m, u),
             NormalLaw::Exponential { a, b } => {
                 let e = (b * u).exp();
@@ -102,6 +129,7 @@ impl NormalLaw {
             return 0.0;
         }
         match *self {
+            NormalLaw::Table(ref t) => t.inverse(p),
             NormalLaw::Power { c, m } => c * p.powf(m),
             NormalLaw::Exponential { a, b } => (p / a).ln_1p() / b,
             NormalLaw::Linear { c, m, slope, p_c } => {
@@ -126,6 +154,7 @@ impl NormalLaw {
             return 0.0;
         }
         match *self {
+            NormalLaw::Table(ref t) => t.integral(u),
             NormalLaw::Power { c, m } => {
                 let q = 1.0 / m;
                 c * (u / c).powf(q + 1.0) / (q + 1.0)
@@ -205,6 +234,85 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// A table sampled from u = 0.001 p^0.5 at 2 ... 14 µm (4 ... 196 MPa), unevenly.
+    fn table() -> NormalLaw {
+        let rows: Vec<(f64, f64)> = [0.0, 2e-3, 3e-3, 5e-3, 6e-3, 9e-3, 1.4e-2]
+            .iter()
+            .map(|&u| (u, (u / 0.001f64).powi(2)))
+            .collect();
+        NormalLaw::new_table(&rows).unwrap()
+    }
+
+    #[test]
+    fn table_law_tangent_energy_and_inverse_in_every_regime() {
+        let law = table();
+        // below the first point (power law through the origin), on a knot,
+        // between points, beyond the last (linear)
+        for &u in &[
+            3e-4, 1.5e-3, 2e-3, 2.6e-3, 4.4e-3, 6e-3, 1.1e-2, 1.4e-2, 2.5e-2,
+        ] {
+            let (p, k) = law.pressure(u);
+            assert!(p > 0.0 && k > 0.0, "u = {u}: p {p}, k {k}");
+            let h = 1e-7 * u;
+            let fd = (law.pressure(u + h).0 - law.pressure(u - h).0) / (2.0 * h);
+            assert!((fd - k).abs() <= 1e-6 * k, "u = {u}: dp/du {k} vs FD {fd}");
+            let fe = (law.energy(u + h) - law.energy(u - h)) / (2.0 * h);
+            assert!((fe - p).abs() <= 1e-6 * p, "u = {u}: dφ/du {fe} vs p {p}");
+            assert!((law.approach(p) - u).abs() <= 1e-12 * u, "u = {u}: inverse");
+            let sec = law.secant_stiffness(p);
+            assert!((sec - p / u).abs() <= 1e-9 * sec, "u = {u}: secant (2.9)");
+        }
+        // open
+        assert_eq!(law.pressure(-1e-3), (0.0, 0.0));
+        assert_eq!(law.pressure(0.0), (0.0, 0.0));
+        assert_eq!(law.energy(-1e-3), 0.0);
+        // the measured points themselves, and the paper's exponent below the first
+        for &u in &[2e-3, 5e-3, 1.4e-2] {
+            let exact = (u / 0.001f64).powi(2);
+            assert!((law.pressure(u).0 - exact).abs() <= 1e-12 * exact);
+        }
+        let u = 1e-3;
+        assert!(
+            (law.pressure(u).0 - 1.0).abs() < 1e-12,
+            "p = (u/c)² below row 1"
+        );
+        // beyond the last point: linear with the end stiffness
+        let (p1, k1) = law.pressure(0.02);
+        let (p2, k2) = law.pressure(0.03);
+        assert_eq!(k1, k2);
+        assert!((p2 - p1 - k1 * 0.01).abs() <= 1e-12 * p2);
+    }
+
+    #[test]
+    fn table_law_is_monotone_with_a_continuous_stiffness() {
+        let law = table();
+        let mut p_prev = 0.0;
+        for i in 1..=4000 {
+            let u = 2e-2 * i as f64 / 4000.0;
+            let (p, k) = law.pressure(u);
+            assert!(p > p_prev && k > 0.0, "u = {u}");
+            p_prev = p;
+        }
+        // no jump of the stiffness at the measured points (the first one joins
+        // the power law below, the last one the linear tail)
+        for &u in &[2e-3, 3e-3, 5e-3, 6e-3, 9e-3, 1.4e-2] {
+            let e = 1e-10 * u;
+            let (l, r) = (law.pressure(u - e).1, law.pressure(u + e).1);
+            assert!((l - r).abs() <= 1e-6 * l, "u = {u}: k {l} | {r}");
+        }
+    }
+
+    #[test]
+    fn bad_tables_are_named() {
+        let e = |rows: &[(f64, f64)]| NormalLaw::new_table(rows).unwrap_err();
+        assert!(e(&[(0.0, 0.0), (1e-3, 1.0)]).contains("1 point"));
+        assert!(e(&[(1e-3, 1.0), (2e-3, 0.5)]).contains("not monotone"));
+        assert!(e(&[(1e-3, -1.0), (2e-3, 4.0)]).contains("row 1: p = -1"));
+        assert!(e(&[(1e-3, 1.0), (2e-3, f64::NAN)]).contains("row 2"));
+        // only the origin itself may have u = 0
+        assert!(e(&[(0.0, 1.0), (2e-3, 4.0), (3e-3, 9.0)]).contains("row 1: u_N = 0"));
     }
 
     #[test]

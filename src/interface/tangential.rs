@@ -16,12 +16,26 @@
 //!
 //! Units: with p in MPa, R is such that p_N^S / R is in MPa/µm (the paper's R = 0.9,
 //! S = 0.5 give 15.7 MPa/µm at 200 MPa); internally k_T^e = 1000 p_N^S / R MPa/mm.
+//!
+//! In place of R and S a measured table of k_T^e (MPa/µm) against p_N (MPa) may
+//! be given ([`TangentialLaw::with_k_table`]): interpolated monotonically in p
+//! (Fritsch-Butland cubic Hermite, [`super::table`]) so that k_T^e and dk_T^e/dp_N
+//! are continuous for the coupling ∂p_T/∂u_N; below the first point
+//! k ∝ p^{s₁} through it (s₁ = ln(k₂/k₁)/ln(p₂/p₁) clamped to [0, 1], the form of 2.6);
+//! above the last point linear with the end slope.
 
-/// Parameters of the tangential law.
-#[derive(Clone, Copy, Debug, PartialEq)]
+use super::table::Monotone;
+use std::sync::Arc;
+
+/// Parameters of the tangential law. `Clone` (not `Copy`): a k_table holds its points.
+#[derive(Clone, Debug, PartialEq)]
 pub struct TangentialLaw {
+    /// R of 2.6 (NaN when `k_table` is given).
     pub r: f64,
+    /// S of 2.6 (NaN when `k_table` is given).
     pub s: f64,
+    /// k_T^e(p_N) in MPa/µm from a measured table, in place of p^S/R.
+    pub k_table: Option<Arc<Monotone>>,
     /// k_T^p / k_T^e in [0, 1]; 1 = no micro-slip branch.
     pub kp_ratio: f64,
     pub mu: f64,
@@ -98,6 +112,7 @@ impl TangentialLaw {
         Ok(TangentialLaw {
             r,
             s,
+            k_table: None,
             kp_ratio,
             mu,
             beta,
@@ -106,8 +121,33 @@ impl TangentialLaw {
         })
     }
 
+    /// The law with k_T^e from measured rows (p_N MPa, k_T^e MPa/µm) in place of
+    /// p^S/R: at least 2 rows, pressures positive and strictly increasing,
+    /// stiffnesses positive and non-decreasing, all finite. R and S become NaN.
+    #[allow(clippy::too_many_arguments)] // the same parameters as `new`
+    pub fn with_k_table(
+        rows: &[(f64, f64)],
+        kp_ratio: f64,
+        mu: f64,
+        beta: f64,
+        n: f64,
+        yield_ratio: f64,
+    ) -> Result<Self, String> {
+        let mut law = TangentialLaw::new(1.0, 0.0, kp_ratio, mu, beta, n, yield_ratio)?;
+        // kept in MPa/µm (the messages quote the rows as given); ×1000 on evaluation
+        let t = Monotone::new(rows, false, (0.0, 1.0), ("p", "k_T"))?;
+        law.r = f64::NAN;
+        law.s = f64::NAN;
+        law.k_table = Some(Arc::new(t));
+        Ok(law)
+    }
+
     /// k_T^e and dk_T^e/dp_N at normal pressure p > 0, MPa/mm.
     pub fn elastic_stiffness(&self, p: f64) -> (f64, f64) {
+        if let Some(t) = &self.k_table {
+            let (k, dk) = t.eval(p);
+            return (1000.0 * k, 1000.0 * dk);
+        }
         let k = 1000.0 * p.powf(self.s) / self.r;
         (k, if self.s == 0.0 { 0.0 } else { self.s * k / p })
     }
@@ -234,6 +274,113 @@ mod tests {
         ]
     }
 
+    /// k_table sampled from p^0.5 / 0.9 MPa/µm at 20 ... 150 MPa: with the FD
+    /// check's u_N ≈ 0.014 mm (196 MPa) the stiffness is extrapolated; other
+    /// pressures below use the power law below the first point and the cubic.
+    fn table_laws() -> Vec<TangentialLaw> {
+        let rows: Vec<(f64, f64)> = [20.0, 35.0, 60.0, 100.0, 150.0]
+            .iter()
+            .map(|&p: &f64| (p, p.sqrt() / 0.9))
+            .collect();
+        [(1.0, 1.0), (0.05, 1.0), (0.05, 0.2)]
+            .iter()
+            .map(|&(kp, beta)| {
+                TangentialLaw::with_k_table(&rows, kp, 0.2, beta, 275.0, 0.625).unwrap()
+            })
+            .collect()
+    }
+
+    #[test]
+    fn k_table_stiffness_is_continuous_with_its_derivative() {
+        let law = &table_laws()[0];
+        for &p in &[5.0, 20.0, 27.0, 60.0, 80.0, 150.0, 300.0] {
+            let (k, dk) = law.elastic_stiffness(p);
+            assert!(k > 0.0 && dk > 0.0, "p = {p}");
+            let h = 1e-6 * p;
+            let fd = (law.elastic_stiffness(p + h).0 - law.elastic_stiffness(p - h).0) / (2.0 * h);
+            assert!(
+                (fd - dk).abs() <= 1e-6 * dk,
+                "p = {p}: dk/dp {dk} vs FD {fd}"
+            );
+        }
+        // the rows in MPa/µm are k in MPa/mm / 1000; below row 1: k ∝ p^0.5 (s₁ exact here)
+        let k20 = law.elastic_stiffness(20.0).0;
+        assert!((k20 - 1000.0 * 20f64.sqrt() / 0.9).abs() < 1e-9 * k20);
+        let k5 = law.elastic_stiffness(5.0).0;
+        assert!((k5 - 1000.0 * 5f64.sqrt() / 0.9).abs() < 1e-9 * k5);
+        // beyond the last row: linear
+        let (a, da) = law.elastic_stiffness(200.0);
+        let (b, db) = law.elastic_stiffness(300.0);
+        assert_eq!(da, db);
+        assert!((b - a - 100.0 * da).abs() < 1e-9 * b);
+    }
+
+    #[test]
+    fn k_table_consistent_tangent_matches_finite_differences_in_every_regime() {
+        // normal approaches giving p below row 1 (9 MPa), between rows (49, 121 MPa)
+        // and beyond the last (196 MPa)
+        for law in table_laws() {
+            let mut seen = Vec::new();
+            for un in [0.003, 0.007, 0.011, 0.014] {
+                for committed in [
+                    SlipState::default(),
+                    SlipState {
+                        u_p: 1.5e-4,
+                        kappa: 4e-4,
+                    },
+                ] {
+                    for ut in [2e-5, -7e-5, 2e-4, 6e-4, -9e-4, 3e-3, -8e-3] {
+                        let (p, kn) = pressure(un);
+                        let ev = law.eval(p, kn, ut, &committed);
+                        seen.push(ev.slip);
+                        let f = |un: f64, ut: f64| {
+                            let (p, kn) = pressure(un);
+                            law.eval(p, kn, ut, &committed).p_t
+                        };
+                        let h = 1e-10;
+                        let fd_t = (f(un, ut + h) - f(un, ut - h)) / (2.0 * h);
+                        let fd_n = (f(un + h, ut) - f(un - h, ut)) / (2.0 * h);
+                        let scale = law.elastic_stiffness(p).0;
+                        assert!(
+                            (fd_t - ev.d_ut).abs() < 1e-5 * scale,
+                            "un={un} ut={ut} {:?}: d_ut {} vs FD {fd_t}",
+                            ev.slip,
+                            ev.d_ut
+                        );
+                        let nscale = ev.d_un.abs().max(scale * 1e-3).max(fd_n.abs());
+                        assert!(
+                            (fd_n - ev.d_un).abs() < 1e-5 * nscale,
+                            "un={un} ut={ut} {:?}: d_un {} vs FD {fd_n}",
+                            ev.slip,
+                            ev.d_un
+                        );
+                    }
+                }
+            }
+            assert!(seen.contains(&Slip::Stick), "{seen:?}");
+            assert!(seen.contains(&Slip::MacroSlip), "{seen:?}");
+            if law.kp_ratio < 1.0 {
+                assert!(seen.contains(&Slip::MicroSlip), "{seen:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn bad_k_tables_are_named() {
+        let e = |rows: &[(f64, f64)]| {
+            TangentialLaw::with_k_table(rows, 0.05, 0.2, 1.0, 275.0, 0.625).unwrap_err()
+        };
+        assert!(e(&[(10.0, 3.0)]).contains("at least 2"));
+        assert!(e(&[(10.0, 3.0), (20.0, 2.0)]).contains("not monotone"));
+        assert!(e(&[(10.0, 3.0), (5.0, 4.0)]).contains("row 2: p = 5"));
+        assert!(e(&[(10.0, 0.0), (20.0, 4.0)]).contains("row 1"));
+        // a constant stiffness (S = 0) is a valid table
+        let law =
+            TangentialLaw::with_k_table(&[(10.0, 3.0), (20.0, 3.0)], 0.05, 0.2, 1.0, 275.0, 0.625)
+                .unwrap();
+        assert_eq!(law.elastic_stiffness(15.0), (3000.0, 0.0));
+    }
+
     /// p(u_N) = (u/c)² (power law m = 1/2) so ∂p_T/∂u_N can be checked too.
     fn pressure(un: f64) -> (f64, f64) {
         let c = 0.001;
@@ -305,7 +452,7 @@ mod tests {
 
     #[test]
     fn load_unload_reverse_reload_follows_fig_1() {
-        let law = laws()[1]; // k_T^p = 0.05 k_T^e, β = 1
+        let law = laws()[1].clone(); // k_T^p = 0.05 k_T^e, β = 1
         let p = 200.0;
         let (ke, _) = law.elastic_stiffness(p);
         let ky = law.yield_ratio * law.mu * p; // 25 MPa
@@ -356,7 +503,7 @@ mod tests {
 
     #[test]
     fn slip_hardening_follows_eq_2_21() {
-        let law = laws()[2]; // β = 0.2: starts slipping at 0.2 μ p_N
+        let law = laws()[2].clone(); // β = 0.2: starts slipping at 0.2 μ p_N
         let p = 150.0;
         let path: Vec<f64> = (1..=400).map(|i| 0.05 * i as f64 / 400.0).collect();
         for (_, ev) in drive(&law, p, &path) {

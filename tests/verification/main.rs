@@ -24,4 +24,5 @@ mod punch;
 mod roughness;
 mod shrink_fit;
 mod stepping;
+mod tables;
 mod tangents;
