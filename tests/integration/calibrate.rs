@@ -1,6 +1,6 @@
 //! `asperity calibrate` as a user meets it: the worked example end to end
 //! (the files, the power-law snippet pasted into a shipped case and checked,
-//! the table snippet's shape), a measured profile, and bad inputs (one
+//! the table snippet's shape, and the table law pasted into the punch runs), a measured profile, and bad inputs (one
 //! `error:` line, exit code 2, no output folder).
 
 use crate::common;
@@ -105,6 +105,22 @@ fn the_example_writes_a_curve_a_fit_and_pasteable_laws() {
     );
     let path = common::case_dir("calibrate-pasted", &pasted);
     let (code, _, err) = asperity(&["check", path.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    // and the table snippet: a valid `law = "table"` that runs the punch
+    let snippet_start = text.find("[interface.calibrated_table]").unwrap();
+    let snippet_end = snippet_start + text[snippet_start..].find("\n]").unwrap() + 2;
+    let snippet = text[snippet_start..snippet_end]
+        .replace("[interface.calibrated_table]", "[interface.contact]");
+    let pasted = format!("{}{}\n{}", &case[..start], snippet, &case[end..]);
+    let path = common::case_dir("calibrate-pasted-table", &pasted);
+    let out = path.parent().unwrap().join("out");
+    let (code, _, err) = asperity(&[
+        "run",
+        path.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
     assert_eq!(code, 0, "{err}");
 }
 

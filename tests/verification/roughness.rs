@@ -121,5 +121,35 @@ fn the_calibrated_shrink_fit_matches_its_closed_form_and_the_din_rule() {
         p_fe < 0.85 * p_rigid,
         "calibrated {p_fe} vs rigid {p_rigid}"
     );
-    eprintln!("fit pressure: calibrated {p_fe:.2} (closed form {p_cal:.2}), DIN 7190 {p_din:.2}, rigid {p_rigid:.2} MPa");
+    // the other snippet: the GW curve itself as a table law in place of the
+    // power law; the two differ by the fit's error (fit.json), and so do the
+    // fit pressures (δ's share in the approach is about a quarter: a bound)
+    let snippet = std::fs::read_to_string(cal.join("interface.toml")).unwrap();
+    let start = snippet.find("law = \"table\"").unwrap();
+    let end = start + snippet[start..].find("\n]").unwrap() + 2;
+    // case.toml's `law`, `c_n` and `m` lines, replaced by the table
+    let from = text.find("law = \"power\"").unwrap();
+    let m_line = from + text[from..].find("\nm = ").unwrap() + 1;
+    let to = m_line + text[m_line..].find('\n').unwrap();
+    let tabled = format!("{}{}{}", &text[..from], &snippet[start..end], &text[to..]);
+    let path = common::case_dir("shrink-fit-roughness-table", &tabled);
+    let out_t = dir.join("run-table");
+    run(&[
+        "run",
+        path.to_str().unwrap(),
+        "--out",
+        out_t.to_str().unwrap(),
+        "--quiet",
+    ]);
+    let t: Value =
+        serde_json::from_str(&std::fs::read_to_string(out_t.join("summary.json")).unwrap())
+            .unwrap();
+    let p_table = t["joints"][0]["final"]["normal_force_n"].as_f64().unwrap()
+        / (std::f64::consts::TAU * B * 30.0);
+    let fit_error = fit["max_relative_error_approach"].as_f64().unwrap();
+    assert!(
+        common::rel(p_table, p_fe) < fit_error,
+        "table law {p_table} vs power law {p_fe} MPa (fit error {fit_error})"
+    );
+    eprintln!("fit pressure: calibrated {p_fe:.2} (closed form {p_cal:.2}; table law {p_table:.2}), DIN 7190 {p_din:.2}, rigid {p_rigid:.2} MPa");
 }
