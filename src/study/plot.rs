@@ -71,16 +71,10 @@ pub fn save(chart: &Chart, stem: &Path, pictures: bool) -> Result<Vec<PathBuf>> 
     }
     let mut written = vec![stem.with_extension("csv")];
     std::fs::write(&written[0], csv).map_err(|e| Error::io(&written[0], e))?;
+    save_pictures(chart, stem, pictures)?;
     if pictures {
-        let svg = stem.with_extension("svg");
-        draw(SVGBackend::new(&svg, (900, 600)).into_drawing_area(), chart)?;
-        let png = stem.with_extension("png");
-        draw(
-            BitMapBackend::new(&png, (900, 600)).into_drawing_area(),
-            chart,
-        )?;
-        written.push(svg);
-        written.push(png);
+        written.push(stem.with_extension("svg"));
+        written.push(stem.with_extension("png"));
     }
     Ok(written)
 }
