@@ -156,16 +156,19 @@ impl Model {
                 )
             })?;
             let spec = &case.interface[&iface.name];
-            interfaces.push(InterfaceModel::new(
-                &mesh,
-                iface,
-                law.clone(),
-                spec.gap,
-                spec.weights,
-                section,
-                spec.start_pressure,
-                checked.tangential.get(&iface.name).cloned(),
-            ));
+            interfaces.push(
+                InterfaceModel::new(
+                    &mesh,
+                    iface,
+                    law.clone(),
+                    spec.gap,
+                    spec.weights,
+                    section,
+                    spec.start_pressure,
+                    checked.tangential.get(&iface.name).cloned(),
+                )
+                .map_err(|m| Error::input(&place, m))?,
+            );
         }
         for name in case.interface.keys() {
             if !mesh.interfaces.iter().any(|i| &i.name == name) {

@@ -245,7 +245,7 @@ pub fn direction(im: &InterfaceModel) -> [f64; 2] {
 }
 
 /// Length of the piece ξ ∈ [from, to] of a quadratic edge (3-point Gauss).
-fn piece_length(x: &[[f64; 2]; 3], from: f64, to: f64) -> f64 {
+pub(crate) fn piece_length(x: &[[f64; 2]; 3], from: f64, to: f64) -> f64 {
     let (mid, half) = (0.5 * (from + to), 0.5 * (to - from));
     crate::fem::q8::gauss_1d(3)
         .iter()
@@ -266,7 +266,17 @@ fn piece_length(x: &[[f64; 2]; 3], from: f64, to: f64) -> f64 {
 /// interrupted, or edges listed out of order in a mesh file) follow one
 /// another by the position of their start along the interface's mean
 /// direction, s continuing across a break by the straight distance.
+///
+/// On a non-matching interface (one pair per spring point) s is the slave
+/// point's arc length along the slave side, from its first edge.
 pub fn arc_lengths(mesh: &Mesh, iface: &Interface, im: &InterfaceModel) -> Vec<f64> {
+    if iface.nonmatching.is_some() {
+        return im
+            .points
+            .iter()
+            .map(|p| p.segment.map_or(f64::NAN, |g| g.s))
+            .collect();
+    }
     use std::collections::HashMap;
     let index: HashMap<(usize, usize), usize> = im
         .pairs

@@ -14,6 +14,12 @@
 //!   the matrix (A/30) diag(5, 20, 5) of eq. 3.31): one independent spring per pair;
 //! * consistent: 4-point Gauss along the edge with u_N interpolated quadratically;
 //!   for a linear law this is exactly (k A/30)[4 2 −1; 2 16 2; −1 2 4] (eq. 3.29).
+//!
+//! A non-matching interface (`matching = false`, issue 19) has the same
+//! quadrature points on the slave side (body A), each projected once onto
+//! the closest quadratic edge of the master side (body B) and coupled to
+//! its three nodes through the edge's shape functions N(ξ) (node-to-segment,
+//! small sliding: docs/theory.md, "Non-matching interfaces"); see [`Segment`].
 
 pub mod joint;
 pub mod normal;
@@ -34,6 +40,30 @@ pub struct Pair {
     pub normal: [f64; 2],
     /// Tributary (lumped) area, mm².
     pub area: f64,
+    /// On a non-matching interface: the spring point this row stands for
+    /// (one pair per point, `a` the nearest slave node, `b` the nearest
+    /// master node, `x` the slave point); `None` for a coincident pair.
+    pub spring: Option<usize>,
+}
+
+/// Node-to-segment coupling of a spring point of a non-matching interface
+/// (see the module comment): the slave point x_A = Σ N_i^A x_{a_i} on body
+/// A's side and its closest point x_B(ξ) = Σ N_j(ξ) x_{b_j} on a quadratic
+/// edge of body B, ξ fixed at the start (small sliding).
+#[derive(Clone, Copy, Debug)]
+pub struct Segment {
+    /// Slave nodes and their shape values (first `len_a` used).
+    pub a: [usize; 3],
+    pub na: [f64; 3],
+    pub len_a: usize,
+    /// The master edge's nodes and its shape functions N(ξ) at the projection.
+    pub b: [usize; 3],
+    pub nb: [f64; 3],
+    /// Geometric initial gap (x_A − x_B(ξ))·n, mm (0 on a straight common
+    /// line); the interface's `gap` adds to it.
+    pub gap: f64,
+    /// Arc length of the slave point along the slave side, mm.
+    pub s: f64,
 }
 
 /// An integration point of the interface energy.
@@ -46,18 +76,46 @@ pub struct Point {
     /// Integration weight: area represented, mm².
     pub area: f64,
     pub normal: [f64; 2],
+    /// Non-matching interfaces: the node-to-segment coupling (then `pairs`,
+    /// `shape` and `len` are unused); `None` on coincident pairs.
+    pub segment: Option<Segment>,
 }
 
 impl Point {
+    /// Number of local dofs: 4·len for coincident pairs, 2·(slave nodes + 3)
+    /// for a node-to-segment point (at most 12 either way).
+    pub fn ndofs(&self) -> usize {
+        match &self.segment {
+            None => 4 * self.len,
+            Some(g) => 2 * (g.len_a + 3),
+        }
+    }
+
     /// The derivatives of the relative approach u_N and slip u_T (eq. 3.29-3.31:
     /// B's minus A's displacement, interpolated by the edge's shape
     /// functions, along the normal and the tangent t = (n_y, −n_x)) with
     /// respect to the point's local dofs (A pairs (x, y), then B pairs); the
     /// first 4·len entries of each are used.
+    /// On a non-matching interface the A entries are −N_i^A n and the B
+    /// entries +N_j(ξ) n (slave nodes, then the master edge's three nodes).
     pub fn gradients(&self) -> ([f64; 12], [f64; 12]) {
         let n = self.len;
         let t = [self.normal[1], -self.normal[0]];
         let (mut gn, mut gt) = ([0.0f64; 12], [0.0f64; 12]);
+        if let Some(g) = &self.segment {
+            let m = g.len_a;
+            for c in 0..2 {
+                for i in 0..m {
+                    gn[2 * i + c] = -g.na[i] * self.normal[c];
+                    gt[2 * i + c] = -g.na[i] * t[c];
+                }
+                for j in 0..3 {
+                    gn[2 * m + 2 * j + c] = g.nb[j] * self.normal[c];
+                    gt[2 * m + 2 * j + c] = g.nb[j] * t[c];
+                }
+            }
+            return (gn, gt);
+        }
         for i in 0..n {
             let s = self.shape[i];
             for c in 0..2 {
@@ -225,7 +283,33 @@ impl InterfaceModel {
         section: crate::fem::Section,
         start_pressure: Option<f64>,
         tangential: Option<(TangentialLaw, FrictionScheme)>,
-    ) -> Self {
+    ) -> Result<Self, String> {
+        let (pairs, points) = match &iface.nonmatching {
+            None => Self::coincident(mesh, iface, weights, section),
+            Some(nm) => node_to_segment(mesh, &iface.name, nm, weights, section)?,
+        };
+        Ok(InterfaceModel {
+            name: iface.name.clone(),
+            body_a: iface.body_a,
+            body_b: iface.body_b,
+            law,
+            gap,
+            gap_history: None,
+            pairs,
+            points,
+            start_pressure,
+            scheme: tangential.as_ref().map(|t| t.1).unwrap_or_default(),
+            tangential: tangential.map(|t| t.0),
+        })
+    }
+
+    /// The pairs and points of a matching interface (coincident node pairs).
+    fn coincident(
+        mesh: &Mesh,
+        iface: &Interface,
+        weights: Weights,
+        section: crate::fem::Section,
+    ) -> (Vec<Pair>, Vec<Point>) {
         let mut pairs: Vec<Pair> = Vec::new();
         let mut index = std::collections::HashMap::new();
         let mut edge_pairs = Vec::with_capacity(iface.edges.len());
@@ -240,6 +324,7 @@ impl InterfaceModel {
                         x: mesh.nodes[edge.b[i]],
                         normal: [0.0; 2],
                         area: 0.0,
+                        spring: None,
                     });
                     pairs.len() - 1
                 });
@@ -279,6 +364,7 @@ impl InterfaceModel {
                         len: 3,
                         area: wg * ds * section.measure(x),
                         normal: n,
+                        segment: None,
                     });
                 }
             }
@@ -297,22 +383,11 @@ impl InterfaceModel {
                     len: 1,
                     area: p.area,
                     normal: p.normal,
+                    segment: None,
                 })
                 .collect();
         }
-        InterfaceModel {
-            name: iface.name.clone(),
-            body_a: iface.body_a,
-            body_b: iface.body_b,
-            law,
-            gap,
-            gap_history: None,
-            pairs,
-            points,
-            start_pressure,
-            scheme: tangential.as_ref().map(|t| t.1).unwrap_or_default(),
-            tangential: tangential.map(|t| t.0),
-        }
+        (pairs, points)
     }
 
     /// Total nominal area of the interface, mm².
@@ -335,7 +410,11 @@ impl InterfaceModel {
     }
 
     /// Approach at a pair across the given gap: u_N = (u_B − u_A)·n − gap.
+    /// On a non-matching interface, the approach of the pair's spring point.
     pub fn pair_approach_at(&self, pair: &Pair, u: &[f64], gap: f64) -> f64 {
+        if let Some(j) = pair.spring {
+            return self.point_kinematics_at(&self.points[j], u, gap).0;
+        }
         let n = pair.normal;
         let du = [
             u[2 * pair.b] - u[2 * pair.a],
@@ -351,9 +430,25 @@ impl InterfaceModel {
     }
 
     /// [`InterfaceModel::point_kinematics`] across the given gap.
+    /// On a non-matching interface u_N = (u_B(ξ) − u_A)·n − g₀(point) − gap
+    /// and u_T = (u_B(ξ) − u_A)·t, u_B(ξ) = Σ N_j(ξ) u_{b_j} on the master
+    /// edge and u_A = Σ N_i^A u_{a_i} at the slave point.
     pub fn point_kinematics_at(&self, pt: &Point, u: &[f64], gap: f64) -> (f64, f64) {
-        let (mut un, mut ut) = (-gap, 0.0);
         let (n, t) = (pt.normal, [pt.normal[1], -pt.normal[0]]);
+        if let Some(g) = &pt.segment {
+            let mut du = [0.0f64; 2];
+            for c in 0..2 {
+                for j in 0..3 {
+                    du[c] += g.nb[j] * u[2 * g.b[j] + c];
+                }
+                for i in 0..g.len_a {
+                    du[c] -= g.na[i] * u[2 * g.a[i] + c];
+                }
+            }
+            let un = du[0] * n[0] + du[1] * n[1] - g.gap - gap;
+            return (un, du[0] * t[0] + du[1] * t[1]);
+        }
+        let (mut un, mut ut) = (-gap, 0.0);
         for i in 0..pt.len {
             let pr = &self.pairs[pt.pairs[i]];
             let du = [u[2 * pr.b] - u[2 * pr.a], u[2 * pr.b + 1] - u[2 * pr.a + 1]];
@@ -363,8 +458,13 @@ impl InterfaceModel {
         (un, ut)
     }
 
-    /// The dofs of a point in local order: A pairs (x, y) then B pairs (x, y).
+    /// The dofs of a point in local order: A pairs (x, y) then B pairs (x, y);
+    /// on a non-matching interface the slave nodes, then the master edge's.
     pub fn point_dofs(&self, pt: &Point) -> Vec<usize> {
+        if let Some(g) = &pt.segment {
+            let nodes = g.a[..g.len_a].iter().chain(&g.b);
+            return nodes.flat_map(|&m| [2 * m, 2 * m + 1]).collect();
+        }
         let mut d = Vec::with_capacity(4 * pt.len);
         for i in 0..pt.len {
             let a = self.pairs[pt.pairs[i]].a;
@@ -419,7 +519,6 @@ impl InterfaceModel {
             Some(kf) if u_n <= 0.0 => kf,
             _ => k_law,
         };
-        let n = pt.len;
         // gn, gt: derivatives of u_N and u_T with respect to the local dofs
         let (gn, gt) = pt.gradients();
         let mut status = if u_n > 0.0 {
@@ -463,7 +562,7 @@ impl InterfaceModel {
                 d_un = 0.0;
             }
         }
-        let nd = 4 * n;
+        let nd = pt.ndofs();
         for i in 0..nd {
             r[i] = pt.area * (p_n * gn[i] + p_t * gt[i]);
         }
@@ -504,6 +603,209 @@ fn edge_normal(x: &[[f64; 2]; 3], s: f64) -> ([f64; 2], f64) {
     ([-t[1] / l, t[0] / l], l)
 }
 
+/// The spring points of a non-matching interface (node-to-segment, small
+/// sliding): the slave side's quadrature points (its nodes with tributary
+/// areas for lumped weights, 4-point Gauss per slave edge for consistent
+/// ones, as on a matching interface) each projected once onto the closest
+/// master edge ([`project`]). One pair per point, for the per-point outputs.
+/// An error names the interface, the point and the master side's extent if a
+/// point projects outside every master edge.
+fn node_to_segment(
+    mesh: &Mesh,
+    name: &str,
+    nm: &crate::mesh::NonMatching,
+    weights: Weights,
+    section: crate::fem::Section,
+) -> Result<(Vec<Pair>, Vec<Point>), String> {
+    let coords = |e: &[usize; 3]| -> [[f64; 2]; 3] { std::array::from_fn(|i| mesh.nodes[e[i]]) };
+    // slave quadrature points
+    struct SlavePoint {
+        a: [usize; 3],
+        na: [f64; 3],
+        len_a: usize,
+        x: [f64; 2],
+        area: f64,
+        s: f64,
+    }
+    let mut slave: Vec<SlavePoint> = Vec::new();
+    let mut s0 = 0.0;
+    let mut node_point = std::collections::HashMap::new();
+    for e in &nm.slave {
+        let xs = coords(e);
+        let half = [
+            joint::piece_length(&xs, -1.0, 0.0),
+            joint::piece_length(&xs, -1.0, 1.0),
+        ];
+        match weights {
+            Weights::Lumped => {
+                for (i, &xi) in [-1.0, 0.0, 1.0].iter().enumerate() {
+                    let ds = edge_normal(&xs, xi).1;
+                    let w = [1.0 / 3.0, 4.0 / 3.0, 1.0 / 3.0][i] * ds * section.measure(xs[i]);
+                    let s = s0 + [0.0, half[0], half[1]][i];
+                    let k = *node_point.entry(e[i]).or_insert_with(|| {
+                        slave.push(SlavePoint {
+                            a: [e[i]; 3],
+                            na: [1.0, 0.0, 0.0],
+                            len_a: 1,
+                            x: xs[i],
+                            area: 0.0,
+                            s,
+                        });
+                        slave.len() - 1
+                    });
+                    slave[k].area += w;
+                }
+            }
+            Weights::Consistent => {
+                for (xi, wg) in gauss4() {
+                    let ds = edge_normal(&xs, xi).1;
+                    let shape = crate::fem::q8::edge_shape(xi);
+                    let x = [0, 1].map(|c| (0..3).map(|k| shape[k] * xs[k][c]).sum::<f64>());
+                    let s = s0 + joint::piece_length(&xs, -1.0, xi);
+                    slave.push(SlavePoint {
+                        a: *e,
+                        na: shape,
+                        len_a: 3,
+                        x,
+                        area: wg * ds * section.measure(x),
+                        s,
+                    });
+                }
+            }
+        }
+        s0 += half[1];
+    }
+    let masters: Vec<[[f64; 2]; 3]> = nm.master.iter().map(coords).collect();
+    let mut pairs = Vec::with_capacity(slave.len());
+    let mut points = Vec::with_capacity(slave.len());
+    for SlavePoint {
+        a,
+        na,
+        len_a,
+        x,
+        area,
+        s,
+    } in slave
+    {
+        let dist = |xe: &[[f64; 2]; 3], xi: f64| {
+            let p = point_on(xe, xi);
+            (p[0] - x[0]).hypot(p[1] - x[1])
+        };
+        let best = masters
+            .iter()
+            .enumerate()
+            .filter_map(|(k, xe)| project(xe, x).map(|xi| (k, xi, dist(xe, xi))))
+            .min_by(|p, q| p.2.total_cmp(&q.2));
+        let Some((k, xi, _)) = best else {
+            let ends = masters.iter().flat_map(|xe| [xe[0], xe[2]]);
+            let (lo, hi) = ends.fold(
+                ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
+                |(lo, hi), p| {
+                    (
+                        [lo[0].min(p[0]), lo[1].min(p[1])],
+                        [hi[0].max(p[0]), hi[1].max(p[1])],
+                    )
+                },
+            );
+            return Err(format!(
+                "interface \"{name}\" (matching = false): the slave point at ({}, {}) of body A projects outside every edge of the master side (body B), which spans x ∈ [{}, {}], y ∈ [{}, {}]; the slave side must lie within the master side",
+                x[0], x[1], lo[0], hi[0], lo[1], hi[1]
+            ));
+        };
+        let xe = &masters[k];
+        let (n, _) = edge_normal(xe, xi);
+        let nb = crate::fem::q8::edge_shape(xi);
+        let xb = point_on(xe, xi);
+        let gap = (x[0] - xb[0]) * n[0] + (x[1] - xb[1]) * n[1];
+        let b = nm.master[k];
+        let near = |nodes: &[usize], vals: &[f64]| {
+            let i = (0..vals.len())
+                .max_by(|&i, &j| vals[i].abs().total_cmp(&vals[j].abs()))
+                .unwrap_or(0);
+            nodes[i]
+        };
+        pairs.push(Pair {
+            a: near(&a[..len_a], &na[..len_a]),
+            b: near(&b, &nb),
+            x,
+            normal: n,
+            area,
+            spring: Some(points.len()),
+        });
+        points.push(Point {
+            pairs: [pairs.len() - 1; 3],
+            shape: [1.0, 0.0, 0.0],
+            len: 1,
+            area,
+            normal: n,
+            segment: Some(Segment {
+                a,
+                na,
+                len_a,
+                b,
+                nb,
+                gap,
+                s,
+            }),
+        });
+    }
+    Ok((pairs, points))
+}
+
+/// x(ξ) on a quadratic edge.
+fn point_on(xe: &[[f64; 2]; 3], xi: f64) -> [f64; 2] {
+    let n = crate::fem::q8::edge_shape(xi);
+    [0, 1].map(|c| (0..3).map(|k| n[k] * xe[k][c]).sum())
+}
+
+/// Tolerance on ξ for a projection at an edge's end (shared by two edges).
+const XI_TOL: f64 = 1e-9;
+
+/// The closest point of the quadratic edge `xe` to `x`: ξ ∈ [−1, 1] where
+/// f(ξ) = (x(ξ) − x)·x'(ξ) = 0, by Newton from ξ = 0
+/// (f' = x'·x' + (x(ξ) − x)·x''); `None` if the foot lies beyond the edge's
+/// ends (|ξ| > 1 + 1e-9). If Newton does not converge, bisection on f over
+/// [−1, 1] when f changes sign there, else `None`.
+pub fn project(xe: &[[f64; 2]; 3], x: [f64; 2]) -> Option<f64> {
+    let f = |xi: f64| {
+        let p = point_on(xe, xi);
+        let dn = [xi - 0.5, -2.0 * xi, xi + 0.5];
+        let d = [0, 1].map(|c| (0..3).map(|k| dn[k] * xe[k][c]).sum::<f64>());
+        let dd = [0, 1].map(|c| xe[0][c] - 2.0 * xe[1][c] + xe[2][c]);
+        let r = [p[0] - x[0], p[1] - x[1]];
+        (
+            r[0] * d[0] + r[1] * d[1],
+            d[0] * d[0] + d[1] * d[1] + r[0] * dd[0] + r[1] * dd[1],
+        )
+    };
+    let mut xi = 0.0f64;
+    for _ in 0..50 {
+        let (v, dv) = f(xi);
+        if dv <= 0.0 || !dv.is_finite() {
+            break;
+        }
+        let step = v / dv;
+        xi = (xi - step).clamp(-3.0, 3.0);
+        if step.abs() < 1e-14 {
+            return (xi.abs() <= 1.0 + XI_TOL).then(|| xi.clamp(-1.0, 1.0));
+        }
+    }
+    // fallback: bisection on f over [−1, 1]
+    let (mut lo, mut hi) = (-1.0f64, 1.0f64);
+    if !(f(lo).0 <= 0.0 && f(hi).0 >= 0.0) {
+        return None;
+    }
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if f(mid).0 < 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Some(0.5 * (lo + hi))
+}
+
 fn gauss4() -> [(f64, f64); 4] {
     let a = (3.0 / 7.0 - 2.0 / 7.0 * (6.0f64 / 5.0).sqrt()).sqrt();
     let b = (3.0 / 7.0 + 2.0 / 7.0 * (6.0f64 / 5.0).sqrt()).sqrt();
@@ -515,6 +817,29 @@ fn gauss4() -> [(f64, f64); 4] {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn projection_finds_the_closest_point_of_a_curved_edge_and_refuses_beyond_its_ends() {
+        // a bowed edge: x(ξ) = (2ξ, 0.3(1 − ξ²))
+        let xe = [[-2.0, 0.0], [0.0, 0.3], [2.0, 0.0]];
+        for x in [[0.7, 1.0], [-1.3, -0.4], [1.9, 0.2], [0.0, 0.3]] {
+            let xi = project(&xe, x).expect("the foot lies on the edge");
+            let p = point_on(&xe, xi);
+            let d = [2.0, -0.6 * xi];
+            let f = (p[0] - x[0]) * d[0] + (p[1] - x[1]) * d[1];
+            assert!(f.abs() < 1e-12, "{x:?}: ξ = {xi}, f = {f}");
+            // closer than any other point of the edge
+            for k in 0..=200 {
+                let q = point_on(&xe, -1.0 + 0.01 * k as f64);
+                let dq = (q[0] - x[0]).hypot(q[1] - x[1]);
+                assert!((p[0] - x[0]).hypot(p[1] - x[1]) <= dq + 1e-12);
+            }
+        }
+        assert_eq!(project(&xe, [2.5, 0.0]), None);
+        assert_eq!(project(&xe, [-2.4, -0.1]), None);
+        // an end shared with the next edge is inside (both edges find it)
+        assert_eq!(project(&xe, [2.0, 0.0]), Some(1.0));
+    }
 
     #[test]
     fn point_state_pack_round_trips_in_the_restart_order() {

@@ -6,7 +6,7 @@
 //! Each block gets the node sets and edge sets `<body>.bottom`, `.right`, `.top`,
 //! `.left` (edges walked with the body on the left) and the node set `<body>.all`.
 
-use super::{ContactEdge, Element, Interface, Mesh, MeshError};
+use super::{ContactEdge, Element, Interface, Mesh, MeshError, NonMatching};
 use serde::Deserialize;
 
 /// A rectangular block; x and y are split into segments at the breakpoints.
@@ -52,6 +52,11 @@ pub struct InterfaceSpec {
     /// contact (body B).
     #[serde(default)]
     pub right: Option<String>,
+    /// Generated meshes: `false` lets the two sides have different nodes
+    /// along the interface (node-to-segment springs, body A the slave side,
+    /// body B the master side); default `true`, coincident node pairs.
+    #[serde(default)]
+    pub matching: Option<bool>,
 }
 
 /// As derived, but `left` / `right` only when given: the text of a case
@@ -68,6 +73,9 @@ impl std::fmt::Debug for InterfaceSpec {
             .field("lower_curve", &self.lower_curve);
         if self.left.is_some() || self.right.is_some() {
             d.field("left", &self.left).field("right", &self.right);
+        }
+        if let Some(m) = self.matching {
+            d.field("matching", &m);
         }
         d.finish()
     }
@@ -346,11 +354,60 @@ fn pair_blocks(mesh: &Mesh, grids: &[Grid], spec: &InterfaceSpec) -> Result<Inte
         )));
     }
     let f = facing(grids, ia, ib, a, b, vertical);
+    if spec.matching == Some(false) {
+        return Ok(Interface {
+            name: spec.name.clone(),
+            body_a: ia,
+            body_b: ib,
+            edges: Vec::new(),
+            nonmatching: Some(nonmatching_sides(mesh, &spec.name, &f)?),
+        });
+    }
     Ok(Interface {
         name: spec.name.clone(),
         body_a: ia,
         body_b: ib,
         edges: match_sides(mesh, &spec.name, &f)?,
+        nonmatching: None,
+    })
+}
+
+/// The two sides of a non-matching interface (`matching = false`): they
+/// must lie on one line and overlap, like matching ones, but their nodes
+/// need not coincide. The slave side is A's edges that reach into B's
+/// extent along the interface (edges wholly beyond it are free surface, as
+/// on a matching interface); the master side is all of B's facing edges.
+/// Whether every spring point finds a master edge is checked when the
+/// springs are built ([`crate::interface::InterfaceModel::new`]).
+fn nonmatching_sides(mesh: &Mesh, name: &str, f: &Facing) -> Result<NonMatching, MeshError> {
+    let k = f.along;
+    let (along, across) = (["x", "y"][k], ["x", "y"][1 - k]);
+    let err = |m: String| Err(MeshError(format!("interface \"{name}\": {m}")));
+    let size = (f.a_range[1] - f.a_range[0]).max(f.b_range[1] - f.b_range[0]);
+    let tol = 1e-9 * size;
+    if (f.a_at - f.b_at).abs() > tol {
+        return err(format!(
+            "{} of \"{}\" is at {across} = {} but {} of \"{}\" is at {across} = {} (the sides do not face each other)",
+            f.a_side, f.a, f.a_at, f.b_side, f.b, f.b_at
+        ));
+    }
+    if f.a_range[1].min(f.b_range[1]) - f.a_range[0].max(f.b_range[0]) <= tol {
+        return err(format!("the blocks do not overlap in {along}"));
+    }
+    let at = |n: usize| mesh.nodes[n][k];
+    let edges = |line: &[usize]| -> Vec<[usize; 3]> {
+        line.windows(3)
+            .step_by(2)
+            .map(|w| [w[0], w[1], w[2]])
+            .collect()
+    };
+    let slave = edges(&f.a_line)
+        .into_iter()
+        .filter(|e| at(e[2]) > f.b_range[0] + tol && at(e[0]) < f.b_range[1] - tol)
+        .collect();
+    Ok(NonMatching {
+        slave,
+        master: edges(&f.b_line),
     })
 }
 
@@ -457,6 +514,7 @@ mod tests {
                 lower_curve: None,
                 left: None,
                 right: None,
+                matching: None,
             }],
         )
     }
@@ -534,6 +592,7 @@ mod tests {
             lower_curve: None,
             left: s(2),
             right: s(3),
+            matching: None,
         }
     }
 

@@ -1,5 +1,6 @@
 //! Meshes of 8-node quads: bodies, named node and edge sets, and contact
-//! interfaces made of paired (coincident, distinct) nodes.
+//! interfaces made of paired (coincident, distinct) nodes, or of two sides
+//! meshed apart ([`NonMatching`]).
 
 pub mod blocks;
 pub mod gmsh;
@@ -30,7 +31,23 @@ pub struct Interface {
     pub name: String,
     pub body_a: usize,
     pub body_b: usize,
+    /// Coincident node pairs (a matching interface); empty when the sides
+    /// are meshed apart ([`Interface::nonmatching`]).
     pub edges: Vec<ContactEdge>,
+    /// A non-matching interface (`matching = false`): the two sides' edges,
+    /// node-to-segment springs instead of node pairs ([`crate::interface`]).
+    pub nonmatching: Option<NonMatching>,
+}
+
+/// The two sides of a non-matching interface: quadratic edges [end, mid,
+/// end], both walked in the interface's walk direction (B on the right:
+/// increasing x on a horizontal interface, increasing y on a vertical one).
+/// The spring points live on the slave side (body A) and are projected onto
+/// the master side (body B).
+#[derive(Clone, Debug)]
+pub struct NonMatching {
+    pub slave: Vec<[usize; 3]>,
+    pub master: Vec<[usize; 3]>,
 }
 
 #[derive(Clone, Debug, Default)]
@@ -157,6 +174,17 @@ impl Mesh {
                         return err(format!(
                             "interface \"{}\" edge {k}: pair ({a}, {b}) is not on bodies \"{}\" / \"{}\"",
                             iface.name, self.bodies[iface.body_a], self.bodies[iface.body_b]
+                        ));
+                    }
+                }
+            }
+            if let Some(nm) = &iface.nonmatching {
+                let sides = [(&nm.slave, iface.body_a), (&nm.master, iface.body_b)];
+                for (edges, body) in sides {
+                    if let Some(&n) = edges.iter().flatten().find(|&&n| node_body[n] != body) {
+                        return err(format!(
+                            "interface \"{}\": node {n} at {:?} is not on body \"{}\"",
+                            iface.name, self.nodes[n], self.bodies[body]
                         ));
                     }
                 }

@@ -379,9 +379,8 @@ pub fn add_point(
     k: &mut [f64],
 ) {
     let (dn, dt) = increment(im, pt, committed, u);
-    let n = pt.len;
     let (gn, gt) = pt.gradients();
-    let nd = 4 * n;
+    let nd = pt.ndofs();
     let a = pt.area * ks;
     for i in 0..nd {
         r[i] += a * (dn * gn[i] + dt * gt[i]);

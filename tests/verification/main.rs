@@ -19,6 +19,7 @@ mod gold;
 mod histories;
 mod joints;
 mod limit_load;
+mod nonmatching;
 mod patch;
 mod punch;
 mod roughness;

@@ -283,6 +283,12 @@ fn pair_curves(
 ) -> Result<Interface> {
     let at = format!("{place}: [[mesh.interface]] \"{}\"", spec.name);
     let bad = |m: String| Error::input(&at, m);
+    if spec.matching == Some(false) {
+        return Err(bad(
+            "matching = false is available for generated blocks ([[mesh.block]]) only; a mesh read from a file pairs coincident nodes of its curves"
+                .into(),
+        ));
+    }
     if spec.left.is_some() || spec.right.is_some() {
         return Err(bad(
             "left / right name blocks of a generated mesh ([[mesh.block]]); a mesh read from a file pairs upper_curve (body A) with lower_curve (body B)"
@@ -320,6 +326,7 @@ fn pair_curves(
         body_a: ua,
         body_b: lb,
         edges: coincident_edges(msh, mesh, tag_of, upper, lower, &at)?,
+        nonmatching: None,
     })
 }
 

@@ -53,6 +53,7 @@ mod tests {
             lower_curve: Some("foundation.top".into()),
             left: None,
             right: None,
+            matching: None,
         }
     }
 

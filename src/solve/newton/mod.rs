@@ -513,7 +513,7 @@ impl<'m> Engine<'m> {
                     q += 1;
                     continue;
                 }
-                let nd = 4 * pt.len;
+                let nd = pt.ndofs();
                 let un = im.point_kinematics_at(pt, &trial.u, gap).0;
                 let kfloor = kf.filter(|_| un > -ZERO_APPROACH);
                 let ev = im.eval_point_at(
