@@ -372,14 +372,10 @@ fn pair_blocks(mesh: &Mesh, grids: &[Grid], spec: &InterfaceSpec) -> Result<Inte
     })
 }
 
-/// The two sides of a non-matching interface (`matching = false`): they
-/// must lie on one line and overlap, like matching ones, but their nodes
-/// need not coincide. The slave side is A's edges that reach into B's
-/// extent along the interface (edges wholly beyond it are free surface, as
-/// on a matching interface); the master side is all of B's facing edges.
-/// Whether every spring point finds a master edge is checked when the
-/// springs are built ([`crate::interface::InterfaceModel::new`]).
-fn nonmatching_sides(mesh: &Mesh, name: &str, f: &Facing) -> Result<NonMatching, MeshError> {
+/// The checks both kinds of interface share: the two sides lie on one line
+/// (within 1e-9 of their size) and overlap along it. Returns the tolerance
+/// and the overlap [lo, hi].
+fn facing_overlap(name: &str, f: &Facing) -> Result<(f64, [f64; 2]), MeshError> {
     let k = f.along;
     let (along, across) = (["x", "y"][k], ["x", "y"][1 - k]);
     let err = |m: String| Err(MeshError(format!("interface \"{name}\": {m}")));
@@ -391,9 +387,24 @@ fn nonmatching_sides(mesh: &Mesh, name: &str, f: &Facing) -> Result<NonMatching,
             f.a_side, f.a, f.a_at, f.b_side, f.b, f.b_at
         ));
     }
-    if f.a_range[1].min(f.b_range[1]) - f.a_range[0].max(f.b_range[0]) <= tol {
+    let lo = f.a_range[0].max(f.b_range[0]);
+    let hi = f.a_range[1].min(f.b_range[1]);
+    if hi - lo <= tol {
         return err(format!("the blocks do not overlap in {along}"));
     }
+    Ok((tol, [lo, hi]))
+}
+
+/// The two sides of a non-matching interface (`matching = false`): they
+/// must lie on one line and overlap, like matching ones, but their nodes
+/// need not coincide. The slave side is A's edges that reach into B's
+/// extent along the interface (edges wholly beyond it are free surface, as
+/// on a matching interface); the master side is all of B's facing edges.
+/// Whether every spring point finds a master edge is checked when the
+/// springs are built ([`crate::interface::InterfaceModel::new`]).
+fn nonmatching_sides(mesh: &Mesh, name: &str, f: &Facing) -> Result<NonMatching, MeshError> {
+    let k = f.along;
+    let (tol, _) = facing_overlap(name, f)?;
     let at = |n: usize| mesh.nodes[n][k];
     let edges = |line: &[usize]| -> Vec<[usize; 3]> {
         line.windows(3)
@@ -415,21 +426,9 @@ fn nonmatching_sides(mesh: &Mesh, name: &str, f: &Facing) -> Result<NonMatching,
 /// of the two sides, each with B's nodes at the same positions.
 fn match_sides(mesh: &Mesh, name: &str, f: &Facing) -> Result<Vec<ContactEdge>, MeshError> {
     let k = f.along;
-    let (along, across) = (["x", "y"][k], ["x", "y"][1 - k]);
+    let along = ["x", "y"][k];
     let err = |m: String| Err(MeshError(format!("interface \"{name}\": {m}")));
-    let size = (f.a_range[1] - f.a_range[0]).max(f.b_range[1] - f.b_range[0]);
-    let tol = 1e-9 * size;
-    if (f.a_at - f.b_at).abs() > tol {
-        return err(format!(
-            "{} of \"{}\" is at {across} = {} but {} of \"{}\" is at {across} = {} (the sides do not face each other)",
-            f.a_side, f.a, f.a_at, f.b_side, f.b, f.b_at
-        ));
-    }
-    let lo = f.a_range[0].max(f.b_range[0]);
-    let hi = f.a_range[1].min(f.b_range[1]);
-    if hi - lo <= tol {
-        return err(format!("the blocks do not overlap in {along}"));
-    }
+    let (tol, [lo, hi]) = facing_overlap(name, f)?;
     let at = |n: usize| mesh.nodes[n][k];
     let inside = |v: f64| v >= lo - tol && v <= hi + tol;
     let partner = |n: usize, line: &[usize], body: &str| -> Result<usize, MeshError> {
