@@ -23,11 +23,13 @@
 
 pub mod joint;
 pub mod normal;
+mod segment;
 pub mod table;
 pub mod tangential;
 
 use crate::mesh::{Interface, Mesh};
 pub use normal::NormalLaw;
+pub use segment::project;
 pub use tangential::{Slip, SlipState, TangentialLaw};
 
 /// A node pair across the interface.
@@ -286,7 +288,7 @@ impl InterfaceModel {
     ) -> Result<Self, String> {
         let (pairs, points) = match &iface.nonmatching {
             None => Self::coincident(mesh, iface, weights, section),
-            Some(nm) => node_to_segment(mesh, &iface.name, nm, weights, section)?,
+            Some(nm) => segment::node_to_segment(mesh, &iface.name, nm, weights, section)?,
         };
         Ok(InterfaceModel {
             name: iface.name.clone(),
@@ -603,209 +605,6 @@ fn edge_normal(x: &[[f64; 2]; 3], s: f64) -> ([f64; 2], f64) {
     ([-t[1] / l, t[0] / l], l)
 }
 
-/// The spring points of a non-matching interface (node-to-segment, small
-/// sliding): the slave side's quadrature points (its nodes with tributary
-/// areas for lumped weights, 4-point Gauss per slave edge for consistent
-/// ones, as on a matching interface) each projected once onto the closest
-/// master edge ([`project`]). One pair per point, for the per-point outputs.
-/// An error names the interface, the point and the master side's extent if a
-/// point projects outside every master edge.
-fn node_to_segment(
-    mesh: &Mesh,
-    name: &str,
-    nm: &crate::mesh::NonMatching,
-    weights: Weights,
-    section: crate::fem::Section,
-) -> Result<(Vec<Pair>, Vec<Point>), String> {
-    let coords = |e: &[usize; 3]| -> [[f64; 2]; 3] { std::array::from_fn(|i| mesh.nodes[e[i]]) };
-    // slave quadrature points
-    struct SlavePoint {
-        a: [usize; 3],
-        na: [f64; 3],
-        len_a: usize,
-        x: [f64; 2],
-        area: f64,
-        s: f64,
-    }
-    let mut slave: Vec<SlavePoint> = Vec::new();
-    let mut s0 = 0.0;
-    let mut node_point = std::collections::HashMap::new();
-    for e in &nm.slave {
-        let xs = coords(e);
-        let half = [
-            joint::piece_length(&xs, -1.0, 0.0),
-            joint::piece_length(&xs, -1.0, 1.0),
-        ];
-        match weights {
-            Weights::Lumped => {
-                for (i, &xi) in [-1.0, 0.0, 1.0].iter().enumerate() {
-                    let ds = edge_normal(&xs, xi).1;
-                    let w = [1.0 / 3.0, 4.0 / 3.0, 1.0 / 3.0][i] * ds * section.measure(xs[i]);
-                    let s = s0 + [0.0, half[0], half[1]][i];
-                    let k = *node_point.entry(e[i]).or_insert_with(|| {
-                        slave.push(SlavePoint {
-                            a: [e[i]; 3],
-                            na: [1.0, 0.0, 0.0],
-                            len_a: 1,
-                            x: xs[i],
-                            area: 0.0,
-                            s,
-                        });
-                        slave.len() - 1
-                    });
-                    slave[k].area += w;
-                }
-            }
-            Weights::Consistent => {
-                for (xi, wg) in gauss4() {
-                    let ds = edge_normal(&xs, xi).1;
-                    let shape = crate::fem::q8::edge_shape(xi);
-                    let x = [0, 1].map(|c| (0..3).map(|k| shape[k] * xs[k][c]).sum::<f64>());
-                    let s = s0 + joint::piece_length(&xs, -1.0, xi);
-                    slave.push(SlavePoint {
-                        a: *e,
-                        na: shape,
-                        len_a: 3,
-                        x,
-                        area: wg * ds * section.measure(x),
-                        s,
-                    });
-                }
-            }
-        }
-        s0 += half[1];
-    }
-    let masters: Vec<[[f64; 2]; 3]> = nm.master.iter().map(coords).collect();
-    let mut pairs = Vec::with_capacity(slave.len());
-    let mut points = Vec::with_capacity(slave.len());
-    for SlavePoint {
-        a,
-        na,
-        len_a,
-        x,
-        area,
-        s,
-    } in slave
-    {
-        let dist = |xe: &[[f64; 2]; 3], xi: f64| {
-            let p = point_on(xe, xi);
-            (p[0] - x[0]).hypot(p[1] - x[1])
-        };
-        let best = masters
-            .iter()
-            .enumerate()
-            .filter_map(|(k, xe)| project(xe, x).map(|xi| (k, xi, dist(xe, xi))))
-            .min_by(|p, q| p.2.total_cmp(&q.2));
-        let Some((k, xi, _)) = best else {
-            let ends = masters.iter().flat_map(|xe| [xe[0], xe[2]]);
-            let (lo, hi) = ends.fold(
-                ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
-                |(lo, hi), p| {
-                    (
-                        [lo[0].min(p[0]), lo[1].min(p[1])],
-                        [hi[0].max(p[0]), hi[1].max(p[1])],
-                    )
-                },
-            );
-            return Err(format!(
-                "interface \"{name}\" (matching = false): the slave point at ({}, {}) of body A projects outside every edge of the master side (body B), which spans x ∈ [{}, {}], y ∈ [{}, {}]; the slave side must lie within the master side",
-                x[0], x[1], lo[0], hi[0], lo[1], hi[1]
-            ));
-        };
-        let xe = &masters[k];
-        let (n, _) = edge_normal(xe, xi);
-        let nb = crate::fem::q8::edge_shape(xi);
-        let xb = point_on(xe, xi);
-        let gap = (x[0] - xb[0]) * n[0] + (x[1] - xb[1]) * n[1];
-        let b = nm.master[k];
-        let near = |nodes: &[usize], vals: &[f64]| {
-            let i = (0..vals.len())
-                .max_by(|&i, &j| vals[i].abs().total_cmp(&vals[j].abs()))
-                .unwrap_or(0);
-            nodes[i]
-        };
-        pairs.push(Pair {
-            a: near(&a[..len_a], &na[..len_a]),
-            b: near(&b, &nb),
-            x,
-            normal: n,
-            area,
-            spring: Some(points.len()),
-        });
-        points.push(Point {
-            pairs: [pairs.len() - 1; 3],
-            shape: [1.0, 0.0, 0.0],
-            len: 1,
-            area,
-            normal: n,
-            segment: Some(Segment {
-                a,
-                na,
-                len_a,
-                b,
-                nb,
-                gap,
-                s,
-            }),
-        });
-    }
-    Ok((pairs, points))
-}
-
-/// x(ξ) on a quadratic edge.
-fn point_on(xe: &[[f64; 2]; 3], xi: f64) -> [f64; 2] {
-    let n = crate::fem::q8::edge_shape(xi);
-    [0, 1].map(|c| (0..3).map(|k| n[k] * xe[k][c]).sum())
-}
-
-/// Tolerance on ξ for a projection at an edge's end (shared by two edges).
-const XI_TOL: f64 = 1e-9;
-
-/// The closest point of the quadratic edge `xe` to `x`: ξ ∈ [−1, 1] where
-/// f(ξ) = (x(ξ) − x)·x'(ξ) = 0, by Newton from ξ = 0
-/// (f' = x'·x' + (x(ξ) − x)·x''); `None` if the foot lies beyond the edge's
-/// ends (|ξ| > 1 + 1e-9). If Newton does not converge, bisection on f over
-/// [−1, 1] when f changes sign there, else `None`.
-pub fn project(xe: &[[f64; 2]; 3], x: [f64; 2]) -> Option<f64> {
-    let f = |xi: f64| {
-        let p = point_on(xe, xi);
-        let dn = [xi - 0.5, -2.0 * xi, xi + 0.5];
-        let d = [0, 1].map(|c| (0..3).map(|k| dn[k] * xe[k][c]).sum::<f64>());
-        let dd = [0, 1].map(|c| xe[0][c] - 2.0 * xe[1][c] + xe[2][c]);
-        let r = [p[0] - x[0], p[1] - x[1]];
-        (
-            r[0] * d[0] + r[1] * d[1],
-            d[0] * d[0] + d[1] * d[1] + r[0] * dd[0] + r[1] * dd[1],
-        )
-    };
-    let mut xi = 0.0f64;
-    for _ in 0..50 {
-        let (v, dv) = f(xi);
-        if dv <= 0.0 || !dv.is_finite() {
-            break;
-        }
-        let step = v / dv;
-        xi = (xi - step).clamp(-3.0, 3.0);
-        if step.abs() < 1e-14 {
-            return (xi.abs() <= 1.0 + XI_TOL).then(|| xi.clamp(-1.0, 1.0));
-        }
-    }
-    // fallback: bisection on f over [−1, 1]
-    let (mut lo, mut hi) = (-1.0f64, 1.0f64);
-    if !(f(lo).0 <= 0.0 && f(hi).0 >= 0.0) {
-        return None;
-    }
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if f(mid).0 < 0.0 {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    Some(0.5 * (lo + hi))
-}
-
 fn gauss4() -> [(f64, f64); 4] {
     let a = (3.0 / 7.0 - 2.0 / 7.0 * (6.0f64 / 5.0).sqrt()).sqrt();
     let b = (3.0 / 7.0 + 2.0 / 7.0 * (6.0f64 / 5.0).sqrt()).sqrt();
@@ -817,29 +616,6 @@ fn gauss4() -> [(f64, f64); 4] {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn projection_finds_the_closest_point_of_a_curved_edge_and_refuses_beyond_its_ends() {
-        // a bowed edge: x(ξ) = (2ξ, 0.3(1 − ξ²))
-        let xe = [[-2.0, 0.0], [0.0, 0.3], [2.0, 0.0]];
-        for x in [[0.7, 1.0], [-1.3, -0.4], [1.9, 0.2], [0.0, 0.3]] {
-            let xi = project(&xe, x).expect("the foot lies on the edge");
-            let p = point_on(&xe, xi);
-            let d = [2.0, -0.6 * xi];
-            let f = (p[0] - x[0]) * d[0] + (p[1] - x[1]) * d[1];
-            assert!(f.abs() < 1e-12, "{x:?}: ξ = {xi}, f = {f}");
-            // closer than any other point of the edge
-            for k in 0..=200 {
-                let q = point_on(&xe, -1.0 + 0.01 * k as f64);
-                let dq = (q[0] - x[0]).hypot(q[1] - x[1]);
-                assert!((p[0] - x[0]).hypot(p[1] - x[1]) <= dq + 1e-12);
-            }
-        }
-        assert_eq!(project(&xe, [2.5, 0.0]), None);
-        assert_eq!(project(&xe, [-2.4, -0.1]), None);
-        // an end shared with the next edge is inside (both edges find it)
-        assert_eq!(project(&xe, [2.0, 0.0]), Some(1.0));
-    }
 
     #[test]
     fn point_state_pack_round_trips_in_the_restart_order() {
