@@ -467,6 +467,8 @@ mod tests {
             y: y.to_vec(),
             ny: vec![ny],
             ry: vec![],
+            bottom: None,
+            top: None,
         }
     }
 

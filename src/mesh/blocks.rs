@@ -10,7 +10,9 @@ use super::{ContactEdge, Element, Interface, Mesh, MeshError, NonMatching};
 use serde::Deserialize;
 
 /// A rectangular block; x and y are split into segments at the breakpoints.
-#[derive(Clone, Debug, Deserialize)]
+/// Its bottom and top sides may be curved ([`SideShape`]); the block then
+/// lies inside its rectangle.
+#[derive(Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BlockSpec {
     pub body: String,
@@ -26,6 +28,179 @@ pub struct BlockSpec {
     pub ny: Vec<usize>,
     #[serde(default)]
     pub ry: Vec<f64>,
+    /// A curved bottom side (default straight).
+    #[serde(default)]
+    pub bottom: Option<SideShape>,
+    /// A curved top side (default straight).
+    #[serde(default)]
+    pub top: Option<SideShape>,
+}
+
+/// As derived, but `bottom` / `top` only when given: a case with straight
+/// blocks keeps its text and so its restart fingerprint
+/// ([`crate::restart::fingerprint`]).
+impl std::fmt::Debug for BlockSpec {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let mut d = f.debug_struct("BlockSpec");
+        d.field("body", &self.body)
+            .field("x", &self.x)
+            .field("nx", &self.nx)
+            .field("rx", &self.rx)
+            .field("y", &self.y)
+            .field("ny", &self.ny)
+            .field("ry", &self.ry);
+        if let Some(b) = &self.bottom {
+            d.field("bottom", b);
+        }
+        if let Some(t) = &self.top {
+            d.field("top", t);
+        }
+        d.finish()
+    }
+}
+
+/// The shape of a block's bottom or top side (issue 19: curved contact).
+/// The side bulges out of the block's rectangle no further than its straight
+/// line: a curved bottom rises from y₀, a curved top falls from y₁, so the
+/// block stays inside its rectangle. Interior nodes are placed on the
+/// straight line between the (curved) bottom and top point of their column,
+/// at the graded height fraction: x(ξ, η) = (1 − η̂) B(ξ) + η̂ T(ξ), the
+/// transfinite (Coons) map of a block whose left and right sides are straight.
+/// Every node of a curved side, midside nodes included, lies on the curve.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct SideShape {
+    /// A circular arc of this radius (mm) whose apex is the straight side's
+    /// point at x = `center`: a cylinder or a crown,
+    /// y = y₀ + R − √(R² − (x − c)²) on a bottom side (mirrored on a top).
+    #[serde(default)]
+    pub radius: Option<f64>,
+    /// x of the arc's apex (mm); default the middle of the block.
+    #[serde(default)]
+    pub center: Option<f64>,
+    /// A quarter-circle rounding of this radius (mm) at the side's left end:
+    /// the side is straight up to x₀ + r and turns through 90° to meet the
+    /// left side r above (bottom) or below (top) the corner. x₀ + r must be a
+    /// breakpoint of `x`; nodes on the rounding are spaced evenly in angle.
+    #[serde(default)]
+    pub round_left: Option<f64>,
+    /// The same rounding at the side's right end (x₁ − r a breakpoint).
+    #[serde(default)]
+    pub round_right: Option<f64>,
+}
+
+impl SideShape {
+    /// Checks the shape against its block; `side` is "bottom" or "top".
+    fn check(&self, body: &str, side: &str, xs: &[f64], height: f64) -> Result<(), MeshError> {
+        let err = |m: String| Err(MeshError(format!("block \"{body}\" {side}: {m}")));
+        let (x0, x1) = (xs[0], xs[xs.len() - 1]);
+        let positive = |name: &str, v: f64| -> Result<(), MeshError> {
+            if v.is_finite() && v > 0.0 {
+                Ok(())
+            } else {
+                err(format!("{name} = {v} must be a positive length in mm"))
+            }
+        };
+        let rounded = self.round_left.is_some() || self.round_right.is_some();
+        match self.radius {
+            Some(r) => {
+                if rounded {
+                    return err("give either radius (an arc) or round_left / round_right (rounded ends), not both".into());
+                }
+                positive("radius", r)?;
+                let c = self.center.unwrap_or(0.5 * (x0 + x1));
+                if !c.is_finite() {
+                    return err(format!("center = {c} must be finite"));
+                }
+                let reach = (x0 - c).abs().max((x1 - c).abs());
+                if reach >= 0.9 * r {
+                    return err(format!(
+                        "the block reaches {reach} mm from the arc's apex at x = {c}; with radius = {r} it must stay within 0.9 R (the arc would turn steeper than 64° from the side)"
+                    ));
+                }
+                let rise = r - (r * r - reach * reach).sqrt();
+                if rise >= 0.5 * height {
+                    return err(format!(
+                        "the arc rises {rise} mm over the block, which is {height} mm high: make the block at least twice as high as the rise"
+                    ));
+                }
+            }
+            None => {
+                if self.center.is_some() {
+                    return err("center belongs to radius (an arc)".into());
+                }
+                if !rounded {
+                    return err(
+                        "give radius (an arc) or round_left / round_right (rounded ends)".into(),
+                    );
+                }
+                let l = self.round_left.unwrap_or(0.0);
+                let r = self.round_right.unwrap_or(0.0);
+                for (name, v) in [
+                    ("round_left", self.round_left),
+                    ("round_right", self.round_right),
+                ] {
+                    if let Some(v) = v {
+                        positive(name, v)?;
+                        if v >= 0.5 * height {
+                            return err(format!(
+                                "{name} = {v} mm must be less than half the block's height ({height} mm)"
+                            ));
+                        }
+                    }
+                }
+                if x0 + l > x1 - r + 1e-12 * (x1 - x0) {
+                    return err(format!(
+                        "the roundings ({l} + {r} mm) are wider than the block ({} mm)",
+                        x1 - x0
+                    ));
+                }
+                let near = |v: f64| xs.iter().any(|&b| (b - v).abs() <= 1e-9 * (x1 - x0));
+                if self.round_left.is_some() && !near(x0 + l) {
+                    return err(format!(
+                        "x must have a breakpoint where the left rounding ends, x = {}",
+                        x0 + l
+                    ));
+                }
+                if self.round_right.is_some() && !near(x1 - r) {
+                    return err(format!(
+                        "x must have a breakpoint where the right rounding starts, x = {}",
+                        x1 - r
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The point of the side for the straight side's abscissa x: (x, drop)
+    /// becomes (x', depth), where depth ≥ 0 is how far the curve lies inside
+    /// the block from the straight side.
+    fn point(&self, x: f64, x0: f64, x1: f64) -> (f64, f64) {
+        if let Some(r) = self.radius {
+            let c = self.center.unwrap_or(0.5 * (x0 + x1));
+            let d = x - c;
+            return (x, r - (r * r - d * d).sqrt());
+        }
+        let quarter = |r: f64, u: f64| {
+            // u ∈ [0, 1] along the rounding from its tangent point to the end
+            let th = u.clamp(0.0, 1.0) * std::f64::consts::FRAC_PI_2;
+            (r * th.sin(), r * (1.0 - th.cos()))
+        };
+        if let Some(r) = self.round_right {
+            if x > x1 - r {
+                let (dx, depth) = quarter(r, (x - (x1 - r)) / r);
+                return (x1 - r + dx, depth);
+            }
+        }
+        if let Some(r) = self.round_left {
+            if x < x0 + r {
+                let (dx, depth) = quarter(r, (x0 + r - x) / r);
+                return (x0 + r - dx, depth);
+            }
+        }
+        (x, 0.0)
+    }
 }
 
 /// Contact between the bottom of block `upper` and the top of block `lower`
@@ -146,6 +321,8 @@ struct Grid {
     ids: Vec<Vec<usize>>, // ids[j][i], usize::MAX for element centres
     xs: Vec<f64>,
     ys: Vec<f64>,
+    /// Whether the bottom and the top side are curved.
+    curved: [bool; 2],
 }
 
 /// Generates the mesh of all blocks and their interfaces.
@@ -171,7 +348,13 @@ pub fn generate(
         mesh.bodies.push(spec.body.clone());
         let xs = graded_axis(&spec.body, "x", &spec.x, &spec.nx, &spec.rx, refine)?;
         let ys = graded_axis(&spec.body, "y", &spec.y, &spec.ny, &spec.ry, refine)?;
-        grids.push(add_block(&mut mesh, b, xs, ys));
+        let height = ys[ys.len() - 1] - ys[0];
+        for (side, shape) in [("bottom", &spec.bottom), ("top", &spec.top)] {
+            if let Some(sh) = shape {
+                sh.check(&spec.body, side, &spec.x, height)?;
+            }
+        }
+        grids.push(add_block(&mut mesh, b, xs, ys, spec));
     }
     for spec in interfaces {
         let iface = pair_blocks(&mesh, &grids, spec)?;
@@ -180,7 +363,7 @@ pub fn generate(
     Ok(mesh)
 }
 
-fn add_block(mesh: &mut Mesh, body: usize, xs: Vec<f64>, ys: Vec<f64>) -> Grid {
+fn add_block(mesh: &mut Mesh, body: usize, xs: Vec<f64>, ys: Vec<f64>, spec: &BlockSpec) -> Grid {
     let (ni, nj) = (2 * (xs.len() - 1) + 1, 2 * (ys.len() - 1) + 1);
     let coord = |v: &[f64], k: usize| {
         if k % 2 == 0 {
@@ -190,6 +373,20 @@ fn add_block(mesh: &mut Mesh, body: usize, xs: Vec<f64>, ys: Vec<f64>) -> Grid {
         }
     };
     let first = mesh.nodes.len();
+    let (x0, x1) = (xs[0], xs[xs.len() - 1]);
+    let (y0, y1) = (ys[0], ys[ys.len() - 1]);
+    // the bottom and top point of each node column (straight sides: the
+    // rectangle's), see [`SideShape`]
+    let ends = |i: usize| -> ([f64; 2], [f64; 2]) {
+        let x = coord(&xs, i);
+        let b = spec
+            .bottom
+            .as_ref()
+            .map_or((x, 0.0), |s| s.point(x, x0, x1));
+        let t = spec.top.as_ref().map_or((x, 0.0), |s| s.point(x, x0, x1));
+        ([b.0, y0 + b.1], [t.0, y1 - t.1])
+    };
+    let curved = spec.bottom.is_some() || spec.top.is_some();
     let mut ids = vec![vec![usize::MAX; ni]; nj];
     for (j, row) in ids.iter_mut().enumerate() {
         for (i, id) in row.iter_mut().enumerate() {
@@ -197,7 +394,15 @@ fn add_block(mesh: &mut Mesh, body: usize, xs: Vec<f64>, ys: Vec<f64>) -> Grid {
                 continue;
             }
             *id = mesh.nodes.len();
-            mesh.nodes.push([coord(&xs, i), coord(&ys, j)]);
+            let (x, y) = (coord(&xs, i), coord(&ys, j));
+            if curved {
+                let (b, t) = ends(i);
+                let f = (y - y0) / (y1 - y0);
+                mesh.nodes
+                    .push([b[0] + f * (t[0] - b[0]), b[1] + f * (t[1] - b[1])]);
+            } else {
+                mesh.nodes.push([x, y]);
+            }
         }
     }
     for ej in 0..(nj - 1) / 2 {
@@ -243,7 +448,12 @@ fn add_block(mesh: &mut Mesh, body: usize, xs: Vec<f64>, ys: Vec<f64>) -> Grid {
     }
     mesh.node_sets
         .insert(format!("{name}.all"), (first..mesh.nodes.len()).collect());
-    Grid { ids, xs, ys }
+    Grid {
+        ids,
+        xs,
+        ys,
+        curved: [spec.bottom.is_some(), spec.top.is_some()],
+    }
 }
 
 /// The blocks an interface pairs: body A, body B and whether the interface is
@@ -354,6 +564,18 @@ fn pair_blocks(mesh: &Mesh, grids: &[Grid], spec: &InterfaceSpec) -> Result<Inte
         )));
     }
     let f = facing(grids, ia, ib, a, b, vertical);
+    if !vertical && spec.matching != Some(false) {
+        let curved = [
+            (a, grids[ia].curved[0], "bottom"),
+            (b, grids[ib].curved[1], "top"),
+        ];
+        if let Some((block, _, side)) = curved.iter().find(|c| c.1) {
+            return Err(MeshError(format!(
+                "interface \"{}\": the {side} of block \"{block}\" is curved; a curved side has no partner nodes on the other: set matching = false (node-to-segment springs)",
+                spec.name
+            )));
+        }
+    }
     if spec.matching == Some(false) {
         return Ok(Interface {
             name: spec.name.clone(),
@@ -483,6 +705,8 @@ mod tests {
             y,
             ny,
             ry,
+            bottom: None,
+            top: None,
         };
         (
             vec![
@@ -578,6 +802,8 @@ mod tests {
             y,
             ny,
             ry: Vec::new(),
+            bottom: None,
+            top: None,
         }
     }
 
@@ -727,6 +953,122 @@ mod tests {
         );
         let v = iface("fit", [None, None, Some("shaft"), Some("hub")]);
         assert!(format!("{v:?}").ends_with("left: Some(\"shaft\"), right: Some(\"hub\") }"));
+    }
+
+    #[test]
+    fn curved_sides_put_every_side_node_on_the_curve() {
+        // a cylinder segment: bottom arc of radius 50 with its apex at x = 0
+        let mut cyl = block(
+            "cyl",
+            vec![-10., -2., 2., 10.],
+            vec![3, 4, 3],
+            vec![0., 20.],
+            vec![4],
+        );
+        cyl.bottom = Some(SideShape {
+            radius: Some(50.0),
+            center: Some(0.0),
+            round_left: None,
+            round_right: None,
+        });
+        // a punch with a 1 mm rounding at its right end, and a crowned top
+        let mut punch = block(
+            "punch",
+            vec![0., 19., 20.],
+            vec![4, 3],
+            vec![30., 50.],
+            vec![4],
+        );
+        punch.bottom = Some(SideShape {
+            radius: None,
+            center: None,
+            round_left: None,
+            round_right: Some(1.0),
+        });
+        punch.top = Some(SideShape {
+            radius: Some(100.0),
+            center: None,
+            round_left: None,
+            round_right: None,
+        });
+        let m = generate(&[cyl, punch], &[], 1).unwrap();
+        m.validate().unwrap();
+        for &n in &m.node_sets["cyl.bottom"] {
+            let [x, y] = m.nodes[n];
+            assert!(
+                (x * x + (y - 50.0).powi(2) - 2500.0).abs() < 1e-9,
+                "{x} {y}"
+            );
+        }
+        let bottom = &m.node_sets["punch.bottom"];
+        let mut on_round = 0;
+        for &n in bottom {
+            let [x, y] = m.nodes[n];
+            if x > 19.0 + 1e-12 {
+                on_round += 1;
+                assert!(((x - 19.0).powi(2) + (y - 31.0).powi(2) - 1.0).abs() < 1e-12);
+            } else {
+                assert_eq!(y, 30.0);
+            }
+        }
+        assert_eq!(on_round, 6); // 3 elements: 2 corners, 3 midsides, the end
+                                 // the rounding's nodes are evenly spaced in angle, the last at 90°
+        let end = m.node_sets["punch.right"]
+            .iter()
+            .map(|&n| m.nodes[n])
+            .min_by(|a, b| a[1].total_cmp(&b[1]))
+            .unwrap();
+        assert!((end[0] - 20.0).abs() < 1e-12 && (end[1] - 31.0).abs() < 1e-12);
+        // the crowned top: highest at the middle (x = 10), 100 mm radius
+        for &n in &m.node_sets["punch.top"] {
+            let [x, y] = m.nodes[n];
+            assert!(((x - 10.0).powi(2) + (y - (50.0 - 100.0)).powi(2) - 1e4).abs() < 1e-8);
+        }
+    }
+
+    #[test]
+    fn curved_side_errors_are_named() {
+        let shape = |radius, round_right| SideShape {
+            radius,
+            center: None,
+            round_left: None,
+            round_right,
+        };
+        let check = |b: BlockSpec, ifs: &[InterfaceSpec], want: &str| {
+            let e = generate(&[b], ifs, 1).unwrap_err().0;
+            assert!(e.contains(want), "{e:?} lacks {want:?}");
+        };
+        let base = || block("p", vec![0., 19., 20.], vec![2, 1], vec![0., 10.], vec![2]);
+        let mut b = base();
+        b.bottom = Some(shape(Some(5.0), None));
+        check(b, &[], "must stay within 0.9 R");
+        let mut b = base();
+        b.bottom = Some(shape(Some(50.0), Some(1.0)));
+        check(b, &[], "not both");
+        let mut b = base();
+        b.bottom = Some(shape(None, Some(2.0)));
+        check(b, &[], "breakpoint where the right rounding starts, x = 18");
+        let mut b = base();
+        b.bottom = Some(shape(None, Some(-1.0)));
+        check(b, &[], "round_right = -1 must be a positive length");
+        let mut b = base();
+        b.top = Some(shape(None, None));
+        check(b, &[], "block \"p\" top: give radius");
+        // a curved side on a matching interface
+        let mut up = block("up", vec![0., 20.], vec![2], vec![0., 10.], vec![2]);
+        up.bottom = Some(shape(Some(100.0), None));
+        let low = block("low", vec![0., 20.], vec![2], vec![-10., 0.], vec![2]);
+        let e = generate(
+            &[up, low],
+            &[iface("c", [Some("up"), Some("low"), None, None])],
+            1,
+        )
+        .unwrap_err()
+        .0;
+        assert!(
+            e.contains("the bottom of block \"up\" is curved") && e.contains("matching = false"),
+            "{e}"
+        );
     }
 
     #[test]
