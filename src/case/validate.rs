@@ -192,8 +192,15 @@ pub fn check_case(case: &Case) -> Result<Checked> {
         laws.insert(name.clone(), law);
         if let Some(t) = &spec.tangential {
             let key = format!("{key} tangential");
-            if spec.weights != Weights::Lumped {
-                return Err(Error::input(at(&key), "a tangential law needs weights = \"lumped\" (one spring and one slip history per pair)"));
+            // a non-matching interface has one spring, one pair and one slip
+            // history per quadrature point, with either weights
+            let nonmatching = case
+                .mesh
+                .interface
+                .iter()
+                .any(|i| &i.name == name && i.matching == Some(false));
+            if spec.weights != Weights::Lumped && !nonmatching {
+                return Err(Error::input(at(&key), "a tangential law needs weights = \"lumped\" (one spring and one slip history per pair), or an interface with matching = false (one spring per quadrature point)"));
             }
             let law = match (&t.k_table, t.r, t.s) {
                 (None, Some(r), Some(s)) => {

@@ -25,6 +25,10 @@ pub(super) fn node_to_segment(
         x: [f64; 2],
         area: f64,
         s: f64,
+        /// A's outward normal at the point (A lies left of the slave walk).
+        out: [f64; 2],
+        /// Length of the slave edge the point lies on, mm.
+        h: f64,
     }
     let mut slave: Vec<SlavePoint> = Vec::new();
     let mut s0 = 0.0;
@@ -38,7 +42,7 @@ pub(super) fn node_to_segment(
         match weights {
             Weights::Lumped => {
                 for (i, &xi) in [-1.0, 0.0, 1.0].iter().enumerate() {
-                    let ds = edge_normal(&xs, xi).1;
+                    let (nl, ds) = edge_normal(&xs, xi);
                     let w = [1.0 / 3.0, 4.0 / 3.0, 1.0 / 3.0][i] * ds * section.measure(xs[i]);
                     let s = s0 + [0.0, half[0], half[1]][i];
                     let k = *node_point.entry(e[i]).or_insert_with(|| {
@@ -49,6 +53,8 @@ pub(super) fn node_to_segment(
                             x: xs[i],
                             area: 0.0,
                             s,
+                            out: [-nl[0], -nl[1]],
+                            h: half[1],
                         });
                         slave.len() - 1
                     });
@@ -57,7 +63,7 @@ pub(super) fn node_to_segment(
             }
             Weights::Consistent => {
                 for (xi, wg) in gauss4() {
-                    let ds = edge_normal(&xs, xi).1;
+                    let (nl, ds) = edge_normal(&xs, xi);
                     let shape = crate::fem::q8::edge_shape(xi);
                     let x = [0, 1].map(|c| (0..3).map(|k| shape[k] * xs[k][c]).sum::<f64>());
                     let s = s0 + joint::piece_length(&xs, -1.0, xi);
@@ -68,6 +74,8 @@ pub(super) fn node_to_segment(
                         x,
                         area: wg * ds * section.measure(x),
                         s,
+                        out: [-nl[0], -nl[1]],
+                        h: half[1],
                     });
                 }
             }
@@ -84,6 +92,8 @@ pub(super) fn node_to_segment(
         x,
         area,
         s,
+        out,
+        h,
     } in slave
     {
         let dist = |xe: &[[f64; 2]; 3], xi: f64| {
@@ -116,6 +126,20 @@ pub(super) fn node_to_segment(
         let nb = crate::fem::q8::edge_shape(xi);
         let xb = point_on(xe, xi);
         let gap = (x[0] - xb[0]) * n[0] + (x[1] - xb[1]) * n[1];
+        let facing = out[0] * n[0] + out[1] * n[1];
+        if facing > FACING_TOL {
+            let deg = facing.clamp(-1.0, 1.0).acos().to_degrees();
+            return Err(format!(
+                "interface \"{name}\" (matching = false): at ({}, {}) the two sides do not face each other: body A's outward normal ({:.3}, {:.3}) makes {deg:.1}° with body B's outward normal ({:.3}, {:.3}) at ({}, {}), where facing sides make more than 90° (are upper and lower, or the curves, swapped?)",
+                x[0], x[1], out[0], out[1], n[0], n[1], xb[0], xb[1]
+            ));
+        }
+        if gap < -OVERLAP_LIMIT * h {
+            return Err(format!(
+                "interface \"{name}\" (matching = false): at ({}, {}) body A overlaps body B by {:.4e} mm, more than {OVERLAP_LIMIT} of the slave edge's length ({h:.4e} mm): the meshes overlap. An interference is a load: give the interface a negative `gap` (with a `gap_history` to press it in) on meshes that touch",
+                x[0], x[1], -gap
+            ));
+        }
         let b = nm.master[k];
         let near = |nodes: &[usize], vals: &[f64]| {
             let i = (0..vals.len())
@@ -150,6 +174,18 @@ pub(super) fn node_to_segment(
     }
     Ok((pairs, points))
 }
+
+/// A slave point whose outward normal has a positive component larger than
+/// this along the master's outward normal faces away from the master side
+/// (the angle between the two is below 90°, about 89.9° at the limit; the
+/// end of a quarter-circle rounding sits at exactly 90°).
+const FACING_TOL: f64 = 1e-3;
+
+/// The largest initial overlap of the two sides at a spring point, as a
+/// fraction of the slave edge's length: more is two meshes that overlap,
+/// not curves meshed apart (quadratic edges of one circle meshed twice
+/// differ by far less).
+pub const OVERLAP_LIMIT: f64 = 0.01;
 
 /// x(ξ) on a quadratic edge.
 fn point_on(xe: &[[f64; 2]; 3], xi: f64) -> [f64; 2] {
@@ -208,6 +244,62 @@ pub fn project(xe: &[[f64; 2]; 3], x: [f64; 2]) -> Option<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A slave edge along y = `ys` from x = 0 to 2 (walked toward `dir`)
+    /// over a master edge along y = 0 from −1 to 3, walked in +x (B below).
+    fn springs(ys: f64, dir: f64) -> Result<(Vec<Pair>, Vec<Point>), String> {
+        let xs = if dir > 0.0 {
+            [0.0, 1.0, 2.0]
+        } else {
+            [2.0, 1.0, 0.0]
+        };
+        let mesh = Mesh {
+            nodes: vec![
+                [xs[0], ys],
+                [xs[1], ys],
+                [xs[2], ys],
+                [-1.0, 0.0],
+                [1.0, 0.0],
+                [3.0, 0.0],
+            ],
+            ..Default::default()
+        };
+        let nm = crate::mesh::NonMatching {
+            slave: vec![[0, 1, 2]],
+            master: vec![[3, 4, 5]],
+        };
+        let section = crate::fem::Section {
+            axisymmetric: false,
+            thickness: 1.0,
+        };
+        node_to_segment(&mesh, "c", &nm, Weights::Consistent, section)
+    }
+
+    #[test]
+    fn gaps_come_from_the_geometry_and_overlap_and_facing_away_are_refused() {
+        let (_, points) = springs(0.3, 1.0).unwrap();
+        for p in &points {
+            let g = p.segment.unwrap();
+            assert!((g.gap - 0.3).abs() < 1e-14, "{}", g.gap);
+            assert_eq!(p.normal, [0.0, 1.0]);
+        }
+        // an overlap up to 1 % of the slave edge (2 mm) is geometry round-off
+        assert!(springs(-0.019, 1.0).is_ok());
+        let e = springs(-0.05, 1.0).unwrap_err();
+        assert!(
+            e.contains("interface \"c\"")
+                && e.contains("overlaps body B by 5.0000e-2 mm")
+                && e.contains("negative `gap`"),
+            "{e}"
+        );
+        // the slave side walked the other way has body A below it: it faces
+        // away from B's top
+        let e = springs(0.3, -1.0).unwrap_err();
+        assert!(
+            e.contains("do not face each other") && e.contains("makes 0.0°"),
+            "{e}"
+        );
+    }
 
     #[test]
     fn projection_finds_the_closest_point_of_a_curved_edge_and_refuses_beyond_its_ends() {

@@ -16,6 +16,7 @@ mod factorization;
 mod friction;
 mod gap;
 mod gold;
+mod hertz;
 mod histories;
 mod joints;
 mod limit_load;

@@ -1,0 +1,236 @@
+//! Curved contact across non-matching meshes (issue 19): cases/hertz-cylinder
+//! against Hertz's line contact, the same cylinder through the paper's rough
+//! interface (roughness smooths Hertz), and cases/cattaneo-mindlin against
+//! Cattaneo-Mindlin's stick zone.
+//!
+//! Hertz, two cylinders of equal elastic constants (plane strain), radius R
+//! against a flat, load P per unit length (Johnson, Contact Mechanics, 1985,
+//! eq. 4.43-4.45): 1/E* = 2(1 − ν²)/E, a = √(4PR/(πE*)), p₀ = 2P/(πa),
+//! p(x) = p₀ √(1 − x²/a²).
+//! Cattaneo-Mindlin for the same contact under a tangential force Q < μP
+//! (Johnson, section 7.2, eq. 7.32-7.33): the stick zone |x| < c with
+//! c/a = √(1 − Q/(μP)); outside it |q| = μ p.
+
+use crate::common;
+use std::path::Path;
+use std::process::Command;
+
+const E: f64 = 206_000.0;
+const NU: f64 = 0.3;
+const R: f64 = 50.0;
+
+fn e_star() -> f64 {
+    E / (2.0 * (1.0 - NU * NU))
+}
+
+/// Hertz half-width and peak pressure for load P per mm.
+fn hertz(p: f64) -> (f64, f64) {
+    let a = (4.0 * p * R / (std::f64::consts::PI * e_star())).sqrt();
+    (a, 2.0 * p / (std::f64::consts::PI * a))
+}
+
+fn run(case: &Path, out: &Path) {
+    let o = Command::new(env!("CARGO_BIN_EXE_asperity"))
+        .args([
+            "run",
+            case.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .arg("--quiet")
+        .output()
+        .unwrap();
+    assert!(
+        o.status.success(),
+        "{case:?}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
+
+/// One row of an interface CSV.
+#[derive(Debug)]
+struct Row {
+    x: f64,
+    p_n: f64,
+    u_n: f64,
+    p_t: f64,
+    tangential: String,
+}
+
+fn rows(file: &Path) -> Vec<Row> {
+    let text = std::fs::read_to_string(file).unwrap();
+    let mut lines = text.lines();
+    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |k: &str| head.iter().position(|h| *h == k).unwrap();
+    let (x, p_n, u_n, p_t, ts) = (
+        col("x_mm"),
+        col("p_n_mpa"),
+        col("u_n_mm"),
+        col("p_t_mpa"),
+        col("tangential_status"),
+    );
+    let mut v: Vec<Row> = lines
+        .map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            Row {
+                x: f[x].parse().unwrap(),
+                p_n: f[p_n].parse().unwrap(),
+                u_n: f[u_n].parse().unwrap(),
+                p_t: f[p_t].parse().unwrap(),
+                tangential: f[ts].to_string(),
+            }
+        })
+        .collect();
+    v.sort_by(|a, b| a.x.total_cmp(&b.x));
+    v
+}
+
+/// The joint's (normal, tangential) force per increment from joints.csv, N.
+fn forces(out: &Path) -> Vec<(f64, f64)> {
+    let text = std::fs::read_to_string(out.join("joints.csv")).unwrap();
+    let mut lines = text.lines();
+    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |k: &str| head.iter().position(|h| *h == k).unwrap();
+    let (n, t) = (col("normal_force_n"), col("tangential_force_n"));
+    lines
+        .map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            (f[n].parse().unwrap(), f[t].parse().unwrap())
+        })
+        .collect()
+}
+
+fn last_interface_csv(out: &Path) -> std::path::PathBuf {
+    let mut files: Vec<_> = std::fs::read_dir(out.join("interface"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    files.sort();
+    files.pop().unwrap()
+}
+
+/// Half-width of the pressed zone on the side x > 0: midway between the last
+/// closed spring point and the first open one.
+fn half_width(r: &[Row]) -> f64 {
+    let k = r.iter().rposition(|p| p.p_n > 0.0).unwrap();
+    0.5 * (r[k].x + r[k + 1].x)
+}
+
+#[test]
+fn a_stiff_interface_reproduces_hertz_and_the_rough_one_smooths_it() {
+    let case = common::root().join("cases/hertz-cylinder");
+    let dir = common::scratch("hertz-cylinder");
+    let out = dir.join("stiff");
+    run(&case, &out);
+    // a half model: the joint's force is half the cylinder's
+    let p = 2.0 * forces(&out).last().unwrap().0;
+    let (a, p0) = hertz(p);
+    let r = rows(&last_interface_csv(&out));
+    let a_fe = half_width(&r);
+    let peak = r.iter().map(|q| q.p_n).fold(0.0, f64::max);
+    assert!(common::rel(a_fe, a) < 0.02, "a: FE {a_fe} vs Hertz {a}");
+    assert!(common::rel(peak, p0) < 0.02, "p0: FE {peak} vs Hertz {p0}");
+    let worst = r
+        .iter()
+        .filter(|q| q.x < 0.9 * a)
+        .map(|q| (q.p_n - p0 * (1.0 - (q.x / a).powi(2)).sqrt()).abs() / p0)
+        .fold(0.0, f64::max);
+    assert!(worst < 0.03, "profile off by {worst} p0");
+    // the interface is stiff: its approach is under 1 % of the bodies' (the
+    // platen's 0.05 mm less the interface's share)
+    let u_max = r.iter().map(|q| q.u_n).fold(0.0, f64::max);
+    assert!(u_max < 0.01 * (0.05 - u_max), "interface approach {u_max}");
+
+    // the paper's rough interface (c_N = 0.001, m = 0.5), pressed further to
+    // about the same load: a wider contact and a lower peak than Hertz's at
+    // the load it carries
+    let text = std::fs::read_to_string(case.join("case.toml")).unwrap();
+    let rough = text
+        .replace("c_n = 5.0e-8 ", "c_n = 1.0e-3 ")
+        .replace("\nm = 1.0\n", "\nm = 0.5\n")
+        .replace("uy = -0.05\n", "uy = -0.075\n");
+    assert_ne!(rough, text);
+    let path = common::case_dir("hertz-cylinder-rough", &rough);
+    let out_r = dir.join("rough");
+    run(&path, &out_r);
+    let p_r = 2.0 * forces(&out_r).last().unwrap().0;
+    assert!(common::rel(p_r, p) < 0.15, "rough load {p_r} vs {p}");
+    let (a_r, p0_r) = hertz(p_r);
+    let rr = rows(&last_interface_csv(&out_r));
+    let peak_r = rr.iter().map(|q| q.p_n).fold(0.0, f64::max);
+    let wide_r = half_width(&rr);
+    assert!(peak_r < 0.85 * p0_r, "rough peak {peak_r} vs Hertz {p0_r}");
+    assert!(
+        wide_r > 1.3 * a_r,
+        "rough half-width {wide_r} vs Hertz {a_r}"
+    );
+}
+
+#[test]
+fn the_stick_zone_shrinks_as_cattaneo_and_mindlin_say() {
+    let case = common::root().join("cases/cattaneo-mindlin");
+    let out = common::scratch("cattaneo-mindlin").join("run");
+    run(&case, &out);
+    let f = forces(&out);
+    let mut files: Vec<_> = std::fs::read_dir(out.join("interface"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    files.sort();
+    assert_eq!(files.len(), f.len());
+    let mu = 0.3;
+    let p_held = f.last().unwrap().0;
+    let mut checked = [false; 2];
+    for ((p, q), file) in f.iter().zip(&files) {
+        let ratio = q / (mu * p);
+        if ratio < 0.01 {
+            continue; // pressing: no tangential load yet
+        }
+        // the platen holds its height: the normal force stays put (within
+        // 2.4e-6 at Q = 0.87 μP: finite bodies couple the two a little)
+        assert!(common::rel(*p, p_held) < 1e-5, "P {p} vs {p_held}");
+        let r = rows(file);
+        let stick: Vec<f64> = r
+            .iter()
+            .filter(|w| w.tangential == "stick")
+            .map(|w| w.x)
+            .collect();
+        let (lo, hi) = (stick[0], stick[stick.len() - 1]);
+        // the stick zone is one interval: every point between is sticking
+        assert!(r
+            .iter()
+            .filter(|w| w.x > lo && w.x < hi)
+            .all(|w| w.tangential == "stick"));
+        // its edges: midway to the neighbouring (slipping) points
+        let i_lo = r.iter().position(|w| w.x == lo).unwrap();
+        let i_hi = r.iter().position(|w| w.x == hi).unwrap();
+        let c = 0.5 * (0.5 * (r[i_hi].x + r[i_hi + 1].x) - 0.5 * (r[i_lo].x + r[i_lo - 1].x));
+        let (a, _) = hertz(*p);
+        let want = (1.0 - ratio).sqrt();
+        // shear traction μp wherever the contact slips
+        for w in r.iter().filter(|w| w.tangential == "macro-slip") {
+            assert!(
+                (w.p_t.abs() - mu * w.p_n).abs() <= 1e-8 * mu * w.p_n.max(1.0),
+                "slip at x = {}: |p_T| {} vs μ p {}",
+                w.x,
+                w.p_t,
+                mu * w.p_n
+            );
+        }
+        for (k, target) in [0.5, 0.75].iter().enumerate() {
+            if (ratio - target).abs() < 0.05 {
+                checked[k] = true;
+                assert!(
+                    common::rel(c / a, want) < 0.05,
+                    "Q/μP = {ratio}: c/a {} vs {want}",
+                    c / a
+                );
+            }
+        }
+    }
+    assert_eq!(
+        checked,
+        [true, true],
+        "no increment near Q/μP = 0.5 or 0.75"
+    );
+}
