@@ -78,11 +78,13 @@ const CHECKED: [&str; 14] = [
 /// The joint cases (issue 18) also check their `joints` array: per interface
 /// the final forces, approach, slip, status measures, dissipation and work,
 /// and every closed load cycle. The older cases keep the fields above only.
-const JOINT_CASES: [&str; 4] = [
+const JOINT_CASES: [&str; 6] = [
     "shrink-fit",
     "slideway-cycles",
     "bolted-flange",
     "shrink-fit-roughness",
+    "hertz-cylinder",
+    "cattaneo-mindlin",
 ];
 
 /// The checked fields of a case.
@@ -105,7 +107,7 @@ struct Gold {
     prefix: Option<&'static str>,
 }
 
-const CASES: [Gold; 13] = [
+const CASES: [Gold; 15] = [
     Gold {
         case: "punch-plane-stress",
         args: &[],
@@ -168,6 +170,16 @@ const CASES: [Gold; 13] = [
     },
     Gold {
         case: "shrink-fit-roughness",
+        args: &[],
+        prefix: None,
+    },
+    Gold {
+        case: "hertz-cylinder",
+        args: &[],
+        prefix: None,
+    },
+    Gold {
+        case: "cattaneo-mindlin",
         args: &[],
         prefix: None,
     },
@@ -519,4 +531,14 @@ fn bolted_flange() {
 #[test]
 fn shrink_fit_roughness() {
     check("shrink-fit-roughness");
+}
+
+#[test]
+fn hertz_cylinder() {
+    check("hertz-cylinder");
+}
+
+#[test]
+fn cattaneo_mindlin() {
+    check("cattaneo-mindlin");
 }
