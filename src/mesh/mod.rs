@@ -40,8 +40,10 @@ pub struct Interface {
 }
 
 /// The two sides of a non-matching interface: quadratic edges [end, mid,
-/// end], both walked in the interface's walk direction (B on the right:
-/// increasing x on a horizontal interface, increasing y on a vertical one).
+/// end], both walked in the interface's walk direction (slave edges with A
+/// on the left, master edges with B on the right: increasing x on a
+/// horizontal block interface, increasing y on a vertical one). The slave
+/// edges follow one another end to start (their arc length is accumulated).
 /// The spring points live on the slave side (body A) and are projected onto
 /// the master side (body B).
 #[derive(Clone, Debug)]

@@ -4,7 +4,9 @@
 //! mesh declared non-matching reproduces the matching run; uniform pressure
 //! through a non-matching horizontal and vertical interface (patch test);
 //! the force balance when the slave side is the coarser; finite-difference
-//! checks of the node-to-segment point tangent.
+//! checks of the node-to-segment point tangent. The same on Gmsh meshes
+//! (tests/data/nonmatching-*.geo): the patch test across unstructured
+//! quads, swapped curves, an arc.
 
 use crate::common;
 use asperity::driver::{self, RunOptions};
@@ -198,6 +200,122 @@ fn a_coarser_slave_side_still_carries_the_whole_load() {
         let dev = p.iter().fold(0.0f64, |a, q| a.max((q.0 - 100.0).abs()));
         eprintln!("{name}: max |p_N - q| = {dev:.3e} MPa");
     }
+}
+
+/// The patch case of [`patch`] (horizontal, body "upper" on body "lower",
+/// the same supports and load) on a Gmsh mesh of tests/data, its interface
+/// between the physical curves `upper.bottom` (slave) and `lower.top`.
+fn gmsh_patch(mesh: &str, weights: &str) -> String {
+    let path = common::root().join("tests/data").join(mesh);
+    let text = patch(false, weights, "", "");
+    let (head, rest) = text.split_once("[mesh]\n").unwrap();
+    let (_, tail) = rest.split_once("[materials.").unwrap();
+    format!(
+        "{head}[mesh]\nfile = {:?}\n\
+         [[mesh.interface]]\nname = \"contact\"\nupper_curve = \"upper.bottom\"\nlower_curve = \"lower.top\"\nmatching = false\n\
+         [materials.{tail}",
+        path.display().to_string()
+    )
+}
+
+/// A Gmsh mesh meshed apart along y = 0 (tests/data/nonmatching-line.geo:
+/// unstructured quadrangles of size 1.5 on size 2.5, the slave side two graded
+/// edges per master edge, its curve's pieces out of order and in alternating
+/// directions in the file): the same patch test as on blocks.
+#[test]
+fn uniform_pressure_crosses_a_non_matching_gmsh_interface_exactly() {
+    for w in ["lumped", "consistent"] {
+        let text = gmsh_patch("nonmatching-line.msh", w);
+        assert!(text.contains("matching = false") && !text.contains("[[mesh.block]]"));
+        check_uniform(&format!("nm-gmsh-patch-{w}"), &text);
+    }
+}
+
+/// The line mesh with its curves swapped (upper_curve on the lower body and
+/// no `upper` / `lower` body names): body A, the slave side, is then the
+/// coarser lower body, walked with it on the left (−x), the master normals
+/// pointing down into it. A coarser slave does not pass the patch test, but
+/// the interface carries the whole load (as on blocks).
+#[test]
+fn swapped_gmsh_curves_make_the_coarser_side_the_slave_and_still_carry_the_load() {
+    for w in ["lumped", "consistent"] {
+        let name = format!("nm-gmsh-swapped-{w}");
+        let text = gmsh_patch("nonmatching-line.msh", w)
+            .replace(
+                "upper_curve = \"upper.bottom\"",
+                "upper_curve = \"lower.top\"",
+            )
+            .replace(
+                "lower_curve = \"lower.top\"",
+                "lower_curve = \"upper.bottom\"",
+            );
+        let (model, r) = run(&name, &text);
+        let im = &model.interfaces[0];
+        assert_eq!(model.mesh.bodies[im.body_a], "lower");
+        assert!(im.points.iter().all(|pt| pt.normal == [0.0, -1.0]));
+        let p = pressures(im, &r.final_state);
+        let force: f64 = p.iter().map(|(pn, a)| pn * a).sum();
+        let dev = p.iter().fold(0.0f64, |a, q| a.max((q.0 - 100.0).abs()));
+        eprintln!("{name}: {} points, max |p_N - q| = {dev:.3e} MPa", p.len());
+        assert!(common::rel(force, 2000.0) <= 1e-9, "{name}: F_N = {force}");
+        assert!(dev > 0.1, "{name}: a coarser slave is not exact");
+    }
+}
+
+/// The sides of tests/data/nonmatching-arc.msh meet along a circular arc
+/// (R = 25.25 mm, 0.5 mm high). Uniform pressure is not an exact solution
+/// there (frictionless springs carry no shear), but the springs must hold
+/// the upper body up: Σ p_N n_y A = q × width × thickness, every point closed,
+/// the normals pointing up into the upper body; the output's s_mm runs along
+/// the slave curve from 0 to its length.
+#[test]
+fn a_curved_non_matching_gmsh_interface_carries_the_load() {
+    let name = "nm-gmsh-arc";
+    let (model, r) = run(name, &gmsh_patch("nonmatching-arc.msh", "consistent"));
+    let im = &model.interfaces[0];
+    let p = pressures(im, &r.final_state);
+    let mut lift = 0.0;
+    for (pt, &(pn, area)) in im.points.iter().zip(&p) {
+        assert!(
+            pt.normal[1] > 0.98 && pn > 80.0 && pn < 120.0,
+            "{pt:?}: {pn}"
+        );
+        assert!(pt.segment.unwrap().gap.abs() < 1e-5, "{pt:?}");
+        lift += pn * area * pt.normal[1];
+    }
+    let want = 100.0 * 10.0 * 2.0;
+    eprintln!("{name}: {} points, Σ p_N n_y A = {lift} N", p.len());
+    assert!(
+        common::rel(lift, want) <= 1e-9,
+        "{name}: {lift} N, want {want}"
+    );
+    // s_mm of the last increment's interface file
+    let out = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join(name)
+        .join("out/interface/0002.csv");
+    let csv = std::fs::read_to_string(&out).unwrap_or_else(|e| panic!("{}: {e}", out.display()));
+    let mut lines = csv.lines();
+    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |c: &str| head.iter().position(|h| *h == c).unwrap();
+    let (cx, cs) = (col("x_mm"), col("s_mm"));
+    let rows: Vec<(f64, f64)> = lines
+        .map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            (f[cx].parse().unwrap(), f[cs].parse().unwrap())
+        })
+        .collect();
+    assert_eq!(rows.len(), p.len());
+    for w in rows.windows(2) {
+        assert!(w[1].0 > w[0].0 && w[1].1 > w[0].1, "{w:?}");
+    }
+    // the slave curve's length is the arc's, 2 R asin(5 / R)
+    let rad = 25.25f64;
+    let len = 2.0 * rad * (5.0 / rad).asin();
+    let (first, last) = (rows[0].1, rows[rows.len() - 1].1);
+    assert!(
+        first > 0.0 && first < 0.1 && last < len && last > len - 0.1,
+        "{first} {last} of {len}"
+    );
 }
 
 const FRICTION: &str = "law = \"power\"\nc_n = 0.001\nm = 0.5\n[interface.contact.tangential]\nr = 0.9\ns = 0.5\nkp_ratio = 0.05\nmu = 0.2\nbeta = 0.2\nn = 275.0";

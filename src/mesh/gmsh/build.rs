@@ -1,11 +1,13 @@
 //! A parsed [`MshFile`] to the solver's [`Mesh`]: physical surfaces to bodies,
-//! physical curves to node and edge sets, interface curves paired node by node.
+//! physical curves to node and edge sets, interface curves paired node by node
+//! or, with `matching = false`, oriented and chained as the two sides of a
+//! non-matching interface.
 
 use super::parse::MshFile;
 use crate::error::{Error, Result};
 use crate::mesh::blocks::InterfaceSpec;
-use crate::mesh::{ContactEdge, Element, Interface, Mesh};
-use std::collections::{BTreeMap, HashMap};
+use crate::mesh::{ContactEdge, Element, Interface, Mesh, NonMatching};
+use std::collections::{BTreeMap, HashMap, HashSet};
 
 fn mesh_err<T>(place: &str, message: impl Into<String>) -> Result<T> {
     Err(Error::Mesh {
@@ -272,7 +274,9 @@ fn add_curve_sets(
     Ok(curve_body)
 }
 
-/// Pairs the interface's upper and lower physical curves node by node.
+/// The interface between the upper and lower physical curves: paired node
+/// by node, or with `matching = false` as two sides meshed apart
+/// ([`nonmatching_curves`]).
 fn pair_curves(
     msh: &MshFile,
     mesh: &Mesh,
@@ -283,12 +287,6 @@ fn pair_curves(
 ) -> Result<Interface> {
     let at = format!("{place}: [[mesh.interface]] \"{}\"", spec.name);
     let bad = |m: String| Error::input(&at, m);
-    if spec.matching == Some(false) {
-        return Err(bad(
-            "matching = false is available for generated blocks ([[mesh.block]]) only; a mesh read from a file pairs coincident nodes of its curves"
-                .into(),
-        ));
-    }
     if spec.left.is_some() || spec.right.is_some() {
         return Err(bad(
             "left / right name blocks of a generated mesh ([[mesh.block]]); a mesh read from a file pairs upper_curve (body A) with lower_curve (body B)"
@@ -305,11 +303,21 @@ fn pair_curves(
         curve_on_body(msh, curve_body, upper, &at)?,
         curve_on_body(msh, curve_body, lower, &at)?,
     );
-    for (given, body, side) in [(&spec.upper, ua, "upper"), (&spec.lower, lb, "lower")] {
+    let swapped = spec.upper.as_deref() == Some(mesh.bodies[lb].as_str())
+        && spec.lower.as_deref() == Some(mesh.bodies[ua].as_str());
+    for (given, body, side, curve) in [
+        (&spec.upper, ua, "upper", upper),
+        (&spec.lower, lb, "lower", lower),
+    ] {
         if let Some(g) = given {
             if *g != mesh.bodies[body] {
+                let hint = if swapped {
+                    format!(": upper_curve and lower_curve are swapped (upper_curve must lie on body A, \"{}\", the slave side with matching = false)", mesh.bodies[lb])
+                } else {
+                    String::new()
+                };
                 return Err(bad(format!(
-                    "{side} = \"{g}\" but {side}_curve lies on body \"{}\"",
+                    "{side} = \"{g}\" but {side}_curve \"{curve}\" lies on body \"{}\"{hint}",
                     mesh.bodies[body]
                 )));
             }
@@ -321,6 +329,16 @@ fn pair_curves(
             mesh.bodies[ua]
         )));
     }
+    if spec.matching == Some(false) {
+        let sides = nonmatching_curves(mesh, tag_of, &msh.name, upper, lower).map_err(bad)?;
+        return Ok(Interface {
+            name: spec.name.clone(),
+            body_a: ua,
+            body_b: lb,
+            edges: vec![],
+            nonmatching: Some(sides),
+        });
+    }
     Ok(Interface {
         name: spec.name.clone(),
         body_a: ua,
@@ -328,6 +346,149 @@ fn pair_curves(
         edges: coincident_edges(msh, mesh, tag_of, upper, lower, &at)?,
         nonmatching: None,
     })
+}
+
+/// The two sides of a non-matching interface (`matching = false`) from the
+/// physical curves `upper` (body A, the slave side) and `lower` (body B, the
+/// master side), which need not share a node nor lie on one line.
+///
+/// Every edge is oriented by the quadrangle it belongs to, not by its
+/// coordinates or by the direction of Gmsh's line elements: the edge sets
+/// are already walked with their body on the left ([`add_curve_sets`]),
+/// which is the slave side's walk (A on the left); the master edges are
+/// turned round (B on the right), so both sides are walked the same way
+/// along the interface and the master's left normal points from B into A.
+/// An edge must therefore lie on its body's boundary (one quadrangle); an
+/// edge between two quadrangles of the body has no side and is refused.
+///
+/// The slave edges are chained end to start into one piece ([`chain`]: the
+/// slave side's arc length runs along it); the master edges stay in file
+/// order (each spring point looks for its closest master edge).
+fn nonmatching_curves(
+    mesh: &Mesh,
+    tag_of: &[u64],
+    file: &str,
+    upper: &str,
+    lower: &str,
+) -> std::result::Result<NonMatching, String> {
+    let inner = inner_edges(mesh);
+    for name in [upper, lower] {
+        on_boundary(mesh, tag_of, &inner, name, file, &mesh.edge_sets[name])?;
+    }
+    let slave = chain(mesh, tag_of, upper, file, &mesh.edge_sets[upper])?;
+    let master = mesh.edge_sets[lower]
+        .iter()
+        .map(|e| [e[2], e[1], e[0]])
+        .collect();
+    Ok(NonMatching { slave, master })
+}
+
+/// The element edges (sorted corner pairs) shared by two or more quadrangles.
+fn inner_edges(mesh: &Mesh) -> HashSet<(usize, usize)> {
+    let mut seen = HashSet::new();
+    let mut inner = HashSet::new();
+    for el in &mesh.elements {
+        for i in 0..4 {
+            let (p, q) = (el.nodes[i], el.nodes[(i + 1) % 4]);
+            let key = (p.min(q), p.max(q));
+            if !seen.insert(key) {
+                inner.insert(key);
+            }
+        }
+    }
+    inner
+}
+
+/// "node 12 at (2.5, 0)": a node by its tag in the file and its position.
+fn node_at(mesh: &Mesh, tag_of: &[u64], n: usize) -> String {
+    let x = mesh.nodes[n];
+    format!("node {} at ({}, {})", tag_of[n], x[0], x[1])
+}
+
+/// Refuses an edge of curve `name` that two quadrangles share (inside its
+/// body: which side faces the other body is undefined there).
+fn on_boundary(
+    mesh: &Mesh,
+    tag_of: &[u64],
+    inner: &HashSet<(usize, usize)>,
+    name: &str,
+    file: &str,
+    edges: &[[usize; 3]],
+) -> std::result::Result<(), String> {
+    for e in edges {
+        if inner.contains(&(e[0].min(e[2]), e[0].max(e[2]))) {
+            return Err(format!(
+                "curve \"{name}\" in {file} runs inside its body between two of its quadrangles, from {} to {}: an interface curve must lie on the body's boundary",
+                node_at(mesh, tag_of, e[0]),
+                node_at(mesh, tag_of, e[2])
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The slave curve's edges (each walked with body A on the left) as one
+/// chain, every edge starting where the one before ends. An open chain
+/// starts at its free end; a closed loop (a body all round the other) is
+/// accepted and starts with the curve's first line element in the file.
+/// Refused, naming the node: two edges starting or ending at one node (the
+/// curve branches, or touches itself), and a curve in several pieces.
+fn chain(
+    mesh: &Mesh,
+    tag_of: &[u64],
+    name: &str,
+    file: &str,
+    edges: &[[usize; 3]],
+) -> std::result::Result<Vec<[usize; 3]>, String> {
+    let mut by_start: HashMap<usize, usize> = HashMap::with_capacity(edges.len());
+    let mut ends: HashSet<usize> = HashSet::with_capacity(edges.len());
+    for (k, e) in edges.iter().enumerate() {
+        if by_start.insert(e[0], k).is_some() {
+            return Err(format!(
+                "upper_curve \"{name}\" in {file} (the slave side) branches at {}: two of its edges start there (it must be one chain of edges)",
+                node_at(mesh, tag_of, e[0])
+            ));
+        }
+        if !ends.insert(e[2]) {
+            return Err(format!(
+                "upper_curve \"{name}\" in {file} (the slave side) branches at {}: two of its edges end there (it must be one chain of edges)",
+                node_at(mesh, tag_of, e[2])
+            ));
+        }
+    }
+    let head = edges
+        .iter()
+        .position(|e| !ends.contains(&e[0]))
+        .unwrap_or(0);
+    let mut done = vec![false; edges.len()];
+    let mut order = Vec::with_capacity(edges.len());
+    let mut k = head;
+    while !done[k] {
+        done[k] = true;
+        order.push(edges[k]);
+        match by_start.get(&edges[k][2]) {
+            Some(&next) => k = next,
+            None => break,
+        }
+    }
+    if order.len() < edges.len() {
+        // another piece: preferably its free start
+        let rest = (0..edges.len()).filter(|&j| !done[j]);
+        let other = rest
+            .clone()
+            .find(|&j| !ends.contains(&edges[j][0]))
+            .or_else(|| rest.min())
+            .unwrap_or(0);
+        let last = order.last().map_or(edges[head][2], |e| e[2]);
+        return Err(format!(
+            "upper_curve \"{name}\" in {file} (the slave side) is not one connected chain of edges: it breaks off at {} and goes on at {} ({} of its {} edges are in other pieces; give each piece an interface of its own)",
+            node_at(mesh, tag_of, last),
+            node_at(mesh, tag_of, edges[other][0]),
+            edges.len() - order.len(),
+            edges.len()
+        ));
+    }
+    Ok(order)
 }
 
 /// The body the physical curve `name` lies on; an error naming what `name`
@@ -342,6 +503,15 @@ fn curve_on_body(
         return Ok(b);
     }
     if let Some((&(d, _), _)) = msh.physical_names.iter().find(|(_, n)| *n == name) {
+        if d == 1 {
+            return Err(Error::input(
+                at,
+                format!(
+                    "physical curve \"{name}\" in {} is empty: it holds no line elements (is its curve meshed?)",
+                    msh.name
+                ),
+            ));
+        }
         let what = [
             "a physical point",
             "a physical curve",
@@ -433,3 +603,6 @@ fn coincident_edges(
     }
     Ok(edges)
 }
+
+#[cfg(test)]
+mod tests;

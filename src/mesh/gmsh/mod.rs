@@ -3,10 +3,12 @@
 //! Physical surfaces become bodies (named by their physical names), physical
 //! curves become node sets and edge sets of the same name, and each
 //! `[[mesh.interface]]` pairs the nodes of an upper body's curve with the
-//! coincident nodes of a lower body's curve. Bodies must be meshed with 8-node
-//! quads (element type 16) and curves with 3-node lines (type 8): in Gmsh,
-//! `Mesh.ElementOrder = 2; Mesh.SecondOrderIncomplete = 1;` and recombined
-//! surfaces. See `docs/gmsh.md`.
+//! coincident nodes of a lower body's curve (or, with `matching = false`,
+//! takes the two curves as the slave and master sides of node-to-segment
+//! springs). Bodies must be meshed with 8-node quads (element type 16) and
+//! curves with 3-node lines (type 8): in Gmsh, `Mesh.ElementOrder = 2;
+//! Mesh.SecondOrderIncomplete = 1;` and recombined surfaces. See
+//! `docs/gmsh.md`.
 //!
 //! The reader never panics: every count is checked against the bytes left in
 //! the file before anything is allocated, arithmetic is checked, and every
@@ -275,7 +277,9 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(
-            e.contains("upper = \"foundation\" but upper_curve lies on body \"punch\""),
+            e.contains(
+                "upper = \"foundation\" but upper_curve \"punch.bottom\" lies on body \"punch\""
+            ),
             "{e}"
         );
     }
