@@ -29,7 +29,7 @@ pub mod tangential;
 
 use crate::mesh::{Interface, Mesh};
 pub use normal::NormalLaw;
-pub use segment::project;
+pub use segment::{project, OVERLAP_LIMIT};
 pub use tangential::{Slip, SlipState, TangentialLaw};
 
 /// A node pair across the interface.

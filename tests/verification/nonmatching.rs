@@ -318,6 +318,34 @@ fn a_curved_non_matching_gmsh_interface_carries_the_load() {
     );
 }
 
+/// tests/data/nonmatching-arc-offset.msh: the same arc divided into 4 slave
+/// and 3 master edges per quarter, so that the sides' nodes do not nest.
+/// The elements' straight-sided polygons overlap by their chords' sagitta,
+/// which the model accepts between bodies joined by a non-matching interface
+/// (up to `OVERLAP_LIMIT` of the element); every spring point's gap is that
+/// of the two quadratic curves, a few µm at most, and the springs hold the
+/// upper body up.
+#[test]
+fn an_offset_division_of_a_curve_is_accepted_and_carries_the_load() {
+    let name = "nm-gmsh-arc-offset";
+    let (model, r) = run(
+        name,
+        &gmsh_patch("nonmatching-arc-offset.msh", "consistent"),
+    );
+    let im = &model.interfaces[0];
+    let p = pressures(im, &r.final_state);
+    let mut lift = 0.0;
+    let mut widest = 0.0f64;
+    for (pt, &(pn, area)) in im.points.iter().zip(&p) {
+        assert!(pt.normal[1] > 0.98 && pn > 0.0, "{pt:?}: {pn}");
+        widest = widest.max(pt.segment.unwrap().gap.abs());
+        lift += pn * area * pt.normal[1];
+    }
+    eprintln!("{name}: {} points, largest |gap| {widest:.3e} mm", p.len());
+    assert!(widest > 0.0 && widest < 1e-3, "{widest}");
+    assert!(common::rel(lift, 2000.0) <= 1e-9, "{name}: {lift} N");
+}
+
 const FRICTION: &str = "law = \"power\"\nc_n = 0.001\nm = 0.5\n[interface.contact.tangential]\nr = 0.9\ns = 0.5\nkp_ratio = 0.05\nmu = 0.2\nbeta = 0.2\nn = 275.0";
 
 #[test]
