@@ -206,6 +206,13 @@ fn serial_petsc1_and_petsc2_agree_on_the_slideway_cycles() {
     compare("slideway-cycles", "1");
 }
 
+/// Curved contact across non-matching meshes (issue 19): node-to-segment
+/// springs couple a slave point to a master edge that another rank may own.
+#[test]
+fn serial_petsc1_and_petsc2_agree_on_the_non_matching_hertz_cylinder() {
+    compare("hertz-cylinder", "1");
+}
+
 #[test]
 fn serial_petsc1_and_petsc2_agree_on_a_refined_case_with_plasticity_and_lift_off() {
     compare("strip-lift-off", "3");
