@@ -158,6 +158,18 @@ pub fn check_case(case: &Case) -> Result<Checked> {
     let mut tangential = BTreeMap::new();
     for (name, spec) in &case.interface {
         let key = format!("[interface.{name}]");
+        if spec.weights == Weights::Mortar
+            && !case
+                .mesh
+                .interface
+                .iter()
+                .any(|i| &i.name == name && i.matching == Some(false))
+        {
+            return Err(Error::input(
+                at(&format!("{key} weights")),
+                "\"mortar\" couples two sides meshed apart: it needs matching = false on the [[mesh.interface]] of that name (a matching interface takes \"lumped\" or \"consistent\")",
+            ));
+        }
         let law = normal_law(spec).map_err(|m| Error::input(at(&key), m))?;
         if !spec.gap.is_finite() {
             return Err(Error::input(

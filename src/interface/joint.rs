@@ -274,7 +274,11 @@ pub fn arc_lengths(mesh: &Mesh, iface: &Interface, im: &InterfaceModel) -> Vec<f
         return im
             .points
             .iter()
-            .map(|p| p.segment.map_or(f64::NAN, |g| g.s))
+            .map(|p| match (&p.segment, &p.mortar) {
+                (Some(g), _) => g.s,
+                (_, Some(m)) => m.s,
+                _ => f64::NAN,
+            })
             .collect();
     }
     use std::collections::HashMap;

@@ -68,6 +68,32 @@ pub struct Segment {
     pub s: f64,
 }
 
+/// A spring of a mortar (segment-to-segment) non-matching interface
+/// (`weights = "mortar"`): at slave node i, with A_i = ∫ N_i dA over the
+/// slave edges around it,
+/// u_N = (1/A_i) ∫ N_i [(u_B(ξ(s)) − u_A(s))·n(s) − g₀(s)] dA − gap and
+/// u_T = (1/A_i) ∫ N_i (u_B(ξ(s)) − u_A(s))·t(s) dA, integrated by 4-point
+/// Gauss on each piece of a slave edge between the projections of the
+/// master side's corner nodes (so the integrand is smooth on each piece);
+/// ξ(s) is the closest point of the master side, fixed at the start (small
+/// sliding). Both are linear in the displacements: u_N = Σ_j dn_j·u_j − g₀
+/// − gap over the nodes the integral touches. Energy Π = Σ_i A_i φ(u_N,i),
+/// so the tangent stays symmetric without friction. A uniform pressure
+/// crosses exactly whatever the two sides' divisions (the master's nodal
+/// forces p ∫ N_k^B dA are integrated exactly on each piece).
+#[derive(Clone, Debug)]
+pub struct Mortar {
+    /// Nodes whose displacements enter u_N and u_T (slave, then master).
+    pub nodes: Vec<usize>,
+    /// ∂u_N/∂u_node and ∂u_T/∂u_node, (x, y) per node.
+    pub dn: Vec<[f64; 2]>,
+    pub dt: Vec<[f64; 2]>,
+    /// Weighted geometric initial gap, mm; the interface's `gap` adds to it.
+    pub gap: f64,
+    /// Arc length of the slave node along the slave side, mm.
+    pub s: f64,
+}
+
 /// An integration point of the interface energy.
 #[derive(Clone, Debug)]
 pub struct Point {
@@ -81,12 +107,18 @@ pub struct Point {
     /// Non-matching interfaces: the node-to-segment coupling (then `pairs`,
     /// `shape` and `len` are unused); `None` on coincident pairs.
     pub segment: Option<Segment>,
+    /// Mortar non-matching interfaces: the segment-to-segment coupling
+    /// (then `pairs`, `shape`, `len` and `segment` are unused).
+    pub mortar: Option<std::sync::Arc<Mortar>>,
 }
 
 impl Point {
     /// Number of local dofs: 4·len for coincident pairs, 2·(slave nodes + 3)
     /// for a node-to-segment point (at most 12 either way).
     pub fn ndofs(&self) -> usize {
+        if let Some(m) = &self.mortar {
+            return 2 * m.nodes.len();
+        }
         match &self.segment {
             None => 4 * self.len,
             Some(g) => 2 * (g.len_a + 3),
@@ -100,10 +132,17 @@ impl Point {
     /// first 4·len entries of each are used.
     /// On a non-matching interface the A entries are −N_i^A n and the B
     /// entries +N_j(ξ) n (slave nodes, then the master edge's three nodes).
-    pub fn gradients(&self) -> ([f64; 12], [f64; 12]) {
+    /// On a mortar interface the entries are the coefficients dn, dt of
+    /// [`Mortar`]. The vectors have [`Point::ndofs`] entries.
+    pub fn gradients(&self) -> (Vec<f64>, Vec<f64>) {
+        if let Some(m) = &self.mortar {
+            let flat = |d: &[[f64; 2]]| d.iter().flat_map(|v| *v).collect::<Vec<f64>>();
+            return (flat(&m.dn), flat(&m.dt));
+        }
         let n = self.len;
         let t = [self.normal[1], -self.normal[0]];
-        let (mut gn, mut gt) = ([0.0f64; 12], [0.0f64; 12]);
+        let nd = self.ndofs();
+        let (mut gn, mut gt) = (vec![0.0f64; nd], vec![0.0f64; nd]);
         if let Some(g) = &self.segment {
             let m = g.len_a;
             for c in 0..2 {
@@ -226,6 +265,11 @@ pub enum Weights {
     Lumped,
     /// Gauss integration along the edge (eq. 3.29).
     Consistent,
+    /// Non-matching interfaces only: one spring per slave node whose approach
+    /// and slip are the slave side's gap and slip averaged over the node's
+    /// shape function N_i, g̃_i = ∫ N_i g ds / ∫ N_i ds (a mortar projection,
+    /// segment-to-segment; see [`Mortar`]).
+    Mortar,
 }
 
 /// How the tangential stiffness enters the matrix.
@@ -287,7 +331,16 @@ impl InterfaceModel {
         tangential: Option<(TangentialLaw, FrictionScheme)>,
     ) -> Result<Self, String> {
         let (pairs, points) = match &iface.nonmatching {
+            None if weights == Weights::Mortar => {
+                return Err(format!(
+                    "interface \"{}\": weights = \"mortar\" couples two sides meshed apart; it needs matching = false",
+                    iface.name
+                ))
+            }
             None => Self::coincident(mesh, iface, weights, section),
+            Some(nm) if weights == Weights::Mortar => {
+                segment::mortar(mesh, &iface.name, nm, section)?
+            }
             Some(nm) => segment::node_to_segment(mesh, &iface.name, nm, weights, section)?,
         };
         Ok(InterfaceModel {
@@ -367,6 +420,7 @@ impl InterfaceModel {
                         area: wg * ds * section.measure(x),
                         normal: n,
                         segment: None,
+                        mortar: None,
                     });
                 }
             }
@@ -386,6 +440,7 @@ impl InterfaceModel {
                     area: p.area,
                     normal: p.normal,
                     segment: None,
+                    mortar: None,
                 })
                 .collect();
         }
@@ -436,6 +491,15 @@ impl InterfaceModel {
     /// and u_T = (u_B(ξ) − u_A)·t, u_B(ξ) = Σ N_j(ξ) u_{b_j} on the master
     /// edge and u_A = Σ N_i^A u_{a_i} at the slave point.
     pub fn point_kinematics_at(&self, pt: &Point, u: &[f64], gap: f64) -> (f64, f64) {
+        if let Some(m) = &pt.mortar {
+            let (mut un, mut ut) = (-m.gap - gap, 0.0);
+            for (j, &node) in m.nodes.iter().enumerate() {
+                let u_j = [u[2 * node], u[2 * node + 1]];
+                un += m.dn[j][0] * u_j[0] + m.dn[j][1] * u_j[1];
+                ut += m.dt[j][0] * u_j[0] + m.dt[j][1] * u_j[1];
+            }
+            return (un, ut);
+        }
         let (n, t) = (pt.normal, [pt.normal[1], -pt.normal[0]]);
         if let Some(g) = &pt.segment {
             let mut du = [0.0f64; 2];
@@ -463,6 +527,9 @@ impl InterfaceModel {
     /// The dofs of a point in local order: A pairs (x, y) then B pairs (x, y);
     /// on a non-matching interface the slave nodes, then the master edge's.
     pub fn point_dofs(&self, pt: &Point) -> Vec<usize> {
+        if let Some(m) = &pt.mortar {
+            return m.nodes.iter().flat_map(|&n| [2 * n, 2 * n + 1]).collect();
+        }
         if let Some(g) = &pt.segment {
             let nodes = g.a[..g.len_a].iter().chain(&g.b);
             return nodes.flat_map(|&m| [2 * m, 2 * m + 1]).collect();

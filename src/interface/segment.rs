@@ -61,7 +61,8 @@ pub(super) fn node_to_segment(
                     slave[k].area += w;
                 }
             }
-            Weights::Consistent => {
+            // (a mortar interface is built by `mortar`, not here)
+            Weights::Consistent | Weights::Mortar => {
                 for (xi, wg) in gauss4() {
                     let (nl, ds) = edge_normal(&xs, xi);
                     let shape = crate::fem::q8::edge_shape(xi);
@@ -96,50 +97,8 @@ pub(super) fn node_to_segment(
         h,
     } in slave
     {
-        let dist = |xe: &[[f64; 2]; 3], xi: f64| {
-            let p = point_on(xe, xi);
-            (p[0] - x[0]).hypot(p[1] - x[1])
-        };
-        let best = masters
-            .iter()
-            .enumerate()
-            .filter_map(|(k, xe)| project(xe, x).map(|xi| (k, xi, dist(xe, xi))))
-            .min_by(|p, q| p.2.total_cmp(&q.2));
-        let Some((k, xi, _)) = best else {
-            let ends = masters.iter().flat_map(|xe| [xe[0], xe[2]]);
-            let (lo, hi) = ends.fold(
-                ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
-                |(lo, hi), p| {
-                    (
-                        [lo[0].min(p[0]), lo[1].min(p[1])],
-                        [hi[0].max(p[0]), hi[1].max(p[1])],
-                    )
-                },
-            );
-            return Err(format!(
-                "interface \"{name}\" (matching = false): the slave point at ({}, {}) of body A projects outside every edge of the master side (body B), which spans x ∈ [{}, {}], y ∈ [{}, {}]; the slave side must lie within the master side",
-                x[0], x[1], lo[0], hi[0], lo[1], hi[1]
-            ));
-        };
-        let xe = &masters[k];
-        let (n, _) = edge_normal(xe, xi);
+        let Foot { k, xi, n, gap } = foot(name, &masters, x, out, h)?;
         let nb = crate::fem::q8::edge_shape(xi);
-        let xb = point_on(xe, xi);
-        let gap = (x[0] - xb[0]) * n[0] + (x[1] - xb[1]) * n[1];
-        let facing = out[0] * n[0] + out[1] * n[1];
-        if facing > FACING_TOL {
-            let deg = facing.clamp(-1.0, 1.0).acos().to_degrees();
-            return Err(format!(
-                "interface \"{name}\" (matching = false): at ({}, {}) the two sides do not face each other: body A's outward normal ({:.3}, {:.3}) makes {deg:.1}° with body B's outward normal ({:.3}, {:.3}) at ({}, {}), where facing sides make more than 90° (are upper and lower, or the curves, swapped?)",
-                x[0], x[1], out[0], out[1], n[0], n[1], xb[0], xb[1]
-            ));
-        }
-        if gap < -OVERLAP_LIMIT * h {
-            return Err(format!(
-                "interface \"{name}\" (matching = false): at ({}, {}) body A overlaps body B by {:.4e} mm, more than {OVERLAP_LIMIT} of the slave edge's length ({h:.4e} mm): the meshes overlap. An interference is a load: give the interface a negative `gap` (with a `gap_history` to press it in) on meshes that touch",
-                x[0], x[1], -gap
-            ));
-        }
         let b = nm.master[k];
         let near = |nodes: &[usize], vals: &[f64]| {
             let i = (0..vals.len())
@@ -170,9 +129,218 @@ pub(super) fn node_to_segment(
                 gap,
                 s,
             }),
+            mortar: None,
         });
     }
     Ok((pairs, points))
+}
+
+/// The springs of a mortar non-matching interface (`weights = "mortar"`,
+/// see [`Mortar`]): one per slave node, its approach and slip the slave
+/// side's averaged with the node's shape function. Each slave edge is cut
+/// where the master side's corner nodes project onto it; each piece gets
+/// 4-point Gauss, each Gauss point its closest master point (with the checks
+/// of [`foot`]). One pair per spring (the slave node and the master node
+/// that weighs most in its coupling), for the per-point outputs.
+pub(super) fn mortar(
+    mesh: &Mesh,
+    name: &str,
+    nm: &crate::mesh::NonMatching,
+    section: crate::fem::Section,
+) -> Result<(Vec<Pair>, Vec<Point>), String> {
+    use std::collections::{BTreeMap, HashMap};
+    let coords = |e: &[usize; 3]| -> [[f64; 2]; 3] { std::array::from_fn(|i| mesh.nodes[e[i]]) };
+    let masters: Vec<[[f64; 2]; 3]> = nm.master.iter().map(coords).collect();
+    let corners: Vec<[f64; 2]> = masters.iter().flat_map(|xe| [xe[0], xe[2]]).collect();
+    #[derive(Default)]
+    struct Acc {
+        node: usize,
+        x: [f64; 2],
+        s: f64,
+        area: f64,
+        gap: f64,
+        normal: [f64; 2],
+        /// node → (∂u_N/∂u, ∂u_T/∂u), before the division by the area
+        coef: BTreeMap<usize, ([f64; 2], [f64; 2])>,
+    }
+    let mut acc: Vec<Acc> = Vec::new();
+    let mut index: HashMap<usize, usize> = HashMap::new();
+    let mut s0 = 0.0;
+    for e in &nm.slave {
+        let xs = coords(e);
+        let half = [
+            joint::piece_length(&xs, -1.0, 0.0),
+            joint::piece_length(&xs, -1.0, 1.0),
+        ];
+        let mut ids = [0usize; 3];
+        for i in 0..3 {
+            ids[i] = *index.entry(e[i]).or_insert_with(|| {
+                acc.push(Acc {
+                    node: e[i],
+                    x: xs[i],
+                    s: s0 + [0.0, half[0], half[1]][i],
+                    ..Default::default()
+                });
+                acc.len() - 1
+            });
+        }
+        // the pieces: cut where a master corner projects inside the edge
+        let mut cuts = vec![-1.0, 1.0];
+        cuts.extend(
+            corners
+                .iter()
+                .filter_map(|&c| project(&xs, c))
+                .filter(|xi| xi.abs() < 1.0 - 1e-9),
+        );
+        cuts.sort_by(f64::total_cmp);
+        cuts.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
+        for w in cuts.windows(2) {
+            let (lo, hi) = (w[0], w[1]);
+            for (g, wg) in gauss4() {
+                let xi = 0.5 * (lo + hi) + 0.5 * (hi - lo) * g;
+                let (nl, ds) = edge_normal(&xs, xi);
+                let shape = crate::fem::q8::edge_shape(xi);
+                let x = point_on(&xs, xi);
+                let wq = 0.5 * (hi - lo) * wg * ds * section.measure(x);
+                let f = foot(name, &masters, x, [-nl[0], -nl[1]], half[1])?;
+                let nb = crate::fem::q8::edge_shape(f.xi);
+                let (n, t) = (f.n, [f.n[1], -f.n[0]]);
+                let b = nm.master[f.k];
+                for i in 0..3 {
+                    let wi = wq * shape[i];
+                    let a = &mut acc[ids[i]];
+                    a.area += wi;
+                    a.gap += wi * f.gap;
+                    let wn = wq * shape[i].abs();
+                    a.normal = [a.normal[0] + wn * n[0], a.normal[1] + wn * n[1]];
+                    let sides = [(&e[..], &shape, -1.0), (&b[..], &nb, 1.0)];
+                    for (nodes, vals, sign) in sides {
+                        for j in 0..3 {
+                            let c = sign * wi * vals[j];
+                            let d = a.coef.entry(nodes[j]).or_default();
+                            d.0 = [d.0[0] + c * n[0], d.0[1] + c * n[1]];
+                            d.1 = [d.1[0] + c * t[0], d.1[1] + c * t[1]];
+                        }
+                    }
+                }
+            }
+        }
+        s0 += half[1];
+    }
+    let slave_nodes: std::collections::HashSet<usize> = index.keys().copied().collect();
+    let mut pairs = Vec::with_capacity(acc.len());
+    let mut points = Vec::with_capacity(acc.len());
+    for a in acc {
+        if a.area.is_nan() || a.area <= 0.0 {
+            return Err(format!(
+                "interface \"{name}\" (weights = \"mortar\"): the slave node at ({}, {}) has no area (∫ N dA = {}): a slave edge of zero length or on the axis",
+                a.x[0], a.x[1], a.area
+            ));
+        }
+        let l = a.normal[0].hypot(a.normal[1]);
+        let normal = [a.normal[0] / l, a.normal[1] / l];
+        let inv = 1.0 / a.area;
+        let nodes: Vec<usize> = a.coef.keys().copied().collect();
+        let dn: Vec<[f64; 2]> = a.coef.values().map(|c| c.0.map(|v| v * inv)).collect();
+        let dt: Vec<[f64; 2]> = a.coef.values().map(|c| c.1.map(|v| v * inv)).collect();
+        let b = nodes
+            .iter()
+            .zip(&dn)
+            .filter(|(k, _)| !slave_nodes.contains(k))
+            .max_by(|p, q| p.1[0].hypot(p.1[1]).total_cmp(&q.1[0].hypot(q.1[1])))
+            .map_or(a.node, |(&k, _)| k);
+        pairs.push(Pair {
+            a: a.node,
+            b,
+            x: a.x,
+            normal,
+            area: a.area,
+            spring: Some(points.len()),
+        });
+        points.push(Point {
+            pairs: [pairs.len() - 1; 3],
+            shape: [1.0, 0.0, 0.0],
+            len: 1,
+            area: a.area,
+            normal,
+            segment: None,
+            mortar: Some(std::sync::Arc::new(Mortar {
+                nodes,
+                dn,
+                dt,
+                gap: a.gap / a.area,
+                s: a.s,
+            })),
+        });
+    }
+    Ok((pairs, points))
+}
+
+/// Where a slave point meets the master side: the master edge `k`, the
+/// parameter ξ of the closest point on it, the master normal there and the
+/// geometric gap (x − x_B(ξ))·n.
+struct Foot {
+    k: usize,
+    xi: f64,
+    n: [f64; 2],
+    gap: f64,
+}
+
+/// Projects the slave point `x` (body A's outward normal `out`, on a slave
+/// edge of length `h`) onto the closest master edge and checks the
+/// geometry there: the point projects inside the master side, the sides
+/// face each other, and they overlap by at most [`OVERLAP_LIMIT`] × h.
+fn foot(
+    name: &str,
+    masters: &[[[f64; 2]; 3]],
+    x: [f64; 2],
+    out: [f64; 2],
+    h: f64,
+) -> Result<Foot, String> {
+    let dist = |xe: &[[f64; 2]; 3], xi: f64| {
+        let p = point_on(xe, xi);
+        (p[0] - x[0]).hypot(p[1] - x[1])
+    };
+    let best = masters
+        .iter()
+        .enumerate()
+        .filter_map(|(k, xe)| project(xe, x).map(|xi| (k, xi, dist(xe, xi))))
+        .min_by(|p, q| p.2.total_cmp(&q.2));
+    let Some((k, xi, _)) = best else {
+        let ends = masters.iter().flat_map(|xe| [xe[0], xe[2]]);
+        let (lo, hi) = ends.fold(
+            ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
+            |(lo, hi), p| {
+                (
+                    [lo[0].min(p[0]), lo[1].min(p[1])],
+                    [hi[0].max(p[0]), hi[1].max(p[1])],
+                )
+            },
+        );
+        return Err(format!(
+            "interface \"{name}\" (matching = false): the slave point at ({}, {}) of body A projects outside every edge of the master side (body B), which spans x ∈ [{}, {}], y ∈ [{}, {}]; the slave side must lie within the master side",
+            x[0], x[1], lo[0], hi[0], lo[1], hi[1]
+        ));
+    };
+    let xe = &masters[k];
+    let (n, _) = edge_normal(xe, xi);
+    let xb = point_on(xe, xi);
+    let gap = (x[0] - xb[0]) * n[0] + (x[1] - xb[1]) * n[1];
+    let facing = out[0] * n[0] + out[1] * n[1];
+    if facing > FACING_TOL {
+        let deg = facing.clamp(-1.0, 1.0).acos().to_degrees();
+        return Err(format!(
+            "interface \"{name}\" (matching = false): at ({}, {}) the two sides do not face each other: body A's outward normal ({:.3}, {:.3}) makes {deg:.1}° with body B's outward normal ({:.3}, {:.3}) at ({}, {}), where facing sides make more than 90° (are upper and lower, or the curves, swapped?)",
+            x[0], x[1], out[0], out[1], n[0], n[1], xb[0], xb[1]
+        ));
+    }
+    if gap < -OVERLAP_LIMIT * h {
+        return Err(format!(
+            "interface \"{name}\" (matching = false): at ({}, {}) body A overlaps body B by {:.4e} mm, more than {OVERLAP_LIMIT} of the slave edge's length ({h:.4e} mm): the meshes overlap. An interference is a load: give the interface a negative `gap` (with a `gap_history` to press it in) on meshes that touch",
+            x[0], x[1], -gap
+        ));
+    }
+    Ok(Foot { k, xi, n, gap })
 }
 
 /// A slave point whose outward normal has a positive component larger than

@@ -502,7 +502,15 @@ impl<'m> Engine<'m> {
         let err = StepFailure::Linear;
         be.begin_contact().map_err(err)?;
         let mut codes = vec![0.0; committed.status.len()];
-        let (mut rl, mut kl) = ([0.0; 12], [0.0; 144]);
+        // local buffers for the largest point (12 dofs but on mortar interfaces)
+        let nd_max = m
+            .interfaces
+            .iter()
+            .flat_map(|im| im.points.iter().map(|p| p.ndofs()))
+            .max()
+            .unwrap_or(0)
+            .max(12);
+        let (mut rl, mut kl) = (vec![0.0; nd_max], vec![0.0; nd_max * nd_max]);
         let springs = self.stabilizer.as_ref().and_then(|s| s.springs.as_deref());
         let mut q = 0;
         for (i, im) in m.interfaces.iter().enumerate() {
