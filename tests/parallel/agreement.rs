@@ -213,6 +213,14 @@ fn serial_petsc1_and_petsc2_agree_on_the_non_matching_hertz_cylinder() {
     compare("hertz-cylinder", "1");
 }
 
+/// Mortar coupling (`weights = "mortar"`): a spring per slave node coupling
+/// the slave edges around it to every master edge they face (up to a dozen
+/// nodes), preallocated exactly.
+#[test]
+fn serial_petsc1_and_petsc2_agree_on_a_mortar_interface() {
+    compare("tests/data/hertz-mortar", "1");
+}
+
 #[test]
 fn serial_petsc1_and_petsc2_agree_on_a_refined_case_with_plasticity_and_lift_off() {
     compare("strip-lift-off", "3");

@@ -183,6 +183,36 @@ fn uniform_pressure_crosses_a_non_matching_vertical_interface_exactly() {
     }
 }
 
+/// Mortar coupling (`weights = "mortar"`) passes the patch test whatever the
+/// two divisions: a slave side refining the master, a coarser slave side
+/// whose nodes fall anywhere on the master edges (where node-to-segment
+/// springs scatter by 1-3 %), and a vertical interface.
+#[test]
+fn mortar_coupling_passes_the_patch_test_whatever_the_divisions() {
+    let coarse_slave = "@ = [0.0, 10.0]\nn@ = [6]\nr@ = [0.5]";
+    let fine_master = "@ = [0.0, 4.0, 10.0]\nn@ = [4, 6]\nr@ = [2.0, 0.7]";
+    check_uniform(
+        "nm-mortar-fine-slave",
+        &patch(false, "mortar", FINE_SLAVE, COARSE_MASTER),
+    );
+    check_uniform(
+        "nm-mortar-coarse-slave",
+        &patch(false, "mortar", coarse_slave, fine_master),
+    );
+    check_uniform(
+        "nm-mortar-vertical",
+        &patch(true, "mortar", coarse_slave, fine_master),
+    );
+    // one spring per slave node, coupled to the master nodes its edges face
+    let model = common::model(&patch(false, "mortar", coarse_slave, fine_master));
+    let im = &model.interfaces[0];
+    assert_eq!(im.points.len(), 2 * 6 + 1);
+    assert!(im
+        .points
+        .iter()
+        .all(|p| p.mortar.is_some() && p.ndofs() > 12 - 6));
+}
+
 /// A slave side coarser than the master side (6 slave edges over 10 master
 /// edges): node-to-segment springs do not pass the patch test there (the
 /// master's nodal forces are not the consistent ones), but the interface
@@ -354,11 +384,20 @@ fn non_matching_point_tangents_match_finite_differences() {
     let master = "@ = [0.0, 4.0, 10.0]\nn@ = [4, 6]\nr@ = [2.0, 0.7]";
     let law = "law = \"power\"\nc_n = 0.001\nm = 0.5";
     let mut seen = [false; 3]; // stick, slip, normal only
-    for (weights, l) in [("lumped", law), ("consistent", law), ("lumped", FRICTION)] {
+    for (weights, l) in [
+        ("lumped", law),
+        ("consistent", law),
+        ("lumped", FRICTION),
+        ("mortar", law),
+        ("mortar", FRICTION),
+    ] {
         let text = patch(false, weights, slave, master).replace(law, l);
         let model = common::model(&text);
         let im = &model.interfaces[0];
-        assert!(im.points.iter().all(|p| p.segment.is_some()));
+        assert!(im
+            .points
+            .iter()
+            .all(|p| p.segment.is_some() != p.mortar.is_some()));
         let mut u = vec![0.0; model.mesh.num_dofs()];
         for (i, v) in u.iter_mut().enumerate() {
             *v = 0.004 * ((i as f64 * 0.37).sin() + 0.8);
