@@ -141,7 +141,11 @@ pub(super) fn node_to_segment(
 /// where the master side's corner nodes project onto it; each piece gets
 /// 4-point Gauss, each Gauss point its closest master point (with the checks
 /// of [`foot`]). One pair per spring (the slave node and the master node
-/// that weighs most in its coupling), for the per-point outputs.
+/// that weighs most in its coupling), for the per-point outputs. A slave
+/// node whose ∫ N_i dA vanishes on an edge (a corner node on the axis in
+/// axisymmetry, where ∫ N_i 2π r ds = 0 exactly) hands its weight function
+/// to the edge's other nodes in proportion to their areas (the weights
+/// still sum to 1, so the patch test holds) and carries no spring.
 pub(super) fn mortar(
     mesh: &Mesh,
     name: &str,
@@ -184,6 +188,31 @@ pub(super) fn mortar(
                 acc.len() - 1
             });
         }
+        // the weight functions: the nodes' N_k, but a node whose ∫ N_k dA
+        // vanishes on this edge (a corner on the axis in axisymmetry) hands
+        // its N to the others in proportion to theirs: still Σ = 1, so the
+        // patch test holds, and no spring divides by a zero area
+        let mut own = [0.0f64; 3];
+        for (xi, wg) in gauss4() {
+            let sh = crate::fem::q8::edge_shape(xi);
+            let wq = wg * edge_normal(&xs, xi).1 * section.measure(point_on(&xs, xi));
+            for k in 0..3 {
+                own[k] += wq * sh[k];
+            }
+        }
+        let total: f64 = own.iter().sum();
+        let void: Vec<usize> = (0..3).filter(|&k| own[k].abs() <= 1e-12 * total).collect();
+        let live: f64 = (0..3).filter(|k| !void.contains(k)).map(|k| own[k]).sum();
+        let weights = |sh: &[f64; 3]| -> [f64; 3] {
+            let handed: f64 = void.iter().map(|&k| sh[k]).sum();
+            std::array::from_fn(|k| {
+                if void.contains(&k) {
+                    0.0
+                } else {
+                    sh[k] + handed * own[k] / live
+                }
+            })
+        };
         // the pieces: cut where a master corner projects inside the edge
         let mut cuts = vec![-1.0, 1.0];
         cuts.extend(
@@ -206,12 +235,13 @@ pub(super) fn mortar(
                 let nb = crate::fem::q8::edge_shape(f.xi);
                 let (n, t) = (f.n, [f.n[1], -f.n[0]]);
                 let b = nm.master[f.k];
+                let weight = weights(&shape);
                 for i in 0..3 {
-                    let wi = wq * shape[i];
+                    let wi = wq * weight[i];
                     let a = &mut acc[ids[i]];
                     a.area += wi;
                     a.gap += wi * f.gap;
-                    let wn = wq * shape[i].abs();
+                    let wn = wq * weight[i].abs();
                     a.normal = [a.normal[0] + wn * n[0], a.normal[1] + wn * n[1]];
                     let sides = [(&e[..], &shape, -1.0), (&b[..], &nb, 1.0)];
                     for (nodes, vals, sign) in sides {
@@ -230,10 +260,16 @@ pub(super) fn mortar(
     let slave_nodes: std::collections::HashSet<usize> = index.keys().copied().collect();
     let mut pairs = Vec::with_capacity(acc.len());
     let mut points = Vec::with_capacity(acc.len());
+    let largest = acc.iter().fold(0.0f64, |m, a| m.max(a.area));
     for a in acc {
-        if a.area.is_nan() || a.area <= 0.0 {
+        // a corner node on the axis in axisymmetry (∫ N_i 2π r ds = 0: its
+        // weight went to its edge's other nodes) carries no spring
+        if a.area.abs() <= 1e-12 * largest {
+            continue;
+        }
+        if a.area.is_nan() || a.area < 0.0 {
             return Err(format!(
-                "interface \"{name}\" (weights = \"mortar\"): the slave node at ({}, {}) has no area (∫ N dA = {}): a slave edge of zero length or on the axis",
+                "interface \"{name}\" (weights = \"mortar\"): the slave node at ({}, {}) has a negative area ∫ N dA = {}",
                 a.x[0], a.x[1], a.area
             ));
         }

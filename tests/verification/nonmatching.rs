@@ -203,6 +203,20 @@ fn mortar_coupling_passes_the_patch_test_whatever_the_divisions() {
         "nm-mortar-vertical",
         &patch(true, "mortar", coarse_slave, fine_master),
     );
+    // in axisymmetry (x = r: the blocks are discs on the axis, the weights
+    // 2π r): N_i N_k^B r is still integrated exactly on each piece
+    let axi = patch(false, "mortar", coarse_slave, fine_master).replace(
+        "plane = \"strain\"\nthickness = 2.0",
+        "plane = \"axisymmetric\"",
+    );
+    assert!(axi.contains("axisymmetric"));
+    let (model, r) = run("nm-mortar-axisymmetric", &axi);
+    let p = pressures(&model.interfaces[0], &r.final_state);
+    let dev = p.iter().fold(0.0f64, |a, q| a.max((q.0 - 100.0).abs()));
+    let force: f64 = p.iter().map(|(pn, a)| pn * a).sum();
+    eprintln!("nm-mortar-axisymmetric: max |p_N - q| = {dev:.2e} MPa, F_N = {force} N");
+    assert!(dev <= 1e-9 * 100.0, "axisymmetric mortar: {dev}");
+    assert!(common::rel(force, 100.0 * std::f64::consts::PI * 100.0) <= 1e-9);
     // one spring per slave node, coupled to the master nodes its edges face
     let model = common::model(&patch(false, "mortar", coarse_slave, fine_master));
     let im = &model.interfaces[0];
