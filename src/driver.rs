@@ -356,6 +356,32 @@ pub fn check(case_path: &Path) -> Result<String> {
             t[0],
             t[1]
         );
+        // a non-matching interface: its coupling and the geometric gaps
+        let gaps: Vec<f64> = im
+            .points
+            .iter()
+            .filter_map(|p| match (&p.segment, &p.mortar) {
+                (Some(g), _) => Some(g.gap),
+                (_, Some(m)) => Some(m.gap),
+                _ => None,
+            })
+            .collect();
+        if !gaps.is_empty() {
+            let kind = if im.points.iter().any(|p| p.mortar.is_some()) {
+                "mortar springs at A's nodes"
+            } else {
+                "node-to-segment springs at A's quadrature points"
+            };
+            let widest = im.points.iter().map(|p| p.ndofs()).max().unwrap_or(0);
+            let (lo, hi) = gaps
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &g| {
+                    (l.min(g), h.max(g))
+                });
+            s += &format!(
+                "    meshed apart (matching = false): {kind} (slave A, master B), up to {widest} dofs each; geometric gaps {lo:.4e} … {hi:.4e} mm\n"
+            );
+        }
     }
     let breakpoints = model.breakpoints();
     if !breakpoints.is_empty() {
