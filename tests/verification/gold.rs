@@ -105,7 +105,7 @@ struct Gold {
     prefix: Option<&'static str>,
 }
 
-const CASES: [Gold; 13] = [
+const CASES: [Gold; 15] = [
     Gold {
         case: "punch-plane-stress",
         args: &[],
@@ -168,6 +168,16 @@ const CASES: [Gold; 13] = [
     },
     Gold {
         case: "shrink-fit-roughness",
+        args: &[],
+        prefix: None,
+    },
+    Gold {
+        case: "punch-rounded-stress",
+        args: &[],
+        prefix: None,
+    },
+    Gold {
+        case: "punch-rounded-strain",
         args: &[],
         prefix: None,
     },
@@ -519,4 +529,14 @@ fn bolted_flange() {
 #[test]
 fn shrink_fit_roughness() {
     check("shrink-fit-roughness");
+}
+
+#[test]
+fn punch_rounded_stress() {
+    check("punch-rounded-stress");
+}
+
+#[test]
+fn punch_rounded_strain() {
+    check("punch-rounded-strain");
 }
