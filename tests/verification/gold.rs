@@ -107,7 +107,7 @@ struct Gold {
     prefix: Option<&'static str>,
 }
 
-const CASES: [Gold; 15] = [
+const CASES: [Gold; 17] = [
     Gold {
         case: "punch-plane-stress",
         args: &[],
@@ -180,6 +180,16 @@ const CASES: [Gold; 15] = [
     },
     Gold {
         case: "cattaneo-mindlin",
+        args: &[],
+        prefix: None,
+    },
+    Gold {
+        case: "punch-rounded-stress",
+        args: &[],
+        prefix: None,
+    },
+    Gold {
+        case: "punch-rounded-strain",
         args: &[],
         prefix: None,
     },
@@ -541,4 +551,14 @@ fn hertz_cylinder() {
 #[test]
 fn cattaneo_mindlin() {
     check("cattaneo-mindlin");
+}
+
+#[test]
+fn punch_rounded_stress() {
+    check("punch-rounded-stress");
+}
+
+#[test]
+fn punch_rounded_strain() {
+    check("punch-rounded-strain");
 }

@@ -23,6 +23,7 @@ mod limit_load;
 mod nonmatching;
 mod patch;
 mod punch;
+mod punch_rounded;
 mod roughness;
 mod shrink_fit;
 mod stepping;
