@@ -357,15 +357,7 @@ pub fn check(case_path: &Path) -> Result<String> {
             t[1]
         );
         // a non-matching interface: its coupling and the geometric gaps
-        let gaps: Vec<f64> = im
-            .points
-            .iter()
-            .filter_map(|p| match (&p.segment, &p.mortar) {
-                (Some(g), _) => Some(g.gap),
-                (_, Some(m)) => Some(m.gap),
-                _ => None,
-            })
-            .collect();
+        let gaps: Vec<f64> = im.points.iter().filter_map(|p| p.geometric_gap()).collect();
         if !gaps.is_empty() {
             let kind = if im.points.iter().any(|p| p.mortar.is_some()) {
                 "mortar springs at A's nodes"

@@ -274,11 +274,7 @@ pub fn arc_lengths(mesh: &Mesh, iface: &Interface, im: &InterfaceModel) -> Vec<f
         return im
             .points
             .iter()
-            .map(|p| match (&p.segment, &p.mortar) {
-                (Some(g), _) => g.s,
-                (_, Some(m)) => m.s,
-                _ => f64::NAN,
-            })
+            .map(|p| p.slave_arc().unwrap_or(f64::NAN))
             .collect();
     }
     use std::collections::HashMap;

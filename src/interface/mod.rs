@@ -113,6 +113,26 @@ pub struct Point {
 }
 
 impl Point {
+    /// On a non-matching interface: the geometric initial gap of the spring
+    /// (node-to-segment or mortar), mm; `None` on coincident pairs.
+    pub fn geometric_gap(&self) -> Option<f64> {
+        match (&self.segment, &self.mortar) {
+            (Some(g), _) => Some(g.gap),
+            (_, Some(m)) => Some(m.gap),
+            _ => None,
+        }
+    }
+
+    /// On a non-matching interface: the spring's arc length along the slave
+    /// side, mm; `None` on coincident pairs.
+    pub fn slave_arc(&self) -> Option<f64> {
+        match (&self.segment, &self.mortar) {
+            (Some(g), _) => Some(g.s),
+            (_, Some(m)) => Some(m.s),
+            _ => None,
+        }
+    }
+
     /// Number of local dofs: 4·len for coincident pairs, 2·(slave nodes + 3)
     /// for a node-to-segment point (at most 12 either way).
     pub fn ndofs(&self) -> usize {
