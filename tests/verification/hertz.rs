@@ -54,6 +54,7 @@ struct Row {
     p_n: f64,
     u_n: f64,
     p_t: f64,
+    u_t: f64,
     tangential: String,
 }
 
@@ -62,11 +63,12 @@ fn rows(file: &Path) -> Vec<Row> {
     let mut lines = text.lines();
     let head: Vec<&str> = lines.next().unwrap().split(',').collect();
     let col = |k: &str| head.iter().position(|h| *h == k).unwrap();
-    let (x, p_n, u_n, p_t, ts) = (
+    let (x, p_n, u_n, p_t, u_t, ts) = (
         col("x_mm"),
         col("p_n_mpa"),
         col("u_n_mm"),
         col("p_t_mpa"),
+        col("u_t_mm"),
         col("tangential_status"),
     );
     let mut v: Vec<Row> = lines
@@ -77,6 +79,7 @@ fn rows(file: &Path) -> Vec<Row> {
                 p_n: f[p_n].parse().unwrap(),
                 u_n: f[u_n].parse().unwrap(),
                 p_t: f[p_t].parse().unwrap(),
+                u_t: f[u_t].parse().unwrap(),
                 tangential: f[ts].to_string(),
             }
         })
@@ -140,6 +143,13 @@ fn a_stiff_interface_reproduces_hertz_and_the_rough_one_smooths_it() {
     // platen's 0.05 mm less the interface's share)
     let u_max = r.iter().map(|q| q.u_n).fold(0.0, f64::max);
     assert!(u_max < 0.01 * (0.05 - u_max), "interface approach {u_max}");
+    eprintln!(
+        "hertz-cylinder: P = {p:.1} N/mm; a FE {a_fe:.4} vs Hertz {a:.4} mm ({:+.2} %); peak {peak:.1} vs p0 {p0:.1} MPa ({:+.3} %); profile worst {:.2} % of p0; interface approach {:.2} % of the bodies'",
+        100.0 * (a_fe / a - 1.0),
+        100.0 * (peak / p0 - 1.0),
+        100.0 * worst,
+        100.0 * u_max / (0.05 - u_max)
+    );
 
     // the paper's rough interface (c_N = 0.001, m = 0.5), pressed further to
     // about the same load: a wider contact and a lower peak than Hertz's at
@@ -153,6 +163,11 @@ fn a_stiff_interface_reproduces_hertz_and_the_rough_one_smooths_it() {
     let rr = rows(&last_interface_csv(&out_r));
     let peak_r = rr.iter().map(|q| q.p_n).fold(0.0, f64::max);
     let wide_r = half_width(&rr);
+    eprintln!(
+        "hertz-cylinder rough.toml: P = {p_r:.1} N/mm; peak {peak_r:.1} MPa = {:.3} of Hertz's {p0_r:.1}; half-width {wide_r:.4} mm = {:.3} of Hertz's {a_r:.4}",
+        peak_r / p0_r,
+        wide_r / a_r
+    );
     assert!(peak_r < 0.85 * p0_r, "rough peak {peak_r} vs Hertz {p0_r}");
     assert!(
         wide_r > 1.3 * a_r,
@@ -245,8 +260,33 @@ fn the_stick_zone_shrinks_as_cattaneo_and_mindlin_say() {
         let i_lo = r.iter().position(|w| w.x == lo).unwrap();
         let i_hi = r.iter().position(|w| w.x == hi).unwrap();
         let c = 0.5 * (0.5 * (r[i_hi].x + r[i_hi + 1].x) - 0.5 * (r[i_lo].x + r[i_lo - 1].x));
-        let (a, _) = hertz(*p);
+        let (a, p0) = hertz(*p);
         let want = (1.0 - ratio).sqrt();
+        // for the record (not asserted): the shear inside the contact against
+        // the Cattaneo-Mindlin profile μp₀[√(1 − x²/a²) − (c/a)√(1 − x²/c²)],
+        // and the largest relative slip (small sliding)
+        let c_th = a * want;
+        let q_th = |x: f64| {
+            let outer = (1.0 - (x / a).powi(2)).max(0.0).sqrt();
+            let inner = if x.abs() < c_th {
+                want * (1.0 - (x / c_th).powi(2)).sqrt()
+            } else {
+                0.0
+            };
+            mu * p0 * (outer - inner)
+        };
+        let shear_dev = r
+            .iter()
+            .filter(|w| w.x.abs() < a)
+            .map(|w| (w.p_t.abs() - q_th(w.x)).abs() / (mu * p0))
+            .fold(0.0, f64::max);
+        let slip = r.iter().map(|w| w.u_t.abs()).fold(0.0, f64::max);
+        eprintln!(
+            "cattaneo-mindlin: Q = {q:.1} N/mm, Q/μP = {ratio:.3}: c/a FE {:.4} vs {want:.4} ({:+.2} %); shear off the CM profile by up to {:.1} % of μp0; largest slip {slip:.4} mm",
+            c / a,
+            100.0 * (c / a / want - 1.0),
+            100.0 * shear_dev
+        );
         // shear traction μp wherever the contact slips
         for w in r.iter().filter(|w| w.tangential == "macro-slip") {
             assert!(
