@@ -1,0 +1,387 @@
+//! Tests of the block generator: counts, grading, interfaces, curved sides.
+
+use super::*;
+
+fn punch() -> (Vec<BlockSpec>, Vec<InterfaceSpec>) {
+    let b = |body: &str, x: Vec<f64>, nx, rx, y: Vec<f64>, ny, ry| BlockSpec {
+        body: body.into(),
+        x,
+        nx,
+        rx,
+        y,
+        ny,
+        ry,
+        bottom: None,
+        top: None,
+    };
+    (
+        vec![
+            b(
+                "punch",
+                vec![0., 20.],
+                vec![4],
+                vec![0.25],
+                vec![0., 20.],
+                vec![4],
+                vec![4.0],
+            ),
+            b(
+                "foundation",
+                vec![0., 20., 60.],
+                vec![4, 5],
+                vec![0.25, 8.0],
+                vec![-60., 0.],
+                vec![6],
+                vec![0.1],
+            ),
+        ],
+        vec![InterfaceSpec {
+            name: "contact".into(),
+            upper: Some("punch".into()),
+            lower: Some("foundation".into()),
+            upper_curve: None,
+            lower_curve: None,
+            left: None,
+            right: None,
+            matching: None,
+        }],
+    )
+}
+
+#[test]
+fn punch_mesh_counts_grading_and_interface() {
+    let (bl, ifs) = punch();
+    let m = generate(&bl, &ifs, 1).unwrap();
+    m.validate().unwrap();
+    // Q8 nodes per block: (2nx+1)(2ny+1) − nx·ny
+    assert_eq!(m.nodes.len(), (9 * 9 - 16) + (19 * 13 - 54));
+    assert_eq!(m.elements.len(), 16 + 54);
+    let xs = graded_axis("f", "x", &[0., 20., 60.], &[4, 5], &[0.25, 8.0], 1).unwrap();
+    let h: Vec<f64> = xs.windows(2).map(|w| w[1] - w[0]).collect();
+    assert!((h[3] / h[0] - 0.25).abs() < 1e-12 && (h[8] / h[4] - 8.0).abs() < 1e-12);
+    let iface = &m.interfaces[0];
+    assert_eq!(iface.edges.len(), 4);
+    for e in &iface.edges {
+        for i in 0..3 {
+            assert_eq!(m.nodes[e.a[i]], m.nodes[e.b[i]]);
+            assert_ne!(e.a[i], e.b[i]);
+        }
+        assert!(m.nodes[e.a[0]][0] < m.nodes[e.a[2]][0]);
+    }
+    // top edge walked with the body on the left: outward normal (dy, −dx) points up
+    let top = &m.edge_sets["punch.top"][0];
+    let (x0, x2) = (m.nodes[top[0]], m.nodes[top[2]]);
+    assert!(-(x2[0] - x0[0]) > 0.0);
+    let r2 = generate(&bl, &ifs, 2).unwrap();
+    assert_eq!(r2.elements.len(), 4 * m.elements.len());
+}
+
+#[test]
+fn mismatched_interface_and_bad_specs_are_named() {
+    let (mut bl, ifs) = punch();
+    bl[0].nx = vec![3];
+    let e = generate(&bl, &ifs, 1).unwrap_err();
+    assert!(
+        e.0.contains("interface \"contact\"") && e.0.contains("partner"),
+        "{e}"
+    );
+    let (mut bl, ifs) = punch();
+    bl[1].rx = vec![1.0];
+    assert!(generate(&bl, &ifs, 1)
+        .unwrap_err()
+        .0
+        .contains("rx has 1 entries"));
+    let (mut bl, ifs) = punch();
+    bl[1].x = vec![0.0, 30.0, 20.0];
+    assert!(generate(&bl, &ifs, 1)
+        .unwrap_err()
+        .0
+        .contains("strictly increasing"));
+}
+
+fn block(body: &str, x: Vec<f64>, nx: Vec<usize>, y: Vec<f64>, ny: Vec<usize>) -> BlockSpec {
+    BlockSpec {
+        body: body.into(),
+        x,
+        nx,
+        rx: Vec::new(),
+        y,
+        ny,
+        ry: Vec::new(),
+        bottom: None,
+        top: None,
+    }
+}
+
+fn iface(name: &str, sides: [Option<&str>; 4]) -> InterfaceSpec {
+    let s = |i: usize| sides[i].map(String::from);
+    InterfaceSpec {
+        name: name.into(),
+        upper: s(0),
+        lower: s(1),
+        upper_curve: None,
+        lower_curve: None,
+        left: s(2),
+        right: s(3),
+        matching: None,
+    }
+}
+
+/// A shaft (x ≤ 10) in a hub (x ≥ 10, 10 ≤ y ≤ 30) that sits on a base
+/// (y ≤ 10): one vertical and one horizontal interface.
+fn shaft_hub_base() -> (Vec<BlockSpec>, Vec<InterfaceSpec>) {
+    (
+        vec![
+            block(
+                "shaft",
+                vec![0., 10.],
+                vec![2],
+                vec![0., 10., 30., 40.],
+                vec![2, 4, 1],
+            ),
+            block("hub", vec![10., 30.], vec![4], vec![10., 30.], vec![4]),
+            block(
+                "base",
+                vec![10., 20., 30.],
+                vec![2, 2],
+                vec![-10., 10.],
+                vec![2],
+            ),
+        ],
+        vec![
+            iface("fit", [None, None, Some("shaft"), Some("hub")]),
+            iface("seat", [Some("hub"), Some("base"), None, None]),
+        ],
+    )
+}
+
+#[test]
+fn a_vertical_interface_pairs_the_right_side_of_left_with_the_left_side_of_right() {
+    let (bl, ifs) = shaft_hub_base();
+    let m = generate(&bl, &ifs, 1).unwrap();
+    m.validate().unwrap();
+    assert_eq!(m.interfaces.len(), 2);
+    let fit = &m.interfaces[0];
+    assert_eq!((fit.body_a, fit.body_b), (0, 1));
+    // four hub elements along 10 ≤ y ≤ 30, walked upwards (B on the right)
+    assert_eq!(fit.edges.len(), 4);
+    let mut last_y = 10.0;
+    for e in &fit.edges {
+        let y = e.a.map(|n| m.nodes[n][1]);
+        assert!(
+            y[0] == last_y && y[0] < y[1] && y[1] < y[2],
+            "{y:?} after {last_y}"
+        );
+        last_y = y[2];
+        for i in 0..3 {
+            let (xa, xb) = (m.nodes[e.a[i]], m.nodes[e.b[i]]);
+            assert_eq!(xa, xb);
+            assert_ne!(e.a[i], e.b[i]);
+            assert_eq!(xa[0], 10.0);
+            assert!(m.node_sets["shaft.right"].binary_search(&e.a[i]).is_ok());
+            assert!(m.node_sets["hub.left"].binary_search(&e.b[i]).is_ok());
+        }
+    }
+    assert_eq!(last_y, 30.0);
+    assert_eq!(m.nodes[fit.edges[0].a[0]][1], 10.0);
+    assert_eq!(m.nodes[fit.edges[3].a[2]][1], 30.0);
+    // the horizontal one as before: hub bottom on base top, increasing x
+    let seat = &m.interfaces[1];
+    assert_eq!((seat.body_a, seat.body_b), (1, 2));
+    assert_eq!(seat.edges.len(), 4);
+    for w in seat.edges.windows(2) {
+        assert!(m.nodes[w[0].a[2]][0] <= m.nodes[w[1].a[0]][0]);
+    }
+    assert!(seat
+        .edges
+        .iter()
+        .all(|e| e.a.iter().all(|&n| m.nodes[n][1] == 10.0)));
+}
+
+#[test]
+fn vertical_interface_errors_are_named() {
+    let check = |bl: &[BlockSpec], ifs: &[InterfaceSpec], want: &[&str]| {
+        let e = generate(bl, ifs, 1).unwrap_err().0;
+        for w in want {
+            assert!(e.contains(w), "{e:?} lacks {w:?}");
+        }
+    };
+    // the hub moved away from the shaft: the sides do not face each other
+    let (mut bl, ifs) = shaft_hub_base();
+    bl[1].x = vec![11., 30.];
+    check(
+        &bl,
+        &ifs[..1],
+        &[
+            "interface \"fit\"",
+            "the right side of \"shaft\" is at x = 10",
+            "the left side of \"hub\" is at x = 11",
+        ],
+    );
+    // the hub above the shaft: no overlap in y
+    let (mut bl, ifs) = shaft_hub_base();
+    bl[1].y = vec![40., 60.];
+    check(&bl, &ifs[..1], &["do not overlap in y"]);
+    // a coarser hub: unmatched nodes
+    let (mut bl, ifs) = shaft_hub_base();
+    bl[1].ny = vec![3];
+    check(&bl, &ifs[..1], &["node at y = ", "no partner"]);
+    // the shaft's element edge crosses the hub's end
+    let (mut bl, ifs) = shaft_hub_base();
+    bl[0].ny = vec![1, 4, 1];
+    bl[1].y = vec![5., 15., 30.];
+    bl[1].ny = vec![1, 3];
+    check(
+        &bl,
+        &ifs[..1],
+        &["straddles the end of the overlap at y = "],
+    );
+    // mixed and incomplete specifications
+    let (bl, _) = shaft_hub_base();
+    let mixed = iface("fit", [Some("shaft"), None, None, Some("hub")]);
+    check(&bl, &[mixed], &["interface \"fit\"", "not both"]);
+    let half = iface("fit", [None, None, Some("shaft"), None]);
+    check(&bl, &[half], &["give left and right"]);
+    let none = iface("fit", [None, None, None, None]);
+    check(&bl, &[none], &["give upper and lower", "or left and right"]);
+    let same = iface("fit", [None, None, Some("hub"), Some("hub")]);
+    check(&bl, &[same], &["left and right are the same block"]);
+    let unknown = iface("fit", [None, None, Some("shaft"), Some("sleeve")]);
+    check(&bl, &[unknown], &["no block named \"sleeve\""]);
+}
+
+#[test]
+fn the_debug_text_of_a_horizontal_spec_is_unchanged_by_left_and_right() {
+    let (_, ifs) = punch();
+    assert_eq!(
+        format!("{:?}", ifs[0]),
+        "InterfaceSpec { name: \"contact\", upper: Some(\"punch\"), lower: Some(\"foundation\"), upper_curve: None, lower_curve: None }"
+    );
+    let v = iface("fit", [None, None, Some("shaft"), Some("hub")]);
+    assert!(format!("{v:?}").ends_with("left: Some(\"shaft\"), right: Some(\"hub\") }"));
+}
+
+#[test]
+fn curved_sides_put_every_side_node_on_the_curve() {
+    // a cylinder segment: bottom arc of radius 50 with its apex at x = 0
+    let mut cyl = block(
+        "cyl",
+        vec![-10., -2., 2., 10.],
+        vec![3, 4, 3],
+        vec![0., 20.],
+        vec![4],
+    );
+    cyl.bottom = Some(SideShape {
+        radius: Some(50.0),
+        center: Some(0.0),
+        round_left: None,
+        round_right: None,
+    });
+    // a punch with a 1 mm rounding at its right end, and a crowned top
+    let mut punch = block(
+        "punch",
+        vec![0., 19., 20.],
+        vec![4, 3],
+        vec![30., 50.],
+        vec![4],
+    );
+    punch.bottom = Some(SideShape {
+        radius: None,
+        center: None,
+        round_left: None,
+        round_right: Some(1.0),
+    });
+    punch.top = Some(SideShape {
+        radius: Some(100.0),
+        center: None,
+        round_left: None,
+        round_right: None,
+    });
+    let m = generate(&[cyl, punch], &[], 1).unwrap();
+    m.validate().unwrap();
+    for &n in &m.node_sets["cyl.bottom"] {
+        let [x, y] = m.nodes[n];
+        assert!(
+            (x * x + (y - 50.0).powi(2) - 2500.0).abs() < 1e-9,
+            "{x} {y}"
+        );
+    }
+    let bottom = &m.node_sets["punch.bottom"];
+    let mut on_round = 0;
+    for &n in bottom {
+        let [x, y] = m.nodes[n];
+        if x > 19.0 + 1e-12 {
+            on_round += 1;
+            assert!(((x - 19.0).powi(2) + (y - 31.0).powi(2) - 1.0).abs() < 1e-12);
+        } else {
+            assert_eq!(y, 30.0);
+        }
+    }
+    assert_eq!(on_round, 6); // 3 elements: 2 corners, 3 midsides, the end
+                             // the rounding's nodes are evenly spaced in angle, the last at 90°
+    let end = m.node_sets["punch.right"]
+        .iter()
+        .map(|&n| m.nodes[n])
+        .min_by(|a, b| a[1].total_cmp(&b[1]))
+        .unwrap();
+    assert!((end[0] - 20.0).abs() < 1e-12 && (end[1] - 31.0).abs() < 1e-12);
+    // the crowned top: highest at the middle (x = 10), 100 mm radius
+    for &n in &m.node_sets["punch.top"] {
+        let [x, y] = m.nodes[n];
+        assert!(((x - 10.0).powi(2) + (y - (50.0 - 100.0)).powi(2) - 1e4).abs() < 1e-8);
+    }
+}
+
+#[test]
+fn curved_side_errors_are_named() {
+    let shape = |radius, round_right| SideShape {
+        radius,
+        center: None,
+        round_left: None,
+        round_right,
+    };
+    let check = |b: BlockSpec, ifs: &[InterfaceSpec], want: &str| {
+        let e = generate(&[b], ifs, 1).unwrap_err().0;
+        assert!(e.contains(want), "{e:?} lacks {want:?}");
+    };
+    let base = || block("p", vec![0., 19., 20.], vec![2, 1], vec![0., 10.], vec![2]);
+    let mut b = base();
+    b.bottom = Some(shape(Some(5.0), None));
+    check(b, &[], "must stay within 0.9 R");
+    let mut b = base();
+    b.bottom = Some(shape(Some(50.0), Some(1.0)));
+    check(b, &[], "not both");
+    let mut b = base();
+    b.bottom = Some(shape(None, Some(2.0)));
+    check(b, &[], "breakpoint where the right rounding starts, x = 18");
+    let mut b = base();
+    b.bottom = Some(shape(None, Some(-1.0)));
+    check(b, &[], "round_right = -1 must be a positive length");
+    let mut b = base();
+    b.top = Some(shape(None, None));
+    check(b, &[], "block \"p\" top: give radius");
+    // a curved side on a matching interface
+    let mut up = block("up", vec![0., 20.], vec![2], vec![0., 10.], vec![2]);
+    up.bottom = Some(shape(Some(100.0), None));
+    let low = block("low", vec![0., 20.], vec![2], vec![-10., 0.], vec![2]);
+    let e = generate(
+        &[up, low],
+        &[iface("c", [Some("up"), Some("low"), None, None])],
+        1,
+    )
+    .unwrap_err()
+    .0;
+    assert!(
+        e.contains("the bottom of block \"up\" is curved") && e.contains("matching = false"),
+        "{e}"
+    );
+}
+
+#[test]
+fn inverted_element_is_detected() {
+    let (bl, ifs) = punch();
+    let mut m = generate(&bl, &ifs, 1).unwrap();
+    m.elements[3].nodes.swap(1, 3);
+    let e = m.validate().unwrap_err();
+    assert!(e.0.contains("element 3") && e.0.contains("inverted"), "{e}");
+}
