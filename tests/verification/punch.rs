@@ -9,7 +9,11 @@ use asperity::driver::{self, RunOptions};
 use asperity::solve::RunResult;
 
 fn run(case: &str, method: Option<Method>, refine: Option<usize>) -> RunResult {
-    let out = common::scratch(&format!("punch-{case}-{method:?}-{refine:?}")).join("out");
+    // a folder of its own per call: two tests running the same case at once
+    // (the test threads) must not wipe each other's output
+    static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let k = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let out = common::scratch(&format!("punch-{case}-{method:?}-{refine:?}-{k}")).join("out");
     let opts = RunOptions {
         out: Some(out.clone()),
         quiet: true,
