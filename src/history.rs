@@ -12,6 +12,10 @@
 pub const MAX_TIME: f64 = 1.0e4;
 /// Most points of one history.
 pub const MAX_POINTS: usize = 10_000;
+/// Most distinct times of all histories of a case together: each is an
+/// increment of the run (a thousand load cycles of four points each take
+/// 4 000).
+pub const MAX_BREAKPOINTS: usize = 20_000;
 /// The largest magnitude of a history's value (a factor on the loads).
 pub const MAX_VALUE: f64 = 1.0e6;
 
@@ -77,7 +81,18 @@ impl History {
             }
             points.push((t, v));
         }
+        if points.iter().all(|p| p.1 == 0.0) {
+            return Err(
+                "is zero at every point: whatever it scales never acts; give it non-zero values or remove it".into(),
+            );
+        }
         Ok(History { points })
+    }
+
+    /// The largest magnitude of its values: with linear segments held at
+    /// the ends, the largest |value| over all pseudo-time.
+    pub fn peak(&self) -> f64 {
+        self.points.iter().fold(0.0, |a, p| a.max(p.1.abs()))
     }
 
     /// The factor at pseudo-time t: linear between the points, held outside.

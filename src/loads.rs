@@ -10,6 +10,7 @@
 //! histories it holds every load, in the order of the case, so that the force
 //! at t is t · f exactly as before histories existed.
 
+use crate::case::ranges::{self, Range};
 use crate::case::{Case, HistoryRef};
 use crate::error::{Error, Result};
 use crate::fem::{q8, Section};
@@ -38,11 +39,27 @@ pub struct Loads {
     pub prescribed_history: Vec<Option<usize>>,
     /// The gap history of each `[interface.<name>]` that has one.
     pub gap_history: BTreeMap<String, usize>,
+    /// Every `[[load]]` and `[[force]]` with the dofs it loads, for
+    /// [`check_acting`] once the prescribed dofs are known.
+    pub acting: Vec<Acting>,
+}
+
+/// One `[[load]]` or `[[force]]`: where it is written and the dofs it loads
+/// (non-zero entries at factor 1).
+#[derive(Clone, Debug)]
+pub struct Acting {
+    pub at: String,
+    pub dofs: Vec<usize>,
+    /// A `[[force]]` (each of its dofs must be free), else an edge traction
+    /// (at least one of its dofs must be free).
+    pub concentrated: bool,
 }
 
 /// Resolves history references while the loads are read.
 struct Resolver<'c> {
     named: Vec<&'c String>,
+    /// Which named histories something refers to.
+    used: Vec<bool>,
     histories: Vec<History>,
 }
 
@@ -56,6 +73,7 @@ impl<'c> Resolver<'c> {
         }
         Ok(Resolver {
             named: case.history.keys().collect(),
+            used: vec![false; case.history.len()],
             histories,
         })
     }
@@ -66,7 +84,10 @@ impl<'c> Resolver<'c> {
         match r {
             None => Ok(None),
             Some(HistoryRef::Name(name)) => match self.named.iter().position(|n| *n == name) {
-                Some(i) => Ok(Some(i)),
+                Some(i) => {
+                    self.used[i] = true;
+                    Ok(Some(i))
+                }
                 None => Err(Error::input(
                     at,
                     format!(
@@ -108,25 +129,61 @@ pub fn build(case: &Case, mesh: &Mesh, section: Section, place: &str) -> Result<
         history: None,
         f: vec![0.0; mesh.num_dofs()],
     }];
+    let mut acting = Vec::new();
+    let mut scaled: Vec<Scaled> = Vec::new();
     for (i, ld) in case.load.iter().enumerate() {
         let at = format!("{place}: load[{i}] (edges \"{}\")", ld.edges);
         let h = res.resolve(ld.history.as_ref(), &format!("{at} history"))?;
-        let f = pattern(&mut patterns, h, mesh.num_dofs());
-        edge_traction(ld, mesh, section, &at, f)?;
+        let terms = edge_traction(case, ld, mesh, section, &at)?;
+        add(pattern(&mut patterns, h, mesh.num_dofs()), &terms);
+        scaled.push((format!("{at} pressure"), ld.pressure, &ranges::PRESSURE, h));
+        scaled.push((format!("{at} shear"), ld.shear, &ranges::PRESSURE, h));
+        // a straight edge's round-off along its own direction is no load
+        let big = terms.iter().fold(0.0f64, |a, t| a.max(t.1.abs()));
+        acting.push(Acting {
+            at,
+            dofs: terms
+                .iter()
+                .filter(|t| t.1.abs() > 1e-12 * big)
+                .map(|t| t.0)
+                .collect(),
+            concentrated: false,
+        });
     }
-    let prescribed = boundary_conditions(case, mesh, place, &mut res)?;
+    let prescribed = boundary_conditions(case, mesh, place, &mut res, &mut scaled)?;
     for (i, fs) in case.force.iter().enumerate() {
         let at = format!("{place}: force[{i}] (nodes \"{}\")", fs.nodes);
         let h = res.resolve(fs.history.as_ref(), &format!("{at} history"))?;
-        let f = pattern(&mut patterns, h, mesh.num_dofs());
-        concentrated_force(fs, mesh, &at, f)?;
+        let terms = concentrated_force(fs, mesh, &at)?;
+        add(pattern(&mut patterns, h, mesh.num_dofs()), &terms);
+        scaled.push((format!("{at} fx"), fs.fx, &ranges::FORCE, h));
+        scaled.push((format!("{at} fy"), fs.fy, &ranges::FORCE, h));
+        acting.push(Acting {
+            at,
+            dofs: terms.iter().filter(|t| t.1 != 0.0).map(|t| t.0).collect(),
+            concentrated: true,
+        });
     }
     let mut gap_history = BTreeMap::new();
     for (name, spec) in &case.interface {
         let at = format!("{place}: [interface.{}] gap_history", clip(name));
         if let Some(h) = res.resolve(spec.gap_history.as_ref(), &at)? {
+            if spec.gap == 0.0 {
+                return Err(Error::input(
+                    at,
+                    "is given, but the interface has no gap (gap = 0): a gap history scales `gap`; give the gap (negative: an interference) or remove gap_history",
+                ));
+            }
             gap_history.insert(name.clone(), h);
+            let at = format!("{place}: [interface.{}] gap", clip(name));
+            scaled.push((at, spec.gap, &ranges::DISPLACEMENT, Some(h)));
         }
+    }
+    if let Some(k) = res.used.iter().position(|&u| !u) {
+        return Err(Error::input(
+            format!("{place}: [history] {}", clip(res.named[k])),
+            "is never used: no load, boundary, force or gap_history names it (a misspelt name?); use it or remove it",
+        ));
     }
     let histories = res.histories;
     if !histories.is_empty() && case.solver.load_factors.is_some() {
@@ -135,20 +192,15 @@ pub fn build(case: &Case, mesh: &Mesh, section: Section, place: &str) -> Result<
             "cannot be given with load histories ([history], or `history` / `gap_history` on a load, boundary, force or interface): the histories say how the loads change; remove load_factors",
         ));
     }
-    let breakpoints = crate::history::breakpoints(&histories);
-    if let Some(n) = crate::solve::stepping::Stepper::planned(&case.solver, &breakpoints) {
-        if n > crate::case::MAX_INCREMENTS {
-            return Err(Error::input(
-                format!("{place}: [solver] increments"),
-                format!(
-                    "{} steps per unit of pseudo-time through the histories (to t = {}) make {n} increments, more than {}",
-                    case.solver.n_increments(),
-                    breakpoints.last().copied().unwrap_or(1.0),
-                    crate::case::MAX_INCREMENTS
-                ),
-            ));
-        }
+    for (at, v, range, h) in scaled {
+        let peak = match h {
+            Some(h) => histories[h].peak(),
+            None => largest_factor(case, &histories),
+        };
+        check_scaled(range, &at, v, peak, h.is_some())?;
     }
+    let breakpoints = crate::history::breakpoints(&histories);
+    check_step_count(case, &breakpoints, place)?;
     let (prescribed, prescribed_history) = prescribed.into_iter().unzip();
     Ok(Loads {
         histories,
@@ -156,7 +208,130 @@ pub fn build(case: &Case, mesh: &Mesh, section: Section, place: &str) -> Result<
         prescribed,
         prescribed_history,
         gap_history,
+        acting,
     })
+}
+
+/// The largest magnitude a load without a history of its own reaches: the
+/// largest load factor (a case without histories), or 1 (the default ramp).
+fn largest_factor(case: &Case, histories: &[History]) -> f64 {
+    match &case.solver.load_factors {
+        Some(l) if histories.is_empty() => l.iter().fold(0.0, |a: f64, v| a.max(v.abs())),
+        _ => 1.0,
+    }
+}
+
+/// A load's value times the largest factor it is scaled by must still lie
+/// within the range of its quantity (a history value of 10⁵ on a pressure of
+/// 100 MPa is a pressure of 10⁷ MPa).
+fn check_scaled(range: &Range, at: &str, v: f64, peak: f64, history: bool) -> Result<()> {
+    let top = v.abs() * peak;
+    if v == 0.0 || !v.is_finite() || range.admits(top) {
+        return Ok(());
+    }
+    let by = if history {
+        "the largest value of its history"
+    } else {
+        "the largest load factor"
+    };
+    Err(Error::input(
+        at,
+        format!("{v:e} times {peak:e} ({by}) = {}", range.refusal(top)),
+    ))
+}
+
+/// A bound on the number of increments of any schedule: every history
+/// breakpoint is an increment, and an automatic step control takes at least
+/// (end time) / max_increment of them. At most
+/// [`crate::history::MAX_BREAKPOINTS`] breakpoints and
+/// [`crate::case::MAX_INCREMENTS`] increments (a run of 150 000 breakpoints
+/// would run for hours).
+fn check_step_count(case: &Case, breakpoints: &[f64], place: &str) -> Result<()> {
+    let most = crate::case::MAX_INCREMENTS;
+    let times = breakpoints.len().saturating_sub(1);
+    if times > crate::history::MAX_BREAKPOINTS {
+        return Err(Error::input(
+            format!("{place}: [history]"),
+            format!(
+                "the histories have {times} distinct times after 0, each an increment of the run: at most {} (a thousand load cycles take 4 000)",
+                crate::history::MAX_BREAKPOINTS
+            ),
+        ));
+    }
+    let end = breakpoints.last().copied().unwrap_or(1.0).max(1.0);
+    if let Some(n) = crate::solve::stepping::Stepper::planned(&case.solver, breakpoints) {
+        if n > most {
+            return Err(Error::input(
+                format!("{place}: [solver] increments"),
+                format!(
+                    "{} steps per unit of pseudo-time through the histories (to t = {end}) make {n} increments, more than {most}",
+                    case.solver.n_increments(),
+                ),
+            ));
+        }
+    } else if let Some(m) = case.solver.max_increment {
+        let n = (end / m).ceil();
+        if n > most as f64 {
+            return Err(Error::input(
+                format!("{place}: [solver] max_increment"),
+                format!(
+                    "{m} takes at least {n} increments to reach t = {end}, more than {most}: raise max_increment"
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Adds (dof, value) terms to a force vector.
+fn add(f: &mut [f64], terms: &[(usize, f64)]) {
+    for &(d, v) in terms {
+        f[d] += v;
+    }
+}
+
+/// Every load acts once the prescribed dofs are known: a `[[force]]` on a
+/// prescribed dof (a radial force on the axis of an axisymmetric model
+/// included, where u_r = 0 holds) goes straight into the reaction, and an
+/// edge traction all of whose dofs are prescribed never acts; both are
+/// refused, naming the load and the node.
+pub fn check_acting(
+    acting: &[Acting],
+    mesh: &Mesh,
+    prescribed: &[(usize, f64)],
+    axisymmetric: bool,
+) -> Result<()> {
+    let held: std::collections::HashSet<usize> = prescribed.iter().map(|p| p.0).collect();
+    for a in acting {
+        if a.concentrated {
+            if let Some(&d) = a.dofs.iter().find(|d| held.contains(d)) {
+                let (n, c) = (d / 2, d % 2);
+                let x = mesh.nodes[n];
+                let on_axis =
+                    axisymmetric && c == 0 && x[0].abs() <= crate::case::whole::tolerance(mesh);
+                let what = if on_axis {
+                    format!(
+                        "acts along r on node {n} at ({}, {}) on the axis r = 0, where u_r = 0 holds by symmetry: a radial force there acts on nothing; remove fx or select nodes off the axis (x_range)",
+                        x[0], x[1]
+                    )
+                } else {
+                    format!(
+                        "acts on node {n} at ({}, {}), whose u{} is prescribed by a [[boundary]] (or the symmetry plane): a force on a prescribed displacement goes into the reaction and never acts; remove the force or the support there (x_range / y_range select nodes)",
+                        x[0],
+                        x[1],
+                        ["x", "y"][c]
+                    )
+                };
+                return Err(Error::input(format!("{} f{}", a.at, ["x", "y"][c]), what));
+            }
+        } else if !a.dofs.is_empty() && a.dofs.iter().all(|d| held.contains(d)) {
+            return Err(Error::input(
+                    &a.at,
+                    "loads only prescribed displacements: every node and direction it pushes is held by a [[boundary]] (or the axis / symmetry plane), so it goes into the reactions and never acts",
+                ));
+        }
+    }
+    Ok(())
 }
 
 /// The force vector of the pattern with history `h`, added if new.
@@ -179,14 +354,18 @@ fn in_range(v: f64, r: &Option<[f64; 2]>) -> bool {
 }
 
 /// A uniform pressure and shear on an edge set, integrated consistently
-/// (3-point Gauss on the quadratic edge) into `f`.
+/// (3-point Gauss on the quadratic edge): its (dof, force) terms at factor 1.
+/// Refused where it cannot act as written: every selected edge on the axis
+/// r = 0 of an axisymmetric model (no area), or, on a symmetric half model, a
+/// traction with an x-component at the symmetry plane x = 0 (its mirror image
+/// carries the opposite one: an antisymmetric load the half does not model).
 fn edge_traction(
+    case: &Case,
     ld: &crate::case::LoadSpec,
     mesh: &Mesh,
     section: Section,
     at: &str,
-    f: &mut [f64],
-) -> Result<()> {
+) -> Result<Vec<(usize, f64)>> {
     let edges = mesh.edge_sets.get(&ld.edges).ok_or_else(|| {
         Error::input(
             at,
@@ -212,14 +391,23 @@ fn edge_traction(
             format!("{tau} must be a finite number (MPa)"),
         ));
     }
+    let tol = crate::case::whole::tolerance(mesh);
     let gp = q8::gauss_1d(3);
-    let mut count = 0;
+    let mut terms = Vec::new();
+    let (mut count, mut on_axis) = (0, 0);
     for edge in edges {
         let x: Vec<[f64; 2]> = edge.iter().map(|&n| mesh.nodes[n]).collect();
         if !(in_range(x[1][0], &ld.x_range) && in_range(x[1][1], &ld.y_range)) {
             continue;
         }
         count += 1;
+        if section.axisymmetric && x.iter().all(|y| y[0].abs() <= tol) {
+            on_axis += 1;
+            continue;
+        }
+        if case.model.symmetric_half {
+            symmetric_traction(ld, &x, tol, at)?;
+        }
         for &(s, w) in &gp {
             let n = q8::edge_shape(s);
             let dn = [s - 0.5, -2.0 * s, s + 0.5];
@@ -236,12 +424,12 @@ fn edge_traction(
             // pushes inward; the shear direction (n_y, −n_x) × ds = (−t_x, −t_y) dξ
             for k in 0..3 {
                 if p != 0.0 {
-                    f[2 * edge[k]] -= p * n[k] * ty * w * measure;
-                    f[2 * edge[k] + 1] += p * n[k] * tx * w * measure;
+                    terms.push((2 * edge[k], -p * n[k] * ty * w * measure));
+                    terms.push((2 * edge[k] + 1, p * n[k] * tx * w * measure));
                 }
                 if tau != 0.0 {
-                    f[2 * edge[k]] -= tau * n[k] * tx * w * measure;
-                    f[2 * edge[k] + 1] -= tau * n[k] * ty * w * measure;
+                    terms.push((2 * edge[k], -tau * n[k] * tx * w * measure));
+                    terms.push((2 * edge[k] + 1, -tau * n[k] * ty * w * measure));
                 }
             }
         }
@@ -252,16 +440,56 @@ fn edge_traction(
             "selects no edge (check x_range / y_range)",
         ));
     }
+    if on_axis == count {
+        return Err(Error::input(
+            at,
+            "every edge it selects lies on the axis r = 0 of the axisymmetric model, where a traction acts on no area: load a surface of the body instead",
+        ));
+    }
+    Ok(terms)
+}
+
+/// On a symmetric half model, the traction at an edge end on the plane x = 0
+/// must have no x-component (the symmetric whole body's traction is odd in
+/// x there).
+fn symmetric_traction(
+    ld: &crate::case::LoadSpec,
+    x: &[[f64; 2]],
+    tol: f64,
+    at: &str,
+) -> Result<()> {
+    for (k, s) in [(0, -1.0), (2, 1.0)] {
+        if x[k][0].abs() > tol {
+            continue;
+        }
+        let dn = [s - 0.5, -2.0 * s, s + 0.5];
+        let (mut tx, mut ty) = (0.0, 0.0);
+        for j in 0..3 {
+            tx += dn[j] * x[j][0];
+            ty += dn[j] * x[j][1];
+        }
+        let len = tx.hypot(ty);
+        let t_x = (-ld.pressure * ty - ld.shear * tx) / len;
+        if t_x.abs() > 1e-9 * (ld.pressure.abs() + ld.shear.abs()) {
+            return Err(Error::input(
+                at,
+                format!(
+                    "pushes along x ({t_x:.4} MPa) at ({}, {}) on the symmetry plane x = 0 of a symmetric_half model: the mirrored half would carry the opposite traction, an antisymmetric load the half model does not represent; model the whole body (symmetric_half = false)",
+                    x[k][0], x[k][1]
+                ),
+            ));
+        }
+    }
     Ok(())
 }
 
-/// A force (fx, fy) at every selected node of a node set, into `f`.
+/// A force (fx, fy) at every selected node of a node set: its (dof, force)
+/// terms at factor 1.
 fn concentrated_force(
     fs: &crate::case::ForceSpec,
     mesh: &Mesh,
     at: &str,
-    f: &mut [f64],
-) -> Result<()> {
+) -> Result<Vec<(usize, f64)>> {
     let nodes = mesh.node_sets.get(&fs.nodes).ok_or_else(|| {
         Error::input(
             at,
@@ -286,23 +514,25 @@ fn concentrated_force(
             "fx and fy are both 0: give a non-zero force (N)",
         ));
     }
-    let mut count = 0;
+    let mut terms = Vec::new();
     for &n in nodes {
         let x = mesh.nodes[n];
         if in_range(x[0], &fs.x_range) && in_range(x[1], &fs.y_range) {
-            f[2 * n] += fs.fx;
-            f[2 * n + 1] += fs.fy;
-            count += 1;
+            terms.extend([(2 * n, fs.fx), (2 * n + 1, fs.fy)]);
         }
     }
-    if count == 0 {
+    if terms.is_empty() {
         return Err(Error::input(
             at,
             "selects no node (check x_range / y_range)",
         ));
     }
-    Ok(())
+    Ok(terms)
 }
+
+/// A value that a factor scales: where it is written, the value, its range
+/// and its history.
+type Scaled = (String, f64, &'static Range, Option<usize>);
 
 /// A prescribed dof and its value at factor 1, and its history.
 type Prescribed = ((usize, f64), Option<usize>);
@@ -316,6 +546,7 @@ fn boundary_conditions(
     mesh: &Mesh,
     place: &str,
     res: &mut Resolver,
+    scaled: &mut Vec<Scaled>,
 ) -> Result<Vec<Prescribed>> {
     // dof → (value, history, index of the first entry that set it)
     let mut out: BTreeMap<usize, (f64, Option<usize>, usize)> = Default::default();
@@ -335,6 +566,11 @@ fn boundary_conditions(
             return Err(Error::input(&at, "give ux and/or uy"));
         }
         let h = res.resolve(bc.history.as_ref(), &format!("{at} history"))?;
+        for (k, v) in [("ux", bc.ux), ("uy", bc.uy)] {
+            if let Some(v) = v.filter(|v| v.is_finite()) {
+                scaled.push((format!("{at} {k}"), v, &ranges::DISPLACEMENT, h));
+            }
+        }
         let mut count = 0;
         for &n in nodes {
             let x = mesh.nodes[n];

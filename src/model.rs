@@ -194,6 +194,7 @@ impl Model {
             .map(|(&(d, _), &h)| (d, h))
             .collect();
         let prescribed = crate::case::axis::hold_axis(&case, &mesh, loads.prescribed, &place)?;
+        crate::loads::check_acting(&loads.acting, &mesh, &prescribed, section.axisymmetric)?;
         loads.prescribed_history = prescribed
             .iter()
             .map(|(d, _)| given.get(d).copied().flatten())

@@ -151,6 +151,40 @@ fn names(mesh: &Mesh, place: &str) -> Result<()> {
             }
         }
     }
+    shared_sides(mesh, place)
+}
+
+/// No boundary edge on a side of two interfaces, whatever their coupling: two
+/// non-matching interfaces over the same sides, or a matching and a
+/// non-matching one, would spring the same contact twice (and halve the load
+/// each reports). An edge is known by its mid node, which belongs to one edge.
+fn shared_sides(mesh: &Mesh, place: &str) -> Result<()> {
+    let mut side: HashMap<usize, usize> = HashMap::new();
+    for (k, iface) in mesh.interfaces.iter().enumerate() {
+        let edges: Vec<[usize; 3]> = match &iface.nonmatching {
+            Some(nm) => nm.slave.iter().chain(&nm.master).copied().collect(),
+            None => iface.edges.iter().flat_map(|e| [e.a, e.b]).collect(),
+        };
+        for e in edges {
+            match side.insert(e[1], k) {
+                Some(j) if j != k => {
+                    let x = mesh.nodes[e[1]];
+                    return Err(mesh_err(
+                        place,
+                        format!(
+                            "interfaces \"{}\" and \"{}\" both use the edge with mid node {} at ({}, {}): the same contact would get its springs twice and each would report half the load; pose one interface per pair of sides",
+                            clip(&mesh.interfaces[j].name),
+                            clip(&iface.name),
+                            e[1],
+                            x[0],
+                            x[1]
+                        ),
+                    ));
+                }
+                _ => {}
+            }
+        }
+    }
     Ok(())
 }
 

@@ -241,6 +241,18 @@ pub fn run_from(
     engine.stats.factorizations = ck.factorizations;
     let mut stopped = None;
     while let Some(target) = ck.stepper.next(ck.lambda) {
+        if ck.increments.len() >= crate::case::MAX_INCREMENTS {
+            // the automatic step control kept its steps tiny: a bound on
+            // the run's length (identical on every rank)
+            return Err(Error::Convergence {
+                increment: ck.increments.len() + 1,
+                load_factor: target,
+                message: format!(
+                    "{} increments converged without reaching the end of the load history (the limit): the steps stayed tiny; raise [solver] max_increment or refine less",
+                    ck.increments.len()
+                ),
+            });
+        }
         if let Some(stop) = stop_at_boundary(&engine, &ck, control) {
             stopped = Some(stop);
             break;

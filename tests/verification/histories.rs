@@ -250,7 +250,8 @@ fn a_shear_traction_has_its_resultant_and_the_simple_shear_displacement() {
 
 #[test]
 fn shear_turns_with_the_edge() {
-    // +x on a top edge, −y on a right edge, −x on a bottom edge, +y on a left edge
+    // +x on a top edge, −y on a right edge, +y on a left edge (and −x on a
+    // bottom edge; the bottom is held here, where a load never acts)
     let text = block(
         6.0,
         4.0,
@@ -263,7 +264,7 @@ shear = 2.0
 edges = "block.left"
 shear = 3.0
 [[load]]
-edges = "block.bottom"
+edges = "block.top"
 shear = 5.0
 "#,
     );
@@ -275,12 +276,12 @@ shear = 5.0
             .map(|n| model.f_ext[2 * n + 1])
             .sum()
     };
-    // right side: −2 · 4; left side: +3 · 4 (the bottom's shear is along x)
+    // right side: −2 · 4; left side: +3 · 4 (the top's shear is along x)
     assert!(common::rel(side_fy(6.0), -2.0 * 4.0) < 1e-13);
     assert!(common::rel(side_fy(0.0), 3.0 * 4.0) < 1e-13);
-    // bottom y = 0: Σ f_x = −5 · 6
+    // top y = 4: Σ f_x = +5 · 6
     let fx: f64 = model.f_ext.iter().step_by(2).sum();
-    assert!(common::rel(fx, -5.0 * 6.0) < 1e-13, "{fx}");
+    assert!(common::rel(fx, 5.0 * 6.0) < 1e-13, "{fx}");
     let fy: f64 = model.f_ext.iter().skip(1).step_by(2).sum();
     assert!(common::rel(fy, (3.0 - 2.0) * 4.0) < 1e-13, "{fy}");
 }
