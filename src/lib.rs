@@ -41,6 +41,7 @@ pub mod output;
 pub mod parallel;
 pub mod progress;
 pub mod restart;
+pub mod schedule;
 pub mod solve;
 pub mod study;
 

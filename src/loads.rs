@@ -259,7 +259,7 @@ fn check_step_count(case: &Case, breakpoints: &[f64], place: &str) -> Result<()>
         ));
     }
     let end = breakpoints.last().copied().unwrap_or(1.0).max(1.0);
-    if let Some(n) = crate::solve::stepping::Stepper::planned(&case.solver, breakpoints) {
+    if let Some(n) = crate::schedule::planned(&case.solver, breakpoints) {
         if n > most {
             return Err(Error::input(
                 format!("{place}: [solver] increments"),

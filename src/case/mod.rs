@@ -17,7 +17,8 @@ pub use validate::{
 
 pub use crate::interface::{FrictionScheme, Weights};
 pub use crate::material::Plane;
-pub use crate::solve::{Acceleration, Method, Stabilization, StepControl};
+pub mod settings;
+pub use settings::{Acceleration, Method, Stabilization, StepControl};
 
 use crate::error::{Error, Result};
 use crate::mesh::blocks::{BlockSpec, InterfaceSpec};

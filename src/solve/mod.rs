@@ -6,14 +6,14 @@ mod accelerate;
 pub mod failure;
 pub mod newton;
 pub mod nonlinear;
-pub mod settings;
+pub mod springs;
 pub mod stabilize;
 pub mod stepping;
 mod yield_point;
 
+pub use crate::case::settings::{Acceleration, Method, Stabilization, StepControl};
 pub use failure::StepFailure;
 pub use newton::{Engine, Stats};
-pub use settings::{Acceleration, Method, Stabilization, StepControl};
 pub use yield_point::FirstYield;
 
 use crate::error::{Error, Result};

@@ -39,7 +39,7 @@
 //!
 //! Which steps use it: those whose committed state leaves a body held only
 //! through open pairs (approach below −1e-12 mm, where the secant start does
-//! not reach) or pairs touching without pressure ([`SUPPORT`]). Every other step is the plain step, exactly as without this
+//! not reach) or pairs touching without pressure (`SUPPORT` in [`super::springs`]). Every other step is the plain step, exactly as without this
 //! module; only if it fails when it takes a body held only through an
 //! interface to zero load is it retried stabilized. A loaded body is accepted
 //! released only; the stabilized answer itself only at zero load (3. above). All
@@ -48,354 +48,13 @@
 //! rank owns.
 
 use super::newton::Engine;
+use super::springs::increment;
+pub use super::springs::Report;
 use super::{State, StepFailure};
-use crate::case::Stabilization;
 use crate::fem::solid::Response;
-use crate::interface::{InterfaceModel, Point};
-use crate::model::Model;
 
 /// Stabilized solves before giving up: k₀, k₀/10², k₀/10⁴, k₀/10⁶.
 const LEVELS: i32 = 4;
-
-/// An approach above this counts as contact able to carry load (mm): the
-/// first iteration of a step gives such pairs the secant start stiffness.
-const TOUCH: f64 = -1e-12;
-
-/// A closed pair supports a body when its pressure is at least this fraction
-/// of the step's reference pressure: a pair left touching at a pressure of
-/// 10⁻¹⁷ MPa after unloading to zero has a tangent (2p/u for m = 1/2) too
-/// small to carry the next load step.
-const SUPPORT: f64 = 1e-8;
-
-/// Rigid-body constraint data of one body: centroid, size and the Gram matrix
-/// of the rows its boundary conditions impose on (t_x, t_y, θ·L).
-#[derive(Clone, Debug)]
-struct Body {
-    centre: [f64; 2],
-    size: f64,
-    bc: [f64; 6],
-    /// Force of each load pattern at factor 1 (N, Σ |f| over the body's nodes).
-    load: Vec<f64>,
-    /// The histories of the non-zero prescribed displacements acting on it.
-    driven: Vec<Option<usize>>,
-}
-
-/// What the run reports about stabilization (summary.json "stabilization").
-#[derive(Clone, Debug, Default)]
-pub struct Report {
-    /// Steps that started stabilized and were released (exact answer).
-    pub released: usize,
-    /// Steps accepted with the springs still acting (no release possible).
-    pub stabilized: usize,
-    /// Energy dissipated by the springs in accepted steps, N·mm.
-    pub dissipated: f64,
-    /// Largest internal energy seen (strain + plastic work + interface), N·mm.
-    pub internal: f64,
-    /// The limit on dissipated / internal.
-    pub limit: f64,
-}
-
-/// The stabilization of one engine.
-#[derive(Clone, Debug)]
-pub struct Stabilizer {
-    bodies: Vec<Body>,
-    /// Bodies with an interface whose boundary conditions leave a rigid motion free.
-    loose: Vec<bool>,
-    enabled: bool,
-    /// Spring stiffness per interface (MPa/mm) while a stabilized solve runs.
-    pub(super) springs: Option<Vec<f64>>,
-    /// Start of the next solve (all dofs) instead of the committed state.
-    pub(super) guess: Option<Vec<f64>>,
-    /// Filled by the last step, moved into the report when it is committed.
-    pending: Option<(bool, f64)>,
-    pub report: Report,
-    /// Steps that used the stabilization at all (committed or not).
-    pub used: usize,
-}
-
-fn det3(g: &[f64; 6]) -> f64 {
-    // packed symmetric [g00, g01, g02, g11, g12, g22]
-    let [a, b, c, d, e, f] = *g;
-    a * (d * f - e * e) - b * (b * f - e * c) + c * (b * e - d * c)
-}
-
-/// Whether the rows gathered in a Gram matrix fix all three rigid motions.
-fn fixes_all(g: &[f64; 6]) -> bool {
-    let tr = g[0] + g[3] + g[5];
-    tr > 0.0 && det3(g) > 1e-9 * (tr / 3.0).powi(3)
-}
-
-fn add_row(g: &mut [f64; 6], r: [f64; 3]) {
-    g[0] += r[0] * r[0];
-    g[1] += r[0] * r[1];
-    g[2] += r[0] * r[2];
-    g[3] += r[1] * r[1];
-    g[4] += r[1] * r[2];
-    g[5] += r[2] * r[2];
-}
-
-impl Body {
-    /// The constraint row of a displacement along unit vector `e` at `x`.
-    fn row(&self, x: [f64; 2], e: [f64; 2]) -> [f64; 3] {
-        let (rx, ry) = (
-            (x[0] - self.centre[0]) / self.size,
-            (x[1] - self.centre[1]) / self.size,
-        );
-        [e[0], e[1], e[1] * rx - e[0] * ry]
-    }
-}
-
-impl Stabilizer {
-    pub fn new(model: &Model) -> Stabilizer {
-        let mesh = &model.mesh;
-        let nb = mesh.bodies.len();
-        let mut body_of = vec![usize::MAX; mesh.nodes.len()];
-        for el in &mesh.elements {
-            for &n in &el.nodes {
-                body_of[n] = el.body;
-            }
-        }
-        let mut lo = vec![[f64::INFINITY; 2]; nb];
-        let mut hi = vec![[f64::NEG_INFINITY; 2]; nb];
-        for (n, x) in mesh.nodes.iter().enumerate() {
-            if let Some(b) = body_of.get(n).copied().filter(|&b| b < nb) {
-                for c in 0..2 {
-                    lo[b][c] = lo[b][c].min(x[c]);
-                    hi[b][c] = hi[b][c].max(x[c]);
-                }
-            }
-        }
-        let mut bodies: Vec<Body> = (0..nb)
-            .map(|b| Body {
-                centre: [0.5 * (lo[b][0] + hi[b][0]), 0.5 * (lo[b][1] + hi[b][1])],
-                size: (hi[b][0] - lo[b][0])
-                    .max(hi[b][1] - lo[b][1])
-                    .max(f64::MIN_POSITIVE),
-                bc: [0.0; 6],
-                load: vec![0.0; model.patterns().count()],
-                driven: Vec::new(),
-            })
-            .collect();
-        if model.section.axisymmetric {
-            // a body of revolution has one rigid motion, along the axis: a
-            // radial translation strains it around the hoop, and it cannot
-            // rotate in the meridian plane
-            for b in &mut bodies {
-                add_row(&mut b.bc, [1.0, 0.0, 0.0]);
-                add_row(&mut b.bc, [0.0, 0.0, 1.0]);
-            }
-        }
-        for (&(d, v), &h) in model.prescribed.iter().zip(&model.prescribed_history) {
-            let n = d / 2;
-            let Some(b) = body_of.get(n).copied().filter(|&b| b < nb) else {
-                continue;
-            };
-            let e = if d % 2 == 0 { [1.0, 0.0] } else { [0.0, 1.0] };
-            let r = bodies[b].row(mesh.nodes[n], e);
-            add_row(&mut bodies[b].bc, r);
-            if v != 0.0 && !bodies[b].driven.contains(&h) {
-                bodies[b].driven.push(h);
-            }
-        }
-        for (p, (_, f)) in model.patterns().enumerate() {
-            for (n, &b) in body_of.iter().enumerate() {
-                if b < nb {
-                    bodies[b].load[p] += f[2 * n].hypot(f[2 * n + 1]);
-                }
-            }
-        }
-        // a body without an interface and without enough supports is a
-        // mechanism no interface spring can hold (and mostly refused up front)
-        let loose = (0..nb)
-            .map(|b| {
-                !fixes_all(&bodies[b].bc)
-                    && model
-                        .interfaces
-                        .iter()
-                        .any(|im| im.body_a == b || im.body_b == b)
-            })
-            .collect();
-        Stabilizer {
-            bodies,
-            loose,
-            enabled: model.solver.stabilization == Stabilization::Auto,
-            springs: None,
-            guess: None,
-            pending: None,
-            report: Report {
-                limit: model.solver.stabilization_energy,
-                ..Report::default()
-            },
-            used: 0,
-        }
-    }
-
-    /// The bodies not held at displacement `u` in a step to `lambda`: neither
-    /// by their boundary conditions nor through supporting pairs with a held
-    /// body (approach in (−1e-12, 0] mm, where the secant start applies, or
-    /// closed with a pressure of at least [`SUPPORT`] × the step's reference
-    /// pressure); ascending.
-    pub fn floating(&self, model: &Model, u: &[f64], lambda: f64) -> Vec<usize> {
-        let mut held: Vec<bool> = self.loose.iter().map(|l| !l).collect();
-        if held.iter().all(|&h| h) {
-            return Vec::new();
-        }
-        let p_min: Vec<f64> = (0..model.interfaces.len())
-            .map(|i| SUPPORT * model.reference_pressure(i, lambda))
-            .collect();
-        loop {
-            let mut changed = false;
-            for b in 0..self.bodies.len() {
-                if held[b] {
-                    continue;
-                }
-                let body = &self.bodies[b];
-                let mut g = body.bc;
-                for (i, im) in model.interfaces.iter().enumerate() {
-                    let other = if im.body_a == b {
-                        im.body_b
-                    } else if im.body_b == b {
-                        im.body_a
-                    } else {
-                        continue;
-                    };
-                    if !held[other] {
-                        continue;
-                    }
-                    let gap = im.gap_at(lambda);
-                    for pr in &im.pairs {
-                        let un = im.pair_approach_at(pr, u, gap);
-                        let supports = if un > 0.0 {
-                            im.law.pressure(un).0 >= p_min[i]
-                        } else {
-                            un > TOUCH
-                        };
-                        if supports {
-                            add_row(&mut g, body.row(pr.x, pr.normal));
-                            if im.tangential.is_some() && un > 0.0 {
-                                add_row(&mut g, body.row(pr.x, [pr.normal[1], -pr.normal[0]]));
-                            }
-                        }
-                    }
-                }
-                if fixes_all(&g) {
-                    held[b] = true;
-                    changed = true;
-                }
-            }
-            if !changed {
-                break;
-            }
-        }
-        (0..held.len()).filter(|&b| !held[b]).collect()
-    }
-
-    /// Whether a body held only through interfaces carries no load at
-    /// pseudo-time `lambda`: every load pattern and prescribed displacement
-    /// acting on it at factor 0 there (all of them at λ = 0 without
-    /// histories), and no interference on its interfaces.
-    fn unloaded(&self, model: &Model, lambda: f64) -> Option<usize> {
-        (0..self.bodies.len()).find(|&b| {
-            let body = &self.bodies[b];
-            let off = |h: Option<usize>| model.factor(h, lambda) == 0.0;
-            self.loose[b]
-                && body
-                    .load
-                    .iter()
-                    .zip(model.patterns())
-                    .all(|(&l, (h, _))| l == 0.0 || off(h))
-                && body.driven.iter().all(|&h| off(h))
-                && !model
-                    .interfaces
-                    .iter()
-                    .any(|im| (im.body_a == b || im.body_b == b) && im.gap_at(lambda) < 0.0)
-        })
-    }
-
-    /// The physical reason a step from `committed` to `lambda` may have no
-    /// solution, if there is one: a body held by nothing.
-    pub fn explain(&self, model: &Model, committed: &State, lambda: f64) -> Option<String> {
-        let unloaded = self.unloaded(model, lambda);
-        let floating = self.floating(model, &committed.u, lambda);
-        let b = unloaded.or(floating.first().copied())?;
-        // λ as short as it is exact to six places: "0", "0.5", "0.000195"
-        let lambda = format!("{lambda:.6}")
-            .trim_end_matches('0')
-            .trim_end_matches('.')
-            .to_string();
-        let name = &model.mesh.bodies[b];
-        let via: Vec<&str> = model
-            .interfaces
-            .iter()
-            .filter(|im| im.body_a == b || im.body_b == b)
-            .map(|im| im.name.as_str())
-            .collect();
-        let via = if via.is_empty() {
-            "no interface".to_string()
-        } else {
-            format!("interface \"{}\"", via.join("\", \""))
-        };
-        Some(if floating.contains(&b) {
-            format!(
-                "body \"{name}\" is not in contact at the start of the step to λ = {lambda} \
-                 (every pair of {via} is open, or closed without pressure) and nothing else \
-                 holds it: its boundary conditions leave a rigid-body motion free"
-            )
-        } else {
-            format!(
-                "body \"{name}\" carries no load at λ = {lambda} and is held only through \
-                 {via}: at zero contact force nothing fixes its position"
-            )
-        })
-    }
-
-    /// Called when the engine's last step is committed; whether that step
-    /// was a plain one (neither stabilized nor released).
-    pub(super) fn commit(&mut self) -> bool {
-        let Some((stabilized, w)) = self.pending.take() else {
-            return true;
-        };
-        if stabilized {
-            self.report.stabilized += 1;
-            self.report.dissipated += w;
-        } else {
-            self.report.released += 1;
-        }
-        false
-    }
-}
-
-/// Adds the stabilization spring of one interface point to its local residual
-/// `r` and matrix `k` (the layout of [`InterfaceModel::eval_point`]): stiffness
-/// `ks` per area on the change of the relative displacement since `committed`.
-/// Abaqus-style contact stabilization (see the module documentation).
-pub fn add_point(
-    im: &InterfaceModel,
-    pt: &Point,
-    ks: f64,
-    committed: &[f64],
-    u: &[f64],
-    r: &mut [f64],
-    k: &mut [f64],
-) {
-    let (dn, dt) = increment(im, pt, committed, u);
-    let (gn, gt) = pt.gradients();
-    let nd = pt.ndofs();
-    let a = pt.area * ks;
-    for i in 0..nd {
-        r[i] += a * (dn * gn[i] + dt * gt[i]);
-        for j in 0..nd {
-            k[i * nd + j] += a * (gn[i] * gn[j] + gt[i] * gt[j]);
-        }
-    }
-}
-
-/// Change of the normal and tangential relative displacement at a point.
-fn increment(im: &InterfaceModel, pt: &Point, committed: &[f64], u: &[f64]) -> (f64, f64) {
-    let (n1, t1) = im.point_kinematics(pt, u);
-    let (n0, t0) = im.point_kinematics(pt, committed);
-    (n1 - n0, t1 - t0)
-}
 
 /// Work of the springs `ks` over the step from `committed` to `u`, N·mm:
 /// Σ k_s A |Δd|² over the points this rank owns, summed over ranks.
@@ -492,11 +151,47 @@ fn base_springs(engine: &Engine, committed: &State, lambda: f64) -> Vec<f64> {
         .collect()
 }
 
+/// The steps of an engine, defined here, above the Newton iteration: the
+/// engine itself knows only its plain step ([`Engine::plain_step`]).
+impl Engine<'_> {
+    /// Solves the step from `committed` to load factor `lambda`. Returns the
+    /// converged trial state and the number of iterations, or a reason. Every
+    /// branch is taken on all ranks alike. The iterations are the built-in loop
+    /// below, or the engine's [`NonlinearSolver`] (PETSc SNES) when it has one;
+    /// both call the same [`StepProblem`].
+    ///
+    /// A step that would leave a body floating goes through the contact
+    /// stabilization (this module); every other step is the plain one.
+    pub fn step(
+        &mut self,
+        committed: &State,
+        lambda: f64,
+        response: Response,
+    ) -> Result<(State, usize), StepFailure> {
+        self.step_from(committed, lambda, response, None)
+    }
+
+    /// [`Engine::step`] with the iteration started at `start` (all dofs; its
+    /// free dofs are used, the prescribed ones take their values at `lambda`)
+    /// instead of at the committed displacements: the predictor of
+    /// [`super::predict`]. A step that this module takes over starts
+    /// from its own states instead.
+    pub fn step_from(
+        &mut self,
+        committed: &State,
+        lambda: f64,
+        response: Response,
+        start: Option<&[f64]>,
+    ) -> Result<(State, usize), StepFailure> {
+        step(self, committed, lambda, response, start)
+    }
+}
+
 /// [`Engine::step`]: the plain step, or the stabilized one when the committed
 /// state leaves a body floating (or follows an accepted stabilized state);
 /// a plain step to zero load on an interface-held body that fails is retried
 /// stabilized. With `stabilization = "off"` a failure names the floating body.
-pub(super) fn step(
+fn step(
     engine: &mut Engine,
     committed: &State,
     lambda: f64,
@@ -638,48 +333,5 @@ fn stabilized_step(
                 format!(" ({failure})")
             }
         )))
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn body() -> Body {
-        Body {
-            centre: [10.0, 10.0],
-            size: 20.0,
-            bc: [0.0; 6],
-            load: Vec::new(),
-            driven: Vec::new(),
-        }
-    }
-
-    #[test]
-    fn rows_fix_the_rigid_motions_they_should() {
-        let b = body();
-        // u_x = 0 along the left edge: x translation and rotation, not y
-        let mut g = [0.0; 6];
-        for y in [0.0, 5.0, 10.0, 20.0] {
-            add_row(&mut g, b.row([0.0, y], [1.0, 0.0]));
-        }
-        assert!(!fixes_all(&g));
-        // one vertical support more fixes all three
-        let mut h = g;
-        add_row(&mut h, b.row([3.0, 0.0], [0.0, 1.0]));
-        assert!(fixes_all(&h));
-        // normal springs along a horizontal interface: y and rotation, with
-        // the left edge's x: all three
-        let mut s = g;
-        for x in [0.0, 10.0, 20.0] {
-            add_row(&mut s, b.row([x, 0.0], [0.0, 1.0]));
-        }
-        assert!(fixes_all(&s));
-        // vertical springs at one point only leave the rotation free without x
-        let mut one = [0.0; 6];
-        add_row(&mut one, b.row([5.0, 0.0], [0.0, 1.0]));
-        add_row(&mut one, b.row([5.0, 0.0], [0.0, 1.0]));
-        assert!(!fixes_all(&one));
-        assert!(!fixes_all(&[0.0; 6]));
     }
 }

@@ -17,7 +17,7 @@ pub use step::StepProblem;
 
 use super::failure::StepFailure;
 use super::nonlinear::{NonlinearSolver, Problem, Verdict};
-use super::stabilize::Stabilizer;
+use super::springs::Stabilizer;
 use super::State;
 use crate::backend::Backend;
 use crate::case::Method;
@@ -230,38 +230,6 @@ impl<'m> Engine<'m> {
             self.solid_valid = false;
         }
         self.stabilizer.as_mut().is_none_or(|st| st.commit())
-    }
-
-    /// Solves the step from `committed` to load factor `lambda`. Returns the
-    /// converged trial state and the number of iterations, or a reason. Every
-    /// branch is taken on all ranks alike. The iterations are the built-in loop
-    /// below, or the engine's [`NonlinearSolver`] (PETSc SNES) when it has one;
-    /// both call the same [`StepProblem`].
-    ///
-    /// A step that would leave a body floating goes through the contact
-    /// stabilization ([`super::stabilize`]); every other step is the plain one.
-    pub fn step(
-        &mut self,
-        committed: &State,
-        lambda: f64,
-        response: Response,
-    ) -> Result<(State, usize), StepFailure> {
-        self.step_from(committed, lambda, response, None)
-    }
-
-    /// [`Engine::step`] with the iteration started at `start` (all dofs; its
-    /// free dofs are used, the prescribed ones take their values at `lambda`)
-    /// instead of at the committed displacements: the predictor of
-    /// [`super::predict`]. A step that [`super::stabilize`] takes over starts
-    /// from its own states instead.
-    pub fn step_from(
-        &mut self,
-        committed: &State,
-        lambda: f64,
-        response: Response,
-        start: Option<&[f64]>,
-    ) -> Result<(State, usize), StepFailure> {
-        super::stabilize::step(self, committed, lambda, response, start)
     }
 
     /// The step without the stabilization's choice (it may still hold springs
@@ -534,7 +502,7 @@ impl<'m> Engine<'m> {
                     Some(&mut kl[..nd * nd]),
                 );
                 if let Some(ks) = springs {
-                    super::stabilize::add_point(
+                    super::springs::add_point(
                         im,
                         pt,
                         ks[i],

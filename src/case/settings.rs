@@ -1,7 +1,7 @@
 //! Solver settings chosen in a case's `[solver]` table: the iteration method,
 //! its acceleration, the step control and the contact stabilization. The case
 //! file spells them in kebab-case (`method = "modified-newton"`); `case`
-//! re-exports them.
+//! defines them and `solve` re-exports them.
 
 use serde::Deserialize;
 
