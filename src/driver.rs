@@ -200,7 +200,7 @@ pub fn run_model(
     );
     let resume = opts.restart.as_deref().map(|d| Resume {
         dir: d,
-        increments: resumed,
+        files: crate::restart::folder_files(&crate::restart::Bounds::of(model), resumed, &pvd),
         pvd,
     });
     let mut writer = Writer::new(&dir, log.clone(), planned, resume)?;

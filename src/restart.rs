@@ -41,12 +41,50 @@
 //! `joints` may be absent (files of earlier builds: the joint energies then
 //! restart from zero and the earlier increments have no joint rows, written
 //! as NaN rows of `joints` from then on).
+//!
+//! # A restart folder is input
+//!
+//! Anyone can write a well-formed file (the checksum and the fingerprint are
+//! computable), so they only catch accidents; [`read`] checks every value
+//! against the case before any of it is used, and refuses a mismatch with
+//! one line `<DIR>/restart.bin: <what is wrong>` (exit 2, nothing written):
+//!
+//! - sizes: the file's size from its metadata against [`Bounds`] (what the
+//!   model's dofs, Gauss points, interface points and the case's most
+//!   increments need) before it is read; at most [`MAX_SECTIONS`] sections
+//!   of distinct names, each count within the bytes that remain before its
+//!   data is copied; at most [`Bounds::increments`] increments;
+//! - the load history: the `curve` rows are numbered 1, 2, … with finite
+//!   values and whole counts, and are replayed from the case's own stepper
+//!   ([`Stepper::replay`]: the fixed schedule with each row's cutbacks, bit
+//!   for bit; automatic steps towards the case's waypoints, never past one,
+//!   never longer than the largest step); `load_factor` and `last_step` are
+//!   the last row's, `pending_*` (fixed) or `auto_waypoints` (automatic)
+//!   exactly what that replay leaves, the other mode's part untouched, so
+//!   the resumed run ends where the case's history ends; `auto_step` within
+//!   the case's smallest and largest step; no failures or cutbacks pending
+//!   and the cutback total the curve's;
+//! - the state: `u`, `last_du`, `gauss`, `contact`, `joint_totals`,
+//!   `prescribed_reaction` finite; ε̄ᵖ ≥ 0, the yielding flag 0 or 1; every
+//!   status code a status ([`Status::checked`]); `joints` rows finite, or all
+//!   NaN before the first finite one (the rows of earlier builds);
+//!   `first_yield` finite, within the curve's load factors, at an element of
+//!   the mesh whose body `first_yield_body` names;
+//! - names: every `pvd_file` name is `vtu/NNNN.vtu` exactly as the writer
+//!   names an increment ([`vtu_name`]), for increasing converged increments,
+//!   with that increment's load factor; every file a resumed run copies
+//!   ([`folder_files`]: `restart.bin`, `interface/NNNN.csv`, the VTU series)
+//!   is a regular file inside the folder, neither it nor its folder a
+//!   symbolic link, within its size bound; the copy ([`copy_in`]) opens it
+//!   again without following links and creates each file new in the
+//!   temporary output folder.
 
 use crate::error::{Error, Result};
 use crate::interface::joint::{JointMeasures, JointTotals};
 use crate::interface::{PointState as ContactState, Status};
 use crate::material::PointState;
 use crate::model::Model;
+use crate::solve::stepping::Stepper;
 use crate::solve::{Checkpoint, FirstYield, Increment, Measures};
 use std::collections::BTreeMap;
 use std::io::Write;
@@ -371,13 +409,239 @@ fn sections(e: &mut Encoder, ck: &Checkpoint, pvd: &[(f64, String)]) -> std::io:
     )
 }
 
-/// Reads `restart.bin` in `dir` for `model`: the checkpoint and the VTU series.
+/// Most sections a restart file may list (this build writes 26).
+pub const MAX_SECTIONS: u32 = 64;
+/// Longest section name (this build's longest has 19 bytes).
+const MAX_SECTION_NAME: usize = 64;
+/// Most converged increments behind a resumed run, whatever the case allows
+/// (a run of this many increments writes as many interface CSV files).
+pub const MAX_RESUMED_INCREMENTS: usize = 1 << 24;
+/// Longest VTU name in the `pvd_file` section: `vtu/` + 20 digits + `.vtu`.
+const MAX_VTU_NAME: usize = 28;
+
+/// What a restart folder can hold for a model, from the model alone: the
+/// bounds every size read from the folder is checked against before
+/// anything of that size is allocated or copied.
+#[derive(Clone, Copy, Debug)]
+pub struct Bounds {
+    /// Converged increments: what the case's schedule (fixed) or step
+    /// control (automatic) can produce ([`Stepper::most_increments`]), at
+    /// most [`MAX_RESUMED_INCREMENTS`].
+    pub increments: usize,
+    /// Bytes of `restart.bin`: the state (dofs, Gauss points, interface
+    /// points), the stepping state, and per increment its curve row, joint
+    /// rows and VTU entry, with room for the section table.
+    pub restart_bytes: u64,
+    /// Bytes of one `interface/NNNN.csv` (512 per interface pair and its name).
+    pub csv_bytes: u64,
+    /// Bytes of one `vtu/NNNN.vtu` (512 per node, 256 per element: at most
+    /// 16 numbers of 25 characters per node).
+    pub vtu_bytes: u64,
+}
+
+impl Bounds {
+    pub fn of(model: &Model) -> Bounds {
+        let st = Stepper::for_model(model);
+        let increments = st.most_increments().min(MAX_RESUMED_INCREMENTS) as u64;
+        let nu = model.mesh.num_dofs() as u64;
+        let ng = (model.mesh.elements.len() * model.n_gauss()) as u64;
+        let np: u64 = model.interfaces.iter().map(|i| i.points.len() as u64).sum();
+        let ni = model.interfaces.len() as u64;
+        let body = model.mesh.bodies.iter().map(|b| b.len()).max().unwrap_or(0) as u64;
+        // 8-byte values besides the per-increment rows: u and last_du, the
+        // Gauss and contact states, joint totals, the pending schedule (its
+        // rest and at most one halved target per cutback), the waypoints,
+        // and the scalars
+        let words = 2 * nu
+            + PointState::PACKED as u64 * ng
+            + ContactState::PACKED as u64 * np
+            + 2 * ni
+            + 2 * (st.pending.len() as u64 + st.max_cutbacks() as u64 + 1)
+            + st.waypoints.len() as u64
+            + 32;
+        let per_increment =
+            8 * (10 + JointMeasures::PACKED as u64 * ni + 1) + MAX_VTU_NAME as u64 + 1;
+        let table = 36 + u64::from(MAX_SECTIONS) * (11 + MAX_SECTION_NAME as u64);
+        let restart_bytes = table
+            .saturating_add(8 * words + np + body)
+            .saturating_add(per_increment.saturating_mul(increments))
+            // unknown sections of a later build
+            .saturating_add(64 << 10);
+        let pairs: u64 = model.interfaces.iter().map(|i| i.pairs.len() as u64).sum();
+        let name = model
+            .interfaces
+            .iter()
+            .map(|i| i.name.len())
+            .max()
+            .unwrap_or(0) as u64;
+        Bounds {
+            increments: increments as usize,
+            restart_bytes,
+            csv_bytes: 1024 + pairs * (512 + 2 * name),
+            vtu_bytes: (64 << 10)
+                + 512 * model.mesh.nodes.len() as u64
+                + 256 * model.mesh.elements.len() as u64,
+        }
+    }
+}
+
+/// The file the writer gives increment `k`'s interface state.
+pub fn interface_name(k: usize) -> String {
+    format!("interface/{k:04}.csv")
+}
+
+/// The file the writer gives increment `k`'s VTU output.
+pub fn vtu_name(k: usize) -> String {
+    format!("vtu/{k:04}.vtu")
+}
+
+/// The increment of a VTU name of exactly the writer's form
+/// ([`vtu_name`]); `None` for any other name (`..`, absolute, another
+/// folder, leading zeros beyond four digits, …).
+fn vtu_increment(name: &str) -> Option<usize> {
+    let digits = name.strip_prefix("vtu/")?.strip_suffix(".vtu")?;
+    if digits.is_empty() || digits.len() > 20 || !digits.bytes().all(|b| b.is_ascii_digit()) {
+        return None;
+    }
+    let k: usize = digits.parse().ok()?;
+    (vtu_name(k) == name).then_some(k)
+}
+
+/// The files a resumed run copies from the restart folder, with the size
+/// bound of each: the interface CSV of every converged increment, the VTU
+/// series, and `restart.bin` itself (kept if no further increment converges).
+pub fn folder_files(b: &Bounds, increments: usize, pvd: &[(f64, String)]) -> Vec<(String, u64)> {
+    let mut files: Vec<(String, u64)> = (1..=increments)
+        .map(|k| (interface_name(k), b.csv_bytes))
+        .collect();
+    files.extend(pvd.iter().map(|p| (p.1.clone(), b.vtu_bytes)));
+    files.push((FILE.to_string(), b.restart_bytes));
+    files
+}
+
+/// Opens the file `rel` of the restart folder `dir` for reading. `rel` must
+/// be a plain relative name (no `..`, not absolute); neither the file nor a
+/// folder on the way may be a symbolic link (checked on each component, and
+/// the file opened with `O_NOFOLLOW`); the file must be a regular file (not a
+/// FIFO or a device: opened non-blocking, checked again on the open file) of
+/// at most `limit` bytes. Returns the file and its size; the error is a
+/// message for the restart file's line.
+fn open_in(dir: &Path, rel: &str, limit: u64) -> Decoded<(std::fs::File, u64)> {
+    let what = if rel == FILE {
+        "the restart file".to_string()
+    } else {
+        rel.to_string()
+    };
+    let parts: Vec<&str> = rel.split('/').collect();
+    let plain = |c: &str| !c.is_empty() && c != "." && c != ".." && !c.contains(['\\', '\0']);
+    if !parts.iter().all(|c| plain(c)) {
+        return Err(format!(
+            "{what}: not a plain name inside the restart folder"
+        ));
+    }
+    let mut p = dir.to_path_buf();
+    for (i, c) in parts.iter().enumerate() {
+        p.push(c);
+        let m = std::fs::symlink_metadata(&p).map_err(|e| format!("{what}: {e}"))?;
+        let t = m.file_type();
+        if t.is_symlink() {
+            let link = if i + 1 < parts.len() {
+                format!("{what}: its folder {} is", parts[..=i].join("/"))
+            } else {
+                format!("{what} is")
+            };
+            return Err(format!(
+                "{link} a symbolic link: every file of a restart folder must be a regular file inside it"
+            ));
+        }
+        if i + 1 < parts.len() && !t.is_dir() {
+            return Err(format!("{what}: {c} is not a folder"));
+        }
+    }
+    let kind = |m: &std::fs::Metadata| {
+        if m.is_dir() {
+            "a folder"
+        } else {
+            "a device, FIFO or socket"
+        }
+    };
+    let check = |m: &std::fs::Metadata| -> Decoded<u64> {
+        if !m.is_file() {
+            return Err(format!("{what} is {}, not a regular file", kind(m)));
+        }
+        if m.len() > limit {
+            return Err(format!(
+                "{what} has {} bytes, more than the {limit} bytes this case can need",
+                m.len()
+            ));
+        }
+        Ok(m.len())
+    };
+    check(&std::fs::symlink_metadata(&p).map_err(|e| format!("{what}: {e}"))?)?;
+    let mut opts = std::fs::OpenOptions::new();
+    opts.read(true);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::OpenOptionsExt;
+        opts.custom_flags(libc::O_NOFOLLOW | libc::O_NONBLOCK);
+    }
+    let f = opts.open(&p).map_err(|e| format!("{what}: {e}"))?;
+    // the file opened is the one checked (not one swapped in since)
+    let len = check(&f.metadata().map_err(|e| format!("{what}: {e}"))?)?;
+    Ok((f, len))
+}
+
+/// Copies the restart folder's file `rel` (a name from [`folder_files`],
+/// at most `limit` bytes) into the same place under `to` (the fresh
+/// temporary output folder): the source is opened as [`open_in`] opens it,
+/// the destination created new (an existing file or link there is an error,
+/// never followed or truncated).
+pub fn copy_in(dir: &Path, rel: &str, limit: u64, to: &Path) -> Result<()> {
+    let place = || dir.join(FILE).display().to_string();
+    let (from, _) = open_in(dir, rel, limit).map_err(|m| Error::input(place(), m))?;
+    let dest = to.join(rel);
+    debug_assert!(Path::new(rel)
+        .components()
+        .all(|c| matches!(c, std::path::Component::Normal(_))));
+    let out = std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&dest)
+        .map_err(|e| Error::io(&dest, e))?;
+    let mut w = std::io::BufWriter::new(out);
+    let n = std::io::copy(&mut std::io::Read::take(from, limit + 1), &mut w)
+        .map_err(|e| Error::io(&dest, e))?;
+    if n > limit {
+        return Err(Error::input(
+            place(),
+            format!("{rel} grew beyond {limit} bytes while it was copied"),
+        ));
+    }
+    w.flush().map_err(|e| Error::io(&dest, e))
+}
+
+/// Reads `restart.bin` in `dir` for `model`: the checkpoint and the VTU
+/// series. Everything read from the folder is checked against the model
+/// before it is used: the file's size (against [`Bounds`], before it is
+/// read), every section ([`decode`]), and every file a resumed run copies
+/// ([`folder_files`]: regular files inside the folder, no links, bounded
+/// sizes). Any mismatch is an input error naming the restart file.
 pub fn read(dir: &Path, model: &Model) -> Result<(Checkpoint, Vec<(f64, String)>)> {
-    let path = dir.join(FILE);
-    // a regular file only (not a FIFO or a device that never ends); the bound
-    // is far above any checkpoint of a model within the element cap
-    let bytes = crate::case::read_input(&path, 64 << 30, "restart file")?;
-    decode(&bytes, model).map_err(|m| Error::input(path.display().to_string(), m))
+    let place = dir.join(FILE).display().to_string();
+    let refuse = |m: String| Error::input(place.clone(), m);
+    let b = Bounds::of(model);
+    let (file, len) = open_in(dir, FILE, b.restart_bytes).map_err(refuse)?;
+    let mut bytes = Vec::with_capacity(len as usize);
+    std::io::Read::read_to_end(
+        &mut std::io::Read::take(file, b.restart_bytes + 1),
+        &mut bytes,
+    )
+    .map_err(|e| Error::io(dir.join(FILE), e))?;
+    let (ck, pvd) = decode_with(&bytes, model, &b).map_err(refuse)?;
+    for (rel, limit) in folder_files(&b, ck.increments.len(), &pvd) {
+        open_in(dir, &rel, limit).map_err(refuse)?;
+    }
+    Ok((ck, pvd))
 }
 
 struct Reader<'a> {
@@ -409,21 +673,44 @@ impl<'a> Reader<'a> {
 type Decoded<T> = std::result::Result<T, String>;
 
 /// Decodes and checks a restart file against the model it is meant for.
+/// The checksum and the fingerprint only catch accidents (anyone can compute
+/// them): every value is also checked against what the case allows.
 pub fn decode(
     bytes: &[u8],
     model: &Model,
 ) -> std::result::Result<(Checkpoint, Vec<(f64, String)>), String> {
+    decode_with(bytes, model, &Bounds::of(model))
+}
+
+fn decode_with(
+    bytes: &[u8],
+    model: &Model,
+    b: &Bounds,
+) -> std::result::Result<(Checkpoint, Vec<(f64, String)>), String> {
+    if bytes.len() as u64 > b.restart_bytes {
+        return Err(format!(
+            "{} bytes, more than the {} bytes a restart file of this case can have",
+            bytes.len(),
+            b.restart_bytes
+        ));
+    }
     let mut r = check_header(bytes, model)?;
     let s = Sections(read_sections(&mut r)?);
     let mut ck = Checkpoint::initial(model);
-    let increments = *s.u("increment")?.first().ok_or("empty increment")? as usize;
-    restore_stepper(&mut ck, &s)?;
+    let increments = s.u("increment", Some(1))?[0];
+    if increments > b.increments as u64 {
+        return Err(format!(
+            "section increment: {increments} increments, more than this case can take ({})",
+            b.increments
+        ));
+    }
+    ck.increments = restore_curve(&s, increments as usize)?;
+    restore_stepper(&mut ck, &s, model)?;
     restore_state(&mut ck, &s)?;
     ck.committed.time = ck.lambda;
-    ck.increments = restore_curve(&s, increments)?;
     restore_joints(&mut ck, &s, model.interfaces.len())?;
-    ck.first_yield = restore_first_yield(&s)?;
-    let pvd = restore_vtu_series(&s)?;
+    ck.first_yield = restore_first_yield(&s, model, &ck.increments)?;
+    let pvd = restore_vtu_series(&s, model, &ck.increments)?;
     Ok((ck, pvd))
 }
 
@@ -458,22 +745,42 @@ fn check_header<'a>(bytes: &'a [u8], model: &Model) -> Decoded<Reader<'a>> {
     Ok(r)
 }
 
-/// Reads the section table by name; the sections must end where the
-/// checksum begins.
+/// Reads the section table by name: at most [`MAX_SECTIONS`] sections of
+/// distinct UTF-8 names, each within the bytes that remain (checked before
+/// its data is copied); the sections must end where the checksum begins.
 fn read_sections(r: &mut Reader) -> Decoded<BTreeMap<String, Data>> {
     let n = r.u32()?;
+    if n > MAX_SECTIONS {
+        return Err(format!(
+            "{n} sections, more than the {MAX_SECTIONS} a restart file may have"
+        ));
+    }
     let mut map: BTreeMap<String, Data> = BTreeMap::new();
-    for _ in 0..n {
+    for i in 0..n {
         let len = r.u16()? as usize;
-        let name = String::from_utf8_lossy(r.take(len)?).into_owned();
+        if len > MAX_SECTION_NAME {
+            return Err(format!(
+                "section {}: a name of {len} bytes, more than {MAX_SECTION_NAME}",
+                i + 1
+            ));
+        }
+        let name = std::str::from_utf8(r.take(len)?)
+            .map_err(|_| format!("section {}: the name is not UTF-8", i + 1))?
+            .to_string();
         let kind = r.take(1)?[0];
-        let count = usize::try_from(r.u64()?).map_err(|_| "bad section size")?;
+        let count = r.u64()?;
         let width = match kind {
             1 | 2 => 8,
             3 | 4 => 1,
             k => return Err(format!("section {name}: unknown kind {k}")),
         };
-        let raw = r.take(count.checked_mul(width).ok_or("bad section size")?)?;
+        let size = count
+            .checked_mul(width)
+            .filter(|&s| s <= (r.b.len() - r.at) as u64)
+            .ok_or_else(|| {
+                format!("section {name}: {count} values, more than the file holds (truncated?)")
+            })?;
+        let raw = r.take(size as usize)?;
         let data = match kind {
             1 => Data::F64(
                 raw.chunks_exact(8)
@@ -490,7 +797,9 @@ fn read_sections(r: &mut Reader) -> Decoded<BTreeMap<String, Data>> {
                 String::from_utf8(raw.to_vec()).map_err(|_| format!("section {name}: bad text"))?,
             ),
         };
-        map.insert(name, data);
+        if map.insert(name.clone(), data).is_some() {
+            return Err(format!("section {name} appears twice"));
+        }
     }
     if r.at != r.b.len() {
         return Err("trailing bytes after the last section".into());
@@ -514,10 +823,21 @@ impl Sections {
             _ => Err(format!("section {name} (f64) missing")),
         }
     }
-    /// The u64 section `name`.
-    fn u(&self, name: &str) -> Decoded<&Vec<u64>> {
+    /// [`Sections::f`] with every value finite.
+    fn finite(&self, name: &str, len: Option<usize>) -> Decoded<&Vec<f64>> {
+        let v = self.f(name, len)?;
+        all_finite(name, v)?;
+        Ok(v)
+    }
+    /// The u64 section `name`, of exactly `len` values when given.
+    fn u(&self, name: &str, len: Option<usize>) -> Decoded<&Vec<u64>> {
         match self.0.get(name) {
-            Some(Data::U64(v)) => Ok(v),
+            Some(Data::U64(v)) if len.is_none_or(|l| l == v.len()) => Ok(v),
+            Some(Data::U64(v)) => Err(format!(
+                "section {name} has {} values, expected {}",
+                v.len(),
+                len.unwrap_or(0)
+            )),
             _ => Err(format!("section {name} (u64) missing")),
         }
     }
@@ -530,12 +850,96 @@ impl Sections {
     }
 }
 
-/// The load stepping: load factor, last step and predictor direction, the
-/// pending schedule, the automatic step control, cutbacks and counters.
-fn restore_stepper(ck: &mut Checkpoint, s: &Sections) -> Decoded<()> {
+/// Every value of section `name` finite, else the first one that is not.
+fn all_finite(name: &str, v: &[f64]) -> Decoded<()> {
+    match v.iter().position(|x| !x.is_finite()) {
+        Some(i) => Err(format!(
+            "section {name}: value {} is not finite ({})",
+            i + 1,
+            v[i]
+        )),
+        None => Ok(()),
+    }
+}
+
+/// A count stored as a float in the curve: a whole number ≥ 0 (below 2^53,
+/// where floats hold every integer).
+fn whole(v: f64) -> Option<usize> {
+    ((0.0..9.007_199_254_740_992e15).contains(&v) && v.fract() == 0.0).then_some(v as usize)
+}
+
+/// The load curve: one row of 10 values per converged increment, numbered
+/// 1, 2, … in order, with whole iteration and cutback counts and finite
+/// load factors and measures.
+fn restore_curve(s: &Sections, increments: usize) -> Decoded<Vec<Increment>> {
+    let rows = s.finite("curve", Some(10 * increments))?;
+    rows.chunks_exact(10)
+        .enumerate()
+        .map(|(i, v)| {
+            let k = i + 1;
+            if whole(v[0]) != Some(k) {
+                return Err(format!("section curve: row {k} is numbered {}", v[0]));
+            }
+            let (Some(iterations), Some(cutbacks)) = (whole(v[2]), whole(v[3])) else {
+                return Err(format!(
+                    "section curve: row {k}: {} iterations, {} cutbacks (not whole numbers)",
+                    v[2], v[3]
+                ));
+            };
+            Ok(Increment {
+                increment: k,
+                load_factor: v[1],
+                iterations,
+                cutbacks,
+                measures: Measures {
+                    normal_force: v[4],
+                    mean_pressure: v[5],
+                    total_load_kn: v[6],
+                    center_displacement: v[7],
+                    max_peeq: v[8],
+                    prescribed_reaction: v[9],
+                },
+                joints: Vec::new(),
+            })
+        })
+        .collect()
+}
+
+/// The load stepping, checked against the case: the curve's increments are
+/// replayed from the case's own stepper ([`Stepper::replay`]), and the
+/// stored load factor, last step, pending schedule (fixed) or waypoints
+/// (automatic) must be what that leaves, so a resumed run always continues
+/// to the end of the case's load history. The automatic step size must lie
+/// between the case's smallest and largest step; there are no failures or
+/// cutbacks pending after a converged increment, and the total of cutbacks
+/// is the curve's.
+fn restore_stepper(ck: &mut Checkpoint, s: &Sections, model: &Model) -> Decoded<()> {
     let nu = ck.committed.u.len();
-    ck.lambda = s.f("load_factor", Some(1))?[0];
-    ck.last_step = s.f("last_step", Some(1))?[0];
+    let incs = &ck.increments;
+    let path: Vec<(f64, usize)> = incs.iter().map(|i| (i.load_factor, i.cutbacks)).collect();
+    let mut expect = Stepper::for_model(model);
+    let initial = expect.clone();
+    expect
+        .replay(&path)
+        .map_err(|m| format!("section curve: {m}"))?;
+    let n = incs.len();
+    let at = |k: usize| if k == 0 { 0.0 } else { incs[k - 1].load_factor };
+    ck.lambda = s.finite("load_factor", Some(1))?[0];
+    if ck.lambda.to_bits() != at(n).to_bits() {
+        return Err(format!(
+            "section load_factor: load factor {}, but increment {n} ended at {}",
+            ck.lambda,
+            at(n)
+        ));
+    }
+    ck.last_step = s.finite("last_step", Some(1))?[0];
+    let step = if n == 0 { 0.0 } else { at(n) - at(n - 1) };
+    if ck.last_step.to_bits() != step.to_bits() {
+        return Err(format!(
+            "section last_step: {}, but the curve's last step is {step}",
+            ck.last_step
+        ));
+    }
     // the predictor's direction; absent from files of earlier builds (the
     // next increment then starts from the committed state)
     if let Some(Data::F64(v)) = s.0.get("last_du") {
@@ -545,85 +949,154 @@ fn restore_stepper(ck: &mut Checkpoint, s: &Sections) -> Decoded<()> {
                 v.len()
             ));
         }
+        all_finite("last_du", v)?;
         ck.last_du = v.clone();
     }
     let pl = s.f("pending_load_factor", None)?;
-    let pd = s.u("pending_depth")?;
+    let pd = s.u("pending_depth", None)?;
     if pl.len() != pd.len() {
         return Err("pending schedule: lengths differ".into());
     }
-    ck.stepper.pending = pl.iter().zip(pd).map(|(&l, &d)| (l, d as usize)).collect();
-    ck.stepper.waypoints = s.f("auto_waypoints", None)?.clone();
-    ck.stepper.step = s.f("auto_step", Some(1))?[0];
-    ck.stepper.failures = *s.u("auto_failures")?.first().ok_or("empty auto_failures")? as usize;
-    let cb = s.u("cutbacks")?;
-    let ct = s.u("counters")?;
-    if cb.len() != 2 || ct.len() != 2 {
-        return Err("cutbacks/counters: expected 2 values".into());
+    let pending: Vec<(f64, usize)> = pl.iter().zip(pd).map(|(&l, &d)| (l, d as usize)).collect();
+    let waypoints = s.f("auto_waypoints", None)?;
+    let auto = expect.mode() == crate::case::StepControl::Auto;
+    // the mode not in force never changes its part of the stepper
+    let (want_pending, want_waypoints) = if auto {
+        (&initial.pending, &expect.waypoints)
+    } else {
+        (&expect.pending, &initial.waypoints)
+    };
+    if !same_schedule(&pending, want_pending) {
+        return Err(format!(
+            "the pending schedule (section pending_load_factor) is not what the case's schedule leaves after increment {n}: {} found, {} expected",
+            describe(pending.iter().map(|p| p.0)),
+            describe(want_pending.iter().map(|p| p.0))
+        ));
     }
-    (ck.cutbacks_total, ck.cutbacks_here) = (cb[0] as usize, cb[1] as usize);
+    if !same_values(waypoints, want_waypoints) {
+        return Err(format!(
+            "the waypoints (section auto_waypoints) are not the case's load history after increment {n}: {} found, {} expected",
+            describe(waypoints.iter().copied()),
+            describe(want_waypoints.iter().copied())
+        ));
+    }
+    ck.stepper = expect;
+    let step = s.f("auto_step", Some(1))?[0];
+    let (lo, hi) = ck.stepper.step_bounds();
+    let fits = if auto {
+        step.is_finite() && step >= lo * 0.999_999 && step <= hi
+    } else {
+        step.to_bits() == initial.step.to_bits()
+    };
+    if !fits {
+        return Err(if auto {
+            format!("section auto_step: step {step}, outside the case's steps [{lo}, {hi}]")
+        } else {
+            format!(
+                "section auto_step: {step}, but fixed steps leave it at {}",
+                initial.step
+            )
+        });
+    }
+    ck.stepper.step = step;
+    let failures = s.u("auto_failures", Some(1))?[0];
+    let cb = s.u("cutbacks", Some(2))?;
+    let total: u64 = incs.iter().map(|i| i.cutbacks as u64).sum();
+    if failures != 0 || cb[1] != 0 || cb[0] != total {
+        return Err(format!(
+            "sections auto_failures/cutbacks: {failures} failures and {} cutbacks pending, {} cutbacks in all, where a converged increment leaves none pending and the curve counts {total}",
+            cb[1], cb[0]
+        ));
+    }
+    ck.stepper.failures = 0;
+    (ck.cutbacks_total, ck.cutbacks_here) = (total as usize, 0);
+    let ct = s.u("counters", Some(2))?;
     (ck.iterations, ck.factorizations) = (ct[0] as usize, ct[1] as usize);
-    ck.elastic_ratio_prev = s.f("elastic_ratio_prev", Some(1))?[0];
+    ck.elastic_ratio_prev = s.finite("elastic_ratio_prev", Some(1))?[0];
+    if ck.elastic_ratio_prev < 0.0 {
+        return Err(format!(
+            "section elastic_ratio_prev: {} is negative",
+            ck.elastic_ratio_prev
+        ));
+    }
     Ok(())
 }
 
+fn same_values(a: &[f64], b: &[f64]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
+}
+
+fn same_schedule(a: &[(f64, usize)], b: &[(f64, usize)]) -> bool {
+    a.len() == b.len()
+        && a.iter()
+            .zip(b)
+            .all(|(x, y)| x.0.to_bits() == y.0.to_bits() && x.1 == y.1)
+}
+
+/// "N targets, last L" of a list stored last first.
+fn describe(v: impl Iterator<Item = f64>) -> String {
+    let v: Vec<f64> = v.collect();
+    match v.first() {
+        Some(l) => format!("{} targets to λ = {l}", v.len()),
+        None => "none".into(),
+    }
+}
+
 /// The committed state: displacements, Gauss points, interface status and
-/// contact state, and the prescribed reaction, each sized for the model.
+/// contact state, and the prescribed reaction, each sized for the model,
+/// every value finite, status codes valid, ε̄ᵖ ≥ 0 and the yielding flag 0 or 1.
 fn restore_state(ck: &mut Checkpoint, s: &Sections) -> Decoded<()> {
     let c = &mut ck.committed;
     let (ng, np, nu) = (c.gauss.len(), c.status.len(), c.u.len());
-    c.u.copy_from_slice(s.f("u", Some(nu))?);
-    for (p, v) in c.gauss.iter_mut().zip(
-        s.f("gauss", Some(PointState::PACKED * ng))?
-            .chunks_exact(PointState::PACKED),
-    ) {
+    c.u.copy_from_slice(s.finite("u", Some(nu))?);
+    let gauss = s.finite("gauss", Some(PointState::PACKED * ng))?;
+    for (i, (p, v)) in c
+        .gauss
+        .iter_mut()
+        .zip(gauss.chunks_exact(PointState::PACKED))
+        .enumerate()
+    {
+        if v[8] < 0.0 || (v[9] != 0.0 && v[9] != 1.0) {
+            return Err(format!(
+                "section gauss: Gauss point {}: equivalent plastic strain {} and yielding flag {} (≥ 0, and 0 or 1 expected)",
+                i + 1,
+                v[8],
+                v[9]
+            ));
+        }
         *p = PointState::unpack(v);
     }
     match s.0.get("status") {
         Some(Data::U8(v)) if v.len() == np => {
-            c.status = v.iter().map(|&code| Status::from_code(code)).collect();
+            for (i, (st, &code)) in c.status.iter_mut().zip(v).enumerate() {
+                *st = Status::checked(code).ok_or_else(|| {
+                    format!(
+                        "section status: interface point {}: code {code} is no status",
+                        i + 1
+                    )
+                })?;
+            }
         }
         _ => return Err(format!("section status: expected {np} codes")),
     }
     for (p, v) in c.contact.iter_mut().zip(
-        s.f("contact", Some(ContactState::PACKED * np))?
+        s.finite("contact", Some(ContactState::PACKED * np))?
             .chunks_exact(ContactState::PACKED),
     ) {
         *p = ContactState::unpack(v);
     }
-    c.prescribed_reaction = s.f("prescribed_reaction", Some(1))?[0];
+    c.prescribed_reaction = s.finite("prescribed_reaction", Some(1))?[0];
     Ok(())
-}
-
-/// The load curve: one row of 10 values per converged increment.
-fn restore_curve(s: &Sections, increments: usize) -> Decoded<Vec<Increment>> {
-    let rows = s.f("curve", Some(10 * increments))?;
-    Ok(rows
-        .chunks_exact(10)
-        .map(|v| Increment {
-            increment: v[0] as usize,
-            load_factor: v[1],
-            iterations: v[2] as usize,
-            cutbacks: v[3] as usize,
-            measures: Measures {
-                normal_force: v[4],
-                mean_pressure: v[5],
-                total_load_kn: v[6],
-                center_displacement: v[7],
-                max_peeq: v[8],
-                prescribed_reaction: v[9],
-            },
-            joints: Vec::new(),
-        })
-        .collect())
 }
 
 /// The joint energy totals and every increment's joint measures, when the
 /// file has them (a file of an earlier build has neither: the totals start
-/// from zero, the earlier increments keep no joint measures).
+/// from zero, the earlier increments keep no joint measures). Totals are
+/// finite; an increment's row is either finite or all NaN (an increment
+/// restored from a file of an earlier build), and NaN rows come first.
 fn restore_joints(ck: &mut Checkpoint, s: &Sections, interfaces: usize) -> Decoded<()> {
     if s.0.contains_key("joint_totals") {
-        let v = s.f("joint_totals", Some(2 * interfaces))?;
+        let v = s.finite("joint_totals", Some(2 * interfaces))?;
         ck.joint_totals = v
             .chunks_exact(2)
             .map(|t| JointTotals {
@@ -635,37 +1108,83 @@ fn restore_joints(ck: &mut Checkpoint, s: &Sections, interfaces: usize) -> Decod
     if s.0.contains_key("joints") {
         let w = JointMeasures::PACKED * interfaces;
         let v = s.f("joints", Some(w * ck.increments.len()))?;
+        let mut measured = false;
         for (inc, row) in ck.increments.iter_mut().zip(v.chunks_exact(w.max(1))) {
-            if !row[0].is_nan() {
-                inc.joints = row
-                    .chunks_exact(JointMeasures::PACKED)
-                    .map(JointMeasures::unpack)
-                    .collect();
+            if row.iter().all(|x| x.is_nan()) && !measured {
+                continue;
             }
+            if let Some(x) = row.iter().find(|x| !x.is_finite()) {
+                return Err(format!(
+                    "section joints: increment {}: a value {x} (a row is finite, or all NaN before the first finite one)",
+                    inc.increment
+                ));
+            }
+            measured = true;
+            inc.joints = row
+                .chunks_exact(JointMeasures::PACKED)
+                .map(JointMeasures::unpack)
+                .collect();
         }
     }
     Ok(())
 }
 
-/// The first yield, if the run had reached it.
-fn restore_first_yield(s: &Sections) -> Decoded<Option<FirstYield>> {
+/// The first yield, if the run had reached it: finite values, a load factor
+/// the curve passed, an element of the mesh and the name of its body.
+fn restore_first_yield(
+    s: &Sections,
+    model: &Model,
+    incs: &[Increment],
+) -> Decoded<Option<FirstYield>> {
     if !s.0.contains_key("first_yield") {
         return Ok(None);
     }
-    let v = s.f("first_yield", Some(6))?;
+    let v = s.finite("first_yield", Some(6))?;
+    let (lo, hi) = incs.iter().fold((0.0f64, 0.0f64), |(l, h), i| {
+        (l.min(i.load_factor), h.max(i.load_factor))
+    });
+    if !(lo..=hi).contains(&v[0]) {
+        return Err(format!(
+            "section first_yield: load factor {}, outside the curve's [{lo}, {hi}]",
+            v[0]
+        ));
+    }
+    let element = whole(v[5])
+        .filter(|&e| e < model.mesh.elements.len())
+        .ok_or_else(|| {
+            format!(
+                "section first_yield: element {}, the mesh has {}",
+                v[5],
+                model.mesh.elements.len()
+            )
+        })?;
+    let body = s.text("first_yield_body")?;
+    let expect = &model.mesh.bodies[model.mesh.elements[element].body];
+    if body != expect {
+        return Err(format!(
+            "section first_yield_body: \"{body}\", but element {element} is in \"{expect}\""
+        ));
+    }
     Ok(Some(FirstYield {
         load_factor: v[0],
         mean_pressure: v[1],
         total_load_kn: v[2],
         x: v[3],
         depth: v[4],
-        element: v[5] as usize,
-        body: s.text("first_yield_body")?.to_string(),
+        element,
+        body: body.to_string(),
     }))
 }
 
-/// The VTU series written so far: (load factor, file name) pairs.
-fn restore_vtu_series(s: &Sections) -> Decoded<Vec<(f64, String)>> {
+/// The VTU series written so far: (load factor, file name) pairs. Every name
+/// is of the writer's form `vtu/NNNN.vtu` for a converged increment (in
+/// increasing order, none with `vtu = false`), its load factor that
+/// increment's.
+fn restore_vtu_series(
+    s: &Sections,
+    model: &Model,
+    incs: &[Increment],
+) -> Decoded<Vec<(f64, String)>> {
     let pl = s.f("pvd_load_factor", None)?;
     let pf = s.text("pvd_file")?;
     let files: Vec<&str> = if pf.is_empty() {
@@ -675,6 +1194,29 @@ fn restore_vtu_series(s: &Sections) -> Decoded<Vec<(f64, String)>> {
     };
     if files.len() != pl.len() {
         return Err("VTU series: lengths differ".into());
+    }
+    if !model.output.vtu && !files.is_empty() {
+        return Err("VTU series: the case writes no VTU files ([output] vtu = false)".into());
+    }
+    let mut last = 0;
+    for (i, (&l, f)) in pl.iter().zip(&files).enumerate() {
+        let k = vtu_increment(f)
+            .filter(|&k| k > last && k <= incs.len())
+            .ok_or_else(|| {
+                format!(
+                    "VTU series entry {}: {f:?} is not a name this program writes here (vtu/NNNN.vtu for an increment after {last}, at most {})",
+                    i + 1,
+                    incs.len()
+                )
+            })?;
+        if l.to_bits() != incs[k - 1].load_factor.to_bits() {
+            return Err(format!(
+                "VTU series entry {}: load factor {l}, but increment {k} is at {}",
+                i + 1,
+                incs[k - 1].load_factor
+            ));
+        }
+        last = k;
     }
     Ok(pl
         .iter()
@@ -704,5 +1246,163 @@ mod tests {
         let mut other = bytes.clone();
         other[997] ^= 1;
         assert_ne!(fnv1a(&other), whole);
+    }
+
+    fn model() -> Model {
+        Model::parse(
+            include_str!("../cases/punch-plane-stress/case.toml"),
+            "case.toml",
+        )
+        .unwrap()
+    }
+
+    /// A checkpoint after `n` increments of the case's schedule, as a run
+    /// leaves it (no solve: the state stays the initial one), with a VTU
+    /// file per increment.
+    fn checkpoint(model: &Model, n: usize) -> (Checkpoint, Vec<(f64, String)>) {
+        let mut ck = Checkpoint::initial(model);
+        let mut pvd = Vec::new();
+        for k in 1..=n {
+            let t = ck.stepper.next(ck.lambda).unwrap();
+            ck.stepper.accepted(ck.lambda, t, 3, 0.0);
+            ck.last_step = t - ck.lambda;
+            ck.lambda = t;
+            ck.increments.push(Increment {
+                increment: k,
+                load_factor: t,
+                iterations: 3,
+                cutbacks: 0,
+                measures: Measures::default(),
+                joints: vec![JointMeasures::default(); model.interfaces.len()],
+            });
+            pvd.push((t, vtu_name(k)));
+        }
+        (ck, pvd)
+    }
+
+    #[test]
+    fn vtu_names_are_only_the_writers_own() {
+        for (k, name) in [
+            (1, "vtu/0001.vtu"),
+            (12, "vtu/0012.vtu"),
+            (12345, "vtu/12345.vtu"),
+        ] {
+            assert_eq!(vtu_name(k), name);
+            assert_eq!(vtu_increment(name), Some(k));
+        }
+        for bad in [
+            "vtu/001.vtu",
+            "vtu/00001.vtu",
+            "vtu/+001.vtu",
+            "vtu/0001.vtu/",
+            "vtu//0001.vtu",
+            "vtu/../0001.vtu",
+            "/vtu/0001.vtu",
+            "./vtu/0001.vtu",
+            "vtu\\0001.vtu",
+            "interface/0001.csv",
+            "vtu/0001.VTU",
+            "vtu/99999999999999999999999.vtu",
+            "",
+        ] {
+            assert_eq!(vtu_increment(bad), None, "{bad}");
+        }
+    }
+
+    /// The checks of [`decode`] on checkpoints that encode cleanly (as a
+    /// forger would write them): each one changed field is refused with
+    /// its own message, the unchanged one restores exactly.
+    #[test]
+    fn decode_refuses_what_the_case_cannot_have_produced() {
+        let model = model();
+        let (ck, pvd) = checkpoint(&model, 4);
+        let (back, series) = decode(&encode(&model, &ck, &pvd), &model).unwrap();
+        assert_eq!(series, pvd);
+        assert_eq!(back.lambda.to_bits(), ck.lambda.to_bits());
+        assert_eq!(back.stepper.pending, ck.stepper.pending);
+        assert_eq!(back.increments.len(), 4);
+        let refused = |ck: &Checkpoint, pvd: &[(f64, String)], needle: &str| {
+            let e = decode(&encode(&model, ck, pvd), &model).unwrap_err();
+            assert!(e.contains(needle), "{needle}: {e}");
+        };
+        // names: a path outside, an increment not converged, out of order
+        for name in ["../x.vtu", "vtu/0005.vtu", "vtu/0001.vtu"] {
+            let mut p = pvd.clone();
+            p[1].1 = name.into();
+            refused(&ck, &p, "is not a name this program writes");
+        }
+        let mut c = ck.clone();
+        c.stepper.pending.remove(0);
+        refused(&c, &pvd, "pending schedule");
+        let mut c = ck.clone();
+        c.stepper.pending.last_mut().unwrap().1 = 1;
+        refused(&c, &pvd, "pending schedule");
+        let mut c = ck.clone();
+        c.last_step = 0.5;
+        refused(&c, &pvd, "section last_step");
+        let mut c = ck.clone();
+        c.cutbacks_total = 3;
+        refused(&c, &pvd, "cutbacks in all");
+        let mut c = ck.clone();
+        c.last_du = vec![0.0; c.committed.u.len()];
+        c.last_du[5] = f64::NAN;
+        refused(&c, &pvd, "section last_du: value 6 is not finite");
+        let mut c = ck.clone();
+        c.committed.gauss[2].peeq = -1e-3;
+        refused(&c, &pvd, "Gauss point 3: equivalent plastic strain -0.001");
+        let mut c = ck.clone();
+        c.committed.contact[0].mu_f = f64::INFINITY;
+        refused(&c, &pvd, "section contact: value 5 is not finite");
+        let mut c = ck.clone();
+        c.joint_totals[0].work = f64::NAN;
+        refused(&c, &pvd, "section joint_totals");
+        // an increment without joint rows after one with them (NaN rows
+        // only come first, from a file of an earlier build)
+        let mut c = ck.clone();
+        c.increments[2].joints.clear();
+        refused(&c, &pvd, "section joints: increment 3");
+        let mut c = ck.clone();
+        c.increments[0].joints.clear();
+        c.increments[1].joints.clear();
+        let (back, _) = decode(&encode(&model, &c, &pvd), &model).unwrap();
+        assert!(back.increments[1].joints.is_empty() && !back.increments[2].joints.is_empty());
+        let mut c = ck.clone();
+        c.increments[3].measures.max_peeq = f64::NAN;
+        refused(&c, &pvd, "section curve: value 39 is not finite");
+        let mut c = ck.clone();
+        c.elastic_ratio_prev = -1.0;
+        refused(&c, &pvd, "section elastic_ratio_prev");
+        let fy = FirstYield {
+            load_factor: 0.1,
+            mean_pressure: 1.0,
+            total_load_kn: 1.0,
+            x: 0.0,
+            depth: 0.0,
+            body: model.mesh.bodies[model.mesh.elements[7].body].clone(),
+            element: 7,
+        };
+        let mut c = ck.clone();
+        c.first_yield = Some(fy.clone());
+        assert!(decode(&encode(&model, &c, &pvd), &model).is_ok());
+        c.first_yield = Some(FirstYield {
+            element: model.mesh.elements.len(),
+            ..fy.clone()
+        });
+        refused(&c, &pvd, "section first_yield: element");
+        c.first_yield = Some(FirstYield {
+            body: "elsewhere".into(),
+            ..fy.clone()
+        });
+        refused(&c, &pvd, "section first_yield_body");
+        c.first_yield = Some(FirstYield {
+            load_factor: 0.9,
+            ..fy
+        });
+        refused(&c, &pvd, "outside the curve's");
+        // more bytes than the case can need, refused before anything is decoded
+        let mut big = encode(&model, &ck, &pvd);
+        big.resize(Bounds::of(&model).restart_bytes as usize + 1, 0);
+        let e = decode(&big, &model).unwrap_err();
+        assert!(e.contains("bytes, more than the"), "{e}");
     }
 }

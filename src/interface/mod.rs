@@ -204,15 +204,23 @@ pub enum Status {
 }
 
 impl Status {
-    /// Inverse of `status as u8` (for reductions over ranks).
+    /// Inverse of `status as u8`, for codes this process made (the sums of
+    /// the reductions over ranks): any other code is taken as open. Codes
+    /// read from a file go through [`Status::checked`].
     pub fn from_code(c: u8) -> Status {
-        match c {
+        Status::checked(c).unwrap_or_default()
+    }
+
+    /// Inverse of `status as u8`; `None` for a code that is no status.
+    pub fn checked(c: u8) -> Option<Status> {
+        Some(match c {
+            0 => Status::Open,
             1 => Status::Closed,
             2 => Status::Stick,
             3 => Status::MicroSlip,
             4 => Status::MacroSlip,
-            _ => Status::Open,
-        }
+            _ => return None,
+        })
     }
 
     /// Normal status: "open" or "closed".

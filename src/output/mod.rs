@@ -35,8 +35,10 @@ pub struct Writer {
 pub struct Resume<'a> {
     /// The output folder of the stopped run (holds restart.bin).
     pub dir: &'a Path,
-    /// Converged increments restored from it.
-    pub increments: usize,
+    /// The files to copy from it, each with its size bound
+    /// ([`crate::restart::folder_files`]: names checked by
+    /// [`crate::restart::read`]).
+    pub files: Vec<(String, u64)>,
     /// Its VTU series so far.
     pub pvd: Vec<(f64, String)>,
 }
@@ -75,15 +77,11 @@ impl Writer {
             fingerprint: None,
         };
         if let Some(r) = resume {
-            let mut files: Vec<String> = (1..=r.increments)
-                .map(|k| format!("interface/{k:04}.csv"))
-                .collect();
-            files.extend(r.pvd.iter().map(|p| p.1.clone()));
-            // kept as is if no further increment converges
-            files.push(crate::restart::FILE.to_string());
-            for f in files {
-                let (from, to) = (r.dir.join(&f), w.tmp_dir.join(&f));
-                std::fs::copy(&from, &to).map_err(|e| Error::io(&from, e))?;
+            // restart.bin is kept as is if no further increment converges;
+            // each file is opened again as the restart folder's rules say
+            // (no link, a regular file, bounded) and created new here
+            for (f, limit) in &r.files {
+                crate::restart::copy_in(r.dir, f, *limit, &w.tmp_dir)?;
             }
             w.pvd = r.pvd;
         }
@@ -185,14 +183,14 @@ pub fn replace_dir(from: &Path, to: &Path) -> Result<()> {
 impl Observer for Writer {
     fn increment(&mut self, model: &Model, state: &State, inc: &Increment) -> Result<()> {
         self.write(
-            &format!("interface/{:04}.csv", inc.increment),
+            &crate::restart::interface_name(inc.increment),
             &interface_csv(model, state),
         )?;
         let every = model.output.vtu_every;
         let last = (self.planned > 0 && inc.increment >= self.planned)
             || (inc.load_factor - self.final_load_factor).abs() <= 1e-12;
         if model.output.vtu && (inc.increment % every == 0 || last) {
-            let f = format!("vtu/{:04}.vtu", inc.increment);
+            let f = crate::restart::vtu_name(inc.increment);
             let p = self.tmp_dir.join(&f);
             let write = || -> std::io::Result<()> {
                 let mut w = std::io::BufWriter::new(std::fs::File::create(&p)?);

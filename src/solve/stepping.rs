@@ -153,6 +153,109 @@ impl Stepper {
         crate::schedule::planned(spec, breakpoints)
     }
 
+    /// The mode in force.
+    pub fn mode(&self) -> StepControl {
+        self.mode
+    }
+
+    /// Automatic control: the smallest and the largest step size.
+    pub fn step_bounds(&self) -> (f64, f64) {
+        (self.min_step, self.max_step)
+    }
+
+    /// The most increments a run from this (initial) stepper can converge:
+    /// fixed, every scheduled step halved into at most 2^`max_cutbacks`
+    /// pieces; automatic, the path through the waypoints in steps of at
+    /// least half the smallest step, plus one step onto each waypoint.
+    /// Saturates at `usize::MAX`.
+    pub fn most_increments(&self) -> usize {
+        match self.mode {
+            StepControl::Fixed => {
+                let pieces = 1usize
+                    .checked_shl(self.max_cutbacks as u32)
+                    .unwrap_or(usize::MAX);
+                self.pending.len().saturating_mul(pieces)
+            }
+            StepControl::Auto => {
+                let mut at = 0.0;
+                let mut length = 0.0;
+                for &w in self.waypoints.iter().rev() {
+                    length += (w - at).abs();
+                    at = w;
+                }
+                let steps = (length / (0.5 * self.min_step)).ceil();
+                if steps.is_finite() && steps < 1e18 {
+                    (steps as usize).saturating_add(self.waypoints.len() + 1)
+                } else {
+                    usize::MAX
+                }
+            }
+        }
+    }
+
+    /// Follows the converged increments of a run from its start (`path`: the
+    /// load factor of each and the cutbacks taken before it, in order) as
+    /// this stepper, the case's initial one, would have taken them. Fixed:
+    /// the schedule is replayed exactly (each cutback halves the step as
+    /// [`Stepper::retry`] does; each increment must land on the target that
+    /// gives, bit for bit), and `pending` ends as the run left it. Automatic:
+    /// every waypoint passed is dropped as [`Stepper::next`] drops it, and
+    /// each step must go towards the next waypoint, not past it, and not
+    /// farther than the largest step allows. `Err` names the first increment
+    /// that does not fit.
+    pub fn replay(&mut self, path: &[(f64, usize)]) -> Result<(), String> {
+        let mut lambda = 0.0;
+        for (i, &(to, cutbacks)) in path.iter().enumerate() {
+            let k = i + 1;
+            let Some(mut target) = self.next(lambda) else {
+                return Err(format!(
+                    "increment {k} (load factor {to}) comes after the end of the case's load history"
+                ));
+            };
+            match self.mode {
+                StepControl::Fixed => {
+                    // a retry never gives up without leaving `target` (the
+                    // depth bounds the loop by max_cutbacks)
+                    for _ in 0..cutbacks {
+                        match self.retry(lambda, target, Why::Failed) {
+                            Retry::At(t) => target = t,
+                            Retry::GiveUp => {
+                                return Err(format!(
+                                    "increment {k}: {cutbacks} cutbacks, more than the case allows ({})",
+                                    self.max_cutbacks
+                                ))
+                            }
+                        }
+                    }
+                    if to.to_bits() != target.to_bits() {
+                        return Err(format!(
+                            "increment {k}: load factor {to}, where the case's schedule (with {cutbacks} cutbacks) gives {target}"
+                        ));
+                    }
+                }
+                StepControl::Auto => {
+                    let w = *self.waypoints.last().expect("next gave a target");
+                    let (d, room) = (to - lambda, w - lambda);
+                    let slack = 4.0 * f64::EPSILON * lambda.abs().max(w.abs()).max(1.0);
+                    let cap = if to == w {
+                        WAYPOINT_REACH * self.max_step
+                    } else {
+                        self.max_step
+                    };
+                    let toward = d == 0.0 || d.signum() == room.signum();
+                    if !(toward && d.abs() <= room.abs() && d.abs() <= cap * (1.0 + 1e-9) + slack) {
+                        return Err(format!(
+                            "increment {k}: a step from {lambda} to {to}, where automatic control steps towards {w} by at most {cap}"
+                        ));
+                    }
+                }
+            }
+            self.accepted(lambda, to, 0, 0.0);
+            lambda = to;
+        }
+        Ok(())
+    }
+
     /// The next load factor to try from `lambda`, or `None` when the history is done.
     pub fn next(&mut self, lambda: f64) -> Option<f64> {
         match self.mode {
@@ -309,6 +412,107 @@ mod tests {
             }
         }
         panic!("no end");
+    }
+
+    /// [`drive`] that records each increment with its cutbacks and the
+    /// stepper after it (as a checkpoint holds it).
+    fn drive_recorded(
+        s: &mut Stepper,
+        its: impl Fn(f64, f64) -> usize,
+        dp: impl Fn(f64, f64) -> f64,
+    ) -> Vec<((f64, usize), Stepper)> {
+        let mut lambda = 0.0;
+        let mut out = vec![];
+        let mut cutbacks = 0;
+        let Some(mut target) = s.next(lambda) else {
+            return out;
+        };
+        for _ in 0..10_000 {
+            let n = its(lambda, target);
+            let d = dp(lambda, target);
+            let retry = if n > 30 {
+                s.retry(lambda, target, Why::Failed)
+            } else if s.too_plastic(lambda, target, d) {
+                s.retry(lambda, target, Why::TooPlastic(d))
+            } else {
+                s.accepted(lambda, target, n, d);
+                lambda = target;
+                out.push(((lambda, cutbacks), s.clone()));
+                cutbacks = 0;
+                match s.next(lambda) {
+                    Some(t) => {
+                        target = t;
+                        continue;
+                    }
+                    None => return out,
+                }
+            };
+            match retry {
+                Retry::At(t) => {
+                    cutbacks += 1;
+                    target = t
+                }
+                Retry::GiveUp => panic!("gave up at {lambda}"),
+            }
+        }
+        panic!("no end");
+    }
+
+    /// Replaying any prefix of a run's increments from the case's stepper
+    /// leaves the pending schedule (fixed) or the waypoints (automatic) the
+    /// run had after it, bit for bit: with cutbacks, unloading and
+    /// histories; a changed load factor or cutback count does not replay.
+    #[test]
+    fn a_replay_of_the_increments_gives_the_stepper_the_run_had() {
+        // fails above 0.6 unless shorter than 0.04, plastic above 0.5
+        let its = |a: f64, b: f64| {
+            if a.max(b) > 0.6 && (b - a).abs() > 0.04 {
+                99
+            } else {
+                3
+            }
+        };
+        let dp = |a: f64, b: f64| 0.1 * (b.max(0.5) - a.max(0.5)).abs();
+        let specs = [
+            "increments = 4",
+            "increments = 5\nfirst_increment = 0.05",
+            "load_factors = [0.5, 1.0, 0.3, 0.8]",
+            "step_control = \"auto\"\nfirst_increment = 0.05\nplastic_strain_step = 0.002",
+            "step_control = \"auto\"\nload_factors = [1.0, 0.2]\nfirst_increment = 0.1",
+        ];
+        for text in specs {
+            for breakpoints in [&[][..], &[0.5, 1.5, 2.0][..]] {
+                let sp = spec(text);
+                let fresh = || Stepper::with_breakpoints(&sp, breakpoints);
+                let run = drive_recorded(&mut fresh(), its, dp);
+                assert!(run.iter().any(|r| r.0 .1 > 0), "{text}: no cutback");
+                let path: Vec<(f64, usize)> = run.iter().map(|r| r.0).collect();
+                assert!(run.len() <= fresh().most_increments(), "{text}");
+                for k in 0..=run.len() {
+                    let mut s = fresh();
+                    s.replay(&path[..k])
+                        .unwrap_or_else(|e| panic!("{text}: {e}"));
+                    let want = if k == 0 {
+                        fresh()
+                    } else {
+                        run[k - 1].1.clone()
+                    };
+                    let bits = |v: &[(f64, usize)]| {
+                        v.iter().map(|p| (p.0.to_bits(), p.1)).collect::<Vec<_>>()
+                    };
+                    assert_eq!(bits(&s.pending), bits(&want.pending), "{text}, {k}");
+                    assert_eq!(s.waypoints, want.waypoints, "{text}, {k}");
+                }
+                if sp.step_mode() == StepControl::Fixed {
+                    let mut moved = path.clone();
+                    moved[1].1 += 1;
+                    assert!(fresh().replay(&moved).is_err(), "{text}");
+                }
+                let mut moved = path.clone();
+                moved[2].0 = 1e3;
+                assert!(fresh().replay(&moved).is_err(), "{text}");
+            }
+        }
     }
 
     #[test]

@@ -18,5 +18,6 @@ mod help;
 mod joints;
 mod links;
 mod output_schema;
+mod restart;
 mod robust;
 mod vtu_reader;

@@ -238,7 +238,8 @@ fn a_corrupted_truncated_or_foreign_restart_file_is_refused() {
         );
         assert!(files(&d) == before, "{name}: the folder was changed");
     }
-    // a restart.bin that is not a regular file (a device that never ends)
+    // a restart.bin that is not a regular file: a link (here to a device
+    // that never ends) or a FIFO (whose reader would wait for a writer)
     #[cfg(unix)]
     {
         let d = dir.join("device");
@@ -248,7 +249,21 @@ fn a_corrupted_truncated_or_foreign_restart_file_is_refused() {
         let (code, _, err) = run(&d, &["--restart", &ds]);
         assert_eq!(code, 2, "{err}");
         assert!(
-            err.contains("restart.bin: is a device, FIFO or socket, not a regular file"),
+            err.contains("restart.bin: the restart file is a symbolic link"),
+            "{err}"
+        );
+        let d = dir.join("fifo");
+        std::fs::create_dir_all(&d).unwrap();
+        let fifo = std::ffi::CString::new(d.join("restart.bin").display().to_string()).unwrap();
+        // SAFETY: a valid NUL-terminated path
+        assert_eq!(unsafe { libc::mkfifo(fifo.as_ptr(), 0o600) }, 0);
+        let ds = d.display().to_string();
+        let (code, _, err) = run(&d, &["--restart", &ds]);
+        assert_eq!(code, 2, "{err}");
+        assert!(
+            err.contains(
+                "restart.bin: the restart file is a device, FIFO or socket, not a regular file"
+            ),
             "{err}"
         );
     }
