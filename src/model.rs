@@ -76,26 +76,14 @@ impl Model {
         Model::build(case)
     }
 
-    /// Validates the case, generates the mesh and builds the model.
+    /// Validates the case, generates the mesh and builds the model: the case
+    /// checked key by key, the mesh made and checked as a whole, then the
+    /// materials, the interfaces and the loads and supports, each refused
+    /// with the key and place at fault.
     pub fn build(case: Case) -> Result<Model> {
         let place = case.source.display().to_string();
         let checked = check_case(&case)?;
-        let mesh = match &case.mesh.file {
-            Some(file) => {
-                let dir = case.source.parent().unwrap_or(std::path::Path::new(""));
-                gmsh::read(&dir.join(file), &case.mesh.interface, &place)?
-            }
-            None => blocks::generate(&case.mesh.block, &case.mesh.interface, case.mesh.refine)
-                .map_err(|e| Error::Mesh {
-                    place: format!("{place} [mesh]"),
-                    message: e.to_string(),
-                })?,
-        };
-        mesh.validate().map_err(|e| Error::Mesh {
-            place: place.clone(),
-            message: e.to_string(),
-        })?;
-        whole::check_mesh(&case, &mesh, &place)?;
+        let mesh = make_mesh(&case, &place)?;
         let plane = case.model.plane;
         let thickness = case.model.thickness.value();
         let section = crate::fem::Section {
@@ -106,78 +94,9 @@ impl Model {
             Integration::Full => q8::gauss_3x3(),
             Integration::Reduced => q8::gauss_2x2(),
         };
-        // materials per body
-        let mut materials = Vec::new();
-        for body in &mesh.bodies {
-            let spec = case.materials.get(body).ok_or_else(|| {
-                Error::input(
-                    &place,
-                    format!("[materials] has no entry for body \"{body}\""),
-                )
-            })?;
-            let mat = VonMises::new(
-                spec.young,
-                spec.poisson,
-                spec.yield_stress.unwrap_or(f64::INFINITY),
-                spec.hardening,
-                plane,
-            )
-            .map_err(|e| Error::input(format!("{place}: [materials.{body}]"), e))?;
-            materials.push(mat);
-        }
-        for name in case.materials.keys() {
-            if !mesh.bodies.contains(name) {
-                return Err(Error::input(
-                    format!("{place}: [materials.{name}]"),
-                    format!(
-                        "no body named \"{name}\" (bodies: {})",
-                        mesh.bodies.join(", ")
-                    ),
-                ));
-            }
-        }
-        // every element's Jacobian checked once; the geometry itself is
-        // recomputed when needed (Model::geometry)
-        for (e, el) in mesh.elements.iter().enumerate() {
-            ElementGeometry::with_section(&mesh.element_coords(e), &rule, &section).map_err(
-                |m| Error::Mesh {
-                    place: place.clone(),
-                    message: format!("element {e} of body \"{}\": {m}", mesh.bodies[el.body]),
-                },
-            )?;
-        }
-        // interfaces
-        let mut interfaces: Vec<InterfaceModel> = Vec::new();
-        for iface in &mesh.interfaces {
-            let law = checked.laws.get(&iface.name).ok_or_else(|| {
-                Error::input(
-                    &place,
-                    format!("[interface] has no law for interface \"{}\"", iface.name),
-                )
-            })?;
-            let spec = &case.interface[&iface.name];
-            interfaces.push(
-                InterfaceModel::new(
-                    &mesh,
-                    iface,
-                    law.clone(),
-                    spec.gap,
-                    spec.weights,
-                    section,
-                    spec.start_pressure,
-                    checked.tangential.get(&iface.name).cloned(),
-                )
-                .map_err(|m| Error::input(&place, m))?,
-            );
-        }
-        for name in case.interface.keys() {
-            if !mesh.interfaces.iter().any(|i| &i.name == name) {
-                return Err(Error::input(
-                    format!("{place}: [interface.{name}]"),
-                    format!("the mesh has no interface named \"{name}\""),
-                ));
-            }
-        }
+        let materials = materials(&case, &mesh, &place)?;
+        check_elements(&mesh, &rule, &section, &place)?;
+        let mut interfaces = interface_models(&case, &checked, &mesh, section, &place)?;
         let mut loads = crate::loads::build(&case, &mesh, section, &place)?;
         let f_ext = loads.patterns.remove(0).f;
         for im in interfaces.iter_mut() {
@@ -186,32 +105,9 @@ impl Model {
                 .get(&im.name)
                 .map(|&h| loads.histories[h].clone());
         }
-        // u_r = 0 on the axis of an axisymmetric model (no history: always 0)
-        let given: std::collections::HashMap<usize, Option<usize>> = loads
-            .prescribed
-            .iter()
-            .zip(&loads.prescribed_history)
-            .map(|(&(d, _), &h)| (d, h))
-            .collect();
-        let prescribed = crate::case::axis::hold_axis(&case, &mesh, loads.prescribed, &place)?;
+        let prescribed = supports(&case, &mesh, &mut loads, &place)?;
         crate::loads::check_acting(&loads.acting, &mesh, &prescribed, section.axisymmetric)?;
-        loads.prescribed_history = prescribed
-            .iter()
-            .map(|(d, _)| given.get(d).copied().flatten())
-            .collect();
-        let interference = interfaces
-            .iter()
-            .any(|im| im.gap < 0.0 || (im.gap != 0.0 && im.gap_history.is_some()));
-        if f_ext.iter().all(|&f| f == 0.0)
-            && loads.patterns.iter().all(|p| p.f.iter().all(|&f| f == 0.0))
-            && prescribed.iter().all(|&(_, v)| v == 0.0)
-            && !interference
-        {
-            return Err(Error::input(
-                &place,
-                "nothing loads the model: no [[load]], no [[force]], no non-zero prescribed displacement in [[boundary]] and no interference (negative gap) or gap_history",
-            ));
-        }
+        check_loaded(&f_ext, &loads, &prescribed, &interfaces, &place)?;
         check_supports(
             &mesh,
             &prescribed,
@@ -228,23 +124,7 @@ impl Model {
         let (blocks, interface_block_base) = block_dofs(&mesh, &interfaces);
         drop(blocks);
         let (probe_node, surface_y) = probe(&case, &mesh, &interfaces);
-        let e_max = materials.iter().fold(0.0f64, |a, m| a.max(m.young));
-        let (lo, hi) = mesh
-            .nodes
-            .iter()
-            .fold(([f64::MAX; 2], [f64::MIN; 2]), |(lo, hi), x| {
-                (
-                    [lo[0].min(x[0]), lo[1].min(x[1])],
-                    [hi[0].max(x[0]), hi[1].max(x[1])],
-                )
-            });
-        // out-of-plane measure: the thickness, or the outer circumference 2π r_max
-        let measure = if section.axisymmetric {
-            section.measure(hi)
-        } else {
-            thickness
-        };
-        let force_floor = 1e-6 * e_max * (hi[0] - lo[0]).hypot(hi[1] - lo[1]) * measure;
+        let force_floor = force_floor(&mesh, &materials, section);
         Ok(Model {
             name: case.display_name(),
             plane,
@@ -526,4 +406,193 @@ fn probe(case: &Case, mesh: &Mesh, interfaces: &[InterfaceModel]) -> (usize, f64
                 .unwrap_or(0)
         });
     (best, mesh.nodes.get(best).map_or(0.0, |x| x[1]))
+}
+
+/// The mesh of a case (a Gmsh file beside the case, or its blocks), checked
+/// as a mesh and as a whole ([`whole::check_mesh`]).
+fn make_mesh(case: &Case, place: &str) -> Result<Mesh> {
+    let mesh = match &case.mesh.file {
+        Some(file) => {
+            let dir = case.source.parent().unwrap_or(std::path::Path::new(""));
+            gmsh::read(&dir.join(file), &case.mesh.interface, place)?
+        }
+        None => blocks::generate(&case.mesh.block, &case.mesh.interface, case.mesh.refine)
+            .map_err(|e| Error::Mesh {
+                place: format!("{place} [mesh]"),
+                message: e.to_string(),
+            })?,
+    };
+    mesh.validate().map_err(|e| Error::Mesh {
+        place: place.to_string(),
+        message: e.to_string(),
+    })?;
+    whole::check_mesh(case, &mesh, place)?;
+    Ok(mesh)
+}
+
+/// The material of every body, in body order; a body without
+/// `[materials.<body>]` and an entry without a body are refused.
+fn materials(case: &Case, mesh: &Mesh, place: &str) -> Result<Vec<VonMises>> {
+    let mut materials = Vec::new();
+    for body in &mesh.bodies {
+        let spec = case.materials.get(body).ok_or_else(|| {
+            Error::input(
+                place,
+                format!("[materials] has no entry for body \"{body}\""),
+            )
+        })?;
+        let mat = VonMises::new(
+            spec.young,
+            spec.poisson,
+            spec.yield_stress.unwrap_or(f64::INFINITY),
+            spec.hardening,
+            case.model.plane,
+        )
+        .map_err(|e| Error::input(format!("{place}: [materials.{body}]"), e))?;
+        materials.push(mat);
+    }
+    for name in case.materials.keys() {
+        if !mesh.bodies.contains(name) {
+            return Err(Error::input(
+                format!("{place}: [materials.{name}]"),
+                format!(
+                    "no body named \"{name}\" (bodies: {})",
+                    mesh.bodies.join(", ")
+                ),
+            ));
+        }
+    }
+    Ok(materials)
+}
+
+/// Every element's Jacobian, checked once; the geometry itself is
+/// recomputed when needed ([`Model::geometry`]).
+fn check_elements(
+    mesh: &Mesh,
+    rule: &GaussRule,
+    section: &crate::fem::Section,
+    place: &str,
+) -> Result<()> {
+    for (e, el) in mesh.elements.iter().enumerate() {
+        ElementGeometry::with_section(&mesh.element_coords(e), rule, section).map_err(|m| {
+            Error::Mesh {
+                place: place.to_string(),
+                message: format!("element {e} of body \"{}\": {m}", mesh.bodies[el.body]),
+            }
+        })?;
+    }
+    Ok(())
+}
+
+/// The interface models, one per mesh interface with its checked law; an
+/// `[interface.<name>]` without a mesh interface is refused.
+fn interface_models(
+    case: &Case,
+    checked: &crate::case::Checked,
+    mesh: &Mesh,
+    section: crate::fem::Section,
+    place: &str,
+) -> Result<Vec<InterfaceModel>> {
+    let mut interfaces = Vec::new();
+    for iface in &mesh.interfaces {
+        let law = checked.laws.get(&iface.name).ok_or_else(|| {
+            Error::input(
+                place,
+                format!("[interface] has no law for interface \"{}\"", iface.name),
+            )
+        })?;
+        let spec = &case.interface[&iface.name];
+        interfaces.push(
+            InterfaceModel::new(
+                mesh,
+                iface,
+                law.clone(),
+                spec.gap,
+                spec.weights,
+                section,
+                spec.start_pressure,
+                checked.tangential.get(&iface.name).cloned(),
+            )
+            .map_err(|m| Error::input(place, m))?,
+        );
+    }
+    for name in case.interface.keys() {
+        if !mesh.interfaces.iter().any(|i| &i.name == name) {
+            return Err(Error::input(
+                format!("{place}: [interface.{name}]"),
+                format!("the mesh has no interface named \"{name}\""),
+            ));
+        }
+    }
+    Ok(interfaces)
+}
+
+/// The prescribed dofs with u_r = 0 added on the axis of an axisymmetric
+/// model (no history: always 0); `loads.prescribed_history` follows them.
+fn supports(
+    case: &Case,
+    mesh: &Mesh,
+    loads: &mut crate::loads::Loads,
+    place: &str,
+) -> Result<Vec<(usize, f64)>> {
+    let given: std::collections::HashMap<usize, Option<usize>> = loads
+        .prescribed
+        .iter()
+        .zip(&loads.prescribed_history)
+        .map(|(&(d, _), &h)| (d, h))
+        .collect();
+    let prescribed =
+        crate::case::axis::hold_axis(case, mesh, std::mem::take(&mut loads.prescribed), place)?;
+    loads.prescribed_history = prescribed
+        .iter()
+        .map(|(d, _)| given.get(d).copied().flatten())
+        .collect();
+    Ok(prescribed)
+}
+
+/// Something must load the model: a load, a force, a non-zero prescribed
+/// displacement or an interference.
+fn check_loaded(
+    f_ext: &[f64],
+    loads: &crate::loads::Loads,
+    prescribed: &[(usize, f64)],
+    interfaces: &[InterfaceModel],
+    place: &str,
+) -> Result<()> {
+    let interference = interfaces
+        .iter()
+        .any(|im| im.gap < 0.0 || (im.gap != 0.0 && im.gap_history.is_some()));
+    if f_ext.iter().all(|&f| f == 0.0)
+        && loads.patterns.iter().all(|p| p.f.iter().all(|&f| f == 0.0))
+        && prescribed.iter().all(|&(_, v)| v == 0.0)
+        && !interference
+    {
+        return Err(Error::input(
+            place,
+            "nothing loads the model: no [[load]], no [[force]], no non-zero prescribed displacement in [[boundary]] and no interference (negative gap) or gap_history",
+        ));
+    }
+    Ok(())
+}
+
+/// The force below which a residual is zero: 10⁻⁶ E_max × the model's
+/// diagonal × its out-of-plane measure (the thickness, or the outer
+/// circumference 2π r_max in axisymmetry).
+fn force_floor(mesh: &Mesh, materials: &[VonMises], section: crate::fem::Section) -> f64 {
+    let e_max = materials.iter().fold(0.0f64, |a, m| a.max(m.young));
+    let (lo, hi) = mesh
+        .nodes
+        .iter()
+        .fold(([f64::MAX; 2], [f64::MIN; 2]), |(lo, hi), x| {
+            (
+                [lo[0].min(x[0]), lo[1].min(x[1])],
+                [hi[0].max(x[0]), hi[1].max(x[1])],
+            )
+        });
+    let measure = if section.axisymmetric {
+        section.measure(hi)
+    } else {
+        section.thickness
+    };
+    1e-6 * e_max * (hi[0] - lo[0]).hypot(hi[1] - lo[1]) * measure
 }

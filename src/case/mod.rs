@@ -11,8 +11,8 @@ mod validate;
 pub mod whole;
 
 pub use validate::{
-    check_case, MAX_ANDERSON_DEPTH, MAX_CUTBACKS, MAX_ELEMENTS, MAX_INCREMENTS, MAX_ITERATIONS,
-    MAX_NAME_BYTES,
+    check_case, Checked, MAX_ANDERSON_DEPTH, MAX_CUTBACKS, MAX_ELEMENTS, MAX_INCREMENTS,
+    MAX_ITERATIONS, MAX_NAME_BYTES,
 };
 
 pub use crate::interface::{FrictionScheme, Weights};

@@ -94,22 +94,47 @@ pub fn save_pictures(chart: &Chart, stem: &Path, pictures: bool) -> Result<()> {
     Ok(())
 }
 
+/// The chart's data extent (series, marks and guide lines) and a 4 % pad.
+struct Extent {
+    x: (f64, f64),
+    y: (f64, f64),
+    pad: (f64, f64),
+}
+
+impl Extent {
+    fn of(c: &Chart) -> Extent {
+        let pts = c.series.iter().flat_map(|s| s.points.iter().copied());
+        let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+        for (x, y) in pts.chain(c.marks.iter().map(|m| (m.0, m.1))) {
+            (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
+        }
+        for (y, _) in &c.hlines {
+            (y0, y1) = (y0.min(*y), y1.max(*y));
+        }
+        for (x, _) in &c.vlines {
+            (x0, x1) = (x0.min(*x), x1.max(*x));
+        }
+        let pad = |a: f64, b: f64| if b > a { 0.04 * (b - a) } else { 1.0 };
+        Extent {
+            x: (x0, x1),
+            y: (y0, y1),
+            pad: (pad(x0, x1), pad(y0, y1)),
+        }
+    }
+}
+
+/// A chart's drawing context on linear axes.
+type Axes<'a, DB> = ChartContext<
+    'a,
+    DB,
+    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+>;
+
 fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, c: &Chart) -> Result<()> {
     let e = |m: String| Error::Output(format!("drawing \"{}\": {m}", c.title));
     root.fill(&WHITE).map_err(|x| e(x.to_string()))?;
-    let pts = c.series.iter().flat_map(|s| s.points.iter().copied());
-    let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
-    for (x, y) in pts.chain(c.marks.iter().map(|m| (m.0, m.1))) {
-        (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
-    }
-    for (y, _) in &c.hlines {
-        (y0, y1) = (y0.min(*y), y1.max(*y));
-    }
-    for (x, _) in &c.vlines {
-        (x0, x1) = (x0.min(*x), x1.max(*x));
-    }
-    let pad = |a: f64, b: f64| if b > a { 0.04 * (b - a) } else { 1.0 };
-    let (px, py) = (pad(x0, x1), pad(y0, y1));
+    let ext = Extent::of(c);
+    let ((x0, x1), (y0, y1), (px, py)) = (ext.x, ext.y, ext.pad);
     let mut chart = ChartBuilder::on(&root)
         .caption(&c.title, ("sans-serif", 22))
         .margin(15)
@@ -124,75 +149,8 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, c: &Chart) -> Result<(
         .label_style(("sans-serif", 15))
         .draw()
         .map_err(|x| e(x.to_string()))?;
-    for (i, s) in c.series.iter().enumerate() {
-        let color = Palette99::pick(i).stroke_width(2);
-        chart
-            .draw_series(LineSeries::new(s.points.iter().copied(), color))
-            .map_err(|x| e(x.to_string()))?
-            .label(&s.label)
-            .legend(move |(x, y)| {
-                PathElement::new(
-                    vec![(x, y), (x + 20, y)],
-                    Palette99::pick(i).stroke_width(2),
-                )
-            });
-        chart
-            .draw_series(
-                s.points
-                    .iter()
-                    .map(|&p| Circle::new(p, 2, Palette99::pick(i).filled())),
-            )
-            .map_err(|x| e(x.to_string()))?;
-    }
-    let grey = RGBColor(90, 90, 90);
-    for (k, (y, l)) in c.hlines.iter().enumerate() {
-        chart
-            .draw_series(LineSeries::new(
-                vec![(x0 - px, *y), (x1 + px, *y)],
-                grey.stroke_width(1),
-            ))
-            .map_err(|x| e(x.to_string()))?;
-        // labels staggered along x so that close lines stay readable
-        let lx = x0 + (0.3 + 0.35 * k as f64) * (x1 - x0);
-        chart
-            .draw_series(std::iter::once(Text::new(
-                l.clone(),
-                (lx, *y),
-                ("sans-serif", 14).into_font().color(&grey),
-            )))
-            .map_err(|x| e(x.to_string()))?;
-    }
-    for (x, l) in &c.vlines {
-        chart
-            .draw_series(LineSeries::new(
-                vec![(*x, y0 - py), (*x, y1 + py)],
-                grey.stroke_width(1),
-            ))
-            .map_err(|x| e(x.to_string()))?;
-        chart
-            .draw_series(std::iter::once(Text::new(
-                l.clone(),
-                (*x, y1),
-                ("sans-serif", 14).into_font().color(&grey),
-            )))
-            .map_err(|x| e(x.to_string()))?;
-    }
-    for (x, y, l) in &c.marks {
-        chart
-            .draw_series(std::iter::once(Cross::new(
-                (*x, *y),
-                6,
-                RED.stroke_width(2),
-            )))
-            .map_err(|x| e(x.to_string()))?;
-        chart
-            .draw_series(std::iter::once(Text::new(
-                l.clone(),
-                (*x, *y),
-                ("sans-serif", 14).into_font().color(&RED),
-            )))
-            .map_err(|x| e(x.to_string()))?;
-    }
+    draw_series(&mut chart, c).map_err(e)?;
+    draw_guides(&mut chart, c, &ext).map_err(e)?;
     chart
         .configure_series_labels()
         .background_style(WHITE.mix(0.85))
@@ -206,6 +164,88 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, c: &Chart) -> Result<(
         .draw()
         .map_err(|x| e(x.to_string()))?;
     root.present().map_err(|x| e(x.to_string()))
+}
+
+/// Each series as a line with its points and a legend entry.
+fn draw_series<DB: DrawingBackend>(
+    chart: &mut Axes<'_, DB>,
+    c: &Chart,
+) -> std::result::Result<(), String> {
+    for (i, s) in c.series.iter().enumerate() {
+        let color = Palette99::pick(i).stroke_width(2);
+        chart
+            .draw_series(LineSeries::new(s.points.iter().copied(), color))
+            .map_err(|x| x.to_string())?
+            .label(&s.label)
+            .legend(move |(x, y)| {
+                PathElement::new(
+                    vec![(x, y), (x + 20, y)],
+                    Palette99::pick(i).stroke_width(2),
+                )
+            });
+        chart
+            .draw_series(
+                s.points
+                    .iter()
+                    .map(|&p| Circle::new(p, 2, Palette99::pick(i).filled())),
+            )
+            .map_err(|x| x.to_string())?;
+    }
+    Ok(())
+}
+
+/// The labelled horizontal and vertical guide lines and the marks.
+fn draw_guides<DB: DrawingBackend>(
+    chart: &mut Axes<'_, DB>,
+    c: &Chart,
+    ext: &Extent,
+) -> std::result::Result<(), String> {
+    let ((x0, x1), (y0, y1), (px, py)) = (ext.x, ext.y, ext.pad);
+    let grey = RGBColor(90, 90, 90);
+    let text = |l: &str, at: (f64, f64), color: RGBColor| {
+        Text::new(
+            l.to_string(),
+            at,
+            ("sans-serif", 14).into_font().color(&color),
+        )
+    };
+    for (k, (y, l)) in c.hlines.iter().enumerate() {
+        chart
+            .draw_series(LineSeries::new(
+                vec![(x0 - px, *y), (x1 + px, *y)],
+                grey.stroke_width(1),
+            ))
+            .map_err(|x| x.to_string())?;
+        // labels staggered along x so that close lines stay readable
+        let lx = x0 + (0.3 + 0.35 * k as f64) * (x1 - x0);
+        chart
+            .draw_series(std::iter::once(text(l, (lx, *y), grey)))
+            .map_err(|x| x.to_string())?;
+    }
+    for (x, l) in &c.vlines {
+        chart
+            .draw_series(LineSeries::new(
+                vec![(*x, y0 - py), (*x, y1 + py)],
+                grey.stroke_width(1),
+            ))
+            .map_err(|x| x.to_string())?;
+        chart
+            .draw_series(std::iter::once(text(l, (*x, y1), grey)))
+            .map_err(|x| x.to_string())?;
+    }
+    for (x, y, l) in &c.marks {
+        chart
+            .draw_series(std::iter::once(Cross::new(
+                (*x, *y),
+                6,
+                RED.stroke_width(2),
+            )))
+            .map_err(|x| x.to_string())?;
+        chart
+            .draw_series(std::iter::once(text(l, (*x, *y), RED)))
+            .map_err(|x| x.to_string())?;
+    }
+    Ok(())
 }
 
 /// A grid of cells (rows × columns), each green (ok) or red (failed) with a short

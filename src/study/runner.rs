@@ -64,16 +64,34 @@ pub fn run_limited(
         Some(p) => std::path::PathBuf::from(p),
         None => std::env::current_exe().map_err(|e| e.to_string())?,
     };
-    let mut cmd = match which {
+    let mut cmd = command(&exe, which);
+    cmd.arg(case)
+        .args(args)
+        .arg("--quiet")
+        .arg("--out")
+        .arg(dir);
+    // --quiet: stderr carries at most the error line, so a pipe cannot fill up
+    cmd.stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped());
+    let child = cmd
+        .spawn()
+        .map_err(|e| format!("cannot start {}: {e}", exe.display()))?;
+    wait(child, limit)?;
+    read_point(dir)
+}
+
+/// `asperity run` on the serial backend, or under `mpirun -n N` on PETSc.
+fn command(exe: &Path, which: Which) -> Command {
+    match which {
         Which::Serial => {
-            let mut c = Command::new(&exe);
+            let mut c = Command::new(exe);
             c.args(["run", "--backend", "serial"]);
             c
         }
         Which::Petsc(n) => {
             let mut c = Command::new("mpirun");
             c.args(["-n", &n.to_string()])
-                .arg(&exe)
+                .arg(exe)
                 .args(["run", "--backend", "petsc"]);
             for (k, v) in [
                 ("OMPI_ALLOW_RUN_AS_ROOT", "1"),
@@ -84,18 +102,11 @@ pub fn run_limited(
             }
             c
         }
-    };
-    cmd.arg(case)
-        .args(args)
-        .arg("--quiet")
-        .arg("--out")
-        .arg(dir);
-    // --quiet: stderr carries at most the error line, so a pipe cannot fill up
-    cmd.stdout(std::process::Stdio::null())
-        .stderr(std::process::Stdio::piped());
-    let mut child = cmd
-        .spawn()
-        .map_err(|e| format!("cannot start {}: {e}", exe.display()))?;
+    }
+}
+
+/// Waits for a run, killing it after `limit`; Err is its error line.
+fn wait(mut child: std::process::Child, limit: Option<std::time::Duration>) -> Result<(), String> {
     let start = std::time::Instant::now();
     loop {
         match child.try_wait() {
@@ -122,6 +133,13 @@ pub fn run_limited(
             .unwrap_or("failed")
             .to_string());
     }
+    Ok(())
+}
+
+/// The measures of a finished run from its output folder: summary.json and
+/// the last interface file (the pressure at the pair of largest x: the
+/// punch edge).
+fn read_point(dir: &Path) -> Result<Point, String> {
     let text = std::fs::read_to_string(dir.join("summary.json")).map_err(|e| e.to_string())?;
     let s: serde_json::Value = serde_json::from_str(&text).map_err(|e| e.to_string())?;
     let f = |v: &serde_json::Value| v.as_f64().unwrap_or(f64::NAN);
@@ -137,7 +155,6 @@ pub fn run_limited(
         .transpose()
         .map_err(|e| e.to_string())?
         .unwrap_or_default();
-    // the pair at the largest x: the punch edge
     let edge = last
         .lines()
         .skip(1)
