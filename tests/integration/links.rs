@@ -254,3 +254,12 @@ fn a_broken_link_is_reported_with_its_file_and_line() {
         "{broken:?}"
     );
 }
+
+/// The README is for users and stays short: at most 10 KB (measurements and
+/// their history live in docs/performance.md).
+#[test]
+fn the_readme_is_at_most_10_kb() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let n = std::fs::metadata(root.join("README.md")).unwrap().len();
+    assert!(n <= 10 * 1024, "README.md is {n} bytes, more than 10 KB");
+}
