@@ -125,17 +125,49 @@ pub fn bounded(text: &str) -> String {
 }
 
 /// `text` with every control character escaped (`\n`, `\t`, `\u{7}` …), so that
-/// it prints as one line and cannot drive a terminal.
+/// it prints as one line and cannot drive a terminal; so are the characters
+/// that print as nothing or as a plain space ([`invisible`]): a byte-order
+/// mark left in front of a number shows as `\u{feff}`, not as an empty spot.
 pub fn escape_controls(text: &str) -> String {
     let mut s = String::with_capacity(text.len());
     for c in text.chars() {
-        if c.is_control() {
+        if c.is_control() || invisible(c) {
             s.extend(c.escape_default());
         } else {
             s.push(c);
         }
     }
     s
+}
+
+/// Characters that a terminal shows as nothing, as a plain space or that
+/// reorder the text around them: every white space but the ASCII space (no-break
+/// and typographic spaces, the line and paragraph separators), and Unicode's
+/// default-ignorable code points (byte-order mark / zero-width no-break space,
+/// zero-width spaces and joiners, the bidirectional marks and overrides, soft
+/// hyphen, variation selectors, tags).
+pub fn invisible(c: char) -> bool {
+    (c.is_whitespace() && c != ' ')
+        || matches!(
+            c,
+            '\u{00AD}'
+                | '\u{034F}'
+                | '\u{061C}'
+                | '\u{115F}'..='\u{1160}'
+                | '\u{17B4}'..='\u{17B5}'
+                | '\u{180B}'..='\u{180F}'
+                | '\u{200B}'..='\u{200F}'
+                | '\u{202A}'..='\u{202E}'
+                | '\u{2060}'..='\u{206F}'
+                | '\u{3164}'
+                | '\u{FE00}'..='\u{FE0F}'
+                | '\u{FEFF}'
+                | '\u{FFA0}'
+                | '\u{FFF0}'..='\u{FFFB}'
+                | '\u{1BCA0}'..='\u{1BCA3}'
+                | '\u{1D173}'..='\u{1D17A}'
+                | '\u{E0000}'..='\u{E0FFF}'
+        )
 }
 
 impl Error {
@@ -186,6 +218,18 @@ mod tests {
         let v = format!("{:?}", format!("ab\"{}", "y".repeat(200)));
         let s = Error::input("p", format!("name {v} bad")).to_string();
         assert!(s.ends_with("characters)\" bad"), "{s}");
+        // invisible characters are escaped like control characters
+        let s = Error::input(
+            "p.csv:1",
+            "\"\u{feff}1.5\u{a0}\u{200b}\u{202e}x\" is not a number",
+        )
+        .to_string();
+        assert_eq!(
+            s,
+            "p.csv:1: \"\\u{feff}1.5\\u{a0}\\u{200b}\\u{202e}x\" is not a number"
+        );
+        let s = Error::input("p", "µm σ_s η ≤ é ").to_string();
+        assert_eq!(s, "p: µm σ_s η ≤ é ");
         // unquoted text: the line is cut
         let s = Error::input("p", "z ".repeat(5000)).to_string();
         assert!(s.chars().count() < MAX_LINE + 40, "{}", s.len());

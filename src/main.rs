@@ -345,9 +345,12 @@ fn main() -> ExitCode {
             out,
         }) => study_stability(&case, &steps, methods, schemes, time_limit, &out),
         Command::Figures { cases, out } => figures(&cases, &out),
-        Command::Calibrate { input, out } => {
-            asperity::calibrate::run(&input, &out).map(|(_, summary)| println!("{summary}"))
-        }
+        Command::Calibrate { input, out } => asperity::calibrate::run(&input, &out).map(|w| {
+            for warning in &w.warnings {
+                eprintln!("warning: {warning}");
+            }
+            println!("{}", w.summary);
+        }),
     };
     match outcome {
         Ok(()) => ExitCode::SUCCESS,

@@ -130,29 +130,71 @@ impl Gw {
     }
 
     /// The separation d at which the pressure is `p` (bisection on the
-    /// monotone p(d), to 1e-14 σ).
+    /// monotone p(d), to 1e-14 σ or to adjacent floating-point numbers; the
+    /// bracket grows at most [`MAX_STEPS`] times, to 3^MAX_STEPS σ).
     pub fn separation(&self, p: f64) -> f64 {
         let s = self.sigma;
-        let (mut lo, mut hi) = (-s, s);
-        while self.pressure(lo) < p {
-            lo -= 2.0 * (hi - lo);
-        }
-        while self.pressure(hi) > p {
-            hi += 2.0 * (hi - lo);
-        }
-        for _ in 0..200 {
-            let mid = 0.5 * (lo + hi);
-            if self.pressure(mid) > p {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-            if hi - lo < 1e-14 * s {
-                break;
-            }
-        }
-        0.5 * (lo + hi)
+        bisect(-s, s, |d| self.pressure(d) > p, 1e-14 * s)
     }
+
+    /// The fraction of the summits in contact at separation d: the share of
+    /// summit heights above d, ∫_{d/σ}^∞ φ̂.
+    pub fn contact_fraction(&self, d: f64) -> f64 {
+        let h = d / self.sigma;
+        match self.distribution {
+            Distribution::Gaussian => {
+                let top = (h.max(0.0).powi(2) + 150.0).sqrt() - h;
+                integrate(&|t| Distribution::Gaussian.density(h + t), 0.0, top, 1e-13)
+            }
+            Distribution::Exponential => (-h.max(0.0)).exp(),
+        }
+    }
+
+    /// The separation at which the fraction `f` (0 < f < 1) of the summits
+    /// touches (bisection on the monotone [`Gw::contact_fraction`]).
+    pub fn separation_for_fraction(&self, f: f64) -> f64 {
+        let s = self.sigma;
+        bisect(-s, s, |d| self.contact_fraction(d) > f, 1e-12 * s)
+    }
+}
+
+/// Most steps of each loop of [`bisect`]: the bracket grows 3× a step, the
+/// bisection halves it.
+pub const MAX_STEPS: usize = 200;
+
+/// The d where the monotone `above(d)` (true below, false above) turns, from
+/// the bracket [lo, hi] widened until it holds the turn, bisected to `tol` or to
+/// adjacent floating-point numbers. Every loop is bounded by [`MAX_STEPS`], so a
+/// target the model cannot reach (underflow, overflow, NaN) costs at most
+/// 3 × MAX_STEPS evaluations instead of a hang.
+fn bisect(mut lo: f64, mut hi: f64, above: impl Fn(f64) -> bool, tol: f64) -> f64 {
+    for _ in 0..MAX_STEPS {
+        if above(lo) {
+            break;
+        }
+        lo -= 2.0 * (hi - lo);
+    }
+    for _ in 0..MAX_STEPS {
+        if !above(hi) {
+            break;
+        }
+        hi += 2.0 * (hi - lo);
+    }
+    for _ in 0..MAX_STEPS {
+        let mid = 0.5 * (lo + hi);
+        if !(mid > lo && mid < hi) {
+            break;
+        }
+        if above(mid) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+        if hi - lo < tol {
+            break;
+        }
+    }
+    0.5 * (lo + hi)
 }
 
 /// F_{3/2}(h) = ∫_h^∞ (s − h)^{3/2} e^{−s²/2}/√(2π) ds (Greenwood & Tripp),
@@ -197,7 +239,10 @@ fn gauss16() -> &'static [(f64, f64); 16] {
 }
 
 /// ∫_a^b f by composite 16-point Gauss-Legendre, the panels doubled (from 4)
-/// until two sums agree to `tol` relative (at most 8192 panels).
+/// until two sums agree to `tol` relative (at most 8192 panels), or differ by
+/// less than the smallest normal number: an integral that underflows into the
+/// subnormals has no relative accuracy to converge to, and doubling to 8192
+/// panels at every call made a bisection through such values take minutes.
 pub fn integrate(f: &dyn Fn(f64) -> f64, a: f64, b: f64, tol: f64) -> f64 {
     if b <= a {
         return 0.0;
@@ -221,7 +266,7 @@ pub fn integrate(f: &dyn Fn(f64) -> f64, a: f64, b: f64, tol: f64) -> f64 {
     while n < 8192 {
         n *= 2;
         let next = sum(n);
-        if (next - last).abs() <= tol * next.abs() {
+        if (next - last).abs() <= (tol * next.abs()).max(f64::MIN_POSITIVE) {
             return next;
         }
         last = next;
@@ -270,6 +315,64 @@ mod tests {
         let w = 10.0 * wc;
         let k = 0.454 + 0.41 * 0.3;
         assert!((g.summit_load(w) / (PI * 0.05 * (2.0 * w - wc) * k * 2000.0) - 1.0).abs() < 1e-14);
+    }
+
+    #[test]
+    fn contact_fraction_against_closed_forms() {
+        let mut g = Gw {
+            density: 2000.0,
+            radius: 0.05,
+            sigma: 1e-3,
+            distribution: Distribution::Gaussian,
+            asperity: Asperity::Elastic,
+            e_star: 113_000.0,
+        };
+        // half the Gaussian summits stand above their mean, nearly all above −8σ
+        assert!((g.contact_fraction(0.0) - 0.5).abs() < 1e-14);
+        assert!((g.contact_fraction(-8e-3) - 1.0).abs() < 1e-14);
+        let d = g.separation_for_fraction(1e-6);
+        assert!((g.contact_fraction(d) / 1e-6 - 1.0).abs() < 1e-9);
+        g.distribution = Distribution::Exponential;
+        assert_eq!(g.contact_fraction(-1e-3), 1.0);
+        assert!((g.contact_fraction(3e-3) - (-3f64).exp()).abs() < 1e-16);
+    }
+
+    /// A target the model cannot reach ends the bisection after a bounded
+    /// number of evaluations, and an integrand in the subnormals after a few
+    /// panel doublings (before, 8192 panels at every call: a fit range where
+    /// nothing touches took minutes).
+    #[test]
+    fn unreachable_targets_and_underflow_end_in_bounded_work() {
+        let calls = std::cell::Cell::new(0);
+        let d = bisect(
+            -1.0,
+            1.0,
+            |_| {
+                calls.set(calls.get() + 1);
+                true
+            },
+            1e-14,
+        );
+        assert!(
+            calls.get() <= 3 * MAX_STEPS && d.is_finite(),
+            "{}",
+            calls.get()
+        );
+        let calls = std::cell::Cell::new(0);
+        let v = integrate(
+            &|x: f64| {
+                calls.set(calls.get() + 1);
+                1e-310 * (1.0 + x.sin())
+            },
+            0.0,
+            1.0,
+            1e-13,
+        );
+        assert!(
+            v < f64::MIN_POSITIVE && calls.get() <= 16 * (4 + 8),
+            "{}",
+            calls.get()
+        );
     }
 
     #[test]

@@ -8,11 +8,13 @@
 
 pub mod fit;
 pub mod gw;
+pub mod limits;
 pub mod profile;
 
 use crate::error::{Error, Result};
 use fit::{Point, PowerFit};
 use gw::{Asperity, Distribution, Gw};
+use limits::Warning;
 use serde::Deserialize;
 use serde_json::json;
 use std::fmt::Write as _;
@@ -124,17 +126,8 @@ pub struct Calibration {
     pub fit: PowerFit,
     /// The table law's points.
     pub table: Vec<Point>,
-}
-
-fn positive(place: &str, key: &str, v: f64) -> Result<()> {
-    if v.is_finite() && v > 0.0 {
-        Ok(())
-    } else {
-        Err(Error::input(
-            format!("{place}: {key}"),
-            format!("must be a positive finite number, got {v}"),
-        ))
-    }
+    /// Legal but suspicious values ([`limits`]), in fit.json and interface.toml.
+    pub warnings: Vec<Warning>,
 }
 
 /// Reads and parses an input file (errors name the file, line and column).
@@ -170,21 +163,148 @@ pub fn composite_modulus(a: &Body, b: &Body) -> f64 {
     1.0 / ((1.0 - a.poisson * a.poisson) / a.young + (1.0 - b.poisson * b.poisson) / b.young)
 }
 
-/// Checks the input and computes the curve, the fit and the table; `base` is
-/// the folder that relative profile paths start from.
-pub fn calibrate(input: &Input, place: &str, base: &Path) -> Result<Calibration> {
+/// Fewer summits in contact per mm² than this at the lower fit pressure (one
+/// per m² of nominal area): no asperity touches, refused.
+pub const NO_CONTACT: f64 = 1e-6;
+/// Fewer than this (one per cm²): the law rests on few summits, a warning.
+pub const FEW_CONTACTS: f64 = 1e-2;
+/// The approach, in σ_s, within which the surface must carry twice the upper
+/// fit pressure (the curve's end).
+pub const DEEPEST: f64 = 50.0;
+/// Smallest separation step, in σ_s, between the reference and the lower fit
+/// pressure and between the two fit pressures: 1e5 × the bisection's 1e-14 σ.
+pub const RESOLVED: f64 = 1e-9;
+
+/// The input checked, the surface's GW model and the separations its pressures
+/// map to: everything [`calibrate`] needs before the expensive curve and fit.
+/// Every refusal of an input comes from [`prepare`]; the two checks after the
+/// fit in [`calibrate`] are a safety net that no known input reaches.
+#[derive(Clone, Debug)]
+pub struct Prepared {
+    pub gw: Gw,
+    pub moments: Option<(profile::Moments, profile::Summits)>,
+    pub range: [f64; 2],
+    pub reference_pressure: f64,
+    pub table_points: usize,
+    /// Separations (mm) at the reference pressure (d₀), at lo and at hi.
+    pub d0: f64,
+    pub d_lo: f64,
+    pub d_hi: f64,
+    /// Summits in contact per mm² at lo.
+    pub contacts_lo: f64,
+    pub warnings: Vec<Warning>,
+}
+
+/// The surface's values as the messages quote them.
+fn surface_values(input: &Input, gw: &Gw, profile_place: Option<&str>) -> String {
+    let n = limits::num;
+    let e_star = format!(
+        "E* = {} MPa (materials.a, materials.b)",
+        n(gw.e_star.round())
+    );
+    match (&input.surface, profile_place) {
+        (Surface::Profile { .. }, Some(file)) => format!(
+            "η = {} /mm², β = {} mm and σ_s = {} mm from the profile {file}, {e_star}",
+            limits::sig(gw.density, 4),
+            limits::sig(gw.radius, 4),
+            limits::sig(gw.sigma, 4)
+        ),
+        _ => format!(
+            "surface.density = {} /mm², surface.radius = {} mm, surface.sigma = {} mm, {e_star}",
+            n(gw.density),
+            n(gw.radius),
+            n(gw.sigma)
+        ),
+    }
+}
+
+/// The error of a combination of values that cannot be calibrated: at the key
+/// of the most suspicious value among those that set the contact (σ_s, η, β,
+/// E, the pressures) that drew a warning, the surface's before the moduli
+/// before the pressure's, with that warning's text; else at `key` of `place`.
+/// (A negative ν or an odd hardness is not blamed: neither moves the summits
+/// in contact by orders of magnitude.)
+fn combined(warnings: &[Warning], place: &str, key: &str, message: String) -> Error {
+    let rank = |w: &Warning| {
+        if w.key.ends_with(".poisson") || w.key.ends_with(".hardness") {
+            None
+        } else if w.key.ends_with(".young") {
+            Some(1)
+        } else if w.key.starts_with("fit") {
+            Some(2)
+        } else {
+            Some(0)
+        }
+    };
+    match warnings
+        .iter()
+        .filter_map(|w| rank(w).map(|r| (r, w)))
+        .min_by_key(|(r, _)| *r)
+    {
+        Some((_, w)) => Error::input(
+            format!("{}: {}", w.place, w.key),
+            format!("{} With it, {message}", w.message),
+        ),
+        None => Error::input(format!("{place}: {key}"), message),
+    }
+}
+
+/// Checks every value of the input against its range ([`limits`]), reads and
+/// analyses a profile, and maps the pressures to separations: a fit range in
+/// which no summit touches, a surface that cannot carry the upper pressure or
+/// pressures too close to resolve are refused here, in milliseconds, before the
+/// curve and the fit. `base` is the folder that relative profile paths start
+/// from.
+pub fn prepare(input: &Input, place: &str, base: &Path) -> Result<Prepared> {
+    let mut warnings = Vec::new();
+    let w = &mut warnings;
     for (name, body) in [("a", &input.materials.a), ("b", &input.materials.b)] {
         let p = format!("materials.{name}");
-        positive(place, &format!("{p}.young"), body.young)?;
-        if !(body.poisson > -1.0 && body.poisson < 0.5) {
-            return Err(Error::input(
-                format!("{place}: {p}.poisson"),
-                format!("must be in (−1, 0.5), got {}", body.poisson),
-            ));
-        }
+        limits::YOUNG.check(place, &format!("{p}.young"), body.young, w)?;
+        limits::check_poisson(place, &format!("{p}.poisson"), body.poisson, w)?;
         if let Some(h) = body.hardness {
-            positive(place, &format!("{p}.hardness"), h)?;
+            limits::HARDNESS.check(place, &format!("{p}.hardness"), h, w)?;
         }
+    }
+    // the fit's numbers: cheap, checked before a profile is read
+    let fs = &input.fit;
+    let [lo, hi] = match fs.pressure[..] {
+        [lo, hi] => [lo, hi],
+        _ => {
+            return Err(Error::input(
+                format!("{place}: fit.pressure"),
+                format!(
+                    "must be two pressures [lo, hi] in MPa, got {} numbers",
+                    fs.pressure.len()
+                ),
+            ))
+        }
+    };
+    limits::PRESSURE.check(place, "fit.pressure", lo, w)?;
+    limits::PRESSURE.check(place, "fit.pressure", hi, w)?;
+    if lo >= hi {
+        return Err(Error::input(
+            format!("{place}: fit.pressure"),
+            format!("lo {lo} must be below hi {hi}"),
+        ));
+    }
+    let (p_ref, ref_key) = match fs.reference_pressure {
+        Some(p) => (p, "fit.reference_pressure"),
+        None => (1e-3 * lo, "fit.reference_pressure (default 10⁻³ × lo)"),
+    };
+    limits::REFERENCE.check(place, ref_key, p_ref, w)?;
+    if p_ref >= lo {
+        return Err(Error::input(
+            format!("{place}: {ref_key}"),
+            format!("{p_ref} must be below the fit range's lower pressure {lo}"),
+        ));
+    }
+    let n_table = fs.table_points.unwrap_or(10);
+    if !(2..=100).contains(&n_table) {
+        return Err(Error::input(
+            format!("{place}: fit.table_points"),
+            format!("must be 2 to 100, got {n_table}"),
+        ));
     }
     let e_star = composite_modulus(&input.materials.a, &input.materials.b);
     let asperity = |key: &str| -> Result<Asperity> {
@@ -213,6 +333,7 @@ pub fn calibrate(input: &Input, place: &str, base: &Path) -> Result<Calibration>
             )),
         }
     };
+    let mut profile_place = None;
     let (gw, moments) = match &input.surface {
         Surface::Gw {
             density,
@@ -221,9 +342,9 @@ pub fn calibrate(input: &Input, place: &str, base: &Path) -> Result<Calibration>
             distribution,
             asperities,
         } => {
-            positive(place, "surface.density", *density)?;
-            positive(place, "surface.radius", *radius)?;
-            positive(place, "surface.sigma", *sigma)?;
+            limits::DENSITY.check(place, "surface.density", *density, w)?;
+            limits::RADIUS.check(place, "surface.radius", *radius, w)?;
+            limits::SIGMA.check(place, "surface.sigma", *sigma, w)?;
             let distribution = match distribution.as_str() {
                 "gaussian" => Distribution::Gaussian,
                 "exponential" => Distribution::Exponential,
@@ -251,7 +372,7 @@ pub fn calibrate(input: &Input, place: &str, base: &Path) -> Result<Calibration>
             detrend,
             asperities,
         } => {
-            positive(place, "surface.sampling", *sampling)?;
+            limits::SAMPLING.check(place, "surface.sampling", *sampling, w)?;
             let areal = match kind.as_str() {
                 "line" => false,
                 "areal" => true,
@@ -279,8 +400,14 @@ pub fn calibrate(input: &Input, place: &str, base: &Path) -> Result<Calibration>
             let text = String::from_utf8(bytes)
                 .map_err(|_| Error::input(&fplace, "the profile is not valid UTF-8 text"))?;
             let heights = profile::parse(&text, &fplace, areal, *sampling)?;
-            let m = heights.moments(how);
+            let m = heights.rough_moments(how, &fplace)?;
             let s = m.summits(&fplace)?;
+            // the summits the moments give, against the same ranges as GW input
+            let hint = Some("are the heights in mm and surface.sampling in mm?");
+            limits::SIGMA.check_hinted(&fplace, "σ_s of the profile", s.sigma, w, hint)?;
+            limits::DENSITY.check_hinted(&fplace, "η of the profile", s.density, w, hint)?;
+            limits::RADIUS.check_hinted(&fplace, "β of the profile", s.radius, w, hint)?;
+            profile_place = Some(fplace);
             let gw = Gw {
                 density: s.density,
                 radius: s.radius,
@@ -292,51 +419,115 @@ pub fn calibrate(input: &Input, place: &str, base: &Path) -> Result<Calibration>
             (gw, Some((m, s)))
         }
     };
-    let fs = &input.fit;
-    let [lo, hi] = match fs.pressure[..] {
-        [lo, hi] => [lo, hi],
-        _ => {
-            return Err(Error::input(
-                format!("{place}: fit.pressure"),
-                format!(
-                    "must be two pressures [lo, hi] in MPa, got {} numbers",
-                    fs.pressure.len()
-                ),
-            ))
-        }
-    };
-    positive(place, "fit.pressure", lo)?;
-    positive(place, "fit.pressure", hi)?;
-    if lo >= hi {
-        return Err(Error::input(
-            format!("{place}: fit.pressure"),
-            format!("lo {lo} must be below hi {hi}"),
-        ));
-    }
-    let p_ref = fs.reference_pressure.unwrap_or(1e-3 * lo);
-    positive(place, "fit.reference_pressure", p_ref)?;
-    if p_ref >= lo {
-        return Err(Error::input(
-            format!("{place}: fit.reference_pressure"),
-            format!("{p_ref} must be below the fit range's lower pressure {lo}"),
-        ));
-    }
-    let n_table = fs.table_points.unwrap_or(10);
-    if !(2..=100).contains(&n_table) {
-        return Err(Error::input(
-            format!("{place}: fit.table_points"),
-            format!("must be 2 to 100, got {n_table}"),
-        ));
-    }
-    // pressures beyond what the model can carry: a surface far too soft or stiff
-    let deepest = gw.pressure(-50.0 * gw.sigma);
+    let values = || surface_values(input, &gw, profile_place.as_deref());
+    let sigma = gw.sigma;
+    // the upper pressure: the curve runs to 2 hi, within DEEPEST σ of approach
+    let deepest = gw.pressure(-DEEPEST * sigma);
     if deepest.is_nan() || deepest <= 2.0 * hi {
-        return Err(Error::input(
-            format!("{place}: fit.pressure"),
-            format!("the surface does not reach {hi} MPa within 50 σ of approach"),
+        return Err(combined(
+            w,
+            place,
+            "fit.pressure",
+            format!(
+                "the surface carries {} MPa at an approach of {DEEPEST} σ_s (the summits flattened {DEEPEST} times their height spread, far beyond Greenwood-Williamson), not twice the upper fit pressure fit.pressure = {} MPa that the curve runs to, for {}",
+                limits::sig(deepest, 4),
+                limits::num(hi),
+                values()
+            ),
         ));
+    }
+    // the lower pressure: how many summits touch there
+    let d_lo = gw.separation(lo);
+    let contacts_lo = gw.density * gw.contact_fraction(d_lo);
+    if contacts_lo.is_nan() || contacts_lo < NO_CONTACT {
+        let onset = NO_CONTACT / gw.density;
+        let from = if onset < 0.5 {
+            format!(
+                "; one summit per m² touches from {} MPa up",
+                limits::sig(gw.pressure(gw.separation_for_fraction(onset)), 4)
+            )
+        } else {
+            String::new()
+        };
+        return Err(combined(
+            w,
+            place,
+            "fit.pressure",
+            format!(
+                "no summit touches at the lower fit pressure fit.pressure = {} MPa: it maps to a separation of {} σ_s above the mean summit height, where {} summits per mm² touch (fewer than one per m² of nominal area), for {}{from}",
+                limits::num(lo),
+                limits::sig(d_lo / sigma, 4),
+                limits::sig(contacts_lo, 4),
+                values()
+            ),
+        ));
+    }
+    if contacts_lo < FEW_CONTACTS {
+        w.push(Warning {
+            place: place.to_string(),
+            key: "fit.pressure".into(),
+            message: format!(
+                "at the lower fit pressure {} MPa only {} summits per mm² touch (one per {} mm²): Greenwood-Williamson averages over many summits, so the law holds only on contacts far larger than that; for {}",
+                limits::num(lo),
+                limits::sig(contacts_lo, 4),
+                limits::sig(1.0 / contacts_lo, 4),
+                values()
+            ),
+        });
     }
     let d0 = gw.separation(p_ref);
+    let step = d0 - d_lo;
+    if step.is_nan() || step <= RESOLVED * sigma {
+        return Err(Error::input(
+            format!("{place}: {ref_key}"),
+            format!(
+                "{} MPa maps to a separation only {} σ_s from that of the lower fit pressure {} MPa: the approaches would be round-off; take a reference pressure further below lo",
+                limits::exact(p_ref),
+                limits::sig(step / sigma, 4),
+                limits::exact(lo)
+            ),
+        ));
+    }
+    let d_hi = gw.separation(hi);
+    let span = d_lo - d_hi;
+    if span.is_nan() || span <= RESOLVED * sigma * (n_table - 1) as f64 {
+        return Err(Error::input(
+            format!("{place}: fit.pressure"),
+            format!(
+                "lo {} and hi {} MPa map to separations only {} σ_s apart: the table's approaches would not be resolved; widen the range",
+                limits::exact(lo),
+                limits::exact(hi),
+                limits::sig(span / sigma, 4)
+            ),
+        ));
+    }
+    Ok(Prepared {
+        gw,
+        moments,
+        range: [lo, hi],
+        reference_pressure: p_ref,
+        table_points: n_table,
+        d0,
+        d_lo,
+        d_hi,
+        contacts_lo,
+        warnings,
+    })
+}
+
+/// Checks the input ([`prepare`]) and computes the curve, the fit and the
+/// table; `base` is the folder that relative profile paths start from.
+pub fn calibrate(input: &Input, place: &str, base: &Path) -> Result<Calibration> {
+    let Prepared {
+        gw,
+        moments,
+        range: [lo, hi],
+        reference_pressure: p_ref,
+        table_points: n_table,
+        d0,
+        warnings,
+        ..
+    } = prepare(input, place, base)?;
     let fitted = fit::curve(&gw, d0, &fit::log_space(lo, hi, 101));
     let mut ps = fit::log_space(p_ref, lo, 41);
     ps.pop();
@@ -344,15 +535,19 @@ pub fn calibrate(input: &Input, place: &str, base: &Path) -> Result<Calibration>
     ps.pop();
     ps.extend(fit::log_space(hi, 2.0 * hi, 21));
     let curve = fit::curve(&gw, d0, &ps);
-    let fit = fit::power_law(&fitted)
-        .ok_or_else(|| Error::input(place, "the curve cannot be fitted (no approach)"))?;
+    let fit = fit::power_law(&fitted).ok_or_else(|| {
+        Error::input(
+            format!("{place}: fit.pressure"),
+            "the curve cannot be fitted (no approach)",
+        )
+    })?;
     let table = fit::curve(&gw, d0, &fit::log_space(lo, hi, n_table));
     let increasing = table
         .windows(2)
         .all(|w| w[1].approach > w[0].approach && w[1].pressure > w[0].pressure);
     if !increasing || table[0].approach <= 0.0 {
         return Err(Error::input(
-            place,
+            format!("{place}: fit.pressure"),
             "the table's approaches are not positive and strictly increasing (range too narrow for the model's accuracy)",
         ));
     }
@@ -366,6 +561,7 @@ pub fn calibrate(input: &Input, place: &str, base: &Path) -> Result<Calibration>
         fitted,
         fit,
         table,
+        warnings,
     })
 }
 
@@ -420,6 +616,7 @@ impl Calibration {
                 "plasticity_index": hardness.map(|h| g.e_star / h * (g.sigma / g.radius).sqrt()),
             },
             "profile": profile,
+            "warnings": self.warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>(),
         })
     }
 
@@ -434,6 +631,12 @@ impl Calibration {
             "# Two interface laws for the same surface; paste one into the case and rename\n# the table to the interface's name ([interface.<name>]). Approaches in mm from\n# the separation where p = {:.4e} MPa; pressures in MPa.\n",
             self.reference_pressure
         );
+        for w in &self.warnings {
+            let _ = writeln!(s, "# WARNING: {w}");
+        }
+        if !self.warnings.is_empty() {
+            s.push('\n');
+        }
         let _ = writeln!(
             s,
             "# power law u_N = c_N p^m fitted over {lo}-{hi} MPa: max relative error in u_N {:.2}%",
@@ -511,10 +714,22 @@ impl Calibration {
     }
 }
 
-/// Runs `asperity calibrate INPUT --out DIR`: the files are written into a
-/// temporary folder next to DIR, which replaces DIR only when complete.
-/// Returns the files written (relative names) and a one-line summary.
-pub fn run(input_path: &Path, out: &Path) -> Result<(Vec<PathBuf>, String)> {
+/// What `asperity calibrate` wrote.
+#[derive(Clone, Debug)]
+pub struct Written {
+    /// The files, relative to DIR.
+    pub files: Vec<PathBuf>,
+    /// One line for stdout.
+    pub summary: String,
+    /// Legal but suspicious values, for `warning: …` lines on stderr.
+    pub warnings: Vec<Warning>,
+}
+
+/// Runs `asperity calibrate INPUT --out DIR`: every check and the whole
+/// computation come first, then the files are written into a temporary folder
+/// next to DIR, which replaces DIR only when complete; a refused input leaves
+/// DIR as it was.
+pub fn run(input_path: &Path, out: &Path) -> Result<Written> {
     let input = load(input_path)?;
     let place = input_path.display().to_string();
     let base = input_path.parent().unwrap_or(Path::new("."));
@@ -569,5 +784,130 @@ pub fn run(input_path: &Path, out: &Path) -> Result<(Vec<PathBuf>, String)> {
         cal.gw.sigma,
         out.display()
     );
-    result.map(|f| (f, summary))
+    result.map(|files| Written {
+        files,
+        summary,
+        warnings: cal.warnings,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const MATERIALS: &str = "[materials]\na = { young = 206000.0, poisson = 0.3 }\nb = { young = 206000.0, poisson = 0.3 }\n";
+
+    fn gw_input(surface: &str, fit: &str) -> Input {
+        let text = format!("{MATERIALS}[surface]\nmodel = \"gw\"\n{surface}[fit]\n{fit}");
+        parse(&text, "s.toml").unwrap()
+    }
+
+    fn refusal(input: &Input) -> String {
+        prepare(input, "s.toml", Path::new("."))
+            .unwrap_err()
+            .to_string()
+    }
+
+    /// The no-contact fit range is refused by `prepare`, which maps the
+    /// pressures to separations with three bisections and never builds the
+    /// curve or the fit (those are in `calibrate`, after it). The same input
+    /// with the roughness in its usual range prepares.
+    #[test]
+    fn a_fit_range_where_no_summit_touches_is_refused_before_the_fit() {
+        // σ in µm written as mm: the key at fault is surface.sigma
+        let input = gw_input(
+            "density = 2e3\nradius = 0.05\nsigma = 1.0\n",
+            "pressure = [1e-3, 1e-2]\n",
+        );
+        let e = refusal(&input);
+        assert!(
+            e.starts_with("s.toml: surface.sigma: 1 mm is above the usual range")
+                && e.contains(
+                    "no summit touches at the lower fit pressure fit.pressure = 1e-3 MPa"
+                )
+                && e.contains(
+                    "surface.density = 2e3 /mm², surface.radius = 0.05 mm, surface.sigma = 1 mm"
+                ),
+            "{e}"
+        );
+        // a negative ν (warned) is not blamed for it
+        let text = "[materials]\na = { young = 1.2e6, poisson = -0.2 }\nb = { young = 1.2e6, poisson = 0.1 }\n\
+                    [surface]\nmodel = \"gw\"\ndensity = 1e6\nradius = 10.0\nsigma = 0.1\n[fit]\npressure = [1e-3, 1e-2]\n";
+        let e = refusal(&parse(text, "s.toml").unwrap());
+        assert!(
+            e.starts_with("s.toml: fit.pressure: no summit touches"),
+            "{e}"
+        );
+        // every value usual, the pressures too low for this stiff, coarse surface
+        let text = "[materials]\na = { young = 1.2e6, poisson = 0.1 }\nb = { young = 1.2e6, poisson = 0.1 }\n\
+                    [surface]\nmodel = \"gw\"\ndensity = 1e6\nradius = 10.0\nsigma = 0.1\n[fit]\npressure = [1e-3, 1e-2]\n";
+        let e = refusal(&parse(text, "s.toml").unwrap());
+        assert!(
+            e.starts_with("s.toml: fit.pressure: no summit touches")
+                && e.contains("surface.sigma = 0.1 mm"),
+            "{e}"
+        );
+        // the example's surface at the same pressures: summits touch
+        let input = gw_input(
+            "density = 2e3\nradius = 0.05\nsigma = 1e-3\n",
+            "pressure = [1e-3, 1e-2]\n",
+        );
+        let p = prepare(&input, "s.toml", Path::new(".")).unwrap();
+        assert!(p.contacts_lo > NO_CONTACT && p.d0 > p.d_lo && p.d_lo > p.d_hi);
+    }
+
+    #[test]
+    fn unit_slips_warn_and_calibrate() {
+        let input = gw_input(
+            "density = 1e12\nradius = 0.05\nsigma = 1.0\n",
+            "pressure = [10.0, 200.0]\n",
+        );
+        let cal = calibrate(&input, "s.toml", Path::new(".")).unwrap();
+        let keys: Vec<&str> = cal.warnings.iter().map(|w| w.key.as_str()).collect();
+        // the density does not bring summits into contact: at a given pressure
+        // their number per mm² goes with p / (E* β^½ σ^{3/2}), and σ is 1000× off
+        assert_eq!(
+            keys,
+            ["surface.density", "surface.sigma", "fit.pressure"],
+            "{:?}",
+            cal.warnings
+        );
+        assert!(cal.warnings[2].message.contains("summits per mm² touch"));
+        let json = cal.fit_json("s.toml");
+        assert_eq!(json["warnings"].as_array().unwrap().len(), 3);
+        let toml = cal.interface_toml("s.toml");
+        assert!(
+            toml.contains("# WARNING: s.toml: surface.sigma: 1 mm is above"),
+            "{toml}"
+        );
+    }
+
+    #[test]
+    fn subnormal_and_huge_values_name_their_key() {
+        for (surface, fit, key) in [
+            (
+                "density = 2e3\nradius = 0.05\nsigma = 1e-310\n",
+                "pressure = [10.0, 200.0]\n",
+                "surface.sigma: 1e-310 is a subnormal",
+            ),
+            (
+                "density = 1e300\nradius = 0.05\nsigma = 1e-3\n",
+                "pressure = [10.0, 200.0]\n",
+                "surface.density: 1e300 /mm² is far outside",
+            ),
+            (
+                "density = 2e3\nradius = 0.05\nsigma = 1e-3\n",
+                "pressure = [1e-320, 200.0]\n",
+                "fit.pressure: 1e-320 is a subnormal",
+            ),
+            (
+                "density = 2e3\nradius = 0.05\nsigma = 1e-3\n",
+                "pressure = [10.0, 200.0]\nreference_pressure = 1e-15\n",
+                "fit.reference_pressure: 1e-15 MPa is far outside",
+            ),
+        ] {
+            let e = refusal(&gw_input(surface, fit));
+            assert!(e.starts_with(&format!("s.toml: {key}")), "{key}: {e}");
+        }
+    }
 }

@@ -61,18 +61,52 @@ pub struct Summits {
     pub sigma: f64,
 }
 
-/// Reads heights from text: numbers separated by commas, semicolons or white
-/// space; `#` starts a comment. A line profile takes every number in order; an
-/// areal map takes one grid row per non-empty line (all rows equally long).
+/// Largest height magnitude read, mm: the case file's coordinate range (1 km).
+pub const MAX_HEIGHT: f64 = crate::case::ranges::COORDINATE.hi;
+
+/// The rms height left after removing the least-squares line or plane, below
+/// which (relative to the largest height) a record is flat: the round-off of
+/// the levelling is a few 1e-16 of the heights.
+pub const FLAT: f64 = 1e-12;
+
+/// The lines of `text`, ended by LF, CRLF or a lone CR (Unix, Windows and
+/// old Mac spreadsheet exports), without their ends.
+fn lines(text: &str) -> impl Iterator<Item = &str> {
+    let mut rest = text;
+    std::iter::from_fn(move || {
+        if rest.is_empty() {
+            return None;
+        }
+        let (line, next) = match rest.find(['\n', '\r']) {
+            None => (rest, ""),
+            Some(i) => {
+                let end = if rest[i..].starts_with("\r\n") { 2 } else { 1 };
+                (&rest[..i], &rest[i + end..])
+            }
+        };
+        rest = next;
+        Some(line)
+    })
+}
+
+/// Reads heights from text: numbers separated by commas, semicolons, spaces or
+/// tabs (not other white space: a no-break space as a thousands separator is
+/// refused, not read as two heights); `#` starts a comment; lines end in LF,
+/// CRLF or CR and a leading byte-order mark is skipped (a spreadsheet's CSV
+/// export). A line profile takes
+/// every number in order; an areal map takes one grid row per non-empty line
+/// (all rows equally long). Heights must be finite, not subnormal and at most
+/// [`MAX_HEIGHT`] in magnitude.
 pub fn parse(text: &str, place: &str, areal: bool, sampling: f64) -> Result<Heights> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut z = Vec::new();
     let mut rows = 0;
     let mut cols = 0;
-    for (n, line) in text.lines().enumerate() {
+    for (n, line) in lines(text).enumerate() {
         let body = line.split('#').next().unwrap_or("");
         let mut count = 0;
         for tok in body
-            .split(|c: char| c == ',' || c == ';' || c.is_whitespace())
+            .split(|c: char| c == ',' || c == ';' || c.is_ascii_whitespace())
             .filter(|t| !t.is_empty())
         {
             let v: f64 = tok.parse().map_err(|_| {
@@ -85,6 +119,18 @@ pub fn parse(text: &str, place: &str, areal: bool, sampling: f64) -> Result<Heig
                 return Err(Error::input(
                     format!("{place}:{}", n + 1),
                     format!("height {tok} is not finite"),
+                ));
+            }
+            if v != 0.0 && v.abs() < f64::MIN_POSITIVE {
+                return Err(Error::input(
+                    format!("{place}:{}", n + 1),
+                    format!("height {tok} is a subnormal number (below 2.2e-308 mm in magnitude)"),
+                ));
+            }
+            if v.abs() > MAX_HEIGHT {
+                return Err(Error::input(
+                    format!("{place}:{}", n + 1),
+                    format!("height {tok} is beyond {MAX_HEIGHT:e} mm (1 km) in magnitude: heights are in mm"),
                 ));
             }
             z.push(v);
@@ -136,11 +182,19 @@ impl Heights {
         }
     }
 
-    /// The record levelled by `how` (mean, or least-squares line/plane).
+    /// The record levelled by `how` (mean, or least-squares line/plane), in two
+    /// passes: the second levels the first's residual, which removes the
+    /// round-off of the first's sums (a large offset).
     pub fn levelled(&self, how: Detrend) -> Vec<f64> {
-        let n = self.z.len() as f64;
-        let mean = self.z.iter().sum::<f64>() / n;
-        let mut out: Vec<f64> = self.z.iter().map(|v| v - mean).collect();
+        let once = self.level(&self.z, how);
+        self.level(&once, how)
+    }
+
+    /// One pass of [`Heights::levelled`] on `z` (of this record's shape).
+    fn level(&self, z: &[f64], how: Detrend) -> Vec<f64> {
+        let n = z.len() as f64;
+        let mean = z.iter().sum::<f64>() / n;
+        let mut out: Vec<f64> = z.iter().map(|v| v - mean).collect();
         if how == Detrend::Linear {
             // the index coordinates are centred, so the slopes decouple
             let (r, c) = (self.rows, self.cols);
@@ -165,6 +219,43 @@ impl Heights {
             }
         }
         out
+    }
+
+    /// The rms height left after removing the least-squares line or plane, and
+    /// the largest height magnitude of the record.
+    pub fn flatness(&self) -> (f64, f64) {
+        let z = self.levelled(Detrend::Linear);
+        let rms = (z.iter().map(|v| v * v).sum::<f64>() / z.len() as f64).sqrt();
+        let top = self.z.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        (rms, top)
+    }
+
+    /// The moments ([`Heights::moments`]), or an error at `place` when the record
+    /// has no roughness: its heights lie on a line or plane (level or tilted)
+    /// up to round-off, [`FLAT`] of its largest height. A tilt is no roughness
+    /// whatever `how` says: levelled by the mean only, it would give summits of
+    /// round-off.
+    pub fn rough_moments(&self, how: Detrend, place: &str) -> Result<Moments> {
+        let (rms, top) = self.flatness();
+        if rms.is_nan() || rms <= FLAT * top {
+            let shape = if self.rows > 1 { "plane" } else { "line" };
+            let level = top > 0.0;
+            let (rms, top) = (super::limits::sig(rms, 4), super::limits::sig(top, 4));
+            let what = match (how, level) {
+                (_, false) => "every height is 0".to_string(),
+                (Detrend::Linear, true) => format!(
+                    "detrend = \"linear\" leaves an rms height of {rms} mm of heights up to {top} mm, round-off"
+                ),
+                (Detrend::Mean, true) => format!(
+                    "the least-squares {shape} leaves an rms height of {rms} mm of heights up to {top} mm, round-off; detrend = \"mean\" would leave the tilt alone, which has no summits"
+                ),
+            };
+            return Err(Error::input(
+                place,
+                format!("the profile is flat: its heights lie on a {shape} (level or tilted) and {what}; there is no roughness to calibrate"),
+            ));
+        }
+        Ok(self.moments(how))
     }
 
     /// m0, m2, m4 of the levelled record; a grid averages the moments along its
@@ -279,6 +370,91 @@ mod tests {
         assert!(e.contains("\"x\" is not a number"), "{e}");
         let e = parse("", "p", false, 1.0).unwrap_err().to_string();
         assert!(e.contains("too few heights: 0"), "{e}");
+    }
+
+    /// A spreadsheet's CSV export: byte-order mark, CRLF (or old Mac CR) line
+    /// ends; read as the clean text.
+    #[test]
+    fn bom_crlf_and_cr_read_as_the_clean_text() {
+        let clean = "# z, mm\n1.5,2.5\n-3e-3;4\n5\n6\n7\n8\n9\n";
+        let want = parse(clean, "p", true, 1.0);
+        assert!(want.is_err()); // ragged as a grid: rows are lines
+        let want = parse(clean, "p", false, 1.0).unwrap();
+        for text in [
+            format!("\u{feff}{}", clean.replace('\n', "\r\n")),
+            format!("\u{feff}{}", clean.replace('\n', "\r")),
+            clean.replace('\n', "\r\n"),
+        ] {
+            let got = parse(&text, "p", false, 1.0).unwrap();
+            assert_eq!((got.z, got.rows, got.cols), (want.z.clone(), 1, 9));
+        }
+        let grid: String = (0..8).map(|_| "1 2 3 4 5 6 7 8 9\r\n").collect();
+        let h = parse(&format!("\u{feff}{grid}"), "p", true, 1.0).unwrap();
+        assert_eq!((h.rows, h.cols), (8, 9));
+        let h = parse(&grid.replace("\r\n", "\r"), "p", true, 1.0).unwrap();
+        assert_eq!((h.rows, h.cols), (8, 9));
+        // line numbers count CRLF once
+        let e = parse("1\r\n2\r\nx\r\n", "p", false, 1.0)
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("p:3: "), "{e}");
+    }
+
+    #[test]
+    fn invisible_subnormal_and_huge_heights_are_refused_escaped() {
+        let e = parse("1\n\u{feff}2\n", "p", false, 1.0)
+            .unwrap_err()
+            .to_string();
+        assert_eq!(e, "p:2: \"\\u{feff}2\" is not a number");
+        let e = parse("1\n2\u{a0}000\n", "p", false, 1.0)
+            .unwrap_err()
+            .to_string();
+        assert_eq!(e, "p:2: \"2\\u{a0}000\" is not a number");
+        let e = parse("1\n1e-310\n", "p", false, 1.0)
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("p:2: height 1e-310 is a subnormal"), "{e}");
+        let e = parse("1\n2e6\n", "p", false, 1.0).unwrap_err().to_string();
+        assert!(e.starts_with("p:2: height 2e6 is beyond"), "{e}");
+    }
+
+    #[test]
+    fn flat_records_are_refused_whatever_the_detrend() {
+        let tilted = Heights::line((0..500).map(|i| 3.0 + 0.25e-3 * i as f64).collect(), 1e-3);
+        for how in [Detrend::Linear, Detrend::Mean] {
+            let e = tilted.rough_moments(how, "p.csv").unwrap_err().to_string();
+            assert!(
+                e.starts_with("p.csv: the profile is flat: its heights lie on a line"),
+                "{e}"
+            );
+        }
+        let level = Heights::line(vec![0.0; 50], 1e-3);
+        let e = level
+            .rough_moments(Detrend::Mean, "p.csv")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("every height is 0"), "{e}");
+        let (r, c) = (10, 12);
+        let plane = Heights {
+            z: (0..r * c)
+                .map(|k| 25.0 + 0.5e-3 * (k % c) as f64 - 0.2e-3 * (k / c) as f64)
+                .collect(),
+            rows: r,
+            cols: c,
+            sampling: 1e-3,
+        };
+        let e = plane
+            .rough_moments(Detrend::Linear, "p.csv")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("lie on a plane"), "{e}");
+        // a roughness of 1e-10 of a 25 mm offset is kept
+        let mut z = plane.z.clone();
+        for (k, v) in z.iter_mut().enumerate() {
+            *v += 2.5e-9 * ((k * 7919) % 13) as f64;
+        }
+        let rough = Heights { z, ..plane };
+        assert!(rough.rough_moments(Detrend::Linear, "p.csv").is_ok());
     }
 
     #[test]

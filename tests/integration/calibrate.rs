@@ -1,7 +1,8 @@
 //! `asperity calibrate` as a user meets it: the worked example end to end
 //! (the files, the power-law snippet pasted into a shipped case and checked,
-//! the table snippet's shape, and the table law pasted into the punch runs), a measured profile, and bad inputs (one
-//! `error:` line, exit code 2, no output folder).
+//! the table snippet's shape, and the table law pasted into the punch runs), a measured profile
+//! (clean and as a spreadsheet exports it), unit slips that warn, and bad inputs (one `error:`
+//! line naming file and key, exit code 2, no output folder).
 
 use crate::common;
 use std::path::Path;
@@ -35,6 +36,7 @@ fn the_example_writes_a_curve_a_fit_and_pasteable_laws() {
     let (code, stdout, err) =
         calibrate(&common::root().join("docs/calibration/example.toml"), &out);
     assert_eq!(code, 0, "{err}");
+    assert!(err.is_empty(), "the example draws no warning: {err}");
     assert!(stdout.contains("c_n = "), "{stdout}");
     for f in ["curve.csv", "fit.json", "interface.toml"] {
         assert!(out.join(f).is_file(), "{f}");
@@ -124,10 +126,9 @@ fn the_example_writes_a_curve_a_fit_and_pasteable_laws() {
     assert_eq!(code, 0, "{err}");
 }
 
-#[test]
-fn a_measured_profile_gives_its_summit_parameters() {
-    let dir = common::scratch("calibrate-profile");
-    // three harmonics, whole periods: m0, m2, m4 known (finite-difference bias < 1%)
+/// Three harmonics, whole periods, 4000 samples 1 µm apart: m0, m2, m4 known
+/// (finite-difference bias < 1%). The text (one height per line, LF) and the modes.
+fn three_harmonics() -> (String, usize, f64, [(f64, f64); 3]) {
     let n = 4000;
     let dx = 1e-3;
     let len = n as f64 * dx;
@@ -141,15 +142,28 @@ fn a_measured_profile_gives_its_summit_parameters() {
             .sum();
         text.push_str(&format!("{z:.12e}\n"));
     }
-    std::fs::write(dir.join("profile.csv"), text).unwrap();
-    let input = dir.join("surface.toml");
+    (text, n, len, modes)
+}
+
+/// surface.toml for `profile.csv` in `dir`, with `detrend`.
+fn profile_input(dir: &Path, file: &str, detrend: &str) -> std::path::PathBuf {
+    let input = dir.join(format!("{file}.toml"));
     std::fs::write(
         &input,
-        "[materials]\na = { young = 206000.0, poisson = 0.3 }\nb = { young = 206000.0, poisson = 0.3 }\n\
-         [surface]\nmodel = \"profile\"\nfile = \"profile.csv\"\nsampling = 1e-3\nkind = \"line\"\ndetrend = \"mean\"\n\
-         [fit]\npressure = [10.0, 200.0]\n",
+        format!("[materials]\na = {{ young = 206000.0, poisson = 0.3 }}\nb = {{ young = 206000.0, poisson = 0.3 }}\n\
+         [surface]\nmodel = \"profile\"\nfile = \"{file}\"\nsampling = 1e-3\nkind = \"line\"\ndetrend = \"{detrend}\"\n\
+         [fit]\npressure = [10.0, 200.0]\n"),
     )
     .unwrap();
+    input
+}
+
+#[test]
+fn a_measured_profile_gives_its_summit_parameters() {
+    let dir = common::scratch("calibrate-profile");
+    let (text, _, len, modes) = three_harmonics();
+    std::fs::write(dir.join("profile.csv"), text).unwrap();
+    let input = profile_input(&dir, "profile.csv", "mean");
     let (code, _, err) = calibrate(&input, &dir.join("out"));
     assert_eq!(code, 0, "{err}");
     let fit: serde_json::Value =
@@ -171,9 +185,117 @@ fn a_measured_profile_gives_its_summit_parameters() {
     assert!((got / eta - 1.0).abs() < 0.02, "{got} vs {eta}");
 }
 
+/// The same profile as a spreadsheet exports it (UTF-8 byte-order mark, CRLF
+/// line ends; and old Mac CR line ends) calibrates exactly like the clean file.
+#[test]
+fn a_spreadsheet_profile_calibrates_like_the_clean_file() {
+    let dir = common::scratch("calibrate-spreadsheet");
+    let (text, ..) = three_harmonics();
+    std::fs::write(dir.join("clean.csv"), &text).unwrap();
+    let crlf = format!("\u{feff}{}", text.replace('\n', "\r\n"));
+    assert!(crlf.as_bytes().starts_with(&[0xef, 0xbb, 0xbf]) && crlf.contains("\r\n"));
+    std::fs::write(dir.join("excel.csv"), crlf).unwrap();
+    std::fs::write(
+        dir.join("mac.csv"),
+        format!("\u{feff}{}", text.replace('\n', "\r")),
+    )
+    .unwrap();
+    let fit = |file: &str| -> serde_json::Value {
+        let out = dir.join(format!("out-{file}"));
+        let (code, _, err) = calibrate(&profile_input(&dir, file, "linear"), &out);
+        assert_eq!(code, 0, "{file}: {err}");
+        assert!(err.is_empty(), "{file}: {err}");
+        serde_json::from_str(&std::fs::read_to_string(out.join("fit.json")).unwrap()).unwrap()
+    };
+    let clean = fit("clean.csv");
+    for file in ["excel.csv", "mac.csv"] {
+        let got = fit(file);
+        for key in [
+            &["c_n"][..],
+            &["m"],
+            &["d0_mm"],
+            &["gw", "density_per_mm2"],
+            &["gw", "radius_mm"],
+            &["gw", "sigma_mm"],
+            &["profile", "m0_mm2"],
+            &["profile", "m4_per_mm2"],
+        ] {
+            let at = |v: &serde_json::Value| key.iter().fold(v.clone(), |v, k| v[*k].clone());
+            let (a, b) = (at(&clean).as_f64().unwrap(), at(&got).as_f64().unwrap());
+            assert!(common::rel(a, b) < 1e-14, "{file} {key:?}: {a} vs {b}");
+        }
+    }
+}
+
+/// Legal but implausible values (σ in µm written as mm, a density per m²
+/// written per mm²): the calibration is made, each value named in a warning on
+/// stderr and in the output.
+#[test]
+fn unit_slips_are_calibrated_with_warnings() {
+    let dir = common::scratch("calibrate-warnings");
+    let input = dir.join("surface.toml");
+    std::fs::write(
+        &input,
+        format!(
+            "{MATERIALS}{}{FIT}",
+            GW.replace("sigma = 1e-3", "sigma = 1.0")
+                .replace("density = 2e3", "density = 2e9")
+        ),
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let (code, stdout, err) = calibrate(&input, &out);
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("c_n = "), "{stdout}");
+    let lines: Vec<&str> = err.lines().collect();
+    assert!(lines.iter().all(|l| l.starts_with("warning: ")), "{err}");
+    assert!(
+        lines.iter().any(
+            |l| l.contains("surface.sigma: 1 mm is above the usual range")
+                && l.contains("µm written as mm")
+        ),
+        "{err}"
+    );
+    assert!(
+        lines.iter().any(
+            |l| l.contains("surface.density: 2e9 /mm² is above the usual range")
+                && l.contains("per m² written as per mm²")
+        ),
+        "{err}"
+    );
+    let fit: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("fit.json")).unwrap()).unwrap();
+    assert_eq!(fit["warnings"].as_array().unwrap().len(), lines.len());
+    let text = std::fs::read_to_string(out.join("interface.toml")).unwrap();
+    assert_eq!(text.matches("# WARNING: ").count(), lines.len(), "{text}");
+}
+
 fn bad(name: &str, input: &str, expect: &str) {
     let dir = common::scratch(&format!("calibrate-bad-{name}"));
     std::fs::write(dir.join("empty.csv"), "# nothing\n").unwrap();
+    // flat records: a tilted line, and a tilted plane (CRLF) with an offset
+    let tilted: String = (0..400)
+        .map(|i| format!("{}\n", 3.0 + 2.5e-4 * i as f64))
+        .collect();
+    std::fs::write(dir.join("tilted.csv"), tilted).unwrap();
+    let plane: String = (0..12)
+        .map(|r| {
+            let row: Vec<String> = (0..15)
+                .map(|c| format!("{}", 25.0 + 5e-4 * c as f64 - 2e-4 * r as f64))
+                .collect();
+            row.join(",") + "\r\n"
+        })
+        .collect();
+    std::fs::write(dir.join("plane.csv"), plane).unwrap();
+    // a byte-order mark and a no-break space inside the record, not at its start
+    std::fs::write(
+        dir.join("invisible.csv"),
+        "1e-3\n\u{feff}2e-3\n3e-3\n-1e-3\n2e-3\n0\n1e-3\n-2e-3\n",
+    )
+    .unwrap();
+    std::fs::write(dir.join("nbsp.csv"), "1e-3\n2\u{a0}000\n").unwrap();
+    std::fs::write(dir.join("huge.csv"), "1e-3\n2e-3\n1e300\n").unwrap();
+    std::fs::write(dir.join("subnormal.csv"), "1e-3\n4e-320\n").unwrap();
     let path = dir.join("surface.toml");
     std::fs::write(&path, input).unwrap();
     let (code, out, err) = calibrate(&path, &dir.join("out"));
@@ -181,7 +303,25 @@ fn bad(name: &str, input: &str, expect: &str) {
     assert_eq!(err.lines().count(), 1, "{name}: {err}");
     assert!(err.starts_with("error: "), "{name}: {err}");
     assert!(err.contains(expect), "{name}: {err}");
+    assert!(
+        !err.trim_end_matches('\n')
+            .chars()
+            .any(|c| c.is_control() || asperity::error::invisible(c)),
+        "{name}: {err:?}"
+    );
     assert!(!dir.join("out").exists(), "{name}");
+    // nor a temporary folder beside it
+    let left: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with('.'))
+        .collect();
+    assert!(left.is_empty(), "{name}: {left:?}");
+}
+
+/// A profile input over `file` (written by [`bad`]).
+fn profile(file: &str, extra: &str) -> String {
+    format!("{MATERIALS}[surface]\nmodel = \"profile\"\nfile = \"{file}\"\nsampling = 1e-3\n{extra}{FIT}")
 }
 
 const MATERIALS: &str =
@@ -243,6 +383,149 @@ fn bad_inputs_are_one_error_line_and_exit_2() {
         "poisson-half",
         &format!("{}{GW}{FIT}", MATERIALS.replacen("0.3", "0.5", 1)),
         "materials.a.poisson",
+    );
+    // issue 30: subnormal, huge and non-finite values name their key
+    bad(
+        "subnormal-sigma",
+        &format!(
+            "{MATERIALS}{}{FIT}",
+            GW.replace("sigma = 1e-3", "sigma = 1e-310")
+        ),
+        "surface.toml: surface.sigma: 1e-310 is a subnormal number",
+    );
+    bad(
+        "huge-sigma",
+        &format!(
+            "{MATERIALS}{}{FIT}",
+            GW.replace("sigma = 1e-3", "sigma = 1e300")
+        ),
+        "surface.sigma: 1e300 mm is far outside any use as σ_s",
+    );
+    bad(
+        "huge-young",
+        &format!("{}{GW}{FIT}", MATERIALS.replacen("206000.0", "1e300", 1)),
+        "materials.a.young: 1e300 MPa is far outside any use as Young's modulus",
+    );
+    bad(
+        "subnormal-poisson",
+        &format!("{}{GW}{FIT}", MATERIALS.replacen("0.3", "1e-315", 1)),
+        "materials.a.poisson: 1e-315 is a subnormal number",
+    );
+    bad(
+        "huge-density",
+        &format!(
+            "{MATERIALS}{}{FIT}",
+            GW.replace("density = 2e3", "density = 1e20")
+        ),
+        "surface.density: 1e20 /mm² is far outside",
+    );
+    bad(
+        "subnormal-radius",
+        &format!(
+            "{MATERIALS}{}{FIT}",
+            GW.replace("radius = 0.05", "radius = 2e-308")
+        ),
+        "surface.radius: 2e-308 is a subnormal number",
+    );
+    bad(
+        "infinite-pressure",
+        &format!("{MATERIALS}{GW}[fit]\npressure = [10.0, inf]\n"),
+        "fit.pressure: must be a finite number, got inf",
+    );
+    bad(
+        "subnormal-pressure",
+        &format!("{MATERIALS}{GW}[fit]\npressure = [1e-310, 200.0]\n"),
+        "fit.pressure: 1e-310 is a subnormal number",
+    );
+    bad(
+        "tiny-pressure",
+        &format!("{MATERIALS}{GW}[fit]\npressure = [1e-30, 1e-25]\n"),
+        "fit.pressure: 1e-30 MPa is far outside any use as a fit pressure",
+    );
+    bad(
+        "subnormal-reference",
+        &format!("{MATERIALS}{GW}{FIT}reference_pressure = 5e-324\n"),
+        "fit.reference_pressure: 5e-324 is a subnormal number",
+    );
+    bad(
+        "subnormal-sampling",
+        &profile("tilted.csv", "").replace("sampling = 1e-3", "sampling = 1e-320"),
+        "surface.sampling: 1e-320 is a subnormal number",
+    );
+    // no summit touches: the key at fault, the pressure and the roughness named
+    bad(
+        "no-contact-sigma-in-um",
+        &format!(
+            "{MATERIALS}{}[fit]\npressure = [1e-3, 1e-2]\n",
+            GW.replace("sigma = 1e-3", "sigma = 1.0")
+        ),
+        "surface.toml: surface.sigma: 1 mm is above the usual range of σ_s",
+    );
+    bad(
+        "no-contact-pressure",
+        "[materials]\na = { young = 1.2e6, poisson = 0.1 }\nb = { young = 1.2e6, poisson = 0.1 }\n\
+         [surface]\nmodel = \"gw\"\ndensity = 1e6\nradius = 10.0\nsigma = 0.1\n[fit]\npressure = [1e-3, 1e-2]\n",
+        "surface.toml: fit.pressure: no summit touches at the lower fit pressure fit.pressure = 1e-3 MPa",
+    );
+    bad(
+        "no-contact-names-roughness",
+        "[materials]\na = { young = 1.2e6, poisson = 0.1 }\nb = { young = 1.2e6, poisson = 0.1 }\n\
+         [surface]\nmodel = \"gw\"\ndensity = 1e6\nradius = 10.0\nsigma = 0.1\n[fit]\npressure = [1e-3, 1e-2]\n",
+        "surface.density = 1e6 /mm², surface.radius = 10 mm, surface.sigma = 0.1 mm",
+    );
+    bad(
+        "cannot-carry-hi",
+        &format!(
+            "{MATERIALS}{}[fit]\npressure = [10.0, 2000.0]\n",
+            GW.replace("sigma = 1e-3", "sigma = 1e-5")
+        ),
+        "surface.toml: fit.pressure: the surface carries",
+    );
+    bad(
+        "pressures-unresolved",
+        &format!("{MATERIALS}{GW}[fit]\npressure = [10.0, 10.0000000001]\n"),
+        "fit.pressure: lo 10 and hi 10.0000000001 MPa map to separations only",
+    );
+    bad(
+        "reference-unresolved",
+        &format!("{MATERIALS}{GW}{FIT}reference_pressure = 9.99999999999\n"),
+        "fit.reference_pressure: 9.99999999999 MPa maps to a separation only",
+    );
+    // flat and unreadable profiles name the height file
+    bad(
+        "flat-tilted-line",
+        &profile("tilted.csv", ""),
+        "tilted.csv: the profile is flat: its heights lie on a line",
+    );
+    bad(
+        "flat-tilted-line-mean",
+        &profile("tilted.csv", "detrend = \"mean\"\n"),
+        "detrend = \"mean\" would leave the tilt alone",
+    );
+    bad(
+        "flat-tilted-plane",
+        &profile("plane.csv", "kind = \"areal\"\n"),
+        "plane.csv: the profile is flat: its heights lie on a plane",
+    );
+    bad(
+        "bom-inside-profile",
+        &profile("invisible.csv", ""),
+        "invisible.csv:2: \"\\u{feff}2e-3\" is not a number",
+    );
+    bad(
+        "no-break-space-in-profile",
+        &profile("nbsp.csv", ""),
+        "nbsp.csv:2: \"2\\u{a0}000\" is not a number",
+    );
+    bad(
+        "huge-height",
+        &profile("huge.csv", ""),
+        "huge.csv:3: height 1e300 is beyond",
+    );
+    bad(
+        "subnormal-height",
+        &profile("subnormal.csv", ""),
+        "subnormal.csv:2: height 4e-320 is a subnormal number",
     );
     let (code, _, err) = asperity(&["calibrate", "no/such/file.toml", "--out", "x"]);
     assert_eq!(code, 2);
