@@ -9,21 +9,20 @@
 //! normal n of (3.14), n:C:n = 2G and the paper's h in (3.13) is h = 2H/3; the
 //! uniaxial tangent modulus is E H/(E + H).
 //!
-//! * Plane strain (ε_zz = 0): radial return in the 4 components (xx, yy, zz, xy),
-//!   closed form for linear hardening, with the algorithmic tangent.
+//! * Plane strain (ε_zz = 0) and axisymmetry (x = r, y = z): one radial return
+//!   (Simo & Hughes, eqs 3.8-3.11) in the 4 components (xx, yy, zz, xy), closed
+//!   form for linear hardening, with its algorithmic tangent (module `radial`).
+//!   The out-of-plane strain is given: 0 in plane strain, the hoop strain
+//!   ε_θθ = u_r/r in axisymmetry ([`VonMises::update_axisymmetric`], 4×4 tangents).
 //! * Plane stress (σ_zz = 0): the projected return of Simo & Taylor in the
 //!   plane-stress subspace, a scalar Newton iteration for Δγ, and its consistent
 //!   tangent; not a 3D return with σ_zz forced afterwards.
-//! * Axisymmetric (x = r, y = z): the same radial return with the hoop strain
-//!   ε_θθ = u_r/r as the given fourth component ([`VonMises::update_axisymmetric`],
-//!   4×4 tangents; module `axisymmetric`).
 //!
 //! Strains are total ([εxx, εyy, γxy], engineering shear); the update starts from
 //! the committed plastic strain, so it is path-independent within a load step.
 
-mod axisymmetric;
-mod plane_strain;
 mod plane_stress;
+mod radial;
 
 #[cfg(test)]
 mod tests;
@@ -213,33 +212,34 @@ impl VonMises {
         strain: &[f64; 3],
     ) -> Result<(PointState, Matrix3<f64>), ReturnMapError> {
         match self.plane {
-            Plane::Strain => Ok(plane_strain::update(self, committed, strain)),
             Plane::Stress => plane_stress::update(self, committed, strain),
-            Plane::Axisymmetric => {
+            // ε_zz = 0 (in axisymmetry: the in-plane strains with zero hoop strain)
+            Plane::Strain | Plane::Axisymmetric => {
                 let e4 = [strain[0], strain[1], strain[2], 0.0];
-                let (state, c) = axisymmetric::update(self, committed, &e4);
+                let (state, c) = radial::update(self, committed, &e4);
                 Ok((state, c.fixed_view::<3, 3>(0, 0).into_owned()))
             }
         }
     }
 
     /// Axisymmetric return mapping (radial return, eqs 3.8-3.11; Simo & Hughes
-    /// box 3.2) from `committed` for the total strain [ε_rr, ε_zz, γ_rz, ε_θθ]:
-    /// the new state (stress [σ_rr, σ_zz, σ_rz, σ_θθ]) and the algorithmic
-    /// tangent dσ/dε, 4×4 in that order. Used by every plane setting alike (the
-    /// hoop strain is given, whatever `plane` says); the axisymmetric element's.
+    /// box 3.2; the same function as plane strain's, module `radial`) from
+    /// `committed` for the total strain [ε_rr, ε_zz, γ_rz, ε_θθ]: the new state
+    /// (stress [σ_rr, σ_zz, σ_rz, σ_θθ]) and the algorithmic tangent dσ/dε, 4×4
+    /// in that order. Used by every plane setting alike (the hoop strain is
+    /// given, whatever `plane` says); the axisymmetric element's.
     pub fn update_axisymmetric(
         &self,
         committed: &PointState,
         strain: &[f64; 4],
     ) -> (PointState, Matrix4<f64>) {
-        axisymmetric::update(self, committed, strain)
+        radial::update(self, committed, strain)
     }
 
     /// The 3D isotropic elastic matrix in the order (rr, zz, rz, θθ), engineering
     /// shear: [σ_rr σ_zz σ_rz σ_θθ] = D [ε_rr ε_zz γ_rz ε_θθ] (eq. 3.9's C).
     pub fn elastic_matrix_4(&self) -> Matrix4<f64> {
-        axisymmetric::external(&elastic_3d(self.shear_modulus(), self.bulk_modulus()))
+        radial::external(&elastic_3d(self.shear_modulus(), self.bulk_modulus()))
     }
 
     /// Stress from the elastic law alone, keeping the committed plastic strain,
@@ -250,7 +250,7 @@ impl VonMises {
         committed: &PointState,
         strain: &[f64; 4],
     ) -> PointState {
-        axisymmetric::elastic(self, committed, strain)
+        radial::elastic(self, committed, strain)
     }
 
     /// Continuum tangent C_ep (3.13) at a committed state, 4×4 in the order
@@ -259,7 +259,7 @@ impl VonMises {
         if !state.yielding {
             return self.elastic_matrix_4();
         }
-        axisymmetric::external(&self.continuum_3d(&state.stress))
+        radial::external(&self.continuum_3d(&state.stress))
     }
 
     /// Continuum tangent at a committed state: C_ep (3.13) if the state was

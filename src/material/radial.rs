@@ -1,13 +1,14 @@
-//! Axisymmetric radial return: all four non-zero strain components are given.
+//! Radial return of von Mises plasticity with linear isotropic hardening (paper
+//! eqs 3.8-3.11; Simo & Hughes 1998, box 3.2) in the four non-zero components of
+//! a plane or axisymmetric strain, and its consistent (algorithmic) tangent. One
+//! function for plane strain and axisymmetry; plane stress has its own return
+//! (`plane_stress`).
 //!
-//! The strain of an axisymmetric body is [ε_rr, ε_zz, γ_rz, ε_θθ] (engineering
-//! shear), ε_θθ = u_r / r; the out-of-plane component is not zero as in plane
-//! strain but the given hoop strain, so the 3D return of von Mises plasticity
-//! with linear isotropic hardening (paper eqs 3.8-3.11) applies unchanged in the
-//! four components (rr, zz, θθ, rz). Plane strain is the special case ε_θθ = 0
-//! (that path keeps its own function, `plane_strain::update`).
+//! The strain is [ε_xx, ε_yy, γ_xy, ε_zz] (engineering shear) with the
+//! out-of-plane ε_zz given: 0 in plane strain, the hoop strain ε_θθ = u_r / r in
+//! axisymmetry (x = r, y = z). With it given, the 3D return applies unchanged.
 //!
-//! Radial return (Simo & Hughes 1998, box 3.2), closed form for linear hardening:
+//! Closed form for linear hardening:
 //! ```text
 //!   εᵉ = ε − εᵖₙ,   sᵗʳ = 2G dev εᵉ,   p = K tr εᵉ,   qᵗʳ = √(3/2 sᵗʳ:sᵗʳ)
 //!   f = qᵗʳ − σ_y(ε̄ᵖₙ) ≤ 0: elastic, σ = sᵗʳ + p 1
@@ -17,31 +18,34 @@
 //! The continuum tangent C_ep (eq. 3.13) is `VonMises::continuum_tangent_4`.
 //!
 //! Component order of the strain, the stress ([`PointState::stress`]) and the
-//! returned 4×4 tangents: rr, zz, rz, θθ (x = r, y = z). Inside this file the
-//! 3D Voigt order is rr, zz, θθ, rz (as `elastic_3d` and `continuum_3d`).
+//! returned 4×4 tangents: xx, yy, xy, zz (rr, zz, rz, θθ in axisymmetry). Inside
+//! this file the 3D Voigt order is xx, yy, zz, xy (as `elastic_3d` and
+//! `continuum_3d`).
 
 use super::{elastic_3d, PointState, VonMises};
 use nalgebra::Matrix4;
 
-/// Position of each external component (rr, zz, rz, θθ) in the Voigt order
-/// (rr, zz, θθ, rz) of the 3D matrices.
+/// Position of each external component (xx, yy, xy, zz) in the Voigt order
+/// (xx, yy, zz, xy) of the 3D matrices.
 pub(super) const VOIGT: [usize; 4] = [0, 1, 3, 2];
 
-/// A 3D Voigt (rr, zz, θθ, rz) matrix in the external order (rr, zz, rz, θθ).
+/// A 3D Voigt (xx, yy, zz, xy) matrix in the external order (xx, yy, xy, zz).
 pub(super) fn external(d: &Matrix4<f64>) -> Matrix4<f64> {
     Matrix4::from_fn(|i, j| d[(VOIGT[i], VOIGT[j])])
 }
 
 /// Return mapping from the committed state `c` for the total strain
-/// [ε_rr, ε_zz, γ_rz, ε_θθ]; the new state and the algorithmic tangent dσ/dε.
+/// [ε_xx, ε_yy, γ_xy, ε_zz] (ε_zz = 0 in plane strain, ε_θθ in axisymmetry);
+/// the new state and the algorithmic tangent dσ/dε, 4×4 in that order.
 pub(super) fn update(
     m: &VonMises,
     c: &PointState,
     strain: &[f64; 4],
 ) -> (PointState, Matrix4<f64>) {
     let (g, k, h) = (m.shear_modulus(), m.bulk_modulus(), m.hardening);
-    let ep = c.plastic_strain; // rr zz rz(tensor) θθ
-                               // elastic strain, Voigt rr zz θθ rz (tensor shear)
+    // committed plastic strain: xx, yy, xy (tensor), zz
+    let ep = c.plastic_strain;
+    // elastic strain, Voigt xx, yy, zz, xy (tensor shear)
     let ee = [
         strain[0] - ep[0],
         strain[1] - ep[1],
@@ -85,7 +89,7 @@ pub(super) fn update(
     (state, external(&algorithmic(g, k, h, beta, dgamma / q, &n)))
 }
 
-/// C_alg in Voigt (rr, zz, θθ, rz), engineering shear strain; `dg_q` = Δγ/qᵗʳ,
+/// C_alg in Voigt (xx, yy, zz, xy), engineering shear strain; `dg_q` = Δγ/qᵗʳ,
 /// `n` the unit deviatoric trial direction (shear as tensor component).
 fn algorithmic(g: f64, k: f64, h: f64, beta: f64, dg_q: f64, n: &[f64; 4]) -> Matrix4<f64> {
     let a = 6.0 * g * g * (dg_q - 1.0 / (3.0 * g + h));
@@ -102,8 +106,8 @@ fn algorithmic(g: f64, k: f64, h: f64, beta: f64, dg_q: f64, n: &[f64; 4]) -> Ma
     })
 }
 
-/// Stress from the elastic law alone for the total strain [ε_rr, ε_zz, γ_rz,
-/// ε_θθ], keeping the committed plastic strain: σ = D (ε − εᵖ).
+/// Stress from the elastic law alone for the total strain [ε_xx, ε_yy, γ_xy,
+/// ε_zz], keeping the committed plastic strain: σ = D (ε − εᵖ).
 pub(super) fn elastic(m: &VonMises, c: &PointState, strain: &[f64; 4]) -> PointState {
     let ep = &c.plastic_strain;
     let ee = nalgebra::Vector4::new(
