@@ -37,12 +37,16 @@
 //! `pvd_file` (names separated by newlines), `joint_totals` (2 per interface:
 //! frictional dissipation and tangential work so far) and `joints` (11 per
 //! interface and increment, as [`crate::interface::joint::JointMeasures::pack`]
-//! lays them out). Unknown sections are ignored; `last_du`, `joint_totals` and
-//! `joints` may be absent (files of earlier builds: the joint energies then
-//! restart from zero and the earlier increments have no joint rows, written
-//! as NaN rows of `joints` from then on).
+//! lays them out), `table_reach` (2 per interface: the largest approach u_N
+//! and pressure p_N over the converged states so far, see
+//! [`crate::interface::extrapolation`]). Unknown sections are ignored;
+//! `last_du`, `joint_totals`, `joints` and `table_reach` may be absent (files
+//! of earlier builds: the joint energies then restart from zero and the
+//! earlier increments have no joint rows, written as NaN rows of `joints`
+//! from then on; the reach starts from the restored state's).
 
 use crate::error::{Error, Result};
+use crate::interface::extrapolation::Reach;
 use crate::interface::joint::{JointMeasures, JointTotals};
 use crate::interface::{PointState as ContactState, Status};
 use crate::material::PointState;
@@ -358,6 +362,11 @@ fn sections(e: &mut Encoder, ck: &Checkpoint, pvd: &[(f64, String)]) -> std::io:
             })
             .flat_map(|j| j.iter().flat_map(JointMeasures::pack)),
     )?;
+    e.f64_iter(
+        "table_reach",
+        Reach::PACKED * ck.table_reach.len(),
+        ck.table_reach.iter().flat_map(Reach::pack),
+    )?;
     e.f64s(
         "pvd_load_factor",
         &pvd.iter().map(|p| p.0).collect::<Vec<_>>(),
@@ -422,6 +431,7 @@ pub fn decode(
     ck.committed.time = ck.lambda;
     ck.increments = restore_curve(&s, increments)?;
     restore_joints(&mut ck, &s, model.interfaces.len())?;
+    restore_table_reach(&mut ck, &s, model)?;
     ck.first_yield = restore_first_yield(&s)?;
     let pvd = restore_vtu_series(&s)?;
     Ok((ck, pvd))
@@ -643,6 +653,22 @@ fn restore_joints(ck: &mut Checkpoint, s: &Sections, interfaces: usize) -> Decod
                     .collect();
             }
         }
+    }
+    Ok(())
+}
+
+/// How far every interface's laws were used so far; a file of an earlier
+/// build has no such section: the committed state's own reach, then.
+fn restore_table_reach(ck: &mut Checkpoint, s: &Sections, model: &Model) -> Decoded<()> {
+    if s.0.contains_key("table_reach") {
+        let v = s.f("table_reach", Some(Reach::PACKED * model.interfaces.len()))?;
+        ck.table_reach = v.chunks_exact(Reach::PACKED).map(Reach::unpack).collect();
+    } else {
+        ck.table_reach = model
+            .interfaces
+            .iter()
+            .map(|im| Reach::of(im, &ck.committed.u, ck.committed.time))
+            .collect();
     }
     Ok(())
 }

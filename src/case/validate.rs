@@ -171,6 +171,16 @@ pub fn check_case(case: &Case) -> Result<Checked> {
                 "\"mortar\" couples two sides meshed apart: it needs matching = false on the [[mesh.interface]] of that name (a matching interface takes \"lumped\" or \"consistent\")",
             ));
         }
+        // every column within the range of its scalar parameter, before the
+        // table is interpolated (a 1e-300 pressure would otherwise surface as
+        // a slope message, or not at all)
+        for (i, row) in spec.table.iter().flatten().enumerate() {
+            let row_key = |k: &str| at(&format!("{key} table row {} {k}", i + 1));
+            if let [u, p] = row.as_slice() {
+                ranges::DISPLACEMENT.check(row_key("u_N"), *u)?;
+                ranges::PRESSURE.check(row_key("p"), *p)?;
+            }
+        }
         let law = normal_law(spec).map_err(|m| Error::input(at(&key), m))?;
         if !spec.gap.is_finite() {
             return Err(Error::input(
@@ -197,11 +207,6 @@ pub fn check_case(case: &Case) -> Result<Checked> {
         ] {
             range.check(at(&format!("{key} {k}")), v.unwrap_or(0.0))?;
         }
-        for (i, row) in spec.table.iter().flatten().enumerate() {
-            let row_key = |k: &str| at(&format!("{key} table row {} {k}", i + 1));
-            ranges::DISPLACEMENT.check(row_key("u_N"), row[0])?;
-            ranges::PRESSURE.check(row_key("p"), row[1])?;
-        }
         laws.insert(name.clone(), law);
         if let Some(t) = &spec.tangential {
             let key = format!("{key} tangential");
@@ -224,8 +229,10 @@ pub fn check_case(case: &Case) -> Result<Checked> {
                     let key = format!("{key} k_table");
                     let rows =
                         table_rows(rows, "p_N", "k_T").map_err(|m| Error::input(at(&key), m))?;
-                    for (i, &(p, _)) in rows.iter().enumerate() {
+                    for (i, &(p, k)) in rows.iter().enumerate() {
                         ranges::PRESSURE.check(at(&format!("{key} row {} p_N", i + 1)), p)?;
+                        ranges::SHEAR_STIFFNESS
+                            .check(at(&format!("{key} row {} k_T", i + 1)), k)?;
                     }
                     TangentialLaw::with_k_table(&rows, t.kp_ratio, t.mu, t.beta, t.n, t.yield_ratio)
                         .map_err(|m| Error::input(at(&key), m))?
@@ -266,8 +273,9 @@ pub fn check_case(case: &Case) -> Result<Checked> {
 /// breakpoints are themselves broken are left to the mesh generator's
 /// messages.
 fn check_curved_sides(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
-    let usable =
-        |v: &[f64]| v.len() >= 2 && v.iter().all(|x| x.is_finite()) && v.windows(2).all(|w| w[1] > w[0]);
+    let usable = |v: &[f64]| {
+        v.len() >= 2 && v.iter().all(|x| x.is_finite()) && v.windows(2).all(|w| w[1] > w[0])
+    };
     let blocks: Vec<_> = case
         .mesh
         .block

@@ -206,9 +206,7 @@ pub(super) fn mortar(
                 own[k] += wq * sh[k];
             }
         }
-        let void: Vec<usize> = (0..3)
-            .filter(|&k| on_axis(section, &xs, k))
-            .collect();
+        let void: Vec<usize> = (0..3).filter(|&k| on_axis(section, &xs, k)).collect();
         if void.len() == 3 {
             // an edge along the axis has no area: nothing to average over
             s0 += half[1];

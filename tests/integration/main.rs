@@ -19,4 +19,5 @@ mod joints;
 mod links;
 mod output_schema;
 mod robust;
+mod tables;
 mod vtu_reader;

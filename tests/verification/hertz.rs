@@ -193,7 +193,10 @@ fn a_sphere_on_a_flat_with_mortar_coupling_reproduces_hertz() {
     run(&case, &out);
     let f = forces(&out).last().unwrap().0;
     let load = 5.0 * std::f64::consts::PI * 15.0 * 15.0;
-    assert!(common::rel(f, load) < 1e-6, "interface force {f} N vs load {load} N");
+    assert!(
+        common::rel(f, load) < 1e-6,
+        "interface force {f} N vs load {load} N"
+    );
     let a = (3.0 * f * R / (4.0 * e_star())).cbrt();
     let p0 = 3.0 * f / (2.0 * std::f64::consts::PI * a * a);
     let r = rows(&last_interface_csv(&out));

@@ -88,7 +88,10 @@ impl SideShape {
         let rounded = self.round_left.is_some() || self.round_right.is_some();
         let Some(r) = self.radius else {
             if self.center.is_some() {
-                return err("center", "belongs to radius (an arc); rounded ends take none".into());
+                return err(
+                    "center",
+                    "belongs to radius (an arc); rounded ends take none".into(),
+                );
             }
             if !rounded {
                 return err(
@@ -100,7 +103,11 @@ impl SideShape {
             return self.check_roundings(xs, height, least, on_axis);
         };
         if rounded {
-            let key = if self.round_left.is_some() { "round_left" } else { "round_right" };
+            let key = if self.round_left.is_some() {
+                "round_left"
+            } else {
+                "round_right"
+            };
             return err(
                 key,
                 "give either radius (an arc) or round_left / round_right (rounded ends), not both"
@@ -175,7 +182,10 @@ impl SideShape {
     ) -> Result<(), ShapeError> {
         let (x0, x1) = (xs[0], xs[xs.len() - 1]);
         let err = |key: &'static str, message: String| Err(ShapeError { key, message });
-        for (key, v) in [("round_left", self.round_left), ("round_right", self.round_right)] {
+        for (key, v) in [
+            ("round_left", self.round_left),
+            ("round_right", self.round_right),
+        ] {
             let Some(v) = v else { continue };
             if !(v.is_finite() && v > 0.0) {
                 return err(key, format!("{v} must be a positive length in mm"));
@@ -206,7 +216,11 @@ impl SideShape {
         let l = self.round_left.unwrap_or(0.0);
         let r = self.round_right.unwrap_or(0.0);
         if x0 + l > x1 - r + 1e-12 * (x1 - x0) {
-            let key = if self.round_right.is_some() { "round_right" } else { "round_left" };
+            let key = if self.round_right.is_some() {
+                "round_right"
+            } else {
+                "round_left"
+            };
             return err(
                 key,
                 format!(

@@ -409,7 +409,10 @@ fn curved_side_rules_hold_at_their_limits() {
     }
     // the smallest radius: max(reach / 0.9, (reach² + h²/4) / h) = 16.667 here
     let e = key(&arc(16.6, Some(0.0)), None).unwrap_err();
-    assert!(e.0 == "radius" && e.1.contains("admits 16.667 < radius"), "{e:?}");
+    assert!(
+        e.0 == "radius" && e.1.contains("admits 16.667 < radius"),
+        "{e:?}"
+    );
     assert!(key(&arc(16.7, Some(0.0)), None).is_ok());
     // a low block: the rise (sagitta) binds, (225 + 1)/2 = 113 mm
     let low = |r: f64| arc(r, Some(0.0)).check(&xs, [0.0, 2.0], None);
@@ -419,7 +422,10 @@ fn curved_side_rules_hold_at_their_limits() {
     assert!(key(&arc(4.4e9, Some(0.0)), None).is_ok());
     for r in [4.6e9, 1e20, 1e300, f64::MAX] {
         let e = key(&arc(r, Some(0.0)), None).unwrap_err();
-        assert!(e.0 == "radius" && e.1.contains("flat side to round-off"), "{e:?}");
+        assert!(
+            e.0 == "radius" && e.1.contains("flat side to round-off"),
+            "{e:?}"
+        );
     }
     let e = key(&arc(f64::INFINITY, None), None).unwrap_err();
     assert!(e.1.contains("positive length"), "{e:?}");
@@ -433,7 +439,10 @@ fn curved_side_rules_hold_at_their_limits() {
     };
     let xr = [0.0, 1e-9, 2.0, 15.0];
     let e = round(Some(1e-9), None).check(&xr, ys, None).unwrap_err();
-    assert!(e.key == "round_left" && e.message.contains("sharp corner"), "{e:?}");
+    assert!(
+        e.key == "round_left" && e.message.contains("sharp corner"),
+        "{e:?}"
+    );
     let e = round(Some(2.0), None)
         .check(&xs, ys, Some("the axis r = 0"))
         .unwrap_err();
