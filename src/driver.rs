@@ -210,6 +210,11 @@ pub fn run_model(
             let wall = started.elapsed().as_secs_f64();
             let dir = writer.finish(model, &result, wall)?;
             report_end(&log, model, &dir, &result, wall);
+            for w in crate::output::warnings(model, &result) {
+                log.always("warning", json!({ "message": w }), || {
+                    format!("warning: {w}")
+                });
+            }
             Ok((dir, result))
         }
         Err(e) => {
@@ -308,6 +313,16 @@ impl crate::solve::Observer for Silent {
 /// `asperity check`: validates a case and describes what would be solved.
 pub fn check(case_path: &Path) -> Result<String> {
     let model = load_model(case_path, &RunOptions::default())?;
+    // a table the applied load alone takes far beyond its data
+    let place = model.source.display().to_string();
+    for t in crate::interface::extrapolation::predicted(&model) {
+        if t.far() {
+            eprintln!(
+                "warning: {}",
+                t.warning(&place, "the applied load's mean pressure alone needs")
+            );
+        }
+    }
     let mut s = format!("{}: valid\n", model.name);
     if let Some(d) = &model.description {
         s += &format!("  {}\n", d.trim());

@@ -259,22 +259,7 @@ impl Model {
     pub fn reference_pressure(&self, i: usize, t: f64) -> f64 {
         let im = &self.interfaces[i];
         im.start_pressure.unwrap_or_else(|| {
-            let n = im.pairs.first().map_or([0.0, 1.0], |p| p.normal);
-            let normal = |f: &[f64]| -> f64 {
-                (0..self.mesh.nodes.len())
-                    .map(|i| f[2 * i] * n[0] + f[2 * i + 1] * n[1])
-                    .sum()
-            };
-            let p = if self.histories.is_empty() {
-                // the load factor times the pattern's normal resultant, as always
-                t * normal(&self.f_ext).abs() / im.area()
-            } else {
-                let f: f64 = self
-                    .patterns()
-                    .map(|(h, f)| self.factor(h, t) * normal(f))
-                    .sum();
-                f.abs() / im.area()
-            };
+            let p = self.applied_pressure(i, t);
             let gap = im.gap_at(t);
             if p == 0.0 && gap < 0.0 {
                 im.law.pressure(-gap).0.max(1.0)
@@ -282,6 +267,30 @@ impl Model {
                 p.max(1.0)
             }
         })
+    }
+
+    /// The mean pressure of the applied loads on interface `i` at
+    /// pseudo-time t (MPa): the resultant of the external forces along the
+    /// interface's normal (at its first pair) over its area; 0 without such
+    /// a load.
+    pub fn applied_pressure(&self, i: usize, t: f64) -> f64 {
+        let im = &self.interfaces[i];
+        let n = im.pairs.first().map_or([0.0, 1.0], |p| p.normal);
+        let normal = |f: &[f64]| -> f64 {
+            (0..self.mesh.nodes.len())
+                .map(|i| f[2 * i] * n[0] + f[2 * i + 1] * n[1])
+                .sum()
+        };
+        if self.histories.is_empty() {
+            // the load factor times the pattern's normal resultant, as always
+            t * normal(&self.f_ext).abs() / im.area()
+        } else {
+            let f: f64 = self
+                .patterns()
+                .map(|(h, f)| self.factor(h, t) * normal(f))
+                .sum();
+            f.abs() / im.area()
+        }
     }
 
     pub fn n_gauss(&self) -> usize {

@@ -37,10 +37,13 @@
 //! `pvd_file` (names separated by newlines), `joint_totals` (2 per interface:
 //! frictional dissipation and tangential work so far) and `joints` (11 per
 //! interface and increment, as [`crate::interface::joint::JointMeasures::pack`]
-//! lays them out). Unknown sections are ignored; `last_du`, `joint_totals` and
-//! `joints` may be absent (files of earlier builds: the joint energies then
-//! restart from zero and the earlier increments have no joint rows, written
-//! as NaN rows of `joints` from then on).
+//! lays them out), `table_reach` (2 per interface: the largest approach u_N
+//! and pressure p_N over the converged states so far, see
+//! [`crate::interface::extrapolation`]). Unknown sections are ignored;
+//! `last_du`, `joint_totals`, `joints` and `table_reach` may be absent (files
+//! of earlier builds: the joint energies then restart from zero and the
+//! earlier increments have no joint rows, written as NaN rows of `joints`
+//! from then on; the reach starts from the restored state's).
 //!
 //! # A restart folder is input
 //!
@@ -65,7 +68,7 @@
 //!   the case's smallest and largest step; no failures or cutbacks pending
 //!   and the cutback total the curve's;
 //! - the state: `u`, `last_du`, `gauss`, `contact`, `joint_totals`,
-//!   `prescribed_reaction` finite; ε̄ᵖ ≥ 0, the yielding flag 0 or 1; every
+//!   `prescribed_reaction`, `table_reach` finite; ε̄ᵖ ≥ 0, the yielding flag 0 or 1; every
 //!   status code a status ([`Status::checked`]); `joints` rows finite, or all
 //!   NaN before the first finite one (the rows of earlier builds);
 //!   `first_yield` finite, within the curve's load factors, at an element of
@@ -80,6 +83,7 @@
 //!   temporary output folder.
 
 use crate::error::{Error, Result};
+use crate::interface::extrapolation::Reach;
 use crate::interface::joint::{JointMeasures, JointTotals};
 use crate::interface::{PointState as ContactState, Status};
 use crate::material::PointState;
@@ -396,6 +400,11 @@ fn sections(e: &mut Encoder, ck: &Checkpoint, pvd: &[(f64, String)]) -> std::io:
             })
             .flat_map(|j| j.iter().flat_map(JointMeasures::pack)),
     )?;
+    e.f64_iter(
+        "table_reach",
+        Reach::PACKED * ck.table_reach.len(),
+        ck.table_reach.iter().flat_map(Reach::pack),
+    )?;
     e.f64s(
         "pvd_load_factor",
         &pvd.iter().map(|p| p.0).collect::<Vec<_>>(),
@@ -449,13 +458,13 @@ impl Bounds {
         let ni = model.interfaces.len() as u64;
         let body = model.mesh.bodies.iter().map(|b| b.len()).max().unwrap_or(0) as u64;
         // 8-byte values besides the per-increment rows: u and last_du, the
-        // Gauss and contact states, joint totals, the pending schedule (its
-        // rest and at most one halved target per cutback), the waypoints,
-        // and the scalars
+        // Gauss and contact states, joint totals and table reach, the
+        // pending schedule (its rest and at most one halved target per
+        // cutback), the waypoints, and the scalars
         let words = 2 * nu
             + PointState::PACKED as u64 * ng
             + ContactState::PACKED as u64 * np
-            + 2 * ni
+            + (2 + Reach::PACKED as u64) * ni
             + 2 * (st.pending.len() as u64 + st.max_cutbacks() as u64 + 1)
             + st.waypoints.len() as u64
             + 32;
@@ -709,6 +718,7 @@ fn decode_with(
     restore_state(&mut ck, &s)?;
     ck.committed.time = ck.lambda;
     restore_joints(&mut ck, &s, model.interfaces.len())?;
+    restore_table_reach(&mut ck, &s, model)?;
     ck.first_yield = restore_first_yield(&s, model, &ck.increments)?;
     let pvd = restore_vtu_series(&s, model, &ck.increments)?;
     Ok((ck, pvd))
@@ -1125,6 +1135,22 @@ fn restore_joints(ck: &mut Checkpoint, s: &Sections, interfaces: usize) -> Decod
                 .map(JointMeasures::unpack)
                 .collect();
         }
+    }
+    Ok(())
+}
+
+/// How far every interface's laws were used so far; a file of an earlier
+/// build has no such section: the committed state's own reach, then.
+fn restore_table_reach(ck: &mut Checkpoint, s: &Sections, model: &Model) -> Decoded<()> {
+    if s.0.contains_key("table_reach") {
+        let v = s.finite("table_reach", Some(Reach::PACKED * model.interfaces.len()))?;
+        ck.table_reach = v.chunks_exact(Reach::PACKED).map(Reach::unpack).collect();
+    } else {
+        ck.table_reach = model
+            .interfaces
+            .iter()
+            .map(|im| Reach::of(im, &ck.committed.u, ck.committed.time))
+            .collect();
     }
     Ok(())
 }

@@ -109,6 +109,14 @@ pub const SHEAR_R: Range = Range {
     lo: 1e-6,
     hi: 1e6,
 };
+/// The elastic shear stiffness k_T^e (MPa/µm) of a `k_table`: the values
+/// p^S/R takes over the ranges of a pressure and of R with S in [0, 1].
+pub const SHEAR_STIFFNESS: Range = Range {
+    quantity: "a shear stiffness k_T^e",
+    unit: "MPa/µm",
+    lo: 1e-12,
+    hi: 1e12,
+};
 pub const FRICTION: Range = Range {
     quantity: "a friction coefficient",
     unit: "",
@@ -124,7 +132,7 @@ pub const SLIP_RATE: Range = Range {
 };
 
 /// Every range, in the order of the documentation's table.
-pub const ALL: [&Range; 15] = [
+pub const ALL: [&Range; 16] = [
     &COORDINATE,
     &ELEMENT_SIZE,
     &THICKNESS,
@@ -138,6 +146,7 @@ pub const ALL: [&Range; 15] = [
     &SLOPE,
     &EXP_RATE,
     &SHEAR_R,
+    &SHEAR_STIFFNESS,
     &FRICTION,
     &SLIP_RATE,
 ];
@@ -194,6 +203,22 @@ mod tests {
             "{e}"
         );
         assert!(MODULUS.check("x", f64::NAN).is_ok());
+    }
+
+    /// The k_table stiffness range is what p^S/R spans over the ranges of
+    /// p and R, S in [0, 1]: the extremes at S = 1.
+    #[test]
+    fn the_shear_stiffness_range_is_that_of_the_scalar_law() {
+        let k = |p: f64, s: f64, r: f64| p.powf(s) / r;
+        let corners = [PRESSURE.lo, PRESSURE.hi]
+            .iter()
+            .flat_map(|&p| [0.0, 1.0].map(|s| [SHEAR_R.lo, SHEAR_R.hi].map(|r| k(p, s, r))))
+            .flatten()
+            .collect::<Vec<f64>>();
+        let lo = corners.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = corners.iter().copied().fold(0.0, f64::max);
+        assert!((lo / SHEAR_STIFFNESS.lo - 1.0).abs() < 1e-12, "{lo}");
+        assert!((hi / SHEAR_STIFFNESS.hi - 1.0).abs() < 1e-12, "{hi}");
     }
 
     /// docs/case-schema.md lists every range with these bounds.

@@ -103,6 +103,7 @@ pub fn check_case(case: &Case) -> Result<Checked> {
             )?;
         }
     }
+    check_curved_sides(case, &at)?;
     for (i, bc) in case.boundary.iter().enumerate() {
         for (k, v) in [("ux", bc.ux), ("uy", bc.uy)] {
             ranges::DISPLACEMENT.check(at(&format!("boundary[{i}] {k}")), v.unwrap_or(0.0))?;
@@ -170,6 +171,16 @@ pub fn check_case(case: &Case) -> Result<Checked> {
                 "\"mortar\" couples two sides meshed apart: it needs matching = false on the [[mesh.interface]] of that name (a matching interface takes \"lumped\" or \"consistent\")",
             ));
         }
+        // every column within the range of its scalar parameter, before the
+        // table is interpolated (a 1e-300 pressure would otherwise surface as
+        // a slope message, or not at all)
+        for (i, row) in spec.table.iter().flatten().enumerate() {
+            let row_key = |k: &str| at(&format!("{key} table row {} {k}", i + 1));
+            if let [u, p] = row.as_slice() {
+                ranges::DISPLACEMENT.check(row_key("u_N"), *u)?;
+                ranges::PRESSURE.check(row_key("p"), *p)?;
+            }
+        }
         let law = normal_law(spec).map_err(|m| Error::input(at(&key), m))?;
         if !spec.gap.is_finite() {
             return Err(Error::input(
@@ -196,11 +207,6 @@ pub fn check_case(case: &Case) -> Result<Checked> {
         ] {
             range.check(at(&format!("{key} {k}")), v.unwrap_or(0.0))?;
         }
-        for (i, row) in spec.table.iter().flatten().enumerate() {
-            let row_key = |k: &str| at(&format!("{key} table row {} {k}", i + 1));
-            ranges::DISPLACEMENT.check(row_key("u_N"), row[0])?;
-            ranges::PRESSURE.check(row_key("p"), row[1])?;
-        }
         laws.insert(name.clone(), law);
         if let Some(t) = &spec.tangential {
             let key = format!("{key} tangential");
@@ -223,8 +229,10 @@ pub fn check_case(case: &Case) -> Result<Checked> {
                     let key = format!("{key} k_table");
                     let rows =
                         table_rows(rows, "p_N", "k_T").map_err(|m| Error::input(at(&key), m))?;
-                    for (i, &(p, _)) in rows.iter().enumerate() {
+                    for (i, &(p, k)) in rows.iter().enumerate() {
                         ranges::PRESSURE.check(at(&format!("{key} row {} p_N", i + 1)), p)?;
+                        ranges::SHEAR_STIFFNESS
+                            .check(at(&format!("{key} row {} k_T", i + 1)), k)?;
                     }
                     TangentialLaw::with_k_table(&rows, t.kp_ratio, t.mu, t.beta, t.n, t.yield_ratio)
                         .map_err(|m| Error::input(at(&key), m))?
@@ -256,6 +264,59 @@ pub fn check_case(case: &Case) -> Result<Checked> {
     }
     check_solver(case, &at)?;
     Ok(Checked { laws, tangential })
+}
+
+/// The curved bottom and top sides of the blocks ([`SideShape::check`]), each
+/// refusal naming `mesh.block[i].<side>.<key>`: the rules of the shape against
+/// its block, and, in a model of revolution or a symmetric half, no rounding
+/// at a left side that lies on the axis or the symmetry plane. Blocks whose
+/// breakpoints are themselves broken are left to the mesh generator's
+/// messages.
+fn check_curved_sides(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
+    let usable = |v: &[f64]| {
+        v.len() >= 2 && v.iter().all(|x| x.is_finite()) && v.windows(2).all(|w| w[1] > w[0])
+    };
+    let blocks: Vec<_> = case
+        .mesh
+        .block
+        .iter()
+        .filter(|b| usable(&b.x) && usable(&b.y))
+        .collect();
+    // the model's geometric tolerance (1e-9 of its size, as for its mesh)
+    let (lo, hi) = blocks.iter().fold(
+        ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
+        |(lo, hi), b| {
+            (
+                [lo[0].min(b.x[0]), lo[1].min(b.y[0])],
+                [hi[0].max(b.x[b.x.len() - 1]), hi[1].max(b.y[b.y.len() - 1])],
+            )
+        },
+    );
+    let tol = 1e-9 * (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
+    let axis = if case.model.plane == crate::material::Plane::Axisymmetric {
+        Some("the axis r = 0")
+    } else if case.model.symmetric_half {
+        Some("the symmetry plane x = 0")
+    } else {
+        None
+    };
+    for (i, b) in case.mesh.block.iter().enumerate() {
+        if !(usable(&b.x) && usable(&b.y)) {
+            continue;
+        }
+        let on_axis = axis.filter(|_| b.x[0].abs() <= tol);
+        for (side, shape) in [("bottom", &b.bottom), ("top", &b.top)] {
+            let Some(sh) = shape else { continue };
+            sh.check(&b.x, [b.y[0], b.y[b.y.len() - 1]], on_axis)
+                .map_err(|e| {
+                    Error::input(
+                        at(&format!("mesh.block[{i}].{side}.{}", e.key)),
+                        format!("block \"{}\": {}", clip(&b.body), e.message),
+                    )
+                })?;
+        }
+    }
+    Ok(())
 }
 
 /// Longest case name in bytes (a folder name; most file systems stop at 255).

@@ -21,6 +21,7 @@
 //! its three nodes through the edge's shape functions N(ξ) (node-to-segment,
 //! small sliding: docs/theory.md, "Non-matching interfaces"); see [`Segment`].
 
+pub mod extrapolation;
 pub mod joint;
 pub mod normal;
 mod segment;

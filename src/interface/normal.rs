@@ -91,12 +91,13 @@ impl NormalLaw {
     /// m₁ = ln(u₂/u₁)/ln(p₂/p₁) clamped to (0, 1] (the paper's power law 2.1 near
     /// u = 0); above the last point linear with the end stiffness.
     pub fn new_table(rows: &[(f64, f64)]) -> Result<Self, String> {
-        let rows = match rows.first() {
-            Some(&(u, p)) if u == 0.0 && p == 0.0 => &rows[1..],
-            _ => rows,
+        // the messages number the rows as written, the origin included
+        let (rows, first) = match rows.first() {
+            Some(&(u, p)) if u == 0.0 && p == 0.0 => (&rows[1..], 2),
+            _ => (rows, 1),
         };
         // q = 1/m ≥ 1: m in (0, 1]
-        let t = Monotone::new(rows, true, (1.0, f64::INFINITY), ("u_N", "p"))?;
+        let t = Monotone::numbered(rows, true, (1.0, f64::INFINITY), ("u_N", "p"), first)?;
         Ok(NormalLaw::Table(Arc::new(t)))
     }
 
@@ -313,6 +314,15 @@ mod tests {
         assert!(e(&[(1e-3, 1.0), (2e-3, f64::NAN)]).contains("row 2"));
         // only the origin itself may have u = 0
         assert!(e(&[(0.0, 1.0), (2e-3, 4.0), (3e-3, 9.0)]).contains("row 1: u_N = 0"));
+        // rows counted as written: with the origin written first, the bad
+        // row is the fourth, not the third of the rows after it
+        let m = e(&[(0.0, 0.0), (2e-3, 4.0), (5e-3, 25.0), (8e-3, 20.0)]);
+        assert!(m.contains("row 4: p = 20") && m.contains("row 3"), "{m}");
+        let m = e(&[(0.0, 0.0), (1.0, 10.0), (2.0, 10.5), (3.0, 11.0)]);
+        assert!(
+            m.contains("rows 2-3: the table softens too fast after row 2"),
+            "{m}"
+        );
     }
 
     #[test]

@@ -31,6 +31,23 @@
 //! point) is refused by [`Monotone::new`]: no monotone cubic with a continuous
 //! slope joins it.
 
+/// Smallest step between consecutive rows of a column, relative to the
+/// larger value: rows closer than this are refused (a column that may stay
+/// level, k_T, may also repeat a value exactly). Each value is the decimal
+/// of the case file rounded to a double (relative error ε/2, ε = 2.2e-16),
+/// so the difference of two values a relative step δ apart is known to
+/// about ε/δ, and so is the slope between the rows, the stiffness the solver
+/// works with: at δ = 1e-9 to 2.2e-7, six significant digits; one ulp apart
+/// it is round-off alone. No measurement resolves 9 significant digits, and
+/// 1e-9 is the model's geometric tolerance too.
+pub const MIN_RELATIVE_STEP: f64 = 1e-9;
+
+/// How far beyond its data a table may be evaluated before the run and
+/// `asperity check` warn: the law's argument (u_N for `table`, p_N for
+/// `k_table`) above this multiple of the last row's, i.e. the linear tail
+/// carrying over as far again as the whole measured range.
+pub const EXTRAPOLATION_LIMIT: f64 = 2.0;
+
 /// A monotone (non-decreasing, or strictly increasing) interpolant of
 /// measured points with a continuous first derivative.
 #[derive(Clone, Debug, PartialEq)]
@@ -57,6 +74,18 @@ impl Monotone {
         q_range: (f64, f64),
         names: (&str, &str),
     ) -> Result<Self, String> {
+        Monotone::numbered(points, strict, q_range, names, 1)
+    }
+
+    /// [`Monotone::new`] with the rows numbered from `first` in the messages
+    /// (2 when the table's written first row, the origin, was dropped).
+    pub fn numbered(
+        points: &[(f64, f64)],
+        strict: bool,
+        q_range: (f64, f64),
+        names: (&str, &str),
+        first: usize,
+    ) -> Result<Self, String> {
         let (xn, yn) = names;
         if points.len() < 2 {
             return Err(format!(
@@ -66,7 +95,7 @@ impl Monotone {
             ));
         }
         for (i, &(x, y)) in points.iter().enumerate() {
-            let row = i + 1;
+            let row = i + first;
             if !x.is_finite() || !y.is_finite() {
                 return Err(format!(
                     "row {row}: [{x}, {y}] is not a pair of finite numbers"
@@ -101,6 +130,16 @@ impl Monotone {
                         "row {row}: {yn} = {y} falls below row {}'s {yn} = {y0}; the table is not monotone",
                         row - 1
                     ));
+                }
+                for (name, a, b) in [(xn, x0, x), (yn, y0, y)] {
+                    if b != a && b - a < MIN_RELATIVE_STEP * b {
+                        return Err(format!(
+                            "row {row}: {name} = {b} is within {:.1e} (relative) of row {}'s {name} = {a}: the slope between the rows would be round-off, not a measurement (rows must differ by at least {MIN_RELATIVE_STEP:e} of their value{}); drop one of them",
+                            (b - a) / b,
+                            row - 1,
+                            if name == yn && !strict { ", or repeat it exactly for a level stretch" } else { "" }
+                        ));
+                    }
                 }
             }
         }
@@ -147,14 +186,14 @@ impl Monotone {
             if bad {
                 return Err(if k == 0 {
                     format!(
-                        "rows 1-2: the table softens too fast after row 1 for a monotone interpolation with a continuous slope (the power law below row 1, exponent {q:.3}, reaches row 1 with d{yn}/d{xn} = {:.4e}, more than 3 times the slope {:.4e} to row 2); add points or check the units",
-                        d[0], delta[0]
+                        "rows {first}-{}: the table softens too fast after row {first} for a monotone interpolation with a continuous slope (the power law below row {first}, exponent {q:.3}, reaches row {first} with d{yn}/d{xn} = {:.4e}, more than 3 times the slope {:.4e} to row {}); add points or check the units",
+                        first + 1, d[0], delta[0], first + 1
                     )
                 } else {
                     format!(
                         "rows {}-{}: no monotone interpolation with a continuous slope; add points or check the units",
-                        k + 1,
-                        k + 2
+                        k + first,
+                        k + first + 1
                     )
                 });
             }
@@ -257,6 +296,12 @@ impl Monotone {
         self.x.iter().copied().zip(self.y.iter().copied())
     }
 
+    /// The last measured point (x_n, y_n): beyond it the curve is extrapolated.
+    pub fn last(&self) -> (f64, f64) {
+        let n = self.x.len();
+        (self.x[n - 1], self.y[n - 1])
+    }
+
     /// Exponent q of the power law below the first point.
     pub fn exponent_below(&self) -> f64 {
         self.q
@@ -347,6 +392,34 @@ mod tests {
         assert!(r(&[(1.0, 2.0), (f64::NAN, 3.0)]).contains("row 2"));
         // softening by far more than 3× after the first point
         assert!(r(&[(1.0, 10.0), (2.0, 10.5), (3.0, 11.0)]).contains("softens too fast"));
+        // rows closer than 1e-9 (relative) in either column: round-off slopes
+        let ulp = 0.005f64.next_up();
+        let e = r(&[(0.002, 4.0), (0.005, 25.0), (ulp, 30.0)]);
+        assert!(
+            e.contains("row 3: u_N = ") && e.contains("round-off"),
+            "{e}"
+        );
+        let e = r(&[(1.0, 2.0), (2.0, 3.0), (3.0, 3.0 * (1.0 + 5e-10))]);
+        assert!(e.contains("row 3: p = ") && e.contains("round-off"), "{e}");
+        assert!(Monotone::new(
+            &[(1.0, 2.0), (2.0, 3.0), (2.0 + 4e-9, 3.0 * (1.0 + 2e-9))],
+            true,
+            (1.0, 1e9),
+            ("u_N", "p")
+        )
+        .is_ok());
+        let level = |k3: f64| {
+            Monotone::new(
+                &[(1.0, 2.0), (2.0, 3.0), (3.0, k3)],
+                false,
+                (0.0, 1.0),
+                ("p", "k"),
+            )
+        };
+        assert!(level(3.0).is_ok());
+        assert!(level(3.0f64.next_up())
+            .unwrap_err()
+            .contains("repeat it exactly"));
         // non-strict: a flat stretch is allowed
         let t = Monotone::new(
             &[(1.0, 2.0), (2.0, 2.0), (3.0, 4.0)],

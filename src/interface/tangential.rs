@@ -135,7 +135,7 @@ impl TangentialLaw {
     ) -> Result<Self, String> {
         let mut law = TangentialLaw::new(1.0, 0.0, kp_ratio, mu, beta, n, yield_ratio)?;
         // kept in MPa/µm (the messages quote the rows as given); ×1000 on evaluation
-        let t = Monotone::new(rows, false, (0.0, 1.0), ("p", "k_T"))?;
+        let t = Monotone::new(rows, false, (0.0, 1.0), ("p_N", "k_T"))?;
         law.r = f64::NAN;
         law.s = f64::NAN;
         law.k_table = Some(Arc::new(t));
@@ -372,7 +372,7 @@ mod tests {
         };
         assert!(e(&[(10.0, 3.0)]).contains("at least 2"));
         assert!(e(&[(10.0, 3.0), (20.0, 2.0)]).contains("not monotone"));
-        assert!(e(&[(10.0, 3.0), (5.0, 4.0)]).contains("row 2: p = 5"));
+        assert!(e(&[(10.0, 3.0), (5.0, 4.0)]).contains("row 2: p_N = 5"));
         assert!(e(&[(10.0, 0.0), (20.0, 4.0)]).contains("row 1"));
         // a constant stiffness (S = 0) is a valid table
         let law =

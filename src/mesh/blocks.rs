@@ -10,7 +10,7 @@ use super::{ContactEdge, Element, Interface, Mesh, MeshError, NonMatching};
 use serde::Deserialize;
 
 mod shape;
-pub use shape::SideShape;
+pub use shape::{ShapeError, SideShape, MIN_RELATIVE_CURVE};
 
 /// A rectangular block; x and y are split into segments at the breakpoints.
 /// Its bottom and top sides may be curved ([`SideShape`]); the block then
@@ -207,10 +207,17 @@ pub fn generate(
         mesh.bodies.push(spec.body.clone());
         let xs = graded_axis(&spec.body, "x", &spec.x, &spec.nx, &spec.rx, refine)?;
         let ys = graded_axis(&spec.body, "y", &spec.y, &spec.ny, &spec.ry, refine)?;
-        let height = ys[ys.len() - 1] - ys[0];
         for (side, shape) in [("bottom", &spec.bottom), ("top", &spec.top)] {
             if let Some(sh) = shape {
-                sh.check(&spec.body, side, &spec.x, height)?;
+                // the rules that need the model (the axis, a symmetry plane)
+                // are checked with the case ([`crate::case::validate`])
+                sh.check(&spec.x, [ys[0], ys[ys.len() - 1]], None)
+                    .map_err(|e| {
+                        MeshError(format!(
+                            "block \"{}\" {side}.{}: {}",
+                            spec.body, e.key, e.message
+                        ))
+                    })?;
             }
         }
         grids.push(add_block(&mut mesh, b, xs, ys, spec));

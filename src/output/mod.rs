@@ -8,6 +8,7 @@ pub mod joints;
 pub mod vtu;
 
 use crate::error::{Error, Result};
+use crate::interface::extrapolation::table_uses;
 use crate::interface::Status;
 use crate::model::Model;
 use crate::progress::Log;
@@ -336,6 +337,19 @@ pub fn curve(result: &RunResult) -> String {
     s
 }
 
+/// The run's warnings, one line each (without `warning: `): every tabulated
+/// law evaluated beyond [`crate::interface::table::EXTRAPOLATION_LIMIT`]
+/// times its last row ([`crate::interface::extrapolation`]). The driver
+/// prints them on stderr; summary.json holds them as `warnings`.
+pub fn warnings(model: &Model, r: &RunResult) -> Vec<String> {
+    let place = model.source.display().to_string();
+    table_uses(&model.interfaces, &r.table_reach)
+        .iter()
+        .filter(|t| t.far())
+        .map(|t| t.warning(&place, "the run evaluated it up to"))
+        .collect()
+}
+
 pub fn summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
     let last = r.increments.last().map(|i| i.measures).unwrap_or_default();
     let fy = r.first_yield.as_ref().map(|f| {
@@ -395,6 +409,29 @@ pub fn summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
         );
     }
     s["joints"] = joints::summary(model, r, &joints::run_cycles(model, r));
+    // only cases with a tabulated law (the others write what they always did)
+    let uses = table_uses(&model.interfaces, &r.table_reach);
+    if !uses.is_empty() {
+        s["tables"] = uses
+            .iter()
+            .map(|t| {
+                json!({
+                    "interface": t.interface,
+                    "key": t.key,
+                    "argument": t.argument,
+                    "unit": t.unit,
+                    "last_row": t.last_row,
+                    "largest": t.largest,
+                    "ratio": t.ratio(),
+                    "beyond_limit": t.far(),
+                })
+            })
+            .collect();
+    }
+    let w = warnings(model, r);
+    if !w.is_empty() {
+        s["warnings"] = json!(w);
+    }
     // only runs where some step needed it (a case without one writes what it always did)
     if let Some(st) = &r.stabilization {
         s["stabilization"] = json!({

@@ -154,6 +154,9 @@ pub struct Checkpoint {
     pub factorizations: usize,
     /// Frictional dissipation and tangential work of every interface so far.
     pub joint_totals: Vec<JointTotals>,
+    /// The largest approach and pressure of every interface over the
+    /// converged states so far (how far its tables were used).
+    pub table_reach: Vec<crate::interface::extrapolation::Reach>,
 }
 
 impl Checkpoint {
@@ -173,6 +176,7 @@ impl Checkpoint {
             iterations: 0,
             factorizations: 0,
             joint_totals: vec![JointTotals::default(); model.interfaces.len()],
+            table_reach: vec![Default::default(); model.interfaces.len()],
         }
     }
 }
@@ -208,6 +212,9 @@ pub struct RunResult {
     pub resumed_from: usize,
     /// The contact stabilization's account, when any step used it.
     pub stabilization: Option<stabilize::Report>,
+    /// The largest approach and pressure of every interface over the run
+    /// ([`Checkpoint::table_reach`]).
+    pub table_reach: Vec<crate::interface::extrapolation::Reach>,
 }
 
 /// Runs the whole load history with a given engine (any backend). Under MPI
@@ -410,6 +417,13 @@ fn accept(
         &mut ck.joint_totals,
     );
     ck.committed = trial;
+    for (r, im) in ck.table_reach.iter_mut().zip(&model.interfaces) {
+        *r = r.max(crate::interface::extrapolation::Reach::of(
+            im,
+            &ck.committed.u,
+            ck.committed.time,
+        ));
+    }
     if !engine.committed() {
         // a stabilized or released step closed a gap by a rigid motion: the
         // next step starts from the committed state, not an extrapolation
@@ -534,6 +548,7 @@ fn finish(
         stopped,
         resumed_from,
         stabilization,
+        table_reach: ck.table_reach,
     }
 }
 

@@ -209,39 +209,6 @@ fn a_closed_cycle_gets_its_row_and_the_hysteresis_figure() {
     assert_eq!(std::fs::read_dir(&none).unwrap().count(), 0);
 }
 
-/// A restart file without the `joints` and `joint_totals` sections, as an
-/// earlier build wrote it (checksum recomputed).
-fn strip_joint_sections(bytes: &[u8]) -> Vec<u8> {
-    let body = &bytes[..bytes.len() - 8];
-    let n = u32::from_le_bytes(body[24..28].try_into().unwrap());
-    let mut at = 28;
-    let mut kept = Vec::new();
-    let mut count = 0u32;
-    for _ in 0..n {
-        let start = at;
-        let len = u16::from_le_bytes(body[at..at + 2].try_into().unwrap()) as usize;
-        let name = std::str::from_utf8(&body[at + 2..at + 2 + len])
-            .unwrap()
-            .to_string();
-        let kind = body[at + 2 + len];
-        let cnt =
-            u64::from_le_bytes(body[at + 3 + len..at + 11 + len].try_into().unwrap()) as usize;
-        at += 11 + len + cnt * if kind <= 2 { 8 } else { 1 };
-        if name != "joints" && name != "joint_totals" {
-            kept.extend_from_slice(&body[start..at]);
-            count += 1;
-        }
-    }
-    assert_eq!(at, body.len());
-    assert_eq!(count + 2, n, "the file had both joint sections");
-    let mut out = body[..24].to_vec();
-    out.extend_from_slice(&count.to_le_bytes());
-    out.extend_from_slice(&kept);
-    let sum = asperity::restart::fnv1a(&out);
-    out.extend_from_slice(&sum.to_le_bytes());
-    out
-}
-
 #[test]
 fn a_restart_carries_the_joint_energies_and_an_older_file_still_resumes() {
     let dir = common::scratch("joints-restart");
@@ -281,7 +248,9 @@ fn a_restart_carries_the_joint_energies_and_an_older_file_still_resumes() {
     // the same from a file of an earlier build: the earlier increments have
     // no joint rows and the energies start again from zero
     let rs = old.join("restart.bin");
-    std::fs::write(&rs, strip_joint_sections(&std::fs::read(&rs).unwrap())).unwrap();
+    let stripped =
+        common::strip_restart_sections(&std::fs::read(&rs).unwrap(), &["joints", "joint_totals"]);
+    std::fs::write(&rs, stripped).unwrap();
     run(
         &case,
         &old,

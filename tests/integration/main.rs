@@ -20,4 +20,5 @@ mod links;
 mod output_schema;
 mod restart;
 mod robust;
+mod tables;
 mod vtu_reader;

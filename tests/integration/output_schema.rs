@@ -129,6 +129,27 @@ fn summary_json_matches_the_documented_schema() {
         axi["forces"].is_string() && with.get("forces").is_none(),
         "{axi}"
     );
+    // tabulated laws, both used far beyond their last rows (20 MPa under
+    // 250 MPa): the `tables` array and the `warnings`
+    let text = std::fs::read_to_string(cases.join("punch-friction-a/case.toml")).unwrap();
+    let tabulated = text
+        .replace(
+            "law = \"power\"\nc_n = 0.001          # mm/MPa^m: 14 µm of approach at 200 MPa\nm = 0.5",
+            "law = \"table\"\ntable = [[0.002236, 5.0], [0.003162, 10.0], [0.004472, 20.0]]",
+        )
+        .replace(
+            "r = 0.9              # k_T^e = p_N^S / R in MPa/um\ns = 0.5",
+            "k_table = [[5.0, 2.485], [10.0, 3.514], [20.0, 4.969]]",
+        );
+    assert!(tabulated.contains("table = [[") && tabulated.contains("k_table"));
+    let dir = common::scratch("schema-tables-case");
+    std::fs::write(dir.join("case.toml"), tabulated).unwrap();
+    let tab = summary_of("tables", &dir, &["--increments", "2"]);
+    let uses = tab["tables"].as_array().unwrap();
+    assert_eq!(uses.len(), 2, "{tab}");
+    assert!(uses.iter().all(|t| t["beyond_limit"] == true), "{tab}");
+    assert_eq!(tab["warnings"].as_array().unwrap().len(), 2, "{tab}");
+    assert!(with.get("tables").is_none() && with.get("warnings").is_none());
     let mut seen = std::collections::BTreeSet::new();
     let mut errors = Vec::new();
     // a closed load cycle needs a load history: the summary's cycle object
@@ -149,7 +170,7 @@ fn summary_json_matches_the_documented_schema() {
     );
     let mut with_cycle = with.clone();
     with_cycle["joints"][0]["cycles"] = Value::Array(vec![cycle]);
-    for s in [&with_cycle, &without, &gap, &axi] {
+    for s in [&with_cycle, &without, &gap, &axi, &tab] {
         let mut l = Vec::new();
         leaves("", s, &mut l);
         for (k, t) in l {

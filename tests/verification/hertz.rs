@@ -175,6 +175,52 @@ fn a_stiff_interface_reproduces_hertz_and_the_rough_one_smooths_it() {
     );
 }
 
+/// A sphere on a flat in axisymmetry with mortar coupling
+/// (`tests/data/hertz-sphere`): the slave side starts on the axis, where its
+/// corner node has no area (it hands its weight to its edge; on the curved
+/// edge that area is a small negative number, which was refused as "a
+/// negative area" before). The interface carries the applied load
+/// (equilibrium: 5 MPa on the top disc of radius 15 mm), the contact radius
+/// is Hertz's a = (3FR/4E*)^(1/3) within one spring spacing (0.025 mm), and
+/// the pressure follows p₀ √(1 − r²/a²), p₀ = 3F/(2πa²), within 2 % of p₀
+/// over r < 0.9a (measured: F = load to 1e-12; a between the last closed
+/// spring at 1.050 mm and the first open one at 1.075 mm against Hertz's
+/// 1.054 mm; profile 0.36 % of p₀).
+#[test]
+fn a_sphere_on_a_flat_with_mortar_coupling_reproduces_hertz() {
+    let case = common::root().join("tests/data/hertz-sphere");
+    let out = common::scratch("hertz-sphere").join("out");
+    run(&case, &out);
+    let f = forces(&out).last().unwrap().0;
+    let load = 5.0 * std::f64::consts::PI * 15.0 * 15.0;
+    assert!(
+        common::rel(f, load) < 1e-6,
+        "interface force {f} N vs load {load} N"
+    );
+    let a = (3.0 * f * R / (4.0 * e_star())).cbrt();
+    let p0 = 3.0 * f / (2.0 * std::f64::consts::PI * a * a);
+    let r = rows(&last_interface_csv(&out));
+    // one mortar spring per slave node but the one on the axis
+    assert!(r[0].x > 0.0 && r.iter().all(|q| q.p_n.is_finite()));
+    let k = r.iter().rposition(|q| q.p_n > 0.0).unwrap();
+    let (closed, open) = (r[k].x, r[k + 1].x);
+    let spacing = open - closed;
+    assert!(
+        closed - spacing <= a && a <= open + spacing,
+        "contact radius: last closed spring at {closed} mm, first open at {open} mm; Hertz a = {a} mm"
+    );
+    let worst = r
+        .iter()
+        .filter(|q| q.x < 0.9 * a)
+        .map(|q| (q.p_n - p0 * (1.0 - (q.x / a).powi(2)).sqrt()).abs() / p0)
+        .fold(0.0, f64::max);
+    eprintln!(
+        "hertz-sphere: F = {f:.2} N (load {load:.2} N); contact edge between {closed:.3} and {open:.3} mm, Hertz a = {a:.4} mm; p0 = {p0:.1} MPa, profile worst {:.2} % of p0",
+        100.0 * worst
+    );
+    assert!(worst < 0.02, "profile off by {worst} p0");
+}
+
 /// Where node-to-segment springs fail and mortar coupling does not: the flat
 /// meshed at 0.0667 mm (3 master edges to 4 slave edges), where slave Gauss
 /// points fall on the master's corner nodes. Node-to-segment springs scatter

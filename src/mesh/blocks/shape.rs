@@ -1,7 +1,6 @@
 //! Curved bottom and top sides of a generated block (issue 19): an arc, or
 //! quarter-circle roundings at the ends.
 
-use super::MeshError;
 use serde::Deserialize;
 
 /// The shape of a block's bottom or top side (issue 19: curved contact).
@@ -34,92 +33,227 @@ pub struct SideShape {
     pub round_right: Option<f64>,
 }
 
+/// The smallest rise of an arc and the smallest rounding, as a fraction of
+/// the block's size (the diagonal of its rectangle): the model's geometric
+/// tolerance ([`crate::case::whole`], 1e-9 of its size), below which two
+/// points count as one and a side cannot be told from straight. A radius
+/// above the bound is a flat side to round-off (R = 1e300 made every
+/// coordinate NaN), a rounding below it a sharp corner.
+pub const MIN_RELATIVE_CURVE: f64 = 1e-9;
+
+/// A broken rule of a curved side: the key it concerns (`radius`, `center`,
+/// `round_left`, `round_right`) and the reason, without the place.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShapeError {
+    pub key: &'static str,
+    pub message: String,
+}
+
+/// v with about 5 significant digits, in plain notation where that is short.
+fn short(v: f64) -> String {
+    if (1e-3..1e6).contains(&v.abs()) {
+        let decimals = (4 - v.abs().log10().floor() as i32).max(0) as usize;
+        format!("{v:.decimals$}")
+    } else {
+        format!("{v:.4e}")
+    }
+}
+
+/// The rise of an arc of radius r at the distance d from its apex (|d| < r),
+/// r − √(r² − d²), computed without cancellation or overflow.
+fn rise(r: f64, d: f64) -> f64 {
+    let q = d / r;
+    r * q * q / (1.0 + ((1.0 - q) * (1.0 + q)).sqrt())
+}
+
 impl SideShape {
-    /// Checks the shape against its block; `side` is "bottom" or "top".
-    pub(super) fn check(
-        &self,
-        body: &str,
-        side: &str,
-        xs: &[f64],
-        height: f64,
-    ) -> Result<(), MeshError> {
-        let err = |m: String| Err(MeshError(format!("block \"{body}\" {side}: {m}")));
+    /// Checks the shape against its block: `xs` its x breakpoints (finite,
+    /// strictly increasing), `ys` the lower and upper y of its rectangle.
+    /// `on_axis` names what the block's left side lies on when that is the
+    /// axis of an axisymmetric model or the symmetry plane of a half model
+    /// (a rounding there is a cusp). `ShapeError::key` is the offending key.
+    pub fn check(&self, xs: &[f64], ys: [f64; 2], on_axis: Option<&str>) -> Result<(), ShapeError> {
         let (x0, x1) = (xs[0], xs[xs.len() - 1]);
-        let positive = |name: &str, v: f64| -> Result<(), MeshError> {
+        let (width, height) = (x1 - x0, ys[1] - ys[0]);
+        let size = width.hypot(height);
+        let least = MIN_RELATIVE_CURVE * size;
+        let err = |key: &'static str, message: String| Err(ShapeError { key, message });
+        let positive = |key: &'static str, v: f64| -> Result<(), ShapeError> {
             if v.is_finite() && v > 0.0 {
                 Ok(())
             } else {
-                err(format!("{name} = {v} must be a positive length in mm"))
+                err(key, format!("{v} must be a positive length in mm"))
             }
         };
         let rounded = self.round_left.is_some() || self.round_right.is_some();
-        match self.radius {
-            Some(r) => {
-                if rounded {
-                    return err("give either radius (an arc) or round_left / round_right (rounded ends), not both".into());
-                }
-                positive("radius", r)?;
-                let c = self.center.unwrap_or(0.5 * (x0 + x1));
-                if !c.is_finite() {
-                    return err(format!("center = {c} must be finite"));
-                }
-                let reach = (x0 - c).abs().max((x1 - c).abs());
-                if reach >= 0.9 * r {
-                    return err(format!(
-                        "the block reaches {reach} mm from the arc's apex at x = {c}; with radius = {r} it must stay within 0.9 R (the arc would turn steeper than 64° from the side)"
-                    ));
-                }
-                let rise = r - (r * r - reach * reach).sqrt();
-                if rise >= 0.5 * height {
-                    return err(format!(
-                        "the arc rises {rise} mm over the block, which is {height} mm high: make the block at least twice as high as the rise"
-                    ));
-                }
+        let Some(r) = self.radius else {
+            if self.center.is_some() {
+                return err(
+                    "center",
+                    "belongs to radius (an arc); rounded ends take none".into(),
+                );
             }
-            None => {
-                if self.center.is_some() {
-                    return err("center belongs to radius (an arc)".into());
-                }
-                if !rounded {
-                    return err(
-                        "give radius (an arc) or round_left / round_right (rounded ends)".into(),
-                    );
-                }
-                let l = self.round_left.unwrap_or(0.0);
-                let r = self.round_right.unwrap_or(0.0);
-                for (name, v) in [
-                    ("round_left", self.round_left),
-                    ("round_right", self.round_right),
-                ] {
-                    if let Some(v) = v {
-                        positive(name, v)?;
-                        if v >= 0.5 * height {
-                            return err(format!(
-                                "{name} = {v} mm must be less than half the block's height ({height} mm)"
-                            ));
-                        }
-                    }
-                }
-                if x0 + l > x1 - r + 1e-12 * (x1 - x0) {
-                    return err(format!(
-                        "the roundings ({l} + {r} mm) are wider than the block ({} mm)",
-                        x1 - x0
-                    ));
-                }
-                let near = |v: f64| xs.iter().any(|&b| (b - v).abs() <= 1e-9 * (x1 - x0));
-                if self.round_left.is_some() && !near(x0 + l) {
-                    return err(format!(
-                        "x must have a breakpoint where the left rounding ends, x = {}",
-                        x0 + l
-                    ));
-                }
-                if self.round_right.is_some() && !near(x1 - r) {
-                    return err(format!(
-                        "x must have a breakpoint where the right rounding starts, x = {}",
-                        x1 - r
-                    ));
-                }
+            if !rounded {
+                return err(
+                    "radius",
+                    "missing: give radius (an arc) or round_left / round_right (rounded ends)"
+                        .into(),
+                );
             }
+            return self.check_roundings(xs, height, least, on_axis);
+        };
+        if rounded {
+            let key = if self.round_left.is_some() {
+                "round_left"
+            } else {
+                "round_right"
+            };
+            return err(
+                key,
+                "give either radius (an arc) or round_left / round_right (rounded ends), not both"
+                    .into(),
+            );
+        }
+        positive("radius", r)?;
+        let c = self.center.unwrap_or(0.5 * (x0 + x1));
+        if !c.is_finite() {
+            return err("center", format!("{c} must be a finite x (mm)"));
+        }
+        let slack = 1e-9 * width;
+        if c < x0 - slack || c > x1 + slack {
+            let start = match on_axis {
+                Some(on) => format!("{x0} ({on})"),
+                None => format!("{x0}"),
+            };
+            return err(
+                "center",
+                format!(
+                    "x = {c} lies off the side, which runs from x = {start} to {x1}: the arc's apex is the side's point at x = center; put center within the block"
+                ),
+            );
+        }
+        let reach = (x0 - c).abs().max((x1 - c).abs());
+        // the radii this block admits: the side within 0.9 R of the apex and
+        // the rise under half the height (below), a rise of at least
+        // `least` (above, about reach²/2·least)
+        let r_min = (reach / 0.9).max((reach * reach + 0.25 * height * height) / height);
+        let r_max = reach * reach / (2.0 * least);
+        let admits = format!(
+            "this block (reaching {reach} mm from the apex at x = {c}, {height} mm high) admits {} < radius < about {} mm",
+            short(r_min),
+            short(r_max)
+        );
+        if reach >= 0.9 * r {
+            return err(
+                "radius",
+                format!(
+                    "{r} mm is too small: the side reaches {reach} mm from the apex, beyond 0.9 R (the arc would turn steeper than 64° from the side); {admits}"
+                ),
+            );
+        }
+        let depth = rise(r, reach);
+        if depth >= 0.5 * height {
+            return err(
+                "radius",
+                format!(
+                    "{r} mm is too small: the arc rises {} mm over the block, at least half its height ({height} mm); {admits}",
+                    short(depth)
+                ),
+            );
+        }
+        if depth < least {
+            return err(
+                "radius",
+                format!(
+                    "{r:e} mm is a flat side to round-off: the arc rises {depth:e} mm over the block, less than {MIN_RELATIVE_CURVE:e} of its size ({size} mm), below which the model cannot tell it from straight; leave radius out for a flat side, or {admits}"
+                ),
+            );
+        }
+        Ok(())
+    }
+
+    /// The rules of rounded ends (no `radius`).
+    fn check_roundings(
+        &self,
+        xs: &[f64],
+        height: f64,
+        least: f64,
+        on_axis: Option<&str>,
+    ) -> Result<(), ShapeError> {
+        let (x0, x1) = (xs[0], xs[xs.len() - 1]);
+        let err = |key: &'static str, message: String| Err(ShapeError { key, message });
+        for (key, v) in [
+            ("round_left", self.round_left),
+            ("round_right", self.round_right),
+        ] {
+            let Some(v) = v else { continue };
+            if !(v.is_finite() && v > 0.0) {
+                return err(key, format!("{v} must be a positive length in mm"));
+            }
+            if v >= 0.5 * height {
+                return err(
+                    key,
+                    format!("{v} mm must be less than half the block's height ({height} mm)"),
+                );
+            }
+            if v < least {
+                return err(
+                    key,
+                    format!(
+                        "{v:e} mm is a sharp corner to round-off: less than {MIN_RELATIVE_CURVE:e} of the block's size, below which the model cannot tell it from a corner; leave it out"
+                    ),
+                );
+            }
+        }
+        if let (Some(_), Some(on)) = (self.round_left, on_axis) {
+            return err(
+                "round_left",
+                format!(
+                    "the block's left side lies on {on}: there is no corner to round, and a rounding meeting it vertically is a cusp of the whole body; leave round_left out (a round end there is an arc: radius with center = {x0})"
+                ),
+            );
+        }
+        let l = self.round_left.unwrap_or(0.0);
+        let r = self.round_right.unwrap_or(0.0);
+        if x0 + l > x1 - r + 1e-12 * (x1 - x0) {
+            let key = if self.round_right.is_some() {
+                "round_right"
+            } else {
+                "round_left"
+            };
+            return err(
+                key,
+                format!(
+                    "the roundings ({l} + {r} mm) are wider than the block ({} mm)",
+                    x1 - x0
+                ),
+            );
+        }
+        // a breakpoint where the rounding meets the straight part, other
+        // than the rounded end itself (a rounding below the tolerance of
+        // `near` would otherwise find its own corner)
+        let near = |v: f64, skip: usize| {
+            xs.iter()
+                .enumerate()
+                .any(|(i, &b)| i != skip && (b - v).abs() <= 1e-9 * (x1 - x0))
+        };
+        if self.round_left.is_some() && !near(x0 + l, 0) {
+            return err(
+                "round_left",
+                format!(
+                    "x must have a breakpoint where the left rounding ends, x = {}",
+                    x0 + l
+                ),
+            );
+        }
+        if self.round_right.is_some() && !near(x1 - r, xs.len() - 1) {
+            return err(
+                "round_right",
+                format!(
+                    "x must have a breakpoint where the right rounding starts, x = {}",
+                    x1 - r
+                ),
+            );
         }
         Ok(())
     }
@@ -130,8 +264,7 @@ impl SideShape {
     pub(super) fn point(&self, x: f64, x0: f64, x1: f64) -> (f64, f64) {
         if let Some(r) = self.radius {
             let c = self.center.unwrap_or(0.5 * (x0 + x1));
-            let d = x - c;
-            return (x, r - (r * r - d * d).sqrt());
+            return (x, rise(r, x - c));
         }
         let quarter = |r: f64, u: f64| {
             // u ∈ [0, 1] along the rounding from its tangent point to the end

@@ -347,7 +347,7 @@ fn curved_side_errors_are_named() {
     let base = || block("p", vec![0., 19., 20.], vec![2, 1], vec![0., 10.], vec![2]);
     let mut b = base();
     b.bottom = Some(shape(Some(5.0), None));
-    check(b, &[], "must stay within 0.9 R");
+    check(b, &[], "bottom.radius: 5 mm is too small");
     let mut b = base();
     b.bottom = Some(shape(Some(50.0), Some(1.0)));
     check(b, &[], "not both");
@@ -356,10 +356,10 @@ fn curved_side_errors_are_named() {
     check(b, &[], "breakpoint where the right rounding starts, x = 18");
     let mut b = base();
     b.bottom = Some(shape(None, Some(-1.0)));
-    check(b, &[], "round_right = -1 must be a positive length");
+    check(b, &[], "bottom.round_right: -1 must be a positive length");
     let mut b = base();
     b.top = Some(shape(None, None));
-    check(b, &[], "block \"p\" top: give radius");
+    check(b, &[], "block \"p\" top.radius: missing: give radius");
     // a curved side on a matching interface
     let mut up = block("up", vec![0., 20.], vec![2], vec![0., 10.], vec![2]);
     up.bottom = Some(shape(Some(100.0), None));
@@ -384,4 +384,89 @@ fn inverted_element_is_detected() {
     m.elements[3].nodes.swap(1, 3);
     let e = m.validate().unwrap_err();
     assert!(e.0.contains("element 3") && e.0.contains("inverted"), "{e}");
+}
+
+/// The rules of docs/case-schema.md ("Curved block sides") at their edges,
+/// through [`SideShape::check`] (the key named, the reason given).
+#[test]
+fn curved_side_rules_hold_at_their_limits() {
+    let xs = [0.0, 2.0, 15.0];
+    let ys = [0.0, 20.0];
+    let arc = |radius: f64, center: Option<f64>| SideShape {
+        radius: Some(radius),
+        center,
+        round_left: None,
+        round_right: None,
+    };
+    let key = |s: &SideShape, on_axis| s.check(&xs, ys, on_axis).map_err(|e| (e.key, e.message));
+    // the apex on the side, its ends included; off it refused, on either side
+    assert!(key(&arc(50.0, Some(0.0)), None).is_ok());
+    assert!(key(&arc(50.0, Some(15.0)), None).is_ok());
+    for c in [-5.0, -1e-6, 15.001] {
+        let e = key(&arc(50.0, Some(c)), Some("the axis r = 0")).unwrap_err();
+        assert_eq!(e.0, "center", "{e:?}");
+        assert!(e.1.contains("lies off the side"), "{e:?}");
+    }
+    // the smallest radius: max(reach / 0.9, (reach² + h²/4) / h) = 16.667 here
+    let e = key(&arc(16.6, Some(0.0)), None).unwrap_err();
+    assert!(
+        e.0 == "radius" && e.1.contains("admits 16.667 < radius"),
+        "{e:?}"
+    );
+    assert!(key(&arc(16.7, Some(0.0)), None).is_ok());
+    // a low block: the rise (sagitta) binds, (225 + 1)/2 = 113 mm
+    let low = |r: f64| arc(r, Some(0.0)).check(&xs, [0.0, 2.0], None);
+    assert!(low(112.9).unwrap_err().message.contains("rises"));
+    assert!(low(113.1).is_ok());
+    // the largest: a rise of 1e-9 of the block's size (25 mm), R ≈ 15²/(2 · 2.5e-8)
+    assert!(key(&arc(4.4e9, Some(0.0)), None).is_ok());
+    for r in [4.6e9, 1e20, 1e300, f64::MAX] {
+        let e = key(&arc(r, Some(0.0)), None).unwrap_err();
+        assert!(
+            e.0 == "radius" && e.1.contains("flat side to round-off"),
+            "{e:?}"
+        );
+    }
+    let e = key(&arc(f64::INFINITY, None), None).unwrap_err();
+    assert!(e.1.contains("positive length"), "{e:?}");
+    // roundings: below 1e-9 of the block a sharp corner; on the axis or a
+    // symmetry plane a cusp (a block away from it may round its left end)
+    let round = |l: Option<f64>, r: Option<f64>| SideShape {
+        radius: None,
+        center: None,
+        round_left: l,
+        round_right: r,
+    };
+    let xr = [0.0, 1e-9, 2.0, 15.0];
+    let e = round(Some(1e-9), None).check(&xr, ys, None).unwrap_err();
+    assert!(
+        e.key == "round_left" && e.message.contains("sharp corner"),
+        "{e:?}"
+    );
+    let e = round(Some(2.0), None)
+        .check(&xs, ys, Some("the axis r = 0"))
+        .unwrap_err();
+    assert!(e.key == "round_left" && e.message.contains("cusp"), "{e:?}");
+    assert!(round(Some(2.0), None).check(&xs, ys, None).is_ok());
+    assert!(round(None, Some(1.0))
+        .check(&[0.0, 14.0, 15.0], ys, Some("the axis r = 0"))
+        .is_ok());
+}
+
+/// The arc's depth r − √(r² − d²) is computed without cancellation: nodes
+/// of a large radius lie on their circle to round-off of the depth, where
+/// the textbook formula loses every digit.
+#[test]
+fn a_large_radius_keeps_its_depth() {
+    let s = SideShape {
+        radius: Some(1e9),
+        center: Some(0.0),
+        round_left: None,
+        round_right: None,
+    };
+    let (_, depth) = s.point(10.0, 0.0, 10.0);
+    let exact = 100.0 / (2e9) * (1.0 + 100.0 / (4e18));
+    assert!((depth - exact).abs() <= 1e-15 * exact, "{depth} vs {exact}");
+    let naive = 1e9 - (1e18f64 - 100.0).sqrt();
+    assert!((naive - exact).abs() > 1e-3 * exact, "{naive}");
 }
