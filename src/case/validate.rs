@@ -3,7 +3,7 @@
 
 use super::ranges;
 use super::Weights;
-use super::{Case, InterfaceLawSpec};
+use super::{Case, InterfaceLawSpec, TangentialSpec};
 use crate::error::{Error, Result};
 use crate::interface::{FrictionScheme, NormalLaw, TangentialLaw};
 use std::collections::BTreeMap;
@@ -52,6 +52,20 @@ fn check_axisymmetric(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
 pub fn check_case(case: &Case) -> Result<Checked> {
     let place = case.source.display().to_string();
     let at = |key: &str| format!("{place}: {key}");
+    check_model_and_mesh(case, &at)?;
+    check_element_count(case, &at)?;
+    check_names(case, &at)?;
+    check_block_coordinates(case, &at)?;
+    check_curved_sides(case, &at)?;
+    check_load_magnitudes(case, &at)?;
+    check_materials(case, &at)?;
+    let (laws, tangential) = interface_laws(case, &at)?;
+    check_solver(case, &at)?;
+    Ok(Checked { laws, tangential })
+}
+
+/// The case name, the plane and thickness, and how the mesh is given.
+fn check_model_and_mesh(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
     if let Some(name) = &case.name {
         if !plain_folder_name(name) {
             return Err(Error::input(
@@ -89,8 +103,11 @@ pub fn check_case(case: &Case) -> Result<Checked> {
             ));
         }
     }
-    check_element_count(case, &at)?;
-    check_names(case, &at)?;
+    Ok(())
+}
+
+/// Every block breakpoint within [`ranges::COORDINATE`].
+fn check_block_coordinates(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
     for b in &case.mesh.block {
         for (axis, v) in
             b.x.iter()
@@ -103,7 +120,12 @@ pub fn check_case(case: &Case) -> Result<Checked> {
             )?;
         }
     }
-    check_curved_sides(case, &at)?;
+    Ok(())
+}
+
+/// Prescribed displacements, tractions, forces and the probe within their
+/// ranges (their products with a history: [`crate::loads`]).
+fn check_load_magnitudes(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
     for (i, bc) in case.boundary.iter().enumerate() {
         for (k, v) in [("ux", bc.ux), ("uy", bc.uy)] {
             ranges::DISPLACEMENT.check(at(&format!("boundary[{i}] {k}")), v.unwrap_or(0.0))?;
@@ -121,6 +143,11 @@ pub fn check_case(case: &Case) -> Result<Checked> {
     for v in case.output.probe {
         ranges::COORDINATE.check(at("[output] probe"), v)?;
     }
+    Ok(())
+}
+
+/// Every material's constants finite and within their ranges.
+fn check_materials(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
     for (body, m) in &case.materials {
         let key = format!("[materials.{body}]");
         for (name, v) in [
@@ -155,6 +182,19 @@ pub fn check_case(case: &Case) -> Result<Checked> {
             range.check(at(&format!("{key} {name}")), v)?;
         }
     }
+    Ok(())
+}
+
+/// The normal law of every `[interface.<name>]`, and its tangential law if it
+/// has one, each checked.
+#[allow(clippy::type_complexity)]
+fn interface_laws(
+    case: &Case,
+    at: &dyn Fn(&str) -> String,
+) -> Result<(
+    BTreeMap<String, NormalLaw>,
+    BTreeMap<String, (TangentialLaw, FrictionScheme)>,
+)> {
     let mut laws = BTreeMap::new();
     let mut tangential = BTreeMap::new();
     for (name, spec) in &case.interface {
@@ -209,61 +249,71 @@ pub fn check_case(case: &Case) -> Result<Checked> {
         }
         laws.insert(name.clone(), law);
         if let Some(t) = &spec.tangential {
-            let key = format!("{key} tangential");
-            // a non-matching interface has one spring, one pair and one slip
-            // history per quadrature point, with either weights
-            let nonmatching = case
-                .mesh
-                .interface
-                .iter()
-                .any(|i| &i.name == name && i.matching == Some(false));
-            if spec.weights != Weights::Lumped && !nonmatching {
-                return Err(Error::input(at(&key), "a tangential law needs weights = \"lumped\" (one spring and one slip history per pair), or an interface with matching = false (one spring per quadrature point)"));
-            }
-            let law = match (&t.k_table, t.r, t.s) {
-                (None, Some(r), Some(s)) => {
-                    TangentialLaw::new(r, s, t.kp_ratio, t.mu, t.beta, t.n, t.yield_ratio)
-                        .map_err(|m| Error::input(at(&key), m))?
-                }
-                (Some(rows), None, None) => {
-                    let key = format!("{key} k_table");
-                    let rows =
-                        table_rows(rows, "p_N", "k_T").map_err(|m| Error::input(at(&key), m))?;
-                    for (i, &(p, k)) in rows.iter().enumerate() {
-                        ranges::PRESSURE.check(at(&format!("{key} row {} p_N", i + 1)), p)?;
-                        ranges::SHEAR_STIFFNESS
-                            .check(at(&format!("{key} row {} k_T", i + 1)), k)?;
-                    }
-                    TangentialLaw::with_k_table(&rows, t.kp_ratio, t.mu, t.beta, t.n, t.yield_ratio)
-                        .map_err(|m| Error::input(at(&key), m))?
-                }
-                (Some(_), r, _) => {
-                    let k = if r.is_some() { "r" } else { "s" };
-                    return Err(Error::input(
-                        at(&format!("{key} {k}")),
-                        format!("`{k}` is not allowed with `k_table`: give either r and s (k_T^e = p^S/R) or k_table, not both"),
-                    ));
-                }
-                (None, r, _) => {
-                    let k = if r.is_none() { "r" } else { "s" };
-                    return Err(Error::input(
-                        at(&key),
-                        format!("needs `{k}`: give r and s (k_T^e = p^S/R, eq. 2.6) or k_table = [[p_N, k_T], ...]"),
-                    ));
-                }
-            };
-            for (k, v, range) in [
-                ("r", t.r.unwrap_or(0.0), &ranges::SHEAR_R),
-                ("mu", t.mu, &ranges::FRICTION),
-                ("n", t.n, &ranges::SLIP_RATE),
-            ] {
-                range.check(at(&format!("{key} {k}")), v)?;
-            }
+            let law = tangential_law(case, name, spec, t, at)?;
             tangential.insert(name.clone(), (law, t.scheme));
         }
     }
-    check_solver(case, &at)?;
-    Ok(Checked { laws, tangential })
+    Ok((laws, tangential))
+}
+
+/// The tangential law of interface `name`: r and s, or a k_table, with
+/// lumped springs or a non-matching interface.
+fn tangential_law(
+    case: &Case,
+    name: &str,
+    spec: &InterfaceLawSpec,
+    t: &TangentialSpec,
+    at: &dyn Fn(&str) -> String,
+) -> Result<TangentialLaw> {
+    let key = format!("[interface.{name}] tangential");
+    // a non-matching interface has one spring, one pair and one slip
+    // history per quadrature point, with either weights
+    let nonmatching = case
+        .mesh
+        .interface
+        .iter()
+        .any(|i| &i.name == name && i.matching == Some(false));
+    if spec.weights != Weights::Lumped && !nonmatching {
+        return Err(Error::input(at(&key), "a tangential law needs weights = \"lumped\" (one spring and one slip history per pair), or an interface with matching = false (one spring per quadrature point)"));
+    }
+    let law = match (&t.k_table, t.r, t.s) {
+        (None, Some(r), Some(s)) => {
+            TangentialLaw::new(r, s, t.kp_ratio, t.mu, t.beta, t.n, t.yield_ratio)
+                .map_err(|m| Error::input(at(&key), m))?
+        }
+        (Some(rows), None, None) => {
+            let key = format!("{key} k_table");
+            let rows = table_rows(rows, "p_N", "k_T").map_err(|m| Error::input(at(&key), m))?;
+            for (i, &(p, k)) in rows.iter().enumerate() {
+                ranges::PRESSURE.check(at(&format!("{key} row {} p_N", i + 1)), p)?;
+                ranges::SHEAR_STIFFNESS.check(at(&format!("{key} row {} k_T", i + 1)), k)?;
+            }
+            TangentialLaw::with_k_table(&rows, t.kp_ratio, t.mu, t.beta, t.n, t.yield_ratio)
+                .map_err(|m| Error::input(at(&key), m))?
+        }
+        (Some(_), r, _) => {
+            let k = if r.is_some() { "r" } else { "s" };
+            return Err(Error::input(
+                at(&format!("{key} {k}")),
+                format!("`{k}` is not allowed with `k_table`: give either r and s (k_T^e = p^S/R) or k_table, not both"),
+            ));
+        }
+        (None, r, _) => {
+            let k = if r.is_none() { "r" } else { "s" };
+            return Err(Error::input(
+                at(&key),
+                format!("needs `{k}`: give r and s (k_T^e = p^S/R, eq. 2.6) or k_table = [[p_N, k_T], ...]"),
+            ));
+        }
+    };
+    for (k, v, range) in [
+        ("r", t.r.unwrap_or(0.0), &ranges::SHEAR_R),
+        ("mu", t.mu, &ranges::FRICTION),
+        ("n", t.n, &ranges::SLIP_RATE),
+    ] {
+        range.check(at(&format!("{key} {k}")), v)?;
+    }
+    Ok(law)
 }
 
 /// The curved bottom and top sides of the blocks ([`SideShape::check`]), each
