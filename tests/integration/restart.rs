@@ -48,119 +48,6 @@ fn stopped_with(dir: &Path, extra: &[&str]) -> PathBuf {
     dir.to_path_buf()
 }
 
-/// One section of a restart file: name, kind, element count, payload.
-#[derive(Clone)]
-struct Section {
-    name: String,
-    kind: u8,
-    count: u64,
-    data: Vec<u8>,
-}
-
-/// A restart file taken apart into its sections, to change some and write
-/// it back with a recomputed checksum, as anyone can (the format is public,
-/// docs/running.md).
-#[derive(Clone)]
-struct Forge {
-    /// Magic, version, reserved and fingerprint.
-    head: Vec<u8>,
-    sections: Vec<Section>,
-}
-
-impl Forge {
-    fn parse(bytes: &[u8]) -> Forge {
-        let body = &bytes[..bytes.len() - 8];
-        let n = u32::from_le_bytes(body[24..28].try_into().unwrap());
-        let mut at = 28;
-        let mut sections = Vec::new();
-        for _ in 0..n {
-            let len = u16::from_le_bytes(body[at..at + 2].try_into().unwrap()) as usize;
-            let name = String::from_utf8(body[at + 2..at + 2 + len].to_vec()).unwrap();
-            let kind = body[at + 2 + len];
-            let count = u64::from_le_bytes(body[at + 3 + len..at + 11 + len].try_into().unwrap());
-            at += 11 + len;
-            let size = count as usize * if kind <= 2 { 8 } else { 1 };
-            sections.push(Section {
-                name,
-                kind,
-                count,
-                data: body[at..at + size].to_vec(),
-            });
-            at += size;
-        }
-        assert_eq!(at, body.len());
-        Forge {
-            head: body[..24].to_vec(),
-            sections,
-        }
-    }
-
-    fn get(&mut self, name: &str) -> &mut Section {
-        self.sections
-            .iter_mut()
-            .find(|s| s.name == name)
-            .unwrap_or_else(|| panic!("no section {name}"))
-    }
-
-    fn f64s(&mut self, name: &str) -> Vec<f64> {
-        self.get(name)
-            .data
-            .chunks_exact(8)
-            .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
-            .collect()
-    }
-
-    fn u64s(&mut self, name: &str) -> Vec<u64> {
-        self.get(name)
-            .data
-            .chunks_exact(8)
-            .map(|c| u64::from_le_bytes(c.try_into().unwrap()))
-            .collect()
-    }
-
-    fn text(&mut self, name: &str) -> String {
-        String::from_utf8(self.get(name).data.clone()).unwrap()
-    }
-
-    fn set_f64s(&mut self, name: &str, v: &[f64]) {
-        let s = self.get(name);
-        s.count = v.len() as u64;
-        s.data = v.iter().flat_map(|x| x.to_le_bytes()).collect();
-    }
-
-    fn set_u64s(&mut self, name: &str, v: &[u64]) {
-        let s = self.get(name);
-        s.count = v.len() as u64;
-        s.data = v.iter().flat_map(|x| x.to_le_bytes()).collect();
-    }
-
-    fn set_bytes(&mut self, name: &str, v: &[u8]) {
-        let s = self.get(name);
-        s.count = v.len() as u64;
-        s.data = v.to_vec();
-    }
-
-    /// The file, with this section count in the header.
-    fn bytes_with_count(&self, n: u32) -> Vec<u8> {
-        let mut out = self.head.clone();
-        out.extend_from_slice(&n.to_le_bytes());
-        for s in &self.sections {
-            out.extend_from_slice(&(s.name.len() as u16).to_le_bytes());
-            out.extend_from_slice(s.name.as_bytes());
-            out.push(s.kind);
-            out.extend_from_slice(&s.count.to_le_bytes());
-            out.extend_from_slice(&s.data);
-        }
-        let sum = asperity::restart::fnv1a(&out);
-        out.extend_from_slice(&sum.to_le_bytes());
-        out
-    }
-
-    fn bytes(&self) -> Vec<u8> {
-        self.bytes_with_count(self.sections.len() as u32)
-    }
-}
-
 /// What a folder holds, without following links: files by content, links by
 /// target, folders as such.
 #[derive(Debug, PartialEq)]
@@ -250,7 +137,7 @@ fn forged_names_and_links_in_a_restart_folder_write_nothing_outside_the_output()
     let secret = dir.join("secret.txt");
     std::fs::write(&secret, "secret\n").unwrap();
     let bin = std::fs::read(good.join("restart.bin")).unwrap();
-    let forge = Forge::parse(&bin);
+    let forge = common::Forge::parse(&bin);
     let names = forge.clone().text("pvd_file");
     assert_eq!(names, "vtu/0001.vtu\nvtu/0002.vtu\nvtu/0003.vtu");
     // the first VTU name replaced
@@ -337,8 +224,8 @@ fn a_forged_schedule_state_or_section_table_is_refused() {
     let dir = common::scratch("restart-forged-state");
     let good = stopped(&dir.join("good"));
     let bin = std::fs::read(good.join("restart.bin")).unwrap();
-    let forge = Forge::parse(&bin);
-    let with = |edit: &dyn Fn(&mut Forge)| {
+    let forge = common::Forge::parse(&bin);
+    let with = |edit: &dyn Fn(&mut common::Forge)| {
         let mut f = forge.clone();
         edit(&mut f);
         f.bytes()
@@ -488,9 +375,9 @@ fn a_forged_automatic_step_state_is_refused() {
     let dir = common::scratch("restart-forged-auto");
     let auto = ["--step-control", "auto"];
     let good = stopped_with(&dir.join("good"), &auto);
-    let forge = Forge::parse(&std::fs::read(good.join("restart.bin")).unwrap());
+    let forge = common::Forge::parse(&std::fs::read(good.join("restart.bin")).unwrap());
     assert_eq!(forge.clone().f64s("auto_waypoints"), [1.0]);
-    let with = |edit: &dyn Fn(&mut Forge)| {
+    let with = |edit: &dyn Fn(&mut common::Forge)| {
         let mut f = forge.clone();
         edit(&mut f);
         f.bytes()

@@ -44,6 +44,10 @@ fn a_model_wrong_as_a_whole_is_refused_once_on_two_ranks() {
     for (name, needle) in [
         ("101-interface-pairs-twice", "both pair the nodes at"),
         ("107-symmetric-half-negative-x", "lies at x < 0"),
+        ("241-matching-and-nonmatching-same-sides", "both use the edge"),
+        ("250-force-on-prescribed-dof", "is prescribed by a [[boundary]]"),
+        ("244-history-never-used", "is never used"),
+        ("340-arc-apex-off-block", "center"),
     ] {
         let root = common::scratch(&format!("parallel-whole-{name}"));
         let case = common::root().join("tests/bad_inputs").join(name);
@@ -85,4 +89,38 @@ fn a_factorization_out_of_memory_ends_the_run_without_cutbacks() {
         );
         assert!(!err.contains("cutback"), "{nl}: {err}");
     }
+}
+
+/// A forged restart folder (a VTU name that leaves the folder) is refused by
+/// every rank alike, before anything is written: one message, exit 2, and
+/// the file the name points at is untouched.
+#[test]
+fn a_forged_restart_folder_is_refused_on_two_ranks() {
+    let root = common::scratch("parallel-forged-restart");
+    let case = common::root().join("cases/punch-plane-stress");
+    let first = root.join("first");
+    let (code, err) = mpirun(
+        2,
+        &[
+            "run",
+            case.to_str().unwrap(),
+            "--quiet",
+            "--stop-after",
+            "3",
+            "--out",
+            first.to_str().unwrap(),
+        ],
+    );
+    assert!(code == 0 || code == 130 || code == 4, "{code}: {err}");
+    let victim = root.join("victim.txt");
+    std::fs::write(&victim, "keep me").unwrap();
+    let mut forge = common::Forge::parse(&std::fs::read(first.join("restart.bin")).unwrap());
+    let names = forge.text("pvd_file");
+    let first_name = names.lines().next().expect("a VTU file was written").to_string();
+    let forged = names.replacen(&first_name, "../victim.txt", 1);
+    forge.set_bytes("pvd_file", forged.as_bytes());
+    std::fs::write(first.join("restart.bin"), forge.bytes()).unwrap();
+    let err = fails_cleanly_on_two_ranks(&root, &case, &["--restart", first.to_str().unwrap()]);
+    assert!(err.contains("restart.bin"), "{err}");
+    assert_eq!(std::fs::read_to_string(&victim).unwrap(), "keep me");
 }
