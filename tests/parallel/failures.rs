@@ -111,7 +111,7 @@ fn a_forged_restart_folder_is_refused_on_two_ranks() {
             first.to_str().unwrap(),
         ],
     );
-    assert!(code == 0 || code == 130 || code == 4, "{code}: {err}");
+    assert!(code != 2 && first.join("restart.bin").is_file(), "{code}: {err}");
     let victim = root.join("victim.txt");
     std::fs::write(&victim, "keep me").unwrap();
     let mut forge = common::Forge::parse(&std::fs::read(first.join("restart.bin")).unwrap());
