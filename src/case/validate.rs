@@ -272,7 +272,7 @@ fn tangential_law(
         .mesh
         .interface
         .iter()
-        .any(|i| &i.name == name && i.matching == Some(false));
+        .any(|i| i.name == name && i.matching == Some(false));
     if spec.weights != Weights::Lumped && !nonmatching {
         return Err(Error::input(at(&key), "a tangential law needs weights = \"lumped\" (one spring and one slip history per pair), or an interface with matching = false (one spring per quadrature point)"));
     }

@@ -186,3 +186,220 @@ impl Forge {
         self.bytes_with_count(self.sections.len() as u32)
     }
 }
+
+/// Starts the text of a case (see [`CaseText`]).
+pub fn case() -> CaseText {
+    CaseText::default()
+}
+
+/// Case text written in the order of the calls, for the TOML scaffolding the
+/// tests repeat. A table method (`plane`, `block`, `material`, `law`, `ux`,
+/// `pressure`, `solver`, ...) opens its table or array entry; a modifier
+/// (`thickness`, `rx`, `plastic`, `weights`, `gap`, `history`, `x_range`,
+/// `tolerances`, `with`, ...) adds a key to the table opened last; `raw`
+/// adds text as it is. Values are written as `{:?}` writes them, which is
+/// TOML for numbers (exactly: the shortest round trip), strings and arrays.
+#[derive(Clone, Default)]
+pub struct CaseText {
+    text: String,
+    no_vtu: bool,
+}
+
+impl CaseText {
+    /// Adds `key = value` to the table opened last.
+    pub fn with(mut self, key: &str, value: impl std::fmt::Debug) -> Self {
+        self.text += &format!("{key} = {value:?}\n");
+        self
+    }
+
+    /// Adds TOML text as it is (a line, tables), ending the line.
+    pub fn raw(mut self, text: &str) -> Self {
+        self.text += text;
+        if !text.ends_with('\n') {
+            self.text.push('\n');
+        }
+        self
+    }
+
+    /// `[model]` with `plane` = "stress", "strain" or "axisymmetric".
+    pub fn plane(self, plane: &str) -> Self {
+        self.raw("[model]").with("plane", plane)
+    }
+
+    /// Modifier of `plane`.
+    pub fn thickness(self, t: f64) -> Self {
+        self.with("thickness", t)
+    }
+
+    /// Modifier of `plane`: "full" or "reduced".
+    pub fn integration(self, rule: &str) -> Self {
+        self.with("integration", rule)
+    }
+
+    /// `[mesh]` with `refine`.
+    pub fn refine(self, times: usize) -> Self {
+        self.raw("[mesh]").with("refine", times)
+    }
+
+    /// A `[[mesh.block]]`: breakpoints and elements per segment in x and y.
+    pub fn block(
+        self,
+        body: &str,
+        x: impl AsRef<[f64]>,
+        nx: impl AsRef<[usize]>,
+        y: impl AsRef<[f64]>,
+        ny: impl AsRef<[usize]>,
+    ) -> Self {
+        self.raw("[[mesh.block]]")
+            .with("body", body)
+            .with("x", x.as_ref())
+            .with("nx", nx.as_ref())
+            .with("y", y.as_ref())
+            .with("ny", ny.as_ref())
+    }
+
+    /// Modifier of `block`: the grading of each x segment.
+    pub fn rx(self, ratios: impl AsRef<[f64]>) -> Self {
+        self.with("rx", ratios.as_ref())
+    }
+
+    /// Modifier of `block`: the grading of each y segment.
+    pub fn ry(self, ratios: impl AsRef<[f64]>) -> Self {
+        self.with("ry", ratios.as_ref())
+    }
+
+    /// A `[[mesh.interface]]` between the bottom of `upper` and the top of `lower`.
+    pub fn interface(self, name: &str, upper: &str, lower: &str) -> Self {
+        self.raw("[[mesh.interface]]")
+            .with("name", name)
+            .with("upper", upper)
+            .with("lower", lower)
+    }
+
+    /// A `[[mesh.interface]]` between the right side of `left` and the left side of `right`.
+    pub fn vertical_interface(self, name: &str, left: &str, right: &str) -> Self {
+        self.raw("[[mesh.interface]]")
+            .with("name", name)
+            .with("left", left)
+            .with("right", right)
+    }
+
+    /// `[materials.<body>]`, elastic.
+    pub fn material(self, body: &str, young: f64, poisson: f64) -> Self {
+        self.raw(&format!("[materials.{body}]"))
+            .with("young", young)
+            .with("poisson", poisson)
+    }
+
+    /// Modifier of `material`: von Mises plasticity with linear hardening.
+    pub fn plastic(self, yield_stress: f64, hardening: f64) -> Self {
+        self.with("yield_stress", yield_stress)
+            .with("hardening", hardening)
+    }
+
+    /// `[interface.<name>]` with `law` ("power", "linear") and its c_n, m.
+    pub fn law(self, name: &str, law: &str, c_n: f64, m: f64) -> Self {
+        self.raw(&format!("[interface.{name}]"))
+            .with("law", law)
+            .with("c_n", c_n)
+            .with("m", m)
+    }
+
+    /// Modifier of `law`: "lumped" or "consistent".
+    pub fn weights(self, weights: &str) -> Self {
+        self.with("weights", weights)
+    }
+
+    /// Modifier of `law`: the initial gap (negative: an interference).
+    pub fn gap(self, gap: f64) -> Self {
+        self.with("gap", gap)
+    }
+
+    /// `[interface.<name>.tangential]` with R, S, k_T^p/k_T^e and μ_m.
+    pub fn tangential(self, name: &str, r: f64, s: f64, kp_ratio: f64, mu: f64) -> Self {
+        self.raw(&format!("[interface.{name}.tangential]"))
+            .with("r", r)
+            .with("s", s)
+            .with("kp_ratio", kp_ratio)
+            .with("mu", mu)
+    }
+
+    /// `[history]`: named histories, each its points as TOML text.
+    pub fn histories(self, histories: &[(&str, &str)]) -> Self {
+        histories
+            .iter()
+            .fold(self.raw("[history]"), |case, (name, points)| {
+                case.raw(&format!("{name} = {points}"))
+            })
+    }
+
+    /// A `[[boundary]]` prescribing `ux` on a node set.
+    pub fn ux(self, set: &str, ux: f64) -> Self {
+        self.raw("[[boundary]]").with("set", set).with("ux", ux)
+    }
+
+    /// A `[[boundary]]` prescribing `uy` on a node set.
+    pub fn uy(self, set: &str, uy: f64) -> Self {
+        self.raw("[[boundary]]").with("set", set).with("uy", uy)
+    }
+
+    /// A `[[boundary]]` holding a node set in x and y.
+    pub fn fixed(self, set: &str) -> Self {
+        self.ux(set, 0.0).with("uy", 0.0)
+    }
+
+    /// A `[[load]]` pressing on an edge set (add a `shear` with `with`).
+    pub fn pressure(self, edges: &str, pressure: f64) -> Self {
+        self.raw("[[load]]")
+            .with("edges", edges)
+            .with("pressure", pressure)
+    }
+
+    /// A `[[load]]` shearing an edge set.
+    pub fn shear(self, edges: &str, shear: f64) -> Self {
+        self.raw("[[load]]")
+            .with("edges", edges)
+            .with("shear", shear)
+    }
+
+    /// Modifier of a boundary or load: it follows the named history.
+    pub fn history(self, name: &str) -> Self {
+        self.with("history", name)
+    }
+
+    /// Modifier of a boundary or load: only where x is in [from, to].
+    pub fn x_range(self, from: f64, to: f64) -> Self {
+        self.with("x_range", [from, to])
+    }
+
+    /// Modifier of a boundary or load: only where y is in [from, to].
+    pub fn y_range(self, from: f64, to: f64) -> Self {
+        self.with("y_range", [from, to])
+    }
+
+    /// `[solver]` with its keys as TOML text.
+    pub fn solver(self, keys: &str) -> Self {
+        self.raw("[solver]").raw(keys)
+    }
+
+    /// Modifier of `solver`: the residual and displacement tolerances.
+    pub fn tolerances(self, residual: f64, displacement: f64) -> Self {
+        self.with("residual_tolerance", residual)
+            .with("displacement_tolerance", displacement)
+    }
+
+    /// Ends the case with `[output]` `vtu = false`.
+    pub fn no_vtu(mut self) -> Self {
+        self.no_vtu = true;
+        self
+    }
+
+    /// The case text.
+    pub fn build(self) -> String {
+        let mut text = self.text;
+        if self.no_vtu {
+            text += "[output]\nvtu = false\n";
+        }
+        text
+    }
+}

@@ -5,28 +5,18 @@
 use crate::common;
 use std::process::Command;
 
-const SHAFT: &str = r#"
-description = "a solid shaft squeezed radially"
-[model]
-plane = "axisymmetric"
-[[mesh.block]]
-body = "shaft"
-x = [0.0, 10.0]
-nx = [3]
-y = [0.0, 20.0]
-ny = [3]
-[materials.shaft]
-young = 206000.0
-poisson = 0.3
-[[boundary]]
-set = "shaft.bottom"
-uy = 0.0
-[[load]]
-edges = "shaft.right"
-pressure = 100.0
-[solver]
-increments = 2
-"#;
+/// A solid shaft squeezed radially.
+fn shaft() -> String {
+    common::case()
+        .with("description", "a solid shaft squeezed radially")
+        .plane("axisymmetric")
+        .block("shaft", [0.0, 10.0], [3], [0.0, 20.0], [3])
+        .material("shaft", 206000.0, 0.3)
+        .uy("shaft.bottom", 0.0)
+        .pressure("shaft.right", 100.0)
+        .solver("increments = 2")
+        .build()
+}
 
 fn asperity(args: &[&std::ffi::OsStr]) -> String {
     let out = Command::new(env!("CARGO_BIN_EXE_asperity"))
@@ -54,7 +44,7 @@ fn array(vtu: &str, name: &str) -> Vec<f64> {
 
 #[test]
 fn axisymmetric_outputs_state_the_revolution_and_carry_the_hoop_stress() {
-    let case = common::case_dir("axisymmetric-outputs", SHAFT);
+    let case = common::case_dir("axisymmetric-outputs", &shaft());
     let check = asperity(&["check".as_ref(), case.as_os_str()]);
     assert!(check.contains("full revolution"), "{check}");
     let out = case.parent().unwrap().join("out");

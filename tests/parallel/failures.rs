@@ -44,8 +44,14 @@ fn a_model_wrong_as_a_whole_is_refused_once_on_two_ranks() {
     for (name, needle) in [
         ("101-interface-pairs-twice", "both pair the nodes at"),
         ("107-symmetric-half-negative-x", "lies at x < 0"),
-        ("241-matching-and-nonmatching-same-sides", "both use the edge"),
-        ("250-force-on-prescribed-dof", "is prescribed by a [[boundary]]"),
+        (
+            "241-matching-and-nonmatching-same-sides",
+            "both use the edge",
+        ),
+        (
+            "250-force-on-prescribed-dof",
+            "is prescribed by a [[boundary]]",
+        ),
         ("244-history-never-used", "is never used"),
         ("340-arc-apex-off-block", "center"),
     ] {
@@ -111,12 +117,19 @@ fn a_forged_restart_folder_is_refused_on_two_ranks() {
             first.to_str().unwrap(),
         ],
     );
-    assert!(code != 2 && first.join("restart.bin").is_file(), "{code}: {err}");
+    assert!(
+        code != 2 && first.join("restart.bin").is_file(),
+        "{code}: {err}"
+    );
     let victim = root.join("victim.txt");
     std::fs::write(&victim, "keep me").unwrap();
     let mut forge = common::Forge::parse(&std::fs::read(first.join("restart.bin")).unwrap());
     let names = forge.text("pvd_file");
-    let first_name = names.lines().next().expect("a VTU file was written").to_string();
+    let first_name = names
+        .lines()
+        .next()
+        .expect("a VTU file was written")
+        .to_string();
     let forged = names.replacen(&first_name, "../victim.txt", 1);
     forge.set_bytes("pvd_file", forged.as_bytes());
     std::fs::write(first.join("restart.bin"), forge.bytes()).unwrap();

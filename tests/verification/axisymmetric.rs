@@ -3,7 +3,7 @@
 //! pressure (Lamé), and a solid cylinder (elements on the axis) in uniaxial
 //! compression, elastic and elastic-plastic with linear hardening.
 
-use crate::common;
+use crate::common::{self, CaseText};
 use asperity::fem::q8::{gauss_2x2, gauss_3x3, GaussRule};
 use asperity::fem::solid::{element_forces, ElementGeometry, Response, Tangent};
 use asperity::fem::Section;
@@ -159,38 +159,19 @@ fn solve(text: &str) -> (Model, State) {
 
 /// A thick tube a ≤ r ≤ b, its ends held axially (plane strain in z).
 fn tube(a: f64, b: f64, p: f64, nx: usize, integration: &str) -> String {
-    format!(
-        r#"
-[model]
-plane = "axisymmetric"
-integration = "{integration}"
-[[mesh.block]]
-body = "tube"
-x = [{a}, {b}]
-nx = [{nx}]
-rx = [2.0]
-y = [0.0, 1.0]
-ny = [1]
-[materials.tube]
-young = 210000.0
-poisson = 0.3
-[[boundary]]
-set = "tube.bottom"
-uy = 0.0
-[[boundary]]
-set = "tube.top"
-uy = 0.0
-[[load]]
-edges = "tube.left"
-pressure = {p}
-[solver]
-increments = 1
-residual_tolerance = 1e-10
-displacement_tolerance = 1e-12
-[output]
-vtu = false
-"#
-    )
+    common::case()
+        .plane("axisymmetric")
+        .integration(integration)
+        .block("tube", [a, b], [nx], [0.0, 1.0], [1])
+        .rx([2.0])
+        .material("tube", 210000.0, 0.3)
+        .uy("tube.bottom", 0.0)
+        .uy("tube.top", 0.0)
+        .pressure("tube.left", p)
+        .solver("increments = 1")
+        .tolerances(1e-10, 1e-12)
+        .no_vtu()
+        .build()
 }
 
 #[test]
@@ -252,45 +233,30 @@ fn thick_cylinder_under_internal_pressure_matches_lame() {
 }
 
 /// A solid cylinder 0 ≤ r ≤ radius, 0 ≤ z ≤ length, on a frictionless base
-/// (uz = 0 at z = 0; u_r = 0 on the axis is automatic), loaded on its top face
-/// by `top` (a [[load]] or a [[boundary]] entry).
-fn cylinder(radius: f64, length: f64, yield_stress: f64, hardening: f64, top: &str) -> String {
-    format!(
-        r#"
-[model]
-plane = "axisymmetric"
-[[mesh.block]]
-body = "rod"
-x = [0.0, {radius}]
-nx = [4]
-rx = [0.5]
-y = [0.0, {length}]
-ny = [5]
-ry = [1.5]
-[materials.rod]
-young = 200000.0
-poisson = 0.3
-yield_stress = {yield_stress}
-hardening = {hardening}
-[[boundary]]
-set = "rod.bottom"
-uy = 0.0
-{top}
-[solver]
-increments = 5
-residual_tolerance = 1e-12
-displacement_tolerance = 1e-12
-[output]
-vtu = false
-"#
-    )
+/// (uz = 0 at z = 0; u_r = 0 on the axis is automatic); its top face is
+/// loaded by what is added to it (a [[load]] or a [[boundary]] entry).
+fn cylinder(radius: f64, length: f64, yield_stress: f64, hardening: f64) -> CaseText {
+    common::case()
+        .plane("axisymmetric")
+        .block("rod", [0.0, radius], [4], [0.0, length], [5])
+        .rx([0.5])
+        .ry([1.5])
+        .material("rod", 200000.0, 0.3)
+        .plastic(yield_stress, hardening)
+        .uy("rod.bottom", 0.0)
+        .solver("increments = 5")
+        .tolerances(1e-12, 1e-12)
+        .no_vtu()
 }
 
 #[test]
 fn solid_cylinder_under_axial_load_is_uniaxial_on_the_axis_too() {
     let (radius, length, p, e, nu): (f64, f64, f64, f64, f64) = (5.0, 12.0, 80.0, 200000.0, 0.3);
-    let load = format!("[[load]]\nedges = \"rod.top\"\npressure = {p}");
-    let (model, st) = solve(&cylinder(radius, length, 1e6, 0.0, &load));
+    let (model, st) = solve(
+        &cylinder(radius, length, 1e6, 0.0)
+            .pressure("rod.top", p)
+            .build(),
+    );
     // the load is the full revolution's: F = p π R²
     let fz: f64 = (0..model.mesh.nodes.len())
         .map(|n| model.f_ext[2 * n + 1])
@@ -335,8 +301,11 @@ fn solid_cylinder_compressed_beyond_yield_follows_the_bilinear_curve() {
         (5.0, 12.0, 200000.0, 0.3, 250.0, 2000.0);
     // 4 times the yield strain, shortening by a prescribed top displacement
     let eps = -4.0 * sy / e;
-    let top = format!("[[boundary]]\nset = \"rod.top\"\nuy = {}", eps * length);
-    let (model, st) = solve(&cylinder(radius, length, sy, h, &top));
+    let (model, st) = solve(
+        &cylinder(radius, length, sy, h)
+            .uy("rod.top", eps * length)
+            .build(),
+    );
     // σ = σ_Y + E H/(E + H) (ε − σ_Y/E) in compression
     let sigma = -(sy + e * h / (e + h) * (-eps - sy / e));
     let plastic_zz = eps - sigma / e;
@@ -374,52 +343,23 @@ fn solid_cylinder_compressed_beyond_yield_follows_the_bilinear_curve() {
 fn stacked_cylinders_weight_the_interface_by_the_full_revolution() {
     let (radius, q, c, m): (f64, f64, f64, f64) = (8.0, 120.0, 0.002, 0.5);
     for weights in ["lumped", "consistent"] {
-        let text = format!(
-            r#"
-[model]
-plane = "axisymmetric"
-[[mesh.block]]
-body = "top"
-x = [0.0, {radius}]
-nx = [3]
-rx = [0.5]
-y = [0.0, 15.0]
-ny = [3]
-[[mesh.block]]
-body = "bottom"
-x = [0.0, {radius}]
-nx = [3]
-rx = [0.5]
-y = [-25.0, 0.0]
-ny = [4]
-ry = [0.3]
-[[mesh.interface]]
-name = "joint"
-upper = "top"
-lower = "bottom"
-[materials.top]
-young = 70000.0
-poisson = 0.33
-[materials.bottom]
-young = 70000.0
-poisson = 0.33
-[interface.joint]
-law = "power"
-c_n = {c}
-m = {m}
-weights = "{weights}"
-[[boundary]]
-set = "bottom.bottom"
-uy = 0.0
-[[load]]
-edges = "top.top"
-pressure = {q}
-[solver]
-increments = 4
-residual_tolerance = 1e-12
-displacement_tolerance = 1e-12
-"#
-        );
+        let text = common::case()
+            .plane("axisymmetric")
+            .block("top", [0.0, radius], [3], [0.0, 15.0], [3])
+            .rx([0.5])
+            .block("bottom", [0.0, radius], [3], [-25.0, 0.0], [4])
+            .rx([0.5])
+            .ry([0.3])
+            .interface("joint", "top", "bottom")
+            .material("top", 70000.0, 0.33)
+            .material("bottom", 70000.0, 0.33)
+            .law("joint", "power", c, m)
+            .weights(weights)
+            .uy("bottom.bottom", 0.0)
+            .pressure("top.top", q)
+            .solver("increments = 4")
+            .tolerances(1e-12, 1e-12)
+            .build();
         let model = common::model(&text);
         let r = asperity::driver::solve(&model, &mut Quiet).unwrap();
         let im = &model.interfaces[0];

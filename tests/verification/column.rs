@@ -5,7 +5,7 @@
 //! (σ_yy = −q), so the FE solution is exact and the top settles by
 //! u = q (h₁ + h₂)/E + c_N q^m (the interface approach of eq. 2.1).
 
-use crate::common;
+use crate::common::{self, CaseText};
 use asperity::model::Model;
 use asperity::solve::{Increment, Observer, State};
 
@@ -16,61 +16,37 @@ impl Observer for Quiet {
     }
 }
 
-fn column(plane: &str, m: f64, weights: &str, law_extra: &str) -> String {
-    format!(
-        r#"
-[model]
-plane = "{plane}"
-thickness = 2.0
-[[mesh.block]]
-body = "top"
-x = [0.0, 10.0]
-nx = [3]
-rx = [0.5]
-y = [0.0, 15.0]
-ny = [3]
-[[mesh.block]]
-body = "bottom"
-x = [0.0, 10.0]
-nx = [3]
-rx = [0.5]
-y = [-25.0, 0.0]
-ny = [4]
-ry = [0.3]
-[[mesh.interface]]
-name = "joint"
-upper = "top"
-lower = "bottom"
-[materials.top]
-young = 70000.0
-poisson = 0.33
-[materials.bottom]
-young = 70000.0
-poisson = 0.33
-[interface.joint]
-law = "power"
-c_n = 0.002
-m = {m}
-weights = "{weights}"
-{law_extra}
-[[boundary]]
-set = "top.left"
-ux = 0.0
-[[boundary]]
-set = "bottom.left"
-ux = 0.0
-[[boundary]]
-set = "bottom.bottom"
-uy = 0.0
-[[load]]
-edges = "top.top"
-pressure = 120.0
-[solver]
-increments = 4
-residual_tolerance = 1e-12
-displacement_tolerance = 1e-12
-"#
-    )
+/// The two blocks, their joint (with an initial gap if given) and supports;
+/// the load and the solver are added to it.
+fn column(plane: &str, m: f64, weights: &str, gap: Option<f64>) -> CaseText {
+    let mut case = common::case()
+        .plane(plane)
+        .thickness(2.0)
+        .block("top", [0.0, 10.0], [3], [0.0, 15.0], [3])
+        .rx([0.5])
+        .block("bottom", [0.0, 10.0], [3], [-25.0, 0.0], [4])
+        .rx([0.5])
+        .ry([0.3])
+        .interface("joint", "top", "bottom")
+        .material("top", 70000.0, 0.33)
+        .material("bottom", 70000.0, 0.33)
+        .law("joint", "power", 0.002, m)
+        .weights(weights);
+    if let Some(g) = gap {
+        case = case.gap(g);
+    }
+    case.ux("top.left", 0.0)
+        .ux("bottom.left", 0.0)
+        .uy("bottom.bottom", 0.0)
+}
+
+/// The column under the pressure 120 MPa on its top, in 4 steps.
+fn pressed(column: CaseText) -> String {
+    column
+        .pressure("top.top", 120.0)
+        .solver("increments = 4")
+        .tolerances(1e-12, 1e-12)
+        .build()
 }
 
 fn settle(text: &str) -> (f64, f64, Model, State) {
@@ -92,7 +68,7 @@ fn plane_stress_column_matches_closed_form_for_m_half_and_one() {
     let (q, e, h, c): (f64, f64, f64, f64) = (120.0, 70000.0, 40.0, 0.002);
     for m in [0.5, 1.0] {
         for w in ["lumped", "consistent"] {
-            let (u, p, model, st) = settle(&column("stress", m, w, ""));
+            let (u, p, model, st) = settle(&pressed(column("stress", m, w, None)));
             let exact = q * h / e + c * q.powf(m);
             assert!(
                 common::rel(u, exact) < 1e-9,
@@ -118,7 +94,7 @@ fn plane_strain_column_matches_closed_form() {
     // plane strain with free sides: ε_yy = −q (1 − ν²)/E
     let (q, e, nu, h, c, m): (f64, f64, f64, f64, f64, f64) =
         (120.0, 70000.0, 0.33, 40.0, 0.002, 0.5);
-    let (u, _, _, _) = settle(&column("strain", m, "lumped", ""));
+    let (u, _, _, _) = settle(&pressed(column("strain", m, "lumped", None)));
     let exact = q * h * (1.0 - nu * nu) / e + c * q.powf(m);
     assert!(common::rel(u, exact) < 1e-9, "u={u} exact={exact}");
 }
@@ -129,7 +105,7 @@ fn initial_gap_adds_to_the_settlement_under_displacement_free_load() {
     // (interference): the approach is c q^m and the settlement drops by the interference.
     let (q, e, h, c, m, g): (f64, f64, f64, f64, f64, f64) =
         (120.0, 70000.0, 40.0, 0.002, 0.5, -0.01);
-    let (u, _, _, _) = settle(&column("stress", m, "lumped", &format!("gap = {g}")));
+    let (u, _, _, _) = settle(&pressed(column("stress", m, "lumped", Some(g))));
     let exact = q * h / e + c * q.powf(m) + g;
     assert!(common::rel(u, exact) < 1e-9, "u={u} exact={exact}");
 }
@@ -152,15 +128,11 @@ fn loss_of_contact_and_recontact_follow_the_closed_form() {
     // top pushed down by δ = 0.05 λ mm across an initial gap g₀ = 0.01 mm, then
     // lifted (the joint opens again) and pushed back down (re-contact)
     let (e, h, c, m, g0): (f64, f64, f64, f64, f64) = (70000.0, 40.0, 0.002, 0.5, 0.01);
-    let text = column("stress", m, "lumped", &format!("gap = {g0}"))
-        .replace(
-            "[[load]]\nedges = \"top.top\"\npressure = 120.0\n",
-            "[[boundary]]\nset = \"top.top\"\nuy = -0.05\n",
-        )
-        .replace(
-            "increments = 4",
-            "load_factors = [0.1, 0.3, 0.6, 1.0, 0.5, 0.15, 0.6]",
-        );
+    let text = column("stress", m, "lumped", Some(g0))
+        .uy("top.top", -0.05)
+        .solver("load_factors = [0.1, 0.3, 0.6, 1.0, 0.5, 0.15, 0.6]")
+        .tolerances(1e-12, 1e-12)
+        .build();
     let model = common::model(&text);
     let mut rec = Record(Vec::new());
     asperity::driver::solve(&model, &mut rec).unwrap();

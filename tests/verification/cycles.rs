@@ -41,65 +41,27 @@ fn k_t(p: f64) -> f64 {
 /// every node of the base fixed: every spring of the joint sees the same
 /// approach d and the same slip, so all are alike.
 fn uniform(kp_ratio: f64, d: f64, a: f64, drag: &str, increments: usize) -> String {
-    format!(
-        r#"
-[model]
-plane = "strain"
-[[mesh.block]]
-body = "block"
-x = [0.0, {L}]
-nx = [4]
-y = [0.0, 2.0]
-ny = [1]
-[[mesh.block]]
-body = "base"
-x = [0.0, {L}]
-nx = [4]
-y = [-2.0, 0.0]
-ny = [1]
-[[mesh.interface]]
-name = "joint"
-upper = "block"
-lower = "base"
-[materials.block]
-young = 210000.0
-poisson = 0.3
-[materials.base]
-young = 210000.0
-poisson = 0.3
-[interface.joint]
-law = "power"
-c_n = {C_N}
-m = {M}
-weights = "lumped"
-[interface.joint.tangential]
-r = {R}
-s = {S}
-kp_ratio = {kp_ratio}
-mu = {MU}
-beta = 1.0
-n = 0.0
-[history]
-preload = [[0, 0], [1, 1]]
-drag = {drag}
-[[boundary]]
-set = "base.all"
-ux = 0.0
-uy = 0.0
-[[boundary]]
-set = "block.all"
-uy = -{d}
-history = "preload"
-[[boundary]]
-set = "block.all"
-ux = {a}
-history = "drag"
-[solver]
-increments = {increments}
-[output]
-vtu = false
-"#
-    )
+    common::case()
+        .plane("strain")
+        .block("block", [0.0, L], [4], [0.0, 2.0], [1])
+        .block("base", [0.0, L], [4], [-2.0, 0.0], [1])
+        .interface("joint", "block", "base")
+        .material("block", 210000.0, 0.3)
+        .material("base", 210000.0, 0.3)
+        .law("joint", "power", C_N, M)
+        .weights("lumped")
+        .tangential("joint", R, S, kp_ratio, MU)
+        .with("beta", 1.0)
+        .with("n", 0.0)
+        .histories(&[("preload", "[[0, 0], [1, 1]]"), ("drag", drag)])
+        .fixed("base.all")
+        .uy("block.all", -d)
+        .history("preload")
+        .ux("block.all", a)
+        .history("drag")
+        .solver(&format!("increments = {increments}"))
+        .no_vtu()
+        .build()
 }
 
 /// A CSV file as a header and rows of fields.
@@ -401,65 +363,32 @@ impl Observer for Capture {
 fn a_slider_dragged_back_and_forth_balances_the_shear_and_shakes_down() {
     let (q, tau) = (50.0f64, 6.0f64);
     assert!(tau < MU * q, "below the friction limit");
-    let text = format!(
-        r#"
-[model]
-plane = "strain"
-[[mesh.block]]
-body = "slider"
-x = [0.0, {L}]
-nx = [8]
-y = [0.0, 4.0]
-ny = [2]
-[[mesh.block]]
-body = "base"
-x = [0.0, {L}]
-nx = [8]
-y = [-6.0, 0.0]
-ny = [3]
-[[mesh.interface]]
-name = "joint"
-upper = "slider"
-lower = "base"
-[materials.slider]
-young = 210000.0
-poisson = 0.3
-[materials.base]
-young = 210000.0
-poisson = 0.3
-[interface.joint]
-law = "power"
-c_n = {C_N}
-m = {M}
-weights = "lumped"
-[interface.joint.tangential]
-r = {R}
-s = {S}
-kp_ratio = 0.05
-mu = {MU}
-[history]
-preload = [[0, 0], [1, 1]]
-shear = [[1, 0], [2, 1], [3, -1], [4, 0], [5, 1], [6, -1], [7, 0]]
-[[boundary]]
-set = "base.bottom"
-ux = 0.0
-uy = 0.0
-[[load]]
-edges = "slider.top"
-pressure = {q}
-history = "preload"
-[[load]]
-edges = "slider.top"
-shear = {tau}
-history = "shear"
-[solver]
-increments = 8
-residual_tolerance = 1e-12
-displacement_tolerance = 1e-12
-[output]
-vtu = false
-"#
-    );
+    let text = common::case()
+        .plane("strain")
+        .block("slider", [0.0, L], [8], [0.0, 4.0], [2])
+        .block("base", [0.0, L], [8], [-6.0, 0.0], [3])
+        .interface("joint", "slider", "base")
+        .material("slider", 210000.0, 0.3)
+        .material("base", 210000.0, 0.3)
+        .law("joint", "power", C_N, M)
+        .weights("lumped")
+        .tangential("joint", R, S, 0.05, MU)
+        .histories(&[
+            ("preload", "[[0, 0], [1, 1]]"),
+            (
+                "shear",
+                "[[1, 0], [2, 1], [3, -1], [4, 0], [5, 1], [6, -1], [7, 0]]",
+            ),
+        ])
+        .fixed("base.bottom")
+        .pressure("slider.top", q)
+        .history("preload")
+        .shear("slider.top", tau)
+        .history("shear")
+        .solver("increments = 8")
+        .tolerances(1e-12, 1e-12)
+        .no_vtu()
+        .build();
     let model = common::model(&text);
     let mut cap = Capture::default();
     let r = asperity::driver::solve(&model, &mut cap).unwrap_or_else(|e| panic!("{e}"));

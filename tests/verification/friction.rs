@@ -19,58 +19,23 @@ impl Observer for Record {
 fn a_block_slides_at_mu_m_times_the_normal_load_once_hardening_saturates() {
     // upper block pressed by p λ and dragged sideways by δ λ on its left side
     let (p, w, t, mu, beta) = (100.0, 10.0, 1.0, 0.2, 0.3);
-    let text = format!(
-        r#"
-[model]
-plane = "stress"
-thickness = {t}
-[[mesh.block]]
-body = "block"
-x = [0.0, {w}]
-nx = [4]
-y = [0.0, 4.0]
-ny = [2]
-[[mesh.block]]
-body = "base"
-x = [0.0, {w}]
-nx = [4]
-y = [-4.0, 0.0]
-ny = [2]
-[[mesh.interface]]
-name = "joint"
-upper = "block"
-lower = "base"
-[materials.block]
-young = 206000.0
-poisson = 0.3
-[materials.base]
-young = 206000.0
-poisson = 0.3
-[interface.joint]
-law = "power"
-c_n = 0.001
-m = 0.5
-[interface.joint.tangential]
-r = 0.9
-s = 0.5
-kp_ratio = 0.05
-mu = {mu}
-beta = {beta}
-n = 275.0
-[[boundary]]
-set = "base.bottom"
-ux = 0.0
-uy = 0.0
-[[boundary]]
-set = "block.left"
-ux = 0.2
-[[load]]
-edges = "block.top"
-pressure = {p}
-[solver]
-increments = 50
-"#
-    );
+    let text = common::case()
+        .plane("stress")
+        .thickness(t)
+        .block("block", [0.0, w], [4], [0.0, 4.0], [2])
+        .block("base", [0.0, w], [4], [-4.0, 0.0], [2])
+        .interface("joint", "block", "base")
+        .material("block", 206000.0, 0.3)
+        .material("base", 206000.0, 0.3)
+        .law("joint", "power", 0.001, 0.5)
+        .tangential("joint", 0.9, 0.5, 0.05, mu)
+        .with("beta", beta)
+        .with("n", 275.0)
+        .fixed("base.bottom")
+        .ux("block.left", 0.2)
+        .pressure("block.top", p)
+        .solver("increments = 50")
+        .build();
     let model = common::model(&text);
     let mut rec = Record(Vec::new());
     asperity::driver::solve(&model, &mut rec).unwrap_or_else(|e| panic!("{e}"));

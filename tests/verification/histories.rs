@@ -7,7 +7,7 @@
 //! pressed in by its history ends where the interference imposed at once
 //! does; the stepper stops at every breakpoint and never crosses one.
 
-use crate::common;
+use crate::common::{self, CaseText};
 use asperity::case::SolverSpec;
 use asperity::model::Model;
 use asperity::solve::stepping::{segment_steps, Retry, Stepper, Why};
@@ -33,30 +33,14 @@ const E: f64 = 200_000.0;
 const NU: f64 = 0.3;
 
 /// One elastic plane-strain block [0, w] × [0, h] ("block"), fixed at its
-/// bottom, with `rest` appended (loads, histories, solver).
-fn block(w: f64, h: f64, nx: usize, ny: usize, rest: &str) -> String {
-    format!(
-        r#"
-[model]
-plane = "strain"
-[[mesh.block]]
-body = "block"
-x = [0.0, {w}]
-nx = [{nx}]
-y = [0.0, {h}]
-ny = [{ny}]
-[materials.block]
-young = {E}
-poisson = {NU}
-[[boundary]]
-set = "block.bottom"
-ux = 0.0
-uy = 0.0
-{rest}
-[output]
-vtu = false
-"#
-    )
+/// bottom; loads, histories and the solver are added to it.
+fn block(w: f64, h: f64, nx: usize, ny: usize) -> CaseText {
+    common::case()
+        .plane("strain")
+        .block("block", [0.0, w], [nx], [0.0, h], [ny])
+        .material("block", E, NU)
+        .fixed("block.bottom")
+        .no_vtu()
 }
 
 /// Largest |a − b| over the largest |a|.
@@ -83,43 +67,31 @@ fn reactions(model: &Model, r: &RunResult) -> [f64; 2] {
     sum
 }
 
-/// Loads of a linear case: a pressure and a shear on the top, a prescribed
-/// displacement of the right side.
-const LINEAR_LOADS: &str = r#"
-[[boundary]]
-set = "block.right"
-y_range = [0.5, 4.0]
-ux = -0.002
-{bh}
-[[load]]
-edges = "block.top"
-pressure = 40.0
-shear = 15.0
-{lh}
-"#;
+/// A linear case: a block 10 × 4, a pressure and a shear on its top, a
+/// prescribed displacement of its right side, all following `history` (a
+/// name and its points) if given.
+fn linear(history: Option<(&str, &str)>, solver: &str) -> String {
+    let mut case = block(10.0, 4.0, 5, 2);
+    if let Some(h) = history {
+        case = case.histories(&[h]);
+    }
+    case = case.ux("block.right", -0.002).y_range(0.5, 4.0);
+    if let Some((name, _)) = history {
+        case = case.history(name);
+    }
+    case = case.pressure("block.top", 40.0).with("shear", 15.0);
+    if let Some((name, _)) = history {
+        case = case.history(name);
+    }
+    case.solver(solver).build()
+}
 
 #[test]
 fn one_step_and_two_history_segments_reach_the_same_state() {
-    let one = block(
-        10.0,
-        4.0,
-        5,
-        2,
-        &format!(
-            "{}[solver]\nincrements = 1\n",
-            LINEAR_LOADS.replace("{bh}", "").replace("{lh}", "")
-        ),
-    );
-    let h = "history = \"two\"";
-    let two = block(
-        10.0,
-        4.0,
-        5,
-        2,
-        &format!(
-            "[history]\ntwo = [[0, 0], [1, 0.5], [2, 1]]\n{}[solver]\nincrements = 1\n",
-            LINEAR_LOADS.replace("{bh}", h).replace("{lh}", h)
-        ),
+    let one = linear(None, "increments = 1");
+    let two = linear(
+        Some(("two", "[[0, 0], [1, 0.5], [2, 1]]")),
+        "increments = 1",
     );
     let (m1, m2) = (common::model(&one), common::model(&two));
     assert!(m1.breakpoints().is_empty() && m1.history_values(0.5).is_empty());
@@ -142,12 +114,10 @@ fn one_step_and_two_history_segments_reach_the_same_state() {
 
 #[test]
 fn elastic_loading_and_unloading_returns_to_zero() {
-    let rest = "[history]\nup_down = [[0, 0], [1, 1], [2, 0]]\n".to_string()
-        + &LINEAR_LOADS
-            .replace("{bh}", "history = \"up_down\"")
-            .replace("{lh}", "history = \"up_down\"")
-        + "[solver]\nincrements = 2\n";
-    let model = common::model(&block(10.0, 4.0, 5, 2, &rest));
+    let model = common::model(&linear(
+        Some(("up_down", "[[0, 0], [1, 1], [2, 0]]")),
+        "increments = 2",
+    ));
     let (r, states) = solve(&model);
     let peak = states
         .iter()
@@ -219,13 +189,12 @@ fn a_shear_traction_has_its_resultant_and_the_simple_shear_displacement() {
     // a wide thin layer: away from its ends the state is simple shear,
     // u_x = τ y / G, u_y = 0 (the traction-free top carries no normal stress)
     let (w, h, tau) = (100.0, 1.0, 30.0);
-    let model = common::model(&block(
-        w,
-        h,
-        100,
-        2,
-        &format!("[[load]]\nedges = \"block.top\"\nshear = {tau}\n[solver]\nincrements = 1\n"),
-    ));
+    let model = common::model(
+        &block(w, h, 100, 2)
+            .shear("block.top", tau)
+            .solver("increments = 1")
+            .build(),
+    );
     let mut f = vec![0.0; model.mesh.num_dofs()];
     model.external_force(1.0, &mut f);
     let fx: f64 = f.iter().step_by(2).sum();
@@ -252,22 +221,11 @@ fn a_shear_traction_has_its_resultant_and_the_simple_shear_displacement() {
 fn shear_turns_with_the_edge() {
     // +x on a top edge, −y on a right edge, +y on a left edge (and −x on a
     // bottom edge; the bottom is held here, where a load never acts)
-    let text = block(
-        6.0,
-        4.0,
-        3,
-        2,
-        r#"[[load]]
-edges = "block.right"
-shear = 2.0
-[[load]]
-edges = "block.left"
-shear = 3.0
-[[load]]
-edges = "block.top"
-shear = 5.0
-"#,
-    );
+    let text = block(6.0, 4.0, 3, 2)
+        .shear("block.right", 2.0)
+        .shear("block.left", 3.0)
+        .shear("block.top", 5.0)
+        .build();
     let model = common::model(&text);
     // Σ f_y over the nodes of a side x = const
     let side_fy = |x: f64| -> f64 {
@@ -289,17 +247,13 @@ shear = 5.0
 #[test]
 fn a_concentrated_force_is_carried_by_the_supports() {
     let (fx, fy) = (120.0, -250.0);
-    let text = block(
-        10.0,
-        4.0,
-        5,
-        2,
-        &format!(
+    let text = block(10.0, 4.0, 5, 2)
+        .raw(&format!(
             "[[force]]\nnodes = \"block.top\"\nx_range = [4.9, 5.1]\nfx = {fx}\nfy = {fy}\n\
-             [[force]]\nnodes = \"block.top\"\nfy = -10.0\nhistory = [[0, 0], [1, 2]]\n\
-             [solver]\nincrements = 2\n"
-        ),
-    );
+             [[force]]\nnodes = \"block.top\"\nfy = -10.0\nhistory = [[0, 0], [1, 2]]"
+        ))
+        .solver("increments = 2")
+        .build();
     let model = common::model(&text);
     let top = model.mesh.node_sets["block.top"].len();
     let (r, _) = solve(&model);
@@ -316,60 +270,32 @@ fn a_concentrated_force_is_carried_by_the_supports() {
 }
 
 /// Two stacked blocks pressed apart by an interference of 2 µm across a
-/// frictionless rough interface, both held at their far ends.
-fn fit(gap_history: &str) -> String {
-    format!(
-        r#"
-[model]
-plane = "strain"
-[[mesh.block]]
-body = "upper"
-x = [0.0, 10.0]
-nx = [5]
-y = [0.0, 4.0]
-ny = [2]
-[[mesh.block]]
-body = "lower"
-x = [0.0, 10.0]
-nx = [5]
-y = [-6.0, 0.0]
-ny = [3]
-[[mesh.interface]]
-name = "joint"
-upper = "upper"
-lower = "lower"
-[materials.upper]
-young = {E}
-poisson = {NU}
-[materials.lower]
-young = {E}
-poisson = {NU}
-[interface.joint]
-law = "power"
-c_n = 0.001
-m = 0.5
-gap = -0.002
-{gap_history}
-[[boundary]]
-set = "lower.bottom"
-ux = 0.0
-uy = 0.0
-[[boundary]]
-set = "upper.top"
-ux = 0.0
-uy = 0.0
-[solver]
-increments = 4
-[output]
-vtu = false
-"#
-    )
+/// frictionless rough interface, both held at their far ends; the
+/// interference imposed at once or pressed in by its `gap_history`.
+fn fit(pressed_in: bool) -> String {
+    let mut case = common::case()
+        .plane("strain")
+        .block("upper", [0.0, 10.0], [5], [0.0, 4.0], [2])
+        .block("lower", [0.0, 10.0], [5], [-6.0, 0.0], [3])
+        .interface("joint", "upper", "lower")
+        .material("upper", E, NU)
+        .material("lower", E, NU)
+        .law("joint", "power", 0.001, 0.5)
+        .gap(-0.002);
+    if pressed_in {
+        case = case.raw("gap_history = [[0, 0], [1, 1]]");
+    }
+    case.fixed("lower.bottom")
+        .fixed("upper.top")
+        .solver("increments = 4")
+        .no_vtu()
+        .build()
 }
 
 #[test]
 fn an_interference_alone_loads_the_model_at_once_or_through_its_history() {
-    let at_once = common::model(&fit(""));
-    let ramped = common::model(&fit("gap_history = [[0, 0], [1, 1]]"));
+    let at_once = common::model(&fit(false));
+    let ramped = common::model(&fit(true));
     assert_eq!(ramped.gap_at(0, 0.25), -0.0005);
     assert_eq!(at_once.gap_at(0, 0.25), -0.002);
     let (ra, _) = solve(&at_once);
@@ -507,12 +433,14 @@ fn automatic_steps_stop_at_every_breakpoint() {
 #[test]
 fn a_run_with_histories_steps_on_every_breakpoint_in_both_modes() {
     for solver in ["increments = 4", "step_control = \"auto\""] {
-        let rest = format!(
-            "[history]\nramp = [[0, 0], [0.4, 1], [1.7, -0.5], [2.2, 0]]\n\
-             [[load]]\nedges = \"block.top\"\npressure = 30.0\nhistory = \"ramp\"\n\
-             [[load]]\nedges = \"block.top\"\nshear = 5.0\n[solver]\n{solver}\n"
-        );
-        let model = common::model(&block(10.0, 4.0, 5, 2, &rest));
+        let text = block(10.0, 4.0, 5, 2)
+            .histories(&[("ramp", "[[0, 0], [0.4, 1], [1.7, -0.5], [2.2, 0]]")])
+            .pressure("block.top", 30.0)
+            .history("ramp")
+            .shear("block.top", 5.0)
+            .solver(solver)
+            .build();
+        let model = common::model(&text);
         let bps = model.breakpoints();
         assert_eq!(bps, vec![0.0, 0.4, 1.0, 1.7, 2.2]);
         let (r, _) = solve(&model);
@@ -524,58 +452,25 @@ fn a_run_with_histories_steps_on_every_breakpoint_in_both_modes() {
 
 /// A slider pressed on a base and sheared back and forth over a rough,
 /// frictional joint: preload, then a tangential cycle into slip.
-const SLIDEWAY: &str = r#"
-[model]
-plane = "strain"
-[[mesh.block]]
-body = "slider"
-x = [0.0, 10.0]
-nx = [6]
-y = [0.0, 4.0]
-ny = [2]
-[[mesh.block]]
-body = "base"
-x = [0.0, 10.0]
-nx = [6]
-y = [-6.0, 0.0]
-ny = [3]
-[[mesh.interface]]
-name = "joint"
-upper = "slider"
-lower = "base"
-[materials.slider]
-young = 210000.0
-poisson = 0.3
-[materials.base]
-young = 210000.0
-poisson = 0.3
-[interface.joint]
-law = "power"
-c_n = 0.001
-m = 0.5
-[interface.joint.tangential]
-r = 0.9
-s = 0.5
-kp_ratio = 0.05
-mu = 0.2
-[history]
-shear = [[1, 0], [2, 1], [3, -1], [4, 0]]
-[[boundary]]
-set = "base.bottom"
-ux = 0.0
-uy = 0.0
-[[load]]
-edges = "slider.top"
-pressure = 50.0
-[[load]]
-edges = "slider.top"
-shear = 9.0
-history = "shear"
-[solver]
-{solver}
-[output]
-vtu = false
-"#;
+fn slideway(solver: &str) -> String {
+    common::case()
+        .plane("strain")
+        .block("slider", [0.0, 10.0], [6], [0.0, 4.0], [2])
+        .block("base", [0.0, 10.0], [6], [-6.0, 0.0], [3])
+        .interface("joint", "slider", "base")
+        .material("slider", 210000.0, 0.3)
+        .material("base", 210000.0, 0.3)
+        .law("joint", "power", 0.001, 0.5)
+        .tangential("joint", 0.9, 0.5, 0.05, 0.2)
+        .histories(&[("shear", "[[1, 0], [2, 1], [3, -1], [4, 0]]")])
+        .fixed("base.bottom")
+        .pressure("slider.top", 50.0)
+        .shear("slider.top", 9.0)
+        .history("shear")
+        .solver(solver)
+        .no_vtu()
+        .build()
+}
 
 #[test]
 fn a_run_with_histories_stopped_and_restarted_takes_the_same_steps() {
@@ -584,10 +479,7 @@ fn a_run_with_histories_stopped_and_restarted_takes_the_same_steps() {
         ("fixed", "increments = 4"),
         ("auto", "step_control = \"auto\"\nmax_increment = 0.25"),
     ] {
-        let case = common::case_dir(
-            &format!("histories-restart-{tag}"),
-            &SLIDEWAY.replace("{solver}", solver),
-        );
+        let case = common::case_dir(&format!("histories-restart-{tag}"), &slideway(solver));
         let dir = case.parent().unwrap().to_path_buf();
         let go = |out: &str, restart: bool, stop_after: Option<usize>| {
             let out = dir.join(out);

@@ -5,7 +5,7 @@
 //! horizontal and a vertical interface, with F_T the force that drags A;
 //! several interfaces in one model, each in equilibrium.
 
-use crate::common;
+use crate::common::{self, CaseText};
 use asperity::interface::joint::{self, JointMeasures};
 use asperity::model::Model;
 use asperity::solve::{Increment, Observer, RunResult, State};
@@ -25,59 +25,29 @@ fn last_joints(r: &RunResult) -> &[JointMeasures] {
     &r.increments.last().unwrap().joints
 }
 
-const SOLVER: &str =
-    "[solver]\nincrements = 4\nresidual_tolerance = 1e-12\ndisplacement_tolerance = 1e-12\n";
+const SOLVER: &str = "increments = 4\nresidual_tolerance = 1e-12\ndisplacement_tolerance = 1e-12";
 
 /// A shaft (left, x ≤ 10) and a hub (right), both 0 ≤ y ≤ 15, plane stress,
-/// 2 mm thick; the shaft's left side held in x, both bottoms in y.
-fn side_by_side(weights: &str, extra: &str) -> String {
-    format!(
-        r#"
-[model]
-plane = "stress"
-thickness = 2.0
-[[mesh.block]]
-body = "shaft"
-x = [0.0, 10.0]
-nx = [3]
-rx = [0.5]
-y = [0.0, 15.0]
-ny = [3]
-ry = [2.0]
-[[mesh.block]]
-body = "hub"
-x = [10.0, 25.0]
-nx = [4]
-y = [0.0, 15.0]
-ny = [3]
-ry = [2.0]
-[[mesh.interface]]
-name = "fit"
-left = "shaft"
-right = "hub"
-[materials.shaft]
-young = 70000.0
-poisson = 0.33
-[materials.hub]
-young = 200000.0
-poisson = 0.3
-[interface.fit]
-law = "power"
-c_n = 0.002
-m = 0.5
-weights = "{weights}"
-[[boundary]]
-set = "shaft.left"
-ux = 0.0
-[[boundary]]
-set = "shaft.bottom"
-uy = 0.0
-[[boundary]]
-set = "hub.bottom"
-uy = 0.0
-{extra}
-{SOLVER}"#
-    )
+/// 2 mm thick; the shaft's left side held in x, both bottoms in y (the
+/// shaft's moved up by `lift`).
+fn side_by_side(weights: &str, lift: f64) -> CaseText {
+    common::case()
+        .plane("stress")
+        .thickness(2.0)
+        .block("shaft", [0.0, 10.0], [3], [0.0, 15.0], [3])
+        .rx([0.5])
+        .ry([2.0])
+        .block("hub", [10.0, 25.0], [4], [0.0, 15.0], [3])
+        .ry([2.0])
+        .vertical_interface("fit", "shaft", "hub")
+        .material("shaft", 70000.0, 0.33)
+        .material("hub", 200000.0, 0.3)
+        .law("fit", "power", 0.002, 0.5)
+        .weights(weights)
+        .ux("shaft.left", 0.0)
+        .uy("shaft.bottom", lift)
+        .uy("hub.bottom", 0.0)
+        .solver(SOLVER)
 }
 
 #[test]
@@ -85,9 +55,8 @@ fn blocks_pressed_together_sideways_carry_the_applied_pressure_everywhere() {
     // uniform σ_xx = −q in both blocks (σ_yy = 0: free tops), exact for Q8;
     // the joint carries p_N = q, u_N = c q^m
     let (q, c, m, t, h) = (120.0f64, 0.002f64, 0.5f64, 2.0, 15.0);
-    let load = format!("[[load]]\nedges = \"hub.right\"\npressure = {q}\n");
     for w in ["lumped", "consistent"] {
-        let model = common::model(&side_by_side(w, &load));
+        let model = common::model(&side_by_side(w, 0.0).pressure("hub.right", q).build());
         let r = solve(&model);
         let st = &r.final_state;
         let im = &model.interfaces[0];
@@ -131,9 +100,6 @@ fn blocks_pressed_together_sideways_carry_the_applied_pressure_everywhere() {
     }
 }
 
-const FRICTION: &str =
-    "[interface.fit.tangential]\nr = 0.9\ns = 0.5\nkp_ratio = 0.05\nmu = 0.2\nn = 275.0\n";
-
 /// Checks the joint convention on a run where A is dragged in +t by the
 /// only non-zero prescribed displacement: F_T is the force that drags it.
 fn check_drag(what: &str, model: &Model, r: &RunResult) {
@@ -172,62 +138,31 @@ fn check_drag(what: &str, model: &Model, r: &RunResult) {
 fn dragging_body_a_along_the_joint_gives_positive_force_and_slip() {
     // vertical: the shaft pressed by the hub (pressure on the hub's right
     // side) and pushed up by its bottom: A moves in +y = t
-    let text = side_by_side(
-        "lumped",
-        &format!("{FRICTION}[[load]]\nedges = \"hub.right\"\npressure = 100.0\n"),
-    )
-    .replace(
-        "set = \"shaft.bottom\"\nuy = 0.0",
-        "set = \"shaft.bottom\"\nuy = 0.05",
-    );
+    let text = side_by_side("lumped", 0.05)
+        .tangential("fit", 0.9, 0.5, 0.05, 0.2)
+        .with("n", 275.0)
+        .pressure("hub.right", 100.0)
+        .build();
     let model = common::model(&text);
     check_drag("vertical", &model, &solve(&model));
 
     // horizontal: a block pressed on a base and its top pulled in +x = t
-    let text = format!(
-        r#"
-[model]
-plane = "stress"
-thickness = 2.0
-[[mesh.block]]
-body = "block"
-x = [0.0, 10.0]
-nx = [4]
-y = [0.0, 5.0]
-ny = [2]
-[[mesh.block]]
-body = "base"
-x = [0.0, 10.0]
-nx = [4]
-y = [-5.0, 0.0]
-ny = [2]
-[[mesh.interface]]
-name = "fit"
-upper = "block"
-lower = "base"
-[materials.block]
-young = 70000.0
-poisson = 0.33
-[materials.base]
-young = 200000.0
-poisson = 0.3
-[interface.fit]
-law = "power"
-c_n = 0.002
-m = 0.5
-{FRICTION}
-[[boundary]]
-set = "block.top"
-ux = 0.05
-[[boundary]]
-set = "base.bottom"
-ux = 0.0
-uy = 0.0
-[[load]]
-edges = "block.top"
-pressure = 100.0
-{SOLVER}"#
-    );
+    let text = common::case()
+        .plane("stress")
+        .thickness(2.0)
+        .block("block", [0.0, 10.0], [4], [0.0, 5.0], [2])
+        .block("base", [0.0, 10.0], [4], [-5.0, 0.0], [2])
+        .interface("fit", "block", "base")
+        .material("block", 70000.0, 0.33)
+        .material("base", 200000.0, 0.3)
+        .law("fit", "power", 0.002, 0.5)
+        .tangential("fit", 0.9, 0.5, 0.05, 0.2)
+        .with("n", 275.0)
+        .ux("block.top", 0.05)
+        .fixed("base.bottom")
+        .pressure("block.top", 100.0)
+        .solver(SOLVER)
+        .build();
     let model = common::model(&text);
     assert_eq!(joint::direction(&model.interfaces[0]), [1.0, 0.0]);
     check_drag("horizontal", &model, &solve(&model));
@@ -239,74 +174,34 @@ fn a_shaft_in_a_hub_on_a_base_balances_both_interfaces() {
     // base (q₂ on its top); without friction each interface carries exactly
     // the hub's load across it
     let (q1, q2, t) = (80.0, 50.0, 2.0);
-    let text = format!(
-        r#"
-[model]
-plane = "strain"
-thickness = {t}
-[[mesh.block]]
-body = "shaft"
-x = [0.0, 10.0]
-nx = [2]
-y = [0.0, 10.0, 30.0, 40.0]
-ny = [2, 4, 1]
-[[mesh.block]]
-body = "hub"
-x = [10.0, 30.0]
-nx = [4]
-y = [10.0, 30.0]
-ny = [4]
-[[mesh.block]]
-body = "base"
-x = [10.0, 20.0, 30.0]
-nx = [2, 2]
-y = [-10.0, 10.0]
-ny = [2]
-[[mesh.interface]]
-name = "fit"
-left = "shaft"
-right = "hub"
-[[mesh.interface]]
-name = "seat"
-upper = "hub"
-lower = "base"
-[materials.shaft]
-young = 200000.0
-poisson = 0.3
-[materials.hub]
-young = 110000.0
-poisson = 0.34
-[materials.base]
-young = 70000.0
-poisson = 0.33
-[interface.fit]
-law = "power"
-c_n = 0.002
-m = 0.5
-[interface.seat]
-law = "linear"
-c_n = 0.001
-m = 0.5
-slope = 1e-5
-p_c = 5.0
-[[boundary]]
-set = "shaft.left"
-ux = 0.0
-[[boundary]]
-set = "shaft.bottom"
-uy = 0.0
-[[boundary]]
-set = "base.bottom"
-ux = 0.0
-uy = 0.0
-[[load]]
-edges = "hub.right"
-pressure = {q1}
-[[load]]
-edges = "hub.top"
-pressure = {q2}
-{SOLVER}"#
-    );
+    let text = common::case()
+        .plane("strain")
+        .thickness(t)
+        .block(
+            "shaft",
+            [0.0, 10.0],
+            [2],
+            [0.0, 10.0, 30.0, 40.0],
+            [2, 4, 1],
+        )
+        .block("hub", [10.0, 30.0], [4], [10.0, 30.0], [4])
+        .block("base", [10.0, 20.0, 30.0], [2, 2], [-10.0, 10.0], [2])
+        .vertical_interface("fit", "shaft", "hub")
+        .interface("seat", "hub", "base")
+        .material("shaft", 200000.0, 0.3)
+        .material("hub", 110000.0, 0.34)
+        .material("base", 70000.0, 0.33)
+        .law("fit", "power", 0.002, 0.5)
+        .law("seat", "linear", 0.001, 0.5)
+        .with("slope", 1e-5)
+        .with("p_c", 5.0)
+        .ux("shaft.left", 0.0)
+        .uy("shaft.bottom", 0.0)
+        .fixed("base.bottom")
+        .pressure("hub.right", q1)
+        .pressure("hub.top", q2)
+        .solver(SOLVER)
+        .build();
     let model = common::model(&text);
     let r = solve(&model);
     let j = last_joints(&r);

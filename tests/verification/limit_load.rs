@@ -71,41 +71,26 @@ fn limit_pressure(plane: &Plane, refine: usize) -> (f64, f64) {
         solver,
         ..
     } = plane;
-    let text = format!(
-        r#"
-[model]
-plane = "{plane}"
-integration = "{integration}"
-[mesh]
-refine = {refine}
-[[mesh.block]]
-body = "foundation"
-x = [0.0, 5.0, 10.0, 20.0, 50.0]
-nx = [2, 1, 1, 1]
-y = [-50.0, -20.0, -10.0, -5.0, 0.0]
-ny = [1, 1, 1, 2]
-[materials.foundation]
-young = 206000.0
-poisson = 0.3
-yield_stress = 196.0
-hardening = 0.0
-[[boundary]]
-set = "foundation.left"
-ux = 0.0
-[[boundary]]
-set = "foundation.bottom"
-uy = 0.0
-[[boundary]]
-set = "foundation.right"
-ux = 0.0
-[[boundary]]
-set = "foundation.top"
-x_range = [0.0, {A}]
-uy = {settlement}
-[solver]
-{solver}
-"#
-    );
+    let text = common::case()
+        .plane(plane)
+        .integration(integration)
+        .refine(refine)
+        .block(
+            "foundation",
+            [0.0, 5.0, 10.0, 20.0, 50.0],
+            [2, 1, 1, 1],
+            [-50.0, -20.0, -10.0, -5.0, 0.0],
+            [1, 1, 1, 2],
+        )
+        .material("foundation", 206000.0, 0.3)
+        .plastic(196.0, 0.0)
+        .ux("foundation.left", 0.0)
+        .uy("foundation.bottom", 0.0)
+        .ux("foundation.right", 0.0)
+        .uy("foundation.top", *settlement)
+        .x_range(0.0, A)
+        .solver(solver)
+        .build();
     let started = std::time::Instant::now();
     let model = common::model(&text);
     let r = asperity::driver::solve(&model, &mut Quiet).unwrap_or_else(|e| panic!("{e}"));

@@ -63,68 +63,38 @@ fn fit_pressure(c_n: f64) -> f64 {
     0.5 * (lo + hi)
 }
 
-/// Both bodies held axially at both ends.
-const HELD: &str = r#"
-[[boundary]]
-set = "shaft.bottom"
-uy = 0.0
-[[boundary]]
-set = "shaft.top"
-uy = 0.0
-"#;
-
-/// The fit; `interface` is appended to `[interface.fit]` (a gap history, a
-/// tangential table), `shaft` holds the shaft's boundary entries (the hub's
-/// ends are held axially).
-fn case(c_n: f64, interface: &str, shaft: &str) -> String {
-    format!(
-        r#"
-[model]
-plane = "axisymmetric"
-[[mesh.block]]
-body = "shaft"
-x = [0.0, {B}]
-nx = [8]
-y = [0.0, 10.0]
-ny = [3]
-[[mesh.block]]
-body = "hub"
-x = [{B}, {C}]
-nx = [12]
-rx = [2.0]
-y = [0.0, 10.0]
-ny = [3]
-[[mesh.interface]]
-name = "fit"
-left = "shaft"
-right = "hub"
-[materials.shaft]
-young = {E}
-poisson = {NU}
-[materials.hub]
-young = {E}
-poisson = {NU}
-[interface.fit]
-law = "power"
-c_n = {c_n}
-m = {M}
-gap = -{DELTA}
-{interface}
-{shaft}
-[[boundary]]
-set = "hub.bottom"
-uy = 0.0
-[[boundary]]
-set = "hub.top"
-uy = 0.0
-[solver]
-increments = 4
-residual_tolerance = 1e-12
-displacement_tolerance = 1e-12
-[output]
-vtu = false
-"#
-    )
+/// The fit, the interference pressed in by a `gap_history` or imposed at
+/// once; the shaft held axially at both ends or, given a friction
+/// coefficient, pushed out (`history` "push") across a frictional interface.
+/// The hub's ends are held axially.
+fn case(c_n: f64, pressed_in: bool, push_out: Option<f64>) -> String {
+    let mut case = common::case()
+        .plane("axisymmetric")
+        .block("shaft", [0.0, B], [8], [0.0, 10.0], [3])
+        .block("hub", [B, C], [12], [0.0, 10.0], [3])
+        .rx([2.0])
+        .vertical_interface("fit", "shaft", "hub")
+        .material("shaft", E, NU)
+        .material("hub", E, NU)
+        .law("fit", "power", c_n, M)
+        .gap(-DELTA);
+    if pressed_in {
+        case = case.raw("gap_history = [[0, 0], [1, 1]]");
+    }
+    case = match push_out {
+        None => case.uy("shaft.bottom", 0.0).uy("shaft.top", 0.0),
+        Some(mu) => case
+            .tangential("fit", 0.9, 0.5, 0.05, mu)
+            .histories(&[("push", "[[1, 0], [2, 1]]")])
+            .uy("shaft.all", 0.05)
+            .history("push"),
+    };
+    case.uy("hub.bottom", 0.0)
+        .uy("hub.top", 0.0)
+        .solver("increments = 4")
+        .tolerances(1e-12, 1e-12)
+        .no_vtu()
+        .build()
 }
 
 /// The mean interface pressure (joint F_N over the interface area) and
@@ -155,7 +125,7 @@ fn long_shrink_fit_matches_the_lame_closed_form_with_the_rough_interface() {
     let mut fe_rigid = 0.0;
     for c_n in [1e-6, 1e-4, 1e-3] {
         let p = fit_pressure(c_n);
-        let model = common::model(&case(c_n, "gap_history = [[0, 0], [1, 1]]", HELD));
+        let model = common::model(&case(c_n, true, None));
         let area = 2.0 * std::f64::consts::PI * B * 10.0;
         assert!(common::rel(model.interfaces[0].area(), area) < 1e-12);
         let r = asperity::driver::solve(&model, &mut Quiet).unwrap_or_else(|e| panic!("{e}"));
@@ -210,7 +180,7 @@ fn long_shrink_fit_matches_the_lame_closed_form_with_the_rough_interface() {
         }
 
         // the interference imposed at once ends at the same pressure
-        let at_once = common::model(&case(c_n, "", HELD));
+        let at_once = common::model(&case(c_n, false, None));
         let ra = asperity::driver::solve(&at_once, &mut Quiet).unwrap_or_else(|e| panic!("{e}"));
         let (mean_once, _) = pressures(&at_once, &ra);
         eprintln!(
@@ -234,15 +204,7 @@ fn long_shrink_fit_matches_the_lame_closed_form_with_the_rough_interface() {
 #[test]
 fn the_pushed_out_shaft_is_held_by_mu_times_the_fit_pressure() {
     let (c_n, mu) = (1e-4, 0.15);
-    let text = case(
-        c_n,
-        &format!(
-            "gap_history = [[0, 0], [1, 1]]\n[interface.fit.tangential]\n\
-             r = 0.9\ns = 0.5\nkp_ratio = 0.05\nmu = {mu}\n\
-             [history]\npush = [[1, 0], [2, 1]]\n"
-        ),
-        "[[boundary]]\nset = \"shaft.all\"\nuy = 0.05\nhistory = \"push\"\n",
-    );
+    let text = case(c_n, true, Some(mu));
     let model = common::model(&text);
     let r = asperity::driver::solve(&model, &mut Quiet).unwrap_or_else(|e| panic!("{e}"));
     let area = 2.0 * std::f64::consts::PI * B * 10.0;
