@@ -62,6 +62,15 @@ pub fn load_model(case_path: &Path, opts: &RunOptions) -> Result<Model> {
     if let Some(sc) = opts.step_control {
         case.solver.step_control = Some(sc);
     }
+    if (opts.increments.is_some() || opts.step_control.is_some())
+        && case.solver.step_mode() == crate::case::StepControl::Fixed
+    {
+        // a fixed schedule asked for on the command line: the case's keys of
+        // the automatic control no longer apply (a case refuses them beside
+        // fixed steps)
+        case.solver.max_increment = None;
+        case.solver.plastic_strain_step = crate::case::default_plastic_strain_step();
+    }
     if opts.plain {
         case.solver.acceleration = crate::case::Acceleration::None;
     }

@@ -406,6 +406,15 @@ fn edge_traction(
             continue;
         }
         if case.model.symmetric_half {
+            if x.iter().all(|y| y[0].abs() <= tol) {
+                return Err(Error::input(
+                    at,
+                    format!(
+                        "loads the edge from ({}, {}) to ({}, {}) on the symmetry plane x = 0 of a symmetric_half model: the plane is inside the whole body, not a surface of it; load a surface of the body",
+                        x[0][0], x[0][1], x[2][0], x[2][1]
+                    ),
+                ));
+            }
             symmetric_traction(ld, &x, tol, at)?;
         }
         for &(s, w) in &gp {
@@ -566,6 +575,12 @@ fn boundary_conditions(
             return Err(Error::input(&at, "give ux and/or uy"));
         }
         let h = res.resolve(bc.history.as_ref(), &format!("{at} history"))?;
+        if h.is_some() && [bc.ux, bc.uy].iter().flatten().all(|&v| v == 0.0) {
+            return Err(Error::input(
+                format!("{at} history"),
+                "is given, but every displacement of this boundary is 0: a history scales the prescribed value and scales nothing here (a support stays fixed without one); remove it, or give the history to the load it belongs to",
+            ));
+        }
         for (k, v) in [("ux", bc.ux), ("uy", bc.uy)] {
             if let Some(v) = v.filter(|v| v.is_finite()) {
                 scaled.push((format!("{at} {k}"), v, &ranges::DISPLACEMENT, h));

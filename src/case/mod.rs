@@ -430,7 +430,7 @@ fn one_usize() -> usize {
 fn yes() -> bool {
     true
 }
-fn default_plastic_strain_step() -> f64 {
+pub fn default_plastic_strain_step() -> f64 {
     2e-3
 }
 fn default_residual_tol() -> f64 {

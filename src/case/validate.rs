@@ -597,6 +597,7 @@ fn check_solver(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
             ));
         }
     }
+    check_step_keys(s, at)?;
     if let Some(v) = s.max_increment {
         if !(v.is_finite() && v > 0.0 && v <= 1.0) {
             return Err(Error::input(
@@ -636,6 +637,49 @@ fn check_solver(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
             at("[output] probe"),
             format!("{p:?} must be two finite numbers (mm)"),
         ));
+    }
+    Ok(())
+}
+
+/// Keys of one step control given to the other, where they would be ignored:
+/// under fixed steps `load_factors` is the whole schedule (`increments` and
+/// `first_increment` beside it say nothing), and `max_increment` and
+/// `plastic_strain_step` steer only the automatic control.
+fn check_step_keys(s: &super::SolverSpec, at: &dyn Fn(&str) -> String) -> Result<()> {
+    if s.step_mode() != super::StepControl::Fixed {
+        return Ok(());
+    }
+    let why = if s.step_control.is_some() {
+        "step_control = \"fixed\""
+    } else {
+        "fixed steps (the default when increments, first_increment or load_factors is given)"
+    };
+    if s.load_factors.is_some() {
+        for (key, given) in [
+            ("increments", s.increments.is_some()),
+            ("first_increment", s.first_increment.is_some()),
+        ] {
+            if given {
+                return Err(Error::input(
+                    at(&format!("[solver] {key}")),
+                    format!("has no effect beside load_factors under {why}: load_factors is the whole schedule; remove {key}, or set step_control = \"auto\" (load_factors are then waypoints)"),
+                ));
+            }
+        }
+    }
+    for (key, given) in [
+        ("max_increment", s.max_increment.is_some()),
+        (
+            "plastic_strain_step",
+            s.plastic_strain_step != super::default_plastic_strain_step(),
+        ),
+    ] {
+        if given {
+            return Err(Error::input(
+                at(&format!("[solver] {key}")),
+                format!("steers the automatic step control only, but the case has {why}; remove {key}, or set step_control = \"auto\""),
+            ));
+        }
     }
     Ok(())
 }

@@ -162,7 +162,37 @@ fn shared_sides(mesh: &Mesh, place: &str) -> Result<()> {
     let mut side: HashMap<usize, usize> = HashMap::new();
     for (k, iface) in mesh.interfaces.iter().enumerate() {
         let edges: Vec<[usize; 3]> = match &iface.nonmatching {
-            Some(nm) => nm.slave.iter().chain(&nm.master).copied().collect(),
+            Some(nm) => {
+                // the master side may reach beyond the slave side (a block's
+                // whole top under a narrower punch): only its edges facing
+                // the slave side are in contact, those whose mid node lies
+                // within half the shortest slave edge of the slave side's
+                // box (across a gap as well)
+                let (lo, hi) = nm.slave.iter().flatten().fold(
+                    ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
+                    |(lo, hi), &n| {
+                        let x = mesh.nodes[n];
+                        (
+                            [lo[0].min(x[0]), lo[1].min(x[1])],
+                            [hi[0].max(x[0]), hi[1].max(x[1])],
+                        )
+                    },
+                );
+                let shortest = nm.slave.iter().fold(f64::INFINITY, |m, e| {
+                    let (a, b) = (mesh.nodes[e[0]], mesh.nodes[e[2]]);
+                    m.min((b[0] - a[0]).hypot(b[1] - a[1]))
+                });
+                let pad = 0.5 * shortest;
+                let faces = |e: &&[usize; 3]| {
+                    let x = mesh.nodes[e[1]];
+                    (0..2).all(|c| x[c] > lo[c] - pad && x[c] < hi[c] + pad)
+                };
+                nm.slave
+                    .iter()
+                    .chain(nm.master.iter().filter(faces))
+                    .copied()
+                    .collect()
+            }
             None => iface.edges.iter().flat_map(|e| [e.a, e.b]).collect(),
         };
         for e in edges {

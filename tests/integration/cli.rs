@@ -173,3 +173,23 @@ fn the_same_prescribed_value_twice_is_allowed() {
     assert_eq!(code, 0, "{err}");
     assert!(out.contains("valid"), "{out}");
 }
+
+/// Two punches side by side on one foundation, one interface matching and
+/// one not: the non-matching interface's master side (the foundation's whole
+/// top) reaches under the other punch, but only its edges facing the slave
+/// side are in contact, so the two interfaces share no edge and the case runs
+/// (issue 30: the check of interfaces over the same sides).
+#[test]
+fn a_matching_and_a_non_matching_interface_side_by_side_run() {
+    let case = common::root().join("tests/data/side-by-side-mixed");
+    let out = common::scratch("side-by-side-mixed").join("out");
+    let (code, _, err) = asperity(&[
+        "run",
+        case.to_str().unwrap(),
+        "--quiet",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.join("summary.json").is_file());
+}

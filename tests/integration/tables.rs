@@ -19,9 +19,12 @@ fn punch_with_table(name: &str, pressures: &[f64], solver: &str) -> PathBuf {
         .map(|&p| format!("[{:e}, {p:e}]", 0.001 * p.sqrt()))
         .collect();
     let table = format!("law = \"table\"\ntable = [{}]", rows.join(", "));
-    let text = PUNCH
-        .replace(POWER, &table)
-        .replace("increments = 20", solver);
+    // the whole [solver] schedule replaced (a first_increment beside
+    // load_factors would be refused)
+    let text = PUNCH.replace(POWER, &table).replace(
+        "increments = 20\nfirst_increment = 0.05   # the paper's small first step (section 2.3)",
+        solver,
+    );
     assert!(text.contains(&table) && text.contains(solver), "{name}");
     common::case_dir(name, &text)
 }
