@@ -551,6 +551,21 @@ pub fn calibrate(input: &Input, place: &str, base: &Path) -> Result<Calibration>
             "the table's approaches are not positive and strictly increasing (range too narrow for the model's accuracy)",
         ));
     }
+    // the table as interface.toml writes it must be one a case accepts (rows
+    // far enough apart to give a slope, every value in its range)
+    let written: Vec<(f64, f64)> = table
+        .iter()
+        .map(|q| {
+            let r = |v: f64| format!("{v:.9e}").parse::<f64>().unwrap_or(f64::NAN);
+            (r(q.approach), r(q.pressure))
+        })
+        .collect();
+    if let Err(m) = crate::interface::NormalLaw::new_table(&written) {
+        return Err(Error::input(
+            format!("{place}: fit.pressure"),
+            format!("[{lo}, {hi}] MPa gives a table that a case file would refuse ({m}); widen the fit range"),
+        ));
+    }
     Ok(Calibration {
         gw,
         moments,

@@ -104,6 +104,19 @@ pub fn parse(text: &str, place: &str, areal: bool, sampling: f64) -> Result<Heig
     let mut cols = 0;
     for (n, line) in lines(text).enumerate() {
         let body = line.split('#').next().unwrap_or("");
+        // an empty cell between two separators is a missing sample (a
+        // trailing separator at the end of a line is not)
+        let fields: Vec<&str> = body.trim_end().split([',', ';']).collect();
+        if fields.len() > 1
+            && fields[..fields.len() - 1]
+                .iter()
+                .any(|f| f.trim().is_empty())
+        {
+            return Err(Error::input(
+                format!("{place}:{}", n + 1),
+                "has an empty cell (two separators with nothing between them): a missing sample would shift every height after it; fill it or remove the separator",
+            ));
+        }
         let mut count = 0;
         for tok in body
             .split(|c: char| c == ',' || c == ';' || c.is_ascii_whitespace())

@@ -273,6 +273,15 @@ fn unit_slips_are_calibrated_with_warnings() {
 fn bad(name: &str, input: &str, expect: &str) {
     let dir = common::scratch(&format!("calibrate-bad-{name}"));
     std::fs::write(dir.join("empty.csv"), "# nothing\n").unwrap();
+    // a missing sample: an empty cell between two separators (line 201)
+    let gap: String = (0..400)
+        .map(|i| {
+            let (a, b) = (1e-3 * (i * 37 % 11) as f64, 1e-3 * (i * 13 % 7) as f64);
+            let sep = if i == 200 { ",," } else { "," };
+            format!("{a}{sep}{b}\n")
+        })
+        .collect();
+    std::fs::write(dir.join("gap.csv"), gap).unwrap();
     // flat records: a tilted line, and a tilted plane (CRLF) with an offset
     let tilted: String = (0..400)
         .map(|i| format!("{}\n", 3.0 + 2.5e-4 * i as f64))
@@ -348,6 +357,18 @@ fn bad_inputs_are_one_error_line_and_exit_2() {
         "empty-profile",
         &format!("{MATERIALS}[surface]\nmodel = \"profile\"\nfile = \"empty.csv\"\nsampling = 1e-3\n{FIT}"),
         "too few heights: 0",
+    );
+    bad(
+        "profile-empty-cell",
+        &format!(
+            "{MATERIALS}[surface]\nmodel = \"profile\"\nfile = \"gap.csv\"\nsampling = 1e-3\n{FIT}"
+        ),
+        "gap.csv:201: has an empty cell",
+    );
+    bad(
+        "range-too-narrow-for-a-table",
+        &format!("{MATERIALS}{GW}[fit]\npressure = [10.0, 10.00000034]\n"),
+        "gives a table that a case file would refuse",
     );
     bad(
         "range-reversed",
