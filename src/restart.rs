@@ -50,7 +50,9 @@
 //! Anyone can write a well-formed file (the checksum and the fingerprint are
 //! computable), so they only catch accidents; [`read`] checks every value
 //! against the case before any of it is used, and refuses a mismatch with
-//! one line `<DIR>/restart.bin: <what is wrong>` (exit 2, nothing written):
+//! one line `<DIR>/restart.bin: <what is wrong>` (exit 2, nothing written;
+//! every float of the file it quotes in its shortest form, `num`: `1e300`,
+//! never 301 digits):
 //!
 //! - sizes: the file's size from its metadata against [`Bounds`] (what the
 //!   model's dofs, Gauss points, interface points and the case's most
@@ -67,12 +69,27 @@
 //!   the resumed run ends where the case's history ends; `auto_step` within
 //!   the case's smallest and largest step; no failures or cutbacks pending
 //!   and the cutback total the curve's;
+//! - the counters: Newton iterations and factorizations at most what a run
+//!   of the case can count after the curve's increments and cutbacks
+//!   ([`most_iterations`]: per attempt a predicted and a plain solve, each
+//!   with the stabilization's levels and releases, plus one first-yield
+//!   search, at the case's iteration limit, × 2);
 //! - the state: `u`, `last_du`, `gauss`, `contact`, `joint_totals`,
-//!   `prescribed_reaction`, `table_reach` finite; ε̄ᵖ ≥ 0, the yielding flag 0 or 1; every
+//!   `prescribed_reaction`, `table_reach` finite; `u` and `last_du` within
+//!   ±[`MAX_DISPLACEMENT`] (the displacement range of a case, 10⁴ mm); every
+//!   Gauss point a state its body's return mapping can leave
+//!   (`check_gauss_point`): ε̄ᵖ ≥ 0, the yielding flag 0 or 1, |σ| ≤
+//!   [`MAX_STRESS`], σzz = 0 in plane stress; in an elastic body (no
+//!   `yield_stress`) εᵖ, ε̄ᵖ and the flag all 0; otherwise |εᵖ| ≤
+//!   [`MAX_PLASTIC_STRAIN`], ε̄ᵖ ≤ [`MAX_PEEQ`], εᵖ deviatoric (trace 0),
+//!   ε̄ᵖ ≥ √(2/3)|εᵖ| and σ_eq ≤ σ_Y + H ε̄ᵖ (round-off allowed); every
 //!   status code a status ([`Status::checked`]); `joints` rows finite, or all
 //!   NaN before the first finite one (the rows of earlier builds);
 //!   `first_yield` finite, within the curve's load factors, at an element of
-//!   the mesh whose body `first_yield_body` names;
+//!   the mesh whose body `first_yield_body` names; every interface's
+//!   `table_reach` (u_N, p_N) within [0, [`MAX_DISPLACEMENT`]] ×
+//!   [0, [`MAX_PRESSURE`]], p_N the normal law's pressure at u_N, and at
+//!   least the restored state's own reach ([`Reach::of`]);
 //! - names: every `pvd_file` name is `vtu/NNNN.vtu` exactly as the writer
 //!   names an increment ([`vtu_name`]), for increasing converged increments,
 //!   with that increment's load factor; every file a resumed run copies
@@ -82,13 +99,15 @@
 //!   again without following links and creates each file new in the
 //!   temporary output folder.
 
+use crate::case::ranges;
 use crate::error::{Error, Result};
 use crate::interface::extrapolation::Reach;
 use crate::interface::joint::{JointMeasures, JointTotals};
 use crate::interface::{PointState as ContactState, Status};
-use crate::material::PointState;
+use crate::material::{PointState, VonMises};
 use crate::model::Model;
 use crate::solve::stepping::Stepper;
+use crate::solve::{stabilize, yield_point};
 use crate::solve::{Checkpoint, FirstYield, Increment, Measures};
 use std::collections::BTreeMap;
 use std::io::Write;
@@ -427,6 +446,60 @@ const MAX_SECTION_NAME: usize = 64;
 pub const MAX_RESUMED_INCREMENTS: usize = 1 << 24;
 /// Longest VTU name in the `pvd_file` section: `vtu/` + 20 digits + `.vtu`.
 const MAX_VTU_NAME: usize = 28;
+/// Largest |u| and |Δu| (`u`, `last_du`) and interface approach u_N
+/// (`table_reach`) of a restored state, mm: the displacement range of a
+/// case ([`ranges::DISPLACEMENT`], 10 m).
+pub const MAX_DISPLACEMENT: f64 = ranges::DISPLACEMENT.hi;
+/// Largest interface pressure p_N of `table_reach`, MPa: the pressure range
+/// of a case ([`ranges::PRESSURE`]).
+pub const MAX_PRESSURE: f64 = ranges::PRESSURE.hi;
+/// Largest |σ| component of a Gauss point, MPa: 10⁴ × the largest Young's
+/// modulus a case may give ([`ranges::MODULUS`]), 10⁶ × the largest yield
+/// stress or pressure.
+pub const MAX_STRESS: f64 = 1e4 * ranges::MODULUS.hi;
+/// Largest plastic strain |εᵖ| (the tensor norm, √(εᵖ:εᵖ)) of a Gauss
+/// point: 1000 %, far beyond what a small-strain model means.
+pub const MAX_PLASTIC_STRAIN: f64 = 10.0;
+/// Largest accumulated plastic strain ε̄ᵖ of a Gauss point (it grows under
+/// cyclic loading where εᵖ does not).
+pub const MAX_PEEQ: f64 = 1e4;
+/// Round-off allowed in the relations between the stored plastic strains
+/// (trace, ε̄ᵖ ≥ √(2/3)|εᵖ|): relative, and absolute (a strain).
+const STRAIN_REL: f64 = 1e-9;
+const STRAIN_ABS: f64 = 1e-15;
+/// Round-off allowed above the yield surface: σ_eq ≤ σ_y(ε̄ᵖ) (1 + this).
+const YIELD_REL: f64 = 1e-6;
+/// Round-off allowed between `table_reach` and what the restored state
+/// and the normal law give: relative, and absolute (mm or MPa).
+const REACH_REL: f64 = 1e-9;
+const REACH_ABS: f64 = 1e-12;
+/// Margin on the most Newton iterations and factorizations a run can have
+/// counted ([`most_iterations`]).
+const COUNTER_MARGIN: u128 = 2;
+
+/// A float quoted in a refusal: the shortest form that reads back as it,
+/// plain or scientific (at most 24 characters: a forged 1e300 is `1e300`,
+/// not 301 digits).
+fn num(x: f64) -> String {
+    crate::calibrate::limits::exact(x)
+}
+
+/// The most Newton iterations (and as many factorizations: one per
+/// iteration) a run can have counted after `increments` converged
+/// increments and `cutbacks` cutbacks: every attempt at a step (each
+/// increment or cutback, and one more) is at most a solve from the
+/// predictor and one from the committed state ([`crate::solve`]'s predictor
+/// restart), each the plain solve and, under the contact stabilization, up
+/// to [`stabilize::LEVELS`] stabilized solves each with its release; the
+/// first-yield search adds at most 1 + [`yield_point::SEARCH_STEPS`] such
+/// steps once. Every solve takes at most the case's iteration limit (PETSc
+/// SNES: its cap, 10 more); all of it times [`COUNTER_MARGIN`].
+pub fn most_iterations(model: &Model, increments: u64, cutbacks: u64) -> u128 {
+    let per_step = 1 + 2 * stabilize::LEVELS as u128;
+    let attempts = u128::from(increments) + u128::from(cutbacks) + 1;
+    let solves = (2 * attempts + 1 + yield_point::SEARCH_STEPS as u128) * per_step;
+    solves * (model.solver.iteration_limit() as u128 + 10) * COUNTER_MARGIN
+}
 
 /// What a restart folder can hold for a model, from the model alone: the
 /// bounds every size read from the folder is checked against before
@@ -715,7 +788,7 @@ fn decode_with(
     }
     ck.increments = restore_curve(&s, increments as usize)?;
     restore_stepper(&mut ck, &s, model)?;
-    restore_state(&mut ck, &s)?;
+    restore_state(&mut ck, &s, model)?;
     ck.committed.time = ck.lambda;
     restore_joints(&mut ck, &s, model.interfaces.len())?;
     restore_table_reach(&mut ck, &s, model)?;
@@ -866,7 +939,7 @@ fn all_finite(name: &str, v: &[f64]) -> Decoded<()> {
         Some(i) => Err(format!(
             "section {name}: value {} is not finite ({})",
             i + 1,
-            v[i]
+            num(v[i])
         )),
         None => Ok(()),
     }
@@ -888,12 +961,13 @@ fn restore_curve(s: &Sections, increments: usize) -> Decoded<Vec<Increment>> {
         .map(|(i, v)| {
             let k = i + 1;
             if whole(v[0]) != Some(k) {
-                return Err(format!("section curve: row {k} is numbered {}", v[0]));
+                return Err(format!("section curve: row {k} is numbered {}", num(v[0])));
             }
             let (Some(iterations), Some(cutbacks)) = (whole(v[2]), whole(v[3])) else {
                 return Err(format!(
                     "section curve: row {k}: {} iterations, {} cutbacks (not whole numbers)",
-                    v[2], v[3]
+                    num(v[2]),
+                    num(v[3])
                 ));
             };
             Ok(Increment {
@@ -938,16 +1012,17 @@ fn restore_stepper(ck: &mut Checkpoint, s: &Sections, model: &Model) -> Decoded<
     if ck.lambda.to_bits() != at(n).to_bits() {
         return Err(format!(
             "section load_factor: load factor {}, but increment {n} ended at {}",
-            ck.lambda,
-            at(n)
+            num(ck.lambda),
+            num(at(n))
         ));
     }
     ck.last_step = s.finite("last_step", Some(1))?[0];
     let step = if n == 0 { 0.0 } else { at(n) - at(n - 1) };
     if ck.last_step.to_bits() != step.to_bits() {
         return Err(format!(
-            "section last_step: {}, but the curve's last step is {step}",
-            ck.last_step
+            "section last_step: {}, but the curve's last step is {}",
+            num(ck.last_step),
+            num(step)
         ));
     }
     // the predictor's direction; absent from files of earlier builds (the
@@ -960,6 +1035,13 @@ fn restore_stepper(ck: &mut Checkpoint, s: &Sections, model: &Model) -> Decoded<
             ));
         }
         all_finite("last_du", v)?;
+        all_within(
+            "last_du",
+            v,
+            MAX_DISPLACEMENT,
+            "mm",
+            "the displacement range of a case",
+        )?;
         ck.last_du = v.clone();
     }
     let pl = s.f("pending_load_factor", None)?;
@@ -1000,11 +1082,17 @@ fn restore_stepper(ck: &mut Checkpoint, s: &Sections, model: &Model) -> Decoded<
     };
     if !fits {
         return Err(if auto {
-            format!("section auto_step: step {step}, outside the case's steps [{lo}, {hi}]")
+            format!(
+                "section auto_step: step {}, outside the case's steps [{}, {}]",
+                num(step),
+                num(lo),
+                num(hi)
+            )
         } else {
             format!(
-                "section auto_step: {step}, but fixed steps leave it at {}",
-                initial.step
+                "section auto_step: {}, but fixed steps leave it at {}",
+                num(step),
+                num(initial.step)
             )
         });
     }
@@ -1021,12 +1109,22 @@ fn restore_stepper(ck: &mut Checkpoint, s: &Sections, model: &Model) -> Decoded<
     ck.stepper.failures = 0;
     (ck.cutbacks_total, ck.cutbacks_here) = (total as usize, 0);
     let ct = s.u("counters", Some(2))?;
+    let most = most_iterations(model, n as u64, total);
+    for (v, what) in [(ct[0], "Newton iterations"), (ct[1], "factorizations")] {
+        if u128::from(v) > most {
+            return Err(format!(
+                "section counters: {v} {what}, more than a run of this case can count after {n} increments and {total} cutbacks ({most}: per step attempt a predicted and a plain solve, each with {} stabilization levels, and a first-yield search, at the iteration limit {}, × {COUNTER_MARGIN})",
+                stabilize::LEVELS,
+                model.solver.iteration_limit()
+            ));
+        }
+    }
     (ck.iterations, ck.factorizations) = (ct[0] as usize, ct[1] as usize);
     ck.elastic_ratio_prev = s.finite("elastic_ratio_prev", Some(1))?[0];
     if ck.elastic_ratio_prev < 0.0 {
         return Err(format!(
             "section elastic_ratio_prev: {} is negative",
-            ck.elastic_ratio_prev
+            num(ck.elastic_ratio_prev)
         ));
     }
     Ok(())
@@ -1047,18 +1145,28 @@ fn same_schedule(a: &[(f64, usize)], b: &[(f64, usize)]) -> bool {
 fn describe(v: impl Iterator<Item = f64>) -> String {
     let v: Vec<f64> = v.collect();
     match v.first() {
-        Some(l) => format!("{} targets to λ = {l}", v.len()),
+        Some(&l) => format!("{} targets to λ = {}", v.len(), num(l)),
         None => "none".into(),
     }
 }
 
 /// The committed state: displacements, Gauss points, interface status and
 /// contact state, and the prescribed reaction, each sized for the model,
-/// every value finite, status codes valid, ε̄ᵖ ≥ 0 and the yielding flag 0 or 1.
-fn restore_state(ck: &mut Checkpoint, s: &Sections) -> Decoded<()> {
+/// every value finite, the displacements within [`MAX_DISPLACEMENT`],
+/// status codes valid, every Gauss point a state the case's return mapping
+/// can leave ([`check_gauss_point`]).
+fn restore_state(ck: &mut Checkpoint, s: &Sections, model: &Model) -> Decoded<()> {
     let c = &mut ck.committed;
     let (ng, np, nu) = (c.gauss.len(), c.status.len(), c.u.len());
-    c.u.copy_from_slice(s.finite("u", Some(nu))?);
+    let u = s.finite("u", Some(nu))?;
+    all_within(
+        "u",
+        u,
+        MAX_DISPLACEMENT,
+        "mm",
+        "the displacement range of a case",
+    )?;
+    c.u.copy_from_slice(u);
     let gauss = s.finite("gauss", Some(PointState::PACKED * ng))?;
     for (i, (p, v)) in c
         .gauss
@@ -1066,14 +1174,7 @@ fn restore_state(ck: &mut Checkpoint, s: &Sections) -> Decoded<()> {
         .zip(gauss.chunks_exact(PointState::PACKED))
         .enumerate()
     {
-        if v[8] < 0.0 || (v[9] != 0.0 && v[9] != 1.0) {
-            return Err(format!(
-                "section gauss: Gauss point {}: equivalent plastic strain {} and yielding flag {} (≥ 0, and 0 or 1 expected)",
-                i + 1,
-                v[8],
-                v[9]
-            ));
-        }
+        check_gauss_point(model, i, v)?;
         *p = PointState::unpack(v);
     }
     match s.0.get("status") {
@@ -1096,6 +1197,141 @@ fn restore_state(ck: &mut Checkpoint, s: &Sections) -> Decoded<()> {
         *p = ContactState::unpack(v);
     }
     c.prescribed_reaction = s.finite("prescribed_reaction", Some(1))?[0];
+    Ok(())
+}
+
+/// Every value of section `name` (finite: checked before) within ±`bound`
+/// (`unit`, `what` says whose bound), else the first beyond it.
+fn all_within(name: &str, v: &[f64], bound: f64, unit: &str, what: &str) -> Decoded<()> {
+    match v.iter().position(|x| x.abs() > bound) {
+        Some(i) => Err(format!(
+            "section {name}: value {} is {} {unit}, beyond the ±{} {unit} of {what}",
+            i + 1,
+            num(v[i]),
+            num(bound)
+        )),
+        None => Ok(()),
+    }
+}
+
+/// A Gauss point's state `v` (`i`-th of the model, laid out as
+/// [`PointState::pack`]: σxx σyy σxy σzz, εᵖxx εᵖyy εᵖxy εᵖzz (tensor
+/// shear), ε̄ᵖ, yielding) against what the return mapping of its body's
+/// material can leave ([`crate::material`]):
+///
+/// - ε̄ᵖ ≥ 0 and the yielding flag 0 or 1;
+/// - every stress component within ±[`MAX_STRESS`]; σzz = 0 in plane stress;
+/// - in an elastic body (no `yield_stress`) no plastic strain, ε̄ᵖ and
+///   yielding flag at all (exactly 0: the return mapping never leaves the
+///   elastic branch);
+/// - otherwise |εᵖ| = √(εᵖ:εᵖ) ≤ [`MAX_PLASTIC_STRAIN`], ε̄ᵖ ≤ [`MAX_PEEQ`];
+///   εᵖ deviatoric (trace εᵖxx + εᵖyy + εᵖzz = 0: plane stress sets εᵖzz =
+///   −(εᵖxx + εᵖyy), plane strain and axisymmetry flow along the deviatoric
+///   trial stress); ε̄ᵖ ≥ √(2/3)|εᵖ| (every increment adds √(2/3)|Δεᵖ| to
+///   ε̄ᵖ, and |Σ Δεᵖ| ≤ Σ |Δεᵖ|); the equivalent stress on or inside the
+///   yield surface, σ_eq ≤ σ_Y + H ε̄ᵖ. Round-off is allowed for
+///   ([`STRAIN_REL`], [`STRAIN_ABS`], [`YIELD_REL`]).
+fn check_gauss_point(model: &Model, i: usize, v: &[f64]) -> Decoded<()> {
+    if v[8] < 0.0 || (v[9] != 0.0 && v[9] != 1.0) {
+        return Err(format!(
+            "section gauss: Gauss point {}: equivalent plastic strain {} and yielding flag {} (≥ 0, and 0 or 1 expected)",
+            i + 1,
+            num(v[8]),
+            num(v[9])
+        ));
+    }
+    let body = model.mesh.elements[i / model.n_gauss()].body;
+    let mat = &model.materials[body];
+    let at = || {
+        format!(
+            "section gauss: Gauss point {} (body {:?})",
+            i + 1,
+            model.mesh.bodies[body]
+        )
+    };
+    let (sig, ep, peeq) = (&v[0..4], &v[4..8], v[8]);
+    const STRESS: [&str; 4] = ["σxx", "σyy", "σxy", "σzz"];
+    if let Some(k) = sig.iter().position(|x| x.abs() > MAX_STRESS) {
+        return Err(format!(
+            "{}: stress {} = {} MPa, beyond ±{} MPa (10⁴ × the largest Young's modulus of a case)",
+            at(),
+            STRESS[k],
+            num(sig[k]),
+            num(MAX_STRESS)
+        ));
+    }
+    if model.plane == crate::material::Plane::Stress && sig[3] != 0.0 {
+        return Err(format!(
+            "{}: σzz = {} MPa in plane stress (0 exactly)",
+            at(),
+            num(sig[3])
+        ));
+    }
+    let strain = || {
+        format!(
+            "[{}]",
+            ep.iter().map(|&x| num(x)).collect::<Vec<_>>().join(", ")
+        )
+    };
+    if !mat.yield_stress.is_finite() {
+        if ep.iter().any(|&x| x != 0.0) || peeq != 0.0 || v[9] != 0.0 {
+            return Err(format!(
+                "{}: plastic strain {} (εᵖxx εᵖyy εᵖxy εᵖzz), equivalent plastic strain {} and yielding flag {} in an elastic body (no yield_stress: all 0)",
+                at(),
+                strain(),
+                num(peeq),
+                num(v[9])
+            ));
+        }
+        return Ok(());
+    }
+    let norm = (ep[0] * ep[0] + ep[1] * ep[1] + ep[3] * ep[3] + 2.0 * ep[2] * ep[2]).sqrt();
+    if norm > MAX_PLASTIC_STRAIN {
+        return Err(format!(
+            "{}: plastic strain {} (εᵖxx εᵖyy εᵖxy εᵖzz) of magnitude {}, beyond {}",
+            at(),
+            strain(),
+            num(norm),
+            num(MAX_PLASTIC_STRAIN)
+        ));
+    }
+    if peeq > MAX_PEEQ {
+        return Err(format!(
+            "{}: equivalent plastic strain {}, beyond {}",
+            at(),
+            num(peeq),
+            num(MAX_PEEQ)
+        ));
+    }
+    let trace = ep[0] + ep[1] + ep[3];
+    if trace.abs() > STRAIN_REL * peeq.max(norm) + STRAIN_ABS {
+        return Err(format!(
+            "{}: plastic strain {} (εᵖxx εᵖyy εᵖxy εᵖzz) of trace {} (plastic flow is deviatoric: trace 0)",
+            at(),
+            strain(),
+            num(trace)
+        ));
+    }
+    let least = (2.0f64 / 3.0).sqrt() * norm;
+    if peeq < least * (1.0 - STRAIN_REL) - STRAIN_ABS {
+        return Err(format!(
+            "{}: equivalent plastic strain {} below √(2/3)|εᵖ| = {} of the plastic strain {} (εᵖxx εᵖyy εᵖxy εᵖzz): it accumulates √(2/3)|Δεᵖ| of every increment",
+            at(),
+            num(peeq),
+            num(least),
+            strain()
+        ));
+    }
+    let q = VonMises::equivalent_stress(&[sig[0], sig[1], sig[2], sig[3]]);
+    let y = mat.yield_stress + mat.hardening * peeq;
+    if q > y * (1.0 + YIELD_REL) {
+        return Err(format!(
+            "{}: equivalent stress {} MPa above the yield stress σ_Y + H ε̄ᵖ = {} MPa (a return mapping leaves it on or inside the yield surface)",
+            at(),
+            num(q),
+            num(y)
+        ));
+    }
     Ok(())
 }
 
@@ -1125,8 +1361,9 @@ fn restore_joints(ck: &mut Checkpoint, s: &Sections, interfaces: usize) -> Decod
             }
             if let Some(x) = row.iter().find(|x| !x.is_finite()) {
                 return Err(format!(
-                    "section joints: increment {}: a value {x} (a row is finite, or all NaN before the first finite one)",
-                    inc.increment
+                    "section joints: increment {}: a value {} (a row is finite, or all NaN before the first finite one)",
+                    inc.increment,
+                    num(*x)
                 ));
             }
             measured = true;
@@ -1141,17 +1378,62 @@ fn restore_joints(ck: &mut Checkpoint, s: &Sections, interfaces: usize) -> Decod
 
 /// How far every interface's laws were used so far; a file of an earlier
 /// build has no such section: the committed state's own reach, then.
+///
+/// A stored reach (u_N, p_N) is a maximum over the converged states, each
+/// of them over the interface's points, starting from (0, 0): u_N within
+/// [0, [`MAX_DISPLACEMENT`]] and p_N within [0, [`MAX_PRESSURE`]]; p_N the
+/// normal law's pressure at u_N (the law is non-decreasing, so the largest
+/// pressure is the one at the largest approach); and at least the restored
+/// state's own reach ([`Reach::of`]), round-off allowed ([`REACH_REL`],
+/// [`REACH_ABS`]). (Which states came before is not in the file: a reach
+/// between the restored state's and the ranges cannot be told from a real one.)
 fn restore_table_reach(ck: &mut Checkpoint, s: &Sections, model: &Model) -> Decoded<()> {
-    if s.0.contains_key("table_reach") {
-        let v = s.finite("table_reach", Some(Reach::PACKED * model.interfaces.len()))?;
-        ck.table_reach = v.chunks_exact(Reach::PACKED).map(Reach::unpack).collect();
-    } else {
-        ck.table_reach = model
-            .interfaces
-            .iter()
-            .map(|im| Reach::of(im, &ck.committed.u, ck.committed.time))
-            .collect();
+    let own: Vec<Reach> = model
+        .interfaces
+        .iter()
+        .map(|im| Reach::of(im, &ck.committed.u, ck.committed.time))
+        .collect();
+    if !s.0.contains_key("table_reach") {
+        ck.table_reach = own;
+        return Ok(());
     }
+    let v = s.finite("table_reach", Some(Reach::PACKED * model.interfaces.len()))?;
+    let below = |a: f64, b: f64| a < b - REACH_REL * b.abs() - REACH_ABS;
+    for ((im, r), own) in model
+        .interfaces
+        .iter()
+        .zip(v.chunks_exact(Reach::PACKED).map(Reach::unpack))
+        .zip(&own)
+    {
+        let at = format!(
+            "section table_reach: interface {:?}: largest approach u_N = {} mm and pressure p_N = {} MPa",
+            im.name,
+            num(r.u_n),
+            num(r.p_n)
+        );
+        if !((0.0..=MAX_DISPLACEMENT).contains(&r.u_n) && (0.0..=MAX_PRESSURE).contains(&r.p_n)) {
+            return Err(format!(
+                "{at}, outside [0, {}] mm and [0, {}] MPa (the displacement and pressure ranges of a case)",
+                num(MAX_DISPLACEMENT),
+                num(MAX_PRESSURE)
+            ));
+        }
+        let law = im.law.pressure(r.u_n).0;
+        if (r.p_n - law).abs() > REACH_REL * law.abs().max(r.p_n) + REACH_ABS {
+            return Err(format!(
+                "{at}, but the normal law gives {} MPa at that approach (the largest pressure is the law's at the largest approach)",
+                num(law)
+            ));
+        }
+        if below(r.u_n, own.u_n) || below(r.p_n, own.p_n) {
+            return Err(format!(
+                "{at}, below the restored state's own u_N = {} mm, p_N = {} MPa (a largest value so far)",
+                num(own.u_n),
+                num(own.p_n)
+            ));
+        }
+    }
+    ck.table_reach = v.chunks_exact(Reach::PACKED).map(Reach::unpack).collect();
     Ok(())
 }
 
@@ -1171,8 +1453,10 @@ fn restore_first_yield(
     });
     if !(lo..=hi).contains(&v[0]) {
         return Err(format!(
-            "section first_yield: load factor {}, outside the curve's [{lo}, {hi}]",
-            v[0]
+            "section first_yield: load factor {}, outside the curve's [{}, {}]",
+            num(v[0]),
+            num(lo),
+            num(hi)
         ));
     }
     let element = whole(v[5])
@@ -1180,7 +1464,7 @@ fn restore_first_yield(
         .ok_or_else(|| {
             format!(
                 "section first_yield: element {}, the mesh has {}",
-                v[5],
+                num(v[5]),
                 model.mesh.elements.len()
             )
         })?;
@@ -1237,9 +1521,10 @@ fn restore_vtu_series(
             })?;
         if l.to_bits() != incs[k - 1].load_factor.to_bits() {
             return Err(format!(
-                "VTU series entry {}: load factor {l}, but increment {k} is at {}",
+                "VTU series entry {}: load factor {}, but increment {k} is at {}",
                 i + 1,
-                incs[k - 1].load_factor
+                num(l),
+                num(incs[k - 1].load_factor)
             ));
         }
         last = k;
@@ -1375,7 +1660,7 @@ mod tests {
         refused(&c, &pvd, "section last_du: value 6 is not finite");
         let mut c = ck.clone();
         c.committed.gauss[2].peeq = -1e-3;
-        refused(&c, &pvd, "Gauss point 3: equivalent plastic strain -0.001");
+        refused(&c, &pvd, "Gauss point 3: equivalent plastic strain -1e-3");
         let mut c = ck.clone();
         c.committed.contact[0].mu_f = f64::INFINITY;
         refused(&c, &pvd, "section contact: value 5 is not finite");
@@ -1398,6 +1683,55 @@ mod tests {
         let mut c = ck.clone();
         c.elastic_ratio_prev = -1.0;
         refused(&c, &pvd, "section elastic_ratio_prev");
+        // forged floats are quoted short
+        let mut c = ck.clone();
+        c.lambda = 1e300;
+        refused(&c, &pvd, "section load_factor: load factor 1e300, but");
+        // counters beyond what the case can count
+        let most = most_iterations(&model, 4, 0);
+        let mut c = ck.clone();
+        c.iterations = most as usize;
+        c.factorizations = most as usize;
+        assert!(decode(&encode(&model, &c, &pvd), &model).is_ok());
+        c.factorizations += 1;
+        refused(&c, &pvd, "section counters: ");
+        // displacements beyond the displacement range
+        let mut c = ck.clone();
+        c.committed.u[3] = -2e4;
+        refused(
+            &c,
+            &pvd,
+            "section u: value 4 is -2e4 mm, beyond the ±1e4 mm",
+        );
+        let mut c = ck.clone();
+        c.last_du = vec![0.0; c.committed.u.len()];
+        c.last_du[0] = 1e300;
+        refused(&c, &pvd, "section last_du: value 1 is 1e300 mm");
+        // a plastic state no return mapping leaves: radial (plane strain
+        // numbers) with ε̄ᵖ = √(2/3)|εᵖ| is accepted, a little less is not
+        let mut c = ck.clone();
+        let ep: [f64; 4] = [2e-3, -1e-3, 5e-4, -1e-3];
+        let norm = (ep[0] * ep[0] + ep[1] * ep[1] + ep[3] * ep[3] + 2.0 * ep[2] * ep[2]).sqrt();
+        c.committed.gauss[5].plastic_strain = ep;
+        c.committed.gauss[5].peeq = (2.0f64 / 3.0).sqrt() * norm;
+        assert!(decode(&encode(&model, &c, &pvd), &model).is_ok());
+        c.committed.gauss[5].peeq *= 1.0 - 1e-6;
+        refused(
+            &c,
+            &pvd,
+            "Gauss point 6 (body \"punch\"): equivalent plastic strain",
+        );
+        // a reach the normal law does not give, or below the state's own
+        let mut c = ck.clone();
+        c.table_reach[0] = Reach { u_n: 1.0, p_n: 1.0 };
+        refused(&c, &pvd, "but the normal law gives 1e6 MPa");
+        c.table_reach[0] = Reach { u_n: 1.0, p_n: 1e6 };
+        assert!(decode(&encode(&model, &c, &pvd), &model).is_ok());
+        c.table_reach[0] = Reach {
+            u_n: -1e-3,
+            p_n: 0.0,
+        };
+        refused(&c, &pvd, "outside [0, 1e4] mm");
         let fy = FirstYield {
             load_factor: 0.1,
             mean_pressure: 1.0,

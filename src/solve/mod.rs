@@ -9,7 +9,7 @@ pub mod nonlinear;
 pub mod springs;
 pub mod stabilize;
 pub mod stepping;
-mod yield_point;
+pub(crate) mod yield_point;
 
 pub use crate::case::settings::{Acceleration, Method, Stabilization, StepControl};
 pub use failure::StepFailure;

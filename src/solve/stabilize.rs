@@ -53,8 +53,10 @@ pub use super::springs::Report;
 use super::{State, StepFailure};
 use crate::fem::solid::Response;
 
-/// Stabilized solves before giving up: k₀, k₀/10², k₀/10⁴, k₀/10⁶.
-const LEVELS: i32 = 4;
+/// Stabilized solves before giving up: k₀, k₀/10², k₀/10⁴, k₀/10⁶ (each
+/// followed by at most one release; a restart file's counters are bounded
+/// by it, [`crate::restart`]).
+pub const LEVELS: i32 = 4;
 
 /// Work of the springs `ks` over the step from `committed` to `u`, N·mm:
 /// Σ k_s A |Δd|² over the points this rank owns, summed over ranks.

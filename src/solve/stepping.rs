@@ -207,9 +207,13 @@ impl Stepper {
         let mut lambda = 0.0;
         for (i, &(to, cutbacks)) in path.iter().enumerate() {
             let k = i + 1;
+            // the values come from a file: quoted short (a forged 1e300 as
+            // `1e300`, not 301 digits)
+            let num = crate::calibrate::limits::exact;
             let Some(mut target) = self.next(lambda) else {
                 return Err(format!(
-                    "increment {k} (load factor {to}) comes after the end of the case's load history"
+                    "increment {k} (load factor {}) comes after the end of the case's load history",
+                    num(to)
                 ));
             };
             match self.mode {
@@ -229,7 +233,9 @@ impl Stepper {
                     }
                     if to.to_bits() != target.to_bits() {
                         return Err(format!(
-                            "increment {k}: load factor {to}, where the case's schedule (with {cutbacks} cutbacks) gives {target}"
+                            "increment {k}: load factor {}, where the case's schedule (with {cutbacks} cutbacks) gives {}",
+                            num(to),
+                            num(target)
                         ));
                     }
                 }
@@ -245,7 +251,11 @@ impl Stepper {
                     let toward = d == 0.0 || d.signum() == room.signum();
                     if !(toward && d.abs() <= room.abs() && d.abs() <= cap * (1.0 + 1e-9) + slack) {
                         return Err(format!(
-                            "increment {k}: a step from {lambda} to {to}, where automatic control steps towards {w} by at most {cap}"
+                            "increment {k}: a step from {} to {}, where automatic control steps towards {} by at most {}",
+                            num(lambda),
+                            num(to),
+                            num(w),
+                            num(cap)
                         ));
                     }
                 }

@@ -10,6 +10,11 @@ use super::{yield_ratio, Engine, State, StepFailure};
 use crate::fem::solid::Response;
 use crate::model::Model;
 
+/// Regula-falsi steps of the search after its first solve: at most
+/// `1 + SEARCH_STEPS` elastic solves locate first yield (a restart file's
+/// counters are bounded by it, [`crate::restart`]).
+pub const SEARCH_STEPS: usize = 60;
+
 /// Where and at what load the first Gauss point reaches the yield stress.
 #[derive(Clone, Debug)]
 pub struct FirstYield {
@@ -76,7 +81,7 @@ pub(super) fn locate(
     };
     let (mut a, mut ga) = (lambda0, ratio0 - 1.0);
     let (mut b, (mut gb, mut sb)) = (lambda1, eval(lambda1)?);
-    for _ in 0..60 {
+    for _ in 0..SEARCH_STEPS {
         if gb.abs() < 1e-9 || (b - a).abs() < 1e-12 {
             break;
         }

@@ -22,12 +22,20 @@ fn asperity(args: &[&str]) -> (i32, String) {
     )
 }
 
+/// The case the forgeries start from: punch-plane-stress (both bodies
+/// plastic, the power law).
+fn punch() -> PathBuf {
+    common::root().join("cases/punch-plane-stress")
+}
+
 /// `run punch-plane-stress --increments 10 --out OUT --quiet` plus `extra`.
 fn run(out: &Path, extra: &[&str]) -> (i32, String) {
-    let c = common::root()
-        .join("cases/punch-plane-stress")
-        .display()
-        .to_string();
+    run_case(&punch(), out, extra)
+}
+
+/// `run CASE --increments 10 --out OUT --quiet` plus `extra`.
+fn run_case(case: &Path, out: &Path, extra: &[&str]) -> (i32, String) {
+    let c = case.display().to_string();
     let o = out.display().to_string();
     let mut args = vec!["run", &c, "--increments", "10", "--out", &o, "--quiet"];
     args.extend_from_slice(extra);
@@ -41,11 +49,25 @@ fn stopped(dir: &Path) -> PathBuf {
 }
 
 fn stopped_with(dir: &Path, extra: &[&str]) -> PathBuf {
+    stopped_case(&punch(), dir, extra)
+}
+
+fn stopped_case(case: &Path, dir: &Path, extra: &[&str]) -> PathBuf {
     let mut args = vec!["--stop-after", "3"];
     args.extend_from_slice(extra);
-    let (code, err) = run(dir, &args);
+    let (code, err) = run_case(case, dir, &args);
     assert_eq!(code, 3, "{err}");
     dir.to_path_buf()
+}
+
+/// The longest run of characters of a number (digits, `.`, `e`, `-`, `+`)
+/// in `s`: a float quoted in a refusal is short (docs/reliability.md: at
+/// most 80 characters per quoted value), `1e300`, never 301 digits.
+fn longest_number(s: &str) -> usize {
+    s.split(|c: char| !(c.is_ascii_digit() || matches!(c, '.' | 'e' | '-' | '+')))
+        .map(str::len)
+        .max()
+        .unwrap_or(0)
 }
 
 /// What a folder holds, without following links: files by content, links by
@@ -100,15 +122,29 @@ fn copy_dir(from: &Path, to: &Path) {
 
 /// Resumes from `restart` into `out` (with the options `extra` of the
 /// stopped run) and checks the refusal: exit 2, one `error: <restart file>:
-/// …` line containing `needle`, within 20 s, and nothing changed anywhere
-/// under `root` (no output, no partial folder, no file outside).
+/// …` line containing `needle` and no number longer than 30 characters,
+/// within 20 s, and nothing changed anywhere under `root` (no output, no
+/// partial folder, no file outside).
 fn refused(root: &Path, restart: &Path, out: &Path, extra: &[&str], needle: &str, what: &str) {
+    refused_case(&punch(), root, restart, out, extra, needle, what)
+}
+
+/// [`refused`] for the run of `case`.
+fn refused_case(
+    case: &Path,
+    root: &Path,
+    restart: &Path,
+    out: &Path,
+    extra: &[&str],
+    needle: &str,
+    what: &str,
+) {
     let before = tree(root);
     let t = Instant::now();
     let r = restart.display().to_string();
     let mut args = vec!["--restart", &r];
     args.extend_from_slice(extra);
-    let (code, err) = run(out, &args);
+    let (code, err) = run_case(case, out, &args);
     let secs = t.elapsed().as_secs_f64();
     assert_eq!(code, 2, "{what}: {err}");
     let file = restart.join("restart.bin").display().to_string();
@@ -117,6 +153,7 @@ fn refused(root: &Path, restart: &Path, out: &Path, extra: &[&str], needle: &str
         "{what}: {err}"
     );
     assert!(err.contains(needle), "{what}: {err}");
+    assert!(longest_number(&err) <= 30, "{what}: a long number in {err}");
     assert!(secs < 20.0, "{what}: refused after {secs:.1} s");
     assert!(
         tree(root) == before,
@@ -318,6 +355,60 @@ fn a_forged_schedule_state_or_section_table_is_refused() {
             with(&|f| f.get("u").count = 1 << 60),
             "section u: 1152921504606846976 values, more than the file holds",
         ),
+        // counters beyond what the case can count (they wrapped around in
+        // summary.json)
+        (
+            "counters-max",
+            with(&|f| f.set_u64s("counters", &[u64::MAX, u64::MAX])),
+            "section counters: 18446744073709551615 Newton iterations, more than a run of this case can count after 3 increments and 0 cutbacks",
+        ),
+        (
+            "counters-1e15",
+            with(&|f| {
+                let c = f.u64s("counters");
+                f.set_u64s("counters", &[c[0], 1_000_000_000_000_000]);
+            }),
+            "section counters: 1000000000000000 factorizations, more than",
+        ),
+        // finite, but no displacement of a case (the run ended "did not
+        // converge … NaN" instead of naming the file)
+        (
+            "u-1e300",
+            with(&|f| {
+                let n = f.f64s("u").len();
+                f.set_f64s("u", &vec![1e300; n]);
+            }),
+            "section u: value 1 is 1e300 mm, beyond the ±1e4 mm of the displacement range of a case",
+        ),
+        (
+            "last-du-beyond",
+            with(&|f| {
+                let mut d = f.f64s("last_du");
+                d[4] = -2e4;
+                f.set_f64s("last_du", &d);
+            }),
+            "section last_du: value 5 is -2e4 mm, beyond the ±1e4 mm",
+        ),
+        // forged floats are quoted short: 1e300, 1e-300, not 300 digits
+        (
+            "load-factor-1e300",
+            with(&|f| f.set_f64s("load_factor", &[1e300])),
+            "section load_factor: load factor 1e300, but increment 3 ended at 0.3",
+        ),
+        (
+            "curve-1e-300",
+            with(&|f| {
+                let mut c = f.f64s("curve");
+                c[1] = 1e-300;
+                f.set_f64s("curve", &c);
+            }),
+            "increment 1: load factor 1e-300, where the case's schedule (with 0 cutbacks) gives 0.1",
+        ),
+        (
+            "elastic-ratio-1e-300",
+            with(&|f| f.set_f64s("elastic_ratio_prev", &[-1e-300])),
+            "section elastic_ratio_prev: -1e-300 is negative",
+        ),
     ];
     let runs = dir.join("runs");
     for (name, bytes, needle) in variants {
@@ -422,4 +513,191 @@ fn a_forged_automatic_step_state_is_refused() {
             name,
         );
     }
+}
+
+/// Resumes every variant (a forged `restart.bin` in a copy of `good`) of
+/// the run of `case` and checks its refusal ([`refused_case`]); then the
+/// unchanged file resumes to the end.
+fn refuse_all(case: &Path, dir: &Path, good: &Path, variants: Vec<(&str, Vec<u8>, String)>) {
+    let runs = dir.join("runs");
+    for (name, bytes, needle) in variants {
+        let r = runs.join(name);
+        copy_dir(good, &r);
+        std::fs::write(r.join("restart.bin"), &bytes).unwrap();
+        refused_case(
+            case,
+            dir,
+            &r,
+            &runs.join(format!("out-{name}")),
+            &[],
+            &needle,
+            name,
+        );
+    }
+    let r = runs.join("genuine");
+    copy_dir(good, &r);
+    let (code, err) = run_case(case, &r, &["--restart", &r.display().to_string()]);
+    assert_eq!(code, 0, "{err}");
+}
+
+/// Gauss states the case's return mapping cannot leave (issue 30, red
+/// team: εᵖxy = −1 at every point moved the punch 35 mm instead of
+/// 0.057 mm). punch-plane-stress with an elastic punch (no yield_stress):
+/// any plastic strain, ε̄ᵖ or yielding flag in the punch; in the plastic
+/// foundation ε̄ᵖ below √(2/3)|εᵖ|, a plastic strain with a trace or beyond
+/// 10, ε̄ᵖ beyond 10⁴, a stress beyond 10¹² MPa or above the yield surface,
+/// and σzz ≠ 0 in plane stress are refused, naming the point and its body.
+#[test]
+fn a_forged_gauss_state_is_refused() {
+    let text = std::fs::read_to_string(punch().join("case.toml")).unwrap();
+    let plastic = "[materials.punch]\nyoung = 206000.0\npoisson = 0.3\nyield_stress = 1960.0\nhardening = 2060.0\n";
+    assert!(text.contains(plastic));
+    let case = common::case_dir(
+        "restart-forged-gauss",
+        &text.replace(
+            plastic,
+            "[materials.punch]\nyoung = 206000.0\npoisson = 0.3\n",
+        ),
+    );
+    let dir = case.parent().unwrap().to_path_buf();
+    let good = stopped_case(&case, &dir.join("good"), &[]);
+    let forge = common::Forge::parse(&std::fs::read(good.join("restart.bin")).unwrap());
+    let g = forge.clone().f64s("gauss");
+    let n = g.len() / 10;
+    // the last point is the foundation's, elastic at λ = 0.3
+    assert_eq!(&g[10 * (n - 1) + 4..], &[0.0; 6]);
+    // `edit` changes the packed state (σ ×4, εᵖ ×4, ε̄ᵖ, yielding) of the
+    // points `points`
+    let with = |points: &[usize], edit: &dyn Fn(&mut [f64])| {
+        let mut f = forge.clone();
+        let mut g = g.clone();
+        for &p in points {
+            edit(&mut g[10 * p..10 * p + 10]);
+        }
+        f.set_f64s("gauss", &g);
+        f.bytes()
+    };
+    let every: Vec<usize> = (0..n).collect();
+    let last = [n - 1];
+    let foundation = format!("section gauss: Gauss point {n} (body \"foundation\"): ");
+    let punch = "section gauss: Gauss point 1 (body \"punch\"): ";
+    let variants: Vec<(&str, Vec<u8>, String)> = vec![
+        (
+            "minus-one-everywhere",
+            with(&every, &|v| v[6] = -1.0),
+            format!("{punch}plastic strain [0, 0, -1, 0] (εᵖxx εᵖyy εᵖxy εᵖzz), equivalent plastic strain 0 and yielding flag 0 in an elastic body (no yield_stress: all 0)"),
+        ),
+        (
+            "elastic-peeq",
+            with(&[0], &|v| v[8] = 0.5),
+            format!("{punch}plastic strain [0, 0, 0, 0] (εᵖxx εᵖyy εᵖxy εᵖzz), equivalent plastic strain 0.5 and yielding flag 0 in an elastic body"),
+        ),
+        (
+            "elastic-yielding",
+            with(&[0], &|v| v[9] = 1.0),
+            "equivalent plastic strain 0 and yielding flag 1 in an elastic body".into(),
+        ),
+        (
+            "peeq-below",
+            with(&last, &|v| {
+                v[4..9].copy_from_slice(&[0.01, -0.01, 0.0, 0.0, 1e-3]);
+            }),
+            format!("{foundation}equivalent plastic strain 1e-3 below √(2/3)|εᵖ| = "),
+        ),
+        (
+            "trace",
+            with(&last, &|v| {
+                v[4..9].copy_from_slice(&[0.01, 0.0, 0.0, 0.0, 0.02]);
+            }),
+            format!("{foundation}plastic strain [0.01, 0, 0, 0] (εᵖxx εᵖyy εᵖxy εᵖzz) of trace 0.01 (plastic flow is deviatoric: trace 0)"),
+        ),
+        (
+            "plastic-strain-20",
+            with(&last, &|v| {
+                v[4..9].copy_from_slice(&[20.0, -20.0, 0.0, 0.0, 40.0]);
+            }),
+            format!("{foundation}plastic strain [20, -20, 0, 0] (εᵖxx εᵖyy εᵖxy εᵖzz) of magnitude 28.2"),
+        ),
+        (
+            "peeq-1e5",
+            with(&last, &|v| v[8] = 1e5),
+            format!("{foundation}equivalent plastic strain 1e5, beyond 1e4"),
+        ),
+        (
+            "stress-1e300",
+            with(&[0], &|v| v[1] = 1e300),
+            format!("{punch}stress σyy = 1e300 MPa, beyond ±1e12 MPa"),
+        ),
+        (
+            "above-yield",
+            with(&last, &|v| v[..4].copy_from_slice(&[1000.0, 0.0, 0.0, 0.0])),
+            format!("{foundation}equivalent stress 1e3 MPa above the yield stress σ_Y + H ε̄ᵖ = 196 MPa"),
+        ),
+        (
+            "plane-stress-szz",
+            with(&last, &|v| v[3] = 5.0),
+            format!("{foundation}σzz = 5 MPa in plane stress (0 exactly)"),
+        ),
+    ];
+    refuse_all(&case, &dir, &good, variants);
+}
+
+/// How far the tables were used (`table_reach`, issue 30): a reach outside
+/// the displacement and pressure ranges (−1 mm, 1e300 MPa), a pressure that
+/// is not the law's at the approach (1e3 mm with 1e5 MPa: a false warning of
+/// extrapolation followed), or one below the restored state's own reach is
+/// refused.
+#[test]
+fn a_forged_table_reach_is_refused() {
+    let text = std::fs::read_to_string(punch().join("case.toml")).unwrap();
+    let power =
+        "law = \"power\"\nc_n = 0.001          # mm/MPa^m: 14 µm of approach at 200 MPa\nm = 0.5";
+    assert!(text.contains(power));
+    // the power law sampled at 5, 10, 20 MPa
+    let case = common::case_dir(
+        "restart-forged-reach",
+        &text.replace(
+            power,
+            "law = \"table\"\ntable = [[2.23606797749979e-3, 5.0], [3.1622776601683794e-3, 10.0], [4.47213595499958e-3, 20.0]]",
+        ),
+    );
+    let dir = case.parent().unwrap().to_path_buf();
+    let good = stopped_case(&case, &dir.join("good"), &[]);
+    let forge = common::Forge::parse(&std::fs::read(good.join("restart.bin")).unwrap());
+    let reach = forge.clone().f64s("table_reach");
+    assert!(reach[0] > 0.0 && reach[1] > 0.0, "{reach:?}");
+    let with = |v: [f64; 2]| {
+        let mut f = forge.clone();
+        f.set_f64s("table_reach", &v);
+        f.bytes()
+    };
+    let at = "section table_reach: interface \"contact\": largest approach u_N = ";
+    let variants: Vec<(&str, Vec<u8>, String)> = vec![
+        (
+            "outside",
+            with([-1.0, 1e300]),
+            format!("{at}-1 mm and pressure p_N = 1e300 MPa, outside [0, 1e4] mm and [0, 1e6] MPa"),
+        ),
+        (
+            "beyond-pressure",
+            with([reach[0], 2e6]),
+            "MPa, outside [0, 1e4] mm and [0, 1e6] MPa".into(),
+        ),
+        (
+            "not-the-law",
+            with([1e3, 1e5]),
+            format!("{at}1e3 mm and pressure p_N = 1e5 MPa, but the normal law gives "),
+        ),
+        (
+            "below-own",
+            with([0.0, 0.0]),
+            format!("{at}0 mm and pressure p_N = 0 MPa, below the restored state's own u_N = "),
+        ),
+        (
+            "nan",
+            with([f64::NAN, reach[1]]),
+            "section table_reach: value 1 is not finite (NaN)".into(),
+        ),
+    ];
+    refuse_all(&case, &dir, &good, variants);
 }
