@@ -476,6 +476,23 @@ impl InterfaceModel {
         (pairs, points)
     }
 
+    /// Whether each pair can carry force: some integration point of positive
+    /// area couples it with a non-zero weight. A pair whose every point has
+    /// no area (the pair on the axis of an axisymmetric model under lumped
+    /// weights, where the measure 2π r is 0) transmits nothing, whatever its
+    /// approach; the contact stabilization does not count it as support.
+    pub fn carrying_pairs(&self) -> Vec<bool> {
+        let mut carries = vec![false; self.pairs.len()];
+        for pt in self.points.iter().filter(|pt| pt.area > 0.0) {
+            for i in 0..pt.len {
+                if pt.shape[i] != 0.0 {
+                    carries[pt.pairs[i]] = true;
+                }
+            }
+        }
+        carries
+    }
+
     /// Total nominal area of the interface, mm².
     pub fn area(&self) -> f64 {
         self.pairs.iter().map(|p| p.area).sum()

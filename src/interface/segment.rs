@@ -84,6 +84,7 @@ pub(super) fn node_to_segment(
         s0 += half[1];
     }
     let masters: Vec<[[f64; 2]; 3]> = nm.master.iter().map(coords).collect();
+    let ends = ends(&nm.master, &masters);
     let mut pairs = Vec::with_capacity(slave.len());
     let mut points = Vec::with_capacity(slave.len());
     for SlavePoint {
@@ -97,7 +98,7 @@ pub(super) fn node_to_segment(
         h,
     } in slave
     {
-        let Foot { k, xi, n, gap } = foot(name, &masters, x, out, h)?;
+        let Foot { k, xi, n, gap } = foot(name, &masters, &ends, x, out, h)?;
         let nb = crate::fem::q8::edge_shape(xi);
         let b = nm.master[k];
         let near = |nodes: &[usize], vals: &[f64]| {
@@ -156,6 +157,7 @@ pub(super) fn mortar(
     use std::collections::{BTreeMap, HashMap};
     let coords = |e: &[usize; 3]| -> [[f64; 2]; 3] { std::array::from_fn(|i| mesh.nodes[e[i]]) };
     let masters: Vec<[[f64; 2]; 3]> = nm.master.iter().map(coords).collect();
+    let ends = ends(&nm.master, &masters);
     let corners: Vec<[f64; 2]> = masters.iter().flat_map(|xe| [xe[0], xe[2]]).collect();
     #[derive(Default)]
     struct Acc {
@@ -241,7 +243,7 @@ pub(super) fn mortar(
                 let shape = crate::fem::q8::edge_shape(xi);
                 let x = point_on(&xs, xi);
                 let wq = 0.5 * (hi - lo) * wg * ds * section.measure(x);
-                let f = foot(name, &masters, x, [-nl[0], -nl[1]], half[1])?;
+                let f = foot(name, &masters, &ends, x, [-nl[0], -nl[1]], half[1])?;
                 let nb = crate::fem::q8::edge_shape(f.xi);
                 let (n, t) = (f.n, [f.n[1], -f.n[0]]);
                 let b = nm.master[f.k];
@@ -333,6 +335,7 @@ fn on_axis(section: crate::fem::Section, xs: &[[f64; 2]; 3], k: usize) -> bool {
 /// Where a slave point meets the master side: the master edge `k`, the
 /// parameter ξ of the closest point on it, the master normal there and the
 /// geometric gap (x − x_B(ξ))·n.
+#[derive(Debug)]
 struct Foot {
     k: usize,
     xi: f64,
@@ -340,27 +343,123 @@ struct Foot {
     gap: f64,
 }
 
+/// An end node of the master side's edges: a corner node where two or more
+/// edges meet, or one of the side's two free ends. The quadratic edges of a
+/// curve meet at a corner at a small kink (on a convex side the points in
+/// the wedge between the two end normals project onto neither edge); such a
+/// node is a slave point's closest master point for the whole wedge. A
+/// point closest to a free end lies beyond the master side.
+struct End {
+    /// The lowest-numbered master edge ending at the node and the end's ξ
+    /// (±1): the one edge a foot at the node belongs to.
+    k: usize,
+    xi: f64,
+    x: [f64; 2],
+    /// The mean of the end normals of the edges meeting there.
+    n: [f64; 2],
+    /// The edges that end there, with the end's ξ; two or more at a corner,
+    /// one at a free end.
+    meet: Vec<(usize, f64)>,
+}
+
+/// The end nodes of the master side's edges (`edges` their node ids,
+/// `masters` their coordinates), by node id.
+fn ends(edges: &[[usize; 3]], masters: &[[[f64; 2]; 3]]) -> Vec<End> {
+    let mut at: std::collections::BTreeMap<usize, Vec<(usize, f64)>> = Default::default();
+    for (k, e) in edges.iter().enumerate() {
+        at.entry(e[0]).or_default().push((k, -1.0));
+        at.entry(e[2]).or_default().push((k, 1.0));
+    }
+    at.into_values()
+        .map(|meet| {
+            let (k, xi) = meet[0];
+            let mut n = [0.0; 2];
+            for &(j, s) in &meet {
+                let nj = edge_normal(&masters[j], s).0;
+                n = [n[0] + nj[0], n[1] + nj[1]];
+            }
+            let l = n[0].hypot(n[1]);
+            let n = if l > 1e-6 {
+                [n[0] / l, n[1] / l]
+            } else {
+                edge_normal(&masters[k], xi).0
+            };
+            End {
+                k,
+                xi,
+                x: point_on(&masters[k], xi),
+                n,
+                meet,
+            }
+        })
+        .collect()
+}
+
 /// Projects the slave point `x` (body A's outward normal `out`, on a slave
-/// edge of length `h`) onto the closest master edge and checks the
-/// geometry there: the point projects inside the master side, the sides
+/// edge of length `h`) onto the closest point of the master side and checks
+/// the geometry there: the point projects inside the master side, the sides
 /// face each other, and they overlap by at most [`OVERLAP_LIMIT`] × h.
+/// The closest point is the closest foot inside a master edge
+/// ([`project`]), unless an edge's end node ([`ends`]) is closer by more
+/// than round-off (1e-9 h): a point in the wedge between the end normals of
+/// two edges that meet at a kink projects onto neither, and its foot is
+/// their corner node. So is a foot within round-off of a corner node
+/// (|ξ| ≥ 1 − 1e-9), whichever of the two edges found it. A foot at a
+/// corner belongs to the node's lowest-numbered edge, at its end, with the
+/// normal along the direction from the node to the point (the gradient of
+/// the distance, continuous with the end normals at the wedge's sides; the
+/// mean of the end normals for a point on the node). A point closest to one
+/// of the side's free ends lies beyond the master side and is refused.
 fn foot(
     name: &str,
     masters: &[[[f64; 2]; 3]],
+    ends: &[End],
     x: [f64; 2],
     out: [f64; 2],
     h: f64,
 ) -> Result<Foot, String> {
-    let dist = |xe: &[[f64; 2]; 3], xi: f64| {
-        let p = point_on(xe, xi);
-        (p[0] - x[0]).hypot(p[1] - x[1])
-    };
-    let best = masters
+    let dist = |p: [f64; 2]| (p[0] - x[0]).hypot(p[1] - x[1]);
+    let mut inside = masters
         .iter()
         .enumerate()
-        .filter_map(|(k, xe)| project(xe, x).map(|xi| (k, xi, dist(xe, xi))))
+        .filter_map(|(k, xe)| project(xe, x).map(|xi| (k, xi, dist(point_on(xe, xi)))))
         .min_by(|p, q| p.2.total_cmp(&q.2));
-    let Some((k, xi, _)) = best else {
+    let corner = |e: &End| e.meet.len() > 1;
+    let end = ends
+        .iter()
+        .map(|e| (e, dist(e.x)))
+        .min_by(|p, q| p.1.total_cmp(&q.1))
+        .filter(|&(_, d)| inside.is_none_or(|f| d + 1e-9 * h < f.2))
+        .or_else(|| {
+            // a foot at an edge's end within round-off is at the corner node
+            // there: the same foot whichever edge's projection found it
+            let (k, xi, _) = inside?;
+            let e = (xi.abs() >= 1.0 - XI_TOL)
+                .then(|| ends.iter().find(|e| e.meet.contains(&(k, xi.signum()))))??;
+            corner(e).then(|| (e, dist(e.x)))
+        });
+    match end {
+        Some((e, d)) if corner(e) => {
+            let v = [x[0] - e.x[0], x[1] - e.x[1]];
+            let n = if d > 1e-9 * h {
+                // oriented as the end normals: a point inside body B has a
+                // negative gap along it
+                let s = if v[0] * e.n[0] + v[1] * e.n[1] < 0.0 {
+                    -1.0
+                } else {
+                    1.0
+                };
+                [s * v[0] / d, s * v[1] / d]
+            } else {
+                e.n
+            };
+            return check(name, masters, e.k, e.xi, n, x, out, h);
+        }
+        // beyond a free end of the master side
+        Some(_) => inside = None,
+        None => {}
+    }
+    let Some((k, xi, _)) = inside else {
         let ends = masters.iter().flat_map(|xe| [xe[0], xe[2]]);
         let (lo, hi) = ends.fold(
             ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
@@ -376,9 +475,25 @@ fn foot(
             x[0], x[1], lo[0], hi[0], lo[1], hi[1]
         ));
     };
-    let xe = &masters[k];
-    let (n, _) = edge_normal(xe, xi);
-    let xb = point_on(xe, xi);
+    let n = edge_normal(&masters[k], xi).0;
+    check(name, masters, k, xi, n, x, out, h)
+}
+
+/// The foot at ξ on master edge `k` with normal `n` of the slave point `x`
+/// ([`foot`]), if the sides face each other there and overlap by at most
+/// [`OVERLAP_LIMIT`] × h.
+#[allow(clippy::too_many_arguments)] // the foot and the slave point's data, as `foot` has them
+fn check(
+    name: &str,
+    masters: &[[[f64; 2]; 3]],
+    k: usize,
+    xi: f64,
+    n: [f64; 2],
+    x: [f64; 2],
+    out: [f64; 2],
+    h: f64,
+) -> Result<Foot, String> {
+    let xb = point_on(&masters[k], xi);
     let gap = (x[0] - xb[0]) * n[0] + (x[1] - xb[1]) * n[1];
     let facing = out[0] * n[0] + out[1] * n[1];
     if facing > FACING_TOL {
@@ -521,6 +636,113 @@ mod tests {
             e.contains("do not face each other") && e.contains("makes 0.0°"),
             "{e}"
         );
+    }
+
+    /// The top of a foundation with `round_right = 2.0` on two edges
+    /// (the red team's case c21): a straight edge to (18, 0), then a quarter
+    /// circle about (18, −2) down to (20, −2) meshed as two quadratic edges
+    /// meeting at 45°, walked in +x; the slave side a flat edge along y = 0
+    /// from x = 18.5 to 20 (lumped: its nodes are the spring points).
+    fn rounded(slave_end: f64) -> Result<(Vec<Pair>, Vec<Point>), String> {
+        let arc = |deg: f64| {
+            let t = deg.to_radians();
+            [18.0 + 2.0 * t.cos(), -2.0 + 2.0 * t.sin()]
+        };
+        let mesh = Mesh {
+            nodes: vec![
+                [18.5, 0.0],
+                [0.5 * (18.5 + slave_end), 0.0],
+                [slave_end, 0.0],
+                [16.0, 0.0],
+                [17.0, 0.0],
+                arc(90.0),
+                arc(67.5),
+                arc(45.0),
+                arc(22.5),
+                arc(0.0),
+            ],
+            ..Default::default()
+        };
+        let nm = crate::mesh::NonMatching {
+            slave: vec![[0, 1, 2]],
+            master: vec![[3, 4, 5], [5, 6, 7], [7, 8, 9]],
+        };
+        let section = crate::fem::Section {
+            axisymmetric: false,
+            thickness: 1.0,
+        };
+        node_to_segment(&mesh, "c", &nm, Weights::Lumped, section)
+    }
+
+    #[test]
+    fn a_point_in_the_wedge_of_a_kink_between_two_master_edges_takes_their_node() {
+        // (20, 0) lies on the 45° ray through the node between the two arc
+        // edges; the quadratic edges meet there at a kink and the point
+        // projects onto neither (ξ = ±1.0105): it was refused as "outside
+        // every edge of the master side"
+        let arc = |xe: &[[f64; 2]; 3], xi| point_on(xe, xi);
+        let r2 = std::f64::consts::FRAC_1_SQRT_2;
+        let node = [18.0 + 2.0 * r2, -2.0 + 2.0 * r2];
+        let (_, points) = rounded(20.0).expect("the corner is inside the master side");
+        let p = &points[2];
+        let g = p.segment.unwrap();
+        // the node's lower-numbered edge, at its end ξ = 1, normal along
+        // the 45° ray, gap the distance to the node
+        assert_eq!(g.b, [5, 6, 7]);
+        assert_eq!(g.nb, [0.0, 0.0, 1.0]);
+        assert!((p.normal[0] - r2).abs() < 1e-12 && (p.normal[1] - r2).abs() < 1e-12);
+        let d = (20.0 - node[0]).hypot(node[1]);
+        assert!((g.gap - d).abs() < 1e-12, "gap {} vs {d}", g.gap);
+        // across the wedge: accepted by the same edge, the normal turning
+        // continuously from one edge's end normal to the other's
+        let masters = [
+            [[16.0, 0.0], [17.0, 0.0], [18.0, 0.0]],
+            [
+                [18.0, 0.0],
+                [
+                    18.0 + 2.0 * 67.5f64.to_radians().cos(),
+                    -2.0 + 2.0 * 67.5f64.to_radians().sin(),
+                ],
+                node,
+            ],
+            [
+                node,
+                [
+                    18.0 + 2.0 * 22.5f64.to_radians().cos(),
+                    -2.0 + 2.0 * 22.5f64.to_radians().sin(),
+                ],
+                [20.0, -2.0],
+            ],
+        ];
+        let ends = ends(&[[3, 4, 5], [5, 6, 7], [7, 8, 9]], &masters);
+        assert_eq!(ends.iter().filter(|e| e.meet.len() > 1).count(), 2);
+        let (n1, n2) = (
+            edge_normal(&masters[1], 1.0).0,
+            edge_normal(&masters[2], -1.0).0,
+        );
+        let (a1, a2) = (n1[1].atan2(n1[0]), n2[1].atan2(n2[0]));
+        assert!(a1 - a2 > 0.01, "a kink of {} rad", a1 - a2);
+        for i in 0..=20 {
+            let a = a2 + (a1 - a2) * i as f64 / 20.0;
+            let x = [node[0] + 0.5 * a.cos(), node[1] + 0.5 * a.sin()];
+            let f = foot("c", &masters, &ends, x, [0.0, -1.0], 0.75).unwrap();
+            let on = arc(&masters[f.k], f.xi);
+            assert!((on[0] - node[0]).abs() < 1e-12 && (on[1] - node[1]).abs() < 1e-12);
+            let fa = f.n[1].atan2(f.n[0]);
+            assert!((fa - a).abs() < 1e-9, "{i}: normal at {fa} rad, ray at {a}");
+            assert!((f.gap - 0.5).abs() < 1e-12, "{i}: gap {}", f.gap);
+        }
+        // a point on the node: the feet of both edges, the first one
+        let f = foot("c", &masters, &ends, node, [0.0, -1.0], 0.75).unwrap();
+        assert_eq!((f.k, f.xi), (1, 1.0));
+        assert!(f.gap.abs() < 1e-12);
+        // beyond the master side's free end (20, −2): no edge takes it and
+        // its closest master point is that end (1.12 mm; the corner at 45°
+        // is 2.65 mm away, the one at (18, 0) 3.9 mm): still outside
+        let e = foot("c", &masters, &ends, [20.5, -3.0], [-r2, r2], 0.75).unwrap_err();
+        assert!(e.contains("projects outside every edge"), "{e}");
+        // a slave side reaching past x = 20 at y = 0 still lies over the arc
+        assert!(rounded(20.4).is_ok());
     }
 
     #[test]

@@ -186,7 +186,10 @@ impl Stabilizer {
     /// by their boundary conditions nor through supporting pairs with a held
     /// body (approach in (−1e-12, 0] mm, where the secant start applies, or
     /// closed with a pressure of at least [`SUPPORT`] × the step's reference
-    /// pressure); ascending.
+    /// pressure); ascending. Only pairs that can carry force support
+    /// ([`InterfaceModel::carrying_pairs`]): a pair without area, such as the
+    /// apex of a sphere on the axis under lumped weights, touches at zero
+    /// approach but holds nothing.
     pub fn floating(&self, model: &Model, u: &[f64], lambda: f64) -> Vec<usize> {
         let mut held: Vec<bool> = self.loose.iter().map(|l| !l).collect();
         if held.iter().all(|&h| h) {
@@ -194,6 +197,11 @@ impl Stabilizer {
         }
         let p_min: Vec<f64> = (0..model.interfaces.len())
             .map(|i| SUPPORT * model.reference_pressure(i, lambda))
+            .collect();
+        let carrying: Vec<Vec<bool>> = model
+            .interfaces
+            .iter()
+            .map(InterfaceModel::carrying_pairs)
             .collect();
         loop {
             let mut changed = false;
@@ -215,7 +223,7 @@ impl Stabilizer {
                         continue;
                     }
                     let gap = im.gap_at(lambda);
-                    for pr in &im.pairs {
+                    for (pr, _) in im.pairs.iter().zip(&carrying[i]).filter(|(_, &c)| c) {
                         let un = im.pair_approach_at(pr, u, gap);
                         let supports = if un > 0.0 {
                             im.law.pressure(un).0 >= p_min[i]

@@ -391,6 +391,66 @@ fn an_offset_division_of_a_curve_is_accepted_and_carries_the_load() {
     assert!(common::rel(lift, 2000.0) <= 1e-9, "{name}: {lift} N");
 }
 
+/// A flat punch over a foundation whose top is rounded at its right end
+/// (`round_right = 2.0`: a quarter circle about (18, −2)), non-matching.
+/// With the rounding meshed as two quadratic edges their node lies on the
+/// 45° ray through the punch corner (20, 0); the edges meet there at a
+/// kink of 1.6°, and the corner projects onto neither (ξ = ±1.0105): the
+/// case was refused as "projects outside every edge of the master side".
+/// Its closest master point is that node, 2√2 − 2 mm away along the 45°
+/// ray. With one or three rounding edges a midside node lies on that ray
+/// and the corner projects onto it (ξ = 0), with the same gap and normal.
+#[test]
+fn a_slave_point_facing_the_node_between_two_rounding_edges_is_accepted() {
+    for nx in [1, 2, 3] {
+        let text = format!(
+            "[model]\nplane = \"stress\"\nthickness = 1.0\nsymmetric_half = true\n\
+             [[mesh.block]]\nbody = \"punch\"\nx = [0.0, 20.0]\nnx = [4]\ny = [0.0, 20.0]\nny = [2]\n\
+             [[mesh.block]]\nbody = \"foundation\"\nx = [0.0, 18.0, 20.0]\nnx = [4, {nx}]\n\
+             y = [-60.0, 0.0]\nny = [3]\ntop = {{ round_right = 2.0 }}\n\
+             [[mesh.interface]]\nname = \"contact\"\nupper = \"punch\"\nlower = \"foundation\"\nmatching = false\n\
+             [materials.punch]\nyoung = 206000.0\npoisson = 0.3\n\
+             [materials.foundation]\nyoung = 206000.0\npoisson = 0.3\n\
+             [interface.contact]\nlaw = \"power\"\nc_n = 0.001\nm = 0.5\nweights = \"lumped\"\n\
+             [[boundary]]\nset = \"punch.left\"\nux = 0.0\n[[boundary]]\nset = \"foundation.left\"\nux = 0.0\n\
+             [[boundary]]\nset = \"foundation.bottom\"\nuy = 0.0\n\
+             [[load]]\nedges = \"punch.top\"\npressure = 250.0\n"
+        );
+        let model = common::model(&text);
+        let im = &model.interfaces[0];
+        let corner = im
+            .points
+            .iter()
+            .zip(&im.pairs)
+            .find(|(_, pr)| pr.x == [20.0, 0.0])
+            .map(|(pt, _)| pt)
+            .expect("a spring at the punch corner");
+        let g = corner.segment.unwrap();
+        let want = 2.0 * std::f64::consts::SQRT_2 - 2.0;
+        let r2 = std::f64::consts::FRAC_1_SQRT_2;
+        eprintln!(
+            "round_right on {nx} edges: corner gap {} mm, normal {:?}, N(ξ) {:?}",
+            g.gap, corner.normal, g.nb
+        );
+        assert!((g.gap - want).abs() < 1e-12, "{nx} edges: gap {}", g.gap);
+        assert!(
+            (corner.normal[0] - r2).abs() < 1e-12 && (corner.normal[1] - r2).abs() < 1e-12,
+            "{nx} edges: normal {:?}",
+            corner.normal
+        );
+        let on_node = if nx == 2 {
+            [0.0, 0.0, 1.0]
+        } else {
+            [0.0, 1.0, 0.0]
+        };
+        assert!(
+            (0..3).all(|j| (g.nb[j] - on_node[j]).abs() < 1e-12),
+            "{nx} edges: N(ξ) {:?}",
+            g.nb
+        );
+    }
+}
+
 const FRICTION: &str = "law = \"power\"\nc_n = 0.001\nm = 0.5\n[interface.contact.tangential]\nr = 0.9\ns = 0.5\nkp_ratio = 0.05\nmu = 0.2\nbeta = 0.2\nn = 275.0";
 
 #[test]
