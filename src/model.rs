@@ -405,9 +405,18 @@ fn probe(case: &Case, mesh: &Mesh, interfaces: &[InterfaceModel]) -> (usize, f64
         let x = mesh.nodes[n];
         (x[0] - p[0]).hypot(x[1] - p[1])
     };
+    // body B's interface nodes: the pairs' B nodes, and every node of the
+    // master side of a non-matching interface (mortar gives a slave node on
+    // the axis no pair, so the pairs alone may miss the node under the probe)
+    let master = mesh
+        .interfaces
+        .iter()
+        .filter_map(|i| i.nonmatching.as_ref())
+        .flat_map(|nm| nm.master.iter().flatten().copied());
     let best = interfaces
         .iter()
         .flat_map(|im| im.pairs.iter().map(|pr| pr.b))
+        .chain(master)
         .min_by(|&a, &b| dist(a).total_cmp(&dist(b)))
         .unwrap_or_else(|| {
             (0..mesh.nodes.len())

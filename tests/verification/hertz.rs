@@ -516,3 +516,25 @@ fn the_stick_zone_shrinks_as_cattaneo_and_mindlin_say() {
         "no increment near Q/μP = 0.5 or 0.75"
     );
 }
+
+/// The settlement is read at the lower body's interface node nearest to
+/// `[output] probe`: with mortar coupling the slave node on the axis has no
+/// spring of its own, and the probe must still be the flat's node on the
+/// axis (it was a node off the axis, and the reported settlement 30 % low).
+#[test]
+fn the_probe_of_a_mortar_interface_is_the_master_node_under_it() {
+    let text =
+        std::fs::read_to_string(common::root().join("tests/data/hertz-sphere/case.toml")).unwrap();
+    assert!(text.contains("weights = \"mortar\""));
+    let model = common::model(&text);
+    let x = model.mesh.nodes[model.probe_node];
+    assert_eq!(x, [0.0, 0.0], "probe node {} at {x:?}", model.probe_node);
+    let flat = model.mesh.bodies.iter().position(|b| b == "flat").unwrap();
+    let owner = model
+        .mesh
+        .elements
+        .iter()
+        .find(|el| el.nodes.contains(&model.probe_node))
+        .unwrap();
+    assert_eq!(owner.body, flat);
+}
