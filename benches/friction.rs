@@ -1,0 +1,293 @@
+//! The baseline benchmark of issue 29: friction against frictionless.
+//!
+//! `cargo bench --bench friction` prints three Markdown tables, every ratio
+//! measured in this one run (friction and frictionless runs alternate, so the
+//! drift of a shared host reaches both):
+//!
+//! 1. time per Newton iteration of cases/punch-friction-b (return-mapping
+//!    friction: unsymmetric tangent, faer LU) against the same case text with
+//!    its tangential law removed (symmetric tangent, Cholesky), at refine 2, 4
+//!    and 8 (6k, 24k, 94k dofs); full Newton, 5 equal increments each;
+//! 2. Newton iterations per increment and cutbacks of every shipped case;
+//! 3. whole-run wall time of the 50-increment plane-strain punch
+//!    (cases/punch-plane-strain `--increments 50`) against the same case with
+//!    the tangential law of punch-friction-b added, at refine 1 and 2.
+//!
+//! docs/performance.md ("Friction against frictionless") quotes the tables.
+
+use asperity::case::Method;
+use asperity::driver::{self, RunOptions};
+use asperity::solve::RunResult;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+fn cases_dir() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("cases")
+}
+
+fn scratch() -> PathBuf {
+    std::env::temp_dir().join("asperity-bench-friction")
+}
+
+/// The `[interface.contact.tangential]` table of `text`, up to the next blank line.
+fn tangential_block(text: &str) -> String {
+    let mut out = String::new();
+    let mut inside = false;
+    for line in text.lines() {
+        if line.trim_start().starts_with('[') {
+            inside = line.trim() == "[interface.contact.tangential]";
+        } else if line.trim().is_empty() {
+            inside = false;
+        }
+        if inside {
+            out.push_str(line);
+            out.push('\n');
+        }
+    }
+    out
+}
+
+/// `text` without its `[interface.contact.tangential]` table.
+fn without_tangential(text: &str) -> String {
+    let block = tangential_block(text);
+    assert!(!block.is_empty(), "no tangential law to remove");
+    let out = text.replacen(&block, "", 1);
+    assert!(!out.contains("tangential]"), "tangential law not removed");
+    out
+}
+
+/// Writes a case folder `name` holding `text` as case.toml.
+fn write_case(name: &str, text: &str) -> PathBuf {
+    let dir = scratch().join("cases").join(name);
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("case.toml"), text).unwrap();
+    dir
+}
+
+struct Run {
+    dofs: usize,
+    wall: f64,
+    result: RunResult,
+}
+
+impl Run {
+    fn iterations(&self) -> usize {
+        self.result.stats.iterations
+    }
+    fn ms_per_it(&self, seconds: f64) -> f64 {
+        1e3 * seconds / self.iterations() as f64
+    }
+    fn wall_per_it(&self) -> f64 {
+        self.ms_per_it(self.wall)
+    }
+    fn work_per_it(&self) -> f64 {
+        self.ms_per_it(self.result.stats.assembly_seconds + self.result.stats.solve_seconds)
+    }
+    fn solve_per_it(&self) -> f64 {
+        self.ms_per_it(self.result.stats.solve_seconds)
+    }
+}
+
+fn run(case: &Path, tag: &str, refine: Option<usize>, increments: Option<usize>) -> Run {
+    let opts = RunOptions {
+        out: Some(scratch().join("out").join(tag)),
+        quiet: true,
+        method: Some(Method::FullNewton),
+        refine,
+        increments,
+        ..RunOptions::default()
+    };
+    let t = Instant::now();
+    let (_, model, result) =
+        driver::run(case, &opts).unwrap_or_else(|e| panic!("{}: {e}", case.display()));
+    let wall = t.elapsed().as_secs_f64();
+    assert!(result.stopped.is_none(), "{tag}: stopped early");
+    Run {
+        dofs: model.mesh.num_dofs(),
+        wall,
+        result,
+    }
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    let n = v.len();
+    if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        0.5 * (v[n / 2 - 1] + v[n / 2])
+    }
+}
+
+fn main() {
+    let started = Instant::now();
+    let _ = std::fs::remove_dir_all(scratch());
+    let fric_b = cases_dir().join("punch-friction-b");
+    let text_b = std::fs::read_to_string(fric_b.join("case.toml")).unwrap();
+    let frictionless_b = write_case(
+        "punch-friction-b-frictionless",
+        &without_tangential(&text_b),
+    );
+
+    // 1. Per-iteration time, friction against frictionless.
+    println!(
+        "## 1. Time per Newton iteration: punch-friction-b with and without its tangential law"
+    );
+    println!();
+    println!("full Newton, 5 equal increments (first-yield search included); ms per iteration =");
+    println!("time / Newton iterations (failed attempts of cutbacks included); work = assembly + solve (factorization + triangular");
+    println!("solves) from the run's stats; medians over alternating pairs, ratio = median of the");
+    println!("pairs' ratios.");
+    println!();
+    println!(
+        "| refine | dofs | pairs | iterations fric / frictionless | cutbacks fric / frictionless | wall ms/it fric | wall ms/it frictionless | work ms/it fric | work ms/it frictionless | solve ms/it fric | solve ms/it frictionless | solve share fric / frictionless | ratio wall | ratio work | ratio solve |"
+    );
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    let mut last_solvers = (String::new(), String::new());
+    for (refine, pairs) in [(2, 3), (4, 3), (8, 1)] {
+        let mut f = Vec::new();
+        let mut s = Vec::new();
+        for k in 0..pairs {
+            f.push(run(
+                &fric_b,
+                &format!("it-f-{refine}-{k}"),
+                Some(refine),
+                Some(5),
+            ));
+            s.push(run(
+                &frictionless_b,
+                &format!("it-s-{refine}-{k}"),
+                Some(refine),
+                Some(5),
+            ));
+        }
+        let med = |v: &[Run], g: fn(&Run) -> f64| median(v.iter().map(g).collect());
+        let ratio =
+            |g: fn(&Run) -> f64| median(f.iter().zip(&s).map(|(a, b)| g(a) / g(b)).collect());
+        let share = |v: &[Run]| {
+            median(
+                v.iter()
+                    .map(|r| r.result.stats.solve_seconds / r.wall)
+                    .collect(),
+            )
+        };
+        println!(
+            "| {refine} | {} | {pairs} | {} / {} | {} / {} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.0}% / {:.0}% | {:.2} | {:.2} | {:.2} |",
+            f[0].dofs,
+            f[0].iterations(),
+            s[0].iterations(),
+            f[0].result.cutbacks,
+            s[0].result.cutbacks,
+            med(&f, Run::wall_per_it),
+            med(&s, Run::wall_per_it),
+            med(&f, Run::work_per_it),
+            med(&s, Run::work_per_it),
+            med(&f, Run::solve_per_it),
+            med(&s, Run::solve_per_it),
+            100.0 * share(&f),
+            100.0 * share(&s),
+            ratio(Run::wall_per_it),
+            ratio(Run::work_per_it),
+            ratio(Run::solve_per_it),
+        );
+        last_solvers = (
+            f[0].result.linear_solver.clone(),
+            s[0].result.linear_solver.clone(),
+        );
+    }
+    println!();
+    println!(
+        "linear solvers: friction {}, frictionless {}",
+        last_solvers.0, last_solvers.1
+    );
+
+    // 2. Iterations per increment and cutbacks of every shipped case.
+    println!();
+    println!("## 2. Newton iterations per increment and cutbacks, shipped cases (as shipped)");
+    println!();
+    println!(
+        "it/inc = all Newton iterations of the run (first-yield search included) / increments;"
+    );
+    println!("max = the most iterations of one increment.");
+    println!();
+    println!("| case | dofs | linear solver | increments | iterations | it/inc | max it in an increment | cutbacks | wall time |");
+    println!("|---|---:|---|---:|---:|---:|---:|---:|---:|");
+    let mut shipped: Vec<PathBuf> = std::fs::read_dir(cases_dir())
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.join("case.toml").is_file())
+        .collect();
+    shipped.sort();
+    for case in &shipped {
+        let name = case.file_name().unwrap().to_string_lossy().to_string();
+        let opts = RunOptions {
+            out: Some(scratch().join("out").join(format!("ship-{name}"))),
+            quiet: true,
+            ..RunOptions::default()
+        };
+        let t = Instant::now();
+        let (_, model, r) = driver::run(case, &opts).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let wall = t.elapsed().as_secs_f64();
+        let n = r.increments.len();
+        let max = r.increments.iter().map(|i| i.iterations).max().unwrap_or(0);
+        println!(
+            "| {name} | {} | {} | {n} | {} | {:.2} | {max} | {} | {:.2} s |",
+            model.mesh.num_dofs(),
+            r.linear_solver,
+            r.stats.iterations,
+            r.stats.iterations as f64 / n as f64,
+            r.cutbacks,
+            wall
+        );
+    }
+
+    // 3. Whole run of the 50-increment plane-strain punch, with and without friction.
+    let strain = cases_dir().join("punch-plane-strain");
+    let text_s = std::fs::read_to_string(strain.join("case.toml")).unwrap();
+    assert!(!text_s.contains("tangential]"));
+    let friction_s = write_case(
+        "punch-plane-strain-friction",
+        &format!("{text_s}\n{}", tangential_block(&text_b)),
+    );
+    println!();
+    println!("## 3. Whole run, punch-plane-strain --increments 50, with the tangential law of punch-friction-b and without");
+    println!();
+    println!("full Newton; wall time of driver::run (model, solve, output); median of alternating pairs.");
+    println!();
+    println!("| refine | dofs | pairs | iterations fric / frictionless | it/inc fric / frictionless | cutbacks fric / frictionless | wall fric | wall frictionless | ratio |");
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    for (refine, pairs) in [(1, 3), (2, 3)] {
+        let mut f = Vec::new();
+        let mut s = Vec::new();
+        for k in 0..pairs {
+            f.push(run(
+                &friction_s,
+                &format!("x50-f-{refine}-{k}"),
+                Some(refine),
+                Some(50),
+            ));
+            s.push(run(
+                &strain,
+                &format!("x50-s-{refine}-{k}"),
+                Some(refine),
+                Some(50),
+            ));
+        }
+        let per_inc = |r: &Run| r.iterations() as f64 / r.result.increments.len() as f64;
+        println!(
+            "| {refine} | {} | {pairs} | {} / {} | {:.2} / {:.2} | {} / {} | {:.2} s | {:.2} s | {:.2} |",
+            f[0].dofs,
+            f[0].iterations(),
+            s[0].iterations(),
+            per_inc(&f[0]),
+            per_inc(&s[0]),
+            f[0].result.cutbacks,
+            s[0].result.cutbacks,
+            median(f.iter().map(|r| r.wall).collect()),
+            median(s.iter().map(|r| r.wall).collect()),
+            median(f.iter().zip(&s).map(|(a, b)| a.wall / b.wall).collect()),
+        );
+    }
+    println!();
+    println!("bench total: {:.0} s", started.elapsed().as_secs_f64());
+}
