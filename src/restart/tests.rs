@@ -1,0 +1,229 @@
+//! Unit tests of the restart format and its checks.
+
+use super::*;
+
+/// The streamed checksum equals the one-shot checksum for any split of
+/// the bytes, word-aligned or not.
+#[test]
+fn the_streamed_checksum_does_not_depend_on_the_split() {
+    let bytes: Vec<u8> = (0..1000u32).map(|i| (i * 37 % 251) as u8).collect();
+    let whole = fnv1a(&bytes);
+    for step in [1, 3, 7, 8, 9, 64, 999] {
+        let mut f = Fnv::default();
+        for piece in bytes.chunks(step) {
+            f.update(piece);
+        }
+        assert_eq!(f.finish(), whole, "pieces of {step}");
+    }
+    // and a change anywhere changes it
+    let mut other = bytes.clone();
+    other[997] ^= 1;
+    assert_ne!(fnv1a(&other), whole);
+}
+
+fn model() -> Model {
+    Model::parse(
+        include_str!("../../cases/punch-plane-stress/case.toml"),
+        "case.toml",
+    )
+    .unwrap()
+}
+
+/// A checkpoint after `n` increments of the case's schedule, as a run
+/// leaves it (no solve: the state stays the initial one), with a VTU
+/// file per increment.
+fn checkpoint(model: &Model, n: usize) -> (Checkpoint, Vec<(f64, String)>) {
+    let mut ck = Checkpoint::initial(model);
+    let mut pvd = Vec::new();
+    for k in 1..=n {
+        let t = ck.stepper.next(ck.lambda).unwrap();
+        ck.stepper.accepted(ck.lambda, t, 3, 0.0);
+        ck.last_step = t - ck.lambda;
+        ck.lambda = t;
+        ck.increments.push(Increment {
+            increment: k,
+            load_factor: t,
+            iterations: 3,
+            cutbacks: 0,
+            measures: Measures::default(),
+            joints: vec![JointMeasures::default(); model.interfaces.len()],
+        });
+        pvd.push((t, vtu_name(k)));
+    }
+    (ck, pvd)
+}
+
+#[test]
+fn vtu_names_are_only_the_writers_own() {
+    for (k, name) in [
+        (1, "vtu/0001.vtu"),
+        (12, "vtu/0012.vtu"),
+        (12345, "vtu/12345.vtu"),
+    ] {
+        assert_eq!(vtu_name(k), name);
+        assert_eq!(vtu_increment(name), Some(k));
+    }
+    for bad in [
+        "vtu/001.vtu",
+        "vtu/00001.vtu",
+        "vtu/+001.vtu",
+        "vtu/0001.vtu/",
+        "vtu//0001.vtu",
+        "vtu/../0001.vtu",
+        "/vtu/0001.vtu",
+        "./vtu/0001.vtu",
+        "vtu\\0001.vtu",
+        "interface/0001.csv",
+        "vtu/0001.VTU",
+        "vtu/99999999999999999999999.vtu",
+        "",
+    ] {
+        assert_eq!(vtu_increment(bad), None, "{bad}");
+    }
+}
+
+/// The checks of [`decode`] on checkpoints that encode cleanly (as a
+/// forger would write them): each one changed field is refused with
+/// its own message, the unchanged one restores exactly.
+#[test]
+fn decode_refuses_what_the_case_cannot_have_produced() {
+    let model = model();
+    let (ck, pvd) = checkpoint(&model, 4);
+    let (back, series) = decode(&encode(&model, &ck, &pvd), &model).unwrap();
+    assert_eq!(series, pvd);
+    assert_eq!(back.lambda.to_bits(), ck.lambda.to_bits());
+    assert_eq!(back.stepper.pending, ck.stepper.pending);
+    assert_eq!(back.increments.len(), 4);
+    let refused = |ck: &Checkpoint, pvd: &[(f64, String)], needle: &str| {
+        let e = decode(&encode(&model, ck, pvd), &model).unwrap_err();
+        assert!(e.contains(needle), "{needle}: {e}");
+    };
+    // names: a path outside, an increment not converged, out of order
+    for name in ["../x.vtu", "vtu/0005.vtu", "vtu/0001.vtu"] {
+        let mut p = pvd.clone();
+        p[1].1 = name.into();
+        refused(&ck, &p, "is not a name this program writes");
+    }
+    let mut c = ck.clone();
+    c.stepper.pending.remove(0);
+    refused(&c, &pvd, "pending schedule");
+    let mut c = ck.clone();
+    c.stepper.pending.last_mut().unwrap().1 = 1;
+    refused(&c, &pvd, "pending schedule");
+    let mut c = ck.clone();
+    c.last_step = 0.5;
+    refused(&c, &pvd, "section last_step");
+    let mut c = ck.clone();
+    c.cutbacks_total = 3;
+    refused(&c, &pvd, "cutbacks in all");
+    let mut c = ck.clone();
+    c.last_du = vec![0.0; c.committed.u.len()];
+    c.last_du[5] = f64::NAN;
+    refused(&c, &pvd, "section last_du: value 6 is not finite");
+    let mut c = ck.clone();
+    c.committed.gauss[2].peeq = -1e-3;
+    refused(&c, &pvd, "Gauss point 3: equivalent plastic strain -1e-3");
+    let mut c = ck.clone();
+    c.committed.contact[0].mu_f = f64::INFINITY;
+    refused(&c, &pvd, "section contact: value 5 is not finite");
+    let mut c = ck.clone();
+    c.joint_totals[0].work = f64::NAN;
+    refused(&c, &pvd, "section joint_totals");
+    // an increment without joint rows after one with them (NaN rows
+    // only come first, from a file of an earlier build)
+    let mut c = ck.clone();
+    c.increments[2].joints.clear();
+    refused(&c, &pvd, "section joints: increment 3");
+    let mut c = ck.clone();
+    c.increments[0].joints.clear();
+    c.increments[1].joints.clear();
+    let (back, _) = decode(&encode(&model, &c, &pvd), &model).unwrap();
+    assert!(back.increments[1].joints.is_empty() && !back.increments[2].joints.is_empty());
+    let mut c = ck.clone();
+    c.increments[3].measures.max_peeq = f64::NAN;
+    refused(&c, &pvd, "section curve: value 39 is not finite");
+    let mut c = ck.clone();
+    c.elastic_ratio_prev = -1.0;
+    refused(&c, &pvd, "section elastic_ratio_prev");
+    // forged floats are quoted short
+    let mut c = ck.clone();
+    c.lambda = 1e300;
+    refused(&c, &pvd, "section load_factor: load factor 1e300, but");
+    // counters beyond what the case can count
+    let most = most_iterations(&model, 4, 0);
+    let mut c = ck.clone();
+    c.iterations = most as usize;
+    c.factorizations = most as usize;
+    assert!(decode(&encode(&model, &c, &pvd), &model).is_ok());
+    c.factorizations += 1;
+    refused(&c, &pvd, "section counters: ");
+    // displacements beyond the displacement range
+    let mut c = ck.clone();
+    c.committed.u[3] = -2e4;
+    refused(
+        &c,
+        &pvd,
+        "section u: value 4 is -2e4 mm, beyond the ±1e4 mm",
+    );
+    let mut c = ck.clone();
+    c.last_du = vec![0.0; c.committed.u.len()];
+    c.last_du[0] = 1e300;
+    refused(&c, &pvd, "section last_du: value 1 is 1e300 mm");
+    // a plastic state no return mapping leaves: radial (plane strain
+    // numbers) with ε̄ᵖ = √(2/3)|εᵖ| is accepted, a little less is not
+    let mut c = ck.clone();
+    let ep: [f64; 4] = [2e-3, -1e-3, 5e-4, -1e-3];
+    let norm = (ep[0] * ep[0] + ep[1] * ep[1] + ep[3] * ep[3] + 2.0 * ep[2] * ep[2]).sqrt();
+    c.committed.gauss[5].plastic_strain = ep;
+    c.committed.gauss[5].peeq = (2.0f64 / 3.0).sqrt() * norm;
+    assert!(decode(&encode(&model, &c, &pvd), &model).is_ok());
+    c.committed.gauss[5].peeq *= 1.0 - 1e-6;
+    refused(
+        &c,
+        &pvd,
+        "Gauss point 6 (body \"punch\"): equivalent plastic strain",
+    );
+    // a reach the normal law does not give, or below the state's own
+    let mut c = ck.clone();
+    c.table_reach[0] = Reach { u_n: 1.0, p_n: 1.0 };
+    refused(&c, &pvd, "but the normal law gives 1e6 MPa");
+    c.table_reach[0] = Reach { u_n: 1.0, p_n: 1e6 };
+    assert!(decode(&encode(&model, &c, &pvd), &model).is_ok());
+    c.table_reach[0] = Reach {
+        u_n: -1e-3,
+        p_n: 0.0,
+    };
+    refused(&c, &pvd, "outside [0, 1e4] mm");
+    let fy = FirstYield {
+        load_factor: 0.1,
+        mean_pressure: 1.0,
+        total_load_kn: 1.0,
+        x: 0.0,
+        depth: 0.0,
+        body: model.mesh.bodies[model.mesh.elements[7].body].clone(),
+        element: 7,
+    };
+    let mut c = ck.clone();
+    c.first_yield = Some(fy.clone());
+    assert!(decode(&encode(&model, &c, &pvd), &model).is_ok());
+    c.first_yield = Some(FirstYield {
+        element: model.mesh.elements.len(),
+        ..fy.clone()
+    });
+    refused(&c, &pvd, "section first_yield: element");
+    c.first_yield = Some(FirstYield {
+        body: "elsewhere".into(),
+        ..fy.clone()
+    });
+    refused(&c, &pvd, "section first_yield_body");
+    c.first_yield = Some(FirstYield {
+        load_factor: 0.9,
+        ..fy
+    });
+    refused(&c, &pvd, "outside the curve's");
+    // more bytes than the case can need, refused before anything is decoded
+    let mut big = encode(&model, &ck, &pvd);
+    big.resize(Bounds::of(&model).restart_bytes as usize + 1, 0);
+    let e = decode(&big, &model).unwrap_err();
+    assert!(e.contains("bytes, more than the"), "{e}");
+}
