@@ -53,6 +53,9 @@ pub struct Stabilizer {
     bodies: Vec<Body>,
     /// Bodies with an interface whose boundary conditions leave a rigid motion free.
     loose: Vec<bool>,
+    /// Per interface, whether each pair can carry force
+    /// ([`InterfaceModel::carrying_pairs`]), fixed with the model.
+    carrying: Vec<Vec<bool>>,
     pub(super) enabled: bool,
     /// Spring stiffness per interface (MPa/mm) while a stabilized solve runs.
     pub(super) springs: Option<Vec<f64>>,
@@ -170,6 +173,11 @@ impl Stabilizer {
         Stabilizer {
             bodies,
             loose,
+            carrying: model
+                .interfaces
+                .iter()
+                .map(InterfaceModel::carrying_pairs)
+                .collect(),
             enabled: model.solver.stabilization == Stabilization::Auto,
             springs: None,
             guess: None,
@@ -198,11 +206,6 @@ impl Stabilizer {
         let p_min: Vec<f64> = (0..model.interfaces.len())
             .map(|i| SUPPORT * model.reference_pressure(i, lambda))
             .collect();
-        let carrying: Vec<Vec<bool>> = model
-            .interfaces
-            .iter()
-            .map(InterfaceModel::carrying_pairs)
-            .collect();
         loop {
             let mut changed = false;
             for b in 0..self.bodies.len() {
@@ -223,7 +226,7 @@ impl Stabilizer {
                         continue;
                     }
                     let gap = im.gap_at(lambda);
-                    for (pr, _) in im.pairs.iter().zip(&carrying[i]).filter(|(_, &c)| c) {
+                    for (pr, _) in im.pairs.iter().zip(&self.carrying[i]).filter(|(_, &c)| c) {
                         let un = im.pair_approach_at(pr, u, gap);
                         let supports = if un > 0.0 {
                             im.law.pressure(un).0 >= p_min[i]
