@@ -40,6 +40,9 @@ pub struct RunOptions {
     pub snes: bool,
     /// PETSc backend only: the memory-lean GAMG settings (`--memory lean`).
     pub lean_memory: bool,
+    /// Serial backend only, library use (benchmarks): this factorization
+    /// instead of the one the model's tangent calls for.
+    pub factorization: Option<crate::backend::serial::Factorization>,
 }
 
 /// Loads a case and applies command-line overrides.
@@ -127,7 +130,13 @@ pub fn run(case_path: &Path, opts: &RunOptions) -> Result<(PathBuf, Model, RunRe
     let started = Instant::now();
     let model = load_model(case_path, opts)?;
     let at_model = crate::solve::peak_memory_mb();
-    let mut engine = serial_engine(&model, model.solver.method)?;
+    let mut engine = match opts.factorization {
+        Some(kind) => {
+            let backend = crate::backend::serial::SerialBackend::with_factorization(&model, kind)?;
+            Engine::with_backend(&model, model.solver.method, Box::new(backend))
+        }
+        None => serial_engine(&model, model.solver.method)?,
+    };
     prepare(&mut engine, opts, at_model);
     let (dir, result) = run_model(&model, engine, opts, true, started)?;
     Ok((dir, model, result))

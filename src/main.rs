@@ -390,6 +390,7 @@ impl RunArgs {
             log_format: self.log_format.into(),
             snes: self.nonlinear == NonlinearArg::Snes,
             lean_memory: self.memory == MemoryArg::Lean,
+            factorization: None,
         }
     }
 }

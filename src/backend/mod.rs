@@ -1,6 +1,6 @@
 //! Linear-algebra backends behind one small trait, so that one Newton loop
 //! ([`crate::solve::Engine`]) drives both:
-//! * `serial`: faer sparse LU with symbolic reuse, one process;
+//! * `serial`: faer sparse Cholesky or LU with symbolic reuse, one process;
 //! * `petsc` (feature `parallel`): METIS-partitioned elements, an MPIAIJ matrix
 //!   with exact preallocation, KSP from the options database, MPI reductions.
 //!
@@ -10,10 +10,12 @@
 //! residuals. Decisions that change control flow go through
 //! [`Backend::agree`], so all ranks always take the same branch.
 
+pub mod coupling;
 #[cfg(feature = "parallel")]
 #[allow(unsafe_code)] // the FFI layer: every call carries its SAFETY note
 pub mod petsc;
 pub mod serial;
+pub mod trailing;
 
 use crate::error::Result;
 
@@ -47,6 +49,28 @@ pub trait Backend {
     /// Without reuse it must follow a `begin_solid` and the element blocks.
     fn begin_contact(&mut self) -> Result<()>;
     fn add_contact(&mut self, block: usize, dofs: &[usize], k: &[f64]) -> Result<()>;
+    /// Whether interface points hand their unsymmetric tangent term apart, by
+    /// [`Backend::add_coupling`], rather than inside their `add_contact` block.
+    fn splits_coupling(&self) -> bool {
+        false
+    }
+    /// Adds the rank-one tangent term `coef · g_t g_nᵀ` of interface point
+    /// `block` (the same block and dofs as its `add_contact`). By default it
+    /// is added to the matrix like any contact block.
+    fn add_coupling(
+        &mut self,
+        block: usize,
+        dofs: &[usize],
+        coef: f64,
+        g_t: &[f64],
+        g_n: &[f64],
+    ) -> Result<()> {
+        let nd = dofs.len();
+        let k: Vec<f64> = (0..nd * nd)
+            .map(|ij| coef * g_t[ij / nd] * g_n[ij % nd])
+            .collect();
+        self.add_contact(block, dofs, &k)
+    }
     /// Solves K x = rhs over the free equations (replicated in and out).
     fn solve(&mut self, rhs: &[f64], x: &mut [f64]) -> Result<()>;
     /// Sums a vector over all ranks, in place (replicated result).
@@ -72,7 +96,7 @@ pub trait Backend {
     }
     /// The assembled system matrix as CSC values on the model's pattern, where
     /// the backend keeps one (serial); for checks of the assembled tangent.
-    fn matrix_values(&self) -> Option<&[f64]> {
+    fn matrix_values(&mut self) -> Option<&[f64]> {
         None
     }
 }

@@ -11,18 +11,27 @@
 //!   body about to lose its support), the Cholesky stops at a non-positive
 //!   pivot and the same matrix is factored by LU within the same iteration;
 //! * an unsymmetric tangent (the return-mapping friction scheme: p_T^Y depends
-//!   on p_N, eq. 2.18-2.21) is factored by LU with partial pivoting under a
-//!   COLAMD column ordering, as before.
+//!   on p_N, eq. 2.18-2.21) is the symmetric part plus one rank-one term per
+//!   interface point. The symmetric part is factored by Cholesky as above and
+//!   the terms are solved for exactly by Woodbury's identity, with GMRES on
+//!   the small capacitance system ([`super::coupling`]). Where that fails
+//!   (the symmetric part is not positive definite, or GMRES stalls) the whole
+//!   tangent is factored by LU with partial pivoting under a COLAMD column
+//!   ordering, which is also selectable on its own
+//!   ([`Factorization::Lu`]).
 //!
 //! A singular tangent (a body that can move as a rigid body) gives a
 //! non-finite LU solution, reported as such. Measurements: docs/performance.md,
 //! "Serial direct solver".
 
+use super::coupling::{self, Couplings, Inverse, Outcome};
+use super::trailing::{self as trail, Trailing};
 use crate::assembly::{Assembler, Pattern};
 use crate::error::{Error, Result};
 use crate::model::Model;
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::perm::PermRef;
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky,
     SymmetricOrdering,
@@ -40,6 +49,10 @@ pub enum Factorization {
     Cholesky,
     /// Sparse LU with partial pivoting (COLAMD ordering).
     Lu,
+    /// Cholesky of the symmetric part, the interface points' unsymmetric
+    /// rank-one terms by Woodbury and GMRES ([`super::coupling`]); LU of the
+    /// whole tangent where either fails.
+    SymmetricPart,
 }
 
 impl Factorization {
@@ -48,6 +61,9 @@ impl Factorization {
         match self {
             Factorization::Cholesky => "faer sparse Cholesky (LU where not positive definite)",
             Factorization::Lu => "faer sparse LU",
+            Factorization::SymmetricPart => {
+                "faer sparse Cholesky of the symmetric part + Woodbury-GMRES on the interface coupling (LU where either fails)"
+            }
         }
     }
 }
@@ -59,6 +75,33 @@ struct Cholesky {
     values: Vec<f64>,
     /// Workspace of the numeric factorization and the solve.
     work: MemBuffer,
+}
+
+impl Cholesky {
+    /// Allocates the factor and workspace of a symbolic analysis, within the
+    /// memory budget.
+    fn new(symbolic: SymbolicCholesky<usize>) -> Result<Self> {
+        let req = StackReq::any_of(&[
+            symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
+            symbolic.solve_in_place_scratch::<f64>(1, Par::Seq),
+        ]);
+        check_memory(
+            "Cholesky factor and its workspace",
+            (symbolic.len_val() * 8 + req.size_bytes()) as f64,
+            true,
+        )?;
+        let mut values = Vec::new();
+        values
+            .try_reserve_exact(symbolic.len_val())
+            .map_err(|_| oom("Cholesky factor"))?;
+        values.resize(symbolic.len_val(), 0.0);
+        let work = MemBuffer::try_new(req).map_err(|_| oom("Cholesky workspace"))?;
+        Ok(Cholesky {
+            symbolic,
+            values,
+            work,
+        })
+    }
 }
 
 /// The LU path (also the Cholesky path's fallback), built when first needed.
@@ -88,6 +131,13 @@ pub struct SerialDirect {
     pub factorizations: usize,
     /// Cholesky factorizations that met a non-positive pivot and were redone by LU.
     pub fallbacks: usize,
+    /// The interface equations ([`Factorization::SymmetricPart`]), in the
+    /// order of [`Inverse::interface`].
+    interface: Vec<usize>,
+    /// The factor's trailing block when the interface is ordered last.
+    trailing: Option<Trailing>,
+    /// An n-vector for [`Inverse::interface`] without the trailing block.
+    scratch: Vec<f64>,
 }
 
 fn oom(what: &str) -> Error {
@@ -158,6 +208,17 @@ impl SerialDirect {
     /// Symbolic analysis (fill-reducing ordering, elimination tree, factor
     /// structure) of the pattern for the given factorization.
     pub fn new(pattern: &Pattern, kind: Factorization) -> Result<Self> {
+        Self::with_interface(pattern, kind, Vec::new())
+    }
+
+    /// [`SerialDirect::new`] given the interface equations (for
+    /// [`Factorization::SymmetricPart`]): they are ordered last where the
+    /// symbolic analysis finds that costs little fill ([`trail`]).
+    pub fn with_interface(
+        pattern: &Pattern,
+        kind: Factorization,
+        interface: Vec<usize>,
+    ) -> Result<Self> {
         let symbolic_mat = SymbolicSparseColMat::new_checked(
             pattern.n,
             pattern.n,
@@ -173,19 +234,47 @@ impl SerialDirect {
             held: Held::None,
             factorizations: 0,
             fallbacks: 0,
+            interface,
+            trailing: None,
+            scratch: Vec::new(),
         };
         match kind {
-            Factorization::Cholesky => s.cholesky = Some(s.analyse_cholesky()?),
+            Factorization::Cholesky => {
+                let symbolic = s.symbolic_cholesky(SymmetricOrdering::Amd)?;
+                s.cholesky = Some(Cholesky::new(symbolic)?);
+            }
+            Factorization::SymmetricPart => {
+                let plain = s.symbolic_cholesky(SymmetricOrdering::Amd)?;
+                let mut chosen = plain;
+                if !s.interface.is_empty() && s.interface.len() < pattern.n {
+                    let (fwd, inv) = trail::ordering_with_last(&s.symbolic_mat, &s.interface)?;
+                    let perm = PermRef::new_checked(&fwd, &inv, pattern.n);
+                    let last = s.symbolic_cholesky(SymmetricOrdering::Custom(perm))?;
+                    if trail::prefer_interface_last(
+                        trail::factor_cost(&last),
+                        trail::factor_cost(&chosen),
+                    ) {
+                        s.trailing = Trailing::new(&last, s.interface.len());
+                        if s.trailing.is_some() {
+                            chosen = last;
+                        }
+                    }
+                }
+                s.cholesky = Some(Cholesky::new(chosen)?);
+            }
             Factorization::Lu => s.lu = Some(s.analyse_lu()?),
         }
         Ok(s)
     }
 
-    fn analyse_cholesky(&self) -> Result<Cholesky> {
-        let symbolic = factorize_symbolic_cholesky(
+    fn symbolic_cholesky(
+        &self,
+        ordering: SymmetricOrdering<usize>,
+    ) -> Result<SymbolicCholesky<usize>> {
+        factorize_symbolic_cholesky(
             self.symbolic_mat.as_ref(),
             Side::Lower,
-            SymmetricOrdering::Amd,
+            ordering,
             // supernodal at every size: faer's automatic choice takes the
             // simplicial (column by column) factorization for the default
             // punch (1,541 equations), 2.8x slower there (docs/performance.md)
@@ -194,27 +283,13 @@ impl SerialDirect {
                 ..Default::default()
             },
         )
-        .map_err(|e| Error::Solver(format!("symbolic Cholesky failed: {e:?}")))?;
-        let req = StackReq::any_of(&[
-            symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
-            symbolic.solve_in_place_scratch::<f64>(1, Par::Seq),
-        ]);
-        check_memory(
-            "Cholesky factor and its workspace",
-            (symbolic.len_val() * 8 + req.size_bytes()) as f64,
-            true,
-        )?;
-        let mut values = Vec::new();
-        values
-            .try_reserve_exact(symbolic.len_val())
-            .map_err(|_| oom("Cholesky factor"))?;
-        values.resize(symbolic.len_val(), 0.0);
-        let work = MemBuffer::try_new(req).map_err(|_| oom("Cholesky workspace"))?;
-        Ok(Cholesky {
-            symbolic,
-            values,
-            work,
-        })
+        .map_err(|e| Error::Solver(format!("symbolic Cholesky failed: {e:?}")))
+    }
+
+    /// Whether the interface equations are ordered last (the trailing block
+    /// serves the GMRES steps).
+    pub fn interface_last(&self) -> bool {
+        self.trailing.is_some()
     }
 
     fn analyse_lu(&self) -> Result<Lu> {
@@ -259,31 +334,51 @@ impl SerialDirect {
     /// Numeric factorization of the matrix with the given values (CSC on the
     /// pattern, both triangles). The Cholesky path reads the lower triangle.
     pub fn factor(&mut self, values: &[f64]) -> Result<()> {
-        if values.iter().any(|v| !v.is_finite()) {
-            return Err(Error::Solver(
-                "the tangent matrix holds NaN or infinite entries".into(),
-            ));
+        if self.factor_cholesky(values)? {
+            return Ok(());
         }
-        let mat = SparseColMatRef::new(self.symbolic_mat.as_ref(), values);
+        // not positive definite (or no Cholesky path): the same matrix by LU,
+        // this iteration
+        self.factor_lu(values)
+    }
+
+    /// The Cholesky factorization of the matrix's lower triangle, where this
+    /// solver has a Cholesky path: whether it succeeded (false: not positive
+    /// definite, counted as a fallback, or no Cholesky path).
+    pub fn factor_cholesky(&mut self, values: &[f64]) -> Result<bool> {
+        check_finite(values)?;
         self.held = Held::None;
+        let Some(c) = self.cholesky.as_mut() else {
+            return Ok(false);
+        };
+        let mat = SparseColMatRef::new(self.symbolic_mat.as_ref(), values);
         self.factorizations += 1;
-        if let Some(c) = self.cholesky.as_mut() {
-            let done = c.symbolic.factorize_numeric_llt::<f64>(
-                &mut c.values,
-                mat,
-                Side::Lower,
-                LltRegularization::default(),
-                Par::Seq,
-                MemStack::new(&mut c.work),
-                Default::default(),
-            );
-            if done.is_ok() {
-                self.held = Held::Cholesky;
-                return Ok(());
+        let done = c.symbolic.factorize_numeric_llt::<f64>(
+            &mut c.values,
+            mat,
+            Side::Lower,
+            LltRegularization::default(),
+            Par::Seq,
+            MemStack::new(&mut c.work),
+            Default::default(),
+        );
+        if done.is_ok() {
+            self.held = Held::Cholesky;
+            if let Some(t) = self.trailing.as_mut() {
+                t.extract(&c.values);
             }
-            // not positive definite: the same matrix by LU, this iteration
-            self.fallbacks += 1;
+            return Ok(true);
         }
+        self.fallbacks += 1;
+        Ok(false)
+    }
+
+    /// The LU factorization of the matrix (analysed when first needed).
+    pub fn factor_lu(&mut self, values: &[f64]) -> Result<()> {
+        check_finite(values)?;
+        self.held = Held::None;
+        let mat = SparseColMatRef::new(self.symbolic_mat.as_ref(), values);
+        self.factorizations += 1;
         if self.lu.is_none() {
             self.lu = Some(self.analyse_lu()?);
         }
@@ -306,13 +401,12 @@ impl SerialDirect {
         Ok(())
     }
 
-    /// Solves in place with the last factorization. A non-finite solution means a
-    /// singular tangent: a body held by nothing (rigid-body motion) or all pairs open.
-    pub fn solve(&mut self, rhs: &mut [f64]) -> Result<()> {
+    /// Applies the last factorization's inverse in place, without checks.
+    fn apply(&mut self, rhs: &mut [f64]) {
         let n = rhs.len();
         let mat = MatMut::from_column_major_slice_mut(rhs, n, 1);
         match self.held {
-            Held::None => return Err(Error::Solver("solve before factor".into())),
+            Held::None => unreachable!("apply before factor"),
             Held::Cholesky => {
                 let c = self.cholesky.as_mut().expect("held");
                 LltRef::new(&c.symbolic, &c.values).solve_in_place_with_conj(
@@ -332,13 +426,73 @@ impl SerialDirect {
                 );
             }
         }
-        if rhs.iter().any(|v| !v.is_finite()) {
+    }
+
+    /// Solves in place with the last factorization. A non-finite solution means a
+    /// singular tangent: a body held by nothing (rigid-body motion) or all pairs open.
+    pub fn solve(&mut self, rhs: &mut [f64]) -> Result<()> {
+        if self.held == Held::None {
+            return Err(Error::Solver("solve before factor".into()));
+        }
+        self.apply(rhs);
+        check_solution(rhs)
+    }
+
+    /// Solves `(M + U Vᵀ) x = rhs` in place where the last factorization is
+    /// the Cholesky factor of M: Woodbury with GMRES ([`super::coupling`]).
+    fn solve_coupled(&mut self, terms: &Couplings, rhs: &mut [f64]) -> Result<Outcome> {
+        if self.held != Held::Cholesky {
             return Err(Error::Solver(
-                "singular tangent matrix: a body can move as a rigid body (missing support, or every interface pair open)".into(),
+                "coupled solve without a Cholesky factor".into(),
             ));
         }
-        Ok(())
+        let m = self.interface.len();
+        let out = coupling::solve(terms, m, self, rhs);
+        if out != Outcome::Stalled {
+            check_solution(rhs)?;
+        }
+        Ok(out)
     }
+}
+
+impl Inverse for SerialDirect {
+    fn full(&mut self, v: &mut [f64]) {
+        self.apply(v);
+    }
+    fn interface(&mut self, v: &mut [f64]) {
+        if let Some(t) = &self.trailing {
+            return t.solve(v);
+        }
+        let mut w = std::mem::take(&mut self.scratch);
+        w.clear();
+        w.resize(self.symbolic_mat.nrows(), 0.0);
+        for (k, &e) in self.interface.iter().enumerate() {
+            w[e] = v[k];
+        }
+        self.apply(&mut w);
+        for (k, &e) in self.interface.iter().enumerate() {
+            v[k] = w[e];
+        }
+        self.scratch = w;
+    }
+}
+
+fn check_finite(values: &[f64]) -> Result<()> {
+    if values.iter().any(|v| !v.is_finite()) {
+        return Err(Error::Solver(
+            "the tangent matrix holds NaN or infinite entries".into(),
+        ));
+    }
+    Ok(())
+}
+
+fn check_solution(x: &[f64]) -> Result<()> {
+    if x.iter().any(|v| !v.is_finite()) {
+        return Err(Error::Solver(
+            "singular tangent matrix: a body can move as a rigid body (missing support, or every interface pair open)".into(),
+        ));
+    }
+    Ok(())
 }
 
 /// The serial backend: CSC values on the fixed pattern, factored by [`SerialDirect`].
@@ -348,8 +502,29 @@ pub struct SerialBackend {
     /// The solid part, kept apart only when a method re-adds the springs to
     /// a reused solid matrix (see [`super::Backend::reuse_solid`]).
     solid: Option<Vec<f64>>,
-    /// Values of the last system matrix (for checks of the assembled tangent).
+    /// Values of the last system matrix; on the [`Factorization::SymmetricPart`]
+    /// path its symmetric part, the rank-one terms held in `terms`.
     pub vals: Vec<f64>,
+    /// The free equation of every dof, and the position of every equation
+    /// among the interface equations (`u32::MAX`: none), for the rank-one terms.
+    eq_of: Vec<u32>,
+    pos_of: Vec<u32>,
+    /// The interface points' unsymmetric rank-one terms of the last assembly.
+    terms: Couplings,
+    /// The whole tangent (symmetric part plus terms), formed where needed:
+    /// for the LU fallback and for [`super::Backend::matrix_values`].
+    whole: Vec<f64>,
+    stats: CoupledStats,
+}
+
+/// Counters of the [`Factorization::SymmetricPart`] path.
+#[derive(Default)]
+struct CoupledStats {
+    solves: usize,
+    gmres_steps: usize,
+    gmres_max: usize,
+    terms_max: usize,
+    lu_fallbacks: usize,
 }
 
 impl SerialBackend {
@@ -358,22 +533,54 @@ impl SerialBackend {
         let kind = if model.symmetric_tangent() {
             Factorization::Cholesky
         } else {
-            Factorization::Lu
+            Factorization::SymmetricPart
         };
         Self::with_factorization(model, kind)
     }
 
-    /// The backend with a given factorization (LU works for every model;
-    /// Cholesky only for a symmetric tangent).
+    /// The backend with a given factorization (LU and SymmetricPart work for
+    /// every model; Cholesky only for a symmetric tangent).
     pub fn with_factorization(model: &Model, kind: Factorization) -> Result<Self> {
         let blocks = model.blocks();
         let pattern = &Pattern::new(&model.dofs, &blocks);
+        // the free equations of every interface point, in increasing order
+        let mut pos_of = vec![u32::MAX; pattern.n];
+        let mut interface = Vec::new();
+        if kind == Factorization::SymmetricPart {
+            for im in &model.interfaces {
+                for pt in &im.points {
+                    for d in im.point_dofs(pt) {
+                        if let Some(e) = model.dofs.equation(d) {
+                            pos_of[e] = 0;
+                        }
+                    }
+                }
+            }
+            for (e, p) in pos_of.iter_mut().enumerate() {
+                if *p == 0 {
+                    *p = interface.len() as u32;
+                    interface.push(e);
+                }
+            }
+        }
         Ok(SerialBackend {
             asm: Assembler::new(pattern, &model.dofs, &blocks),
-            direct: SerialDirect::new(pattern, kind)?,
+            direct: SerialDirect::with_interface(pattern, kind, interface)?,
             solid: None,
             vals: vec![0.0; pattern.nnz()],
+            eq_of: model.dofs.eq.clone(),
+            pos_of,
+            terms: Couplings::default(),
+            whole: Vec::new(),
+            stats: CoupledStats::default(),
         })
+    }
+
+    /// The whole tangent into `self.whole`.
+    fn form_whole(&mut self) {
+        self.whole.clear();
+        self.whole.extend_from_slice(&self.vals);
+        self.terms.add_to(&self.asm, &mut self.whole);
     }
 }
 
@@ -397,18 +604,66 @@ impl super::Backend for SerialBackend {
         if let Some(solid) = &self.solid {
             self.vals.copy_from_slice(solid);
         }
+        self.terms.clear();
         Ok(())
     }
     fn add_contact(&mut self, block: usize, _dofs: &[usize], k: &[f64]) -> Result<()> {
         self.asm.add(block, k, &mut self.vals);
         Ok(())
     }
-    fn matrix_values(&self) -> Option<&[f64]> {
-        Some(&self.vals)
+    fn splits_coupling(&self) -> bool {
+        self.direct.kind() == Factorization::SymmetricPart
+    }
+    fn add_coupling(
+        &mut self,
+        block: usize,
+        dofs: &[usize],
+        coef: f64,
+        g_t: &[f64],
+        g_n: &[f64],
+    ) -> Result<()> {
+        if self.splits_coupling() {
+            self.terms
+                .push(&self.eq_of, &self.pos_of, block, dofs, coef, g_t, g_n);
+        } else {
+            let nd = dofs.len();
+            let k: Vec<f64> = (0..nd * nd)
+                .map(|ij| coef * g_t[ij / nd] * g_n[ij % nd])
+                .collect();
+            self.asm.add(block, &k, &mut self.vals);
+        }
+        Ok(())
+    }
+    fn matrix_values(&mut self) -> Option<&[f64]> {
+        if self.terms.is_empty() {
+            return Some(&self.vals);
+        }
+        self.form_whole();
+        Some(&self.whole)
     }
     fn solve(&mut self, rhs: &[f64], x: &mut [f64]) -> Result<()> {
-        self.direct.factor(&self.vals)?;
         x.copy_from_slice(rhs);
+        if self.direct.kind() != Factorization::SymmetricPart {
+            self.direct.factor(&self.vals)?;
+            return self.direct.solve(x);
+        }
+        self.stats.solves += 1;
+        self.stats.terms_max = self.stats.terms_max.max(self.terms.len());
+        if self.direct.factor_cholesky(&self.vals)? {
+            match self.direct.solve_coupled(&self.terms, x)? {
+                Outcome::Converged(steps) => {
+                    self.stats.gmres_steps += steps;
+                    self.stats.gmres_max = self.stats.gmres_max.max(steps);
+                    return Ok(());
+                }
+                Outcome::Stalled => x.copy_from_slice(rhs),
+            }
+        }
+        // the symmetric part is not positive definite, or GMRES stalled:
+        // the whole tangent by LU
+        self.stats.lu_fallbacks += 1;
+        self.form_whole();
+        self.direct.factor_lu(&self.whole)?;
         self.direct.solve(x)
     }
     fn linear_solver(&self) -> String {
@@ -421,6 +676,27 @@ impl super::Backend for SerialBackend {
                 ("cholesky_factor_mb", self.direct.factor_mb()),
             ],
             Factorization::Lu => Vec::new(),
+            Factorization::SymmetricPart => {
+                let st = &self.stats;
+                vec![
+                    ("lu_fallbacks", st.lu_fallbacks as f64),
+                    ("cholesky_factor_mb", self.direct.factor_mb()),
+                    ("coupling_terms_max", st.terms_max as f64),
+                    (
+                        "gmres_steps_mean",
+                        st.gmres_steps as f64 / (st.solves - st.lu_fallbacks).max(1) as f64,
+                    ),
+                    ("gmres_steps_max", st.gmres_max as f64),
+                    (
+                        "interface_equations",
+                        self.pos_of.iter().filter(|&&p| p != u32::MAX).count() as f64,
+                    ),
+                    (
+                        "interface_last",
+                        f64::from(u8::from(self.direct.interface_last())),
+                    ),
+                ]
+            }
         }
     }
 }

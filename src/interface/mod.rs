@@ -341,6 +341,10 @@ pub struct PointEval {
     pub status: Status,
     /// Trial tangential state.
     pub state: PointState,
+    /// Area times ∂p_T/∂u_N: the coefficient of the point's unsymmetric
+    /// tangent term `coupling · g_T g_Nᵀ` (0 without it; see
+    /// [`InterfaceModel::eval_point_split`]).
+    pub coupling: f64,
 }
 
 impl InterfaceModel {
@@ -628,6 +632,43 @@ impl InterfaceModel {
         r: &mut [f64],
         k: Option<&mut [f64]>,
     ) -> PointEval {
+        self.eval_point_parts(pt, u, gap, committed, k_floor, r, k, true)
+    }
+
+    /// [`InterfaceModel::eval_point_at`] with the tangent split in two: `k`
+    /// receives only its symmetric part `a (k_N g_N g_Nᵀ + ∂p_T/∂u_T g_T g_Tᵀ)`,
+    /// and the unsymmetric rest `a ∂p_T/∂u_N g_T g_Nᵀ` (the return mapping's
+    /// dependence of the slip limit μ p_N on the approach, eq. 2.18-2.21) is
+    /// returned as its coefficient [`PointEval::coupling`], a rank-one term the
+    /// serial solver keeps out of its Cholesky factor
+    /// ([`crate::backend::serial`]). `k` plus `coupling · g_T g_Nᵀ` is the
+    /// tangent of [`InterfaceModel::eval_point_at`].
+    #[allow(clippy::too_many_arguments)] // eval_point_at's arguments
+    pub fn eval_point_split(
+        &self,
+        pt: &Point,
+        u: &[f64],
+        gap: f64,
+        committed: &PointState,
+        k_floor: Option<f64>,
+        r: &mut [f64],
+        k: Option<&mut [f64]>,
+    ) -> PointEval {
+        self.eval_point_parts(pt, u, gap, committed, k_floor, r, k, false)
+    }
+
+    #[allow(clippy::too_many_arguments)] // eval_point_at's arguments and the split
+    fn eval_point_parts(
+        &self,
+        pt: &Point,
+        u: &[f64],
+        gap: f64,
+        committed: &PointState,
+        k_floor: Option<f64>,
+        r: &mut [f64],
+        k: Option<&mut [f64]>,
+        with_coupling: bool,
+    ) -> PointEval {
         let (u_n, u_t) = self.point_kinematics_at(pt, u, gap);
         let (p_n, k_law) = self.law.pressure(u_n);
         let k_n = match k_floor {
@@ -683,10 +724,11 @@ impl InterfaceModel {
         }
         if let Some(k) = k {
             let a = pt.area;
+            let d_kept = if with_coupling { d_un } else { 0.0 };
             for i in 0..nd {
                 for j in 0..nd {
                     k[i * nd + j] =
-                        a * (k_n * gn[i] * gn[j] + gt[i] * (d_ut * gt[j] + d_un * gn[j]));
+                        a * (k_n * gn[i] * gn[j] + gt[i] * (d_ut * gt[j] + d_kept * gn[j]));
                 }
             }
         }
@@ -696,6 +738,7 @@ impl InterfaceModel {
             k_n,
             status,
             state,
+            coupling: pt.area * d_un,
         }
     }
 }

@@ -11,7 +11,7 @@
 //! object (load factor, mean pressure, load, center displacement, max PEEQ).
 //!
 //! **Tolerances:** integers (counts, the element), strings, booleans and null
-//! exactly. Real numbers to 1e-6 relative: |got − want| ≤ 1e-6 · max(|got|,
+//! exactly; arrays entry by entry. Real numbers to 1e-6 relative: |got − want| ≤ 1e-6 · max(|got|,
 //! |want|), with an absolute floor of 1e-9 in the value's own unit (mm, MPa,
 //! kN, or plastic strain) for values near 0 (it matters only below 1e-3: a
 //! PEEQ of a run that barely yields, a first-yield point close to the
@@ -259,6 +259,26 @@ fn pick(summary: &Value, keys: &[&str], case: &str) -> Map<String, Value> {
 }
 
 /// Compares `got` with `want` at key path `path`; pushes each difference.
+#[test]
+fn the_comparator_reads_arrays_entry_by_entry() {
+    let want = serde_json::json!({"a": [1.0, {"b": 2.0, "c": "x"}]});
+    let errs = |got: Value| {
+        let mut e = Vec::new();
+        compare("", &want, &got, &mut e);
+        e
+    };
+    // round-off in an array entry passes, a real difference does not
+    assert!(errs(serde_json::json!({"a": [1.0 + 1e-15, {"b": 2.0, "c": "x"}]})).is_empty());
+    let e = errs(serde_json::json!({"a": [1.0, {"b": 2.1, "c": "x"}]}));
+    assert_eq!(e.len(), 1, "{e:?}");
+    assert!(e[0].starts_with(".a[1].b:"), "{e:?}");
+    assert_eq!(
+        errs(serde_json::json!({"a": [1.0, {"b": 2.0, "c": "y"}]})).len(),
+        1
+    );
+    assert_eq!(errs(serde_json::json!({"a": [1.0]})).len(), 1);
+}
+
 fn compare(path: &str, want: &Value, got: &Value, errors: &mut Vec<String>) {
     match (want, got) {
         (Value::Object(w), Value::Object(g)) => {
@@ -271,6 +291,14 @@ fn compare(path: &str, want: &Value, got: &Value, errors: &mut Vec<String>) {
             }
             for k in g.keys().filter(|k| !w.contains_key(*k)) {
                 errors.push(format!("{path}.{k}: in summary.json, not in expected.json"));
+            }
+        }
+        (Value::Array(w), Value::Array(g)) => {
+            if w.len() != g.len() {
+                errors.push(format!("{path}: {} entries, expected {}", g.len(), w.len()));
+            }
+            for (i, (wv, gv)) in w.iter().zip(g).enumerate() {
+                compare(&format!("{path}[{i}]"), wv, gv, errors);
             }
         }
         (Value::Number(w), Value::Number(g)) if w.is_f64() || g.is_f64() => {

@@ -22,7 +22,7 @@ use super::State;
 use crate::backend::Backend;
 use crate::case::Method;
 use crate::fem::solid::{element_forces, Response, Tangent};
-use crate::interface::Status;
+use crate::interface::{InterfaceModel, Status};
 use crate::material::PointState;
 use crate::model::Model;
 
@@ -480,6 +480,7 @@ impl<'m> Engine<'m> {
             .max(12);
         let (mut rl, mut kl) = (vec![0.0; nd_max], vec![0.0; nd_max * nd_max]);
         let springs = self.stabilizer.as_ref().and_then(|s| s.springs.as_deref());
+        let split = be.splits_coupling();
         let mut q = 0;
         for (i, im) in m.interfaces.iter().enumerate() {
             let kf = floor.map(|f| f[i]);
@@ -492,7 +493,13 @@ impl<'m> Engine<'m> {
                 let nd = pt.ndofs();
                 let un = im.point_kinematics_at(pt, &trial.u, gap).0;
                 let kfloor = kf.filter(|_| un > -ZERO_APPROACH);
-                let ev = im.eval_point_at(
+                let eval = if split {
+                    InterfaceModel::eval_point_split
+                } else {
+                    InterfaceModel::eval_point_at
+                };
+                let ev = eval(
+                    im,
                     pt,
                     &trial.u,
                     gap,
@@ -518,8 +525,13 @@ impl<'m> Engine<'m> {
                 for (k, &d) in pdofs.iter().enumerate() {
                     self.r[d] += rl[k];
                 }
-                be.add_contact(m.interface_block_base[i] + j, &pdofs, &kl[..nd * nd])
-                    .map_err(err)?;
+                let block = m.interface_block_base[i] + j;
+                be.add_contact(block, &pdofs, &kl[..nd * nd]).map_err(err)?;
+                if split && ev.coupling != 0.0 {
+                    let (g_n, g_t) = pt.gradients();
+                    be.add_coupling(block, &pdofs, ev.coupling, &g_t, &g_n)
+                        .map_err(err)?;
+                }
                 q += 1;
             }
         }
