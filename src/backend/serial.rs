@@ -722,6 +722,84 @@ mod tests {
         (r, d.fallbacks)
     }
 
+    /// A 5-point Laplacian on a g×g grid plus 4 on the diagonal (SPD):
+    /// pattern (both triangles) and values.
+    fn grid(g: usize) -> (Pattern, Vec<f64>) {
+        let n = g * g;
+        let (mut col_ptr, mut row_idx, mut vals) = (vec![0], Vec::new(), Vec::new());
+        for j in 0..n {
+            let (x, y) = (j % g, j / g);
+            let mut col = vec![(j, 8.0)];
+            if x > 0 {
+                col.push((j - 1, -1.0));
+            }
+            if x + 1 < g {
+                col.push((j + 1, -1.0));
+            }
+            if y > 0 {
+                col.push((j - g, -1.0));
+            }
+            if y + 1 < g {
+                col.push((j + g, -1.0));
+            }
+            col.sort_by_key(|c| c.0);
+            for (i, v) in col {
+                row_idx.push(i as u32);
+                vals.push(v);
+            }
+            col_ptr.push(row_idx.len());
+        }
+        (
+            Pattern {
+                n,
+                col_ptr,
+                row_idx,
+            },
+            vals,
+        )
+    }
+
+    #[test]
+    fn the_trailing_block_gives_the_interface_part_of_the_inverse() {
+        // the "interface": one grid row across the middle, which separates
+        // the grid as a contact interface separates two bodies
+        let g = 9;
+        let (pattern, vals) = grid(g);
+        let iface: Vec<usize> = (0..g).map(|x| 4 * g + x).collect();
+        let mut d =
+            SerialDirect::with_interface(&pattern, Factorization::SymmetricPart, iface.clone())
+                .unwrap();
+        assert!(d.interface_last(), "a separator is cheap to order last");
+        assert!(d.factor_cholesky(&vals).unwrap());
+        let a: Vec<f64> = (0..g).map(|k| 1.0 + (k as f64).sin()).collect();
+        let mut by_block = a.clone();
+        Inverse::interface(&mut d, &mut by_block);
+        // the same without the trailing block: a solve with the whole factor
+        d.trailing = None;
+        let mut by_solve = a.clone();
+        Inverse::interface(&mut d, &mut by_solve);
+        let big = by_solve.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for (p, q) in by_block.iter().zip(&by_solve) {
+            assert!((p - q).abs() < 1e-14 * big, "{by_block:?} {by_solve:?}");
+        }
+        // and the whole-factor solve is M⁻¹ itself: M (M⁻¹ [0; a]) = [0; a]
+        let mut w = vec![0.0; g * g];
+        for (k, &e) in iface.iter().enumerate() {
+            w[e] = a[k];
+        }
+        d.apply(&mut w);
+        let mut back = vec![0.0; g * g];
+        for (j, wj) in w.iter().enumerate() {
+            for p in pattern.col_ptr[j]..pattern.col_ptr[j + 1] {
+                back[pattern.row_idx[p] as usize] += vals[p] * wj;
+            }
+        }
+        for (e, v) in back.iter().enumerate() {
+            let want = iface.iter().position(|&i| i == e).map_or(0.0, |k| a[k]);
+            assert!((v - want).abs() < 1e-12, "row {e}: {v} against {want}");
+        }
+    }
+
     #[test]
     fn cholesky_solves_a_positive_definite_system() {
         // column-major [[4, 1, 0], [1, 3, 1], [0, 1, 2]]
