@@ -1,20 +1,25 @@
-//! The baseline benchmark of issue 29: friction against frictionless.
+//! The benchmark of issue 29: friction against frictionless.
 //!
 //! `cargo bench --bench friction` prints three Markdown tables, every ratio
 //! measured in this one run (friction and frictionless runs alternate, so the
 //! drift of a shared host reaches both):
 //!
 //! 1. time per Newton iteration of cases/punch-friction-b (return-mapping
-//!    friction: unsymmetric tangent, faer LU) against the same case text with
-//!    its tangential law removed (symmetric tangent, Cholesky), at refine 2, 4
-//!    and 8 (6k, 24k, 94k dofs); full Newton, 5 equal increments each;
-//! 2. Newton iterations per increment and cutbacks of every shipped case;
+//!    friction: unsymmetric tangent, Cholesky of its symmetric part with the
+//!    interface coupling by Woodbury-GMRES) against the same case text with
+//!    its tangential law removed (symmetric tangent, Cholesky), at refine 2,
+//!    4, 8 and 12 (6k, 24k, 94k, 210k dofs); full Newton, 5 equal increments
+//!    each; at refine 2 and 4 also the friction case on faer's LU of the whole
+//!    tangent (the option the split replaced);
+//! 2. Newton iterations per increment and cutbacks of every shipped case and
+//!    of the force-controlled Hertzian sphere (tests/data/hertz-sphere);
 //! 3. whole-run wall time of the 50-increment plane-strain punch
 //!    (cases/punch-plane-strain `--increments 50`) against the same case with
 //!    the tangential law of punch-friction-b added, at refine 1 and 2.
 //!
 //! docs/performance.md ("Friction against frictionless") quotes the tables.
 
+use asperity::backend::serial::Factorization;
 use asperity::case::Method;
 use asperity::driver::{self, RunOptions};
 use asperity::solve::RunResult;
@@ -89,7 +94,18 @@ impl Run {
 }
 
 fn run(case: &Path, tag: &str, refine: Option<usize>, increments: Option<usize>) -> Run {
+    run_on(case, tag, refine, increments, None)
+}
+
+fn run_on(
+    case: &Path,
+    tag: &str,
+    refine: Option<usize>,
+    increments: Option<usize>,
+    factorization: Option<Factorization>,
+) -> Run {
     let opts = RunOptions {
+        factorization,
         out: Some(scratch().join("out").join(tag)),
         quiet: true,
         method: Some(Method::FullNewton),
@@ -140,11 +156,12 @@ fn main() {
     println!("pairs' ratios.");
     println!();
     println!(
-        "| refine | dofs | pairs | iterations fric / frictionless | cutbacks fric / frictionless | wall ms/it fric | wall ms/it frictionless | work ms/it fric | work ms/it frictionless | solve ms/it fric | solve ms/it frictionless | solve share fric / frictionless | ratio wall | ratio work | ratio solve |"
+        "| refine | dofs | pairs | iterations fric / frictionless | cutbacks fric / frictionless | wall ms/it fric | wall ms/it frictionless | work ms/it fric | work ms/it frictionless | solve ms/it fric | solve ms/it frictionless | solve share fric / frictionless | ratio wall | ratio work | ratio solve | wall ms/it fric on LU |"
     );
-    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     let mut last_solvers = (String::new(), String::new());
-    for (refine, pairs) in [(2, 3), (4, 3), (8, 1)] {
+    let mut stats = Vec::new();
+    for (refine, pairs) in [(2, 3), (4, 3), (8, 1), (12, 1)] {
         let mut f = Vec::new();
         let mut s = Vec::new();
         for k in 0..pairs {
@@ -171,8 +188,18 @@ fn main() {
                     .collect(),
             )
         };
+        // the whole tangent on LU, once, where it takes less than a minute
+        let lu = (refine <= 4).then(|| {
+            run_on(
+                &fric_b,
+                &format!("it-lu-{refine}"),
+                Some(refine),
+                Some(5),
+                Some(Factorization::Lu),
+            )
+        });
         println!(
-            "| {refine} | {} | {pairs} | {} / {} | {} / {} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.0}% / {:.0}% | {:.2} | {:.2} | {:.2} |",
+            "| {refine} | {} | {pairs} | {} / {} | {} / {} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.0}% / {:.0}% | {:.2} | {:.2} | {:.2} | {} |",
             f[0].dofs,
             f[0].iterations(),
             s[0].iterations(),
@@ -189,17 +216,43 @@ fn main() {
             ratio(Run::wall_per_it),
             ratio(Run::work_per_it),
             ratio(Run::solve_per_it),
+            lu.map_or("—".to_string(), |r| format!(
+                "{:.1} ({} it)",
+                r.wall_per_it(),
+                r.iterations()
+            )),
         );
         last_solvers = (
             f[0].result.linear_solver.clone(),
             s[0].result.linear_solver.clone(),
         );
+        let stat = |k: &str| {
+            f[0].result
+                .backend_stats
+                .iter()
+                .find(|(n, _)| n == k)
+                .map_or(f64::NAN, |(_, v)| *v)
+        };
+        stats.push(format!(
+            "refine {refine}: interface equations {}, ordered last {}, coupling terms at most {}, GMRES steps mean {:.2} max {}, LU fallbacks {}, Cholesky factor {:.1} MB",
+            stat("interface_equations"),
+            stat("interface_last") == 1.0,
+            stat("coupling_terms_max"),
+            stat("gmres_steps_mean"),
+            stat("gmres_steps_max"),
+            stat("lu_fallbacks"),
+            stat("cholesky_factor_mb"),
+        ));
     }
     println!();
     println!(
         "linear solvers: friction {}, frictionless {}",
         last_solvers.0, last_solvers.1
     );
+    println!();
+    for line in &stats {
+        println!("- {line}");
+    }
 
     // 2. Iterations per increment and cutbacks of every shipped case.
     println!();
@@ -218,6 +271,7 @@ fn main() {
         .filter(|p| p.join("case.toml").is_file())
         .collect();
     shipped.sort();
+    shipped.push(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/hertz-sphere"));
     for case in &shipped {
         let name = case.file_name().unwrap().to_string_lossy().to_string();
         let opts = RunOptions {
