@@ -254,6 +254,9 @@ impl SerialDirect {
                         trail::factor_cost(&last),
                         trail::factor_cost(&chosen),
                     ) {
+                        // the dense block and the map into the factor
+                        let m = s.interface.len() as f64;
+                        check_memory("Cholesky factor's interface block", 16.0 * m * m, false)?;
                         s.trailing = Trailing::new(&last, s.interface.len());
                         if s.trailing.is_some() {
                             chosen = last;
