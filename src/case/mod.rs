@@ -413,6 +413,21 @@ pub struct OutputSpec {
     pub vtu: bool,
     #[serde(default = "one_usize")]
     pub vtu_every: usize,
+    /// Encoding of the VTU files: `binary` (default; raw appended data, the
+    /// arrays' exact IEEE-754 bits) or `ascii` (text, `{:e}` shortest form).
+    #[serde(default)]
+    pub vtu_format: VtuFormat,
+}
+
+/// How the VTU files hold their arrays (docs/output.md, "VTU").
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum VtuFormat {
+    /// `<AppendedData encoding="raw">`: little-endian bytes, UInt64 block headers.
+    #[default]
+    Binary,
+    /// Every number as text inside its `<DataArray>`.
+    Ascii,
 }
 
 impl Default for OutputSpec {
@@ -496,7 +511,12 @@ impl Case {
         let mut key = self.clone();
         key.source = Default::default();
         key.description = None;
-        let full = format!("{key:?}").replace(", table: None,", ",");
+        // the VTU encoding changes no state: a run may resume in the other
+        // one, and keys of builds before `vtu_format` stay as they were
+        key.output.vtu_format = VtuFormat::default();
+        let full = format!("{key:?}")
+            .replace(", table: None,", ",")
+            .replace(", vtu_format: Binary }", " }");
         let new_keys = !key.history.is_empty()
             || !key.force.is_empty()
             || key
