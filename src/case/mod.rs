@@ -420,14 +420,35 @@ pub struct OutputSpec {
 }
 
 /// How the VTU files hold their arrays (docs/output.md, "VTU").
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default)]
-#[serde(rename_all = "lowercase")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum VtuFormat {
     /// `<AppendedData encoding="raw">`: little-endian bytes, UInt64 block headers.
     #[default]
     Binary,
     /// Every number as text inside its `<DataArray>`.
     Ascii,
+}
+
+impl<'de> Deserialize<'de> for VtuFormat {
+    /// A string, `binary` or `ascii`; anything else is refused with the key's
+    /// name and both choices (not the TOML crate's "wanted string or table").
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        struct Choice;
+        impl serde::de::Visitor<'_> for Choice {
+            type Value = VtuFormat;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("vtu_format \"binary\" or \"ascii\"")
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> std::result::Result<VtuFormat, E> {
+                match v {
+                    "binary" => Ok(VtuFormat::Binary),
+                    "ascii" => Ok(VtuFormat::Ascii),
+                    _ => Err(E::invalid_value(serde::de::Unexpected::Str(v), &self)),
+                }
+            }
+        }
+        d.deserialize_any(Choice)
+    }
 }
 
 impl Default for OutputSpec {

@@ -177,3 +177,55 @@ fn work(jobs: &Receiver<Job>, failed: &Mutex<Option<Error>>) {
 pub fn layout(model: &Model) -> Arc<Layout> {
     Arc::new(Layout::of(model, model.output.vtu_format))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn text(path: PathBuf, text: &str) -> Job {
+        Job::Text {
+            path,
+            text: text.into(),
+        }
+    }
+
+    #[test]
+    fn jobs_run_in_order_and_the_first_failure_is_reported_once() {
+        let dir = std::env::temp_dir().join(format!("asperity-background-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let mut bg = Background::start().unwrap();
+        // the same file twice: the later job wins
+        bg.send(text(dir.join("a.txt"), "1")).unwrap();
+        bg.send(text(dir.join("a.txt"), "2")).unwrap();
+        bg.send(text(dir.join("missing/b.txt"), "x")).unwrap();
+        // the failure reaches the solver's side at a later send
+        let t = std::time::Instant::now();
+        let err = loop {
+            match bg.send(text(dir.join("c.txt"), "after the failure")) {
+                Err(e) => break e,
+                Ok(()) => {
+                    assert!(t.elapsed().as_secs() < 30, "the failure never surfaced");
+                    std::thread::sleep(std::time::Duration::from_millis(1));
+                }
+            }
+        };
+        assert!(err.to_string().contains("missing/b.txt"), "{err}");
+        // reported once; the jobs after it were skipped
+        bg.drain().unwrap();
+        assert_eq!(std::fs::read_to_string(dir.join("a.txt")).unwrap(), "2");
+        assert!(!dir.join("c.txt").exists());
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn a_failure_of_the_last_job_is_reported_by_drain() {
+        let mut bg = Background::start().unwrap();
+        bg.send(text(PathBuf::from("/nonexistent-asperity/x.csv"), "x"))
+            .unwrap();
+        let err = bg.drain().unwrap_err();
+        assert!(err.to_string().contains("/nonexistent-asperity/x.csv"), "{err}");
+        // the thread is gone: a later send is an error, not a hang
+        assert!(bg.send(text(PathBuf::from("/tmp/never"), "x")).is_err());
+    }
+}
