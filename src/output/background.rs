@@ -52,17 +52,17 @@ pub enum Job {
 impl Job {
     fn run(self) -> Result<()> {
         match self {
-            Job::Text { path, text } => std::fs::write(&path, text).map_err(|e| Error::io(&path, e)),
+            Job::Text { path, text } => {
+                std::fs::write(&path, text).map_err(|e| Error::io(&path, e))
+            }
             Job::Vtu {
                 path,
                 layout,
                 frame,
             } => {
                 let write = || -> std::io::Result<()> {
-                    let mut w = std::io::BufWriter::with_capacity(
-                        1 << 17,
-                        std::fs::File::create(&path)?,
-                    );
+                    let mut w =
+                        std::io::BufWriter::with_capacity(1 << 17, std::fs::File::create(&path)?);
                     layout.write(&mut w, &frame)?;
                     std::io::Write::flush(&mut w)
                 };
@@ -224,7 +224,10 @@ mod tests {
         bg.send(text(PathBuf::from("/nonexistent-asperity/x.csv"), "x"))
             .unwrap();
         let err = bg.drain().unwrap_err();
-        assert!(err.to_string().contains("/nonexistent-asperity/x.csv"), "{err}");
+        assert!(
+            err.to_string().contains("/nonexistent-asperity/x.csv"),
+            "{err}"
+        );
         // the thread is gone: a later send is an error, not a hang
         assert!(bg.send(text(PathBuf::from("/tmp/never"), "x")).is_err());
     }

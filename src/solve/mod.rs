@@ -509,7 +509,11 @@ fn write_increment(
 /// The last converged state of a stopped run, handed to the observer again
 /// ([`Observer::last_state`]) with the checkpoint; collective like
 /// [`write_increment`].
-fn write_last_state(engine: &Engine, observer: &mut dyn Observer, ck: &mut Checkpoint) -> Result<()> {
+fn write_last_state(
+    engine: &Engine,
+    observer: &mut dyn Observer,
+    ck: &mut Checkpoint,
+) -> Result<()> {
     let model = engine.model;
     let local = engine
         .gather_gauss(&ck.committed)

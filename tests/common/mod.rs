@@ -439,7 +439,10 @@ pub fn vtu_array(path: &std::path::Path, name: &str) -> Vec<f64> {
                 .collect()
         }
         Some("appended") => {
-            assert!(xml.contains("header_type=\"UInt64\""), "UInt64 block headers");
+            assert!(
+                xml.contains("header_type=\"UInt64\""),
+                "UInt64 block headers"
+            );
             assert!(xml.contains("byte_order=\"LittleEndian\""));
             let tail = &bytes[appended..];
             assert!(tail.starts_with(b"<AppendedData encoding=\"raw\">"));

@@ -20,8 +20,8 @@ fn bin() -> Command {
 /// A copy of `cases/NAME` with `[output]` settings appended, in its own
 /// scratch folder; the path of its case.toml.
 fn case_with_output(tag: &str, name: &str, output: &str) -> PathBuf {
-    let text = std::fs::read_to_string(common::root().join("cases").join(name).join("case.toml"))
-        .unwrap();
+    let text =
+        std::fs::read_to_string(common::root().join("cases").join(name).join("case.toml")).unwrap();
     assert!(!text.contains("[output]"), "{name} has an [output] table");
     common::case_dir(tag, &format!("{text}\n[output]\n{output}\n"))
 }
@@ -141,14 +141,17 @@ fn binary_and_ascii_vtu_hold_the_same_numbers_and_everything_else_is_identical()
         let f = format!("vtu/{k:04}.vtu");
         let (b, a) = (outs[0].join(&f), outs[1].join(&f));
         let bytes = std::fs::read(&b).unwrap();
-        assert!(bytes.windows(29).any(|w| w == b"<AppendedData encoding=\"raw\">"));
+        assert!(bytes
+            .windows(29)
+            .any(|w| w == b"<AppendedData encoding=\"raw\">"));
         let text = std::fs::read_to_string(&a).expect("an ASCII VTU file is text");
         assert!(!text.contains("AppendedData") && text.contains("format=\"ascii\""));
         check_complete(&b, nodes, cells);
         check_complete(&a, nodes, cells);
-        for name in POINT_ARRAYS
-            .iter()
-            .chain(&["connectivity", "offsets", "types", "body", "max_peeq"])
+        for name in
+            POINT_ARRAYS
+                .iter()
+                .chain(&["connectivity", "offsets", "types", "body", "max_peeq"])
         {
             let (x, y) = (common::vtu_array(&b, name), common::vtu_array(&a, name));
             assert_eq!(x.len(), y.len());
@@ -161,7 +164,12 @@ fn binary_and_ascii_vtu_hold_the_same_numbers_and_everything_else_is_identical()
         assert!(bytes.len() < text.len());
     }
     // the encoding changes nothing else
-    for f in ["curve.csv", "joints.csv", "results.pvd", "interface/0006.csv"] {
+    for f in [
+        "curve.csv",
+        "joints.csv",
+        "results.pvd",
+        "interface/0006.csv",
+    ] {
         assert_eq!(
             std::fs::read(outs[0].join(f)).unwrap(),
             std::fs::read(outs[1].join(f)).unwrap(),
@@ -214,7 +222,11 @@ fn a_stopped_run_writes_its_last_state_and_resumes_to_the_uninterrupted_result()
         [1, 4, 8, 12]
     );
     let stopped = root.join("stopped");
-    let (code, err) = run(&case, &stopped, &["--increments", "12", "--stop-after", "6"]);
+    let (code, err) = run(
+        &case,
+        &stopped,
+        &["--increments", "12", "--stop-after", "6"],
+    );
     assert_eq!(code, 3, "{err}");
     // increment 6, the last state, is written although 6 is not a multiple of 4
     assert_eq!(
@@ -230,19 +242,19 @@ fn a_stopped_run_writes_its_last_state_and_resumes_to_the_uninterrupted_result()
     let (code, err) = run(
         &case,
         &resumed,
-        &[
-            "--increments",
-            "12",
-            "--restart",
-            stopped.to_str().unwrap(),
-        ],
+        &["--increments", "12", "--restart", stopped.to_str().unwrap()],
     );
     assert_eq!(code, 0, "{err}");
     assert_eq!(
         series(&resumed).iter().map(|s| s.0).collect::<Vec<_>>(),
         [1, 4, 6, 8, 12]
     );
-    for f in ["curve.csv", "joints.csv", "interface/0012.csv", "vtu/0012.vtu"] {
+    for f in [
+        "curve.csv",
+        "joints.csv",
+        "interface/0012.csv",
+        "vtu/0012.vtu",
+    ] {
         assert_eq!(
             std::fs::read(full.join(f)).unwrap(),
             std::fs::read(resumed.join(f)).unwrap(),
@@ -333,10 +345,7 @@ fn a_vtu_write_that_fails_mid_run_ends_it_with_one_error() {
     );
     assert_one_clean_error(code, &err, secs, &out, "vtu/00");
     // the run did not go on to the end
-    assert!(
-        err.matches("\"event\":\"increment\"").count() < 20,
-        "{err}"
-    );
+    assert!(err.matches("\"event\":\"increment\"").count() < 20, "{err}");
 }
 
 #[test]
