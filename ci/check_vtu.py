@@ -40,10 +40,31 @@ def components(a):
 
 
 def vtk_types(path):
-    """The distinct cell type codes of the file, read from its XML directly."""
-    for a in ET.parse(path).getroot().iter("DataArray"):
-        if a.get("Name") == "types":
+    """The distinct cell type codes of the file, read from its XML directly: the
+    text of an ASCII file's types array, or the block of a binary file's raw
+    appended data its offset points at (UInt8 values after a byte count of the
+    file's header_type)."""
+    with open(path, "rb") as f:
+        raw = f.read()
+    at = raw.find(b"<AppendedData")
+    if at < 0:
+        root = ET.fromstring(raw)
+    else:
+        root = ET.fromstring(raw[:at] + b"</VTKFile>")
+    for a in root.iter("DataArray"):
+        if a.get("Name") != "types":
+            continue
+        if a.get("format") != "appended":
             return sorted({int(v) for v in a.text.split()})
+        size = {"UInt32": 4, "UInt64": 8}.get(root.get("header_type", "UInt32"))
+        if at < 0 or size is None or a.get("type") != "UInt8":
+            fail(f"{path}: types array in an unexpected form")
+        start = raw.index(b"_", at) + 1 + int(a.get("offset"))
+        count = int.from_bytes(raw[start : start + size], "little")
+        block = raw[start + size : start + size + count]
+        if len(block) != count:
+            fail(f"{path}: types block runs past the end of the file")
+        return sorted(set(block))
     fail(f"{path}: no types array")
 
 

@@ -413,6 +413,42 @@ pub struct OutputSpec {
     pub vtu: bool,
     #[serde(default = "one_usize")]
     pub vtu_every: usize,
+    /// Encoding of the VTU files: `binary` (default; raw appended data, the
+    /// arrays' exact IEEE-754 bits) or `ascii` (text, `{:e}` shortest form).
+    #[serde(default)]
+    pub vtu_format: VtuFormat,
+}
+
+/// How the VTU files hold their arrays (docs/output.md, "VTU").
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum VtuFormat {
+    /// `<AppendedData encoding="raw">`: little-endian bytes, UInt64 block headers.
+    #[default]
+    Binary,
+    /// Every number as text inside its `<DataArray>`.
+    Ascii,
+}
+
+impl<'de> Deserialize<'de> for VtuFormat {
+    /// A string, `binary` or `ascii`; anything else is refused with the key's
+    /// name and both choices (not the TOML crate's "wanted string or table").
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        struct Choice;
+        impl serde::de::Visitor<'_> for Choice {
+            type Value = VtuFormat;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("vtu_format \"binary\" or \"ascii\"")
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> std::result::Result<VtuFormat, E> {
+                match v {
+                    "binary" => Ok(VtuFormat::Binary),
+                    "ascii" => Ok(VtuFormat::Ascii),
+                    _ => Err(E::invalid_value(serde::de::Unexpected::Str(v), &self)),
+                }
+            }
+        }
+        d.deserialize_any(Choice)
+    }
 }
 
 impl Default for OutputSpec {
@@ -496,7 +532,12 @@ impl Case {
         let mut key = self.clone();
         key.source = Default::default();
         key.description = None;
-        let full = format!("{key:?}").replace(", table: None,", ",");
+        // the VTU encoding changes no state: a run may resume in the other
+        // one, and keys of builds before `vtu_format` stay as they were
+        key.output.vtu_format = VtuFormat::default();
+        let full = format!("{key:?}")
+            .replace(", table: None,", ",")
+            .replace(", vtu_format: Binary }", " }");
         let new_keys = !key.history.is_empty()
             || !key.force.is_empty()
             || key

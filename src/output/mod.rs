@@ -2,8 +2,10 @@
 //! the joint outputs (`joints.csv`, `cycles.csv`, the hysteresis figure:
 //! [`joints`]) and a VTU/PVD series. Everything is written into a hidden sibling folder that is
 //! renamed into place only when the run succeeds, so a failed run leaves no
-//! partial output folder behind.
+//! partial output folder behind. The per-increment files are encoded and
+//! written by a thread of their own, in order ([`background`]).
 
+pub mod background;
 pub mod joints;
 pub mod vtu;
 
@@ -30,6 +32,12 @@ pub struct Writer {
     done: bool,
     /// Fingerprint of the model for restart.bin (computed once).
     fingerprint: Option<u64>,
+    /// The thread that writes the per-increment files.
+    background: background::Background,
+    /// The unchanging part of the VTU documents (made at the first one).
+    layout: Option<std::sync::Arc<vtu::Layout>>,
+    /// The increment of the last VTU file queued (0: none this run).
+    last_vtu: usize,
 }
 
 /// Where a resumed run takes its earlier increments from.
@@ -76,6 +84,9 @@ impl Writer {
             final_load_factor: f64::NAN,
             done: false,
             fingerprint: None,
+            background: background::Background::start()?,
+            layout: None,
+            last_vtu: 0,
         };
         if let Some(r) = resume {
             // restart.bin is kept as is if no further increment converges;
@@ -98,6 +109,8 @@ impl Writer {
     /// `.NAME.partial-PID` replaces NAME in one rename (an existing NAME is
     /// swapped out atomically where the system allows it, then removed).
     pub fn finish(mut self, model: &Model, result: &RunResult, wall: f64) -> Result<PathBuf> {
+        // every increment's files are on disk before the summary
+        self.background.drain()?;
         let summary = summary(model, result, wall);
         self.write(
             "summary.json",
@@ -117,6 +130,49 @@ impl Writer {
     /// Removes the temporary folder (failed run).
     pub fn abandon(self) {}
 
+    /// Whether increment `inc` gets a VTU file: every `vtu_every`-th, and
+    /// always the first, the last of the history and every increment that
+    /// ends at a breakpoint of a load history (where a cycle turns).
+    fn vtu_due(&self, model: &Model, inc: &Increment) -> bool {
+        let last = (self.planned > 0 && inc.increment >= self.planned)
+            || (inc.load_factor - self.final_load_factor).abs() <= 1e-12;
+        inc.increment == 1
+            || inc.increment % model.output.vtu_every == 0
+            || last
+            || model.breakpoints().contains(&inc.load_factor)
+    }
+
+    /// Whether the VTU series already lists increment `k` (a resumed run's
+    /// last one, copied in).
+    fn pvd_has(&self, k: usize) -> bool {
+        let name = crate::restart::vtu_name(k);
+        self.pvd.iter().any(|(_, f)| *f == name)
+    }
+
+    fn queue_text(&mut self, rel: String, text: String) -> Result<()> {
+        self.background.send(background::Job::Text {
+            path: self.tmp_dir.join(rel),
+            text,
+        })
+    }
+
+    /// Takes the state's arrays ([`vtu::Frame`]) and queues its VTU file.
+    fn queue_vtu(&mut self, model: &Model, state: &State, inc: &Increment) -> Result<()> {
+        let layout = self
+            .layout
+            .get_or_insert_with(|| background::layout(model))
+            .clone();
+        let f = crate::restart::vtu_name(inc.increment);
+        self.background.send(background::Job::Vtu {
+            path: self.tmp_dir.join(&f),
+            layout,
+            frame: Box::new(vtu::Frame::of(model, state)),
+        })?;
+        self.pvd.push((inc.load_factor, f));
+        self.last_vtu = inc.increment;
+        Ok(())
+    }
+
     /// The progress log.
     pub fn log(&self) -> &Log {
         &self.log
@@ -125,6 +181,8 @@ impl Writer {
 
 impl Drop for Writer {
     fn drop(&mut self) {
+        // nothing is left writing into the folder (its errors no longer matter)
+        let _ = self.background.drain();
         if !self.done {
             let _ = std::fs::remove_dir_all(&self.tmp_dir);
         }
@@ -183,23 +241,14 @@ pub fn replace_dir(from: &Path, to: &Path) -> Result<()> {
 
 impl Observer for Writer {
     fn increment(&mut self, model: &Model, state: &State, inc: &Increment) -> Result<()> {
-        self.write(
-            &crate::restart::interface_name(inc.increment),
-            &interface_csv(model, state),
+        // a file of an earlier increment that could not be written ends the run here
+        self.background.check()?;
+        self.queue_text(
+            crate::restart::interface_name(inc.increment),
+            interface_csv(model, state),
         )?;
-        let every = model.output.vtu_every;
-        let last = (self.planned > 0 && inc.increment >= self.planned)
-            || (inc.load_factor - self.final_load_factor).abs() <= 1e-12;
-        if model.output.vtu && (inc.increment % every == 0 || last) {
-            let f = crate::restart::vtu_name(inc.increment);
-            let p = self.tmp_dir.join(&f);
-            let write = || -> std::io::Result<()> {
-                let mut w = std::io::BufWriter::new(std::fs::File::create(&p)?);
-                vtu::write_vtu(&mut w, model, state)?;
-                std::io::Write::flush(&mut w)
-            };
-            write().map_err(|e| Error::io(&p, e))?;
-            self.pvd.push((inc.load_factor, f));
+        if model.output.vtu && self.vtu_due(model, inc) {
+            self.queue_vtu(model, state, inc)?;
         }
         let el = self.log.elapsed();
         let eta = self.log.eta(inc.load_factor);
@@ -245,18 +294,29 @@ impl Observer for Writer {
     }
 
     fn checkpoint(&mut self, model: &Model, ck: &Checkpoint) -> Result<()> {
-        let fp = *self
+        let fingerprint = *self
             .fingerprint
             .get_or_insert_with(|| crate::restart::fingerprint(model));
-        let tmp = self.tmp_dir.join(".restart.bin.tmp");
-        let write = || -> std::io::Result<()> {
-            let mut w = std::io::BufWriter::new(std::fs::File::create(&tmp)?);
-            crate::restart::write_to(&mut w, fp, ck, &self.pvd)?;
-            std::io::Write::flush(&mut w)
-        };
-        write().map_err(|e| Error::io(&tmp, e))?;
-        let p = self.tmp_dir.join(crate::restart::FILE);
-        std::fs::rename(&tmp, &p).map_err(|e| Error::io(&p, e))
+        // queued after the increment's own files: restart.bin is replaced
+        // only once everything it lists is written
+        self.background.send(background::Job::Checkpoint {
+            tmp: self.tmp_dir.join(".restart.bin.tmp"),
+            path: self.tmp_dir.join(crate::restart::FILE),
+            fingerprint,
+            ck: Box::new(ck.clone()),
+            pvd: self.pvd.clone(),
+        })
+    }
+
+    fn last_state(&mut self, model: &Model, state: &State, inc: &Increment) -> Result<()> {
+        if model.output.vtu && self.last_vtu != inc.increment && !self.pvd_has(inc.increment) {
+            self.queue_vtu(model, state, inc)?;
+        }
+        Ok(())
+    }
+
+    fn flush(&mut self) -> Result<()> {
+        self.background.drain()
     }
 }
 

@@ -84,7 +84,8 @@ pub struct Bounds {
     /// Bytes of one `interface/NNNN.csv` (512 per interface pair and its name).
     pub csv_bytes: u64,
     /// Bytes of one `vtu/NNNN.vtu` (512 per node, 256 per element: at most
-    /// 16 numbers of 25 characters per node).
+    /// 16 numbers of 25 characters per node in ASCII; a binary file holds 8
+    /// bytes per number and a block header per array).
     pub vtu_bytes: u64,
 }
 

@@ -125,6 +125,19 @@ pub trait Observer {
     fn checkpoint(&mut self, _model: &Model, _ck: &Checkpoint) -> Result<()> {
         Ok(())
     }
+    /// Called once when a run stops early (signal, `--stop-after`) after at
+    /// least one increment: the last converged state, which the output
+    /// always shows (the writer adds its VTU file if `vtu_every` skipped it);
+    /// [`Observer::checkpoint`] follows.
+    fn last_state(&mut self, _model: &Model, _state: &State, _inc: &Increment) -> Result<()> {
+        Ok(())
+    }
+    /// Called once at the end of a run that did not fail: every increment's
+    /// output is complete when it returns (the writer's thread drained), or
+    /// the first write that failed.
+    fn flush(&mut self) -> Result<()> {
+        Ok(())
+    }
 }
 
 /// The committed state of the increment loop: enough to continue a run exactly
@@ -290,6 +303,17 @@ pub fn run_from(
             Err(failure) => (stepping::Why::Failed, failure.to_string()),
         };
         cut_back(&mut ck, observer, target, why)?;
+    }
+    if stopped.is_some() && ck.increments.len() > resumed_from {
+        write_last_state(&engine, observer, &mut ck)?;
+    }
+    // the writer's thread done: every file complete, or the run's error on
+    // every rank
+    let flushed = observer.flush();
+    if !engine.backend.agree(flushed.is_ok()) {
+        return Err(flushed
+            .err()
+            .unwrap_or_else(|| Error::Output("writing the output failed on rank 0".into())));
     }
     Ok(finish(engine, ck, stopped, resumed_from))
 }
@@ -470,6 +494,34 @@ fn write_increment(
         .map(|full| std::mem::replace(&mut ck.committed.gauss, full));
     let written = observer.increment(model, &ck.committed, &inc);
     ck.increments.push(inc);
+    let written = written.and_then(|()| observer.checkpoint(model, ck));
+    if let Some(local) = local {
+        ck.committed.gauss = local;
+    }
+    if !engine.backend.agree(written.is_ok()) {
+        return Err(written
+            .err()
+            .unwrap_or_else(|| Error::Output("writing the output failed on rank 0".into())));
+    }
+    Ok(())
+}
+
+/// The last converged state of a stopped run, handed to the observer again
+/// ([`Observer::last_state`]) with the checkpoint; collective like
+/// [`write_increment`].
+fn write_last_state(
+    engine: &Engine,
+    observer: &mut dyn Observer,
+    ck: &mut Checkpoint,
+) -> Result<()> {
+    let model = engine.model;
+    let local = engine
+        .gather_gauss(&ck.committed)
+        .map(|full| std::mem::replace(&mut ck.committed.gauss, full));
+    let written = match ck.increments.last() {
+        Some(inc) => observer.last_state(model, &ck.committed, inc),
+        None => Ok(()),
+    };
     let written = written.and_then(|()| observer.checkpoint(model, ck));
     if let Some(local) = local {
         ck.committed.gauss = local;

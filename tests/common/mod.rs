@@ -403,3 +403,69 @@ impl CaseText {
         text
     }
 }
+
+/// The values of the named `<DataArray>` of a VTU file the program wrote, as
+/// numbers, in either encoding: the text inside the tag (`ascii`), or the
+/// raw appended block at the tag's offset (`binary`: after the `_` that opens
+/// `<AppendedData encoding="raw">`, a UInt64 byte count, then the values,
+/// little-endian; Float64, Int64 or UInt8). Every size is checked against
+/// the file before it is read.
+pub fn vtu_array(path: &std::path::Path, name: &str) -> Vec<f64> {
+    let bytes = std::fs::read(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let appended = bytes
+        .windows(13)
+        .position(|w| w == b"<AppendedData")
+        .unwrap_or(bytes.len());
+    let xml = std::str::from_utf8(&bytes[..appended]).expect("the XML part is UTF-8");
+    let tag = format!("Name=\"{name}\"");
+    let start = xml
+        .find(&tag)
+        .map(|i| xml[..i].rfind('<').unwrap())
+        .unwrap_or_else(|| panic!("{}: no array {name}", path.display()));
+    let open = &xml[start..start + xml[start..].find('>').unwrap()];
+    let attr = |key: &str| {
+        let k = format!(" {key}=\"");
+        open.find(&k).map(|i| {
+            let v = &open[i + k.len()..];
+            v[..v.find('"').unwrap()].to_string()
+        })
+    };
+    match attr("format").as_deref() {
+        Some("ascii") => {
+            let body = &xml[start + open.len() + 1..];
+            body[..body.find("</DataArray>").unwrap()]
+                .split_whitespace()
+                .map(|v| v.parse().unwrap())
+                .collect()
+        }
+        Some("appended") => {
+            assert!(
+                xml.contains("header_type=\"UInt64\""),
+                "UInt64 block headers"
+            );
+            assert!(xml.contains("byte_order=\"LittleEndian\""));
+            let tail = &bytes[appended..];
+            assert!(tail.starts_with(b"<AppendedData encoding=\"raw\">"));
+            let underscore = appended + tail.iter().position(|&b| b == b'_').expect("the _ mark");
+            let offset: usize = attr("offset").expect("an offset").parse().unwrap();
+            let at = underscore + 1 + offset;
+            assert!(at + 8 <= bytes.len(), "{name}: offset past the end");
+            let count = u64::from_le_bytes(bytes[at..at + 8].try_into().unwrap()) as usize;
+            assert!(count <= bytes.len() - at - 8, "{name}: block past the end");
+            let block = &bytes[at + 8..at + 8 + count];
+            match attr("type").as_deref() {
+                Some("Float64") => block
+                    .chunks_exact(8)
+                    .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
+                    .collect(),
+                Some("Int64") => block
+                    .chunks_exact(8)
+                    .map(|c| i64::from_le_bytes(c.try_into().unwrap()) as f64)
+                    .collect(),
+                Some("UInt8") => block.iter().map(|&b| f64::from(b)).collect(),
+                t => panic!("{name}: type {t:?}"),
+            }
+        }
+        f => panic!("{}: {name} has format {f:?}", path.display()),
+    }
+}

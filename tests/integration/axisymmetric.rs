@@ -31,17 +31,6 @@ fn asperity(args: &[&std::ffi::OsStr]) -> String {
     String::from_utf8_lossy(&out.stdout).into_owned()
 }
 
-/// The values of the named array of a VTU document.
-fn array(vtu: &str, name: &str) -> Vec<f64> {
-    let tag = format!("Name=\"{name}\"");
-    let start = vtu.find(&tag).unwrap_or_else(|| panic!("no array {name}"));
-    let body = &vtu[start..];
-    let body = &body[body.find('>').unwrap() + 1..body.find("</DataArray>").unwrap()];
-    body.split_whitespace()
-        .map(|v| v.parse().unwrap())
-        .collect()
-}
-
 #[test]
 fn axisymmetric_outputs_state_the_revolution_and_carry_the_hoop_stress() {
     let case = common::case_dir("axisymmetric-outputs", &shaft());
@@ -62,8 +51,11 @@ fn axisymmetric_outputs_state_the_revolution_and_carry_the_hoop_stress() {
         .as_str()
         .unwrap()
         .contains("full revolution"));
-    let vtu = std::fs::read_to_string(out.join("vtu/0002.vtu")).unwrap();
-    let (stress, hoop) = (array(&vtu, "stress"), array(&vtu, "hoop_stress"));
+    let vtu = out.join("vtu/0002.vtu");
+    let (stress, hoop) = (
+        common::vtu_array(&vtu, "stress"),
+        common::vtu_array(&vtu, "hoop_stress"),
+    );
     assert_eq!(hoop.len() * 4, stress.len());
     for (n, h) in hoop.iter().enumerate() {
         assert_eq!(*h, stress[4 * n + 3], "node {n}");

@@ -18,6 +18,7 @@ mod help;
 mod joints;
 mod links;
 mod output_schema;
+mod output_writer;
 mod restart;
 mod robust;
 mod tables;

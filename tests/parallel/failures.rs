@@ -137,3 +137,73 @@ fn a_forged_restart_folder_is_refused_on_two_ranks() {
     assert!(err.contains("restart.bin"), "{err}");
     assert_eq!(std::fs::read_to_string(&victim).unwrap(), "keep me");
 }
+
+/// A write of rank 0's output thread that fails in the middle of a 2-rank
+/// run (its `vtu` folder replaced by a file once increment 3 is on disk):
+/// every rank ends at the next increment with one message, exit code 2, no
+/// hang, and no output left behind.
+#[test]
+fn a_failed_write_on_rank_0_ends_every_rank_cleanly() {
+    use std::time::{Duration, Instant};
+    let root = common::scratch("parallel-write-fails");
+    let out = root.join("out");
+    let err_file = root.join("stderr.txt");
+    let mut child = std::process::Command::new("mpirun")
+        .args(["-n", "2"])
+        .arg(env!("CARGO_BIN_EXE_asperity"))
+        .arg("run")
+        .arg(common::root().join("cases/punch-plane-stress"))
+        .args(["--refine", "2", "--increments", "80", "--quiet", "--out"])
+        .arg(&out)
+        .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
+        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
+        .env("OMPI_MCA_rmaps_base_oversubscribe", "1")
+        .env("OMPI_MCA_mpi_yield_when_idle", "1")
+        .env("OMPI_MCA_hwloc_base_binding_policy", "none")
+        .stdout(std::process::Stdio::null())
+        .stderr(std::fs::File::create(&err_file).unwrap())
+        .spawn()
+        .expect("mpirun is on PATH");
+    let started = Instant::now();
+    let partial = loop {
+        let found = std::fs::read_dir(&root)
+            .unwrap()
+            .filter_map(|e| e.ok())
+            .map(|e| e.path())
+            .find(|p| {
+                p.file_name()
+                    .is_some_and(|n| n.to_string_lossy().starts_with(".out.partial-"))
+                    && p.join("interface/0004.csv").exists()
+            });
+        if let Some(p) = found {
+            break p;
+        }
+        assert!(
+            child.try_wait().unwrap().is_none(),
+            "the run ended before increment 4: {}",
+            std::fs::read_to_string(&err_file).unwrap_or_default()
+        );
+        assert!(started.elapsed() < Duration::from_secs(120));
+        std::thread::sleep(Duration::from_millis(2));
+    };
+    std::fs::rename(partial.join("vtu"), root.join("vtu-moved")).unwrap();
+    std::fs::write(partial.join("vtu"), b"not a folder").unwrap();
+    let t = Instant::now();
+    let code = loop {
+        if let Some(s) = child.try_wait().unwrap() {
+            break s.code().unwrap_or(-1);
+        }
+        if t.elapsed() > Duration::from_secs(120) {
+            let _ = child.kill();
+            panic!("the ranks hang after a failed write");
+        }
+        std::thread::sleep(Duration::from_millis(10));
+    };
+    let err = std::fs::read_to_string(&err_file).unwrap();
+    assert_eq!(code, 2, "{err}");
+    assert_eq!(err.matches("error:").count(), 1, "{err}");
+    assert!(err.contains("vtu/0"), "{err}");
+    assert!(!err.contains("panick"), "{err}");
+    assert!(!out.exists(), "output left behind");
+    assert!(!partial.exists(), "partial output left behind");
+}

@@ -79,15 +79,7 @@ pub fn last_vtu_array(dir: &Path, name: &str) -> Vec<f64> {
         .filter(|p| p.extension().is_some_and(|x| x == "vtu"))
         .collect();
     files.sort();
-    let text = std::fs::read_to_string(files.last().expect("a .vtu file")).unwrap();
-    let start = text
-        .find(&format!("Name=\"{name}\""))
-        .unwrap_or_else(|| panic!("no {name} array"));
-    let body = &text[start..];
-    let body = &body[body.find('>').unwrap() + 1..body.find("</DataArray>").unwrap()];
-    body.split_whitespace()
-        .map(|v| v.parse().unwrap())
-        .collect()
+    crate::common::vtu_array(files.last().expect("a .vtu file"), name)
 }
 
 pub fn close(a: f64, b: f64, scale: f64) -> bool {
