@@ -147,7 +147,7 @@ impl<'a, 'm> StepProblem<'a, 'm> {
         let r0 = self.r_norm;
         let tol = self.engine.model.solver.residual_tolerance * self.reference;
         let wanted = self.method == Method::FullNewton && self.engine.model.solver.line_search;
-        if !wanted || !(r0.is_finite() && r0 > tol) || self.corrections < SEARCH_FROM {
+        if !(wanted && r0.is_finite() && r0 > tol) || self.corrections < SEARCH_FROM {
             return;
         }
         let n = x.len();
