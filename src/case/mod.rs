@@ -385,6 +385,10 @@ pub struct SolverSpec {
     /// Locate the load of first yield by root finding inside the increment where it occurs.
     #[serde(default = "yes")]
     pub locate_first_yield: bool,
+    /// Full Newton: a backtracking line search on the residual norm
+    /// (`solve::newton::StepProblem`); off by default.
+    #[serde(default)]
+    pub line_search: bool,
     /// "auto" or "off": contact stabilization of bodies held only through open
     /// interface pairs, or at zero load (see `solve::stabilize`).
     #[serde(default)]

@@ -283,6 +283,30 @@ fn serial_petsc1_and_petsc2_agree_across_a_gap_closed_under_force_control() {
     compare("punch-gap", "1");
 }
 
+/// The line search of full Newton (`[solver] line_search = true`, issue 29)
+/// on the rounded punch near its limit load, where it cuts steps: its
+/// decisions are collective, and it sits in `Problem::correct`, which SNES
+/// calls from its post-check, so every backend takes the same steps (and no
+/// cutback).
+#[test]
+fn serial_petsc1_and_petsc2_agree_with_the_line_search() {
+    let text = std::fs::read_to_string(common::root().join("cases/punch-rounded-strain/case.toml"))
+        .unwrap();
+    assert!(text.contains("\n[solver]\n"));
+    let text = text.replacen("\n[solver]\n", "\n[solver]\nline_search = true\n", 1);
+    let case = common::case_dir("parallel-line-search-case", &text);
+    let case = case.to_str().unwrap();
+    compare_on(case, "1", &[1, 2]);
+    // compare_on's output folders
+    let root = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("parallel-{}-1-2", case.replace('/', "-")));
+    for run in ["serial", "petsc1", "petsc2"] {
+        let s = json(&root.join(run));
+        assert_eq!(s["cutbacks"], 0, "{run}");
+        assert_eq!(s["increments"], 20, "{run}");
+    }
+}
+
 /// `--stop-after` under `mpirun -n 2` stops every rank at the same increment
 /// (collective decision), writes a partial folder, and `--restart` continues it
 /// to the uninterrupted run's result (to round-off: the Krylov history is not

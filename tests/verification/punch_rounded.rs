@@ -145,3 +145,80 @@ fn rounded_punch_first_yield_converges_at_order_above_1_5_on_refine_2_4_8() {
         );
     }
 }
+
+/// Every increment of a run of `cases/punch-rounded-strain` (as shipped, or
+/// with `[solver] line_search = true`), with the run's cutbacks and Newton
+/// iterations (those of failed attempts included).
+fn rounded_strain_run(line_search: bool) -> (Vec<Increment>, usize, usize) {
+    let path = common::root().join("cases/punch-rounded-strain");
+    let mut model =
+        driver::load_model(&path, &RunOptions::default()).unwrap_or_else(|e| panic!("{e}"));
+    model.solver.line_search = line_search;
+    let engine = driver::serial_engine(&model, model.solver.method).unwrap();
+    let r = solve::run_from(
+        engine,
+        &mut Silent,
+        Checkpoint::initial(&model),
+        Control { stop_after: None },
+    )
+    .unwrap_or_else(|e| panic!("line_search = {line_search}: {e}"));
+    (r.increments, r.cutbacks, r.stats.iterations)
+}
+
+/// Issue 29, contact status convergence (docs/performance.md): force control
+/// towards the plane-strain rounded punch's limit load. Plain full Newton's
+/// residual creeps up for 30 iterations at λ = 0.9, 0.95 and 1 (3 cutbacks,
+/// 299 iterations); the line search on the residual reaches λ = 1 in the
+/// case's 20 steps with no cutback and about a third of the iterations.
+/// Where both runs take the same steps (up to the plain run's first
+/// cutback) the converged answers agree within the Newton tolerance; past
+/// it the load paths differ (a cutback adds steps to a path-dependent
+/// plastic problem), which is not compared here.
+#[test]
+fn line_search_removes_the_cutbacks_of_the_rounded_punch_near_its_limit_load() {
+    let (plain, plain_cutbacks, n0) = rounded_strain_run(false);
+    let (searched, searched_cutbacks, n1) = rounded_strain_run(true);
+    eprintln!(
+        "punch-rounded-strain: plain {n0} iterations / {} increments, {plain_cutbacks} cutbacks; line search {n1} / {}, {searched_cutbacks}",
+        plain.len(),
+        searched.len()
+    );
+    assert!(
+        plain_cutbacks > 0,
+        "the plain run no longer cuts back: the test proves nothing"
+    );
+    assert_eq!(searched_cutbacks, 0);
+    assert_eq!(searched.len(), 20);
+    assert!(
+        2 * n1 < n0,
+        "{n1} iterations with the line search against {n0} without"
+    );
+    let same = plain.iter().take_while(|i| i.cutbacks == 0).count();
+    assert!(
+        same >= 15,
+        "only {same} increments before the first cutback"
+    );
+    for (a, b) in plain.iter().zip(&searched).take(same) {
+        assert_eq!(a.load_factor.to_bits(), b.load_factor.to_bits());
+        let (ma, mb) = (&a.measures, &b.measures);
+        for (what, x, y) in [
+            (
+                "center displacement",
+                ma.center_displacement,
+                mb.center_displacement,
+            ),
+            ("max peeq", ma.max_peeq, mb.max_peeq),
+            ("normal force", ma.normal_force, mb.normal_force),
+        ] {
+            let tol = 1e-8 * x.abs().max(y.abs()).max(1e-30);
+            assert!(
+                (x - y).abs() <= tol,
+                "increment {}: {what} {x} without, {y} with the line search",
+                a.increment
+            );
+        }
+    }
+    let (la, lb) = (plain.last().unwrap(), searched.last().unwrap());
+    assert_eq!(la.load_factor, 1.0);
+    assert_eq!(lb.load_factor, 1.0);
+}

@@ -19,6 +19,14 @@ const DIVERGENCE_AFTER: usize = 2;
 /// Contraction factor under which the displacement test uses the
 /// contraction's error bound ([`StepProblem::error_estimate`]).
 const FAST_CONTRACTION: f64 = 0.5;
+/// Sufficient decrease of the residual norm in the line search.
+const ARMIJO: f64 = 1e-4;
+/// Step cuts of the line search before it takes its best step.
+const BACKTRACKS: usize = 4;
+/// The first correction of a step (from the predictor or the committed
+/// state, where Gauss points pass from elastic to plastic) is taken whole:
+/// the line search applies from this correction on (0-based).
+const SEARCH_FROM: usize = 1;
 
 /// One load step as a [`Problem`]: the paper's residual, tangent, convergence
 /// rules and status check, driven by the built-in loop or by SNES.
@@ -40,6 +48,11 @@ pub struct StepProblem<'a, 'm> {
     r_norm: f64,
     reference: f64,
     anderson: Option<Anderson>,
+    /// The iterate of the last evaluation made by the line search and its
+    /// residual (free equations): the solver's next evaluation there reuses it.
+    searched: Option<(Vec<f64>, Vec<f64>)>,
+    /// Corrections made in this step.
+    corrections: usize,
     /// Set when the problem stops: the iteration count, or why it failed.
     outcome: Option<Result<usize, StepFailure>>,
 }
@@ -90,6 +103,8 @@ impl<'a, 'm> StepProblem<'a, 'm> {
             r_norm: f64::NAN,
             reference: 1.0,
             anderson,
+            searched: None,
+            corrections: 0,
             outcome: None,
         }
     }
@@ -108,6 +123,82 @@ impl<'a, 'm> StepProblem<'a, 'm> {
             theta / (1.0 - theta) * self.du_inf
         } else {
             self.du_inf
+        }
+    }
+
+    /// Full Newton with `[solver] line_search = true`: backtracking on the
+    /// residual norm (issue 29, docs/performance.md
+    /// "Contact status convergence"): the full correction is kept when it
+    /// lowers ‖R‖ (Armijo, [`ARMIJO`]) or changes a contact status (an
+    /// active-set step of the nonsmooth residual, whose norm is no guide);
+    /// else the step is cut (the minimum of a quadratic model of ½‖R‖²,
+    /// kept within [0.1, 0.5] of the last step) at most [`BACKTRACKS`]
+    /// times, and the step of the smallest residual is taken. Not searched:
+    /// the first correction of a step ([`SEARCH_FROM`]) and a correction
+    /// from an iterate whose residual already passes the residual test.
+    /// Only the path to the solution changes, not the convergence test:
+    /// the displacement test still bounds the error by the whole correction.
+    /// The residual is replicated on every rank, so the decisions are the
+    /// same everywhere (and agreed). The evaluation at the step taken is
+    /// kept for the solver's next one, which is there bit for bit (`x + du`,
+    /// as both the built-in loop and SNES's post-check add it): a correction
+    /// whose full step is taken costs no extra assembly.
+    fn line_search(&mut self, x: &[f64], du: &mut [f64]) {
+        let r0 = self.r_norm;
+        let tol = self.engine.model.solver.residual_tolerance * self.reference;
+        let wanted = self.method == Method::FullNewton && self.engine.model.solver.line_search;
+        if !(wanted && r0.is_finite() && r0 > tol) || self.corrections < SEARCH_FROM {
+            return;
+        }
+        let n = x.len();
+        let full = du.to_vec();
+        let (mut xt, mut rt) = (vec![0.0; n], vec![0.0; n]);
+        let mut alpha = 1.0;
+        let mut best = (f64::INFINITY, 1.0);
+        for cut in 0..=BACKTRACKS {
+            for k in 0..n {
+                du[k] = if alpha == 1.0 {
+                    full[k]
+                } else {
+                    alpha * full[k]
+                };
+                xt[k] = x[k] + du[k];
+            }
+            let ok = self.evaluate(&xt, &mut rt);
+            let merit = if ok { self.r_norm } else { f64::INFINITY };
+            if !ok {
+                self.outcome = None;
+            }
+            if merit < best.0 {
+                best = (merit, alpha);
+            }
+            // a step that changes contact statuses is an active-set step of
+            // a nonsmooth residual, whose norm says little: taken whole
+            let flips = ok && alpha == 1.0 && self.last_status.as_ref() != Some(&self.status);
+            let accept = self
+                .engine
+                .backend
+                .agree(ok && (flips || merit <= (1.0 - ARMIJO * alpha) * r0));
+            if accept {
+                self.searched = Some((xt, rt));
+                return;
+            }
+            if cut == BACKTRACKS {
+                break;
+            }
+            // φ(α) = ½‖R(x + α du)‖², φ'(0) = −‖R(x)‖² for a Newton correction
+            let (p0, pa) = (0.5 * r0 * r0, 0.5 * merit * merit);
+            let q = if merit.is_finite() {
+                r0 * r0 * alpha * alpha / (2.0 * (pa - p0 + r0 * r0 * alpha))
+            } else {
+                0.1 * alpha
+            };
+            alpha = q.clamp(0.1 * alpha, 0.5 * alpha);
+        }
+        // no step met the condition: the smallest residual seen
+        let a = best.1;
+        for k in 0..n {
+            du[k] = if a == 1.0 { full[k] } else { a * full[k] };
         }
     }
 
@@ -133,6 +224,12 @@ impl Problem for StepProblem<'_, '_> {
     }
 
     fn evaluate(&mut self, x: &[f64], r: &mut [f64]) -> bool {
+        if let Some((at, res)) = self.searched.take() {
+            if at.len() == x.len() && at.iter().zip(x).all(|(a, b)| a.to_bits() == b.to_bits()) {
+                r.copy_from_slice(&res);
+                return true;
+            }
+        }
         let t0 = std::time::Instant::now();
         for (k, &d) in self.free.iter().enumerate() {
             self.trial.u[d] = x[k];
@@ -253,15 +350,18 @@ impl Problem for StepProblem<'_, '_> {
     }
 
     fn correct(&mut self, x: &[f64], du: &mut [f64]) {
-        let e = &mut *self.engine;
-        e.stats.factorizations += 1;
+        self.engine.stats.factorizations += 1;
         if let Some(acc) = self.anderson.as_mut() {
             let mixed = acc.step(x, du);
             du.copy_from_slice(&mixed);
         }
+        // the displacement test bounds the error by the whole correction,
+        // not by the part of it a line search takes
         self.du_prev_inf = self.du_inf;
         self.du_inf = du.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-        e.stats.iterations += 1;
+        self.line_search(x, du);
+        self.corrections += 1;
+        self.engine.stats.iterations += 1;
     }
 
     fn stopped(&self) -> bool {
