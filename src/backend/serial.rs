@@ -81,6 +81,9 @@ enum Held {
 pub struct SerialDirect {
     symbolic_mat: SymbolicSparseColMat<usize>,
     kind: Factorization,
+    /// faer's parallelism for the numeric factorizations and the solves (and
+    /// their workspace sizes): `Seq` on one thread, else `Rayon(threads)`.
+    par: Par,
     cholesky: Option<Cholesky>,
     lu: Option<Lu>,
     held: Held,
@@ -156,8 +159,10 @@ fn check_memory(what: &str, bytes: f64, exact: bool) -> Result<()> {
 
 impl SerialDirect {
     /// Symbolic analysis (fill-reducing ordering, elimination tree, factor
-    /// structure) of the pattern for the given factorization.
-    pub fn new(pattern: &Pattern, kind: Factorization) -> Result<Self> {
+    /// structure) of the pattern for the given factorization, whose numeric
+    /// factorizations and solves use `threads` threads (faer's parallel
+    /// kernels on rayon's global pool).
+    pub fn new(pattern: &Pattern, kind: Factorization, threads: usize) -> Result<Self> {
         let symbolic_mat = SymbolicSparseColMat::new_checked(
             pattern.n,
             pattern.n,
@@ -168,6 +173,11 @@ impl SerialDirect {
         let mut s = SerialDirect {
             symbolic_mat,
             kind,
+            par: if threads > 1 {
+                Par::rayon(threads)
+            } else {
+                Par::Seq
+            },
             cholesky: None,
             lu: None,
             held: Held::None,
@@ -196,8 +206,8 @@ impl SerialDirect {
         )
         .map_err(|e| Error::Solver(format!("symbolic Cholesky failed: {e:?}")))?;
         let req = StackReq::any_of(&[
-            symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
-            symbolic.solve_in_place_scratch::<f64>(1, Par::Seq),
+            symbolic.factorize_numeric_llt_scratch::<f64>(self.par, Default::default()),
+            symbolic.solve_in_place_scratch::<f64>(1, self.par),
         ]);
         check_memory(
             "Cholesky factor and its workspace",
@@ -233,8 +243,8 @@ impl SerialDirect {
         let symbolic = factorize_symbolic_lu(self.symbolic_mat.as_ref(), Default::default())
             .map_err(|e| Error::Solver(format!("symbolic LU failed: {e:?}")))?;
         let req = StackReq::any_of(&[
-            symbolic.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default()),
-            symbolic.solve_in_place_scratch::<f64>(1, Par::Seq),
+            symbolic.factorize_numeric_lu_scratch::<f64>(self.par, Default::default()),
+            symbolic.solve_in_place_scratch::<f64>(1, self.par),
         ]);
         let work = MemBuffer::try_new(req).map_err(|_| oom("LU workspace"))?;
         Ok(Lu {
@@ -273,7 +283,7 @@ impl SerialDirect {
                 mat,
                 Side::Lower,
                 LltRegularization::default(),
-                Par::Seq,
+                self.par,
                 MemStack::new(&mut c.work),
                 Default::default(),
             );
@@ -292,7 +302,7 @@ impl SerialDirect {
             .factorize_numeric_lu::<f64>(
                 &mut lu.numeric,
                 mat,
-                Par::Seq,
+                self.par,
                 MemStack::new(&mut lu.work),
                 Default::default(),
             )
@@ -318,7 +328,7 @@ impl SerialDirect {
                 LltRef::new(&c.symbolic, &c.values).solve_in_place_with_conj(
                     Conj::No,
                     mat,
-                    Par::Seq,
+                    self.par,
                     MemStack::new(&mut c.work),
                 );
             }
@@ -327,7 +337,7 @@ impl SerialDirect {
                 LuRef::new_unchecked(&lu.symbolic, &lu.numeric).solve_in_place_with_conj(
                     Conj::No,
                     mat,
-                    Par::Seq,
+                    self.par,
                     MemStack::new(&mut lu.work),
                 );
             }
@@ -353,24 +363,25 @@ pub struct SerialBackend {
 }
 
 impl SerialBackend {
-    /// The backend with the factorization the model's tangent calls for.
-    pub fn new(model: &Model) -> Result<Self> {
+    /// The backend with the factorization the model's tangent calls for, on
+    /// `threads` threads.
+    pub fn new(model: &Model, threads: usize) -> Result<Self> {
         let kind = if model.symmetric_tangent() {
             Factorization::Cholesky
         } else {
             Factorization::Lu
         };
-        Self::with_factorization(model, kind)
+        Self::with_factorization(model, kind, threads)
     }
 
     /// The backend with a given factorization (LU works for every model;
-    /// Cholesky only for a symmetric tangent).
-    pub fn with_factorization(model: &Model, kind: Factorization) -> Result<Self> {
+    /// Cholesky only for a symmetric tangent), on `threads` threads.
+    pub fn with_factorization(model: &Model, kind: Factorization, threads: usize) -> Result<Self> {
         let blocks = model.blocks();
         let pattern = &Pattern::new(&model.dofs, &blocks);
         Ok(SerialBackend {
             asm: Assembler::new(pattern, &model.dofs, &blocks),
-            direct: SerialDirect::new(pattern, kind)?,
+            direct: SerialDirect::new(pattern, kind, threads)?,
             solid: None,
             vals: vec![0.0; pattern.nnz()],
         })
@@ -440,7 +451,7 @@ mod tests {
 
     fn solve(kind: Factorization, a: &[f64], b: &[f64]) -> (Result<Vec<f64>>, usize) {
         let n = b.len();
-        let mut d = SerialDirect::new(&dense(n), kind).unwrap();
+        let mut d = SerialDirect::new(&dense(n), kind, 1).unwrap();
         let mut x = b.to_vec();
         let r = d.factor(a).and_then(|()| d.solve(&mut x)).map(|()| x);
         (r, d.fallbacks)

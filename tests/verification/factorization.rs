@@ -14,7 +14,9 @@ const FRICTION_RM: &str = include_str!("../../cases/punch-friction-b/case.toml")
 /// Largest |K_ij − K_ji| over max |K| of the assembled tangent at a plastic
 /// state near the full load.
 fn asymmetry(model: &Model) -> f64 {
-    let mut engine = asperity::driver::serial_engine(model, Method::FullNewton).unwrap();
+    let mut engine =
+        asperity::driver::serial_engine(model, Method::FullNewton, asperity::threads::available())
+            .unwrap();
     let mut committed = State::initial(model);
     let mut state = committed.clone();
     for k in 1..=9 {
@@ -65,7 +67,7 @@ fn the_model_states_the_symmetry_the_assembled_tangent_has() {
 /// Every increment of a run on a given factorization: (load factor,
 /// iterations, displacements).
 fn run(model: &Model, kind: Factorization) -> (Vec<(f64, usize)>, Vec<f64>, String) {
-    let backend = Box::new(SerialBackend::with_factorization(model, kind).unwrap());
+    let backend = Box::new(SerialBackend::with_factorization(model, kind, 1).unwrap());
     let engine = Engine::with_backend(model, Method::FullNewton, backend);
     struct Keep(Vec<(f64, usize)>);
     impl asperity::solve::Observer for Keep {

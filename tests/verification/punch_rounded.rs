@@ -47,7 +47,8 @@ fn first_yield(case: &str, refine: usize, increments: usize) -> (f64, f64, usize
         ..RunOptions::default()
     };
     let model = driver::load_model(&path, &opts).unwrap_or_else(|e| panic!("{e}"));
-    let engine = driver::serial_engine(&model, model.solver.method).unwrap();
+    let engine =
+        driver::serial_engine(&model, model.solver.method, asperity::threads::available()).unwrap();
     let control = Control {
         stop_after: Some(increments),
     };
