@@ -66,7 +66,7 @@ fn median(mut v: Vec<f64>) -> f64 {
 /// The tangent (CSC values on the model's pattern) at a converged plastic
 /// state at load factor 0.3, reached in three steps on one thread.
 fn plastic_tangent(model: &Model) -> Vec<f64> {
-    let backend = SerialBackend::new(model, 1).unwrap();
+    let backend = SerialBackend::new(model).unwrap();
     let mut engine =
         asperity::solve::Engine::with_backend(model, Method::FullNewton, Box::new(backend));
     let mut state = State::initial(model);

@@ -100,12 +100,13 @@ pub fn load_model(case_path: &Path, opts: &RunOptions) -> Result<Model> {
     Model::build(case)
 }
 
-/// The serial backend's engine for a model, with the given method, on
-/// `threads` threads (the element loop and faer's factorization): the
-/// backend factory of a run on one process (the factorization follows the
-/// model's [`Model::symmetric_tangent`]).
+/// The serial backend's engine for a model, with the given method, its
+/// element loop on `threads` threads (the factorization on
+/// [`crate::backend::serial::FACTOR_THREADS`]): the backend factory of a run
+/// on one process (the factorization follows the model's
+/// [`Model::symmetric_tangent`]).
 pub fn serial_engine(model: &Model, method: Method, threads: usize) -> Result<Engine<'_>> {
-    let backend = crate::backend::serial::SerialBackend::new(model, threads)?;
+    let backend = crate::backend::serial::SerialBackend::new(model)?;
     let mut engine = Engine::with_backend(model, method, Box::new(backend));
     engine.set_threads(threads);
     Ok(engine)

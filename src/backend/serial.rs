@@ -351,6 +351,14 @@ impl SerialDirect {
     }
 }
 
+/// Threads of a run's numeric factorizations and solves: one, whatever
+/// `--threads` says. faer's parallel kernels (`Par::rayon(2)`) made them
+/// slower on every model measured, 1.6k to 209k dofs, Cholesky and LU
+/// (0.35-0.85x on 2 cores; docs/performance.md, "Threads in the one-process
+/// path"): a 2D mesh's factor is thousands of small supernodes, too small to
+/// split, and the idle pool's spinning slows the threaded element loop.
+pub const FACTOR_THREADS: usize = 1;
+
 /// The serial backend: CSC values on the fixed pattern, factored by [`SerialDirect`].
 pub struct SerialBackend {
     asm: Assembler,
@@ -363,25 +371,24 @@ pub struct SerialBackend {
 }
 
 impl SerialBackend {
-    /// The backend with the factorization the model's tangent calls for, on
-    /// `threads` threads.
-    pub fn new(model: &Model, threads: usize) -> Result<Self> {
+    /// The backend with the factorization the model's tangent calls for.
+    pub fn new(model: &Model) -> Result<Self> {
         let kind = if model.symmetric_tangent() {
             Factorization::Cholesky
         } else {
             Factorization::Lu
         };
-        Self::with_factorization(model, kind, threads)
+        Self::with_factorization(model, kind)
     }
 
     /// The backend with a given factorization (LU works for every model;
-    /// Cholesky only for a symmetric tangent), on `threads` threads.
-    pub fn with_factorization(model: &Model, kind: Factorization, threads: usize) -> Result<Self> {
+    /// Cholesky only for a symmetric tangent).
+    pub fn with_factorization(model: &Model, kind: Factorization) -> Result<Self> {
         let blocks = model.blocks();
         let pattern = &Pattern::new(&model.dofs, &blocks);
         Ok(SerialBackend {
             asm: Assembler::new(pattern, &model.dofs, &blocks),
-            direct: SerialDirect::new(pattern, kind, threads)?,
+            direct: SerialDirect::new(pattern, kind, FACTOR_THREADS)?,
             solid: None,
             vals: vec![0.0; pattern.nnz()],
         })

@@ -67,7 +67,7 @@ fn the_model_states_the_symmetry_the_assembled_tangent_has() {
 /// Every increment of a run on a given factorization: (load factor,
 /// iterations, displacements).
 fn run(model: &Model, kind: Factorization) -> (Vec<(f64, usize)>, Vec<f64>, String) {
-    let backend = Box::new(SerialBackend::with_factorization(model, kind, 1).unwrap());
+    let backend = Box::new(SerialBackend::with_factorization(model, kind).unwrap());
     let engine = Engine::with_backend(model, Method::FullNewton, backend);
     struct Keep(Vec<(f64, usize)>);
     impl asperity::solve::Observer for Keep {
