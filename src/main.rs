@@ -96,11 +96,9 @@ struct RunArgs {
     /// Override: friction scheme (return-mapping | stiffness-modification).
     #[arg(long, value_parser = parse_scheme)]
     friction_scheme: Option<asperity::interface::FrictionScheme>,
-    /// Threads of this process, 1 to 1024: the element loop and, on the
-    /// serial backend, the factorization and solves. Default: the
+    /// Threads of this process's element loop, 1 to 1024. Default: the
     /// ASPERITY_THREADS environment variable, else every core on one process
-    /// and 1 per rank under MPI. Results do not depend on it beyond
-    /// round-off (docs/running.md).
+    /// and 1 per rank under MPI. Results do not depend on it (docs/running.md).
     #[arg(long, value_name = "N")]
     threads: Option<String>,
     /// Linear-algebra backend: serial (faer), petsc (MPI; needs the `parallel`

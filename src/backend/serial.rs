@@ -161,7 +161,7 @@ impl SerialDirect {
     /// Symbolic analysis (fill-reducing ordering, elimination tree, factor
     /// structure) of the pattern for the given factorization, whose numeric
     /// factorizations and solves use `threads` threads (faer's parallel
-    /// kernels on rayon's global pool).
+    /// kernels on rayon's global pool; a run uses [`FACTOR_THREADS`]).
     pub fn new(pattern: &Pattern, kind: Factorization, threads: usize) -> Result<Self> {
         let symbolic_mat = SymbolicSparseColMat::new_checked(
             pattern.n,

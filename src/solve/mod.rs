@@ -197,8 +197,7 @@ pub struct RunResult {
     /// e.g. "faer sparse LU", "preonly + lu (mumps)", "cg + gamg".
     pub linear_solver: String,
     pub ranks: usize,
-    /// Threads of each process (the element loop; on one process also the
-    /// factorization).
+    /// Threads of each process's element loop.
     pub threads: usize,
     /// Peak resident memory summed over ranks (VmHWM), MB; 0 where unknown.
     pub peak_memory_mb: f64,
