@@ -355,7 +355,7 @@ impl SerialDirect {
 /// `--threads` says. faer's parallel kernels (`Par::rayon(2)`) made them
 /// slower on every model measured, 1.6k to 209k dofs, Cholesky and LU
 /// (0.35-0.85x on 2 cores; docs/performance.md, "Threads in the one-process
-/// path"): a 2D mesh's factor is thousands of small supernodes, too small to
+/// path"): a 2D mesh's factor is mostly small supernodes, too small to
 /// split, and the idle pool's spinning slows the threaded element loop.
 pub const FACTOR_THREADS: usize = 1;
 
