@@ -43,6 +43,10 @@ pub struct RunOptions {
     /// Serial backend only, library use (benchmarks): this factorization
     /// instead of the one the model's tangent calls for.
     pub factorization: Option<crate::backend::serial::Factorization>,
+    /// Threads of this process (`--threads`, `ASPERITY_THREADS`; see
+    /// [`crate::threads`]); `None`: every core on one process, one per rank
+    /// under MPI.
+    pub threads: Option<usize>,
 }
 
 /// Loads a case and applies command-line overrides.
@@ -99,18 +103,40 @@ pub fn load_model(case_path: &Path, opts: &RunOptions) -> Result<Model> {
     Model::build(case)
 }
 
-/// The serial backend's engine for a model, with the given method: the
-/// backend factory of a run on one process (the factorization follows the
-/// model's [`Model::symmetric_tangent`]).
-pub fn serial_engine(model: &Model, method: Method) -> Result<Engine<'_>> {
+/// The serial backend's engine for a model, with the given method, its
+/// element loop on `threads` threads (the factorization on
+/// [`crate::backend::serial::FACTOR_THREADS`]): the backend factory of a run
+/// on one process (the factorization follows the model's
+/// [`Model::symmetric_tangent`]).
+pub fn serial_engine(model: &Model, method: Method, threads: usize) -> Result<Engine<'_>> {
     let backend = crate::backend::serial::SerialBackend::new(model)?;
-    Ok(Engine::with_backend(model, method, Box::new(backend)))
+    let mut engine = Engine::with_backend(model, method, Box::new(backend));
+    engine.set_threads(threads);
+    Ok(engine)
+}
+
+/// [`serial_engine`] on a given factorization (benchmarks, tests).
+pub fn serial_engine_on(
+    model: &Model,
+    method: Method,
+    threads: usize,
+    kind: crate::backend::serial::Factorization,
+) -> Result<Engine<'_>> {
+    let backend = crate::backend::serial::SerialBackend::with_factorization(model, kind)?;
+    let mut engine = Engine::with_backend(model, method, Box::new(backend));
+    engine.set_threads(threads);
+    Ok(engine)
 }
 
 /// Runs the whole load history of a built model on the serial backend, with
-/// the model's method, reporting to `observer` (no output folder).
+/// the model's method, on every core, reporting to `observer` (no output
+/// folder).
 pub fn solve(model: &Model, observer: &mut dyn solve::Observer) -> Result<RunResult> {
-    solve::run_with(serial_engine(model, model.solver.method)?, observer)
+    let threads = crate::threads::available();
+    solve::run_with(
+        serial_engine(model, model.solver.method, threads)?,
+        observer,
+    )
 }
 
 /// The one place an engine is made ready for a run, whatever its backend:
@@ -130,12 +156,10 @@ pub fn run(case_path: &Path, opts: &RunOptions) -> Result<(PathBuf, Model, RunRe
     let started = Instant::now();
     let model = load_model(case_path, opts)?;
     let at_model = crate::solve::peak_memory_mb();
+    let threads = opts.threads.unwrap_or_else(crate::threads::available);
     let mut engine = match opts.factorization {
-        Some(kind) => {
-            let backend = crate::backend::serial::SerialBackend::with_factorization(&model, kind)?;
-            Engine::with_backend(&model, model.solver.method, Box::new(backend))
-        }
-        None => serial_engine(&model, model.solver.method)?,
+        Some(kind) => serial_engine_on(&model, model.solver.method, threads, kind)?,
+        None => serial_engine(&model, model.solver.method, threads)?,
     };
     prepare(&mut engine, opts, at_model);
     let (dir, result) = run_model(&model, engine, opts, true, started)?;
@@ -185,6 +209,7 @@ pub fn run_model(
             "method": model.solver.method.name(),
             "backend": engine.backend.name(),
             "ranks": engine.backend.ranks(),
+            "threads": engine.threads(),
             "planned": planned,
             "resumed_from": resumed,
             "load_factor": start.lambda,
@@ -192,7 +217,7 @@ pub fn run_model(
         }),
         || {
             let mut line = format!(
-                "asperity: {} — {} dofs, {} elements, {} interface pairs, {}, {} on {} rank(s) ({})",
+                "asperity: {} — {} dofs, {} elements, {} interface pairs, {}, {} on {} rank(s) × {} thread(s) ({})",
                 model.name,
                 model.mesh.num_dofs(),
                 model.mesh.elements.len(),
@@ -200,6 +225,7 @@ pub fn run_model(
                 model.solver.method.name(),
                 engine.backend.name(),
                 engine.backend.ranks(),
+                engine.threads(),
                 if planned > 0 {
                     format!("{planned} increments planned")
                 } else {

@@ -44,5 +44,6 @@ pub mod restart;
 pub mod schedule;
 pub mod solve;
 pub mod study;
+pub mod threads;
 
 pub use error::{Error, Result};

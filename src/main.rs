@@ -96,6 +96,11 @@ struct RunArgs {
     /// Override: friction scheme (return-mapping | stiffness-modification).
     #[arg(long, value_parser = parse_scheme)]
     friction_scheme: Option<asperity::interface::FrictionScheme>,
+    /// Threads of this process's element loop, 1 to 1024. Default: the
+    /// ASPERITY_THREADS environment variable, else every core on one process
+    /// and 1 per rank under MPI. Results do not depend on it (docs/running.md).
+    #[arg(long, value_name = "N")]
+    threads: Option<String>,
     /// Linear-algebra backend: serial (faer), petsc (MPI; needs the `parallel`
     /// feature), or auto: petsc when started by mpirun (with the feature built
     /// in), else serial, which is faster on one process at every size and
@@ -371,9 +376,10 @@ impl From<LogFormatArg> for LogFormat {
 }
 
 impl RunArgs {
-    /// The run's settings, as the driver takes them.
-    fn options(&self) -> RunOptions {
-        RunOptions {
+    /// The run's settings, as the driver takes them (the thread count
+    /// validated: `--threads`, else `ASPERITY_THREADS`).
+    fn options(&self) -> asperity::error::Result<RunOptions> {
+        Ok(RunOptions {
             out: self.out.clone(),
             quiet: self.quiet,
             method: self.method.map(Into::into),
@@ -391,13 +397,17 @@ impl RunArgs {
             snes: self.nonlinear == NonlinearArg::Snes,
             lean_memory: self.memory == MemoryArg::Lean,
             factorization: None,
-        }
+            threads: asperity::threads::requested(self.threads.as_deref())?,
+        })
     }
 }
 
 /// `asperity run`: the interrupt handler, then the backend's solve.
 fn run(args: RunArgs) -> ExitCode {
-    let opts = args.options();
+    let opts = match args.options() {
+        Ok(opts) => opts,
+        Err(e) => return fail(args.log_format.into(), &e.to_string()),
+    };
     if let Err(e) = asperity::interrupt::install() {
         eprintln!("warning: no SIGINT/SIGTERM handler ({e}); an interrupt kills the run");
     }

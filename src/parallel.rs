@@ -63,6 +63,8 @@ pub fn run(
             };
             let mut engine = Engine::with_backend(&model, model.solver.method, Box::new(backend));
             engine.nonlinear = snes.map(|s| Box::new(s) as Box<dyn NonlinearSolver>);
+            // the ranks share the cores: one thread each unless asked
+            engine.set_threads(opts.threads.unwrap_or(1));
             driver::prepare(&mut engine, opts, at_model);
             driver::run_model(&model, engine, opts, root, started)
         };

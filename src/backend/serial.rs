@@ -80,10 +80,10 @@ struct Cholesky {
 impl Cholesky {
     /// Allocates the factor and workspace of a symbolic analysis, within the
     /// memory budget.
-    fn new(symbolic: SymbolicCholesky<usize>) -> Result<Self> {
+    fn new(symbolic: SymbolicCholesky<usize>, par: Par) -> Result<Self> {
         let req = StackReq::any_of(&[
-            symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
-            symbolic.solve_in_place_scratch::<f64>(1, Par::Seq),
+            symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
+            symbolic.solve_in_place_scratch::<f64>(1, par),
         ]);
         check_memory(
             "Cholesky factor and its workspace",
@@ -131,6 +131,9 @@ pub struct SerialDirect {
     pub factorizations: usize,
     /// Cholesky factorizations that met a non-positive pivot and were redone by LU.
     pub fallbacks: usize,
+    /// faer's parallelism for the numeric factorizations and the solves (and
+    /// their workspace sizes): `Seq` on one thread, else `Rayon(threads)`.
+    par: Par,
     /// The interface equations ([`Factorization::SymmetricPart`]), in the
     /// order of [`Inverse::interface`].
     interface: Vec<usize>,
@@ -206,9 +209,11 @@ fn check_memory(what: &str, bytes: f64, exact: bool) -> Result<()> {
 
 impl SerialDirect {
     /// Symbolic analysis (fill-reducing ordering, elimination tree, factor
-    /// structure) of the pattern for the given factorization.
-    pub fn new(pattern: &Pattern, kind: Factorization) -> Result<Self> {
-        Self::with_interface(pattern, kind, Vec::new())
+    /// structure) of the pattern for the given factorization, whose numeric
+    /// factorizations and solves use `threads` threads (faer's parallel
+    /// kernels on rayon's global pool; a run uses [`FACTOR_THREADS`]).
+    pub fn new(pattern: &Pattern, kind: Factorization, threads: usize) -> Result<Self> {
+        Self::with_interface(pattern, kind, Vec::new(), threads)
     }
 
     /// [`SerialDirect::new`] given the interface equations (for
@@ -218,6 +223,7 @@ impl SerialDirect {
         pattern: &Pattern,
         kind: Factorization,
         interface: Vec<usize>,
+        threads: usize,
     ) -> Result<Self> {
         let symbolic_mat = SymbolicSparseColMat::new_checked(
             pattern.n,
@@ -234,6 +240,11 @@ impl SerialDirect {
             held: Held::None,
             factorizations: 0,
             fallbacks: 0,
+            par: if threads > 1 {
+                Par::rayon(threads)
+            } else {
+                Par::Seq
+            },
             interface,
             trailing: None,
             scratch: Vec::new(),
@@ -241,7 +252,7 @@ impl SerialDirect {
         match kind {
             Factorization::Cholesky => {
                 let symbolic = s.symbolic_cholesky(SymmetricOrdering::Amd)?;
-                s.cholesky = Some(Cholesky::new(symbolic)?);
+                s.cholesky = Some(Cholesky::new(symbolic, s.par)?);
             }
             Factorization::SymmetricPart => {
                 let plain = s.symbolic_cholesky(SymmetricOrdering::Amd)?;
@@ -263,7 +274,7 @@ impl SerialDirect {
                         }
                     }
                 }
-                s.cholesky = Some(Cholesky::new(chosen)?);
+                s.cholesky = Some(Cholesky::new(chosen, s.par)?);
             }
             Factorization::Lu => s.lu = Some(s.analyse_lu()?),
         }
@@ -311,8 +322,8 @@ impl SerialDirect {
         let symbolic = factorize_symbolic_lu(self.symbolic_mat.as_ref(), Default::default())
             .map_err(|e| Error::Solver(format!("symbolic LU failed: {e:?}")))?;
         let req = StackReq::any_of(&[
-            symbolic.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default()),
-            symbolic.solve_in_place_scratch::<f64>(1, Par::Seq),
+            symbolic.factorize_numeric_lu_scratch::<f64>(self.par, Default::default()),
+            symbolic.solve_in_place_scratch::<f64>(1, self.par),
         ]);
         let work = MemBuffer::try_new(req).map_err(|_| oom("LU workspace"))?;
         Ok(Lu {
@@ -361,7 +372,7 @@ impl SerialDirect {
             mat,
             Side::Lower,
             LltRegularization::default(),
-            Par::Seq,
+            self.par,
             MemStack::new(&mut c.work),
             Default::default(),
         );
@@ -390,7 +401,7 @@ impl SerialDirect {
             .factorize_numeric_lu::<f64>(
                 &mut lu.numeric,
                 mat,
-                Par::Seq,
+                self.par,
                 MemStack::new(&mut lu.work),
                 Default::default(),
             )
@@ -415,7 +426,7 @@ impl SerialDirect {
                 LltRef::new(&c.symbolic, &c.values).solve_in_place_with_conj(
                     Conj::No,
                     mat,
-                    Par::Seq,
+                    self.par,
                     MemStack::new(&mut c.work),
                 );
             }
@@ -424,7 +435,7 @@ impl SerialDirect {
                 LuRef::new_unchecked(&lu.symbolic, &lu.numeric).solve_in_place_with_conj(
                     Conj::No,
                     mat,
-                    Par::Seq,
+                    self.par,
                     MemStack::new(&mut lu.work),
                 );
             }
@@ -479,6 +490,14 @@ impl Inverse for SerialDirect {
         self.scratch = w;
     }
 }
+
+/// Threads of a run's numeric factorizations and solves: one, whatever
+/// `--threads` says. faer's parallel kernels (`Par::rayon(2)`) made them
+/// slower on every model measured, 1.6k to 209k dofs, Cholesky and LU
+/// (0.35-0.85x on 2 cores; docs/performance.md, "Threads in the one-process
+/// path"): a 2D mesh's factor is mostly small supernodes, too small to
+/// split, and the idle pool's spinning slows the threaded element loop.
+pub const FACTOR_THREADS: usize = 1;
 
 fn check_finite(values: &[f64]) -> Result<()> {
     if values.iter().any(|v| !v.is_finite()) {
@@ -568,7 +587,7 @@ impl SerialBackend {
         }
         Ok(SerialBackend {
             asm: Assembler::new(pattern, &model.dofs, &blocks),
-            direct: SerialDirect::with_interface(pattern, kind, interface)?,
+            direct: SerialDirect::with_interface(pattern, kind, interface, FACTOR_THREADS)?,
             solid: None,
             vals: vec![0.0; pattern.nnz()],
             eq_of: model.dofs.eq.clone(),
@@ -719,7 +738,7 @@ mod tests {
 
     fn solve(kind: Factorization, a: &[f64], b: &[f64]) -> (Result<Vec<f64>>, usize) {
         let n = b.len();
-        let mut d = SerialDirect::new(&dense(n), kind).unwrap();
+        let mut d = SerialDirect::new(&dense(n), kind, 1).unwrap();
         let mut x = b.to_vec();
         let r = d.factor(a).and_then(|()| d.solve(&mut x)).map(|()| x);
         (r, d.fallbacks)
@@ -770,7 +789,7 @@ mod tests {
         let (pattern, vals) = grid(g);
         let iface: Vec<usize> = (0..g).map(|x| 4 * g + x).collect();
         let mut d =
-            SerialDirect::with_interface(&pattern, Factorization::SymmetricPart, iface.clone())
+            SerialDirect::with_interface(&pattern, Factorization::SymmetricPart, iface.clone(), 1)
                 .unwrap();
         assert!(d.interface_last(), "a separator is cheap to order last");
         assert!(d.factor_cholesky(&vals).unwrap());

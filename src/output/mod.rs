@@ -437,6 +437,7 @@ pub fn summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
         "method": model.solver.method.name(),
         "backend": r.backend,
         "ranks": r.ranks,
+        "threads": r.threads,
         "nonlinear_solver": r.nonlinear_solver,
         "linear_solver": r.linear_solver,
         "backend_stats": r.backend_stats.iter().cloned().collect::<std::collections::BTreeMap<_, _>>(),

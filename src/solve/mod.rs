@@ -210,6 +210,8 @@ pub struct RunResult {
     /// e.g. "faer sparse LU", "preonly + lu (mumps)", "cg + gamg".
     pub linear_solver: String,
     pub ranks: usize,
+    /// Threads of each process's element loop.
+    pub threads: usize,
     /// Peak resident memory summed over ranks (VmHWM), MB; 0 where unknown.
     pub peak_memory_mb: f64,
     pub backend_stats: Vec<(String, f64)>,
@@ -581,6 +583,7 @@ fn finish(
         peak_memory_mb: memory[0],
         backend: engine.backend.name().to_string(),
         ranks: engine.backend.ranks(),
+        threads: engine.threads(),
         linear_solver: engine
             .nonlinear
             .as_ref()

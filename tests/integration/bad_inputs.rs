@@ -8,6 +8,9 @@
 //! output folder nor a `.partial` folder behind. `asperity check <folder>` must
 //! then either accept the case (the failure is one of solving, not of the input)
 //! or fail with the very same line. Failures are collected and reported together.
+//! A folder whose bad input is a run option rather than the case holds a valid
+//! case and `args.txt` (more `run` arguments, one a line) and/or `env.txt`
+//! (`NAME=value` lines for the run's environment); `check` must accept its case.
 //! See docs/reliability.md.
 
 use std::path::{Path, PathBuf};
@@ -24,8 +27,13 @@ struct Outcome {
     seconds: f64,
 }
 
-/// Runs the binary with a time limit; a process that overruns is killed.
-fn asperity(args: &[&std::ffi::OsStr]) -> Outcome {
+/// Environment variables a folder's `env.txt` may set: removed from every run,
+/// so that the corpus does not depend on the caller's environment.
+const OPTION_VARS: [&str; 1] = ["ASPERITY_THREADS"];
+
+/// Runs the binary with a time limit and extra environment variables; a
+/// process that overruns is killed.
+fn asperity(args: &[&std::ffi::OsStr], env: &[(String, String)]) -> Outcome {
     let started = Instant::now();
     let dir = std::env::temp_dir();
     let tag = format!(
@@ -38,8 +46,13 @@ fn asperity(args: &[&std::ffi::OsStr]) -> Outcome {
         dir.join(format!("{tag}.out")),
         dir.join(format!("{tag}.err")),
     );
-    let mut child = Command::new(env!("CARGO_BIN_EXE_asperity"))
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_asperity"));
+    for v in OPTION_VARS {
+        cmd.env_remove(v);
+    }
+    let mut child = cmd
         .args(args)
+        .envs(env.iter().map(|(k, v)| (k, v)))
         .stdin(Stdio::null())
         .stdout(std::fs::File::create(&out_path).unwrap())
         .stderr(std::fs::File::create(&err_path).unwrap())
@@ -139,13 +152,31 @@ fn every_bad_input_is_rejected_with_one_clear_line() {
         let parent = scratch.join(&name);
         std::fs::create_dir_all(&parent).unwrap();
         let out = parent.join("out");
-        let run = asperity(&[
+        let lines = |file: &str| -> Vec<String> {
+            std::fs::read_to_string(folder.join(file))
+                .map(|s| s.lines().map(str::to_string).collect())
+                .unwrap_or_default()
+        };
+        let extra = lines("args.txt");
+        let mut env = Vec::new();
+        for line in lines("env.txt") {
+            match line.split_once('=') {
+                Some((k, v)) if OPTION_VARS.contains(&k) => env.push((k.into(), v.into())),
+                _ => failures.push(format!(
+                    "{name}: env.txt: {line:?} is not NAME=value of {OPTION_VARS:?}"
+                )),
+            }
+        }
+        let options = !extra.is_empty() || !env.is_empty();
+        let mut args: Vec<&std::ffi::OsStr> = vec![
             "run".as_ref(),
             folder.as_os_str(),
             "--out".as_ref(),
             out.as_os_str(),
             "--quiet".as_ref(),
-        ]);
+        ];
+        args.extend(extra.iter().map(std::ffi::OsStr::new));
+        let run = asperity(&args, &env);
         judge("run", &run, &expect, &mut problems);
         if out.exists() {
             problems.push(format!("run: output folder {} left behind", out.display()));
@@ -161,8 +192,18 @@ fn every_bad_input_is_rejected_with_one_clear_line() {
         }
         // `check` validates without solving: it fails with the same line, or it
         // accepts a case whose trouble only shows when solving
-        let check = asperity(&["check".as_ref(), folder.as_os_str()]);
+        let check = asperity(&["check".as_ref(), folder.as_os_str()], &[]);
         match check.code {
+            // the case is valid: the run's options are what is wrong
+            _ if options => {
+                checked_only += 1;
+                if check.code != Some(0) {
+                    problems.push(format!(
+                        "check rejected the case of a folder whose run options are the bad input: {:?}",
+                        check.stderr
+                    ));
+                }
+            }
             Some(0) => {
                 checked_only += 1;
                 let solving = ["did not converge", "linear solver"];

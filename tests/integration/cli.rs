@@ -193,3 +193,43 @@ fn a_matching_and_a_non_matching_interface_side_by_side_run() {
     assert_eq!(code, 0, "{err}");
     assert!(out.join("summary.json").is_file());
 }
+
+/// The thread count: `--threads`, else `ASPERITY_THREADS`, else every core;
+/// summary.json and the start event report the count used (bad counts: the
+/// corpus, tests/bad_inputs/370-378).
+#[test]
+fn the_thread_count_is_chosen_and_reported() {
+    let case = common::root().join("cases/punch-plane-stress");
+    let out = common::scratch("thread-count").join("out");
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    for (args, env, expected) in [
+        (&[][..], None, cores),
+        (&[][..], Some("3"), 3),
+        (&["--threads", "1"][..], None, 1),
+        (&["--threads", "2"][..], Some("3"), 2),
+    ] {
+        let mut cmd = Command::new(env!("CARGO_BIN_EXE_asperity"));
+        cmd.args([
+            "run",
+            case.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .args(["--increments", "2", "--log-format", "json"])
+        .args(args)
+        .env_remove("ASPERITY_THREADS");
+        if let Some(v) = env {
+            cmd.env("ASPERITY_THREADS", v);
+        }
+        let run = cmd.output().unwrap();
+        let err = String::from_utf8_lossy(&run.stderr);
+        assert!(run.status.success(), "{args:?} {env:?}: {err}");
+        let start: serde_json::Value = serde_json::from_str(err.lines().next().unwrap()).unwrap();
+        assert_eq!(start["event"], "start", "{err}");
+        assert_eq!(start["threads"], expected, "{args:?} {env:?}");
+        let summary: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
+                .unwrap();
+        assert_eq!(summary["threads"], expected, "{args:?} {env:?}");
+    }
+}

@@ -14,7 +14,9 @@ const FRICTION_RM: &str = include_str!("../../cases/punch-friction-b/case.toml")
 /// Largest |K_ij − K_ji| over max |K| of the assembled tangent at a plastic
 /// state near the full load.
 fn asymmetry(model: &Model) -> f64 {
-    let mut engine = asperity::driver::serial_engine(model, Method::FullNewton).unwrap();
+    let mut engine =
+        asperity::driver::serial_engine(model, Method::FullNewton, asperity::threads::available())
+            .unwrap();
     let mut committed = State::initial(model);
     let mut state = committed.clone();
     for k in 1..=9 {

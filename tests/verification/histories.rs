@@ -55,7 +55,9 @@ fn field_difference(a: &[f64], b: &[f64]) -> f64 {
 /// The support reactions (residual at the prescribed dofs) of a converged
 /// state, summed in x and in y.
 fn reactions(model: &Model, r: &RunResult) -> [f64; 2] {
-    let mut engine = asperity::driver::serial_engine(model, model.solver.method).unwrap();
+    let mut engine =
+        asperity::driver::serial_engine(model, model.solver.method, asperity::threads::available())
+            .unwrap();
     let t = r.increments.last().unwrap().load_factor;
     let res = engine
         .linearize(&r.final_state, &r.final_state.u, t)

@@ -29,3 +29,4 @@ mod shrink_fit;
 mod stepping;
 mod tables;
 mod tangents;
+mod threads;

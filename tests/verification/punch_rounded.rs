@@ -47,7 +47,8 @@ fn first_yield(case: &str, refine: usize, increments: usize) -> (f64, f64, usize
         ..RunOptions::default()
     };
     let model = driver::load_model(&path, &opts).unwrap_or_else(|e| panic!("{e}"));
-    let engine = driver::serial_engine(&model, model.solver.method).unwrap();
+    let engine =
+        driver::serial_engine(&model, model.solver.method, asperity::threads::available()).unwrap();
     let control = Control {
         stop_after: Some(increments),
     };
@@ -154,7 +155,7 @@ fn rounded_strain_run(line_search: bool) -> (Vec<Increment>, usize, usize) {
     let mut model =
         driver::load_model(&path, &RunOptions::default()).unwrap_or_else(|e| panic!("{e}"));
     model.solver.line_search = line_search;
-    let engine = driver::serial_engine(&model, model.solver.method).unwrap();
+    let engine = driver::serial_engine(&model, model.solver.method, 1).unwrap();
     let r = solve::run_from(
         engine,
         &mut Silent,

@@ -213,7 +213,12 @@ fn assembled_tangent_matches_finite_differences_of_the_residual() {
     for (plane, base) in [("stress", PUNCH), ("strain", PUNCH), ("stress", friction)] {
         let text = base.replace("plane = \"stress\"", &format!("plane = \"{plane}\""));
         let model = common::model(&text);
-        let mut engine = asperity::driver::serial_engine(&model, Method::FullNewton).unwrap();
+        let mut engine = asperity::driver::serial_engine(
+            &model,
+            Method::FullNewton,
+            asperity::threads::available(),
+        )
+        .unwrap();
         let committed = State::initial(&model);
         // a converged plastic state to linearize around: solve to a high load
         let (state, _) = engine.step(&committed, 1.0, Response::Plastic).unwrap();

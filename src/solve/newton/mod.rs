@@ -28,6 +28,14 @@ use crate::model::Model;
 
 /// Points per reduction in `Engine::share_state` and `Engine::gather_gauss`.
 const SHARE_CHUNK: usize = 8192;
+/// Elements per batch of the element loop ([`Engine::assemble_solids`]): the
+/// batch's element forces and tangents (272 numbers per element, 4.5 MB) are
+/// the only memory the threads add.
+const ELEMENT_BATCH: usize = 2048;
+/// Fewest elements one thread of the element loop is given (a smaller batch
+/// takes fewer threads): starting a thread costs about as much as computing
+/// a few elastic elements.
+const MIN_ELEMENTS_PER_THREAD: usize = 128;
 /// Approach (mm) above which a pair counts as "at zero approach or beyond" for
 /// the secant start of eq. 2.8-2.9 in the first iteration of a step.
 const ZERO_APPROACH: f64 = 1e-12;
@@ -72,6 +80,11 @@ pub struct Engine<'m> {
     held: Vec<u32>,
     /// Contact stabilization of floating bodies ([`super::stabilize`]).
     pub stabilizer: Option<Stabilizer>,
+    /// Threads of the element loop ([`Engine::set_threads`]).
+    threads: usize,
+    /// One batch's element forces and tangents ([`ELEMENT_BATCH`]).
+    fe_batch: Vec<[f64; 16]>,
+    ke_batch: Vec<[f64; 256]>,
 }
 
 impl<'m> Engine<'m> {
@@ -101,7 +114,21 @@ impl<'m> Engine<'m> {
             assemblies: 0,
             held,
             stabilizer: Some(Stabilizer::new(model)),
+            threads: 1,
+            fe_batch: Vec::new(),
+            ke_batch: Vec::new(),
         }
+    }
+
+    /// Runs the element loop on `threads` threads (at least 1; 1 when
+    /// made). The result does not depend on it: see [`Engine::assemble_solids`].
+    pub fn set_threads(&mut self, threads: usize) {
+        self.threads = threads.max(1);
+    }
+
+    /// Threads of the element loop.
+    pub fn threads(&self) -> usize {
+        self.threads
     }
 
     /// The elements whose Gauss states this process holds, ascending.
@@ -392,6 +419,18 @@ impl<'m> Engine<'m> {
     /// `self.r`, Gauss states into `trial`, element tangents into the backend
     /// when `solid_tangent` asks for them. Returns this rank's failure (a
     /// return mapping, or an injected fault), not yet shared.
+    ///
+    /// Threaded, with a result independent of the thread count, bit for bit:
+    /// the held elements are taken in batches of [`ELEMENT_BATCH`]; a batch is
+    /// cut into contiguous chunks, one per thread, and each thread computes
+    /// its chunk's element forces and tangents into the batch buffers and its
+    /// elements' Gauss states into its own slice of `trial.gauss` (an
+    /// element's numbers depend on that element alone). Then this thread adds
+    /// them into `self.r` and the backend in element order, as one thread
+    /// would. A chunk stops at its first failing element; the first failure
+    /// in element order gives the message, the elements before it are added
+    /// and no later batch is computed, as on one thread (later elements of
+    /// the batch may hold trial Gauss states, in a trial that is discarded).
     fn assemble_solids(
         &mut self,
         committed: &State,
@@ -406,41 +445,62 @@ impl<'m> Engine<'m> {
         if solid_tangent.is_some() {
             be.begin_solid().map_err(err)?;
         }
-        let (mut fe, mut ke) = ([0.0; 16], [0.0; 256]);
+        let n = self.held.len();
+        let batch = n.min(ELEMENT_BATCH);
+        if self.fe_batch.len() < batch {
+            self.fe_batch.resize(batch, [0.0; 16]);
+        }
+        if solid_tangent.is_some() && self.ke_batch.len() < batch {
+            self.ke_batch.resize(batch, [0.0; 256]);
+        }
         let mut failure: Option<String> = None;
         let mut dofs = [0usize; 16];
-        for (k, &e) in self.held.iter().enumerate() {
-            let e = e as usize;
-            let el = &m.mesh.elements[e];
-            let ue = m.element_u(e, &trial.u);
-            let gs = k * ng..(k + 1) * ng;
-            let committed_gp: &[PointState] = &committed.gauss[gs.clone()];
-            if let Err(msg) = element_forces(
-                &m.geometry(e),
-                &m.materials[el.body],
-                &ue,
-                committed_gp,
-                &mut trial.gauss[gs],
+        let mut b0 = 0;
+        while b0 < n && failure.is_none() {
+            let b1 = (b0 + ELEMENT_BATCH).min(n);
+            let len = b1 - b0;
+            let fe = &mut self.fe_batch[..len];
+            let ke = if solid_tangent.is_some() {
+                &mut self.ke_batch[..len]
+            } else {
+                &mut self.ke_batch[..0]
+            };
+            let first = element_batch(
+                m,
+                &self.held[b0..b1],
+                &committed.gauss[b0 * ng..b1 * ng],
+                &mut trial.gauss[b0 * ng..b1 * ng],
+                &trial.u,
                 response,
                 solid_tangent,
-                &mut fe,
-                &mut ke,
-            ) {
+                fe,
+                ke,
+                self.threads,
+            );
+            let done = first.as_ref().map_or(len, |f| f.0);
+            for i in 0..done {
+                let el = &m.mesh.elements[self.held[b0 + i] as usize];
+                let fe = &self.fe_batch[i];
+                for (a, &n) in el.nodes.iter().enumerate() {
+                    self.r[2 * n] += fe[2 * a];
+                    self.r[2 * n + 1] += fe[2 * a + 1];
+                    dofs[2 * a] = 2 * n;
+                    dofs[2 * a + 1] = 2 * n + 1;
+                }
+                if solid_tangent.is_some() {
+                    be.add_solid(self.held[b0 + i] as usize, &dofs, &self.ke_batch[i])
+                        .map_err(err)?;
+                }
+            }
+            if let Some((i, msg)) = first {
+                let e = self.held[b0 + i] as usize;
+                let body = m.mesh.elements[e].body;
                 failure = Some(format!(
                     "element {e} (body \"{}\"): {msg}",
-                    m.mesh.bodies[el.body]
+                    m.mesh.bodies[body]
                 ));
-                break;
             }
-            for (a, &n) in el.nodes.iter().enumerate() {
-                self.r[2 * n] += fe[2 * a];
-                self.r[2 * n + 1] += fe[2 * a + 1];
-                dofs[2 * a] = 2 * n;
-                dofs[2 * a + 1] = 2 * n + 1;
-            }
-            if solid_tangent.is_some() {
-                be.add_solid(e, &dofs, &ke).map_err(err)?;
-            }
+            b0 = b1;
         }
         if self
             .fault
@@ -537,4 +597,100 @@ impl<'m> Engine<'m> {
         }
         Ok(codes)
     }
+}
+
+/// Element forces (and tangents, when `tangent` asks and `ke` has room) of
+/// the elements `ids` into `fe`/`ke`, their Gauss states into `trial` (`ng`
+/// per element, as `committed`), on up to `threads` threads: contiguous
+/// chunks, the first on this thread. Returns the first failing element in
+/// order (its position in `ids`) and the message.
+#[allow(clippy::too_many_arguments)]
+fn element_batch(
+    m: &Model,
+    ids: &[u32],
+    committed: &[PointState],
+    trial: &mut [PointState],
+    u: &[f64],
+    response: Response,
+    tangent: Option<Tangent>,
+    fe: &mut [[f64; 16]],
+    ke: &mut [[f64; 256]],
+    threads: usize,
+) -> Option<(usize, String)> {
+    let len = ids.len();
+    let ng = m.n_gauss();
+    let t = threads.min(len.div_ceil(MIN_ELEMENTS_PER_THREAD)).max(1);
+    if t == 1 {
+        return element_chunk(m, ids, committed, trial, u, response, tangent, fe, ke);
+    }
+    let per = len.div_ceil(t);
+    // ke is empty without a tangent: every chunk then gets an empty slice
+    let ke_per = if ke.is_empty() { usize::MAX } else { per };
+    let mut ke_chunks: Vec<&mut [[f64; 256]]> = ke.chunks_mut(ke_per).collect();
+    ke_chunks.resize_with(ids.chunks(per).len(), || &mut []);
+    let mut chunks = ids
+        .chunks(per)
+        .zip(committed.chunks(per * ng))
+        .zip(trial.chunks_mut(per * ng))
+        .zip(fe.chunks_mut(per))
+        .zip(ke_chunks)
+        .enumerate()
+        .map(|(c, ((((ids, cg), tg), fe), ke))| (c * per, ids, cg, tg, fe, ke));
+    let (_, ids0, cg0, tg0, fe0, ke0) = chunks.next().expect("a batch holds an element");
+    std::thread::scope(|s| {
+        let others: Vec<_> = chunks
+            .map(|(at, ids, cg, tg, fe, ke)| {
+                s.spawn(move || {
+                    element_chunk(m, ids, cg, tg, u, response, tangent, fe, ke)
+                        .map(|(i, msg)| (at + i, msg))
+                })
+            })
+            .collect();
+        let first = element_chunk(m, ids0, cg0, tg0, u, response, tangent, fe0, ke0);
+        // every thread is joined; the earliest chunk that failed holds the
+        // first failing element
+        let rest: Vec<_> = others
+            .into_iter()
+            .map(|h| h.join().unwrap_or_else(|p| std::panic::resume_unwind(p)))
+            .collect();
+        first.or_else(|| rest.into_iter().flatten().next())
+    })
+}
+
+/// [`element_batch`] on one thread: stops at the first failing element.
+#[allow(clippy::too_many_arguments)]
+fn element_chunk(
+    m: &Model,
+    ids: &[u32],
+    committed: &[PointState],
+    trial: &mut [PointState],
+    u: &[f64],
+    response: Response,
+    tangent: Option<Tangent>,
+    fe: &mut [[f64; 16]],
+    ke: &mut [[f64; 256]],
+) -> Option<(usize, String)> {
+    let ng = m.n_gauss();
+    let mut scratch = [0.0; 256];
+    for (i, &e) in ids.iter().enumerate() {
+        let e = e as usize;
+        let el = &m.mesh.elements[e];
+        let ue = m.element_u(e, u);
+        let gs = i * ng..(i + 1) * ng;
+        let ke = ke.get_mut(i).unwrap_or(&mut scratch);
+        if let Err(msg) = element_forces(
+            &m.geometry(e),
+            &m.materials[el.body],
+            &ue,
+            &committed[gs.clone()],
+            &mut trial[gs],
+            response,
+            tangent,
+            &mut fe[i],
+            ke,
+        ) {
+            return Some((i, msg));
+        }
+    }
+    None
 }
