@@ -49,6 +49,50 @@ pub struct RunOptions {
     pub threads: Option<usize>,
 }
 
+/// Refuses an output folder that would destroy input: `--out` replaces the
+/// folder it names as a whole, so it must not be (or hold) the case's own
+/// folder, and it must not name an existing file.
+pub fn check_out(out: Option<&Path>, case: &Path) -> Result<()> {
+    let Some(out) = out else { return Ok(()) };
+    let err = |msg: String| Err(crate::error::Error::input("--out", msg));
+    if out.exists() && !out.is_dir() {
+        return err(format!(
+            "{} is a file; the output is a folder that the run replaces as a whole: name a folder or a new path",
+            out.display()
+        ));
+    }
+    // where `out` is or would be, links resolved
+    let resolved = if out.exists() {
+        out.canonicalize().ok()
+    } else {
+        let parent = out
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        match (parent.canonicalize(), out.file_name()) {
+            (Ok(p), Some(name)) => Some(p.join(name)),
+            _ => None,
+        }
+    };
+    let case_dir = if case.is_dir() {
+        case.canonicalize().ok()
+    } else {
+        case.canonicalize()
+            .ok()
+            .and_then(|c| c.parent().map(Path::to_path_buf))
+    };
+    if let (Some(o), Some(c)) = (resolved, case_dir) {
+        if c.starts_with(&o) {
+            return err(format!(
+                "{} holds the case {} and the run replaces that folder as a whole: choose an output folder outside the case's",
+                out.display(),
+                case.display()
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Loads a case and applies command-line overrides.
 pub fn load_model(case_path: &Path, opts: &RunOptions) -> Result<Model> {
     let mut case = Case::load(case_path)?;

@@ -233,3 +233,69 @@ fn the_thread_count_is_chosen_and_reported() {
         assert_eq!(summary["threads"], expected, "{args:?} {env:?}");
     }
 }
+
+/// `--out` replaces the folder it names as a whole: a folder that holds the
+/// case (the case's own, or one above it) and an existing file are refused
+/// before anything is written, and so is a stop before the first increment
+/// (nothing to resume). The case and the file are left as they were.
+#[test]
+fn the_output_folder_never_replaces_input() {
+    let dir = common::scratch("out-replaces-input");
+    let case = dir.join("sandbox").join("case");
+    std::fs::create_dir_all(&case).unwrap();
+    let text =
+        std::fs::read_to_string(common::root().join("cases/punch-friction-b/case.toml")).unwrap();
+    std::fs::write(case.join("case.toml"), &text).unwrap();
+    let keep = dir.join("sandbox").join("keep.txt");
+    std::fs::write(&keep, "keep").unwrap();
+    let file = dir.join("afile");
+    std::fs::write(&file, "a file").unwrap();
+    let c = case.to_str().unwrap();
+    let toml = case.join("case.toml");
+    for (out, expect) in [
+        (c.to_string(), "--out: "),
+        (
+            dir.join("sandbox").to_str().unwrap().to_string(),
+            "holds the case",
+        ),
+        (format!("{c}/../../sandbox"), "holds the case"),
+        (file.to_str().unwrap().to_string(), "is a file"),
+    ] {
+        for case_arg in [c, toml.to_str().unwrap()] {
+            let (code, stdout, stderr) = asperity(&["run", case_arg, "--quiet", "--out", &out]);
+            assert_eq!(code, 2, "{out}: {stdout} {stderr}");
+            assert_eq!(stderr.lines().count(), 1, "{stderr}");
+            assert!(
+                stderr.contains(expect) && stderr.contains("--out"),
+                "{out}: {stderr}"
+            );
+        }
+    }
+    let out = dir.join("out");
+    let (code, _, stderr) = asperity(&[
+        "run",
+        c,
+        "--quiet",
+        "--stop-after",
+        "0",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(stderr.contains("--stop-after"), "{stderr}");
+    assert!(!out.exists());
+    // nothing was touched or left behind
+    assert_eq!(
+        std::fs::read_to_string(case.join("case.toml")).unwrap(),
+        text
+    );
+    assert_eq!(std::fs::read_to_string(&keep).unwrap(), "keep");
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "a file");
+    let mut names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(names, ["afile", "sandbox"]);
+    assert_eq!(std::fs::read_dir(dir.join("sandbox")).unwrap().count(), 2);
+}
