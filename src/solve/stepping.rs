@@ -266,18 +266,21 @@ impl Stepper {
         Ok(())
     }
 
+    /// Auto mode: the waypoints still ahead of `lambda` (those reached are
+    /// dropped when the next step is chosen, so a stepper stopped exactly at
+    /// a waypoint may or may not hold it yet).
+    pub fn waypoints_ahead(&self, lambda: f64) -> Vec<f64> {
+        let mut w = self.waypoints.clone();
+        drop_reached(&mut w, lambda);
+        w
+    }
+
     /// The next load factor to try from `lambda`, or `None` when the history is done.
     pub fn next(&mut self, lambda: f64) -> Option<f64> {
         match self.mode {
             StepControl::Fixed => self.pending.last().map(|p| p.0),
             StepControl::Auto => {
-                while let Some(&w) = self.waypoints.last() {
-                    if (w - lambda).abs() <= SAME * w.abs().max(1.0) {
-                        self.waypoints.pop();
-                    } else {
-                        break;
-                    }
-                }
+                drop_reached(&mut self.waypoints, lambda);
                 let w = *self.waypoints.last()?;
                 let dir = (w - lambda).signum();
                 let remaining = (w - lambda).abs();
@@ -606,5 +609,16 @@ mod tests {
         assert_eq!(*path.last().unwrap(), 0.2);
         let i = path.iter().position(|&l| l == 1.0).unwrap();
         assert!(path[i + 1..].windows(2).all(|w| w[1] < w[0]), "{path:?}");
+    }
+}
+
+/// Drops the waypoints (last first) that `lambda` has reached.
+pub(crate) fn drop_reached(waypoints: &mut Vec<f64>, lambda: f64) {
+    while let Some(&w) = waypoints.last() {
+        if (w - lambda).abs() <= SAME * w.abs().max(1.0) {
+            waypoints.pop();
+        } else {
+            break;
+        }
     }
 }

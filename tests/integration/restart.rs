@@ -701,3 +701,47 @@ fn a_forged_table_reach_is_refused() {
     ];
     refuse_all(&case, &dir, &good, variants);
 }
+
+/// A run under automatic step control stopped exactly at a breakpoint of its
+/// load history (slideway-cycles after increment 11 is at t = 1; shrink-fit
+/// after 20) resumes and ends as the uninterrupted run. The stepper drops a
+/// reached waypoint only when it picks the next step, so the file may hold
+/// it or not; the restart used to refuse its own file there.
+#[test]
+fn a_run_stopped_at_a_breakpoint_resumes() {
+    let dir = common::scratch("restart-at-breakpoint");
+    for (case, stop) in [("slideway-cycles", "11"), ("shrink-fit", "20")] {
+        let c = common::root().join("cases").join(case);
+        let c = c.to_str().unwrap();
+        let out = |n: &str| dir.join(format!("{case}-{n}"));
+        let (s, r, full) = (out("stopped"), out("resumed"), out("full"));
+        let (code, err) = asperity(&[
+            "run",
+            c,
+            "--quiet",
+            "--out",
+            s.to_str().unwrap(),
+            "--stop-after",
+            stop,
+        ]);
+        assert_eq!(code, 3, "{case}: {err}");
+        let (code, err) = asperity(&[
+            "run",
+            c,
+            "--quiet",
+            "--out",
+            r.to_str().unwrap(),
+            "--restart",
+            s.to_str().unwrap(),
+        ]);
+        assert_eq!(code, 0, "{case}: {err}");
+        let (code, err) = asperity(&["run", c, "--quiet", "--out", full.to_str().unwrap()]);
+        assert_eq!(code, 0, "{case}: {err}");
+        for f in ["curve.csv", "joints.csv", "restart.bin"] {
+            assert!(
+                std::fs::read(r.join(f)).unwrap() == std::fs::read(full.join(f)).unwrap(),
+                "{case}: {f} of the resumed run differs"
+            );
+        }
+    }
+}
