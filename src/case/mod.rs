@@ -536,9 +536,9 @@ impl Case {
         let mut key = self.clone();
         key.source = Default::default();
         key.description = None;
-        // the VTU encoding changes no state: a run may resume in the other
-        // one, and keys of builds before `vtu_format` stay as they were
-        key.output.vtu_format = VtuFormat::default();
+        // the VTU encoding is part of the key (a resumed run continues the
+        // series in the same encoding); the default one is left out, so
+        // keys of builds before `vtu_format` stay as they were
         let full = format!("{key:?}")
             .replace(", table: None,", ",")
             .replace(", vtu_format: Binary }", " }");

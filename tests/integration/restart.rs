@@ -745,3 +745,56 @@ fn a_run_stopped_at_a_breakpoint_resumes() {
         }
     }
 }
+
+/// A restart continues the VTU series in its own encoding: a case that
+/// changed `vtu_format` since the stop is refused (the folder would mix
+/// binary and ASCII files); the same encoding resumes.
+#[test]
+fn a_restart_keeps_the_vtu_encoding() {
+    let dir = common::scratch("restart-vtu-format");
+    let text =
+        std::fs::read_to_string(common::root().join("cases/slideway-cycles/case.toml")).unwrap();
+    let (bin, asc) = (dir.join("binary"), dir.join("ascii"));
+    for (d, t) in [
+        (&bin, text.clone()),
+        (&asc, format!("{text}\n[output]\nvtu_format = \"ascii\"\n")),
+    ] {
+        std::fs::create_dir_all(d).unwrap();
+        std::fs::write(d.join("case.toml"), t).unwrap();
+    }
+    let s = |p: &Path| p.to_str().unwrap().to_string();
+    let stop = dir.join("stopped");
+    let (code, err) = asperity(&[
+        "run",
+        &s(&bin),
+        "--quiet",
+        "--out",
+        &s(&stop),
+        "--stop-after",
+        "5",
+    ]);
+    assert_eq!(code, 3, "{err}");
+    let out = dir.join("resumed");
+    let (code, err) = asperity(&[
+        "run",
+        &s(&asc),
+        "--quiet",
+        "--out",
+        &s(&out),
+        "--restart",
+        &s(&stop),
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("fingerprint"), "{err}");
+    assert!(!out.exists());
+    let (code, err) = asperity(&[
+        "run",
+        &s(&bin),
+        "--quiet",
+        "--out",
+        &s(&out),
+        "--restart",
+        &s(&stop),
+    ]);
+    assert_eq!(code, 0, "{err}");
+}
