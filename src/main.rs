@@ -99,7 +99,7 @@ struct RunArgs {
     /// Threads of this process's element loop, 1 to 1024. Default: the
     /// ASPERITY_THREADS environment variable, else every core on one process
     /// and 1 per rank under MPI. Results do not depend on it (docs/running.md).
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
     threads: Option<String>,
     /// Linear-algebra backend: serial (faer), petsc (MPI; needs the `parallel`
     /// feature), or auto: petsc when started by mpirun (with the feature built
