@@ -377,6 +377,17 @@ impl Stepper {
     }
 }
 
+/// Drops the waypoints (last first) that `lambda` has reached.
+pub(crate) fn drop_reached(waypoints: &mut Vec<f64>, lambda: f64) {
+    while let Some(&w) = waypoints.last() {
+        if (w - lambda).abs() <= SAME * w.abs().max(1.0) {
+            waypoints.pop();
+        } else {
+            break;
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -609,16 +620,5 @@ mod tests {
         assert_eq!(*path.last().unwrap(), 0.2);
         let i = path.iter().position(|&l| l == 1.0).unwrap();
         assert!(path[i + 1..].windows(2).all(|w| w[1] < w[0]), "{path:?}");
-    }
-}
-
-/// Drops the waypoints (last first) that `lambda` has reached.
-pub(crate) fn drop_reached(waypoints: &mut Vec<f64>, lambda: f64) {
-    while let Some(&w) = waypoints.last() {
-        if (w - lambda).abs() <= SAME * w.abs().max(1.0) {
-            waypoints.pop();
-        } else {
-            break;
-        }
     }
 }
