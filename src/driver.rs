@@ -50,9 +50,10 @@ pub struct RunOptions {
 }
 
 /// Refuses an output folder that would destroy input: `--out` replaces the
-/// folder it names as a whole, so it must not be (or hold) the case's own
-/// folder, and it must not name an existing file.
-pub fn check_out(out: Option<&Path>, case: &Path) -> Result<()> {
+/// folder it names as a whole, so it must not be (or hold) an input of the
+/// run (the case file or folder, its Gmsh mesh), and it must not name an
+/// existing file.
+pub fn check_out(out: Option<&Path>, inputs: &[&Path]) -> Result<()> {
     let Some(out) = out else { return Ok(()) };
     let err = |msg: String| Err(crate::error::Error::input("--out", msg));
     if out.exists() && !out.is_dir() {
@@ -74,19 +75,13 @@ pub fn check_out(out: Option<&Path>, case: &Path) -> Result<()> {
             _ => None,
         }
     };
-    let case_dir = if case.is_dir() {
-        case.canonicalize().ok()
-    } else {
-        case.canonicalize()
-            .ok()
-            .and_then(|c| c.parent().map(Path::to_path_buf))
-    };
-    if let (Some(o), Some(c)) = (resolved, case_dir) {
-        if c.starts_with(&o) {
+    let Some(o) = resolved else { return Ok(()) };
+    for input in inputs {
+        if input.canonicalize().is_ok_and(|c| c.starts_with(&o)) {
             return err(format!(
-                "{} holds the case {} and the run replaces that folder as a whole: choose an output folder outside the case's",
+                "{} holds {}, an input of this run, and the run replaces that folder as a whole: choose an output folder elsewhere",
                 out.display(),
-                case.display()
+                input.display()
             ));
         }
     }
@@ -96,6 +91,10 @@ pub fn check_out(out: Option<&Path>, case: &Path) -> Result<()> {
 /// Loads a case and applies command-line overrides.
 pub fn load_model(case_path: &Path, opts: &RunOptions) -> Result<Model> {
     let mut case = Case::load(case_path)?;
+    if let Some(file) = &case.mesh.file {
+        let dir = case.source.parent().unwrap_or(Path::new(""));
+        check_out(opts.out.as_deref(), &[&dir.join(file)])?;
+    }
     if let Some(m) = opts.method {
         case.solver.method = m;
     }

@@ -379,7 +379,7 @@ impl RunArgs {
     /// The run's settings, as the driver takes them (the thread count
     /// validated: `--threads`, else `ASPERITY_THREADS`).
     fn options(&self) -> asperity::error::Result<RunOptions> {
-        asperity::driver::check_out(self.out.as_deref(), &self.case)?;
+        asperity::driver::check_out(self.out.as_deref(), &[&self.case])?;
         if self.stop_after == Some(0) {
             return Err(asperity::error::Error::input(
                 "--stop-after",

@@ -256,9 +256,9 @@ fn the_output_folder_never_replaces_input() {
         (c.to_string(), "--out: "),
         (
             dir.join("sandbox").to_str().unwrap().to_string(),
-            "holds the case",
+            "an input of this run",
         ),
-        (format!("{c}/../../sandbox"), "holds the case"),
+        (format!("{c}/../../sandbox"), "an input of this run"),
         (file.to_str().unwrap().to_string(), "is a file"),
     ] {
         for case_arg in [c, toml.to_str().unwrap()] {
@@ -271,6 +271,34 @@ fn the_output_folder_never_replaces_input() {
             );
         }
     }
+    // a Gmsh mesh outside the case's folder, in the folder named by --out
+    let (g, m) = (dir.join("gmsh-case"), dir.join("meshes"));
+    std::fs::create_dir_all(&g).unwrap();
+    std::fs::create_dir_all(&m).unwrap();
+    let gtext = std::fs::read_to_string(common::root().join("cases/punch-gmsh/case.toml"))
+        .unwrap()
+        .replace("file = \"mesh.msh\"", "file = \"../meshes/mesh.msh\"");
+    std::fs::write(g.join("case.toml"), &gtext).unwrap();
+    std::fs::copy(
+        common::root().join("cases/punch-gmsh/mesh.msh"),
+        m.join("mesh.msh"),
+    )
+    .unwrap();
+    let (code, _, stderr) = asperity(&[
+        "run",
+        g.to_str().unwrap(),
+        "--quiet",
+        "--out",
+        m.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(
+        stderr.contains("mesh.msh, an input of this run"),
+        "{stderr}"
+    );
+    assert!(m.join("mesh.msh").is_file());
+    std::fs::remove_dir_all(&g).unwrap();
+    std::fs::remove_dir_all(&m).unwrap();
     let out = dir.join("out");
     let (code, _, stderr) = asperity(&[
         "run",
