@@ -519,10 +519,14 @@ impl Case {
                     format!(":{line}:{col}")
                 })
                 .unwrap_or_default();
-            Error::input(
-                format!("{place}{at}"),
-                e.message().trim().replace('\n', " "),
-            )
+            let mut message = e.message().trim().replace('\n', " ");
+            // a value of the wrong type or range: name its key
+            if message.starts_with("invalid type") || message.starts_with("invalid value") {
+                if let Some(key) = e.span().and_then(|s| key_before(text, s.start)) {
+                    message = format!("{key}: {message}");
+                }
+            }
+            Error::input(format!("{place}{at}"), message)
         })
     }
 
@@ -631,6 +635,19 @@ pub fn read_input(path: &Path, limit: u64, what: &str) -> Result<Vec<u8>> {
         return Err(too_big(limit + 1));
     }
     Ok(bytes)
+}
+
+/// The key whose value starts at `offset`: the word before the last `=` on
+/// its line before it (`vtu_every = -1`, `bottom = { radius = "x" }`), if any.
+fn key_before(text: &str, offset: usize) -> Option<&str> {
+    let before = text.get(..offset)?;
+    let line = &before[before.rfind('\n').map_or(0, |i| i + 1)..];
+    let lhs = line[..line.rfind('=')?].trim_end();
+    let start = lhs
+        .rfind(|c: char| !(c.is_alphanumeric() || c == '_' || c == '-'))
+        .map_or(0, |i| i + 1);
+    let key = &lhs[start..];
+    (!key.is_empty()).then_some(key)
 }
 
 fn line_col(text: &str, offset: usize) -> (usize, usize) {
