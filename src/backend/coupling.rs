@@ -118,15 +118,10 @@ impl Couplings {
 
     /// Adds every term, as a dense local block, to CSC `values`.
     pub fn add_to(&self, asm: &Assembler, values: &mut [f64]) {
-        let mut local = Vec::new();
         for q in 0..self.len() {
             let r = self.range(q);
-            let nd = r.len();
-            local.clear();
-            local.extend(
-                (0..nd * nd).map(|ij| self.u[r.start + ij / nd] * self.v[r.start + ij % nd]),
-            );
-            asm.add(self.blocks[q], &local, values);
+            let block = super::outer(1.0, &self.u[r.clone()], &self.v[r]);
+            asm.add(self.blocks[q], &block, values);
         }
     }
 

@@ -65,11 +65,7 @@ pub trait Backend {
         g_t: &[f64],
         g_n: &[f64],
     ) -> Result<()> {
-        let nd = dofs.len();
-        let k: Vec<f64> = (0..nd * nd)
-            .map(|ij| coef * g_t[ij / nd] * g_n[ij % nd])
-            .collect();
-        self.add_contact(block, dofs, &k)
+        self.add_contact(block, dofs, &outer(coef, g_t, g_n))
     }
     /// Solves K x = rhs over the free equations (replicated in and out).
     fn solve(&mut self, rhs: &[f64], x: &mut [f64]) -> Result<()>;
@@ -99,4 +95,13 @@ pub trait Backend {
     fn matrix_values(&mut self) -> Option<&[f64]> {
         None
     }
+}
+
+/// The row-major block `coef · g_t g_nᵀ` of an interface point's rank-one
+/// tangent term.
+pub fn outer(coef: f64, g_t: &[f64], g_n: &[f64]) -> Vec<f64> {
+    let nd = g_t.len();
+    (0..nd * nd)
+        .map(|ij| coef * g_t[ij / nd] * g_n[ij % nd])
+        .collect()
 }

@@ -648,11 +648,8 @@ impl super::Backend for SerialBackend {
             self.terms
                 .push(&self.eq_of, &self.pos_of, block, dofs, coef, g_t, g_n);
         } else {
-            let nd = dofs.len();
-            let k: Vec<f64> = (0..nd * nd)
-                .map(|ij| coef * g_t[ij / nd] * g_n[ij % nd])
-                .collect();
-            self.asm.add(block, &k, &mut self.vals);
+            self.asm
+                .add(block, &super::outer(coef, g_t, g_n), &mut self.vals);
         }
         Ok(())
     }

@@ -343,7 +343,7 @@ pub struct PointEval {
     pub state: PointState,
     /// Area times ∂p_T/∂u_N: the coefficient of the point's unsymmetric
     /// tangent term `coupling · g_T g_Nᵀ` (0 without it; see
-    /// [`InterfaceModel::eval_point_split`]).
+    /// [`InterfaceModel::eval_point_parts`]).
     pub coupling: f64,
 }
 
@@ -635,30 +635,15 @@ impl InterfaceModel {
         self.eval_point_parts(pt, u, gap, committed, k_floor, r, k, true)
     }
 
-    /// [`InterfaceModel::eval_point_at`] with the tangent split in two: `k`
-    /// receives only its symmetric part `a (k_N g_N g_Nᵀ + ∂p_T/∂u_T g_T g_Tᵀ)`,
-    /// and the unsymmetric rest `a ∂p_T/∂u_N g_T g_Nᵀ` (the return mapping's
-    /// dependence of the slip limit μ p_N on the approach, eq. 2.18-2.21) is
-    /// returned as its coefficient [`PointEval::coupling`], a rank-one term the
-    /// serial solver keeps out of its Cholesky factor
-    /// ([`crate::backend::serial`]). `k` plus `coupling · g_T g_Nᵀ` is the
-    /// tangent of [`InterfaceModel::eval_point_at`].
-    #[allow(clippy::too_many_arguments)] // eval_point_at's arguments
-    pub fn eval_point_split(
-        &self,
-        pt: &Point,
-        u: &[f64],
-        gap: f64,
-        committed: &PointState,
-        k_floor: Option<f64>,
-        r: &mut [f64],
-        k: Option<&mut [f64]>,
-    ) -> PointEval {
-        self.eval_point_parts(pt, u, gap, committed, k_floor, r, k, false)
-    }
-
+    /// [`InterfaceModel::eval_point_at`], with or without the unsymmetric
+    /// part of the tangent in `k`. Without it (`with_coupling` false), `k`
+    /// receives only the symmetric part `a (k_N g_N g_Nᵀ + ∂p_T/∂u_T g_T g_Tᵀ)`,
+    /// and the rest `a ∂p_T/∂u_N g_T g_Nᵀ` (the return mapping's dependence of
+    /// the slip limit μ p_N on the approach, eq. 2.18-2.21) is returned as its
+    /// coefficient [`PointEval::coupling`], a rank-one term the serial solver
+    /// keeps out of its Cholesky factor ([`crate::backend::serial`]).
     #[allow(clippy::too_many_arguments)] // eval_point_at's arguments and the split
-    fn eval_point_parts(
+    pub fn eval_point_parts(
         &self,
         pt: &Point,
         u: &[f64],

@@ -489,23 +489,11 @@ fn write_increment(
     inc: Increment,
 ) -> Result<()> {
     let model = engine.model;
-    // the writer (rank 0) sees every element's Gauss states for as long as
-    // it writes
-    let local = engine
-        .gather_gauss(&ck.committed)
-        .map(|full| std::mem::replace(&mut ck.committed.gauss, full));
-    let written = observer.increment(model, &ck.committed, &inc);
-    ck.increments.push(inc);
-    let written = written.and_then(|()| observer.checkpoint(model, ck));
-    if let Some(local) = local {
-        ck.committed.gauss = local;
-    }
-    if !engine.backend.agree(written.is_ok()) {
-        return Err(written
-            .err()
-            .unwrap_or_else(|| Error::Output("writing the output failed on rank 0".into())));
-    }
-    Ok(())
+    written_everywhere(engine, ck, |ck| {
+        let written = observer.increment(model, &ck.committed, &inc);
+        ck.increments.push(inc);
+        written.and_then(|()| observer.checkpoint(model, ck))
+    })
 }
 
 /// The last converged state of a stopped run, handed to the observer again
@@ -517,14 +505,27 @@ fn write_last_state(
     ck: &mut Checkpoint,
 ) -> Result<()> {
     let model = engine.model;
+    written_everywhere(engine, ck, |ck| {
+        let written = match ck.increments.last() {
+            Some(inc) => observer.last_state(model, &ck.committed, inc),
+            None => Ok(()),
+        };
+        written.and_then(|()| observer.checkpoint(model, ck))
+    })
+}
+
+/// Runs a write with every element's Gauss states in the checkpoint (the
+/// writer, rank 0, sees them all while it writes) and shares its outcome:
+/// a failed write on rank 0 ends every rank.
+fn written_everywhere(
+    engine: &Engine,
+    ck: &mut Checkpoint,
+    write: impl FnOnce(&mut Checkpoint) -> Result<()>,
+) -> Result<()> {
     let local = engine
         .gather_gauss(&ck.committed)
         .map(|full| std::mem::replace(&mut ck.committed.gauss, full));
-    let written = match ck.increments.last() {
-        Some(inc) => observer.last_state(model, &ck.committed, inc),
-        None => Ok(()),
-    };
-    let written = written.and_then(|()| observer.checkpoint(model, ck));
+    let written = write(ck);
     if let Some(local) = local {
         ck.committed.gauss = local;
     }

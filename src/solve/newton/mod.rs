@@ -22,7 +22,7 @@ use super::State;
 use crate::backend::Backend;
 use crate::case::Method;
 use crate::fem::solid::{element_forces, Response, Tangent};
-use crate::interface::{InterfaceModel, Status};
+use crate::interface::Status;
 use crate::material::PointState;
 use crate::model::Model;
 
@@ -553,13 +553,7 @@ impl<'m> Engine<'m> {
                 let nd = pt.ndofs();
                 let un = im.point_kinematics_at(pt, &trial.u, gap).0;
                 let kfloor = kf.filter(|_| un > -ZERO_APPROACH);
-                let eval = if split {
-                    InterfaceModel::eval_point_split
-                } else {
-                    InterfaceModel::eval_point_at
-                };
-                let ev = eval(
-                    im,
+                let ev = im.eval_point_parts(
                     pt,
                     &trial.u,
                     gap,
@@ -567,6 +561,7 @@ impl<'m> Engine<'m> {
                     kfloor,
                     &mut rl[..nd],
                     Some(&mut kl[..nd * nd]),
+                    !split,
                 );
                 if let Some(ks) = springs {
                     super::springs::add_point(
