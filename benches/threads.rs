@@ -25,42 +25,11 @@ use asperity::solve::{RunResult, State};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-fn cases_dir() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("cases")
-}
+mod common;
+use common::{cases_dir, median, without_tangential};
 
 fn scratch() -> PathBuf {
     std::env::temp_dir().join("asperity-bench-threads")
-}
-
-/// `text` without its `[interface.contact.tangential]` table (up to the next
-/// blank line).
-fn without_tangential(text: &str) -> String {
-    let mut out = String::new();
-    let mut inside = false;
-    for line in text.lines() {
-        if line.trim_start().starts_with('[') {
-            inside = line.trim() == "[interface.contact.tangential]";
-        } else if line.trim().is_empty() {
-            inside = false;
-        }
-        if !inside {
-            out.push_str(line);
-            out.push('\n');
-        }
-    }
-    assert!(!out.contains("tangential]"), "tangential law not removed");
-    out
-}
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(|a, b| a.partial_cmp(b).unwrap());
-    let n = v.len();
-    if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        0.5 * (v[n / 2 - 1] + v[n / 2])
-    }
 }
 
 /// The tangent (CSC values on the model's pattern) at a converged plastic
