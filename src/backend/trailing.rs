@@ -96,11 +96,11 @@ pub fn factor_cost(symbolic: &SymbolicCholesky<usize>) -> (f64, f64) {
 /// solves does 4 flops per entry but streams the factor from memory, about 6
 /// times slower per flop than the blocked factorization on this machine
 /// (docs/performance.md, "The unsymmetric tangent at Cholesky cost").
-const SOLVE_WEIGHT: f64 = 4.0 * 6.0;
+pub const SOLVE_WEIGHT: f64 = 4.0 * 6.0;
 
 /// Whole solves per Newton iteration with the plain ordering: the two of the
 /// Woodbury solve and one per GMRES step (5-6 on the friction cases).
-const PLAIN_SOLVES: f64 = 8.0;
+pub const PLAIN_SOLVES: f64 = 8.0;
 
 /// Whether the interface-last factor is worth it against the plain minimum
 /// degree one, from their (entries, flops): estimated cost of one Newton
