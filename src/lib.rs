@@ -26,6 +26,7 @@ pub mod assembly;
 pub mod backend;
 pub mod calibrate;
 pub mod case;
+pub mod constraint;
 pub mod driver;
 pub mod error;
 pub mod fem;
@@ -39,6 +40,7 @@ pub mod model;
 pub mod output;
 #[cfg(feature = "parallel")]
 pub mod parallel;
+pub mod pretension;
 pub mod progress;
 pub mod restart;
 pub mod schedule;

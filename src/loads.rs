@@ -42,6 +42,8 @@ pub struct Loads {
     /// Every `[[load]]` and `[[force]]` with the dofs it loads, for
     /// [`check_acting`] once the prescribed dofs are known.
     pub acting: Vec<Acting>,
+    /// The history of each `[[pretension]]` section's force or shortening.
+    pub pretension_history: Vec<Option<usize>>,
 }
 
 /// One `[[load]]` or `[[force]]`: where it is written and the dofs it loads
@@ -125,9 +127,11 @@ fn clip(s: &str) -> String {
 /// out-of-plane measure of the edge tractions.
 pub fn build(case: &Case, mesh: &Mesh, section: Section, place: &str) -> Result<Loads> {
     let mut res = Resolver::new(case, place)?;
+    // the mesh's dofs, then each pretension section's reference node
+    let nd = crate::pretension::total_dofs(case, mesh);
     let mut patterns = vec![LoadPattern {
         history: None,
-        f: vec![0.0; mesh.num_dofs()],
+        f: vec![0.0; nd],
     }];
     let mut acting = Vec::new();
     let mut scaled: Vec<Scaled> = Vec::new();
@@ -135,7 +139,7 @@ pub fn build(case: &Case, mesh: &Mesh, section: Section, place: &str) -> Result<
         let at = format!("{place}: load[{i}] (edges \"{}\")", ld.edges);
         let h = res.resolve(ld.history.as_ref(), &format!("{at} history"))?;
         let terms = edge_traction(case, ld, mesh, section, &at)?;
-        add(pattern(&mut patterns, h, mesh.num_dofs()), &terms);
+        add(pattern(&mut patterns, h, nd), &terms);
         scaled.push((format!("{at} pressure"), ld.pressure, &ranges::PRESSURE, h));
         scaled.push((format!("{at} shear"), ld.shear, &ranges::PRESSURE, h));
         // a straight edge's round-off along its own direction is no load
@@ -150,12 +154,12 @@ pub fn build(case: &Case, mesh: &Mesh, section: Section, place: &str) -> Result<
             concentrated: false,
         });
     }
-    let prescribed = boundary_conditions(case, mesh, place, &mut res, &mut scaled)?;
+    let mut prescribed = boundary_conditions(case, mesh, place, &mut res, &mut scaled)?;
     for (i, fs) in case.force.iter().enumerate() {
         let at = format!("{place}: force[{i}] (nodes \"{}\")", fs.nodes);
         let h = res.resolve(fs.history.as_ref(), &format!("{at} history"))?;
         let terms = concentrated_force(fs, mesh, &at)?;
-        add(pattern(&mut patterns, h, mesh.num_dofs()), &terms);
+        add(pattern(&mut patterns, h, nd), &terms);
         scaled.push((format!("{at} fx"), fs.fx, &ranges::FORCE, h));
         scaled.push((format!("{at} fy"), fs.fy, &ranges::FORCE, h));
         acting.push(Acting {
@@ -163,6 +167,23 @@ pub fn build(case: &Case, mesh: &Mesh, section: Section, place: &str) -> Result<
             dofs: terms.iter().filter(|t| t.1 != 0.0).map(|t| t.0).collect(),
             concentrated: true,
         });
+    }
+    let mut pretension_history = Vec::new();
+    for (k, ps) in case.pretension.iter().enumerate() {
+        let at = format!("{place}: pretension[{k}] (\"{}\")", clip(&ps.name));
+        let h = res.resolve(ps.history.as_ref(), &format!("{at} history"))?;
+        let d = crate::pretension::dof(mesh.nodes.len(), k);
+        if let Some(f) = ps.force {
+            add(pattern(&mut patterns, h, nd), &[(d, f)]);
+            scaled.push((format!("{at} force"), f, &ranges::FORCE, h));
+        }
+        if let Some(v) = ps.shortening {
+            prescribed.push(((d, v), h));
+            scaled.push((format!("{at} shortening"), v, &ranges::DISPLACEMENT, h));
+        }
+        // the reference node's second dof is no unknown
+        prescribed.push(((d + 1, 0.0), None));
+        pretension_history.push(h);
     }
     let mut gap_history = BTreeMap::new();
     for (name, spec) in &case.interface {
@@ -209,6 +230,7 @@ pub fn build(case: &Case, mesh: &Mesh, section: Section, place: &str) -> Result<
         prescribed_history,
         gap_history,
         acting,
+        pretension_history,
     })
 }
 

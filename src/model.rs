@@ -62,6 +62,19 @@ pub struct Model {
     pub probe_node: usize,
     /// y of the probe node: depths are measured below it.
     pub surface_y: f64,
+    /// Every dof: the mesh's two per node, then two per pretension section
+    /// (its reference node, [`crate::pretension`]).
+    pub n_dofs: usize,
+    /// The linear constraints u_s = Σ c u_m + g(t) ([`crate::constraint`]).
+    pub constraints: crate::constraint::Constraints,
+    /// The transformation of every block ([`Model::blocks`]) that holds a
+    /// slave dof, by block index.
+    pub expansions: std::collections::HashMap<usize, crate::constraint::Expansion>,
+    /// The pretension sections.
+    pub sections: Vec<crate::pretension::Section>,
+    /// The block of each section's reference node (after the interface
+    /// points): where a held (locked) shortening gets its diagonal.
+    pub section_block_base: usize,
     /// Force scale for the residual test when nothing is loaded (an open joint
     /// under prescribed displacement): 1e-6 · E_max · model size · thickness, N.
     pub force_floor: f64,
@@ -83,7 +96,8 @@ impl Model {
     pub fn build(case: Case) -> Result<Model> {
         let place = case.source.display().to_string();
         let checked = check_case(&case)?;
-        let mesh = make_mesh(&case, &place)?;
+        let mut mesh = make_mesh(&case, &place)?;
+        let mut sections = crate::pretension::cut(&case, &mut mesh, &place)?;
         let plane = case.model.plane;
         let thickness = case.model.thickness.value();
         let section = crate::fem::Section {
@@ -106,6 +120,27 @@ impl Model {
                 .map(|&h| loads.histories[h].clone());
         }
         let prescribed = supports(&case, &mesh, &mut loads, &place)?;
+        let lock_end: Vec<Option<f64>> = loads
+            .pretension_history
+            .iter()
+            .map(|&h| match h {
+                Some(h) => Some(loads.histories[h].end()),
+                None if loads.histories.is_empty() => None,
+                None => Some(1.0),
+            })
+            .collect();
+        crate::pretension::finish(&case, &mut sections, mesh.nodes.len(), &lock_end);
+        let n_dofs = crate::pretension::total_dofs(&case, &mesh);
+        let constraints = crate::constraint::Constraints::new(
+            crate::pretension::constraints(
+                &sections,
+                &prescribed,
+                &loads.prescribed_history,
+                &place,
+            )?,
+            n_dofs,
+        )
+        .map_err(|m| Error::input(&place, m))?;
         crate::loads::check_acting(&loads.acting, &mesh, &prescribed, section.axisymmetric)?;
         check_loaded(&f_ext, &loads, &prescribed, &interfaces, &place)?;
         check_supports(
@@ -116,12 +151,10 @@ impl Model {
             &place,
         )?;
         whole::check_symmetry_supports(&case, &mesh, &prescribed, &place)?;
-        let mut mask = vec![false; mesh.num_dofs()];
-        for &(d, _) in &prescribed {
-            mask[d] = true;
-        }
-        let dofs = DofMap::new(mesh.num_dofs(), &mask);
-        let (blocks, interface_block_base) = block_dofs(&mesh, &interfaces);
+        let dofs = dof_map(n_dofs, &prescribed, &constraints);
+        let (blocks, interface_block_base, expansions) =
+            block_dofs(&mesh, &interfaces, &constraints, &sections);
+        let section_block_base = blocks.len() - sections.len();
         drop(blocks);
         let (probe_node, surface_y) = probe(&case, &mesh, &interfaces);
         let force_floor = force_floor(&mesh, &materials, section);
@@ -141,6 +174,11 @@ impl Model {
             histories: loads.histories,
             dofs,
             interface_block_base,
+            n_dofs,
+            constraints,
+            expansions,
+            sections,
+            section_block_base,
             probe_node,
             surface_y,
             force_floor,
@@ -157,7 +195,78 @@ impl Model {
     /// The dof lists of every element, then every interface point (rebuilt
     /// on demand: only the serial backend keeps per-block data).
     pub fn blocks(&self) -> Blocks {
-        block_dofs(&self.mesh, &self.interfaces).0
+        block_dofs(
+            &self.mesh,
+            &self.interfaces,
+            &self.constraints,
+            &self.sections,
+        )
+        .0
+    }
+
+    /// The diagonal of a held equation ([`crate::constraint`]): decoupled
+    /// from every other, so any positive value leaves the others exact; one
+    /// of the model's scale, E_max × the out-of-plane measure (N/mm).
+    pub fn held_stiffness(&self) -> f64 {
+        let e_max = self.materials.iter().fold(0.0f64, |a, m| a.max(m.young));
+        let (lo, hi) =
+            self.mesh
+                .nodes
+                .iter()
+                .fold(([f64::MAX; 2], [f64::MIN; 2]), |(lo, hi), x| {
+                    (
+                        [lo[0].min(x[0]), lo[1].min(x[1])],
+                        [hi[0].max(x[0]), hi[1].max(x[1])],
+                    )
+                });
+        let measure = if self.section.axisymmetric {
+            self.section.measure(hi)
+        } else {
+            self.section.thickness
+        };
+        let _ = lo;
+        e_max * measure
+    }
+
+    /// Every dof: the mesh's, then the pretension sections' reference nodes.
+    pub fn num_dofs(&self) -> usize {
+        self.n_dofs
+    }
+
+    /// Sets the constraints again after a change of the mesh, the
+    /// prescribed dofs or the constraints themselves (tests): the dof map
+    /// and the blocks' expansions follow.
+    pub fn set_constraints(&mut self, list: Vec<crate::constraint::Constraint>) -> Result<()> {
+        self.n_dofs = self.mesh.num_dofs() + 2 * self.sections.len();
+        self.constraints = crate::constraint::Constraints::new(list, self.n_dofs)
+            .map_err(|m| Error::input(self.source.display().to_string(), m))?;
+        self.dofs = dof_map(self.n_dofs, &self.prescribed, &self.constraints);
+        let (blocks, base, expansions) = block_dofs(
+            &self.mesh,
+            &self.interfaces,
+            &self.constraints,
+            &self.sections,
+        );
+        self.section_block_base = blocks.len() - self.sections.len();
+        self.interface_block_base = base;
+        self.expansions = expansions;
+        Ok(())
+    }
+
+    /// The dofs whose value follows from the others, set from them in `u`
+    /// at pseudo-time t: the constraints' slaves.
+    pub fn fill_slaves(&self, u: &mut [f64], t: f64) {
+        self.constraints.fill(u, |h| self.factor(h, t));
+    }
+
+    /// The dofs held at pseudo-time t (a step to t): the shortening of
+    /// every pretension section locked before t.
+    pub fn held_dofs(&self, t: f64) -> Vec<usize> {
+        self.sections
+            .iter()
+            .filter(|s| t > s.lock_after)
+            .map(|s| s.dof)
+            .collect()
     }
 
     /// Sparsity of the tangent over the free equations, every potential contact
@@ -318,21 +427,61 @@ impl Model {
     }
 }
 
-/// Element and interface-point dof lists, and the index of each interface's
-/// first block.
-fn block_dofs(mesh: &Mesh, interfaces: &[InterfaceModel]) -> (Blocks, Vec<usize>) {
+/// The dof map: prescribed dofs and the constraints' slaves have no equation.
+fn dof_map(
+    n_dofs: usize,
+    prescribed: &[(usize, f64)],
+    constraints: &crate::constraint::Constraints,
+) -> DofMap {
+    let mut mask = vec![false; n_dofs];
+    for &(d, _) in prescribed {
+        mask[d] = true;
+    }
+    for c in &constraints.list {
+        mask[c.slave] = true;
+    }
+    DofMap::new(n_dofs, &mask)
+}
+
+/// Element and interface-point dof lists (a block that holds a slave dof:
+/// its masters, with its expansion), then one block per pretension
+/// section's reference node; and the index of each interface's first block.
+fn block_dofs(
+    mesh: &Mesh,
+    interfaces: &[InterfaceModel],
+    constraints: &crate::constraint::Constraints,
+    sections: &[crate::pretension::Section],
+) -> (
+    Blocks,
+    Vec<usize>,
+    std::collections::HashMap<usize, crate::constraint::Expansion>,
+) {
     let mut blocks = Blocks::new();
+    let mut expansions = std::collections::HashMap::new();
+    let mut push = |blocks: &mut Blocks, dofs: Vec<usize>| match constraints.expand(&dofs) {
+        Some(x) => {
+            blocks.push(x.dofs.iter().copied());
+            expansions.insert(blocks.len() - 1, x);
+        }
+        None => blocks.push(dofs),
+    };
     for el in &mesh.elements {
-        blocks.push(el.nodes.iter().flat_map(|&n| [2 * n, 2 * n + 1]));
+        push(
+            &mut blocks,
+            el.nodes.iter().flat_map(|&n| [2 * n, 2 * n + 1]).collect(),
+        );
     }
     let mut base = Vec::new();
     for im in interfaces {
         base.push(blocks.len());
         for p in &im.points {
-            blocks.push(im.point_dofs(p));
+            push(&mut blocks, im.point_dofs(p));
         }
     }
-    (blocks, base)
+    for s in sections {
+        blocks.push([s.dof, s.dof + 1]);
+    }
+    (blocks, base, expansions)
 }
 
 /// Every body must be held in x and in y, by its own prescribed dofs or through
@@ -355,7 +504,8 @@ fn check_supports(
             node_body[n] = el.body;
         }
     }
-    for &(d, _) in prescribed {
+    // (a pretension section's reference node is no node of a body)
+    for &(d, _) in prescribed.iter().filter(|p| p.0 < mesh.num_dofs()) {
         held[node_body[d / 2]][d % 2] = true;
     }
     // propagate along each interface's dominant normal direction to a fixed point

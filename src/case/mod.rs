@@ -60,6 +60,37 @@ pub struct Case {
     /// Named load histories (pseudo-time → factor), referenced by name.
     #[serde(default)]
     pub history: BTreeMap<String, Vec<Vec<f64>>>,
+    /// Pretension sections (bolts): [`crate::pretension`]. Last, so that a
+    /// case without them keeps its restart fingerprint (`Case::key`).
+    #[serde(default)]
+    pub pretension: Vec<PretensionSpec>,
+}
+
+/// A pretension section (`[[pretension]]`, after Abaqus *PRE-TENSION SECTION):
+/// a cut across a body along an element line, whose two sides are tied but
+/// for a relative displacement s along the cut's normal (the shortening),
+/// loaded by a force or a prescribed shortening ([`crate::pretension`]).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PretensionSpec {
+    pub name: String,
+    /// The body the section cuts.
+    pub body: String,
+    /// The cut along x = this value (plane models): its normal is +x.
+    pub x: Option<f64>,
+    /// The cut along y = this value: its normal is +y.
+    pub y: Option<f64>,
+    /// The section force at factor 1 (N; the whole ring in axisymmetry,
+    /// the model's thickness in plane models): tension positive.
+    pub force: Option<f64>,
+    /// Or the shortening at factor 1 (mm): the side beyond the cut moves
+    /// by −s along the normal relative to the other.
+    pub shortening: Option<f64>,
+    /// The factor's history; none: the load factor (or the default ramp).
+    pub history: Option<HistoryRef>,
+    /// A force-controlled section is locked (its shortening held) after
+    /// its history's last time; default true. Not with `shortening`.
+    pub lock: Option<bool>,
 }
 
 #[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default)]
@@ -545,7 +576,8 @@ impl Case {
         // keys of builds before `vtu_format` stay as they were
         let full = format!("{key:?}")
             .replace(", table: None,", ",")
-            .replace(", vtu_format: Binary }", " }");
+            .replace(", vtu_format: Binary }", " }")
+            .replace(", pretension: [] }", " }");
         let new_keys = !key.history.is_empty()
             || !key.force.is_empty()
             || key

@@ -121,6 +121,9 @@ impl Writer {
         self.write("joints.csv", &joints::joints_csv(model, result))?;
         self.write("cycles.csv", &joints::cycles_csv(model, &cycles))?;
         joints::hysteresis(model, result, &cycles, &self.tmp_dir)?;
+        if !model.sections.is_empty() {
+            self.write("pretension.csv", &pretension_csv(model, result))?;
+        }
         self.write("results.pvd", &vtu::pvd(&self.pvd))?;
         replace_dir(&self.tmp_dir, &self.final_dir)?;
         self.done = true;
@@ -470,6 +473,9 @@ pub fn summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
         );
     }
     s["joints"] = joints::summary(model, r, &joints::run_cycles(model, r));
+    if !model.sections.is_empty() {
+        s["pretension"] = pretension_summary(model, r);
+    }
     // only cases with a tabulated law (the others write what they always did)
     let uses = table_uses(&model.interfaces, &r.table_reach);
     if !uses.is_empty() {
@@ -505,4 +511,63 @@ pub fn summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
         });
     }
     s
+}
+
+/// `pretension.csv`: every increment's section force (N, tension positive;
+/// the whole ring in axisymmetry) and shortening (mm) of every pretension
+/// section (docs/output.md).
+fn pretension_csv(model: &Model, r: &RunResult) -> String {
+    let mut out = String::from("increment,load_factor");
+    for s in &model.sections {
+        let _ = write!(out, ",{0}_force_n,{0}_shortening_mm", s.name);
+    }
+    out.push('\n');
+    for inc in &r.increments {
+        let _ = write!(out, "{},{:.10e}", inc.increment, inc.load_factor);
+        for k in 0..model.sections.len() {
+            let [f, s] = inc.sections.get(k).copied().unwrap_or([f64::NAN; 2]);
+            let _ = write!(out, ",{f:.10e},{s:.10e}");
+        }
+        out.push('\n');
+    }
+    out
+}
+
+/// summary.json's `pretension`: each section's control, lock time and its
+/// force and shortening at the end of the run, at the lock and their
+/// extremes.
+fn pretension_summary(model: &Model, r: &RunResult) -> serde_json::Value {
+    model
+        .sections
+        .iter()
+        .enumerate()
+        .map(|(k, s)| {
+            let at = |inc: &Increment| inc.sections.get(k).copied().unwrap_or([f64::NAN; 2]);
+            let last = r.increments.last().map_or([f64::NAN; 2], at);
+            let locked = r
+                .increments
+                .iter()
+                .rev()
+                .find(|i| i.load_factor <= s.lock_after)
+                .filter(|_| s.lock_after.is_finite())
+                .map(at);
+            let forces = r.increments.iter().map(|i| at(i)[0]);
+            let (lo, hi) = forces.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), f| {
+                (a.min(f), b.max(f))
+            });
+            json!({
+                "name": s.name,
+                "body": model.mesh.bodies[s.body],
+                "cut": format!("{} = {}", ["x", "y"][s.axis], s.at),
+                "control": s.control,
+                "locked_after": s.lock_after.is_finite().then_some(s.lock_after),
+                "force_n": last[0],
+                "shortening_mm": last[1],
+                "force_at_lock_n": locked.map(|v| v[0]),
+                "shortening_at_lock_mm": locked.map(|v| v[1]),
+                "force_min_n": lo,
+                "force_max_n": hi,
+            })
+        })
+        .collect()
 }

@@ -68,6 +68,7 @@ pub(super) fn decode_with(
     restore_state(&mut ck, &s, model)?;
     ck.committed.time = ck.lambda;
     restore_joints(&mut ck, &s, model.interfaces.len())?;
+    restore_sections(&mut ck, &s, model.sections.len())?;
     restore_table_reach(&mut ck, &s, model)?;
     ck.first_yield = restore_first_yield(&s, model, &ck.increments)?;
     let pvd = restore_vtu_series(&s, model, &ck.increments)?;
@@ -261,6 +262,7 @@ pub(super) fn restore_curve(s: &Sections, increments: usize) -> Decoded<Vec<Incr
                     prescribed_reaction: v[9],
                 },
                 joints: Vec::new(),
+                sections: Vec::new(),
             })
         })
         .collect()
@@ -658,6 +660,21 @@ pub(super) fn restore_joints(ck: &mut Checkpoint, s: &Sections, interfaces: usiz
                 .map(JointMeasures::unpack)
                 .collect();
         }
+    }
+    Ok(())
+}
+
+/// Every increment's pretension section forces and shortenings (a section
+/// `pretension`, 2 numbers per section and increment, finite), when the
+/// model has sections; a model without any has no such section.
+pub(super) fn restore_sections(ck: &mut Checkpoint, s: &Sections, sections: usize) -> Decoded<()> {
+    if sections == 0 || ck.increments.is_empty() {
+        return Ok(());
+    }
+    let w = 2 * sections;
+    let v = s.finite("pretension", Some(w * ck.increments.len()))?;
+    for (inc, row) in ck.increments.iter_mut().zip(v.chunks_exact(w)) {
+        inc.sections = row.chunks_exact(2).map(|p| [p[0], p[1]]).collect();
     }
     Ok(())
 }

@@ -196,7 +196,7 @@ pub fn fingerprint(model: &Model) -> u64 {
             bytes.extend_from_slice(&(n as u64).to_le_bytes());
         }
     }
-    bytes.extend_from_slice(&(model.mesh.num_dofs() as u64).to_le_bytes());
+    bytes.extend_from_slice(&(model.num_dofs() as u64).to_le_bytes());
     fnv1a(&bytes)
 }
 
@@ -419,6 +419,23 @@ fn sections(e: &mut Encoder, ck: &Checkpoint, pvd: &[(f64, String)]) -> std::io:
             })
             .flat_map(|j| j.iter().flat_map(JointMeasures::pack)),
     )?;
+    // a model with pretension sections: their force and shortening per
+    // increment (no section otherwise, so older files stay as they were)
+    let sections = ck
+        .increments
+        .iter()
+        .map(|i| i.sections.len())
+        .max()
+        .unwrap_or(0);
+    if sections > 0 {
+        e.f64_iter(
+            "pretension",
+            2 * sections * ck.increments.len(),
+            ck.increments.iter().flat_map(|i| {
+                (0..sections).flat_map(move |k| i.sections.get(k).copied().unwrap_or([f64::NAN; 2]))
+            }),
+        )?;
+    }
     e.f64_iter(
         "table_reach",
         Reach::PACKED * ck.table_reach.len(),

@@ -47,6 +47,7 @@ fn checkpoint(model: &Model, n: usize) -> (Checkpoint, Vec<(f64, String)>) {
             cutbacks: 0,
             measures: Measures::default(),
             joints: vec![JointMeasures::default(); model.interfaces.len()],
+            sections: Vec::new(),
         });
         pvd.push((t, vtu_name(k)));
     }

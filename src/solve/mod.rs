@@ -38,6 +38,11 @@ pub struct State {
     /// Sum of the reactions at the dofs with a non-zero prescribed displacement
     /// (the force needed to impose it), N.
     pub prescribed_reaction: f64,
+    /// The force across each pretension section (N, tension positive): the
+    /// condensed internal force on its shortening's equation, set when a
+    /// step converges (empty before; not kept in restart files, whose
+    /// increments carry it).
+    pub section_force: Vec<f64>,
     /// The pseudo-time of the state (the load factor without histories):
     /// where its loads, prescribed values and gaps are taken.
     pub time: f64,
@@ -47,11 +52,12 @@ impl State {
     pub fn initial(model: &Model) -> State {
         let n_points: usize = model.interfaces.iter().map(|i| i.points.len()).sum();
         State {
-            u: vec![0.0; model.mesh.num_dofs()],
+            u: vec![0.0; model.num_dofs()],
             gauss: vec![PointState::default(); model.mesh.elements.len() * model.n_gauss()],
             status: vec![Status::Closed; n_points],
             contact: vec![crate::interface::PointState::default(); n_points],
             prescribed_reaction: 0.0,
+            section_force: Vec::new(),
             time: 0.0,
         }
     }
@@ -70,6 +76,8 @@ pub struct Increment {
     /// ([`crate::interface::joint`]); empty for increments restored from a
     /// restart file of an earlier build.
     pub joints: Vec<JointMeasures>,
+    /// Every pretension section's [force (N), shortening (mm)], in order.
+    pub sections: Vec<[f64; 2]>,
 }
 
 /// Scalar measures of a state.
@@ -472,6 +480,20 @@ fn accept(
             &ck.committed.contact,
             &ck.joint_totals,
         ),
+        sections: model
+            .sections
+            .iter()
+            .enumerate()
+            .map(|(k, s)| {
+                let f = ck
+                    .committed
+                    .section_force
+                    .get(k)
+                    .copied()
+                    .unwrap_or(f64::NAN);
+                [f, ck.committed.u[s.dof]]
+            })
+            .collect(),
     };
     ck.cutbacks_here = 0;
     ck.iterations = engine.stats.iterations;

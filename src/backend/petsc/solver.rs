@@ -155,7 +155,9 @@ impl Partition {
             .collect();
         // dofs sorted by (owner, node, component); every node has an owner
         // because Mesh::validate refuses nodes that belong to no element
-        let nd = mesh.num_dofs();
+        // a pretension section's reference node belongs to rank 0
+        node_owner.resize(mesh.nodes.len() + model.sections.len(), 0);
+        let nd = model.num_dofs();
         let mut offsets = vec![0usize; ranks + 1];
         for &o in &node_owner {
             offsets[o + 1] += 2;

@@ -59,12 +59,17 @@ impl SerialBackend {
         let mut pos_of = vec![u32::MAX; pattern.n];
         let mut interface = Vec::new();
         if kind == Factorization::SymmetricPart {
-            for im in &model.interfaces {
-                for pt in &im.points {
-                    for d in im.point_dofs(pt) {
-                        if let Some(e) = model.dofs.equation(d) {
-                            pos_of[e] = 0;
-                        }
+            // the interface points' blocks (over their masters where a
+            // point holds a constrained dof): what add_coupling touches
+            let first = model
+                .interface_block_base
+                .first()
+                .copied()
+                .unwrap_or(model.section_block_base);
+            for b in first..model.section_block_base {
+                for &d in blocks.get(b) {
+                    if let Some(e) = model.dofs.equation(d as usize) {
+                        pos_of[e] = 0;
                     }
                 }
             }

@@ -77,7 +77,7 @@ pub struct Engine<'m> {
     /// The elements whose Gauss states this process holds, ascending: all of
     /// them on one process, the owned ones under MPI. A state's `gauss` holds
     /// these elements' points in this order ([`Engine::localize`]).
-    held: Vec<u32>,
+    held_elements: Vec<u32>,
     /// Contact stabilization of floating bodies ([`super::stabilize`]).
     pub stabilizer: Option<Stabilizer>,
     /// Threads of the element loop ([`Engine::set_threads`]).
@@ -85,6 +85,9 @@ pub struct Engine<'m> {
     /// One batch's element forces and tangents ([`ELEMENT_BATCH`]).
     fe_batch: Vec<[f64; 16]>,
     ke_batch: Vec<[f64; 256]>,
+    /// The dofs held in the current step ([`Model::held_dofs`]); a cached
+    /// solid matrix is of one set of them.
+    held: Vec<usize>,
 }
 
 impl<'m> Engine<'m> {
@@ -96,7 +99,7 @@ impl<'m> Engine<'m> {
         mut backend: Box<dyn Backend + 'm>,
     ) -> Self {
         backend.reuse_solid(method != Method::FullNewton);
-        let held = (0..model.mesh.elements.len())
+        let held_elements = (0..model.mesh.elements.len())
             .filter(|&e| backend.owns_element(e))
             .map(|e| e as u32)
             .collect();
@@ -106,17 +109,18 @@ impl<'m> Engine<'m> {
             method,
             backend,
             solid_valid: false,
-            r: vec![0.0; model.mesh.num_dofs()],
-            load: vec![0.0; model.mesh.num_dofs()],
+            r: vec![0.0; model.num_dofs()],
+            load: vec![0.0; model.num_dofs()],
             load_time: f64::NAN,
             stats: Stats::default(),
             fault: None,
             assemblies: 0,
-            held,
+            held_elements,
             stabilizer: Some(Stabilizer::new(model)),
             threads: 1,
             fe_batch: Vec::new(),
             ke_batch: Vec::new(),
+            held: Vec::new(),
         }
     }
 
@@ -133,12 +137,12 @@ impl<'m> Engine<'m> {
 
     /// The elements whose Gauss states this process holds, ascending.
     pub fn held_elements(&self) -> &[u32] {
-        &self.held
+        &self.held_elements
     }
 
     /// Whether this process holds every element's Gauss states.
     fn holds_all(&self) -> bool {
-        self.held.len() == self.model.mesh.elements.len()
+        self.held_elements.len() == self.model.mesh.elements.len()
     }
 
     /// Drops from a whole state (every element's Gauss points, as built by
@@ -149,8 +153,8 @@ impl<'m> Engine<'m> {
         if self.holds_all() || state.gauss.len() != self.model.mesh.elements.len() * ng {
             return;
         }
-        let mut local = Vec::with_capacity(self.held.len() * ng);
-        for &e in &self.held {
+        let mut local = Vec::with_capacity(self.held_elements.len() * ng);
+        for &e in &self.held_elements {
             let e = e as usize;
             local.extend_from_slice(&state.gauss[e * ng..(e + 1) * ng]);
         }
@@ -184,8 +188,8 @@ impl<'m> Engine<'m> {
             let e1 = (e0 + per).min(ne);
             g.clear();
             g.resize((e1 - e0) * ng * W, 0.0);
-            while k < self.held.len() && (self.held[k] as usize) < e1 {
-                let at = (self.held[k] as usize - e0) * ng * W;
+            while k < self.held_elements.len() && (self.held_elements[k] as usize) < e1 {
+                let at = (self.held_elements[k] as usize - e0) * ng * W;
                 for (ip, s) in state.gauss[k * ng..(k + 1) * ng].iter().enumerate() {
                     g[at + ip * W..][..W].copy_from_slice(&s.pack());
                 }
@@ -204,7 +208,7 @@ impl<'m> Engine<'m> {
     /// (element, point) where it occurs: the lowest such index on ties, as
     /// one process finds it.
     pub fn max_yield_ratio(&self, state: &State) -> (f64, usize, usize) {
-        let local = super::yield_point::max_yield_ratio(self.model, state, &self.held);
+        let local = super::yield_point::max_yield_ratio(self.model, state, &self.held_elements);
         if self.backend.ranks() == 1 {
             return local;
         }
@@ -246,6 +250,21 @@ impl<'m> Engine<'m> {
         let mut m = super::Measures::of(self.model, state);
         m.max_peeq = self.max_over_points(state.gauss.iter().map(|g| g.peeq));
         m
+    }
+
+    /// The dofs held in a step to pseudo-time t ([`Model::held_dofs`]); a
+    /// change (a section locked) makes a cached solid matrix stale.
+    pub fn hold_for(&mut self, t: f64) {
+        let held = self.model.held_dofs(t);
+        if held != self.held {
+            self.held = held;
+            self.solid_valid = false;
+        }
+    }
+
+    /// Whether dof d is held in the current step.
+    pub fn is_held(&self, d: usize) -> bool {
+        self.held.contains(&d)
     }
 
     /// Called when a new state is committed: the modified-Newton matrix is stale.
@@ -406,6 +425,8 @@ impl<'m> Engine<'m> {
         let mut codes = self.assemble_interfaces(committed, trial, floor.as_deref())?;
         let be = &mut self.backend;
         be.sum(&mut self.r);
+        // r ← Tᵀ r: the slaves' forces onto their masters
+        self.model.constraints.condense(&mut self.r);
         if self.assemblies == 1 {
             self.stats
                 .memory_mb
@@ -445,7 +466,7 @@ impl<'m> Engine<'m> {
         if solid_tangent.is_some() {
             be.begin_solid().map_err(err)?;
         }
-        let n = self.held.len();
+        let n = self.held_elements.len();
         let batch = n.min(ELEMENT_BATCH);
         if self.fe_batch.len() < batch {
             self.fe_batch.resize(batch, [0.0; 16]);
@@ -467,7 +488,7 @@ impl<'m> Engine<'m> {
             };
             let first = element_batch(
                 m,
-                &self.held[b0..b1],
+                &self.held_elements[b0..b1],
                 &committed.gauss[b0 * ng..b1 * ng],
                 &mut trial.gauss[b0 * ng..b1 * ng],
                 &trial.u,
@@ -479,7 +500,7 @@ impl<'m> Engine<'m> {
             );
             let done = first.as_ref().map_or(len, |f| f.0);
             for i in 0..done {
-                let el = &m.mesh.elements[self.held[b0 + i] as usize];
+                let el = &m.mesh.elements[self.held_elements[b0 + i] as usize];
                 let fe = &self.fe_batch[i];
                 for (a, &n) in el.nodes.iter().enumerate() {
                     self.r[2 * n] += fe[2 * a];
@@ -488,12 +509,18 @@ impl<'m> Engine<'m> {
                     dofs[2 * a + 1] = 2 * n + 1;
                 }
                 if solid_tangent.is_some() {
-                    be.add_solid(self.held[b0 + i] as usize, &dofs, &self.ke_batch[i])
-                        .map_err(err)?;
+                    let b = self.held_elements[b0 + i] as usize;
+                    match m.expansions.get(&b) {
+                        None => be.add_solid(b, &dofs, &self.ke_batch[i]),
+                        Some(x) => {
+                            be.add_solid(b, &x.dofs, &held_out(x, &self.held, &self.ke_batch[i]))
+                        }
+                    }
+                    .map_err(err)?;
                 }
             }
             if let Some((i, msg)) = first {
-                let e = self.held[b0 + i] as usize;
+                let e = self.held_elements[b0 + i] as usize;
                 let body = m.mesh.elements[e].body;
                 failure = Some(format!(
                     "element {e} (body \"{}\"): {msg}",
@@ -581,17 +608,67 @@ impl<'m> Engine<'m> {
                     self.r[d] += rl[k];
                 }
                 let block = m.interface_block_base[i] + j;
-                be.add_contact(block, &pdofs, &kl[..nd * nd]).map_err(err)?;
+                let x = m.expansions.get(&block);
+                match x {
+                    None => be.add_contact(block, &pdofs, &kl[..nd * nd]),
+                    Some(x) => {
+                        be.add_contact(block, &x.dofs, &held_out(x, &self.held, &kl[..nd * nd]))
+                    }
+                }
+                .map_err(err)?;
                 if split && ev.coupling != 0.0 {
                     let (g_n, g_t) = pt.gradients();
-                    be.add_coupling(block, &pdofs, ev.coupling, &g_t, &g_n)
-                        .map_err(err)?;
+                    match x {
+                        None => be.add_coupling(block, &pdofs, ev.coupling, &g_t, &g_n),
+                        Some(x) => {
+                            let (mut gt, mut gn) = (x.vector(&g_t), x.vector(&g_n));
+                            for (k, d) in x.dofs.iter().enumerate() {
+                                if self.held.contains(d) {
+                                    gt[k] = 0.0;
+                                    gn[k] = 0.0;
+                                }
+                            }
+                            be.add_coupling(block, &x.dofs, ev.coupling, &gt, &gn)
+                        }
+                    }
+                    .map_err(err)?;
                 }
                 q += 1;
             }
         }
+        // a held dof's equation: its row and column are zero (held_out),
+        // its diagonal a stiffness of the model's scale, added once (rank 0)
+        if be.rank() == 0 {
+            for (k, s) in m.sections.iter().enumerate() {
+                if self.held.contains(&s.dof) {
+                    let kh = m.held_stiffness();
+                    be.add_contact(
+                        m.section_block_base + k,
+                        &[s.dof, s.dof + 1],
+                        &[kh, 0.0, 0.0, 0.0],
+                    )
+                    .map_err(err)?;
+                }
+            }
+        }
         Ok(codes)
     }
+}
+
+/// The block Tᵀ k T of a block that holds a slave dof ([`crate::constraint`]),
+/// with the rows and columns of the held dofs zero.
+fn held_out(x: &crate::constraint::Expansion, held: &[usize], k: &[f64]) -> Vec<f64> {
+    let mut kx = x.matrix(k);
+    let m = x.dofs.len();
+    for (i, d) in x.dofs.iter().enumerate() {
+        if held.contains(d) {
+            for j in 0..m {
+                kx[i * m + j] = 0.0;
+                kx[j * m + i] = 0.0;
+            }
+        }
+    }
+    kx
 }
 
 /// Element forces (and tangents, when `tangent` asks and `ke` has room) of

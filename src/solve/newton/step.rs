@@ -75,6 +75,8 @@ impl<'a, 'm> StepProblem<'a, 'm> {
         for (d, v) in m.prescribed_at(lambda) {
             trial.u[d] = v;
         }
+        engine.hold_for(lambda);
+        m.fill_slaves(&mut trial.u, lambda);
         let method = if response == Response::ElasticOnly {
             Method::FullNewton
         } else {
@@ -235,6 +237,15 @@ impl Problem for StepProblem<'_, '_> {
             self.trial.u[d] = x[k];
         }
         let e = &mut *self.engine;
+        if !e.model.constraints.is_empty() || !e.model.sections.is_empty() {
+            // a held dof keeps its committed value, the slaves follow
+            for s in &e.model.sections {
+                if e.is_held(s.dof) {
+                    self.trial.u[s.dof] = self.committed.u[s.dof];
+                }
+            }
+            e.model.fill_slaves(&mut self.trial.u, self.lambda);
+        }
         let solid_tangent = match self.method {
             Method::FullNewton => Some(Tangent::Consistent),
             Method::ModifiedNewton if !e.solid_valid => Some(Tangent::Continuum),
@@ -266,7 +277,7 @@ impl Problem for StepProblem<'_, '_> {
         e.load_at(self.lambda);
         let (mut r2, mut f2, mut react2) = (0.0, 0.0, 0.0);
         for (d, (&r, &f)) in e.r.iter().zip(&e.load).enumerate() {
-            if m.dofs.equation(d).is_some() {
+            if m.dofs.equation(d).is_some() && !e.is_held(d) {
                 r2 += r * r;
                 f2 += f.powi(2);
             } else {
@@ -276,7 +287,8 @@ impl Problem for StepProblem<'_, '_> {
         self.reference = f2.sqrt().max(react2.sqrt()).max(m.force_floor);
         self.r_norm = r2.sqrt();
         for (k, &d) in self.free.iter().enumerate() {
-            r[k] = e.r[d];
+            // a held equation is an identity row: no residual, no correction
+            r[k] = if e.is_held(d) { 0.0 } else { e.r[d] };
         }
         true
     }
@@ -323,6 +335,14 @@ impl Problem for StepProblem<'_, '_> {
                 .filter(|(_, v)| *v != 0.0)
                 .map(|&(d, _)| e.r[d])
                 .sum();
+            // the force across each pretension section: the condensed
+            // internal force on its shortening, r + f_ext (r is the
+            // reaction of a held or prescribed one)
+            self.trial.section_force = m
+                .sections
+                .iter()
+                .map(|s| e.r[s.dof] + e.load[s.dof])
+                .collect();
             e.share_state(&mut self.trial);
             self.outcome = Some(Ok(it));
             return Verdict::Stop;

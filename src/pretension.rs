@@ -1,0 +1,363 @@
+//! Pretension sections (`[[pretension]]`), after Abaqus's *PRE-TENSION
+//! SECTION and CalculiX's pre-tension section: a bolt is tightened by cutting
+//! its shank and pulling the two sides of the cut together.
+//!
+//! The cut follows element edges: every node of the body on the line
+//! (y = h, or x = c in plane models) that elements on both sides share is
+//! doubled, the elements beyond the line (on the side the normal n = +y or
+//! +x points to) take the copy. One more unknown, the shortening s, lives on
+//! a reference node of its own after the mesh's nodes (dofs 2N + 2k, and
+//! 2N + 2k + 1, always 0), and the copies follow the originals through the
+//! model's linear constraints ([`crate::constraint`]):
+//!
+//! ```text
+//!   u_n(copy) = u_n(node) − s,   u_t(copy) = u_t(node)
+//! ```
+//!
+//! so s > 0 shortens the body across the cut, rigidly over the whole cut.
+//! The virtual work of the cut is N δs with N the force the body transmits
+//! across the cut (tension positive): the force on s's equation is the
+//! section force, and it is what is reported ([`crate::solve::State::section_force`]).
+//! Three ways to load it, each over a history:
+//! * `force = F`: a force F h(t) on s's equation, then, by default
+//!   (`lock = true`), **locked** after the history's last time: s keeps the
+//!   value it had there (its equation is held, [`crate::constraint`]) and
+//!   the section force follows the service loads — the bolt's share of them,
+//!   VDI 2230's load factor Φ;
+//! * `lock = false`: the force is kept (a bolt force no real bolt keeps);
+//! * `shortening = s₀`: s = s₀ h(t) prescribed (the nut turned by a known
+//!   amount), held by its history.
+
+use crate::case::{Case, PretensionSpec};
+use crate::constraint::Constraint;
+use crate::error::{Error, Result};
+use crate::mesh::Mesh;
+use std::collections::HashMap;
+
+/// A section of the model.
+#[derive(Clone, Debug)]
+pub struct Section {
+    pub name: String,
+    pub body: usize,
+    /// The normal's component: 0 (x = c) or 1 (y = h).
+    pub axis: usize,
+    /// The line's coordinate (mm).
+    pub at: f64,
+    /// (node, its copy beyond the cut) of every cut node.
+    pub pairs: Vec<(usize, usize)>,
+    /// The shortening's dof (its reference node's first dof).
+    pub dof: usize,
+    /// Locked (held) at pseudo-times after this one (∞: never).
+    pub lock_after: f64,
+    /// "force", "shortening" (what controls it).
+    pub control: &'static str,
+}
+
+/// The reference node of section k: after the mesh's nodes.
+pub fn dof(mesh_nodes: usize, k: usize) -> usize {
+    2 * mesh_nodes + 2 * k
+}
+
+/// Every dof of a model with these sections: the mesh's and two per section.
+pub fn total_dofs(case: &Case, mesh: &Mesh) -> usize {
+    mesh.num_dofs() + 2 * case.pretension.len()
+}
+
+fn at(place: &str, k: usize, spec: &PretensionSpec) -> String {
+    format!(
+        "{place}: pretension[{k}] (\"{}\")",
+        crate::error::clip(&spec.name)
+    )
+}
+
+/// Checks every `[[pretension]]` by itself and cuts the mesh along each:
+/// the sections with their node pairs (dofs and lock times come from
+/// [`finish`]). The mesh gains the copies; the elements beyond each cut, and
+/// their edges in edge sets and interfaces, take them.
+pub fn cut(case: &Case, mesh: &mut Mesh, place: &str) -> Result<Vec<Section>> {
+    let mut out: Vec<Section> = Vec::new();
+    for (k, spec) in case.pretension.iter().enumerate() {
+        let at = at(place, k, spec);
+        let err = |m: String| Err(Error::input(&at, m));
+        if spec.name.trim().is_empty() {
+            return err("name is empty".into());
+        }
+        if out.iter().any(|s| s.name == spec.name) {
+            return err("two [[pretension]] sections have this name".into());
+        }
+        let Some(body) = mesh.bodies.iter().position(|b| *b == spec.body) else {
+            return err(format!(
+                "body \"{}\" does not exist (bodies: {})",
+                crate::error::clip(&spec.body),
+                mesh.bodies.join(", ")
+            ));
+        };
+        let (axis, value) = match (spec.x, spec.y) {
+            (None, Some(y)) => (1, y),
+            (Some(x), None) => {
+                if case.model.plane == crate::material::Plane::Axisymmetric {
+                    return err("x = c cuts a body of revolution along a cylinder: in an axisymmetric model a section is a cut y = h across the axis (a bolt along y)".into());
+                }
+                (0, x)
+            }
+            (Some(_), Some(_)) => return err("give x or y (the line of the cut), not both".into()),
+            (None, None) => {
+                return err("give the line of the cut: y = h (normal +y) or, in plane models, x = c (normal +x)".into())
+            }
+        };
+        if !crate::case::ranges::COORDINATE.admits(value) {
+            return err(format!(
+                "{} = {value}: {}",
+                ["x", "y"][axis],
+                crate::case::ranges::COORDINATE.refusal(value)
+            ));
+        }
+        match (spec.force, spec.shortening) {
+            (Some(_), Some(_)) => {
+                return err("give force or shortening, not both".into());
+            }
+            (None, None) => {
+                return err("give force (N, tension positive) or shortening (mm)".into());
+            }
+            (None, Some(_)) if spec.lock.is_some() => {
+                return err("lock is given with shortening: a prescribed shortening is held by its history (lock applies to a force-controlled section)".into());
+            }
+            _ => {}
+        }
+        if let Some(f) = spec.force {
+            if f == 0.0 || !crate::case::ranges::FORCE.admits(f) {
+                return err(format!(
+                    "force = {f}: {}",
+                    if f == 0.0 {
+                        "a section without force (give the bolt force, N)".to_string()
+                    } else {
+                        crate::case::ranges::FORCE.refusal(f)
+                    }
+                ));
+            }
+        }
+        if let Some(s) = spec.shortening {
+            if s == 0.0 || !crate::case::ranges::DISPLACEMENT.admits(s) {
+                return err(format!(
+                    "shortening = {s}: {}",
+                    if s == 0.0 {
+                        "a section without shortening (give the shortening, mm)".to_string()
+                    } else {
+                        crate::case::ranges::DISPLACEMENT.refusal(s)
+                    }
+                ));
+            }
+        }
+        if let Some(other) = out
+            .iter()
+            .find(|s| s.body == body && s.axis == axis && s.at == value)
+        {
+            return err(format!(
+                "cuts body \"{}\" along the same line as pretension \"{}\"",
+                spec.body, other.name
+            ));
+        }
+        let pairs = split(mesh, body, axis, value, &at, &spec.body)?;
+        out.push(Section {
+            name: spec.name.clone(),
+            body,
+            axis,
+            at: value,
+            pairs,
+            dof: 0,
+            lock_after: f64::INFINITY,
+            control: if spec.force.is_some() {
+                "force"
+            } else {
+                "shortening"
+            },
+        });
+    }
+    Ok(out)
+}
+
+/// Splits body `body` along the line x_axis = value: the node pairs.
+fn split(
+    mesh: &mut Mesh,
+    body: usize,
+    axis: usize,
+    value: f64,
+    at: &str,
+    name: &str,
+) -> Result<Vec<(usize, usize)>> {
+    let tol = crate::case::whole::tolerance(mesh);
+    let line = format!("{} = {value}", ["x", "y"][axis]);
+    let side = |n: usize| -> i8 {
+        let d = mesh.nodes[n][axis] - value;
+        if d > tol {
+            1
+        } else if d < -tol {
+            -1
+        } else {
+            0
+        }
+    };
+    // each element of the body: beyond the line (+1), before it (−1)
+    let mut beyond = vec![false; mesh.elements.len()];
+    let mut on_sides: HashMap<usize, [bool; 2]> = HashMap::new();
+    for (e, el) in mesh.elements.iter().enumerate() {
+        if el.body != body {
+            continue;
+        }
+        let s: Vec<i8> = el.nodes.iter().map(|&n| side(n)).collect();
+        let (plus, minus) = (s.contains(&1), s.contains(&-1));
+        if plus && minus {
+            let c = mesh.element_coords(e);
+            return Err(Error::input(
+                at,
+                format!(
+                    "the cut {line} runs through element {e} of body \"{name}\" near ({:.4}, {:.4}): a cut follows element edges (put a block breakpoint at {line})",
+                    c.iter().map(|x| x[0]).sum::<f64>() / 8.0,
+                    c.iter().map(|x| x[1]).sum::<f64>() / 8.0
+                ),
+            ));
+        }
+        beyond[e] = plus;
+        for (&n, &sn) in el.nodes.iter().zip(&s) {
+            if sn == 0 {
+                on_sides.entry(n).or_default()[usize::from(plus)] = true;
+            }
+        }
+    }
+    let mut cut: Vec<usize> = on_sides
+        .iter()
+        .filter(|(_, s)| s[0] && s[1])
+        .map(|(&n, _)| n)
+        .collect();
+    cut.sort_unstable();
+    if cut.is_empty() {
+        return Err(Error::input(
+            at,
+            format!(
+                "does not cut body \"{name}\": no element edge of the body on {line} has elements of the body on both sides"
+            ),
+        ));
+    }
+    let copy: HashMap<usize, usize> = cut
+        .iter()
+        .enumerate()
+        .map(|(i, &n)| (n, mesh.nodes.len() + i))
+        .collect();
+    let pairs: Vec<(usize, usize)> = cut.iter().map(|&n| (n, copy[&n])).collect();
+    for &n in &cut {
+        let x = mesh.nodes[n];
+        mesh.nodes.push(x);
+    }
+    // edges [end, mid, end] of the elements beyond: their owner decides
+    let mut owner: HashMap<[usize; 3], bool> = HashMap::new();
+    for (e, el) in mesh.elements.iter().enumerate() {
+        if el.body != body || !el.nodes.iter().any(|n| copy.contains_key(n)) {
+            continue;
+        }
+        for k in 0..4 {
+            let mut key = [el.nodes[k], el.nodes[4 + k], el.nodes[(k + 1) % 4]];
+            key.sort_unstable();
+            owner.insert(key, beyond[e]);
+        }
+    }
+    let remap = |edge: &mut [usize; 3]| {
+        let mut key = *edge;
+        key.sort_unstable();
+        if owner.get(&key) == Some(&true) {
+            for n in edge.iter_mut() {
+                if let Some(&c) = copy.get(n) {
+                    *n = c;
+                }
+            }
+        }
+    };
+    for edges in mesh.edge_sets.values_mut() {
+        edges.iter_mut().for_each(remap);
+    }
+    for iface in &mut mesh.interfaces {
+        for e in &mut iface.edges {
+            remap(&mut e.a);
+            remap(&mut e.b);
+        }
+        if let Some(nm) = &mut iface.nonmatching {
+            nm.slave.iter_mut().for_each(remap);
+            nm.master.iter_mut().for_each(remap);
+        }
+    }
+    for (e, el) in mesh.elements.iter_mut().enumerate() {
+        if beyond[e] {
+            for n in el.nodes.iter_mut() {
+                if let Some(&c) = copy.get(n) {
+                    *n = c;
+                }
+            }
+        }
+    }
+    Ok(pairs)
+}
+
+/// Completes the sections once the loads are known: each one's dof after
+/// the `nodes` mesh nodes and its lock time (the end of its force history:
+/// `end_of(history)`; never with `lock = false`, a shortening, or no
+/// history in a case without histories).
+pub fn finish(case: &Case, sections: &mut [Section], nodes: usize, lock_end: &[Option<f64>]) {
+    for (k, (s, spec)) in sections.iter_mut().zip(&case.pretension).enumerate() {
+        s.dof = dof(nodes, k);
+        s.lock_after = match (spec.force, spec.lock.unwrap_or(true)) {
+            (Some(_), true) => lock_end[k].unwrap_or(f64::INFINITY),
+            _ => f64::INFINITY,
+        };
+    }
+}
+
+/// The constraints of the sections: the copies follow their nodes; a
+/// tangential tie whose two dofs are both prescribed to the same value (a
+/// cut node on the axis, held u_r = 0 on both) is left out, any other
+/// prescribed copy is refused.
+pub fn constraints(
+    sections: &[Section],
+    prescribed: &[(usize, f64)],
+    prescribed_history: &[Option<usize>],
+    place: &str,
+) -> Result<Vec<Constraint>> {
+    let given: HashMap<usize, (f64, Option<usize>)> = prescribed
+        .iter()
+        .zip(prescribed_history)
+        .map(|(&(d, v), &h)| (d, (v, h)))
+        .collect();
+    let mut out = Vec::new();
+    for s in sections {
+        let origin = format!("pretension \"{}\"", s.name);
+        for &(n, c) in &s.pairs {
+            for comp in 0..2 {
+                let (master, slave) = (2 * n + comp, 2 * c + comp);
+                let normal = comp == s.axis;
+                if let Some(&held) = given.get(&slave) {
+                    if !normal && given.get(&master) == Some(&held) {
+                        continue;
+                    }
+                    return Err(Error::input(
+                        format!("{place}: {origin}"),
+                        format!(
+                            "the cut's node at ({}, {}) has a prescribed u{} on the side beyond the cut: a section's two sides must not be held across it (move the cut or the boundary condition)",
+                            "", "", ["x", "y"][comp]
+                        )
+                        .replace("(, )", "on the cut"),
+                    ));
+                }
+                let mut terms = vec![(master, 1.0)];
+                if normal {
+                    terms.push((s.dof, -1.0));
+                }
+                out.push(Constraint {
+                    slave,
+                    terms,
+                    offset: 0.0,
+                    history: None,
+                    origin: origin.clone(),
+                });
+            }
+        }
+    }
+    Ok(out)
+}
