@@ -22,6 +22,7 @@ mod joints;
 mod limit_load;
 mod nonmatching;
 mod patch;
+mod pretension;
 mod punch;
 mod punch_rounded;
 mod roughness;

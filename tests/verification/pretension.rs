@@ -1,0 +1,325 @@
+//! Pretension sections and the linear-constraint mechanism (issue 27,
+//! docs/case-schema.md "Pretension sections"): a pretensioned bar between
+//! rigid supports (force, shortening and stress exact), a prescribed
+//! shortening, a locked section carrying a later load as the two springs
+//! either side of the load point (VDI 2230's load factor of the bar, exact),
+//! a bolt of revolution cut across its axis, and a patch test with a node
+//! constrained inside an element edge (a hanging node).
+
+use crate::common;
+use asperity::constraint::Constraint;
+use asperity::model::Model;
+use asperity::solve::{Increment, Observer, RunResult, State};
+
+#[derive(Default)]
+struct Capture(Vec<State>);
+impl Observer for Capture {
+    fn increment(&mut self, _: &Model, s: &State, _: &Increment) -> asperity::error::Result<()> {
+        self.0.push(s.clone());
+        Ok(())
+    }
+}
+
+fn solve(model: &Model) -> (RunResult, Vec<State>) {
+    let mut c = Capture::default();
+    let r = asperity::driver::solve(model, &mut c).unwrap_or_else(|e| panic!("{e}"));
+    (r, c.0)
+}
+
+const E: f64 = 200_000.0;
+const L: f64 = 100.0;
+const H: f64 = 10.0;
+const T: f64 = 2.0;
+
+/// A plane-stress bar [0, L] × [0, H], thickness T, held in x at both ends
+/// (and in y at one corner), cut at x = 30 by section "bolt"; `section` and
+/// `more` complete it.
+fn bar(section: &str, more: &str) -> String {
+    format!(
+        r#"
+[model]
+plane = "stress"
+thickness = {T}
+[[mesh.block]]
+body = "bar"
+x = [0.0, 30.0, 60.0, {L}]
+nx = [3, 3, 4]
+y = [0.0, {H}]
+ny = [2]
+[materials.bar]
+young = {E}
+poisson = 0.3
+[[boundary]]
+set = "bar.left"
+ux = 0.0
+[[boundary]]
+set = "bar.right"
+ux = 0.0
+[[boundary]]
+set = "bar.left"
+uy = 0.0
+y_range = [0.0, 0.0]
+[[pretension]]
+name = "bolt"
+body = "bar"
+x = 30.0
+{section}
+{more}
+[output]
+vtu_every = 1000
+"#
+    )
+}
+
+#[test]
+fn a_pretensioned_bar_between_rigid_supports_is_exact() {
+    let f = 1000.0;
+    let model = common::model(&bar(&format!("force = {f}"), ""));
+    let (r, states) = solve(&model);
+    let last = r.increments.last().unwrap();
+    let [force, s] = last.sections[0];
+    let a = H * T;
+    assert!(common::rel(force, f) < 1e-10, "force {force}");
+    // both parts stretch by N L_i / (E A): the cut closes by their sum
+    assert!(common::rel(s, f * L / (E * a)) < 1e-10, "shortening {s}");
+    // uniaxial tension F/A at every Gauss point of the bar
+    for g in &states.last().unwrap().gauss {
+        assert!(
+            common::rel(g.stress[0], f / a) < 1e-9,
+            "σ_xx {}",
+            g.stress[0]
+        );
+        assert!(g.stress[1].abs() < 1e-9 * f / a && g.stress[2].abs() < 1e-9 * f / a);
+    }
+    // proportional loading: every increment on the same line
+    for inc in &r.increments {
+        let [fi, si] = inc.sections[0];
+        assert!(common::rel(fi, f * inc.load_factor) < 1e-10);
+        assert!(common::rel(si, s * inc.load_factor) < 1e-10);
+    }
+}
+
+#[test]
+fn a_prescribed_shortening_gives_the_bars_force() {
+    let s = 0.02;
+    let model = common::model(&bar(&format!("shortening = {s}"), ""));
+    let (r, _) = solve(&model);
+    let [force, s_run] = r.increments.last().unwrap().sections[0];
+    assert_eq!(s_run, s);
+    assert!(
+        common::rel(force, E * H * T * s / L) < 1e-10,
+        "force {force}"
+    );
+}
+
+/// The bar preloaded to F through the section, locked, then pulled at
+/// x = b = 60 by P: the locked cut is a rigid tie, the bar either side of
+/// the load point a spring, k₁ = EA/b and k₂ = EA/(L − b); the part that
+/// holds the section takes Φ P with Φ = k₁/(k₁ + k₂) = (L − b)/L.
+#[test]
+fn a_locked_section_takes_its_share_of_a_later_load() {
+    let (f, p_node) = (1000.0, 100.0);
+    let more = format!(
+        r#"
+[history]
+preload = [[0, 0], [1, 1]]
+service = [[1, 0], [2, 1]]
+[[force]]
+nodes = "bar.all"
+fx = {p_node}
+x_range = [60.0, 60.0]
+history = "service""#
+    );
+    let model = common::model(&bar(&format!("force = {f}\nhistory = \"preload\""), &more));
+    assert_eq!(model.sections[0].lock_after, 1.0);
+    let (r, _) = solve(&model);
+    // five nodes on the line x = 60 (ny = 2: corners and midsides)
+    let p = 5.0 * p_node;
+    let phi = (L - 60.0) / L;
+    let at_lock = r
+        .increments
+        .iter()
+        .find(|i| i.load_factor == 1.0)
+        .unwrap()
+        .sections[0];
+    assert!(common::rel(at_lock[0], f) < 1e-10);
+    for inc in r.increments.iter().filter(|i| i.load_factor > 1.0) {
+        let [force, s] = inc.sections[0];
+        // the shortening is held
+        assert_eq!(s, at_lock[1], "t = {}", inc.load_factor);
+        let want = f + phi * p * (inc.load_factor - 1.0);
+        assert!(
+            common::rel(force, want) < 1e-9,
+            "t = {}: {force} vs {want}",
+            inc.load_factor
+        );
+    }
+    // lock = false keeps the force: the section's force does not move
+    let model = common::model(&bar(
+        &format!("force = {f}\nhistory = \"preload\"\nlock = false"),
+        &more,
+    ));
+    let (r, _) = solve(&model);
+    let [force, _] = r.increments.last().unwrap().sections[0];
+    assert!(common::rel(force, f) < 1e-9, "unlocked: {force}");
+}
+
+/// A solid rod of revolution, radius R, length 2L₀, held in z at both
+/// ends, cut at mid-length: uniaxial σ_zz = F/(πR²), shortening F 2L₀/(EπR²)
+/// (the cut's node on the axis has u_r = 0 on both sides).
+#[test]
+fn a_rod_of_revolution_cut_across_its_axis() {
+    let (r0, l0, f) = (6.0, 20.0, 30_000.0);
+    let text = format!(
+        r#"
+[model]
+plane = "axisymmetric"
+[[mesh.block]]
+body = "rod"
+x = [0.0, {r0}]
+nx = [3]
+y = [0.0, {l0}, {}]
+ny = [4, 4]
+[materials.rod]
+young = {E}
+poisson = 0.3
+[[boundary]]
+set = "rod.bottom"
+uy = 0.0
+[[boundary]]
+set = "rod.top"
+uy = 0.0
+[[pretension]]
+name = "shank"
+body = "rod"
+y = {l0}
+force = {f}
+[output]
+vtu_every = 1000
+"#,
+        2.0 * l0
+    );
+    let model = common::model(&text);
+    let (r, states) = solve(&model);
+    let [force, s] = r.increments.last().unwrap().sections[0];
+    let a = std::f64::consts::PI * r0 * r0;
+    assert!(common::rel(force, f) < 1e-10, "force {force}");
+    assert!(
+        common::rel(s, f * 2.0 * l0 / (E * a)) < 1e-9,
+        "shortening {s}"
+    );
+    for g in &states.last().unwrap().gauss {
+        // axisymmetric stress order: rr, zz, rz, θθ
+        assert!(
+            common::rel(g.stress[1], f / a) < 1e-9,
+            "σ_zz {}",
+            g.stress[1]
+        );
+    }
+}
+
+/// A patch test through the constraint mechanism: a coarse element
+/// [0, 2]² beside two fine ones [2, 3] × [0, 1] and [2, 3] × [1, 2], whose
+/// left edges' midside nodes (2, 0.5) and (2, 1.5) hang inside the coarse
+/// element's right edge and follow its quadratic shape: u_h = Σ N_i(s) u_i,
+/// N = (s(s−1)/2, 1 − s², s(s+1)/2) at s = ∓1/2. A linear field on the
+/// boundary gives the linear field everywhere and a constant stress.
+#[test]
+fn a_hanging_node_passes_the_patch_test() {
+    let mut model = common::model(&bar("force = 1000.0", ""));
+    // the mesh: corners then midsides of each element, counter-clockwise
+    let mut nodes: Vec<[f64; 2]> = Vec::new();
+    let id = |x: f64, y: f64, nodes: &mut Vec<[f64; 2]>| -> usize {
+        match nodes.iter().position(|p| p[0] == x && p[1] == y) {
+            Some(i) => i,
+            None => {
+                nodes.push([x, y]);
+                nodes.len() - 1
+            }
+        }
+    };
+    let quad = |x0: f64, x1: f64, y0: f64, y1: f64, nodes: &mut Vec<[f64; 2]>| {
+        let (xm, ym) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
+        [
+            id(x0, y0, nodes),
+            id(x1, y0, nodes),
+            id(x1, y1, nodes),
+            id(x0, y1, nodes),
+            id(xm, y0, nodes),
+            id(x1, ym, nodes),
+            id(xm, y1, nodes),
+            id(x0, ym, nodes),
+        ]
+    };
+    let els = [
+        quad(0.0, 2.0, 0.0, 2.0, &mut nodes),
+        quad(2.0, 3.0, 0.0, 1.0, &mut nodes),
+        quad(2.0, 3.0, 1.0, 2.0, &mut nodes),
+    ];
+    let at = |x: f64, y: f64| nodes.iter().position(|p| p[0] == x && p[1] == y).unwrap();
+    let (a, m, b) = (at(2.0, 0.0), at(2.0, 1.0), at(2.0, 2.0));
+    let (h1, h2) = (at(2.0, 0.5), at(2.0, 1.5));
+    let exact = |p: [f64; 2]| {
+        [
+            1e-3 * (2.0 * p[0] - 0.7 * p[1]) + 0.01,
+            1e-3 * (0.4 * p[0] + 1.1 * p[1]) - 0.02,
+        ]
+    };
+    let mesh = &mut model.mesh;
+    mesh.nodes = nodes.clone();
+    mesh.elements = els
+        .iter()
+        .map(|&nodes| asperity::mesh::Element { nodes, body: 0 })
+        .collect();
+    mesh.node_sets.clear();
+    mesh.edge_sets.clear();
+    model.sections.clear();
+    model.loads.clear();
+    model.f_ext = vec![0.0; 2 * nodes.len()];
+    let boundary = |p: [f64; 2]| p[0] == 0.0 || p[0] == 3.0 || p[1] == 0.0 || p[1] == 2.0;
+    let pts = &nodes;
+    model.prescribed = (0..nodes.len())
+        .filter(|&n| boundary(pts[n]) && n != h1 && n != h2)
+        .flat_map(|n| (0..2).map(move |c| (2 * n + c, exact(pts[n])[c])))
+        .collect();
+    model.prescribed_history = vec![None; model.prescribed.len()];
+    model.probe_node = 0;
+    let mut list = Vec::new();
+    for (h, s) in [(h1, -0.5), (h2, 0.5)] {
+        let n = [s * (s - 1.0) / 2.0, 1.0 - s * s, s * (s + 1.0) / 2.0];
+        for c in 0..2 {
+            list.push(Constraint {
+                slave: 2 * h + c,
+                terms: vec![(2 * a + c, n[0]), (2 * m + c, n[1]), (2 * b + c, n[2])],
+                offset: 0.0,
+                history: None,
+                origin: "hanging node".into(),
+            });
+        }
+    }
+    model.set_constraints(list).unwrap();
+    model.solver.load_factors = Some(vec![1.0]);
+    let (_, states) = solve(&model);
+    let st = states.last().unwrap();
+    for (n, p) in nodes.iter().enumerate() {
+        let want = exact(*p);
+        for c in 0..2 {
+            assert!(
+                (st.u[2 * n + c] - want[c]).abs() < 1e-13,
+                "node {n} at {p:?}: u{c} {} vs {}",
+                st.u[2 * n + c],
+                want[c]
+            );
+        }
+    }
+    let s0 = st.gauss[0].stress;
+    for g in &st.gauss {
+        for k in 0..3 {
+            assert!(
+                (g.stress[k] - s0[k]).abs() < 1e-9 * s0[0].abs(),
+                "{:?} vs {s0:?}",
+                g.stress
+            );
+        }
+    }
+}
