@@ -336,13 +336,12 @@ pub fn constraints(
                     if !normal && given.get(&master) == Some(&held) {
                         continue;
                     }
+                    // a copy is in no node set: only a support found by
+                    // its place (the axis) can hold it
+                    let x = "xy".as_bytes()[comp] as char;
                     return Err(Error::input(
                         format!("{place}: {origin}"),
-                        format!(
-                            "the cut's node at ({}, {}) has a prescribed u{} on the side beyond the cut: a section's two sides must not be held across it (move the cut or the boundary condition)",
-                            "", "", ["x", "y"][comp]
-                        )
-                        .replace("(, )", "on the cut"),
+                        format!("the cut's copy of node {n} has a prescribed u{x} that its node does not share: a section's two sides must not be held apart across it"),
                     ));
                 }
                 let mut terms = vec![(master, 1.0)];
