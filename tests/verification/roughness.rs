@@ -8,8 +8,12 @@
 //! δ = u_hub(p) + u_shaft(p) + c_N p^m with u_hub = (1+ν)/E [(1−2ν) A b + B/b],
 //! A = p b²/(c²−b²), B = p b² c²/(c²−b²) (Lamé, internal pressure on the hub)
 //! and u_shaft = p b (1+ν)(1−2ν)/E (solid shaft under external pressure).
-//! DIN 7190: the interference is reduced by 0.8 (Rz_shaft + Rz_hub) on the
-//! diameter, 0.4 (Rz_shaft + Rz_hub) on the radius, and the interface is rigid.
+//! DIN 7190 smoothing rule: the interference is reduced by 0.8 (Rz_shaft +
+//! Rz_hub) on the diameter, 0.4 (Rz_shaft + Rz_hub) on the radius, and the
+//! interface is rigid. It is applied here with the plane-strain Lamé above,
+//! the state of this model (both ends held); DIN 7190 itself uses
+//! plane-stress Lamé (free ends), which for equal materials gives (1−ν²)
+//! times the pressure: 61.34 instead of 67.40 MPa here (docs/joints.md).
 
 use crate::common;
 use serde_json::Value;
@@ -108,7 +112,8 @@ fn the_calibrated_shrink_fit_matches_its_closed_form_and_the_din_rule() {
         common::rel(p_fe, p_cal) < 5e-3,
         "FE {p_fe} MPa vs closed form {p_cal} MPa"
     );
-    // DIN 7190: the rigid fit with the interference reduced by 0.4 ΣRz
+    // DIN 7190's smoothing rule: the rigid fit with the interference reduced
+    // by 0.4 ΣRz, with plane-strain Lamé (not DIN 7190's plane-stress Lamé)
     let p_din = fit_pressure(DELTA - 0.4 * (RZ[0] + RZ[1]), 0.0, 1.0);
     let p_rigid = fit_pressure(DELTA, 0.0, 1.0);
     // the roughness costs about what the rule of thumb says (within 10 %),
