@@ -19,6 +19,7 @@ mod joints;
 mod links;
 mod output_schema;
 mod output_writer;
+mod pretension;
 mod restart;
 mod robust;
 mod tables;
