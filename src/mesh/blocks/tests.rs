@@ -5,6 +5,7 @@ use super::*;
 fn punch() -> (Vec<BlockSpec>, Vec<InterfaceSpec>) {
     let b = |body: &str, x: Vec<f64>, nx, rx, y: Vec<f64>, ny, ry| BlockSpec {
         body: body.into(),
+        name: None,
         x,
         nx,
         rx,
@@ -102,6 +103,7 @@ fn mismatched_interface_and_bad_specs_are_named() {
 fn block(body: &str, x: Vec<f64>, nx: Vec<usize>, y: Vec<f64>, ny: Vec<usize>) -> BlockSpec {
     BlockSpec {
         body: body.into(),
+        name: None,
         x,
         nx,
         rx: Vec::new(),
