@@ -193,7 +193,8 @@ fn share(
         )));
     }
     let inside = |v: f64| v >= lo - tol && v <= hi + tol;
-    for (line, other, name, other_name) in [(&lp, &lq, &np, &nq), (&lq, &lp, &nq, &np)] {
+    let lines = [(&lp, &lq, &np, &nq), (&lq, &lp, &nq, &np)];
+    for (line, _, name, _) in lines {
         for w in line.windows(3).step_by(2) {
             if !(inside(at(w[0])) && inside(at(w[2]))) {
                 if inside(at(w[1])) {
@@ -206,6 +207,8 @@ fn share(
             }
             plan.inner.insert(w[1]);
         }
+    }
+    for (line, other, name, other_name) in lines {
         for &n in line.iter().filter(|&&n| inside(at(n))) {
             let (x, v) = (mesh.nodes[n], at(n));
             // the lines run in increasing coordinate: binary search
@@ -339,3 +342,6 @@ fn merge(mesh: &mut Mesh, plan: &Plan) {
         }
     }
 }
+
+#[cfg(test)]
+mod tests;
