@@ -466,10 +466,7 @@ fn edge_traction(
         }
     }
     if count == 0 {
-        return Err(Error::input(
-            at,
-            "selects no edge (check x_range / y_range)",
-        ));
+        return Err(Error::input(at, selects_none("edge", edges.is_empty())));
     }
     if on_axis == count {
         return Err(Error::input(
@@ -553,10 +550,7 @@ fn concentrated_force(
         }
     }
     if terms.is_empty() {
-        return Err(Error::input(
-            at,
-            "selects no node (check x_range / y_range)",
-        ));
+        return Err(Error::input(at, selects_none("node", nodes.is_empty())));
     }
     Ok(terms)
 }
@@ -642,13 +636,21 @@ fn boundary_conditions(
             }
         }
         if count == 0 {
-            return Err(Error::input(
-                &at,
-                "selects no node (check x_range / y_range)",
-            ));
+            return Err(Error::input(&at, selects_none("node", nodes.is_empty())));
         }
     }
     Ok(out.into_iter().map(|(d, (v, h, _))| ((d, v), h)).collect())
+}
+
+/// Why a load or support selects nothing: its filters, or a set that is
+/// empty (a side of a block wholly shared with another block of its body,
+/// [`crate::mesh::blocks`]).
+fn selects_none(what: &str, empty_set: bool) -> String {
+    if empty_set {
+        format!("selects no {what}: the set is empty (a side that another block of its body shares all along is inside the body)")
+    } else {
+        format!("selects no {what} (check x_range / y_range)")
+    }
 }
 
 /// A list of names for a message: each clipped, at most 30 of them.

@@ -115,7 +115,7 @@ fn check_block_coordinates(case: &Case, at: &dyn Fn(&str) -> String) -> Result<(
                 .chain(b.y.iter().map(|v| ("y", v)))
         {
             ranges::COORDINATE.check(
-                at(&format!("[[mesh.block]] \"{}\" {axis}", clip(&b.body))),
+                at(&format!("[[mesh.block]] \"{}\" {axis}", clip(b.name()))),
                 *v,
             )?;
         }
@@ -361,7 +361,7 @@ fn check_curved_sides(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
                 .map_err(|e| {
                     Error::input(
                         at(&format!("mesh.block[{i}].{side}.{}", e.key)),
-                        format!("block \"{}\": {}", clip(&b.body), e.message),
+                        format!("block \"{}\": {}", clip(b.name()), e.message),
                     )
                 })?;
         }
@@ -388,8 +388,8 @@ pub fn clip(name: &str) -> String {
     crate::error::clip(name)
 }
 
-/// Body and interface names of the mesh specification: not empty (a body ""
-/// would make sets named ".left"), no surrounding blanks, and every interface
+/// Body, block and interface names of the mesh specification: not empty (a
+/// body "" would make sets named ".left"), no surrounding blanks, and every interface
 /// name once (two interfaces of one name would both take the law of that
 /// name: every pair twice).
 fn check_names(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
@@ -401,6 +401,15 @@ fn check_names(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
                 format!(
                     "\"{}\" is not a usable body name (empty, blank, or with blanks around it): it names the sets <body>.left, .right, .top, .bottom, .all and [materials.<body>]",
                     clip(&b.body)
+                ),
+            ));
+        }
+        if let Some(name) = b.name.as_deref().filter(|n| blank(n)) {
+            return Err(Error::input(
+                at(&format!("mesh.block[{i}] name")),
+                format!(
+                    "\"{}\" is not a usable block name (empty, blank, or with blanks around it): it names the sets <block>.left, .right, .top, .bottom, .all and the block in interfaces",
+                    clip(name)
                 ),
             ));
         }
@@ -437,7 +446,7 @@ fn check_element_count(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
     for b in &case.mesh.block {
         let key = at(&format!(
             "[[mesh.block]] \"{}\" nx, ny, [mesh] refine",
-            b.body
+            clip(b.name())
         ));
         match block_elements(b, case.mesh.refine).and_then(|n| total.checked_add(n)) {
             Some(n) if n <= MAX_ELEMENTS => total = n,

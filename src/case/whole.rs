@@ -290,8 +290,8 @@ fn blocks_overlap(case: &Case, place: &str) -> Result<()> {
                     format!("{place}: [[mesh.block]]"),
                     format!(
                         "blocks \"{}\" and \"{}\" overlap in x = {x0} … {x1}, y = {y0} … {y1}: two bodies cannot fill the same area",
-                        clip(&a.body),
-                        clip(&b.body)
+                        clip(a.name()),
+                        clip(b.name())
                     ),
                 ));
             }
@@ -549,6 +549,7 @@ mod tests {
     fn block(body: &str, x: [f64; 2], nx: usize, y: [f64; 2], ny: usize) -> BlockSpec {
         BlockSpec {
             body: body.into(),
+            name: None,
             x: x.to_vec(),
             nx: vec![nx],
             rx: vec![],

@@ -1,14 +1,21 @@
-//! Structured meshes of rectangular blocks with geometric grading, one body per
-//! block, and contact interfaces between the bottom of one block and the top of
-//! another (horizontal) or between the right side of one block and the left
-//! side of another (vertical), nodes paired, not merged.
+//! Structured meshes of rectangular blocks with geometric grading, and
+//! contact interfaces between the bottom of one block and the top of another
+//! (horizontal) or between the right side of one block and the left side of
+//! another (vertical), nodes paired, not merged. Blocks that name the same
+//! body are one body: they share sides, whose nodes are merged ([`merge`]).
 //!
-//! Each block gets the node sets and edge sets `<body>.bottom`, `.right`, `.top`,
-//! `.left` (edges walked with the body on the left) and the node set `<body>.all`.
+//! Each block gets the node sets and edge sets `<block>.bottom`, `.right`,
+//! `.top`, `.left` (edges walked with the body on the left; the sides' parts
+//! shared with another block of the body are not in them) and the node set
+//! `<block>.all`; each body the node set `<body>.all`. A block's name is its
+//! body's unless it has a `name`: a body of one block keeps the sets it
+//! always had.
 
 use super::{ContactEdge, Element, Interface, Mesh, MeshError, NonMatching};
+use crate::error::clip;
 use serde::Deserialize;
 
+mod merge;
 mod shape;
 pub use shape::{ShapeError, SideShape, MIN_RELATIVE_CURVE};
 
@@ -19,6 +26,11 @@ pub use shape::{ShapeError, SideShape, MIN_RELATIVE_CURVE};
 #[serde(deny_unknown_fields)]
 pub struct BlockSpec {
     pub body: String,
+    /// The block's name (default: `body`): its sets are `<name>.bottom`,
+    /// `.right`, `.top`, `.left`, `.all`, and interfaces name it. The
+    /// blocks of a body of several blocks each need their own.
+    #[serde(default)]
+    pub name: Option<String>,
     /// Breakpoints in x, strictly increasing (mm).
     pub x: Vec<f64>,
     /// Elements per x segment.
@@ -39,14 +51,24 @@ pub struct BlockSpec {
     pub top: Option<SideShape>,
 }
 
-/// As derived, but `bottom` / `top` only when given: a case with straight
-/// blocks keeps its text and so its restart fingerprint
-/// ([`crate::restart::fingerprint`]).
+impl BlockSpec {
+    /// The block's name: `name`, or else the body's.
+    pub fn name(&self) -> &str {
+        self.name.as_deref().unwrap_or(&self.body)
+    }
+}
+
+/// As derived, but `name`, `bottom` / `top` only when given: a case with
+/// straight blocks of one body each keeps its text and so its restart
+/// fingerprint ([`crate::restart::fingerprint`]).
 impl std::fmt::Debug for BlockSpec {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let mut d = f.debug_struct("BlockSpec");
-        d.field("body", &self.body)
-            .field("x", &self.x)
+        d.field("body", &self.body);
+        if let Some(n) = &self.name {
+            d.field("name", n);
+        }
+        d.field("x", &self.x)
             .field("nx", &self.nx)
             .field("rx", &self.rx)
             .field("y", &self.y)
@@ -177,6 +199,9 @@ pub fn graded_axis(
 }
 
 struct Grid {
+    /// The block's name and its body's index.
+    name: String,
+    body: usize,
     ids: Vec<Vec<usize>>, // ids[j][i], usize::MAX for element centres
     xs: Vec<f64>,
     ys: Vec<f64>,
@@ -198,15 +223,20 @@ pub fn generate(
             "no [[mesh.block]] given (and no `file`): give one or the other".into(),
         ));
     }
+    merge::check_names(blocks)?;
     let mut mesh = Mesh::default();
     let mut grids = Vec::new();
-    for (b, spec) in blocks.iter().enumerate() {
-        if mesh.bodies.contains(&spec.body) {
-            return Err(MeshError(format!("two blocks are named \"{}\"", spec.body)));
-        }
-        mesh.bodies.push(spec.body.clone());
-        let xs = graded_axis(&spec.body, "x", &spec.x, &spec.nx, &spec.rx, refine)?;
-        let ys = graded_axis(&spec.body, "y", &spec.y, &spec.ny, &spec.ry, refine)?;
+    for spec in blocks {
+        let body = match mesh.bodies.iter().position(|b| *b == spec.body) {
+            Some(b) => b,
+            None => {
+                mesh.bodies.push(spec.body.clone());
+                mesh.bodies.len() - 1
+            }
+        };
+        let name = spec.name();
+        let xs = graded_axis(name, "x", &spec.x, &spec.nx, &spec.rx, refine)?;
+        let ys = graded_axis(name, "y", &spec.y, &spec.ny, &spec.ry, refine)?;
         for (side, shape) in [("bottom", &spec.bottom), ("top", &spec.top)] {
             if let Some(sh) = shape {
                 // the rules that need the model (the axis, a symmetry plane)
@@ -215,17 +245,23 @@ pub fn generate(
                     .map_err(|e| {
                         MeshError(format!(
                             "block \"{}\" {side}.{}: {}",
-                            spec.body, e.key, e.message
+                            clip(name),
+                            e.key,
+                            e.message
                         ))
                     })?;
             }
         }
-        grids.push(add_block(&mut mesh, b, xs, ys, spec));
+        grids.push(add_block(&mut mesh, body, xs, ys, spec));
     }
+    // the shared sides first (the body as a whole), then the interfaces on
+    // the blocks' own node ids, then the merge renumbers them all
+    let plan = merge::plan(&mesh, &grids)?;
     for spec in interfaces {
         let iface = pair_blocks(&mesh, &grids, spec)?;
         mesh.interfaces.push(iface);
     }
+    merge::apply(&mut mesh, &plan);
     Ok(mesh)
 }
 
@@ -290,7 +326,7 @@ fn add_block(mesh: &mut Mesh, body: usize, xs: Vec<f64>, ys: Vec<f64>, spec: &Bl
             });
         }
     }
-    let name = mesh.bodies[body].clone();
+    let name = spec.name();
     let (il, jl) = (ni - 1, nj - 1);
     let side = |pts: Vec<(usize, usize)>| -> Vec<usize> {
         pts.into_iter().map(|(i, j)| ids[j][i]).collect()
@@ -315,6 +351,8 @@ fn add_block(mesh: &mut Mesh, body: usize, xs: Vec<f64>, ys: Vec<f64>, spec: &Bl
     mesh.node_sets
         .insert(format!("{name}.all"), (first..mesh.nodes.len()).collect());
     Grid {
+        name: name.to_string(),
+        body,
         ids,
         xs,
         ys,
@@ -409,7 +447,7 @@ fn facing<'a>(
 
 fn pair_blocks(mesh: &Mesh, grids: &[Grid], spec: &InterfaceSpec) -> Result<Interface, MeshError> {
     let find = |name: &str| {
-        mesh.bodies.iter().position(|b| b == name).ok_or_else(|| {
+        grids.iter().position(|g| g.name == name).ok_or_else(|| {
             MeshError(format!(
                 "interface \"{}\": no block named \"{name}\"",
                 spec.name
@@ -429,6 +467,16 @@ fn pair_blocks(mesh: &Mesh, grids: &[Grid], spec: &InterfaceSpec) -> Result<Inte
             spec.name
         )));
     }
+    let (body_a, body_b) = (grids[ia].body, grids[ib].body);
+    if body_a == body_b {
+        return Err(MeshError(format!(
+            "interface \"{}\": blocks \"{}\" and \"{}\" are both of body \"{}\": an interface joins two bodies (the blocks of one body share their sides, merged node for node)",
+            clip(&spec.name),
+            clip(a),
+            clip(b),
+            clip(&mesh.bodies[body_a])
+        )));
+    }
     let f = facing(grids, ia, ib, a, b, vertical);
     if !vertical && spec.matching != Some(false) {
         let curved = [
@@ -445,16 +493,16 @@ fn pair_blocks(mesh: &Mesh, grids: &[Grid], spec: &InterfaceSpec) -> Result<Inte
     if spec.matching == Some(false) {
         return Ok(Interface {
             name: spec.name.clone(),
-            body_a: ia,
-            body_b: ib,
+            body_a,
+            body_b,
             edges: Vec::new(),
             nonmatching: Some(nonmatching_sides(mesh, &spec.name, &f)?),
         });
     }
     Ok(Interface {
         name: spec.name.clone(),
-        body_a: ia,
-        body_b: ib,
+        body_a,
+        body_b,
         edges: match_sides(mesh, &spec.name, &f)?,
         nonmatching: None,
     })

@@ -9,6 +9,7 @@
 mod common;
 
 mod axisymmetric;
+mod blocks;
 mod calibration;
 mod column;
 mod cycles;

@@ -2,9 +2,10 @@
 
 use super::*;
 
-fn punch() -> (Vec<BlockSpec>, Vec<InterfaceSpec>) {
+pub(super) fn punch() -> (Vec<BlockSpec>, Vec<InterfaceSpec>) {
     let b = |body: &str, x: Vec<f64>, nx, rx, y: Vec<f64>, ny, ry| BlockSpec {
         body: body.into(),
+        name: None,
         x,
         nx,
         rx,
@@ -99,9 +100,16 @@ fn mismatched_interface_and_bad_specs_are_named() {
         .contains("strictly increasing"));
 }
 
-fn block(body: &str, x: Vec<f64>, nx: Vec<usize>, y: Vec<f64>, ny: Vec<usize>) -> BlockSpec {
+pub(super) fn block(
+    body: &str,
+    x: Vec<f64>,
+    nx: Vec<usize>,
+    y: Vec<f64>,
+    ny: Vec<usize>,
+) -> BlockSpec {
     BlockSpec {
         body: body.into(),
+        name: None,
         x,
         nx,
         rx: Vec::new(),
@@ -113,7 +121,7 @@ fn block(body: &str, x: Vec<f64>, nx: Vec<usize>, y: Vec<f64>, ny: Vec<usize>) -
     }
 }
 
-fn iface(name: &str, sides: [Option<&str>; 4]) -> InterfaceSpec {
+pub(super) fn iface(name: &str, sides: [Option<&str>; 4]) -> InterfaceSpec {
     let s = |i: usize| sides[i].map(String::from);
     InterfaceSpec {
         name: name.into(),
