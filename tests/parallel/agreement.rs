@@ -461,3 +461,32 @@ fn snes_and_the_builtin_loop_take_the_same_iterates_for_all_three_methods() {
         assert!(sa["backend_stats"]["snes_iterations"].as_f64().unwrap() > 0.0);
     }
 }
+
+/// A bolt body of three blocks with a pretension section (issue 27): the
+/// section's reference node lives on rank 0 and its constrained copies on
+/// whichever rank owns them; the bolt force and shortening of every
+/// increment (pretension.csv) as the serial run's, to round-off.
+#[test]
+fn serial_petsc1_and_petsc2_agree_on_a_bolted_joint_with_a_pretension_section() {
+    compare("bolted-joint", "1");
+    let root = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("parallel-bolted-joint-1-2");
+    let rows = |run: &str| -> Vec<Vec<f64>> {
+        std::fs::read_to_string(root.join(run).join("pretension.csv"))
+            .unwrap()
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+            .collect()
+    };
+    let s = rows("serial");
+    assert_eq!(s.len(), 40);
+    for run in ["petsc1", "petsc2"] {
+        let p = rows(run);
+        assert_eq!(p.len(), s.len(), "{run}");
+        for (a, b) in s.iter().zip(&p) {
+            for (x, y) in a.iter().zip(b) {
+                assert!(close(*x, *y, x.abs().max(1e-9)), "{run}: {a:?} vs {b:?}");
+            }
+        }
+    }
+}

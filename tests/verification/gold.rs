@@ -78,7 +78,8 @@ const CHECKED: [&str; 14] = [
 /// The joint cases (issue 18) also check their `joints` array: per interface
 /// the final forces, approach, slip, status measures, dissipation and work,
 /// and every closed load cycle. The older cases keep the fields above only.
-const JOINT_CASES: [&str; 6] = [
+const JOINT_CASES: [&str; 7] = [
+    "bolted-joint",
     "shrink-fit",
     "slideway-cycles",
     "bolted-flange",
@@ -87,11 +88,19 @@ const JOINT_CASES: [&str; 6] = [
     "cattaneo-mindlin",
 ];
 
+/// The cases with `[[pretension]]` sections.
+const PRETENSION_CASES: [&str; 1] = ["bolted-joint"];
+
 /// The checked fields of a case.
 fn checked(case: &str) -> Vec<&'static str> {
     let mut keys = CHECKED.to_vec();
     if JOINT_CASES.contains(&case) {
         keys.push("joints");
+    }
+    // a case with pretension sections (issue 27) checks their account:
+    // force and shortening at the end, at the lock and their extremes
+    if PRETENSION_CASES.contains(&case) {
+        keys.push("pretension");
     }
     keys
 }
@@ -107,7 +116,12 @@ struct Gold {
     prefix: Option<&'static str>,
 }
 
-const CASES: [Gold; 17] = [
+const CASES: [Gold; 18] = [
+    Gold {
+        case: "bolted-joint",
+        args: &[],
+        prefix: None,
+    },
     Gold {
         case: "punch-plane-stress",
         args: &[],
@@ -454,6 +468,11 @@ fn check(case: &str) {
         path.display(),
         errors.join("\n  ")
     );
+}
+
+#[test]
+fn bolted_joint() {
+    check("bolted-joint");
 }
 
 #[test]
