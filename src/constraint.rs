@@ -88,8 +88,8 @@ impl Constraints {
             list: list.clone(),
             slave_of,
         };
-        for k in 0..list.len() {
-            out.list[k] = out.substituted(&list[k], 0)?;
+        for (k, c) in list.iter().enumerate() {
+            out.list[k] = out.substituted(c, 0)?;
         }
         Ok(out)
     }
@@ -272,8 +272,8 @@ impl Expansion {
         let m = self.dofs.len();
         let mut out = vec![0.0; m];
         for (l, &gl) in g.iter().enumerate().take(self.n) {
-            for j in 0..m {
-                out[j] += self.t[l * m + j] * gl;
+            for (o, t) in out.iter_mut().zip(&self.t[l * m..(l + 1) * m]) {
+                *o += t * gl;
             }
         }
         out

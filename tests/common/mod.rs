@@ -469,3 +469,48 @@ pub fn vtu_array(path: &std::path::Path, name: &str) -> Vec<f64> {
         f => panic!("{}: {name} has format {f:?}", path.display()),
     }
 }
+
+pub const BAR_E: f64 = 200_000.0;
+pub const BAR_L: f64 = 100.0;
+pub const BAR_H: f64 = 10.0;
+pub const BAR_T: f64 = 2.0;
+
+/// A plane-stress bar [0, L] × [0, H], thickness T, held in x at both ends
+/// (and in y at one corner), cut at x = 30 by section "bolt"; `section` and
+/// `more` complete it.
+pub fn pretension_bar(section: &str, more: &str) -> String {
+    format!(
+        r#"
+[model]
+plane = "stress"
+thickness = {BAR_T}
+[[mesh.block]]
+body = "bar"
+x = [0.0, 30.0, 60.0, {BAR_L}]
+nx = [3, 3, 4]
+y = [0.0, {BAR_H}]
+ny = [2]
+[materials.bar]
+young = {BAR_E}
+poisson = 0.3
+[[boundary]]
+set = "bar.left"
+ux = 0.0
+[[boundary]]
+set = "bar.right"
+ux = 0.0
+[[boundary]]
+set = "bar.left"
+uy = 0.0
+y_range = [0.0, 0.0]
+[[pretension]]
+name = "bolt"
+body = "bar"
+x = 30.0
+{section}
+{more}
+[output]
+vtu_every = 1000
+"#
+    )
+}

@@ -17,50 +17,26 @@ fn asperity(args: &[&str]) -> (i32, String) {
     )
 }
 
-/// A plane-stress bar held at both ends, cut at x = 30, preloaded by 1 kN
-/// over t ∈ [0, 1], locked, then pulled at x = 60 over t ∈ [1, 2].
-const BAR: &str = r#"
-[model]
-plane = "stress"
-thickness = 2.0
-[[mesh.block]]
-body = "bar"
-x = [0.0, 30.0, 60.0, 100.0]
-nx = [3, 3, 4]
-y = [0.0, 10.0]
-ny = [2]
-[materials.bar]
-young = 200000.0
-poisson = 0.3
+/// The bar of tests/common (held at both ends, cut at x = 30), preloaded by
+/// 1 kN over t ∈ [0, 1], locked, then pulled at x = 60 over t ∈ [1, 2].
+fn bar() -> String {
+    common::pretension_bar(
+        "force = 1000.0\nhistory = \"preload\"",
+        r#"
 [history]
 preload = [[0, 0], [1, 1]]
 service = [[1, 0], [2, 1]]
-[[pretension]]
-name = "bolt"
-body = "bar"
-x = 30.0
-force = 1000.0
-history = "preload"
-[[boundary]]
-set = "bar.left"
-ux = 0.0
-[[boundary]]
-set = "bar.right"
-ux = 0.0
-[[boundary]]
-set = "bar.left"
-uy = 0.0
-y_range = [0.0, 0.0]
 [[force]]
 nodes = "bar.all"
 fx = 100.0
 x_range = [60.0, 60.0]
-history = "service"
-"#;
+history = "service""#,
+    )
+}
 
 #[test]
 fn a_stopped_pretension_run_resumes_to_the_same_section_forces() {
-    let case = common::case_dir("pretension-restart-case", BAR);
+    let case = common::case_dir("pretension-restart-case", &bar());
     let root = common::scratch("pretension-restart");
     let (c, o) = (case.display().to_string(), |n: &str| {
         root.join(n).display().to_string()

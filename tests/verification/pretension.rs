@@ -26,50 +26,7 @@ fn solve(model: &Model) -> (RunResult, Vec<State>) {
     (r, c.0)
 }
 
-const E: f64 = 200_000.0;
-const L: f64 = 100.0;
-const H: f64 = 10.0;
-const T: f64 = 2.0;
-
-/// A plane-stress bar [0, L] × [0, H], thickness T, held in x at both ends
-/// (and in y at one corner), cut at x = 30 by section "bolt"; `section` and
-/// `more` complete it.
-fn bar(section: &str, more: &str) -> String {
-    format!(
-        r#"
-[model]
-plane = "stress"
-thickness = {T}
-[[mesh.block]]
-body = "bar"
-x = [0.0, 30.0, 60.0, {L}]
-nx = [3, 3, 4]
-y = [0.0, {H}]
-ny = [2]
-[materials.bar]
-young = {E}
-poisson = 0.3
-[[boundary]]
-set = "bar.left"
-ux = 0.0
-[[boundary]]
-set = "bar.right"
-ux = 0.0
-[[boundary]]
-set = "bar.left"
-uy = 0.0
-y_range = [0.0, 0.0]
-[[pretension]]
-name = "bolt"
-body = "bar"
-x = 30.0
-{section}
-{more}
-[output]
-vtu_every = 1000
-"#
-    )
-}
+use common::{pretension_bar as bar, BAR_E as E, BAR_H as H, BAR_L as L, BAR_T as T};
 
 #[test]
 fn a_pretensioned_bar_between_rigid_supports_is_exact() {
@@ -302,13 +259,11 @@ fn a_hanging_node_passes_the_patch_test() {
     let (_, states) = solve(&model);
     let st = states.last().unwrap();
     for (n, p) in nodes.iter().enumerate() {
-        let want = exact(*p);
-        for c in 0..2 {
+        for (c, want) in exact(*p).into_iter().enumerate() {
+            let got = st.u[2 * n + c];
             assert!(
-                (st.u[2 * n + c] - want[c]).abs() < 1e-13,
-                "node {n} at {p:?}: u{c} {} vs {}",
-                st.u[2 * n + c],
-                want[c]
+                (got - want).abs() < 1e-13,
+                "node {n} at {p:?}: u{c} {got} vs {want}"
             );
         }
     }

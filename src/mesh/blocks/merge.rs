@@ -119,15 +119,7 @@ fn rect(g: &Grid) -> [f64; 4] {
 /// Two blocks of one body may touch, not share area (within 1e-9 of the
 /// larger block's size, as between bodies: [`crate::case::whole`]).
 fn no_common_area(mesh: &Mesh, a: &Grid, b: &Grid) -> Result<(), MeshError> {
-    let (r, s) = (rect(a), rect(b));
-    let size = (r[1] - r[0])
-        .max(r[3] - r[2])
-        .max(s[1] - s[0])
-        .max(s[3] - s[2]);
-    let tol = 1e-9 * size;
-    let (x0, x1) = (r[0].max(s[0]), r[1].min(s[1]));
-    let (y0, y1) = (r[2].max(s[2]), r[3].min(s[3]));
-    if x1 - x0 > tol && y1 - y0 > tol {
+    if let Some([x0, x1, y0, y1]) = crate::case::whole::common_area(rect(a), rect(b)) {
         return Err(MeshError(format!(
             "blocks \"{}\" and \"{}\" of body \"{}\" overlap in x = {x0} … {x1}, y = {y0} … {y1}: the blocks of one body may share sides, not area",
             clip(&a.name),
