@@ -47,7 +47,14 @@ fn punch_on(split: Split, plastic: bool) -> String {
         .raw("symmetric_half = true")
         .block("punch", [0.0, 10.0], [3], [0.0, 8.0], [2])
         .rx([0.5]);
-    let part = |c: CaseText, name: &str, x: &[f64], nx: &[usize], rx: &[f64], y: &[f64], ny: &[usize], ry: &[f64]| {
+    let part = |c: CaseText,
+                name: &str,
+                x: &[f64],
+                nx: &[usize],
+                rx: &[f64],
+                y: &[f64],
+                ny: &[usize],
+                ry: &[f64]| {
         c.block("found", x, nx, y, ny)
             .with("name", name)
             .rx(rx)
@@ -86,7 +93,10 @@ fn punch_on(split: Split, plastic: bool) -> String {
     for s in bottom {
         c = c.uy(s, 0.0);
     }
-    c.pressure("punch.top", 220.0).solver(SOLVER).no_vtu().build()
+    c.pressure("punch.top", 220.0)
+        .solver(SOLVER)
+        .no_vtu()
+        .build()
 }
 
 /// Every node's displacement by its body and its coordinates (exact: the
@@ -162,7 +172,10 @@ fn a_body_split_into_blocks_solves_as_the_body_of_one_block() {
                 r1.increments.last().unwrap().joints[0].normal_force,
                 r.increments.last().unwrap().joints[0].normal_force,
             );
-            assert!(common::rel(f, f1) < 1e-12, "{split:?}: F_N {f} against {f1}");
+            assert!(
+                common::rel(f, f1) < 1e-12,
+                "{split:?}: F_N {f} against {f1}"
+            );
         }
     }
 }
@@ -284,7 +297,10 @@ fn an_l_shaped_bolt_of_two_blocks_carries_its_pull_across_the_seat() {
     let r = solve(&model);
     let f_n = r.increments.last().unwrap().joints[0].normal_force;
     let load = std::f64::consts::PI * 8.0 * 8.0 * pull;
-    assert!(common::rel(f_n, load) < 1e-9, "F_N = {f_n}, pulled by {load}");
+    assert!(
+        common::rel(f_n, load) < 1e-9,
+        "F_N = {f_n}, pulled by {load}"
+    );
     // a support on the shank's top is a support on nothing
     let inside = bolt(pull, "[[boundary]]\nset = \"shank.top\"\nux = 0.0");
     let case = asperity::case::Case::parse(&inside, "test.toml").unwrap();
