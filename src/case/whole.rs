@@ -14,7 +14,7 @@ use super::{Case, MAX_ELEMENTS};
 use crate::error::{clip, Error, Result};
 use crate::fem::q8;
 use crate::mesh::Mesh;
-use std::collections::{BTreeMap, HashMap};
+use std::collections::{BTreeMap, HashMap, HashSet};
 
 fn mesh_err(place: &str, message: String) -> Error {
     Error::Mesh {
@@ -92,7 +92,26 @@ fn axisymmetric_half_plane(mesh: &Mesh, place: &str) -> Result<()> {
     ))
 }
 
-/// Body and interface names: not empty, unique; no node pair in two interfaces.
+/// The node pairs at the ends of an interface's edges that end one edge
+/// only: the ends of its runs of edges.
+fn run_ends(iface: &crate::mesh::Interface) -> HashSet<(usize, usize)> {
+    let mut count: HashMap<(usize, usize), usize> = HashMap::new();
+    for e in &iface.edges {
+        for i in [0, 2] {
+            *count.entry((e.a[i], e.b[i])).or_default() += 1;
+        }
+    }
+    count
+        .into_iter()
+        .filter(|&(_, c)| c == 1)
+        .map(|(p, _)| p)
+        .collect()
+}
+
+/// Body and interface names: not empty, unique; no node pair in two
+/// interfaces, but where the edges of both end (two blocks of one body side
+/// by side under one face, each with its interface, meet at one node; each
+/// interface springs its own edges' share of it).
 fn names(mesh: &Mesh, place: &str) -> Result<()> {
     for (b, name) in mesh.bodies.iter().enumerate() {
         if name.trim().is_empty() || name.trim() != name {
@@ -112,6 +131,7 @@ fn names(mesh: &Mesh, place: &str) -> Result<()> {
         }
     }
     let mut owner: HashMap<(usize, usize), usize> = HashMap::new();
+    let ends: Vec<_> = mesh.interfaces.iter().map(run_ends).collect();
     for (k, iface) in mesh.interfaces.iter().enumerate() {
         if iface.name.trim().is_empty() {
             return Err(mesh_err(place, format!("interface {k} has an empty name")));
@@ -129,7 +149,7 @@ fn names(mesh: &Mesh, place: &str) -> Result<()> {
             for i in 0..3 {
                 let pair = (e.a[i], e.b[i]);
                 match owner.get(&pair) {
-                    Some(&j) if j != k => {
+                    Some(&j) if j != k && !(ends[j].contains(&pair) && ends[k].contains(&pair)) => {
                         let x = mesh.nodes[pair.0];
                         return Err(mesh_err(
                             place,

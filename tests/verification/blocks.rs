@@ -1,7 +1,8 @@
 //! Bodies of several blocks (issue 27, src/mesh/blocks/merge.rs): a body
 //! split into blocks is the body meshed as one block, to round-off: the same
 //! displacements at the same points and the same plastic strains, elastic
-//! and elastic-plastic, split in x and in y; an L-shaped bolt (a head on a
+//! and elastic-plastic, split in x and in y, also under a face that spans
+//! both blocks with an interface each; an L-shaped bolt (a head on a
 //! shank, one body) pulled through a plate carries its load across the
 //! seat, and its sets are its outline.
 
@@ -177,6 +178,74 @@ fn a_body_split_into_blocks_solves_as_the_body_of_one_block() {
             );
         }
     }
+}
+
+/// A punch 0 ≤ x ≤ 20 on a foundation 0 ≤ x ≤ 30 (plane strain, the half
+/// model), plastic; the foundation one block with a breakpoint at x = 10
+/// under one interface, or two blocks meeting at x = 10 under the punch,
+/// each with its own interface ("near", "far"; the two share the node pair
+/// at x = 10).
+fn wide_punch_on(split: bool) -> String {
+    let c = common::case()
+        .plane("strain")
+        .raw("symmetric_half = true")
+        .block("punch", [0.0, 20.0], [4], [0.0, 8.0], [2]);
+    let c = if split {
+        c.block("found", [0.0, 10.0], [2], [-20.0, 0.0], [4])
+            .with("name", "near")
+            .ry([0.5])
+            .block("found", [10.0, 30.0], [4], [-20.0, 0.0], [4])
+            .with("name", "far")
+            .ry([0.5])
+            .interface("near", "punch", "near")
+            .interface("far", "punch", "far")
+            .law("near", "power", 0.002, 0.5)
+            .law("far", "power", 0.002, 0.5)
+            .ux("near.left", 0.0)
+            .uy("near.bottom", 0.0)
+            .uy("far.bottom", 0.0)
+    } else {
+        c.block("found", [0.0, 10.0, 30.0], [2, 4], [-20.0, 0.0], [4])
+            .ry([0.5])
+            .interface("contact", "punch", "found")
+            .law("contact", "power", 0.002, 0.5)
+            .ux("found.left", 0.0)
+            .uy("found.bottom", 0.0)
+    };
+    c.material("punch", 206000.0, 0.3)
+        .material("found", 70000.0, 0.33)
+        .plastic(150.0, 700.0)
+        .ux("punch.left", 0.0)
+        .pressure("punch.top", 220.0)
+        .solver(SOLVER)
+        .no_vtu()
+        .build()
+}
+
+#[test]
+fn a_face_over_two_blocks_of_one_body_with_an_interface_each_is_one_interface() {
+    let one = common::model(&wide_punch_on(false));
+    let two = common::model(&wide_punch_on(true));
+    assert_eq!(two.interfaces.len(), 2);
+    let (r1, r2) = (solve(&one), solve(&two));
+    let (u1, u2) = (
+        by_point(&one, &r1.final_state.u),
+        by_point(&two, &r2.final_state.u),
+    );
+    let scale = u1
+        .values()
+        .fold(0.0f64, |m, u| m.max(u[0].abs()).max(u[1].abs()));
+    let worst = u1
+        .iter()
+        .map(|(k, a)| (a[0] - u2[k][0]).abs().max((a[1] - u2[k][1]).abs()))
+        .fold(0.0f64, f64::max);
+    assert!(worst <= 1e-12 * scale, "|Δu| = {worst:e} of {scale:e}");
+    let j2 = &r2.increments.last().unwrap().joints;
+    let f1 = r1.increments.last().unwrap().joints[0].normal_force;
+    assert!(j2[0].normal_force > 0.0 && j2[1].normal_force > 0.0);
+    let f2 = j2[0].normal_force + j2[1].normal_force;
+    assert!(common::rel(f2, f1) < 1e-12, "F_N {f2} against {f1}");
+    assert!(common::rel(f1, 220.0 * 20.0) < 1e-9, "F_N {f1}");
 }
 
 /// An axisymmetric bolt of one body, a head 0 ≤ r ≤ 20, 40 ≤ z ≤ 50 on a
