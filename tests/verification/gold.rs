@@ -89,7 +89,7 @@ const JOINT_CASES: [&str; 7] = [
 ];
 
 /// The cases with `[[pretension]]` sections.
-const PRETENSION_CASES: [&str; 1] = ["bolted-joint"];
+const PRETENSION_CASES: [&str; 2] = ["bolted-flange", "bolted-joint"];
 
 /// The checked fields of a case.
 fn checked(case: &str) -> Vec<&'static str> {
