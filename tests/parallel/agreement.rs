@@ -466,10 +466,22 @@ fn snes_and_the_builtin_loop_take_the_same_iterates_for_all_three_methods() {
 /// section's reference node lives on rank 0 and its constrained copies on
 /// whichever rank owns them; the bolt force and shortening of every
 /// increment (pretension.csv) as the serial run's, to round-off.
+///
+/// The shipped joint is symmetric about its joint plane (head and nut of one
+/// size), so the corners where the shank meets head and nut reach yield
+/// together and round-off picks the first-yield element; here the nut is
+/// made 10.8 mm high (ISO 4032's M12 nut) to break the tie.
 #[test]
 fn serial_petsc1_and_petsc2_agree_on_a_bolted_joint_with_a_pretension_section() {
-    compare("bolted-joint", "1");
-    let root = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("parallel-bolted-joint-1-2");
+    let text =
+        std::fs::read_to_string(common::root().join("cases/bolted-joint/case.toml")).unwrap();
+    assert!(text.contains("y = [-20.0, -12.0]"));
+    let text = text.replacen("y = [-20.0, -12.0]", "y = [-22.8, -12.0]", 1);
+    let case = common::case_dir("parallel-bolted-joint-case", &text);
+    let case = case.to_str().unwrap();
+    compare_on(case, "1", &[1, 2]);
+    let root = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("parallel-{}-1-2", case.replace('/', "-")));
     let rows = |run: &str| -> Vec<Vec<f64>> {
         std::fs::read_to_string(root.join(run).join("pretension.csv"))
             .unwrap()
