@@ -70,6 +70,7 @@ pub(super) fn decode_with(
     restore_joints(&mut ck, &s, model.interfaces.len())?;
     restore_table_reach(&mut ck, &s, model)?;
     ck.first_yield = restore_first_yield(&s, model, &ck.increments)?;
+    restore_designer(&mut ck, &s, model)?;
     let pvd = restore_vtu_series(&s, model, &ck.increments)?;
     Ok((ck, pvd))
 }
@@ -261,6 +262,7 @@ pub(super) fn restore_curve(s: &Sections, increments: usize) -> Decoded<Vec<Incr
                     prescribed_reaction: v[9],
                 },
                 joints: Vec::new(),
+                record: Vec::new(),
             })
         })
         .collect()
@@ -658,6 +660,37 @@ pub(super) fn restore_joints(ck: &mut Checkpoint, s: &Sections, interfaces: usiz
                 .map(JointMeasures::unpack)
                 .collect();
         }
+    }
+    Ok(())
+}
+
+/// The designer's outputs ([`crate::output::plan`]): each increment's
+/// record (`records`, the plan's width per increment: finite or NaN, no
+/// infinity) and the events located so far (`events`,
+/// [`crate::solve::events::Event::unpack`]). A file of an earlier build has
+/// neither: its increments keep no record and no event was located.
+pub(super) fn restore_designer(ck: &mut Checkpoint, s: &Sections, model: &Model) -> Decoded<()> {
+    let w = model.plan.width();
+    let stored = s.f("records", None).map_or(0, |v| v.len());
+    if stored > 0 {
+        let v = s.f("records", Some(w * ck.increments.len()))?;
+        if let Some(i) = v.iter().position(|x| x.is_infinite()) {
+            return Err(format!(
+                "section records: value {} is infinite ({})",
+                i + 1,
+                num(v[i])
+            ));
+        }
+        for (inc, row) in ck.increments.iter_mut().zip(v.chunks_exact(w.max(1))) {
+            // a row of NaN: an increment without a record
+            if !row.iter().all(|x| x.is_nan()) {
+                inc.record = row.to_vec();
+            }
+        }
+    }
+    if s.0.contains_key("events") {
+        let v = s.f("events", None)?;
+        ck.events = crate::solve::events::Event::unpack(v, w, model, ck.increments.len())?;
     }
     Ok(())
 }

@@ -39,7 +39,9 @@
 //! interface and increment, as [`crate::interface::joint::JointMeasures::pack`]
 //! lays them out), `table_reach` (2 per interface: the largest approach u_N
 //! and pressure p_N over the converged states so far, see
-//! [`crate::interface::extrapolation`]). Unknown sections are ignored;
+//! [`crate::interface::extrapolation`]), `records` (the designer's record of
+//! every increment, [`crate::output::plan`]) and `events` (the events located
+//! so far, [`crate::solve::events::Event::pack`]). Unknown sections are ignored;
 //! `last_du`, `joint_totals`, `joints` and `table_reach` may be absent (files
 //! of earlier builds: the joint energies then restart from zero and the
 //! earlier increments have no joint rows, written as NaN rows of `joints`
@@ -418,6 +420,22 @@ fn sections(e: &mut Encoder, ck: &Checkpoint, pvd: &[(f64, String)]) -> std::io:
                 }
             })
             .flat_map(|j| j.iter().flat_map(JointMeasures::pack)),
+    )?;
+    // the designer's outputs: each increment's record, a row of NaN for an
+    // increment without one (restored from a file of an earlier build)
+    let width = ck.increments.iter().map(|i| i.record.len()).max().unwrap_or(0);
+    let none = vec![f64::NAN; width];
+    e.f64_iter(
+        "records",
+        width * ck.increments.len(),
+        ck.increments
+            .iter()
+            .flat_map(|i| if i.record.len() == width { &i.record } else { &none }.iter().copied()),
+    )?;
+    e.f64_iter(
+        "events",
+        ck.events.iter().map(|v| v.pack().len()).sum(),
+        ck.events.iter().flat_map(|v| v.pack()),
     )?;
     e.f64_iter(
         "table_reach",

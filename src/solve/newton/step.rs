@@ -323,6 +323,10 @@ impl Problem for StepProblem<'_, '_> {
                 .filter(|(_, v)| *v != 0.0)
                 .map(|&(d, _)| e.r[d])
                 .sum();
+            self.trial.reactions.clear();
+            self.trial
+                .reactions
+                .extend(m.prescribed.iter().map(|&(d, _)| e.r[d]));
             e.share_state(&mut self.trial);
             self.outcome = Some(Ok(it));
             return Verdict::Stop;
