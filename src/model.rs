@@ -127,7 +127,8 @@ impl Model {
         let (blocks, interface_block_base) = block_dofs(&mesh, &interfaces);
         drop(blocks);
         let (probe_node, surface_y) = probe(&case, &mesh, &interfaces);
-        let plan = crate::output::plan::Plan::build(&case, &mesh, &interfaces, &prescribed, &place)?;
+        let plan =
+            crate::output::plan::Plan::build(&case, &mesh, &interfaces, &prescribed, &place)?;
         let force_floor = force_floor(&mesh, &materials, section);
         Ok(Model {
             name: case.display_name(),

@@ -94,7 +94,8 @@ pub fn check(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
             return Err(Error::input(
                 at("[output] event_tolerance"),
                 format!(
-                    "{t} must be in [{MIN_EVENT_TOLERANCE:e}, 1): the width of an event's bracket in load factor (pseudo-time)"
+                    "{} must be in [{MIN_EVENT_TOLERANCE:e}, 1): the width of an event's bracket in load factor (pseudo-time)",
+                    crate::calibrate::limits::exact(t)
                 ),
             ));
         }
@@ -102,10 +103,7 @@ pub fn check(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
     if case.probe.len() > MAX_PROBES {
         return Err(Error::input(
             at("[[probe]]"),
-            format!(
-                "{} probes, more than {MAX_PROBES}",
-                case.probe.len()
-            ),
+            format!("{} probes, more than {MAX_PROBES}", case.probe.len()),
         ));
     }
     let mut seen = std::collections::BTreeSet::new();

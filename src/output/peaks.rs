@@ -81,7 +81,11 @@ pub fn bodies(engine: &Engine, state: &State) -> Vec<f64> {
         out.extend(place(b));
         out.push(pe);
         // no plastic strain: no place
-        out.extend(if pe > 0.0 { place(nb + b) } else { [f64::NAN; 3] });
+        out.extend(if pe > 0.0 {
+            place(nb + b)
+        } else {
+            [f64::NAN; 3]
+        });
     }
     out
 }

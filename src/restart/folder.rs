@@ -59,13 +59,14 @@ pub(super) fn num(x: f64) -> String {
 /// restart), each the plain solve and, under the contact stabilization, up
 /// to [`stabilize::LEVELS`] stabilized solves each with its release; the
 /// first-yield search adds at most 1 + [`yield_point::SEARCH_STEPS`] such
-/// steps once, and each interface event at most
-/// [`crate::solve::events::MAX_HALVINGS`] once. Every solve takes at most the case's iteration limit (PETSc
-/// SNES: its cap, 10 more); all of it times [`COUNTER_MARGIN`].
+/// steps once, and each of the three events of every interface at most
+/// [`crate::solve::events::MAX_SOLVES`] once. Every solve takes at most the
+/// case's iteration limit (PETSc SNES: its cap, 10 more); all of it times
+/// [`COUNTER_MARGIN`].
 pub fn most_iterations(model: &Model, increments: u64, cutbacks: u64) -> u128 {
     let per_step = 1 + 2 * stabilize::LEVELS as u128;
     let attempts = u128::from(increments) + u128::from(cutbacks) + 1;
-    let events = 3 * model.interfaces.len() as u128 * crate::solve::events::MAX_HALVINGS as u128;
+    let events = 3 * model.interfaces.len() as u128 * crate::solve::events::MAX_SOLVES as u128;
     let solves = (2 * attempts + 1 + yield_point::SEARCH_STEPS as u128 + events) * per_step;
     solves * (model.solver.iteration_limit() as u128 + 10) * COUNTER_MARGIN
 }

@@ -423,14 +423,25 @@ fn sections(e: &mut Encoder, ck: &Checkpoint, pvd: &[(f64, String)]) -> std::io:
     )?;
     // the designer's outputs: each increment's record, a row of NaN for an
     // increment without one (restored from a file of an earlier build)
-    let width = ck.increments.iter().map(|i| i.record.len()).max().unwrap_or(0);
+    let width = ck
+        .increments
+        .iter()
+        .map(|i| i.record.len())
+        .max()
+        .unwrap_or(0);
     let none = vec![f64::NAN; width];
     e.f64_iter(
         "records",
         width * ck.increments.len(),
-        ck.increments
+        ck.increments.iter().flat_map(|i| {
+            if i.record.len() == width {
+                &i.record
+            } else {
+                &none
+            }
             .iter()
-            .flat_map(|i| if i.record.len() == width { &i.record } else { &none }.iter().copied()),
+            .copied()
+        }),
     )?;
     e.f64_iter(
         "events",

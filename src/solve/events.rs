@@ -26,8 +26,10 @@
 //! [`MAX_HALVINGS`] halvings). The steps of the search are not committed:
 //! the run goes on from the accepted step as before, and the contact
 //! stabilization's account is left as the step left it. A step of the search
-//! that does not converge ends it with the bracket reached (reported as
-//! not converged). Every decision is taken on values every MPI rank holds
+//! that does not converge is tried once more a little off the midpoint
+//! (at 0.45 of the bracket: the event itself may be a state no step reaches,
+//! a stack unloaded to exactly zero); if that fails too, the search ends
+//! with the bracket reached (reported as not converged). Every decision is taken on values every MPI rank holds
 //! whole (displacements, statuses) and every solve is collective, so all
 //! ranks search alike.
 
@@ -39,6 +41,11 @@ use crate::model::Model;
 
 /// Most halvings of one search (2⁻⁵⁰ of the step: round-off).
 pub const MAX_HALVINGS: usize = 50;
+/// Where a halving splits its bracket: the midpoint, and, when the step
+/// there does not converge, once more a little off it.
+const SPLITS: [f64; 2] = [0.5, 0.45];
+/// Most solves of one search.
+pub const MAX_SOLVES: usize = MAX_HALVINGS * SPLITS.len();
 /// Leading values of an event's row in a restart file ([`Event::pack`]);
 /// the plan's record follows.
 pub const FIXED: usize = 16;
@@ -133,7 +140,10 @@ impl Event {
             self.before,
             self.after,
             self.increment as f64,
-            Method::ALL.iter().position(|&m| m == self.method).unwrap_or(0) as f64,
+            Method::ALL
+                .iter()
+                .position(|&m| m == self.method)
+                .unwrap_or(0) as f64,
             f64::from(u8::from(self.converged) + 2 * u8::from(self.solve_failed)),
         ];
         v.extend(self.place);
@@ -175,9 +185,9 @@ impl Event {
             let interface = match (kind, r[1]) {
                 (Kind::FirstYield, x) if x == -1.0 => None,
                 (Kind::FirstYield, _) => return Err(bad("first yield names an interface")),
-                (_, x) => Some(
-                    code(x, model.interfaces.len()).ok_or_else(|| bad("no such interface"))?,
-                ),
+                (_, x) => {
+                    Some(code(x, model.interfaces.len()).ok_or_else(|| bad("no such interface"))?)
+                }
             };
             if r[2..5].iter().any(|x| !x.is_finite()) {
                 return Err(bad("a load factor is not finite"));
@@ -354,7 +364,12 @@ impl Monitor {
         let pick = |k: Option<usize>| {
             k.map_or([f64::NAN; 4], |k| {
                 let x = im.pairs[k].x;
-                [x[0], x[1], arc.get(k).copied().unwrap_or(f64::NAN), f64::NAN]
+                [
+                    x[0],
+                    x[1],
+                    arc.get(k).copied().unwrap_or(f64::NAN),
+                    f64::NAN,
+                ]
             })
         };
         match self.kind {
@@ -453,37 +468,42 @@ fn bisect(
     let (mut a, mut b) = (lambda0, target);
     let (mut sa, mut sb) = (committed.clone(), trial.clone());
     let mut failed = false;
-    for _ in 0..MAX_HALVINGS {
+    'halving: for _ in 0..MAX_HALVINGS {
         if (b - a).abs() <= tol {
             break;
         }
-        let c = 0.5 * (a + b);
-        if c == a || c == b {
-            break;
-        }
-        // from the straight line between the two ends of the step
-        let w = (c - lambda0) / (target - lambda0);
-        let start: Vec<f64> = committed
-            .u
-            .iter()
-            .zip(&trial.u)
-            .map(|(u0, u1)| u0 + w * (u1 - u0))
-            .collect();
-        match engine.step_from(committed, c, Response::Plastic, Some(&start)) {
-            Ok((s, _)) => {
-                if m.happened(model, &s) {
-                    (b, sb) = (c, s);
-                } else {
-                    (a, sa) = (c, s);
+        // the midpoint, or off it when its step does not converge (the
+        // event itself may be a state the step cannot reach: a stack
+        // unloaded to exactly zero)
+        for split in SPLITS {
+            let c = a + split * (b - a);
+            if c == a || c == b {
+                break 'halving;
+            }
+            // from the straight line between the two ends of the step
+            let w = (c - lambda0) / (target - lambda0);
+            let start: Vec<f64> = committed
+                .u
+                .iter()
+                .zip(&trial.u)
+                .map(|(u0, u1)| u0 + w * (u1 - u0))
+                .collect();
+            match engine.step_from(committed, c, Response::Plastic, Some(&start)) {
+                Ok((s, _)) => {
+                    if m.happened(model, &s) {
+                        (b, sb) = (c, s);
+                    } else {
+                        (a, sa) = (c, s);
+                    }
+                    continue 'halving;
                 }
-            }
-            Err(StepFailure::Interrupted { signal, .. }) => return Ok(Err(signal)),
-            Err(f) if f.is_fatal() => return Err(f.into_error()),
-            Err(_) => {
-                failed = true;
-                break;
+                Err(StepFailure::Interrupted { signal, .. }) => return Ok(Err(signal)),
+                Err(f) if f.is_fatal() => return Err(f.into_error()),
+                Err(_) => {}
             }
         }
+        failed = true;
+        break;
     }
     let i = m.interface;
     let meas = engine.measures(&sb);
