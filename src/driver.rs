@@ -477,6 +477,21 @@ pub fn check(case_path: &Path) -> Result<String> {
             );
         }
     }
+    for p in &model.plan.probes {
+        s += &format!("  probe {}: {}\n", p.name, p.describe(&model.mesh));
+    }
+    s += &format!(
+        "  outputs: reactions of {} group(s) ({}); events bracketed to {} in load factor\n",
+        model.plan.reactions.len(),
+        model
+            .plan
+            .reactions
+            .iter()
+            .map(|g| g.name.as_str())
+            .collect::<Vec<_>>()
+            .join(", "),
+        model.plan.event_tolerance
+    );
     let breakpoints = model.breakpoints();
     if !breakpoints.is_empty() {
         s += &format!(

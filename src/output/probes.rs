@@ -63,6 +63,36 @@ impl Probe {
     }
 }
 
+impl Probe {
+    /// What it reads, for `asperity check`: the snapped node and its
+    /// coordinates, or the set and its statistic.
+    pub fn describe(&self, mesh: &Mesh) -> String {
+        match &self.target {
+            Target::Point { at, body, node } => {
+                let x = mesh.nodes[*node];
+                format!(
+                    "node {node} at ({}, {}), the nearest{} to ({}, {})",
+                    x[0],
+                    x[1],
+                    body.as_ref()
+                        .map_or(String::new(), |b| format!(" of body \"{b}\"")),
+                    at[0],
+                    at[1]
+                )
+            }
+            Target::Nodes {
+                set,
+                nodes,
+                statistic,
+            } => format!(
+                "{} of the {} nodes of set \"{set}\" (each component)",
+                statistic.name(),
+                nodes.len()
+            ),
+        }
+    }
+}
+
 /// The probes of a case on its mesh: each point inside the model (of its
 /// body), each set and body named by the mesh; the refusal names the key.
 pub fn build(case: &Case, mesh: &Mesh, place: &str) -> Result<Vec<Probe>> {

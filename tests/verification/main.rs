@@ -12,6 +12,7 @@ mod axisymmetric;
 mod calibration;
 mod column;
 mod cycles;
+mod events;
 mod factorization;
 mod friction;
 mod gap;
