@@ -370,6 +370,10 @@ fn report_end(log: &Log, model: &Model, dir: &Path, r: &RunResult, wall: f64) {
                     fy.total_load_kn, fy.mean_pressure, fy.body, fy.x, fy.depth
                 );
             }
+            for e in r.events.iter().filter(|e| e.interface.is_some()) {
+                s += &crate::output::events::line(model, e);
+                s.push('\n');
+            }
             s += &format!(
                 "final: {:.4} kN, mean pressure {:.2} MPa, center displacement {:.5} mm; {} increments, {} iterations",
                 m.total_load_kn,

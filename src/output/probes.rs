@@ -44,7 +44,8 @@ impl Probe {
     /// (u_x, u_y) in a state's displacements (all dofs).
     pub fn value(&self, u: &[f64]) -> [f64; 2] {
         match &self.target {
-            Target::Point { node, .. } => [u[2 * node], u[2 * node + 1]],
+            // + 0.0: no negative zero (a fixed dof scaled by a negative history)
+            Target::Point { node, .. } => [u[2 * node] + 0.0, u[2 * node + 1] + 0.0],
             Target::Nodes {
                 nodes, statistic, ..
             } => {
@@ -55,7 +56,7 @@ impl Probe {
                         Statistic::Mean => vals.sum::<f64>() / nodes.len().max(1) as f64,
                         Statistic::Min => vals.fold(f64::INFINITY, f64::min),
                         Statistic::Max => vals.fold(f64::NEG_INFINITY, f64::max),
-                    };
+                    } + 0.0;
                 }
                 out
             }

@@ -47,10 +47,12 @@ impl Group {
     /// residual at every prescribed dof (in the model's order).
     pub fn values<'a>(&'a self, residual: &'a [f64]) -> impl Iterator<Item = f64> + 'a {
         self.components.iter().map(move |c| {
+            // + 0.0: no negative zero (an empty sum)
             c.terms
                 .iter()
                 .map(|&k| residual.get(k).copied().unwrap_or(f64::NAN))
-                .sum()
+                .sum::<f64>()
+                + 0.0
         })
     }
 }
