@@ -91,9 +91,9 @@ pub fn event_json(model: &Model, e: &Event) -> Value {
 /// An interface event as one line of the run's end: what, where and when.
 pub fn line(model: &Model, e: &Event) -> String {
     let (lo, hi) = (e.before.min(e.after), e.before.max(e.after));
-    let iface = e
-        .interface
-        .map_or(String::new(), |i| format!(" of {}", model.interfaces[i].name));
+    let iface = e.interface.map_or(String::new(), |i| {
+        format!(" of {}", model.interfaces[i].name)
+    });
     format!(
         "{}{iface}: λ = {:.6} (bracket {:.6} … {:.6}{}), F_N {:.4e} N, F_T {:.4e} N",
         e.kind.name().replace('_', " "),
