@@ -105,6 +105,48 @@ impl Plan {
         v
     }
 
+    /// Restores a restart file's designer sections into a checkpoint whose
+    /// curve is restored: `records`, each increment's record (this plan's
+    /// width per increment: finite or NaN, no infinity; a row all NaN is an
+    /// increment without one, restored from a file of an earlier build), and
+    /// `events` ([`crate::solve::events::Event::unpack`]). A section that is
+    /// absent or empty restores nothing. The error is a message for the
+    /// restart file's line.
+    pub fn restore(
+        &self,
+        ck: &mut crate::solve::Checkpoint,
+        records: Option<&[f64]>,
+        events: Option<&[f64]>,
+        model: &crate::model::Model,
+    ) -> std::result::Result<(), String> {
+        let w = self.width();
+        if let Some(v) = records.filter(|v| !v.is_empty()) {
+            if v.len() != w * ck.increments.len() {
+                return Err(format!(
+                    "section records has {} values, the model needs {}",
+                    v.len(),
+                    w * ck.increments.len()
+                ));
+            }
+            if let Some(i) = v.iter().position(|x| x.is_infinite()) {
+                return Err(format!(
+                    "section records: value {} is infinite ({})",
+                    i + 1,
+                    v[i]
+                ));
+            }
+            for (inc, row) in ck.increments.iter_mut().zip(v.chunks_exact(w.max(1))) {
+                if !row.iter().all(|x| x.is_nan()) {
+                    inc.record = row.to_vec();
+                }
+            }
+        }
+        if let Some(v) = events {
+            ck.events = crate::solve::events::Event::unpack(v, w, model, ck.increments.len())?;
+        }
+        Ok(())
+    }
+
     /// The part of a record given by `range`, or `None` for a record of
     /// another width (an increment restored from an older restart file).
     pub fn part<'a>(&self, record: &'a [f64], range: &Range<usize>) -> Option<&'a [f64]> {

@@ -664,35 +664,17 @@ pub(super) fn restore_joints(ck: &mut Checkpoint, s: &Sections, interfaces: usiz
     Ok(())
 }
 
-/// The designer's outputs ([`crate::output::plan`]): each increment's
-/// record (`records`, the plan's width per increment: finite or NaN, no
-/// infinity) and the events located so far (`events`,
-/// [`crate::solve::events::Event::unpack`]). A file of an earlier build has
-/// neither: its increments keep no record and no event was located.
+/// The designer's outputs: each increment's record and the events located
+/// so far, checked by [`crate::output::plan::Plan::restore`] (a file of an
+/// earlier build has neither section).
 pub(super) fn restore_designer(ck: &mut Checkpoint, s: &Sections, model: &Model) -> Decoded<()> {
-    let w = model.plan.width();
-    let stored = s.f("records", None).map_or(0, |v| v.len());
-    if stored > 0 {
-        let v = s.f("records", Some(w * ck.increments.len()))?;
-        if let Some(i) = v.iter().position(|x| x.is_infinite()) {
-            return Err(format!(
-                "section records: value {} is infinite ({})",
-                i + 1,
-                num(v[i])
-            ));
+    let f = |name: &str| -> Decoded<Option<&[f64]>> {
+        match s.0.contains_key(name) {
+            true => s.f(name, None).map(|v| Some(v.as_slice())),
+            false => Ok(None),
         }
-        for (inc, row) in ck.increments.iter_mut().zip(v.chunks_exact(w.max(1))) {
-            // a row of NaN: an increment without a record
-            if !row.iter().all(|x| x.is_nan()) {
-                inc.record = row.to_vec();
-            }
-        }
-    }
-    if s.0.contains_key("events") {
-        let v = s.f("events", None)?;
-        ck.events = crate::solve::events::Event::unpack(v, w, model, ck.increments.len())?;
-    }
-    Ok(())
+    };
+    model.plan.restore(ck, f("records")?, f("events")?, model)
 }
 
 /// How far every interface's laws were used so far; a file of an earlier

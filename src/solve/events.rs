@@ -183,7 +183,7 @@ impl Event {
                 .map(|c| Kind::ALL[c])
                 .ok_or_else(|| bad("no such kind"))?;
             let interface = match (kind, r[1]) {
-                (Kind::FirstYield, x) if x == -1.0 => None,
+                (Kind::FirstYield, -1.0) => None,
                 (Kind::FirstYield, _) => return Err(bad("first yield names an interface")),
                 (_, x) => {
                     Some(code(x, model.interfaces.len()).ok_or_else(|| bad("no such interface"))?)
