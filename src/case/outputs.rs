@@ -179,3 +179,31 @@ pub fn check(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::Case;
+
+    const CASE: &str = include_str!("../../cases/punch-plane-stress/case.toml");
+
+    /// A case without `[[probe]]` and `event_tolerance` has the key (and so
+    /// the restart fingerprint) it had before they existed: neither field
+    /// shows in it; a case that gives them has them in its key.
+    #[test]
+    fn the_new_keys_leave_the_case_key_of_a_case_without_them() {
+        let plain = Case::parse(CASE, "case.toml").unwrap().key();
+        assert!(
+            !plain.contains("event_tolerance") && !plain.contains("probe: []"),
+            "{plain}"
+        );
+        assert!(
+            plain.ends_with(" }") && plain.contains("vtu_every: 1 }"),
+            "{plain}"
+        );
+        let text = format!("{CASE}\n[[probe]]\nname = \"p\"\nat = [1.0, 1.0]\n")
+            .replace("[solver]", "[output]\nevent_tolerance = 1e-4\n\n[solver]");
+        let given = Case::parse(&text, "case.toml").unwrap().key();
+        assert!(given.contains("event_tolerance: Some(0.0001)"), "{given}");
+        assert!(given.contains("probe: [ProbeSpec { name: \"p\""), "{given}");
+    }
+}
