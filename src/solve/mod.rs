@@ -424,6 +424,9 @@ fn accept(
         && engine.max_over_points(trial.gauss.iter().map(|g| g.peeq)) > 0.0;
     let increment = ck.increments.len() + 1;
     let mut found = Vec::new();
+    // kept once the whole step is accepted (the event search may still be
+    // interrupted: the checkpoint then stays the committed one)
+    let mut located = None;
     if yielded_now && model.solver.locate_first_yield {
         match yield_point::locate(
             engine,
@@ -440,7 +443,7 @@ fn accept(
                     &at.state,
                     increment,
                 ));
-                ck.first_yield = Some(at.first_yield);
+                located = Some(at.first_yield);
             }
             Err((_, StepFailure::Interrupted { signal, .. })) => {
                 return Ok(Accepted::Interrupted(signal))
@@ -476,6 +479,9 @@ fn accept(
         ((a.load_factor - ck.lambda).abs()).total_cmp(&(b.load_factor - ck.lambda).abs())
     });
     ck.events.extend(found);
+    if located.is_some() {
+        ck.first_yield = located;
+    }
     ck.stepper.accepted(ck.lambda, target, iterations, dpeeq);
     ck.last_du.clear();
     ck.last_du
