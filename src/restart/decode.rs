@@ -665,9 +665,17 @@ pub(super) fn restore_joints(ck: &mut Checkpoint, s: &Sections, interfaces: usiz
 }
 
 /// The designer's outputs: each increment's record and the events located
-/// so far, checked by [`crate::output::plan::Plan::restore`] (a file of an
-/// earlier build has neither section).
+/// so far, checked by [`crate::output::plan::Plan::restore`]; only when the
+/// file's records have the model's width (a file of an earlier build has
+/// none, one of another layout is left alone).
 pub(super) fn restore_designer(ck: &mut Checkpoint, s: &Sections, model: &Model) -> Decoded<()> {
+    let width = match s.0.contains_key("record_width") {
+        true => s.u("record_width", Some(1))?[0],
+        false => return Ok(()),
+    };
+    if width != model.plan.width() as u64 {
+        return Ok(());
+    }
     let f = |name: &str| -> Decoded<Option<&[f64]>> {
         match s.0.contains_key(name) {
             true => s.f(name, None).map(|v| Some(v.as_slice())),

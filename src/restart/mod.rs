@@ -39,9 +39,11 @@
 //! interface and increment, as [`crate::interface::joint::JointMeasures::pack`]
 //! lays them out), `table_reach` (2 per interface: the largest approach u_N
 //! and pressure p_N over the converged states so far, see
-//! [`crate::interface::extrapolation`]), `records` (the designer's record of
-//! every increment, [`crate::output::plan`]) and `events` (the events located
-//! so far, [`crate::solve::events::Event::pack`]). Unknown sections are ignored;
+//! [`crate::interface::extrapolation`]), `record_width` (the values of one
+//! designer's record, [`crate::output::plan`]), `records` (the record of every
+//! increment) and `events` (the events located so far,
+//! [`crate::solve::events::Event::pack`]); a file whose records have another
+//! width than the model's (another build's layout) restores neither. Unknown sections are ignored;
 //! `last_du`, `joint_totals`, `joints` and `table_reach` may be absent (files
 //! of earlier builds: the joint energies then restart from zero and the
 //! earlier increments have no joint rows, written as NaN rows of `joints`
@@ -427,9 +429,12 @@ fn sections(e: &mut Encoder, ck: &Checkpoint, pvd: &[(f64, String)]) -> std::io:
         .increments
         .iter()
         .map(|i| i.record.len())
+        .chain(ck.events.iter().map(|v| v.record.len()))
         .max()
         .unwrap_or(0);
     let none = vec![f64::NAN; width];
+    // the layout the rows have: a build whose records differ restores neither
+    e.u64s("record_width", &[width as u64])?;
     e.f64_iter(
         "records",
         width * ck.increments.len(),

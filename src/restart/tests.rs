@@ -121,6 +121,16 @@ fn decode_refuses_what_the_case_cannot_have_produced() {
     for (x, y) in back.events[0].pack().iter().zip(event.pack()) {
         assert_eq!(x.to_bits(), y.to_bits());
     }
+    // records of another layout (another build's): neither they nor the
+    // events are restored, and the file is not refused for them
+    let mut c = ck.clone();
+    c.events.push(event.clone());
+    for inc in c.increments.iter_mut() {
+        inc.record.push(1.0);
+    }
+    c.events[0].record.push(1.0);
+    let (back, _) = decode(&encode(&model, &c, &pvd), &model).unwrap();
+    assert!(back.increments.iter().all(|i| i.record.is_empty()) && back.events.is_empty());
     let refused = |ck: &Checkpoint, pvd: &[(f64, String)], needle: &str| {
         let e = decode(&encode(&model, ck, pvd), &model).unwrap_err();
         assert!(e.contains(needle), "{needle}: {e}");
