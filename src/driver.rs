@@ -370,6 +370,10 @@ fn report_end(log: &Log, model: &Model, dir: &Path, r: &RunResult, wall: f64) {
                     fy.total_load_kn, fy.mean_pressure, fy.body, fy.x, fy.depth
                 );
             }
+            for e in r.events.iter().filter(|e| e.interface.is_some()) {
+                s += &crate::output::events::line(model, e);
+                s.push('\n');
+            }
             s += &format!(
                 "final: {:.4} kN, mean pressure {:.2} MPa, center displacement {:.5} mm; {} increments, {} iterations",
                 m.total_load_kn,
@@ -477,6 +481,21 @@ pub fn check(case_path: &Path) -> Result<String> {
             );
         }
     }
+    for p in &model.plan.probes {
+        s += &format!("  probe {}: {}\n", p.name, p.describe(&model.mesh));
+    }
+    s += &format!(
+        "  outputs: reactions of {} group(s) ({}); events bracketed to {} in load factor\n",
+        model.plan.reactions.len(),
+        model
+            .plan
+            .reactions
+            .iter()
+            .map(|g| g.name.as_str())
+            .collect::<Vec<_>>()
+            .join(", "),
+        model.plan.event_tolerance
+    );
     let breakpoints = model.breakpoints();
     if !breakpoints.is_empty() {
         s += &format!(

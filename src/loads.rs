@@ -371,7 +371,7 @@ fn pattern(patterns: &mut Vec<LoadPattern>, h: Option<usize>, n: usize) -> &mut 
     &mut patterns[k].f
 }
 
-fn in_range(v: f64, r: &Option<[f64; 2]>) -> bool {
+pub(crate) fn in_range(v: f64, r: &Option<[f64; 2]>) -> bool {
     r.is_none_or(|[lo, hi]| v >= lo - 1e-9 && v <= hi + 1e-9)
 }
 

@@ -17,6 +17,9 @@ pub struct Model {
     pub solver: crate::case::SolverSpec,
     /// What is written, and how often.
     pub output: crate::case::OutputSpec,
+    /// The designer's outputs: reaction groups, probes, events
+    /// ([`crate::output::plan`]).
+    pub plan: crate::output::plan::Plan,
     /// The case file the model came from (the text's name for [`Model::parse`]).
     pub source: std::path::PathBuf,
     /// The case's free-text description.
@@ -157,6 +160,8 @@ impl Model {
         let section_block_base = blocks.len() - sections.len();
         drop(blocks);
         let (probe_node, surface_y) = probe(&case, &mesh, &interfaces);
+        let plan =
+            crate::output::plan::Plan::build(&case, &mesh, &interfaces, &prescribed, &place)?;
         let force_floor = force_floor(&mesh, &materials, section);
         Ok(Model {
             name: case.display_name(),
@@ -185,6 +190,7 @@ impl Model {
             mesh,
             solver: case.solver.clone(),
             output: case.output.clone(),
+            plan,
             source: case.source.clone(),
             description: case.description.clone(),
             integration: case.model.integration,

@@ -6,6 +6,7 @@
 //! carries the same text.
 
 pub mod axis;
+pub mod outputs;
 pub mod ranges;
 mod validate;
 pub mod whole;
@@ -60,10 +61,15 @@ pub struct Case {
     /// Named load histories (pseudo-time → factor), referenced by name.
     #[serde(default)]
     pub history: BTreeMap<String, Vec<Vec<f64>>>,
-    /// Pretension sections (bolts): [`crate::pretension`]. Last, so that a
-    /// case without them keeps its restart fingerprint (`Case::key`).
+    /// Pretension sections (bolts): [`crate::pretension`]. Left out of
+    /// `Case::key` when empty, so a case without them keeps its restart
+    /// fingerprint.
     #[serde(default)]
     pub pretension: Vec<PretensionSpec>,
+    // the designer's outputs, last: a case without them keeps its key
+    /// Named displacement probes (points or node sets).
+    #[serde(default)]
+    pub probe: Vec<outputs::ProbeSpec>,
 }
 
 /// A pretension section (`[[pretension]]`, after Abaqus *PRE-TENSION SECTION):
@@ -368,7 +374,7 @@ fn two_numbers<'de, D: serde::Deserializer<'de>>(d: D) -> std::result::Result<[f
     })
 }
 
-fn two_numbers_opt<'de, D: serde::Deserializer<'de>>(
+pub(crate) fn two_numbers_opt<'de, D: serde::Deserializer<'de>>(
     d: D,
 ) -> std::result::Result<Option<[f64; 2]>, D::Error> {
     two_numbers(d).map(Some)
@@ -452,6 +458,9 @@ pub struct OutputSpec {
     /// arrays' exact IEEE-754 bits) or `ascii` (text, `{:e}` shortest form).
     #[serde(default)]
     pub vtu_format: VtuFormat,
+    /// Width of an event's bracket in load factor (pseudo-time), in
+    /// [1e-12, 1); default 1e-3 ([`outputs::DEFAULT_EVENT_TOLERANCE`]).
+    pub event_tolerance: Option<f64>,
 }
 
 /// How the VTU files hold their arrays (docs/output.md, "VTU").
@@ -574,7 +583,11 @@ impl Case {
         // the VTU encoding is part of the key (a resumed run continues the
         // series in the same encoding); the default one is left out, so
         // keys of builds before `vtu_format` stay as they were
+        // the designer's outputs (`[[probe]]`, `event_tolerance`) are left
+        // out when not given, so keys of builds before them stay as they were
         let full = format!("{key:?}")
+            .replace(", event_tolerance: None }", " }")
+            .replace(", probe: [] }", " }")
             .replace(", table: None,", ",")
             .replace(", vtu_format: Binary }", " }")
             .replace(", pretension: [] }", " }");

@@ -61,6 +61,7 @@ pub fn check_case(case: &Case) -> Result<Checked> {
     check_materials(case, &at)?;
     let (laws, tangential) = interface_laws(case, &at)?;
     check_solver(case, &at)?;
+    super::outputs::check(case, &at)?;
     Ok(Checked { laws, tangential })
 }
 

@@ -1,12 +1,19 @@
 //! Results on disk: `summary.json`, `curve.csv`, `interface/<increment>.csv`,
 //! the joint outputs (`joints.csv`, `cycles.csv`, the hysteresis figure:
-//! [`joints`]) and a VTU/PVD series. Everything is written into a hidden sibling folder that is
+//! [`joints`]), the designer's outputs (`reactions.csv`, `probes.csv`,
+//! `peaks.csv`, `contact.csv` and the events: [`plan`], [`events`]) and a
+//! VTU/PVD series. Everything is written into a hidden sibling folder that is
 //! renamed into place only when the run succeeds, so a failed run leaves no
 //! partial output folder behind. The per-increment files are encoded and
 //! written by a thread of their own, in order ([`background`]).
 
 pub mod background;
+pub mod events;
 pub mod joints;
+pub mod peaks;
+pub mod plan;
+pub mod probes;
+pub mod reactions;
 pub mod vtu;
 
 use crate::error::{Error, Result};
@@ -124,6 +131,24 @@ impl Writer {
         if !model.sections.is_empty() {
             self.write("pretension.csv", &pretension_csv(model, result))?;
         }
+        let plan = &model.plan;
+        let l = &plan.layout;
+        self.write(
+            "reactions.csv",
+            &reactions::csv(&plan.reactions, result, |v| plan.part(v, &l.reactions)),
+        )?;
+        self.write(
+            "probes.csv",
+            &probes::csv(&plan.probes, result, |v| plan.part(v, &l.probes)),
+        )?;
+        self.write(
+            "peaks.csv",
+            &peaks::bodies_csv(model, result, |v| plan.part(v, &l.bodies)),
+        )?;
+        self.write(
+            "contact.csv",
+            &peaks::contact_csv(model, result, |v| plan.part(v, &l.interfaces)),
+        )?;
         self.write("results.pvd", &vtu::pvd(&self.pvd))?;
         replace_dir(&self.tmp_dir, &self.final_dir)?;
         self.done = true;
@@ -476,6 +501,7 @@ pub fn summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
     if !model.sections.is_empty() {
         s["pretension"] = pretension_summary(model, r);
     }
+    events::summary(model, r, &mut s);
     // only cases with a tabulated law (the others write what they always did)
     let uses = table_uses(&model.interfaces, &r.table_reach);
     if !uses.is_empty() {

@@ -71,6 +71,7 @@ pub(super) fn decode_with(
     restore_sections(&mut ck, &s, model.sections.len())?;
     restore_table_reach(&mut ck, &s, model)?;
     ck.first_yield = restore_first_yield(&s, model, &ck.increments)?;
+    restore_designer(&mut ck, &s, model)?;
     let pvd = restore_vtu_series(&s, model, &ck.increments)?;
     Ok((ck, pvd))
 }
@@ -263,6 +264,7 @@ pub(super) fn restore_curve(s: &Sections, increments: usize) -> Decoded<Vec<Incr
                 },
                 joints: Vec::new(),
                 sections: Vec::new(),
+                record: Vec::new(),
             })
         })
         .collect()
@@ -677,6 +679,27 @@ pub(super) fn restore_sections(ck: &mut Checkpoint, s: &Sections, sections: usiz
         inc.sections = row.chunks_exact(2).map(|p| [p[0], p[1]]).collect();
     }
     Ok(())
+}
+
+/// The designer's outputs: each increment's record and the events located
+/// so far, checked by [`crate::output::plan::Plan::restore`]; only when the
+/// file's records have the model's width (a file of an earlier build has
+/// none, one of another layout is left alone).
+pub(super) fn restore_designer(ck: &mut Checkpoint, s: &Sections, model: &Model) -> Decoded<()> {
+    let width = match s.0.contains_key("record_width") {
+        true => s.u("record_width", Some(1))?[0],
+        false => return Ok(()),
+    };
+    if width != model.plan.width() as u64 {
+        return Ok(());
+    }
+    let f = |name: &str| -> Decoded<Option<&[f64]>> {
+        match s.0.contains_key(name) {
+            true => s.f(name, None).map(|v| Some(v.as_slice())),
+            false => Ok(None),
+        }
+    };
+    model.plan.restore(ck, f("records")?, f("events")?, model)
 }
 
 /// How far every interface's laws were used so far; a file of an earlier

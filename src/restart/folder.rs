@@ -59,12 +59,15 @@ pub(super) fn num(x: f64) -> String {
 /// restart), each the plain solve and, under the contact stabilization, up
 /// to [`stabilize::LEVELS`] stabilized solves each with its release; the
 /// first-yield search adds at most 1 + [`yield_point::SEARCH_STEPS`] such
-/// steps once. Every solve takes at most the case's iteration limit (PETSc
-/// SNES: its cap, 10 more); all of it times [`COUNTER_MARGIN`].
+/// steps once, and each of the three events of every interface at most
+/// [`crate::solve::events::MAX_SOLVES`] once. Every solve takes at most the
+/// case's iteration limit (PETSc SNES: its cap, 10 more); all of it times
+/// [`COUNTER_MARGIN`].
 pub fn most_iterations(model: &Model, increments: u64, cutbacks: u64) -> u128 {
     let per_step = 1 + 2 * stabilize::LEVELS as u128;
     let attempts = u128::from(increments) + u128::from(cutbacks) + 1;
-    let solves = (2 * attempts + 1 + yield_point::SEARCH_STEPS as u128) * per_step;
+    let events = 3 * model.interfaces.len() as u128 * crate::solve::events::MAX_SOLVES as u128;
+    let solves = (2 * attempts + 1 + yield_point::SEARCH_STEPS as u128 + events) * per_step;
     solves * (model.solver.iteration_limit() as u128 + 10) * COUNTER_MARGIN
 }
 
@@ -102,15 +105,21 @@ impl Bounds {
         // Gauss and contact states, joint totals and table reach, the
         // pending schedule (its rest and at most one halved target per
         // cutback), the waypoints, and the scalars
+        // the designer's record of every event (first yield, three per interface)
+        let record = model.plan.width() as u64;
+        let events = (1 + 3 * ni) * (crate::solve::events::FIXED as u64 + record);
         let words = 2 * nu
             + PointState::PACKED as u64 * ng
             + ContactState::PACKED as u64 * np
             + (2 + Reach::PACKED as u64) * ni
             + 2 * (st.pending.len() as u64 + st.max_cutbacks() as u64 + 1)
             + st.waypoints.len() as u64
+            + events
             + 32;
+        // with the designer's record of every increment
         let per_increment =
-            8 * (10 + JointMeasures::PACKED as u64 * ni + 1) + MAX_VTU_NAME as u64 + 1;
+            8 * (10 + JointMeasures::PACKED as u64 * ni + 1 + record) + MAX_VTU_NAME as u64 + 1;
+
         let table = 36 + u64::from(MAX_SECTIONS) * (11 + MAX_SECTION_NAME as u64);
         let restart_bytes = table
             .saturating_add(8 * words + np + body)

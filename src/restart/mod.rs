@@ -39,7 +39,11 @@
 //! interface and increment, as [`crate::interface::joint::JointMeasures::pack`]
 //! lays them out), `table_reach` (2 per interface: the largest approach u_N
 //! and pressure p_N over the converged states so far, see
-//! [`crate::interface::extrapolation`]). Unknown sections are ignored;
+//! [`crate::interface::extrapolation`]), `record_width` (the values of one
+//! designer's record, [`crate::output::plan`]), `records` (the record of every
+//! increment) and `events` (the events located so far,
+//! [`crate::solve::events::Event::pack`]); a file whose records have another
+//! width than the model's (another build's layout) restores neither. Unknown sections are ignored;
 //! `last_du`, `joint_totals`, `joints` and `table_reach` may be absent (files
 //! of earlier builds: the joint energies then restart from zero and the
 //! earlier increments have no joint rows, written as NaN rows of `joints`
@@ -436,6 +440,36 @@ fn sections(e: &mut Encoder, ck: &Checkpoint, pvd: &[(f64, String)]) -> std::io:
             }),
         )?;
     }
+    // the designer's outputs: each increment's record, a row of NaN for an
+    // increment without one (restored from a file of an earlier build)
+    let width = ck
+        .increments
+        .iter()
+        .map(|i| i.record.len())
+        .chain(ck.events.iter().map(|v| v.record.len()))
+        .max()
+        .unwrap_or(0);
+    let none = vec![f64::NAN; width];
+    // the layout the rows have: a build whose records differ restores neither
+    e.u64s("record_width", &[width as u64])?;
+    e.f64_iter(
+        "records",
+        width * ck.increments.len(),
+        ck.increments.iter().flat_map(|i| {
+            if i.record.len() == width {
+                &i.record
+            } else {
+                &none
+            }
+            .iter()
+            .copied()
+        }),
+    )?;
+    e.f64_iter(
+        "events",
+        ck.events.iter().map(|v| v.pack().len()).sum(),
+        ck.events.iter().flat_map(|v| v.pack()),
+    )?;
     e.f64_iter(
         "table_reach",
         Reach::PACKED * ck.table_reach.len(),

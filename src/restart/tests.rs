@@ -48,6 +48,7 @@ fn checkpoint(model: &Model, n: usize) -> (Checkpoint, Vec<(f64, String)>) {
             measures: Measures::default(),
             joints: vec![JointMeasures::default(); model.interfaces.len()],
             sections: Vec::new(),
+            record: (0..model.plan.width()).map(|i| (k * i) as f64).collect(),
         });
         pvd.push((t, vtu_name(k)));
     }
@@ -95,6 +96,42 @@ fn decode_refuses_what_the_case_cannot_have_produced() {
     assert_eq!(back.lambda.to_bits(), ck.lambda.to_bits());
     assert_eq!(back.stepper.pending, ck.stepper.pending);
     assert_eq!(back.increments.len(), 4);
+    // the designer's records and events, bit for bit
+    for (a, b) in back.increments.iter().zip(&ck.increments) {
+        assert_eq!(a.record, b.record);
+    }
+    let mut c = ck.clone();
+    let event = crate::solve::events::Event {
+        kind: crate::solve::events::Kind::FullSeparation,
+        interface: Some(0),
+        load_factor: 0.5,
+        before: 0.49,
+        after: 0.5,
+        increment: 2,
+        method: crate::solve::events::Method::Bisection,
+        converged: true,
+        solve_failed: false,
+        place: [1.0, 0.0, 1.0, f64::NAN],
+        values: [1.0, 2.0, 3.0, 4.0],
+        record: vec![0.25; model.plan.width()],
+    };
+    c.events.push(event.clone());
+    let (back, _) = decode(&encode(&model, &c, &pvd), &model).unwrap();
+    assert_eq!(back.events.len(), 1);
+    assert_eq!(back.events[0].pack().len(), event.pack().len());
+    for (x, y) in back.events[0].pack().iter().zip(event.pack()) {
+        assert_eq!(x.to_bits(), y.to_bits());
+    }
+    // records of another layout (another build's): neither they nor the
+    // events are restored, and the file is not refused for them
+    let mut c = ck.clone();
+    c.events.push(event.clone());
+    for inc in c.increments.iter_mut() {
+        inc.record.push(1.0);
+    }
+    c.events[0].record.push(1.0);
+    let (back, _) = decode(&encode(&model, &c, &pvd), &model).unwrap();
+    assert!(back.increments.iter().all(|i| i.record.is_empty()) && back.events.is_empty());
     let refused = |ck: &Checkpoint, pvd: &[(f64, String)], needle: &str| {
         let e = decode(&encode(&model, ck, pvd), &model).unwrap_err();
         assert!(e.contains(needle), "{needle}: {e}");
@@ -143,6 +180,20 @@ fn decode_refuses_what_the_case_cannot_have_produced() {
     let mut c = ck.clone();
     c.increments[3].measures.max_peeq = f64::NAN;
     refused(&c, &pvd, "section curve: value 39 is not finite");
+    let mut c = ck.clone();
+    c.increments[1].record[0] = f64::INFINITY;
+    refused(&c, &pvd, "section records: value");
+    let mut c = ck.clone();
+    let mut e = event.clone();
+    c.events.push(e.clone());
+    c.events.push(e.clone());
+    refused(&c, &pvd, "event 2: appears twice");
+    c.events.pop();
+    c.events[0].interface = Some(7);
+    refused(&c, &pvd, "event 1: no such interface");
+    e.increment = 9;
+    c.events[0] = e;
+    refused(&c, &pvd, "event 1: not an increment of the curve");
     let mut c = ck.clone();
     c.elastic_ratio_prev = -1.0;
     refused(&c, &pvd, "section elastic_ratio_prev");

@@ -3,6 +3,7 @@
 //! committed state restored, and the location of first yield.
 
 mod accelerate;
+pub mod events;
 pub mod failure;
 pub mod newton;
 pub mod nonlinear;
@@ -43,6 +44,10 @@ pub struct State {
     /// step converges (empty before; not kept in restart files, whose
     /// increments carry it).
     pub section_force: Vec<f64>,
+    /// The residual at every prescribed dof (in the order of
+    /// [`Model::prescribed`]): the reactions of a converged state, N (empty
+    /// before the first step and in a state restored from a restart file).
+    pub reactions: Vec<f64>,
     /// The pseudo-time of the state (the load factor without histories):
     /// where its loads, prescribed values and gaps are taken.
     pub time: f64,
@@ -58,6 +63,7 @@ impl State {
             contact: vec![crate::interface::PointState::default(); n_points],
             prescribed_reaction: 0.0,
             section_force: Vec::new(),
+            reactions: Vec::new(),
             time: 0.0,
         }
     }
@@ -78,6 +84,9 @@ pub struct Increment {
     pub joints: Vec<JointMeasures>,
     /// Every pretension section's [force (N), shortening (mm)], in order.
     pub sections: Vec<[f64; 2]>,
+    /// The designer's outputs of the state ([`crate::output::plan`]); empty
+    /// for increments restored from a restart file of an earlier build.
+    pub record: Vec<f64>,
 }
 
 /// Scalar measures of a state.
@@ -178,6 +187,8 @@ pub struct Checkpoint {
     /// The largest approach and pressure of every interface over the
     /// converged states so far (how far its tables were used).
     pub table_reach: Vec<crate::interface::extrapolation::Reach>,
+    /// The events located so far ([`events`]).
+    pub events: Vec<events::Event>,
 }
 
 impl Checkpoint {
@@ -198,6 +209,7 @@ impl Checkpoint {
             factorizations: 0,
             joint_totals: vec![JointTotals::default(); model.interfaces.len()],
             table_reach: vec![Default::default(); model.interfaces.len()],
+            events: Vec::new(),
         }
     }
 }
@@ -238,6 +250,8 @@ pub struct RunResult {
     /// The largest approach and pressure of every interface over the run
     /// ([`Checkpoint::table_reach`]).
     pub table_reach: Vec<crate::interface::extrapolation::Reach>,
+    /// The events located ([`events`]), in the order found.
+    pub events: Vec<events::Event>,
 }
 
 /// Runs the whole load history with a given engine (any backend). Under MPI
@@ -416,6 +430,11 @@ fn accept(
     }
     let yielded_now = ck.first_yield.is_none()
         && engine.max_over_points(trial.gauss.iter().map(|g| g.peeq)) > 0.0;
+    let increment = ck.increments.len() + 1;
+    let mut found = Vec::new();
+    // kept once the whole step is accepted (the event search may still be
+    // interrupted: the checkpoint then stays the committed one)
+    let mut located = None;
     if yielded_now && model.solver.locate_first_yield {
         match yield_point::locate(
             engine,
@@ -423,7 +442,17 @@ fn accept(
             (ck.lambda, ck.elastic_ratio_prev),
             target,
         ) {
-            Ok(fy) => ck.first_yield = Some(fy),
+            Ok(at) => {
+                found.push(events::first_yield(
+                    engine,
+                    Some(&at.first_yield),
+                    at.bracket,
+                    at.root,
+                    &at.state,
+                    increment,
+                ));
+                located = Some(at.first_yield);
+            }
             Err((_, StepFailure::Interrupted { signal, .. })) => {
                 return Ok(Accepted::Interrupted(signal))
             }
@@ -436,7 +465,30 @@ fn accept(
             }
         }
     } else if ck.first_yield.is_none() {
+        if yielded_now && !ck.events.iter().any(|e| e.kind == events::Kind::FirstYield) {
+            // not searched (locate_first_yield = false): the increment
+            found.push(events::first_yield(
+                engine,
+                None,
+                [ck.lambda, target],
+                false,
+                &trial,
+                increment,
+            ));
+        }
         ck.elastic_ratio_prev = engine.max_yield_ratio(&trial).0;
+    }
+    match events::search(engine, ck, &trial, target, increment)? {
+        events::Found::Events(e) => found.extend(e),
+        events::Found::Interrupted(signal) => return Ok(Accepted::Interrupted(signal)),
+    }
+    // in the order of their load factors along the step
+    found.sort_by(|a, b| {
+        ((a.load_factor - ck.lambda).abs()).total_cmp(&(b.load_factor - ck.lambda).abs())
+    });
+    ck.events.extend(found);
+    if located.is_some() {
+        ck.first_yield = located;
     }
     ck.stepper.accepted(ck.lambda, target, iterations, dpeeq);
     ck.last_du.clear();
@@ -494,6 +546,7 @@ fn accept(
                 [f, ck.committed.u[s.dof]]
             })
             .collect(),
+        record: model.plan.record(engine, &ck.committed),
     };
     ck.cutbacks_here = 0;
     ck.iterations = engine.stats.iterations;
@@ -627,6 +680,7 @@ fn finish(
         resumed_from,
         stabilization,
         table_reach: ck.table_reach,
+        events: ck.events,
     }
 }
 

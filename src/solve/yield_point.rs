@@ -28,6 +28,16 @@ pub struct FirstYield {
     pub element: usize,
 }
 
+/// What the search found besides [`FirstYield`]: the last load factors
+/// evaluated below and at or above yield (the bracket), whether the root
+/// was found to 1e-9 in g, and the solution at the load factor reported.
+pub(super) struct Located {
+    pub first_yield: FirstYield,
+    pub bracket: [f64; 2],
+    pub root: bool,
+    pub state: State,
+}
+
 /// Max yield ratio over the Gauss points of the `held` elements (whose points
 /// `state.gauss` holds, in this order) and the (element, point) where it
 /// occurs; [`Engine::max_yield_ratio`] takes it over every rank.
@@ -52,7 +62,7 @@ pub(super) fn locate(
     last_elastic: &State,
     (lambda0, ratio0): (f64, f64),
     lambda1: f64,
-) -> std::result::Result<FirstYield, (f64, StepFailure)> {
+) -> std::result::Result<Located, (f64, StepFailure)> {
     let model = engine.model;
     // the two latest solutions (load factor, displacements): each solve
     // starts from their linear inter- or extrapolation to its load factor
@@ -81,12 +91,17 @@ pub(super) fn locate(
     };
     let (mut a, mut ga) = (lambda0, ratio0 - 1.0);
     let (mut b, (mut gb, mut sb)) = (lambda1, eval(lambda1)?);
+    // the tightest bracket seen: below yield (g < 0), at or above it
+    let mut bracket = [lambda0, lambda1];
+    let mut root = false;
     for _ in 0..SEARCH_STEPS {
         if gb.abs() < 1e-9 || (b - a).abs() < 1e-12 {
+            root = true;
             break;
         }
         let c = b - gb * (b - a) / (gb - ga);
         let (gc, sc) = eval(c)?;
+        bracket[usize::from(gc >= 0.0)] = c;
         if gc * gb < 0.0 {
             (a, ga) = (b, gb);
         } else {
@@ -97,7 +112,7 @@ pub(super) fn locate(
     let (_, e, ip) = engine.max_yield_ratio(&sb);
     let m = engine.measures(&sb);
     let x = model.geometry(e).x[ip];
-    Ok(FirstYield {
+    let first_yield = FirstYield {
         load_factor: b,
         mean_pressure: m.mean_pressure,
         total_load_kn: m.total_load_kn,
@@ -105,5 +120,11 @@ pub(super) fn locate(
         depth: model.surface_y - x[1],
         body: model.mesh.bodies[model.mesh.elements[e].body].clone(),
         element: e,
+    };
+    Ok(Located {
+        first_yield,
+        bracket,
+        root: root || gb.abs() < 1e-9,
+        state: sb,
     })
 }

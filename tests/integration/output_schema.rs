@@ -168,9 +168,17 @@ fn summary_json_matches_the_documented_schema() {
             slip_range: [-0.01, 0.01],
         },
     );
+    // probes of both kinds, interface events with histories and reactions
+    let stack = summary_of(
+        "stack",
+        &common::root().join("tests/data/stack-separation"),
+        &[],
+    );
+    assert_eq!(stack["probes"].as_array().unwrap().len(), 5, "{stack}");
+    assert_eq!(stack["events"].as_array().unwrap().len(), 2, "{stack}");
     let mut with_cycle = with.clone();
     with_cycle["joints"][0]["cycles"] = Value::Array(vec![cycle]);
-    for s in [&with_cycle, &without, &gap, &axi, &tab] {
+    for s in [&with_cycle, &without, &gap, &axi, &tab, &stack] {
         let mut l = Vec::new();
         leaves("", s, &mut l);
         for (k, t) in l {

@@ -737,7 +737,14 @@ fn a_run_stopped_at_a_breakpoint_resumes() {
         assert_eq!(code, 0, "{case}: {err}");
         let (code, err) = asperity(&["run", c, "--quiet", "--out", full.to_str().unwrap()]);
         assert_eq!(code, 0, "{case}: {err}");
-        for f in ["curve.csv", "joints.csv", "restart.bin"] {
+        for f in [
+            "curve.csv",
+            "joints.csv",
+            "restart.bin",
+            "reactions.csv",
+            "peaks.csv",
+            "contact.csv",
+        ] {
             assert!(
                 std::fs::read(r.join(f)).unwrap() == std::fs::read(full.join(f)).unwrap(),
                 "{case}: {f} of the resumed run differs"

@@ -137,6 +137,101 @@ fn compare_on(case: &str, refine: &str, ranks: &[usize]) {
             }
         }
         compare_joints(run, &s["joints"], &p["joints"]);
+        compare_designer(run, &s, &p);
+    }
+}
+
+/// The designer's outputs (src/output/plan.rs: reductions over every rank):
+/// the last reactions to 1e-6 of the largest, each body's peak von Mises
+/// stress and PEEQ to 1e-6 of their values at the same element, each
+/// interface's peak pressure and contact extent, and the same events (kind,
+/// interface, increment) at load factors within their tolerance.
+fn compare_designer(run: &str, s: &serde_json::Value, p: &serde_json::Value) {
+    let num = |v: &serde_json::Value| v.as_f64().unwrap();
+    let (rs, rp) = (
+        s["reactions"].as_array().unwrap(),
+        p["reactions"].as_array().unwrap(),
+    );
+    assert_eq!(rs.len(), rp.len(), "{run}: reaction groups");
+    let scale = rs
+        .iter()
+        .flat_map(|g| g["final"].as_array().unwrap().iter().map(num))
+        .fold(1e-30f64, |m, v| m.max(v.abs()));
+    for (a, b) in rs.iter().zip(rp) {
+        assert_eq!(a["name"], b["name"], "{run}: reaction group");
+        for (x, y) in a["final"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .zip(b["final"].as_array().unwrap())
+        {
+            let (x, y) = (num(x), num(y));
+            assert!(
+                close(x, y, scale),
+                "{run}: reaction {} {x} vs {y}",
+                a["name"]
+            );
+        }
+    }
+    let (ps, pp) = (
+        s["peaks"].as_array().unwrap(),
+        p["peaks"].as_array().unwrap(),
+    );
+    assert_eq!(ps.len(), pp.len(), "{run}: peaks");
+    for (a, b) in ps.iter().zip(pp) {
+        for (k, unit) in [("max_von_mises", "value_mpa"), ("max_peeq", "value")] {
+            let (x, y) = (&a[k], &b[k]);
+            assert_eq!(x.is_null(), y.is_null(), "{run}: {} {k}", a["body"]);
+            if x.is_null() {
+                continue;
+            }
+            let (u, v) = (num(&x[unit]), num(&y[unit]));
+            assert!(close(u, v, u.abs()), "{run}: {} {k} {u} vs {v}", a["body"]);
+            assert_eq!(
+                x["element"], y["element"],
+                "{run}: {} {k} element",
+                a["body"]
+            );
+        }
+    }
+    let (cs, cp) = (
+        s["contact"].as_array().unwrap(),
+        p["contact"].as_array().unwrap(),
+    );
+    for (a, b) in cs.iter().zip(cp) {
+        let (x, y) = (&a["max_pressure"], &b["max_pressure"]);
+        assert_eq!(x.is_null(), y.is_null(), "{run}: max pressure");
+        if !x.is_null() {
+            let (u, v) = (num(&x["value_mpa"]), num(&y["value_mpa"]));
+            assert!(close(u, v, u.abs()), "{run}: max pressure {u} vs {v}");
+        }
+        let (x, y) = (&a["final_extent"], &b["final_extent"]);
+        assert_eq!(x.is_null(), y.is_null(), "{run}: contact extent");
+        if !x.is_null() {
+            for k in ["from_s_mm", "to_s_mm"] {
+                let (u, v) = (num(&x[k]), num(&y[k]));
+                assert!(
+                    close(u, v, u.abs().max(1.0)),
+                    "{run}: extent {k} {u} vs {v}"
+                );
+            }
+        }
+    }
+    let (es, ep) = (
+        s["events"].as_array().unwrap(),
+        p["events"].as_array().unwrap(),
+    );
+    assert_eq!(es.len(), ep.len(), "{run}: events {es:?} vs {ep:?}");
+    for (a, b) in es.iter().zip(ep) {
+        for k in ["event", "interface", "increment"] {
+            assert_eq!(a[k], b[k], "{run}: event {k}");
+        }
+        let (u, v) = (num(&a["load_factor"]), num(&b["load_factor"]));
+        assert!(
+            (u - v).abs() <= num(&a["tolerance"]),
+            "{run}: {} at {u} vs {v}",
+            a["event"]
+        );
     }
 }
 
@@ -389,7 +484,17 @@ fn two_runs_on_two_ranks_give_identical_files() {
             "--backend", "petsc", "--", "-pc_type", "redundant", "-redundant_pc_type", "lu",
         ]);
     }
-    let mut files = vec![PathBuf::from("curve.csv"), PathBuf::from("joints.csv")];
+    let mut files: Vec<PathBuf> = [
+        "curve.csv",
+        "joints.csv",
+        "reactions.csv",
+        "probes.csv",
+        "peaks.csv",
+        "contact.csv",
+    ]
+    .iter()
+    .map(PathBuf::from)
+    .collect();
     for sub in ["interface", "vtu"] {
         let mut names: Vec<PathBuf> = std::fs::read_dir(dirs[0].join(sub))
             .unwrap()
@@ -417,6 +522,11 @@ fn two_runs_on_two_ranks_give_identical_files() {
         "cutbacks",
         "first_yield",
         "final",
+        "reactions",
+        "probes",
+        "peaks",
+        "contact",
+        "events",
     ] {
         assert_eq!(sa[k], sb[k], "summary.json {k}");
     }

@@ -97,10 +97,12 @@ fn checked(case: &str) -> Vec<&'static str> {
     if JOINT_CASES.contains(&case) {
         keys.push("joints");
     }
-    // a case with pretension sections (issue 27) checks their account:
-    // force and shortening at the end, at the lock and their extremes
+    // a case with pretension sections (issue 27) checks their account
+    // (force and shortening at the end, at the lock and their extremes)
+    // and the bracketed events (the bolted joint's separation load)
     if PRETENSION_CASES.contains(&case) {
         keys.push("pretension");
+        keys.push("events");
     }
     keys
 }

@@ -13,6 +13,7 @@ mod blocks;
 mod calibration;
 mod column;
 mod cycles;
+mod events;
 mod factorization;
 mod friction;
 mod gap;

@@ -343,6 +343,10 @@ impl Problem for StepProblem<'_, '_> {
                 .iter()
                 .map(|s| e.r[s.dof] + e.load[s.dof])
                 .collect();
+            self.trial.reactions.clear();
+            self.trial
+                .reactions
+                .extend(m.prescribed.iter().map(|&(d, _)| e.r[d]));
             e.share_state(&mut self.trial);
             self.outcome = Some(Ok(it));
             return Verdict::Stop;

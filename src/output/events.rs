@@ -1,0 +1,136 @@
+//! The summary's `events` ([`crate::solve::events`]) and the designer's
+//! summary entries built from the increments' records: `reactions`,
+//! `probes`, `peaks`, `contact`.
+
+use super::{peaks, probes, reactions};
+use crate::model::Model;
+use crate::solve::events::{Event, Kind};
+use crate::solve::RunResult;
+use serde_json::{json, Value};
+
+/// A JSON number, null when not finite (no such value).
+pub fn number(x: f64) -> Value {
+    if x.is_finite() {
+        json!(x)
+    } else {
+        Value::Null
+    }
+}
+
+/// JSON numbers, null where not finite.
+pub fn numbers(v: &[f64]) -> Value {
+    v.iter().map(|&x| number(x)).collect()
+}
+
+/// One event as the summary states it: what, where, when (the load factor
+/// and its bracket), and the loads there: the applied forces' resultant,
+/// the named histories' values, the measures of curve.csv, the
+/// interface's forces and every reaction group.
+pub fn event_json(model: &Model, e: &Event) -> Value {
+    let plan = &model.plan;
+    let t = e.load_factor;
+    let mut f = vec![0.0; model.mesh.num_dofs()];
+    model.external_force(t, &mut f);
+    let applied = [
+        f.iter().step_by(2).sum::<f64>(),
+        f.iter().skip(1).step_by(2).sum::<f64>(),
+    ];
+    let values = model.history_values(t);
+    let histories: Vec<Value> = plan
+        .history_names
+        .iter()
+        .zip(&values)
+        .map(|(n, v)| json!({"name": n, "value": v}))
+        .collect();
+    let reactions = match plan.part(&e.record, &plan.layout.reactions) {
+        Some(v) => reactions::named_values(&plan.reactions, v),
+        None => json!([]),
+    };
+    let (lo, hi) = (e.before.min(e.after), e.before.max(e.after));
+    let mut o = json!({
+        "event": e.kind.name(),
+        "interface": e.interface.map(|i| model.interfaces[i].name.clone()),
+        "load_factor": t,
+        "bracket": [lo, hi],
+        "width": hi - lo,
+        "tolerance": plan.event_tolerance,
+        "method": e.method.name(),
+        "converged": e.converged,
+        "solve_failed": e.solve_failed,
+        "increment": e.increment,
+        "x_mm": number(e.place[0]),
+        "y_mm": number(e.place[1]),
+        "s_mm": number(e.place[2]),
+        "total_load_kn": number(e.values[0]),
+        "mean_pressure_mpa": number(e.values[1]),
+        "normal_force_n": number(e.values[2]),
+        "tangential_force_n": number(e.values[3]),
+        "applied_force_n": numbers(&applied),
+        "histories": histories,
+        "reactions": reactions,
+    });
+    if e.kind == Kind::FirstYield {
+        let el = e.place[3];
+        o["element"] = if el.is_finite() {
+            json!(el as usize)
+        } else {
+            Value::Null
+        };
+        o["body"] = if el.is_finite() && (el as usize) < model.mesh.elements.len() {
+            json!(model.mesh.bodies[model.mesh.elements[el as usize].body])
+        } else {
+            Value::Null
+        };
+    } else {
+        o["element"] = Value::Null;
+        o["body"] = Value::Null;
+    }
+    o
+}
+
+/// An interface event as one line of the run's end: what, where and when.
+pub fn line(model: &Model, e: &Event) -> String {
+    let (lo, hi) = (e.before.min(e.after), e.before.max(e.after));
+    let iface = e.interface.map_or(String::new(), |i| {
+        format!(" of {}", model.interfaces[i].name)
+    });
+    format!(
+        "{}{iface}: λ = {:.6} (bracket {:.6} … {:.6}{}), F_N {:.4e} N, F_T {:.4e} N",
+        e.kind.name().replace('_', " "),
+        e.load_factor,
+        lo,
+        hi,
+        if e.converged { "" } else { ", not converged" },
+        e.values[2],
+        e.values[3]
+    )
+}
+
+/// The designer's summary entries: `reactions`, `probes`, `peaks`,
+/// `contact`, `events` (from the increments with a record of this model's
+/// width; restored increments of an earlier build have none).
+pub fn summary(model: &Model, r: &RunResult, s: &mut Value) {
+    let plan = &model.plan;
+    let rows: Vec<(usize, &[f64])> = r
+        .increments
+        .iter()
+        .enumerate()
+        .filter(|(_, i)| i.record.len() == plan.width())
+        .map(|(k, i)| (k, i.record.as_slice()))
+        .collect();
+    let part = |range: &std::ops::Range<usize>| -> Vec<&[f64]> {
+        rows.iter().map(|(_, v)| &v[range.clone()]).collect()
+    };
+    s["reactions"] = reactions::summary(&plan.reactions, &part(&plan.layout.reactions));
+    s["probes"] = probes::summary(&plan.probes, &model.mesh, &part(&plan.layout.probes));
+    let (bodies, contact) = peaks::summary(
+        model,
+        r,
+        &rows,
+        plan.layout.bodies.start,
+        plan.layout.interfaces.start,
+    );
+    s["peaks"] = bodies;
+    s["contact"] = contact;
+    s["events"] = r.events.iter().map(|e| event_json(model, e)).collect();
+}

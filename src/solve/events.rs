@@ -1,0 +1,539 @@
+//! Events of a run, each located inside the increment where it happens:
+//! first yield (the root of the yield ratio, [`super::yield_point`]), and per
+//! interface its first opening, its first full slip and its full
+//! separation.
+//!
+//! An interface event is the sign change of a monitored scalar between the
+//! committed state (load factor λₙ) and the accepted step (λₙ₊₁):
+//!
+//! - **first opening** of an interface that was closed (every pair in
+//!   contact, u_N > 0 so p > 0, at λₙ): the smallest approach u_N over its
+//!   pairs; it happens when one of them opens (u_N ≤ 0);
+//! - **full slip**: the number of closed points of an interface with a
+//!   tangential law that are not in macro-slip; it happens when every
+//!   closed point is in macro-slip (the holding force: F_T is then μ F_N
+//!   at most);
+//! - **full separation**: the largest approach over the pairs; it happens
+//!   when no pair is in contact any more.
+//!
+//! Only the pairs that can carry force count ([`InterfaceModel::carrying_pairs`]:
+//! not the pair on the axis of an axisymmetric model, whose area is 0).
+//!
+//! Each is bracketed by bisection on the load factor: a step from the
+//! committed state to the midpoint (the step the increment itself took,
+//! shortened), the half in which the scalar changes sign kept, until the
+//! bracket is at most `[output] event_tolerance` wide (at most
+//! [`MAX_HALVINGS`] halvings). The steps of the search are not committed:
+//! the run goes on from the accepted step as before, and the contact
+//! stabilization's account is left as the step left it. A step of the search
+//! that does not converge is tried once more a little off the midpoint
+//! (at 0.45 of the bracket: the event itself may be a state no step reaches,
+//! a stack unloaded to exactly zero); if that fails too, the search ends
+//! with the bracket reached (reported as not converged). Every decision is taken on values every MPI rank holds
+//! whole (displacements, statuses) and every solve is collective, so all
+//! ranks search alike.
+
+use super::{Checkpoint, Engine, State, StepFailure};
+use crate::error::Result;
+use crate::fem::solid::Response;
+use crate::interface::{InterfaceModel, Status};
+use crate::model::Model;
+
+/// Most halvings of one search (2⁻⁵⁰ of the step: round-off).
+pub const MAX_HALVINGS: usize = 50;
+/// Where a halving splits its bracket: the midpoint, and, when the step
+/// there does not converge, once more a little off it.
+const SPLITS: [f64; 2] = [0.5, 0.45];
+/// Most solves of one search.
+pub const MAX_SOLVES: usize = MAX_HALVINGS * SPLITS.len();
+/// Leading values of an event's row in a restart file ([`Event::pack`]);
+/// the plan's record follows.
+pub const FIXED: usize = 16;
+
+/// What happened.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    FirstYield,
+    FirstOpening,
+    FullSlip,
+    FullSeparation,
+}
+
+impl Kind {
+    pub const ALL: [Kind; 4] = [
+        Kind::FirstYield,
+        Kind::FirstOpening,
+        Kind::FullSlip,
+        Kind::FullSeparation,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Kind::FirstYield => "first_yield",
+            Kind::FirstOpening => "first_opening",
+            Kind::FullSlip => "full_slip",
+            Kind::FullSeparation => "full_separation",
+        }
+    }
+}
+
+/// How the event's load factor was found.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    /// Regula falsi on elastic solves to |g| < 1e-9 (first yield).
+    RootFinding,
+    /// Bisection to the tolerance.
+    Bisection,
+    /// Not searched: the increment is the bracket (`locate_first_yield = false`).
+    Increment,
+}
+
+impl Method {
+    const ALL: [Method; 3] = [Method::RootFinding, Method::Bisection, Method::Increment];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::RootFinding => "root-finding",
+            Method::Bisection => "bisection",
+            Method::Increment => "increment",
+        }
+    }
+}
+
+/// One located event.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Event {
+    pub kind: Kind,
+    /// Its interface (none for first yield).
+    pub interface: Option<usize>,
+    /// The load factor (pseudo-time) reported: the end of the bracket where
+    /// it has happened (first yield: the root found).
+    pub load_factor: f64,
+    /// The last load factor of the search where it had not happened, and
+    /// the first where it had.
+    pub before: f64,
+    pub after: f64,
+    /// The increment inside which it happened.
+    pub increment: usize,
+    pub method: Method,
+    /// The bracket is within the tolerance (or the root was found).
+    pub converged: bool,
+    /// A step of the search did not converge: the bracket reached.
+    pub solve_failed: bool,
+    /// Where: x, y (mm), the arc length s of the pair (interface events)
+    /// and the element (first yield); NaN where it does not apply.
+    pub place: [f64; 4],
+    /// total_load_kn, mean_pressure_mpa ([`super::Measures`]), and the
+    /// interface's F_N and F_T (joint convention; NaN for first yield).
+    pub values: [f64; 4],
+    /// The plan's record of the state at `load_factor`.
+    pub record: Vec<f64>,
+}
+
+impl Event {
+    /// Its row in a restart file: [`FIXED`] values, then the record.
+    pub fn pack(&self) -> Vec<f64> {
+        let mut v = vec![
+            Kind::ALL.iter().position(|&k| k == self.kind).unwrap_or(0) as f64,
+            self.interface.map_or(-1.0, |i| i as f64),
+            self.load_factor,
+            self.before,
+            self.after,
+            self.increment as f64,
+            Method::ALL
+                .iter()
+                .position(|&m| m == self.method)
+                .unwrap_or(0) as f64,
+            f64::from(u8::from(self.converged) + 2 * u8::from(self.solve_failed)),
+        ];
+        v.extend(self.place);
+        v.extend(self.values);
+        v.extend(&self.record);
+        v
+    }
+
+    /// The events of a restart file's section (rows of [`FIXED`] + `width`
+    /// values), checked against the model and the restored increments:
+    /// known kinds and methods, an interface of the model for the interface
+    /// events and none for first yield, each event once, an increment of
+    /// the curve, finite load factors, and no infinite value.
+    pub fn unpack(
+        v: &[f64],
+        width: usize,
+        model: &Model,
+        increments: usize,
+    ) -> std::result::Result<Vec<Event>, String> {
+        let row = FIXED + width;
+        if v.len() % row != 0 {
+            return Err(format!(
+                "section events has {} values, not a whole number of rows of {row}",
+                v.len()
+            ));
+        }
+        let code = |x: f64, n: usize| -> Option<usize> {
+            (x >= 0.0 && x < n as f64 && x.fract() == 0.0).then_some(x as usize)
+        };
+        let mut out: Vec<Event> = Vec::new();
+        for (k, r) in v.chunks_exact(row).enumerate() {
+            let bad = |what: &str| format!("section events: event {}: {what}", k + 1);
+            if let Some(x) = r.iter().find(|x| x.is_infinite()) {
+                return Err(bad(&format!("a value {x}")));
+            }
+            let kind = code(r[0], Kind::ALL.len())
+                .map(|c| Kind::ALL[c])
+                .ok_or_else(|| bad("no such kind"))?;
+            let interface = match (kind, r[1]) {
+                (Kind::FirstYield, -1.0) => None,
+                (Kind::FirstYield, _) => return Err(bad("first yield names an interface")),
+                (_, x) => {
+                    Some(code(x, model.interfaces.len()).ok_or_else(|| bad("no such interface"))?)
+                }
+            };
+            if r[2..5].iter().any(|x| !x.is_finite()) {
+                return Err(bad("a load factor is not finite"));
+            }
+            let increment = code(r[5], increments + 1)
+                .filter(|&i| i >= 1)
+                .ok_or_else(|| bad("not an increment of the curve"))?;
+            let method = code(r[6], Method::ALL.len())
+                .map(|c| Method::ALL[c])
+                .ok_or_else(|| bad("no such method"))?;
+            let flags = code(r[7], 4).ok_or_else(|| bad("no such flags"))?;
+            if out
+                .iter()
+                .any(|e| e.kind == kind && e.interface == interface)
+            {
+                return Err(bad("appears twice"));
+            }
+            out.push(Event {
+                kind,
+                interface,
+                load_factor: r[2],
+                before: r[3],
+                after: r[4],
+                increment,
+                method,
+                converged: flags & 1 == 1,
+                solve_failed: flags & 2 == 2,
+                place: [r[8], r[9], r[10], r[11]],
+                values: [r[12], r[13], r[14], r[15]],
+                record: r[FIXED..].to_vec(),
+            });
+        }
+        Ok(out)
+    }
+}
+
+/// Whether an event of this kind (and interface) was found already.
+fn found(events: &[Event], kind: Kind, interface: Option<usize>) -> bool {
+    events
+        .iter()
+        .any(|e| e.kind == kind && e.interface == interface)
+}
+
+/// The first-yield event: from the root-finding search (`bracket`: the last
+/// load factors below and above it, `state`: the solution at the root) or,
+/// without the search, the increment (`state`: the accepted step).
+pub(super) fn first_yield(
+    engine: &Engine,
+    fy: Option<&super::FirstYield>,
+    bracket: [f64; 2],
+    root: bool,
+    state: &State,
+    increment: usize,
+) -> Event {
+    let model = engine.model;
+    let m = engine.measures(state);
+    let (method, load_factor, place) = match fy {
+        Some(fy) => (
+            Method::RootFinding,
+            fy.load_factor,
+            [
+                fy.x,
+                model.surface_y - fy.depth,
+                f64::NAN,
+                fy.element as f64,
+            ],
+        ),
+        None => {
+            let (_, e, ip) = engine.max_yield_ratio(state);
+            let x = model.geometry(e).x[ip];
+            (
+                Method::Increment,
+                bracket[1],
+                [x[0], x[1], f64::NAN, e as f64],
+            )
+        }
+    };
+    Event {
+        kind: Kind::FirstYield,
+        interface: None,
+        load_factor,
+        before: bracket[0],
+        after: bracket[1],
+        increment,
+        method,
+        converged: root || (bracket[1] - bracket[0]).abs() <= model.plan.event_tolerance,
+        solve_failed: false,
+        place,
+        values: [m.total_load_kn, m.mean_pressure, f64::NAN, f64::NAN],
+        record: model.plan.record(engine, state),
+    }
+}
+
+/// The approach of every pair of an interface in a state (NaN for a pair
+/// that carries nothing).
+fn approaches(im: &InterfaceModel, carrying: &[bool], state: &State) -> Vec<f64> {
+    let gap = im.gap_at(state.time);
+    im.pairs
+        .iter()
+        .zip(carrying)
+        .map(|(p, &c)| {
+            if c {
+                im.pair_approach_at(p, &state.u, gap)
+            } else {
+                f64::NAN
+            }
+        })
+        .collect()
+}
+
+/// The monitor of one interface event, armed at the committed state.
+struct Monitor {
+    kind: Kind,
+    interface: usize,
+    /// The pairs that can carry force.
+    carrying: Vec<bool>,
+    /// The interface's first point in the states' point arrays.
+    base: usize,
+}
+
+impl Monitor {
+    /// The monitor of `kind` on interface `i`, if it can happen from the
+    /// committed state (something in contact to open or separate, a
+    /// tangential law not yet fully slipping).
+    fn armed(model: &Model, kind: Kind, i: usize, base: usize, committed: &State) -> Option<Self> {
+        let im = &model.interfaces[i];
+        let carrying = im.carrying_pairs();
+        let a = approaches(im, &carrying, committed);
+        let closed = a.iter().filter(|&&x| x > 0.0).count();
+        let carried = carrying.iter().filter(|&&c| c).count();
+        let m = Monitor {
+            kind,
+            interface: i,
+            carrying,
+            base,
+        };
+        let ready = match kind {
+            Kind::FirstOpening => closed > 0 && closed == carried,
+            Kind::FullSeparation => closed > 0,
+            Kind::FullSlip => im.tangential.is_some() && !m.happened(model, committed),
+            Kind::FirstYield => false,
+        };
+        ready.then_some(m)
+    }
+
+    /// The scalar's sign: has the event happened in `state`?
+    fn happened(&self, model: &Model, state: &State) -> bool {
+        let im = &model.interfaces[self.interface];
+        match self.kind {
+            Kind::FirstOpening => approaches(im, &self.carrying, state)
+                .iter()
+                .any(|&a| a <= 0.0),
+            Kind::FullSeparation => !approaches(im, &self.carrying, state)
+                .iter()
+                .any(|&a| a > 0.0),
+            Kind::FullSlip => {
+                let st = &state.status[self.base..self.base + im.points.len()];
+                let closed = st.iter().filter(|&&s| s != Status::Open).count();
+                closed > 0
+                    && st
+                        .iter()
+                        .all(|&s| s == Status::Open || s == Status::MacroSlip)
+            }
+            Kind::FirstYield => false,
+        }
+    }
+
+    /// Where, in the states on either side of the bracket: the first pair
+    /// to open (the smallest approach after), the last in contact (the
+    /// largest approach before), none for full slip; the lowest pair on a tie.
+    fn place(&self, model: &Model, before: &State, after: &State) -> [f64; 4] {
+        let im = &model.interfaces[self.interface];
+        let arc = &model.plan.arcs[self.interface];
+        let pick = |k: Option<usize>| {
+            k.map_or([f64::NAN; 4], |k| {
+                let x = im.pairs[k].x;
+                [
+                    x[0],
+                    x[1],
+                    arc.get(k).copied().unwrap_or(f64::NAN),
+                    f64::NAN,
+                ]
+            })
+        };
+        match self.kind {
+            Kind::FirstOpening => {
+                let a = approaches(im, &self.carrying, after);
+                pick(
+                    (0..a.len())
+                        .filter(|&k| !a[k].is_nan())
+                        .min_by(|&x, &y| a[x].total_cmp(&a[y])),
+                )
+            }
+            Kind::FullSeparation => {
+                let a = approaches(im, &self.carrying, before);
+                pick(
+                    (0..a.len())
+                        .filter(|&k| !a[k].is_nan())
+                        .max_by(|&x, &y| a[x].total_cmp(&a[y]).then(y.cmp(&x))),
+                )
+            }
+            _ => [f64::NAN; 4],
+        }
+    }
+}
+
+/// What an accepted step's search found.
+pub(super) enum Found {
+    Events(Vec<Event>),
+    /// A second stop signal abandoned the search.
+    Interrupted(i32),
+}
+
+/// The interface events that happen between the committed state and the
+/// accepted step `trial` at `target`, each located by bisection.
+pub(super) fn search(
+    engine: &mut Engine,
+    ck: &Checkpoint,
+    trial: &State,
+    target: f64,
+    increment: usize,
+) -> Result<Found> {
+    let model = engine.model;
+    let mut monitors = Vec::new();
+    let mut base = 0;
+    for (i, im) in model.interfaces.iter().enumerate() {
+        for kind in [Kind::FirstOpening, Kind::FullSlip, Kind::FullSeparation] {
+            if found(&ck.events, kind, Some(i)) {
+                continue;
+            }
+            if let Some(m) = Monitor::armed(model, kind, i, base, &ck.committed) {
+                if m.happened(model, trial) {
+                    monitors.push(m);
+                }
+            }
+        }
+        base += im.points.len();
+    }
+    if monitors.is_empty() {
+        return Ok(Found::Events(Vec::new()));
+    }
+    // the search's steps leave the stabilization as the accepted step left it
+    let saved = engine.stabilizer.clone();
+    let mut out = Vec::new();
+    let mut result = Ok(());
+    for m in &monitors {
+        match bisect(engine, ck, trial, target, increment, m) {
+            Ok(Ok(e)) => out.push(e),
+            Ok(Err(signal)) => {
+                result = Err(signal);
+                break;
+            }
+            Err(e) => {
+                engine.stabilizer = saved;
+                return Err(e);
+            }
+        }
+    }
+    engine.stabilizer = saved;
+    Ok(match result {
+        Ok(()) => Found::Events(out),
+        Err(signal) => Found::Interrupted(signal),
+    })
+}
+
+/// Brackets one event between the committed state and `trial`.
+fn bisect(
+    engine: &mut Engine,
+    ck: &Checkpoint,
+    trial: &State,
+    target: f64,
+    increment: usize,
+    m: &Monitor,
+) -> Result<std::result::Result<Event, i32>> {
+    let model = engine.model;
+    let tol = model.plan.event_tolerance;
+    let (lambda0, committed) = (ck.lambda, &ck.committed);
+    let (mut a, mut b) = (lambda0, target);
+    let (mut sa, mut sb) = (committed.clone(), trial.clone());
+    let mut failed = false;
+    'halving: for _ in 0..MAX_HALVINGS {
+        if (b - a).abs() <= tol {
+            break;
+        }
+        // the midpoint, or off it when its step does not converge (the
+        // event itself may be a state the step cannot reach: a stack
+        // unloaded to exactly zero)
+        for split in SPLITS {
+            let c = a + split * (b - a);
+            if c == a || c == b {
+                break 'halving;
+            }
+            // from the straight line between the two ends of the step
+            let w = (c - lambda0) / (target - lambda0);
+            let start: Vec<f64> = committed
+                .u
+                .iter()
+                .zip(&trial.u)
+                .map(|(u0, u1)| u0 + w * (u1 - u0))
+                .collect();
+            match engine.step_from(committed, c, Response::Plastic, Some(&start)) {
+                Ok((s, _)) => {
+                    if m.happened(model, &s) {
+                        (b, sb) = (c, s);
+                    } else {
+                        (a, sa) = (c, s);
+                    }
+                    continue 'halving;
+                }
+                Err(StepFailure::Interrupted { signal, .. }) => return Ok(Err(signal)),
+                Err(f) if f.is_fatal() => return Err(f.into_error()),
+                Err(_) => {}
+            }
+        }
+        failed = true;
+        break;
+    }
+    let i = m.interface;
+    let meas = engine.measures(&sb);
+    let joint = crate::interface::joint::measures(
+        &model.interfaces[i..=i],
+        model.section,
+        sb.time,
+        &sb.u,
+        &sb.status[m.base..m.base + model.interfaces[i].points.len()],
+        &sb.contact[m.base..m.base + model.interfaces[i].points.len()],
+        &[],
+    );
+    let j = joint.first().copied().unwrap_or_default();
+    Ok(Ok(Event {
+        kind: m.kind,
+        interface: Some(i),
+        load_factor: b,
+        before: a,
+        after: b,
+        increment,
+        method: Method::Bisection,
+        converged: (b - a).abs() <= tol,
+        solve_failed: failed,
+        place: m.place(model, &sa, &sb),
+        values: [
+            meas.total_load_kn,
+            meas.mean_pressure,
+            j.normal_force,
+            j.tangential_force,
+        ],
+        record: model.plan.record(engine, &sb),
+    }))
+}

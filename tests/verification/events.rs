@@ -1,0 +1,145 @@
+//! Events located inside their increment (src/solve/events.rs,
+//! docs/output.md "Events"): the bracket holds the closed-form answer where
+//! there is one and shrinks onto it with `[output] event_tolerance`, and
+//! the loads reported there are the closed form's.
+
+use crate::common;
+use asperity::driver::{run, RunOptions};
+use asperity::solve::events::{Event, Kind};
+use std::path::Path;
+
+/// Runs a test case of tests/data with `event_tolerance = tol`; its events.
+fn events_of(case: &str, tol: f64) -> (asperity::model::Model, Vec<Event>) {
+    let text = std::fs::read_to_string(
+        common::root()
+            .join("tests/data")
+            .join(case)
+            .join("case.toml"),
+    )
+    .unwrap();
+    assert!(text.contains("\n[output]\n"));
+    let text = text.replacen(
+        "\n[output]\n",
+        &format!("\n[output]\nevent_tolerance = {tol:e}\n"),
+        1,
+    );
+    let tag = format!("events-{case}-{tol:e}");
+    let path = common::case_dir(&tag, &text);
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(&tag)
+        .join("out");
+    let opts = RunOptions {
+        out: Some(out),
+        quiet: true,
+        ..Default::default()
+    };
+    let (_, model, result) = run(&path, &opts).unwrap_or_else(|e| panic!("{case}: {e}"));
+    assert!(result.stopped.is_none());
+    (model, result.events)
+}
+
+fn one(events: &[Event], kind: Kind) -> &Event {
+    let found: Vec<&Event> = events.iter().filter(|e| e.kind == kind).collect();
+    assert_eq!(found.len(), 1, "{kind:?} in {events:?}");
+    found[0]
+}
+
+/// Two elastic blocks pressed by a prescribed displacement of the top,
+/// then pulled apart (tests/data/stack-separation): the top passes through
+/// zero at t* = 1 + 1/2.2, where the stack is unloaded and the interface
+/// opens everywhere at once. Both the first opening and the full
+/// separation are bracketed around t* for every tolerance, within it, and
+/// the error shrinks with it (the increments, 1/3 long, never land on t*).
+#[test]
+fn separation_is_bracketed_at_the_closed_form_and_converges_with_the_tolerance() {
+    let exact = 1.0 + 1.0 / 2.2;
+    for kind in [Kind::FirstOpening, Kind::FullSeparation] {
+        let mut last = f64::INFINITY;
+        for tol in [1e-2, 1e-3, 1e-4, 1e-5] {
+            let (_, events) = events_of("stack-separation", tol);
+            let e = one(&events, kind);
+            let (lo, hi) = (e.before.min(e.after), e.before.max(e.after));
+            assert!(e.converged && !e.solve_failed, "{kind:?} {tol}: {e:?}");
+            assert!(hi - lo <= tol, "{kind:?} {tol}: bracket [{lo}, {hi}]");
+            assert!(
+                lo <= exact + 1e-12 && exact <= hi + 1e-12,
+                "{kind:?} {tol}: [{lo}, {hi}] misses {exact}"
+            );
+            let err = (e.load_factor - exact).abs();
+            assert!(
+                err <= tol && err <= last,
+                "{kind:?} {tol}: error {err}, before {last}"
+            );
+            last = err;
+            // the loads there: the top's displacement is the history's
+            // value, and the reactions have (nearly) vanished with it
+            assert_eq!(e.increment, 5, "{kind:?}: inside (4/3, 5/3]");
+            let travel =
+                asperity::history::History::new(&[vec![0.0, 0.0], vec![1.0, -1.0], vec![2.0, 1.2]])
+                    .unwrap()
+                    .value(e.load_factor);
+            assert!(travel.abs() <= 2.2 * tol, "{kind:?}: travel {travel}");
+        }
+        assert!(last < 1e-5, "{kind:?}: {last}");
+    }
+}
+
+/// A block pressed by 20 MPa on 10 mm and pushed sideways by its top
+/// (tests/data/block-slip): Coulomb friction without slip hardening, so
+/// once every point slips the interface carries F_T = μ F_N = 0.3 × 200 N,
+/// and the push's reaction is that holding force. At every tolerance the
+/// event's F_T, F_N and reaction are the closed form's to 1e-9, and its
+/// load factor converges: each within its tolerance of the finest one.
+#[test]
+fn full_slip_reports_the_holding_force_mu_times_the_normal_force() {
+    let mut found = Vec::new();
+    for tol in [1e-2, 1e-3, 1e-4, 1e-7] {
+        let (model, events) = events_of("block-slip", tol);
+        let e = one(&events, Kind::FullSlip).clone();
+        assert!(e.converged && !e.solve_failed, "{tol}: {e:?}");
+        assert!((e.after - e.before).abs() <= tol, "{tol}: {e:?}");
+        let (f_n, f_t) = (e.values[2], e.values[3]);
+        assert!(common::rel(f_n, 200.0) < 1e-9, "F_N {f_n}");
+        assert!(common::rel(f_t, 0.3 * 200.0) < 1e-9, "F_T {f_t}");
+        // the push (upper.top fx) is the first value of the record
+        let plan = &model.plan;
+        assert_eq!(plan.reactions[0].name, "upper.top");
+        let push = e.record[plan.layout.reactions.start];
+        assert!(common::rel(push, 60.0) < 1e-9, "{tol}: push {push}");
+        found.push((tol, e.load_factor, e.before, e.after));
+    }
+    let (_, best, lo, hi) = *found.last().unwrap();
+    assert!(hi - lo <= 1e-7);
+    for (tol, l, a, b) in &found {
+        assert!((l - best).abs() <= *tol, "{tol}: {l} vs {best}");
+        assert!(
+            a.min(*b) <= best + 1e-12 && best <= a.max(*b) + 1e-12,
+            "{tol}: [{a}, {b}] misses {best}"
+        );
+    }
+}
+
+/// The first-yield event is today's first-yield search, unchanged: the same
+/// load factor and Gauss point, its bracket around the root (regula falsi
+/// to 1e-9 in the yield ratio).
+#[test]
+fn the_first_yield_event_is_the_first_yield_search() {
+    let case = common::root().join("cases/punch-plane-stress");
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("events-first-yield");
+    let opts = RunOptions {
+        out: Some(out),
+        quiet: true,
+        ..Default::default()
+    };
+    let (_, model, r) = run(&case, &opts).unwrap();
+    let fy = r.first_yield.as_ref().unwrap();
+    let e = one(&r.events, Kind::FirstYield);
+    assert_eq!(e.load_factor.to_bits(), fy.load_factor.to_bits());
+    assert_eq!(e.place[3] as usize, fy.element);
+    assert_eq!(e.place[0].to_bits(), fy.x.to_bits());
+    assert!(common::rel(e.place[1], model.surface_y - fy.depth) < 1e-12);
+    assert!(e.converged);
+    let (lo, hi) = (e.before.min(e.after), e.before.max(e.after));
+    assert!(lo <= fy.load_factor && fy.load_factor <= hi, "{e:?}");
+    assert!(common::rel(e.values[0], fy.total_load_kn) < 1e-12);
+}
