@@ -672,7 +672,10 @@ fn interface_models(
         let law = checked.laws.get(&iface.name).ok_or_else(|| {
             Error::input(
                 place,
-                format!("[interface] has no law for interface \"{}\"", iface.name),
+                format!(
+                    "[interface] has no law for interface \"{0}\": add [interface.{0}] with its law (e.g. law = \"power\", c_n, m)",
+                    iface.name
+                ),
             )
         })?;
         let spec = &case.interface[&iface.name];

@@ -176,9 +176,13 @@ fn summary_json_matches_the_documented_schema() {
     );
     assert_eq!(stack["probes"].as_array().unwrap().len(), 5, "{stack}");
     assert_eq!(stack["events"].as_array().unwrap().len(), 2, "{stack}");
+    // a pretension section (the bolted joint): its account in `pretension`
+    let bolt = summary_of("bolted-joint", &cases.join("bolted-joint"), &[]);
+    assert_eq!(bolt["pretension"].as_array().unwrap().len(), 1, "{bolt}");
+    assert!(with.get("pretension").is_none(), "{with}");
     let mut with_cycle = with.clone();
     with_cycle["joints"][0]["cycles"] = Value::Array(vec![cycle]);
-    for s in [&with_cycle, &without, &gap, &axi, &tab, &stack] {
+    for s in [&with_cycle, &without, &gap, &axi, &tab, &stack, &bolt] {
         let mut l = Vec::new();
         leaves("", s, &mut l);
         for (k, t) in l {
