@@ -153,7 +153,11 @@ impl Model {
             section.axisymmetric,
             &place,
         )?;
-        whole::check_symmetry_supports(&case, &mesh, &prescribed, &place)?;
+        let tied: std::collections::HashMap<usize, usize> = sections
+            .iter()
+            .flat_map(|s| s.pairs.iter().map(|&(n, c)| (c, n)))
+            .collect();
+        whole::check_symmetry_supports(&case, &mesh, &prescribed, &tied, &place)?;
         let dofs = dof_map(n_dofs, &prescribed, &constraints);
         let (blocks, interface_block_base, expansions) =
             block_dofs(&mesh, &interfaces, &constraints, &sections);

@@ -34,6 +34,9 @@ use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use std::collections::HashMap;
 
+/// The most sections a case may have.
+pub const MAX_SECTIONS: usize = 64;
+
 /// A section of the model.
 #[derive(Clone, Debug)]
 pub struct Section {
@@ -76,11 +79,34 @@ fn at(place: &str, k: usize, spec: &PretensionSpec) -> String {
 /// their edges in edge sets and interfaces, take them.
 pub fn cut(case: &Case, mesh: &mut Mesh, place: &str) -> Result<Vec<Section>> {
     let mut out: Vec<Section> = Vec::new();
+    if case.pretension.len() > MAX_SECTIONS {
+        return Err(Error::input(
+            format!("{place}: [[pretension]]"),
+            format!(
+                "{} sections, more than {MAX_SECTIONS} (the limit: a joint has a few bolts)",
+                case.pretension.len()
+            ),
+        ));
+    }
+    let tol = crate::case::whole::tolerance(mesh);
     for (k, spec) in case.pretension.iter().enumerate() {
         let at = at(place, k, spec);
         let err = |m: String| Err(Error::input(&at, m));
         if spec.name.trim().is_empty() {
             return err("name is empty".into());
+        }
+        let plain = spec.name.trim() == spec.name
+            && spec.name.len() <= crate::case::MAX_NAME_BYTES
+            && !spec
+                .name
+                .chars()
+                .any(|c| c.is_control() || c == ',' || c == '"');
+        if !plain {
+            return err(format!(
+                "name {:?} is not a usable section name (no blanks around it, at most {} bytes, no comma, quote or control character): it heads pretension.csv's columns",
+                crate::error::clip(&spec.name),
+                crate::case::MAX_NAME_BYTES
+            ));
         }
         if out.iter().any(|s| s.name == spec.name) {
             return err("two [[pretension]] sections have this name".into());
@@ -150,7 +176,7 @@ pub fn cut(case: &Case, mesh: &mut Mesh, place: &str) -> Result<Vec<Section>> {
         }
         if let Some(other) = out
             .iter()
-            .find(|s| s.body == body && s.axis == axis && s.at == value)
+            .find(|s| s.body == body && s.axis == axis && (s.at - value).abs() <= tol)
         {
             return err(format!(
                 "cuts body \"{}\" along the same line as pretension \"{}\"",
@@ -211,7 +237,7 @@ fn split(
             return Err(Error::input(
                 at,
                 format!(
-                    "the cut {line} runs through element {e} of body \"{name}\" near ({:.4}, {:.4}): a cut follows element edges (put a block breakpoint at {line})",
+                    "the cut {line} runs through element {e} of body \"{name}\" near ({:.4}, {:.4}): a cut follows element edges (a block breakpoint at {line}, or a mesh line there in a Gmsh mesh)",
                     c.iter().map(|x| x[0]).sum::<f64>() / 8.0,
                     c.iter().map(|x| x[1]).sum::<f64>() / 8.0
                 ),
@@ -284,6 +310,36 @@ fn split(
             nm.master.iter_mut().for_each(remap);
         }
     }
+    // node sets: a set whose other nodes all lie on the far side (a side
+    // of a block beyond the cut) takes the copies; one that reaches the
+    // near side, or lies on the cut alone, keeps the nodes (their copies
+    // follow them through the constraints)
+    let mut far_side = vec![[false; 2]; mesh.nodes.len()];
+    for (e, el) in mesh.elements.iter().enumerate() {
+        if el.body == body {
+            for &n in &el.nodes {
+                far_side[n][usize::from(beyond[e])] = true;
+            }
+        }
+    }
+    for set in mesh.node_sets.values_mut() {
+        if !set.iter().any(|n| copy.contains_key(n)) {
+            continue;
+        }
+        let others = set.iter().filter(|n| !copy.contains_key(n));
+        let (near, far) = others.fold((false, false), |(a, b), &n| {
+            let s = far_side.get(n).copied().unwrap_or([false; 2]);
+            (a || s[0], b || s[1])
+        });
+        if far && !near {
+            for n in set.iter_mut() {
+                if let Some(&c) = copy.get(n) {
+                    *n = c;
+                }
+            }
+            set.sort_unstable();
+        }
+    }
     for (e, el) in mesh.elements.iter_mut().enumerate() {
         if beyond[e] {
             for n in el.nodes.iter_mut() {
@@ -310,10 +366,11 @@ pub fn finish(case: &Case, sections: &mut [Section], nodes: usize, lock_end: &[O
     }
 }
 
-/// The constraints of the sections: the copies follow their nodes; a
-/// tangential tie whose two dofs are both prescribed to the same value (a
-/// cut node on the axis, held u_r = 0 on both) is left out, any other
-/// prescribed copy is refused.
+/// The constraints of the sections: the copies follow their nodes (or,
+/// where only a copy is held, the node follows its copy); a tangential tie
+/// whose two dofs are both prescribed to the same value (a cut node on the
+/// axis, held u_r = 0 on both) is left out, a node held on both sides of
+/// the cut otherwise is refused.
 pub fn constraints(
     sections: &[Section],
     prescribed: &[(usize, f64)],
@@ -332,21 +389,29 @@ pub fn constraints(
             for comp in 0..2 {
                 let (master, slave) = (2 * n + comp, 2 * c + comp);
                 let normal = comp == s.axis;
-                if let Some(&held) = given.get(&slave) {
-                    if !normal && given.get(&master) == Some(&held) {
-                        continue;
+                // the copy follows its node, u(copy) = u(node) − s n; where
+                // only the copy is held (a support beyond the cut), the node
+                // follows the copy instead, u(node) = u(copy) + s n
+                let sign = match (given.get(&slave), given.get(&master)) {
+                    (None, _) => -1.0,
+                    (Some(_), None) => 1.0,
+                    (Some(a), Some(b)) if !normal && a == b => continue,
+                    (Some(_), Some(_)) => {
+                        let x = "xy".as_bytes()[comp] as char;
+                        return Err(Error::input(
+                            format!("{place}: {origin}"),
+                            format!("node {n} on the cut is held in u{x} on both sides of the cut{}: the section could not shorten (move the cut away from the supports)", if normal { "" } else { " with different values" }),
+                        ));
                     }
-                    // a copy is in no node set: only a support found by
-                    // its place (the axis) can hold it
-                    let x = "xy".as_bytes()[comp] as char;
-                    return Err(Error::input(
-                        format!("{place}: {origin}"),
-                        format!("the cut's copy of node {n} has a prescribed u{x} that its node does not share: a section's two sides must not be held apart across it"),
-                    ));
-                }
+                };
+                let (slave, master) = if sign < 0.0 {
+                    (slave, master)
+                } else {
+                    (master, slave)
+                };
                 let mut terms = vec![(master, 1.0)];
                 if normal {
-                    terms.push((s.dof, -1.0));
+                    terms.push((s.dof, sign));
                 }
                 out.push(Constraint {
                     slave,

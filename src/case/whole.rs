@@ -533,10 +533,15 @@ fn symmetric_half(mesh: &Mesh, place: &str) -> Result<()> {
 
 /// `symmetric_half`: every node on the plane x = 0 is held by ux = 0 (the
 /// symmetry condition); otherwise the half model is not half of anything.
+///
+/// `tied` maps a pretension section's copy of a node to the node: the copy
+/// follows the node's ux through the section's tie, so it is held when the
+/// node is.
 pub fn check_symmetry_supports(
     case: &Case,
     mesh: &Mesh,
     prescribed: &[(usize, f64)],
+    tied: &HashMap<usize, usize>,
     place: &str,
 ) -> Result<()> {
     if !case.model.symmetric_half {
@@ -549,7 +554,8 @@ pub fn check_symmetry_supports(
         .map(|&(d, v)| (d / 2, v))
         .collect();
     for (n, x) in mesh.nodes.iter().enumerate() {
-        if x[0].abs() <= tol && ux.get(&n) != Some(&0.0) {
+        let held = tied.get(&n).copied().unwrap_or(n);
+        if x[0].abs() <= tol && ux.get(&held) != Some(&0.0) {
             let what = match ux.get(&n) {
                 Some(v) => format!("has ux = {v}"),
                 None => "has no ux".to_string(),

@@ -142,7 +142,8 @@ impl Plan {
             }
         }
         if let Some(v) = events {
-            ck.events = crate::solve::events::Event::unpack(v, w, model, ck.increments.len())?;
+            let load_factors: Vec<f64> = ck.increments.iter().map(|i| i.load_factor).collect();
+            ck.events = crate::solve::events::Event::unpack(v, w, model, &load_factors)?;
         }
         Ok(())
     }

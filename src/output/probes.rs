@@ -151,6 +151,15 @@ fn probe(i: usize, p: &ProbeSpec, mesh: &Mesh, place: &str) -> Result<Probe> {
                     ),
                 )
             })?;
+            if nodes.is_empty() {
+                return Err(Error::input(
+                    key("nodes"),
+                    format!(
+                        "the set \"{}\" is empty (a side its body shares with another of its blocks): a probe needs nodes",
+                        clip(set)
+                    ),
+                ));
+            }
             Target::Nodes {
                 set: set.clone(),
                 nodes: nodes.clone(),

@@ -68,7 +68,7 @@ pub(super) fn decode_with(
     restore_state(&mut ck, &s, model)?;
     ck.committed.time = ck.lambda;
     restore_joints(&mut ck, &s, model.interfaces.len())?;
-    restore_sections(&mut ck, &s, model.sections.len())?;
+    restore_sections(&mut ck, &s, model)?;
     restore_table_reach(&mut ck, &s, model)?;
     ck.first_yield = restore_first_yield(&s, model, &ck.increments)?;
     restore_designer(&mut ck, &s, model)?;
@@ -669,14 +669,43 @@ pub(super) fn restore_joints(ck: &mut Checkpoint, s: &Sections, interfaces: usiz
 /// Every increment's pretension section forces and shortenings (a section
 /// `pretension`, 2 numbers per section and increment, finite), when the
 /// model has sections; a model without any has no such section.
-pub(super) fn restore_sections(ck: &mut Checkpoint, s: &Sections, sections: usize) -> Decoded<()> {
+pub(super) fn restore_sections(ck: &mut Checkpoint, s: &Sections, model: &Model) -> Decoded<()> {
+    let sections = model.sections.len();
     if sections == 0 || ck.increments.is_empty() {
         return Ok(());
     }
     let w = 2 * sections;
     let v = s.finite("pretension", Some(w * ck.increments.len()))?;
     for (inc, row) in ck.increments.iter_mut().zip(v.chunks_exact(w)) {
+        for p in row.chunks_exact(2) {
+            let (force, shortening) = (p[0], p[1]);
+            if !(crate::case::ranges::FORCE.admits(force) || force == 0.0)
+                || shortening.abs() > MAX_DISPLACEMENT
+            {
+                return Err(format!(
+                    "section pretension: increment {}: a force {} or shortening {} outside any engineering use",
+                    inc.increment,
+                    num(force),
+                    num(shortening)
+                ));
+            }
+        }
         inc.sections = row.chunks_exact(2).map(|p| [p[0], p[1]]).collect();
+    }
+    // the committed shortening is the last increment's (a locked one never
+    // moves, so a file whose state disagrees with its own record is forged)
+    if let Some(last) = ck.increments.last() {
+        for (k, sec) in model.sections.iter().enumerate() {
+            let (u, rec) = (ck.committed.u[sec.dof], last.sections[k][1]);
+            if u != rec {
+                return Err(format!(
+                    "section u: the shortening of pretension \"{}\" is {} but the last increment records {}",
+                    sec.name,
+                    num(u),
+                    num(rec)
+                ));
+            }
+        }
     }
     Ok(())
 }

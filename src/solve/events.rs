@@ -161,8 +161,9 @@ impl Event {
         v: &[f64],
         width: usize,
         model: &Model,
-        increments: usize,
+        load_factors: &[f64],
     ) -> std::result::Result<Vec<Event>, String> {
+        let increments = load_factors.len();
         let row = FIXED + width;
         if v.len() % row != 0 {
             return Err(format!(
@@ -204,6 +205,27 @@ impl Event {
                 .any(|e| e.kind == kind && e.interface == interface)
             {
                 return Err(bad("appears twice"));
+            }
+            // the bracket is ascending, holds the event, and lies within
+            // the run's pseudo-times; the place is a place of the model
+            // (within its increment: from the load factor before it to its own)
+            let (lf, lo, hi) = (r[2], r[3], r[4]);
+            let top = load_factors[increment - 1];
+            let bottom = if increment > 1 { load_factors[increment - 2] } else { 0.0 };
+            let slack = 1e-12 * top.abs().max(1.0);
+            if !(lo <= lf && lf <= hi && lo >= bottom - slack && hi <= top + slack) {
+                return Err(bad(&format!(
+                    "load factor {lf} outside its bracket [{lo}, {hi}] or its increment {increment} ({bottom} … {top})"
+                )));
+            }
+            let coordinate = crate::case::ranges::COORDINATE;
+            if r[8..11].iter().any(|&x| !(x.is_nan() || coordinate.admits(x) || x == 0.0)) {
+                return Err(bad("a place outside any model"));
+            }
+            if kind == Kind::FirstYield
+                && !(r[11].is_nan() || code(r[11], model.mesh.elements.len()).is_some())
+            {
+                return Err(bad("no such element"));
             }
             out.push(Event {
                 kind,

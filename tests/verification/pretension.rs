@@ -278,3 +278,109 @@ fn a_hanging_node_passes_the_patch_test() {
         }
     }
 }
+
+/// An L-shaped bolt (head and shank blocks of one body) hung from its head's
+/// underside, its shank pulled by 50 MPa × 8 mm = 400 N: the shank carries
+/// 400 N whatever the shortening, statically. A section on the seam (y = 40)
+/// has the head's underside held beyond the cut: there the cut node follows
+/// its held copy; at y = 20 inside the shank the usual way round.
+#[test]
+fn a_section_on_the_seam_under_a_held_head_carries_the_shanks_load() {
+    for y in [40.0, 20.0] {
+        let text = format!(
+            r#"
+[model]
+plane = "stress"
+[[mesh.block]]
+name = "head"
+body = "bolt"
+x = [0.0, 8.0, 20.0]
+nx = [4, 6]
+y = [40.0, 50.0]
+ny = [3]
+[[mesh.block]]
+name = "shank"
+body = "bolt"
+x = [0.0, 8.0]
+nx = [4]
+y = [0.0, 20.0, 40.0]
+ny = [4, 4]
+[materials.bolt]
+young = 200000.0
+poisson = 0.3
+[[boundary]]
+set = "head.bottom"
+uy = 0.0
+[[boundary]]
+set = "head.left"
+ux = 0.0
+[[boundary]]
+set = "shank.left"
+ux = 0.0
+[[load]]
+edges = "shank.bottom"
+pressure = -50.0
+[[pretension]]
+name = "s"
+body = "bolt"
+y = {y}
+shortening = 0.01
+[output]
+vtu_every = 1000
+"#
+        );
+        let model = common::model(&text);
+        let (r, _) = solve(&model);
+        let [force, s] = r.increments.last().unwrap().sections[0];
+        assert_eq!(s, 0.01);
+        assert!(common::rel(force, 400.0) < 1e-9, "cut at y = {y}: {force}");
+    }
+}
+
+/// A half model (`symmetric_half`) of a plane-strain rod cut across the
+/// symmetry plane: the cut's copy on x = 0 is held in x through its tie,
+/// and the rod carries F as uniaxial σ_yy = F/(b t) (b its half width).
+#[test]
+fn a_half_model_may_be_cut_across_its_symmetry_plane() {
+    let (b, f) = (6.0, 1200.0);
+    let text = format!(
+        r#"
+[model]
+plane = "stress"
+symmetric_half = true
+[[mesh.block]]
+body = "rod"
+x = [0.0, {b}]
+nx = [3]
+y = [0.0, 20.0, 40.0]
+ny = [4, 4]
+[materials.rod]
+young = {E}
+poisson = 0.3
+[[boundary]]
+set = "rod.left"
+ux = 0.0
+[[boundary]]
+set = "rod.bottom"
+uy = 0.0
+[[boundary]]
+set = "rod.top"
+uy = 0.0
+[[pretension]]
+name = "s"
+body = "rod"
+y = 20.0
+force = {f}
+[output]
+vtu_every = 1000
+"#
+    );
+    let model = common::model(&text);
+    let (r, states) = solve(&model);
+    let [force, s] = r.increments.last().unwrap().sections[0];
+    assert!(common::rel(force, f) < 1e-10, "{force}");
+    assert!(common::rel(s, f * 40.0 / (E * b)) < 1e-9, "{s}");
+    for g in &states.last().unwrap().gauss {
+        assert!(common::rel(g.stress[1], f / b) < 1e-9, "σ_yy {}", g.stress[1]);
+    }
+}
