@@ -104,9 +104,9 @@ fn decode_refuses_what_the_case_cannot_have_produced() {
     let event = crate::solve::events::Event {
         kind: crate::solve::events::Kind::FullSeparation,
         interface: Some(0),
-        load_factor: 0.5,
-        before: 0.49,
-        after: 0.5,
+        load_factor: 0.0875,
+        before: 0.075,
+        after: 0.0875,
         increment: 2,
         method: crate::solve::events::Method::Bisection,
         converged: true,
@@ -122,6 +122,19 @@ fn decode_refuses_what_the_case_cannot_have_produced() {
     for (x, y) in back.events[0].pack().iter().zip(event.pack()) {
         assert_eq!(x.to_bits(), y.to_bits());
     }
+    // an event outside its bracket, its increment, or the mesh (issue 27's
+    // red team: a forged event was shown as it was)
+    let refused_event = |edit: &dyn Fn(&mut crate::solve::events::Event), needle: &str| {
+        let mut c = ck.clone();
+        let mut e = event.clone();
+        edit(&mut e);
+        c.events.push(e);
+        let err = decode(&encode(&model, &c, &pvd), &model).unwrap_err();
+        assert!(err.contains(needle), "{needle}: {err}");
+    };
+    refused_event(&|e| e.after = 5.0, "outside its bracket");
+    refused_event(&|e| e.load_factor = 0.5, "outside its bracket");
+    refused_event(&|e| e.place[0] = 1e300, "a place outside any model");
     // records of another layout (another build's): neither they nor the
     // events are restored, and the file is not refused for them
     let mut c = ck.clone();
