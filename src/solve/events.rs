@@ -211,7 +211,11 @@ impl Event {
             // (within its increment: from the load factor before it to its own)
             let (lf, lo, hi) = (r[2], r[3], r[4]);
             let top = load_factors[increment - 1];
-            let bottom = if increment > 1 { load_factors[increment - 2] } else { 0.0 };
+            let bottom = if increment > 1 {
+                load_factors[increment - 2]
+            } else {
+                0.0
+            };
             let slack = 1e-12 * top.abs().max(1.0);
             if !(lo <= lf && lf <= hi && lo >= bottom - slack && hi <= top + slack) {
                 return Err(bad(&format!(
@@ -219,7 +223,10 @@ impl Event {
                 )));
             }
             let coordinate = crate::case::ranges::COORDINATE;
-            if r[8..11].iter().any(|&x| !(x.is_nan() || coordinate.admits(x) || x == 0.0)) {
+            if r[8..11]
+                .iter()
+                .any(|&x| !(x.is_nan() || coordinate.admits(x) || x == 0.0))
+            {
                 return Err(bad("a place outside any model"));
             }
             if kind == Kind::FirstYield

@@ -132,7 +132,10 @@ fn a_forged_section_in_a_restart_file_is_refused() {
         let (code, e) = asperity(&["run", &c, "--out", &o, "--quiet", "--restart", &d]);
         assert_eq!(code, 2, "{what}: {e}");
         assert_eq!(e.trim().lines().count(), 1, "{what}: {e}");
-        assert!(e.contains("restart.bin") && e.contains(needle), "{what}: {e}");
+        assert!(
+            e.contains("restart.bin") && e.contains(needle),
+            "{what}: {e}"
+        );
         assert!(!out.exists(), "{what}: output left behind");
     }
 }

@@ -381,6 +381,10 @@ vtu_every = 1000
     assert!(common::rel(force, f) < 1e-10, "{force}");
     assert!(common::rel(s, f * 40.0 / (E * b)) < 1e-9, "{s}");
     for g in &states.last().unwrap().gauss {
-        assert!(common::rel(g.stress[1], f / b) < 1e-9, "σ_yy {}", g.stress[1]);
+        assert!(
+            common::rel(g.stress[1], f / b) < 1e-9,
+            "σ_yy {}",
+            g.stress[1]
+        );
     }
 }
