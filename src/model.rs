@@ -214,28 +214,13 @@ impl Model {
         .0
     }
 
-    /// The diagonal of a held equation ([`crate::constraint`]): decoupled
-    /// from every other, so any positive value leaves the others exact; one
-    /// of the model's scale, E_max × the out-of-plane measure (N/mm).
+    /// The diagonal of a held equation ([`crate::constraint`]): its row and
+    /// column are otherwise zero, so any positive value leaves every other
+    /// unknown exact; one of the model's scale, E_max × the model's diagonal
+    /// × its out-of-plane measure (N/mm), from [`Model::force_floor`] (no
+    /// pass over the nodes in the assembly).
     pub fn held_stiffness(&self) -> f64 {
-        let e_max = self.materials.iter().fold(0.0f64, |a, m| a.max(m.young));
-        let (lo, hi) =
-            self.mesh
-                .nodes
-                .iter()
-                .fold(([f64::MAX; 2], [f64::MIN; 2]), |(lo, hi), x| {
-                    (
-                        [lo[0].min(x[0]), lo[1].min(x[1])],
-                        [hi[0].max(x[0]), hi[1].max(x[1])],
-                    )
-                });
-        let measure = if self.section.axisymmetric {
-            self.section.measure(hi)
-        } else {
-            self.section.thickness
-        };
-        let _ = lo;
-        e_max * measure
+        1e6 * self.force_floor
     }
 
     /// Every dof: the mesh's, then the pretension sections' reference nodes.
