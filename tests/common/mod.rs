@@ -514,3 +514,15 @@ vtu_every = 1000
 "#
     )
 }
+
+/// Runs the built program: its exit code and its stderr.
+pub fn run_asperity(args: &[&str]) -> (i32, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_asperity"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stderr).into(),
+    )
+}

@@ -4,18 +4,7 @@
 //! (the section's rows and its shortening travel in restart.bin).
 
 use crate::common;
-use std::process::Command;
-
-fn asperity(args: &[&str]) -> (i32, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_asperity"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stderr).into(),
-    )
-}
+use common::run_asperity as asperity;
 
 /// The bar of tests/common (held at both ends, cut at x = 30), preloaded by
 /// 1 kN over t ∈ [0, 1], locked, then pulled at x = 60 over t ∈ [1, 2].
