@@ -31,7 +31,7 @@ pub mod tangential;
 use crate::mesh::{Interface, Mesh};
 pub use normal::NormalLaw;
 pub use segment::{project, OVERLAP_LIMIT};
-pub use tangential::{Slip, SlipState, TangentialLaw};
+pub use tangential::{Backbone, Memory, Slip, SlipState, Stretch, TangentialLaw, MEMORY_POINTS};
 
 /// A node pair across the interface.
 #[derive(Clone, Debug)]
@@ -256,26 +256,37 @@ pub struct PointState {
 
 impl PointState {
     /// Doubles per state in [`PointState::pack`].
-    pub const PACKED: usize = 5;
+    pub const PACKED: usize = 5 + 2 * MEMORY_POINTS;
 
-    /// Plastic slip u_p, slip memory κ, p_T, u_T, μ_F: the layout of restart
-    /// files and of the MPI exchange of interface states.
+    /// Plastic slip u_p, slip memory κ, p_T, u_T, μ_F, then the kinematic
+    /// memory's breakpoints η₁ … η_M and e₁ … e_M (zero under the
+    /// isotropic memory): the layout of restart files and of the MPI
+    /// exchange of interface states.
     pub fn pack(&self) -> [f64; Self::PACKED] {
-        [
+        let mut v = [0.0; Self::PACKED];
+        v[..5].copy_from_slice(&[
             self.slip.u_p,
             self.slip.kappa,
             self.p_t,
             self.u_t,
             self.mu_f,
-        ]
+        ]);
+        v[5..5 + MEMORY_POINTS].copy_from_slice(&self.slip.mem.eta);
+        v[5 + MEMORY_POINTS..].copy_from_slice(&self.slip.mem.e);
+        v
     }
 
     /// The inverse of [`PointState::pack`] (`v` holds at least `PACKED` values).
     pub fn unpack(v: &[f64]) -> Self {
+        let mut mem = Stretch::default();
+        mem.eta.copy_from_slice(&v[5..5 + MEMORY_POINTS]);
+        mem.e
+            .copy_from_slice(&v[5 + MEMORY_POINTS..5 + 2 * MEMORY_POINTS]);
         PointState {
             slip: SlipState {
                 u_p: v[0],
                 kappa: v[1],
+                mem,
             },
             p_t: v[2],
             u_t: v[3],
@@ -760,10 +771,14 @@ mod tests {
 
     #[test]
     fn point_state_pack_round_trips_in_the_restart_order() {
+        let mut mem = Stretch::default();
+        mem.eta[..2].copy_from_slice(&[0.25, 1.0]);
+        mem.e[..2].copy_from_slice(&[-2e-4, 3e-4]);
         let s = PointState {
             slip: SlipState {
                 u_p: -1.5e-3,
                 kappa: 4e-3,
+                mem,
             },
             p_t: -12.25,
             u_t: 7.0e-4,
@@ -771,7 +786,9 @@ mod tests {
         };
         let v = s.pack();
         assert_eq!(v.len(), PointState::PACKED);
-        assert_eq!(v, [-1.5e-3, 4e-3, -12.25, 7.0e-4, 0.3]);
+        assert_eq!(v[..5], [-1.5e-3, 4e-3, -12.25, 7.0e-4, 0.3]);
+        assert_eq!(v[5..7], [0.25, 1.0]);
+        assert_eq!(v[5 + MEMORY_POINTS..7 + MEMORY_POINTS], [-2e-4, 3e-4]);
         assert_eq!(PointState::unpack(&v), s);
         // one state in a longer buffer (a chunk of a packed array)
         let mut buf = [9.0; 3 * PointState::PACKED];

@@ -74,6 +74,7 @@ fn an_elastic_perfectly_plastic_loop_dissipates_the_limit_times_the_slip() {
             slip: SlipState {
                 u_p: up,
                 kappa: slip,
+                ..Default::default()
             },
             p_t: k * (u_t - up),
             u_t,
