@@ -16,7 +16,7 @@ pub use validate::{
     MAX_ITERATIONS, MAX_NAME_BYTES,
 };
 
-pub use crate::interface::{FrictionScheme, Weights};
+pub use crate::interface::{FrictionScheme, Memory, Weights};
 pub use crate::material::Plane;
 pub mod settings;
 pub use settings::{Acceleration, Method, Stabilization, StepControl};
@@ -231,8 +231,8 @@ pub struct TangentialSpec {
     pub s: Option<f64>,
     /// Measured [[p_N MPa, k_T^e MPa/µm], ...] in place of `r` and `s`.
     pub k_table: Option<Vec<Vec<f64>>>,
-    /// k_T^p / k_T^e in [0, 1] (1: no micro-slip branch).
-    pub kp_ratio: f64,
+    /// k_T^p / k_T^e in [0, 1] (1: no micro-slip branch); the bilinear backbone only.
+    pub kp_ratio: Option<f64>,
     /// Macroscopic (static) friction coefficient μ_m.
     pub mu: f64,
     /// Initial friction coefficient as a fraction of μ_m (eq. 2.21), in (0, 1].
@@ -241,12 +241,37 @@ pub struct TangentialSpec {
     /// Slip-hardening rate n, 1/mm (eq. 2.21).
     #[serde(default)]
     pub n: f64,
-    /// p_T^Y / (μ_m p_N): 0.625 per eq. 2.18 (eq. 2.5 says 0.5).
-    #[serde(default = "default_yield_ratio")]
-    pub yield_ratio: f64,
+    /// p_T^Y / (μ_m p_N): 0.625 per eq. 2.18 (eq. 2.5 says 0.5); the bilinear backbone only.
+    pub yield_ratio: Option<f64>,
     /// "return-mapping" (consistent tangent) or "stiffness-modification" (the paper's 2.25-2.26).
     #[serde(default)]
     pub scheme: FrictionScheme,
+    /// "isotropic" (section 2.2) or "kinematic" (Masing).
+    #[serde(default)]
+    pub memory: Memory,
+    /// "bilinear" (the paper's two lines) or "iwan" (a density of slip thresholds).
+    #[serde(default)]
+    pub backbone: BackboneKind,
+    /// Iwan: the exponent χ of the threshold density, in (−1, 1] (0: uniform).
+    pub chi: Option<f64>,
+    /// Iwan: the fraction of the elements at the top threshold, in [0, 1).
+    pub spike: Option<f64>,
+}
+
+/// `backbone` of `[interface.<name>.tangential]`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum BackboneKind {
+    #[default]
+    Bilinear,
+    Iwan,
+}
+
+impl TangentialSpec {
+    /// p_T^Y / (μ_m p_N), 0.625 unless given.
+    pub fn yield_ratio(&self) -> f64 {
+        self.yield_ratio.unwrap_or_else(default_yield_ratio)
+    }
 }
 
 impl std::fmt::Debug for TangentialSpec {
@@ -259,13 +284,26 @@ impl std::fmt::Debug for TangentialSpec {
                 .field("s", &self.s)
                 .field("k_table", &self.k_table),
         };
-        d.field("kp_ratio", &self.kp_ratio)
-            .field("mu", &self.mu)
+        // the text of a bilinear law is the one it had before `memory`,
+        // `backbone`, `chi` and `spike` existed: older restart files resume
+        match self.kp_ratio {
+            Some(kp) => d.field("kp_ratio", &kp),
+            None => d.field("kp_ratio", &self.kp_ratio),
+        };
+        d.field("mu", &self.mu)
             .field("beta", &self.beta)
             .field("n", &self.n)
-            .field("yield_ratio", &self.yield_ratio)
-            .field("scheme", &self.scheme)
-            .finish()
+            .field("yield_ratio", &self.yield_ratio())
+            .field("scheme", &self.scheme);
+        if self.memory != Memory::Isotropic {
+            d.field("memory", &self.memory);
+        }
+        if self.backbone != BackboneKind::Bilinear || self.chi.is_some() || self.spike.is_some() {
+            d.field("backbone", &self.backbone)
+                .field("chi", &self.chi)
+                .field("spike", &self.spike);
+        }
+        d.finish()
     }
 }
 

@@ -3,9 +3,9 @@
 
 use super::ranges;
 use super::Weights;
-use super::{Case, InterfaceLawSpec, TangentialSpec};
+use super::{BackboneKind, Case, InterfaceLawSpec, TangentialSpec};
 use crate::error::{Error, Result};
-use crate::interface::{FrictionScheme, NormalLaw, TangentialLaw};
+use crate::interface::{Backbone, FrictionScheme, NormalLaw, TangentialLaw};
 use std::collections::BTreeMap;
 
 /// Most elements a case may have (all blocks, after `refine`): far beyond any
@@ -277,9 +277,10 @@ fn tangential_law(
     if spec.weights != Weights::Lumped && !nonmatching {
         return Err(Error::input(at(&key), "a tangential law needs weights = \"lumped\" (one spring and one slip history per pair), or an interface with matching = false (one spring per quadrature point)"));
     }
+    let kp_ratio = backbone_keys(t, &key, at)?;
     let law = match (&t.k_table, t.r, t.s) {
         (None, Some(r), Some(s)) => {
-            TangentialLaw::new(r, s, t.kp_ratio, t.mu, t.beta, t.n, t.yield_ratio)
+            TangentialLaw::new(r, s, kp_ratio, t.mu, t.beta, t.n, t.yield_ratio())
                 .map_err(|m| Error::input(at(&key), m))?
         }
         (Some(rows), None, None) => {
@@ -289,7 +290,7 @@ fn tangential_law(
                 ranges::PRESSURE.check(at(&format!("{key} row {} p_N", i + 1)), p)?;
                 ranges::SHEAR_STIFFNESS.check(at(&format!("{key} row {} k_T", i + 1)), k)?;
             }
-            TangentialLaw::with_k_table(&rows, t.kp_ratio, t.mu, t.beta, t.n, t.yield_ratio)
+            TangentialLaw::with_k_table(&rows, kp_ratio, t.mu, t.beta, t.n, t.yield_ratio())
                 .map_err(|m| Error::input(at(&key), m))?
         }
         (Some(_), r, _) => {
@@ -314,7 +315,48 @@ fn tangential_law(
     ] {
         range.check(at(&format!("{key} {k}")), v)?;
     }
-    Ok(law)
+    let backbone = match t.backbone {
+        BackboneKind::Bilinear => Backbone::Bilinear,
+        BackboneKind::Iwan => Backbone::Iwan {
+            chi: t.chi.unwrap_or(0.0),
+            spike: t.spike.unwrap_or(0.0),
+        },
+    };
+    law.with_memory(t.memory, backbone).map_err(|m| {
+        let k = ["chi", "spike", "beta"]
+            .into_iter()
+            .find(|k| m.starts_with(k))
+            .unwrap_or("memory");
+        Error::input(at(&format!("{key} {k}")), m)
+    })
+}
+
+/// The keys of the backbone: `kp_ratio` (and `yield_ratio`) for the
+/// paper's two lines, `chi` and `spike` for an Iwan density, each refused
+/// with the other. Returns k_T^p / k_T^e (1 for an Iwan density: unused).
+fn backbone_keys(t: &TangentialSpec, key: &str, at: &dyn Fn(&str) -> String) -> Result<f64> {
+    let refuse = |k: &str, why: &str| Err(Error::input(at(&format!("{key} {k}")), why.to_string()));
+    match t.backbone {
+        BackboneKind::Bilinear => {
+            for (k, v) in [("chi", t.chi), ("spike", t.spike)] {
+                if v.is_some() {
+                    return refuse(k, &format!("`{k}` belongs to backbone = \"iwan\" (a density of slip thresholds); the bilinear backbone takes kp_ratio and yield_ratio"));
+                }
+            }
+            t.kp_ratio.map_or_else(
+                || refuse("kp_ratio", "needs `kp_ratio` (k_T^p / k_T^e in [0, 1], 1: no micro-slip branch) for the paper's bilinear backbone"),
+                Ok,
+            )
+        }
+        BackboneKind::Iwan => {
+            for (k, v) in [("kp_ratio", t.kp_ratio), ("yield_ratio", t.yield_ratio)] {
+                if v.is_some() {
+                    return refuse(k, &format!("`{k}` belongs to the bilinear backbone; with backbone = \"iwan\" the density (chi, spike) sets how the stiffness falls to μ p_N"));
+                }
+            }
+            Ok(1.0)
+        }
+    }
 }
 
 /// The curved bottom and top sides of the blocks ([`SideShape::check`]), each

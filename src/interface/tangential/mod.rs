@@ -31,7 +31,8 @@ mod kinematic;
 pub use kinematic::{Density, Stretch, MEMORY_POINTS};
 
 /// How the law remembers its slip history.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum Memory {
     /// Section 2.2: the yield limit grows with the accumulated slip κ, so
     /// after a reversal nothing slips until |p_T| passes its earlier
