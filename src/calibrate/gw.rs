@@ -102,11 +102,19 @@ impl Gw {
     /// Nominal pressure p(d) (MPa) at separation d (mm) of the flat from the
     /// mean summit height (the plane z = 0 of φ).
     pub fn pressure(&self, d: f64) -> f64 {
+        self.over_summits(d, &|omega| self.summit_load(omega))
+    }
+
+    /// η ∫_d^∞ q(z − d) φ(z) dz: a quantity q(ω) of one summit at interference
+    /// ω summed over the summits per unit area at separation d (the load in
+    /// [`Gw::pressure`], the shear stiffness in `tangential.rs`), by the
+    /// substitution ω = σ u² and the panels described at the top of the module.
+    pub fn over_summits(&self, d: f64, q: &dyn Fn(f64) -> f64) -> f64 {
         let s = self.sigma;
         let h = d / s;
         let f = |u: f64| {
             let t = u * u;
-            2.0 * u * self.summit_load(s * t) * self.distribution.density(h + t)
+            2.0 * u * q(s * t) * self.distribution.density(h + t)
         };
         // end of the integration: the density is below e^{-60} of its peak
         let top = match self.distribution {

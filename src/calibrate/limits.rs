@@ -122,13 +122,18 @@ pub const REFERENCE: Limit = Limit {
 };
 
 /// Every limit, in the order of the documentation's table.
-pub const ALL: [(&str, &Limit); 8] = [
+pub const ALL: [(&str, &Limit); 13] = [
     ("young", &YOUNG),
     ("hardness", &HARDNESS),
     ("density", &DENSITY),
     ("radius", &RADIUS),
     ("sigma", &SIGMA),
     ("sampling", &SAMPLING),
+    ("ra", &super::roughness::RA),
+    ("rz", &super::roughness::RZ),
+    ("hurst", &super::roughness::HURST_LIMIT),
+    ("cutoff", &super::roughness::CUTOFF),
+    ("short_cutoff", &super::roughness::SHORT_CUTOFF),
     ("pressure", &PRESSURE),
     ("reference_pressure", &REFERENCE),
 ];

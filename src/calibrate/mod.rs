@@ -4,20 +4,24 @@
 //! height map ([`profile`], McCool 1986), the load-approach curve of the
 //! rough pair, its best power law u_N = c_N p^m (eq. 2.1) over a pressure
 //! range ([`fit`]), and ready-to-paste `[interface.*]` tables for the power
-//! law and for `law = "table"`. docs/calibration.md has the equations.
+//! law and for `law = "table"`; from the Ra or Rz of a drawing
+//! ([`roughness`], an assumed spectrum) and, with `[tangential]`, the
+//! Mindlin-GW shear stiffness as a `k_table` ([`tangential`], issue 28).
+//! docs/calibration.md has the equations.
 
 pub mod fit;
 pub mod gw;
 pub mod limits;
 pub mod profile;
+mod report;
+pub mod roughness;
+pub mod tangential;
 
 use crate::error::{Error, Result};
 use fit::{Point, PowerFit};
 use gw::{Asperity, Distribution, Gw};
 use limits::Warning;
 use serde::Deserialize;
-use serde_json::json;
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 /// Largest input file read.
@@ -32,6 +36,8 @@ pub struct Input {
     pub materials: Materials,
     pub surface: Surface,
     pub fit: FitSpec,
+    /// `[tangential]`: the Mindlin-GW shear stiffness as a k_table too.
+    pub tangential: Option<tangential::Input>,
 }
 
 /// `[materials]`: the two bodies.
@@ -82,6 +88,20 @@ pub enum Surface {
         #[serde(default = "elastic")]
         asperities: String,
     },
+    /// Ra or Rz (mm) of the drawing, one number or [face a, face b], and an
+    /// assumed spectrum ([`roughness`]).
+    Roughness {
+        ra: Option<toml::Value>,
+        rz: Option<toml::Value>,
+        /// H of the assumed spectrum (default 0.8, band 0.5-1 reported).
+        hurst: Option<f64>,
+        /// λc, mm (default ISO 4288 for the roughness).
+        cutoff: Option<f64>,
+        /// λs, mm (default ISO 3274 for λc).
+        short_cutoff: Option<f64>,
+        #[serde(default = "elastic")]
+        asperities: String,
+    },
 }
 
 fn gaussian() -> String {
@@ -128,6 +148,21 @@ pub struct Calibration {
     pub table: Vec<Point>,
     /// Legal but suspicious values ([`limits`]), in fit.json and interface.toml.
     pub warnings: Vec<Warning>,
+    /// The roughness model's derivation (None for gw and profile input).
+    pub roughness: Option<roughness::Derived>,
+    /// The tangential request and its k_table [p_N MPa, k_T^e MPa/µm].
+    pub tangential: Option<(tangential::Spec, Vec<(f64, f64)>)>,
+    /// The roughness model redone at the ends of the Hurst band (none when
+    /// `surface.hurst` is given).
+    pub band: Vec<BandEnd>,
+}
+
+/// The calibration at one end of the assumed Hurst band.
+#[derive(Clone, Debug)]
+pub struct BandEnd {
+    pub hurst: f64,
+    /// c_N, m, η, β, σ_s and k_T^e (MPa/µm) at lo and hi; or why it failed.
+    pub result: std::result::Result<[f64; 7], String>,
 }
 
 /// Reads and parses an input file (errors name the file, line and column).
@@ -193,6 +228,8 @@ pub struct Prepared {
     /// Summits in contact per mm² at lo.
     pub contacts_lo: f64,
     pub warnings: Vec<Warning>,
+    pub roughness: Option<roughness::Derived>,
+    pub tangential: Option<tangential::Spec>,
 }
 
 /// The surface's values as the messages quote them.
@@ -208,6 +245,13 @@ fn surface_values(input: &Input, gw: &Gw, profile_place: Option<&str>) -> String
             limits::sig(gw.density, 4),
             limits::sig(gw.radius, 4),
             limits::sig(gw.sigma, 4)
+        ),
+        (Surface::Roughness { ra, .. }, _) => format!(
+            "η = {} /mm², β = {} mm and σ_s = {} mm from surface.{} and the assumed spectrum, {e_star}",
+            limits::sig(gw.density, 4),
+            limits::sig(gw.radius, 4),
+            limits::sig(gw.sigma, 4),
+            if ra.is_some() { "ra" } else { "rz" }
         ),
         _ => format!(
             "surface.density = {} /mm², surface.radius = {} mm, surface.sigma = {} mm, {e_star}",
@@ -333,7 +377,17 @@ pub fn prepare(input: &Input, place: &str, base: &Path) -> Result<Prepared> {
             )),
         }
     };
+    let tangential = match &input.tangential {
+        Some(t) => Some(tangential::spec(
+            t,
+            &input.materials.a,
+            &input.materials.b,
+            place,
+        )?),
+        None => None,
+    };
     let mut profile_place = None;
+    let mut derived = None;
     let (gw, moments) = match &input.surface {
         Surface::Gw {
             density,
@@ -417,6 +471,53 @@ pub fn prepare(input: &Input, place: &str, base: &Path) -> Result<Prepared> {
                 e_star,
             };
             (gw, Some((m, s)))
+        }
+        Surface::Roughness {
+            ra,
+            rz,
+            hurst,
+            cutoff,
+            short_cutoff,
+            asperities,
+        } => {
+            let (parameter, given) =
+                match (ra, rz) {
+                    (Some(v), None) => (roughness::Parameter::Ra, v),
+                    (None, Some(v)) => (roughness::Parameter::Rz, v),
+                    (Some(_), Some(_)) => return Err(Error::input(
+                        format!("{place}: surface.rz"),
+                        "give one of surface.ra and surface.rz, not both (which one would hold?)",
+                    )),
+                    (None, None) => {
+                        return Err(Error::input(
+                            format!("{place}: surface.ra"),
+                            "missing: the roughness model needs surface.ra or surface.rz (mm)",
+                        ))
+                    }
+                };
+            let key = format!("surface.{}", parameter.key());
+            let values = roughness::values(given, place, &key)?;
+            let overrides = roughness::Overrides {
+                hurst: *hurst,
+                cutoff: *cutoff,
+                short_cutoff: *short_cutoff,
+            };
+            let d = roughness::derive(parameter, &values, overrides, place, w)?;
+            let s = d.moments.summits(&format!("{place}: {key}"))?;
+            let hint = Some("are surface.ra / surface.rz in mm?");
+            limits::SIGMA.check_hinted(place, "σ_s from the roughness", s.sigma, w, hint)?;
+            limits::DENSITY.check_hinted(place, "η from the roughness", s.density, w, hint)?;
+            limits::RADIUS.check_hinted(place, "β from the roughness", s.radius, w, hint)?;
+            derived = Some(d);
+            let gw = Gw {
+                density: s.density,
+                radius: s.radius,
+                sigma: s.sigma,
+                distribution: Distribution::Gaussian,
+                asperity: asperity(asperities)?,
+                e_star,
+            };
+            (gw, None)
         }
     };
     let values = || surface_values(input, &gw, profile_place.as_deref());
@@ -512,6 +613,8 @@ pub fn prepare(input: &Input, place: &str, base: &Path) -> Result<Prepared> {
         d_hi,
         contacts_lo,
         warnings,
+        roughness: derived,
+        tangential,
     })
 }
 
@@ -526,6 +629,8 @@ pub fn calibrate(input: &Input, place: &str, base: &Path) -> Result<Calibration>
         table_points: n_table,
         d0,
         warnings,
+        roughness: derived,
+        tangential: wanted,
         ..
     } = prepare(input, place, base)?;
     let fitted = fit::curve(&gw, d0, &fit::log_space(lo, hi, 101));
@@ -566,6 +671,19 @@ pub fn calibrate(input: &Input, place: &str, base: &Path) -> Result<Calibration>
             format!("[{lo}, {hi}] MPa gives a table that a case file would refuse ({m}); widen the fit range"),
         ));
     }
+    let tangential = match wanted {
+        Some(spec) => {
+            let pressures: Vec<f64> = table.iter().map(|q| q.pressure).collect();
+            let rows = tangential::k_table(&gw, spec.g_star, &pressures);
+            tangential::check(&rows, spec.mu, spec.kp_ratio, place)?;
+            Some((spec, rows))
+        }
+        None => None,
+    };
+    let band = match &derived {
+        Some(d) if !d.hurst_given => hurst_band(input, place, base),
+        _ => Vec::new(),
+    };
     Ok(Calibration {
         gw,
         moments,
@@ -577,156 +695,39 @@ pub fn calibrate(input: &Input, place: &str, base: &Path) -> Result<Calibration>
         fit,
         table,
         warnings,
+        roughness: derived,
+        tangential,
+        band,
     })
 }
 
-impl Calibration {
-    /// `curve.csv`.
-    pub fn curve_csv(&self) -> String {
-        let mut s = String::from("approach_mm,pressure_mpa\n");
-        for q in &self.curve {
-            let _ = writeln!(s, "{:.12e},{:.12e}", q.approach, q.pressure);
-        }
-        s
-    }
-
-    /// `fit.json`.
-    pub fn fit_json(&self, source: &str) -> serde_json::Value {
-        let g = &self.gw;
-        let (model, hardness, k) = match g.asperity {
-            Asperity::Elastic => ("elastic (Hertz)", None, None),
-            Asperity::Ceb { hardness, k } => (
-                "elastic-plastic (Chang, Etsion & Bogy 1987)",
-                Some(hardness),
-                Some(k),
-            ),
-        };
-        let profile = self.moments.map(|(m, s)| {
-            json!({"m0_mm2": m.m0, "m2": m.m2, "m4_per_mm2": m.m4, "bandwidth_alpha": s.alpha})
-        });
-        json!({
-            "input": source,
-            "c_n": self.fit.c_n,
-            "m": self.fit.m,
-            "pressure_range_mpa": self.range,
-            "max_relative_error_approach": self.fit.max_error,
-            "rms_relative_error_approach": self.fit.rms_error,
-            "fit_points": self.fitted.len(),
-            "reference_pressure_mpa": self.reference_pressure,
-            "d0_mm": self.d0,
-            "d0_over_sigma": self.d0 / g.sigma,
-            "e_star_mpa": g.e_star,
-            "gw": {
-                "density_per_mm2": g.density,
-                "radius_mm": g.radius,
-                "sigma_mm": g.sigma,
-                "distribution": match g.distribution {
-                    Distribution::Gaussian => "gaussian",
-                    Distribution::Exponential => "exponential",
-                },
-                "asperities": model,
-                "hardness_mpa": hardness,
-                "ceb_k": k,
-                "critical_interference_mm": g.critical_interference().is_finite().then(|| g.critical_interference()),
-                "plasticity_index": hardness.map(|h| g.e_star / h * (g.sigma / g.radius).sqrt()),
-            },
-            "profile": profile,
-            "warnings": self.warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>(),
+/// The roughness model calibrated again at each end of the assumed Hurst band
+/// ([`roughness::HURST_BAND`]): what the missing spectral information is worth.
+fn hurst_band(input: &Input, place: &str, base: &Path) -> Vec<BandEnd> {
+    roughness::HURST_BAND
+        .iter()
+        .map(|&h| {
+            let mut at = input.clone();
+            if let Surface::Roughness { hurst, .. } = &mut at.surface {
+                *hurst = Some(h);
+            }
+            // k_T^e at lo and hi; 0 when no tangential law is asked for
+            at.tangential.get_or_insert(tangential::Input {
+                mu: Some(1.0),
+                kp_ratio: None,
+            });
+            let result = calibrate(&at, place, base)
+                .map(|c| {
+                    let k = c
+                        .tangential
+                        .map_or([0.0, 0.0], |(_, r)| [r[0].1, r[r.len() - 1].1]);
+                    let g = c.gw;
+                    [c.fit.c_n, c.fit.m, g.density, g.radius, g.sigma, k[0], k[1]]
+                })
+                .map_err(|e| e.to_string());
+            BandEnd { hurst: h, result }
         })
-    }
-
-    /// `interface.toml`: the two snippets.
-    pub fn interface_toml(&self, source: &str) -> String {
-        let [lo, hi] = self.range;
-        let f = &self.fit;
-        let mut s = String::new();
-        let _ = writeln!(s, "# asperity calibrate {source}");
-        let _ = writeln!(
-            s,
-            "# Two interface laws for the same surface; paste one into the case and rename\n# the table to the interface's name ([interface.<name>]). Approaches in mm from\n# the separation where p = {:.4e} MPa; pressures in MPa.\n",
-            self.reference_pressure
-        );
-        for w in &self.warnings {
-            let _ = writeln!(s, "# WARNING: {w}");
-        }
-        if !self.warnings.is_empty() {
-            s.push('\n');
-        }
-        let _ = writeln!(
-            s,
-            "# power law u_N = c_N p^m fitted over {lo}-{hi} MPa: max relative error in u_N {:.2}%",
-            100.0 * f.max_error
-        );
-        if !(f.m > 0.0 && f.m <= 1.0) {
-            let _ = writeln!(
-                s,
-                "# NOTE: m = {:.4} is outside (0, 1], which the case file refuses: use the table",
-                f.m
-            );
-        }
-        let _ = writeln!(
-            s,
-            "[interface.calibrated_power]\nlaw = \"power\"\nc_n = {:.6e}\nm = {:.6}\n",
-            f.c_n, f.m
-        );
-        let _ = writeln!(
-            s,
-            "# the curve itself at {} pressures spaced evenly in log p over {lo}-{hi} MPa",
-            self.table.len()
-        );
-        let rows: Vec<String> = self
-            .table
-            .iter()
-            .map(|q| format!("  [{:.9e}, {:.9e}],", q.approach, q.pressure))
-            .collect();
-        let _ = writeln!(
-            s,
-            "[interface.calibrated_table]\nlaw = \"table\"\ntable = [\n{}\n]",
-            rows.join("\n")
-        );
-        s
-    }
-
-    /// The figure: pressure against approach, the GW curve and the power law.
-    fn chart(&self) -> crate::study::plot::Chart {
-        use crate::study::plot::{Chart, Series};
-        let [lo, hi] = self.range;
-        let f = self.fit;
-        let shown: Vec<&Point> = self
-            .curve
-            .iter()
-            .filter(|q| q.pressure >= 0.5 * lo)
-            .collect();
-        let power = fit::log_space(0.5 * lo, 2.0 * hi, 80)
-            .into_iter()
-            .map(|p| (1e3 * f.c_n * p.powf(f.m), p))
-            .collect();
-        Chart {
-            title: "Load-approach curve of the rough pair".into(),
-            x_label: "approach u_N (µm)".into(),
-            y_label: "nominal pressure p (MPa)".into(),
-            series: vec![
-                Series {
-                    label: "Greenwood-Williamson".into(),
-                    points: shown
-                        .iter()
-                        .map(|q| (1e3 * q.approach, q.pressure))
-                        .collect(),
-                },
-                Series {
-                    label: format!(
-                        "u_N = {:.4e} p^{:.4} (max error {:.2}% over {lo}-{hi} MPa)",
-                        f.c_n,
-                        f.m,
-                        100.0 * f.max_error
-                    ),
-                    points: power,
-                },
-            ],
-            hlines: vec![(lo, format!("{lo} MPa")), (hi, format!("{hi} MPa"))],
-            ..Chart::default()
-        }
-    }
+        .collect()
 }
 
 /// What `asperity calibrate` wrote.
@@ -787,7 +788,7 @@ pub fn run(input_path: &Path, out: &Path) -> Result<Written> {
         let _ = std::fs::remove_dir_all(&tmp);
     }
     let summary = format!(
-        "c_n = {:.6e} mm/MPa^m, m = {:.6} over {}-{} MPa (max relative error in u_N {:.2}%); E* = {:.1} MPa, η = {:.4e}/mm², β = {:.4e} mm, σ_s = {:.4e} mm; written to {}",
+        "c_n = {:.6e} mm/MPa^m, m = {:.6} over {}-{} MPa (max relative error in u_N {:.2}%); E* = {:.1} MPa, η = {:.4e}/mm², β = {:.4e} mm, σ_s = {:.4e} mm{}; written to {}",
         cal.fit.c_n,
         cal.fit.m,
         cal.range[0],
@@ -797,6 +798,7 @@ pub fn run(input_path: &Path, out: &Path) -> Result<Written> {
         cal.gw.density,
         cal.gw.radius,
         cal.gw.sigma,
+        cal.summary_extra(),
         out.display()
     );
     result.map(|files| Written {

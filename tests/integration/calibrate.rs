@@ -552,3 +552,263 @@ fn bad_inputs_are_one_error_line_and_exit_2() {
     assert_eq!(code, 2);
     assert!(err.starts_with("error: no/such/file.toml"), "{err}");
 }
+
+/// The [interface.calibrated_table] snippet and its tangential table, as
+/// written, pasted into the punch-friction case as `contact`.
+fn paste_with_tangential(text: &str) -> String {
+    let case =
+        std::fs::read_to_string(common::root().join("cases/punch-friction-a/case.toml")).unwrap();
+    let start = case.find("[interface.contact]").unwrap();
+    let end = start + case[start..].find("\n[[").unwrap();
+    let from = text.find("[interface.calibrated_table]").unwrap();
+    let snippet = text[from..]
+        .replace("[interface.calibrated_table]", "[interface.contact]")
+        .replace(
+            "[interface.calibrated_table.tangential]",
+            "[interface.contact.tangential]",
+        );
+    format!("{}{}\n{}", &case[..start], snippet, &case[end..])
+}
+
+/// The drawing's Ra of two faces to a normal and a tangential law: the
+/// k_table has a row at every pressure of the normal table, stiffness
+/// non-decreasing, equal to fit.json's; pasted with its μ into a case with
+/// a tangential law, `asperity check` accepts it. The Hurst band is reported
+/// on stdout, in fit.json and as comments of interface.toml.
+#[test]
+fn the_roughness_example_writes_a_normal_and_a_tangential_law() {
+    let dir = common::scratch("calibrate-roughness");
+    let out = dir.join("out");
+    let (code, stdout, err) = calibrate(
+        &common::root().join("docs/calibration/roughness.toml"),
+        &out,
+    );
+    assert_eq!(code, 0, "{err}");
+    assert!(err.is_empty(), "{err}");
+    assert!(
+        stdout.contains("(from ra, assumed H = 0.8); over H 0.5-1: c_n ")
+            && stdout.contains("MPa/µm over the range, μ = 0.15"),
+        "{stdout}"
+    );
+    let fit: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("fit.json")).unwrap()).unwrap();
+    // σ² = σ_a² + σ_b², σ = √(π/2) Ra for each face
+    let m0 = fit["roughness"]["m0_mm2"].as_f64().unwrap();
+    let want = std::f64::consts::PI / 2.0 * (0.8e-3f64.powi(2) + 0.4e-3f64.powi(2));
+    assert!(common::rel(m0, want) < 1e-14, "{m0} vs {want}");
+    assert_eq!(fit["roughness"]["hurst_band"].as_array().unwrap().len(), 2);
+    let text = std::fs::read_to_string(out.join("interface.toml")).unwrap();
+    assert!(
+        text.contains("# ASSUMPTION: ra gives the rms height only"),
+        "{text}"
+    );
+    assert_eq!(text.matches("\n# at H = ").count(), 2, "{text}");
+    let v: toml::Table = toml::from_str(&text).unwrap();
+    let table = v["interface"]["calibrated_table"].as_table().unwrap();
+    let t = table["tangential"].as_table().unwrap();
+    assert_eq!(t["mu"].as_float(), Some(0.15));
+    let rows: Vec<(f64, f64)> = t["k_table"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| (r[0].as_float().unwrap(), r[1].as_float().unwrap()))
+        .collect();
+    let normal = table["table"].as_array().unwrap();
+    assert_eq!(rows.len(), normal.len());
+    for (r, n) in rows.iter().zip(normal) {
+        assert_eq!(
+            r.0,
+            n[1].as_float().unwrap(),
+            "a row at each normal pressure"
+        );
+    }
+    assert!(rows.windows(2).all(|w| w[1].0 > w[0].0 && w[1].1 >= w[0].1));
+    let json_rows = fit["tangential"]["k_table"].as_array().unwrap();
+    for (r, j) in rows.iter().zip(json_rows) {
+        assert!(common::rel(r.1, j[1].as_f64().unwrap()) < 1e-9);
+    }
+    let pasted = paste_with_tangential(&text);
+    let path = common::case_dir("calibrate-pasted-tangential", &pasted);
+    let (code, _, err) = asperity(&["check", path.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}\n{pasted}");
+}
+
+/// Rz = 2σ(√(2 ln N) + γ/√(2 ln N)), N = (λc/2π)√(m2/m0) (Davenport 1964),
+/// computed here for H = 1 on the ISO band of Ra 0.8 µm (λc 0.8 mm, λs
+/// 2.5 µm: m2/m0 = 2 ln(k2/k1)/(k1⁻² − k2⁻²)): the Rz of the surface with
+/// σ = √(π/2) × 0.8 µm calibrates exactly as that Ra.
+#[test]
+fn ra_and_the_rz_of_the_same_gaussian_surface_calibrate_alike() {
+    use std::f64::consts::PI;
+    let sigma = (PI / 2.0).sqrt() * 0.8e-3;
+    let (k1, k2) = (2.0 * PI / 0.8, 2.0 * PI / 2.5e-3);
+    let n = 0.8 / (2.0 * PI) * (2.0 * (k2 / k1).ln() / (k1.powi(-2) - k2.powi(-2))).sqrt();
+    let l = (2.0 * n.ln()).sqrt();
+    let rz = 2.0 * sigma * (l + 0.5772156649015329 / l);
+    assert!(rz > 3e-3 && rz < 5e-3, "{rz}"); // λc 0.8 mm for this Rz too
+    let dir = common::scratch("calibrate-ra-rz");
+    let run = |key: &str| -> serde_json::Value {
+        let input = dir.join(format!("{key}.toml"));
+        std::fs::write(
+            &input,
+            format!("{MATERIALS}[surface]\nmodel = \"roughness\"\n{key}\nhurst = 1.0\n{FIT}"),
+        )
+        .unwrap();
+        let out = dir.join(format!("out-{}", &key[..2]));
+        let (code, _, err) = calibrate(&input, &out);
+        assert_eq!(code, 0, "{err}");
+        serde_json::from_str(&std::fs::read_to_string(out.join("fit.json")).unwrap()).unwrap()
+    };
+    let a = run("ra = 0.8e-3");
+    let b = run(&format!("rz = {rz:e}"));
+    for key in ["c_n", "m", "d0_mm"] {
+        let (x, y) = (a[key].as_f64().unwrap(), b[key].as_f64().unwrap());
+        assert!(common::rel(x, y) < 1e-9, "{key}: {x} vs {y}");
+    }
+    // H given: no band
+    assert!(a["roughness"]["hurst_band"].as_array().unwrap().is_empty());
+}
+
+/// The tangential table from every surface model, elastic-plastic summits
+/// included (the contact radius of the CEB area).
+#[test]
+fn every_surface_model_gives_a_tangential_table() {
+    let dir = common::scratch("calibrate-tangential-models");
+    let (text, ..) = three_harmonics();
+    std::fs::write(dir.join("profile.csv"), text).unwrap();
+    let tangential = "[tangential]\nmu = 0.2\nkp_ratio = 0.1\n";
+    let hard = MATERIALS.replace("poisson = 0.3 }\n", "poisson = 0.3, hardness = 2000.0 }\n");
+    for (name, input) in [
+        (
+            "gw-ceb",
+            format!("{hard}{GW}asperities = \"elastic-plastic\"\n{FIT}{tangential}"),
+        ),
+        (
+            "profile",
+            profile("profile.csv", "").replace(FIT, &format!("{FIT}{tangential}")),
+        ),
+        (
+            "rz",
+            format!("{MATERIALS}[surface]\nmodel = \"roughness\"\nrz = 6.3e-3\n{FIT}{tangential}"),
+        ),
+    ] {
+        let path = dir.join(format!("{name}.toml"));
+        std::fs::write(&path, input).unwrap();
+        let out = dir.join(format!("out-{name}"));
+        let (code, _, err) = calibrate(&path, &out);
+        assert_eq!(code, 0, "{name}: {err}");
+        let text = std::fs::read_to_string(out.join("interface.toml")).unwrap();
+        assert!(text.contains("kp_ratio = 0.1\nmu = 0.2"), "{name}: {text}");
+        let pasted = paste_with_tangential(&text);
+        let case = common::case_dir(&format!("calibrate-tangential-{name}"), &pasted);
+        let (code, _, err) = asperity(&["check", case.to_str().unwrap()]);
+        assert_eq!(code, 0, "{name}: {err}");
+    }
+}
+
+#[test]
+fn bad_roughness_and_tangential_inputs_are_one_error_line_and_exit_2() {
+    let rough = |keys: &str| format!("{MATERIALS}[surface]\nmodel = \"roughness\"\n{keys}{FIT}");
+    let t = |keys: &str| format!("{}[tangential]\n{keys}", rough("ra = 0.8e-3\n"));
+    for (name, input, expect) in [
+        (
+            "ra-and-rz",
+            rough("ra = 0.8e-3\nrz = 6.3e-3\n"),
+            "surface.toml: surface.rz: give one of surface.ra and surface.rz",
+        ),
+        ("neither", rough(""), "surface.toml: surface.ra: missing"),
+        (
+            "ra-zero",
+            rough("ra = 0.0\n"),
+            "surface.ra: must be a positive finite number",
+        ),
+        (
+            "ra-negative",
+            rough("ra = [0.8e-3, -1e-3]\n"),
+            "surface.ra: must be a positive finite number",
+        ),
+        (
+            "ra-absurd",
+            rough("ra = 2.0\n"),
+            "surface.ra: 2 mm is far outside any use as Ra",
+        ),
+        (
+            "rz-absurd",
+            rough("rz = 8.0\n"),
+            "surface.rz: 8 mm is far outside any use as Rz",
+        ),
+        (
+            "ra-three",
+            rough("ra = [1e-3, 2e-3, 3e-3]\n"),
+            "surface.ra: must be a number (mm: the pair's roughness) or two numbers",
+        ),
+        (
+            "ra-text",
+            rough("ra = \"0.8\"\n"),
+            "surface.ra: must be a number",
+        ),
+        (
+            "ra-with-profile",
+            profile("tilted.csv", "ra = 0.8e-3\n"),
+            "unknown field `ra`",
+        ),
+        (
+            "sigma-with-roughness",
+            rough("ra = 0.8e-3\nsigma = 1e-3\n"),
+            "unknown field `sigma`",
+        ),
+        (
+            "hurst-high",
+            rough("ra = 0.8e-3\nhurst = 1.5\n"),
+            "surface.hurst: 1.5 is far outside any use as H",
+        ),
+        (
+            "hurst-zero",
+            rough("ra = 0.8e-3\nhurst = 0.0\n"),
+            "surface.hurst: must be a positive finite number",
+        ),
+        (
+            "cutoff-huge",
+            rough("ra = 0.8e-3\ncutoff = 1e4\n"),
+            "surface.cutoff: 1e4 mm is far outside",
+        ),
+        (
+            "band-narrow",
+            rough("ra = 0.8e-3\nshort_cutoff = 0.1\n"),
+            "surface.short_cutoff: λc = 0.8 mm and λs = 0.1 mm leave a band of 8",
+        ),
+        (
+            "ceb-no-hardness",
+            rough("ra = 0.8e-3\nasperities = \"elastic-plastic\"\n"),
+            "surface.asperities: \"elastic-plastic\" needs the hardness",
+        ),
+        (
+            "mu-missing",
+            t("kp_ratio = 0.5\n"),
+            "surface.toml: tangential.mu: missing",
+        ),
+        (
+            "mu-zero",
+            t("mu = 0.0\n"),
+            "tangential.mu: must be a positive finite number, got 0",
+        ),
+        (
+            "mu-negative",
+            t("mu = -0.2\n"),
+            "tangential.mu: must be a positive finite number, got -0.2",
+        ),
+        ("mu-huge", t("mu = 1e3\n"), "tangential.mu: "),
+        (
+            "kp-ratio",
+            t("mu = 0.2\nkp_ratio = 1.5\n"),
+            "tangential.kp_ratio: must be in [0, 1], got 1.5",
+        ),
+        (
+            "tangential-unknown",
+            t("mu = 0.2\nr = 0.9\n"),
+            "unknown field `r`",
+        ),
+    ] {
+        bad(name, &input, expect);
+    }
+}

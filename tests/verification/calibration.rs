@@ -275,3 +275,67 @@ fn fit_recovers_a_power_law() {
         assert!(f.max_error < 1e-12, "{f:?}");
     }
 }
+
+/// Composite Simpson on [a, b] with n (even) intervals: the tests' own rule.
+fn simpson(f: impl Fn(f64) -> f64, a: f64, b: f64, n: usize) -> f64 {
+    let h = (b - a) / n as f64;
+    let inner: f64 = (1..n)
+        .map(|i| f(a + i as f64 * h) * if i % 2 == 1 { 4.0 } else { 2.0 })
+        .sum();
+    (f(a) + f(b) + inner) * h / 3.0
+}
+
+/// Two steels: G* = G/3.4 with G = E/(2(1 + ν)) (Mindlin, Johnson §7.2).
+const G_STAR: f64 = 206_000.0 / 2.6 / 3.4;
+
+/// One point of the tangential table by hand: Gaussian summits, d = 1.5 σ,
+/// K_T = η ∫_d^∞ 8 G* √(β(z − d)) φ(z) dz with φ the N(0, σ²) density,
+/// computed here by Simpson's rule after z − d = t² (dz = 2t dt), t up to 8σ^½.
+#[test]
+fn tangential_stiffness_at_one_separation_by_hand() {
+    let g = surface(Distribution::Gaussian);
+    let (s, d) = (g.sigma, 1.5 * g.sigma);
+    let phi = |z: f64| (-z * z / (2.0 * s * s)).exp() / (s * (2.0 * PI).sqrt());
+    let integrand = |t: f64| 8.0 * G_STAR * (g.radius * t * t).sqrt() * phi(d + t * t) * 2.0 * t;
+    let hand = g.density * simpson(integrand, 0.0, 8.0 * s.sqrt(), 20_000);
+    let got = g.tangential_stiffness(d, G_STAR);
+    println!("K_T(1.5σ) = {got:.12e} MPa/mm, by hand {hand:.12e}");
+    assert!((got / hand - 1.0).abs() < 1e-9, "{got} vs {hand}");
+}
+
+/// Per summit k_t = 8 G* a and dP/dω = 2 E* a (Hertz), so for elastic
+/// summits of any height distribution K_T(d) = (4 G*/E*) (−dp/dd): checked
+/// against central differences of the integrated p(d).
+#[test]
+fn tangential_over_normal_stiffness_is_four_g_star_over_e_star() {
+    let mut worst: f64 = 0.0;
+    for dist in [Distribution::Gaussian, Distribution::Exponential] {
+        let g = surface(dist);
+        for h in [-0.5, 0.5, 1.5, 3.0] {
+            let d = h * g.sigma;
+            let step = 1e-4 * g.sigma;
+            let dp = (g.pressure(d - step) - g.pressure(d + step)) / (2.0 * step);
+            let want = 4.0 * G_STAR / g.e_star * dp;
+            let err = (g.tangential_stiffness(d, G_STAR) / want - 1.0).abs();
+            worst = worst.max(err);
+        }
+    }
+    println!("K_T against (4G*/E*) dp/du: worst relative difference {worst:.2e}");
+    assert!(worst < 1e-7, "{worst}");
+}
+
+/// Exponential heights, d ≥ 0: ∫_d^∞ √(z − d) e^{−z/σ}/σ dz = √σ Γ(3/2) e^{−d/σ},
+/// so K_T = 8 G* η β^½ σ^½ Γ(3/2) e^{−d/σ} and K_T / p = 4 G* / (E* σ).
+#[test]
+fn exponential_tangential_stiffness_closed_form() {
+    let g = surface(Distribution::Exponential);
+    let s = g.sigma;
+    for h in [0.0, 1.0, 4.0] {
+        let d = h * s;
+        let exact = 8.0 * G_STAR * g.density * (g.radius * s).sqrt() * 0.5 * PI.sqrt() * (-h).exp();
+        let got = g.tangential_stiffness(d, G_STAR);
+        assert!((got / exact - 1.0).abs() < 1e-11, "{h}: {got} vs {exact}");
+        let ratio = got / g.pressure(d) * g.e_star * s / (4.0 * G_STAR);
+        assert!((ratio - 1.0).abs() < 1e-11, "{h}: {ratio}");
+    }
+}

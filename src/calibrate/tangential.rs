@@ -1,0 +1,185 @@
+//! The tangential law of the surface: Mindlin's elastic shear stiffness of one
+//! Hertzian summit summed over the Greenwood-Williamson population.
+//!
+//! One summit of contact radius a, pressed and then sheared without slip, has
+//! the tangential stiffness (Mindlin 1949; Johnson, Contact Mechanics 1985,
+//! §7.2)
+//!
+//! k_t = 8 G* a,  1/G* = (2 − ν₁)/G₁ + (2 − ν₂)/G₂,  G = E / (2(1 + ν)),
+//!
+//! with a = √(β ω) (Hertz) at interference ω. Over the population, exactly as
+//! the normal load is summed (GW 1966, eq. 7), per unit nominal area:
+//!
+//! K_T(d) = η ∫_d^∞ 8 G* a(z − d) φ(z) dz,
+//!
+//! paired with p(d) at the same separation d. For Chang-Etsion-Bogy summits
+//! above the critical interference the contact radius of their area,
+//! a = √(β (2ω − ω_c)), is used (an assumption: the flattened tip is taken to
+//! shear elastically over its actual contact).
+
+use super::gw::{Asperity, Gw};
+use super::Body;
+use crate::error::{Error, Result};
+
+/// `[tangential]` of the calibration input: present = the tangential law is
+/// wanted.
+#[derive(Clone, Debug, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Input {
+    /// μ_m, the friction coefficient of the case's law (required).
+    pub mu: Option<f64>,
+    /// k_T^p / k_T^e in [0, 1], default 1 (no micro-slip branch).
+    pub kp_ratio: Option<f64>,
+}
+
+/// The tangential request, checked.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Spec {
+    pub mu: f64,
+    pub kp_ratio: f64,
+    /// G*, MPa.
+    pub g_star: f64,
+}
+
+/// Checks `[tangential]`: μ given, positive and within the case file's range
+/// of a friction coefficient; kp_ratio in [0, 1].
+pub fn spec(t: &Input, a: &Body, b: &Body, place: &str) -> Result<Spec> {
+    let mu = t.mu.ok_or_else(|| {
+        Error::input(
+            format!("{place}: tangential.mu"),
+            "missing: the friction coefficient μ_m of the tangential law (the surface does not give it), e.g. mu = 0.15",
+        )
+    })?;
+    if !(mu.is_finite() && mu > 0.0) {
+        return Err(Error::input(
+            format!("{place}: tangential.mu"),
+            format!(
+                "must be a positive finite number, got {}",
+                super::limits::num(mu)
+            ),
+        ));
+    }
+    crate::case::ranges::FRICTION.check(format!("{place}: tangential.mu"), mu)?;
+    let kp_ratio = t.kp_ratio.unwrap_or(1.0);
+    if !(0.0..=1.0).contains(&kp_ratio) {
+        return Err(Error::input(
+            format!("{place}: tangential.kp_ratio"),
+            format!("must be in [0, 1], got {}", super::limits::num(kp_ratio)),
+        ));
+    }
+    Ok(Spec {
+        mu,
+        kp_ratio,
+        g_star: shear_modulus_star(a, b),
+    })
+}
+
+/// G* of Mindlin's tangential stiffness: 1/G* = (2 − ν₁)/G₁ + (2 − ν₂)/G₂
+/// (Johnson 1985, §7.2).
+pub fn shear_modulus_star(a: &Body, b: &Body) -> f64 {
+    let g = |x: &Body| x.young / (2.0 * (1.0 + x.poisson));
+    1.0 / ((2.0 - a.poisson) / g(a) + (2.0 - b.poisson) / g(b))
+}
+
+impl Gw {
+    /// The contact radius (mm) of one summit at interference ω ≥ 0: Hertz
+    /// √(β ω); CEB above ω_c: √(β (2ω − ω_c)) (area π β (2ω − ω_c)).
+    pub fn contact_radius(&self, omega: f64) -> f64 {
+        match self.asperity {
+            Asperity::Elastic => (self.radius * omega).sqrt(),
+            Asperity::Ceb { .. } => {
+                let wc = self.critical_interference();
+                if omega <= wc {
+                    (self.radius * omega).sqrt()
+                } else {
+                    (self.radius * (2.0 * omega - wc)).sqrt()
+                }
+            }
+        }
+    }
+
+    /// K_T(d) = η ∫_d^∞ 8 G* a(z − d) φ(z) dz, MPa/mm, at separation d (mm),
+    /// by the quadrature of [`Gw::pressure`].
+    pub fn tangential_stiffness(&self, d: f64, g_star: f64) -> f64 {
+        self.over_summits(d, &|omega| 8.0 * g_star * self.contact_radius(omega))
+    }
+}
+
+/// The k_table rows [p_N MPa, k_T^e MPa/µm] at the pressures `pressures`,
+/// each paired with K_T at the separation where the surface carries it.
+pub fn k_table(gw: &Gw, g_star: f64, pressures: &[f64]) -> Vec<(f64, f64)> {
+    pressures
+        .iter()
+        .map(|&p| (p, 1e-3 * gw.tangential_stiffness(gw.separation(p), g_star)))
+        .collect()
+}
+
+/// The rows as `interface.toml` writes them (ten significant digits).
+pub fn written(rows: &[(f64, f64)]) -> Vec<(f64, f64)> {
+    let r = |v: f64| format!("{v:.9e}").parse::<f64>().unwrap_or(f64::NAN);
+    rows.iter().map(|&(p, k)| (r(p), r(k))).collect()
+}
+
+/// Checks that the written k_table is one a case accepts: every stiffness in
+/// the case file's range, rows by the tangential law's own table rules.
+pub fn check(rows: &[(f64, f64)], mu: f64, kp_ratio: f64, place: &str) -> Result<()> {
+    let at = format!("{place}: fit.pressure");
+    for (i, &(_, k)) in written(rows).iter().enumerate() {
+        crate::case::ranges::SHEAR_STIFFNESS
+            .check(format!("{at} (tangential k_table row {} k_T)", i + 1), k)?;
+    }
+    crate::interface::TangentialLaw::with_k_table(&written(rows), kp_ratio, mu, 1.0, 0.0, 0.625)
+        .map(|_| ())
+        .map_err(|m| {
+            Error::input(
+                at,
+                format!("gives a tangential k_table that a case file would refuse ({m}); widen the fit range"),
+            )
+        })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::calibrate::gw::Distribution;
+
+    fn steel() -> Body {
+        Body {
+            young: 206000.0,
+            poisson: 0.3,
+            hardness: None,
+        }
+    }
+
+    #[test]
+    fn g_star_of_two_steels_by_hand() {
+        // G = 206000 / 2.6 = 79230.77 MPa; 1/G* = 2 × 1.7 / G
+        let g = 206000.0 / 2.6;
+        let got = shear_modulus_star(&steel(), &steel());
+        assert!((got / (g / 3.4) - 1.0).abs() < 1e-14, "{got}");
+    }
+
+    /// CEB contact radius: Hertz below ω_c, continuous at ω_c (the CEB area
+    /// π β (2ω − ω_c) equals Hertz's π β ω_c there).
+    #[test]
+    fn ceb_contact_radius_is_continuous_at_the_critical_interference() {
+        let g = Gw {
+            density: 1.0,
+            radius: 0.05,
+            sigma: 1e-3,
+            distribution: Distribution::Gaussian,
+            asperity: Asperity::Ceb {
+                hardness: 2000.0,
+                k: 0.577,
+            },
+            e_star: 113_000.0,
+        };
+        let wc = g.critical_interference();
+        let (a, b) = (
+            g.contact_radius(wc * (1.0 - 1e-12)),
+            g.contact_radius(wc * (1.0 + 1e-12)),
+        );
+        assert!((a / b - 1.0).abs() < 1e-11);
+        assert!((g.contact_radius(3.0 * wc) / (0.05 * 5.0 * wc).sqrt() - 1.0).abs() < 1e-14);
+    }
+}
