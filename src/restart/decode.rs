@@ -2,6 +2,7 @@
 //! (the list in the module comment of [`super`]).
 
 use super::*;
+use crate::interface::{InterfaceModel, Stretch, MEMORY_POINTS};
 
 pub(super) struct Reader<'a> {
     b: &'a [u8],
@@ -480,13 +481,59 @@ pub(super) fn restore_state(ck: &mut Checkpoint, s: &Sections, model: &Model) ->
         }
         _ => return Err(format!("section status: expected {np} codes")),
     }
-    for (p, v) in c.contact.iter_mut().zip(
-        s.finite("contact", Some(ContactState::PACKED * np))?
-            .chunks_exact(ContactState::PACKED),
-    ) {
+    let laws = model
+        .interfaces
+        .iter()
+        .flat_map(|im| im.points.iter().map(move |_| im));
+    for (i, ((p, v), im)) in c
+        .contact
+        .iter_mut()
+        .zip(
+            s.finite("contact", Some(ContactState::PACKED * np))?
+                .chunks_exact(ContactState::PACKED),
+        )
+        .zip(laws)
+        .enumerate()
+    {
         *p = ContactState::unpack(v);
+        check_contact_point(im, i, p)?;
     }
     c.prescribed_reaction = s.finite("prescribed_reaction", Some(1))?[0];
+    Ok(())
+}
+
+/// A contact state a law can continue from: κ ≥ 0, and the kinematic
+/// memory's stretch function as it stores one (η rising to 1), its
+/// stretches within the slip range of any pressure a case allows; all
+/// zero under the isotropic memory or without a tangential law.
+fn check_contact_point(im: &InterfaceModel, i: usize, p: &ContactState) -> Decoded<()> {
+    let at = || format!("section contact: interface point {} ({})", i + 1, im.name);
+    if p.slip.kappa < 0.0 {
+        return Err(format!(
+            "{}: slip memory κ = {} (≥ 0 expected)",
+            at(),
+            num(p.slip.kappa)
+        ));
+    }
+    let mem = &p.slip.mem;
+    let kinematic = im
+        .tangential
+        .as_ref()
+        .is_some_and(|t| t.memory == crate::interface::Memory::Kinematic);
+    if !kinematic && *mem != Stretch::default() {
+        return Err(format!(
+            "{}: a kinematic slip memory in an interface without one (all {} memory values 0 expected)",
+            at(),
+            2 * MEMORY_POINTS
+        ));
+    }
+    if !mem.is_valid() || mem.largest_ratio() > MAX_DISPLACEMENT {
+        return Err(format!(
+            "{}: the kinematic slip memory is no stretch function (breakpoints η rising in (0, 1] to 1, zeros after, stretches within ±{} mm)",
+            at(),
+            num(MAX_DISPLACEMENT)
+        ));
+    }
     Ok(())
 }
 
