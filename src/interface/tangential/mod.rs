@@ -382,7 +382,9 @@ impl TangentialLaw {
         let p_tr = k * ue;
         let a = p_tr.abs();
         let (y0, ..) = self.limit(committed.kappa, p, k, dk);
-        if a <= y0 {
+        // a force cycled back to its earlier peak meets the limit within
+        // round-off: that is no slip (else stick and slip alternate there)
+        if a <= y0 * (1.0 + 1e-12) {
             return TangentialEval {
                 p_t: p_tr,
                 d_ut: k,

@@ -274,3 +274,28 @@ fn bad_parameters_are_named() {
         .unwrap_err()
         .contains("mu"));
 }
+
+/// A force cycled back to its earlier peak reaches the limit Y(κ) within
+/// round-off: no slip there (stick and slip alternated between Newton
+/// iterations and the step failed before, issue 28).
+#[test]
+fn the_earlier_peak_reached_again_within_round_off_sticks() {
+    let law = laws()[1].clone();
+    let p = 200.0;
+    let (k, _) = law.elastic_stiffness(p);
+    let mut st = SlipState::default();
+    // into micro-slip, then back to zero shear
+    let top = 4.0 * law.yield_ratio * law.mu * p / k;
+    let peak = law.eval(p, 0.0, top, &st);
+    assert_eq!(peak.slip, Slip::MicroSlip);
+    st = peak.state;
+    // the peak's u_T again, one ulp-scale step beyond
+    for ut in [top, top * (1.0 + 1e-15)] {
+        let ev = law.eval(p, 0.0, ut, &st);
+        assert_eq!(ev.slip, Slip::Stick, "u_T = {ut}");
+        assert_eq!(ev.d_ut, k);
+        assert_eq!(ev.state, st);
+    }
+    // clearly beyond: slips
+    assert_eq!(law.eval(p, 0.0, top * 1.001, &st).slip, Slip::MicroSlip);
+}
