@@ -166,6 +166,7 @@ fn summary_json_matches_the_documented_schema() {
             secant_stiffness: Some(1e4),
             force_range: [-30.0, 30.0],
             slip_range: [-0.01, 0.01],
+            tip_slip: [-0.008, 0.01],
         },
     );
     // probes of both kinds, interface events with histories and reactions
