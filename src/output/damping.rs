@@ -219,7 +219,10 @@ pub fn figure(
     let log = |c: &Cycle| (c.force_amplitude().log10(), c.dissipation.log10());
     let shown = |c: &Cycle| c.dissipation > 0.0 && c.force_amplitude() > 0.0;
     let mut chart = Chart {
-        title: format!("{}: dissipation per cycle against force amplitude", model.name),
+        title: format!(
+            "{}: dissipation per cycle against force amplitude",
+            model.name
+        ),
         x_label: "log₁₀ F_a: force amplitude (N)".into(),
         y_label: "log₁₀ D: dissipation per cycle (N·mm)".into(),
         ..Chart::default()
@@ -232,7 +235,11 @@ pub fn figure(
             .map(|(c, _)| log(c))
             .collect();
         steady.sort_by(|a, b| a.0.total_cmp(&b.0));
-        for (c, _) in list.iter().zip(&sw.rows).filter(|(c, r)| !r.last_in_block && shown(c)) {
+        for (c, _) in list
+            .iter()
+            .zip(&sw.rows)
+            .filter(|(c, r)| !r.last_in_block && shown(c))
+        {
             let (x, y) = log(c);
             chart.marks.push((x, y, String::new()));
         }

@@ -130,7 +130,10 @@ impl Writer {
         self.write("cycles.csv", &joints::cycles_csv(model, &cycles))?;
         joints::hysteresis(model, result, &cycles, &self.tmp_dir)?;
         let sweeps = damping::sweeps(&cycles);
-        self.write("damping.csv", &damping::damping_csv(model, &cycles, &sweeps))?;
+        self.write(
+            "damping.csv",
+            &damping::damping_csv(model, &cycles, &sweeps),
+        )?;
         damping::figure(model, &cycles, &sweeps, &self.tmp_dir)?;
         self.write("backbone.csv", &damping::backbone_csv(model, result))?;
         if !model.sections.is_empty() {

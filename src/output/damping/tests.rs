@@ -43,7 +43,10 @@ fn the_fit_of_scattered_points_is_the_hand_computed_least_squares_line() {
     let e = std::f64::consts::E;
     let fit = power_fit(&[(1.0, 1.0), (e, e.powf(1.5)), (e * e, e * e)]).unwrap();
     assert!((fit.exponent - 1.0).abs() < 1e-12, "{fit:?}");
-    assert!(rel(fit.coefficient, (1.0f64 / 6.0).exp()) < 1e-12, "{fit:?}");
+    assert!(
+        rel(fit.coefficient, (1.0f64 / 6.0).exp()) < 1e-12,
+        "{fit:?}"
+    );
     assert!((fit.r_squared - 12.0 / 13.0).abs() < 1e-12, "{fit:?}");
     // every y alike: a flat line through every point
     let flat = power_fit(&[(1.0, 4.0), (2.0, 4.0)]).unwrap();
@@ -81,7 +84,10 @@ fn the_last_cycle_of_each_amplitude_block_enters_the_fit() {
     // q from the end points 10 → 40 is ln 30 / ln 4 = 2.45; the middle one
     // lies above that line: the least-squares slope is the same (the middle
     // x is the mean of the logs) and R² < 1
-    assert!(rel(want.exponent, 30f64.ln() / 4f64.ln()) < 1e-12, "{want:?}");
+    assert!(
+        rel(want.exponent, 30f64.ln() / 4f64.ln()) < 1e-12,
+        "{want:?}"
+    );
     assert!(want.r_squared < 1.0 && want.r_squared > 0.9, "{want:?}");
     // a block whose last cycle dissipates nothing drops out: one amplitude
     // left, no fit, nothing marked as fitted
@@ -97,7 +103,10 @@ fn the_last_cycle_of_each_amplitude_block_enters_the_fit() {
 #[test]
 fn the_backbone_ends_at_the_first_drop_of_the_force_magnitude() {
     // a preload without drag, a rise, a plateau (macro-slip), the reversal
-    assert_eq!(backbone_end(&[0.0, 0.0, 1.0, 2.0, 3.0, 3.0, 3.0, 2.0, -3.0]), 6);
+    assert_eq!(
+        backbone_end(&[0.0, 0.0, 1.0, 2.0, 3.0, 3.0, 3.0, 2.0, -3.0]),
+        6
+    );
     // a drop within 1e-6 of the largest |F| (10) is not a reversal
     assert_eq!(backbone_end(&[0.0, 5.0, 10.0, 10.0 - 5e-6, 10.0, 8.0]), 4);
     assert_eq!(backbone_end(&[0.0, 5.0, 10.0, 10.0 - 2e-5, 10.0, 8.0]), 2);
