@@ -8,10 +8,12 @@
 //! Which cycles enter the fit: consecutive cycles whose force amplitudes agree
 //! within [`SAME_AMPLITUDE`] form a block (a constant-amplitude block of a
 //! load program); the last cycle of each block is its steady value, and only
-//! those with D > 0 are fitted. A first cycle also carries the first loading
-//! from the virgin state (more slip, more dissipation than the repeats): a
-//! block of two or more cycles keeps it out of the fit. A single cycle per
-//! amplitude is its own block and enters.
+//! those that dissipate ([`DISSIPATES`]) are fitted. A first cycle also
+//! carries the loading from the state before it (from the virgin joint: more
+//! slip, more dissipation than the repeats): a block of two or more cycles
+//! keeps it out of the fit. A single cycle per amplitude is its own block and
+//! enters. With the isotropic memory of section 2.2 a repeat below the
+//! friction cap is elastic (it shakes down): only macro-slip dissipates in it.
 
 use super::joints::{csv_field, opt};
 use crate::error::Result;
@@ -24,6 +26,11 @@ use std::path::{Path, PathBuf};
 
 /// Force amplitudes within this fraction of the larger are the same amplitude.
 pub const SAME_AMPLITUDE: f64 = 1e-2;
+
+/// A cycle dissipates when its D exceeds this fraction of the largest D of
+/// its interface's cycles: below it, D is the round-off of the solver on an
+/// elastic cycle (a joint that has shaken down).
+pub const DISSIPATES: f64 = 1e-6;
 
 /// A first reversal of F_T is a drop of |F_T| by more than this fraction of
 /// the run's largest |F_T| from one increment to the next.
@@ -102,10 +109,20 @@ pub struct Sweep {
     pub fit: Option<PowerFit>,
 }
 
+/// Per cycle of `cycles`, whether it dissipates ([`DISSIPATES`]) with
+/// F_a > 0: the cycles a logarithmic plot and the fit can take.
+pub fn dissipating(cycles: &[Cycle]) -> Vec<bool> {
+    let top = cycles.iter().fold(0.0f64, |m, c| m.max(c.dissipation));
+    cycles
+        .iter()
+        .map(|c| c.dissipation > DISSIPATES * top && c.force_amplitude() > 0.0)
+        .collect()
+}
+
 /// The amplitude sweep of one interface's cycles: the blocks (a cycle joins
 /// the block of the one before when its F_a is the same as the block's first
 /// within [`SAME_AMPLITUDE`]) and the [`power_fit`] of D against F_a over the
-/// last cycle of each block with D > 0 and F_a > 0.
+/// last cycle of each block that dissipates ([`dissipating`]).
 pub fn sweep(cycles: &[Cycle]) -> Sweep {
     let mut rows: Vec<SweepRow> = Vec::with_capacity(cycles.len());
     let mut block_start = 0;
@@ -124,19 +141,18 @@ pub fn sweep(cycles: &[Cycle]) -> Sweep {
             in_fit: false,
         });
     }
-    let used = |r: &SweepRow, c: &Cycle| {
-        r.last_in_block && c.dissipation > 0.0 && c.force_amplitude() > 0.0
-    };
+    let live = dissipating(cycles);
     let points: Vec<(f64, f64)> = rows
         .iter()
         .zip(cycles)
-        .filter(|(r, c)| used(r, c))
-        .map(|(_, c)| (c.force_amplitude(), c.dissipation))
+        .zip(&live)
+        .filter(|((r, _), &d)| r.last_in_block && d)
+        .map(|((_, c), _)| (c.force_amplitude(), c.dissipation))
         .collect();
     let fit = power_fit(&points);
     if fit.is_some() {
-        for (r, c) in rows.iter_mut().zip(cycles) {
-            r.in_fit = used(r, c);
+        for (r, &d) in rows.iter_mut().zip(&live) {
+            r.in_fit = r.last_in_block && d;
         }
     }
     Sweep { rows, fit }
@@ -206,8 +222,8 @@ pub fn sweeps(cycles: &[Vec<Cycle>]) -> Vec<Sweep> {
 
 /// The figure `damping.svg` / `.png` in `dir`: log₁₀ D against log₁₀ F_a,
 /// per interface the last cycle of each amplitude block joined by a line,
-/// the fitted line, and the other cycles as crosses. Nothing when no cycle
-/// has D > 0 and F_a > 0; nothing without a font (`damping.csv` holds the
+/// the fitted line, and the other cycles as crosses (the cycles that
+/// dissipate only, [`dissipating`]). Nothing when none does; nothing without a font (`damping.csv` holds the
 /// numbers).
 pub fn figure(
     model: &Model,
@@ -217,7 +233,6 @@ pub fn figure(
 ) -> Result<Vec<PathBuf>> {
     use crate::study::plot::{load_font, save_pictures, Chart, Series};
     let log = |c: &Cycle| (c.force_amplitude().log10(), c.dissipation.log10());
-    let shown = |c: &Cycle| c.dissipation > 0.0 && c.force_amplitude() > 0.0;
     let mut chart = Chart {
         title: format!(
             "{}: dissipation per cycle against force amplitude",
@@ -228,21 +243,17 @@ pub fn figure(
         ..Chart::default()
     };
     for ((im, list), sw) in model.interfaces.iter().zip(cycles).zip(sweeps) {
-        let mut steady: Vec<(f64, f64)> = list
-            .iter()
-            .zip(&sw.rows)
-            .filter(|(c, r)| r.last_in_block && shown(c))
-            .map(|(c, _)| log(c))
-            .collect();
-        steady.sort_by(|a, b| a.0.total_cmp(&b.0));
-        for (c, _) in list
-            .iter()
-            .zip(&sw.rows)
-            .filter(|(c, r)| !r.last_in_block && shown(c))
-        {
-            let (x, y) = log(c);
-            chart.marks.push((x, y, String::new()));
+        let live = dissipating(list);
+        let mut steady = Vec::new();
+        for ((c, r), _) in list.iter().zip(&sw.rows).zip(&live).filter(|x| *x.1) {
+            if r.last_in_block {
+                steady.push(log(c));
+            } else {
+                let (x, y) = log(c);
+                chart.marks.push((x, y, String::new()));
+            }
         }
+        steady.sort_by(|a, b| a.0.total_cmp(&b.0));
         if let (Some(f), Some(lo), Some(hi)) = (sw.fit, steady.first(), steady.last()) {
             let line = |x: f64| (x, f.coefficient.log10() + f.exponent * x);
             chart.series.push(Series {
