@@ -369,6 +369,38 @@ pub struct Cycle {
     pub force_range: [f64; 2],
     /// Smallest and largest ū_T over the cycle's increments, mm.
     pub slip_range: [f64; 2],
+    /// ū_T at the loop's tips, mm: at the increment of the smallest F_T and
+    /// at that of the largest (the increments the secant stiffness uses).
+    pub tip_slip: [f64; 2],
+}
+
+impl Cycle {
+    /// The force amplitude F_a = (F_T,hi − F_T,lo) / 2, N (hi, lo: the
+    /// loop's tips, the cycle's largest and smallest F_T).
+    pub fn force_amplitude(&self) -> f64 {
+        0.5 * (self.force_range[1] - self.force_range[0])
+    }
+
+    /// The slip amplitude u_a = (ū_T,hi − ū_T,lo) / 2 at the loop's tips, mm.
+    pub fn slip_amplitude(&self) -> f64 {
+        0.5 * (self.tip_slip[1] - self.tip_slip[0])
+    }
+
+    /// The loop's stored energy U = ½ F_a u_a = ΔF_T Δū_T / 8, N·mm: the
+    /// largest elastic energy of a linear spring of the secant stiffness
+    /// F_a / u_a taken to the amplitude (Ungar & Kerwin 1962, the energy
+    /// that the loss factor refers to).
+    pub fn stored_energy(&self) -> f64 {
+        0.5 * self.force_amplitude() * self.slip_amplitude()
+    }
+
+    /// The loss factor η = D / (2π U) (Ungar & Kerwin 1962, J. Acoust. Soc.
+    /// Am. 34, 954: the energy dissipated per cycle over 2π times the energy
+    /// stored); None when U ≤ 0 (no loop: no force or no slip range).
+    pub fn loss_factor(&self) -> Option<f64> {
+        let u = self.stored_energy();
+        (u > 0.0).then(|| self.dissipation / (2.0 * std::f64::consts::PI * u))
+    }
 }
 
 /// The closed load cycles of a run: pairs (i, j) of indices into `marks`,
@@ -439,6 +471,7 @@ pub fn cycle_of(rows: &[(f64, JointMeasures)], (i, j): (usize, usize)) -> Cycle 
             slip.clone().fold(f64::INFINITY, f64::min),
             slip.fold(f64::NEG_INFINITY, f64::max),
         ],
+        tip_slip: [lo.mean_slip, hi.mean_slip],
     }
 }
 

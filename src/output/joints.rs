@@ -69,17 +69,20 @@ pub fn joints_csv(model: &Model, r: &RunResult) -> String {
     s
 }
 
-pub const CYCLES_HEADER: &str = "interface,cycle,start_increment,end_increment,start_time,end_time,dissipation_nmm,work_nmm,secant_stiffness_n_per_mm,force_min_n,force_max_n,slip_min_mm,slip_max_mm\n";
+pub const CYCLES_HEADER: &str = "interface,cycle,start_increment,end_increment,start_time,end_time,dissipation_nmm,work_nmm,secant_stiffness_n_per_mm,force_min_n,force_max_n,slip_min_mm,slip_max_mm,force_amplitude_n,slip_amplitude_mm,stored_energy_nmm,loss_factor\n";
 
 /// `cycles.csv`: one row per closed load cycle and interface (the header
-/// alone when there is none); an empty stiffness where it is undefined.
+/// alone when there is none); an empty stiffness where it is undefined and
+/// an empty loss factor where the stored energy is not positive. The
+/// amplitude, stored energy and loss factor ([`Cycle::loss_factor`]) were
+/// added at the end of the row: readers of the older columns keep working.
 pub fn cycles_csv(model: &Model, cycles: &[Vec<Cycle>]) -> String {
     let mut s = String::from(CYCLES_HEADER);
     for (im, list) in model.interfaces.iter().zip(cycles) {
         for (k, c) in list.iter().enumerate() {
             let _ = writeln!(
                 s,
-                "{},{},{},{},{:.9},{:.9},{:.9e},{:.9e},{},{:.9e},{:.9e},{:.9e},{:.9e}",
+                "{},{},{},{},{:.9},{:.9},{:.9e},{:.9e},{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{}",
                 csv_field(&im.name),
                 k + 1,
                 c.start_increment,
@@ -88,16 +91,24 @@ pub fn cycles_csv(model: &Model, cycles: &[Vec<Cycle>]) -> String {
                 c.end_time,
                 c.dissipation,
                 c.work,
-                c.secant_stiffness
-                    .map_or(String::new(), |v| format!("{v:.9e}")),
+                opt(c.secant_stiffness),
                 c.force_range[0],
                 c.force_range[1],
                 c.slip_range[0],
                 c.slip_range[1],
+                c.force_amplitude(),
+                c.slip_amplitude(),
+                c.stored_energy(),
+                opt(c.loss_factor()),
             );
         }
     }
     s
+}
+
+/// A CSV number (`{:.9e}`), or an empty field for None.
+pub fn opt(v: Option<f64>) -> String {
+    v.map_or(String::new(), |v| format!("{v:.9e}"))
 }
 
 /// One cycle as a `summary.json` object (the keys of `cycles.csv`).
@@ -115,6 +126,10 @@ pub fn cycle_json(number: usize, c: &Cycle) -> Value {
         "force_max_n": c.force_range[1],
         "slip_min_mm": c.slip_range[0],
         "slip_max_mm": c.slip_range[1],
+        "force_amplitude_n": c.force_amplitude(),
+        "slip_amplitude_mm": c.slip_amplitude(),
+        "stored_energy_nmm": c.stored_energy(),
+        "loss_factor": c.loss_factor(),
     })
 }
 

@@ -1,6 +1,6 @@
 //! Results on disk: `summary.json`, `curve.csv`, `interface/<increment>.csv`,
 //! the joint outputs (`joints.csv`, `cycles.csv`, the hysteresis figure:
-//! [`joints`]), the designer's outputs (`reactions.csv`, `probes.csv`,
+//! [`joints`]; `damping.csv`, `backbone.csv`, the damping figure: [`damping`]), the designer's outputs (`reactions.csv`, `probes.csv`,
 //! `peaks.csv`, `contact.csv` and the events: [`plan`], [`events`]) and a
 //! VTU/PVD series. Everything is written into a hidden sibling folder that is
 //! renamed into place only when the run succeeds, so a failed run leaves no
@@ -8,6 +8,7 @@
 //! written by a thread of their own, in order ([`background`]).
 
 pub mod background;
+pub mod damping;
 pub mod events;
 pub mod joints;
 pub mod peaks;
@@ -128,6 +129,13 @@ impl Writer {
         self.write("joints.csv", &joints::joints_csv(model, result))?;
         self.write("cycles.csv", &joints::cycles_csv(model, &cycles))?;
         joints::hysteresis(model, result, &cycles, &self.tmp_dir)?;
+        let sweeps = damping::sweeps(&cycles);
+        self.write(
+            "damping.csv",
+            &damping::damping_csv(model, &cycles, &sweeps),
+        )?;
+        damping::figure(model, &cycles, &sweeps, &self.tmp_dir)?;
+        self.write("backbone.csv", &damping::backbone_csv(model, result))?;
         if !model.sections.is_empty() {
             self.write("pretension.csv", &pretension_csv(model, result))?;
         }
@@ -497,7 +505,9 @@ pub fn summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
             "full revolution: forces, areas and kN are for the whole body of revolution (2π r)"
         );
     }
-    s["joints"] = joints::summary(model, r, &joints::run_cycles(model, r));
+    let cycles = joints::run_cycles(model, r);
+    s["joints"] = joints::summary(model, r, &cycles);
+    s["damping"] = damping::summary(model, &damping::sweeps(&cycles));
     if !model.sections.is_empty() {
         s["pretension"] = pretension_summary(model, r);
     }

@@ -120,8 +120,28 @@ fn a_run_writes_joint_rows_matching_its_summary_and_no_figure_without_a_cycle() 
     // no histories: no cycle, no figure
     assert_eq!(read(&dir.join("cycles.csv")), out::CYCLES_HEADER);
     assert_eq!(j["cycles"], serde_json::json!([]));
-    for f in ["hysteresis.svg", "hysteresis.png", "hysteresis.csv"] {
+    assert_eq!(
+        read(&dir.join("damping.csv")),
+        asperity::output::damping::DAMPING_HEADER
+    );
+    assert!(s["damping"][0]["exponent"].is_null(), "{s}");
+    for f in [
+        "hysteresis.svg",
+        "hysteresis.png",
+        "hysteresis.csv",
+        "damping.svg",
+        "damping.png",
+    ] {
         assert!(!dir.join(f).exists(), "{f} written without a cycle");
+    }
+    // the backbone: the rows up to the first drop of |F_T| (the punch's
+    // drag falls once it yields), the last row where it does not drop
+    let f: Vec<f64> = rows.iter().map(|r| r.2[1].abs()).collect();
+    let end = (0..3).find(|&k| f[k + 1] < f[k]).unwrap_or(3);
+    let backbone = read(&dir.join("backbone.csv"));
+    assert_eq!(backbone.lines().count(), 1 + end + 1, "{backbone}");
+    for (b, r) in backbone.lines().skip(1).zip(&rows) {
+        assert!(b.starts_with(&format!("contact,{},", r.0)), "{b}");
     }
 }
 
@@ -276,5 +296,165 @@ fn a_restart_carries_the_joint_energies_and_an_older_file_still_resumes() {
     assert!(
         common::rel(a[5].2[9] - d_then, b[2].2[9]) < 1e-9,
         "D after the restart"
+    );
+}
+
+/// A CSV file's header and rows.
+fn table(p: &Path) -> (Vec<String>, Vec<Vec<String>>) {
+    let text = read(p);
+    let mut lines = text.lines();
+    let head = lines.next().unwrap().split(',').map(String::from).collect();
+    (
+        head,
+        lines
+            .map(|l| l.split(',').map(String::from).collect())
+            .collect(),
+    )
+}
+
+/// Column `name` as numbers (an empty field as NaN).
+fn numbers(t: &(Vec<String>, Vec<Vec<String>>), name: &str) -> Vec<f64> {
+    let k =
+        t.0.iter()
+            .position(|h| h == name)
+            .unwrap_or_else(|| panic!("{name}"));
+    t.1.iter()
+        .map(|r| r[k].parse().unwrap_or(f64::NAN))
+        .collect()
+}
+
+/// The damping.csv flags `name` (`true` / `false`) and the sweep's rows.
+fn flags(d: &(Vec<String>, Vec<Vec<String>>), name: &str) -> Vec<bool> {
+    let k = d.0.iter().position(|h| h == name).unwrap();
+    d.1.iter().map(|r| r[k].parse().unwrap()).collect()
+}
+
+#[test]
+fn the_slideway_sweep_fits_its_three_rising_amplitudes() {
+    // cases/slideway-cycles: one cycle 0 → +a → −a → 0 at each of a = 0.3,
+    // 0.6, 0.95 of μ p (shear traction 3 MPa on 60 mm): three blocks of one
+    let dir = common::scratch("joints-sweep-slideway");
+    run(&common::root().join("cases/slideway-cycles"), &dir, &[]);
+    let d = table(&dir.join("damping.csv"));
+    assert_eq!(
+        d.0.join(",") + "\n",
+        asperity::output::damping::DAMPING_HEADER
+    );
+    assert_eq!(numbers(&d, "block"), [1.0, 2.0, 3.0]);
+    for name in ["first_in_block", "last_in_block", "in_fit"] {
+        assert_eq!(flags(&d, name), [true; 3], "{name}");
+    }
+    // equilibrium under force control: F_a = a · 3 MPa · 60 mm
+    let f_a = numbers(&d, "force_amplitude_n");
+    for (f, want) in f_a.iter().zip([54.0, 108.0, 171.0]) {
+        assert!(common::rel(*f, want) < 1e-6, "F_a {f} vs {want}");
+    }
+    let (diss, u, eta) = (
+        numbers(&d, "dissipation_nmm"),
+        numbers(&d, "stored_energy_nmm"),
+        numbers(&d, "loss_factor"),
+    );
+    for k in 0..3 {
+        let def = diss[k] / (2.0 * std::f64::consts::PI * u[k]);
+        assert!(common::rel(eta[k], def) < 1e-8, "η {} vs {def}", eta[k]);
+    }
+    // the fit: least squares of ln D on ln F_a over the three cycles
+    let pts: Vec<(f64, f64)> = (0..3).map(|k| (f_a[k].ln(), diss[k].ln())).collect();
+    let xm = pts.iter().map(|p| p.0).sum::<f64>() / 3.0;
+    let ym = pts.iter().map(|p| p.1).sum::<f64>() / 3.0;
+    let q = pts.iter().map(|p| (p.0 - xm) * (p.1 - ym)).sum::<f64>()
+        / pts.iter().map(|p| (p.0 - xm).powi(2)).sum::<f64>();
+    let ln_c = ym - q * xm;
+    let r2 = 1.0
+        - pts
+            .iter()
+            .map(|p| (p.1 - ln_c - q * p.0).powi(2))
+            .sum::<f64>()
+            / pts.iter().map(|p| (p.1 - ym).powi(2)).sum::<f64>();
+    let fit = &summary(&dir)["damping"][0];
+    eprintln!(
+        "slideway sweep: F_a {f_a:?} N, D {diss:?} N·mm, η {eta:?}; q = {q:.4}, \
+         C = {:.4e}, R² = {r2:.6}",
+        ln_c.exp()
+    );
+    assert_eq!(fit["interface"], "way");
+    assert_eq!(
+        (fit["cycles"].as_u64(), fit["blocks"].as_u64()),
+        (Some(3), Some(3))
+    );
+    assert_eq!(fit["cycles_used"], 3);
+    assert!(
+        (fit["exponent"].as_f64().unwrap() - q).abs() < 1e-7,
+        "{fit}"
+    );
+    assert!(common::rel(fit["coefficient"].as_f64().unwrap(), ln_c.exp()) < 1e-6);
+    assert!(
+        (fit["r_squared"].as_f64().unwrap() - r2).abs() < 1e-7,
+        "{fit}"
+    );
+    // the micro-slip zones grow with the force: D grows faster than F_a
+    assert!(q > 1.0, "q = {q}");
+    // the backbone: joints.csv's rows up to the first tip (t = 2, F_T = 54 N)
+    let b = table(&dir.join("backbone.csv"));
+    let bt = numbers(&b, "time");
+    assert_eq!(*bt.last().unwrap(), 2.0);
+    let j = table(&dir.join("joints.csv"));
+    let before = numbers(&j, "time").iter().filter(|&&t| t <= 2.0).count();
+    assert_eq!(bt.len(), before);
+    assert!(common::rel(*numbers(&b, "tangential_force_n").last().unwrap(), 54.0) < 1e-6);
+    if asperity::study::plot::load_font() {
+        assert!(read(&dir.join("damping.svg")).contains("<svg"));
+        assert!(std::fs::metadata(dir.join("damping.png")).unwrap().len() > 1000);
+    }
+}
+
+#[test]
+fn repeated_cycles_below_the_cap_shake_down_and_stay_out_of_the_fit() {
+    // the slideway driven in blocks of two cycles at a = 0.3, 0.6, 0.9 of μ p
+    let text = read(&common::root().join("cases/slideway-cycles/case.toml"));
+    let (from, to) = (
+        text.find("drive = [").unwrap(),
+        text.find("[interface.way]").unwrap(),
+    );
+    let mut drive = String::from("drive = [[1.0, 0.0]");
+    let mut t = 1.0;
+    for a in [0.3, 0.3, 0.6, 0.6, 0.9, 0.9] {
+        for v in [a, -a, 0.0] {
+            t += 1.0;
+            drive += &format!(", [{t:.1}, {v}]");
+        }
+    }
+    let text = format!(
+        "{}{drive}]\n\n{}[output]\nvtu = false\n",
+        &text[..from],
+        &text[to..]
+    );
+    let case = common::case_dir("joints-sweep-blocks", &text);
+    let dir = case.parent().unwrap().join("out");
+    run(case.parent().unwrap(), &dir, &[]);
+    let d = table(&dir.join("damping.csv"));
+    assert_eq!(numbers(&d, "block"), [1.0, 1.0, 2.0, 2.0, 3.0, 3.0]);
+    let alt = [true, false, true, false, true, false];
+    assert_eq!(flags(&d, "first_in_block"), alt);
+    assert_eq!(flags(&d, "last_in_block"), alt.map(|b| !b));
+    let diss = numbers(&d, "dissipation_nmm");
+    eprintln!("blocks of two: D {diss:?} N·mm");
+    // the memory of section 2.2: below the cap the repeat is elastic (D at
+    // round-off, < 1e-6 of the largest); at 0.9 μ p the ends slide (macro-
+    // slip is not hardened) and the repeat still dissipates, less than the first
+    let top = diss.iter().cloned().fold(0.0, f64::max);
+    assert!(diss[1] < 1e-6 * top && diss[3] < 1e-6 * top, "{diss:?}");
+    assert!(diss[5] > 1e-6 * top && diss[5] < diss[4], "{diss:?}");
+    // the steady values: one amplitude dissipates, no fit
+    assert_eq!(flags(&d, "in_fit"), [false; 6]);
+    let fit = &summary(&dir)["damping"][0];
+    assert_eq!(
+        (fit["cycles"].as_u64(), fit["blocks"].as_u64()),
+        (Some(6), Some(3))
+    );
+    assert_eq!(fit["cycles_used"], 0);
+    assert!(
+        fit["exponent"].is_null() && fit["r_squared"].is_null(),
+        "{fit}"
     );
 }

@@ -166,6 +166,7 @@ fn summary_json_matches_the_documented_schema() {
             secant_stiffness: Some(1e4),
             force_range: [-30.0, 30.0],
             slip_range: [-0.01, 0.01],
+            tip_slip: [-0.008, 0.01],
         },
     );
     // probes of both kinds, interface events with histories and reactions
@@ -182,6 +183,22 @@ fn summary_json_matches_the_documented_schema() {
     assert!(with.get("pretension").is_none(), "{with}");
     let mut with_cycle = with.clone();
     with_cycle["joints"][0]["cycles"] = Value::Array(vec![cycle]);
+    // a fitted sweep (src/output/damping.rs writes it the same way)
+    let sweep_of = |f: f64, d: f64| asperity::interface::joint::Cycle {
+        start_increment: 1,
+        end_increment: 2,
+        start_time: 1.0,
+        end_time: 2.0,
+        dissipation: d,
+        work: d,
+        secant_stiffness: Some(1e4),
+        force_range: [-f, f],
+        slip_range: [-f / 1e4, f / 1e4],
+        tip_slip: [-f / 1e4, f / 1e4],
+    };
+    let sweep = asperity::output::damping::sweep(&[sweep_of(10.0, 0.1), sweep_of(20.0, 0.6)]);
+    assert!(sweep.fit.is_some());
+    with_cycle["damping"][0] = asperity::output::damping::fit_json("contact", &sweep);
     for s in [&with_cycle, &without, &gap, &axi, &tab, &stack, &bolt] {
         let mut l = Vec::new();
         leaves("", s, &mut l);
@@ -214,4 +231,39 @@ fn summary_json_matches_the_documented_schema() {
         assert!(last <= s["peak_memory_mb"].as_f64().unwrap(), "{s}");
     }
     assert!(errors.is_empty(), "{}", errors.join("\n"));
+}
+
+/// The columns a CSV section of docs/output.md lists: the backquoted text
+/// before the first `:` after its `## \`NAME\`` heading.
+fn documented_columns(doc: &str, name: &str) -> Vec<String> {
+    let section = doc
+        .split(&format!("\n## `{name}`\n"))
+        .nth(1)
+        .unwrap_or_else(|| panic!("no section for {name}"));
+    let list = section.split("`:").next().unwrap();
+    let list = &list[list.find('`').unwrap() + 1..];
+    list.split(',').map(|c| c.trim().to_string()).collect()
+}
+
+#[test]
+fn the_joint_csv_files_have_the_documented_columns() {
+    use asperity::output::{damping, joints};
+    let doc = std::fs::read_to_string(common::root().join("docs/output.md")).unwrap();
+    for (name, header) in [
+        ("joints.csv", joints::JOINTS_HEADER),
+        ("cycles.csv", joints::CYCLES_HEADER),
+        ("damping.csv", damping::DAMPING_HEADER),
+        ("backbone.csv", damping::BACKBONE_HEADER),
+    ] {
+        let written: Vec<&str> = header.trim_end().split(',').collect();
+        assert_eq!(documented_columns(&doc, name), written, "{name}");
+        // and the file table lists it
+        assert!(
+            doc.contains(&format!("| `{name}` |")),
+            "{name} not in the table"
+        );
+    }
+    for f in ["damping.svg", "damping.png"] {
+        assert!(doc.contains(&format!("`{f}`")), "{f} not documented");
+    }
 }

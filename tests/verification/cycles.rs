@@ -6,6 +6,9 @@
 //!   closed cycle's dissipation in cycles.csv and summary.json to 1e-6, and
 //!   the elastic-perfectly-plastic loop's closed form within the bound of
 //!   the step size; the cycle's secant stiffness is the tip-to-tip slope;
+//!   its stored energy ½ F_s a and loss factor 4 (a − u_s) / (π a) of the
+//!   closed form; damping.csv has cycles.csv's numbers; backbone.csv is
+//!   joints.csv up to the first tip;
 //! * section 2.2's memory: unloading and reloading below the earlier maximum
 //!   adds no slip and no dissipation, the reload is elastic (slope k_T^e ×
 //!   area), and a reload beyond the earlier maximum slips again exactly there;
@@ -15,6 +18,8 @@
 //!   dissipates no more than the first.
 
 use crate::common;
+
+mod damping;
 use asperity::interface::joint::{self, JointMeasures};
 use asperity::model::Model;
 use asperity::solve::{Increment, Observer, RunResult, State};
@@ -229,6 +234,10 @@ fn the_loop_area_of_identical_springs_is_the_reported_dissipation() {
         assert!(common::rel(secant, f_s / a) < 1e-8, "{secant} vs F_s/a");
         assert!(common::rel(s["secant_stiffness_n_per_mm"].as_f64().unwrap(), secant) < 1e-8);
     }
+    let epp = damping::Epp { f_s, a, u_s, bound };
+    damping::loss_factor_of_the_epp_loop(&out, &epp, &summary);
+    damping::damping_csv_is_cycles_csv_in_blocks(&out, &summary);
+    damping::backbone_is_the_first_loading(&out, 2.0);
 }
 
 struct Quiet;

@@ -216,6 +216,59 @@ fn a_cycle_reports_its_dissipation_stiffness_and_ranges() {
 }
 
 #[test]
+fn a_parallelogram_loop_has_the_closed_form_stored_energy_and_loss_factor() {
+    // from the tip (d, f) around the loop and back; stick slope k, slip at ±f
+    let (k, f, d) = (5000.0, 40.0, 0.02);
+    let pts = [
+        (d, f),
+        (d - f / k, 0.0),
+        (d - 2.0 * f / k, -f),
+        (0.0, -f),
+        (-d, -f),
+        (-d + 2.0 * f / k, f),
+        (0.0, f),
+        (d, f),
+    ];
+    // D accumulated as the trapezoid of F dū (a spring's loop: D = W)
+    let mut diss = 0.0;
+    let rows: Vec<(f64, JointMeasures)> = pts
+        .iter()
+        .enumerate()
+        .map(|(i, &(u, force))| {
+            if i > 0 {
+                let (u0, f0) = pts[i - 1];
+                diss += 0.5 * (f0 + force) * (u - u0);
+            }
+            let jm = JointMeasures {
+                tangential_force: force,
+                mean_slip: u,
+                dissipation: diss,
+                work: diss,
+                ..JointMeasures::default()
+            };
+            (i as f64, jm)
+        })
+        .collect();
+    let c = cycle_of(&rows, (0, pts.len() - 1));
+    // the parallelogram's area 4 f (d − f/k) = 4 · 40 · 0.012 = 1.92 N·mm
+    assert!((c.dissipation - 1.92).abs() < 1e-12, "{c:?}");
+    // tips (−d, −f) and (d, f): F_a = f, u_a = d, U = ½ f d = 0.4 N·mm
+    assert_eq!(c.tip_slip, [-d, d]);
+    assert_eq!((c.force_amplitude(), c.slip_amplitude()), (f, d));
+    assert!((c.stored_energy() - 0.4).abs() < 1e-15, "{c:?}");
+    // η = D / (2π U) = 4 (d − f/k) / (π d) = 2.4 / π
+    let eta = c.loss_factor().unwrap();
+    assert!((eta - 2.4 / std::f64::consts::PI).abs() < 1e-12, "{eta}");
+    // no slip between the tips: no stored energy, no loss factor
+    let mut rigid = rows.clone();
+    for r in &mut rigid {
+        r.1.mean_slip = 0.0;
+    }
+    let c = cycle_of(&rigid, (0, pts.len() - 1));
+    assert_eq!((c.stored_energy(), c.loss_factor()), (0.0, None));
+}
+
+#[test]
 fn cycles_of_a_run_use_only_breakpoint_increments() {
     let times = [0.5, 1.0, 1.5, 2.0, 2.5, 3.0];
     let rows: Vec<Vec<JointMeasures>> = (0..times.len())
