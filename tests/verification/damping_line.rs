@@ -63,7 +63,7 @@ fn case(amps: &[f64], inc: usize, r: f64) -> String {
         }
     }
     let shear: Vec<String> = shear.iter().map(|(t, v)| format!("[{t}, {v}]")).collect();
-    let (nmid, nout, ny) = (64usize, 14usize, 20usize);
+    let (nmid, nout, ny) = (64usize, 14usize, 12usize);
     common::case()
         .plane("strain")
         .block(
@@ -74,7 +74,7 @@ fn case(amps: &[f64], inc: usize, r: f64) -> String {
             [ny],
         )
         .rx([1.0 / 12.0, 1.0, 12.0])
-        .ry([60.0])
+        .ry([150.0])
         .raw("bottom = { radius = 50.0, center = 0.0 }")
         .block(
             "lower",
@@ -84,7 +84,7 @@ fn case(amps: &[f64], inc: usize, r: f64) -> String {
             [ny],
         )
         .rx([1.0 / 12.0, 1.0, 12.0])
-        .ry([1.0 / 60.0])
+        .ry([1.0 / 150.0])
         .raw("top = { radius = 50.0, center = 0.0 }")
         .interface("contact", "upper", "lower")
         .with("matching", false)
