@@ -37,7 +37,7 @@ const INCREMENTS: usize = 8;
 /// R of k_T^e = p^S / R (S = 0): 2e4 MPa/µm.
 const R_T: f64 = 5.0e-5;
 
-/// 1/E* of two equal bodies, plane strain.
+/// E* of two equal bodies, plane strain: 1/E* = 2(1 − ν²)/E.
 fn e_star() -> f64 {
     E / (2.0 * (1.0 - NU * NU))
 }
