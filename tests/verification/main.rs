@@ -13,6 +13,7 @@ mod blocks;
 mod calibration;
 mod column;
 mod cycles;
+mod damping_line;
 mod events;
 mod factorization;
 mod friction;
