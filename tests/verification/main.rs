@@ -23,6 +23,7 @@ mod hertz;
 mod histories;
 mod joints;
 mod limit_load;
+mod memory;
 mod nonmatching;
 mod patch;
 mod pretension;

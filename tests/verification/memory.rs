@@ -1,0 +1,125 @@
+//! The kinematic (Masing) memory and the Iwan backbone through the whole
+//! program (issue 28, docs/theory.md "Slip memory"): a joint of identical
+//! springs (every node of both bodies prescribed, as in cycles.rs) cycled
+//! at a displacement amplitude a = x φ.
+//!
+//! * kinematic memory, Iwan density χ = −0.5: every cycle, the first
+//!   included, dissipates D = 4 k φ² (1+χ) x^{χ+3} / ((χ+2)(χ+3)) × L, the
+//!   loop's force amplitude is F_a = k φ (x − x^{χ+2}/(χ+2)) × L and its loss
+//!   factor D / (π F_a a);
+//! * the isotropic memory with the same backbone: the second cycle
+//!   dissipates less than the first (its limit grew), the kinematic one
+//!   the same.
+
+use crate::common;
+use std::path::Path;
+
+const C_N: f64 = 0.001;
+const M: f64 = 0.5;
+const R: f64 = 0.9;
+const S: f64 = 0.5;
+const MU: f64 = 0.2;
+const CHI: f64 = -0.5;
+/// Interface length (plane strain, thickness 1), mm.
+const L: f64 = 10.0;
+
+/// The joint of identical springs with an Iwan backbone and `memory`.
+fn uniform(memory: &str, d: f64, a: f64, increments: usize) -> String {
+    common::case()
+        .plane("strain")
+        .block("block", [0.0, L], [4], [0.0, 2.0], [1])
+        .block("base", [0.0, L], [4], [-2.0, 0.0], [1])
+        .interface("joint", "block", "base")
+        .material("block", 210000.0, 0.3)
+        .material("base", 210000.0, 0.3)
+        .law("joint", "power", C_N, M)
+        .weights("lumped")
+        .raw("[interface.joint.tangential]")
+        .with("r", R)
+        .with("s", S)
+        .with("mu", MU)
+        .with("memory", memory)
+        .with("backbone", "iwan")
+        .with("chi", CHI)
+        .histories(&[
+            ("preload", "[[0, 0], [1, 1]]"),
+            ("drag", "[[1, 0], [2, 1], [3, -1], [4, 1], [5, -1], [6, 1]]"),
+        ])
+        .fixed("base.all")
+        .uy("block.all", -d)
+        .history("preload")
+        .ux("block.all", a)
+        .history("drag")
+        .solver(&format!("increments = {increments}"))
+        .no_vtu()
+        .build()
+}
+
+/// Column `name` of a CSV file as numbers (empty fields NaN).
+fn column(path: &Path, name: &str) -> Vec<f64> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let k = head.iter().position(|h| *h == name).unwrap();
+    lines
+        .map(|l| l.split(',').nth(k).unwrap().parse().unwrap_or(f64::NAN))
+        .collect()
+}
+
+/// Runs the joint; cycles.csv's path.
+fn run(name: &str, memory: &str, d: f64, a: f64, increments: usize) -> std::path::PathBuf {
+    let case = common::case_dir(name, &uniform(memory, d, a, increments));
+    let dir = case.parent().unwrap();
+    let out = dir.join("out");
+    let (code, err) = common::run_asperity(&[
+        "run",
+        dir.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    out.join("cycles.csv")
+}
+
+#[test]
+fn masing_loops_of_an_iwan_joint_match_the_closed_form_every_cycle() {
+    let d = 0.01;
+    let p = (d / C_N).powf(1.0 / M); // 100 MPa
+    let k = 1000.0 * p.powf(S) / R;
+    let f1 = 1.0 - 1.0 / (CHI + 2.0);
+    let phi = MU * p / (k * f1);
+    let x = 0.5;
+    let a = x * phi;
+    let closed = L * 4.0 * k * phi * phi * (1.0 + CHI) * x.powf(CHI + 3.0)
+        / ((CHI + 2.0) * (CHI + 3.0));
+    let f_a = L * k * phi * (x - x.powf(CHI + 2.0) / (CHI + 2.0));
+    let eta = closed / (std::f64::consts::PI * f_a * a);
+
+    let cycles = run("memory-kinematic", "kinematic", d, a, 200);
+    let dis = column(&cycles, "dissipation_nmm");
+    let work = column(&cycles, "work_nmm");
+    let fa = column(&cycles, "force_amplitude_n");
+    let loss = column(&cycles, "loss_factor");
+    assert_eq!(dis.len(), 2, "two closed cycles");
+    for c in 0..2 {
+        eprintln!(
+            "cycle {}: D {:.6e} (closed form {closed:.6e}), F_a {:.6} N ({f_a:.6}), η {:.6} ({eta:.6})",
+            c + 1,
+            dis[c],
+            fa[c],
+            loss[c]
+        );
+        // the trapezoid rule over 200 steps a half-cycle
+        assert!(common::rel(dis[c], closed) < 1e-3, "cycle {c}: D");
+        assert!(common::rel(work[c], dis[c]) < 1e-9, "cycle {c}: W = D");
+        assert!(common::rel(fa[c], f_a) < 1e-9, "cycle {c}: F_a");
+        assert!(common::rel(loss[c], eta) < 1e-3, "cycle {c}: η");
+    }
+    assert!(common::rel(dis[0], dis[1]) < 1e-9, "steady from the first cycle");
+
+    let iso = run("memory-isotropic", "isotropic", d, a, 200);
+    let dis_iso = column(&iso, "dissipation_nmm");
+    eprintln!("isotropic: D {dis_iso:?}");
+    assert!(dis_iso[1] < (1.0 - 1e-3) * dis_iso[0], "the isotropic limit grew");
+}
