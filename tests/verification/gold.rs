@@ -78,8 +78,9 @@ const CHECKED: [&str; 14] = [
 /// The joint cases (issue 18) also check their `joints` array: per interface
 /// the final forces, approach, slip, status measures, dissipation and work,
 /// and every closed load cycle. The older cases keep the fields above only.
-const JOINT_CASES: [&str; 7] = [
+const JOINT_CASES: [&str; 8] = [
     "bolted-joint",
+    "slideway-damping",
     "shrink-fit",
     "slideway-cycles",
     "bolted-flange",
@@ -87,6 +88,9 @@ const JOINT_CASES: [&str; 7] = [
     "hertz-cylinder",
     "cattaneo-mindlin",
 ];
+
+/// The damping cases (issue 28) also check the amplitude sweep's fit.
+const DAMPING_CASES: [&str; 1] = ["slideway-damping"];
 
 /// The cases with `[[pretension]]` sections.
 const PRETENSION_CASES: [&str; 2] = ["bolted-flange", "bolted-joint"];
@@ -104,6 +108,9 @@ fn checked(case: &str) -> Vec<&'static str> {
         keys.push("pretension");
         keys.push("events");
     }
+    if DAMPING_CASES.contains(&case) {
+        keys.push("damping");
+    }
     keys
 }
 
@@ -118,7 +125,7 @@ struct Gold {
     prefix: Option<&'static str>,
 }
 
-const CASES: [Gold; 18] = [
+const CASES: [Gold; 19] = [
     Gold {
         case: "bolted-joint",
         args: &[],
@@ -176,6 +183,11 @@ const CASES: [Gold; 18] = [
     },
     Gold {
         case: "slideway-cycles",
+        args: &[],
+        prefix: None,
+    },
+    Gold {
+        case: "slideway-damping",
         args: &[],
         prefix: None,
     },
@@ -580,6 +592,11 @@ fn shrink_fit() {
 #[test]
 fn slideway_cycles() {
     check("slideway-cycles");
+}
+
+#[test]
+fn slideway_damping() {
+    check("slideway-damping");
 }
 
 #[test]
