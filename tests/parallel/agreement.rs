@@ -301,6 +301,14 @@ fn serial_petsc1_and_petsc2_agree_on_the_slideway_cycles() {
     compare("slideway-cycles", "1");
 }
 
+/// The slideway with a kinematic memory and an Iwan backbone (issue 28):
+/// every point's stretch function travels between ranks; the cycles, loss
+/// factors and the sweep's fit agree on both backends.
+#[test]
+fn serial_petsc1_and_petsc2_agree_on_the_slideway_damping() {
+    compare("slideway-damping", "1");
+}
+
 /// Curved contact across non-matching meshes (issue 19): node-to-segment
 /// springs couple a slave point to a master edge that another rank may own.
 #[test]
