@@ -12,6 +12,7 @@ mod axisymmetric;
 mod bad_inputs;
 mod calibrate;
 mod cli;
+mod damping;
 mod designer;
 mod figures;
 mod gmsh;

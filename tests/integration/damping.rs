@@ -1,0 +1,107 @@
+//! The kinematic slip memory across a restart (issue 28): a stopped
+//! `slideway-damping` run resumes to the uninterrupted run's joint, cycle and
+//! damping files, and a restart file whose memory is no stretch function,
+//! or that gives a memory to an interface without one, is refused.
+
+use crate::common;
+use std::path::{Path, PathBuf};
+
+/// The layout of one interface point in the `contact` section:
+/// u_p, κ, p_T, u_T, μ_F, then η₁ … η₁₀ and e₁ … e₁₀.
+const PACKED: usize = 25;
+
+fn case(name: &str) -> PathBuf {
+    common::root().join("cases").join(name)
+}
+
+fn run(case: &Path, out: &Path, extra: &[&str]) -> (i32, String) {
+    let (c, o) = (case.display().to_string(), out.display().to_string());
+    let mut args = vec!["run", &c, "--out", &o, "--quiet"];
+    args.extend_from_slice(extra);
+    common::run_asperity(&args)
+}
+
+fn read(dir: &Path, file: &str) -> String {
+    std::fs::read_to_string(dir.join(file)).unwrap_or_else(|e| panic!("{file}: {e}"))
+}
+
+#[test]
+fn a_stopped_damping_run_resumes_to_the_same_loops() {
+    let dir = common::scratch("damping-restart");
+    let slideway = case("slideway-damping");
+    let whole = dir.join("whole");
+    assert_eq!(run(&slideway, &whole, &[]).0, 0);
+    // stopped inside the first cycle at 50 %, where every point keeps a stretch function
+    let part = dir.join("part");
+    let (code, err) = run(&slideway, &part, &["--stop-after", "45"]);
+    assert_eq!(code, 3, "{err}");
+    let bin = std::fs::read(part.join("restart.bin")).unwrap();
+    let contact = common::Forge::parse(&bin).f64s("contact");
+    assert!(
+        contact.chunks(PACKED).any(|p| p[5] > 0.0 && p[5] < 1.0),
+        "a point with a breakpoint inside (0, 1)"
+    );
+    let resumed = dir.join("resumed");
+    let r = part.display().to_string();
+    let (code, err) = run(&slideway, &resumed, &["--restart", &r]);
+    assert_eq!(code, 0, "{err}");
+    for file in ["joints.csv", "cycles.csv", "damping.csv", "backbone.csv"] {
+        assert_eq!(read(&whole, file), read(&resumed, file), "{file}");
+    }
+}
+
+/// Resumes `case` from the stopped run in `good` with its `contact` point
+/// `point` edited; the refusal names the section and the point.
+fn refused(case: &Path, good: &Path, name: &str, point: usize, edit: &dyn Fn(&mut [f64]), needle: &str) {
+    let bin = std::fs::read(good.join("restart.bin")).unwrap();
+    let mut forge = common::Forge::parse(&bin);
+    let mut contact = forge.f64s("contact");
+    edit(&mut contact[point * PACKED..(point + 1) * PACKED]);
+    forge.set_f64s("contact", &contact);
+    let forged = good.parent().unwrap().join(name);
+    let _ = std::fs::remove_dir_all(&forged);
+    std::fs::create_dir_all(&forged).unwrap();
+    std::fs::write(forged.join("restart.bin"), forge.bytes()).unwrap();
+    let out = good.parent().unwrap().join(format!("{name}-out"));
+    let r = forged.display().to_string();
+    let (code, err) = run(case, &out, &["--restart", &r]);
+    assert_eq!(code, 2, "{name}: {err}");
+    assert_eq!(err.lines().count(), 1, "{name}: {err}");
+    assert!(
+        err.contains(&format!("section contact: interface point {}", point + 1)),
+        "{name}: {err}"
+    );
+    assert!(err.contains(needle), "{name}: {err}");
+    assert!(!out.exists(), "{name}: no output");
+}
+
+#[test]
+fn a_forged_slip_memory_is_refused() {
+    let dir = common::scratch("damping-forged");
+    let good = dir.join("good");
+    let slideway = case("slideway-damping");
+    let (code, err) = run(&slideway, &good, &["--stop-after", "45"]);
+    assert_eq!(code, 3, "{err}");
+    let stretch = "no stretch function";
+    refused(&slideway, &good, "eta-falling", 3, &|p| {
+        p[5] = 0.5;
+        p[6] = 0.25;
+        p[7] = 1.0;
+    }, stretch);
+    refused(&slideway, &good, "eta-beyond-one", 3, &|p| p[5] = 1.5, stretch);
+    refused(&slideway, &good, "no-end", 0, &|p| {
+        for k in 0..10 {
+            p[5 + k] = 0.05 * (k + 1) as f64;
+        }
+    }, stretch);
+    refused(&slideway, &good, "kappa-negative", 2, &|p| p[1] = -1e-3, "κ = -0.001");
+    // an isotropic interface (punch-friction-a) given a memory
+    let punch = case("punch-friction-a");
+    let iso = dir.join("iso");
+    let (code, err) = run(&punch, &iso, &["--stop-after", "2"]);
+    assert_eq!(code, 3, "{err}");
+    refused(&punch, &iso, "memory-in-isotropic", 1, &|p| {
+        p[5] = 1.0;
+        p[15] = 1e-4;
+    }, "a kinematic slip memory in an interface without one");
+}
