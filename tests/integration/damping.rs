@@ -52,7 +52,14 @@ fn a_stopped_damping_run_resumes_to_the_same_loops() {
 
 /// Resumes `case` from the stopped run in `good` with its `contact` point
 /// `point` edited; the refusal names the section and the point.
-fn refused(case: &Path, good: &Path, name: &str, point: usize, edit: &dyn Fn(&mut [f64]), needle: &str) {
+fn refused(
+    case: &Path,
+    good: &Path,
+    name: &str,
+    point: usize,
+    edit: &dyn Fn(&mut [f64]),
+    needle: &str,
+) {
     let bin = std::fs::read(good.join("restart.bin")).unwrap();
     let mut forge = common::Forge::parse(&bin);
     let mut contact = forge.f64s("contact");
@@ -83,25 +90,60 @@ fn a_forged_slip_memory_is_refused() {
     let (code, err) = run(&slideway, &good, &["--stop-after", "45"]);
     assert_eq!(code, 3, "{err}");
     let stretch = "no stretch function";
-    refused(&slideway, &good, "eta-falling", 3, &|p| {
-        p[5] = 0.5;
-        p[6] = 0.25;
-        p[7] = 1.0;
-    }, stretch);
-    refused(&slideway, &good, "eta-beyond-one", 3, &|p| p[5] = 1.5, stretch);
-    refused(&slideway, &good, "no-end", 0, &|p| {
-        for k in 0..10 {
-            p[5 + k] = 0.05 * (k + 1) as f64;
-        }
-    }, stretch);
-    refused(&slideway, &good, "kappa-negative", 2, &|p| p[1] = -1e-3, "κ = -0.001");
+    refused(
+        &slideway,
+        &good,
+        "eta-falling",
+        3,
+        &|p| {
+            p[5] = 0.5;
+            p[6] = 0.25;
+            p[7] = 1.0;
+        },
+        stretch,
+    );
+    refused(
+        &slideway,
+        &good,
+        "eta-beyond-one",
+        3,
+        &|p| p[5] = 1.5,
+        stretch,
+    );
+    refused(
+        &slideway,
+        &good,
+        "no-end",
+        0,
+        &|p| {
+            for k in 0..10 {
+                p[5 + k] = 0.05 * (k + 1) as f64;
+            }
+        },
+        stretch,
+    );
+    refused(
+        &slideway,
+        &good,
+        "kappa-negative",
+        2,
+        &|p| p[1] = -1e-3,
+        "κ = -1e-3 (≥ 0 expected)",
+    );
     // an isotropic interface (punch-friction-a) given a memory
     let punch = case("punch-friction-a");
     let iso = dir.join("iso");
     let (code, err) = run(&punch, &iso, &["--stop-after", "2"]);
     assert_eq!(code, 3, "{err}");
-    refused(&punch, &iso, "memory-in-isotropic", 1, &|p| {
-        p[5] = 1.0;
-        p[15] = 1e-4;
-    }, "a kinematic slip memory in an interface without one");
+    refused(
+        &punch,
+        &iso,
+        "memory-in-isotropic",
+        1,
+        &|p| {
+            p[5] = 1.0;
+            p[15] = 1e-4;
+        },
+        "a kinematic slip memory in an interface without one",
+    );
 }
