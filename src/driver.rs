@@ -451,17 +451,20 @@ pub fn check(case_path: &Path) -> Result<String> {
     for im in &model.interfaces {
         let t = crate::interface::joint::direction(im);
         s += &format!(
-            "  interface {}: {} pairs, {} points, area {:.4} mm², law {:?}; A = {}, B = {}, joint direction t = ({}, {})\n",
+            "  interface {}: {} pairs, {} points, area {:.4} mm², law {}; A = {}, B = {}, joint direction t = ({}, {})\n",
             im.name,
             im.pairs.len(),
             im.points.len(),
             im.area(),
-            im.law,
+            normal_text(&im.law),
             model.mesh.bodies[im.body_a],
             model.mesh.bodies[im.body_b],
             t[0],
             t[1]
         );
+        if let Some(law) = &im.tangential {
+            s += &format!("    friction: {}\n", tangential_text(law, im.scheme));
+        }
         // a non-matching interface: its coupling and the geometric gaps
         let gaps: Vec<f64> = im.points.iter().filter_map(|p| p.geometric_gap()).collect();
         if !gaps.is_empty() {
@@ -539,4 +542,52 @@ pub fn check(case_path: &Path) -> Result<String> {
         }
     }
     Ok(s)
+}
+
+/// The normal law as `check` prints it.
+fn normal_text(law: &crate::interface::NormalLaw) -> String {
+    use crate::interface::NormalLaw::*;
+    match law {
+        Power { c, m } => format!("power u_N = c_N p^m (c_N = {c}, m = {m})"),
+        Exponential { a, b } => {
+            format!("exponential p = a (e^(b u_N) - 1) (a = {a} MPa, b = {b} 1/mm)")
+        }
+        Linear { c, m, slope, p_c } => {
+            format!(
+                "power-linear (c_N = {c}, m = {m}, slope = {slope} MPa/mm beyond p_c = {p_c} MPa)"
+            )
+        }
+        Table(t) => format!(
+            "table of {} rows up to u_N = {} mm",
+            t.points().count(),
+            t.last().0
+        ),
+    }
+}
+
+/// The tangential law as `check` prints it: stiffness, backbone, memory.
+fn tangential_text(
+    law: &crate::interface::TangentialLaw,
+    scheme: crate::interface::FrictionScheme,
+) -> String {
+    use crate::interface::{Backbone, Memory};
+    let stiffness = match &law.k_table {
+        Some(t) => format!("k_T^e from a k_table of {} rows", t.points().count()),
+        None => format!("k_T^e = p^S/R (R = {}, S = {})", law.r, law.s),
+    };
+    let backbone = match law.backbone {
+        Backbone::Bilinear => format!(
+            "bilinear backbone (k_T^p/k_T^e = {}, yield ratio {}, beta = {}, n = {} 1/mm)",
+            law.kp_ratio, law.yield_ratio, law.beta, law.n
+        ),
+        Backbone::Iwan { chi, spike } => format!("Iwan backbone (chi = {chi}, spike = {spike})"),
+    };
+    let memory = match law.memory {
+        Memory::Isotropic => "isotropic memory (section 2.2)",
+        Memory::Kinematic => "kinematic memory (Masing)",
+    };
+    format!(
+        "mu = {}, {stiffness}, {backbone}, {memory}, {scheme:?}",
+        law.mu
+    )
 }

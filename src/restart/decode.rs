@@ -485,22 +485,30 @@ pub(super) fn restore_state(ck: &mut Checkpoint, s: &Sections, model: &Model) ->
         .interfaces
         .iter()
         .flat_map(|im| im.points.iter().map(move |_| im));
+    // 5 values per point before the kinematic memory existed (issue 28):
+    // such a file resumes with every memory empty, as its laws keep none
+    let width = match s.0.get("contact") {
+        Some(Data::F64(v)) if np > 0 && v.len() == OLD_CONTACT * np => OLD_CONTACT,
+        _ => ContactState::PACKED,
+    };
+    let mut full = [0.0; ContactState::PACKED];
     for (i, ((p, v), im)) in c
         .contact
         .iter_mut()
-        .zip(
-            s.finite("contact", Some(ContactState::PACKED * np))?
-                .chunks_exact(ContactState::PACKED),
-        )
+        .zip(s.finite("contact", Some(width * np))?.chunks_exact(width))
         .zip(laws)
         .enumerate()
     {
-        *p = ContactState::unpack(v);
+        full[..width].copy_from_slice(v);
+        *p = ContactState::unpack(&full);
         check_contact_point(im, i, p)?;
     }
     c.prescribed_reaction = s.finite("prescribed_reaction", Some(1))?[0];
     Ok(())
 }
+
+/// Values per interface point in the `contact` section of earlier builds.
+const OLD_CONTACT: usize = 5;
 
 /// A contact state a law can continue from: κ ≥ 0, and the kinematic
 /// memory's stretch function as it stores one (η rising to 1), its

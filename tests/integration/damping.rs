@@ -147,3 +147,36 @@ fn a_forged_slip_memory_is_refused() {
         "a kinematic slip memory in an interface without one",
     );
 }
+
+/// A restart file of a build before the kinematic memory (5 values per
+/// interface point in `contact`) resumes: every memory empty, as the
+/// isotropic laws of such a file keep none, to the uninterrupted run.
+#[test]
+fn a_restart_file_of_an_earlier_build_resumes() {
+    let dir = common::scratch("damping-earlier-build");
+    let punch = case("punch-friction-a");
+    let whole = dir.join("whole");
+    assert_eq!(run(&punch, &whole, &[]).0, 0);
+    let part = dir.join("part");
+    let (code, err) = run(&punch, &part, &["--stop-after", "2"]);
+    assert_eq!(code, 3, "{err}");
+    let bin = std::fs::read(part.join("restart.bin")).unwrap();
+    let mut forge = common::Forge::parse(&bin);
+    let contact = forge.f64s("contact");
+    assert!(contact
+        .chunks(PACKED)
+        .all(|p| p[5..].iter().all(|&x| x == 0.0)));
+    let old: Vec<f64> = contact
+        .chunks(PACKED)
+        .flat_map(|p| p[..5].to_vec())
+        .collect();
+    forge.set_f64s("contact", &old);
+    std::fs::write(part.join("restart.bin"), forge.bytes()).unwrap();
+    let resumed = dir.join("resumed");
+    let r = part.display().to_string();
+    let (code, err) = run(&punch, &resumed, &["--restart", &r]);
+    assert_eq!(code, 0, "{err}");
+    for file in ["curve.csv", "joints.csv"] {
+        assert_eq!(read(&whole, file), read(&resumed, file), "{file}");
+    }
+}
