@@ -586,8 +586,12 @@ fn tangential_text(
         Memory::Isotropic => "isotropic memory (section 2.2)",
         Memory::Kinematic => "kinematic memory (Masing)",
     };
+    let scheme = match scheme {
+        crate::interface::FrictionScheme::ReturnMapping => "return mapping",
+        crate::interface::FrictionScheme::StiffnessModification => "stiffness modification",
+    };
     format!(
-        "mu = {}, {stiffness}, {backbone}, {memory}, {scheme:?}",
+        "mu = {}, {stiffness}, {backbone}, {memory}, {scheme}",
         law.mu
     )
 }
