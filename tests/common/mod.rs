@@ -515,6 +515,25 @@ vtu_every = 1000
     )
 }
 
+/// Column `name` of a CSV file the program writes, as numbers (an empty
+/// field is NaN).
+pub fn csv_column(path: &std::path::Path, name: &str) -> Vec<f64> {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path:?}: {e}"));
+    let mut lines = text.lines();
+    let head: Vec<&str> = lines.next().unwrap_or_default().split(',').collect();
+    let k = head
+        .iter()
+        .position(|h| *h == name)
+        .unwrap_or_else(|| panic!("no column {name} in {head:?}"));
+    lines
+        .map(|l| match l.split(',').nth(k) {
+            Some("") => f64::NAN,
+            Some(v) => v.parse().unwrap_or_else(|e| panic!("{name} = {v:?}: {e}")),
+            None => panic!("{path:?}: a row without {name}: {l}"),
+        })
+        .collect()
+}
+
 /// Runs the built program: its exit code and its stderr.
 pub fn run_asperity(args: &[&str]) -> (i32, String) {
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_asperity"))

@@ -16,8 +16,6 @@
 //! cases/cattaneo-mindlin/README.md). D depends on P, μ and E* only.
 
 use crate::common;
-use std::path::Path;
-use std::process::Command;
 
 const E: f64 = 206_000.0;
 const NU: f64 = 0.3;
@@ -110,20 +108,6 @@ fn case(amps: &[f64], inc: usize, r: f64) -> String {
         .build()
 }
 
-/// Column `name` of a CSV file as numbers.
-fn column(path: &Path, name: &str) -> Vec<f64> {
-    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path:?}: {e}"));
-    let mut lines = text.lines();
-    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let k = head
-        .iter()
-        .position(|h| *h == name)
-        .unwrap_or_else(|| panic!("no column {name} in {head:?}"));
-    lines
-        .map(|l| l.split(',').nth(k).unwrap().parse().unwrap())
-        .collect()
-}
-
 #[test]
 fn a_line_contact_dissipates_per_cycle_what_mindlin_and_deresiewicz_say() {
     // Q*/(μP) about 0.1, 0.2, 0.4, 0.8 (the history's values), two cycles each
@@ -133,33 +117,28 @@ fn a_line_contact_dissipates_per_cycle_what_mindlin_and_deresiewicz_say() {
     let dir = path.parent().unwrap();
     let out = dir.join("out");
     let start = std::time::Instant::now();
-    let run = Command::new(env!("CARGO_BIN_EXE_asperity"))
-        .arg("run")
-        .arg(dir)
-        .arg("--out")
-        .arg(&out)
-        .arg("--quiet")
-        .output()
-        .unwrap();
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
+    let (code, err) = common::run_asperity(&[
+        "run",
+        dir.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(code, 0, "{err}");
     eprintln!("damping-line: run {:.1} s", start.elapsed().as_secs_f64());
 
     // the normal load, held by the platen while the shear cycles
-    let times = column(&out.join("joints.csv"), "time");
-    let normal = column(&out.join("joints.csv"), "normal_force_n");
+    let times = common::csv_column(&out.join("joints.csv"), "time");
+    let normal = common::csv_column(&out.join("joints.csv"), "normal_force_n");
     let p = *normal.last().unwrap();
     for (t, n) in times.iter().zip(&normal).filter(|(t, _)| **t >= 1.0) {
         assert!(common::rel(*n, p) < 1e-4, "t = {t}: P {n} vs {p}");
     }
     let cycles = out.join("cycles.csv");
-    let d = column(&cycles, "dissipation_nmm");
+    let d = common::csv_column(&cycles, "dissipation_nmm");
     let (f_lo, f_hi) = (
-        column(&cycles, "force_min_n"),
-        column(&cycles, "force_max_n"),
+        common::csv_column(&cycles, "force_min_n"),
+        common::csv_column(&cycles, "force_max_n"),
     );
     assert_eq!(d.len(), 2 * amps.len(), "two closed cycles per amplitude");
     let mut rows = Vec::new();

@@ -55,22 +55,8 @@ fn uniform(memory: &str, d: f64, a: f64, increments: usize) -> String {
         .build()
 }
 
-/// Column `name` of a CSV file as numbers (empty fields NaN).
-fn column(path: &Path, name: &str) -> Vec<f64> {
-    let text = std::fs::read_to_string(path).unwrap();
-    let mut lines = text.lines();
-    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let k = head.iter().position(|h| *h == name).unwrap();
-    lines
-        .map(|l| l.split(',').nth(k).unwrap().parse().unwrap_or(f64::NAN))
-        .collect()
-}
-
-/// Runs the joint; cycles.csv's path.
-fn run(name: &str, memory: &str, d: f64, a: f64, increments: usize) -> std::path::PathBuf {
-    let case = common::case_dir(name, &uniform(memory, d, a, increments));
-    let dir = case.parent().unwrap();
-    let out = dir.join("out");
+/// Runs the case folder `dir` into `out`; it must succeed.
+fn run_dir(dir: &Path, out: &Path) {
     let (code, err) = common::run_asperity(&[
         "run",
         dir.to_str().unwrap(),
@@ -79,6 +65,13 @@ fn run(name: &str, memory: &str, d: f64, a: f64, increments: usize) -> std::path
         "--quiet",
     ]);
     assert_eq!(code, 0, "{err}");
+}
+
+/// Runs the joint; cycles.csv's path.
+fn run(name: &str, memory: &str, d: f64, a: f64, increments: usize) -> std::path::PathBuf {
+    let case = common::case_dir(name, &uniform(memory, d, a, increments));
+    let out = case.parent().unwrap().join("out");
+    run_dir(case.parent().unwrap(), &out);
     out.join("cycles.csv")
 }
 
@@ -97,10 +90,10 @@ fn masing_loops_of_an_iwan_joint_match_the_closed_form_every_cycle() {
     let eta = closed / (std::f64::consts::PI * f_a * a);
 
     let cycles = run("memory-kinematic", "kinematic", d, a, 200);
-    let dis = column(&cycles, "dissipation_nmm");
-    let work = column(&cycles, "work_nmm");
-    let fa = column(&cycles, "force_amplitude_n");
-    let loss = column(&cycles, "loss_factor");
+    let dis = common::csv_column(&cycles, "dissipation_nmm");
+    let work = common::csv_column(&cycles, "work_nmm");
+    let fa = common::csv_column(&cycles, "force_amplitude_n");
+    let loss = common::csv_column(&cycles, "loss_factor");
     assert_eq!(dis.len(), 2, "two closed cycles");
     for c in 0..2 {
         eprintln!(
@@ -122,7 +115,7 @@ fn masing_loops_of_an_iwan_joint_match_the_closed_form_every_cycle() {
     );
 
     let iso = run("memory-isotropic", "isotropic", d, a, 200);
-    let dis_iso = column(&iso, "dissipation_nmm");
+    let dis_iso = common::csv_column(&iso, "dissipation_nmm");
     eprintln!("isotropic: D {dis_iso:?}");
     assert!(
         dis_iso[1] < (1.0 - 1e-3) * dis_iso[0],
@@ -140,15 +133,7 @@ fn masing_loops_of_an_iwan_joint_match_the_closed_form_every_cycle() {
 #[test]
 fn the_shipped_slideway_damping_follows_the_uniform_joint() {
     let out = common::scratch("memory-slideway").join("out");
-    let case = common::root().join("cases/slideway-damping");
-    let (code, err) = common::run_asperity(&[
-        "run",
-        case.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--quiet",
-    ]);
-    assert_eq!(code, 0, "{err}");
+    run_dir(&common::root().join("cases/slideway-damping"), &out);
     let (p, mu, len, r, s) = (20.0, 0.15, 60.0, 0.9, 0.5);
     let k = 1000.0 * f64::powf(p, s) / r;
     let q = CHI + 2.0;
@@ -170,8 +155,8 @@ fn the_shipped_slideway_damping_follows_the_uniform_joint() {
         len * 4.0 * k * phi * phi * (1.0 + CHI) * x.powf(CHI + 3.0) / (q * (CHI + 3.0))
     };
     let damping = out.join("damping.csv");
-    let fa = column(&damping, "force_amplitude_n");
-    let dis = column(&damping, "dissipation_nmm");
+    let fa = common::csv_column(&damping, "force_amplitude_n");
+    let dis = common::csv_column(&damping, "dissipation_nmm");
     let text = std::fs::read_to_string(&damping).unwrap();
     let head: Vec<&str> = text.lines().next().unwrap().split(',').collect();
     let kl = head.iter().position(|h| *h == "last_in_block").unwrap();
