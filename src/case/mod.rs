@@ -252,7 +252,7 @@ pub struct TangentialSpec {
     /// "bilinear" (the paper's two lines) or "iwan" (a density of slip thresholds).
     #[serde(default)]
     pub backbone: BackboneKind,
-    /// Iwan: the exponent χ of the threshold density, in (−1, 1] (0: uniform).
+    /// Iwan: the exponent χ of the threshold density, in [−0.99, 1] (0: uniform).
     pub chi: Option<f64>,
     /// Iwan: the fraction of the elements at the top threshold, in [0, 1).
     pub spike: Option<f64>,

@@ -372,6 +372,10 @@ pub struct Cycle {
     /// ū_T at the loop's tips, mm: at the increment of the smallest F_T and
     /// at that of the largest (the increments the secant stiffness uses).
     pub tip_slip: [f64; 2],
+    /// Energies at or below this are the solver's round-off, N·mm: 10⁻¹²
+    /// of the run's largest max |F_T| × (ū_T range) over every cycle of
+    /// every interface ([`cycles`] sets it; 0 for a cycle alone).
+    pub floor: f64,
 }
 
 impl Cycle {
@@ -397,9 +401,12 @@ impl Cycle {
     /// The loss factor η = D / (2π U) (Ungar & Kerwin 1962, J. Acoust. Soc.
     /// Am. 34, 954: the energy dissipated per cycle over 2π times the energy
     /// stored); None when U ≤ 0 (no loop: no force or no slip range).
+    /// Also None when D or U is round-off ([`Cycle::floor`]: an interface
+    /// that carries no shear has no loss factor, not a negative one).
     pub fn loss_factor(&self) -> Option<f64> {
         let u = self.stored_energy();
-        (u > 0.0).then(|| self.dissipation / (2.0 * std::f64::consts::PI * u))
+        (u > self.floor && u > 0.0 && self.dissipation.abs() > self.floor)
+            .then(|| self.dissipation / (2.0 * std::f64::consts::PI * u))
     }
 }
 
@@ -472,6 +479,7 @@ pub fn cycle_of(rows: &[(f64, JointMeasures)], (i, j): (usize, usize)) -> Cycle 
             slip.fold(f64::NEG_INFINITY, f64::max),
         ],
         tip_slip: [lo.mean_slip, hi.mean_slip],
+        floor: 0.0,
     }
 }
 
@@ -507,13 +515,21 @@ pub fn cycles(
         .map(|&t| at_breakpoint(t, breakpoints).then(|| values(t)))
         .collect();
     let windows = cycle_windows(&marks);
-    (0..interfaces)
+    let mut all: Vec<Vec<Cycle>> = (0..interfaces)
         .map(|k| {
             let rows: Vec<(f64, JointMeasures)> =
                 (0..n).map(|r| (times[r], joints[r][k])).collect();
             windows.iter().map(|&w| cycle_of(&rows, w)).collect()
         })
-        .collect()
+        .collect();
+    let scale = all.iter().flatten().fold(0.0f64, |m, c| {
+        let f = c.force_range[0].abs().max(c.force_range[1].abs());
+        m.max(f * (c.slip_range[1] - c.slip_range[0]))
+    });
+    for c in all.iter_mut().flatten() {
+        c.floor = 1e-12 * scale;
+    }
+    all
 }
 
 #[cfg(test)]

@@ -115,7 +115,7 @@ pub fn dissipating(cycles: &[Cycle]) -> Vec<bool> {
     let top = cycles.iter().fold(0.0f64, |m, c| m.max(c.dissipation));
     cycles
         .iter()
-        .map(|c| c.dissipation > DISSIPATES * top && c.force_amplitude() > 0.0)
+        .map(|c| c.dissipation > (DISSIPATES * top).max(c.floor) && c.force_amplitude() > 0.0)
         .collect()
 }
 

@@ -105,8 +105,12 @@ impl Extent {
     fn of(c: &Chart) -> Extent {
         let pts = c.series.iter().flat_map(|s| s.points.iter().copied());
         let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
-        for (x, y) in pts.chain(c.marks.iter().map(|m| (m.0, m.1))) {
+        let finite = |p: &(f64, f64)| p.0.is_finite() && p.1.is_finite();
+        for (x, y) in pts.chain(c.marks.iter().map(|m| (m.0, m.1))).filter(finite) {
             (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
+        }
+        if x0 > x1 {
+            (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
         }
         for (y, _) in &c.hlines {
             (y0, y1) = (y0.min(*y), y1.max(*y));
@@ -114,7 +118,18 @@ impl Extent {
         for (x, _) in &c.vlines {
             (x0, x1) = (x0.min(*x), x1.max(*x));
         }
-        let pad = |a: f64, b: f64| if b > a { 0.04 * (b - a) } else { 1.0 };
+        // a range narrower than 1e-6 of its magnitude (or none) gets a pad
+        // of 4 % of the magnitude: tick steps below the values' ulp never end
+        let pad = |a: f64, b: f64| {
+            let size = a.abs().max(b.abs());
+            if b > a && b - a > 1e-6 * size {
+                0.04 * (b - a)
+            } else if size > 0.0 && size.is_finite() {
+                0.04 * size
+            } else {
+                1.0
+            }
+        };
         Extent {
             x: (x0, x1),
             y: (y0, y1),

@@ -167,6 +167,7 @@ fn summary_json_matches_the_documented_schema() {
             force_range: [-30.0, 30.0],
             slip_range: [-0.01, 0.01],
             tip_slip: [-0.008, 0.01],
+            floor: 0.0,
         },
     );
     // probes of both kinds, interface events with histories and reactions
@@ -195,6 +196,7 @@ fn summary_json_matches_the_documented_schema() {
         force_range: [-f, f],
         slip_range: [-f / 1e4, f / 1e4],
         tip_slip: [-f / 1e4, f / 1e4],
+        floor: 0.0,
     };
     let sweep = asperity::output::damping::sweep(&[sweep_of(10.0, 0.1), sweep_of(20.0, 0.6)]);
     assert!(sweep.fit.is_some());

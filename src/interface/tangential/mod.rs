@@ -45,6 +45,10 @@ pub enum Memory {
     Kinematic,
 }
 
+/// The smallest Iwan exponent χ: at −0.99 the slip range φ is already 100
+/// times the elastic slip μ p_N / k_T^e.
+pub const CHI_MIN: f64 = -0.99;
+
 /// The first-loading curve p_T(u_T) at constant p_N.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub enum Backbone {
@@ -161,13 +165,17 @@ impl TangentialLaw {
     }
 
     /// The law with another memory and backbone. The Iwan backbone's χ in
-    /// (−1, 1] and spike in [0, 1); slip-hardening friction (β < 1) only
+    /// [−0.99, 1] and spike in [0, 1); slip-hardening friction (β < 1) only
     /// with the isotropic memory and the bilinear backbone, the case it
     /// was measured for (eq. 2.21).
     pub fn with_memory(mut self, memory: Memory, backbone: Backbone) -> Result<Self, String> {
         if let Backbone::Iwan { chi, spike } = backbone {
-            if !(chi.is_finite() && chi > -1.0 && chi <= 1.0) {
-                return Err(format!("chi = {chi} must be in (-1, 1]"));
+            // χ → −1 puts every threshold at zero: F(1) = (1+χ)/(2+χ) → 0 and
+            // the slip range φ = μ p_N / (k F(1)) grows without bound
+            if !(chi.is_finite() && (CHI_MIN..=1.0).contains(&chi)) {
+                return Err(format!(
+                    "chi = {chi} must be in [{CHI_MIN}, 1] (towards -1 every slip threshold goes to zero and the slip range φ = μ p_N / (k_T^e F(1)) without bound)"
+                ));
             }
             if !(spike.is_finite() && (0.0..1.0).contains(&spike)) {
                 return Err(format!("spike = {spike} must be in [0, 1)"));

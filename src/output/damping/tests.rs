@@ -13,6 +13,7 @@ fn cycle(f_a: f64, u_a: f64, d: f64) -> Cycle {
         force_range: [-f_a, f_a],
         slip_range: [-u_a, u_a],
         tip_slip: [-u_a, u_a],
+        floor: 0.0,
     }
 }
 
