@@ -503,7 +503,54 @@ pub(super) fn restore_state(ck: &mut Checkpoint, s: &Sections, model: &Model) ->
         *p = ContactState::unpack(&full);
         check_contact_point(im, i, p)?;
     }
+    check_contact_against_u(model, &c.u, ck.lambda, &c.contact)?;
     c.prescribed_reaction = s.finite("prescribed_reaction", Some(1))?[0];
+    Ok(())
+}
+
+/// The contact states against the committed displacements: each point's
+/// u_T as the displacements give it, and its shear p_T as its law gives it
+/// from its slip memory there (a converged state evaluated again: the same
+/// numbers, up to the solver's last correction). A forged shear or slip
+/// would otherwise enter the energies of every later increment.
+fn check_contact_against_u(
+    model: &Model,
+    u: &[f64],
+    lambda: f64,
+    contact: &[ContactState],
+) -> Decoded<()> {
+    let u_max = u.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let mut q = 0;
+    for im in &model.interfaces {
+        let gap = im.gap_at(lambda);
+        for pt in &im.points {
+            let st = &contact[q];
+            q += 1;
+            let at = || format!("section contact: interface point {q} ({})", im.name);
+            let (u_n, u_t) = im.point_kinematics_at(pt, u, gap);
+            if (st.u_t - u_t).abs() > 1e-6 * u_max + 1e-12 {
+                return Err(format!(
+                    "{}: u_T = {} mm, but the displacements (section u) give {} mm",
+                    at(),
+                    num(st.u_t),
+                    num(u_t)
+                ));
+            }
+            let (p_n, k_n) = im.law.pressure(u_n);
+            let (p_t, bound) = match &im.tangential {
+                Some(law) => (law.eval(p_n, k_n, u_t, &st.slip).p_t, law.mu * p_n.max(0.0)),
+                None => (0.0, 0.0),
+            };
+            if (st.p_t - p_t).abs() > 1e-3 * (p_t.abs() + bound) + 1e-9 {
+                return Err(format!(
+                    "{}: shear p_T = {} MPa, but its law gives {} MPa from its slip memory at the displacements of section u",
+                    at(),
+                    num(st.p_t),
+                    num(p_t)
+                ));
+            }
+        }
+    }
     Ok(())
 }
 
