@@ -428,6 +428,37 @@ mod tests {
         assert!(got > 3.0 && got < 6.0, "{got}");
     }
 
+    /// Ra on face a, Rz on face b: each face's σ and λc by its own
+    /// parameter (Rz 20 µm is λc 2.5 mm by ISO 4288 Table 2; read as Ra it
+    /// would be 8 mm), the pair's m0 the sum of the two σ².
+    #[test]
+    fn each_face_follows_its_own_parameter() {
+        let mut w = Vec::new();
+        let given = [
+            Given {
+                parameter: Parameter::Ra,
+                value: 0.4e-3,
+                key: "surface.a.ra".into(),
+            },
+            Given {
+                parameter: Parameter::Rz,
+                value: 20e-3,
+                key: "surface.b.rz".into(),
+            },
+        ];
+        let d = derive(&given, Overrides::default(), "s", &mut w).unwrap();
+        assert_eq!((d.faces[0].cutoff, d.faces[1].cutoff), (0.8, 2.5));
+        assert_eq!(d.faces[1].short_cutoff, 8e-3);
+        let a = sigma_from_ra(0.4e-3);
+        let b = 20e-3 / rz_over_sigma(&band_moments(1.0, HURST, 2.5, 8e-3), 2.5);
+        assert!((d.faces[0].sigma / a - 1.0).abs() < 1e-15);
+        assert!((d.faces[1].sigma / b - 1.0).abs() < 1e-14);
+        assert!((d.moments.m0 / (a * a + b * b) - 1.0).abs() < 1e-14);
+        assert_eq!(d.parameter(), "mixed");
+        assert_eq!(d.source(), "ra (face a) and rz (face b)");
+        assert_eq!(d.keys(), "surface.a.ra and surface.b.rz");
+    }
+
     #[test]
     fn two_faces_add_their_spectra() {
         let mut w = Vec::new();

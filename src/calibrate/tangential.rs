@@ -232,6 +232,75 @@ mod tests {
         }
     }
 
+    fn input(text: &str) -> Input {
+        toml::from_str(text).unwrap()
+    }
+
+    /// The memory and backbone keys: iwan drops kp_ratio, bilinear keeps its
+    /// default 1, and each refusal names its key.
+    #[test]
+    fn memory_and_backbone_keys_by_the_case_rules() {
+        let (a, b) = (steel(), steel());
+        let s = spec(
+            &input("mu = 0.15\nmemory = \"kinematic\"\nbackbone = \"iwan\"\nchi = -0.5\n"),
+            &a,
+            &b,
+            "s",
+        )
+        .unwrap();
+        assert_eq!(s.kp_ratio, None);
+        assert_eq!(s.memory, Memory::Kinematic);
+        assert_eq!(
+            s.backbone,
+            Backbone::Iwan {
+                chi: -0.5,
+                spike: 0.0
+            }
+        );
+        let s = spec(&input("mu = 0.15\nmemory = \"kinematic\"\n"), &a, &b, "s").unwrap();
+        assert_eq!((s.kp_ratio, s.backbone), (Some(1.0), Backbone::Bilinear));
+        for (text, key) in [
+            (
+                "backbone = \"iwan\"\nkp_ratio = 0.5\n",
+                "tangential.kp_ratio: `kp_ratio` belongs to the bilinear backbone",
+            ),
+            (
+                "chi = 0.5\n",
+                "tangential.chi: `chi` belongs to backbone = \"iwan\"",
+            ),
+            (
+                "backbone = \"bilinear\"\nspike = 0.1\n",
+                "tangential.spike: `spike` belongs",
+            ),
+            (
+                "backbone = \"iwan\"\nchi = -1.0\n",
+                "tangential.chi: chi = -1 must be in (-1, 1]",
+            ),
+            (
+                "backbone = \"iwan\"\nspike = 1.0\n",
+                "tangential.spike: spike = 1 must be in [0, 1)",
+            ),
+            (
+                "backbone = \"masing\"\n",
+                "tangential.backbone: unknown \"masing\" (bilinear | iwan)",
+            ),
+            (
+                "memory = \"Kinematic\"\n",
+                "tangential.memory: unknown \"Kinematic\"",
+            ),
+            (
+                "kp_ratio = -0.1\n",
+                "tangential.kp_ratio: must be in [0, 1], got -0.1",
+            ),
+        ] {
+            let e = spec(&input(&format!("mu = 0.15\n{text}")), &a, &b, "s").unwrap_err();
+            assert!(
+                e.to_string().starts_with(&format!("s: {key}")),
+                "{text}: {e}"
+            );
+        }
+    }
+
     #[test]
     fn g_star_of_two_steels_by_hand() {
         // G = 206000 / 2.6 = 79230.77 MPa; 1/G* = 2 × 1.7 / G
