@@ -375,7 +375,7 @@ fn roughness_faces(
         let Some(face) = face else {
             return Err(err(
                 &format!("surface.{name}"),
-                format!("missing: with a table per face give both faces, a = {{ ra = … }} and b = {{ rz = … }} (one rough face on a smooth one: surface.ra or surface.rz alone, one number)"),
+                "missing: with a table per face give both faces, a = { ra = … } and b = { rz = … } (one rough face on a smooth one: surface.ra or surface.rz alone, one number)".to_string(),
             ));
         };
         let (parameter, v) = match (&face.ra, &face.rz) {
