@@ -88,11 +88,16 @@ pub enum Surface {
         #[serde(default = "elastic")]
         asperities: String,
     },
-    /// Ra or Rz (mm) of the drawing, one number or [face a, face b], and an
-    /// assumed spectrum ([`roughness`]).
+    /// Ra or Rz (mm) of the drawing, one number or [face a, face b], or a
+    /// table per face (`a = { ra = … }`, `b = { rz = … }`), and an assumed
+    /// spectrum ([`roughness`]).
     Roughness {
         ra: Option<toml::Value>,
         rz: Option<toml::Value>,
+        /// The face of body a, with its own parameter.
+        a: Option<FaceInput>,
+        /// The face of body b.
+        b: Option<FaceInput>,
         /// H of the assumed spectrum (default 0.8, band 0.5-1 reported).
         hurst: Option<f64>,
         /// λc, mm (default ISO 4288 for the roughness).
@@ -102,6 +107,15 @@ pub enum Surface {
         #[serde(default = "elastic")]
         asperities: String,
     },
+}
+
+/// `surface.a` / `surface.b` of the roughness model: the face's Ra or its
+/// Rz (mm), exactly one.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FaceInput {
+    pub ra: Option<toml::Value>,
+    pub rz: Option<toml::Value>,
 }
 
 fn gaussian() -> String {
@@ -186,10 +200,14 @@ pub fn parse(text: &str, place: &str) -> Result<Input> {
                 format!(":{line}:{col}")
             })
             .unwrap_or_default();
-        Error::input(
-            format!("{place}{at}"),
-            e.message().trim().replace('\n', " "),
-        )
+        let mut message = e.message().trim().replace('\n', " ");
+        // a table written twice (`[surface.a]` twice): name it
+        if let (true, Some(s)) = (message == "duplicate key", e.span()) {
+            if let Some(key) = text.get(s).filter(|k| !k.is_empty() && k.len() <= 80) {
+                message = format!("duplicate key `{key}`: each key and table may be given once");
+            }
+        }
+        Error::input(format!("{place}{at}"), message)
     })
 }
 
@@ -233,7 +251,12 @@ pub struct Prepared {
 }
 
 /// The surface's values as the messages quote them.
-fn surface_values(input: &Input, gw: &Gw, profile_place: Option<&str>) -> String {
+fn surface_values(
+    input: &Input,
+    gw: &Gw,
+    profile_place: Option<&str>,
+    derived: Option<&roughness::Derived>,
+) -> String {
     let n = limits::num;
     let e_star = format!(
         "E* = {} MPa (materials.a, materials.b)",
@@ -246,12 +269,12 @@ fn surface_values(input: &Input, gw: &Gw, profile_place: Option<&str>) -> String
             limits::sig(gw.radius, 4),
             limits::sig(gw.sigma, 4)
         ),
-        (Surface::Roughness { ra, .. }, _) => format!(
-            "η = {} /mm², β = {} mm and σ_s = {} mm from surface.{} and the assumed spectrum, {e_star}",
+        (Surface::Roughness { .. }, _) => format!(
+            "η = {} /mm², β = {} mm and σ_s = {} mm from {} and the assumed spectrum, {e_star}",
             limits::sig(gw.density, 4),
             limits::sig(gw.radius, 4),
             limits::sig(gw.sigma, 4),
-            if ra.is_some() { "ra" } else { "rz" }
+            derived.map_or("surface.ra".into(), |d| d.keys())
         ),
         _ => format!(
             "surface.density = {} /mm², surface.radius = {} mm, surface.sigma = {} mm, {e_star}",
@@ -291,6 +314,96 @@ fn combined(warnings: &[Warning], place: &str, key: &str, message: String) -> Er
         ),
         None => Error::input(format!("{place}: {key}"), message),
     }
+}
+
+/// The faces of the roughness model: `ra` or `rz` (one number for the pair or
+/// [face a, face b]), or a table per face (`a = { ra = … }`, `b = { rz = … }`,
+/// each face its own parameter); never both forms for a face, never both
+/// parameters for one face.
+fn roughness_faces(
+    ra: &Option<toml::Value>,
+    rz: &Option<toml::Value>,
+    a: &Option<FaceInput>,
+    b: &Option<FaceInput>,
+    place: &str,
+) -> Result<Vec<roughness::Given>> {
+    use roughness::Parameter::{Ra, Rz};
+    let err = |key: &str, message: String| Error::input(format!("{place}: {key}"), message);
+    let per_face = "a drawing with Ra on one face and Rz on the other takes a table per face: a = { ra = 0.4e-3 } and b = { rz = 4e-3 }";
+    let pair = match (ra, rz) {
+        (Some(_), Some(_)) => {
+            return Err(err(
+                "surface.rz",
+                format!("surface.ra and surface.rz both give the same faces: give one of them (which one would hold?); {per_face}"),
+            ))
+        }
+        (Some(v), None) => Some((Ra, v)),
+        (None, Some(v)) => Some((Rz, v)),
+        (None, None) => None,
+    };
+    if let Some((parameter, v)) = pair {
+        let key = format!("surface.{}", parameter.key());
+        let values = roughness::values(v, place, &key)?;
+        if let Some((name, _)) = [("a", a), ("b", b)].into_iter().find(|(_, f)| f.is_some()) {
+            let which = if values.len() == 1 {
+                "as the pair's roughness".to_string()
+            } else {
+                format!("as {key} = [face a, face b]")
+            };
+            return Err(err(
+                &format!("surface.{name}"),
+                format!("face {name} is given twice, by {key} ({which}) and by surface.{name}: give the faces either by surface.ra or surface.rz, or by the tables a and b, not both"),
+            ));
+        }
+        return Ok(values
+            .into_iter()
+            .map(|value| roughness::Given {
+                parameter,
+                value,
+                key: key.clone(),
+            })
+            .collect());
+    }
+    if a.is_none() && b.is_none() {
+        return Err(err(
+            "surface.ra",
+            format!("missing: the roughness model needs surface.ra or surface.rz (mm); {per_face}"),
+        ));
+    }
+    let mut given = Vec::new();
+    for (name, face) in [("a", a), ("b", b)] {
+        let Some(face) = face else {
+            return Err(err(
+                &format!("surface.{name}"),
+                "missing: with a table per face give both faces, a = { ra = … } and b = { rz = … } (one rough face on a smooth one: surface.ra or surface.rz alone, one number)".to_string(),
+            ));
+        };
+        let (parameter, v) = match (&face.ra, &face.rz) {
+            (Some(_), Some(_)) => {
+                return Err(err(
+                    &format!("surface.{name}.rz"),
+                    format!("face {name} has both ra and rz: give the one its drawing states (which one would hold?); the other face may take the other parameter"),
+                ))
+            }
+            (Some(v), None) => (Ra, v),
+            (None, Some(v)) => (Rz, v),
+            (None, None) => {
+                return Err(err(
+                    &format!("surface.{name}"),
+                    format!("missing: face {name} needs its ra or its rz (mm), e.g. {name} = {{ ra = 0.4e-3 }}"),
+                ))
+            }
+        };
+        let key = format!("surface.{name}.{}", parameter.key());
+        let value =
+            roughness::number(v).ok_or_else(|| err(&key, "must be a number (mm)".to_string()))?;
+        given.push(roughness::Given {
+            parameter,
+            value,
+            key,
+        });
+    }
+    Ok(given)
 }
 
 /// Checks every value of the input against its range ([`limits`]), reads and
@@ -475,36 +588,22 @@ pub fn prepare(input: &Input, place: &str, base: &Path) -> Result<Prepared> {
         Surface::Roughness {
             ra,
             rz,
+            a,
+            b,
             hurst,
             cutoff,
             short_cutoff,
             asperities,
         } => {
-            let (parameter, given) =
-                match (ra, rz) {
-                    (Some(v), None) => (roughness::Parameter::Ra, v),
-                    (None, Some(v)) => (roughness::Parameter::Rz, v),
-                    (Some(_), Some(_)) => return Err(Error::input(
-                        format!("{place}: surface.rz"),
-                        "give one of surface.ra and surface.rz, not both (which one would hold?)",
-                    )),
-                    (None, None) => {
-                        return Err(Error::input(
-                            format!("{place}: surface.ra"),
-                            "missing: the roughness model needs surface.ra or surface.rz (mm)",
-                        ))
-                    }
-                };
-            let key = format!("surface.{}", parameter.key());
-            let values = roughness::values(given, place, &key)?;
+            let given = roughness_faces(ra, rz, a, b, place)?;
             let overrides = roughness::Overrides {
                 hurst: *hurst,
                 cutoff: *cutoff,
                 short_cutoff: *short_cutoff,
             };
-            let d = roughness::derive(parameter, &values, overrides, place, w)?;
-            let s = d.moments.summits(&format!("{place}: {key}"))?;
-            let hint = Some("are surface.ra / surface.rz in mm?");
+            let d = roughness::derive(&given, overrides, place, w)?;
+            let s = d.moments.summits(&format!("{place}: {}", d.keys()))?;
+            let hint = Some("are the Ra / Rz values in mm?");
             limits::SIGMA.check_hinted(place, "σ_s from the roughness", s.sigma, w, hint)?;
             limits::DENSITY.check_hinted(place, "η from the roughness", s.density, w, hint)?;
             limits::RADIUS.check_hinted(place, "β from the roughness", s.radius, w, hint)?;
@@ -520,7 +619,7 @@ pub fn prepare(input: &Input, place: &str, base: &Path) -> Result<Prepared> {
             (gw, None)
         }
     };
-    let values = || surface_values(input, &gw, profile_place.as_deref());
+    let values = || surface_values(input, &gw, profile_place.as_deref(), derived.as_ref());
     let sigma = gw.sigma;
     // the upper pressure: the curve runs to 2 hi, within DEEPEST σ of approach
     let deepest = gw.pressure(-DEEPEST * sigma);
@@ -675,7 +774,7 @@ pub fn calibrate(input: &Input, place: &str, base: &Path) -> Result<Calibration>
         Some(spec) => {
             let pressures: Vec<f64> = table.iter().map(|q| q.pressure).collect();
             let rows = tangential::k_table(&gw, spec.g_star, &pressures);
-            tangential::check(&rows, spec.mu, spec.kp_ratio, place)?;
+            tangential::check(&rows, &spec, place)?;
             Some((spec, rows))
         }
         None => None,
@@ -714,7 +813,7 @@ fn hurst_band(input: &Input, place: &str, base: &Path) -> Vec<BandEnd> {
             // k_T^e at lo and hi; 0 when no tangential law is asked for
             at.tangential.get_or_insert(tangential::Input {
                 mu: Some(1.0),
-                kp_ratio: None,
+                ..Default::default()
             });
             let result = calibrate(&at, place, base)
                 .map(|c| {

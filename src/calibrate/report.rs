@@ -3,7 +3,8 @@
 
 use super::fit::{self, Point};
 use super::gw::{Asperity, Distribution};
-use super::Calibration;
+use super::{limits, Calibration};
+use crate::interface::Backbone;
 use serde_json::json;
 use std::fmt::Write as _;
 
@@ -62,6 +63,10 @@ impl Calibration {
             "tangential": self.tangential.as_ref().map(|(t, rows)| json!({
                 "mu": t.mu,
                 "kp_ratio": t.kp_ratio,
+                "memory": t.given.memory,
+                "backbone": t.given.backbone,
+                "chi": t.given.chi,
+                "spike": t.given.spike,
                 "g_star_mpa": t.g_star,
                 "k_table": rows.iter().map(|&(p, k)| [p, k]).collect::<Vec<_>>(),
             })),
@@ -131,8 +136,12 @@ impl Calibration {
             return Vec::new();
         };
         let mut out = vec![format!(
-            "# ASSUMPTION: {} gives the rms height only; the spectrum is taken self-affine, H = {}{}, between λs and λc (docs/calibration.md, \"From Ra or Rz\")",
-            d.parameter.key(),
+            "# ASSUMPTION: {} the rms height only; the spectrum is taken self-affine, H = {}{}, between λs and λc (docs/calibration.md, \"From Ra or Rz\")",
+            if d.faces.len() > 1 && d.parameter() == "mixed" {
+                format!("{} give", d.source())
+            } else {
+                format!("{} gives", d.source())
+            },
             d.hurst,
             if d.hurst_given { " (surface.hurst)" } else { "" }
         )];
@@ -153,7 +162,9 @@ impl Calibration {
         out
     }
 
-    /// `[interface.calibrated_table.tangential]`: the k_table, μ and kp_ratio.
+    /// `[interface.calibrated_table.tangential]`: the k_table, kp_ratio (not
+    /// with the Iwan backbone) and μ, and memory, backbone, chi and spike when
+    /// the input gave them.
     fn tangential_toml(&self, s: &mut String) {
         let Some((t, rows)) = &self.tangential else {
             return;
@@ -163,22 +174,45 @@ impl Calibration {
             "\n# Mindlin-GW elastic shear stiffness k_T^e = η ∫ 8 G* √(β(z−d)) φ(z) dz (MPa/µm) at the\n# table's pressures, G* = {:.1} MPa; elastic summits without micro-slip; paste it\n# under the normal law you chose, as [interface.<name>.tangential]",
             t.g_star
         );
+        if matches!(t.backbone, Backbone::Iwan { .. }) {
+            let _ = writeln!(
+                s,
+                "# backbone = \"iwan\": k_T^e is the stiffness at zero shear, falling to 0 at μ p_N;\n# chi is not derived from the surface (default 0: dissipation ∝ amplitude^3)"
+            );
+        }
         let rows: Vec<String> = rows
             .iter()
             .map(|(p, k)| format!("  [{p:.9e}, {k:.9e}],"))
             .collect();
         let _ = writeln!(
             s,
-            "[interface.calibrated_table.tangential]\nk_table = [\n{}\n]\nkp_ratio = {}{}\nmu = {}",
-            rows.join("\n"),
-            super::limits::exact(t.kp_ratio),
-            if t.kp_ratio == 1.0 {
-                "    # elastic up to the friction cap: Mindlin-GW gives no micro-slip branch"
-            } else {
-                ""
-            },
-            super::limits::exact(t.mu)
+            "[interface.calibrated_table.tangential]\nk_table = [\n{}\n]",
+            rows.join("\n")
         );
+        if let Some(kp) = t.kp_ratio {
+            let _ = writeln!(
+                s,
+                "kp_ratio = {}{}",
+                limits::exact(kp),
+                if kp == 1.0 {
+                    "    # elastic up to the friction cap: Mindlin-GW gives no micro-slip branch"
+                } else {
+                    ""
+                }
+            );
+        }
+        let _ = writeln!(s, "mu = {}", limits::exact(t.mu));
+        let g = &t.given;
+        for (k, v) in [("memory", &g.memory), ("backbone", &g.backbone)] {
+            if let Some(v) = v {
+                let _ = writeln!(s, "{k} = \"{v}\"");
+            }
+        }
+        for (k, v) in [("chi", g.chi), ("spike", g.spike)] {
+            if let Some(v) = v {
+                let _ = writeln!(s, "{k} = {}", limits::exact(v));
+            }
+        }
     }
 
     /// fit.json's `roughness`: the faces, the assumption and the band.
@@ -189,7 +223,8 @@ impl Calibration {
             .iter()
             .map(|f| {
                 json!({
-                    d.parameter.key(): f.value,
+                    "key": f.key,
+                    f.parameter.key(): f.value,
                     "sigma_mm": f.sigma,
                     "cutoff_mm": f.cutoff,
                     "short_cutoff_mm": f.short_cutoff,
@@ -208,7 +243,7 @@ impl Calibration {
             .collect();
         let g = &self.gw;
         Some(json!({
-            "parameter": d.parameter.key(),
+            "parameter": d.parameter(),
             "hurst": d.hurst,
             "hurst_given": d.hurst_given,
             "faces": faces,
@@ -230,7 +265,7 @@ impl Calibration {
             .filter_map(|b| b.result.as_ref().ok())
             .collect();
         if let Some(d) = &self.roughness {
-            let _ = write!(s, " (from {}, assumed H = {})", d.parameter.key(), d.hurst);
+            let _ = write!(s, " (from {}, assumed H = {})", d.source(), d.hurst);
             if ends.len() == 2 {
                 let _ = write!(
                     s,

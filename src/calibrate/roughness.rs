@@ -166,9 +166,22 @@ pub fn rz_over_sigma(moments: &Moments, lr: f64) -> f64 {
     2.0 * (l + EULER_GAMMA / l)
 }
 
+/// One face's height parameter as the input gave it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Given {
+    pub parameter: Parameter,
+    /// mm.
+    pub value: f64,
+    /// The key that gave it (`surface.ra`, `surface.a.rz` …), for messages.
+    pub key: String,
+}
+
 /// One face as derived.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Face {
+    pub parameter: Parameter,
+    /// The key that gave it.
+    pub key: String,
     /// The Ra or Rz given, mm.
     pub value: f64,
     /// σ (= Rq) of the profile, mm.
@@ -184,7 +197,6 @@ pub struct Face {
 /// The surface as derived from the drawing's roughness.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Derived {
-    pub parameter: Parameter,
     pub hurst: f64,
     /// H was given (no band is computed then).
     pub hurst_given: bool,
@@ -193,14 +205,42 @@ pub struct Derived {
     pub moments: Moments,
 }
 
+impl Derived {
+    /// The parameter of every face ("ra", "rz"), or "mixed" (Ra on one
+    /// face, Rz on the other).
+    pub fn parameter(&self) -> &'static str {
+        match self.faces.iter().map(|f| f.parameter).collect::<Vec<_>>()[..] {
+            [p, ..] if self.faces.iter().all(|f| f.parameter == p) => p.key(),
+            _ => "mixed",
+        }
+    }
+
+    /// What the faces were given as, for messages: "ra", or for a mixed
+    /// input "ra (face a) and rz (face b)".
+    pub fn source(&self) -> String {
+        match self.parameter() {
+            "mixed" => self
+                .faces
+                .iter()
+                .zip(["a", "b"])
+                .map(|(f, n)| format!("{} (face {n})", f.parameter.key()))
+                .collect::<Vec<_>>()
+                .join(" and "),
+            p => p.to_string(),
+        }
+    }
+
+    /// The keys that gave the faces: "surface.ra", "surface.a.ra and surface.b.rz".
+    pub fn keys(&self) -> String {
+        let mut keys: Vec<&str> = self.faces.iter().map(|f| f.key.as_str()).collect();
+        keys.dedup();
+        keys.join(" and ")
+    }
+}
+
 /// The numbers of `ra` / `rz`: one (the pair's combined roughness, or one
 /// rough face against a smooth one) or two (face of body a, face of body b).
 pub fn values(v: &toml::Value, place: &str, key: &str) -> Result<Vec<f64>> {
-    let num = |v: &toml::Value| match v {
-        toml::Value::Float(f) => Some(*f),
-        toml::Value::Integer(i) => Some(*i as f64),
-        _ => None,
-    };
     let refuse = || {
         Error::input(
             format!("{place}: {key}"),
@@ -209,9 +249,18 @@ pub fn values(v: &toml::Value, place: &str, key: &str) -> Result<Vec<f64>> {
     };
     match v {
         toml::Value::Array(a) if (1..=2).contains(&a.len()) => {
-            a.iter().map(|x| num(x).ok_or_else(refuse)).collect()
+            a.iter().map(|x| number(x).ok_or_else(refuse)).collect()
         }
-        other => num(other).map(|x| vec![x]).ok_or_else(refuse),
+        other => number(other).map(|x| vec![x]).ok_or_else(refuse),
+    }
+}
+
+/// A TOML number as f64.
+pub fn number(v: &toml::Value) -> Option<f64> {
+    match v {
+        toml::Value::Float(f) => Some(*f),
+        toml::Value::Integer(i) => Some(*i as f64),
+        _ => None,
     }
 }
 
@@ -223,21 +272,15 @@ pub struct Overrides {
     pub short_cutoff: Option<f64>,
 }
 
-/// Checks the faces and the overrides and derives the pair's moments.
-pub fn derive(
-    parameter: Parameter,
-    given: &[f64],
-    o: Overrides,
-    place: &str,
-    w: &mut Vec<Warning>,
-) -> Result<Derived> {
-    let key = format!("surface.{}", parameter.key());
-    let limit = match parameter {
-        Parameter::Ra => &RA,
-        Parameter::Rz => &RZ,
-    };
-    for &v in given {
-        limit.check(place, &key, v, w)?;
+/// Checks the faces and the overrides and derives the pair's moments; each
+/// face's σ and default λc follow its own parameter.
+pub fn derive(given: &[Given], o: Overrides, place: &str, w: &mut Vec<Warning>) -> Result<Derived> {
+    for g in given {
+        let limit = match g.parameter {
+            Parameter::Ra => &RA,
+            Parameter::Rz => &RZ,
+        };
+        limit.check(place, &g.key, g.value, w)?;
     }
     if let Some(h) = o.hurst {
         HURST_LIMIT.check(place, "surface.hurst", h, w)?;
@@ -250,7 +293,8 @@ pub fn derive(
     }
     let hurst = o.hurst.unwrap_or(HURST);
     let mut faces = Vec::new();
-    for &value in given {
+    for g in given {
+        let (parameter, value) = (g.parameter, g.value);
         let lc = o.cutoff.unwrap_or_else(|| iso4288_cutoff(parameter, value));
         let ls = o.short_cutoff.unwrap_or_else(|| iso3274_short_cutoff(lc));
         if lc < MIN_BAND * ls {
@@ -276,6 +320,8 @@ pub fn derive(
             Parameter::Rz => value / k,
         };
         faces.push(Face {
+            parameter,
+            key: g.key.clone(),
             value,
             sigma,
             cutoff: lc,
@@ -291,7 +337,6 @@ pub fn derive(
         m4: sum(|m| m.m4),
     };
     Ok(Derived {
-        parameter,
         hurst,
         hurst_given: o.hurst.is_some(),
         faces,
@@ -383,11 +428,47 @@ mod tests {
         assert!(got > 3.0 && got < 6.0, "{got}");
     }
 
+    /// Ra on face a, Rz on face b: each face's σ and λc by its own
+    /// parameter (Rz 20 µm is λc 2.5 mm by ISO 4288 Table 2; read as Ra it
+    /// would be 8 mm), the pair's m0 the sum of the two σ².
+    #[test]
+    fn each_face_follows_its_own_parameter() {
+        let mut w = Vec::new();
+        let given = [
+            Given {
+                parameter: Parameter::Ra,
+                value: 0.4e-3,
+                key: "surface.a.ra".into(),
+            },
+            Given {
+                parameter: Parameter::Rz,
+                value: 20e-3,
+                key: "surface.b.rz".into(),
+            },
+        ];
+        let d = derive(&given, Overrides::default(), "s", &mut w).unwrap();
+        assert_eq!((d.faces[0].cutoff, d.faces[1].cutoff), (0.8, 2.5));
+        assert_eq!(d.faces[1].short_cutoff, 8e-3);
+        let a = sigma_from_ra(0.4e-3);
+        let b = 20e-3 / rz_over_sigma(&band_moments(1.0, HURST, 2.5, 8e-3), 2.5);
+        assert!((d.faces[0].sigma / a - 1.0).abs() < 1e-15);
+        assert!((d.faces[1].sigma / b - 1.0).abs() < 1e-14);
+        assert!((d.moments.m0 / (a * a + b * b) - 1.0).abs() < 1e-14);
+        assert_eq!(d.parameter(), "mixed");
+        assert_eq!(d.source(), "ra (face a) and rz (face b)");
+        assert_eq!(d.keys(), "surface.a.ra and surface.b.rz");
+    }
+
     #[test]
     fn two_faces_add_their_spectra() {
         let mut w = Vec::new();
         let o = Overrides::default();
-        let d = derive(Parameter::Ra, &[0.8e-3, 3.2e-3], o, "s", &mut w).unwrap();
+        let ra = |value: f64| Given {
+            parameter: Parameter::Ra,
+            value,
+            key: "surface.ra".into(),
+        };
+        let d = derive(&[ra(0.8e-3), ra(3.2e-3)], o, "s", &mut w).unwrap();
         let (a, b) = (sigma_from_ra(0.8e-3), sigma_from_ra(3.2e-3));
         assert!((d.moments.m0 / (a * a + b * b) - 1.0).abs() < 1e-14);
         // each face its own ISO cutoff
@@ -397,7 +478,7 @@ mod tests {
             short_cutoff: Some(0.1),
             ..o
         };
-        let e = derive(Parameter::Ra, &[0.8e-3], o, "s", &mut w).unwrap_err();
+        let e = derive(&[ra(0.8e-3)], o, "s", &mut w).unwrap_err();
         assert!(
             e.to_string()
                 .starts_with("s: surface.short_cutoff: λc = 0.8 mm"),

@@ -19,59 +19,137 @@
 
 use super::gw::{Asperity, Gw};
 use super::Body;
+use crate::case::BackboneKind;
 use crate::error::{Error, Result};
+use crate::interface::{Backbone, Memory, TangentialLaw};
 
 /// `[tangential]` of the calibration input: present = the tangential law is
 /// wanted.
-#[derive(Clone, Debug, serde::Deserialize)]
+#[derive(Clone, Debug, Default, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Input {
     /// μ_m, the friction coefficient of the case's law (required).
     pub mu: Option<f64>,
-    /// k_T^p / k_T^e in [0, 1], default 1 (no micro-slip branch).
+    /// k_T^p / k_T^e in [0, 1], default 1 (no micro-slip branch); the
+    /// bilinear backbone only.
     pub kp_ratio: Option<f64>,
+    /// "isotropic" | "kinematic", written into the snippet when given.
+    pub memory: Option<String>,
+    /// "bilinear" | "iwan", written into the snippet when given.
+    pub backbone: Option<String>,
+    /// Iwan: χ in (−1, 1] and the spike in [0, 1), written when given.
+    pub chi: Option<f64>,
+    pub spike: Option<f64>,
 }
 
 /// The tangential request, checked.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Spec {
     pub mu: f64,
-    pub kp_ratio: f64,
+    /// k_T^p / k_T^e: None with the Iwan backbone (the case refuses it there).
+    pub kp_ratio: Option<f64>,
+    /// The memory and the backbone the law is checked with; `given` holds
+    /// the keys written into the snippet (memory, backbone, chi, spike as
+    /// the input had them).
+    pub memory: Memory,
+    pub backbone: Backbone,
+    pub given: Given,
     /// G*, MPa.
     pub g_star: f64,
 }
 
+/// The optional keys of the tangential law as the input gave them.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Given {
+    pub memory: Option<String>,
+    pub backbone: Option<String>,
+    pub chi: Option<f64>,
+    pub spike: Option<f64>,
+}
+
 /// Checks `[tangential]`: μ given, positive and within the case file's range
-/// of a friction coefficient; kp_ratio in [0, 1].
+/// of a friction coefficient; kp_ratio in [0, 1]; memory and backbone known,
+/// their keys by the case file's rules ([`crate::case::backbone_keys`]) and
+/// their values by [`TangentialLaw::with_memory`].
 pub fn spec(t: &Input, a: &Body, b: &Body, place: &str) -> Result<Spec> {
+    let at = |k: &str| format!("{place}: tangential.{k}");
     let mu = t.mu.ok_or_else(|| {
         Error::input(
-            format!("{place}: tangential.mu"),
+            at("mu"),
             "missing: the friction coefficient μ_m of the tangential law (the surface does not give it), e.g. mu = 0.15",
         )
     })?;
     if !(mu.is_finite() && mu > 0.0) {
         return Err(Error::input(
-            format!("{place}: tangential.mu"),
+            at("mu"),
             format!(
                 "must be a positive finite number, got {}",
                 super::limits::num(mu)
             ),
         ));
     }
-    crate::case::ranges::FRICTION.check(format!("{place}: tangential.mu"), mu)?;
-    let kp_ratio = t.kp_ratio.unwrap_or(1.0);
-    if !(0.0..=1.0).contains(&kp_ratio) {
-        return Err(Error::input(
-            format!("{place}: tangential.kp_ratio"),
-            format!("must be in [0, 1], got {}", super::limits::num(kp_ratio)),
-        ));
-    }
+    crate::case::ranges::FRICTION.check(at("mu"), mu)?;
+    let memory = match t.memory.as_deref() {
+        None | Some("isotropic") => Memory::Isotropic,
+        Some("kinematic") => Memory::Kinematic,
+        Some(other) => {
+            return Err(Error::input(
+                at("memory"),
+                format!("unknown \"{other}\" (isotropic | kinematic)"),
+            ))
+        }
+    };
+    let kind = match t.backbone.as_deref() {
+        None | Some("bilinear") => BackboneKind::Bilinear,
+        Some("iwan") => BackboneKind::Iwan,
+        Some(other) => {
+            return Err(Error::input(
+                at("backbone"),
+                format!("unknown \"{other}\" (bilinear | iwan)"),
+            ))
+        }
+    };
+    // kp_ratio defaults to 1 here (the case file requires it: it is written)
+    let kp_given = match kind {
+        BackboneKind::Bilinear => Some(t.kp_ratio.unwrap_or(1.0)),
+        BackboneKind::Iwan => t.kp_ratio,
+    };
+    let kp = crate::case::backbone_keys(kind, [kp_given, None, t.chi, t.spike], &at)?;
+    let backbone = match kind {
+        BackboneKind::Bilinear => Backbone::Bilinear,
+        BackboneKind::Iwan => Backbone::Iwan {
+            chi: t.chi.unwrap_or(0.0),
+            spike: t.spike.unwrap_or(0.0),
+        },
+    };
+    TangentialLaw::new(1.0, 0.0, kp, mu, 1.0, 0.0, 0.625)
+        .map_err(|m| Error::input(at("kp_ratio"), kp_message(&m)))?
+        .with_memory(memory, backbone)
+        .map_err(|m| Error::input(at(crate::case::memory_error_key(&m)), m))?;
     Ok(Spec {
         mu,
-        kp_ratio,
+        kp_ratio: (kind == BackboneKind::Bilinear).then_some(kp),
+        memory,
+        backbone,
+        given: Given {
+            memory: t.memory.clone(),
+            backbone: t.backbone.clone(),
+            chi: t.chi,
+            spike: t.spike,
+        },
         g_star: shear_modulus_star(a, b),
     })
+}
+
+/// The message of a refused kp_ratio as this input has always given it.
+fn kp_message(m: &str) -> String {
+    match m.strip_prefix("kp_ratio = ") {
+        Some(rest) => format!(
+            "must be in [0, 1], got {}",
+            rest.trim_end_matches(" must be in [0, 1]")
+        ),
+        None => m.to_string(),
+    }
 }
 
 /// G* of Mindlin's tangential stiffness: 1/G* = (2 − ν₁)/G₁ + (2 − ν₂)/G₂
@@ -121,14 +199,17 @@ pub fn written(rows: &[(f64, f64)]) -> Vec<(f64, f64)> {
 }
 
 /// Checks that the written k_table is one a case accepts: every stiffness in
-/// the case file's range, rows by the tangential law's own table rules.
-pub fn check(rows: &[(f64, f64)], mu: f64, kp_ratio: f64, place: &str) -> Result<()> {
+/// the case file's range, rows by the tangential law's own table rules, with
+/// the requested memory and backbone.
+pub fn check(rows: &[(f64, f64)], spec: &Spec, place: &str) -> Result<()> {
     let at = format!("{place}: fit.pressure");
     for (i, &(_, k)) in written(rows).iter().enumerate() {
         crate::case::ranges::SHEAR_STIFFNESS
             .check(format!("{at} (tangential k_table row {} k_T)", i + 1), k)?;
     }
-    crate::interface::TangentialLaw::with_k_table(&written(rows), kp_ratio, mu, 1.0, 0.0, 0.625)
+    let kp = spec.kp_ratio.unwrap_or(1.0);
+    TangentialLaw::with_k_table(&written(rows), kp, spec.mu, 1.0, 0.0, 0.625)
+        .and_then(|law| law.with_memory(spec.memory, spec.backbone))
         .map(|_| ())
         .map_err(|m| {
             Error::input(
@@ -148,6 +229,75 @@ mod tests {
             young: 206000.0,
             poisson: 0.3,
             hardness: None,
+        }
+    }
+
+    fn input(text: &str) -> Input {
+        toml::from_str(text).unwrap()
+    }
+
+    /// The memory and backbone keys: iwan drops kp_ratio, bilinear keeps its
+    /// default 1, and each refusal names its key.
+    #[test]
+    fn memory_and_backbone_keys_by_the_case_rules() {
+        let (a, b) = (steel(), steel());
+        let s = spec(
+            &input("mu = 0.15\nmemory = \"kinematic\"\nbackbone = \"iwan\"\nchi = -0.5\n"),
+            &a,
+            &b,
+            "s",
+        )
+        .unwrap();
+        assert_eq!(s.kp_ratio, None);
+        assert_eq!(s.memory, Memory::Kinematic);
+        assert_eq!(
+            s.backbone,
+            Backbone::Iwan {
+                chi: -0.5,
+                spike: 0.0
+            }
+        );
+        let s = spec(&input("mu = 0.15\nmemory = \"kinematic\"\n"), &a, &b, "s").unwrap();
+        assert_eq!((s.kp_ratio, s.backbone), (Some(1.0), Backbone::Bilinear));
+        for (text, key) in [
+            (
+                "backbone = \"iwan\"\nkp_ratio = 0.5\n",
+                "tangential.kp_ratio: `kp_ratio` belongs to the bilinear backbone",
+            ),
+            (
+                "chi = 0.5\n",
+                "tangential.chi: `chi` belongs to backbone = \"iwan\"",
+            ),
+            (
+                "backbone = \"bilinear\"\nspike = 0.1\n",
+                "tangential.spike: `spike` belongs",
+            ),
+            (
+                "backbone = \"iwan\"\nchi = -1.0\n",
+                "tangential.chi: chi = -1 must be in (-1, 1]",
+            ),
+            (
+                "backbone = \"iwan\"\nspike = 1.0\n",
+                "tangential.spike: spike = 1 must be in [0, 1)",
+            ),
+            (
+                "backbone = \"masing\"\n",
+                "tangential.backbone: unknown \"masing\" (bilinear | iwan)",
+            ),
+            (
+                "memory = \"Kinematic\"\n",
+                "tangential.memory: unknown \"Kinematic\"",
+            ),
+            (
+                "kp_ratio = -0.1\n",
+                "tangential.kp_ratio: must be in [0, 1], got -0.1",
+            ),
+        ] {
+            let e = spec(&input(&format!("mu = 0.15\n{text}")), &a, &b, "s").unwrap_err();
+            assert!(
+                e.to_string().starts_with(&format!("s: {key}")),
+                "{text}: {e}"
+            );
         }
     }
 

@@ -12,8 +12,8 @@ mod validate;
 pub mod whole;
 
 pub use validate::{
-    check_case, Checked, MAX_ANDERSON_DEPTH, MAX_CUTBACKS, MAX_ELEMENTS, MAX_INCREMENTS,
-    MAX_ITERATIONS, MAX_NAME_BYTES,
+    backbone_keys, check_case, memory_error_key, Checked, MAX_ANDERSON_DEPTH, MAX_CUTBACKS,
+    MAX_ELEMENTS, MAX_INCREMENTS, MAX_ITERATIONS, MAX_NAME_BYTES,
 };
 
 pub use crate::interface::{FrictionScheme, Memory, Weights};

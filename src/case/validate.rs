@@ -277,7 +277,11 @@ fn tangential_law(
     if spec.weights != Weights::Lumped && !nonmatching {
         return Err(Error::input(at(&key), "a tangential law needs weights = \"lumped\" (one spring and one slip history per pair), or an interface with matching = false (one spring per quadrature point)"));
     }
-    let kp_ratio = backbone_keys(t, &key, at)?;
+    let kp_ratio = backbone_keys(
+        t.backbone,
+        [t.kp_ratio, t.yield_ratio, t.chi, t.spike],
+        &|k| at(&format!("{key} {k}")),
+    )?;
     let law = match (&t.k_table, t.r, t.s) {
         (None, Some(r), Some(s)) => {
             TangentialLaw::new(r, s, kp_ratio, t.mu, t.beta, t.n, t.yield_ratio())
@@ -322,34 +326,44 @@ fn tangential_law(
             spike: t.spike.unwrap_or(0.0),
         },
     };
-    law.with_memory(t.memory, backbone).map_err(|m| {
-        let k = ["chi", "spike", "beta"]
-            .into_iter()
-            .find(|k| m.starts_with(k))
-            .unwrap_or("memory");
-        Error::input(at(&format!("{key} {k}")), m)
-    })
+    law.with_memory(t.memory, backbone)
+        .map_err(|m| Error::input(at(&format!("{key} {}", memory_error_key(&m))), m))
+}
+
+/// The key a refusal of [`TangentialLaw::with_memory`] is about.
+pub fn memory_error_key(message: &str) -> &'static str {
+    ["chi", "spike", "beta"]
+        .into_iter()
+        .find(|k| message.starts_with(k))
+        .unwrap_or("memory")
 }
 
 /// The keys of the backbone: `kp_ratio` (and `yield_ratio`) for the
 /// paper's two lines, `chi` and `spike` for an Iwan density, each refused
-/// with the other. Returns k_T^p / k_T^e (1 for an Iwan density: unused).
-fn backbone_keys(t: &TangentialSpec, key: &str, at: &dyn Fn(&str) -> String) -> Result<f64> {
-    let refuse = |k: &str, why: &str| Err(Error::input(at(&format!("{key} {k}")), why.to_string()));
-    match t.backbone {
+/// with the other; `given` holds kp_ratio, yield_ratio, chi and spike as
+/// written, `at` places a key. Returns k_T^p / k_T^e (1 for an Iwan
+/// density: unused). `asperity calibrate` checks its `[tangential]` by it.
+pub fn backbone_keys(
+    backbone: BackboneKind,
+    given: [Option<f64>; 4],
+    at: &dyn Fn(&str) -> String,
+) -> Result<f64> {
+    let [kp_ratio, yield_ratio, chi, spike] = given;
+    let refuse = |k: &str, why: &str| Err(Error::input(at(k), why.to_string()));
+    match backbone {
         BackboneKind::Bilinear => {
-            for (k, v) in [("chi", t.chi), ("spike", t.spike)] {
+            for (k, v) in [("chi", chi), ("spike", spike)] {
                 if v.is_some() {
                     return refuse(k, &format!("`{k}` belongs to backbone = \"iwan\" (a density of slip thresholds); the bilinear backbone takes kp_ratio and yield_ratio"));
                 }
             }
-            t.kp_ratio.map_or_else(
+            kp_ratio.map_or_else(
                 || refuse("kp_ratio", "needs `kp_ratio` (k_T^p / k_T^e in [0, 1], 1: no micro-slip branch) for the paper's bilinear backbone"),
                 Ok,
             )
         }
         BackboneKind::Iwan => {
-            for (k, v) in [("kp_ratio", t.kp_ratio), ("yield_ratio", t.yield_ratio)] {
+            for (k, v) in [("kp_ratio", kp_ratio), ("yield_ratio", yield_ratio)] {
                 if v.is_some() {
                     return refuse(k, &format!("`{k}` belongs to the bilinear backbone; with backbone = \"iwan\" the density (chi, spike) sets how the stiffness falls to μ p_N"));
                 }

@@ -669,6 +669,157 @@ fn ra_and_the_rz_of_the_same_gaussian_surface_calibrate_alike() {
     assert!(a["roughness"]["hurst_band"].as_array().unwrap().is_empty());
 }
 
+/// Rz/σ by Davenport's formula on the ISO band of λc = 0.8 mm, λs = 2.5 µm
+/// for the spectrum k^−(1+2H), computed here from the closed-form moments
+/// m2/m0 = ∫k^{1−2H} / ∫k^{−1−2H} (the logarithm at H = 1).
+fn rz_over_sigma_by_hand(hurst: f64) -> f64 {
+    use std::f64::consts::PI;
+    let (k1, k2) = (2.0 * PI / 0.8, 2.0 * PI / 2.5e-3);
+    let q = 1.0 + 2.0 * hurst;
+    let i2 = if hurst == 1.0 {
+        (k2 / k1).ln()
+    } else {
+        (k2.powf(3.0 - q) - k1.powf(3.0 - q)) / (3.0 - q)
+    };
+    let i0 = (k1.powf(1.0 - q) - k2.powf(1.0 - q)) / (q - 1.0);
+    let n = 0.8 / (2.0 * PI) * (i2 / i0).sqrt();
+    let l = (2.0 * n.ln()).sqrt();
+    2.0 * (l + 0.5772156649015329 / l)
+}
+
+/// Ra 0.4 µm on the carriage (face a), Rz 4 µm on the ground bed (face b):
+/// the same calibration as both faces given by Ra, face b's Ra computed here
+/// from its Rz (σ = Rz / (Rz/σ), Ra = σ √(2/π)); to 1e-9. The Hurst band
+/// moves the Rz face's σ with H: each end equals the all-Ra input at that H
+/// with the Ra of that H, and the band is far wider than that of the all-Ra
+/// input (whose σ does not move), so the mixed input does not hide it.
+#[test]
+fn ra_on_one_face_and_rz_on_the_other_calibrate_as_the_rz_converted() {
+    let dir = common::scratch("calibrate-mixed");
+    let ra_of =
+        |hurst: f64| 4e-3 / rz_over_sigma_by_hand(hurst) * (2.0 / std::f64::consts::PI).sqrt();
+    let run = |name: &str, surface: &str| -> serde_json::Value {
+        let input = dir.join(format!("{name}.toml"));
+        std::fs::write(
+            &input,
+            format!("{MATERIALS}[surface]\nmodel = \"roughness\"\n{surface}{FIT}[tangential]\nmu = 0.15\n"),
+        )
+        .unwrap();
+        let out = dir.join(format!("out-{name}"));
+        let (code, stdout, err) = calibrate(&input, &out);
+        assert_eq!(code, 0, "{name}: {err}");
+        assert!(err.is_empty(), "{name}: {err}");
+        if name == "mixed" {
+            assert!(
+                stdout.contains("(from ra (face a) and rz (face b), assumed H = 0.8)"),
+                "{stdout}"
+            );
+            let text = std::fs::read_to_string(out.join("interface.toml")).unwrap();
+            assert!(
+                text.contains("# ASSUMPTION: ra (face a) and rz (face b) give the rms height only"),
+                "{text}"
+            );
+        }
+        serde_json::from_str(&std::fs::read_to_string(out.join("fit.json")).unwrap()).unwrap()
+    };
+    let close = |a: &serde_json::Value, b: &serde_json::Value, what: &str| {
+        for key in ["c_n", "m"] {
+            let (x, y) = (a[key].as_f64().unwrap(), b[key].as_f64().unwrap());
+            assert!(common::rel(x, y) < 1e-9, "{what} {key}: {x} vs {y}");
+        }
+    };
+    let mixed = run("mixed", "a = { ra = 0.4e-3 }\nb = { rz = 4e-3 }\n");
+    let ra = run("all-ra", &format!("ra = [0.4e-3, {:e}]\n", ra_of(0.8)));
+    close(&mixed, &ra, "H = 0.8");
+    let (x, y) = (
+        mixed["d0_mm"].as_f64().unwrap(),
+        ra["d0_mm"].as_f64().unwrap(),
+    );
+    assert!(common::rel(x, y) < 1e-9, "d0_mm: {x} vs {y}");
+    let (kx, ky) = (
+        &mixed["tangential"]["k_table"],
+        &ra["tangential"]["k_table"],
+    );
+    for (x, y) in kx.as_array().unwrap().iter().zip(ky.as_array().unwrap()) {
+        assert!(common::rel(x[1].as_f64().unwrap(), y[1].as_f64().unwrap()) < 1e-9);
+    }
+    let faces = &mixed["roughness"]["faces"];
+    assert_eq!(mixed["roughness"]["parameter"], "mixed");
+    assert_eq!(faces[0]["key"], "surface.a.ra");
+    assert_eq!(faces[1]["key"], "surface.b.rz");
+    assert_eq!(faces[1]["rz"].as_f64(), Some(4e-3));
+    let sigma_b = 4e-3 / rz_over_sigma_by_hand(0.8);
+    assert!(common::rel(faces[1]["sigma_mm"].as_f64().unwrap(), sigma_b) < 1e-12);
+    // the band: each end as the all-Ra input with that H and that H's Ra
+    let band = mixed["roughness"]["hurst_band"].as_array().unwrap();
+    assert_eq!(band.len(), 2);
+    for (end, hurst) in band.iter().zip([0.5, 1.0]) {
+        assert_eq!(end["hurst"].as_f64(), Some(hurst));
+        let at = run(
+            &format!("all-ra-{hurst}"),
+            &format!("ra = [0.4e-3, {:e}]\nhurst = {hurst:?}\n", ra_of(hurst)),
+        );
+        close(end, &at, &format!("H = {hurst}"));
+    }
+    let spread = |v: &serde_json::Value| {
+        let b = v["roughness"]["hurst_band"].as_array().unwrap();
+        let c = |i: usize| b[i]["c_n"].as_f64().unwrap();
+        (c(1) - c(0)).abs() / v["c_n"].as_f64().unwrap()
+    };
+    let (wide, narrow) = (spread(&mixed), spread(&ra));
+    assert!(wide > 0.1 && wide > 5.0 * narrow, "{wide} vs {narrow}");
+}
+
+/// A damping study's tangential law: with `backbone = "iwan"` the snippet
+/// has no kp_ratio and carries memory, backbone, chi and spike as given; with
+/// the kinematic memory alone it keeps kp_ratio. Pasted into a case with a
+/// tangential law, `asperity check` accepts both.
+#[test]
+fn the_iwan_snippet_pastes_into_a_case() {
+    let dir = common::scratch("calibrate-iwan");
+    let rough = format!("{MATERIALS}[surface]\nmodel = \"roughness\"\na = {{ ra = 0.4e-3 }}\nb = {{ rz = 4e-3 }}\nhurst = 0.8\n{FIT}");
+    for (name, keys, lines, absent) in [
+        (
+            "iwan",
+            "memory = \"kinematic\"\nbackbone = \"iwan\"\nchi = -0.5\nspike = 0.1\n",
+            "]\nmu = 0.15\nmemory = \"kinematic\"\nbackbone = \"iwan\"\nchi = -0.5\nspike = 0.1\n",
+            Some("kp_ratio"),
+        ),
+        (
+            "iwan-defaults",
+            "backbone = \"iwan\"\n",
+            "]\nmu = 0.15\nbackbone = \"iwan\"\n",
+            Some("kp_ratio"),
+        ),
+        (
+            "kinematic-bilinear",
+            "memory = \"kinematic\"\n",
+            "]\nkp_ratio = 1    # elastic up to the friction cap: Mindlin-GW gives no micro-slip branch\nmu = 0.15\nmemory = \"kinematic\"\n",
+            Some("chi"),
+        ),
+    ] {
+        let path = dir.join(format!("{name}.toml"));
+        std::fs::write(&path, format!("{rough}[tangential]\nmu = 0.15\n{keys}")).unwrap();
+        let out = dir.join(format!("out-{name}"));
+        let (code, _, err) = calibrate(&path, &out);
+        assert_eq!(code, 0, "{name}: {err}");
+        let text = std::fs::read_to_string(out.join("interface.toml")).unwrap();
+        let from = text.find("[interface.calibrated_table.tangential]").unwrap();
+        let snippet = &text[from..];
+        assert!(snippet.ends_with(lines), "{name}: {snippet}");
+        if let Some(k) = absent {
+            assert!(!snippet.contains(&format!("\n{k} =")), "{name}: {snippet}");
+        }
+        let fit: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("fit.json")).unwrap()).unwrap();
+        assert_eq!(fit["tangential"]["kp_ratio"].is_null(), name != "kinematic-bilinear");
+        let pasted = paste_with_tangential(&text);
+        let case = common::case_dir(&format!("calibrate-pasted-{name}"), &pasted);
+        let (code, _, err) = asperity(&["check", case.to_str().unwrap()]);
+        assert_eq!(code, 0, "{name}: {err}\n{pasted}");
+    }
+}
+
 /// The tangential table from every surface model, elastic-plastic summits
 /// included (the contact radius of the CEB area).
 #[test]
@@ -714,7 +865,87 @@ fn bad_roughness_and_tangential_inputs_are_one_error_line_and_exit_2() {
         (
             "ra-and-rz",
             rough("ra = 0.8e-3\nrz = 6.3e-3\n"),
-            "surface.toml: surface.rz: give one of surface.ra and surface.rz",
+            "surface.toml: surface.rz: surface.ra and surface.rz both give the same faces: give one of them (which one would hold?); a drawing with Ra on one face and Rz on the other takes a table per face",
+        ),
+        (
+            "face-ra-and-rz",
+            rough("a = { ra = 0.4e-3, rz = 4e-3 }\nb = { rz = 4e-3 }\n"),
+            "surface.toml: surface.a.rz: face a has both ra and rz",
+        ),
+        (
+            "face-empty",
+            rough("a = { ra = 0.4e-3 }\nb = {}\n"),
+            "surface.toml: surface.b: missing: face b needs its ra or its rz",
+        ),
+        (
+            "one-face-table",
+            rough("a = { ra = 0.4e-3 }\n"),
+            "surface.toml: surface.b: missing: with a table per face give both faces",
+        ),
+        (
+            "face-twice-pair",
+            rough("ra = 0.4e-3\nb = { rz = 4e-3 }\n"),
+            "surface.toml: surface.b: face b is given twice, by surface.ra (as the pair's roughness) and by surface.b",
+        ),
+        (
+            "face-twice-array",
+            rough("rz = [4e-3, 4e-3]\na = { ra = 0.4e-3 }\nb = { rz = 4e-3 }\n"),
+            "surface.toml: surface.a: face a is given twice, by surface.rz (as surface.rz = [face a, face b])",
+        ),
+        (
+            "face-table-twice",
+            rough("[surface.a]\nra = 0.4e-3\n[surface.b]\nrz = 4e-3\n[surface.a]\nrz = 1e-3\n"),
+            "surface.toml:10:10: duplicate key `a`: each key and table may be given once",
+        ),
+        (
+            "face-text",
+            rough("a = { ra = \"0.4\" }\nb = { rz = 4e-3 }\n"),
+            "surface.toml: surface.a.ra: must be a number (mm)",
+        ),
+        (
+            "face-rz-absurd",
+            rough("a = { ra = 0.4e-3 }\nb = { rz = 8.0 }\n"),
+            "surface.toml: surface.b.rz: 8 mm is far outside any use as Rz",
+        ),
+        (
+            "face-unknown",
+            rough("a = { ra = 0.4e-3 }\nb = { rq = 4e-3 }\n"),
+            "unknown field `rq`, expected `ra` or `rz`",
+        ),
+        (
+            "iwan-kp-ratio",
+            t("mu = 0.2\nbackbone = \"iwan\"\nkp_ratio = 1.0\n"),
+            "surface.toml: tangential.kp_ratio: `kp_ratio` belongs to the bilinear backbone",
+        ),
+        (
+            "chi-bilinear",
+            t("mu = 0.2\nmemory = \"kinematic\"\nchi = -0.5\n"),
+            "surface.toml: tangential.chi: `chi` belongs to backbone = \"iwan\"",
+        ),
+        (
+            "spike-bilinear",
+            t("mu = 0.2\nbackbone = \"bilinear\"\nspike = 0.2\n"),
+            "surface.toml: tangential.spike: `spike` belongs to backbone = \"iwan\"",
+        ),
+        (
+            "chi-out-of-range",
+            t("mu = 0.2\nbackbone = \"iwan\"\nchi = 1.5\n"),
+            "surface.toml: tangential.chi: chi = 1.5 must be in (-1, 1]",
+        ),
+        (
+            "spike-out-of-range",
+            t("mu = 0.2\nbackbone = \"iwan\"\nspike = 1.0\n"),
+            "surface.toml: tangential.spike: spike = 1 must be in [0, 1)",
+        ),
+        (
+            "memory-unknown",
+            t("mu = 0.2\nmemory = \"masing\"\n"),
+            "surface.toml: tangential.memory: unknown \"masing\" (isotropic | kinematic)",
+        ),
+        (
+            "backbone-unknown",
+            t("mu = 0.2\nbackbone = \"Iwan\"\n"),
+            "surface.toml: tangential.backbone: unknown \"Iwan\" (bilinear | iwan)",
         ),
         ("neither", rough(""), "surface.toml: surface.ra: missing"),
         (
