@@ -130,6 +130,23 @@ fn a_forged_slip_memory_is_refused() {
         &|p| p[1] = -1e-3,
         "κ = -1e-3 (≥ 0 expected)",
     );
+    // a shear or a slip the displacements and the law do not give
+    refused(
+        &slideway,
+        &good,
+        "shear-forged",
+        5,
+        &|p| p[2] = 1e6,
+        "shear p_T = 1e6 MPa",
+    );
+    refused(
+        &slideway,
+        &good,
+        "u-t-forged",
+        6,
+        &|p| p[3] += 0.5,
+        "but the displacements (section u) give",
+    );
     // an isotropic interface (punch-friction-a) given a memory
     let punch = case("punch-friction-a");
     let iso = dir.join("iso");
