@@ -37,7 +37,7 @@ pub struct Input {
     pub memory: Option<String>,
     /// "bilinear" | "iwan", written into the snippet when given.
     pub backbone: Option<String>,
-    /// Iwan: χ in (−1, 1] and the spike in [0, 1), written when given.
+    /// Iwan: χ in [−0.99, 1] and the spike in [0, 1), written when given.
     pub chi: Option<f64>,
     pub spike: Option<f64>,
 }
@@ -274,7 +274,7 @@ mod tests {
             ),
             (
                 "backbone = \"iwan\"\nchi = -1.0\n",
-                "tangential.chi: chi = -1 must be in (-1, 1]",
+                "tangential.chi: chi = -1 must be in [-0.99, 1]",
             ),
             (
                 "backbone = \"iwan\"\nspike = 1.0\n",

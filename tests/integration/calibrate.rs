@@ -930,7 +930,7 @@ fn bad_roughness_and_tangential_inputs_are_one_error_line_and_exit_2() {
         (
             "chi-out-of-range",
             t("mu = 0.2\nbackbone = \"iwan\"\nchi = 1.5\n"),
-            "surface.toml: tangential.chi: chi = 1.5 must be in (-1, 1]",
+            "surface.toml: tangential.chi: chi = 1.5 must be in [-0.99, 1]",
         ),
         (
             "spike-out-of-range",
