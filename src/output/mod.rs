@@ -439,10 +439,46 @@ pub fn curve(result: &RunResult) -> String {
 /// prints them on stderr; summary.json holds them as `warnings`.
 pub fn warnings(model: &Model, r: &RunResult) -> Vec<String> {
     let place = model.source.display().to_string();
-    table_uses(&model.interfaces, &r.table_reach)
+    let mut w: Vec<String> = table_uses(&model.interfaces, &r.table_reach)
         .iter()
         .filter(|t| t.far())
         .map(|t| t.warning(&place, "the run evaluated it up to"))
+        .collect();
+    w.extend(coarse_cycles(model, r, &place));
+    w
+}
+
+/// Increments a closed cycle needs for its energies: with one increment a
+/// leg the trapezoid sums see the shear at the two turning points only
+/// (equal and opposite: D = 0 whatever the loop).
+const CYCLE_INCREMENTS: usize = 4;
+
+/// One warning per interface with a closed cycle of fewer than
+/// [`CYCLE_INCREMENTS`] increments.
+fn coarse_cycles(model: &Model, r: &RunResult, place: &str) -> Vec<String> {
+    let cycles = joints::run_cycles(model, r);
+    model
+        .interfaces
+        .iter()
+        .zip(&cycles)
+        .filter_map(|(im, list)| {
+            let coarse: Vec<usize> = list
+                .iter()
+                .enumerate()
+                .filter(|(_, c)| c.end_increment - c.start_increment < CYCLE_INCREMENTS)
+                .map(|(k, _)| k + 1)
+                .collect();
+            let first = *coarse.first()?;
+            let c = &list[first - 1];
+            Some(format!(
+                "{place}: interface {:?}: {} closed cycle(s) of fewer than {CYCLE_INCREMENTS} increments (cycle {first}: {} increments, t = {} … {}): their dissipation and loss factor are trapezoid sums over too few steps (0 with one step a leg); set [solver] max_increment to a quarter of a leg or less",
+                im.name,
+                coarse.len(),
+                c.end_increment - c.start_increment,
+                c.start_time,
+                c.end_time
+            ))
+        })
         .collect()
 }
 

@@ -197,3 +197,30 @@ fn a_restart_file_of_an_earlier_build_resumes() {
         assert_eq!(read(&whole, file), read(&resumed, file), "{file}");
     }
 }
+
+/// One increment a leg: the trapezoid sums of a cycle see the shear at its
+/// turning points only (D = 0 whatever the loop), and the run says so on
+/// stderr and in summary.json; the shipped case's cycles (ten increments a
+/// leg) draw no warning.
+#[test]
+fn cycles_of_too_few_increments_are_warned_about() {
+    let dir = common::scratch("damping-coarse");
+    let text = std::fs::read_to_string(case("slideway-damping").join("case.toml"))
+        .unwrap()
+        .replace("max_increment = 0.1", "max_increment = 1.0");
+    let path = common::case_dir("damping-coarse", &text);
+    let out = dir.join("out");
+    let (code, err) = run(path.parent().unwrap(), &out, &[]);
+    assert_eq!(code, 0, "{err}");
+    let lines: Vec<&str> = err.lines().filter(|l| l.starts_with("warning: ")).collect();
+    assert_eq!(lines.len(), 1, "{err}");
+    assert!(
+        lines[0].contains("interface \"way\": 11 closed cycle(s) of fewer than 4 increments"),
+        "{err}"
+    );
+    let summary: serde_json::Value = serde_json::from_str(&read(&out, "summary.json")).unwrap();
+    assert_eq!(summary["warnings"].as_array().unwrap().len(), 1);
+    let (code, err) = run(&case("slideway-damping"), &dir.join("shipped"), &[]);
+    assert_eq!(code, 0, "{err}");
+    assert!(!err.contains("warning"), "{err}");
+}
