@@ -11,6 +11,7 @@
 
 pub mod fit;
 pub mod gw;
+mod input;
 pub mod limits;
 pub mod profile;
 mod report;
@@ -24,125 +25,12 @@ use limits::Warning;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
+pub use input::*;
+
 /// Largest input file read.
 const MAX_INPUT_BYTES: u64 = 1 << 20;
 /// Largest profile read.
 const MAX_PROFILE_BYTES: u64 = 256 << 20;
-
-/// The input file.
-#[derive(Clone, Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Input {
-    pub materials: Materials,
-    pub surface: Surface,
-    pub fit: FitSpec,
-    /// `[tangential]`: the Mindlin-GW shear stiffness as a k_table too.
-    pub tangential: Option<tangential::Input>,
-}
-
-/// `[materials]`: the two bodies.
-#[derive(Clone, Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Materials {
-    pub a: Body,
-    pub b: Body,
-}
-
-#[derive(Clone, Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Body {
-    /// Young's modulus, MPa.
-    pub young: f64,
-    pub poisson: f64,
-    /// Hardness, MPa (elastic-plastic summits only).
-    pub hardness: Option<f64>,
-}
-
-/// `[surface]`: GW parameters or a measured record.
-#[derive(Clone, Debug, Deserialize)]
-#[serde(tag = "model", rename_all = "lowercase", deny_unknown_fields)]
-pub enum Surface {
-    Gw {
-        /// η, summits per mm².
-        density: f64,
-        /// β, mm.
-        radius: f64,
-        /// σ_s, mm.
-        sigma: f64,
-        #[serde(default = "gaussian")]
-        distribution: String,
-        #[serde(default = "elastic")]
-        asperities: String,
-    },
-    Profile {
-        /// Path of the heights (mm), relative to the input file.
-        file: String,
-        /// Sampling interval Δ, mm.
-        sampling: f64,
-        /// "line" or "areal".
-        #[serde(default = "line")]
-        kind: String,
-        /// "linear" (line / plane) or "mean".
-        #[serde(default = "linear")]
-        detrend: String,
-        #[serde(default = "elastic")]
-        asperities: String,
-    },
-    /// Ra or Rz (mm) of the drawing, one number or [face a, face b], or a
-    /// table per face (`a = { ra = … }`, `b = { rz = … }`), and an assumed
-    /// spectrum ([`roughness`]).
-    Roughness {
-        ra: Option<toml::Value>,
-        rz: Option<toml::Value>,
-        /// The face of body a, with its own parameter.
-        a: Option<FaceInput>,
-        /// The face of body b.
-        b: Option<FaceInput>,
-        /// H of the assumed spectrum (default 0.8, band 0.5-1 reported).
-        hurst: Option<f64>,
-        /// λc, mm (default ISO 4288 for the roughness).
-        cutoff: Option<f64>,
-        /// λs, mm (default ISO 3274 for λc).
-        short_cutoff: Option<f64>,
-        #[serde(default = "elastic")]
-        asperities: String,
-    },
-}
-
-/// `surface.a` / `surface.b` of the roughness model: the face's Ra or its
-/// Rz (mm), exactly one.
-#[derive(Clone, Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct FaceInput {
-    pub ra: Option<toml::Value>,
-    pub rz: Option<toml::Value>,
-}
-
-fn gaussian() -> String {
-    "gaussian".into()
-}
-fn elastic() -> String {
-    "elastic".into()
-}
-fn line() -> String {
-    "line".into()
-}
-fn linear() -> String {
-    "linear".into()
-}
-
-/// `[fit]`.
-#[derive(Clone, Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct FitSpec {
-    /// [lo, hi], MPa: the range of the power-law fit and of the table.
-    pub pressure: Vec<f64>,
-    /// Pressure (MPa) at the reference separation d₀ where u_N = 0;
-    /// default 10⁻³ × lo.
-    pub reference_pressure: Option<f64>,
-    /// Points of the table law (default 10, 2 to 100).
-    pub table_points: Option<usize>,
-}
 
 /// The surface as analysed: the GW model and, for a profile, its moments.
 #[derive(Clone, Debug)]
@@ -177,38 +65,6 @@ pub struct BandEnd {
     pub hurst: f64,
     /// c_N, m, η, β, σ_s and k_T^e (MPa/µm) at lo and hi; or why it failed.
     pub result: std::result::Result<[f64; 7], String>,
-}
-
-/// Reads and parses an input file (errors name the file, line and column).
-pub fn load(path: &Path) -> Result<Input> {
-    let place = path.display().to_string();
-    let bytes = crate::case::read_input(path, MAX_INPUT_BYTES, "calibration input")?;
-    let text = String::from_utf8(bytes)
-        .map_err(|_| Error::input(&place, "the input file is not valid UTF-8 text"))?;
-    parse(&text, &place)
-}
-
-/// Parses input text; `place` names it in errors.
-pub fn parse(text: &str, place: &str) -> Result<Input> {
-    toml::from_str::<Input>(text).map_err(|e| {
-        let at = e
-            .span()
-            .map(|s| {
-                let before = &text[..s.start.min(text.len())];
-                let line = before.matches('\n').count() + 1;
-                let col = before.rfind('\n').map_or(s.start, |i| s.start - i - 1) + 1;
-                format!(":{line}:{col}")
-            })
-            .unwrap_or_default();
-        let mut message = e.message().trim().replace('\n', " ");
-        // a table written twice (`[surface.a]` twice): name it
-        if let (true, Some(s)) = (message == "duplicate key", e.span()) {
-            if let Some(key) = text.get(s).filter(|k| !k.is_empty() && k.len() <= 80) {
-                message = format!("duplicate key `{key}`: each key and table may be given once");
-            }
-        }
-        Error::input(format!("{place}{at}"), message)
-    })
 }
 
 /// Composite modulus E* = 1/((1−ν₁²)/E₁ + (1−ν₂²)/E₂) (Johnson 1985, eq. 4.22).
@@ -908,122 +764,4 @@ pub fn run(input_path: &Path, out: &Path) -> Result<Written> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    const MATERIALS: &str = "[materials]\na = { young = 206000.0, poisson = 0.3 }\nb = { young = 206000.0, poisson = 0.3 }\n";
-
-    fn gw_input(surface: &str, fit: &str) -> Input {
-        let text = format!("{MATERIALS}[surface]\nmodel = \"gw\"\n{surface}[fit]\n{fit}");
-        parse(&text, "s.toml").unwrap()
-    }
-
-    fn refusal(input: &Input) -> String {
-        prepare(input, "s.toml", Path::new("."))
-            .unwrap_err()
-            .to_string()
-    }
-
-    /// The no-contact fit range is refused by `prepare`, which maps the
-    /// pressures to separations with three bisections and never builds the
-    /// curve or the fit (those are in `calibrate`, after it). The same input
-    /// with the roughness in its usual range prepares.
-    #[test]
-    fn a_fit_range_where_no_summit_touches_is_refused_before_the_fit() {
-        // σ in µm written as mm: the key at fault is surface.sigma
-        let input = gw_input(
-            "density = 2e3\nradius = 0.05\nsigma = 1.0\n",
-            "pressure = [1e-3, 1e-2]\n",
-        );
-        let e = refusal(&input);
-        assert!(
-            e.starts_with("s.toml: surface.sigma: 1 mm is above the usual range")
-                && e.contains(
-                    "no summit touches at the lower fit pressure fit.pressure = 1e-3 MPa"
-                )
-                && e.contains(
-                    "surface.density = 2e3 /mm², surface.radius = 0.05 mm, surface.sigma = 1 mm"
-                ),
-            "{e}"
-        );
-        // a negative ν (warned) is not blamed for it
-        let text = "[materials]\na = { young = 1.2e6, poisson = -0.2 }\nb = { young = 1.2e6, poisson = 0.1 }\n\
-                    [surface]\nmodel = \"gw\"\ndensity = 1e6\nradius = 10.0\nsigma = 0.1\n[fit]\npressure = [1e-3, 1e-2]\n";
-        let e = refusal(&parse(text, "s.toml").unwrap());
-        assert!(
-            e.starts_with("s.toml: fit.pressure: no summit touches"),
-            "{e}"
-        );
-        // every value usual, the pressures too low for this stiff, coarse surface
-        let text = "[materials]\na = { young = 1.2e6, poisson = 0.1 }\nb = { young = 1.2e6, poisson = 0.1 }\n\
-                    [surface]\nmodel = \"gw\"\ndensity = 1e6\nradius = 10.0\nsigma = 0.1\n[fit]\npressure = [1e-3, 1e-2]\n";
-        let e = refusal(&parse(text, "s.toml").unwrap());
-        assert!(
-            e.starts_with("s.toml: fit.pressure: no summit touches")
-                && e.contains("surface.sigma = 0.1 mm"),
-            "{e}"
-        );
-        // the example's surface at the same pressures: summits touch
-        let input = gw_input(
-            "density = 2e3\nradius = 0.05\nsigma = 1e-3\n",
-            "pressure = [1e-3, 1e-2]\n",
-        );
-        let p = prepare(&input, "s.toml", Path::new(".")).unwrap();
-        assert!(p.contacts_lo > NO_CONTACT && p.d0 > p.d_lo && p.d_lo > p.d_hi);
-    }
-
-    #[test]
-    fn unit_slips_warn_and_calibrate() {
-        let input = gw_input(
-            "density = 1e12\nradius = 0.05\nsigma = 1.0\n",
-            "pressure = [10.0, 200.0]\n",
-        );
-        let cal = calibrate(&input, "s.toml", Path::new(".")).unwrap();
-        let keys: Vec<&str> = cal.warnings.iter().map(|w| w.key.as_str()).collect();
-        // the density does not bring summits into contact: at a given pressure
-        // their number per mm² goes with p / (E* β^½ σ^{3/2}), and σ is 1000× off
-        assert_eq!(
-            keys,
-            ["surface.density", "surface.sigma", "fit.pressure"],
-            "{:?}",
-            cal.warnings
-        );
-        assert!(cal.warnings[2].message.contains("summits per mm² touch"));
-        let json = cal.fit_json("s.toml");
-        assert_eq!(json["warnings"].as_array().unwrap().len(), 3);
-        let toml = cal.interface_toml("s.toml");
-        assert!(
-            toml.contains("# WARNING: s.toml: surface.sigma: 1 mm is above"),
-            "{toml}"
-        );
-    }
-
-    #[test]
-    fn subnormal_and_huge_values_name_their_key() {
-        for (surface, fit, key) in [
-            (
-                "density = 2e3\nradius = 0.05\nsigma = 1e-310\n",
-                "pressure = [10.0, 200.0]\n",
-                "surface.sigma: 1e-310 is a subnormal",
-            ),
-            (
-                "density = 1e300\nradius = 0.05\nsigma = 1e-3\n",
-                "pressure = [10.0, 200.0]\n",
-                "surface.density: 1e300 /mm² is far outside",
-            ),
-            (
-                "density = 2e3\nradius = 0.05\nsigma = 1e-3\n",
-                "pressure = [1e-320, 200.0]\n",
-                "fit.pressure: 1e-320 is a subnormal",
-            ),
-            (
-                "density = 2e3\nradius = 0.05\nsigma = 1e-3\n",
-                "pressure = [10.0, 200.0]\nreference_pressure = 1e-15\n",
-                "fit.reference_pressure: 1e-15 MPa is far outside",
-            ),
-        ] {
-            let e = refusal(&gw_input(surface, fit));
-            assert!(e.starts_with(&format!("s.toml: {key}")), "{key}: {e}");
-        }
-    }
-}
+mod tests;
