@@ -534,6 +534,18 @@ pub fn csv_column(path: &std::path::Path, name: &str) -> Vec<f64> {
         .collect()
 }
 
+/// `asperity run DIR --out OUT --quiet`, which must succeed.
+pub fn run_ok(dir: &std::path::Path, out: &std::path::Path) {
+    let (code, err) = run_asperity(&[
+        "run",
+        dir.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(code, 0, "{}: {err}", dir.display());
+}
+
 /// Runs the built program: its exit code and its stderr.
 pub fn run_asperity(args: &[&str]) -> (i32, String) {
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_asperity"))

@@ -117,14 +117,7 @@ fn a_line_contact_dissipates_per_cycle_what_mindlin_and_deresiewicz_say() {
     let dir = path.parent().unwrap();
     let out = dir.join("out");
     let start = std::time::Instant::now();
-    let (code, err) = common::run_asperity(&[
-        "run",
-        dir.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--quiet",
-    ]);
-    assert_eq!(code, 0, "{err}");
+    common::run_ok(dir, &out);
     eprintln!("damping-line: run {:.1} s", start.elapsed().as_secs_f64());
 
     // the normal load, held by the platen while the shear cycles

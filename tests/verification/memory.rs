@@ -12,7 +12,6 @@
 //!   the same.
 
 use crate::common;
-use std::path::Path;
 
 const C_N: f64 = 0.001;
 const M: f64 = 0.5;
@@ -55,23 +54,11 @@ fn uniform(memory: &str, d: f64, a: f64, increments: usize) -> String {
         .build()
 }
 
-/// Runs the case folder `dir` into `out`; it must succeed.
-fn run_dir(dir: &Path, out: &Path) {
-    let (code, err) = common::run_asperity(&[
-        "run",
-        dir.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--quiet",
-    ]);
-    assert_eq!(code, 0, "{err}");
-}
-
 /// Runs the joint; cycles.csv's path.
 fn run(name: &str, memory: &str, d: f64, a: f64, increments: usize) -> std::path::PathBuf {
     let case = common::case_dir(name, &uniform(memory, d, a, increments));
     let out = case.parent().unwrap().join("out");
-    run_dir(case.parent().unwrap(), &out);
+    common::run_ok(case.parent().unwrap(), &out);
     out.join("cycles.csv")
 }
 
@@ -133,7 +120,7 @@ fn masing_loops_of_an_iwan_joint_match_the_closed_form_every_cycle() {
 #[test]
 fn the_shipped_slideway_damping_follows_the_uniform_joint() {
     let out = common::scratch("memory-slideway").join("out");
-    run_dir(&common::root().join("cases/slideway-damping"), &out);
+    common::run_ok(&common::root().join("cases/slideway-damping"), &out);
     let (p, mu, len, r, s) = (20.0, 0.15, 60.0, 0.9, 0.5);
     let k = 1000.0 * f64::powf(p, s) / r;
     let q = CHI + 2.0;
