@@ -27,8 +27,12 @@
 use super::table::Monotone;
 use std::sync::Arc;
 
+mod jenkins;
 mod kinematic;
+mod vector;
+pub use jenkins::{Elements, Stretch2, IWAN_LOWEST, JENKINS};
 pub use kinematic::{Density, Stretch, MEMORY_POINTS};
+pub use vector::{SlipState2, VectorEval};
 
 /// How the law remembers its slip history.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
@@ -113,6 +117,18 @@ pub struct TangentialEval {
     pub state: SlipState,
     pub slip: Slip,
     pub mu_f: f64,
+}
+
+/// A return mapping that slipped: Δκ, κ = κ_n + Δκ, the limit Y(κ) with
+/// ∂Y/∂κ and ∂Y/∂p_N, and whether the friction cap is the active branch.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Return {
+    pub dkappa: f64,
+    pub kappa: f64,
+    pub y: f64,
+    pub yk: f64,
+    pub yp: f64,
+    pub macro_slip: bool,
 }
 
 impl TangentialLaw {
@@ -364,47 +380,27 @@ impl TangentialLaw {
         }
     }
 
-    /// Return mapping from `committed` at pressure p (stiffness k_n = dp/du_N) and
-    /// total tangential displacement u_t. An open spring (p ≤ 0) carries no shear
-    /// and slides freely: its plastic slip follows u_t.
-    pub fn eval(&self, p: f64, k_n: f64, u_t: f64, committed: &SlipState) -> TangentialEval {
-        if p <= 0.0 {
-            return TangentialEval {
-                p_t: 0.0,
-                d_ut: 0.0,
-                d_un: 0.0,
-                state: SlipState {
-                    u_p: u_t,
-                    kappa: committed.kappa,
-                    mem: Stretch::default(),
-                },
-                slip: Slip::MacroSlip,
-                mu_f: self.friction(committed.kappa).0,
-            };
-        }
-        if self.memory == Memory::Kinematic {
-            return self.eval_kinematic(p, k_n, u_t, committed);
-        }
-        let (k, dk) = self.elastic_stiffness(p);
-        let ue = u_t - committed.u_p;
-        let p_tr = k * ue;
-        let a = p_tr.abs();
-        let (y0, ..) = self.limit(committed.kappa, p, k, dk);
+    /// The backward-Euler return of a trial shear of magnitude `a` from κ_n
+    /// at pressure p (k = k_T^e, dk = dk_T^e/dp_N), shared by the scalar and
+    /// the vector law: `None` when |p_T^tr| ≤ Y(κ_n) (stick), else the root
+    /// Δκ of `a − k Δκ = Y(κ_n + Δκ)` and the limit there.
+    pub(super) fn radial_return(
+        &self,
+        a: f64,
+        kappa_n: f64,
+        p: f64,
+        k: f64,
+        dk: f64,
+    ) -> Option<Return> {
+        let (y0, ..) = self.limit(kappa_n, p, k, dk);
         // a force cycled back to its earlier peak meets the limit within
         // round-off: that is no slip (else stick and slip alternate there)
         if a <= y0 * (1.0 + 1e-12) {
-            return TangentialEval {
-                p_t: p_tr,
-                d_ut: k,
-                d_un: dk * k_n * ue,
-                state: *committed,
-                slip: Slip::Stick,
-                mu_f: self.friction(committed.kappa).0,
-            };
+            return None;
         }
         // g(Δκ) = a − k Δκ − Y(κ_n + Δκ) is decreasing: g(0) > 0 > g(a/k)
         let g = |dkap: f64| {
-            let (y, yk, ..) = self.limit(committed.kappa + dkap, p, k, dk);
+            let (y, yk, ..) = self.limit(kappa_n + dkap, p, k, dk);
             (a - k * dkap - y, -k - yk)
         };
         let (mut lo, mut hi) = (0.0, a / k);
@@ -429,9 +425,61 @@ impl TangentialLaw {
                 break;
             }
         }
-        let sgn = p_tr.signum();
-        let kappa = committed.kappa + x;
+        let kappa = kappa_n + x;
         let (y, yk, yp, macro_slip) = self.limit(kappa, p, k, dk);
+        Some(Return {
+            dkappa: x,
+            kappa,
+            y,
+            yk,
+            yp,
+            macro_slip,
+        })
+    }
+
+    /// Return mapping from `committed` at pressure p (stiffness k_n = dp/du_N) and
+    /// total tangential displacement u_t. An open spring (p ≤ 0) carries no shear
+    /// and slides freely: its plastic slip follows u_t.
+    pub fn eval(&self, p: f64, k_n: f64, u_t: f64, committed: &SlipState) -> TangentialEval {
+        if p <= 0.0 {
+            return TangentialEval {
+                p_t: 0.0,
+                d_ut: 0.0,
+                d_un: 0.0,
+                state: SlipState {
+                    u_p: u_t,
+                    kappa: committed.kappa,
+                    mem: Stretch::default(),
+                },
+                slip: Slip::MacroSlip,
+                mu_f: self.friction(committed.kappa).0,
+            };
+        }
+        if self.memory == Memory::Kinematic {
+            return self.eval_kinematic(p, k_n, u_t, committed);
+        }
+        let (k, dk) = self.elastic_stiffness(p);
+        let ue = u_t - committed.u_p;
+        let p_tr = k * ue;
+        let Some(r) = self.radial_return(p_tr.abs(), committed.kappa, p, k, dk) else {
+            return TangentialEval {
+                p_t: p_tr,
+                d_ut: k,
+                d_un: dk * k_n * ue,
+                state: *committed,
+                slip: Slip::Stick,
+                mu_f: self.friction(committed.kappa).0,
+            };
+        };
+        let Return {
+            dkappa: x,
+            kappa,
+            y,
+            yk,
+            yp,
+            macro_slip,
+        } = r;
+        let sgn = p_tr.signum();
         let d_ut = yk * k / (k + yk);
         let d_un = k_n * sgn * (yk * (sgn * dk * ue - x * dk - yp) / (k + yk) + yp);
         TangentialEval {
@@ -457,3 +505,5 @@ impl TangentialLaw {
 mod memory_tests;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod vector_tests;
