@@ -164,3 +164,295 @@ fn one_component_reproduces_the_scalar_law_to_round_off() {
         );
     }
 }
+
+/// The exact laws and two Iwan densities under the kinematic memory.
+pub(super) fn all_laws() -> Vec<TangentialLaw> {
+    let mut v = exact_laws();
+    v.push(iwan(Memory::Kinematic, 0.0, 0.0));
+    v.push(iwan(Memory::Kinematic, -0.5, 0.1));
+    v
+}
+
+/// `n` steps of (p_N, u_T) from `a` to `b` at pressure p, `b` included.
+fn line(p: f64, a: [f64; 2], b: [f64; 2], n: usize) -> Vec<(f64, [f64; 2])> {
+    (1..=n)
+        .map(|i| {
+            let s = i as f64 / n as f64;
+            (p, [a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1])])
+        })
+        .collect()
+}
+
+/// 2-D histories in units of f: a circle, a figure-eight, a reversal at an
+/// angle, a pressure drop while slipping across the earlier slip.
+pub(super) fn paths(f: f64) -> Vec<(&'static str, Vec<(f64, [f64; 2])>)> {
+    use std::f64::consts::TAU;
+    let p = 150.0;
+    let mut circle = line(p, [0.0; 2], [0.8 * f, 0.0], 10);
+    circle.extend((1..=75).map(|i| {
+        let t = 1.25 * TAU * i as f64 / 75.0;
+        (p, [0.8 * f * t.cos(), 0.8 * f * t.sin()])
+    }));
+    let eight = (1..=80)
+        .map(|i| {
+            let t = TAU * i as f64 / 80.0;
+            (p, [0.9 * f * t.sin(), 0.9 * f * t.sin() * t.cos()])
+        })
+        .collect();
+    let (c, s) = (0.5f64.cos(), 0.5f64.sin());
+    let mut reversal = line(p, [0.0; 2], [1.2 * f * c, 1.2 * f * s], 20);
+    reversal.extend(line(
+        p,
+        [1.2 * f * c, 1.2 * f * s],
+        [-0.5 * f * c, -0.5 * f * s],
+        20,
+    ));
+    let mut drop = line(200.0, [0.0; 2], [0.7 * f, 0.0], 10);
+    drop.extend((1..=10).map(|i| {
+        let s = i as f64 / 10.0;
+        (200.0 - 150.0 * s, [0.7 * f, 0.3 * f * s])
+    }));
+    vec![
+        ("circle", circle),
+        ("figure-eight", eight),
+        ("reversal", reversal),
+        ("pressure drop", drop),
+    ]
+}
+
+/// Drives a point through (p_N, u_T) steps; the committed state after each.
+pub(super) fn drive2(
+    law: &TangentialLaw,
+    path: &[(f64, [f64; 2])],
+    st: &mut SlipState2,
+) -> Vec<VectorEval> {
+    path.iter()
+        .map(|&(p, u)| {
+            let ev = law.eval_vector(p, 0.0, u, st);
+            *st = ev.state;
+            ev
+        })
+        .collect()
+}
+
+#[test]
+fn vector_tangents_match_finite_differences_after_2d_histories() {
+    for law in all_laws() {
+        let f = reach(&law, 150.0);
+        let (mut checked, mut probes, mut seen) = (0, 0, Vec::new());
+        // the virgin state too: the isotropic limit may have reached the
+        // cap on every path
+        let mut histories = paths(f);
+        histories.push(("virgin", vec![(150.0, [0.0; 2])]));
+        for (name, path) in histories {
+            let mut committed = SlipState2::default();
+            drive2(&law, &path, &mut committed);
+            let (p_end, u_end) = *path.last().unwrap();
+            for un in [approach(p_end), 0.85 * approach(p_end)] {
+                for d in [0.02, 0.3, 0.9, 2.0] {
+                    for alpha in [0.0f64, 1.3, 2.9, 4.4] {
+                        probes += 1;
+                        let u = [
+                            u_end[0] + d * f * alpha.cos(),
+                            u_end[1] + d * f * alpha.sin(),
+                        ];
+                        let g = |un: f64, u: [f64; 2]| {
+                            let (p, kn) = pressure(un);
+                            law.eval_vector(p, kn, u, &committed).p_t
+                        };
+                        let (p, kn) = pressure(un);
+                        let ev = law.eval_vector(p, kn, u, &committed);
+                        seen.push(ev.slip);
+                        let k = law.elastic_stiffness(p).0;
+                        let (h, hn) = (1e-7 * f, 1e-9);
+                        let t0 = g(un, u);
+                        // columns ∂p/∂u₁, ∂p/∂u₂, ∂p/∂u_N by central differences;
+                        // one-sided ones that disagree: a kink (an element
+                        // starting or ending to slide) here, not checked
+                        let mut cols = [[0.0; 2]; 3];
+                        let mut smooth = true;
+                        for (j, col) in cols.iter_mut().enumerate() {
+                            let (tp, tm, step, scale) = if j < 2 {
+                                let (mut up, mut um) = (u, u);
+                                up[j] += h;
+                                um[j] -= h;
+                                (g(un, up), g(un, um), h, k)
+                            } else {
+                                let s = ev.d_un[0].hypot(ev.d_un[1]).max(k * 1e-2);
+                                (g(un + hn, u), g(un - hn, u), hn, s)
+                            };
+                            for i in 0..2 {
+                                let (fwd, bwd) = ((tp[i] - t0[i]) / step, (t0[i] - tm[i]) / step);
+                                smooth &= (fwd - bwd).abs() < 1e-4 * scale;
+                                col[i] = (tp[i] - tm[i]) / (2.0 * step);
+                            }
+                        }
+                        if !smooth {
+                            continue;
+                        }
+                        checked += 1;
+                        for i in 0..2 {
+                            for j in 0..2 {
+                                assert!(
+                                    (cols[j][i] - ev.d_ut[i][j]).abs() < 1e-5 * k,
+                                    "{law:?} {name}, d = {d} f, α = {alpha}, {:?}: ∂p{i}/∂u{j} {} vs FD {}",
+                                    ev.slip,
+                                    ev.d_ut[i][j],
+                                    cols[j][i]
+                                );
+                            }
+                            let fd = cols[2][i];
+                            let nscale = ev.d_un[i].abs().max(fd.abs()).max(k * 1e-3);
+                            assert!(
+                                (fd - ev.d_un[i]).abs() < 1e-5 * nscale,
+                                "{law:?} {name}, d = {d} f, α = {alpha}, {:?}: ∂p{i}/∂u_N {} vs FD {fd}",
+                                ev.slip,
+                                ev.d_un[i]
+                            );
+                        }
+                    }
+                }
+            }
+        }
+        assert!(
+            checked * 5 >= probes * 4,
+            "{law:?}: only {checked} of {probes} probes smooth"
+        );
+        // (an Iwan density's smallest elements slide at once: no stick
+        // beyond 0.02 f)
+        let iwan = matches!(law.backbone, Backbone::Iwan { .. });
+        if !(iwan && law.memory == Memory::Kinematic) {
+            assert!(seen.contains(&Slip::Stick), "{law:?}: {seen:?}");
+        }
+        if law.kp_ratio > 0.0 {
+            assert!(seen.contains(&Slip::MacroSlip), "{law:?}: {seen:?}");
+        }
+        if law.kp_ratio < 1.0 || iwan {
+            assert!(seen.contains(&Slip::MicroSlip), "{law:?}: {seen:?}");
+        }
+        eprintln!(
+            "{:?} {:?}: {checked} of {probes} probes checked",
+            law.memory, law.backbone
+        );
+    }
+}
+
+/// Q v for the rotation Q by θ.
+fn rotate(t: f64, v: [f64; 2]) -> [f64; 2] {
+    let (c, s) = (t.cos(), t.sin());
+    [c * v[0] - s * v[1], s * v[0] + c * v[1]]
+}
+
+#[test]
+fn a_rotated_path_gives_the_rotated_response() {
+    for law in all_laws() {
+        let f = reach(&law, 150.0);
+        // an irregular 2-D walk with pressure changes and reversals
+        let mut rng = Lcg(5);
+        let (mut u, mut un) = ([0.0; 2], approach(150.0));
+        let walk: Vec<(f64, f64, [f64; 2])> = (0..300)
+            .map(|_| {
+                u[0] += 0.5 * f * (rng.next() - 0.45);
+                u[1] += 0.5 * f * (rng.next() - 0.55);
+                un = (un + 0.002 * (rng.next() - 0.5)).clamp(0.005, 0.016);
+                let (p, kn) = pressure(un);
+                (p, kn, u)
+            })
+            .collect();
+        for theta in [0.3, 1.1, std::f64::consts::FRAC_PI_2, 2.7, -2.0] {
+            let (mut a, mut b) = (SlipState2::default(), SlipState2::default());
+            let mut worst = 0.0f64;
+            for (step, &(p, kn, u)) in walk.iter().enumerate() {
+                let x = law.eval_vector(p, kn, u, &a);
+                let y = law.eval_vector(p, kn, rotate(theta, u), &b);
+                let k = law.elastic_stiffness(p).0;
+                let cap = law.mu * p;
+                let diff = |v: [f64; 2], w: [f64; 2]| (v[0] - w[0]).hypot(v[1] - w[1]);
+                // Q D Qᵀ column by column: D Qᵀ e_j rotated
+                let col = |d: [[f64; 2]; 2], j: usize| [d[0][j], d[1][j]];
+                let qdq = |j: usize| {
+                    let e = rotate(-theta, if j == 0 { [1.0, 0.0] } else { [0.0, 1.0] });
+                    let de = [
+                        x.d_ut[0][0] * e[0] + x.d_ut[0][1] * e[1],
+                        x.d_ut[1][0] * e[0] + x.d_ut[1][1] * e[1],
+                    ];
+                    rotate(theta, de)
+                };
+                let rel = [
+                    diff(rotate(theta, x.p_t), y.p_t) / cap,
+                    diff(qdq(0), col(y.d_ut, 0)) / k,
+                    diff(qdq(1), col(y.d_ut, 1)) / k,
+                    diff(rotate(theta, x.d_un), y.d_un) / (kn * law.mu),
+                    diff(rotate(theta, x.state.u_p), y.state.u_p) / f,
+                    (x.state.kappa - y.state.kappa).abs() / x.state.kappa.max(f),
+                ];
+                let w = rel.iter().fold(0.0f64, |m, &r| m.max(r));
+                worst = worst.max(w);
+                assert!(w < 1e-12, "{law:?} θ = {theta} step {step}: {rel:?}");
+                assert_eq!(x.slip, y.slip, "{law:?} θ = {theta} step {step}");
+                a = x.state;
+                b = y.state;
+            }
+            if theta == 0.3 {
+                eprintln!(
+                    "{:?} {:?}: largest relative difference {worst:e}",
+                    law.memory, law.backbone
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn a_state_packs_unpacks_and_checks() {
+    let law = iwan(Memory::Kinematic, -0.5, 0.1);
+    let f = reach(&law, 150.0);
+    let mut st = SlipState2::default();
+    drive2(&law, &paths(f)[1].1, &mut st);
+    assert!(st.mem.largest() > 0.0);
+    let v = st.pack();
+    assert_eq!(v.len(), SlipState2::PACKED);
+    // unpacked from the middle of a longer buffer, as from an exchange
+    let mut buf = vec![7.0; 3 * SlipState2::PACKED];
+    buf[SlipState2::PACKED..2 * SlipState2::PACKED].copy_from_slice(&v);
+    assert_eq!(SlipState2::unpack(&buf[SlipState2::PACKED..]), st);
+    assert_eq!(st.check(Some(&law), 10.0), Ok(()));
+    // what an untrusted file may hold
+    let bad = |edit: &dyn Fn(&mut SlipState2)| {
+        let mut s = st;
+        edit(&mut s);
+        s
+    };
+    let nan = bad(&|s| s.mem.e[3][1] = f64::NAN);
+    assert!(nan
+        .check(Some(&law), 10.0)
+        .unwrap_err()
+        .contains("value 11"));
+    let neg = bad(&|s| s.kappa = -1e-3);
+    assert!(neg
+        .check(Some(&law), 10.0)
+        .unwrap_err()
+        .contains("κ = -0.001"));
+    let long = bad(&|s| s.mem.e[2] = [8.0, 7.0]);
+    assert!(long
+        .check(Some(&law), 10.0)
+        .unwrap_err()
+        .contains("element 3"));
+    // stretches under a law without the kinematic memory, or past its elements
+    let iso = exact_laws()[1].clone();
+    assert!(st
+        .check(Some(&iso), 10.0)
+        .unwrap_err()
+        .contains("element 1"));
+    assert!(st.check(None, 10.0).unwrap_err().contains("has 0"));
+    let pair = kinematic(0.3);
+    assert_eq!(pair.elements().len, 2);
+    let extra = bad(&|s| {
+        s.mem = Stretch2::default();
+        s.mem.e[2] = [1e-4, 0.0];
+    });
+    assert!(extra
+        .check(Some(&pair), 10.0)
+        .unwrap_err()
+        .contains("element 3"));
+}
