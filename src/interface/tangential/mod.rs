@@ -506,4 +506,6 @@ mod memory_tests;
 #[cfg(test)]
 mod tests;
 #[cfg(test)]
+mod vector_paths_tests;
+#[cfg(test)]
 mod vector_tests;
