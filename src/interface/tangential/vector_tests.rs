@@ -73,6 +73,9 @@ pub(super) fn exact_laws() -> Vec<TangentialLaw> {
         kinematic(0.3),
         kinematic(1.0),
         kinematic(0.0),
+        table(0.3, 1.0)
+            .with_memory(Memory::Kinematic, Backbone::Bilinear)
+            .unwrap(),
     ]
 }
 
@@ -173,8 +176,11 @@ pub(super) fn all_laws() -> Vec<TangentialLaw> {
     v
 }
 
+/// Steps of (p_N, u_T).
+pub(super) type Path = Vec<(f64, [f64; 2])>;
+
 /// `n` steps of (p_N, u_T) from `a` to `b` at pressure p, `b` included.
-fn line(p: f64, a: [f64; 2], b: [f64; 2], n: usize) -> Vec<(f64, [f64; 2])> {
+fn line(p: f64, a: [f64; 2], b: [f64; 2], n: usize) -> Path {
     (1..=n)
         .map(|i| {
             let s = i as f64 / n as f64;
@@ -185,7 +191,7 @@ fn line(p: f64, a: [f64; 2], b: [f64; 2], n: usize) -> Vec<(f64, [f64; 2])> {
 
 /// 2-D histories in units of f: a circle, a figure-eight, a reversal at an
 /// angle, a pressure drop while slipping across the earlier slip.
-pub(super) fn paths(f: f64) -> Vec<(&'static str, Vec<(f64, [f64; 2])>)> {
+pub(super) fn paths(f: f64) -> Vec<(&'static str, Path)> {
     use std::f64::consts::TAU;
     let p = 150.0;
     let mut circle = line(p, [0.0; 2], [0.8 * f, 0.0], 10);
@@ -291,23 +297,21 @@ fn vector_tangents_match_finite_differences_after_2d_histories() {
                             continue;
                         }
                         checked += 1;
-                        for i in 0..2 {
-                            for j in 0..2 {
+                        for (i, (row, dun)) in ev.d_ut.iter().zip(ev.d_un).enumerate() {
+                            for (j, (&dij, col)) in row.iter().zip(&cols).enumerate() {
                                 assert!(
-                                    (cols[j][i] - ev.d_ut[i][j]).abs() < 1e-5 * k,
-                                    "{law:?} {name}, d = {d} f, α = {alpha}, {:?}: ∂p{i}/∂u{j} {} vs FD {}",
+                                    (col[i] - dij).abs() < 1e-5 * k,
+                                    "{law:?} {name}, d = {d} f, α = {alpha}, {:?}: ∂p{i}/∂u{j} {dij} vs FD {}",
                                     ev.slip,
-                                    ev.d_ut[i][j],
-                                    cols[j][i]
+                                    col[i]
                                 );
                             }
                             let fd = cols[2][i];
-                            let nscale = ev.d_un[i].abs().max(fd.abs()).max(k * 1e-3);
+                            let nscale = dun.abs().max(fd.abs()).max(k * 1e-3);
                             assert!(
-                                (fd - ev.d_un[i]).abs() < 1e-5 * nscale,
-                                "{law:?} {name}, d = {d} f, α = {alpha}, {:?}: ∂p{i}/∂u_N {} vs FD {fd}",
-                                ev.slip,
-                                ev.d_un[i]
+                                (fd - dun).abs() < 1e-5 * nscale,
+                                "{law:?} {name}, d = {d} f, α = {alpha}, {:?}: ∂p{i}/∂u_N {dun} vs FD {fd}",
+                                ev.slip
                             );
                         }
                     }
