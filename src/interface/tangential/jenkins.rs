@@ -114,16 +114,20 @@ impl Elements {
         };
         let (c, q1, q2) = (1.0 - spike, chi + 1.0, chi + 2.0);
         let m = JENKINS - 1;
-        let cut = |j: usize| {
-            if j == 0 {
-                0.0
-            } else {
-                IWAN_LOWEST.powf((m - j) as f64 / (m - 1) as f64)
-            }
-        };
+        // bⱼ^{χ+1} and bⱼ^{χ+2}, j = 0 … m: geometric from b_m = 1 down to
+        // b₁ = λ (three powers, not one per cut: this runs per evaluation)
+        let step = IWAN_LOWEST.powf(1.0 / (m - 1) as f64);
+        let (s1, s2) = (step.powf(q1), step.powf(q2));
+        let (mut p1, mut p2) = ([0.0; JENKINS], [0.0; JENKINS]);
+        let (mut x1, mut x2) = (1.0, 1.0);
+        for j in (1..=m).rev() {
+            p1[j] = x1;
+            p2[j] = x2;
+            x1 *= s1;
+            x2 *= s2;
+        }
         for j in 1..=m {
-            let (a, b) = (cut(j - 1), cut(j));
-            let (w0, w1) = (b.powf(q1) - a.powf(q1), b.powf(q2) - a.powf(q2));
+            let (w0, w1) = (p1[j] - p1[j - 1], p2[j] - p2[j - 1]);
             el.push(q1 / q2 * w1 / w0, c * w0);
         }
         el.push(1.0, spike);
