@@ -20,7 +20,7 @@
 //! a sliding element's stretch the exact path is a tractrix, the angle θ
 //! between stretch and path obeying tan(θ/2) = tan(θ₀/2) e^{−s/r} after a
 //! slide s, and P is its first-order approximation (tested in
-//! `vector_tests`).
+//! `vector_paths_tests`).
 //!
 //! The 1-D state e(η) is stored exactly as a piecewise-linear function; in
 //! the plane a stretch field over η has no such finite form, so the
@@ -35,8 +35,8 @@
 //!   element with its mass and at its centre of mass (so Σ mᵢ and Σ mᵢ ηᵢ,
 //!   the initial stiffness and the friction limit, are those of the
 //!   density), and the spike is the last element at η = 1. The error this
-//!   makes in the loop areas is measured in `vector_tests` and stated in
-//!   docs/theory.md.
+//!   makes in the loop areas is measured in `vector_paths_tests` and
+//!   stated in docs/theory.md.
 
 use super::{Backbone, Density, TangentialLaw};
 
