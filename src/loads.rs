@@ -172,7 +172,7 @@ pub fn build(case: &Case, mesh: &Mesh, section: Section, place: &str) -> Result<
     for (k, ps) in case.pretension.iter().enumerate() {
         let at = format!("{place}: pretension[{k}] (\"{}\")", clip(&ps.name));
         let h = res.resolve(ps.history.as_ref(), &format!("{at} history"))?;
-        let d = crate::pretension::dof(mesh.nodes.len(), k);
+        let d = crate::pretension::dof(mesh.node_dofs, mesh.nodes.len(), k);
         if let Some(f) = ps.force {
             add(pattern(&mut patterns, h, nd), &[(d, f)]);
             scaled.push((format!("{at} force"), f, &ranges::FORCE, h));
@@ -327,7 +327,7 @@ pub fn check_acting(
     for a in acting {
         if a.concentrated {
             if let Some(&d) = a.dofs.iter().find(|d| held.contains(d)) {
-                let (n, c) = (d / 2, d % 2);
+                let (n, c) = mesh.node_dofs.node_of(d);
                 let x = mesh.nodes[n];
                 let on_axis =
                     axisymmetric && c == 0 && x[0].abs() <= crate::case::whole::tolerance(mesh);
@@ -415,6 +415,7 @@ fn edge_traction(
     }
     let tol = crate::case::whole::tolerance(mesh);
     let gp = q8::gauss_1d(3);
+    let nd = mesh.node_dofs;
     let mut terms = Vec::new();
     let (mut count, mut on_axis) = (0, 0);
     for edge in edges {
@@ -455,12 +456,12 @@ fn edge_traction(
             // pushes inward; the shear direction (n_y, −n_x) × ds = (−t_x, −t_y) dξ
             for k in 0..3 {
                 if p != 0.0 {
-                    terms.push((2 * edge[k], -p * n[k] * ty * w * measure));
-                    terms.push((2 * edge[k] + 1, p * n[k] * tx * w * measure));
+                    terms.push((nd.dof(edge[k], 0), -p * n[k] * ty * w * measure));
+                    terms.push((nd.dof(edge[k], 1), p * n[k] * tx * w * measure));
                 }
                 if tau != 0.0 {
-                    terms.push((2 * edge[k], -tau * n[k] * tx * w * measure));
-                    terms.push((2 * edge[k] + 1, -tau * n[k] * ty * w * measure));
+                    terms.push((nd.dof(edge[k], 0), -tau * n[k] * tx * w * measure));
+                    terms.push((nd.dof(edge[k], 1), -tau * n[k] * ty * w * measure));
                 }
             }
         }
@@ -546,7 +547,8 @@ fn concentrated_force(
     for &n in nodes {
         let x = mesh.nodes[n];
         if in_range(x[0], &fs.x_range) && in_range(x[1], &fs.y_range) {
-            terms.extend([(2 * n, fs.fx), (2 * n + 1, fs.fy)]);
+            let nd = mesh.node_dofs;
+            terms.extend([(nd.dof(n, 0), fs.fx), (nd.dof(n, 1), fs.fy)]);
         }
     }
     if terms.is_empty() {
@@ -614,7 +616,7 @@ fn boundary_conditions(
                 if !v.is_finite() {
                     return Err(Error::input(&at, format!("displacement {v} is not finite")));
                 }
-                let (first, fh, j) = *out.entry(2 * n + c).or_insert((v, h, i));
+                let (first, fh, j) = *out.entry(mesh.node_dofs.dof(n, c)).or_insert((v, h, i));
                 if first != v || fh != h {
                     let axis = ["x", "y"][c];
                     let what = if first != v {

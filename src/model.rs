@@ -8,9 +8,10 @@ use crate::case::{check_case, whole, Case, Integration};
 use crate::error::{Error, Result};
 use crate::fem::q8::{self, GaussRule};
 use crate::fem::solid::ElementGeometry;
+use crate::fem::solid::ElementVector;
 use crate::interface::InterfaceModel;
 use crate::material::{Plane, VonMises};
-use crate::mesh::{blocks, gmsh, Mesh};
+use crate::mesh::{blocks, gmsh, Mesh, NodeDofs};
 
 pub struct Model {
     /// The solution settings (method, schedule, tolerances, cutbacks, ...).
@@ -65,8 +66,8 @@ pub struct Model {
     pub probe_node: usize,
     /// y of the probe node: depths are measured below it.
     pub surface_y: f64,
-    /// Every dof: the mesh's two per node, then two per pretension section
-    /// (its reference node, [`crate::pretension`]).
+    /// Every dof: the mesh's ([`NodeDofs`] per node), then as many per
+    /// pretension section (its reference node, [`crate::pretension`]).
     pub n_dofs: usize,
     /// The linear constraints u_s = Σ c u_m + g(t) ([`crate::constraint`]).
     pub constraints: crate::constraint::Constraints,
@@ -132,10 +133,17 @@ impl Model {
                 None => Some(1.0),
             })
             .collect();
-        crate::pretension::finish(&case, &mut sections, mesh.nodes.len(), &lock_end);
+        crate::pretension::finish(
+            &case,
+            &mut sections,
+            mesh.node_dofs,
+            mesh.nodes.len(),
+            &lock_end,
+        );
         let n_dofs = crate::pretension::total_dofs(&case, &mesh);
         let constraints = crate::constraint::Constraints::new(
             crate::pretension::constraints(
+                mesh.node_dofs,
                 &sections,
                 &prescribed,
                 &loads.prescribed_history,
@@ -232,7 +240,7 @@ impl Model {
     /// prescribed dofs or the constraints themselves (tests): the dof map
     /// and the blocks' expansions follow.
     pub fn set_constraints(&mut self, list: Vec<crate::constraint::Constraint>) -> Result<()> {
-        self.n_dofs = self.mesh.num_dofs() + 2 * self.sections.len();
+        self.n_dofs = crate::pretension::total_dofs_of(&self.mesh, self.sections.len());
         self.constraints = crate::constraint::Constraints::new(list, self.n_dofs)
             .map_err(|m| Error::input(self.source.display().to_string(), m))?;
         self.dofs = dof_map(self.n_dofs, &self.prescribed, &self.constraints);
@@ -380,9 +388,10 @@ impl Model {
     pub fn applied_pressure(&self, i: usize, t: f64) -> f64 {
         let im = &self.interfaces[i];
         let n = im.pairs.first().map_or([0.0, 1.0], |p| p.normal);
+        let nd = self.mesh.node_dofs;
         let normal = |f: &[f64]| -> f64 {
             (0..self.mesh.nodes.len())
-                .map(|i| f[2 * i] * n[0] + f[2 * i + 1] * n[1])
+                .map(|i| f[nd.dof(i, 0)] * n[0] + f[nd.dof(i, 1)] * n[1])
                 .sum()
         };
         if self.histories.is_empty() {
@@ -401,12 +410,19 @@ impl Model {
         self.rule.points.len()
     }
 
-    /// Element displacement vector.
-    pub fn element_u(&self, e: usize, u: &[f64]) -> [f64; 16] {
-        let mut ue = [0.0; 16];
+    /// Dofs per node and their numbering (the mesh's [`NodeDofs`]).
+    pub fn node_dofs(&self) -> NodeDofs {
+        self.mesh.node_dofs
+    }
+
+    /// Element displacement vector, node-major: the first
+    /// [`NodeDofs::element`] entries are used.
+    pub fn element_u(&self, e: usize, u: &[f64]) -> ElementVector {
+        let nd = self.mesh.node_dofs;
+        let k = nd.per_node();
+        let mut ue = [0.0; NodeDofs::MAX_ELEMENT];
         for (a, &n) in self.mesh.elements[e].nodes.iter().enumerate() {
-            ue[2 * a] = u[2 * n];
-            ue[2 * a + 1] = u[2 * n + 1];
+            ue[k * a..k * (a + 1)].copy_from_slice(&u[nd.of(n)]);
         }
         ue
     }
@@ -463,7 +479,10 @@ fn block_dofs(
     for el in &mesh.elements {
         push(
             &mut blocks,
-            el.nodes.iter().flat_map(|&n| [2 * n, 2 * n + 1]).collect(),
+            el.nodes
+                .iter()
+                .flat_map(|&n| mesh.node_dofs.of(n))
+                .collect(),
         );
     }
     let mut base = Vec::new();
@@ -501,7 +520,10 @@ fn check_supports(
     }
     // (a pretension section's reference node is no node of a body)
     for &(d, _) in prescribed.iter().filter(|p| p.0 < mesh.num_dofs()) {
-        held[node_body[d / 2]][d % 2] = true;
+        let (n, c) = mesh.node_dofs.node_of(d);
+        if c < 2 {
+            held[node_body[n]][c] = true;
+        }
     }
     // propagate along each interface's dominant normal direction to a fixed point
     loop {

@@ -30,8 +30,9 @@ pub fn hold_axis(
         if x[0].abs() > tol {
             continue;
         }
-        match given.get(&(2 * n)) {
-            None => prescribed.push((2 * n, 0.0)),
+        let d = mesh.node_dofs.dof(n, 0);
+        match given.get(&d) {
+            None => prescribed.push((d, 0.0)),
             Some(&v) if v != 0.0 => return Err(nonzero_on_axis(case, mesh, n, v, place)),
             Some(_) => {}
         }

@@ -88,7 +88,7 @@ pub fn groups(case: &Case, mesh: &Mesh, prescribed: &[(usize, f64)]) -> Vec<Grou
                 {
                     continue;
                 }
-                if let Some(&k) = index.get(&(2 * n + c)) {
+                if let Some(&k) = index.get(&mesh.node_dofs.dof(n, c)) {
                     if !owned[k] {
                         owned[k] = true;
                         terms.push(k);

@@ -144,7 +144,10 @@ impl Frame {
         let ng = model.n_gauss();
         Frame {
             displacement: (0..nn)
-                .flat_map(|i| [state.u[2 * i], state.u[2 * i + 1], 0.0])
+                .flat_map(|i| {
+                    let nd = model.node_dofs();
+                    [state.u[nd.dof(i, 0)], state.u[nd.dof(i, 1)], 0.0]
+                })
                 .collect(),
             stress: nf.stress.iter().flat_map(|v| v.iter().copied()).collect(),
             von_mises: nf.von_mises,

@@ -1,0 +1,127 @@
+//! The 8-node axisymmetric element with twist: three displacements per node,
+//! u_r, u_z and the circumferential u_θ, all independent of θ (a body of
+//! revolution loaded by axisymmetric forces and a torque about its axis, as
+//! Abaqus' CGAX elements; Zienkiewicz & Taylor, *The Finite Element Method*,
+//! vol. 1, the axisymmetric solid under torsion).
+//!
+//! With ∂/∂θ = 0 the small strains of (u_r, u_z, u_θ) in cylindrical
+//! coordinates are (engineering shear):
+//! ```text
+//!   ε_rr = ∂u_r/∂r    ε_zz = ∂u_z/∂z    γ_rz = ∂u_r/∂z + ∂u_z/∂r    ε_θθ = u_r/r
+//!   γ_rθ = ∂u_θ/∂r − u_θ/r              γ_zθ = ∂u_θ/∂z
+//! ```
+//! so per node (columns u_r, u_z, u_θ) the 6 × 3 block of B is
+//! ```text
+//!   ⎡∂N/∂r  0      0          ⎤   ε_rr
+//!   ⎢0      ∂N/∂z  0          ⎥   ε_zz
+//!   ⎢∂N/∂z  ∂N/∂r  0          ⎥   γ_rz
+//!   ⎢N/r    0      0          ⎥   ε_θθ
+//!   ⎢0      0      ∂N/∂r − N/r⎥   γ_rθ
+//!   ⎣0      0      ∂N/∂z      ⎦   γ_zθ
+//! ```
+//! and fᵉ = Σ Bᵀ σ dv, Kᵉ = Σ Bᵀ C B dv with dv = det J · w · 2π r and C the
+//! 6 × 6 algorithmic tangent of the six-component radial return
+//! ([`VonMises::update_twist`]). A rigid rotation about the axis, u_θ = ω r,
+//! strains nothing (γ_rθ = ω − ω = 0). The first four rows are those of the
+//! axisymmetric element without twist ([`crate::fem::solid`]).
+
+use crate::fem::solid::{ElementGeometry, Response, Tangent};
+use crate::material::{PointState, VonMises};
+use nalgebra::Matrix6;
+
+/// Element dofs with twist (8 nodes × 3).
+const NE: usize = 24;
+
+/// The strain [ε_rr, ε_zz, γ_rz, ε_θθ, γ_rθ, γ_zθ] at Gauss point `ip` from the
+/// element displacements (node-major, u_r, u_z, u_θ per node).
+pub fn strain(geom: &ElementGeometry, ip: usize, ue: &[f64]) -> [f64; 6] {
+    let b = b_matrix(geom, ip);
+    std::array::from_fn(|i| (0..NE).map(|j| b[i][j] * ue[j]).sum())
+}
+
+/// The 6 × 24 B at Gauss point `ip` (module text).
+fn b_matrix(geom: &ElementGeometry, ip: usize) -> [[f64; NE]; 6] {
+    let (d, n, r) = (&geom.dndx[ip], &geom.shape[ip], geom.x[ip][0]);
+    let mut b = [[0.0; NE]; 6];
+    for a in 0..8 {
+        let (ur, uz, ut) = (3 * a, 3 * a + 1, 3 * a + 2);
+        b[0][ur] = d[a][0];
+        b[1][uz] = d[a][1];
+        b[2][ur] = d[a][1];
+        b[2][uz] = d[a][0];
+        b[3][ur] = n[a] / r;
+        b[4][ut] = d[a][0] - n[a] / r;
+        b[5][ut] = d[a][1];
+    }
+    b
+}
+
+/// Internal force and (optionally) tangent of one element with twist (24
+/// dofs; `ke` row-major 24 × 24): the module's fᵉ and Kᵉ with the
+/// algorithmic tangent, the continuum C_ep at the committed state
+/// ([`VonMises::continuum_tangent_6`]) or the elastic D. Errors name the
+/// Gauss point.
+#[allow(clippy::too_many_arguments)]
+pub fn forces(
+    geom: &ElementGeometry,
+    mat: &VonMises,
+    ue: &[f64],
+    committed: &[PointState],
+    trial: &mut [PointState],
+    response: Response,
+    tangent: Option<Tangent>,
+    fe: &mut [f64],
+    ke: &mut [f64],
+) -> Result<(), String> {
+    fe.fill(0.0);
+    if tangent.is_some() {
+        ke.fill(0.0);
+    }
+    for ip in 0..geom.n {
+        let r = geom.x[ip][0];
+        #[allow(clippy::neg_cmp_op_on_partial_ord)] // NaN is refused too
+        if !(r > 0.0) {
+            return Err(format!(
+                "Gauss point {ip} at r = {r}: an axisymmetric element must lie at r ≥ 0"
+            ));
+        }
+        let b = b_matrix(geom, ip);
+        let eps: [f64; 6] = std::array::from_fn(|i| (0..NE).map(|j| b[i][j] * ue[j]).sum());
+        let (state, c_alg) = match response {
+            Response::Plastic => mat.update_twist(&committed[ip], &eps),
+            Response::ElasticOnly => (
+                mat.elastic_state_twist(&committed[ip], &eps),
+                mat.elastic_matrix_6(),
+            ),
+        };
+        trial[ip] = state;
+        let (dv, s) = (geom.dv[ip], &state.stress);
+        for (j, f) in fe.iter_mut().enumerate().take(NE) {
+            *f += dv * (0..6).map(|i| b[i][j] * s[i]).sum::<f64>();
+        }
+        if let Some(t) = tangent {
+            let c = match t {
+                Tangent::Consistent => c_alg,
+                Tangent::Continuum => mat.continuum_tangent_6(&committed[ip]),
+                Tangent::Elastic => mat.elastic_matrix_6(),
+            };
+            add_btcb(&b, &c, dv, ke);
+        }
+    }
+    Ok(())
+}
+
+/// ke += Bᵀ C B dv for the 6-row B.
+fn add_btcb(b: &[[f64; NE]; 6], c: &Matrix6<f64>, dv: f64, ke: &mut [f64]) {
+    let mut cb = [[0.0f64; NE]; 6];
+    for (i, row) in cb.iter_mut().enumerate() {
+        for (j, v) in row.iter_mut().enumerate() {
+            *v = (0..6).map(|k| c[(i, k)] * b[k][j]).sum();
+        }
+    }
+    for p in 0..NE {
+        for q in 0..NE {
+            ke[p * NE + q] += dv * (0..6).map(|i| b[i][p] * cb[i][q]).sum::<f64>();
+        }
+    }
+}
