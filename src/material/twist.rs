@@ -169,3 +169,169 @@ pub(super) fn continuum(m: &VonMises, stress: &[f64; 6]) -> Matrix6<f64> {
     let n: [f64; 6] = std::array::from_fn(|i| s[i] / nrm);
     external(&voigt_tangent(g, k, 1.0, -6.0 * g * g / (3.0 * g + h), &n))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::Plane;
+    use super::*;
+
+    fn mat(h: f64) -> VonMises {
+        VonMises::new(200000.0, 0.3, 250.0, h, Plane::Axisymmetric).unwrap()
+    }
+
+    /// Worst difference between the 6×6 algorithmic tangent and central
+    /// differences of the stress, relative to the tangent's largest entry.
+    fn fd_error(m: &VonMises, committed: &PointState, eps: [f64; 6]) -> f64 {
+        let (_, c) = update(m, committed, &eps);
+        let scale = eps.iter().fold(1e-6f64, |a, v| a.max(v.abs()));
+        let h = 1e-7 * scale;
+        let mut worst: f64 = 0.0;
+        for j in 0..6 {
+            let (mut p, mut q) = (eps, eps);
+            p[j] += h;
+            q[j] -= h;
+            let (sp, sq) = (
+                update(m, committed, &p).0.stress,
+                update(m, committed, &q).0.stress,
+            );
+            for i in 0..6 {
+                let fd = (sp[i] - sq[i]) / (2.0 * h);
+                worst = worst.max((fd - c[(i, j)]).abs() / c.amax());
+            }
+        }
+        worst
+    }
+
+    #[test]
+    fn consistent_tangent_matches_finite_differences() {
+        let paths = [
+            [1e-4, -2e-5, 3e-5, 4e-5, 2e-5, -1e-5],         // elastic
+            [0.0, 0.0, 0.0, 0.0, 3e-3, 0.0],                // torsion alone
+            [1.0e-3, -0.3e-3, 0.2e-3, -0.4e-3, 1e-3, 5e-4], // just past yield
+            [8e-3, -1e-3, 6e-3, 2e-3, -4e-3, 3e-3],         // deep plastic
+            [-5e-3, 4e-3, -2e-3, 3e-3, 0.0, -6e-3],         // mixed signs
+        ];
+        let mut plastic = 0;
+        for h in [0.0, 2000.0, 50000.0] {
+            let m = mat(h);
+            let pre = update(
+                &m,
+                &PointState::default(),
+                &[2e-3, 0.0, 1e-3, -1e-3, 2e-3, 1e-3],
+            )
+            .0;
+            assert!(pre.yielding);
+            for c in [PointState::default(), pre] {
+                for eps in paths {
+                    plastic += usize::from(update(&m, &c, &eps).0.yielding);
+                    let e = fd_error(&m, &c, eps);
+                    assert!(e < 1e-6, "H={h} eps={eps:?}: FD error {e:e}");
+                }
+            }
+        }
+        assert!(
+            plastic >= 18,
+            "only {plastic} of the checked updates were plastic"
+        );
+    }
+
+    #[test]
+    fn without_twist_shear_it_is_the_four_component_return() {
+        let m = mat(3000.0);
+        let pre = m
+            .update_axisymmetric(&PointState::default(), &[3e-3, -1e-3, 2e-3, 1e-3])
+            .0;
+        for c in [PointState::default(), pre] {
+            for e in [
+                [5e-3, -1e-3, 2e-3, 1e-3],
+                [-4e-3, -4e-3, 1e-2, 0.0],
+                [1e-4, 0.0, 0.0, 0.0],
+            ] {
+                let (a, ca) = m.update_axisymmetric(&c, &e);
+                let (b, cb) = update(&m, &c, &[e[0], e[1], e[2], e[3], 0.0, 0.0]);
+                assert_eq!(a.yielding, b.yielding);
+                for i in 0..4 {
+                    assert!(
+                        (a.stress[i] - b.stress[i]).abs() < 1e-12 * 250.0,
+                        "{a:?} {b:?}"
+                    );
+                    assert!((a.plastic_strain[i] - b.plastic_strain[i]).abs() < 1e-15);
+                    for j in 0..4 {
+                        assert!((ca[(i, j)] - cb[(i, j)]).abs() < 1e-9 * ca.amax());
+                    }
+                }
+                assert_eq!(b.stress[4..], [0.0, 0.0]);
+                assert!((a.peeq - b.peeq).abs() < 1e-15);
+            }
+        }
+    }
+
+    #[test]
+    fn pure_torsion_yields_at_tau_y_over_root_three_and_stays_on_the_surface() {
+        // σ_rθ = G γ_rθ while elastic; von Mises yields at τ = σ_Y/√3, and
+        // beyond it the stress stays on the surface q = σ_Y + H ε̄ᵖ
+        let m = mat(10000.0);
+        let g = m.shear_modulus();
+        let gy = 250.0 / 3f64.sqrt() / g;
+        let (s, _) = update(
+            &m,
+            &PointState::default(),
+            &[0.0, 0.0, 0.0, 0.0, 0.9 * gy, 0.0],
+        );
+        assert!(!s.yielding && (s.stress[4] - 0.9 * gy * g).abs() < 1e-9 * 250.0);
+        let (s, _) = update(
+            &m,
+            &PointState::default(),
+            &[0.0, 0.0, 0.0, 0.0, 3.0 * gy, 0.0],
+        );
+        let q = VonMises::equivalent_stress(&s.stress);
+        assert!(s.yielding && (q - (250.0 + 10000.0 * s.peeq)).abs() < 1e-9 * 250.0);
+        assert!(s.stress[..4]
+            .iter()
+            .chain(&s.stress[5..])
+            .all(|v| v.abs() < 1e-9));
+        // the plastic shear strain accounts for the rest: γ = τ/G + 2 εᵖ_rθ
+        assert!((3.0 * gy - s.stress[4] / g - 2.0 * s.plastic_strain[4]).abs() < 1e-12);
+    }
+
+    #[test]
+    fn continuum_tangent_is_elastic_minus_the_normal_projection() {
+        let m = mat(2000.0);
+        let (s, _) = update(
+            &m,
+            &PointState::default(),
+            &[4e-3, -1e-3, 2e-3, 1e-3, 3e-3, -2e-3],
+        );
+        let cep = m.continuum_tangent_6(&s);
+        // along the flow direction (a deviatoric strain ∝ the stress
+        // deviator) C_ep = D − 6G²/(3G+H) N̂⊗N̂ scales the elastic response
+        // by 1 − 3G/(3G+H) = H/(3G+H)
+        let p = (s.stress[0] + s.stress[1] + s.stress[3]) / 3.0;
+        let dev = [
+            s.stress[0] - p,
+            s.stress[1] - p,
+            s.stress[2],
+            s.stress[3] - p,
+            s.stress[4],
+            s.stress[5],
+        ];
+        // engineering strain along the deviator: shear entries doubled
+        let de = nalgebra::Vector6::from_fn(|i, _| {
+            if [2, 4, 5].contains(&i) {
+                2.0 * dev[i]
+            } else {
+                dev[i]
+            }
+        });
+        let ds = cep * de;
+        let dse = m.elastic_matrix_6() * de;
+        let (g, h) = (m.shear_modulus(), 2000.0);
+        let ratio = h / (3.0 * g + h);
+        for i in 0..6 {
+            assert!(
+                (ds[i] - ratio * dse[i]).abs() < 1e-9 * dse.amax(),
+                "{i}: {ds} vs {dse}"
+            );
+        }
+    }
+}
