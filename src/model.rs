@@ -101,6 +101,9 @@ impl Model {
         let place = case.source.display().to_string();
         let checked = check_case(&case)?;
         let mut mesh = make_mesh(&case, &place)?;
+        if case.model.twist {
+            mesh.node_dofs = NodeDofs::TWIST;
+        }
         let mut sections = crate::pretension::cut(&case, &mut mesh, &place)?;
         let plane = case.model.plane;
         let thickness = case.model.thickness.value();
@@ -548,6 +551,28 @@ fn check_supports(
         }
         if !changed {
             break;
+        }
+    }
+    // twist: a body turns rigidly about the axis (u_θ = ω r, zero on the
+    // axis) unless a prescribed u_θ at r > 0 holds it (the interfaces carry
+    // no u_θ yet)
+    if mesh.node_dofs.twist() {
+        let tol = crate::case::whole::tolerance(mesh);
+        let mut turns = vec![true; mesh.bodies.len()];
+        for &(d, _) in prescribed.iter().filter(|p| p.0 < mesh.num_dofs()) {
+            let (n, c) = mesh.node_dofs.node_of(d);
+            if c == 2 && mesh.nodes[n][0].abs() > tol {
+                turns[node_body[n]] = false;
+            }
+        }
+        if let Some(b) = turns.iter().position(|&t| t) {
+            return Err(Error::input(
+                place,
+                format!(
+                    "body \"{}\" is held by nothing about the axis: no [[boundary]] rotation on a node at r > 0 (the axis holds u_θ = 0 but not the rigid rotation u_θ = ω r); give a rotation (0: fixed) on a set of the body",
+                    mesh.bodies[b]
+                ),
+            ));
         }
     }
     for (b, h) in held.iter().enumerate() {

@@ -36,6 +36,14 @@ pub fn hold_axis(
             Some(&v) if v != 0.0 => return Err(nonzero_on_axis(case, mesh, n, v, place)),
             Some(_) => {}
         }
+        // with twist, u_θ = 0 on the axis too (a prescribed rotation gives
+        // φ·0 = 0 there)
+        if mesh.node_dofs.twist() {
+            let d = mesh.node_dofs.dof(n, 2);
+            if !given.contains_key(&d) {
+                prescribed.push((d, 0.0));
+            }
+        }
     }
     prescribed.sort_by_key(|&(d, _)| d);
     Ok(prescribed)
