@@ -661,6 +661,12 @@ fn boundary_conditions(
                 let (first, fh, j) = *out.entry(mesh.node_dofs.dof(n, c)).or_insert((v, h, i));
                 if first != v || fh != h {
                     let axis = ["x", "y", "θ"][c];
+                    // the key of u_θ is the rotation (u_θ = φ r)
+                    let key = if c == 2 {
+                        "rotation".to_string()
+                    } else {
+                        format!("u{axis}")
+                    };
                     let what = if first != v {
                         format!("u{axis} = {v}, but boundary[{j}] (set \"{}\") already gives it {first}", clip(&case.boundary[j].set))
                     } else {
@@ -670,7 +676,7 @@ fn boundary_conditions(
                         )
                     };
                     return Err(Error::input(
-                        format!("{at} u{axis}"),
+                        format!("{at} {key}"),
                         format!(
                             "gives node {n} at ({}, {}) {what}: one prescribed value per node and direction",
                             x[0], x[1]
