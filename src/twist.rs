@@ -129,3 +129,21 @@ pub fn check_case(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    /// docs/case-schema.md lists twist's ranges with these bounds (as
+    /// `ranges::ALL`'s, [`crate::case::ranges`]).
+    #[test]
+    fn the_documented_ranges_match() {
+        let doc = include_str!("../docs/case-schema.md");
+        for r in [super::ROTATION, super::TORQUE] {
+            let row = doc
+                .lines()
+                .find(|l| l.starts_with(&format!("| {} |", r.quantity)))
+                .unwrap_or_else(|| panic!("no row for {} in docs/case-schema.md", r.quantity));
+            let bounds = format!("| {:e} … {:e} |", r.lo, r.hi);
+            assert!(row.contains(&bounds), "{row:?} should contain {bounds:?}");
+        }
+    }
+}

@@ -134,6 +134,10 @@ fn solid_and_hollow_shafts_twisted_by_a_prescribed_rotation_are_exact() {
         let t = g * j * phi / L;
         let top = reaction_torque(&model, &state, |x| x[1] == L);
         let bottom = reaction_torque(&model, &state, |x| x[1] == 0.0);
+        eprintln!(
+            "shaft R_i = {ri}, rotation {phi}: torque {top:.10e} vs G J φ/L = {t:.10e} (rel {:.1e})",
+            common::rel(top, t)
+        );
         assert!(
             common::rel(top, t) < 1e-8,
             "R_i = {ri}: torque {top} vs {t}"
@@ -156,6 +160,17 @@ fn solid_and_hollow_shafts_twisted_by_an_applied_torque_are_exact() {
         ));
         let state = solve(&model);
         let bottom = reaction_torque(&model, &state, |x| x[1] == 0.0);
+        let nd = model.node_dofs();
+        let n = (model.mesh.nodes.iter())
+            .position(|x| x[1] == L && x[0] == RO)
+            .unwrap();
+        let g = E / (2.0 * (1.0 + NU));
+        let want = t * L / (g * std::f64::consts::PI * (RO.powi(4) - ri.powi(4)) / 2.0);
+        let phi = state.u[nd.dof(n, 2)] / RO;
+        eprintln!(
+            "shaft R_i = {ri}, torque {t}: end rotation {phi:.10e} vs T L/(G J) = {want:.10e} (rel {:.1e})",
+            common::rel(phi, want)
+        );
         assert!(
             common::rel(-bottom, t) < 1e-8,
             "R_i = {ri}: reaction {bottom}"
@@ -265,4 +280,155 @@ vtu = false
     assert!(errors[0] < 0.0, "{errors:?}");
     assert!(errors[1..].iter().all(|e| e.abs() < 0.02), "{errors:?}");
     assert!((errors[2] - errors[1]).abs() < 0.005, "{errors:?}");
+}
+
+/// Elastic-plastic torsion of a solid shaft (von Mises, linear hardening H):
+/// the kinematics u_θ = φ r z / L stay exact (τ depends on r alone, and the
+/// end tractions' virtual work telescopes along z), so every Gauss point
+/// holds the closed-form shear of γ = φ r / L:
+///   τ = G γ (γ ≤ γ_y = σ_Y/(√3 G)),  τ = (σ_Y/√3 + H γ/3) / (1 + H/(3G)) beyond
+/// (√3 τ = σ_Y + H ε̄ᵖ with ε̄ᵖ = γ_p/√3), to round-off; and the perfectly
+/// plastic torque T = (2π/3) τ_y R³ (1 − ¼ (γ_y/γ_R)³) to 1e-8: the
+/// elastic-plastic radius r_y = R/6 falls on an element boundary (12
+/// elements), so the 3-point rule integrates τ r² exactly on each side.
+#[test]
+fn plastic_torsion_of_a_solid_shaft_follows_the_closed_form() {
+    let sy = 250.0;
+    let g = E / (2.0 * (1.0 + NU));
+    let gamma_y = sy / (3f64.sqrt() * g);
+    for h in [0.0, 20_000.0] {
+        // outer shear strain 6 γ_y at the end of four increments
+        let phi = 6.0 * gamma_y * L / RO;
+        let text = shaft(
+            0.0,
+            &format!("[[boundary]]\nset = \"shaft.top\"\nrotation = {phi}"),
+        )
+        .replace(
+            "poisson = 0.3",
+            &format!("poisson = 0.3\nyield_stress = {sy}\nhardening = {h}"),
+        )
+        .replace("nx = [4]", "nx = [12]")
+        .replace("increments = 1", "increments = 4");
+        let model = common::model(&text);
+        let state = solve(&model);
+        let ng = model.n_gauss();
+        let tau_of = |gamma: f64| {
+            if gamma <= gamma_y {
+                g * gamma
+            } else {
+                (sy / 3f64.sqrt() + h * gamma / 3.0) / (1.0 + h / (3.0 * g))
+            }
+        };
+        let mut plastic = 0;
+        for e in 0..model.mesh.elements.len() {
+            let geo = model.geometry(e);
+            for ip in 0..ng {
+                let gp = &state.gauss[e * ng + ip];
+                let want = tau_of(phi * geo.x[ip][0] / L);
+                assert!(
+                    (gp.stress[5] - want).abs() < 1e-8 * sy,
+                    "H = {h}, r = {}: τ_zθ {} vs {want}",
+                    geo.x[ip][0],
+                    gp.stress[5]
+                );
+                assert!(gp.stress[..5].iter().all(|s| s.abs() < 1e-8 * sy));
+                plastic += usize::from(gp.yielding);
+            }
+        }
+        assert!(plastic > 0, "H = {h}: nothing yielded");
+        if h == 0.0 {
+            let tau_y = sy / 3f64.sqrt();
+            let t_exact =
+                2.0 * std::f64::consts::PI / 3.0 * tau_y * RO.powi(3) * (1.0 - 0.25 / 216.0);
+            let t = reaction_torque(&model, &state, |x| x[1] == L);
+            eprintln!(
+                "plastic shaft: torque {t:.6e} vs (2π/3) τ_y R³ (1 − (γ_y/γ_R)³/4) = {t_exact:.6e} (rel {:.1e})",
+                common::rel(t, t_exact)
+            );
+            assert!(common::rel(t, t_exact) < 1e-8, "torque {t} vs {t_exact}");
+        }
+    }
+}
+
+/// An interface with the normal law only works with twist (u_θ does not
+/// change the normal gap): two cylinders pressed together across a rough
+/// joint, the lower one twisted by a circumferential shear on its side,
+/// give the in-plane displacements and contact pressures of the same model
+/// without twist, to round-off (elastic: the twist is decoupled).
+#[test]
+fn a_normal_interface_in_a_twisting_model_is_the_model_without_twist() {
+    let case = |twist: bool| {
+        let (model, extra) = if twist {
+            (
+                "twist = true",
+                "rotation = 0.0\n[[boundary]]\nset = \"upper.top\"\nrotation = 0.0\n[[load]]\nedges = \"lower.right\"\nhoop_shear = 20.0",
+            )
+        } else {
+            ("", "")
+        };
+        format!(
+            r#"
+[model]
+plane = "axisymmetric"
+{model}
+[[mesh.block]]
+body = "upper"
+x = [0.0, 8.0]
+nx = [4]
+y = [0.0, 6.0]
+ny = [3]
+[[mesh.block]]
+body = "lower"
+x = [0.0, 8.0, 16.0]
+nx = [4, 3]
+y = [-12.0, 0.0]
+ny = [4]
+[[mesh.interface]]
+name = "contact"
+upper = "upper"
+lower = "lower"
+[materials.upper]
+young = {E}
+poisson = {NU}
+[materials.lower]
+young = {E}
+poisson = {NU}
+[interface.contact]
+law = "power"
+c_n = 0.001
+m = 0.5
+[[load]]
+edges = "upper.top"
+pressure = 100.0
+[[boundary]]
+set = "lower.bottom"
+uy = 0.0
+{extra}
+[solver]
+increments = 3
+[output]
+vtu = false
+"#
+        )
+    };
+    let (plain, twisted) = (common::model(&case(false)), common::model(&case(true)));
+    assert_eq!(twisted.node_dofs().per_node(), 3);
+    let (a, b) = (solve(&plain), solve(&twisted));
+    let (na, nb) = (plain.node_dofs(), twisted.node_dofs());
+    let scale = a.u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    for n in 0..plain.mesh.nodes.len() {
+        for c in 0..2 {
+            let (x, y) = (a.u[na.dof(n, c)], b.u[nb.dof(n, c)]);
+            assert!((x - y).abs() < 1e-10 * scale, "node {n} u[{c}]: {x} vs {y}");
+        }
+    }
+    let im = (&plain.interfaces[0], &twisted.interfaces[0]);
+    for (pa, pb) in im.0.pairs.iter().zip(&im.1.pairs) {
+        let (ua, ub) = (im.0.pair_approach(pa, &a.u), im.1.pair_approach(pb, &b.u));
+        assert!((ua - ub).abs() < 1e-10 * scale, "approach {ua} vs {ub}");
+    }
+    // and the lower body carries the torque: τ 2π R² h at its bottom
+    let t = 20.0 * 2.0 * std::f64::consts::PI * 16.0 * 16.0 * 12.0;
+    let bottom = reaction_torque(&twisted, &b, |x| x[1] == -12.0);
+    assert!(common::rel(-bottom, t) < 1e-9, "torque {bottom} vs {t}");
 }
