@@ -222,7 +222,6 @@ mod tests {
 
     #[test]
     fn rigid_motions_strain_nothing_and_the_plane_part_is_the_axisymmetric_element() {
-        let geom = geometry();
         let m = VonMises::new(200000.0, 0.3, 250.0, 0.0, Plane::Axisymmetric).unwrap();
         let (x, geom) = element();
         // rotation about the axis u_θ = ω r and translation along it u_z = c:

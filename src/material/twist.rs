@@ -163,6 +163,7 @@ pub(super) fn continuum(m: &VonMises, stress: &[f64; 6]) -> Matrix6<f64> {
         stress[5],
     ];
     let nrm = norm(&s);
+    #[allow(clippy::neg_cmp_op_on_partial_ord)] // a NaN stress gives D too
     if !(nrm > 0.0) {
         return elastic_matrix(g, k);
     }
