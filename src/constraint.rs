@@ -74,12 +74,8 @@ impl Constraints {
             if slave_of[c.slave] != NONE {
                 let other = &list[slave_of[c.slave] as usize];
                 return Err(format!(
-                    "dof {} (node {}, u{}) is constrained twice, by {} and by {}: one dof takes one value",
-                    c.slave,
-                    c.slave / 2,
-                    ["x", "y"][c.slave % 2],
-                    other.origin,
-                    c.origin
+                    "dof {} is constrained twice, by {} and by {}: one dof takes one value",
+                    c.slave, other.origin, c.origin
                 ));
             }
             slave_of[c.slave] = k as u32;

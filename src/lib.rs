@@ -47,5 +47,6 @@ pub mod schedule;
 pub mod solve;
 pub mod study;
 pub mod threads;
+pub mod twist;
 
 pub use error::{Error, Result};

@@ -172,7 +172,7 @@ pub fn build(case: &Case, mesh: &Mesh, section: Section, place: &str) -> Result<
     for (k, ps) in case.pretension.iter().enumerate() {
         let at = format!("{place}: pretension[{k}] (\"{}\")", clip(&ps.name));
         let h = res.resolve(ps.history.as_ref(), &format!("{at} history"))?;
-        let d = crate::pretension::dof(mesh.nodes.len(), k);
+        let d = crate::pretension::dof(mesh.node_dofs, mesh.nodes.len(), k);
         if let Some(f) = ps.force {
             add(pattern(&mut patterns, h, nd), &[(d, f)]);
             scaled.push((format!("{at} force"), f, &ranges::FORCE, h));
@@ -327,7 +327,7 @@ pub fn check_acting(
     for a in acting {
         if a.concentrated {
             if let Some(&d) = a.dofs.iter().find(|d| held.contains(d)) {
-                let (n, c) = (d / 2, d % 2);
+                let (n, c) = mesh.node_dofs.node_of(d);
                 let x = mesh.nodes[n];
                 let on_axis =
                     axisymmetric && c == 0 && x[0].abs() <= crate::case::whole::tolerance(mesh);
@@ -399,7 +399,9 @@ fn edge_traction(
         )
     })?;
     let (p, tau) = (ld.pressure, ld.shear);
-    if !p.is_finite() || (p == 0.0 && tau == 0.0) {
+    // twist: τ_θ given, or a torque (τ_θ = T r / ∫ r² dA below)
+    let hoop = ld.hoop_shear.or(ld.torque);
+    if !p.is_finite() || (p == 0.0 && tau == 0.0 && hoop.is_none()) {
         return Err(Error::input(
             at,
             format!(
@@ -415,7 +417,12 @@ fn edge_traction(
     }
     let tol = crate::case::whole::tolerance(mesh);
     let gp = q8::gauss_1d(3);
+    let nd = mesh.node_dofs;
     let mut terms = Vec::new();
+    // twist: the u_θ forces of a unit τ_θ and of a unit τ_θ / r (a torque's
+    // traction), and ∫ r² dA of the selected edges
+    let mut torque_terms = Vec::new();
+    let (mut hoop_terms, mut moment) = (Vec::new(), 0.0);
     let (mut count, mut on_axis) = (0, 0);
     for edge in edges {
         let x: Vec<[f64; 2]> = edge.iter().map(|&n| mesh.nodes[n]).collect();
@@ -455,12 +462,18 @@ fn edge_traction(
             // pushes inward; the shear direction (n_y, −n_x) × ds = (−t_x, −t_y) dξ
             for k in 0..3 {
                 if p != 0.0 {
-                    terms.push((2 * edge[k], -p * n[k] * ty * w * measure));
-                    terms.push((2 * edge[k] + 1, p * n[k] * tx * w * measure));
+                    terms.push((nd.dof(edge[k], 0), -p * n[k] * ty * w * measure));
+                    terms.push((nd.dof(edge[k], 1), p * n[k] * tx * w * measure));
                 }
                 if tau != 0.0 {
-                    terms.push((2 * edge[k], -tau * n[k] * tx * w * measure));
-                    terms.push((2 * edge[k] + 1, -tau * n[k] * ty * w * measure));
+                    terms.push((nd.dof(edge[k], 0), -tau * n[k] * tx * w * measure));
+                    terms.push((nd.dof(edge[k], 1), -tau * n[k] * ty * w * measure));
+                }
+                if hoop.is_some() {
+                    let ds = tx.hypot(ty) * w;
+                    hoop_terms.push((nd.dof(edge[k], 2), n[k] * ds * measure));
+                    torque_terms.push((nd.dof(edge[k], 2), n[k] * xg[0] * ds * measure));
+                    moment += n[k] * xg[0] * xg[0] * ds * measure;
                 }
             }
         }
@@ -471,8 +484,21 @@ fn edge_traction(
     if on_axis == count {
         return Err(Error::input(
             at,
-            "every edge it selects lies on the axis r = 0 of the axisymmetric model, where a traction acts on no area: load a surface of the body instead",
+            if ld.torque.is_some() {
+                "is a torque on the axis: every edge it selects lies on the axis r = 0, where a traction acts on no area and has no lever arm; load a surface of the body instead"
+            } else {
+                "every edge it selects lies on the axis r = 0 of the axisymmetric model, where a traction acts on no area: load a surface of the body instead"
+            },
         ));
+    }
+    if let Some(h) = hoop {
+        // a uniform τ_θ, or the torque's τ_θ = T r / ∫ r² dA: ∫ r τ_θ dA = T,
+        // the end face shear of an elastic shaft (uniform on a cylinder)
+        let (per, scale) = match ld.torque {
+            Some(t) => (torque_terms, t / moment),
+            None => (hoop_terms, h),
+        };
+        terms.extend(per.into_iter().map(|(d, v)| (d, scale * v)));
     }
     Ok(terms)
 }
@@ -546,7 +572,8 @@ fn concentrated_force(
     for &n in nodes {
         let x = mesh.nodes[n];
         if in_range(x[0], &fs.x_range) && in_range(x[1], &fs.y_range) {
-            terms.extend([(2 * n, fs.fx), (2 * n + 1, fs.fy)]);
+            let nd = mesh.node_dofs;
+            terms.extend([(nd.dof(n, 0), fs.fx), (nd.dof(n, 1), fs.fy)]);
         }
     }
     if terms.is_empty() {
@@ -587,11 +614,23 @@ fn boundary_conditions(
                 ),
             )
         })?;
-        if bc.ux.is_none() && bc.uy.is_none() {
-            return Err(Error::input(&at, "give ux and/or uy"));
+        if bc.ux.is_none() && bc.uy.is_none() && bc.rotation.is_none() {
+            return Err(Error::input(
+                &at,
+                if case.model.twist {
+                    "give ux, uy and/or rotation"
+                } else {
+                    "give ux and/or uy"
+                },
+            ));
         }
         let h = res.resolve(bc.history.as_ref(), &format!("{at} history"))?;
-        if h.is_some() && [bc.ux, bc.uy].iter().flatten().all(|&v| v == 0.0) {
+        if h.is_some()
+            && [bc.ux, bc.uy, bc.rotation]
+                .iter()
+                .flatten()
+                .all(|&v| v == 0.0)
+        {
             return Err(Error::input(
                 format!("{at} history"),
                 "is given, but every displacement of this boundary is 0: a history scales the prescribed value and scales nothing here (a support stays fixed without one); remove it, or give the history to the load it belongs to",
@@ -602,6 +641,9 @@ fn boundary_conditions(
                 scaled.push((format!("{at} {k}"), v, &ranges::DISPLACEMENT, h));
             }
         }
+        if let Some(phi) = bc.rotation {
+            scaled.push((format!("{at} rotation"), phi, &crate::twist::ROTATION, h));
+        }
         let mut count = 0;
         for &n in nodes {
             let x = mesh.nodes[n];
@@ -609,14 +651,22 @@ fn boundary_conditions(
                 continue;
             }
             count += 1;
-            for (c, v) in [bc.ux, bc.uy].iter().enumerate() {
+            // a prescribed rotation φ about the axis is u_θ = φ r
+            let u_theta = bc.rotation.map(|phi| phi * x[0]);
+            for (c, v) in [bc.ux, bc.uy, u_theta].iter().enumerate() {
                 let Some(v) = *v else { continue };
                 if !v.is_finite() {
                     return Err(Error::input(&at, format!("displacement {v} is not finite")));
                 }
-                let (first, fh, j) = *out.entry(2 * n + c).or_insert((v, h, i));
+                let (first, fh, j) = *out.entry(mesh.node_dofs.dof(n, c)).or_insert((v, h, i));
                 if first != v || fh != h {
-                    let axis = ["x", "y"][c];
+                    let axis = ["x", "y", "θ"][c];
+                    // the key of u_θ is the rotation (u_θ = φ r)
+                    let key = if c == 2 {
+                        "rotation".to_string()
+                    } else {
+                        format!("u{axis}")
+                    };
                     let what = if first != v {
                         format!("u{axis} = {v}, but boundary[{j}] (set \"{}\") already gives it {first}", clip(&case.boundary[j].set))
                     } else {
@@ -626,7 +676,7 @@ fn boundary_conditions(
                         )
                     };
                     return Err(Error::input(
-                        format!("{at} u{axis}"),
+                        format!("{at} {key}"),
                         format!(
                             "gives node {n} at ({}, {}) {what}: one prescribed value per node and direction",
                             x[0], x[1]

@@ -8,9 +8,13 @@ use crate::case::{check_case, whole, Case, Integration};
 use crate::error::{Error, Result};
 use crate::fem::q8::{self, GaussRule};
 use crate::fem::solid::ElementGeometry;
+use crate::fem::solid::ElementVector;
 use crate::interface::InterfaceModel;
 use crate::material::{Plane, VonMises};
-use crate::mesh::{blocks, gmsh, Mesh};
+use crate::mesh::{blocks, gmsh, Mesh, NodeDofs};
+
+mod supports;
+use supports::check_supports;
 
 pub struct Model {
     /// The solution settings (method, schedule, tolerances, cutbacks, ...).
@@ -65,8 +69,8 @@ pub struct Model {
     pub probe_node: usize,
     /// y of the probe node: depths are measured below it.
     pub surface_y: f64,
-    /// Every dof: the mesh's two per node, then two per pretension section
-    /// (its reference node, [`crate::pretension`]).
+    /// Every dof: the mesh's ([`NodeDofs`] per node), then as many per
+    /// pretension section (its reference node, [`crate::pretension`]).
     pub n_dofs: usize,
     /// The linear constraints u_s = Σ c u_m + g(t) ([`crate::constraint`]).
     pub constraints: crate::constraint::Constraints,
@@ -100,6 +104,9 @@ impl Model {
         let place = case.source.display().to_string();
         let checked = check_case(&case)?;
         let mut mesh = make_mesh(&case, &place)?;
+        if case.model.twist {
+            mesh.node_dofs = NodeDofs::TWIST;
+        }
         let mut sections = crate::pretension::cut(&case, &mut mesh, &place)?;
         let plane = case.model.plane;
         let thickness = case.model.thickness.value();
@@ -132,10 +139,17 @@ impl Model {
                 None => Some(1.0),
             })
             .collect();
-        crate::pretension::finish(&case, &mut sections, mesh.nodes.len(), &lock_end);
+        crate::pretension::finish(
+            &case,
+            &mut sections,
+            mesh.node_dofs,
+            mesh.nodes.len(),
+            &lock_end,
+        );
         let n_dofs = crate::pretension::total_dofs(&case, &mesh);
         let constraints = crate::constraint::Constraints::new(
             crate::pretension::constraints(
+                mesh.node_dofs,
                 &sections,
                 &prescribed,
                 &loads.prescribed_history,
@@ -232,7 +246,7 @@ impl Model {
     /// prescribed dofs or the constraints themselves (tests): the dof map
     /// and the blocks' expansions follow.
     pub fn set_constraints(&mut self, list: Vec<crate::constraint::Constraint>) -> Result<()> {
-        self.n_dofs = self.mesh.num_dofs() + 2 * self.sections.len();
+        self.n_dofs = crate::pretension::total_dofs_of(&self.mesh, self.sections.len());
         self.constraints = crate::constraint::Constraints::new(list, self.n_dofs)
             .map_err(|m| Error::input(self.source.display().to_string(), m))?;
         self.dofs = dof_map(self.n_dofs, &self.prescribed, &self.constraints);
@@ -380,9 +394,10 @@ impl Model {
     pub fn applied_pressure(&self, i: usize, t: f64) -> f64 {
         let im = &self.interfaces[i];
         let n = im.pairs.first().map_or([0.0, 1.0], |p| p.normal);
+        let nd = self.mesh.node_dofs;
         let normal = |f: &[f64]| -> f64 {
             (0..self.mesh.nodes.len())
-                .map(|i| f[2 * i] * n[0] + f[2 * i + 1] * n[1])
+                .map(|i| f[nd.dof(i, 0)] * n[0] + f[nd.dof(i, 1)] * n[1])
                 .sum()
         };
         if self.histories.is_empty() {
@@ -401,12 +416,19 @@ impl Model {
         self.rule.points.len()
     }
 
-    /// Element displacement vector.
-    pub fn element_u(&self, e: usize, u: &[f64]) -> [f64; 16] {
-        let mut ue = [0.0; 16];
+    /// Dofs per node and their numbering (the mesh's [`NodeDofs`]).
+    pub fn node_dofs(&self) -> NodeDofs {
+        self.mesh.node_dofs
+    }
+
+    /// Element displacement vector, node-major: the first
+    /// [`NodeDofs::element`] entries are used.
+    pub fn element_u(&self, e: usize, u: &[f64]) -> ElementVector {
+        let nd = self.mesh.node_dofs;
+        let k = nd.per_node();
+        let mut ue = [0.0; NodeDofs::MAX_ELEMENT];
         for (a, &n) in self.mesh.elements[e].nodes.iter().enumerate() {
-            ue[2 * a] = u[2 * n];
-            ue[2 * a + 1] = u[2 * n + 1];
+            ue[k * a..k * (a + 1)].copy_from_slice(&u[nd.of(n)]);
         }
         ue
     }
@@ -463,7 +485,10 @@ fn block_dofs(
     for el in &mesh.elements {
         push(
             &mut blocks,
-            el.nodes.iter().flat_map(|&n| [2 * n, 2 * n + 1]).collect(),
+            el.nodes
+                .iter()
+                .flat_map(|&n| mesh.node_dofs.of(n))
+                .collect(),
         );
     }
     let mut base = Vec::new();
@@ -477,71 +502,6 @@ fn block_dofs(
         blocks.push([s.dof, s.dof + 1]);
     }
     (blocks, base, expansions)
-}
-
-/// Every body must be held in x and in y, by its own prescribed dofs or through
-/// an interface (along the interface normal) to a body held in that direction;
-/// in axisymmetry every body is held in x = r.
-/// Otherwise it could move as a rigid body and the tangent would be singular.
-fn check_supports(
-    mesh: &Mesh,
-    prescribed: &[(usize, f64)],
-    interfaces: &[InterfaceModel],
-    axisymmetric: bool,
-    place: &str,
-) -> Result<()> {
-    // a body of revolution cannot move rigidly in r: u_r = c strains it by c/r
-    // in the hoop direction (and nodes on the axis are held by u_r = 0)
-    let mut held = vec![[axisymmetric, false]; mesh.bodies.len()];
-    let mut node_body = vec![usize::MAX; mesh.nodes.len()];
-    for el in &mesh.elements {
-        for &n in &el.nodes {
-            node_body[n] = el.body;
-        }
-    }
-    // (a pretension section's reference node is no node of a body)
-    for &(d, _) in prescribed.iter().filter(|p| p.0 < mesh.num_dofs()) {
-        held[node_body[d / 2]][d % 2] = true;
-    }
-    // propagate along each interface's dominant normal direction to a fixed point
-    loop {
-        let mut changed = false;
-        for im in interfaces {
-            let n = im.pairs.first().map_or([0.0, 1.0], |p| p.normal);
-            let normal = usize::from(n[1].abs() >= n[0].abs());
-            // springs carry the normal direction, and with friction the tangential one too
-            let dirs: &[usize] = if im.tangential.is_some() {
-                &[0, 1]
-            } else {
-                std::slice::from_ref(&normal)
-            };
-            let (a, b) = (im.body_a, im.body_b);
-            for &c in dirs {
-                if held[a][c] != held[b][c] {
-                    held[a][c] = true;
-                    held[b][c] = true;
-                    changed = true;
-                }
-            }
-        }
-        if !changed {
-            break;
-        }
-    }
-    for (b, h) in held.iter().enumerate() {
-        for (c, axis) in ["x", "y"].iter().enumerate() {
-            if !h[c] {
-                return Err(Error::input(
-                    place,
-                    format!(
-                        "body \"{}\" is held by nothing in {axis}: no boundary condition on u{axis} and no interface to a body held in {axis} (rigid-body motion)",
-                        mesh.bodies[b]
-                    ),
-                ));
-            }
-        }
-    }
-    Ok(())
 }
 
 fn probe(case: &Case, mesh: &Mesh, interfaces: &[InterfaceModel]) -> (usize, f64) {

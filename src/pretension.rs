@@ -31,7 +31,7 @@
 use crate::case::{Case, PretensionSpec};
 use crate::constraint::Constraint;
 use crate::error::{Error, Result};
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, NodeDofs};
 use std::collections::HashMap;
 
 /// The most sections a case may have.
@@ -56,14 +56,21 @@ pub struct Section {
     pub control: &'static str,
 }
 
-/// The reference node of section k: after the mesh's nodes.
-pub fn dof(mesh_nodes: usize, k: usize) -> usize {
-    2 * mesh_nodes + 2 * k
+/// The first dof of section k's reference node, numbered as a node after
+/// the mesh's nodes.
+pub fn dof(nd: NodeDofs, mesh_nodes: usize, k: usize) -> usize {
+    nd.dof(mesh_nodes + k, 0)
 }
 
-/// Every dof of a model with these sections: the mesh's and two per section.
+/// Every dof of a model with these sections: the mesh's and a node's per
+/// section.
 pub fn total_dofs(case: &Case, mesh: &Mesh) -> usize {
-    mesh.num_dofs() + 2 * case.pretension.len()
+    total_dofs_of(mesh, case.pretension.len())
+}
+
+/// Every dof of a mesh with `sections` pretension sections.
+pub fn total_dofs_of(mesh: &Mesh, sections: usize) -> usize {
+    mesh.node_dofs.count(mesh.nodes.len() + sections)
 }
 
 fn at(place: &str, k: usize, spec: &PretensionSpec) -> String {
@@ -356,9 +363,15 @@ fn split(
 /// the `nodes` mesh nodes and its lock time (the end of its force history:
 /// `end_of(history)`; never with `lock = false`, a shortening, or no
 /// history in a case without histories).
-pub fn finish(case: &Case, sections: &mut [Section], nodes: usize, lock_end: &[Option<f64>]) {
+pub fn finish(
+    case: &Case,
+    sections: &mut [Section],
+    nd: NodeDofs,
+    nodes: usize,
+    lock_end: &[Option<f64>],
+) {
     for (k, (s, spec)) in sections.iter_mut().zip(&case.pretension).enumerate() {
-        s.dof = dof(nodes, k);
+        s.dof = dof(nd, nodes, k);
         s.lock_after = match (spec.force, spec.lock.unwrap_or(true)) {
             (Some(_), true) => lock_end[k].unwrap_or(f64::INFINITY),
             _ => f64::INFINITY,
@@ -372,6 +385,7 @@ pub fn finish(case: &Case, sections: &mut [Section], nodes: usize, lock_end: &[O
 /// axis, held u_r = 0 on both) is left out, a node held on both sides of
 /// the cut otherwise is refused.
 pub fn constraints(
+    nd: NodeDofs,
     sections: &[Section],
     prescribed: &[(usize, f64)],
     prescribed_history: &[Option<usize>],
@@ -387,7 +401,7 @@ pub fn constraints(
         let origin = format!("pretension \"{}\"", s.name);
         for &(n, c) in &s.pairs {
             for comp in 0..2 {
-                let (master, slave) = (2 * n + comp, 2 * c + comp);
+                let (master, slave) = (nd.dof(n, comp), nd.dof(c, comp));
                 let normal = comp == s.axis;
                 // the copy follows its node, u(copy) = u(node) − s n; where
                 // only the copy is held (a support beyond the cut), the node

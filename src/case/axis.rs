@@ -4,7 +4,8 @@
 //! radial displacement must be zero (otherwise the body would tear open along
 //! the axis). [`hold_axis`] prescribes u_r = 0 there after the case's own
 //! `[[boundary]]` entries are known; a case may give ux = 0 on the axis itself,
-//! but not another value.
+//! but not another value. With twist the circumferential u_θ is held there
+//! too (a prescribed rotation gives φ · 0 = 0 on the axis anyway).
 
 use super::Case;
 use crate::error::{clip, Error, Result};
@@ -30,10 +31,19 @@ pub fn hold_axis(
         if x[0].abs() > tol {
             continue;
         }
-        match given.get(&(2 * n)) {
-            None => prescribed.push((2 * n, 0.0)),
+        let d = mesh.node_dofs.dof(n, 0);
+        match given.get(&d) {
+            None => prescribed.push((d, 0.0)),
             Some(&v) if v != 0.0 => return Err(nonzero_on_axis(case, mesh, n, v, place)),
             Some(_) => {}
+        }
+        // with twist, u_θ = 0 on the axis too (a prescribed rotation gives
+        // φ·0 = 0 there)
+        if mesh.node_dofs.twist() {
+            let d = mesh.node_dofs.dof(n, 2);
+            if !given.contains_key(&d) {
+                prescribed.push((d, 0.0));
+            }
         }
     }
     prescribed.sort_by_key(|&(d, _)| d);

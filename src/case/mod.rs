@@ -124,6 +124,10 @@ pub struct ModelSpec {
     /// reported for the whole body (twice the half model's).
     #[serde(default)]
     pub symmetric_half: bool,
+    /// An axisymmetric model with twist: a third displacement u_θ per node
+    /// (torsion about the axis; [`crate::twist`]).
+    #[serde(default)]
+    pub twist: bool,
 }
 
 /// `[model] thickness` as given (None: not in the case file).
@@ -356,6 +360,8 @@ pub struct BoundarySpec {
     pub y_range: Option<[f64; 2]>,
     /// The factor's history; none: the load factor (or the default ramp).
     pub history: Option<HistoryRef>,
+    /// A prescribed rotation φ about the axis (rad, twist only): u_θ = φ r.
+    pub rotation: Option<f64>,
 }
 
 /// Uniform traction on an edge set (values at factor 1, MPa): a pressure
@@ -378,6 +384,11 @@ pub struct LoadSpec {
     pub shear: f64,
     /// The factor's history; none: the load factor (or the default ramp).
     pub history: Option<HistoryRef>,
+    /// A uniform circumferential shear traction τ_θ (MPa, along +θ; twist only).
+    pub hoop_shear: Option<f64>,
+    /// A torque about the axis (N·mm, +z right-handed; twist only), carried by
+    /// τ_θ = T r / ∫ r² dA over the selected edges (∫ r τ_θ dA = T).
+    pub torque: Option<f64>,
 }
 
 /// A concentrated force at every node of a node set (N, at factor 1; for
@@ -623,7 +634,12 @@ impl Case {
         // keys of builds before `vtu_format` stay as they were
         // the designer's outputs (`[[probe]]`, `event_tolerance`) are left
         // out when not given, so keys of builds before them stay as they were
+        // twist's keys (`[model] twist`, `rotation`, `hoop_shear`, `torque`)
+        // likewise
         let full = format!("{key:?}")
+            .replace(", twist: false }", " }")
+            .replace(", rotation: None }", " }")
+            .replace(", hoop_shear: None, torque: None }", " }")
             .replace(", event_tolerance: None }", " }")
             .replace(", probe: [] }", " }")
             .replace(", table: None,", ",")

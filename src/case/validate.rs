@@ -57,6 +57,7 @@ pub fn check_case(case: &Case) -> Result<Checked> {
     let place = case.source.display().to_string();
     let at = |key: &str| format!("{place}: {key}");
     check_model_and_mesh(case, &at)?;
+    crate::twist::check_case(case, &at)?;
     check_element_count(case, &at)?;
     check_names(case, &at)?;
     check_block_coordinates(case, &at)?;

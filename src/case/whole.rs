@@ -550,8 +550,8 @@ pub fn check_symmetry_supports(
     let tol = tolerance(mesh);
     let ux: HashMap<usize, f64> = prescribed
         .iter()
-        .filter(|(d, _)| d % 2 == 0)
-        .map(|&(d, v)| (d / 2, v))
+        .filter(|(d, _)| mesh.node_dofs.node_of(*d).1 == 0)
+        .map(|&(d, v)| (mesh.node_dofs.node_of(d).0, v))
         .collect();
     for (n, x) in mesh.nodes.iter().enumerate() {
         let held = tied.get(&n).copied().unwrap_or(n);

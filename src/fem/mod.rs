@@ -2,6 +2,7 @@
 
 pub mod q8;
 pub mod solid;
+pub mod twist;
 
 /// What turns an integral over the mesh plane into one over the body: the
 /// thickness t of a plane model, or 2π r (the full revolution) of an

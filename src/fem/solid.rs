@@ -28,6 +28,7 @@
 use crate::fem::q8::{physical_derivs, GaussRule};
 use crate::fem::Section;
 use crate::material::{Plane, PointState, VonMises};
+use crate::mesh::NodeDofs;
 use nalgebra::{Matrix3, Matrix4};
 
 /// Most Gauss points of a rule (3×3).
@@ -99,7 +100,7 @@ impl ElementGeometry {
     }
 
     /// Strain [εxx, εyy, γxy] at Gauss point `ip` from element displacements.
-    pub fn strain(&self, ip: usize, ue: &[f64; 16]) -> [f64; 3] {
+    pub fn strain(&self, ip: usize, ue: &[f64]) -> [f64; 3] {
         let d = &self.dndx[ip];
         let mut e = [0.0; 3];
         for a in 0..8 {
@@ -113,7 +114,7 @@ impl ElementGeometry {
 
     /// Axisymmetric strain [ε_rr, ε_zz, γ_rz, ε_θθ] at Gauss point `ip`, with
     /// ε_θθ = Σ N_a u_ra / r.
-    pub fn strain_axisymmetric(&self, ip: usize, ue: &[f64; 16]) -> [f64; 4] {
+    pub fn strain_axisymmetric(&self, ip: usize, ue: &[f64]) -> [f64; 4] {
         let [e0, e1, e2] = self.strain(ip, ue);
         let ur: f64 = (0..8).map(|a| self.shape[ip][a] * ue[2 * a]).sum();
         [e0, e1, e2, ur / self.x[ip][0]]
@@ -140,20 +141,40 @@ pub enum Response {
     ElasticOnly,
 }
 
+/// An element's displacements or forces, node-major, [`NodeDofs::element`]
+/// entries used (16, or 24 with twist).
+pub type ElementVector = [f64; NodeDofs::MAX_ELEMENT];
+
+/// An element's tangent, row-major n × n at the front (n = 16, or 24 with
+/// twist).
+pub type ElementMatrix = [f64; NodeDofs::MAX_ELEMENT * NodeDofs::MAX_ELEMENT];
+
 /// Internal force and (optionally) tangent of one element. `trial` receives the
 /// updated Gauss point states. Errors name the Gauss point.
+///
+/// The element's dofs are `ue.len()` (= `fe.len()`, `ke.len()` = its square):
+/// 16 (two per node, [`NodeDofs::PLANE`]), or 24 in an axisymmetric model
+/// with twist ([`NodeDofs::TWIST`], [`crate::fem::twist`]).
 #[allow(clippy::too_many_arguments)]
 pub fn element_forces(
     geom: &ElementGeometry,
     mat: &VonMises,
-    ue: &[f64; 16],
+    ue: &[f64],
     committed: &[PointState],
     trial: &mut [PointState],
     response: Response,
     tangent: Option<Tangent>,
-    fe: &mut [f64; 16],
-    ke: &mut [f64; 256],
+    fe: &mut [f64],
+    ke: &mut [f64],
 ) -> Result<(), String> {
+    if ue.len() == NodeDofs::TWIST.element() {
+        if mat.plane != Plane::Axisymmetric {
+            return Err("three dofs per node need an axisymmetric model (twist)".into());
+        }
+        return crate::fem::twist::forces(
+            geom, mat, ue, committed, trial, response, tangent, fe, ke,
+        );
+    }
     if mat.plane == Plane::Axisymmetric {
         return axisymmetric_forces(geom, mat, ue, committed, trial, response, tangent, fe, ke);
     }
@@ -215,7 +236,7 @@ pub fn elastic_state(mat: &VonMises, committed: &PointState, eps: &[f64; 3]) -> 
         }
     };
     PointState {
-        stress: [s[0], s[1], s[2], szz],
+        stress: [s[0], s[1], s[2], szz, 0.0, 0.0],
         plastic_strain: *ep,
         peeq: committed.peeq,
         yielding: false,
@@ -223,7 +244,7 @@ pub fn elastic_state(mat: &VonMises, committed: &PointState, eps: &[f64; 3]) -> 
 }
 
 /// ke += Bᵀ C B dv, exploiting the 2-row sparsity of each nodal B block.
-fn add_btcb(d: &[[f64; 2]; 8], c: &Matrix3<f64>, dv: f64, ke: &mut [f64; 256]) {
+fn add_btcb(d: &[[f64; 2]; 8], c: &Matrix3<f64>, dv: f64, ke: &mut [f64]) {
     // CB for each node b: 3×2 block
     let mut cb = [[0.0f64; 6]; 8];
     for b in 0..8 {
@@ -261,13 +282,13 @@ fn add_btcb(d: &[[f64; 2]; 8], c: &Matrix3<f64>, dv: f64, ke: &mut [f64; 256]) {
 pub fn axisymmetric_forces(
     geom: &ElementGeometry,
     mat: &VonMises,
-    ue: &[f64; 16],
+    ue: &[f64],
     committed: &[PointState],
     trial: &mut [PointState],
     response: Response,
     tangent: Option<Tangent>,
-    fe: &mut [f64; 16],
-    ke: &mut [f64; 256],
+    fe: &mut [f64],
+    ke: &mut [f64],
 ) -> Result<(), String> {
     fe.fill(0.0);
     if tangent.is_some() {
@@ -322,7 +343,7 @@ fn b_axisymmetric(geom: &ElementGeometry, ip: usize) -> [[f64; 16]; 4] {
 }
 
 /// ke += Bᵀ C B dv for the 4-row B.
-fn add_btcb_4(b: &[[f64; 16]; 4], c: &Matrix4<f64>, dv: f64, ke: &mut [f64; 256]) {
+fn add_btcb_4(b: &[[f64; 16]; 4], c: &Matrix4<f64>, dv: f64, ke: &mut [f64]) {
     let mut cb = [[0.0f64; 16]; 4];
     for (i, row) in cb.iter_mut().enumerate() {
         for (j, v) in row.iter_mut().enumerate() {

@@ -342,6 +342,9 @@ pub struct InterfaceModel {
     pub start_pressure: Option<f64>,
     pub tangential: Option<TangentialLaw>,
     pub scheme: FrictionScheme,
+    /// The mesh's dofs per node: a point's local dofs are the in-plane
+    /// (x, y) ones of its nodes, at these global dofs.
+    pub node_dofs: crate::mesh::NodeDofs,
 }
 
 /// Result of evaluating one point.
@@ -399,6 +402,7 @@ impl InterfaceModel {
             start_pressure,
             scheme: tangential.as_ref().map(|t| t.1).unwrap_or_default(),
             tangential: tangential.map(|t| t.0),
+            node_dofs: mesh.node_dofs,
         })
     }
 
@@ -533,10 +537,10 @@ impl InterfaceModel {
         if let Some(j) = pair.spring {
             return self.point_kinematics_at(&self.points[j], u, gap).0;
         }
-        let n = pair.normal;
+        let (n, nd) = (pair.normal, self.node_dofs);
         let du = [
-            u[2 * pair.b] - u[2 * pair.a],
-            u[2 * pair.b + 1] - u[2 * pair.a + 1],
+            u[nd.dof(pair.b, 0)] - u[nd.dof(pair.a, 0)],
+            u[nd.dof(pair.b, 1)] - u[nd.dof(pair.a, 1)],
         ];
         du[0] * n[0] + du[1] * n[1] - gap
     }
@@ -552,10 +556,11 @@ impl InterfaceModel {
     /// and u_T = (u_B(ξ) − u_A)·t, u_B(ξ) = Σ N_j(ξ) u_{b_j} on the master
     /// edge and u_A = Σ N_i^A u_{a_i} at the slave point.
     pub fn point_kinematics_at(&self, pt: &Point, u: &[f64], gap: f64) -> (f64, f64) {
+        let nd = self.node_dofs;
         if let Some(m) = &pt.mortar {
             let (mut un, mut ut) = (-m.gap - gap, 0.0);
             for (j, &node) in m.nodes.iter().enumerate() {
-                let u_j = [u[2 * node], u[2 * node + 1]];
+                let u_j = [u[nd.dof(node, 0)], u[nd.dof(node, 1)]];
                 un += m.dn[j][0] * u_j[0] + m.dn[j][1] * u_j[1];
                 ut += m.dt[j][0] * u_j[0] + m.dt[j][1] * u_j[1];
             }
@@ -566,10 +571,10 @@ impl InterfaceModel {
             let mut du = [0.0f64; 2];
             for c in 0..2 {
                 for j in 0..3 {
-                    du[c] += g.nb[j] * u[2 * g.b[j] + c];
+                    du[c] += g.nb[j] * u[nd.dof(g.b[j], c)];
                 }
                 for i in 0..g.len_a {
-                    du[c] -= g.na[i] * u[2 * g.a[i] + c];
+                    du[c] -= g.na[i] * u[nd.dof(g.a[i], c)];
                 }
             }
             let un = du[0] * n[0] + du[1] * n[1] - g.gap - gap;
@@ -578,7 +583,10 @@ impl InterfaceModel {
         let (mut un, mut ut) = (-gap, 0.0);
         for i in 0..pt.len {
             let pr = &self.pairs[pt.pairs[i]];
-            let du = [u[2 * pr.b] - u[2 * pr.a], u[2 * pr.b + 1] - u[2 * pr.a + 1]];
+            let du = [
+                u[nd.dof(pr.b, 0)] - u[nd.dof(pr.a, 0)],
+                u[nd.dof(pr.b, 1)] - u[nd.dof(pr.a, 1)],
+            ];
             un += pt.shape[i] * (du[0] * n[0] + du[1] * n[1]);
             ut += pt.shape[i] * (du[0] * t[0] + du[1] * t[1]);
         }
@@ -588,21 +596,21 @@ impl InterfaceModel {
     /// The dofs of a point in local order: A pairs (x, y) then B pairs (x, y);
     /// on a non-matching interface the slave nodes, then the master edge's.
     pub fn point_dofs(&self, pt: &Point) -> Vec<usize> {
+        let nd = self.node_dofs;
+        let xy = |n: usize| [nd.dof(n, 0), nd.dof(n, 1)];
         if let Some(m) = &pt.mortar {
-            return m.nodes.iter().flat_map(|&n| [2 * n, 2 * n + 1]).collect();
+            return m.nodes.iter().flat_map(|&n| xy(n)).collect();
         }
         if let Some(g) = &pt.segment {
             let nodes = g.a[..g.len_a].iter().chain(&g.b);
-            return nodes.flat_map(|&m| [2 * m, 2 * m + 1]).collect();
+            return nodes.flat_map(|&m| xy(m)).collect();
         }
         let mut d = Vec::with_capacity(4 * pt.len);
         for i in 0..pt.len {
-            let a = self.pairs[pt.pairs[i]].a;
-            d.extend([2 * a, 2 * a + 1]);
+            d.extend(xy(self.pairs[pt.pairs[i]].a));
         }
         for i in 0..pt.len {
-            let b = self.pairs[pt.pairs[i]].b;
-            d.extend([2 * b, 2 * b + 1]);
+            d.extend(xy(self.pairs[pt.pairs[i]].b));
         }
         d
     }

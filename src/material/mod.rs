@@ -23,11 +23,12 @@
 
 mod plane_stress;
 mod radial;
+mod twist;
 
 #[cfg(test)]
 mod tests;
 
-use nalgebra::{Matrix3, Matrix4};
+use nalgebra::{Matrix3, Matrix4, Matrix6};
 use std::fmt;
 
 /// The plane idealization of the 2D model (the case's `[model] plane`,
@@ -49,10 +50,12 @@ pub enum Plane {
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PointState {
     /// σxx, σyy, σxy, σzz (σzz = 0 in plane stress; the hoop stress σ_θθ in
-    /// axisymmetry, where x = r and y = z).
-    pub stress: [f64; 4],
-    /// εᵖxx, εᵖyy, εᵖxy (tensor component), εᵖzz.
-    pub plastic_strain: [f64; 4],
+    /// axisymmetry, where x = r and y = z), then σ_rθ, σ_zθ: the shear
+    /// stresses of twist (0 without it).
+    pub stress: [f64; 6],
+    /// εᵖxx, εᵖyy, εᵖxy (tensor component), εᵖzz, then εᵖ_rθ, εᵖ_zθ (tensor
+    /// components; 0 without twist).
+    pub plastic_strain: [f64; 6],
     /// Accumulated equivalent plastic strain ε̄ᵖ.
     pub peeq: f64,
     /// The update that produced this state was plastic (Δγ > 0).
@@ -60,25 +63,47 @@ pub struct PointState {
 }
 
 impl PointState {
-    /// Doubles per state in [`PointState::pack`].
+    /// Doubles per state in [`PointState::pack`] without twist.
     pub const PACKED: usize = 10;
+    /// Doubles per state with twist: the shear stresses and plastic strains
+    /// of u_θ follow.
+    pub const PACKED_TWIST: usize = 14;
 
-    /// σ (4), εᵖ (4), ε̄ᵖ, yielding as 0/1: the layout of restart files and of
-    /// the MPI gather of Gauss states.
-    pub fn pack(&self) -> [f64; Self::PACKED] {
-        let mut v = [0.0; Self::PACKED];
-        v[..4].copy_from_slice(&self.stress);
-        v[4..8].copy_from_slice(&self.plastic_strain);
+    /// Doubles per state in a model with (or without) twist.
+    pub fn packed_len(twist: bool) -> usize {
+        if twist {
+            Self::PACKED_TWIST
+        } else {
+            Self::PACKED
+        }
+    }
+
+    /// σ (4), εᵖ (4), ε̄ᵖ, yielding as 0/1, then σ_rθ, σ_zθ, εᵖ_rθ, εᵖ_zθ:
+    /// the layout of restart files and of the MPI gather of Gauss states. A
+    /// model without twist uses the first [`PointState::PACKED`] values (the
+    /// layout from before twist), one with twist all of them.
+    pub fn pack(&self) -> [f64; Self::PACKED_TWIST] {
+        let mut v = [0.0; Self::PACKED_TWIST];
+        v[..4].copy_from_slice(&self.stress[..4]);
+        v[4..8].copy_from_slice(&self.plastic_strain[..4]);
         v[8] = self.peeq;
         v[9] = f64::from(u8::from(self.yielding));
+        v[10..12].copy_from_slice(&self.stress[4..]);
+        v[12..14].copy_from_slice(&self.plastic_strain[4..]);
         v
     }
 
-    /// The inverse of [`PointState::pack`] (`v` holds at least `PACKED` values).
-    pub fn unpack(v: &[f64]) -> Self {
+    /// The inverse of [`PointState::pack`] for `width` values
+    /// ([`PointState::packed_len`]; `v` holds at least that many).
+    pub fn unpack(v: &[f64], width: usize) -> Self {
+        let (t, p) = if width >= Self::PACKED_TWIST {
+            ([v[10], v[11]], [v[12], v[13]])
+        } else {
+            ([0.0; 2], [0.0; 2])
+        };
         PointState {
-            stress: [v[0], v[1], v[2], v[3]],
-            plastic_strain: [v[4], v[5], v[6], v[7]],
+            stress: [v[0], v[1], v[2], v[3], t[0], t[1]],
+            plastic_strain: [v[4], v[5], v[6], v[7], p[0], p[1]],
             peeq: v[8],
             yielding: v[9] > 0.5,
         }
@@ -198,10 +223,13 @@ impl VonMises {
         self.yield_stress + self.hardening * state.peeq
     }
 
-    /// √(3 J₂) of [σxx, σyy, σxy, σzz].
-    pub fn equivalent_stress(s: &[f64; 4]) -> f64 {
+    /// √(3 J₂) of [σxx, σyy, σxy, σzz, σ_rθ, σ_zθ] (the last two 0 without
+    /// twist, which leaves the value unchanged to the bit).
+    pub fn equivalent_stress(s: &[f64; 6]) -> f64 {
         let (xx, yy, xy, zz) = (s[0], s[1], s[2], s[3]);
-        (0.5 * ((xx - yy).powi(2) + (yy - zz).powi(2) + (zz - xx).powi(2)) + 3.0 * xy * xy).sqrt()
+        let twist = 3.0 * (s[4] * s[4] + s[5] * s[5]);
+        (0.5 * ((xx - yy).powi(2) + (yy - zz).powi(2) + (zz - xx).powi(2)) + 3.0 * xy * xy + twist)
+            .sqrt()
     }
 
     /// Return mapping from `committed` for the total strain; returns the new state
@@ -253,6 +281,40 @@ impl VonMises {
         radial::elastic(self, committed, strain)
     }
 
+    /// The return mapping of an axisymmetric point with twist ([`twist`]:
+    /// the same radial return on all six components) from `committed` for
+    /// the total strain [ε_rr, ε_zz, γ_rz, ε_θθ, γ_rθ, γ_zθ]: the new state and
+    /// the algorithmic tangent dσ/dε, 6×6 in that order.
+    pub fn update_twist(
+        &self,
+        committed: &PointState,
+        strain: &[f64; 6],
+    ) -> (PointState, Matrix6<f64>) {
+        twist::update(self, committed, strain)
+    }
+
+    /// The 3D isotropic elastic matrix in the order (rr, zz, rz, θθ, rθ, zθ),
+    /// engineering shear.
+    pub fn elastic_matrix_6(&self) -> Matrix6<f64> {
+        twist::elastic_matrix(self.shear_modulus(), self.bulk_modulus())
+    }
+
+    /// Stress from the elastic law alone for the strain with twist, keeping
+    /// the committed plastic strain (first-yield location).
+    pub fn elastic_state_twist(&self, committed: &PointState, strain: &[f64; 6]) -> PointState {
+        twist::elastic(self, committed, strain)
+    }
+
+    /// Continuum tangent C_ep (3.13) at a committed state with twist, 6×6
+    /// in the order (rr, zz, rz, θθ, rθ, zθ): C_ep if the state was
+    /// yielding, else D.
+    pub fn continuum_tangent_6(&self, state: &PointState) -> Matrix6<f64> {
+        if !state.yielding {
+            return self.elastic_matrix_6();
+        }
+        twist::continuum(self, &state.stress)
+    }
+
     /// Continuum tangent C_ep (3.13) at a committed state, 4×4 in the order
     /// (rr, zz, rz, θθ): C_ep if the state was yielding, else D.
     pub fn continuum_tangent_4(&self, state: &PointState) -> Matrix4<f64> {
@@ -282,7 +344,7 @@ impl VonMises {
 
     /// 3D continuum C_ep in Voigt (xx, yy, zz, xy) with engineering shear strain:
     /// K 1⊗1 + 2G I_dev − 6G²/(3G + H) N̂⊗N̂, N̂ = s/‖s‖.
-    fn continuum_3d(&self, stress: &[f64; 4]) -> Matrix4<f64> {
+    fn continuum_3d(&self, stress: &[f64; 6]) -> Matrix4<f64> {
         let (g, k, h) = (self.shear_modulus(), self.bulk_modulus(), self.hardening);
         let s3 = [stress[0], stress[1], stress[3], stress[2]]; // xx yy zz xy
         let p = (s3[0] + s3[1] + s3[2]) / 3.0;

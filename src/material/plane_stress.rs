@@ -67,7 +67,7 @@ pub(super) fn update(
     #[allow(clippy::neg_cmp_op_on_partial_ord)] // !(x > tol) is meant to be true for NaN
     if !(f_trial > 1e-12 * sy_n * sy_n) {
         let state = PointState {
-            stress: [st[0], st[1], st[2], 0.0],
+            stress: [st[0], st[1], st[2], 0.0, 0.0, 0.0],
             plastic_strain: ep,
             peeq: c.peeq,
             yielding: false,
@@ -106,8 +106,8 @@ pub(super) fn update(
     let c_alg = xi - n * n.transpose() / denom;
     let pe = [ep[0] + dep[0], ep[1] + dep[1], ep[2] + 0.5 * dep[2], 0.0];
     let state = PointState {
-        stress: [s[0], s[1], s[2], 0.0],
-        plastic_strain: [pe[0], pe[1], pe[2], -(pe[0] + pe[1])],
+        stress: [s[0], s[1], s[2], 0.0, 0.0, 0.0],
+        plastic_strain: [pe[0], pe[1], pe[2], -(pe[0] + pe[1]), 0.0, 0.0],
         peeq,
         yielding: true,
     };

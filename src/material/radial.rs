@@ -63,7 +63,14 @@ pub(super) fn update(
     #[allow(clippy::neg_cmp_op_on_partial_ord)] // !(x > tol) is meant to be true for NaN
     if !(f > 1e-12 * sy) {
         let state = PointState {
-            stress: [st[0] + pressure, st[1] + pressure, st[3], st[2] + pressure],
+            stress: [
+                st[0] + pressure,
+                st[1] + pressure,
+                st[3],
+                st[2] + pressure,
+                0.0,
+                0.0,
+            ],
             plastic_strain: ep,
             peeq: c.peeq,
             yielding: false,
@@ -75,12 +82,21 @@ pub(super) fn update(
     let s: [f64; 4] = std::array::from_fn(|i| beta * st[i]);
     let flow: [f64; 4] = std::array::from_fn(|i| dgamma * 1.5 * st[i] / q);
     let state = PointState {
-        stress: [s[0] + pressure, s[1] + pressure, s[3], s[2] + pressure],
+        stress: [
+            s[0] + pressure,
+            s[1] + pressure,
+            s[3],
+            s[2] + pressure,
+            0.0,
+            0.0,
+        ],
         plastic_strain: [
             ep[0] + flow[0],
             ep[1] + flow[1],
             ep[2] + flow[3],
             ep[3] + flow[2],
+            ep[4],
+            ep[5],
         ],
         peeq: c.peeq + dgamma,
         yielding: true,
@@ -118,7 +134,7 @@ pub(super) fn elastic(m: &VonMises, c: &PointState, strain: &[f64; 4]) -> PointS
     );
     let s = m.elastic_matrix_4() * ee;
     PointState {
-        stress: [s[0], s[1], s[2], s[3]],
+        stress: [s[0], s[1], s[2], s[3], 0.0, 0.0],
         plastic_strain: *ep,
         peeq: c.peeq,
         yielding: false,

@@ -3,7 +3,10 @@
 //! meshed apart ([`NonMatching`]).
 
 pub mod blocks;
+mod dofs;
 pub mod gmsh;
+
+pub use dofs::NodeDofs;
 
 use crate::fem::q8;
 use std::collections::BTreeMap;
@@ -62,6 +65,9 @@ pub struct Mesh {
     /// Boundary edges [end, mid, end], walked with the body on the left.
     pub edge_sets: BTreeMap<String, Vec<[usize; 3]>>,
     pub interfaces: Vec<Interface>,
+    /// Dofs per node and their numbering ([`NodeDofs`]): set by the model
+    /// (3 with twist), 2 otherwise.
+    pub node_dofs: NodeDofs,
 }
 
 /// A broken mesh or mesh specification; the text names what and where.
@@ -77,8 +83,9 @@ impl fmt::Display for MeshError {
 impl std::error::Error for MeshError {}
 
 impl Mesh {
+    /// Every node's dofs ([`Mesh::node_dofs`] per node).
     pub fn num_dofs(&self) -> usize {
-        2 * self.nodes.len()
+        self.node_dofs.count(self.nodes.len())
     }
 
     pub fn element_coords(&self, e: usize) -> [[f64; 2]; 8] {

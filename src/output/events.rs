@@ -31,9 +31,10 @@ pub fn event_json(model: &Model, e: &Event) -> Value {
     let t = e.load_factor;
     let mut f = vec![0.0; model.mesh.num_dofs()];
     model.external_force(t, &mut f);
+    let k = model.node_dofs().per_node();
     let applied = [
-        f.iter().step_by(2).sum::<f64>(),
-        f.iter().skip(1).step_by(2).sum::<f64>(),
+        f.iter().step_by(k).sum::<f64>(),
+        f.iter().skip(1).step_by(k).sum::<f64>(),
     ];
     let values = model.history_values(t);
     let histories: Vec<Value> = plan

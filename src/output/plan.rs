@@ -98,7 +98,7 @@ impl Plan {
         let model = engine.model;
         let mut v = Vec::with_capacity(self.width());
         v.extend(reactions::values(&self.reactions, &state.reactions));
-        v.extend(probes::values(&self.probes, &state.u));
+        v.extend(probes::values(&self.probes, model.node_dofs(), &state.u));
         v.extend(peaks::bodies(engine, state));
         v.extend(peaks::interfaces(model, &self.arcs, &state.u, state.time));
         debug_assert_eq!(v.len(), self.width());

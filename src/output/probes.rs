@@ -7,7 +7,7 @@ use super::joints::csv_field;
 use crate::case::outputs::{ProbeSpec, Statistic};
 use crate::case::Case;
 use crate::error::{clip, Error, Result};
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, NodeDofs};
 use crate::solve::RunResult;
 use serde_json::{json, Value};
 use std::fmt::Write as _;
@@ -41,17 +41,17 @@ pub struct Probe {
 }
 
 impl Probe {
-    /// (u_x, u_y) in a state's displacements (all dofs).
-    pub fn value(&self, u: &[f64]) -> [f64; 2] {
+    /// (u_x, u_y) in a state's displacements (all dofs, numbered by `nd`).
+    pub fn value(&self, nd: NodeDofs, u: &[f64]) -> [f64; 2] {
         match &self.target {
             // + 0.0: no negative zero (a fixed dof scaled by a negative history)
-            Target::Point { node, .. } => [u[2 * node] + 0.0, u[2 * node + 1] + 0.0],
+            Target::Point { node, .. } => [u[nd.dof(*node, 0)] + 0.0, u[nd.dof(*node, 1)] + 0.0],
             Target::Nodes {
                 nodes, statistic, ..
             } => {
                 let mut out = [0.0; 2];
                 for (c, o) in out.iter_mut().enumerate() {
-                    let vals = nodes.iter().map(|&n| u[2 * n + c]);
+                    let vals = nodes.iter().map(|&n| u[nd.dof(n, c)]);
                     *o = match statistic {
                         Statistic::Mean => vals.sum::<f64>() / nodes.len().max(1) as f64,
                         Statistic::Min => vals.fold(f64::INFINITY, f64::min),
@@ -249,8 +249,8 @@ fn nearest(mesh: &Mesh, p: [f64; 2], body: Option<usize>) -> usize {
 }
 
 /// Values of every probe, (u_x, u_y) each, in order.
-pub fn values(probes: &[Probe], u: &[f64]) -> Vec<f64> {
-    probes.iter().flat_map(|p| p.value(u)).collect()
+pub fn values(probes: &[Probe], nd: NodeDofs, u: &[f64]) -> Vec<f64> {
+    probes.iter().flat_map(|p| p.value(nd, u)).collect()
 }
 
 pub const HEADER: &str = "increment,time,probe,ux_mm,uy_mm\n";

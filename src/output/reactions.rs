@@ -27,6 +27,10 @@ pub struct Component {
     /// `fx_n`, `fy_n`, …: the label of its column and of its summary value.
     pub label: &'static str,
     pub terms: Vec<usize>,
+    /// Each term's lever arm, when the component is a moment (`torque_nmm`:
+    /// the radius r of each prescribed u_θ, T = Σ r R_θ); empty: a force,
+    /// the plain sum.
+    pub arms: Vec<f64>,
 }
 
 /// A named reduction of reaction forces.
@@ -47,12 +51,18 @@ impl Group {
     /// residual at every prescribed dof (in the model's order).
     pub fn values<'a>(&'a self, residual: &'a [f64]) -> impl Iterator<Item = f64> + 'a {
         self.components.iter().map(move |c| {
+            let at = |k: usize| residual.get(k).copied().unwrap_or(f64::NAN);
             // + 0.0: no negative zero (an empty sum)
-            c.terms
-                .iter()
-                .map(|&k| residual.get(k).copied().unwrap_or(f64::NAN))
-                .sum::<f64>()
-                + 0.0
+            if c.arms.is_empty() {
+                c.terms.iter().map(|&k| at(k)).sum::<f64>() + 0.0
+            } else {
+                c.terms
+                    .iter()
+                    .zip(&c.arms)
+                    .map(|(&k, r)| r * at(k))
+                    .sum::<f64>()
+                    + 0.0
+            }
         })
     }
 }
@@ -76,11 +86,16 @@ pub fn groups(case: &Case, mesh: &Mesh, prescribed: &[(usize, f64)]) -> Vec<Grou
             .get(&bc.set)
             .map_or(&[][..], |v| v.as_slice());
         let mut components = Vec::new();
-        for (c, (given, label)) in [(bc.ux, "fx_n"), (bc.uy, "fy_n")].into_iter().enumerate() {
+        let given = [
+            (bc.ux, "fx_n"),
+            (bc.uy, "fy_n"),
+            (bc.rotation, "torque_nmm"),
+        ];
+        for (c, (given, label)) in given.into_iter().enumerate() {
             if given.is_none() {
                 continue;
             }
-            let mut terms = Vec::new();
+            let (mut terms, mut arms) = (Vec::new(), Vec::new());
             for &n in nodes {
                 let x = mesh.nodes[n];
                 if !(crate::loads::in_range(x[0], &bc.x_range)
@@ -88,14 +103,17 @@ pub fn groups(case: &Case, mesh: &Mesh, prescribed: &[(usize, f64)]) -> Vec<Grou
                 {
                     continue;
                 }
-                if let Some(&k) = index.get(&(2 * n + c)) {
+                if let Some(&k) = index.get(&mesh.node_dofs.dof(n, c)) {
                     if !owned[k] {
                         owned[k] = true;
                         terms.push(k);
+                        if c == 2 {
+                            arms.push(x[0]);
+                        }
                     }
                 }
             }
-            components.push(Component { label, terms });
+            components.push(Component { label, terms, arms });
         }
         let shared = case.boundary.iter().filter(|b| b.set == bc.set).count() > 1;
         out.push(Group {
@@ -112,8 +130,12 @@ pub fn groups(case: &Case, mesh: &Mesh, prescribed: &[(usize, f64)]) -> Vec<Grou
     // what no entry gives: u_r = 0 on the axis of an axisymmetric model (a
     // pretension section's reference node is no node: its force is in
     // pretension.csv)
+    // (with twist the axis's u_θ = 0 too, whose reactions have no lever arm)
     let axis: Vec<usize> = (0..prescribed.len())
-        .filter(|&k| !owned[k] && prescribed[k].0 < mesh.num_dofs())
+        .filter(|&k| {
+            let d = prescribed[k].0;
+            !owned[k] && d < mesh.num_dofs() && mesh.node_dofs.node_of(d).1 == 0
+        })
         .collect();
     if !axis.is_empty() {
         out.push(Group {
@@ -123,6 +145,7 @@ pub fn groups(case: &Case, mesh: &Mesh, prescribed: &[(usize, f64)]) -> Vec<Grou
             components: vec![Component {
                 label: "fx_n",
                 terms: axis,
+                arms: Vec::new(),
             }],
         });
     }

@@ -29,6 +29,8 @@ pub struct NodalFields {
     pub stress: Vec<[f64; 4]>,
     pub von_mises: Vec<f64>,
     pub peeq: Vec<f64>,
+    /// σ_rθ, σ_zθ (a model with twist; empty without).
+    pub twist_shear: Vec<[f64; 2]>,
 }
 
 /// The extrapolation of [`q8::extrapolate_to_nodes`] as a matrix, row by
@@ -52,10 +54,12 @@ pub fn nodal_fields(model: &Model, state: &State) -> NodalFields {
     let nn = model.mesh.nodes.len();
     let ng = model.n_gauss();
     let w = extrapolation_weights(&model.rule);
-    let mut acc = vec![[0.0f64; 6]; nn];
+    // the six fields (σ components, Mises, PEEQ) at every Gauss point, then
+    // with twist σ_rθ and σ_zθ
+    let fields = if model.node_dofs().twist() { 8 } else { 6 };
+    let mut acc = vec![[0.0f64; 8]; nn];
     let mut count = vec![0u32; nn];
-    // the six fields (σ components, Mises, PEEQ) at every Gauss point
-    let mut vals = vec![[0.0f64; 6]; ng];
+    let mut vals = vec![[0.0f64; 8]; ng];
     for (e, el) in model.mesh.elements.iter().enumerate() {
         let gp = &state.gauss[e * ng..(e + 1) * ng];
         for (v, g) in vals.iter_mut().zip(gp) {
@@ -66,10 +70,12 @@ pub fn nodal_fields(model: &Model, state: &State) -> NodalFields {
                 g.stress[3],
                 VonMises::equivalent_stress(&g.stress),
                 g.peeq,
+                g.stress[4],
+                g.stress[5],
             ];
         }
         for (a, &n) in el.nodes.iter().enumerate() {
-            for c in 0..6 {
+            for c in 0..fields {
                 let mut at_node = 0.0;
                 for (wk, v) in w.iter().zip(&vals) {
                     at_node += wk[a] * v[c];
@@ -83,12 +89,16 @@ pub fn nodal_fields(model: &Model, state: &State) -> NodalFields {
         stress: Vec::with_capacity(nn),
         von_mises: Vec::with_capacity(nn),
         peeq: Vec::with_capacity(nn),
+        twist_shear: Vec::new(),
     };
     for (a, &c) in acc.iter().zip(&count) {
         let c = f64::from(c.max(1));
         f.stress.push([a[0] / c, a[1] / c, a[2] / c, a[3] / c]);
         f.von_mises.push(a[4] / c);
         f.peeq.push((a[5] / c).max(0.0));
+        if fields == 8 {
+            f.twist_shear.push([a[6] / c, a[7] / c]);
+        }
     }
     f
 }
@@ -97,10 +107,12 @@ pub fn nodal_fields(model: &Model, state: &State) -> NodalFields {
 /// the per-increment part of a VTU document.
 #[derive(Default)]
 pub struct Frame {
-    /// u_x, u_y, 0 per node.
+    /// u_x, u_y, 0 per node (u_r, u_z, u_θ with twist).
     displacement: Vec<f64>,
     /// Four components per node.
     stress: Vec<f64>,
+    /// σ_rθ, σ_zθ per node (twist only; empty without).
+    twist_shear: Vec<f64>,
     von_mises: Vec<f64>,
     peeq: Vec<f64>,
     contact_pressure: Vec<f64>,
@@ -144,9 +156,22 @@ impl Frame {
         let ng = model.n_gauss();
         Frame {
             displacement: (0..nn)
-                .flat_map(|i| [state.u[2 * i], state.u[2 * i + 1], 0.0])
+                .flat_map(|i| {
+                    let nd = model.node_dofs();
+                    let u_theta = if nd.twist() {
+                        state.u[nd.dof(i, 2)]
+                    } else {
+                        0.0
+                    };
+                    [state.u[nd.dof(i, 0)], state.u[nd.dof(i, 1)], u_theta]
+                })
                 .collect(),
             stress: nf.stress.iter().flat_map(|v| v.iter().copied()).collect(),
+            twist_shear: nf
+                .twist_shear
+                .iter()
+                .flat_map(|v| v.iter().copied())
+                .collect(),
             von_mises: nf.von_mises,
             peeq: nf.peeq,
             contact_pressure: p_n,
@@ -164,13 +189,17 @@ impl Frame {
 
     /// The point arrays in document order: name, components, values. The
     /// hoop stress (axisymmetry) is the fourth stress component again.
-    fn point_arrays(&self, hoop: bool) -> Vec<(&'static str, usize, Values<'_>)> {
+    /// With twist, `twist_shear` (σ_rθ, σ_zθ) follows.
+    fn point_arrays(&self, hoop: bool, twist: bool) -> Vec<(&'static str, usize, Values<'_>)> {
         let mut v = vec![
             ("displacement", 3, Values::All(&self.displacement)),
             ("stress", 4, Values::All(&self.stress)),
         ];
         if hoop {
             v.push(("hoop_stress", 1, Values::Every4th(&self.stress)));
+        }
+        if twist {
+            v.push(("twist_shear", 2, Values::All(&self.twist_shear)));
         }
         v.extend([
             ("von_mises", 1, Values::All(&self.von_mises)),
@@ -212,6 +241,8 @@ impl Values<'_> {
 pub struct Layout {
     format: VtuFormat,
     hoop: bool,
+    /// The model has twist: the `twist_shear` array is written.
+    twist: bool,
     /// From the XML declaration to where the first per-increment array goes.
     head: Vec<u8>,
     /// ascii: `</PointData>`, the `body` array and the `max_peeq` tag;
@@ -227,6 +258,7 @@ impl Layout {
         let nn = mesh.nodes.len();
         let ne = mesh.elements.len();
         let hoop = model.section.axisymmetric;
+        let twist = model.node_dofs().twist();
         let points: Vec<f64> = mesh.nodes.iter().flat_map(|x| [x[0], x[1], 0.0]).collect();
         let body: Vec<f64> = mesh.elements.iter().map(|e| e.body as f64).collect();
         let mut head = Vec::new();
@@ -236,7 +268,7 @@ impl Layout {
         // are each frame's)
         let empty = Frame::default();
         let names: Vec<(&str, usize)> = empty
-            .point_arrays(hoop)
+            .point_arrays(hoop, twist)
             .iter()
             .map(|&(n, c, _)| (n, c))
             .collect();
@@ -349,6 +381,7 @@ impl Layout {
         Layout {
             format,
             hoop,
+            twist,
             head,
             middle,
             body: body_block,
@@ -362,7 +395,7 @@ impl Layout {
         w.write_all(&self.head)?;
         match self.format {
             VtuFormat::Ascii => {
-                for (name, comps, vals) in frame.point_arrays(self.hoop) {
+                for (name, comps, vals) in frame.point_arrays(self.hoop, self.twist) {
                     ascii_tag(&mut buf, name, comps);
                     ascii_values(w, &mut buf, comps, vals)?;
                 }
@@ -371,7 +404,7 @@ impl Layout {
                 w.write_all(b"</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n")
             }
             VtuFormat::Binary => {
-                for (_, _, vals) in frame.point_arrays(self.hoop) {
+                for (_, _, vals) in frame.point_arrays(self.hoop, self.twist) {
                     raw_f64(&mut buf, vals);
                     w.write_all(&buf)?;
                     buf.clear();

@@ -459,15 +459,11 @@ pub(super) fn restore_state(ck: &mut Checkpoint, s: &Sections, model: &Model) ->
         "the displacement range of a case",
     )?;
     c.u.copy_from_slice(u);
-    let gauss = s.finite("gauss", Some(PointState::PACKED * ng))?;
-    for (i, (p, v)) in c
-        .gauss
-        .iter_mut()
-        .zip(gauss.chunks_exact(PointState::PACKED))
-        .enumerate()
-    {
+    let w = PointState::packed_len(model.node_dofs().twist());
+    let gauss = s.finite("gauss", Some(w * ng))?;
+    for (i, (p, v)) in c.gauss.iter_mut().zip(gauss.chunks_exact(w)).enumerate() {
         check_gauss_point(model, i, v)?;
-        *p = PointState::unpack(v);
+        *p = PointState::unpack(v, w);
     }
     match s.0.get("status") {
         Some(Data::U8(v)) if v.len() == np => {
@@ -537,13 +533,20 @@ pub(super) fn check_gauss_point(model: &Model, i: usize, v: &[f64]) -> Decoded<(
         )
     };
     let (sig, ep, peeq) = (&v[0..4], &v[4..8], v[8]);
-    const STRESS: [&str; 4] = ["σxx", "σyy", "σxy", "σzz"];
-    if let Some(k) = sig.iter().position(|x| x.abs() > MAX_STRESS) {
+    // with twist: σ_rθ, σ_zθ and εᵖ_rθ, εᵖ_zθ follow (0 without it)
+    let (ts, te) = if v.len() >= PointState::PACKED_TWIST {
+        ([v[10], v[11]], [v[12], v[13]])
+    } else {
+        ([0.0; 2], [0.0; 2])
+    };
+    const STRESS: [&str; 6] = ["σxx", "σyy", "σxy", "σzz", "σ_rθ", "σ_zθ"];
+    let all = [sig[0], sig[1], sig[2], sig[3], ts[0], ts[1]];
+    if let Some(k) = all.iter().position(|x| x.abs() > MAX_STRESS) {
         return Err(format!(
             "{}: stress {} = {} MPa, beyond ±{} MPa (10⁴ × the largest Young's modulus of a case)",
             at(),
             STRESS[k],
-            num(sig[k]),
+            num(all[k]),
             num(MAX_STRESS)
         ));
     }
@@ -561,7 +564,7 @@ pub(super) fn check_gauss_point(model: &Model, i: usize, v: &[f64]) -> Decoded<(
         )
     };
     if !mat.yield_stress.is_finite() {
-        if ep.iter().any(|&x| x != 0.0) || peeq != 0.0 || v[9] != 0.0 {
+        if ep.iter().chain(&te).any(|&x| x != 0.0) || peeq != 0.0 || v[9] != 0.0 {
             return Err(format!(
                 "{}: plastic strain {} (εᵖxx εᵖyy εᵖxy εᵖzz), equivalent plastic strain {} and yielding flag {} in an elastic body (no yield_stress: all 0)",
                 at(),
@@ -572,7 +575,8 @@ pub(super) fn check_gauss_point(model: &Model, i: usize, v: &[f64]) -> Decoded<(
         }
         return Ok(());
     }
-    let norm = (ep[0] * ep[0] + ep[1] * ep[1] + ep[3] * ep[3] + 2.0 * ep[2] * ep[2]).sqrt();
+    let twist = 2.0 * (te[0] * te[0] + te[1] * te[1]);
+    let norm = (ep[0] * ep[0] + ep[1] * ep[1] + ep[3] * ep[3] + 2.0 * ep[2] * ep[2] + twist).sqrt();
     if norm > MAX_PLASTIC_STRAIN {
         return Err(format!(
             "{}: plastic strain {} (εᵖxx εᵖyy εᵖxy εᵖzz) of magnitude {}, beyond {}",
@@ -609,7 +613,7 @@ pub(super) fn check_gauss_point(model: &Model, i: usize, v: &[f64]) -> Decoded<(
             strain()
         ));
     }
-    let q = VonMises::equivalent_stress(&[sig[0], sig[1], sig[2], sig[3]]);
+    let q = VonMises::equivalent_stress(&all);
     let y = mat.yield_stress + mat.hardening * peeq;
     if q > y * (1.0 + YIELD_REL) {
         return Err(format!(

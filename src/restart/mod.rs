@@ -352,10 +352,11 @@ fn sections(e: &mut Encoder, ck: &Checkpoint, pvd: &[(f64, String)]) -> std::io:
         &[ck.iterations as u64, ck.factorizations as u64],
     )?;
     e.f64s("u", &s.u)?;
+    let w = PointState::packed_len(ck.twist);
     e.f64_iter(
         "gauss",
-        PointState::PACKED * s.gauss.len(),
-        s.gauss.iter().flat_map(PointState::pack),
+        w * s.gauss.len(),
+        s.gauss.iter().flat_map(|g| g.pack().into_iter().take(w)),
     )?;
     e.bytes(
         "status",

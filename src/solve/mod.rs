@@ -108,7 +108,7 @@ pub struct Measures {
 impl Measures {
     pub fn of(model: &Model, state: &State) -> Measures {
         let mut m = Measures {
-            center_displacement: state.u[2 * model.probe_node + 1],
+            center_displacement: state.u[model.node_dofs().dof(model.probe_node, 1)],
             max_peeq: state.gauss.iter().fold(0.0f64, |a, g| a.max(g.peeq)),
             prescribed_reaction: state.prescribed_reaction,
             ..Measures::default()
@@ -189,6 +189,9 @@ pub struct Checkpoint {
     pub table_reach: Vec<crate::interface::extrapolation::Reach>,
     /// The events located so far ([`events`]).
     pub events: Vec<events::Event>,
+    /// The model has twist: its Gauss states carry six stress components
+    /// (the width of their restart layout, [`PointState::packed_len`]).
+    pub twist: bool,
 }
 
 impl Checkpoint {
@@ -210,6 +213,7 @@ impl Checkpoint {
             joint_totals: vec![JointTotals::default(); model.interfaces.len()],
             table_reach: vec![Default::default(); model.interfaces.len()],
             events: Vec::new(),
+            twist: model.node_dofs().twist(),
         }
     }
 }

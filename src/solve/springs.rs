@@ -141,11 +141,18 @@ impl Stabilizer {
             }
         }
         for (&(d, v), &h) in model.prescribed.iter().zip(&model.prescribed_history) {
-            let n = d / 2;
+            // u_θ (twist) is no in-plane motion: a body's rotation about the
+            // axis is held by its prescribed twist (the model refuses a body
+            // without one), never by the interface springs
+            let (n, c) = model.node_dofs().node_of(d);
             let Some(b) = body_of.get(n).copied().filter(|&b| b < nb) else {
                 continue;
             };
-            let e = if d % 2 == 0 { [1.0, 0.0] } else { [0.0, 1.0] };
+            let e = match c {
+                0 => [1.0, 0.0],
+                1 => [0.0, 1.0],
+                _ => continue,
+            };
             let r = bodies[b].row(mesh.nodes[n], e);
             add_row(&mut bodies[b].bc, r);
             if v != 0.0 && !bodies[b].driven.contains(&h) {
@@ -155,7 +162,9 @@ impl Stabilizer {
         for (p, (_, f)) in model.patterns().enumerate() {
             for (n, &b) in body_of.iter().enumerate() {
                 if b < nb {
-                    bodies[b].load[p] += f[2 * n].hypot(f[2 * n + 1]);
+                    let v = &f[model.node_dofs().of(n)];
+                    bodies[b].load[p] +=
+                        v.iter().skip(2).fold(v[0].hypot(v[1]), |a, x| a.hypot(*x));
                 }
             }
         }

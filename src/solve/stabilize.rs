@@ -97,7 +97,8 @@ fn internal_energy(engine: &Engine, state: &State) -> f64 {
             let nu = mat.poisson;
             let elastic = (s[0] * s[0] + s[1] * s[1] + s[3] * s[3]
                 - 2.0 * nu * (s[0] * s[1] + s[1] * s[3] + s[3] * s[0])
-                + 2.0 * (1.0 + nu) * s[2] * s[2])
+                + 2.0 * (1.0 + nu) * s[2] * s[2]
+                + 2.0 * (1.0 + nu) * (s[4] * s[4] + s[5] * s[5]))
                 / (2.0 * mat.young);
             let plastic = if mat.yield_stress.is_finite() {
                 mat.yield_stress * g.peeq + 0.5 * mat.hardening * g.peeq * g.peeq

@@ -45,7 +45,7 @@ impl Observer for Capture {
             if let Some(nodes) = model.mesh.node_sets.get(&set) {
                 surface = nodes
                     .iter()
-                    .map(|&n| (model.mesh.nodes[n][0], state.u[2 * n + 1]))
+                    .map(|&n| (model.mesh.nodes[n][0], state.u[model.node_dofs().dof(n, 1)]))
                     .collect();
                 surface.sort_by(|a, b| a.0.total_cmp(&b.0));
             }

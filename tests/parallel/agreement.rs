@@ -620,3 +620,29 @@ fn serial_petsc1_and_petsc2_agree_on_a_bolted_joint_with_a_pretension_section() 
         }
     }
 }
+
+/// Twist (issue 26): three dofs per node (PETSc block size 3, the
+/// near-null space gains the rotation about the axis), the six-component
+/// return, a circumferential shear on the foundation's outer surface with
+/// the punch pressing it; the twist's own fields (u_θ, σ_rθ, σ_zθ) and
+/// the torque reactions agree as well.
+#[test]
+fn serial_petsc1_and_petsc2_agree_on_a_twisting_model() {
+    let case = "tests/data/axisymmetric-punch-twist";
+    compare(case, "1");
+    // compare's folder (not common::scratch, which empties it)
+    let root = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join("parallel-tests-data-axisymmetric-punch-twist-1-2");
+    for field in ["displacement", "twist_shear"] {
+        let a = last_vtu_array(&root.join("serial"), field);
+        assert!(a.iter().any(|&v| v != 0.0), "{field} is all zero");
+        for run in ["petsc1", "petsc2"] {
+            let b = last_vtu_array(&root.join(run), field);
+            assert_eq!(a.len(), b.len(), "{run}: {field} length");
+            let scale = a.iter().fold(1e-30f64, |m, v| m.max(v.abs()));
+            for (i, (x, y)) in a.iter().zip(&b).enumerate() {
+                assert!(close(*x, *y, scale), "{run}: {field}[{i}] {x} vs {y}");
+            }
+        }
+    }
+}

@@ -35,3 +35,4 @@ mod stepping;
 mod tables;
 mod tangents;
 mod threads;
+mod torsion;

@@ -18,8 +18,9 @@ pub struct Partition {
     /// Free equation → PETSc global index (rank-contiguous).
     pub petsc_index: Vec<ffi::PetscInt>,
     /// Mesh dof → PETSc global index. PETSc numbers every dof, prescribed ones
-    /// too (as identity rows), two per node in node order within each rank, so
-    /// the matrix has block size 2 and algebraic multigrid aggregates nodes.
+    /// too (as identity rows), [`crate::mesh::NodeDofs`] per node (2, or 3
+    /// with twist) in node order within each rank, so the matrix has that
+    /// block size and algebraic multigrid aggregates nodes.
     pub dof_index: Vec<ffi::PetscInt>,
     /// First PETSc index of each rank, and the total (len = ranks + 1).
     pub offsets: Vec<usize>,
@@ -60,7 +61,8 @@ impl Partition {
     }
 
     /// The three in-plane rigid-body modes of the assembly (x and y
-    /// translation, rotation about the centroid of the nodes) over every dof in
+    /// translation, rotation about the centroid of the nodes), and with twist
+    /// the rotation about the axis (u_θ = r), over every dof in
     /// PETSc order, orthonormalized (modified Gram-Schmidt on the replicated
     /// vectors, so every rank gets the same), as this rank's owned parts: the
     /// near-null space for algebraic multigrid (`-pc_type gamg`).
@@ -81,16 +83,19 @@ impl Partition {
         let c = nodes
             .iter()
             .fold([0.0f64; 2], |c, p| [c[0] + p[0] / m, c[1] + p[1] / m]);
-        let mut modes = vec![vec![0.0; n]; 3];
+        let nd = model.node_dofs();
+        let mut modes = vec![vec![0.0; n]; if nd.twist() { 4 } else { 3 }];
         for (i, p) in nodes.iter().enumerate() {
-            let (ix, iy) = (
-                self.dof_index[2 * i] as usize,
-                self.dof_index[2 * i + 1] as usize,
-            );
+            let at = |c: usize| self.dof_index[nd.dof(i, c)] as usize;
+            let (ix, iy) = (at(0), at(1));
             modes[0][ix] = 1.0;
             modes[1][iy] = 1.0;
             modes[2][ix] = -(p[1] - c[1]);
             modes[2][iy] = p[0] - c[0];
+            if nd.twist() {
+                // the rotation about the axis: u_θ = r
+                modes[3][at(2)] = p[0];
+            }
         }
         // an empty mesh gives zero vectors: drop them
         modes.retain(|m| m.iter().any(|&v| v != 0.0));
@@ -158,9 +163,10 @@ impl Partition {
         // a pretension section's reference node belongs to rank 0
         node_owner.resize(mesh.nodes.len() + model.sections.len(), 0);
         let nd = model.num_dofs();
+        let k = model.node_dofs().per_node();
         let mut offsets = vec![0usize; ranks + 1];
         for &o in &node_owner {
-            offsets[o + 1] += 2;
+            offsets[o + 1] += k;
         }
         for r in 0..ranks {
             offsets[r + 1] += offsets[r];
@@ -168,9 +174,10 @@ impl Partition {
         let mut next = offsets.clone();
         let mut dof_index = vec![0 as ffi::PetscInt; nd];
         for (v, &o) in node_owner.iter().enumerate() {
-            dof_index[2 * v] = next[o] as ffi::PetscInt;
-            dof_index[2 * v + 1] = next[o] as ffi::PetscInt + 1;
-            next[o] += 2;
+            for (c, d) in model.node_dofs().of(v).enumerate() {
+                dof_index[d] = (next[o] + c) as ffi::PetscInt;
+            }
+            next[o] += k;
         }
         let mut petsc_index = vec![0 as ffi::PetscInt; model.dofs.n_eq];
         for (d, &p) in dof_index.iter().enumerate() {
@@ -316,7 +323,8 @@ impl<'p> PetscBackend<'p> {
         let (d, o) = part.preallocation(&pattern, rank, &prescribed);
         let local = part.local_len(rank);
         let n = part.global_len();
-        let mut mat = PMat::aij(petsc, local, n, 2, &d, &o)?;
+        let bs = model.node_dofs().per_node();
+        let mut mat = PMat::aij(petsc, local, n, bs, &d, &o)?;
         fix_pattern(&mut mat, &pattern, &part, rank, &prescribed)?;
         if model.symmetric_tangent() {
             mat.set_symmetric()?;

@@ -21,9 +21,10 @@ use super::springs::Stabilizer;
 use super::State;
 use crate::backend::Backend;
 use crate::case::Method;
-use crate::fem::solid::{element_forces, Response, Tangent};
+use crate::fem::solid::{element_forces, ElementMatrix, ElementVector, Response, Tangent};
 use crate::interface::Status;
 use crate::material::PointState;
+use crate::mesh::NodeDofs;
 use crate::model::Model;
 
 /// Points per reduction in `Engine::share_state` and `Engine::gather_gauss`.
@@ -83,8 +84,8 @@ pub struct Engine<'m> {
     /// Threads of the element loop ([`Engine::set_threads`]).
     threads: usize,
     /// One batch's element forces and tangents ([`ELEMENT_BATCH`]).
-    fe_batch: Vec<[f64; 16]>,
-    ke_batch: Vec<[f64; 256]>,
+    fe_batch: Vec<ElementVector>,
+    ke_batch: Vec<ElementMatrix>,
     /// The dofs held in the current step ([`Model::held_dofs`]); a cached
     /// solid matrix is of one set of them.
     held: Vec<usize>,
@@ -179,25 +180,25 @@ impl<'m> Engine<'m> {
         } else {
             Vec::new()
         };
-        const W: usize = PointState::PACKED;
+        let w = PointState::packed_len(self.model.node_dofs().twist());
         let per = (SHARE_CHUNK / ng).max(1);
-        let mut g = Vec::with_capacity(per * ng * W);
+        let mut g = Vec::with_capacity(per * ng * w);
         let mut k = 0; // next held element
         let mut e0 = 0;
         while e0 < ne {
             let e1 = (e0 + per).min(ne);
             g.clear();
-            g.resize((e1 - e0) * ng * W, 0.0);
+            g.resize((e1 - e0) * ng * w, 0.0);
             while k < self.held_elements.len() && (self.held_elements[k] as usize) < e1 {
-                let at = (self.held_elements[k] as usize - e0) * ng * W;
+                let at = (self.held_elements[k] as usize - e0) * ng * w;
                 for (ip, s) in state.gauss[k * ng..(k + 1) * ng].iter().enumerate() {
-                    g[at + ip * W..][..W].copy_from_slice(&s.pack());
+                    g[at + ip * w..][..w].copy_from_slice(&s.pack()[..w]);
                 }
                 k += 1;
             }
             self.backend.sum(&mut g);
             if root {
-                full.extend(g.chunks_exact(W).map(PointState::unpack));
+                full.extend(g.chunks_exact(w).map(|v| PointState::unpack(v, w)));
             }
             e0 = e1;
         }
@@ -469,13 +470,16 @@ impl<'m> Engine<'m> {
         let n = self.held_elements.len();
         let batch = n.min(ELEMENT_BATCH);
         if self.fe_batch.len() < batch {
-            self.fe_batch.resize(batch, [0.0; 16]);
+            self.fe_batch.resize(batch, [0.0; NodeDofs::MAX_ELEMENT]);
         }
         if solid_tangent.is_some() && self.ke_batch.len() < batch {
-            self.ke_batch.resize(batch, [0.0; 256]);
+            self.ke_batch
+                .resize(batch, [0.0; NodeDofs::MAX_ELEMENT * NodeDofs::MAX_ELEMENT]);
         }
         let mut failure: Option<String> = None;
-        let mut dofs = [0usize; 16];
+        let nd = m.node_dofs();
+        let (k, ne) = (nd.per_node(), nd.element());
+        let mut dofs = [0usize; NodeDofs::MAX_ELEMENT];
         let mut b0 = 0;
         while b0 < n && failure.is_none() {
             let b1 = (b0 + ELEMENT_BATCH).min(n);
@@ -503,18 +507,17 @@ impl<'m> Engine<'m> {
                 let el = &m.mesh.elements[self.held_elements[b0 + i] as usize];
                 let fe = &self.fe_batch[i];
                 for (a, &n) in el.nodes.iter().enumerate() {
-                    self.r[2 * n] += fe[2 * a];
-                    self.r[2 * n + 1] += fe[2 * a + 1];
-                    dofs[2 * a] = 2 * n;
-                    dofs[2 * a + 1] = 2 * n + 1;
+                    for (c, d) in nd.of(n).enumerate() {
+                        self.r[d] += fe[k * a + c];
+                        dofs[k * a + c] = d;
+                    }
                 }
                 if solid_tangent.is_some() {
                     let b = self.held_elements[b0 + i] as usize;
+                    let ke = &self.ke_batch[i][..ne * ne];
                     match m.expansions.get(&b) {
-                        None => be.add_solid(b, &dofs, &self.ke_batch[i]),
-                        Some(x) => {
-                            be.add_solid(b, &x.dofs, &held_out(x, &self.held, &self.ke_batch[i]))
-                        }
+                        None => be.add_solid(b, &dofs[..ne], ke),
+                        Some(x) => be.add_solid(b, &x.dofs, &held_out(x, &self.held, ke)),
                     }
                     .map_err(err)?;
                 }
@@ -685,8 +688,8 @@ fn element_batch(
     u: &[f64],
     response: Response,
     tangent: Option<Tangent>,
-    fe: &mut [[f64; 16]],
-    ke: &mut [[f64; 256]],
+    fe: &mut [ElementVector],
+    ke: &mut [ElementMatrix],
     threads: usize,
 ) -> Option<(usize, String)> {
     let len = ids.len();
@@ -698,7 +701,7 @@ fn element_batch(
     let per = len.div_ceil(t);
     // ke is empty without a tangent: every chunk then gets an empty slice
     let ke_per = if ke.is_empty() { usize::MAX } else { per };
-    let mut ke_chunks: Vec<&mut [[f64; 256]]> = ke.chunks_mut(ke_per).collect();
+    let mut ke_chunks: Vec<&mut [ElementMatrix]> = ke.chunks_mut(ke_per).collect();
     ke_chunks.resize_with(ids.chunks(per).len(), || &mut []);
     let mut chunks = ids
         .chunks(per)
@@ -739,11 +742,12 @@ fn element_chunk(
     u: &[f64],
     response: Response,
     tangent: Option<Tangent>,
-    fe: &mut [[f64; 16]],
-    ke: &mut [[f64; 256]],
+    fe: &mut [ElementVector],
+    ke: &mut [ElementMatrix],
 ) -> Option<(usize, String)> {
     let ng = m.n_gauss();
-    let mut scratch = [0.0; 256];
+    let mut scratch = [0.0; NodeDofs::MAX_ELEMENT * NodeDofs::MAX_ELEMENT];
+    let ne = m.node_dofs().element();
     for (i, &e) in ids.iter().enumerate() {
         let e = e as usize;
         let el = &m.mesh.elements[e];
@@ -753,13 +757,13 @@ fn element_chunk(
         if let Err(msg) = element_forces(
             &m.geometry(e),
             &m.materials[el.body],
-            &ue,
+            &ue[..ne],
             &committed[gs.clone()],
             &mut trial[gs],
             response,
             tangent,
-            &mut fe[i],
-            ke,
+            &mut fe[i][..ne],
+            &mut ke[..ne * ne],
         ) {
             return Some((i, msg));
         }

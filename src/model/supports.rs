@@ -1,0 +1,97 @@
+//! Whether every body is held against its rigid-body motions by the
+//! prescribed dofs and the interfaces (a body free to move would make the
+//! tangent singular).
+
+use crate::error::{Error, Result};
+use crate::interface::InterfaceModel;
+use crate::mesh::Mesh;
+
+/// Every body must be held in x and in y, by its own prescribed dofs or through
+/// an interface (along the interface normal) to a body held in that direction;
+/// in axisymmetry every body is held in x = r.
+/// Otherwise it could move as a rigid body and the tangent would be singular.
+pub(super) fn check_supports(
+    mesh: &Mesh,
+    prescribed: &[(usize, f64)],
+    interfaces: &[InterfaceModel],
+    axisymmetric: bool,
+    place: &str,
+) -> Result<()> {
+    // a body of revolution cannot move rigidly in r: u_r = c strains it by c/r
+    // in the hoop direction (and nodes on the axis are held by u_r = 0)
+    let mut held = vec![[axisymmetric, false]; mesh.bodies.len()];
+    let mut node_body = vec![usize::MAX; mesh.nodes.len()];
+    for el in &mesh.elements {
+        for &n in &el.nodes {
+            node_body[n] = el.body;
+        }
+    }
+    // (a pretension section's reference node is no node of a body)
+    for &(d, _) in prescribed.iter().filter(|p| p.0 < mesh.num_dofs()) {
+        let (n, c) = mesh.node_dofs.node_of(d);
+        if c < 2 {
+            held[node_body[n]][c] = true;
+        }
+    }
+    // propagate along each interface's dominant normal direction to a fixed point
+    loop {
+        let mut changed = false;
+        for im in interfaces {
+            let n = im.pairs.first().map_or([0.0, 1.0], |p| p.normal);
+            let normal = usize::from(n[1].abs() >= n[0].abs());
+            // springs carry the normal direction, and with friction the tangential one too
+            let dirs: &[usize] = if im.tangential.is_some() {
+                &[0, 1]
+            } else {
+                std::slice::from_ref(&normal)
+            };
+            let (a, b) = (im.body_a, im.body_b);
+            for &c in dirs {
+                if held[a][c] != held[b][c] {
+                    held[a][c] = true;
+                    held[b][c] = true;
+                    changed = true;
+                }
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    // twist: a body turns rigidly about the axis (u_θ = ω r, zero on the
+    // axis) unless a prescribed u_θ at r > 0 holds it (the interfaces carry
+    // no u_θ yet)
+    if mesh.node_dofs.twist() {
+        let tol = crate::case::whole::tolerance(mesh);
+        let mut turns = vec![true; mesh.bodies.len()];
+        for &(d, _) in prescribed.iter().filter(|p| p.0 < mesh.num_dofs()) {
+            let (n, c) = mesh.node_dofs.node_of(d);
+            if c == 2 && mesh.nodes[n][0].abs() > tol {
+                turns[node_body[n]] = false;
+            }
+        }
+        if let Some(b) = turns.iter().position(|&t| t) {
+            return Err(Error::input(
+                place,
+                format!(
+                    "body \"{}\" is held by nothing about the axis: no [[boundary]] rotation on a node at r > 0 (the axis holds u_θ = 0 but not the rigid rotation u_θ = ω r); give a rotation (0: fixed) on a set of the body",
+                    mesh.bodies[b]
+                ),
+            ));
+        }
+    }
+    for (b, h) in held.iter().enumerate() {
+        for (c, axis) in ["x", "y"].iter().enumerate() {
+            if !h[c] {
+                return Err(Error::input(
+                    place,
+                    format!(
+                        "body \"{}\" is held by nothing in {axis}: no boundary condition on u{axis} and no interface to a body held in {axis} (rigid-body motion)",
+                        mesh.bodies[b]
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
