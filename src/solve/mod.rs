@@ -440,7 +440,7 @@ fn accept(
             engine,
             &ck.committed,
             (ck.lambda, ck.elastic_ratio_prev),
-            (target, &trial.u),
+            target,
         ) {
             Ok(at) => {
                 found.push(events::first_yield(

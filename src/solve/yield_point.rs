@@ -57,16 +57,11 @@ pub fn max_yield_ratio(model: &Model, state: &State, held: &[u32]) -> (f64, usiz
     best
 }
 
-/// First yield between the last elastic state (at `lambda0`, whose largest
-/// yield ratio is `ratio0`) and the increment's end `lambda1`, whose
-/// converged (plastic) displacements `plastic` start the elastic solve there:
-/// at first yield the two differ only by the little plastic flow of the
-/// increment, so that solve starts closer than from the last elastic state.
 pub(super) fn locate(
     engine: &mut Engine,
     last_elastic: &State,
     (lambda0, ratio0): (f64, f64),
-    (lambda1, plastic): (f64, &[f64]),
+    lambda1: f64,
 ) -> std::result::Result<Located, (f64, StepFailure)> {
     let model = engine.model;
     // the two latest solutions (load factor, displacements): each solve
@@ -83,7 +78,6 @@ pub(super) fn locate(
                         .collect::<Vec<f64>>(),
                 )
             }
-            _ if l == lambda1 => Some(plastic.to_vec()),
             _ => None,
         };
         let (s, _) = engine
