@@ -472,8 +472,9 @@ pub struct SolverSpec {
     #[serde(default = "yes")]
     pub locate_first_yield: bool,
     /// Full Newton: a backtracking line search on the residual norm
-    /// (`solve::newton::StepProblem`); off by default.
-    #[serde(default)]
+    /// (`solve::newton::StepProblem`); on by default (issue 29,
+    /// docs/performance.md "Contact status convergence").
+    #[serde(default = "yes")]
     pub line_search: bool,
     /// "auto" or "off": contact stabilization of bodies held only through open
     /// interface pairs, or at zero load (see `solve::stabilize`).

@@ -10,13 +10,23 @@ use std::path::Path;
 
 /// Runs a test case of tests/data with `event_tolerance = tol`; its events.
 fn events_of(case: &str, tol: f64) -> (asperity::model::Model, Vec<Event>) {
-    let text = std::fs::read_to_string(
+    events_with(case, tol, "")
+}
+
+/// [`events_of`] with `solver` (lines of TOML) added to the case's
+/// `[solver]` table.
+fn events_with(case: &str, tol: f64, solver: &str) -> (asperity::model::Model, Vec<Event>) {
+    let mut text = std::fs::read_to_string(
         common::root()
             .join("tests/data")
             .join(case)
             .join("case.toml"),
     )
     .unwrap();
+    if !solver.is_empty() {
+        assert!(text.contains("\n[solver]\n"));
+        text = text.replacen("\n[solver]\n", &format!("\n[solver]\n{solver}\n"), 1);
+    }
     assert!(text.contains("\n[output]\n"));
     let text = text.replacen(
         "\n[output]\n",
@@ -90,11 +100,16 @@ fn separation_is_bracketed_at_the_closed_form_and_converges_with_the_tolerance()
 /// and the push's reaction is that holding force. At every tolerance the
 /// event's F_T, F_N and reaction are the closed form's to 1e-9, and its
 /// load factor converges: each within its tolerance of the finest one.
+/// Forces to 1e-9 need equilibrium to better than that: the solves are
+/// asked for a residual of 1e-11 (the default 1e-8 allows F_N 3.6e-9 off;
+/// the test passed with it only while the displacement test took a
+/// correction more than the tolerances ask for, docs/performance.md
+/// "Contact status convergence").
 #[test]
 fn full_slip_reports_the_holding_force_mu_times_the_normal_force() {
     let mut found = Vec::new();
     for tol in [1e-2, 1e-3, 1e-4, 1e-7] {
-        let (model, events) = events_of("block-slip", tol);
+        let (model, events) = events_with("block-slip", tol, "residual_tolerance = 1e-11");
         let e = one(&events, Kind::FullSlip).clone();
         assert!(e.converged && !e.solve_failed, "{tol}: {e:?}");
         assert!((e.after - e.before).abs() <= tol, "{tol}: {e:?}");

@@ -31,6 +31,7 @@ mod punch;
 mod punch_rounded;
 mod roughness;
 mod shrink_fit;
+mod status_convergence;
 mod stepping;
 mod tables;
 mod tangents;

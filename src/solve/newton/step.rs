@@ -46,6 +46,10 @@ pub struct StepProblem<'a, 'm> {
     /// ‖Δu‖∞ of the correction before the last (∞ before the second).
     du_prev_inf: f64,
     r_norm: f64,
+    /// ‖R‖ at the iterate the last correction started from (NaN before it).
+    r_prev: f64,
+    /// Whether the last correction was taken whole (no line-search cut).
+    whole: bool,
     reference: f64,
     anderson: Option<Anderson>,
     /// The iterate of the last evaluation made by the line search and its
@@ -103,6 +107,8 @@ impl<'a, 'm> StepProblem<'a, 'm> {
             du_inf: f64::INFINITY,
             du_prev_inf: f64::INFINITY,
             r_norm: f64::NAN,
+            r_prev: f64::NAN,
+            whole: true,
             reference: 1.0,
             anderson,
             searched: None,
@@ -111,20 +117,42 @@ impl<'a, 'm> StepProblem<'a, 'm> {
         }
     }
 
-    /// The error of the current iterate that the displacement test bounds:
-    /// the last correction ‖Δu_k‖∞, or, where the iteration contracts fast
-    /// (θ = ‖Δu_k‖∞ / ‖Δu_{k−1}‖∞ < 1/2), the a-posteriori bound of a
-    /// contraction, θ/(1−θ) ‖Δu_k‖∞ (the distance from x_k to the fixed
-    /// point; Banach). The last correction alone measures the error of the
-    /// iterate before it, so a quadratically converging Newton iteration
-    /// would take one more solve than the tolerance asks for; where θ ≥ 1/2
-    /// the last correction is the smaller bound and stays the test.
+    /// The error of the current iterate x_k that the displacement test
+    /// bounds: the last correction ‖Δu_{k−1}‖∞, or the a-posteriori bound of
+    /// a contraction, θ/(1−θ) ‖Δu_{k−1}‖∞ (the distance from x_k to the
+    /// fixed point; Banach), where the iteration contracts fast (θ < 1/2),
+    /// whichever of two measures of θ is smaller:
+    /// - the ratio of the last two corrections, ‖Δu_{k−1}‖∞ / ‖Δu_{k−2}‖∞;
+    /// - the ratio of the residuals at x_k and x_{k−1}, ‖R_k‖ / ‖R_{k−1}‖,
+    ///   which estimates the next correction from the residual at x_k, the
+    ///   rate-of-convergence estimate of the next correction that commercial
+    ///   codes use (‖Δu_k‖ ≈ ‖R_k‖/‖R_{k−1}‖ ‖Δu_{k−1}‖ where the tangent
+    ///   changes little). Used only where the last correction was taken
+    ///   whole; the verdict asks in any case that no status changed between
+    ///   x_{k−1} and x_k, so the two residuals are of the same smooth piece of
+    ///   the contact law. After an active-set step (the correction ratio says
+    ///   nothing there: the two corrections are of different pieces) this is
+    ///   what ends the step when the new set is the right one, where the
+    ///   residual falls to round-off.
+    ///
+    /// The last correction alone measures the error of the iterate before
+    /// it, so a quadratically converging Newton iteration would take one
+    /// more solve than the tolerance asks for; where θ ≥ 1/2 the last
+    /// correction is the smaller bound and stays the test.
     fn error_estimate(&self) -> f64 {
-        let theta = self.du_inf / self.du_prev_inf;
-        if theta < FAST_CONTRACTION {
-            theta / (1.0 - theta) * self.du_inf
+        let bound = |theta: f64| {
+            if theta < FAST_CONTRACTION {
+                theta / (1.0 - theta) * self.du_inf
+            } else {
+                self.du_inf
+            }
+        };
+        let by_corrections = bound(self.du_inf / self.du_prev_inf);
+        let rho = self.r_norm / self.r_prev;
+        if self.whole && rho.is_finite() {
+            by_corrections.min(bound(rho))
         } else {
-            self.du_inf
+            by_corrections
         }
     }
 
@@ -149,6 +177,7 @@ impl<'a, 'm> StepProblem<'a, 'm> {
         let r0 = self.r_norm;
         let tol = self.engine.model.solver.residual_tolerance * self.reference;
         let wanted = self.method == Method::FullNewton && self.engine.model.solver.line_search;
+        self.whole = true;
         if !(wanted && r0.is_finite() && r0 > tol) || self.corrections < SEARCH_FROM {
             return;
         }
@@ -182,6 +211,7 @@ impl<'a, 'm> StepProblem<'a, 'm> {
                 .backend
                 .agree(ok && (flips || merit <= (1.0 - ARMIJO * alpha) * r0));
             if accept {
+                self.whole = alpha == 1.0;
                 self.searched = Some((xt, rt));
                 return;
             }
@@ -199,6 +229,7 @@ impl<'a, 'm> StepProblem<'a, 'm> {
         }
         // no step met the condition: the smallest residual seen
         let a = best.1;
+        self.whole = a == 1.0;
         for k in 0..n {
             du[k] = if a == 1.0 { full[k] } else { a * full[k] };
         }
@@ -370,6 +401,7 @@ impl Problem for StepProblem<'_, '_> {
             return Verdict::Stop;
         }
         self.last_status = Some(std::mem::take(&mut self.status));
+        self.r_prev = r_norm;
         Verdict::Continue
     }
 
