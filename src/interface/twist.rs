@@ -68,6 +68,23 @@ impl InterfaceModel {
         s.iter().map(|v| -v).chain(s.iter().copied()).collect()
     }
 
+    /// The radius of every point (index as `points`), mm: on coincident
+    /// pairs interpolated from the pairs' positions by the point's shape
+    /// values, on a non-matching interface the slave point's.
+    pub fn point_radii(&self) -> Vec<f64> {
+        let mut r: Vec<f64> = self
+            .points
+            .iter()
+            .map(|pt| (0..pt.len).map(|i| pt.shape[i] * self.pairs[pt.pairs[i]].x[0]).sum())
+            .collect();
+        for p in &self.pairs {
+            if let Some(j) = p.spring {
+                r[j] = p.x[0];
+            }
+        }
+        r
+    }
+
     /// Number of a point's local dofs: [`Point::ndofs`] without twist, 3 per
     /// node with it.
     pub fn point_ndofs(&self, pt: &Point) -> usize {

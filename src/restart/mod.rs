@@ -39,7 +39,8 @@
 //! `pvd_file` (names separated by newlines), `joint_totals` (2 per interface:
 //! frictional dissipation and tangential work so far) and `joints` (11 per
 //! interface and increment, as [`crate::interface::joint::JointMeasures::pack`]
-//! lays them out), `table_reach` (2 per interface: the largest approach u_N
+//! lays them out; with twist `joints_twist`, 3 more: torque, circumferential
+//! slip, twist, [`crate::interface::joint::JointMeasures::pack_twist`]), `table_reach` (2 per interface: the largest approach u_N
 //! and pressure p_N over the converged states so far, see
 //! [`crate::interface::extrapolation`]), `record_width` (the values of one
 //! designer's record, [`crate::output::plan`]), `records` (the record of every
@@ -428,6 +429,17 @@ fn sections(e: &mut Encoder, ck: &Checkpoint, pvd: &[(f64, String)]) -> std::io:
             })
             .flat_map(|j| j.iter().flat_map(JointMeasures::pack)),
     )?;
+    // twist: T, ū_θ, φ̄ per interface and increment (NaN where unmeasured)
+    if ck.twist {
+        e.f64_iter(
+            "joints_twist",
+            JointMeasures::PACKED_TWIST * n * ck.increments.len(),
+            ck.increments
+                .iter()
+                .map(|i| if i.joints.len() == n { &i.joints } else { &none })
+                .flat_map(|j| j.iter().flat_map(JointMeasures::pack_twist)),
+        )?;
+    }
     // a model with pretension sections: their force and shortening per
     // increment (no section otherwise, so older files stay as they were)
     let sections = ck
