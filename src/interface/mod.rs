@@ -34,8 +34,8 @@ use crate::mesh::{Interface, Mesh};
 pub use normal::NormalLaw;
 pub use segment::{project, OVERLAP_LIMIT};
 pub use state::{PointState, Status};
-pub use twist::Gradients;
 pub use tangential::{Backbone, Memory, Slip, SlipState, Stretch, TangentialLaw, MEMORY_POINTS};
+pub use twist::Gradients;
 
 /// A node pair across the interface.
 #[derive(Clone, Debug)]

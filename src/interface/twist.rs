@@ -75,7 +75,11 @@ impl InterfaceModel {
         let mut r: Vec<f64> = self
             .points
             .iter()
-            .map(|pt| (0..pt.len).map(|i| pt.shape[i] * self.pairs[pt.pairs[i]].x[0]).sum())
+            .map(|pt| {
+                (0..pt.len)
+                    .map(|i| pt.shape[i] * self.pairs[pt.pairs[i]].x[0])
+                    .sum()
+            })
             .collect();
         for p in &self.pairs {
             if let Some(j) = p.spring {
@@ -100,7 +104,11 @@ impl InterfaceModel {
         let nd = self.node_dofs;
         let nodes = self.point_nodes(pt);
         let w = self.hoop_weights(pt);
-        nodes.iter().zip(&w).map(|(&n, w)| w * u[nd.dof(n, 2)]).sum()
+        nodes
+            .iter()
+            .zip(&w)
+            .map(|(&n, w)| w * u[nd.dof(n, 2)])
+            .sum()
     }
 
     /// g_N, g_T1 (and g_θ with twist) over the point's local dofs
@@ -109,13 +117,14 @@ impl InterfaceModel {
     pub fn point_gradients(&self, pt: &Point) -> Gradients {
         let (n, t) = pt.gradients();
         if !self.twist() {
-            return Gradients { n, t, h: Vec::new() };
+            return Gradients {
+                n,
+                t,
+                h: Vec::new(),
+            };
         }
-        let widen = |v: &[f64]| -> Vec<f64> {
-            v.chunks_exact(2)
-                .flat_map(|c| [c[0], c[1], 0.0])
-                .collect()
-        };
+        let widen =
+            |v: &[f64]| -> Vec<f64> { v.chunks_exact(2).flat_map(|c| [c[0], c[1], 0.0]).collect() };
         let h = self
             .hoop_weights(pt)
             .iter()

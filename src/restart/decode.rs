@@ -680,7 +680,11 @@ pub(super) fn restore_joints(ck: &mut Checkpoint, s: &Sections, interfaces: usiz
                     num(*x)
                 ));
             }
-            for (m, t) in inc.joints.iter_mut().zip(row.chunks_exact(JointMeasures::PACKED_TWIST)) {
+            for (m, t) in inc
+                .joints
+                .iter_mut()
+                .zip(row.chunks_exact(JointMeasures::PACKED_TWIST))
+            {
                 (m.torque, m.hoop_slip, m.twist) = (t[0], t[1], t[2]);
             }
         }

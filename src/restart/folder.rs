@@ -117,8 +117,10 @@ impl Bounds {
             + events
             + 32;
         // with the designer's record of every increment
-        let per_increment =
-            8 * (10 + (JointMeasures::PACKED + JointMeasures::PACKED_TWIST) as u64 * ni + 1 + record) + MAX_VTU_NAME as u64 + 1;
+        let per_increment = 8
+            * (10 + (JointMeasures::PACKED + JointMeasures::PACKED_TWIST) as u64 * ni + 1 + record)
+            + MAX_VTU_NAME as u64
+            + 1;
 
         let table = 36 + u64::from(MAX_SECTIONS) * (11 + MAX_SECTION_NAME as u64);
         let restart_bytes = table

@@ -436,7 +436,13 @@ fn sections(e: &mut Encoder, ck: &Checkpoint, pvd: &[(f64, String)]) -> std::io:
             JointMeasures::PACKED_TWIST * n * ck.increments.len(),
             ck.increments
                 .iter()
-                .map(|i| if i.joints.len() == n { &i.joints } else { &none })
+                .map(|i| {
+                    if i.joints.len() == n {
+                        &i.joints
+                    } else {
+                        &none
+                    }
+                })
                 .flat_map(|j| j.iter().flat_map(JointMeasures::pack_twist)),
         )?;
     }

@@ -35,4 +35,5 @@ mod stepping;
 mod tables;
 mod tangents;
 mod threads;
+mod torque_fit;
 mod torsion;

@@ -184,10 +184,7 @@ fn without_hoop_slip_the_twisting_point_is_the_plane_point() {
         let mut st_p = PointState::default();
         for s1 in [1e-5, 2e-4, 3e-3, -1e-3, 4e-3] {
             let u3 = displacements(s1, 0.0);
-            let u2: Vec<f64> = u3
-                .chunks_exact(3)
-                .flat_map(|c| [c[0], c[1]])
-                .collect();
+            let u2: Vec<f64> = u3.chunks_exact(3).flat_map(|c| [c[0], c[1]]).collect();
             let (r3, k3, e3) = eval(&tw, pt, &u3, &st_t, true);
             let (r2, k2, e2) = eval(&plane, pp, &u2, &st_p, true);
             let (n3, n2) = (r3.len(), r2.len());
@@ -223,5 +220,8 @@ fn the_hoop_slip_is_b_minus_a_around_the_axis() {
     for pt in &im.points {
         assert!((im.point_hoop_slip(pt, &u) - 3e-3).abs() < 1e-15);
     }
-    assert_eq!(model(NodeDofs::PLANE).point_hoop_slip(&im.points[0], &u[..12]), 0.0);
+    assert_eq!(
+        model(NodeDofs::PLANE).point_hoop_slip(&im.points[0], &u[..12]),
+        0.0
+    );
 }

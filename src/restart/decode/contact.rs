@@ -99,7 +99,8 @@ fn check_contact_against_u(
             let at = || format!("section contact: interface point {q} ({})", im.name);
             let (u_n, u_t) = im.point_kinematics_at(pt, u, gap);
             if im.twist() {
-                check_vector_against_u(im, pt, u, gap, u_max, st).map_err(|m| format!("{}: {m}", at()))?;
+                check_vector_against_u(im, pt, u, gap, u_max, st)
+                    .map_err(|m| format!("{}: {m}", at()))?;
                 continue;
             }
             if (st.u_t - u_t).abs() > 1e-6 * u_max + 1e-12 {
