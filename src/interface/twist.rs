@@ -192,8 +192,8 @@ impl InterfaceModel {
         }
         let nd = self.point_ndofs(pt);
         let a = pt.area;
-        for i in 0..nd {
-            r[i] = a * (p_n * g.n[i] + p[0] * g.t[i] + p[1] * g.h[i]);
+        for (i, ri) in r[..nd].iter_mut().enumerate() {
+            *ri = a * (p_n * g.n[i] + p[0] * g.t[i] + p[1] * g.h[i]);
         }
         if let Some(k) = k {
             let kept = if with_coupling { d_un } else { [0.0; 2] };
