@@ -111,6 +111,19 @@ impl InterfaceModel {
             .sum()
     }
 
+    /// u_Tθ at a pair (nodal value, 0 without twist): u_θB − u_θA, or on a
+    /// non-matching interface that of the pair's spring point.
+    pub fn pair_hoop_slip(&self, pair: &super::Pair, u: &[f64]) -> f64 {
+        if !self.twist() {
+            return 0.0;
+        }
+        if let Some(j) = pair.spring {
+            return self.point_hoop_slip(&self.points[j], u);
+        }
+        let nd = self.node_dofs;
+        u[nd.dof(pair.b, 2)] - u[nd.dof(pair.a, 2)]
+    }
+
     /// g_N, g_T1 (and g_θ with twist) over the point's local dofs
     /// ([`InterfaceModel::point_dofs`]); without twist exactly
     /// [`Point::gradients`].
