@@ -473,7 +473,12 @@ pub fn check(case_path: &Path) -> Result<String> {
             } else {
                 "node-to-segment springs at A's quadrature points"
             };
-            let widest = im.points.iter().map(|p| p.ndofs()).max().unwrap_or(0);
+            let widest = im
+                .points
+                .iter()
+                .map(|p| im.point_ndofs(p))
+                .max()
+                .unwrap_or(0);
             let (lo, hi) = gaps
                 .iter()
                 .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &g| {

@@ -114,10 +114,11 @@ pub fn check_case(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
         return Ok(());
     }
     for (name, spec) in &case.interface {
-        if spec.tangential.is_some() {
+        let scheme = spec.tangential.as_ref().map(|t| t.scheme);
+        if scheme == Some(crate::interface::FrictionScheme::StiffnessModification) {
             return Err(Error::input(
-                at(&format!("[interface.{}.tangential]", clip(name))),
-                "a tangential law in a model with twist is not yet supported (the interfaces carry no circumferential slip yet); remove [model] twist or the tangential law",
+                at(&format!("[interface.{}.tangential] scheme", clip(name))),
+                "\"stiffness-modification\" in a model with twist: its secant Δp_T/Δu_T is one of a scalar slip, and the slip of a twisting interface is a 2-vector (along the meridian and around the axis); use scheme = \"return-mapping\" (the default)",
             ));
         }
     }

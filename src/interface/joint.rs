@@ -35,6 +35,16 @@
 //!   function: over a cycle that returns every spring to its start W = D.
 //!
 //! Both conventions give the same energies (both factors change sign).
+//!
+//! With twist (`[model] twist = true`) the slip and shear are 2-vectors,
+//! (u_T, u_Tθ) and (p_T, p_Tθ), u_Tθ = u_θB − u_θA = r Δφ around the axis;
+//! the energies take their dot products, D = Σ A ½ (p_T,n + p_T,n+1)·(u_p,n+1 −
+//! u_p,n), and three measures more, in the joint convention (A relative to
+//! B, about +z by the right hand: θ from r toward the viewer of an r-z plot):
+//! the torque T = −Σ A r p_Tθ (N·mm, the torque applied to A that the joint
+//! resists), the mean circumferential slip ū_θ = −Σ A u_Tθ / Σ A (mm) and
+//! the mean twist φ̄ = −Σ A (u_Tθ / r) / Σ A (rad, A's rotation relative to
+//! B). The status of a point comes from |p_T| against its limit.
 
 use super::{InterfaceModel, PointState, Status};
 use crate::fem::Section;
@@ -64,9 +74,23 @@ pub struct JointMeasures {
     pub dissipation: f64,
     /// Tangential work done on the interface so far, N·mm.
     pub work: f64,
+    /// With twist: T = −Σ A r p_Tθ, the torque on A the joint resists, N·mm.
+    pub torque: f64,
+    /// With twist: ū_θ = −Σ A u_Tθ / Σ A, A's circumferential slip, mm.
+    pub hoop_slip: f64,
+    /// With twist: φ̄ = −Σ A u_Tθ/r / Σ A, A's twist relative to B, rad.
+    pub twist: f64,
 }
 
 impl JointMeasures {
+    /// Doubles per interface and increment in [`JointMeasures::pack_twist`].
+    pub const PACKED_TWIST: usize = 3;
+
+    /// The measures of twist (restart section `joints_twist`): T, ū_θ, φ̄.
+    pub fn pack_twist(&self) -> [f64; Self::PACKED_TWIST] {
+        [self.torque, self.hoop_slip, self.twist]
+    }
+
     /// Doubles per interface and increment in [`JointMeasures::pack`].
     pub const PACKED: usize = 11;
 
@@ -102,6 +126,7 @@ impl JointMeasures {
             macro_slip: v[8],
             dissipation: v[9],
             work: v[10],
+            ..Default::default()
         }
     }
 }
@@ -125,6 +150,21 @@ pub fn point_energy(area: f64, before: &PointState, after: &PointState) -> (f64,
     )
 }
 
+/// [`point_energy`] of a point of a twisting model: the dot products of the
+/// mean shear (p_T, p_Tθ) with the changes of the vector plastic slip and of
+/// the slip (u_T, u_Tθ).
+pub fn point_energy_twist(area: f64, before: &PointState, after: &PointState) -> (f64, f64) {
+    let p = [
+        0.5 * (before.p_t + after.p_t),
+        0.5 * (before.p_h + after.p_h),
+    ];
+    let (b, a) = (before.slip2.u_p, after.slip2.u_p);
+    (
+        area * (p[0] * (a[0] - b[0]) + p[1] * (a[1] - b[1])),
+        area * (p[0] * (after.u_t - before.u_t) + p[1] * (after.u_h - before.u_h)),
+    )
+}
+
 /// Adds the energies of an accepted increment (committed → trial tangential
 /// states of every interface point, all interfaces in order) to the running
 /// totals, one per interface. Every MPI rank holds every point's state after
@@ -137,8 +177,13 @@ pub fn accumulate(
 ) {
     let mut q = 0;
     for (im, tot) in interfaces.iter().zip(totals.iter_mut()) {
+        let energy = if im.twist() {
+            point_energy_twist
+        } else {
+            point_energy
+        };
         for pt in &im.points {
-            let (d, w) = point_energy(pt.area, &committed[q], &trial[q]);
+            let (d, w) = energy(pt.area, &committed[q], &trial[q]);
             tot.dissipation += d;
             tot.work += w;
             q += 1;
@@ -156,6 +201,9 @@ pub struct PointSample {
     pub u_t: f64,
     pub p_t: f64,
     pub status: Status,
+    /// With twist: the radius, u_Tθ and p_Tθ (internal convention); None
+    /// without.
+    pub hoop: Option<[f64; 3]>,
 }
 
 /// Sums point samples into joint measures (joint convention); `per_measure`
@@ -177,6 +225,13 @@ pub fn aggregate(
         m.tangential_force -= s.area * s.p_t;
         m.mean_approach += s.area * s.u_n;
         m.mean_slip -= s.area * s.u_t;
+        if let Some([r, u_h, p_h]) = s.hoop {
+            m.torque -= s.area * r * p_h;
+            m.hoop_slip -= s.area * u_h;
+            if r > 0.0 {
+                m.twist -= s.area * u_h / r;
+            }
+        }
         let a = s.area * per_measure;
         match s.status {
             Status::Open => m.open += a,
@@ -189,6 +244,8 @@ pub fn aggregate(
     if area > 0.0 {
         m.mean_approach /= area;
         m.mean_slip /= area;
+        m.hoop_slip /= area;
+        m.twist /= area;
     }
     m
 }
@@ -217,6 +274,7 @@ pub fn measures(
         // the gap at the state's pseudo-time (an interference pressed in
         // by its gap_history), as the solver and the interface CSV take it
         let gap = im.gap_at(time);
+        let radii = im.twist().then(|| im.point_radii());
         let samples = im.points.iter().enumerate().map(|(j, pt)| {
             let (u_n, u_t) = im.point_kinematics_at(pt, u, gap);
             PointSample {
@@ -226,6 +284,9 @@ pub fn measures(
                 u_t,
                 p_t: contact[base + j].p_t,
                 status: status[base + j],
+                hoop: radii
+                    .as_ref()
+                    .map(|r| [r[j], im.point_hoop_slip(pt, u), contact[base + j].p_h]),
             }
         });
         let tot = totals.get(i).copied().unwrap_or_default();

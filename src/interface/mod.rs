@@ -25,13 +25,17 @@ pub mod extrapolation;
 pub mod joint;
 pub mod normal;
 mod segment;
+mod state;
 pub mod table;
 pub mod tangential;
+mod twist;
 
 use crate::mesh::{Interface, Mesh};
 pub use normal::NormalLaw;
 pub use segment::{project, OVERLAP_LIMIT};
+pub use state::{PointState, Status};
 pub use tangential::{Backbone, Memory, Slip, SlipState, Stretch, TangentialLaw, MEMORY_POINTS};
+pub use twist::Gradients;
 
 /// A node pair across the interface.
 #[derive(Clone, Debug)]
@@ -89,6 +93,9 @@ pub struct Mortar {
     /// ∂u_N/∂u_node and ∂u_T/∂u_node, (x, y) per node.
     pub dn: Vec<[f64; 2]>,
     pub dt: Vec<[f64; 2]>,
+    /// ∂u_Tθ/∂u_θ,node (a model with twist): (1/A_i) ∫ N_i (±N_node) dA,
+    /// − on the slave side, + on the master side.
+    pub dh: Vec<f64>,
     /// Weighted geometric initial gap, mm; the interface's `gap` adds to it.
     pub gap: f64,
     /// Arc length of the slave node along the slave side, mm.
@@ -191,110 +198,6 @@ impl Point {
     }
 }
 
-/// Status of an interface point, decided from its approach and shear.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-#[repr(u8)]
-pub enum Status {
-    #[default]
-    Open = 0,
-    /// Closed, no tangential law.
-    Closed,
-    Stick,
-    MicroSlip,
-    MacroSlip,
-}
-
-impl Status {
-    /// Inverse of `status as u8`, for codes this process made (the sums of
-    /// the reductions over ranks): any other code is taken as open. Codes
-    /// read from a file go through [`Status::checked`].
-    pub fn from_code(c: u8) -> Status {
-        Status::checked(c).unwrap_or_default()
-    }
-
-    /// Inverse of `status as u8`; `None` for a code that is no status.
-    pub fn checked(c: u8) -> Option<Status> {
-        Some(match c {
-            0 => Status::Open,
-            1 => Status::Closed,
-            2 => Status::Stick,
-            3 => Status::MicroSlip,
-            4 => Status::MacroSlip,
-            _ => return None,
-        })
-    }
-
-    /// Normal status: "open" or "closed".
-    pub fn name(self) -> &'static str {
-        match self {
-            Status::Open => "open",
-            _ => "closed",
-        }
-    }
-
-    /// Tangential status: "none", "stick", "micro-slip", "macro-slip" ("free" when open).
-    pub fn tangential_name(self) -> &'static str {
-        match self {
-            Status::Open => "free",
-            Status::Closed => "none",
-            Status::Stick => "stick",
-            Status::MicroSlip => "micro-slip",
-            Status::MacroSlip => "macro-slip",
-        }
-    }
-}
-
-/// Tangential history and last values of one point (committed per increment).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct PointState {
-    pub slip: SlipState,
-    /// Shear traction and tangential displacement (for the secant scheme and output).
-    pub p_t: f64,
-    pub u_t: f64,
-    pub mu_f: f64,
-}
-
-impl PointState {
-    /// Doubles per state in [`PointState::pack`].
-    pub const PACKED: usize = 5 + 2 * MEMORY_POINTS;
-
-    /// Plastic slip u_p, slip memory κ, p_T, u_T, μ_F, then the kinematic
-    /// memory's breakpoints η₁ … η_M and e₁ … e_M (zero under the
-    /// isotropic memory): the layout of restart files and of the MPI
-    /// exchange of interface states.
-    pub fn pack(&self) -> [f64; Self::PACKED] {
-        let mut v = [0.0; Self::PACKED];
-        v[..5].copy_from_slice(&[
-            self.slip.u_p,
-            self.slip.kappa,
-            self.p_t,
-            self.u_t,
-            self.mu_f,
-        ]);
-        v[5..5 + MEMORY_POINTS].copy_from_slice(&self.slip.mem.eta);
-        v[5 + MEMORY_POINTS..].copy_from_slice(&self.slip.mem.e);
-        v
-    }
-
-    /// The inverse of [`PointState::pack`] (`v` holds at least `PACKED` values).
-    pub fn unpack(v: &[f64]) -> Self {
-        let mut mem = Stretch::default();
-        mem.eta.copy_from_slice(&v[5..5 + MEMORY_POINTS]);
-        mem.e
-            .copy_from_slice(&v[5 + MEMORY_POINTS..5 + 2 * MEMORY_POINTS]);
-        PointState {
-            slip: SlipState {
-                u_p: v[0],
-                kappa: v[1],
-                mem,
-            },
-            p_t: v[2],
-            u_t: v[3],
-            mu_f: v[4],
-        }
-    }
-}
-
 /// Quadrature of the interface energy along a contact edge (the case's
 /// `weights`): the nodes themselves or 4-point Gauss (see the module comment).
 #[derive(Clone, Copy, Debug, serde::Deserialize, PartialEq, Eq, Default)]
@@ -357,8 +260,12 @@ pub struct PointEval {
     pub state: PointState,
     /// Area times ∂p_T/∂u_N: the coefficient of the point's unsymmetric
     /// tangent term `coupling · g_T g_Nᵀ` (0 without it; see
-    /// [`InterfaceModel::eval_point_parts`]).
+    /// [`InterfaceModel::eval_point_parts`]). With twist the coefficient of
+    /// g_T1 in the vector form `(coupling g_T1 + coupling_hoop g_θ) g_Nᵀ`.
     pub coupling: f64,
+    /// With twist: area times ∂p_Tθ/∂u_N, the coefficient of g_θ in the
+    /// point's unsymmetric term (0 without twist).
+    pub coupling_hoop: f64,
 }
 
 impl InterfaceModel {
@@ -594,25 +501,12 @@ impl InterfaceModel {
     }
 
     /// The dofs of a point in local order: A pairs (x, y) then B pairs (x, y);
-    /// on a non-matching interface the slave nodes, then the master edge's.
+    /// on a non-matching interface the slave nodes, then the master edge's
+    /// ([`InterfaceModel::point_nodes`]). With twist each node's (r, z, θ).
     pub fn point_dofs(&self, pt: &Point) -> Vec<usize> {
         let nd = self.node_dofs;
-        let xy = |n: usize| [nd.dof(n, 0), nd.dof(n, 1)];
-        if let Some(m) = &pt.mortar {
-            return m.nodes.iter().flat_map(|&n| xy(n)).collect();
-        }
-        if let Some(g) = &pt.segment {
-            let nodes = g.a[..g.len_a].iter().chain(&g.b);
-            return nodes.flat_map(|&m| xy(m)).collect();
-        }
-        let mut d = Vec::with_capacity(4 * pt.len);
-        for i in 0..pt.len {
-            d.extend(xy(self.pairs[pt.pairs[i]].a));
-        }
-        for i in 0..pt.len {
-            d.extend(xy(self.pairs[pt.pairs[i]].b));
-        }
-        d
+        let nodes = self.point_nodes(pt);
+        nodes.into_iter().flat_map(|n| nd.of(n)).collect()
     }
 
     /// Whether this interface's spring tangents are symmetric: without a
@@ -673,6 +567,9 @@ impl InterfaceModel {
         k: Option<&mut [f64]>,
         with_coupling: bool,
     ) -> PointEval {
+        if self.twist() {
+            return self.eval_point_twist(pt, u, gap, committed, k_floor, r, k, with_coupling);
+        }
         let (u_n, u_t) = self.point_kinematics_at(pt, u, gap);
         let (p_n, k_law) = self.law.pressure(u_n);
         let k_n = match k_floor {
@@ -696,6 +593,7 @@ impl InterfaceModel {
                 p_t,
                 u_t,
                 mu_f: ev.mu_f,
+                ..Default::default()
             };
             if u_n > 0.0 {
                 status = match ev.slip {
@@ -743,6 +641,7 @@ impl InterfaceModel {
             status,
             state,
             coupling: pt.area * d_un,
+            coupling_hoop: 0.0,
         }
     }
 }
@@ -771,40 +670,4 @@ fn gauss4() -> [(f64, f64); 4] {
     let wa = (18.0 + 30f64.sqrt()) / 36.0;
     let wb = (18.0 - 30f64.sqrt()) / 36.0;
     [(-b, wb), (-a, wa), (a, wa), (b, wb)]
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn point_state_pack_round_trips_in_the_restart_order() {
-        let mut mem = Stretch::default();
-        mem.eta[..2].copy_from_slice(&[0.25, 1.0]);
-        mem.e[..2].copy_from_slice(&[-2e-4, 3e-4]);
-        let s = PointState {
-            slip: SlipState {
-                u_p: -1.5e-3,
-                kappa: 4e-3,
-                mem,
-            },
-            p_t: -12.25,
-            u_t: 7.0e-4,
-            mu_f: 0.3,
-        };
-        let v = s.pack();
-        assert_eq!(v.len(), PointState::PACKED);
-        assert_eq!(v[..5], [-1.5e-3, 4e-3, -12.25, 7.0e-4, 0.3]);
-        assert_eq!(v[5..7], [0.25, 1.0]);
-        assert_eq!(v[5 + MEMORY_POINTS..7 + MEMORY_POINTS], [-2e-4, 3e-4]);
-        assert_eq!(PointState::unpack(&v), s);
-        // one state in a longer buffer (a chunk of a packed array)
-        let mut buf = [9.0; 3 * PointState::PACKED];
-        buf[PointState::PACKED..2 * PointState::PACKED].copy_from_slice(&v);
-        assert_eq!(PointState::unpack(&buf[PointState::PACKED..]), s);
-        assert_eq!(
-            PointState::unpack(&PointState::default().pack()),
-            PointState::default()
-        );
-    }
 }

@@ -168,7 +168,7 @@ pub(super) fn mortar(
         gap: f64,
         normal: [f64; 2],
         /// node → (∂u_N/∂u, ∂u_T/∂u), before the division by the area
-        coef: BTreeMap<usize, ([f64; 2], [f64; 2])>,
+        coef: BTreeMap<usize, ([f64; 2], [f64; 2], f64)>,
     }
     let mut acc: Vec<Acc> = Vec::new();
     let mut index: HashMap<usize, usize> = HashMap::new();
@@ -262,6 +262,7 @@ pub(super) fn mortar(
                             let d = a.coef.entry(nodes[j]).or_default();
                             d.0 = [d.0[0] + c * n[0], d.0[1] + c * n[1]];
                             d.1 = [d.1[0] + c * t[0], d.1[1] + c * t[1]];
+                            d.2 += c;
                         }
                     }
                 }
@@ -291,6 +292,7 @@ pub(super) fn mortar(
         let nodes: Vec<usize> = a.coef.keys().copied().collect();
         let dn: Vec<[f64; 2]> = a.coef.values().map(|c| c.0.map(|v| v * inv)).collect();
         let dt: Vec<[f64; 2]> = a.coef.values().map(|c| c.1.map(|v| v * inv)).collect();
+        let dh: Vec<f64> = a.coef.values().map(|c| c.2 * inv).collect();
         let b = nodes
             .iter()
             .zip(&dn)
@@ -316,6 +318,7 @@ pub(super) fn mortar(
                 nodes,
                 dn,
                 dt,
+                dh,
                 gap: a.gap / a.area,
                 s: a.s,
             })),

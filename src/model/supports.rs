@@ -59,8 +59,9 @@ pub(super) fn check_supports(
         }
     }
     // twist: a body turns rigidly about the axis (u_θ = ω r, zero on the
-    // axis) unless a prescribed u_θ at r > 0 holds it (the interfaces carry
-    // no u_θ yet)
+    // axis) unless a prescribed u_θ at r > 0 holds it (an interface's
+    // friction holds nothing before its first contact, and the contact
+    // stabilization acts in the plane only)
     if mesh.node_dofs.twist() {
         let tol = crate::case::whole::tolerance(mesh);
         let mut turns = vec![true; mesh.bodies.len()];

@@ -46,19 +46,33 @@ fn measure_unit(model: &Model) -> &'static str {
 
 pub const JOINTS_HEADER: &str = "increment,time,interface,normal_force_n,tangential_force_n,mean_approach_mm,mean_slip_mm,open_measure,closed_measure,stick_measure,micro_slip_measure,macro_slip_measure,dissipation_nmm,work_nmm\n";
 
+/// The columns a twisting model's `joints.csv` adds at the end of a row.
+pub const JOINTS_TWIST_COLUMNS: &str = ",torque_nmm,mean_hoop_slip_mm,mean_twist_rad";
+
 /// `joints.csv`: one row per committed increment and interface (increments
 /// without joint measures, restored from an older restart file, are skipped).
+/// A twisting model's rows end with T, ū_θ and φ̄ ([`JOINTS_TWIST_COLUMNS`]).
 pub fn joints_csv(model: &Model, r: &RunResult) -> String {
+    let twist = model.node_dofs().twist();
     let mut s = String::from(JOINTS_HEADER);
+    if twist {
+        s.pop();
+        s += JOINTS_TWIST_COLUMNS;
+        s.push('\n');
+    }
     for inc in &r.increments {
         for (im, m) in model.interfaces.iter().zip(&inc.joints) {
+            let mut values = m.pack().to_vec();
+            if twist {
+                values.extend(m.pack_twist());
+            }
             let _ = writeln!(
                 s,
                 "{},{:.9},{},{}",
                 inc.increment,
                 inc.load_factor,
                 csv_field(&im.name),
-                m.pack()
+                values
                     .iter()
                     .map(|v| format!("{v:.9e}"))
                     .collect::<Vec<_>>()
@@ -133,9 +147,10 @@ pub fn cycle_json(number: usize, c: &Cycle) -> Value {
     })
 }
 
-/// The joint measures of one increment as a `summary.json` object.
-fn measures_json(time: f64, m: &JointMeasures) -> Value {
-    json!({
+/// The joint measures of one increment as a `summary.json` object (with
+/// twist, the torque, circumferential slip and twist too).
+fn measures_json(time: f64, m: &JointMeasures, twist: bool) -> Value {
+    let mut v = json!({
         "time": time,
         "normal_force_n": m.normal_force,
         "tangential_force_n": m.tangential_force,
@@ -148,7 +163,13 @@ fn measures_json(time: f64, m: &JointMeasures) -> Value {
         "macro_slip_measure": m.macro_slip,
         "dissipation_nmm": m.dissipation,
         "work_nmm": m.work,
-    })
+    });
+    if twist {
+        v["torque_nmm"] = json!(m.torque);
+        v["mean_hoop_slip_mm"] = json!(m.hoop_slip);
+        v["mean_twist_rad"] = json!(m.twist);
+    }
+    v
 }
 
 /// The `joints` entry of `summary.json`: per interface its bodies, joint
@@ -161,7 +182,10 @@ pub fn summary(model: &Model, r: &RunResult, cycles: &[Vec<Cycle>]) -> Value {
         .enumerate()
         .map(|(k, im)| {
             let fin = last
-                .and_then(|i| i.joints.get(k).map(|m| measures_json(i.load_factor, m)))
+                .and_then(|i| {
+                    let m = i.joints.get(k)?;
+                    Some(measures_json(i.load_factor, m, im.twist()))
+                })
                 .unwrap_or(Value::Null);
             let cyc: Vec<Value> = cycles
                 .get(k)

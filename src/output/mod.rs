@@ -361,11 +361,19 @@ impl Observer for Writer {
 /// direction: increasing x on a horizontal interface, increasing y on a
 /// vertical one). With lumped weights each pair is one integration point and
 /// carries its own tangential state (internal convention,
-/// [`crate::interface::joint`]).
+/// [`crate::interface::joint`]). A twisting model's rows end with the
+/// circumferential shear, slip and plastic slip (p_Tθ, u_Tθ, u_Tθ^p), and
+/// its u_t_plastic_mm is the meridional component of the vector plastic slip.
 pub fn interface_csv(model: &Model, state: &State) -> String {
+    let twist = model.node_dofs().twist();
     let mut s = String::from(
-        "x_mm,p_n_mpa,u_n_mm,status,p_t_mpa,u_t_mm,u_t_plastic_mm,mu_f,tangential_status,y_mm,s_mm,interface\n",
+        "x_mm,p_n_mpa,u_n_mm,status,p_t_mpa,u_t_mm,u_t_plastic_mm,mu_f,tangential_status,y_mm,s_mm,interface",
     );
+    s += if twist {
+        ",p_t_theta_mpa,u_t_theta_mm,u_t_theta_plastic_mm\n"
+    } else {
+        "\n"
+    };
     let mut base = 0;
     for (im, iface) in model.interfaces.iter().zip(&model.mesh.interfaces) {
         let lumped = im.points.len() == im.pairs.len();
@@ -387,7 +395,8 @@ pub fn interface_csv(model: &Model, state: &State) -> String {
                 };
                 (Default::default(), st)
             };
-            let _ = writeln!(
+            let u_p = if twist { c.slip2.u_p[0] } else { c.slip.u_p };
+            let _ = write!(
                 s,
                 "{},{:.9e},{:.9e},{},{:.9e},{:.9e},{:.9e},{:.6},{},{},{:.9e},{name}",
                 pr.x[0],
@@ -396,12 +405,22 @@ pub fn interface_csv(model: &Model, state: &State) -> String {
                 st.name(),
                 c.p_t,
                 c.u_t,
-                c.slip.u_p,
+                u_p,
                 c.mu_f,
                 st.tangential_name(),
                 pr.x[1],
                 arc[i],
             );
+            if twist {
+                // u_Tθ from the displacements where the pair carries no state
+                let u_h = if lumped && im.tangential.is_some() {
+                    c.u_h
+                } else {
+                    im.pair_hoop_slip(pr, &state.u)
+                };
+                let _ = write!(s, ",{:.9e},{:.9e},{:.9e}", c.p_h, u_h, c.slip2.u_p[1]);
+            }
+            s.push('\n');
         }
         base += im.points.len();
     }

@@ -664,6 +664,31 @@ pub(super) fn restore_joints(ck: &mut Checkpoint, s: &Sections, interfaces: usiz
                 .collect();
         }
     }
+    // twist: torque, circumferential slip and twist of the measured rows
+    // (a file of an earlier build has none: they stay 0)
+    if s.0.contains_key("joints_twist") {
+        let w = JointMeasures::PACKED_TWIST * interfaces;
+        let v = s.f("joints_twist", Some(w * ck.increments.len()))?;
+        for (inc, row) in ck.increments.iter_mut().zip(v.chunks_exact(w.max(1))) {
+            if inc.joints.len() != interfaces {
+                continue;
+            }
+            if let Some(x) = row.iter().find(|x| !x.is_finite()) {
+                return Err(format!(
+                    "section joints_twist: increment {}: a value {} in a row whose joints are finite",
+                    inc.increment,
+                    num(*x)
+                ));
+            }
+            for (m, t) in inc
+                .joints
+                .iter_mut()
+                .zip(row.chunks_exact(JointMeasures::PACKED_TWIST))
+            {
+                (m.torque, m.hoop_slip, m.twist) = (t[0], t[1], t[2]);
+            }
+        }
+    }
     Ok(())
 }
 

@@ -110,15 +110,17 @@ impl Bounds {
         let events = (1 + 3 * ni) * (crate::solve::events::FIXED as u64 + record);
         let words = 2 * nu
             + PointState::packed_len(model.node_dofs().twist()) as u64 * ng
-            + ContactState::PACKED as u64 * np
+            + ContactState::packed_len(model.node_dofs().twist()) as u64 * np
             + (2 + Reach::PACKED as u64) * ni
             + 2 * (st.pending.len() as u64 + st.max_cutbacks() as u64 + 1)
             + st.waypoints.len() as u64
             + events
             + 32;
         // with the designer's record of every increment
-        let per_increment =
-            8 * (10 + JointMeasures::PACKED as u64 * ni + 1 + record) + MAX_VTU_NAME as u64 + 1;
+        let per_increment = 8
+            * (10 + (JointMeasures::PACKED + JointMeasures::PACKED_TWIST) as u64 * ni + 1 + record)
+            + MAX_VTU_NAME as u64
+            + 1;
 
         let table = 36 + u64::from(MAX_SECTIONS) * (11 + MAX_SECTION_NAME as u64);
         let restart_bytes = table

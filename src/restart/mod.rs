@@ -27,9 +27,11 @@
 //! `auto_failures` (automatic step control), `cutbacks` (total, since the last increment),
 //! `elastic_ratio_prev`, `counters` (Newton iterations, factorizations), `u`,
 //! `gauss` (10 per Gauss point: σxx σyy σxy σzz, εᵖ ×4, ε̄ᵖ, yielding),
-//! `status` (interface status codes), `contact` (5 per interface point, as
+//! `status` (interface status codes), `contact` (25 per interface point, as
 //! [`crate::interface::PointState::pack`] lays them out:
-//! plastic slip, max shear memory κ, p_T, u_T, μ_F), `prescribed_reaction`,
+//! plastic slip, max shear memory κ, p_T, u_T, μ_F, the kinematic memory;
+//! with twist 56, [`crate::interface::PointState::pack_twist`]: p_T, u_T,
+//! μ_F, p_Tθ, u_Tθ and the vector law's state), `prescribed_reaction`,
 //! `curve` (10 per increment: number, load factor, iterations, cutbacks, normal
 //! force, mean pressure, load kN, centre displacement, max ε̄ᵖ, prescribed
 //! reaction), `first_yield` (load factor, mean pressure, load kN, x, depth,
@@ -37,7 +39,8 @@
 //! `pvd_file` (names separated by newlines), `joint_totals` (2 per interface:
 //! frictional dissipation and tangential work so far) and `joints` (11 per
 //! interface and increment, as [`crate::interface::joint::JointMeasures::pack`]
-//! lays them out), `table_reach` (2 per interface: the largest approach u_N
+//! lays them out; with twist `joints_twist`, 3 more: torque, circumferential
+//! slip, twist, [`crate::interface::joint::JointMeasures::pack_twist`]), `table_reach` (2 per interface: the largest approach u_N
 //! and pressure p_N over the converged states so far, see
 //! [`crate::interface::extrapolation`]), `record_width` (the values of one
 //! designer's record, [`crate::output::plan`]), `records` (the record of every
@@ -362,10 +365,12 @@ fn sections(e: &mut Encoder, ck: &Checkpoint, pvd: &[(f64, String)]) -> std::io:
         "status",
         &s.status.iter().map(|&st| st as u8).collect::<Vec<_>>(),
     )?;
+    // with twist the vector law's layout (ContactState::pack_twist)
+    let wc = ContactState::packed_len(ck.twist);
     e.f64_iter(
         "contact",
-        ContactState::PACKED * s.contact.len(),
-        s.contact.iter().flat_map(ContactState::pack),
+        wc * s.contact.len(),
+        s.contact.iter().flat_map(|c| c.pack_as(ck.twist)),
     )?;
     e.f64s("prescribed_reaction", &[s.prescribed_reaction])?;
     let mut rows = Vec::with_capacity(10 * ck.increments.len());
@@ -424,6 +429,23 @@ fn sections(e: &mut Encoder, ck: &Checkpoint, pvd: &[(f64, String)]) -> std::io:
             })
             .flat_map(|j| j.iter().flat_map(JointMeasures::pack)),
     )?;
+    // twist: T, ū_θ, φ̄ per interface and increment (NaN where unmeasured)
+    if ck.twist {
+        e.f64_iter(
+            "joints_twist",
+            JointMeasures::PACKED_TWIST * n * ck.increments.len(),
+            ck.increments
+                .iter()
+                .map(|i| {
+                    if i.joints.len() == n {
+                        &i.joints
+                    } else {
+                        &none
+                    }
+                })
+                .flat_map(|j| j.iter().flat_map(JointMeasures::pack_twist)),
+        )?;
+    }
     // a model with pretension sections: their force and shortening per
     // increment (no section otherwise, so older files stay as they were)
     let sections = ck

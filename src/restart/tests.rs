@@ -292,3 +292,50 @@ fn decode_refuses_what_the_case_cannot_have_produced() {
     let e = decode(&big, &model).unwrap_err();
     assert!(e.contains("bytes, more than the"), "{e}");
 }
+
+/// A twisting model's interface states (56 values a point, the vector
+/// law's) and its joints' torque rows round-trip, and a forged vector state
+/// or torque row is refused.
+#[test]
+fn a_twisting_models_vector_states_round_trip_and_are_checked() {
+    let model = Model::parse(
+        include_str!("../../cases/shrink-fit-torque/case.toml"),
+        "case.toml",
+    )
+    .unwrap();
+    assert!(model.node_dofs().twist());
+    let (mut ck, pvd) = checkpoint(&model, 3);
+    // the interference pressed in so far closes the fit at u = 0: a reach above it
+    ck.table_reach = vec![crate::interface::extrapolation::Reach {
+        u_n: 0.01,
+        p_n: 100.0,
+    }];
+    ck.increments[1].joints[0].torque = 1234.5;
+    ck.increments[2].joints[0].twist = -2e-4;
+    let (back, _) = decode(&encode(&model, &ck, &pvd), &model).unwrap();
+    assert_eq!(back.increments[1].joints[0].torque, 1234.5);
+    assert_eq!(back.increments[2].joints[0].twist, -2e-4);
+    assert_eq!(back.committed.contact, ck.committed.contact);
+    let refused = |c: &Checkpoint, needle: &str| {
+        let e = decode(&encode(&model, c, &pvd), &model).unwrap_err();
+        assert!(e.contains(needle), "{e:?} should contain {needle:?}");
+    };
+    let mut c = ck.clone();
+    c.committed.contact[0].slip2.kappa = -1e-3;
+    refused(&c, "interface point 1 (fit): slip length κ");
+    let mut c = ck.clone();
+    c.committed.contact[2].slip2.mem.e[0] = [1e-3, 0.0];
+    refused(
+        &c,
+        "interface point 3 (fit): a stretch in Jenkins element 1",
+    );
+    let mut c = ck.clone();
+    c.committed.contact[1].u_h = 1e-3;
+    refused(&c, "interface point 2 (fit): u_Tθ = 1e-3 mm");
+    let mut c = ck.clone();
+    c.committed.contact[1].p_h = 5.0;
+    refused(&c, "interface point 2 (fit): shear p_Tθ = 5 MPa");
+    let mut c = ck.clone();
+    c.increments[0].joints[0].torque = f64::NAN;
+    refused(&c, "section joints_twist: increment 1");
+}

@@ -351,8 +351,11 @@ pub fn add_point(
     k: &mut [f64],
 ) {
     let (dn, dt) = increment(im, pt, committed, u);
-    let (gn, gt) = pt.gradients();
-    let nd = pt.ndofs();
+    // in-plane only: a body's rotation about the axis is held by its
+    // prescribed twist, never by the stabilization
+    let g = im.point_gradients(pt);
+    let (gn, gt) = (g.n, g.t);
+    let nd = im.point_ndofs(pt);
     let a = pt.area * ks;
     for i in 0..nd {
         r[i] += a * (dn * gn[i] + dt * gt[i]);

@@ -646,3 +646,43 @@ fn serial_petsc1_and_petsc2_agree_on_a_twisting_model() {
         }
     }
 }
+
+/// Interfaces of a twisting model (issue 26): the shipped shrink fit turned
+/// to full slip, every interface point on the vector friction law (its
+/// 56-double states exchanged between the ranks, its vector coupling in the
+/// point blocks); the joint rows, torque and twist included, as the serial
+/// run's.
+#[test]
+fn serial_petsc1_and_petsc2_agree_on_a_twisted_shrink_fit() {
+    compare("shrink-fit-torque", "1");
+    let root = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join("parallel-shrink-fit-torque-1-2");
+    let rows = |run: &str| -> (String, Vec<Vec<f64>>) {
+        let text = std::fs::read_to_string(root.join(run).join("joints.csv")).unwrap();
+        let mut lines = text.lines();
+        let header = lines.next().unwrap().to_string();
+        let rows = lines
+            .map(|l| l.split(',').skip(3).map(|v| v.parse().unwrap()).collect())
+            .collect();
+        (header, rows)
+    };
+    let (hs, s) = rows("serial");
+    assert!(
+        hs.ends_with("torque_nmm,mean_hoop_slip_mm,mean_twist_rad"),
+        "{hs}"
+    );
+    let scale: Vec<f64> = (0..s[0].len())
+        .map(|c| s.iter().fold(1e-30f64, |m, r| m.max(r[c].abs())))
+        .collect();
+    assert!(scale[11] > 1e5, "no torque: {scale:?}");
+    for run in ["petsc1", "petsc2"] {
+        let (hp, p) = rows(run);
+        assert_eq!(hp, hs, "{run}");
+        assert_eq!(p.len(), s.len(), "{run}");
+        for (a, b) in s.iter().zip(&p) {
+            for (c, (x, y)) in a.iter().zip(b).enumerate() {
+                assert!(close(*x, *y, scale[c]), "{run}: column {c}: {a:?} vs {b:?}");
+            }
+        }
+    }
+}

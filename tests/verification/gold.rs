@@ -78,7 +78,7 @@ const CHECKED: [&str; 14] = [
 /// The joint cases (issue 18) also check their `joints` array: per interface
 /// the final forces, approach, slip, status measures, dissipation and work,
 /// and every closed load cycle. The older cases keep the fields above only.
-const JOINT_CASES: [&str; 8] = [
+const JOINT_CASES: [&str; 9] = [
     "bolted-joint",
     "slideway-damping",
     "shrink-fit",
@@ -87,6 +87,7 @@ const JOINT_CASES: [&str; 8] = [
     "shrink-fit-roughness",
     "hertz-cylinder",
     "cattaneo-mindlin",
+    "shrink-fit-torque",
 ];
 
 /// The damping cases (issue 28) also check the amplitude sweep's fit.
@@ -125,7 +126,7 @@ struct Gold {
     prefix: Option<&'static str>,
 }
 
-const CASES: [Gold; 19] = [
+const CASES: [Gold; 20] = [
     Gold {
         case: "bolted-joint",
         args: &[],
@@ -218,6 +219,11 @@ const CASES: [Gold; 19] = [
     },
     Gold {
         case: "punch-rounded-strain",
+        args: &[],
+        prefix: None,
+    },
+    Gold {
+        case: "shrink-fit-torque",
         args: &[],
         prefix: None,
     },
@@ -602,6 +608,11 @@ fn slideway_damping() {
 #[test]
 fn bolted_flange() {
     check("bolted-flange");
+}
+
+#[test]
+fn shrink_fit_torque() {
+    check("shrink-fit-torque");
 }
 
 #[test]

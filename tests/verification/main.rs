@@ -36,4 +36,5 @@ mod stepping;
 mod tables;
 mod tangents;
 mod threads;
+mod torque_fit;
 mod torsion;

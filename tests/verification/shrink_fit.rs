@@ -46,7 +46,7 @@ fn u_shaft(p: f64) -> f64 {
 }
 
 /// The fit pressure: the root of δ − u_hub − u_shaft − c_N p^m (decreasing in p).
-fn fit_pressure(c_n: f64) -> f64 {
+pub(crate) fn fit_pressure(c_n: f64) -> f64 {
     let f = |p: f64| DELTA - u_hub(p) - u_shaft(p) - c_n * p.powf(M);
     let (mut lo, mut hi) = (0.0, 1.0);
     while f(hi) > 0.0 {

@@ -13,6 +13,7 @@ fn walk(law: &TangentialLaw, p_n: f64, path: &[f64]) -> Vec<PointState> {
             p_t: ev.p_t,
             u_t,
             mu_f: ev.mu_f,
+            ..Default::default()
         });
     }
     states
@@ -79,6 +80,7 @@ fn an_elastic_perfectly_plastic_loop_dissipates_the_limit_times_the_slip() {
             p_t: k * (u_t - up),
             u_t,
             mu_f: 0.0,
+            ..Default::default()
         });
     }
     let end = states.last().unwrap();
@@ -96,6 +98,7 @@ fn an_elastic_perfectly_plastic_loop_dissipates_the_limit_times_the_slip() {
 #[test]
 fn aggregation_reports_the_joint_convention_and_the_measures() {
     let s = |area, p_n, u_n, u_t, p_t, status| PointSample {
+        hoop: None,
         area,
         p_n,
         u_n,

@@ -360,21 +360,23 @@ impl<'m> Engine<'m> {
         if self.backend.ranks() == 1 {
             return;
         }
-        const W: usize = crate::interface::PointState::PACKED;
-        let mut g = Vec::with_capacity(SHARE_CHUNK * W);
+        use crate::interface::PointState;
+        let twist = self.model.node_dofs().twist();
+        let w = PointState::packed_len(twist);
+        let mut g = Vec::with_capacity(SHARE_CHUNK * w);
         let mut start = 0;
         while start < trial.contact.len() {
             let end = (start + SHARE_CHUNK).min(trial.contact.len());
             g.clear();
-            g.resize((end - start) * W, 0.0);
+            g.resize((end - start) * w, 0.0);
             for (k, s) in trial.contact[start..end].iter().enumerate() {
                 if self.backend.owns_point(start + k) {
-                    g[W * k..W * (k + 1)].copy_from_slice(&s.pack());
+                    g[w * k..w * (k + 1)].copy_from_slice(&s.pack_as(twist));
                 }
             }
             self.backend.sum(&mut g);
             for (k, s) in trial.contact[start..end].iter_mut().enumerate() {
-                *s = crate::interface::PointState::unpack(&g[W * k..W * (k + 1)]);
+                *s = PointState::unpack_as(&g[w * k..w * (k + 1)], twist);
             }
             start = end;
         }
@@ -564,7 +566,7 @@ impl<'m> Engine<'m> {
         let nd_max = m
             .interfaces
             .iter()
-            .flat_map(|im| im.points.iter().map(|p| p.ndofs()))
+            .flat_map(|im| im.points.iter().map(|p| im.point_ndofs(p)))
             .max()
             .unwrap_or(0)
             .max(12);
@@ -580,7 +582,7 @@ impl<'m> Engine<'m> {
                     q += 1;
                     continue;
                 }
-                let nd = pt.ndofs();
+                let nd = im.point_ndofs(pt);
                 let un = im.point_kinematics_at(pt, &trial.u, gap).0;
                 let kfloor = kf.filter(|_| un > -ZERO_APPROACH);
                 let ev = im.eval_point_parts(
@@ -619,19 +621,28 @@ impl<'m> Engine<'m> {
                     }
                 }
                 .map_err(err)?;
-                if split && ev.coupling != 0.0 {
-                    let (g_n, g_t) = pt.gradients();
+                if split && (ev.coupling != 0.0 || ev.coupling_hoop != 0.0) {
+                    let g = im.point_gradients(pt);
+                    // u = coupling g_T1 (+ coupling_hoop g_θ with twist), v = g_N
+                    let (coef, g_u) = if g.h.is_empty() {
+                        (ev.coupling, g.t)
+                    } else {
+                        let u = g.t.iter().zip(&g.h);
+                        let u = u.map(|(t, h)| ev.coupling * t + ev.coupling_hoop * h);
+                        (1.0, u.collect())
+                    };
+                    let g_n = g.n;
                     match x {
-                        None => be.add_coupling(block, &pdofs, ev.coupling, &g_t, &g_n),
+                        None => be.add_coupling(block, &pdofs, coef, &g_u, &g_n),
                         Some(x) => {
-                            let (mut gt, mut gn) = (x.vector(&g_t), x.vector(&g_n));
+                            let (mut gt, mut gn) = (x.vector(&g_u), x.vector(&g_n));
                             for (k, d) in x.dofs.iter().enumerate() {
                                 if self.held.contains(d) {
                                     gt[k] = 0.0;
                                     gn[k] = 0.0;
                                 }
                             }
-                            be.add_coupling(block, &x.dofs, ev.coupling, &gt, &gn)
+                            be.add_coupling(block, &x.dofs, coef, &gt, &gn)
                         }
                     }
                     .map_err(err)?;

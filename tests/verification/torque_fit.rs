@@ -1,0 +1,230 @@
+//! A long shrink fit twisted to full slip (issue 26): a solid shaft
+//! 0 ≤ r ≤ b in a hub b ≤ r ≤ c of length L, axisymmetric with twist, both
+//! held axially at their ends (plane-strain Lamé, as `shrink_fit.rs`),
+//! pressed together by an interference through a rough interface, then the
+//! shaft turned as a whole by a prescribed rotation φ while the hub's outer
+//! surface is held. Once every point slides (β = 1, no slip hardening) each
+//! carries p_Tθ = μ p_N at r = b, so the holding torque is
+//!
+//! ```text
+//!   T = Σ A r μ p_N = μ b F_N = 2π μ p̄ b² L      (p̄ = F_N / (2π b L), the FE's mean fit pressure)
+//! ```
+//!
+//! to the Newton tolerance (p̄ itself within 0.5 % of the plane-strain Lamé
+//! pressure with the interface's compliance, [`crate::shrink_fit`]), and equals the torque the rotation's supports
+//! exert on the shaft (Σ r R_θ, through the global residual). A second test:
+//! the same fit with twist but pushed out axially (no rotation) is the model
+//! without twist, increment by increment (the vector law's one-component
+//! reduction through the whole program).
+
+use crate::common;
+use asperity::model::Model;
+use asperity::solve::{Increment, Observer, RunResult, State};
+
+struct Quiet;
+impl Observer for Quiet {
+    fn increment(&mut self, _: &Model, _: &State, _: &Increment) -> asperity::Result<()> {
+        Ok(())
+    }
+}
+
+const B: f64 = 20.0;
+const C: f64 = 40.0;
+const L: f64 = 10.0;
+const MU: f64 = 0.15;
+
+/// The fit, pressed in over t ∈ [0, 1]; then over [1, 2] the shaft is
+/// turned by `rotation` (rad) or pushed axially by `push` (mm); `twist`
+/// switches the third dof (both bodies then held about the axis: the
+/// shaft by its rotation, the hub at its outer surface).
+fn case(twist: bool, rotation: Option<f64>, push: Option<f64>) -> String {
+    let model = if twist { "twist = true\n" } else { "" };
+    let shaft = match (rotation, push) {
+        (Some(phi), _) => format!(
+            "[[boundary]]\nset = \"shaft.bottom\"\nuy = 0.0\n[[boundary]]\nset = \"shaft.top\"\nuy = 0.0\n[[boundary]]\nset = \"shaft.all\"\nrotation = {phi}\nhistory = \"turn\"\n"
+        ),
+        (None, Some(d)) => {
+            let hold = if twist {
+                "[[boundary]]\nset = \"shaft.all\"\nrotation = 0.0\n"
+            } else {
+                ""
+            };
+            format!("[[boundary]]\nset = \"shaft.all\"\nuy = {d}\nhistory = \"turn\"\n{hold}")
+        }
+        _ => unreachable!(),
+    };
+    let hub = if twist {
+        "[[boundary]]\nset = \"hub.right\"\nrotation = 0.0\n"
+    } else {
+        ""
+    };
+    format!(
+        r#"
+[model]
+plane = "axisymmetric"
+{model}
+[[mesh.block]]
+body = "shaft"
+x = [0.0, {B}]
+nx = [8]
+y = [0.0, {L}]
+ny = [3]
+[[mesh.block]]
+body = "hub"
+x = [{B}, {C}]
+nx = [12]
+rx = [2.0]
+y = [0.0, {L}]
+ny = [3]
+[[mesh.interface]]
+name = "fit"
+left = "shaft"
+right = "hub"
+[materials.shaft]
+young = 206000.0
+poisson = 0.3
+[materials.hub]
+young = 206000.0
+poisson = 0.3
+[history]
+press = [[0, 0], [1, 1]]
+turn = [[1, 0], [2, 1]]
+[interface.fit]
+law = "power"
+c_n = 1e-4
+m = 0.5
+gap = -0.02
+gap_history = "press"
+[interface.fit.tangential]
+r = 0.9
+s = 0.5
+kp_ratio = 0.05
+mu = {MU}
+{shaft}
+[[boundary]]
+set = "hub.bottom"
+uy = 0.0
+[[boundary]]
+set = "hub.top"
+uy = 0.0
+{hub}
+[solver]
+increments = 8
+residual_tolerance = 1e-12
+displacement_tolerance = 1e-12
+[output]
+vtu = false
+"#
+    )
+}
+
+fn run(text: &str) -> (Model, RunResult) {
+    let model = common::model(text);
+    let r = asperity::driver::solve(&model, &mut Quiet).unwrap_or_else(|e| panic!("{e}"));
+    (model, r)
+}
+
+#[test]
+fn a_twisted_shrink_fit_holds_two_pi_mu_p_b2_l() {
+    let phi = 2.5e-3; // φ b = 0.05 mm of circumferential slip
+    let (model, r) = run(&case(true, Some(phi), None));
+    let area = 2.0 * std::f64::consts::PI * B * L;
+    assert_eq!(r.increments.last().unwrap().load_factor, 2.0);
+    let mut sliding = 0;
+    let mut last = None;
+    for w in r.increments.windows(2) {
+        let (a, b) = (w[0].joints[0], w[1].joints[0]);
+        let t = w[1].load_factor;
+        if t <= 1.0 {
+            assert!(b.torque.abs() < 1e-9 * B * b.normal_force, "t = {t}: {b:?}");
+            continue;
+        }
+        // A (the shaft) turned by +φ relative to B: positive twist and torque
+        assert!(b.torque > 0.0 && b.twist > 0.0, "t = {t}: {b:?}");
+        assert!(
+            b.tangential_force.abs() < 1e-6 * b.normal_force,
+            "t = {t}: {b:?}"
+        );
+        if common::rel(b.macro_slip, area) < 1e-12 && common::rel(a.macro_slip, area) < 1e-12 {
+            sliding += 1;
+            let p = b.normal_force / area;
+            let hand = 2.0 * std::f64::consts::PI * MU * p * B * B * L;
+            assert!(
+                common::rel(b.torque, hand) < 1e-9,
+                "t = {t}: T {} vs 2π μ p b² L {hand}",
+                b.torque
+            );
+            last = Some((b, hand));
+        }
+    }
+    let (end, hand) = last.expect("the fit slides");
+    // the supports' torque on the shaft (global residual)
+    let nd = model.node_dofs();
+    let support: f64 = model
+        .prescribed
+        .iter()
+        .zip(&r.final_state.reactions)
+        .filter_map(|(&(d, _), &rr)| {
+            let (n, c) = nd.node_of(d);
+            let x = model.mesh.nodes[n];
+            (c == 2 && x[0] <= B).then_some(x[0] * rr)
+        })
+        .sum();
+    eprintln!(
+        "twisted fit: T {:.6} N·mm, 2π μ p b² L = {hand:.6} ({:+.1e}) with p = {:.4} MPa; supports {support:.6} ({:+.1e}); φ̄ {:.3e} rad, sliding over {sliding} steps",
+        end.torque,
+        (end.torque - hand) / hand,
+        end.normal_force / area,
+        (support - end.torque) / end.torque,
+        end.twist
+    );
+    assert!(sliding >= 3);
+    assert!(common::rel(support, end.torque) < 1e-8);
+    // the FE's fit pressure is the plane-strain Lamé one with the rough
+    // interface's compliance (shrink_fit.rs, the same fit and tolerance)
+    let lame = crate::shrink_fit::fit_pressure(1e-4);
+    assert!(
+        common::rel(end.normal_force / area, lame) < 5e-3,
+        "p {} vs Lamé {lame}",
+        end.normal_force / area
+    );
+}
+
+#[test]
+fn an_axially_loaded_twisting_fit_is_the_plane_fit() {
+    let (m3, r3) = run(&case(true, None, Some(0.05)));
+    let (m2, r2) = run(&case(false, None, Some(0.05)));
+    assert_eq!(r3.increments.len(), r2.increments.len());
+    let scale = |f: f64| f.abs().max(1.0);
+    for (a, b) in r3.increments.iter().zip(&r2.increments) {
+        let (j3, j2) = (a.joints[0], b.joints[0]);
+        for (x, y) in j3.pack().iter().zip(j2.pack()) {
+            assert!(
+                (x - y).abs() <= 1e-9 * scale(y),
+                "t = {}: {j3:?} vs {j2:?}",
+                a.load_factor
+            );
+        }
+        assert_eq!(j3.torque, 0.0);
+        assert_eq!(j3.hoop_slip, 0.0);
+    }
+    let (n3, n2) = (m3.node_dofs(), m2.node_dofs());
+    let umax = r2.final_state.u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    for n in 0..m2.mesh.nodes.len() {
+        for c in 0..2 {
+            let (x, y) = (
+                r3.final_state.u[n3.dof(n, c)],
+                r2.final_state.u[n2.dof(n, c)],
+            );
+            assert!(
+                (x - y).abs() <= 1e-9 * umax,
+                "node {n} component {c}: {x} vs {y}"
+            );
+        }
+        assert_eq!(r3.final_state.u[n3.dof(n, 2)], 0.0);
+    }
+    eprintln!(
+        "axial push-out with twist = without: {} increments",
+        r2.increments.len()
+    );
+}
