@@ -276,3 +276,41 @@ fn a_pushed_and_twisted_fit_slides_on_the_resultant_limit() {
     // (observed 3e-5)
     assert!(common::rel(m.tangential_force, m.torque / B) < 1e-3);
 }
+
+/// The twisted fit meshed apart (the hub with 2 elements along z, the
+/// shaft 3): node-to-segment and mortar springs carry the circumferential
+/// slip too, and hold T = μ b F_N = 2π μ p b² L once the fit slides.
+#[test]
+fn a_twisted_fit_meshed_apart_holds_two_pi_mu_p_b2_l() {
+    let base = case(true, Some(2.5e-3), None);
+    for weights in ["lumped", "mortar"] {
+        let hub = base.find("body = \"hub\"").unwrap();
+        let ny = hub + base[hub..].find("ny = [3]").unwrap();
+        let text = format!("{}ny = [2]{}", &base[..ny], &base[ny + 8..])
+            .replacen("right = \"hub\"", "right = \"hub\"\nmatching = false", 1)
+            .replacen(
+                "gap_history = \"press\"",
+                &format!("gap_history = \"press\"\nweights = \"{weights}\""),
+                1,
+            );
+        let (model, r) = run(&text);
+        assert!(model.interfaces[0]
+            .points
+            .iter()
+            .all(|p| p.geometric_gap().is_some()));
+        let area = 2.0 * std::f64::consts::PI * B * L;
+        let end = r.increments.last().unwrap().joints[0];
+        assert!(
+            common::rel(end.macro_slip, area) < 1e-12,
+            "{weights}: {end:?}"
+        );
+        let p = end.normal_force / area;
+        let hand = 2.0 * std::f64::consts::PI * MU * p * B * B * L;
+        eprintln!(
+            "{weights}, meshed apart: T {:.6} N·mm, 2π μ p b² L = {hand:.6} ({:+.1e}), p = {p:.4} MPa",
+            end.torque,
+            (end.torque - hand) / hand
+        );
+        assert!(common::rel(end.torque, hand) < 1e-9, "{weights}");
+    }
+}
