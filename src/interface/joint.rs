@@ -437,6 +437,14 @@ pub struct Cycle {
     /// of the run's largest max |F_T| × (ū_T range) over every cycle of
     /// every interface ([`cycles`] sets it; 0 for a cycle alone).
     pub floor: f64,
+    /// With twist: the torque-twist loop, as the force-slip one: smallest
+    /// and largest T (N·mm) and φ̄ (rad) over the cycle's increments, and
+    /// the torsional secant stiffness ΔT/Δφ̄ between the increments of the
+    /// largest and smallest T (N·mm/rad; None when they have the same φ̄).
+    /// Zero and None without twist.
+    pub torque_range: [f64; 2],
+    pub twist_range: [f64; 2],
+    pub torsional_stiffness: Option<f64>,
 }
 
 impl Cycle {
@@ -526,7 +534,21 @@ pub fn cycle_of(rows: &[(f64, JointMeasures)], (i, j): (usize, usize)) -> Cycle 
     let lo = span.iter().min_by(by_force).map_or(rows[j].1, |r| r.1);
     let ds = hi.mean_slip - lo.mean_slip;
     let slip = span.iter().map(|r| r.1.mean_slip);
+    // the torque-twist loop's tips, ties (a sliding plateau) broken by φ̄
+    let by_torque = |a: &&(f64, JointMeasures), b: &&(f64, JointMeasures)| {
+        (a.1.torque.total_cmp(&b.1.torque)).then(a.1.twist.total_cmp(&b.1.twist))
+    };
+    let t_hi = span.iter().max_by(by_torque).map_or(rows[j].1, |r| r.1);
+    let t_lo = span.iter().min_by(by_torque).map_or(rows[j].1, |r| r.1);
+    let dphi = t_hi.twist - t_lo.twist;
+    let twist = span.iter().map(|r| r.1.twist);
     Cycle {
+        torque_range: [t_lo.torque, t_hi.torque],
+        twist_range: [
+            twist.clone().fold(f64::INFINITY, f64::min),
+            twist.fold(f64::NEG_INFINITY, f64::max),
+        ],
+        torsional_stiffness: (dphi != 0.0).then(|| (t_hi.torque - t_lo.torque) / dphi),
         start_increment: i + 1,
         end_increment: j + 1,
         start_time: rows[i].0,

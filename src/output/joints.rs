@@ -85,16 +85,28 @@ pub fn joints_csv(model: &Model, r: &RunResult) -> String {
 
 pub const CYCLES_HEADER: &str = "interface,cycle,start_increment,end_increment,start_time,end_time,dissipation_nmm,work_nmm,secant_stiffness_n_per_mm,force_min_n,force_max_n,slip_min_mm,slip_max_mm,force_amplitude_n,slip_amplitude_mm,stored_energy_nmm,loss_factor\n";
 
+/// The columns a twisting model's `cycles.csv` adds at the end of a row.
+pub const CYCLES_TWIST_COLUMNS: &str =
+    ",torque_min_nmm,torque_max_nmm,twist_min_rad,twist_max_rad,torsional_stiffness_nmm_per_rad";
+
 /// `cycles.csv`: one row per closed load cycle and interface (the header
 /// alone when there is none); an empty stiffness where it is undefined and
 /// an empty loss factor where the stored energy is not positive. The
 /// amplitude, stored energy and loss factor ([`Cycle::loss_factor`]) were
 /// added at the end of the row: readers of the older columns keep working.
+/// A twisting model's rows end with the torque-twist loop
+/// ([`CYCLES_TWIST_COLUMNS`]).
 pub fn cycles_csv(model: &Model, cycles: &[Vec<Cycle>]) -> String {
+    let twist = model.node_dofs().twist();
     let mut s = String::from(CYCLES_HEADER);
+    if twist {
+        s.pop();
+        s += CYCLES_TWIST_COLUMNS;
+        s.push('\n');
+    }
     for (im, list) in model.interfaces.iter().zip(cycles) {
         for (k, c) in list.iter().enumerate() {
-            let _ = writeln!(
+            let _ = write!(
                 s,
                 "{},{},{},{},{:.9},{:.9},{:.9e},{:.9e},{},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{}",
                 csv_field(&im.name),
@@ -115,6 +127,18 @@ pub fn cycles_csv(model: &Model, cycles: &[Vec<Cycle>]) -> String {
                 c.stored_energy(),
                 opt(c.loss_factor()),
             );
+            if twist {
+                let _ = write!(
+                    s,
+                    ",{:.9e},{:.9e},{:.9e},{:.9e},{}",
+                    c.torque_range[0],
+                    c.torque_range[1],
+                    c.twist_range[0],
+                    c.twist_range[1],
+                    opt(c.torsional_stiffness)
+                );
+            }
+            s.push('\n');
         }
     }
     s
@@ -125,9 +149,10 @@ pub fn opt(v: Option<f64>) -> String {
     v.map_or(String::new(), |v| format!("{v:.9e}"))
 }
 
-/// One cycle as a `summary.json` object (the keys of `cycles.csv`).
-pub fn cycle_json(number: usize, c: &Cycle) -> Value {
-    json!({
+/// One cycle as a `summary.json` object (the keys of `cycles.csv`; with
+/// twist its torque-twist loop too).
+pub fn cycle_json(number: usize, c: &Cycle, twist: bool) -> Value {
+    let mut v = json!({
         "cycle": number,
         "start_increment": c.start_increment,
         "end_increment": c.end_increment,
@@ -144,7 +169,15 @@ pub fn cycle_json(number: usize, c: &Cycle) -> Value {
         "slip_amplitude_mm": c.slip_amplitude(),
         "stored_energy_nmm": c.stored_energy(),
         "loss_factor": c.loss_factor(),
-    })
+    });
+    if twist {
+        v["torque_min_nmm"] = json!(c.torque_range[0]);
+        v["torque_max_nmm"] = json!(c.torque_range[1]);
+        v["twist_min_rad"] = json!(c.twist_range[0]);
+        v["twist_max_rad"] = json!(c.twist_range[1]);
+        v["torsional_stiffness_nmm_per_rad"] = json!(c.torsional_stiffness);
+    }
+    v
 }
 
 /// The joint measures of one increment as a `summary.json` object (with
@@ -192,7 +225,7 @@ pub fn summary(model: &Model, r: &RunResult, cycles: &[Vec<Cycle>]) -> Value {
                 .map(|l| {
                     l.iter()
                         .enumerate()
-                        .map(|(n, c)| cycle_json(n + 1, c))
+                        .map(|(n, c)| cycle_json(n + 1, c, im.twist()))
                         .collect()
                 })
                 .unwrap_or_default();

@@ -119,6 +119,9 @@ pub struct Frame {
     contact_shear: Vec<f64>,
     /// 1 closed, 0 open, −1 not on an interface.
     contact_closed: Vec<f64>,
+    /// With twist: the circumferential shear p_Tθ of the interface (empty
+    /// without twist).
+    contact_hoop_shear: Vec<f64>,
     /// Per cell.
     max_peeq: Vec<f64>,
 }
@@ -132,6 +135,8 @@ impl Frame {
         // interface tractions at the nodes of both sides
         let mut p_n = vec![0.0; nn];
         let mut p_t = vec![0.0; nn];
+        let twist = model.node_dofs().twist();
+        let mut p_h = if twist { vec![0.0; nn] } else { Vec::new() };
         let mut status = vec![-1.0; nn];
         let mut base = 0;
         for im in &model.interfaces {
@@ -140,14 +145,17 @@ impl Frame {
             for (i, pr) in im.pairs.iter().enumerate() {
                 let un = im.pair_approach_at(pr, &state.u, im.gap_at(state.time));
                 let p = im.law.pressure(un).0;
-                let t = if lumped {
-                    state.contact[base + i].p_t
+                let (t, h) = if lumped {
+                    (state.contact[base + i].p_t, state.contact[base + i].p_h)
                 } else {
-                    0.0
+                    (0.0, 0.0)
                 };
                 for n in [pr.a, pr.b] {
                     p_n[n] = p;
                     p_t[n] = t;
+                    if twist {
+                        p_h[n] = h;
+                    }
                     status[n] = f64::from(i32::from(un > 0.0));
                 }
             }
@@ -177,6 +185,7 @@ impl Frame {
             contact_pressure: p_n,
             contact_shear: p_t,
             contact_closed: status,
+            contact_hoop_shear: p_h,
             max_peeq: (0..ne)
                 .map(|e| {
                     state.gauss[e * ng..(e + 1) * ng]
@@ -189,7 +198,8 @@ impl Frame {
 
     /// The point arrays in document order: name, components, values. The
     /// hoop stress (axisymmetry) is the fourth stress component again.
-    /// With twist, `twist_shear` (σ_rθ, σ_zθ) follows.
+    /// With twist, `twist_shear` (σ_rθ, σ_zθ) follows, and
+    /// `contact_hoop_shear` (p_Tθ) ends the list.
     fn point_arrays(&self, hoop: bool, twist: bool) -> Vec<(&'static str, usize, Values<'_>)> {
         let mut v = vec![
             ("displacement", 3, Values::All(&self.displacement)),
@@ -208,6 +218,13 @@ impl Frame {
             ("contact_shear", 1, Values::All(&self.contact_shear)),
             ("contact_closed", 1, Values::All(&self.contact_closed)),
         ]);
+        if twist {
+            v.push((
+                "contact_hoop_shear",
+                1,
+                Values::All(&self.contact_hoop_shear),
+            ));
+        }
         v
     }
 }

@@ -25,4 +25,5 @@ mod pretension;
 mod restart;
 mod robust;
 mod tables;
+mod twist_restart;
 mod vtu_reader;

@@ -168,7 +168,12 @@ fn summary_json_matches_the_documented_schema() {
             slip_range: [-0.01, 0.01],
             tip_slip: [-0.008, 0.01],
             floor: 0.0,
+            torque_range: [-5e5, 5e5],
+            twist_range: [-1e-3, 1e-3],
+            torsional_stiffness: Some(5e8),
         },
+        // with twist: the torque-twist loop's keys too
+        true,
     );
     // probes of both kinds, interface events with histories and reactions
     let stack = summary_of(
@@ -197,11 +202,30 @@ fn summary_json_matches_the_documented_schema() {
         slip_range: [-f / 1e4, f / 1e4],
         tip_slip: [-f / 1e4, f / 1e4],
         floor: 0.0,
+        torque_range: [0.0; 2],
+        twist_range: [0.0; 2],
+        torsional_stiffness: None,
     };
     let sweep = asperity::output::damping::sweep(&[sweep_of(10.0, 0.1), sweep_of(20.0, 0.6)]);
     assert!(sweep.fit.is_some());
     with_cycle["damping"][0] = asperity::output::damping::fit_json("contact", &sweep);
-    for s in [&with_cycle, &without, &gap, &axi, &tab, &stack, &bolt] {
+    // twist: the torque, circumferential slip and twist of a joint
+    let torque = summary_of("torque", &cases.join("shrink-fit-torque"), &[]);
+    assert!(torque["joints"][0]["final"]["torque_nmm"].as_f64().unwrap() > 0.0);
+    assert!(
+        with["joints"][0]["final"].get("torque_nmm").is_none(),
+        "{with}"
+    );
+    for s in [
+        &with_cycle,
+        &without,
+        &gap,
+        &axi,
+        &tab,
+        &stack,
+        &bolt,
+        &torque,
+    ] {
         let mut l = Vec::new();
         leaves("", s, &mut l);
         for (k, t) in l {
@@ -267,5 +291,19 @@ fn the_joint_csv_files_have_the_documented_columns() {
     }
     for f in ["damping.svg", "damping.png"] {
         assert!(doc.contains(&format!("`{f}`")), "{f} not documented");
+    }
+    // a twisting model's extra columns, each named in its file's section
+    for (name, extra) in [
+        ("joints.csv", joints::JOINTS_TWIST_COLUMNS),
+        ("cycles.csv", joints::CYCLES_TWIST_COLUMNS),
+    ] {
+        let section = doc.split(&format!("\n## `{name}`\n")).nth(1).unwrap();
+        let section = section.split("\n## ").next().unwrap();
+        for c in extra.split(',').filter(|c| !c.is_empty()) {
+            assert!(
+                section.contains(&format!("`{c}`")),
+                "{name}: {c} not documented"
+            );
+        }
     }
 }

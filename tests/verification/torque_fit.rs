@@ -15,7 +15,9 @@
 //! exert on the shaft (Σ r R_θ, through the global residual). A second test:
 //! the same fit with twist but pushed out axially (no rotation) is the model
 //! without twist, increment by increment (the vector law's one-component
-//! reduction through the whole program).
+//! reduction through the whole program); pushed and twisted at once it
+//! slides on the resultant limit √(F_T² + (T/b)²) = μ F_N (DIN 7190's
+//! resultant friction check).
 
 use crate::common;
 use asperity::model::Model;
@@ -34,14 +36,17 @@ const L: f64 = 10.0;
 const MU: f64 = 0.15;
 
 /// The fit, pressed in over t ∈ [0, 1]; then over [1, 2] the shaft is
-/// turned by `rotation` (rad) or pushed axially by `push` (mm); `twist`
+/// turned by `rotation` (rad), pushed axially by `push` (mm) or both; `twist`
 /// switches the third dof (both bodies then held about the axis: the
 /// shaft by its rotation, the hub at its outer surface).
 fn case(twist: bool, rotation: Option<f64>, push: Option<f64>) -> String {
     let model = if twist { "twist = true\n" } else { "" };
     let shaft = match (rotation, push) {
-        (Some(phi), _) => format!(
+        (Some(phi), None) => format!(
             "[[boundary]]\nset = \"shaft.bottom\"\nuy = 0.0\n[[boundary]]\nset = \"shaft.top\"\nuy = 0.0\n[[boundary]]\nset = \"shaft.all\"\nrotation = {phi}\nhistory = \"turn\"\n"
+        ),
+        (Some(phi), Some(d)) => format!(
+            "[[boundary]]\nset = \"shaft.all\"\nuy = {d}\nrotation = {phi}\nhistory = \"turn\"\n"
         ),
         (None, Some(d)) => {
             let hold = if twist {
@@ -51,7 +56,7 @@ fn case(twist: bool, rotation: Option<f64>, push: Option<f64>) -> String {
             };
             format!("[[boundary]]\nset = \"shaft.all\"\nuy = {d}\nhistory = \"turn\"\n{hold}")
         }
-        _ => unreachable!(),
+        (None, None) => unreachable!(),
     };
     let hub = if twist {
         "[[boundary]]\nset = \"hub.right\"\nrotation = 0.0\n"
@@ -227,4 +232,85 @@ fn an_axially_loaded_twisting_fit_is_the_plane_fit() {
         "axial push-out with twist = without: {} increments",
         r2.increments.len()
     );
+}
+
+/// Axial push and twist together (DIN 7190's resultant friction): the
+/// shaft moved as a whole along z by d and turned by φ with φ b = d. Once
+/// the whole fit slides every point carries |p_T| = μ p_N, so the
+/// resultant of the axial force and the circumferential one T/b is at most
+/// μ F_N, and equal to it when every point slides the same way; the shaft
+/// moves rigidly, so the directions differ only by the hub's strain.
+#[test]
+fn a_pushed_and_twisted_fit_slides_on_the_resultant_limit() {
+    let d = 0.03;
+    let (_, r) = run(&case(true, Some(d / B), Some(d)));
+    let area = 2.0 * std::f64::consts::PI * B * L;
+    let mut sliding = 0;
+    let mut last = None;
+    for inc in r.increments.iter().filter(|i| i.load_factor > 1.0) {
+        let m = inc.joints[0];
+        assert!(m.tangential_force > 0.0 && m.torque > 0.0, "{m:?}");
+        if common::rel(m.macro_slip, area) > 1e-12 {
+            continue;
+        }
+        sliding += 1;
+        let resultant = m.tangential_force.hypot(m.torque / B);
+        let limit = MU * m.normal_force;
+        assert!(
+            resultant <= limit * (1.0 + 1e-9),
+            "{resultant} > μ F_N {limit}"
+        );
+        last = Some((resultant, limit, m));
+    }
+    let (resultant, limit, m) = last.expect("the fit slides");
+    eprintln!(
+        "pushed and twisted: √(F_T² + (T/b)²) = {resultant:.3} N, μ F_N = {limit:.3} N ({:+.1e}); F_T {:.1} N, T/b {:.1} N, sliding over {sliding} steps",
+        (resultant - limit) / limit,
+        m.tangential_force,
+        m.torque / B
+    );
+    assert!(sliding >= 3);
+    // every point slides the same way (observed: the limit to 2e-13)
+    assert!(common::rel(resultant, limit) < 1e-9);
+    // along the diagonal of the imposed motion, the hub's strain aside
+    // (observed 3e-5)
+    assert!(common::rel(m.tangential_force, m.torque / B) < 1e-3);
+}
+
+/// The twisted fit meshed apart (the hub with 2 elements along z, the
+/// shaft 3): node-to-segment and mortar springs carry the circumferential
+/// slip too, and hold T = μ b F_N = 2π μ p b² L once the fit slides.
+#[test]
+fn a_twisted_fit_meshed_apart_holds_two_pi_mu_p_b2_l() {
+    let base = case(true, Some(2.5e-3), None);
+    for weights in ["lumped", "mortar"] {
+        let hub = base.find("body = \"hub\"").unwrap();
+        let ny = hub + base[hub..].find("ny = [3]").unwrap();
+        let text = format!("{}ny = [2]{}", &base[..ny], &base[ny + 8..])
+            .replacen("right = \"hub\"", "right = \"hub\"\nmatching = false", 1)
+            .replacen(
+                "gap_history = \"press\"",
+                &format!("gap_history = \"press\"\nweights = \"{weights}\""),
+                1,
+            );
+        let (model, r) = run(&text);
+        assert!(model.interfaces[0]
+            .points
+            .iter()
+            .all(|p| p.geometric_gap().is_some()));
+        let area = 2.0 * std::f64::consts::PI * B * L;
+        let end = r.increments.last().unwrap().joints[0];
+        assert!(
+            common::rel(end.macro_slip, area) < 1e-12,
+            "{weights}: {end:?}"
+        );
+        let p = end.normal_force / area;
+        let hand = 2.0 * std::f64::consts::PI * MU * p * B * B * L;
+        eprintln!(
+            "{weights}, meshed apart: T {:.6} N·mm, 2π μ p b² L = {hand:.6} ({:+.1e}), p = {p:.4} MPa",
+            end.torque,
+            (end.torque - hand) / hand
+        );
+        assert!(common::rel(end.torque, hand) < 1e-9, "{weights}");
+    }
 }

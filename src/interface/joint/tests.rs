@@ -300,3 +300,43 @@ fn cycles_of_a_run_use_only_breakpoint_increments() {
     assert!(at_breakpoint(2.0, &[1.0, 2.0, 3.0]) && !at_breakpoint(2.5, &[1.0, 2.0, 3.0]));
     assert!(at_breakpoint(2.0 + 1e-14, &[1.0, 2.0, 3.0]));
 }
+
+/// The torque-twist loop of a cycle (a twisting model): its tips and the
+/// torsional secant stiffness between them, ties broken by the twist.
+#[test]
+fn a_cycle_reads_its_torque_twist_loop() {
+    // a bilinear torque-twist loop: elastic 1e9 N·mm/rad up to ±5e5 N·mm
+    let pts = [
+        (0.0, 0.0),
+        (4e-4, 4e5),
+        (5e-4, 5e5),
+        (9e-4, 5e5),
+        (0.0, -4e5),
+        (-5e-4, -5e5),
+        (-9e-4, -5e5),
+        (0.0, 4e5),
+    ];
+    let rows: Vec<(f64, JointMeasures)> = pts
+        .iter()
+        .enumerate()
+        .map(|(k, &(phi, t))| {
+            let m = JointMeasures {
+                torque: t,
+                twist: phi,
+                ..JointMeasures::default()
+            };
+            (k as f64, m)
+        })
+        .collect();
+    let c = cycle_of(&rows, (0, pts.len() - 1));
+    assert_eq!(c.torque_range, [-5e5, 5e5]);
+    assert_eq!(c.twist_range, [-9e-4, 9e-4]);
+    // the tips at the plateaus' far ends: (−9e-4, −5e5) and (9e-4, 5e5)
+    let k = c.torsional_stiffness.unwrap();
+    assert!((k - 1e6 / 1.8e-3).abs() < 1e-6 * k, "{k}");
+    // without twist: no torque, no stiffness
+    let flat: Vec<(f64, JointMeasures)> = (0..3)
+        .map(|k| (k as f64, JointMeasures::default()))
+        .collect();
+    assert_eq!(cycle_of(&flat, (0, 2)).torsional_stiffness, None);
+}

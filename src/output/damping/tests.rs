@@ -14,6 +14,9 @@ fn cycle(f_a: f64, u_a: f64, d: f64) -> Cycle {
         slip_range: [-u_a, u_a],
         tip_slip: [-u_a, u_a],
         floor: 0.0,
+        torque_range: [0.0; 2],
+        twist_range: [0.0; 2],
+        torsional_stiffness: None,
     }
 }
 
