@@ -415,35 +415,26 @@ fn sections(e: &mut Encoder, ck: &Checkpoint, pvd: &[(f64, String)]) -> std::io:
     // earlier build) is a row of NaN
     let n = ck.joint_totals.len();
     let none = vec![JointMeasures::unpack(&[f64::NAN; JointMeasures::PACKED]); n];
+    let rows = || {
+        ck.increments.iter().map(|i| {
+            if i.joints.len() == n {
+                &i.joints
+            } else {
+                &none
+            }
+        })
+    };
     e.f64_iter(
         "joints",
         JointMeasures::PACKED * n * ck.increments.len(),
-        ck.increments
-            .iter()
-            .map(|i| {
-                if i.joints.len() == n {
-                    &i.joints
-                } else {
-                    &none
-                }
-            })
-            .flat_map(|j| j.iter().flat_map(JointMeasures::pack)),
+        rows().flat_map(|j| j.iter().flat_map(JointMeasures::pack)),
     )?;
     // twist: T, ū_θ, φ̄ per interface and increment (NaN where unmeasured)
     if ck.twist {
         e.f64_iter(
             "joints_twist",
             JointMeasures::PACKED_TWIST * n * ck.increments.len(),
-            ck.increments
-                .iter()
-                .map(|i| {
-                    if i.joints.len() == n {
-                        &i.joints
-                    } else {
-                        &none
-                    }
-                })
-                .flat_map(|j| j.iter().flat_map(JointMeasures::pack_twist)),
+            rows().flat_map(|j| j.iter().flat_map(JointMeasures::pack_twist)),
         )?;
     }
     // a model with pretension sections: their force and shortening per
