@@ -557,3 +557,29 @@ pub fn run_asperity(args: &[&str]) -> (i32, String) {
         String::from_utf8_lossy(&out.stderr).into(),
     )
 }
+
+/// An observer that records nothing (runs whose result alone is checked).
+pub struct Quiet;
+impl asperity::solve::Observer for Quiet {
+    fn increment(
+        &mut self,
+        _: &Model,
+        _: &asperity::solve::State,
+        _: &asperity::solve::Increment,
+    ) -> asperity::Result<()> {
+        Ok(())
+    }
+}
+
+/// `asperity run CASE --out OUT --quiet EXTRA...`: exit code and stderr.
+pub fn run_case(case: &std::path::Path, out: &std::path::Path, extra: &[&str]) -> (i32, String) {
+    let (c, o) = (case.display().to_string(), out.display().to_string());
+    let mut args = vec!["run", &c, "--out", &o, "--quiet"];
+    args.extend_from_slice(extra);
+    run_asperity(&args)
+}
+
+/// A file the run wrote into `dir`, whole.
+pub fn read_out(dir: &std::path::Path, file: &str) -> String {
+    std::fs::read_to_string(dir.join(file)).unwrap_or_else(|e| panic!("{file}: {e}"))
+}

@@ -14,16 +14,9 @@ fn case(name: &str) -> PathBuf {
     common::root().join("cases").join(name)
 }
 
-fn run(case: &Path, out: &Path, extra: &[&str]) -> (i32, String) {
-    let (c, o) = (case.display().to_string(), out.display().to_string());
-    let mut args = vec!["run", &c, "--out", &o, "--quiet"];
-    args.extend_from_slice(extra);
-    common::run_asperity(&args)
-}
+use common::run_case as run;
 
-fn read(dir: &Path, file: &str) -> String {
-    std::fs::read_to_string(dir.join(file)).unwrap_or_else(|e| panic!("{file}: {e}"))
-}
+use common::read_out as read;
 
 #[test]
 fn a_stopped_damping_run_resumes_to_the_same_loops() {

@@ -5,9 +5,7 @@
 
 use crate::common;
 use asperity::interface::joint::{self, JointMeasures};
-use asperity::model::Model;
 use asperity::output::joints as out;
-use asperity::solve::{Increment, Observer, State};
 use serde_json::Value;
 use std::path::Path;
 
@@ -145,12 +143,7 @@ fn a_run_writes_joint_rows_matching_its_summary_and_no_figure_without_a_cycle() 
     }
 }
 
-struct Quiet;
-impl Observer for Quiet {
-    fn increment(&mut self, _: &Model, _: &State, _: &Increment) -> asperity::Result<()> {
-        Ok(())
-    }
-}
+use crate::common::Quiet;
 
 #[test]
 fn a_closed_cycle_gets_its_row_and_the_hysteresis_figure() {

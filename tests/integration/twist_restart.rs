@@ -8,16 +8,9 @@
 use crate::common;
 use std::path::Path;
 
-fn run(case: &Path, out: &Path, extra: &[&str]) -> (i32, String) {
-    let (c, o) = (case.display().to_string(), out.display().to_string());
-    let mut args = vec!["run", &c, "--out", &o, "--quiet"];
-    args.extend_from_slice(extra);
-    common::run_asperity(&args)
-}
+use common::run_case as run;
 
-fn read(dir: &Path, file: &str) -> String {
-    std::fs::read_to_string(dir.join(file)).unwrap_or_else(|e| panic!("{file}: {e}"))
-}
+use common::read_out as read;
 
 /// Stops `case` after `stop` increments, lets `forge` edit the restart
 /// file, resumes, and compares `files` with the uninterrupted run.

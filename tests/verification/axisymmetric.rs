@@ -9,15 +9,10 @@ use asperity::fem::solid::{element_forces, ElementGeometry, Response, Tangent};
 use asperity::fem::Section;
 use asperity::material::{Plane, PointState, VonMises};
 use asperity::model::Model;
-use asperity::solve::{Increment, Observer, State};
+use asperity::solve::State;
 use nalgebra::{DMatrix, DVector, Vector4};
 
-struct Quiet;
-impl Observer for Quiet {
-    fn increment(&mut self, _: &Model, _: &State, _: &Increment) -> asperity::Result<()> {
-        Ok(())
-    }
-}
+use crate::common::Quiet;
 
 const REVOLUTION: Section = Section {
     axisymmetric: true,

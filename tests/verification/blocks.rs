@@ -8,15 +8,10 @@
 
 use crate::common::{self, CaseText};
 use asperity::model::Model;
-use asperity::solve::{Increment, Observer, RunResult, State};
+use asperity::solve::RunResult;
 use std::collections::HashMap;
 
-struct Quiet;
-impl Observer for Quiet {
-    fn increment(&mut self, _: &Model, _: &State, _: &Increment) -> asperity::Result<()> {
-        Ok(())
-    }
-}
+use crate::common::Quiet;
 
 fn solve(model: &Model) -> RunResult {
     asperity::driver::solve(model, &mut Quiet).unwrap_or_else(|e| panic!("{e}"))

@@ -9,12 +9,7 @@ use crate::common::{self, CaseText};
 use asperity::model::Model;
 use asperity::solve::{Increment, Observer, State};
 
-struct Quiet;
-impl Observer for Quiet {
-    fn increment(&mut self, _: &Model, _: &State, _: &Increment) -> asperity::Result<()> {
-        Ok(())
-    }
-}
+use crate::common::Quiet;
 
 /// The two blocks, their joint (with an initial gap if given) and supports;
 /// the load and the solver are added to it.

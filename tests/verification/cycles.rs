@@ -240,12 +240,7 @@ fn the_loop_area_of_identical_springs_is_the_reported_dissipation() {
     damping::backbone_is_the_first_loading(&out, 2.0);
 }
 
-struct Quiet;
-impl Observer for Quiet {
-    fn increment(&mut self, _: &Model, _: &State, _: &Increment) -> asperity::Result<()> {
-        Ok(())
-    }
-}
+use crate::common::Quiet;
 
 fn solve(model: &Model) -> RunResult {
     asperity::driver::solve(model, &mut Quiet).unwrap_or_else(|e| panic!("{e}"))

@@ -8,14 +8,9 @@
 use crate::common::{self, CaseText};
 use asperity::interface::joint::{self, JointMeasures};
 use asperity::model::Model;
-use asperity::solve::{Increment, Observer, RunResult, State};
+use asperity::solve::RunResult;
 
-struct Quiet;
-impl Observer for Quiet {
-    fn increment(&mut self, _: &Model, _: &State, _: &Increment) -> asperity::Result<()> {
-        Ok(())
-    }
-}
+use crate::common::Quiet;
 
 fn solve(model: &Model) -> RunResult {
     asperity::driver::solve(model, &mut Quiet).unwrap_or_else(|e| panic!("{e}"))

@@ -47,15 +47,9 @@
 //! (load average 5, 2026-11-24); plane stress ×4 is the longest run.
 
 use crate::common;
-use asperity::model::Model;
-use asperity::solve::{Increment, Observer, State};
+use asperity::solve::Increment;
 
-struct Quiet;
-impl Observer for Quiet {
-    fn increment(&mut self, _: &Model, _: &State, _: &Increment) -> asperity::Result<()> {
-        Ok(())
-    }
-}
+use crate::common::Quiet;
 
 /// Punch half-width, mm.
 const A: f64 = 5.0;

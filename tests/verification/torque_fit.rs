@@ -21,14 +21,9 @@
 
 use crate::common;
 use asperity::model::Model;
-use asperity::solve::{Increment, Observer, RunResult, State};
+use asperity::solve::RunResult;
 
-struct Quiet;
-impl Observer for Quiet {
-    fn increment(&mut self, _: &Model, _: &State, _: &Increment) -> asperity::Result<()> {
-        Ok(())
-    }
-}
+use crate::common::Quiet;
 
 const B: f64 = 20.0;
 const C: f64 = 40.0;
