@@ -14,6 +14,7 @@ mod calibration;
 mod column;
 mod cycles;
 mod damping_line;
+mod estimate;
 mod events;
 mod factorization;
 mod friction;
