@@ -138,7 +138,10 @@ fn compare_on(case: &str, refine: &str, ranks: &[usize]) {
         }
         // the error estimate of the same increment, to the same elements
         let (es, ep) = (&s["estimate"], &p["estimate"]);
-        assert_eq!(es["increment"], ep["increment"], "{run}: estimate increment");
+        assert_eq!(
+            es["increment"], ep["increment"],
+            "{run}: estimate increment"
+        );
         for k in ["eta", "energy_norm", "relative"] {
             let (x, y) = (es[k].as_f64().unwrap(), ep[k].as_f64().unwrap());
             assert!(close(x, y, x.abs()), "{run}: estimate {k} {x} vs {y}");
