@@ -5,10 +5,10 @@ use crate::mesh::blocks;
 /// `bottom` edge set and node set), through the case parser.
 fn grid(nx: usize, ny: usize) -> Mesh {
     let text = format!(
-        "[[mesh.block]]\nbody = \"b\"\nx = [0.0, {nx}.0]\nnx = [{nx}]\ny = [0.0, {ny}.0]\nny = [{ny}]\n"
+        "[[block]]\nbody = \"b\"\nx = [0.0, {nx}.0]\nnx = [{nx}]\ny = [0.0, {ny}.0]\nny = [{ny}]\n"
     );
-    let case = crate::case::Case::parse(&text, "t").unwrap();
-    blocks::generate(&case.mesh.block, &case.mesh.interface, 1).unwrap()
+    let spec: crate::case::MeshSpec = toml::from_str(&text).unwrap();
+    blocks::generate(&spec.block, &spec.interface, 1).unwrap()
 }
 
 #[test]

@@ -1,0 +1,294 @@
+//! Local refinement with hanging nodes (`[mesh] refine_region`,
+//! `asperity::mesh::refine`): the hanging-node constraints u_q = Σ N_i(s) u_i
+//! pass the patch test (plane strain, axisymmetric) and carry an exact
+//! quadratic field (pure bending); the closure keeps the mesh 1-irregular;
+//! a matching interface stays matching (both sides refined together).
+
+use crate::common::{self, Quiet};
+use asperity::mesh::refine::{self, edge_shape, Refined};
+use asperity::mesh::Mesh;
+use asperity::model::Model;
+use asperity::solve::State;
+
+/// `[mesh] refine_region` as TOML text.
+fn region(x: [f64; 2], y: [f64; 2], levels: usize) -> String {
+    format!("[mesh]\nrefine_region = {{ x = {x:?}, y = {y:?}, levels = {levels} }}")
+}
+
+/// A block [x0, x0 + 4] × [0, 4] of 4 × 4 elements graded in x, the elements
+/// in [x0, x0 + 1.5] × [0, 1.5] refined twice (with the closure: levels 0, 1
+/// and 2 side by side), held at the bottom only (the test prescribes the
+/// whole boundary itself).
+fn refined_block(plane: &str, x0: f64) -> Model {
+    let text = common::case()
+        .plane(plane)
+        .raw(&region([x0, x0 + 1.5], [0.0, 1.5], 2))
+        .block("b", [x0, x0 + 4.0], [4], [0.0, 4.0], [4])
+        .rx([1.4])
+        .material("b", 100000.0, 0.25)
+        .fixed("b.bottom")
+        .uy("b.top", -0.01)
+        .solver("load_factors = [1.0]")
+        .tolerances(1e-12, 1e-14)
+        .no_vtu()
+        .build();
+    common::model(&text)
+}
+
+/// Every boundary node of the block prescribed to `exact` (in place of the
+/// case's supports), the constraints and the dof map rebuilt; solved.
+fn solve_prescribed(mut model: Model, exact: impl Fn([f64; 2]) -> [f64; 2]) -> (Model, State) {
+    let nodes = model.mesh.nodes.clone();
+    let (lo, hi) = nodes.iter().fold(
+        ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
+        |(l, h), p| {
+            (
+                [l[0].min(p[0]), l[1].min(p[1])],
+                [h[0].max(p[0]), h[1].max(p[1])],
+            )
+        },
+    );
+    let on = |p: [f64; 2]| p[0] == lo[0] || p[0] == hi[0] || p[1] == lo[1] || p[1] == hi[1];
+    model.prescribed = (0..nodes.len())
+        .filter(|&n| on(nodes[n]))
+        .flat_map(|n| {
+            let u = exact(nodes[n]);
+            [(2 * n, u[0]), (2 * n + 1, u[1])]
+        })
+        .collect();
+    model.prescribed_history = vec![None; model.prescribed.len()];
+    model.set_constraints(model.constraints.list.clone()).unwrap();
+    let r = asperity::driver::solve(&model, &mut Quiet).unwrap_or_else(|e| panic!("{e}"));
+    (model, r.final_state)
+}
+
+/// The hanging nodes of the model's mesh, checked present.
+fn hanging(mesh: &Mesh) -> Vec<usize> {
+    let h: Vec<usize> = refine::hanging_nodes(mesh).iter().map(|h| h.node).collect();
+    assert!(h.len() >= 8, "the mesh has {} hanging nodes", h.len());
+    h
+}
+
+/// Every node's displacement equals `exact` to `tol` (relative to the
+/// largest displacement).
+fn assert_nodes(model: &Model, st: &State, exact: impl Fn([f64; 2]) -> [f64; 2], tol: f64) {
+    let scale = model
+        .mesh
+        .nodes
+        .iter()
+        .flat_map(|&p| exact(p))
+        .fold(0.0f64, |m, v| m.max(v.abs()));
+    for (n, &p) in model.mesh.nodes.iter().enumerate() {
+        for (c, want) in exact(p).into_iter().enumerate() {
+            let got = st.u[2 * n + c];
+            assert!(
+                (got - want).abs() <= tol * scale,
+                "node {n} at {p:?}: u{c} = {got:e}, exact {want:e}"
+            );
+        }
+    }
+}
+
+/// A linear field (constant stress) on a mesh with levels 0, 1, 2 side by
+/// side is reproduced at every node, hanging ones included, and every Gauss
+/// point's stress is the constant one, to 1e-10 relative.
+#[test]
+fn patch_test_passes_across_hanging_nodes_plane_strain_and_axisymmetric() {
+    let (e, nu) = (100000.0, 0.25);
+    let (lam, mu) = (e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)), e / (2.0 * (1.0 + nu)));
+    // plane strain: any linear field ([`strain_field`])
+    let (exx, eyy, gxy) = (2e-3, 1.1e-3, 0.4e-3 - 0.7e-3);
+    let want_strain = [
+        lam * (exx + eyy) + 2.0 * mu * exx,
+        lam * (exx + eyy) + 2.0 * mu * eyy,
+        mu * gxy,
+        lam * (exx + eyy),
+    ];
+    // axisymmetric (x = r ≥ 1): [`axi_field`]
+    let (er, ez) = (1.5e-3, -0.8e-3);
+    let want_axi = [
+        lam * (2.0 * er + ez) + 2.0 * mu * er,
+        lam * (2.0 * er + ez) + 2.0 * mu * ez,
+        0.0,
+        lam * (2.0 * er + ez) + 2.0 * mu * er,
+    ];
+    type Field = fn([f64; 2]) -> [f64; 2];
+    let cases: [(&str, f64, Field, [f64; 4]); 2] = [
+        ("strain", 0.0, strain_field, want_strain),
+        ("axisymmetric", 1.0, axi_field, want_axi),
+    ];
+    for (plane, x0, field, want) in cases {
+        let model = refined_block(plane, x0);
+        let levels = refine::in_box(&base_mesh(plane, x0), [x0, x0 + 1.5], [0.0, 1.5], 2, 1 << 20)
+            .unwrap()
+            .state
+            .level;
+        assert!((0..=2).all(|l| levels.contains(&l)), "levels {levels:?}");
+        hanging(&model.mesh);
+        let (model, st) = solve_prescribed(model, field);
+        assert_nodes(&model, &st, field, 1e-12);
+        let scale = want.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for (k, g) in st.gauss.iter().enumerate() {
+            for c in 0..4 {
+                assert!(
+                    (g.stress[c] - want[c]).abs() < 1e-10 * scale,
+                    "{plane}: Gauss point {k}: σ{c} = {} vs {}",
+                    g.stress[c],
+                    want[c]
+                );
+            }
+        }
+    }
+}
+
+fn strain_field(p: [f64; 2]) -> [f64; 2] {
+    [
+        1e-3 * (2.0 * p[0] - 0.7 * p[1]) + 0.01,
+        1e-3 * (0.4 * p[0] + 1.1 * p[1]) - 0.02,
+    ]
+}
+
+/// u_r = a r, u_z = c z + d: σ_r = σ_θ and no shear, a constant stress in
+/// equilibrium without a body force (u_r linear in z would not be: τ/r).
+fn axi_field(p: [f64; 2]) -> [f64; 2] {
+    [1.5e-3 * p[0], -0.8e-3 * p[1] + 0.01]
+}
+
+/// The block's mesh before refinement (the same case without the region).
+fn base_mesh(plane: &str, x0: f64) -> Mesh {
+    let text = common::case()
+        .plane(plane)
+        .block("b", [x0, x0 + 4.0], [4], [0.0, 4.0], [4])
+        .rx([1.4])
+        .material("b", 100000.0, 0.25)
+        .fixed("b.bottom")
+        .uy("b.top", -0.01)
+        .no_vtu()
+        .build();
+    common::model(&text).mesh
+}
+
+/// Pure bending in plane stress, u_x = κ x y, u_y = −κ (x² + ν y²)/2: a
+/// quadratic field (in the Q8 space, zero body force, σ_xx = E κ y, σ_yy =
+/// τ = 0) prescribed on the boundary of a locally refined mesh is the
+/// solution at every node, the hanging nodes (the constraint's values)
+/// included, to round-off; so is σ_xx at every Gauss point.
+#[test]
+fn pure_bending_is_exact_at_every_node_including_hanging_ones() {
+    let (e, nu, k) = (100000.0, 0.25, 2e-4);
+    let field = move |p: [f64; 2]| {
+        [
+            k * p[0] * (p[1] - 2.0),
+            -0.5 * k * (p[0] * p[0] + nu * (p[1] - 2.0) * (p[1] - 2.0)),
+        ]
+    };
+    let model = refined_block("stress", 0.0);
+    let hang = hanging(&model.mesh);
+    let (model, st) = solve_prescribed(model, field);
+    assert_nodes(&model, &st, field, 1e-11);
+    // the hanging nodes' values are the constraint's (filled from the masters)
+    for h in refine::hanging_nodes(&model.mesh) {
+        let w = edge_shape(h.s);
+        for c in 0..2 {
+            let from: f64 = (0..3).map(|i| w[i] * st.u[2 * h.edge[i] + c]).sum();
+            assert!((st.u[2 * h.node + c] - from).abs() < 1e-15);
+        }
+    }
+    assert!(hang.iter().all(|&n| n < model.mesh.nodes.len()));
+    let geo: Vec<_> = (0..model.mesh.elements.len())
+        .map(|el| model.geometry(el))
+        .collect();
+    let ng = model.rule.points.len();
+    for (g, p) in st.gauss.iter().enumerate() {
+        let y = geo[g / ng].x[g % ng][1];
+        let want = e * k * (y - 2.0);
+        assert!(
+            (p.stress[0] - want).abs() < 1e-9 * e * k * 2.0 && p.stress[1].abs() < 1e-9 * e * k,
+            "Gauss point {g} at y = {y}: σ = {:?}, σxx exact {want}",
+            p.stress
+        );
+    }
+}
+
+/// The constraint coefficients N(∓½) = (3/8, 3/4, −1/8), (−1/8, 3/4, 3/8)
+/// reproduce any quadratic along the coarse edge (and only a quadratic's
+/// worth: a cubic is off by its cubic part).
+#[test]
+fn edge_coefficients_reproduce_a_quadratic_along_the_coarse_edge() {
+    assert_eq!(edge_shape(-0.5), [3.0 / 8.0, 3.0 / 4.0, -1.0 / 8.0]);
+    assert_eq!(edge_shape(0.5), [-1.0 / 8.0, 3.0 / 4.0, 3.0 / 8.0]);
+    for (a, b, c) in [(1.0, 0.0, 0.0), (0.3, -2.0, 0.7), (-5.0, 1.25, 3.5)] {
+        let f = |s: f64| a + b * s + c * s * s;
+        for s in [-0.5, 0.5] {
+            let w = edge_shape(s);
+            let got = w[0] * f(-1.0) + w[1] * f(0.0) + w[2] * f(1.0);
+            assert!((got - f(s)).abs() < 1e-15, "s = {s}: {got} vs {}", f(s));
+        }
+    }
+    // s³ takes the values of s at −1, 0, 1, so its interpolant at ½ is ½,
+    // not ⅛
+    let w = edge_shape(0.5);
+    let cubic = w[0] * -1.0 + w[2] * 1.0;
+    assert!((cubic - 0.5).abs() < 1e-15 && (cubic - 0.125).abs() > 0.3);
+}
+
+/// A deterministic pseudo-random sequence (LCG).
+fn lcg(seed: &mut u64) -> u64 {
+    *seed = seed
+        .wrapping_mul(6364136223846793005)
+        .wrapping_add(1442695040888963407);
+    *seed >> 33
+}
+
+/// Random markings over six rounds: the mesh stays valid, its area stays
+/// the area, and it stays 1-irregular: every hanging node's coarse element
+/// is exactly one level coarser than the two elements on the halves, and no
+/// master of a hanging node hangs.
+#[test]
+fn closure_keeps_random_refinements_one_irregular() {
+    let start = base_mesh("strain", 0.0);
+    let area = |m: &Mesh| -> f64 {
+        (0..m.elements.len())
+            .map(|e| {
+                let g = asperity::fem::solid::ElementGeometry::new(
+                    &m.element_coords(e),
+                    &asperity::fem::q8::gauss_3x3(),
+                    1.0,
+                )
+                .unwrap();
+                g.dv[..g.n].iter().sum::<f64>()
+            })
+            .sum()
+    };
+    let a0 = area(&start);
+    let mut seed = 7u64;
+    let mut max_level = 0;
+    for trial in 0..4 {
+        let mut r = Refined::start(&start);
+        for round in 0..6 {
+            let n = r.mesh.elements.len();
+            let marked: Vec<usize> = (0..1 + lcg(&mut seed) as usize % 3)
+                .map(|_| lcg(&mut seed) as usize % n)
+                .collect();
+            r = r.refine(&marked).unwrap();
+            r.mesh.validate().unwrap();
+            let at = format!("trial {trial} round {round}");
+            assert!((area(&r.mesh) - a0).abs() < 1e-10 * a0, "{at}: area");
+            let hanging = refine::hanging_nodes(&r.mesh);
+            let slaves: std::collections::HashSet<usize> =
+                hanging.iter().map(|h| h.node).collect();
+            for h in &hanging {
+                assert!(h.edge.iter().all(|m| !slaves.contains(m)), "{at}: chain");
+                let coarse = r.state.level[h.element];
+                // the elements holding the hanging node are on the halves
+                for (e, el) in r.mesh.elements.iter().enumerate() {
+                    if el.nodes.contains(&h.node) {
+                        assert_eq!(r.state.level[e], coarse + 1, "{at}: node {}", h.node);
+                    }
+                }
+            }
+            max_level = max_level.max(*r.state.level.iter().max().unwrap());
+        }
+    }
+    assert!(max_level >= 3, "the markings reached level {max_level} only");
+}
