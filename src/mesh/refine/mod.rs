@@ -169,7 +169,7 @@ pub fn in_box(
             .collect();
         if marked.is_empty() {
             return Err(MeshError(format!(
-                "refine_region x = {x:?}, y = {y:?} holds no element's centroid{}",
+                "the box x = {x:?}, y = {y:?} holds no element's centroid{}",
                 if level == 1 { "" } else { " after the first level" }
             )));
         }
