@@ -556,22 +556,23 @@ fn make_mesh(case: &Case, place: &str) -> Result<Mesh> {
         place: place.to_string(),
         message: e.to_string(),
     })?;
-    let mesh = match &case.mesh.refine_region {
-        None => mesh,
-        Some(r) => {
-            let limit = crate::case::MAX_ELEMENTS;
-            let refined = crate::mesh::refine::in_box(&mesh, r.x, r.y, r.levels, limit)
-                .map_err(|e| Error::Mesh {
+    let mesh =
+        match &case.mesh.refine_region {
+            None => mesh,
+            Some(r) => {
+                let limit = crate::case::MAX_ELEMENTS;
+                let refined = crate::mesh::refine::in_box(&mesh, r.x, r.y, r.levels, limit)
+                    .map_err(|e| Error::Mesh {
+                        place: format!("{place}: [mesh] refine_region"),
+                        message: e.to_string(),
+                    })?;
+                refined.mesh.validate().map_err(|e| Error::Mesh {
                     place: format!("{place}: [mesh] refine_region"),
                     message: e.to_string(),
                 })?;
-            refined.mesh.validate().map_err(|e| Error::Mesh {
-                place: format!("{place}: [mesh] refine_region"),
-                message: e.to_string(),
-            })?;
-            refined.mesh
-        }
-    };
+                refined.mesh
+            }
+        };
     whole::check_mesh(case, &mesh, place)?;
     Ok(mesh)
 }

@@ -392,8 +392,8 @@ fn serial_petsc1_and_petsc2_agree_across_a_gap_closed_under_force_control() {
 /// refined mesh on 2 ranks; serial = PETSc 1 = PETSc 2.
 #[test]
 fn serial_petsc1_and_petsc2_agree_on_a_locally_refined_mesh_with_hanging_nodes() {
-    let text = std::fs::read_to_string(common::root().join("cases/punch-plane-stress/case.toml"))
-        .unwrap();
+    let text =
+        std::fs::read_to_string(common::root().join("cases/punch-plane-stress/case.toml")).unwrap();
     assert!(text.contains("\n[mesh]\nrefine = 1\n"));
     let text = text.replacen(
         "\n[mesh]\nrefine = 1\n",

@@ -39,15 +39,14 @@ fn refined_block(plane: &str, x0: f64) -> Model {
 /// case's supports), the constraints and the dof map rebuilt; solved.
 fn solve_prescribed(mut model: Model, exact: impl Fn([f64; 2]) -> [f64; 2]) -> (Model, State) {
     let nodes = model.mesh.nodes.clone();
-    let (lo, hi) = nodes.iter().fold(
-        ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
-        |(l, h), p| {
+    let (lo, hi) = nodes
+        .iter()
+        .fold(([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]), |(l, h), p| {
             (
                 [l[0].min(p[0]), l[1].min(p[1])],
                 [h[0].max(p[0]), h[1].max(p[1])],
             )
-        },
-    );
+        });
     let on = |p: [f64; 2]| p[0] == lo[0] || p[0] == hi[0] || p[1] == lo[1] || p[1] == hi[1];
     model.prescribed = (0..nodes.len())
         .filter(|&n| on(nodes[n]))
@@ -57,7 +56,9 @@ fn solve_prescribed(mut model: Model, exact: impl Fn([f64; 2]) -> [f64; 2]) -> (
         })
         .collect();
     model.prescribed_history = vec![None; model.prescribed.len()];
-    model.set_constraints(model.constraints.list.clone()).unwrap();
+    model
+        .set_constraints(model.constraints.list.clone())
+        .unwrap();
     let r = asperity::driver::solve(&model, &mut Quiet).unwrap_or_else(|e| panic!("{e}"));
     (model, r.final_state)
 }
@@ -95,7 +96,10 @@ fn assert_nodes(model: &Model, st: &State, exact: impl Fn([f64; 2]) -> [f64; 2],
 #[test]
 fn patch_test_passes_across_hanging_nodes_plane_strain_and_axisymmetric() {
     let (e, nu) = (100000.0, 0.25);
-    let (lam, mu) = (e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)), e / (2.0 * (1.0 + nu)));
+    let (lam, mu) = (
+        e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)),
+        e / (2.0 * (1.0 + nu)),
+    );
     // plane strain: any linear field ([`strain_field`])
     let (exx, eyy, gxy) = (2e-3, 1.1e-3, 0.4e-3 - 0.7e-3);
     let want_strain = [
@@ -119,10 +123,16 @@ fn patch_test_passes_across_hanging_nodes_plane_strain_and_axisymmetric() {
     ];
     for (plane, x0, field, want) in cases {
         let model = refined_block(plane, x0);
-        let levels = refine::in_box(&base_mesh(plane, x0), [x0, x0 + 1.5], [0.0, 1.5], 2, 1 << 20)
-            .unwrap()
-            .state
-            .level;
+        let levels = refine::in_box(
+            &base_mesh(plane, x0),
+            [x0, x0 + 1.5],
+            [0.0, 1.5],
+            2,
+            1 << 20,
+        )
+        .unwrap()
+        .state
+        .level;
         assert!((0..=2).all(|l| levels.contains(&l)), "levels {levels:?}");
         hanging(&model.mesh);
         let (model, st) = solve_prescribed(model, field);
@@ -275,8 +285,7 @@ fn closure_keeps_random_refinements_one_irregular() {
             let at = format!("trial {trial} round {round}");
             assert!((area(&r.mesh) - a0).abs() < 1e-10 * a0, "{at}: area");
             let hanging = refine::hanging_nodes(&r.mesh);
-            let slaves: std::collections::HashSet<usize> =
-                hanging.iter().map(|h| h.node).collect();
+            let slaves: std::collections::HashSet<usize> = hanging.iter().map(|h| h.node).collect();
             for h in &hanging {
                 assert!(h.edge.iter().all(|m| !slaves.contains(m)), "{at}: chain");
                 let coarse = r.state.level[h.element];
@@ -290,13 +299,16 @@ fn closure_keeps_random_refinements_one_irregular() {
             max_level = max_level.max(*r.state.level.iter().max().unwrap());
         }
     }
-    assert!(max_level >= 3, "the markings reached level {max_level} only");
+    assert!(
+        max_level >= 3,
+        "the markings reached level {max_level} only"
+    );
 }
 
 /// The case text of `cases/<name>` with `[mesh] refine = 1` replaced.
 fn shipped(name: &str, mesh: &str) -> String {
-    let text = std::fs::read_to_string(common::root().join("cases").join(name).join("case.toml"))
-        .unwrap();
+    let text =
+        std::fs::read_to_string(common::root().join("cases").join(name).join("case.toml")).unwrap();
     assert!(text.contains("\n[mesh]\nrefine = 1\n"));
     text.replacen("\n[mesh]\nrefine = 1\n", &format!("\n[mesh]\n{mesh}\n"), 1)
 }
@@ -326,8 +338,14 @@ fn punch_corner_refined_locally_settles_as_the_fine_uniform_mesh() {
          errors against 4x: local {e_local:.2e}, 2x {e2:.2e}"
     );
     assert!(n_local < n2 && n2 < n4);
-    assert!(e_local < 2e-3, "local refinement off the 4x mesh by {e_local:.2e}");
-    assert!(e_local < e2 / 3.0, "local {e_local:.2e} against 2x {e2:.2e}");
+    assert!(
+        e_local < 2e-3,
+        "local refinement off the 4x mesh by {e_local:.2e}"
+    );
+    assert!(
+        e_local < e2 / 3.0,
+        "local {e_local:.2e} against 2x {e2:.2e}"
+    );
 }
 
 /// A column across a compliant joint (tests/verification/column.rs's) with
@@ -361,7 +379,12 @@ fn a_matching_interface_stays_matching_under_one_sided_refinement() {
     // sides (8); the third once, its upper element refined by the closure (a
     // level-2 child beside it would otherwise hang two levels on its side)
     assert_eq!(joint.edges.len(), 2 * 4 + 2);
-    let bottom = model.mesh.bodies.iter().position(|b| b == "bottom").unwrap();
+    let bottom = model
+        .mesh
+        .bodies
+        .iter()
+        .position(|b| b == "bottom")
+        .unwrap();
     let fine_below = (0..model.mesh.elements.len())
         .filter(|&el| model.mesh.elements[el].body == bottom)
         .count();
