@@ -1,7 +1,8 @@
 //! A locally refined run through the program (`[mesh] refine_region`): the
 //! VTU holds every child element and, at each hanging node, the displacement
 //! its constraint gives; a stopped run resumes to the uninterrupted one, and
-//! a restart of it with another refinement is refused by the fingerprint.
+//! a restart of it with another refinement is refused by the fingerprint;
+//! a Gmsh mesh refines the same way.
 
 use crate::common;
 use asperity::mesh::refine::{edge_shape, hanging_nodes};
@@ -72,4 +73,41 @@ fn hanging_nodes_are_written_constrained_and_a_refined_run_restarts_only_itself(
             );
         }
     }
+}
+
+/// cases/punch-gmsh (the punch's mesh read from Gmsh) with the same
+/// `refine_region` gives the block mesh's refined run: the same dof count
+/// and settlement (to 1e-8, as the unrefined pair in gmsh.rs).
+#[test]
+fn a_gmsh_mesh_refines_as_the_block_mesh() {
+    let dir = common::root().join("cases/punch-gmsh");
+    let text = std::fs::read_to_string(dir.join("case.toml")).unwrap();
+    let line = "file = \"mesh.msh\"";
+    assert!(text.contains(line));
+    let text = text.replacen(
+        line,
+        "refine_region = { x = [15.0, 25.0], y = [-5.0, 5.0], levels = 2 }\nfile = \"mesh.msh\"",
+        1,
+    );
+    let case = common::case_dir("refine-gmsh", &text);
+    std::fs::copy(dir.join("mesh.msh"), case.with_file_name("mesh.msh")).unwrap();
+    let root = common::scratch("refine-gmsh-runs");
+    let (code, err) = common::run_case(&case, &root.join("gmsh"), &[]);
+    assert_eq!(code, 0, "{err}");
+    let block = common::case_dir("refine-block", &punch(2));
+    let (code, err) = common::run_case(&block, &root.join("block"), &[]);
+    assert_eq!(code, 0, "{err}");
+    let json = |d: &str| -> serde_json::Value {
+        serde_json::from_str(&common::read_out(&root.join(d), "summary.json")).unwrap()
+    };
+    let (g, b) = (json("gmsh"), json("block"));
+    assert_eq!(g["dofs"], b["dofs"]);
+    assert_eq!(g["elements"], b["elements"]);
+    let u = |v: &serde_json::Value| v["final"]["center_displacement_mm"].as_f64().unwrap();
+    assert!(
+        ((u(&g) - u(&b)) / u(&b)).abs() < 1e-8,
+        "{} vs {}",
+        u(&g),
+        u(&b)
+    );
 }
