@@ -406,3 +406,55 @@ fn a_matching_interface_stays_matching_under_one_sided_refinement() {
     let got = -st.u[2 * top + 1];
     assert!((got - want).abs() < 1e-9 * want, "{got} vs {want}");
 }
+
+/// `refine::uniform` of an ungraded two-body mesh is the mesh `[mesh]
+/// refine = 2` generates: the same points (to 1e-12), element count, edge
+/// and node sets (sizes) and interface pairs; and it hangs no node.
+#[test]
+fn uniform_split_is_the_generators_doubled_mesh() {
+    let text = |refine: usize| {
+        common::case()
+            .plane("stress")
+            .refine(refine)
+            .block("top", [0.0, 10.0], [3], [0.0, 6.0], [2])
+            .block("bottom", [0.0, 10.0], [3], [-9.0, 0.0], [3])
+            .interface("joint", "top", "bottom")
+            .material("top", 70000.0, 0.3)
+            .material("bottom", 70000.0, 0.3)
+            .law("joint", "power", 0.002, 0.5)
+            .ux("top.left", 0.0)
+            .ux("bottom.left", 0.0)
+            .uy("bottom.bottom", 0.0)
+            .pressure("top.top", 10.0)
+            .no_vtu()
+            .build()
+    };
+    let one = common::model(&text(1)).mesh;
+    let two = common::model(&text(2)).mesh;
+    let split = refine::uniform(&one).unwrap();
+    assert!(split.hanging.is_empty());
+    let m = &split.mesh;
+    assert_eq!(m.elements.len(), two.elements.len());
+    assert_eq!(m.nodes.len(), two.nodes.len());
+    let sorted = |mesh: &Mesh| {
+        let mut p = mesh.nodes.clone();
+        // by position rounded to 1e-9 mm (x of a generated and a mapped
+        // point may differ in the last bit)
+        p.sort_by_key(|a| ((a[0] * 1e9).round() as i64, (a[1] * 1e9).round() as i64));
+        p
+    };
+    for (a, b) in sorted(m).iter().zip(sorted(&two)) {
+        assert!(
+            (a[0] - b[0]).abs() < 1e-12 && (a[1] - b[1]).abs() < 1e-12,
+            "{a:?} vs {b:?}"
+        );
+    }
+    for (name, edges) in &two.edge_sets {
+        assert_eq!(m.edge_sets[name].len(), edges.len(), "edge set {name}");
+    }
+    for (name, nodes) in &two.node_sets {
+        assert_eq!(m.node_sets[name].len(), nodes.len(), "node set {name}");
+    }
+    assert_eq!(m.interfaces[0].edges.len(), two.interfaces[0].edges.len());
+    m.validate().unwrap();
+}
