@@ -458,3 +458,55 @@ fn uniform_split_is_the_generators_doubled_mesh() {
     assert_eq!(m.interfaces[0].edges.len(), two.interfaces[0].edges.len());
     m.validate().unwrap();
 }
+
+/// With twist (3 dofs a node) the constraint ties u_θ too: elastic torsion
+/// u_θ = k r z with u_r = a r, u_z = c z (bilinear: in the Q8 space, in
+/// equilibrium: τ_zθ = G k r, τ_rθ = 0) prescribed on the boundary of the
+/// locally refined block is the solution at every node, hanging ones
+/// included, to 1e-11.
+#[test]
+fn twist_ties_the_third_component_of_a_hanging_node() {
+    let text = common::case()
+        .plane("axisymmetric")
+        .with("twist", true)
+        .raw(&region([1.0, 2.5], [0.0, 1.5], 2))
+        .block("b", [1.0, 5.0], [4], [0.0, 4.0], [4])
+        .rx([1.4])
+        .material("b", 100000.0, 0.25)
+        .fixed("b.bottom")
+        .with("rotation", 0.0)
+        .uy("b.top", -0.01)
+        .solver("load_factors = [1.0]")
+        .tolerances(1e-12, 1e-14)
+        .no_vtu()
+        .build();
+    let mut model = common::model(&text);
+    let nd = model.mesh.node_dofs;
+    assert_eq!(nd.per_node(), 3);
+    hanging(&model.mesh);
+    let field = |p: [f64; 2]| [1.5e-3 * p[0], -0.8e-3 * p[1], 2e-3 * p[0] * p[1]];
+    let nodes = model.mesh.nodes.clone();
+    let on = |p: [f64; 2]| p[0] == 1.0 || p[0] == 5.0 || p[1] == 0.0 || p[1] == 4.0;
+    model.prescribed = (0..nodes.len())
+        .filter(|&n| on(nodes[n]))
+        .flat_map(|n| (0..3).map(move |c| (n, c)))
+        .map(|(n, c)| (nd.dof(n, c), field(nodes[n])[c]))
+        .collect();
+    model.prescribed_history = vec![None; model.prescribed.len()];
+    model
+        .set_constraints(model.constraints.list.clone())
+        .unwrap();
+    let st = asperity::driver::solve(&model, &mut Quiet)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .final_state;
+    let scale = 2e-3 * 5.0 * 4.0;
+    for (n, &p) in nodes.iter().enumerate() {
+        for (c, want) in field(p).into_iter().enumerate() {
+            let got = st.u[nd.dof(n, c)];
+            assert!(
+                (got - want).abs() < 1e-11 * scale,
+                "node {n} at {p:?}: u{c} = {got:e}, exact {want:e}"
+            );
+        }
+    }
+}
