@@ -13,6 +13,7 @@ use crate::interface::InterfaceModel;
 use crate::material::{Plane, VonMises};
 use crate::mesh::{blocks, gmsh, Mesh, NodeDofs};
 
+mod hanging;
 mod supports;
 use supports::check_supports;
 
@@ -107,6 +108,7 @@ impl Model {
         if case.model.twist {
             mesh.node_dofs = NodeDofs::TWIST;
         }
+        let hanging_nodes = crate::mesh::refine::hanging_nodes(&mesh);
         let mut sections = crate::pretension::cut(&case, &mut mesh, &place)?;
         let plane = case.model.plane;
         let thickness = case.model.thickness.value();
@@ -147,17 +149,22 @@ impl Model {
             &lock_end,
         );
         let n_dofs = crate::pretension::total_dofs(&case, &mesh);
-        let constraints = crate::constraint::Constraints::new(
-            crate::pretension::constraints(
-                mesh.node_dofs,
-                &sections,
-                &prescribed,
-                &loads.prescribed_history,
-                &place,
-            )?,
-            n_dofs,
-        )
-        .map_err(|m| Error::input(&place, m))?;
+        let mut list = crate::pretension::constraints(
+            mesh.node_dofs,
+            &sections,
+            &prescribed,
+            &loads.prescribed_history,
+            &place,
+        )?;
+        list.extend(hanging::constraints(
+            &mesh,
+            &hanging_nodes,
+            &prescribed,
+            &sections,
+            &place,
+        )?);
+        let constraints = crate::constraint::Constraints::new(list, n_dofs)
+            .map_err(|m| Error::input(&place, m))?;
         crate::loads::check_acting(&loads.acting, &mesh, &prescribed, section.axisymmetric)?;
         check_loaded(&f_ext, &loads, &prescribed, &interfaces, &place)?;
         check_supports(
@@ -549,6 +556,23 @@ fn make_mesh(case: &Case, place: &str) -> Result<Mesh> {
         place: place.to_string(),
         message: e.to_string(),
     })?;
+    let mesh =
+        match &case.mesh.refine_region {
+            None => mesh,
+            Some(r) => {
+                let limit = crate::case::MAX_ELEMENTS;
+                let refined = crate::mesh::refine::in_box(&mesh, r.x, r.y, r.levels, limit)
+                    .map_err(|e| Error::Mesh {
+                        place: format!("{place}: [mesh] refine_region"),
+                        message: e.to_string(),
+                    })?;
+                refined.mesh.validate().map_err(|e| Error::Mesh {
+                    place: format!("{place}: [mesh] refine_region"),
+                    message: e.to_string(),
+                })?;
+                refined.mesh
+            }
+        };
     whole::check_mesh(case, &mesh, place)?;
     Ok(mesh)
 }

@@ -22,6 +22,7 @@ mod links;
 mod output_schema;
 mod output_writer;
 mod pretension;
+mod refine;
 mod restart;
 mod robust;
 mod tables;

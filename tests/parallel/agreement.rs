@@ -400,6 +400,24 @@ fn serial_petsc1_and_petsc2_agree_across_a_gap_closed_under_force_control() {
     compare("punch-gap", "1");
 }
 
+/// A locally refined mesh (`[mesh] refine_region` around the punch corner of
+/// cases/punch-plane-stress, two levels): its hanging-node constraints
+/// eliminated through the PETSc assembly's DOF map, METIS partitioning the
+/// refined mesh on 2 ranks; serial = PETSc 1 = PETSc 2.
+#[test]
+fn serial_petsc1_and_petsc2_agree_on_a_locally_refined_mesh_with_hanging_nodes() {
+    let text =
+        std::fs::read_to_string(common::root().join("cases/punch-plane-stress/case.toml")).unwrap();
+    assert!(text.contains("\n[mesh]\nrefine = 1\n"));
+    let text = text.replacen(
+        "\n[mesh]\nrefine = 1\n",
+        "\n[mesh]\nrefine = 1\nrefine_region = { x = [15.0, 25.0], y = [-5.0, 5.0], levels = 2 }\n",
+        1,
+    );
+    let case = common::case_dir("parallel-hanging-case", &text);
+    compare_on(case.to_str().unwrap(), "1", &[1, 2]);
+}
+
 /// The line search of full Newton (`[solver] line_search = true`, issue 29)
 /// on the rounded punch near its limit load, where it cuts steps: its
 /// decisions are collective, and it sits in `Problem::correct`, which SNES

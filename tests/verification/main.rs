@@ -20,6 +20,7 @@ mod factorization;
 mod friction;
 mod gap;
 mod gold;
+mod hanging;
 mod hertz;
 mod histories;
 mod joints;
