@@ -110,12 +110,19 @@ pub struct Sweep {
 }
 
 /// Per cycle of `cycles`, whether it dissipates ([`DISSIPATES`]) with
-/// F_a > 0: the cycles a logarithmic plot and the fit can take.
+/// F_a > 0 and a force-slip loop (stored energy above round-off,
+/// [`Cycle::floor`]): the cycles a logarithmic plot and the fit can take. A
+/// loop driven by a torque with the axial force held (a twisting model)
+/// has F_a at round-off: it would fit D against noise.
 pub fn dissipating(cycles: &[Cycle]) -> Vec<bool> {
     let top = cycles.iter().fold(0.0f64, |m, c| m.max(c.dissipation));
     cycles
         .iter()
-        .map(|c| c.dissipation > (DISSIPATES * top).max(c.floor) && c.force_amplitude() > 0.0)
+        .map(|c| {
+            c.dissipation > (DISSIPATES * top).max(c.floor)
+                && c.force_amplitude() > 0.0
+                && c.stored_energy() > c.floor
+        })
         .collect()
 }
 
@@ -160,14 +167,27 @@ pub fn sweep(cycles: &[Cycle]) -> Sweep {
 
 pub const DAMPING_HEADER: &str = "interface,cycle,block,first_in_block,last_in_block,in_fit,start_time,end_time,force_amplitude_n,slip_amplitude_mm,dissipation_nmm,stored_energy_nmm,loss_factor\n";
 
+/// The columns a twisting model's `damping.csv` adds at the end of a row:
+/// the torque-twist loop's amplitudes, stored energy and loss factor.
+pub const DAMPING_TWIST_COLUMNS: &str =
+    ",torque_amplitude_nmm,twist_amplitude_rad,torsional_stored_energy_nmm,torsional_loss_factor";
+
 /// `damping.csv`: one row per closed load cycle and interface (the header
 /// alone when there is none), the numbers of `cycles.csv` with the sweep's
 /// blocks; an empty loss factor where the stored energy is not positive.
+/// A twisting model's rows end with [`DAMPING_TWIST_COLUMNS`]
+/// ([`Cycle::torsional_loss_factor`]).
 pub fn damping_csv(model: &Model, cycles: &[Vec<Cycle>], sweeps: &[Sweep]) -> String {
+    let twist = model.node_dofs().twist();
     let mut s = String::from(DAMPING_HEADER);
+    if twist {
+        s.pop();
+        s += DAMPING_TWIST_COLUMNS;
+        s.push('\n');
+    }
     for ((im, list), sw) in model.interfaces.iter().zip(cycles).zip(sweeps) {
         for (k, (c, r)) in list.iter().zip(&sw.rows).enumerate() {
-            let _ = writeln!(
+            let _ = write!(
                 s,
                 "{},{},{},{},{},{},{:.9},{:.9},{:.9e},{:.9e},{:.9e},{:.9e},{}",
                 csv_field(&im.name),
@@ -184,6 +204,17 @@ pub fn damping_csv(model: &Model, cycles: &[Vec<Cycle>], sweeps: &[Sweep]) -> St
                 c.stored_energy(),
                 opt(c.loss_factor()),
             );
+            if twist {
+                let _ = write!(
+                    s,
+                    ",{:.9e},{:.9e},{:.9e},{}",
+                    c.torque_amplitude(),
+                    c.twist_amplitude(),
+                    c.torsional_stored_energy(),
+                    opt(c.torsional_loss_factor()),
+                );
+            }
+            s.push('\n');
         }
     }
     s

@@ -17,6 +17,7 @@ fn cycle(f_a: f64, u_a: f64, d: f64) -> Cycle {
         torque_range: [0.0; 2],
         twist_range: [0.0; 2],
         torsional_stiffness: None,
+        tip_twist: [0.0; 2],
     }
 }
 
