@@ -126,15 +126,27 @@ pub fn dissipating(cycles: &[Cycle]) -> Vec<bool> {
         .collect()
 }
 
+/// The amplitude a cycle's block is told by: F_a when the cycle has a
+/// force-slip loop (U above [`Cycle::floor`]), else the torque amplitude T_a
+/// (a torque cycled under a held axial force, whose F_a is round-off; 0
+/// without twist, so loop-less cycles of a plane model share a block).
+fn block_amplitude(c: &Cycle) -> f64 {
+    if c.stored_energy() > c.floor {
+        c.force_amplitude()
+    } else {
+        c.torque_amplitude()
+    }
+}
+
 /// The amplitude sweep of one interface's cycles: the blocks (a cycle joins
-/// the block of the one before when its F_a is the same as the block's first
-/// within [`SAME_AMPLITUDE`]) and the [`power_fit`] of D against F_a over the
+/// the block of the one before when its amplitude ([`block_amplitude`]) is
+/// the same as the block's first within [`SAME_AMPLITUDE`]) and the [`power_fit`] of D against F_a over the
 /// last cycle of each block that dissipates ([`dissipating`]).
 pub fn sweep(cycles: &[Cycle]) -> Sweep {
     let mut rows: Vec<SweepRow> = Vec::with_capacity(cycles.len());
     let mut block_start = 0;
     for (k, c) in cycles.iter().enumerate() {
-        let first = k == 0 || !same(c.force_amplitude(), cycles[block_start].force_amplitude());
+        let first = k == 0 || !same(block_amplitude(c), block_amplitude(&cycles[block_start]));
         if first {
             block_start = k;
         }
