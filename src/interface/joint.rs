@@ -434,17 +434,20 @@ pub struct Cycle {
     /// at that of the largest (the increments the secant stiffness uses).
     pub tip_slip: [f64; 2],
     /// Energies at or below this are the solver's round-off, N·mm: 10⁻¹²
-    /// of the run's largest max |F_T| × (ū_T range) over every cycle of
-    /// every interface ([`cycles`] sets it; 0 for a cycle alone).
+    /// of the run's largest max |F_T| × (ū_T range), or with twist
+    /// max |T| × (φ̄ range), over every cycle of every interface ([`cycles`]
+    /// sets it; 0 for a cycle alone).
     pub floor: f64,
     /// With twist: the torque-twist loop, as the force-slip one: smallest
     /// and largest T (N·mm) and φ̄ (rad) over the cycle's increments, and
     /// the torsional secant stiffness ΔT/Δφ̄ between the increments of the
-    /// largest and smallest T (N·mm/rad; None when they have the same φ̄).
+    /// largest and smallest T (N·mm/rad; None when they have the same φ̄),
+    /// and φ̄ at those two increments (smallest T first: the loop's tips).
     /// Zero and None without twist.
     pub torque_range: [f64; 2],
     pub twist_range: [f64; 2],
     pub torsional_stiffness: Option<f64>,
+    pub tip_twist: [f64; 2],
 }
 
 impl Cycle {
@@ -473,7 +476,40 @@ impl Cycle {
     /// Also None when D or U is round-off ([`Cycle::floor`]: an interface
     /// that carries no shear has no loss factor, not a negative one).
     pub fn loss_factor(&self) -> Option<f64> {
-        let u = self.stored_energy();
+        self.ratio(self.stored_energy())
+    }
+
+    /// With twist: the torque amplitude T_a = (T_hi − T_lo) / 2, N·mm.
+    pub fn torque_amplitude(&self) -> f64 {
+        0.5 * (self.torque_range[1] - self.torque_range[0])
+    }
+
+    /// With twist: the twist amplitude φ_a = (φ̄_hi − φ̄_lo) / 2 at the
+    /// torque-twist loop's tips, rad.
+    pub fn twist_amplitude(&self) -> f64 {
+        0.5 * (self.tip_twist[1] - self.tip_twist[0])
+    }
+
+    /// With twist: the torque-twist loop's stored energy U_θ = ½ T_a φ_a =
+    /// ΔT Δφ̄ / 8, N·mm (T·φ is work as F·u is: the energy of a torsional
+    /// spring of the secant stiffness T_a / φ_a turned to the amplitude,
+    /// as [`Cycle::stored_energy`] for the force-slip loop).
+    pub fn torsional_stored_energy(&self) -> f64 {
+        0.5 * self.torque_amplitude() * self.twist_amplitude()
+    }
+
+    /// With twist: the torsional loss factor η_θ = D / (2π U_θ) (Ungar &
+    /// Kerwin 1962, with the torque-twist loop's stored energy
+    /// [`Cycle::torsional_stored_energy`]). D is the whole dissipation of the
+    /// cycle, the slip in both directions: for a loop driven by a torque (an
+    /// axial force held or absent) it is the torsional loop's. None as
+    /// [`Cycle::loss_factor`]: no loop, or round-off energies.
+    pub fn torsional_loss_factor(&self) -> Option<f64> {
+        self.ratio(self.torsional_stored_energy())
+    }
+
+    /// D / (2π u) when u and D are above round-off ([`Cycle::floor`]).
+    fn ratio(&self, u: f64) -> Option<f64> {
         (u > self.floor && u > 0.0 && self.dissipation.abs() > self.floor)
             .then(|| self.dissipation / (2.0 * std::f64::consts::PI * u))
     }
@@ -549,6 +585,7 @@ pub fn cycle_of(rows: &[(f64, JointMeasures)], (i, j): (usize, usize)) -> Cycle 
             twist.fold(f64::NEG_INFINITY, f64::max),
         ],
         torsional_stiffness: (dphi != 0.0).then(|| (t_hi.torque - t_lo.torque) / dphi),
+        tip_twist: [t_lo.twist, t_hi.twist],
         start_increment: i + 1,
         end_increment: j + 1,
         start_time: rows[i].0,
@@ -605,9 +642,12 @@ pub fn cycles(
             windows.iter().map(|&w| cycle_of(&rows, w)).collect()
         })
         .collect();
+    // the torque-twist loop's energies too (zero without twist)
     let scale = all.iter().flatten().fold(0.0f64, |m, c| {
         let f = c.force_range[0].abs().max(c.force_range[1].abs());
+        let t = c.torque_range[0].abs().max(c.torque_range[1].abs());
         m.max(f * (c.slip_range[1] - c.slip_range[0]))
+            .max(t * (c.twist_range[1] - c.twist_range[0]))
     });
     for c in all.iter_mut().flatten() {
         c.floor = 1e-12 * scale;

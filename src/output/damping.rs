@@ -110,24 +110,43 @@ pub struct Sweep {
 }
 
 /// Per cycle of `cycles`, whether it dissipates ([`DISSIPATES`]) with
-/// F_a > 0: the cycles a logarithmic plot and the fit can take.
+/// F_a > 0 and a force-slip loop (stored energy above round-off,
+/// [`Cycle::floor`]): the cycles a logarithmic plot and the fit can take. A
+/// loop driven by a torque with the axial force held (a twisting model)
+/// has F_a at round-off: it would fit D against noise.
 pub fn dissipating(cycles: &[Cycle]) -> Vec<bool> {
     let top = cycles.iter().fold(0.0f64, |m, c| m.max(c.dissipation));
     cycles
         .iter()
-        .map(|c| c.dissipation > (DISSIPATES * top).max(c.floor) && c.force_amplitude() > 0.0)
+        .map(|c| {
+            c.dissipation > (DISSIPATES * top).max(c.floor)
+                && c.force_amplitude() > 0.0
+                && c.stored_energy() > c.floor
+        })
         .collect()
 }
 
+/// The amplitude a cycle's block is told by: F_a when the cycle has a
+/// force-slip loop (U above [`Cycle::floor`]), else the torque amplitude T_a
+/// (a torque cycled under a held axial force, whose F_a is round-off; 0
+/// without twist, so loop-less cycles of a plane model share a block).
+fn block_amplitude(c: &Cycle) -> f64 {
+    if c.stored_energy() > c.floor {
+        c.force_amplitude()
+    } else {
+        c.torque_amplitude()
+    }
+}
+
 /// The amplitude sweep of one interface's cycles: the blocks (a cycle joins
-/// the block of the one before when its F_a is the same as the block's first
-/// within [`SAME_AMPLITUDE`]) and the [`power_fit`] of D against F_a over the
+/// the block of the one before when its amplitude ([`block_amplitude`]) is
+/// the same as the block's first within [`SAME_AMPLITUDE`]) and the [`power_fit`] of D against F_a over the
 /// last cycle of each block that dissipates ([`dissipating`]).
 pub fn sweep(cycles: &[Cycle]) -> Sweep {
     let mut rows: Vec<SweepRow> = Vec::with_capacity(cycles.len());
     let mut block_start = 0;
     for (k, c) in cycles.iter().enumerate() {
-        let first = k == 0 || !same(c.force_amplitude(), cycles[block_start].force_amplitude());
+        let first = k == 0 || !same(block_amplitude(c), block_amplitude(&cycles[block_start]));
         if first {
             block_start = k;
         }
@@ -160,14 +179,27 @@ pub fn sweep(cycles: &[Cycle]) -> Sweep {
 
 pub const DAMPING_HEADER: &str = "interface,cycle,block,first_in_block,last_in_block,in_fit,start_time,end_time,force_amplitude_n,slip_amplitude_mm,dissipation_nmm,stored_energy_nmm,loss_factor\n";
 
+/// The columns a twisting model's `damping.csv` adds at the end of a row:
+/// the torque-twist loop's amplitudes, stored energy and loss factor.
+pub const DAMPING_TWIST_COLUMNS: &str =
+    ",torque_amplitude_nmm,twist_amplitude_rad,torsional_stored_energy_nmm,torsional_loss_factor";
+
 /// `damping.csv`: one row per closed load cycle and interface (the header
 /// alone when there is none), the numbers of `cycles.csv` with the sweep's
 /// blocks; an empty loss factor where the stored energy is not positive.
+/// A twisting model's rows end with [`DAMPING_TWIST_COLUMNS`]
+/// ([`Cycle::torsional_loss_factor`]).
 pub fn damping_csv(model: &Model, cycles: &[Vec<Cycle>], sweeps: &[Sweep]) -> String {
+    let twist = model.node_dofs().twist();
     let mut s = String::from(DAMPING_HEADER);
+    if twist {
+        s.pop();
+        s += DAMPING_TWIST_COLUMNS;
+        s.push('\n');
+    }
     for ((im, list), sw) in model.interfaces.iter().zip(cycles).zip(sweeps) {
         for (k, (c, r)) in list.iter().zip(&sw.rows).enumerate() {
-            let _ = writeln!(
+            let _ = write!(
                 s,
                 "{},{},{},{},{},{},{:.9},{:.9},{:.9e},{:.9e},{:.9e},{:.9e},{}",
                 csv_field(&im.name),
@@ -184,6 +216,17 @@ pub fn damping_csv(model: &Model, cycles: &[Vec<Cycle>], sweeps: &[Sweep]) -> St
                 c.stored_energy(),
                 opt(c.loss_factor()),
             );
+            if twist {
+                let _ = write!(
+                    s,
+                    ",{:.9e},{:.9e},{:.9e},{}",
+                    c.torque_amplitude(),
+                    c.twist_amplitude(),
+                    c.torsional_stored_energy(),
+                    opt(c.torsional_loss_factor()),
+                );
+            }
+            s.push('\n');
         }
     }
     s

@@ -1,7 +1,8 @@
 //! The joint outputs of a run ([`crate::interface::joint`]): `joints.csv`
 //! (per increment and interface), `cycles.csv` (per closed load cycle and
-//! interface), the `joints` entry of `summary.json` and the hysteresis
-//! figure (tangential force against slip) of a run with a cycle.
+//! interface), the `joints` entry of `summary.json`, the hysteresis
+//! figure (tangential force against slip) of a run with a cycle and, with
+//! twist, the torque-twist figure.
 
 use crate::error::Result;
 use crate::interface::joint::{self, Cycle, JointMeasures};
@@ -87,7 +88,7 @@ pub const CYCLES_HEADER: &str = "interface,cycle,start_increment,end_increment,s
 
 /// The columns a twisting model's `cycles.csv` adds at the end of a row.
 pub const CYCLES_TWIST_COLUMNS: &str =
-    ",torque_min_nmm,torque_max_nmm,twist_min_rad,twist_max_rad,torsional_stiffness_nmm_per_rad";
+    ",torque_min_nmm,torque_max_nmm,twist_min_rad,twist_max_rad,torsional_stiffness_nmm_per_rad,torque_amplitude_nmm,twist_amplitude_rad,torsional_stored_energy_nmm,torsional_loss_factor";
 
 /// `cycles.csv`: one row per closed load cycle and interface (the header
 /// alone when there is none); an empty stiffness where it is undefined and
@@ -95,7 +96,9 @@ pub const CYCLES_TWIST_COLUMNS: &str =
 /// amplitude, stored energy and loss factor ([`Cycle::loss_factor`]) were
 /// added at the end of the row: readers of the older columns keep working.
 /// A twisting model's rows end with the torque-twist loop
-/// ([`CYCLES_TWIST_COLUMNS`]).
+/// ([`CYCLES_TWIST_COLUMNS`]): its ranges, torsional secant stiffness,
+/// amplitudes, stored energy and torsional loss factor
+/// ([`Cycle::torsional_loss_factor`]).
 pub fn cycles_csv(model: &Model, cycles: &[Vec<Cycle>]) -> String {
     let twist = model.node_dofs().twist();
     let mut s = String::from(CYCLES_HEADER);
@@ -130,12 +133,16 @@ pub fn cycles_csv(model: &Model, cycles: &[Vec<Cycle>]) -> String {
             if twist {
                 let _ = write!(
                     s,
-                    ",{:.9e},{:.9e},{:.9e},{:.9e},{}",
+                    ",{:.9e},{:.9e},{:.9e},{:.9e},{},{:.9e},{:.9e},{:.9e},{}",
                     c.torque_range[0],
                     c.torque_range[1],
                     c.twist_range[0],
                     c.twist_range[1],
-                    opt(c.torsional_stiffness)
+                    opt(c.torsional_stiffness),
+                    c.torque_amplitude(),
+                    c.twist_amplitude(),
+                    c.torsional_stored_energy(),
+                    opt(c.torsional_loss_factor()),
                 );
             }
             s.push('\n');
@@ -176,6 +183,10 @@ pub fn cycle_json(number: usize, c: &Cycle, twist: bool) -> Value {
         v["twist_min_rad"] = json!(c.twist_range[0]);
         v["twist_max_rad"] = json!(c.twist_range[1]);
         v["torsional_stiffness_nmm_per_rad"] = json!(c.torsional_stiffness);
+        v["torque_amplitude_nmm"] = json!(c.torque_amplitude());
+        v["twist_amplitude_rad"] = json!(c.twist_amplitude());
+        v["torsional_stored_energy_nmm"] = json!(c.torsional_stored_energy());
+        v["torsional_loss_factor"] = json!(c.torsional_loss_factor());
     }
     v
 }
@@ -287,4 +298,66 @@ pub fn hysteresis(
         ..Chart::default()
     };
     save(&chart, &dir.join("hysteresis"), load_font())
+}
+
+/// The torque-twist chart of a twisting run: T (kN·mm) against φ̄ (mrad)
+/// from the start of the run, one line per interface with a closed cycle.
+/// None without twist or without a cycle.
+pub fn torsion_chart(
+    model: &Model,
+    r: &RunResult,
+    cycles: &[Vec<Cycle>],
+) -> Option<crate::study::plot::Chart> {
+    use crate::study::plot::{Chart, Series};
+    if !model.node_dofs().twist() {
+        return None;
+    }
+    let series: Vec<Series> =
+        model
+            .interfaces
+            .iter()
+            .enumerate()
+            .filter(|(k, _)| cycles.get(*k).is_some_and(|c| !c.is_empty()))
+            .map(|(k, im)| {
+                let c = &cycles[k];
+                let eta = c.last().and_then(Cycle::torsional_loss_factor);
+                Series {
+                    label: format!(
+                        "{} ({} closed cycle{}{})",
+                        im.name,
+                        c.len(),
+                        if c.len() == 1 { "" } else { "s" },
+                        eta.map_or(String::new(), |e| format!(", last η_θ = {e:.3}"))
+                    ),
+                    points: std::iter::once((0.0, 0.0))
+                        .chain(r.increments.iter().filter_map(|i| {
+                            i.joints.get(k).map(|m| (1e3 * m.twist, 1e-3 * m.torque))
+                        }))
+                        .collect(),
+                }
+            })
+            .collect();
+    (!series.is_empty()).then(|| Chart {
+        title: format!("{}: torque against twist", model.name),
+        x_label: "φ̄: mean twist of A relative to B at the interface (mrad)".into(),
+        y_label: "T: torque on A the joint resists (kN·mm)".into(),
+        series,
+        ..Chart::default()
+    })
+}
+
+/// The torque-twist figure `torsion.svg` / `.png` (with the points in
+/// `torsion.csv`) in `dir`: [`torsion_chart`]. Nothing without twist or
+/// without a closed cycle; the CSV alone when no font is found.
+pub fn torsion(
+    model: &Model,
+    r: &RunResult,
+    cycles: &[Vec<Cycle>],
+    dir: &Path,
+) -> Result<Vec<PathBuf>> {
+    use crate::study::plot::{load_font, save};
+    match torsion_chart(model, r, cycles) {
+        Some(chart) => save(&chart, &dir.join("torsion"), load_font()),
+        None => Ok(Vec::new()),
+    }
 }

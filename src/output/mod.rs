@@ -140,6 +140,7 @@ impl Writer {
         self.write("joints.csv", &joints::joints_csv(model, result))?;
         self.write("cycles.csv", &joints::cycles_csv(model, &cycles))?;
         joints::hysteresis(model, result, &cycles, &self.tmp_dir)?;
+        joints::torsion(model, result, &cycles, &self.tmp_dir)?;
         let sweeps = damping::sweeps(&cycles);
         self.write(
             "damping.csv",

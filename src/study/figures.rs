@@ -1,5 +1,6 @@
 //! `asperity figures`: the paper's Figs 5, 6a/6b, 7a/7b/7c and 8 regenerated
-//! from our runs of the shipped cases, with the paper's quoted numbers marked.
+//! from our runs of the shipped cases, with the paper's quoted numbers marked,
+//! and the torque-twist loop of `cases/shrink-fit-combined` (docs/joints.md).
 
 use super::plot::{load_font, save, Chart, Series};
 use crate::case::Case;
@@ -242,6 +243,18 @@ fn fig8(cases: &Path, out: &Path, pictures: bool) -> Result<Vec<PathBuf>> {
     save(&c, &out.join("fig8-deflection-hardening"), pictures)
 }
 
+/// The torque-twist loop of the shipped combined shrink fit (pushed, then
+/// turned back and forth; docs/joints.md): the run's own torsion chart
+/// ([`crate::output::joints::torsion_chart`]).
+fn torque_twist(cases: &Path, out: &Path, pictures: bool) -> Result<Vec<PathBuf>> {
+    let model = Model::build(load(cases, "shrink-fit-combined")?)?;
+    let r = crate::driver::solve(&model, &mut Capture::default())?;
+    let cycles = crate::output::joints::run_cycles(&model, &r);
+    let chart = crate::output::joints::torsion_chart(&model, &r, &cycles)
+        .ok_or_else(|| Error::Study("shrink-fit-combined: no torque-twist cycle".into()))?;
+    save(&chart, &out.join("torque-twist-loop"), pictures)
+}
+
 /// Writes every figure into `out`; returns the files written.
 pub fn figures(cases: &Path, out: &Path) -> Result<Vec<PathBuf>> {
     std::fs::create_dir_all(out).map_err(|e| Error::io(out, e))?;
@@ -256,5 +269,6 @@ pub fn figures(cases: &Path, out: &Path) -> Result<Vec<PathBuf>> {
     files.extend(fig6(out, &stress.1, &strain.1, pictures)?);
     files.extend(fig7(cases, out, pictures)?);
     files.extend(fig8(cases, out, pictures)?);
+    files.extend(torque_twist(cases, out, pictures)?);
     Ok(files)
 }

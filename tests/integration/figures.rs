@@ -1,6 +1,7 @@
 //! `asperity figures` produces well-formed data (the pictures' pixels are not
-//! checked), and Fig. 8 shows the paper's trend: the foundation settles less as
-//! the hardening modulus grows.
+//! checked), Fig. 8 shows the paper's trend: the foundation settles less as
+//! the hardening modulus grows, and the combined shrink fit's torque-twist
+//! loop is drawn.
 
 use crate::common;
 use asperity::study::figures::figures;
@@ -57,5 +58,23 @@ fn figures_write_well_formed_data_and_fig_8_hardens() {
     assert!(
         seq.windows(2).all(|w| w[1] > w[0]),
         "settlements {seq:?} (negative = down)"
+    );
+    // the combined shrink fit's torque-twist loop (docs/joints.md): one
+    // interface, from the origin through three cycles turned ±0.3 mrad at
+    // the drive, its torque tips opposite and within 1 % of each other
+    let csv = out.join("torque-twist-loop.csv");
+    assert!(files.contains(&csv), "torque-twist-loop.csv not reported");
+    let r = rows(&csv);
+    assert!(r.len() > 100, "{} rows", r.len());
+    assert!(r
+        .iter()
+        .all(|(s, x, y)| s.starts_with("fit (3 closed cycles") && x.is_finite() && y.is_finite()));
+    assert_eq!((r[0].1, r[0].2), (0.0, 0.0));
+    let (lo, hi) = r
+        .iter()
+        .fold((0.0f64, 0.0f64), |(a, b), p| (a.min(p.2), b.max(p.2)));
+    assert!(
+        lo < 0.0 && (hi + lo).abs() < 0.01 * hi,
+        "torque tips {lo}, {hi} kN·mm"
     );
 }

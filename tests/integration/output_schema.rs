@@ -171,6 +171,7 @@ fn summary_json_matches_the_documented_schema() {
             torque_range: [-5e5, 5e5],
             twist_range: [-1e-3, 1e-3],
             torsional_stiffness: Some(5e8),
+            tip_twist: [-8e-4, 1e-3],
         },
         // with twist: the torque-twist loop's keys too
         true,
@@ -205,6 +206,7 @@ fn summary_json_matches_the_documented_schema() {
         torque_range: [0.0; 2],
         twist_range: [0.0; 2],
         torsional_stiffness: None,
+        tip_twist: [0.0; 2],
     };
     let sweep = asperity::output::damping::sweep(&[sweep_of(10.0, 0.1), sweep_of(20.0, 0.6)]);
     assert!(sweep.fit.is_some());

@@ -78,7 +78,7 @@ const CHECKED: [&str; 14] = [
 /// The joint cases (issue 18) also check their `joints` array: per interface
 /// the final forces, approach, slip, status measures, dissipation and work,
 /// and every closed load cycle. The older cases keep the fields above only.
-const JOINT_CASES: [&str; 9] = [
+const JOINT_CASES: [&str; 10] = [
     "bolted-joint",
     "slideway-damping",
     "shrink-fit",
@@ -88,6 +88,7 @@ const JOINT_CASES: [&str; 9] = [
     "hertz-cylinder",
     "cattaneo-mindlin",
     "shrink-fit-torque",
+    "shrink-fit-combined",
 ];
 
 /// The damping cases (issue 28) also check the amplitude sweep's fit.
@@ -126,7 +127,7 @@ struct Gold {
     prefix: Option<&'static str>,
 }
 
-const CASES: [Gold; 20] = [
+const CASES: [Gold; 21] = [
     Gold {
         case: "bolted-joint",
         args: &[],
@@ -224,6 +225,11 @@ const CASES: [Gold; 20] = [
     },
     Gold {
         case: "shrink-fit-torque",
+        args: &[],
+        prefix: None,
+    },
+    Gold {
+        case: "shrink-fit-combined",
         args: &[],
         prefix: None,
     },
@@ -613,6 +619,11 @@ fn bolted_flange() {
 #[test]
 fn shrink_fit_torque() {
     check("shrink-fit-torque");
+}
+
+#[test]
+fn shrink_fit_combined() {
+    check("shrink-fit-combined");
 }
 
 #[test]

@@ -340,3 +340,70 @@ fn a_cycle_reads_its_torque_twist_loop() {
         .collect();
     assert_eq!(cycle_of(&flat, (0, 2)).torsional_stiffness, None);
 }
+
+/// The torque-twist loop's stored energy and torsional loss factor against
+/// the closed form of a Jenkins element (a torsional spring k_θ in series with
+/// a slider at ±T_s) turned between ±φ_a: a parallelogram of area
+/// D = 4 T_s (φ_a − T_s / k_θ), U_θ = ½ T_s φ_a, so
+/// η_θ = D / (2π U_θ) = 4 (1 − T_s / (k_θ φ_a)) / π.
+#[test]
+fn a_jenkins_torque_twist_loop_has_the_closed_form_torsional_loss_factor() {
+    // stick slope k, slides at ±t_s, turned between ±phi_a (phi_a > t_s / k)
+    let (k, t_s, phi_a) = (2.0e9, 3.0e5, 4.0e-4);
+    let pts = [
+        (phi_a, t_s),
+        (phi_a - t_s / k, 0.0),
+        (phi_a - 2.0 * t_s / k, -t_s),
+        (-phi_a, -t_s),
+        (-phi_a + t_s / k, 0.0),
+        (-phi_a + 2.0 * t_s / k, t_s),
+        (phi_a, t_s),
+    ];
+    // D accumulated as the trapezoid of T dφ̄ (a closed loop: D = W)
+    let mut diss = 0.0;
+    let rows: Vec<(f64, JointMeasures)> = pts
+        .iter()
+        .enumerate()
+        .map(|(i, &(phi, t))| {
+            if i > 0 {
+                let (p0, t0) = pts[i - 1];
+                diss += 0.5 * (t0 + t) * (phi - p0);
+            }
+            let jm = JointMeasures {
+                torque: t,
+                twist: phi,
+                dissipation: diss,
+                work: diss,
+                ..JointMeasures::default()
+            };
+            (i as f64, jm)
+        })
+        .collect();
+    let mut c = cycle_of(&rows, (0, pts.len() - 1));
+    // the parallelogram: height 2 t_s, width 2 (φ_a − t_s/k) along the slides
+    let area = 4.0 * t_s * (phi_a - t_s / k);
+    assert!((c.dissipation - area).abs() < 1e-12 * area, "{c:?}");
+    assert_eq!(c.tip_twist, [-phi_a, phi_a]);
+    assert_eq!((c.torque_amplitude(), c.twist_amplitude()), (t_s, phi_a));
+    let u = 0.5 * t_s * phi_a;
+    assert!((c.torsional_stored_energy() - u).abs() < 1e-12 * u, "{c:?}");
+    // η_θ = 4 (φ_a − T_s/k) / (π φ_a): 1 − T_s/(k φ_a) = 0.625 of 4/π
+    let eta = c.torsional_loss_factor().unwrap();
+    let want = 4.0 * (1.0 - t_s / (k * phi_a)) / std::f64::consts::PI;
+    assert!((eta - want).abs() < 1e-12 * want, "{eta} against {want}");
+    // no force-slip loop in it: the force-slip loss factor stays empty
+    assert_eq!((c.stored_energy(), c.loss_factor()), (0.0, None));
+    // an elastic loop (D at round-off) has no torsional loss factor
+    c.dissipation = 0.0;
+    c.floor = 1e-12 * t_s * 2.0 * phi_a;
+    assert_eq!(c.torsional_loss_factor(), None);
+    // a model without twist: no torque-twist loop, no torsional loss factor
+    let flat: Vec<(f64, JointMeasures)> = (0..3)
+        .map(|k| (k as f64, JointMeasures::default()))
+        .collect();
+    let c = cycle_of(&flat, (0, 2));
+    assert_eq!(
+        (c.torsional_stored_energy(), c.torsional_loss_factor()),
+        (0.0, None)
+    );
+}

@@ -17,6 +17,7 @@ fn cycle(f_a: f64, u_a: f64, d: f64) -> Cycle {
         torque_range: [0.0; 2],
         twist_range: [0.0; 2],
         torsional_stiffness: None,
+        tip_twist: [0.0; 2],
     }
 }
 
@@ -133,4 +134,34 @@ fn the_backbone_ends_at_the_first_drop_of_the_force_magnitude() {
     // never reversed: every row; no rows: 0
     assert_eq!(backbone_end(&[0.0, 1.0, 2.0]), 2);
     assert_eq!(backbone_end(&[]), 0);
+}
+
+/// A torque cycled under a held axial force (a twisting model): F_a is
+/// round-off that differs from cycle to cycle, so the cycles of one torque
+/// amplitude form one block by T_a, and none enters the force fit.
+#[test]
+fn torque_cycles_under_a_held_force_block_by_torque_and_stay_out_of_the_fit() {
+    let torque = |f_noise: f64, t_a: f64| Cycle {
+        force_range: [-1e4 - f_noise, -1e4 + f_noise],
+        slip_range: [-4e-4, -3.9e-4],
+        tip_slip: [-3.9e-4, -3.9e-4 - 1e-9],
+        secant_stiffness: None,
+        torque_range: [-t_a, t_a],
+        twist_range: [-7e-5, 7e-5],
+        tip_twist: [-7e-5, 7e-5],
+        floor: 1e-12 * t_a * 1.4e-4,
+        ..cycle(1.0, 1.0, 76.6)
+    };
+    let list = [
+        torque(4e-5, 4.24e5),
+        torque(2e-5, 4.241e5),
+        torque(3e-5, 4.2411e5),
+        torque(3e-5, 2.0e5),
+    ];
+    assert!(list.iter().all(|c| c.stored_energy() <= 0.0));
+    let sw = sweep(&list);
+    let blocks: Vec<usize> = sw.rows.iter().map(|r| r.block).collect();
+    assert_eq!(blocks, [1, 1, 1, 2]);
+    assert!(sw.fit.is_none() && sw.rows.iter().all(|r| !r.in_fit));
+    assert!(dissipating(&list).iter().all(|d| !d));
 }

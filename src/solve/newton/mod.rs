@@ -21,7 +21,7 @@ use super::springs::Stabilizer;
 use super::State;
 use crate::backend::Backend;
 use crate::case::Method;
-use crate::fem::solid::{element_forces, ElementMatrix, ElementVector, Response, Tangent};
+use crate::fem::solid::{element_forces, Response, Tangent};
 use crate::interface::Status;
 use crate::material::PointState;
 use crate::mesh::NodeDofs;
@@ -30,8 +30,9 @@ use crate::model::Model;
 /// Points per reduction in `Engine::share_state` and `Engine::gather_gauss`.
 const SHARE_CHUNK: usize = 8192;
 /// Elements per batch of the element loop ([`Engine::assemble_solids`]): the
-/// batch's element forces and tangents (272 numbers per element, 4.5 MB) are
-/// the only memory the threads add.
+/// batch's element forces and tangents (ne + ne² numbers per element, ne the
+/// element's dofs: 272 and 4.5 MB with 2 dofs a node, 600 and 9.8 MB with
+/// twist) are the only memory the threads add.
 const ELEMENT_BATCH: usize = 2048;
 /// Fewest elements one thread of the element loop is given (a smaller batch
 /// takes fewer threads): starting a thread costs about as much as computing
@@ -83,9 +84,11 @@ pub struct Engine<'m> {
     pub stabilizer: Option<Stabilizer>,
     /// Threads of the element loop ([`Engine::set_threads`]).
     threads: usize,
-    /// One batch's element forces and tangents ([`ELEMENT_BATCH`]).
-    fe_batch: Vec<ElementVector>,
-    ke_batch: Vec<ElementMatrix>,
+    /// One batch's element forces and tangents ([`ELEMENT_BATCH`]), element
+    /// after element, ne and ne² numbers each (ne = the model's
+    /// [`NodeDofs::element`]: a model without twist holds no room for it).
+    fe_batch: Vec<f64>,
+    ke_batch: Vec<f64>,
     /// The dofs held in the current step ([`Model::held_dofs`]); a cached
     /// solid matrix is of one set of them.
     held: Vec<usize>,
@@ -471,24 +474,23 @@ impl<'m> Engine<'m> {
         }
         let n = self.held_elements.len();
         let batch = n.min(ELEMENT_BATCH);
-        if self.fe_batch.len() < batch {
-            self.fe_batch.resize(batch, [0.0; NodeDofs::MAX_ELEMENT]);
-        }
-        if solid_tangent.is_some() && self.ke_batch.len() < batch {
-            self.ke_batch
-                .resize(batch, [0.0; NodeDofs::MAX_ELEMENT * NodeDofs::MAX_ELEMENT]);
-        }
-        let mut failure: Option<String> = None;
         let nd = m.node_dofs();
         let (k, ne) = (nd.per_node(), nd.element());
+        if self.fe_batch.len() < batch * ne {
+            self.fe_batch.resize(batch * ne, 0.0);
+        }
+        if solid_tangent.is_some() && self.ke_batch.len() < batch * ne * ne {
+            self.ke_batch.resize(batch * ne * ne, 0.0);
+        }
+        let mut failure: Option<String> = None;
         let mut dofs = [0usize; NodeDofs::MAX_ELEMENT];
         let mut b0 = 0;
         while b0 < n && failure.is_none() {
             let b1 = (b0 + ELEMENT_BATCH).min(n);
             let len = b1 - b0;
-            let fe = &mut self.fe_batch[..len];
+            let fe = &mut self.fe_batch[..len * ne];
             let ke = if solid_tangent.is_some() {
-                &mut self.ke_batch[..len]
+                &mut self.ke_batch[..len * ne * ne]
             } else {
                 &mut self.ke_batch[..0]
             };
@@ -507,7 +509,7 @@ impl<'m> Engine<'m> {
             let done = first.as_ref().map_or(len, |f| f.0);
             for i in 0..done {
                 let el = &m.mesh.elements[self.held_elements[b0 + i] as usize];
-                let fe = &self.fe_batch[i];
+                let fe = &self.fe_batch[i * ne..(i + 1) * ne];
                 for (a, &n) in el.nodes.iter().enumerate() {
                     for (c, d) in nd.of(n).enumerate() {
                         self.r[d] += fe[k * a + c];
@@ -516,7 +518,7 @@ impl<'m> Engine<'m> {
                 }
                 if solid_tangent.is_some() {
                     let b = self.held_elements[b0 + i] as usize;
-                    let ke = &self.ke_batch[i][..ne * ne];
+                    let ke = &self.ke_batch[i * ne * ne..(i + 1) * ne * ne];
                     match m.expansions.get(&b) {
                         None => be.add_solid(b, &dofs[..ne], ke),
                         Some(x) => be.add_solid(b, &x.dofs, &held_out(x, &self.held, ke)),
@@ -686,7 +688,8 @@ fn held_out(x: &crate::constraint::Expansion, held: &[usize], k: &[f64]) -> Vec<
 }
 
 /// Element forces (and tangents, when `tangent` asks and `ke` has room) of
-/// the elements `ids` into `fe`/`ke`, their Gauss states into `trial` (`ng`
+/// the elements `ids` into `fe`/`ke` (ne and ne² numbers per element, in
+/// order; ne = [`NodeDofs::element`]), their Gauss states into `trial` (`ng`
 /// per element, as `committed`), on up to `threads` threads: contiguous
 /// chunks, the first on this thread. Returns the first failing element in
 /// order (its position in `ids`) and the message.
@@ -699,26 +702,31 @@ fn element_batch(
     u: &[f64],
     response: Response,
     tangent: Option<Tangent>,
-    fe: &mut [ElementVector],
-    ke: &mut [ElementMatrix],
+    fe: &mut [f64],
+    ke: &mut [f64],
     threads: usize,
 ) -> Option<(usize, String)> {
     let len = ids.len();
     let ng = m.n_gauss();
+    let ne = m.node_dofs().element();
     let t = threads.min(len.div_ceil(MIN_ELEMENTS_PER_THREAD)).max(1);
     if t == 1 {
         return element_chunk(m, ids, committed, trial, u, response, tangent, fe, ke);
     }
     let per = len.div_ceil(t);
     // ke is empty without a tangent: every chunk then gets an empty slice
-    let ke_per = if ke.is_empty() { usize::MAX } else { per };
-    let mut ke_chunks: Vec<&mut [ElementMatrix]> = ke.chunks_mut(ke_per).collect();
+    let ke_per = if ke.is_empty() {
+        usize::MAX
+    } else {
+        per * ne * ne
+    };
+    let mut ke_chunks: Vec<&mut [f64]> = ke.chunks_mut(ke_per).collect();
     ke_chunks.resize_with(ids.chunks(per).len(), || &mut []);
     let mut chunks = ids
         .chunks(per)
         .zip(committed.chunks(per * ng))
         .zip(trial.chunks_mut(per * ng))
-        .zip(fe.chunks_mut(per))
+        .zip(fe.chunks_mut(per * ne))
         .zip(ke_chunks)
         .enumerate()
         .map(|(c, ((((ids, cg), tg), fe), ke))| (c * per, ids, cg, tg, fe, ke));
@@ -753,18 +761,21 @@ fn element_chunk(
     u: &[f64],
     response: Response,
     tangent: Option<Tangent>,
-    fe: &mut [ElementVector],
-    ke: &mut [ElementMatrix],
+    fe: &mut [f64],
+    ke: &mut [f64],
 ) -> Option<(usize, String)> {
+    let ne = m.node_dofs().element();
     let ng = m.n_gauss();
     let mut scratch = [0.0; NodeDofs::MAX_ELEMENT * NodeDofs::MAX_ELEMENT];
-    let ne = m.node_dofs().element();
     for (i, &e) in ids.iter().enumerate() {
         let e = e as usize;
         let el = &m.mesh.elements[e];
         let ue = m.element_u(e, u);
         let gs = i * ng..(i + 1) * ng;
-        let ke = ke.get_mut(i).unwrap_or(&mut scratch);
+        let ke = match ke.get_mut(i * ne * ne..(i + 1) * ne * ne) {
+            Some(ke) => ke,
+            None => &mut scratch[..ne * ne],
+        };
         if let Err(msg) = element_forces(
             &m.geometry(e),
             &m.materials[el.body],
@@ -773,8 +784,8 @@ fn element_chunk(
             &mut trial[gs],
             response,
             tangent,
-            &mut fe[i][..ne],
-            &mut ke[..ne * ne],
+            &mut fe[i * ne..(i + 1) * ne],
+            ke,
         ) {
             return Some((i, msg));
         }
