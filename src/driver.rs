@@ -47,6 +47,9 @@ pub struct RunOptions {
     /// [`crate::threads`]); `None`: every core on one process, one per rank
     /// under MPI.
     pub threads: Option<usize>,
+    /// `--adapt TOL`: an adaptive run to this relative estimate (the case's
+    /// `[adapt]` table with its tolerance replaced, else the energy norm).
+    pub adapt: Option<f64>,
 }
 
 /// Refuses an output folder that would destroy input: `--out` replaces the
@@ -100,6 +103,12 @@ pub fn load_model(case_path: &Path, opts: &RunOptions) -> Result<Model> {
     }
     if let Some(r) = opts.refine {
         case.mesh.refine = r;
+    }
+    if let Some(t) = opts.adapt {
+        case.adapt = Some(match case.adapt.take() {
+            Some(a) => crate::case::adapt::AdaptSpec { tolerance: t, ..a },
+            None => crate::case::adapt::AdaptSpec::with_tolerance(t),
+        });
     }
     if let Some(n) = opts.increments {
         case.solver.increments = Some(n);

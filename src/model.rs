@@ -107,6 +107,16 @@ impl Model {
         if case.model.twist {
             mesh.node_dofs = NodeDofs::TWIST;
         }
+        if let Some(a) = case.adapt.as_ref().filter(|a| mesh.num_dofs() > a.max_dofs) {
+            return Err(Error::input(
+                format!("{place}: [adapt] max_dofs"),
+                format!(
+                    "{} is below the {} dofs of the start mesh: not even the first mesh may be solved",
+                    a.max_dofs,
+                    mesh.num_dofs()
+                ),
+            ));
+        }
         let mut sections = crate::pretension::cut(&case, &mut mesh, &place)?;
         let plane = case.model.plane;
         let thickness = case.model.thickness.value();
