@@ -29,6 +29,7 @@ pub mod case;
 pub mod constraint;
 pub mod driver;
 pub mod error;
+pub mod estimate;
 pub mod fem;
 pub mod history;
 pub mod interface;

@@ -13,6 +13,7 @@ use crate::interface::InterfaceModel;
 use crate::material::{Plane, VonMises};
 use crate::mesh::{blocks, gmsh, Mesh, NodeDofs};
 
+mod hanging;
 mod supports;
 use supports::check_supports;
 
@@ -101,9 +102,34 @@ impl Model {
     /// materials, the interfaces and the loads and supports, each refused
     /// with the key and place at fault.
     pub fn build(case: Case) -> Result<Model> {
+        Model::build_on(case, None)
+    }
+
+    /// The case's mesh (blocks or a Gmsh file, `refine_region` applied),
+    /// checked, before the model's own changes (a pretension section's cut,
+    /// twist's third dof): what an adaptive run refines ([`crate::adapt`]).
+    pub fn mesh_of(case: &Case) -> Result<Mesh> {
+        check_case(case)?;
+        make_mesh(case, &case.source.display().to_string())
+    }
+
+    /// [`Model::build`] on a given mesh (`None`: the case's), e.g. one that an
+    /// adaptive run refined from [`Model::mesh_of`]; a given mesh is checked
+    /// like the case's own.
+    pub fn build_on(case: Case, mesh: Option<Mesh>) -> Result<Model> {
         let place = case.source.display().to_string();
         let checked = check_case(&case)?;
-        let mut mesh = make_mesh(&case, &place)?;
+        let mut mesh = match mesh {
+            None => make_mesh(&case, &place)?,
+            Some(mesh) => {
+                mesh.validate().map_err(|e| Error::Mesh {
+                    place: place.clone(),
+                    message: e.to_string(),
+                })?;
+                whole::check_mesh(&case, &mesh, &place)?;
+                mesh
+            }
+        };
         if case.model.twist {
             mesh.node_dofs = NodeDofs::TWIST;
         }
@@ -117,6 +143,7 @@ impl Model {
                 ),
             ));
         }
+        let hanging_nodes = crate::mesh::refine::hanging_nodes(&mesh);
         let mut sections = crate::pretension::cut(&case, &mut mesh, &place)?;
         let plane = case.model.plane;
         let thickness = case.model.thickness.value();
@@ -157,17 +184,22 @@ impl Model {
             &lock_end,
         );
         let n_dofs = crate::pretension::total_dofs(&case, &mesh);
-        let constraints = crate::constraint::Constraints::new(
-            crate::pretension::constraints(
-                mesh.node_dofs,
-                &sections,
-                &prescribed,
-                &loads.prescribed_history,
-                &place,
-            )?,
-            n_dofs,
-        )
-        .map_err(|m| Error::input(&place, m))?;
+        let mut list = crate::pretension::constraints(
+            mesh.node_dofs,
+            &sections,
+            &prescribed,
+            &loads.prescribed_history,
+            &place,
+        )?;
+        list.extend(hanging::constraints(
+            &mesh,
+            &hanging_nodes,
+            &prescribed,
+            &sections,
+            &place,
+        )?);
+        let constraints = crate::constraint::Constraints::new(list, n_dofs)
+            .map_err(|m| Error::input(&place, m))?;
         crate::loads::check_acting(&loads.acting, &mesh, &prescribed, section.axisymmetric)?;
         check_loaded(&f_ext, &loads, &prescribed, &interfaces, &place)?;
         check_supports(
@@ -559,6 +591,22 @@ fn make_mesh(case: &Case, place: &str) -> Result<Mesh> {
         place: place.to_string(),
         message: e.to_string(),
     })?;
+    let mesh = match &case.mesh.refine_region {
+        None => mesh,
+        Some(r) => {
+            let limit = crate::case::MAX_ELEMENTS;
+            let refined = crate::mesh::refine::in_box(&mesh, r.x, r.y, r.levels, limit)
+                .map_err(|e| Error::Mesh {
+                    place: format!("{place}: [mesh] refine_region"),
+                    message: e.to_string(),
+                })?;
+            refined.mesh.validate().map_err(|e| Error::Mesh {
+                place: format!("{place}: [mesh] refine_region"),
+                message: e.to_string(),
+            })?;
+            refined.mesh
+        }
+    };
     whole::check_mesh(case, &mesh, place)?;
     Ok(mesh)
 }

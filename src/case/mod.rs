@@ -167,6 +167,18 @@ pub struct MeshSpec {
     pub block: Vec<BlockSpec>,
     #[serde(default)]
     pub interface: Vec<InterfaceSpec>,
+    /// Local refinement: the elements whose centroid lies in a box split
+    /// into four, `levels` times ([`crate::mesh::refine`]).
+    pub refine_region: Option<RefineRegion>,
+}
+
+/// `[mesh] refine_region = { x = [x₀, x₁], y = [y₀, y₁], levels = N }`.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RefineRegion {
+    pub x: [f64; 2],
+    pub y: [f64; 2],
+    pub levels: usize,
 }
 
 #[derive(Clone, Debug, Deserialize)]
@@ -650,7 +662,8 @@ impl Case {
             .replace(", probe: [] }", " }")
             .replace(", table: None,", ",")
             .replace(", vtu_format: Binary }", " }")
-            .replace(", pretension: [] }", " }");
+            .replace(", pretension: [] }", " }")
+            .replace(", refine_region: None }", " }");
         let new_keys = !key.history.is_empty()
             || !key.force.is_empty()
             || key

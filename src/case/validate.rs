@@ -110,8 +110,42 @@ fn check_model_and_mesh(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> 
             ));
         }
     }
+    if let Some(r) = &case.mesh.refine_region {
+        check_refine_region(r, &at)?;
+    }
     Ok(())
 }
+
+/// `[mesh] refine_region`: a box of finite, increasing bounds and 1 to
+/// [`MAX_REFINE_LEVELS`] levels (that it holds an element is checked on the
+/// mesh, [`crate::mesh::refine`]).
+fn check_refine_region(
+    r: &crate::case::RefineRegion,
+    at: &dyn Fn(&str) -> String,
+) -> Result<()> {
+    let place = at("[mesh] refine_region");
+    for (name, [lo, hi]) in [("x", r.x), ("y", r.y)] {
+        if !(lo.is_finite() && hi.is_finite() && lo < hi) {
+            return Err(Error::input(
+                &place,
+                format!("{name} = [{lo}, {hi}] must be two finite numbers, the first the smaller"),
+            ));
+        }
+    }
+    if !(1..=MAX_REFINE_LEVELS).contains(&r.levels) {
+        return Err(Error::input(
+            &place,
+            format!(
+                "levels = {} must be 1 to {MAX_REFINE_LEVELS} (each level splits an element into four)",
+                r.levels
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The most levels of `[mesh] refine_region` (4⁶ = 4096 children per element).
+pub const MAX_REFINE_LEVELS: usize = 6;
 
 /// Every block breakpoint within [`ranges::COORDINATE`].
 fn check_block_coordinates(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {

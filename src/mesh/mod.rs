@@ -5,6 +5,7 @@
 pub mod blocks;
 mod dofs;
 pub mod gmsh;
+pub mod refine;
 
 pub use dofs::NodeDofs;
 

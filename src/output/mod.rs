@@ -46,6 +46,10 @@ pub struct Writer {
     layout: Option<std::sync::Arc<vtu::Layout>>,
     /// The increment of the last VTU file queued (0: none this run).
     last_vtu: usize,
+    /// The error estimate of the last increment that got one (the VTU
+    /// increments and the last one; [`crate::estimate`]), with that
+    /// increment and its load factor: summary.json's `estimate`.
+    estimate: Option<(usize, f64, crate::estimate::Estimate)>,
 }
 
 /// Where a resumed run takes its earlier increments from.
@@ -95,6 +99,7 @@ impl Writer {
             background: background::Background::start()?,
             layout: None,
             last_vtu: 0,
+            estimate: None,
         };
         if let Some(r) = resume {
             // restart.bin is kept as is if no further increment converges;
@@ -119,7 +124,13 @@ impl Writer {
     pub fn finish(mut self, model: &Model, result: &RunResult, wall: f64) -> Result<PathBuf> {
         // every increment's files are on disk before the summary
         self.background.drain()?;
-        let summary = summary(model, result, wall);
+        let mut summary = summary(model, result, wall);
+        if let Some((k, t, est)) = &self.estimate {
+            let mut e = est.summary(model);
+            e["increment"] = json!(k);
+            e["load_factor"] = json!(t);
+            summary["estimate"] = e;
+        }
         self.write(
             "summary.json",
             &(serde_json::to_string_pretty(&summary).unwrap_or_default() + "\n"),
@@ -170,12 +181,24 @@ impl Writer {
     /// always the first, the last of the history and every increment that
     /// ends at a breakpoint of a load history (where a cycle turns).
     fn vtu_due(&self, model: &Model, inc: &Increment) -> bool {
-        let last = (self.planned > 0 && inc.increment >= self.planned)
-            || (inc.load_factor - self.final_load_factor).abs() <= 1e-12;
         inc.increment == 1
             || inc.increment % model.output.vtu_every == 0
-            || last
+            || self.is_last(inc)
             || model.breakpoints().contains(&inc.load_factor)
+    }
+
+    /// Whether increment `inc` ends the planned history.
+    fn is_last(&self, inc: &Increment) -> bool {
+        (self.planned > 0 && inc.increment >= self.planned)
+            || (inc.load_factor - self.final_load_factor).abs() <= 1e-12
+    }
+
+    /// The error estimate of increment `inc` (computed once per increment).
+    fn estimate_of(&mut self, model: &Model, state: &State, inc: &Increment) {
+        if self.estimate.as_ref().is_none_or(|e| e.0 != inc.increment) {
+            let est = crate::estimate::estimate(model, state);
+            self.estimate = Some((inc.increment, inc.load_factor, est));
+        }
     }
 
     /// Whether the VTU series already lists increment `k` (a resumed run's
@@ -192,8 +215,12 @@ impl Writer {
         })
     }
 
-    /// Takes the state's arrays ([`vtu::Frame`]) and queues its VTU file.
+    /// Takes the state's arrays ([`vtu::Frame`], with the increment's error
+    /// estimate) and queues its VTU file.
     fn queue_vtu(&mut self, model: &Model, state: &State, inc: &Increment) -> Result<()> {
+        self.estimate_of(model, state, inc);
+        let est = &self.estimate.as_ref().expect("estimated just above").2;
+        let frame = Box::new(vtu::Frame::with(model, state, est));
         let layout = self
             .layout
             .get_or_insert_with(|| background::layout(model))
@@ -202,7 +229,7 @@ impl Writer {
         self.background.send(background::Job::Vtu {
             path: self.tmp_dir.join(&f),
             layout,
-            frame: Box::new(vtu::Frame::of(model, state)),
+            frame,
         })?;
         self.pvd.push((inc.load_factor, f));
         self.last_vtu = inc.increment;
@@ -285,6 +312,8 @@ impl Observer for Writer {
         )?;
         if model.output.vtu && self.vtu_due(model, inc) {
             self.queue_vtu(model, state, inc)?;
+        } else if self.is_last(inc) {
+            self.estimate_of(model, state, inc);
         }
         let el = self.log.elapsed();
         let eta = self.log.eta(inc.load_factor);
@@ -348,6 +377,7 @@ impl Observer for Writer {
         if model.output.vtu && self.last_vtu != inc.increment && !self.pvd_has(inc.increment) {
             self.queue_vtu(model, state, inc)?;
         }
+        self.estimate_of(model, state, inc);
         Ok(())
     }
 

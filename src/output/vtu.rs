@@ -124,10 +124,20 @@ pub struct Frame {
     contact_hoop_shear: Vec<f64>,
     /// Per cell.
     max_peeq: Vec<f64>,
+    /// Per cell: η_e² of the error estimate (N·mm, [`crate::estimate`]).
+    error_estimate: Vec<f64>,
+    /// Per cell: η_e² / η².
+    error_share: Vec<f64>,
 }
 
 impl Frame {
+    /// The frame of a state, with its error estimate computed here.
     pub fn of(model: &Model, state: &State) -> Frame {
+        Frame::with(model, state, &crate::estimate::estimate(model, state))
+    }
+
+    /// The frame of a state whose error estimate is `estimate`.
+    pub fn with(model: &Model, state: &State, estimate: &crate::estimate::Estimate) -> Frame {
         let mesh = &model.mesh;
         let nn = mesh.nodes.len();
         let ne = mesh.elements.len();
@@ -193,7 +203,18 @@ impl Frame {
                         .fold(0.0f64, |a, g| a.max(g.peeq))
                 })
                 .collect(),
+            error_estimate: estimate.element.clone(),
+            error_share: estimate.shares(),
         }
+    }
+
+    /// The cell arrays after `body`, in document order.
+    fn cell_arrays(&self) -> [(&'static str, Values<'_>); 3] {
+        [
+            ("max_peeq", Values::All(&self.max_peeq)),
+            ("error_estimate", Values::All(&self.error_estimate)),
+            ("error_share", Values::All(&self.error_share)),
+        ]
     }
 
     /// The point arrays in document order: name, components, values. The
@@ -262,7 +283,7 @@ pub struct Layout {
     twist: bool,
     /// From the XML declaration to where the first per-increment array goes.
     head: Vec<u8>,
-    /// ascii: `</PointData>`, the `body` array and the `max_peeq` tag;
+    /// ascii: `</PointData>` and the `body` array;
     /// binary: the end of the XML and the appended mesh blocks.
     middle: Vec<u8>,
     /// binary: the `body` block (it follows the point data blocks).
@@ -324,7 +345,6 @@ impl Layout {
                 h.extend_from_slice(b"\n</DataArray>\n</Cells>\n<PointData Vectors=\"displacement\" Scalars=\"von_mises\">\n");
                 middle.extend_from_slice(b"</PointData>\n<CellData>\n");
                 let _ = ascii_array(&mut middle, "body", 1, Values::All(&body));
-                ascii_tag(&mut middle, "max_peeq", 1);
             }
             VtuFormat::Binary => {
                 // every block: its byte count (UInt64), then its bytes
@@ -369,7 +389,8 @@ impl Layout {
                     );
                 }
                 h.extend_from_slice(b"</PointData>\n<CellData>\n");
-                for name in ["body", "max_peeq"] {
+                let cells = std::iter::once("body").chain(empty.cell_arrays().map(|a| a.0));
+                for name in cells {
                     let _ = writeln!(
                         h,
                         "<DataArray type=\"Float64\" Name=\"{name}\" NumberOfComponents=\"1\" format=\"appended\" offset=\"{}\"/>",
@@ -417,7 +438,10 @@ impl Layout {
                     ascii_values(w, &mut buf, comps, vals)?;
                 }
                 w.write_all(&self.middle)?;
-                ascii_values(w, &mut buf, 1, Values::All(&frame.max_peeq))?;
+                for (name, vals) in frame.cell_arrays() {
+                    ascii_tag(&mut buf, name, 1);
+                    ascii_values(w, &mut buf, 1, vals)?;
+                }
                 w.write_all(b"</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n")
             }
             VtuFormat::Binary => {
@@ -427,8 +451,11 @@ impl Layout {
                     buf.clear();
                 }
                 w.write_all(&self.body)?;
-                raw_f64(&mut buf, Values::All(&frame.max_peeq));
-                w.write_all(&buf)?;
+                for (_, vals) in frame.cell_arrays() {
+                    raw_f64(&mut buf, vals);
+                    w.write_all(&buf)?;
+                    buf.clear();
+                }
                 w.write_all(&self.middle)
             }
         }
