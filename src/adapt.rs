@@ -20,13 +20,17 @@
 //! entry for every cycle so far.
 
 use crate::case::adapt::{AdaptSpec, Quantity};
+use crate::case::Case;
+use crate::driver::RunOptions;
 use crate::error::{Error, Result};
-use crate::mesh::Mesh;
+use crate::mesh::refine::Refined;
 use crate::model::Model;
+use crate::progress::Log;
 use crate::solve::RunResult;
 use serde_json::json;
 use std::fmt::Write as _;
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
 
 /// One cycle's record: its mesh, the estimate and the answers.
 #[derive(Clone, Debug, PartialEq)]
@@ -92,7 +96,10 @@ fn peak_pressure(model: &Model, state: &crate::solve::State) -> f64 {
     for im in &model.interfaces {
         let gap = im.gap_at(state.time);
         for pt in &im.points {
-            let p = im.law.pressure(im.point_kinematics_at(pt, &state.u, gap).0);
+            let p = im
+                .law
+                .pressure(im.point_kinematics_at(pt, &state.u, gap).0)
+                .0;
             peak = if peak.is_nan() { p } else { peak.max(p) };
         }
     }
@@ -189,15 +196,148 @@ pub fn record(dir: &Path, spec: &AdaptSpec, cycles: &[Cycle], end: Option<End>) 
     )
 }
 
-/// The next mesh: the marked elements of `model`'s mesh (its elements are
-/// those of `mesh`, the mesh before any pretension cut) split, with the
-/// closure that keeps one level across an edge and matching interfaces
-/// matching.
-pub fn next_mesh(mesh: &Mesh, marked: &[usize], place: &str) -> Result<Mesh> {
-    crate::mesh::refine::refine(mesh, marked)
-        .map(|r| r.mesh)
-        .map_err(|e| Error::Mesh {
-            place: place.to_string(),
-            message: e.to_string(),
-        })
+/// Runs an adaptive case on any backend. `solve` runs the whole history of
+/// a built model and writes its output folder on the writing process
+/// (`root`); `share` hands rank 0's numbers to every rank (nothing to do on
+/// one process), so that every rank marks and refines alike. Returns the last
+/// cycle's folder, model and result.
+pub fn run(
+    case: Case,
+    opts: &RunOptions,
+    root: bool,
+    solve: &mut dyn FnMut(&Model, Instant) -> Result<(PathBuf, RunResult)>,
+    share: &dyn Fn(&mut [f64]),
+) -> Result<(PathBuf, Model, RunResult)> {
+    let spec = case.adapt.clone().expect("an adaptive run has [adapt]");
+    let place = case.source.display().to_string();
+    let log = Log::new(opts.log_format, opts.quiet || !root);
+    let per_node = if case.model.twist { 3 } else { 2 };
+    let mut mesh = Refined::start(&Model::mesh_of(&case)?);
+    let mut cycles: Vec<Cycle> = Vec::new();
+    loop {
+        let started = Instant::now();
+        let model = Model::build_on(case.clone(), Some(mesh.mesh.clone()))?;
+        let (dir, result) = solve(&model, started)?;
+        // rank 0's estimate and answer, on every rank: [η, ‖u‖, Q, η_e²…]
+        let ne = model.mesh.elements.len();
+        let mut numbers = vec![0.0; 3 + ne];
+        if let Some(est) = result.estimate.as_ref().filter(|_| root) {
+            numbers[0] = est.total;
+            numbers[1] = est.norm;
+            numbers[2] = value(spec.quantity, &model, &result, est.relative());
+            numbers[3..].copy_from_slice(&est.element);
+        } else if root {
+            return Err(Error::input(
+                &place,
+                "[adapt] needs the error estimate of the last increment, which this run did not make",
+            ));
+        }
+        share(&mut numbers);
+        let (eta, norm, q) = (numbers[0], numbers[1], numbers[2]);
+        let relative_eta = if norm > 0.0 { eta / norm } else { 0.0 };
+        let estimate = cycle_estimate(
+            spec.quantity,
+            relative_eta,
+            q,
+            cycles.last().map(|c| c.value),
+        );
+        cycles.push(Cycle {
+            cycle: cycles.len() + 1,
+            elements: ne,
+            nodes: model.mesh.nodes.len(),
+            dofs: model.mesh.num_dofs(),
+            hanging_nodes: mesh.hanging.len(),
+            eta,
+            relative_eta,
+            value: q,
+            estimate,
+            iterations: result.stats.iterations,
+            increments: result.increments.len(),
+            wall_s: started.elapsed().as_secs_f64(),
+        });
+        let end = if estimate <= spec.tolerance {
+            Some(End::Reached)
+        } else if cycles.len() >= spec.max_cycles {
+            Some(End::Cycles)
+        } else {
+            let marked = crate::estimate::doerfler_mark(&numbers[3..], spec.fraction);
+            if marked.is_empty() {
+                Some(End::Nothing)
+            } else {
+                let next = mesh.refine(&marked).map_err(|e| Error::Mesh {
+                    place: format!("{place}: [adapt]"),
+                    message: e.to_string(),
+                })?;
+                if next.mesh.nodes.len() * per_node > spec.max_dofs {
+                    Some(End::Dofs)
+                } else {
+                    mesh = next;
+                    None
+                }
+            }
+        };
+        let c = cycles.last().expect("pushed above");
+        if root {
+            record(&dir, &spec, &cycles, end)?;
+            log.progress(
+                "adapt",
+                json!({
+                    "cycle": c.cycle,
+                    "dofs": c.dofs,
+                    "elements": c.elements,
+                    "hanging_nodes": c.hanging_nodes,
+                    "relative_eta": c.relative_eta,
+                    "quantity": spec.quantity.name(),
+                    "value": if c.value.is_finite() { json!(c.value) } else { json!(null) },
+                    "estimate": if c.estimate.is_finite() { json!(c.estimate) } else { json!(null) },
+                    "tolerance": spec.tolerance,
+                    "end": end.map(End::name),
+                }),
+                || {
+                    format!(
+                        "adapt: cycle {} — {} dofs, {} elements, {} hanging nodes: η/‖u‖ = {:.3e}, {} = {:.6e}, estimate {} (tolerance {:e}){}",
+                        c.cycle,
+                        c.dofs,
+                        c.elements,
+                        c.hanging_nodes,
+                        c.relative_eta,
+                        spec.quantity.name(),
+                        c.value,
+                        if c.estimate.is_finite() { format!("{:.3e}", c.estimate) } else { "not yet known".into() },
+                        spec.tolerance,
+                        match end {
+                            None => String::new(),
+                            Some(e) => format!("; {}", e.name()),
+                        }
+                    )
+                },
+            );
+            if let Some(e) = end.filter(|&e| e != End::Reached) {
+                log.always(
+                    "warning",
+                    json!({ "message": not_reached(e, &spec, c) }),
+                    || format!("warning: {}", not_reached(e, &spec, c)),
+                );
+            }
+        }
+        if end.is_some() {
+            return Ok((dir, model, result));
+        }
+    }
+}
+
+/// The warning of an adaptive run that stopped above its tolerance.
+fn not_reached(end: End, spec: &AdaptSpec, c: &Cycle) -> String {
+    let why = match end {
+        End::Cycles => format!("after max_cycles = {} solves", spec.max_cycles),
+        End::Dofs => format!("the next mesh would exceed max_dofs = {}", spec.max_dofs),
+        End::Nothing => "no element is left to refine".into(),
+        End::Reached => String::new(),
+    };
+    format!(
+        "[adapt] stopped at an estimate of {} above the tolerance {:e}: {why}; the output is the last mesh's ({} dofs)",
+        if c.estimate.is_finite() { format!("{:.3e}", c.estimate) } else { "(not known)".into() },
+        spec.tolerance,
+        c.dofs
+    )
 }

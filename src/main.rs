@@ -442,7 +442,9 @@ fn parse_adapt(text: &str) -> asperity::error::Result<f64> {
         return Err(bad("must be in (0, 1)"));
     }
     if t < 1e-6 {
-        return Err(bad("is below 1e-6, which no mesh this program can hold reaches"));
+        return Err(bad(
+            "is below 1e-6, which no mesh this program can hold reaches",
+        ));
     }
     Ok(t)
 }

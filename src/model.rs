@@ -119,6 +119,7 @@ impl Model {
     pub fn build_on(case: Case, mesh: Option<Mesh>) -> Result<Model> {
         let place = case.source.display().to_string();
         let checked = check_case(&case)?;
+        let start = mesh.is_none();
         let mut mesh = match mesh {
             None => make_mesh(&case, &place)?,
             Some(mesh) => {
@@ -133,7 +134,11 @@ impl Model {
         if case.model.twist {
             mesh.node_dofs = NodeDofs::TWIST;
         }
-        if let Some(a) = case.adapt.as_ref().filter(|a| mesh.num_dofs() > a.max_dofs) {
+        if let Some(a) = case
+            .adapt
+            .as_ref()
+            .filter(|a| start && mesh.num_dofs() > a.max_dofs)
+        {
             return Err(Error::input(
                 format!("{place}: [adapt] max_dofs"),
                 format!(
@@ -591,22 +596,23 @@ fn make_mesh(case: &Case, place: &str) -> Result<Mesh> {
         place: place.to_string(),
         message: e.to_string(),
     })?;
-    let mesh = match &case.mesh.refine_region {
-        None => mesh,
-        Some(r) => {
-            let limit = crate::case::MAX_ELEMENTS;
-            let refined = crate::mesh::refine::in_box(&mesh, r.x, r.y, r.levels, limit)
-                .map_err(|e| Error::Mesh {
+    let mesh =
+        match &case.mesh.refine_region {
+            None => mesh,
+            Some(r) => {
+                let limit = crate::case::MAX_ELEMENTS;
+                let refined = crate::mesh::refine::in_box(&mesh, r.x, r.y, r.levels, limit)
+                    .map_err(|e| Error::Mesh {
+                        place: format!("{place}: [mesh] refine_region"),
+                        message: e.to_string(),
+                    })?;
+                refined.mesh.validate().map_err(|e| Error::Mesh {
                     place: format!("{place}: [mesh] refine_region"),
                     message: e.to_string(),
                 })?;
-            refined.mesh.validate().map_err(|e| Error::Mesh {
-                place: format!("{place}: [mesh] refine_region"),
-                message: e.to_string(),
-            })?;
-            refined.mesh
-        }
-    };
+                refined.mesh
+            }
+        };
     whole::check_mesh(case, &mesh, place)?;
     Ok(mesh)
 }

@@ -119,10 +119,7 @@ fn check_model_and_mesh(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> 
 /// `[mesh] refine_region`: a box of finite, increasing bounds and 1 to
 /// [`MAX_REFINE_LEVELS`] levels (that it holds an element is checked on the
 /// mesh, [`crate::mesh::refine`]).
-fn check_refine_region(
-    r: &crate::case::RefineRegion,
-    at: &dyn Fn(&str) -> String,
-) -> Result<()> {
+fn check_refine_region(r: &crate::case::RefineRegion, at: &dyn Fn(&str) -> String) -> Result<()> {
     let place = at("[mesh] refine_region");
     for (name, [lo, hi]) in [("x", r.x), ("y", r.y)] {
         if !(lo.is_finite() && hi.is_finite() && lo < hi) {

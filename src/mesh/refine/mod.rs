@@ -132,7 +132,10 @@ impl Refined {
     /// [`NodeDofs`]).
     pub fn constraints(&self) -> Vec<Constraint> {
         let nd = self.mesh.node_dofs;
-        self.hanging.iter().flat_map(|h| h.constraints(nd)).collect()
+        self.hanging
+            .iter()
+            .flat_map(|h| h.constraints(nd))
+            .collect()
     }
 }
 
@@ -170,7 +173,11 @@ pub fn in_box(
         if marked.is_empty() {
             return Err(MeshError(format!(
                 "refine_region x = {x:?}, y = {y:?} holds no element's centroid{}",
-                if level == 1 { "" } else { " after the first level" }
+                if level == 1 {
+                    ""
+                } else {
+                    " after the first level"
+                }
             )));
         }
         if r.mesh.elements.len() + 3 * marked.len() > max_elements {
@@ -392,9 +399,18 @@ fn split(
 ) -> ([Element; 4], Vec<usize>) {
     // the 5 × 5 grid of natural points ξ = i/2 − 1, η = j/2 − 1
     let mut grid = [[usize::MAX; 5]; 5];
-    for (loc, &(i, j)) in [(0, 0), (4, 0), (4, 4), (0, 4), (2, 0), (4, 2), (2, 4), (0, 2)]
-        .iter()
-        .enumerate()
+    for (loc, &(i, j)) in [
+        (0, 0),
+        (4, 0),
+        (4, 4),
+        (0, 4),
+        (2, 0),
+        (4, 2),
+        (2, 4),
+        (0, 2),
+    ]
+    .iter()
+    .enumerate()
     {
         grid[i][j] = el.nodes[loc];
     }
@@ -446,8 +462,5 @@ fn split(
             body: el.body,
         }
     };
-    (
-        [child(0, 0), child(2, 0), child(2, 2), child(0, 2)],
-        inner,
-    )
+    ([child(0, 0), child(2, 0), child(2, 2), child(0, 2)], inner)
 }
