@@ -76,7 +76,7 @@ pub fn run(
 /// The PETSc engine of a built model: the backend on `world`, SNES unless
 /// `--nonlinear builtin`, one thread per rank unless asked.
 fn engine<'m>(
-    petsc: &Petsc,
+    petsc: &'m Petsc,
     world: &mpi::topology::SimpleCommunicator,
     model: &'m crate::model::Model,
     opts: &RunOptions,
