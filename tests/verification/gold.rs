@@ -112,6 +112,10 @@ fn checked(case: &str) -> Vec<&'static str> {
     if DAMPING_CASES.contains(&case) {
         keys.push("damping");
     }
+    // an adaptive case (issue 31) checks every cycle's mesh and estimate
+    if case == "punch-adaptive" {
+        keys.push("adapt");
+    }
     keys
 }
 
@@ -126,7 +130,7 @@ struct Gold {
     prefix: Option<&'static str>,
 }
 
-const CASES: [Gold; 20] = [
+const CASES: [Gold; 21] = [
     Gold {
         case: "bolted-joint",
         args: &[],
@@ -224,6 +228,11 @@ const CASES: [Gold; 20] = [
     },
     Gold {
         case: "shrink-fit-torque",
+        args: &[],
+        prefix: None,
+    },
+    Gold {
+        case: "punch-adaptive",
         args: &[],
         prefix: None,
     },
@@ -608,6 +617,11 @@ fn slideway_damping() {
 #[test]
 fn bolted_flange() {
     check("bolted-flange");
+}
+
+#[test]
+fn punch_adaptive() {
+    check("punch-adaptive");
 }
 
 #[test]
