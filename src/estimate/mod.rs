@@ -126,14 +126,13 @@ pub fn estimate(model: &Model, state: &State) -> Estimate {
         let mat = &model.materials[mesh.elements[e].body];
         let g = geometry(model, e, &r3);
         let s = sample::stresses(model, &state.gauss, &state.u, e, &r3, &g);
-        for ip in 0..g.n {
-            let mut d = [0.0; 6];
-            for c in 0..6 {
+        for (ip, sh) in s.iter().enumerate().take(g.n) {
+            let d: [f64; 6] = std::array::from_fn(|c| {
                 let star: f64 = (0..8).map(|a| g.shape[ip][a] * recovered[e][a][c]).sum();
-                d[c] = star - s[ip][c];
-            }
+                star - sh[c]
+            });
             element[e] += g.dv[ip] * compliance(mat, &d);
-            norm2 += g.dv[ip] * compliance(mat, &s[ip]);
+            norm2 += g.dv[ip] * compliance(mat, sh);
         }
     }
     let mut interface = vec![0.0; ne];

@@ -145,7 +145,9 @@ pub trait Observer {
     /// Called once when a run stops early (signal, `--stop-after`) after at
     /// least one increment: the last converged state, which the output
     /// always shows (the writer adds its VTU file if `vtu_every` skipped it);
-    /// [`Observer::checkpoint`] follows.
+    /// [`Observer::checkpoint`] follows. Also called, without a checkpoint,
+    /// when a resumed run has no increment left to solve (the writer then
+    /// estimates its error, [`crate::estimate`]).
     fn last_state(&mut self, _model: &Model, _state: &State, _inc: &Increment) -> Result<()> {
         Ok(())
     }
@@ -337,6 +339,15 @@ pub fn run_from(
     }
     if stopped.is_some() && ck.increments.len() > resumed_from {
         write_last_state(&engine, observer, &mut ck)?;
+    } else if resumed_from > 0 && ck.increments.len() == resumed_from {
+        // a resumed run that solved nothing more: the writer still sees its
+        // last state (the error estimate of summary.json), and writes no
+        // file it already has
+        let model = engine.model;
+        written_everywhere(&engine, &mut ck, |ck| match ck.increments.last() {
+            Some(inc) => observer.last_state(model, &ck.committed, inc),
+            None => Ok(()),
+        })?;
     }
     // the writer's thread done: every file complete, or the run's error on
     // every rank

@@ -85,8 +85,8 @@ fn compare_on(case: &str, refine: &str, ranks: &[usize]) {
             "{run}: center displacement {us} vs {up}"
         );
         // fields from the Gauss states, which each rank holds only for its
-        // own elements and rank 0 gathers to write
-        for field in ["peeq", "von_mises", "stress"] {
+        // own elements and rank 0 gathers to write (the error estimate too)
+        for field in ["peeq", "von_mises", "stress", "error_estimate"] {
             let (a, b) = (
                 last_vtu_array(&out("serial"), field),
                 last_vtu_array(&out(run), field),
@@ -136,6 +136,20 @@ fn compare_on(case: &str, refine: &str, ranks: &[usize]) {
                 );
             }
         }
+        // the error estimate of the same increment, to the same elements
+        let (es, ep) = (&s["estimate"], &p["estimate"]);
+        assert_eq!(
+            es["increment"], ep["increment"],
+            "{run}: estimate increment"
+        );
+        for k in ["eta", "energy_norm", "relative"] {
+            let (x, y) = (es[k].as_f64().unwrap(), ep[k].as_f64().unwrap());
+            assert!(close(x, y, x.abs()), "{run}: estimate {k} {x} vs {y}");
+        }
+        assert_eq!(
+            es["elements_holding_half"], ep["elements_holding_half"],
+            "{run}: estimate elements_holding_half"
+        );
         compare_joints(run, &s["joints"], &p["joints"]);
         compare_designer(run, &s, &p);
     }

@@ -15,6 +15,7 @@ mod calibration;
 mod column;
 mod cycles;
 mod damping_line;
+mod estimate;
 mod events;
 mod factorization;
 mod friction;
