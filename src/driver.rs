@@ -47,6 +47,9 @@ pub struct RunOptions {
     /// [`crate::threads`]); `None`: every core on one process, one per rank
     /// under MPI.
     pub threads: Option<usize>,
+    /// `--adapt TOL`: an adaptive run to this relative estimate (the case's
+    /// `[adapt]` table with its tolerance replaced, else the energy norm).
+    pub adapt: Option<f64>,
 }
 
 /// Refuses an output folder that would destroy input: `--out` replaces the
@@ -90,6 +93,12 @@ pub fn check_out(out: Option<&Path>, inputs: &[&Path]) -> Result<()> {
 
 /// Loads a case and applies command-line overrides.
 pub fn load_model(case_path: &Path, opts: &RunOptions) -> Result<Model> {
+    Model::build(load_case(case_path, opts)?)
+}
+
+/// Reads a case and applies the command-line overrides (not yet checked:
+/// [`Model::build`] checks it).
+pub fn load_case(case_path: &Path, opts: &RunOptions) -> Result<Case> {
     let mut case = Case::load(case_path)?;
     if let Some(file) = &case.mesh.file {
         let dir = case.source.parent().unwrap_or(Path::new(""));
@@ -100,6 +109,12 @@ pub fn load_model(case_path: &Path, opts: &RunOptions) -> Result<Model> {
     }
     if let Some(r) = opts.refine {
         case.mesh.refine = r;
+    }
+    if let Some(t) = opts.adapt {
+        case.adapt = Some(match case.adapt.take() {
+            Some(a) => crate::case::adapt::AdaptSpec { tolerance: t, ..a },
+            None => crate::case::adapt::AdaptSpec::with_tolerance(t),
+        });
     }
     if let Some(n) = opts.increments {
         case.solver.increments = Some(n);
@@ -143,7 +158,7 @@ pub fn load_model(case_path: &Path, opts: &RunOptions) -> Result<Model> {
             b.ry.clear();
         }
     }
-    Model::build(case)
+    Ok(case)
 }
 
 /// The serial backend's engine for a model, with the given method, its
@@ -197,7 +212,20 @@ pub fn prepare(engine: &mut Engine, opts: &RunOptions, at_model: f64) {
 /// folder. Returns the folder, the model and the result.
 pub fn run(case_path: &Path, opts: &RunOptions) -> Result<(PathBuf, Model, RunResult)> {
     let started = Instant::now();
-    let model = load_model(case_path, opts)?;
+    let case = load_case(case_path, opts)?;
+    if case.adapt.is_some() {
+        let mut solve = |model: &Model, started: Instant| {
+            let mut engine = serial_engine(
+                model,
+                model.solver.method,
+                opts.threads.unwrap_or_else(crate::threads::available),
+            )?;
+            prepare(&mut engine, opts, crate::solve::peak_memory_mb());
+            run_model(model, engine, opts, true, started)
+        };
+        return crate::adapt::run(case, opts, true, &mut solve, &|_| {});
+    }
+    let model = Model::build(case)?;
     let at_model = crate::solve::peak_memory_mb();
     let threads = opts.threads.unwrap_or_else(crate::threads::available);
     let mut engine = match opts.factorization {
@@ -293,8 +321,9 @@ pub fn run_model(
     let mut writer = Writer::new(&dir, log.clone(), planned, resume)?;
     writer.final_load_factor = lambda_end;
     match solve::run_from(engine, &mut writer, start, control) {
-        Ok(result) => {
+        Ok(mut result) => {
             let wall = started.elapsed().as_secs_f64();
+            result.estimate = writer.last_estimate().cloned();
             let dir = writer.finish(model, &result, wall)?;
             report_end(&log, model, &dir, &result, wall);
             for w in crate::output::warnings(model, &result) {

@@ -22,6 +22,7 @@
 
 #![deny(unsafe_code)]
 
+pub mod adapt;
 pub mod assembly;
 pub mod backend;
 pub mod calibrate;

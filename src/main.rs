@@ -77,6 +77,12 @@ struct RunArgs {
     /// Override the mesh refinement factor of the case.
     #[arg(long)]
     refine: Option<usize>,
+    /// An adaptive run to this relative estimate, in (0, 1): solve, estimate
+    /// the error, refine where it is, solve again from the start, until the
+    /// estimate is below TOL (the case's `[adapt]` table, else the energy norm;
+    /// docs/running.md, "Adaptive runs").
+    #[arg(long, value_name = "TOL", allow_hyphen_values = true)]
+    adapt: Option<String>,
     /// Override: this many equal load steps.
     #[arg(long)]
     increments: Option<usize>,
@@ -386,7 +392,18 @@ impl RunArgs {
                 "must be at least 1 (a run stopped before its first increment has nothing to resume)",
             ));
         }
+        let adapt = match self.adapt.as_deref() {
+            None => None,
+            Some(text) => Some(parse_adapt(text)?),
+        };
+        if adapt.is_some() && self.restart.is_some() {
+            return Err(asperity::error::Error::input(
+                "--adapt",
+                "an adaptive run solves every mesh from the start of the history: it cannot resume (--restart)",
+            ));
+        }
         Ok(RunOptions {
+            adapt,
             out: self.out.clone(),
             quiet: self.quiet,
             method: self.method.map(Into::into),
@@ -407,6 +424,29 @@ impl RunArgs {
             threads: asperity::threads::requested(self.threads.as_deref())?,
         })
     }
+}
+
+/// The value of `--adapt`: a relative tolerance in [1e-6, 1).
+fn parse_adapt(text: &str) -> asperity::error::Result<f64> {
+    let bad = |why: &str| {
+        asperity::error::Error::input(
+            "--adapt",
+            format!(
+                "\"{}\" {why}: the relative estimate to reach, e.g. 0.01",
+                asperity::error::clip(text)
+            ),
+        )
+    };
+    let t: f64 = text.trim().parse().map_err(|_| bad("is not a number"))?;
+    if !(t.is_finite() && t > 0.0 && t < 1.0) {
+        return Err(bad("must be in (0, 1)"));
+    }
+    if t < 1e-6 {
+        return Err(bad(
+            "is below 1e-6, which no mesh this program can hold reaches",
+        ));
+    }
+    Ok(t)
 }
 
 /// `asperity run`: the interrupt handler, then the backend's solve.

@@ -102,11 +102,51 @@ impl Model {
     /// materials, the interfaces and the loads and supports, each refused
     /// with the key and place at fault.
     pub fn build(case: Case) -> Result<Model> {
+        Model::build_on(case, None)
+    }
+
+    /// The case's mesh (blocks or a Gmsh file, `refine_region` applied),
+    /// checked, before the model's own changes (a pretension section's cut,
+    /// twist's third dof): what an adaptive run refines ([`crate::adapt`]).
+    pub fn mesh_of(case: &Case) -> Result<Mesh> {
+        check_case(case)?;
+        make_mesh(case, &case.source.display().to_string())
+    }
+
+    /// [`Model::build`] on a given mesh (`None`: the case's), e.g. one that an
+    /// adaptive run refined from [`Model::mesh_of`]; a given mesh is checked
+    /// like the case's own.
+    pub fn build_on(case: Case, mesh: Option<Mesh>) -> Result<Model> {
         let place = case.source.display().to_string();
         let checked = check_case(&case)?;
-        let mut mesh = make_mesh(&case, &place)?;
+        let start = mesh.is_none();
+        let mut mesh = match mesh {
+            None => make_mesh(&case, &place)?,
+            Some(mesh) => {
+                mesh.validate().map_err(|e| Error::Mesh {
+                    place: place.clone(),
+                    message: e.to_string(),
+                })?;
+                whole::check_mesh(&case, &mesh, &place)?;
+                mesh
+            }
+        };
         if case.model.twist {
             mesh.node_dofs = NodeDofs::TWIST;
+        }
+        if let Some(a) = case
+            .adapt
+            .as_ref()
+            .filter(|a| start && mesh.num_dofs() > a.max_dofs)
+        {
+            return Err(Error::input(
+                format!("{place}: [adapt] max_dofs"),
+                format!(
+                    "{} is below the {} dofs of the start mesh: not even the first mesh may be solved",
+                    a.max_dofs,
+                    mesh.num_dofs()
+                ),
+            ));
         }
         let hanging_nodes = crate::mesh::refine::hanging_nodes(&mesh);
         let mut sections = crate::pretension::cut(&case, &mut mesh, &place)?;

@@ -42,30 +42,23 @@ pub fn run(
             });
         }
         let petsc = Petsc::init(&universe, petsc_args)?;
-        let result = {
-            let model = driver::load_model(case_path, opts)?;
-            let at_model = crate::solve::peak_memory_mb();
-            let linear = LinearDefault::for_model(&model);
-            let backend = PetscBackend::new(&petsc, world.duplicate(), &model, linear)?;
-            let snes = if opts.snes {
-                Some(SnesSolver::new(
-                    &petsc,
-                    backend.system_matrix(),
-                    &backend.part,
-                    world.rank() as usize,
-                    world.size() as usize,
-                    model.solver.iteration_limit(),
-                    linear,
-                    opts.lean_memory,
-                )?)
-            } else {
-                None
+        let case = driver::load_case(case_path, opts)?;
+        if case.adapt.is_some() {
+            let mut solve = |model: &crate::model::Model, started: Instant| {
+                let engine = engine(&petsc, &world, model, opts)?;
+                driver::run_model(model, engine, opts, root, started)
             };
-            let mut engine = Engine::with_backend(&model, model.solver.method, Box::new(backend));
-            engine.nonlinear = snes.map(|s| Box::new(s) as Box<dyn NonlinearSolver>);
-            // the ranks share the cores: one thread each unless asked
-            engine.set_threads(opts.threads.unwrap_or(1));
-            driver::prepare(&mut engine, opts, at_model);
+            let share = |numbers: &mut [f64]| {
+                world.process_at_rank(0).broadcast_into(numbers);
+            };
+            let result = crate::adapt::run(case, opts, root, &mut solve, &share)
+                .map(|(dir, _, result)| (dir, result));
+            drop(petsc);
+            return result;
+        }
+        let result = {
+            let model = crate::model::Model::build(case)?;
+            let engine = engine(&petsc, &world, &model, opts)?;
             driver::run_model(&model, engine, opts, root, started)
         };
         drop(petsc);
@@ -78,4 +71,37 @@ pub fn run(
         world.barrier();
     }
     (outcome, root)
+}
+
+/// The PETSc engine of a built model: the backend on `world`, SNES unless
+/// `--nonlinear builtin`, one thread per rank unless asked.
+fn engine<'m>(
+    petsc: &'m Petsc,
+    world: &mpi::topology::SimpleCommunicator,
+    model: &'m crate::model::Model,
+    opts: &RunOptions,
+) -> Result<Engine<'m>> {
+    let at_model = crate::solve::peak_memory_mb();
+    let linear = LinearDefault::for_model(model);
+    let backend = PetscBackend::new(petsc, world.duplicate(), model, linear)?;
+    let snes = if opts.snes {
+        Some(SnesSolver::new(
+            petsc,
+            backend.system_matrix(),
+            &backend.part,
+            world.rank() as usize,
+            world.size() as usize,
+            model.solver.iteration_limit(),
+            linear,
+            opts.lean_memory,
+        )?)
+    } else {
+        None
+    };
+    let mut engine = Engine::with_backend(model, model.solver.method, Box::new(backend));
+    engine.nonlinear = snes.map(|s| Box::new(s) as Box<dyn NonlinearSolver>);
+    // the ranks share the cores: one thread each unless asked
+    engine.set_threads(opts.threads.unwrap_or(1));
+    driver::prepare(&mut engine, opts, at_model);
+    Ok(engine)
 }

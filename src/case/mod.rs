@@ -5,6 +5,7 @@
 //! The full schema is documented in `docs/case-schema.md`; every field below
 //! carries the same text.
 
+pub mod adapt;
 pub mod axis;
 pub mod outputs;
 pub mod ranges;
@@ -70,6 +71,9 @@ pub struct Case {
     /// Named displacement probes (points or node sets).
     #[serde(default)]
     pub probe: Vec<outputs::ProbeSpec>,
+    /// An adaptive run (`[adapt]`, [`crate::adapt`]); left out of `Case::key`
+    /// when not given.
+    pub adapt: Option<adapt::AdaptSpec>,
 }
 
 /// A pretension section (`[[pretension]]`, after Abaqus *PRE-TENSION SECTION):
@@ -650,6 +654,7 @@ impl Case {
         // twist's keys (`[model] twist`, `rotation`, `hoop_shear`, `torque`)
         // likewise
         let full = format!("{key:?}")
+            .replace(", adapt: None }", " }")
             .replace(", twist: false }", " }")
             .replace(", rotation: None }", " }")
             .replace(", hoop_shear: None, torque: None }", " }")

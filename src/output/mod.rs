@@ -118,6 +118,11 @@ impl Writer {
         std::fs::write(&p, text).map_err(|e| Error::io(&p, e))
     }
 
+    /// The error estimate of the last increment that got one.
+    pub fn last_estimate(&self) -> Option<&crate::estimate::Estimate> {
+        self.estimate.as_ref().map(|e| &e.2)
+    }
+
     /// Writes the summary and the curve, then moves the folder into place:
     /// `.NAME.partial-PID` replaces NAME in one rename (an existing NAME is
     /// swapped out atomically where the system allows it, then removed).

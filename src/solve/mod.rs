@@ -258,6 +258,9 @@ pub struct RunResult {
     pub table_reach: Vec<crate::interface::extrapolation::Reach>,
     /// The events located ([`events`]), in the order found.
     pub events: Vec<events::Event>,
+    /// The error estimate of the last increment, where the run's writer made
+    /// one (the process that writes the output; [`crate::estimate`]).
+    pub estimate: Option<crate::estimate::Estimate>,
 }
 
 /// Runs the whole load history with a given engine (any backend). Under MPI
@@ -696,6 +699,7 @@ fn finish(
         stabilization,
         table_reach: ck.table_reach,
         events: ck.events,
+        estimate: None,
     }
 }
 

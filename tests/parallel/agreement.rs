@@ -793,3 +793,35 @@ fn twisted_joints_agree(case: &str) {
         }
     }
 }
+
+/// An adaptive run (issue 31): rank 0's estimate marks for every rank, METIS
+/// partitions each new mesh; the same cycles (meshes, dofs, hanging nodes,
+/// estimates) and the same last run as the serial one.
+#[test]
+fn serial_petsc1_and_petsc2_agree_on_an_adaptive_run() {
+    compare("punch-adaptive", "1");
+    let root =
+        std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("parallel-punch-adaptive-1-2");
+    let s = json(&root.join("serial"));
+    let cycles = s["adapt"]["cycles"].as_array().unwrap();
+    assert!(cycles.len() >= 3, "{}", s["adapt"]);
+    for run in ["petsc1", "petsc2"] {
+        let p = json(&root.join(run));
+        assert_eq!(p["adapt"]["end"], s["adapt"]["end"], "{run}");
+        let pc = p["adapt"]["cycles"].as_array().unwrap();
+        assert_eq!(pc.len(), cycles.len(), "{run}: cycles");
+        for (a, b) in cycles.iter().zip(pc) {
+            for k in ["elements", "nodes", "dofs", "hanging_nodes", "increments"] {
+                assert_eq!(a[k], b[k], "{run}: cycle {} {k}", a["cycle"]);
+            }
+            for k in ["eta", "relative_eta"] {
+                let (x, y) = (a[k].as_f64().unwrap(), b[k].as_f64().unwrap());
+                assert!(
+                    close(x, y, x.abs()),
+                    "{run}: cycle {} {k}: {x} vs {y}",
+                    a["cycle"]
+                );
+            }
+        }
+    }
+}

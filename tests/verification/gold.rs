@@ -113,6 +113,10 @@ fn checked(case: &str) -> Vec<&'static str> {
     if DAMPING_CASES.contains(&case) {
         keys.push("damping");
     }
+    // an adaptive case (issue 31) checks every cycle's mesh and estimate
+    if case == "punch-adaptive" {
+        keys.push("adapt");
+    }
     keys
 }
 
@@ -127,7 +131,7 @@ struct Gold {
     prefix: Option<&'static str>,
 }
 
-const CASES: [Gold; 21] = [
+const CASES: [Gold; 22] = [
     Gold {
         case: "bolted-joint",
         args: &[],
@@ -230,6 +234,11 @@ const CASES: [Gold; 21] = [
     },
     Gold {
         case: "shrink-fit-combined",
+        args: &[],
+        prefix: None,
+    },
+    Gold {
+        case: "punch-adaptive",
         args: &[],
         prefix: None,
     },
@@ -614,6 +623,11 @@ fn slideway_damping() {
 #[test]
 fn bolted_flange() {
     check("bolted-flange");
+}
+
+#[test]
+fn punch_adaptive() {
+    check("punch-adaptive");
 }
 
 #[test]

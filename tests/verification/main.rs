@@ -8,6 +8,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod adapt;
 mod axisymmetric;
 mod blocks;
 mod calibration;

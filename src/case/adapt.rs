@@ -1,0 +1,186 @@
+//! The `[adapt]` table (docs/case-schema.md, "Adaptive runs"): solve, estimate
+//! the error, refine where it is, and solve again from the start of the load
+//! history until the estimate is below a tolerance ([`crate::adapt`]). What
+//! the case alone decides is checked here; the dof cap against the start mesh
+//! when the model is built.
+
+use super::Case;
+use crate::error::{Error, Result};
+use serde::Deserialize;
+
+/// The largest number of adaptive cycles (solves) a case may ask for.
+pub const MAX_CYCLES: usize = 20;
+/// The default number of cycles.
+pub const DEFAULT_CYCLES: usize = 8;
+/// The default share of the squared estimate the marked elements hold
+/// (Dörfler's bulk criterion, θ).
+pub const DEFAULT_FRACTION: f64 = 0.5;
+/// The default cap on the dofs of an adapted mesh.
+pub const DEFAULT_MAX_DOFS: usize = 400_000;
+
+/// `[adapt]`: an adaptive run.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AdaptSpec {
+    /// The estimate to reach, relative: of the energy norm, or of the named
+    /// quantity; in (0, 1).
+    pub tolerance: f64,
+    /// What the tolerance applies to (default `energy`).
+    #[serde(default)]
+    pub quantity: Quantity,
+    /// The most solves (the start mesh's included), 1..=[`MAX_CYCLES`].
+    #[serde(default = "default_cycles")]
+    pub max_cycles: usize,
+    /// No mesh with more dofs is solved: the run ends on the last mesh below.
+    #[serde(default = "default_max_dofs")]
+    pub max_dofs: usize,
+    /// Dörfler's θ: the marked elements hold this share of Σ η_e², in (0, 1].
+    #[serde(default = "default_fraction")]
+    pub fraction: f64,
+}
+
+fn default_cycles() -> usize {
+    DEFAULT_CYCLES
+}
+fn default_max_dofs() -> usize {
+    DEFAULT_MAX_DOFS
+}
+fn default_fraction() -> f64 {
+    DEFAULT_FRACTION
+}
+
+impl AdaptSpec {
+    /// `--adapt TOL` without an `[adapt]` table: the energy norm, defaults.
+    pub fn with_tolerance(tolerance: f64) -> AdaptSpec {
+        AdaptSpec {
+            tolerance,
+            quantity: Quantity::Energy,
+            max_cycles: DEFAULT_CYCLES,
+            max_dofs: DEFAULT_MAX_DOFS,
+            fraction: DEFAULT_FRACTION,
+        }
+    }
+}
+
+/// The answer an adaptive run drives to its tolerance.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Quantity {
+    /// The recovery estimate relative to the energy norm of the solution.
+    #[default]
+    Energy,
+    /// The probe node's vertical displacement at the end of the history.
+    Settlement,
+    /// The whole-body load at the end of the history.
+    TotalLoad,
+    /// The first interface's mean contact pressure at the end.
+    MeanPressure,
+    /// The largest contact pressure at the end, over every interface.
+    PeakPressure,
+    /// The load (whole-body, kN) at which the first Gauss point yields.
+    FirstYield,
+}
+
+impl Quantity {
+    pub const ALL: [(&'static str, Quantity); 6] = [
+        ("energy", Quantity::Energy),
+        ("settlement", Quantity::Settlement),
+        ("total_load", Quantity::TotalLoad),
+        ("mean_pressure", Quantity::MeanPressure),
+        ("peak_pressure", Quantity::PeakPressure),
+        ("first_yield", Quantity::FirstYield),
+    ];
+
+    pub fn name(self) -> &'static str {
+        Quantity::ALL
+            .iter()
+            .find(|(_, q)| *q == self)
+            .map(|(n, _)| *n)
+            .expect("every quantity is named")
+    }
+}
+
+impl<'de> Deserialize<'de> for Quantity {
+    /// One of the names of [`Quantity::ALL`]; anything else is refused with
+    /// every choice.
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        struct Choice;
+        impl serde::de::Visitor<'_> for Choice {
+            type Value = Quantity;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                let names: Vec<String> = Quantity::ALL
+                    .iter()
+                    .map(|(n, _)| format!("\"{n}\""))
+                    .collect();
+                write!(f, "quantity {}", names.join(", "))
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> std::result::Result<Quantity, E> {
+                Quantity::ALL
+                    .iter()
+                    .find(|(n, _)| *n == v)
+                    .map(|(_, q)| *q)
+                    .ok_or_else(|| E::invalid_value(serde::de::Unexpected::Str(v), &self))
+            }
+        }
+        d.deserialize_str(Choice)
+    }
+}
+
+/// The checks of `[adapt]` that need no mesh.
+pub fn check(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
+    let Some(a) = &case.adapt else { return Ok(()) };
+    let exact = crate::calibrate::limits::exact;
+    if !(a.tolerance.is_finite() && a.tolerance > 0.0 && a.tolerance < 1.0) {
+        return Err(Error::input(
+            at("[adapt] tolerance"),
+            format!(
+                "{} must be in (0, 1): the estimate to reach, relative to the quantity",
+                exact(a.tolerance)
+            ),
+        ));
+    }
+    if a.tolerance < 1e-6 {
+        return Err(Error::input(
+            at("[adapt] tolerance"),
+            format!(
+                "{} is below 1e-6: no mesh this program can hold reaches it",
+                exact(a.tolerance)
+            ),
+        ));
+    }
+    if !(1..=MAX_CYCLES).contains(&a.max_cycles) {
+        return Err(Error::input(
+            at("[adapt] max_cycles"),
+            format!(
+                "{} must be in 1..={MAX_CYCLES}: the solves, the start mesh's included",
+                a.max_cycles
+            ),
+        ));
+    }
+    if !(a.fraction.is_finite() && a.fraction > 0.0 && a.fraction <= 1.0) {
+        return Err(Error::input(
+            at("[adapt] fraction"),
+            format!(
+                "{} must be in (0, 1]: the share of the squared estimate the refined elements hold",
+                exact(a.fraction)
+            ),
+        ));
+    }
+    if a.quantity == Quantity::FirstYield
+        && case.materials.values().all(|m| m.yield_stress.is_none())
+    {
+        return Err(Error::input(
+            at("[adapt] quantity"),
+            "\"first_yield\" in a case whose materials never yield (no yield_stress)",
+        ));
+    }
+    if matches!(a.quantity, Quantity::PeakPressure | Quantity::MeanPressure)
+        && case.mesh.interface.is_empty()
+        && case.interface.is_empty()
+    {
+        return Err(Error::input(
+            at("[adapt] quantity"),
+            format!("\"{}\" in a case without an interface", a.quantity.name()),
+        ));
+    }
+    Ok(())
+}
