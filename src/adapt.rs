@@ -50,6 +50,10 @@ pub struct Cycle {
     pub iterations: usize,
     pub increments: usize,
     pub wall_s: f64,
+    /// The answers of every run, whatever the quantity: the probe node's
+    /// settlement (mm) and the first-yield load (kN, NaN: no yield).
+    pub settlement_mm: f64,
+    pub first_yield_kn: f64,
 }
 
 /// How an adaptive run ended.
@@ -122,13 +126,13 @@ pub fn cycle_estimate(q: Quantity, relative_eta: f64, value: f64, previous: Opti
 /// `adapt.csv`: one row per cycle.
 pub fn csv(spec: &AdaptSpec, cycles: &[Cycle]) -> String {
     let mut s = format!(
-        "cycle,elements,nodes,dofs,hanging_nodes,eta,relative_eta,{},estimate,tolerance,increments,newton_iterations,wall_s\n",
+        "cycle,elements,nodes,dofs,hanging_nodes,eta,relative_eta,{},estimate,tolerance,increments,newton_iterations,wall_s,settlement_mm,first_yield_kn\n",
         spec.quantity.name()
     );
     for c in cycles {
         let _ = writeln!(
             s,
-            "{},{},{},{},{},{:.9e},{:.9e},{:.9e},{:.9e},{:e},{},{},{:.3}",
+            "{},{},{},{},{},{:.9e},{:.9e},{:.9e},{:.9e},{:e},{},{},{:.3},{:.9e},{:.9e}",
             c.cycle,
             c.elements,
             c.nodes,
@@ -141,7 +145,9 @@ pub fn csv(spec: &AdaptSpec, cycles: &[Cycle]) -> String {
             spec.tolerance,
             c.increments,
             c.iterations,
-            c.wall_s
+            c.wall_s,
+            c.settlement_mm,
+            c.first_yield_kn
         );
     }
     s.replace("NaN", "")
@@ -171,6 +177,8 @@ pub fn summary(spec: &AdaptSpec, cycles: &[Cycle], end: Option<End>) -> serde_js
             "value": num(c.value),
             "estimate": num(c.estimate),
             "increments": c.increments,
+            "settlement_mm": num(c.settlement_mm),
+            "first_yield_kn": num(c.first_yield_kn),
         })).collect::<Vec<_>>(),
     })
 }
@@ -261,6 +269,8 @@ pub fn run(
             iterations: result.stats.iterations,
             increments: result.increments.len(),
             wall_s: started.elapsed().as_secs_f64(),
+            settlement_mm: value(Quantity::Settlement, &model, &result, 0.0),
+            first_yield_kn: value(Quantity::FirstYield, &model, &result, 0.0),
         });
         let end = if estimate <= spec.tolerance {
             Some(End::Reached)

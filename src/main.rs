@@ -162,6 +162,10 @@ enum StudyCommand {
         /// Also run the ungraded mesh (full Newton, serial).
         #[arg(long)]
         uniform: bool,
+        /// Also an adaptive run from the case's mesh (full Newton, serial, 8
+        /// cycles): a point per cycle, its wall time summed over the cycles.
+        #[arg(long)]
+        adapt: bool,
         /// Folder for the pictures (PNG, SVG) and their CSV data.
         #[arg(long, default_value = "docs/figures")]
         out: PathBuf,
@@ -345,8 +349,18 @@ fn main() -> ExitCode {
             slow_levels,
             petsc,
             uniform,
+            adapt,
             out,
-        }) => study_refine(&case, &levels, &methods, slow_levels, petsc, uniform, &out),
+        }) => study_refine(
+            &case,
+            &levels,
+            &methods,
+            slow_levels,
+            petsc,
+            uniform,
+            adapt,
+            &out,
+        ),
         Command::Study(StudyCommand::Stability {
             case,
             steps,
@@ -520,6 +534,7 @@ fn study_refine(
     slow_levels: Option<Vec<usize>>,
     petsc: bool,
     uniform: bool,
+    adapt: bool,
     out: &std::path::Path,
 ) -> asperity::error::Result<()> {
     use asperity::study::refine::{refine, Config};
@@ -533,6 +548,7 @@ fn study_refine(
                 .flatten(),
             which: Which::Serial,
             uniform: false,
+            adapt: false,
         })
         .collect();
     if petsc {
@@ -542,6 +558,7 @@ fn study_refine(
                 levels: None,
                 which: Which::Petsc(n),
                 uniform: false,
+                adapt: false,
             });
         }
     }
@@ -551,6 +568,16 @@ fn study_refine(
             levels: None,
             which: Which::Serial,
             uniform: true,
+            adapt: false,
+        });
+    }
+    if adapt {
+        configs.push(Config {
+            method: Method::FullNewton,
+            levels: None,
+            which: Which::Serial,
+            uniform: false,
+            adapt: true,
         });
     }
     refine(case, levels, &configs, out).map(|(files, summary)| {

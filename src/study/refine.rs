@@ -54,6 +54,9 @@ pub struct Config {
     pub levels: Option<Vec<usize>>,
     pub which: Which,
     pub uniform: bool,
+    /// An adaptive run ([`crate::adapt`]) from the case's mesh: its cycles
+    /// are the points (the wall time summed over the cycles so far).
+    pub adapt: bool,
 }
 
 impl Config {
@@ -62,7 +65,13 @@ impl Config {
             "{}, {}{}",
             self.method.name(),
             self.which.label(),
-            if self.uniform { ", uniform mesh" } else { "" }
+            if self.adapt {
+                ", adaptive"
+            } else if self.uniform {
+                ", uniform mesh"
+            } else {
+                ""
+            }
         )
     }
 }
@@ -81,7 +90,13 @@ fn value(p: &Point, q: &str) -> f64 {
     }
 }
 
-/// One run of the study: (configuration index, refinement level, its point).
+/// The adaptive configuration's tolerance: below what its cycles reach, so
+/// that it runs its `max_cycles` (8) and draws a line as long as the mesh
+/// sequence's.
+const ADAPT_TOLERANCE: &str = "1e-6";
+
+/// One run of the study: (configuration index, refinement level (an adaptive
+/// run's cycle), its point).
 type Row = (usize, usize, Point);
 
 /// Every configuration at each of its levels (configurations that cannot
@@ -100,6 +115,33 @@ fn run_levels(
                 "study: skipping {} (needs the parallel build and mpirun)",
                 cfg.label()
             );
+            continue;
+        }
+        if cfg.adapt {
+            let dir = scratch.join(format!("c{c}-adapt"));
+            let args: Vec<String> = [
+                "--adapt",
+                ADAPT_TOLERANCE,
+                "--method",
+                cfg.method.name(),
+                "--step-control",
+                "auto",
+            ]
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
+            let points = runner::run_adaptive(case, &args, cfg.which, &dir)
+                .map_err(|m| Error::Study(format!("{}: {m}", cfg.label())))?;
+            for (k, p) in points.into_iter().enumerate() {
+                eprintln!(
+                    "study: {} cycle {}: {} dofs, {:.2} s so far",
+                    cfg.label(),
+                    k + 1,
+                    p.dofs,
+                    p.wall
+                );
+                rows.push((c, k + 1, p));
+            }
             continue;
         }
         for &l in levels {
@@ -204,7 +246,7 @@ fn charts(
             for (c, cfg) in configs.iter().enumerate() {
                 let pts: Vec<(f64, f64)> = rows
                     .iter()
-                    .filter(|row| row.0 == c)
+                    .filter(|row| row.0 == c && value(&row.2, q).is_finite())
                     .map(|(_, _, p)| {
                         let x = if axis == "dofs" { p.dofs } else { p.wall };
                         (x.log10(), ((value(p, q) - r) / r).abs().max(1e-12).log10())

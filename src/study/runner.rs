@@ -80,6 +80,58 @@ pub fn run_limited(
     read_point(dir)
 }
 
+/// An adaptive run (`args` hold `--adapt`): one point per cycle from its
+/// adapt.csv, the wall time summed over the cycles so far (what the run
+/// paid to reach that mesh), no edge pressure (only the last cycle's
+/// interface files are kept).
+pub fn run_adaptive(
+    case: &Path,
+    args: &[String],
+    which: Which,
+    dir: &Path,
+) -> Result<Vec<Point>, String> {
+    run(case, args, which, dir)?;
+    let text = std::fs::read_to_string(dir.join("adapt.csv")).map_err(|e| e.to_string())?;
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap_or_default().split(',').collect();
+    let col = |name: &str| {
+        header
+            .iter()
+            .position(|h| *h == name)
+            .ok_or(format!("adapt.csv has no column {name}"))
+    };
+    let (dofs, wall, its, incs, settle, fy) = (
+        col("dofs")?,
+        col("wall_s")?,
+        col("newton_iterations")?,
+        col("increments")?,
+        col("settlement_mm")?,
+        col("first_yield_kn")?,
+    );
+    let mut points = Vec::new();
+    let mut spent = 0.0;
+    for line in lines {
+        let v: Vec<&str> = line.split(',').collect();
+        let f = |k: usize| {
+            v.get(k)
+                .and_then(|x| x.parse::<f64>().ok())
+                .unwrap_or(f64::NAN)
+        };
+        spent += f(wall);
+        points.push(Point {
+            dofs: f(dofs),
+            wall: spent,
+            iterations: f(its),
+            increments: f(incs),
+            cutbacks: 0.0,
+            first_yield_kn: f(fy),
+            center: f(settle),
+            edge_pressure: f64::NAN,
+        });
+    }
+    Ok(points)
+}
+
 /// `asperity run` on the serial backend, or under `mpirun -n N` on PETSc.
 fn command(exe: &Path, which: Which) -> Command {
     match which {

@@ -171,19 +171,21 @@ fn richardson_order_of_the_load_step_error_is_near_one() {
     assert!((limit - q[2]) * (q[2] - q[1]) > 0.0);
 }
 
-/// `study refine` on three small levels, graded and uniform: a data row per
-/// run, finite errors, error falling with refinement on the graded mesh.
+/// `study refine` on three small levels, graded and uniform, and an adaptive
+/// run: a data row per run (per cycle), finite errors, error falling with
+/// refinement on the graded mesh and over the adaptive cycles.
 #[test]
 fn the_refine_study_writes_well_formed_data() {
     use asperity::study::refine::{refine, Config};
     use asperity::study::runner::Which;
     std::env::set_var("ASPERITY_EXE", env!("CARGO_BIN_EXE_asperity"));
     let out = common::scratch("stepping-refine");
-    let configs = [false, true].map(|uniform| Config {
+    let configs = [(false, false), (true, false), (false, true)].map(|(uniform, adapt)| Config {
         method: Method::FullNewton,
         levels: None,
         which: Which::Serial,
         uniform,
+        adapt,
     });
     let (files, summary) = refine(
         &common::root().join("cases/punch-plane-stress"),
@@ -201,14 +203,30 @@ fn the_refine_study_writes_well_formed_data() {
         .skip(1)
         .map(|l| l.rsplit(',').collect())
         .collect();
-    assert_eq!(rows.len(), 6, "{csv}");
+    // 3 graded, 3 uniform, then one row per adaptive cycle (8 at most)
+    assert!((6 + 2..=6 + 8).contains(&rows.len()), "{csv}");
     // columns from the end: err_edge, err_center, err_first_yield, ...
-    for r in &rows {
-        for v in &r[..3] {
+    for (k, r) in rows.iter().enumerate() {
+        for (j, v) in r[..3].iter().enumerate() {
             let e: f64 = v.parse().unwrap();
+            // the adaptive rows have no edge pressure (one interface file kept)
+            if k >= 6 && j == 0 {
+                assert!(e.is_nan(), "{csv}");
+                continue;
+            }
             assert!(e.is_finite() && e >= 0.0, "{csv}");
         }
     }
+    // the adaptive cycles: dofs and the summed wall time grow; the last
+    // cycle's first-yield error is below the start mesh's (level 1)
+    // (from the end: 7 wall_seconds, 8 dofs; the label holds commas)
+    for w in rows[6..].windows(2) {
+        let (d0, d1): (f64, f64) = (w[0][8].parse().unwrap(), w[1][8].parse().unwrap());
+        let (t0, t1): (f64, f64) = (w[0][7].parse().unwrap(), w[1][7].parse().unwrap());
+        assert!(d1 > d0 && t1 > t0, "{csv}");
+    }
+    let fy = |r: &Vec<&str>| -> f64 { r[2].parse().unwrap() };
+    assert!(fy(rows.last().unwrap()) < fy(&rows[0]), "{csv}");
     // graded rows come first: the first-yield error falls level by level
     let e: Vec<f64> = rows[..3].iter().map(|r| r[2].parse().unwrap()).collect();
     assert!(e[0] > e[1] && e[1] > e[2], "{e:?}");
