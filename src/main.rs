@@ -356,9 +356,11 @@ fn main() -> ExitCode {
             &levels,
             &methods,
             slow_levels,
-            petsc,
-            uniform,
-            adapt,
+            StudyLines {
+                petsc,
+                uniform,
+                adapt,
+            },
             &out,
         ),
         Command::Study(StudyCommand::Stability {
@@ -523,6 +525,16 @@ fn refuse_serial(opts: &RunOptions, petsc_options: &[String]) -> Option<ExitCode
     None
 }
 
+/// The lines `study refine` adds beside the serial methods.
+struct StudyLines {
+    /// PETSc on 1 and 2 ranks.
+    petsc: bool,
+    /// The ungraded mesh.
+    uniform: bool,
+    /// An adaptive run.
+    adapt: bool,
+}
+
 /// `asperity study refine`: every method asked for on the serial backend
 /// (modified Newton and initial stiffness on `slow_levels` when given), then
 /// PETSc on 1 and 2 ranks and the ungraded mesh when asked for; prints the
@@ -532,12 +544,15 @@ fn study_refine(
     levels: &[usize],
     methods: &[MethodArg],
     slow_levels: Option<Vec<usize>>,
-    petsc: bool,
-    uniform: bool,
-    adapt: bool,
+    lines: StudyLines,
     out: &std::path::Path,
 ) -> asperity::error::Result<()> {
     use asperity::study::refine::{refine, Config};
+    let StudyLines {
+        petsc,
+        uniform,
+        adapt,
+    } = lines;
     use asperity::study::runner::Which;
     let mut configs: Vec<Config> = methods
         .iter()
