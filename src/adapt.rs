@@ -91,6 +91,11 @@ pub fn value(q: Quantity, model: &Model, r: &RunResult, eta_relative: f64) -> f6
         Quantity::MeanPressure => last.map_or(f64::NAN, |m| m.mean_pressure),
         Quantity::PeakPressure => peak_pressure(model, &r.final_state),
         Quantity::FirstYield => r.first_yield.as_ref().map_or(f64::NAN, |f| f.total_load_kn),
+        Quantity::Torque => r
+            .increments
+            .last()
+            .and_then(|i| i.joints.first())
+            .map_or(f64::NAN, |j| j.torque),
     }
 }
 

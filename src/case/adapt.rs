@@ -78,16 +78,19 @@ pub enum Quantity {
     PeakPressure,
     /// The load (whole-body, kN) at which the first Gauss point yields.
     FirstYield,
+    /// The torque the first interface transmits at the end (N·mm; twist).
+    Torque,
 }
 
 impl Quantity {
-    pub const ALL: [(&'static str, Quantity); 6] = [
+    pub const ALL: [(&'static str, Quantity); 7] = [
         ("energy", Quantity::Energy),
         ("settlement", Quantity::Settlement),
         ("total_load", Quantity::TotalLoad),
         ("mean_pressure", Quantity::MeanPressure),
         ("peak_pressure", Quantity::PeakPressure),
         ("first_yield", Quantity::FirstYield),
+        ("torque", Quantity::Torque),
     ];
 
     pub fn name(self) -> &'static str {
@@ -173,8 +176,16 @@ pub fn check(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
             "\"first_yield\" in a case whose materials never yield (no yield_stress)",
         ));
     }
-    if matches!(a.quantity, Quantity::PeakPressure | Quantity::MeanPressure)
-        && case.mesh.interface.is_empty()
+    if a.quantity == Quantity::Torque && !case.model.twist {
+        return Err(Error::input(
+            at("[adapt] quantity"),
+            "\"torque\" needs a twisting model ([model] twist = true): without twist no interface carries a torque",
+        ));
+    }
+    if matches!(
+        a.quantity,
+        Quantity::PeakPressure | Quantity::MeanPressure | Quantity::Torque
+    ) && case.mesh.interface.is_empty()
         && case.interface.is_empty()
     {
         return Err(Error::input(

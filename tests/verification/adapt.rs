@@ -165,3 +165,60 @@ fn a_named_quantity_is_estimated_by_its_change_between_meshes() {
     let end = s["adapt"]["end"].as_str().unwrap();
     assert!(["reached", "max_cycles", "max_dofs", "nothing_to_refine"].contains(&end));
 }
+
+/// A designer's question from the docs alone: how accurate is the torque a
+/// shrink fit transmits? `quantity = "torque"` on the twisted fit: the
+/// estimate is the torque's change from the previous mesh, and the run's
+/// torque is the joint's (joints.csv) on the last mesh.
+#[test]
+fn the_torque_of_a_twisted_fit_adapts_by_its_change() {
+    let dir = common::scratch("adapt-torque");
+    let case = dir.join("case");
+    std::fs::create_dir_all(&case).unwrap();
+    let text = std::fs::read_to_string(common::root().join("cases/shrink-fit-torque/case.toml"))
+        .unwrap()
+        + "\n[adapt]\ntolerance = 1e-3\nquantity = \"torque\"\nmax_cycles = 4\n";
+    std::fs::write(case.join("case.toml"), text).unwrap();
+    let out = dir.join("out");
+    let (code, err) = common::run_case(&case, &out, &[]);
+    assert_eq!(code, 0, "{err}");
+    let s = summary(&out);
+    let a = &s["adapt"];
+    assert_eq!(a["quantity"], "torque");
+    let cycles = a["cycles"].as_array().unwrap();
+    assert!(cycles.len() >= 2, "{a}");
+    assert!(cycles[0]["estimate"].is_null());
+    let torque = |c: &Value| c["value"].as_f64().unwrap();
+    for w in cycles.windows(2) {
+        let e = w[1]["estimate"].as_f64().unwrap();
+        let (t0, t1) = (torque(&w[0]), torque(&w[1]));
+        assert!((e - ((t1 - t0) / t1).abs()).abs() <= 1e-12, "{e} {t0} {t1}");
+    }
+    let last = torque(cycles.last().unwrap());
+    let joint = s["joints"][0]["final"]["torque_nmm"].as_f64().unwrap();
+    assert!(
+        (last - joint).abs() <= 1e-9 * joint.abs(),
+        "{last} vs {joint}"
+    );
+    // twisted to full slip: T = 2π μ p b² L with the last mesh's mean fit
+    // pressure (μ = 0.15, b = 20 mm, L = 30 mm; tests/verification/torque_fit.rs)
+    let p = s["final"]["mean_pressure_mpa"].as_f64().unwrap();
+    let closed = 2.0 * std::f64::consts::PI * 0.15 * p * 20.0 * 20.0 * 30.0;
+    assert!(
+        (last / closed - 1.0).abs() < 1e-3,
+        "{last} vs 2πμpb²L = {closed}"
+    );
+    eprintln!(
+        "shrink-fit-torque, quantity torque: {}",
+        cycles
+            .iter()
+            .map(|c| format!(
+                "{} dofs T = {:.1} N·mm (est {})",
+                c["dofs"],
+                torque(c),
+                c["estimate"]
+            ))
+            .collect::<Vec<_>>()
+            .join("; ")
+    );
+}
