@@ -196,6 +196,10 @@ pub fn record(dir: &Path, spec: &AdaptSpec, cycles: &[Cycle], end: Option<End>) 
     )
 }
 
+/// A backend's solve of one cycle: the whole history of a built model, its
+/// output folder written on the writing process.
+pub type SolveCycle<'a> = dyn FnMut(&Model, Instant) -> Result<(PathBuf, RunResult)> + 'a;
+
 /// Runs an adaptive case on any backend. `solve` runs the whole history of
 /// a built model and writes its output folder on the writing process
 /// (`root`); `share` hands rank 0's numbers to every rank (nothing to do on
@@ -205,7 +209,7 @@ pub fn run(
     case: Case,
     opts: &RunOptions,
     root: bool,
-    solve: &mut dyn FnMut(&Model, Instant) -> Result<(PathBuf, RunResult)>,
+    solve: &mut SolveCycle<'_>,
     share: &dyn Fn(&mut [f64]),
 ) -> Result<(PathBuf, Model, RunResult)> {
     let spec = case.adapt.clone().expect("an adaptive run has [adapt]");
