@@ -16,7 +16,8 @@ fn case() -> String {
         .to_string()
 }
 
-fn asperity(args: &[&str]) -> (i32, String) {
+/// The exit code, stderr and stdout of a run.
+fn asperity_out(args: &[&str]) -> (i32, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_asperity"))
         .args(args)
         .output()
@@ -24,7 +25,13 @@ fn asperity(args: &[&str]) -> (i32, String) {
     (
         out.status.code().unwrap_or(-1),
         String::from_utf8_lossy(&out.stderr).into(),
+        String::from_utf8_lossy(&out.stdout).into(),
     )
+}
+
+fn asperity(args: &[&str]) -> (i32, String) {
+    let (code, err, _) = asperity_out(args);
+    (code, err)
 }
 
 fn hidden_left(parent: &Path) -> Vec<String> {
@@ -81,8 +88,9 @@ fn a_stop_in_the_first_cycle_writes_nothing() {
     let dir = common::scratch("adapt-stop-first");
     let out = dir.join("out");
     let o = out.display().to_string();
-    let (code, err) = asperity(&["run", &case(), "--out", &o, "--stop-after", "3"]);
+    let (code, err, stdout) = asperity_out(&["run", &case(), "--out", &o, "--stop-after", "3"]);
     assert_eq!(code, 3, "{err}");
+    assert_eq!(stdout, "", "no folder to name on stdout");
     assert!(
         err.contains("stopped by stop-after in adaptive cycle 1 after increment 3")
             && err.contains("no output was written"),
