@@ -209,7 +209,7 @@ pub fn record(dir: &Path, spec: &AdaptSpec, cycles: &[Cycle], end: Option<End>) 
     )
 }
 
-/// One cycle's solve on a backend: the whole history of a built model, its
+/// A backend's solve of one cycle: the whole history of a built model, its
 /// output folder written on the writing process.
 pub type SolveCycle<'a> = dyn FnMut(&Model, Instant) -> Result<(PathBuf, RunResult)> + 'a;
 
@@ -222,7 +222,7 @@ pub fn run(
     case: Case,
     opts: &RunOptions,
     root: bool,
-    solve: &mut SolveCycle,
+    solve: &mut SolveCycle<'_>,
     share: &dyn Fn(&mut [f64]),
 ) -> Result<(PathBuf, Model, RunResult)> {
     let spec = case.adapt.clone().expect("an adaptive run has [adapt]");
@@ -238,6 +238,14 @@ pub fn run(
         let given = (!cycles.is_empty()).then(|| mesh.mesh.clone());
         let model = Model::build_on(case.clone(), given)?;
         let (dir, result) = solve(&model, started)?;
+        if let Some(stop) = result.stopped {
+            // the cycle wrote nothing (driver::run_cycle): the folder holds
+            // the previous cycle's complete run, or nothing
+            if root {
+                stopped(&log, stop, cycles.len() + 1, &result, &dir);
+            }
+            return Ok((dir, model, result));
+        }
         // rank 0's estimate and answer, on every rank: [η, ‖u‖, Q, η_e²…]
         let ne = model.mesh.elements.len();
         let mut numbers = vec![0.0; 3 + ne];
@@ -282,14 +290,27 @@ pub fn run(
         } else if cycles.len() >= spec.max_cycles {
             Some(End::Cycles)
         } else {
-            let marked = crate::estimate::doerfler_mark(&numbers[3..], spec.fraction);
+            // an element at the deepest level is not split again
+            let marked: Vec<usize> = crate::estimate::doerfler_mark(&numbers[3..], spec.fraction)
+                .into_iter()
+                .filter(|&e| mesh.state.level[e] < crate::mesh::refine::MAX_LEVEL)
+                .collect();
             if marked.is_empty() {
                 Some(End::Nothing)
             } else {
-                let next = mesh.refine(&marked).map_err(|e| Error::Mesh {
-                    place: format!("{place}: [adapt]"),
-                    message: e.to_string(),
-                })?;
+                let next = match mesh.refine(&marked) {
+                    Ok(next) => next,
+                    Err(e) => {
+                        // the folder holds this cycle's run: its record too
+                        if root {
+                            record(&dir, &spec, &cycles, None)?;
+                        }
+                        return Err(Error::Mesh {
+                            place: format!("{place}: [adapt]"),
+                            message: e.to_string(),
+                        });
+                    }
+                };
                 if next.mesh.nodes.len() * per_node > spec.max_dofs {
                     Some(End::Dofs)
                 } else {
@@ -348,6 +369,37 @@ pub fn run(
     }
 }
 
+/// The stop line of an adaptive run interrupted in cycle `cycle` (its
+/// partial run was not written).
+fn stopped(log: &Log, stop: crate::interrupt::Stop, cycle: usize, r: &RunResult, dir: &Path) {
+    let kept = if cycle > 1 {
+        format!(
+            "{} holds cycle {}'s complete run and adapt.csv",
+            dir.display(),
+            cycle - 1
+        )
+    } else {
+        "no output was written (an adaptive run cannot be resumed)".to_string()
+    };
+    log.always(
+        "stop",
+        json!({
+            "stopped_by": stop.name(),
+            "adapt_cycle": cycle,
+            "increments": r.increments.len(),
+            "output": (cycle > 1).then(|| dir.display().to_string()),
+            "exit_code": stop.exit_code(),
+        }),
+        || {
+            format!(
+                "stopped by {} in adaptive cycle {cycle} after increment {}: the cycle is dropped; {kept}",
+                stop.name(),
+                r.increments.len()
+            )
+        },
+    );
+}
+
 /// The warning of an adaptive run that stopped above its tolerance.
 fn not_reached(end: End, spec: &AdaptSpec, c: &Cycle) -> String {
     let why = match end {
@@ -356,9 +408,16 @@ fn not_reached(end: End, spec: &AdaptSpec, c: &Cycle) -> String {
         End::Nothing => "no element is left to refine".into(),
         End::Reached => String::new(),
     };
+    let unknown = if c.value.is_nan() && spec.quantity == Quantity::FirstYield {
+        "(not known: no Gauss point yields in the load history on the last mesh)".to_string()
+    } else if c.value.is_nan() {
+        format!("(not known: the last run has no {})", spec.quantity.name())
+    } else {
+        "(not known: it needs two cycles)".to_string()
+    };
     format!(
         "[adapt] stopped at an estimate of {} above the tolerance {:e}: {why}; the output is the last mesh's ({} dofs)",
-        if c.estimate.is_finite() { format!("{:.3e}", c.estimate) } else { "(not known)".into() },
+        if c.estimate.is_finite() { format!("{:.3e}", c.estimate) } else { unknown },
         spec.tolerance,
         c.dofs
     )

@@ -116,6 +116,14 @@ pub fn load_case(case_path: &Path, opts: &RunOptions) -> Result<Case> {
             None => crate::case::adapt::AdaptSpec::with_tolerance(t),
         });
     }
+    if case.adapt.is_some() && opts.restart.is_some() {
+        // refused before the restart folder is read: its checkpoint is of
+        // one cycle's mesh, and every cycle starts from the beginning
+        return Err(crate::error::Error::input(
+            format!("{}: [adapt]", case.source.display()),
+            "an adaptive run solves every mesh from the start of the history: it cannot resume (--restart)",
+        ));
+    }
     if let Some(n) = opts.increments {
         case.solver.increments = Some(n);
         case.solver.first_increment = None;
@@ -221,7 +229,7 @@ pub fn run(case_path: &Path, opts: &RunOptions) -> Result<(PathBuf, Model, RunRe
                 opts.threads.unwrap_or_else(crate::threads::available),
             )?;
             prepare(&mut engine, opts, crate::solve::peak_memory_mb());
-            run_model(model, engine, opts, true, started)
+            run_cycle(model, engine, opts, true, started)
         };
         return crate::adapt::run(case, opts, true, &mut solve, &|_| {});
     }
@@ -246,6 +254,31 @@ pub fn run_model(
     opts: &RunOptions,
     write: bool,
     started: Instant,
+) -> Result<(PathBuf, RunResult)> {
+    run_model_as(model, engine, opts, write, started, false)
+}
+
+/// [`run_model`] for one cycle of an adaptive run ([`crate::adapt`]): a
+/// cycle stopped early (SIGINT, SIGTERM, `--stop-after`) writes nothing, so
+/// the output folder keeps the previous cycle's complete run; the caller
+/// reports the stop.
+pub fn run_cycle(
+    model: &Model,
+    engine: Engine,
+    opts: &RunOptions,
+    write: bool,
+    started: Instant,
+) -> Result<(PathBuf, RunResult)> {
+    run_model_as(model, engine, opts, write, started, true)
+}
+
+fn run_model_as(
+    model: &Model,
+    engine: Engine,
+    opts: &RunOptions,
+    write: bool,
+    started: Instant,
+    cycle: bool,
 ) -> Result<(PathBuf, RunResult)> {
     let dir = opts
         .out
@@ -321,6 +354,12 @@ pub fn run_model(
     let mut writer = Writer::new(&dir, log.clone(), planned, resume)?;
     writer.final_load_factor = lambda_end;
     match solve::run_from(engine, &mut writer, start, control) {
+        Ok(result) if cycle && result.stopped.is_some() => {
+            // not a result of the history: no partial folder replaces the
+            // previous cycle's complete one (and none could be resumed)
+            writer.abandon();
+            Ok((dir, result))
+        }
         Ok(mut result) => {
             let wall = started.elapsed().as_secs_f64();
             result.estimate = writer.last_estimate().cloned();
@@ -432,7 +471,9 @@ impl crate::solve::Observer for Silent {
 
 /// `asperity check`: validates a case and describes what would be solved.
 pub fn check(case_path: &Path) -> Result<String> {
-    let model = load_model(case_path, &RunOptions::default())?;
+    let case = load_case(case_path, &RunOptions::default())?;
+    let adapt = case.adapt.clone();
+    let model = Model::build(case)?;
     // a table the applied load alone takes far beyond its data
     let place = model.source.display().to_string();
     for t in crate::interface::extrapolation::predicted(&model) {
@@ -574,6 +615,19 @@ pub fn check(case_path: &Path) -> Result<String> {
                 model.solver.max_cutbacks
             );
         }
+    }
+    if let Some(a) = &adapt {
+        s += &format!(
+            "  adaptive: the whole history solved again on each refined mesh until the estimate of {} is at most {:e} (at most {} solves and {} dofs, refining the elements that hold {} of η²); the mesh above is the first\n",
+            match a.quantity {
+                crate::case::adapt::Quantity::Energy => "η/‖u_h‖_E".to_string(),
+                q => format!("the change of {} between two meshes", q.name()),
+            },
+            a.tolerance,
+            a.max_cycles,
+            a.max_dofs,
+            a.fraction
+        );
     }
     Ok(s)
 }

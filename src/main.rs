@@ -482,7 +482,10 @@ fn run(args: RunArgs) -> ExitCode {
     }
     match driver::run(&args.case, &opts) {
         Ok((dir, _model, result)) => {
-            println!("{}", dir.display());
+            // (an adaptive run stopped in its first cycle wrote no folder)
+            if dir.exists() {
+                println!("{}", dir.display());
+            }
             exit_code(&result)
         }
         Err(e) => fail(opts.log_format, &e.to_string()),
@@ -668,7 +671,7 @@ fn run_petsc(case: &std::path::Path, opts: &RunOptions, petsc_options: &[String]
     let (outcome, root) = asperity::parallel::run(case, opts, petsc_options, &report);
     match outcome {
         Ok((dir, result)) => {
-            if root {
+            if root && dir.exists() {
                 println!("{}", dir.display());
             }
             exit_code(&result)

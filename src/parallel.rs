@@ -46,7 +46,7 @@ pub fn run(
         if case.adapt.is_some() {
             let mut solve = |model: &crate::model::Model, started: Instant| {
                 let engine = engine(&petsc, &world, model, opts)?;
-                driver::run_model(model, engine, opts, root, started)
+                driver::run_cycle(model, engine, opts, root, started)
             };
             let share = |numbers: &mut [f64]| {
                 world.process_at_rank(0).broadcast_into(numbers);

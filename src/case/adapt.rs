@@ -182,15 +182,17 @@ pub fn check(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
             "\"torque\" needs a twisting model ([model] twist = true): without twist no interface carries a torque",
         ));
     }
-    if matches!(
-        a.quantity,
-        Quantity::PeakPressure | Quantity::MeanPressure | Quantity::Torque
-    ) && case.mesh.interface.is_empty()
-        && case.interface.is_empty()
+    // every named answer is read at the interfaces (curve.csv's first
+    // interface, the probe node of body B): without one it is 0 on every
+    // mesh, and the run would stop at once, "reached"
+    if a.quantity != Quantity::Energy && case.mesh.interface.is_empty() && case.interface.is_empty()
     {
         return Err(Error::input(
             at("[adapt] quantity"),
-            format!("\"{}\" in a case without an interface", a.quantity.name()),
+            format!(
+                "\"{}\" in a case without an interface: it is measured at the interface (curve.csv), 0 on every mesh here; adapt on \"energy\"",
+                a.quantity.name()
+            ),
         ));
     }
     Ok(())

@@ -8,6 +8,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod adapt_stop;
 mod axisymmetric;
 mod bad_inputs;
 mod calibrate;
