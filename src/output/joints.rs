@@ -264,29 +264,14 @@ pub fn hysteresis(
     cycles: &[Vec<Cycle>],
     dir: &Path,
 ) -> Result<Vec<PathBuf>> {
-    use crate::study::plot::{load_font, save, Chart, Series};
-    let series: Vec<Series> =
-        model
-            .interfaces
-            .iter()
-            .enumerate()
-            .filter(|(k, _)| cycles.get(*k).is_some_and(|c| !c.is_empty()))
-            .map(|(k, im)| {
-                let n = cycles[k].len();
-                Series {
-                    label: format!(
-                        "{} ({n} closed cycle{})",
-                        im.name,
-                        if n == 1 { "" } else { "s" }
-                    ),
-                    points: std::iter::once((0.0, 0.0))
-                        .chain(r.increments.iter().filter_map(|i| {
-                            i.joints.get(k).map(|m| (m.mean_slip, m.tangential_force))
-                        }))
-                        .collect(),
-                }
-            })
-            .collect();
+    use crate::study::plot::{load_font, save, Chart};
+    let series = loop_series(
+        model,
+        r,
+        cycles,
+        |_| String::new(),
+        |m| (m.mean_slip, m.tangential_force),
+    );
     if series.is_empty() {
         return Ok(Vec::new());
     }
@@ -300,6 +285,43 @@ pub fn hysteresis(
     save(&chart, &dir.join("hysteresis"), load_font())
 }
 
+/// One line per interface with a closed cycle, from the origin through
+/// every increment's `point` of the joint measures, labelled with the
+/// interface, its cycle count and `extra` of its cycles.
+fn loop_series(
+    model: &Model,
+    r: &RunResult,
+    cycles: &[Vec<Cycle>],
+    extra: impl Fn(&[Cycle]) -> String,
+    point: impl Fn(&JointMeasures) -> (f64, f64),
+) -> Vec<crate::study::plot::Series> {
+    model
+        .interfaces
+        .iter()
+        .enumerate()
+        .filter(|(k, _)| cycles.get(*k).is_some_and(|c| !c.is_empty()))
+        .map(|(k, im)| {
+            let c = &cycles[k];
+            crate::study::plot::Series {
+                label: format!(
+                    "{} ({} closed cycle{}{})",
+                    im.name,
+                    c.len(),
+                    if c.len() == 1 { "" } else { "s" },
+                    extra(c)
+                ),
+                points: std::iter::once((0.0, 0.0))
+                    .chain(
+                        r.increments
+                            .iter()
+                            .filter_map(|i| i.joints.get(k).map(&point)),
+                    )
+                    .collect(),
+            }
+        })
+        .collect()
+}
+
 /// The torque-twist chart of a twisting run: T (kN·mm) against φ̄ (mrad)
 /// from the start of the run, one line per interface with a closed cycle.
 /// None without twist or without a cycle.
@@ -308,35 +330,21 @@ pub fn torsion_chart(
     r: &RunResult,
     cycles: &[Vec<Cycle>],
 ) -> Option<crate::study::plot::Chart> {
-    use crate::study::plot::{Chart, Series};
+    use crate::study::plot::Chart;
     if !model.node_dofs().twist() {
         return None;
     }
-    let series: Vec<Series> =
-        model
-            .interfaces
-            .iter()
-            .enumerate()
-            .filter(|(k, _)| cycles.get(*k).is_some_and(|c| !c.is_empty()))
-            .map(|(k, im)| {
-                let c = &cycles[k];
-                let eta = c.last().and_then(Cycle::torsional_loss_factor);
-                Series {
-                    label: format!(
-                        "{} ({} closed cycle{}{})",
-                        im.name,
-                        c.len(),
-                        if c.len() == 1 { "" } else { "s" },
-                        eta.map_or(String::new(), |e| format!(", last η_θ = {e:.3}"))
-                    ),
-                    points: std::iter::once((0.0, 0.0))
-                        .chain(r.increments.iter().filter_map(|i| {
-                            i.joints.get(k).map(|m| (1e3 * m.twist, 1e-3 * m.torque))
-                        }))
-                        .collect(),
-                }
-            })
-            .collect();
+    let series = loop_series(
+        model,
+        r,
+        cycles,
+        |c| {
+            c.last()
+                .and_then(Cycle::torsional_loss_factor)
+                .map_or(String::new(), |e| format!(", last η_θ = {e:.3}"))
+        },
+        |m| (1e3 * m.twist, 1e-3 * m.torque),
+    );
     (!series.is_empty()).then(|| Chart {
         title: format!("{}: torque against twist", model.name),
         x_label: "φ̄: mean twist of A relative to B at the interface (mrad)".into(),
