@@ -548,6 +548,13 @@ pub fn run_ok(dir: &std::path::Path, out: &std::path::Path) {
 
 /// Runs the built program: its exit code and its stderr.
 pub fn run_asperity(args: &[&str]) -> (i32, String) {
+    let (code, err, _) = run_asperity_out(args);
+    (code, err)
+}
+
+/// [`run_asperity`] with stdout too: (exit code, stderr, stdout).
+#[allow(dead_code)]
+pub fn run_asperity_out(args: &[&str]) -> (i32, String, String) {
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_asperity"))
         .args(args)
         .output()
@@ -555,6 +562,7 @@ pub fn run_asperity(args: &[&str]) -> (i32, String) {
     (
         out.status.code().unwrap_or(-1),
         String::from_utf8_lossy(&out.stderr).into(),
+        String::from_utf8_lossy(&out.stdout).into(),
     )
 }
 

@@ -16,23 +16,7 @@ fn case() -> String {
         .to_string()
 }
 
-/// The exit code, stderr and stdout of a run.
-fn asperity_out(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_asperity"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stderr).into(),
-        String::from_utf8_lossy(&out.stdout).into(),
-    )
-}
-
-fn asperity(args: &[&str]) -> (i32, String) {
-    let (code, err, _) = asperity_out(args);
-    (code, err)
-}
+use crate::common::{run_asperity as asperity, run_asperity_out as asperity_out};
 
 fn hidden_left(parent: &Path) -> Vec<String> {
     std::fs::read_dir(parent)

@@ -8,19 +8,9 @@
 use crate::common;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 use std::time::Instant;
 
-fn asperity(args: &[&str]) -> (i32, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_asperity"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stderr).into(),
-    )
-}
+use crate::common::run_asperity as asperity;
 
 /// The case the forgeries start from: punch-plane-stress (both bodies
 /// plastic, the power law).
