@@ -11,9 +11,11 @@ use crate::fem::solid::ElementGeometry;
 use crate::fem::solid::ElementVector;
 use crate::interface::InterfaceModel;
 use crate::material::{Plane, VonMises};
-use crate::mesh::{blocks, gmsh, Mesh, NodeDofs};
+use crate::mesh::{Mesh, NodeDofs};
 
 mod hanging;
+mod meshes;
+use meshes::{check_mesh, make_mesh};
 mod supports;
 use supports::check_supports;
 
@@ -121,14 +123,7 @@ impl Model {
         let checked = check_case(&case)?;
         let mut mesh = match mesh {
             None => make_mesh(&case, &place)?,
-            Some(mesh) => {
-                mesh.validate().map_err(|e| Error::Mesh {
-                    place: place.clone(),
-                    message: e.to_string(),
-                })?;
-                whole::check_mesh(&case, &mesh, &place)?;
-                mesh
-            }
+            Some(mesh) => check_mesh(&case, mesh, &place)?,
         };
         if case.model.twist {
             mesh.node_dofs = NodeDofs::TWIST;
@@ -573,45 +568,6 @@ fn probe(case: &Case, mesh: &Mesh, interfaces: &[InterfaceModel]) -> (usize, f64
                 .unwrap_or(0)
         });
     (best, mesh.nodes.get(best).map_or(0.0, |x| x[1]))
-}
-
-/// The mesh of a case (a Gmsh file beside the case, or its blocks), checked
-/// as a mesh and as a whole ([`whole::check_mesh`]).
-fn make_mesh(case: &Case, place: &str) -> Result<Mesh> {
-    let mesh = match &case.mesh.file {
-        Some(file) => {
-            let dir = case.source.parent().unwrap_or(std::path::Path::new(""));
-            gmsh::read(&dir.join(file), &case.mesh.interface, place)?
-        }
-        None => blocks::generate(&case.mesh.block, &case.mesh.interface, case.mesh.refine)
-            .map_err(|e| Error::Mesh {
-                place: format!("{place} [mesh]"),
-                message: e.to_string(),
-            })?,
-    };
-    mesh.validate().map_err(|e| Error::Mesh {
-        place: place.to_string(),
-        message: e.to_string(),
-    })?;
-    let mesh =
-        match &case.mesh.refine_region {
-            None => mesh,
-            Some(r) => {
-                let limit = crate::case::MAX_ELEMENTS;
-                let refined = crate::mesh::refine::in_box(&mesh, r.x, r.y, r.levels, limit)
-                    .map_err(|e| Error::Mesh {
-                        place: format!("{place}: [mesh] refine_region"),
-                        message: e.to_string(),
-                    })?;
-                refined.mesh.validate().map_err(|e| Error::Mesh {
-                    place: format!("{place}: [mesh] refine_region"),
-                    message: e.to_string(),
-                })?;
-                refined.mesh
-            }
-        };
-    whole::check_mesh(case, &mesh, place)?;
-    Ok(mesh)
 }
 
 /// The material of every body, in body order; a body without

@@ -1,0 +1,54 @@
+//! The mesh of a model: made from the case (blocks or a Gmsh file, with
+//! `refine_region`) or handed in (an adaptive run's), and checked.
+
+use crate::case::{whole, Case};
+use crate::error::{Error, Result};
+use crate::mesh::{blocks, gmsh, Mesh};
+
+/// The mesh of a case (a Gmsh file beside the case, or its blocks), checked
+/// as a mesh and as a whole ([`whole::check_mesh`]).
+pub(super) fn make_mesh(case: &Case, place: &str) -> Result<Mesh> {
+    let mesh = match &case.mesh.file {
+        Some(file) => {
+            let dir = case.source.parent().unwrap_or(std::path::Path::new(""));
+            gmsh::read(&dir.join(file), &case.mesh.interface, place)?
+        }
+        None => blocks::generate(&case.mesh.block, &case.mesh.interface, case.mesh.refine)
+            .map_err(|e| Error::Mesh {
+                place: format!("{place} [mesh]"),
+                message: e.to_string(),
+            })?,
+    };
+    // a region refines a valid mesh; the refined one is checked below
+    let Some(r) = &case.mesh.refine_region else {
+        return check_mesh(case, mesh, place);
+    };
+    let mesh = check_mesh_only(mesh, place)?;
+    let at = format!("{place}: [mesh] refine_region");
+    let refined = crate::mesh::refine::in_box(&mesh, r.x, r.y, r.levels, crate::case::MAX_ELEMENTS)
+        .map_err(|e| Error::Mesh {
+            place: at.clone(),
+            message: e.to_string(),
+        })?;
+    let mesh = check_mesh_only(refined.mesh, &at)?;
+    whole::check_mesh(case, &mesh, place)?;
+    Ok(mesh)
+}
+
+/// A mesh checked as a mesh ([`Mesh::validate`]) and as a whole
+/// ([`whole::check_mesh`]): the case's own, or one handed to
+/// [`super::Model::build_on`] (an adaptive run's refined mesh).
+pub(super) fn check_mesh(case: &Case, mesh: Mesh, place: &str) -> Result<Mesh> {
+    let mesh = check_mesh_only(mesh, place)?;
+    whole::check_mesh(case, &mesh, place)?;
+    Ok(mesh)
+}
+
+/// [`Mesh::validate`] with the place of the case.
+fn check_mesh_only(mesh: Mesh, place: &str) -> Result<Mesh> {
+    mesh.validate().map_err(|e| Error::Mesh {
+        place: place.to_string(),
+        message: e.to_string(),
+    })?;
+    Ok(mesh)
+}
