@@ -59,9 +59,10 @@ pub(super) fn check_supports(
         }
     }
     // twist: a body turns rigidly about the axis (u_θ = ω r, zero on the
-    // axis) unless a prescribed u_θ at r > 0 holds it (an interface's
-    // friction holds nothing before its first contact, and the contact
-    // stabilization acts in the plane only)
+    // axis) unless a prescribed u_θ at r > 0 holds it, or the friction of an
+    // interface (a tangential law) to a body that is held: that friction
+    // holds nothing before the first contact, when the contact stabilization
+    // holds the rotation too ([`crate::solve::stabilize`])
     if mesh.node_dofs.twist() {
         let tol = crate::case::whole::tolerance(mesh);
         let mut turns = vec![true; mesh.bodies.len()];
@@ -71,11 +72,25 @@ pub(super) fn check_supports(
                 turns[node_body[n]] = false;
             }
         }
+        loop {
+            let mut changed = false;
+            for im in interfaces.iter().filter(|im| im.tangential.is_some()) {
+                let (a, b) = (im.body_a, im.body_b);
+                if turns[a] != turns[b] {
+                    turns[a] = false;
+                    turns[b] = false;
+                    changed = true;
+                }
+            }
+            if !changed {
+                break;
+            }
+        }
         if let Some(b) = turns.iter().position(|&t| t) {
             return Err(Error::input(
                 place,
                 format!(
-                    "body \"{}\" is held by nothing about the axis: no [[boundary]] rotation on a node at r > 0 (the axis holds u_θ = 0 but not the rigid rotation u_θ = ω r); give a rotation (0: fixed) on a set of the body",
+                    "body \"{}\" is held by nothing about the axis: no [[boundary]] rotation on a node at r > 0 (the axis holds u_θ = 0 but not the rigid rotation u_θ = ω r) and no interface with a tangential law to a body that is held; give a rotation (0: fixed) on a set of the body, or friction to a held body",
                     mesh.bodies[b]
                 ),
             ));

@@ -20,12 +20,17 @@ const TOUCH: f64 = -1e-12;
 const SUPPORT: f64 = 1e-8;
 
 /// Rigid-body constraint data of one body: centroid, size and the Gram matrix
-/// of the rows its boundary conditions impose on (t_x, t_y, θ·L).
+/// of the rows its boundary conditions impose on (t_x, t_y, θ·L); with twist
+/// also the rotation about the axis, u_θ = ω r, whose rows (r/L) ω are
+/// gathered in the scalar `turn`.
 #[derive(Clone, Debug)]
 struct Body {
     centre: [f64; 2],
     size: f64,
     bc: [f64; 6],
+    /// Σ (r/L)² over the prescribed u_θ at r > 0 (1 without twist: nothing
+    /// to hold).
+    turn: f64,
     /// Force of each load pattern at factor 1 (N, Σ |f| over the body's nodes).
     load: Vec<f64>,
     /// The histories of the non-zero prescribed displacements acting on it.
@@ -80,6 +85,12 @@ fn fixes_all(g: &[f64; 6]) -> bool {
     tr > 0.0 && det3(g) > 1e-9 * (tr / 3.0).powi(3)
 }
 
+/// Whether the in-plane Gram matrix `g` and the rotation's `turn` fix every
+/// rigid motion of a body.
+fn fixes(g: &[f64; 6], turn: f64) -> bool {
+    fixes_all(g) && turn > 0.0
+}
+
 fn add_row(g: &mut [f64; 6], r: [f64; 3]) {
     g[0] += r[0] * r[0];
     g[1] += r[0] * r[1];
@@ -97,6 +108,17 @@ impl Body {
             (x[1] - self.centre[1]) / self.size,
         );
         [e[0], e[1], e[1] * rx - e[0] * ry]
+    }
+
+    /// The row (r/L) of a u_θ at `x` on the rotation about the axis; zero
+    /// on the axis, where u_θ = ω r vanishes.
+    fn turn_row(&self, x: [f64; 2]) -> f64 {
+        let r = x[0].abs() / self.size;
+        if r > 1e-9 {
+            r * r
+        } else {
+            0.0
+        }
     }
 }
 
@@ -120,6 +142,7 @@ impl Stabilizer {
                 }
             }
         }
+        let twist = model.node_dofs().twist();
         let mut bodies: Vec<Body> = (0..nb)
             .map(|b| Body {
                 centre: [0.5 * (lo[b][0] + hi[b][0]), 0.5 * (lo[b][1] + hi[b][1])],
@@ -127,6 +150,7 @@ impl Stabilizer {
                     .max(hi[b][1] - lo[b][1])
                     .max(f64::MIN_POSITIVE),
                 bc: [0.0; 6],
+                turn: if twist { 0.0 } else { 1.0 },
                 load: vec![0.0; model.patterns().count()],
                 driven: Vec::new(),
             })
@@ -141,20 +165,20 @@ impl Stabilizer {
             }
         }
         for (&(d, v), &h) in model.prescribed.iter().zip(&model.prescribed_history) {
-            // u_θ (twist) is no in-plane motion: a body's rotation about the
-            // axis is held by its prescribed twist (the model refuses a body
-            // without one), never by the interface springs
+            // u_θ (twist) holds the rotation about the axis, the in-plane
+            // dofs the motions in the meridian plane
             let (n, c) = model.node_dofs().node_of(d);
             let Some(b) = body_of.get(n).copied().filter(|&b| b < nb) else {
                 continue;
             };
-            let e = match c {
-                0 => [1.0, 0.0],
-                1 => [0.0, 1.0],
-                _ => continue,
-            };
-            let r = bodies[b].row(mesh.nodes[n], e);
-            add_row(&mut bodies[b].bc, r);
+            match c {
+                0 | 1 => {
+                    let e = if c == 0 { [1.0, 0.0] } else { [0.0, 1.0] };
+                    let r = bodies[b].row(mesh.nodes[n], e);
+                    add_row(&mut bodies[b].bc, r);
+                }
+                _ => bodies[b].turn += bodies[b].turn_row(mesh.nodes[n]),
+            }
             if v != 0.0 && !bodies[b].driven.contains(&h) {
                 bodies[b].driven.push(h);
             }
@@ -172,7 +196,7 @@ impl Stabilizer {
         // mechanism no interface spring can hold (and mostly refused up front)
         let loose = (0..nb)
             .map(|b| {
-                !fixes_all(&bodies[b].bc)
+                !fixes(&bodies[b].bc, bodies[b].turn)
                     && model
                         .interfaces
                         .iter()
@@ -223,6 +247,7 @@ impl Stabilizer {
                 }
                 let body = &self.bodies[b];
                 let mut g = body.bc;
+                let mut turn = body.turn;
                 for (i, im) in model.interfaces.iter().enumerate() {
                     let other = if im.body_a == b {
                         im.body_b
@@ -246,11 +271,13 @@ impl Stabilizer {
                             add_row(&mut g, body.row(pr.x, pr.normal));
                             if im.tangential.is_some() && un > 0.0 {
                                 add_row(&mut g, body.row(pr.x, [pr.normal[1], -pr.normal[0]]));
+                                // friction around the axis as well (twist)
+                                turn += body.turn_row(pr.x);
                             }
                         }
                     }
                 }
-                if fixes_all(&g) {
+                if fixes(&g, turn) {
                     held[b] = true;
                     changed = true;
                 }
@@ -350,9 +377,7 @@ pub fn add_point(
     r: &mut [f64],
     k: &mut [f64],
 ) {
-    let (dn, dt) = increment(im, pt, committed, u);
-    // in-plane only: a body's rotation about the axis is held by its
-    // prescribed twist, never by the stabilization
+    let [dn, dt, dh] = increment(im, pt, committed, u);
     let g = im.point_gradients(pt);
     let (gn, gt) = (g.n, g.t);
     let nd = im.point_ndofs(pt);
@@ -363,18 +388,31 @@ pub fn add_point(
             k[i * nd + j] += a * (gn[i] * gn[j] + gt[i] * gt[j]);
         }
     }
+    // with twist, around the axis as well: u_Tθ's spring holds a body that
+    // only friction would hold about the axis once in contact
+    let gh = g.h;
+    if !gh.is_empty() {
+        for i in 0..nd {
+            r[i] += a * dh * gh[i];
+            for j in 0..nd {
+                k[i * nd + j] += a * gh[i] * gh[j];
+            }
+        }
+    }
 }
 
-/// Change of the normal and tangential relative displacement at a point.
+/// Change of the normal, tangential and (twist) circumferential relative
+/// displacement at a point; the last is 0 without twist.
 pub(super) fn increment(
     im: &InterfaceModel,
     pt: &Point,
     committed: &[f64],
     u: &[f64],
-) -> (f64, f64) {
+) -> [f64; 3] {
     let (n1, t1) = im.point_kinematics(pt, u);
     let (n0, t0) = im.point_kinematics(pt, committed);
-    (n1 - n0, t1 - t0)
+    let dh = im.point_hoop_slip(pt, u) - im.point_hoop_slip(pt, committed);
+    [n1 - n0, t1 - t0, dh]
 }
 
 #[cfg(test)]

@@ -67,8 +67,8 @@ fn spring_work(engine: &Engine, ks: &[f64], committed: &[f64], u: &[f64]) -> f64
     for (i, im) in m.interfaces.iter().enumerate() {
         for pt in &im.points {
             if engine.backend.owns_point(q) {
-                let (dn, dt) = increment(im, pt, committed, u);
-                w += ks[i] * pt.area * (dn * dn + dt * dt);
+                let [dn, dt, dh] = increment(im, pt, committed, u);
+                w += ks[i] * pt.area * (dn * dn + dt * dt + dh * dh);
             }
             q += 1;
         }

@@ -16,6 +16,7 @@ mod column;
 mod cycles;
 mod damping_line;
 mod estimate;
+mod face_coupling;
 mod events;
 mod factorization;
 mod friction;
