@@ -33,6 +33,9 @@ struct Body {
     turn: f64,
     /// Force of each load pattern at factor 1 (N, Σ |f| over the body's nodes).
     load: Vec<f64>,
+    /// Torque of each load pattern about the axis at factor 1 (N·mm, Σ r f_θ
+    /// over the body's nodes; zero without twist).
+    torque: Vec<f64>,
     /// The histories of the non-zero prescribed displacements acting on it.
     driven: Vec<Option<usize>>,
 }
@@ -152,6 +155,7 @@ impl Stabilizer {
                 bc: [0.0; 6],
                 turn: if twist { 0.0 } else { 1.0 },
                 load: vec![0.0; model.patterns().count()],
+                torque: vec![0.0; model.patterns().count()],
                 driven: Vec::new(),
             })
             .collect();
@@ -189,6 +193,9 @@ impl Stabilizer {
                     let v = &f[model.node_dofs().of(n)];
                     bodies[b].load[p] +=
                         v.iter().skip(2).fold(v[0].hypot(v[1]), |a, x| a.hypot(*x));
+                    if twist {
+                        bodies[b].torque[p] += mesh.nodes[n][0] * v[2];
+                    }
                 }
             }
         }
@@ -311,9 +318,61 @@ impl Stabilizer {
         })
     }
 
+    /// A body held about the axis only by friction (twist: no prescribed
+    /// rotation of its own) whose applied torque at `lambda` exceeds the most
+    /// its interfaces' friction can hold at the pressures of `u`,
+    /// Σ μ_m p_N r A (μ_m the friction cap, eq. 2.21): a torque-controlled
+    /// twist past the slip torque, which has no equilibrium.
+    fn beyond_friction(&self, model: &Model, u: &[f64], lambda: f64) -> Option<String> {
+        if !model.node_dofs().twist() {
+            return None;
+        }
+        (0..self.bodies.len()).find_map(|b| {
+            let body = &self.bodies[b];
+            if body.turn > 0.0 {
+                return None;
+            }
+            let applied: f64 = (body.torque.iter().zip(model.patterns()))
+                .map(|(&t, (h, _))| t * model.factor(h, lambda))
+                .sum();
+            let mut names = Vec::new();
+            let mut hold = 0.0;
+            for im in &model.interfaces {
+                let Some(law) = im.tangential.as_ref() else {
+                    continue;
+                };
+                if im.body_a != b && im.body_b != b {
+                    continue;
+                }
+                names.push(im.name.as_str());
+                let gap = im.gap_at(lambda);
+                for (pt, r) in im.points.iter().zip(im.point_radii()) {
+                    let un = im.point_kinematics_at(pt, u, gap).0;
+                    hold += pt.area * law.mu * im.law.pressure(un).0 * r;
+                }
+            }
+            (applied.abs() > hold).then(|| {
+                let lambda = format!("{lambda:.6}")
+                    .trim_end_matches('0')
+                    .trim_end_matches('.')
+                    .to_string();
+                format!(
+                    "the torque on body \"{}\" at λ = {lambda}, {:.6e} N·mm, is more than the friction of interface \"{}\" can hold about the axis at the present contact pressures, Σ μ p_N r dA = {hold:.6e} N·mm, and nothing else holds the body about the axis: a torque past the slip torque has no equilibrium (prescribe a [[boundary]] rotation instead to turn the joint past slip)",
+                    model.mesh.bodies[b],
+                    applied.abs(),
+                    names.join("\", \"")
+                )
+            })
+        })
+    }
+
     /// The physical reason a step from `committed` to `lambda` may have no
-    /// solution, if there is one: a body held by nothing.
+    /// solution, if there is one: a body held by nothing, or held about the
+    /// axis by friction only and loaded by a torque beyond it.
     pub fn explain(&self, model: &Model, committed: &State, lambda: f64) -> Option<String> {
+        if let Some(why) = self.beyond_friction(model, &committed.u, lambda) {
+            return Some(why);
+        }
         let unloaded = self.unloaded(model, lambda);
         let floating = self.floating(model, &committed.u, lambda);
         let b = unloaded.or(floating.first().copied())?;

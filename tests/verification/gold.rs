@@ -78,7 +78,7 @@ const CHECKED: [&str; 14] = [
 /// The joint cases (issue 18) also check their `joints` array: per interface
 /// the final forces, approach, slip, status measures, dissipation and work,
 /// and every closed load cycle. The older cases keep the fields above only.
-const JOINT_CASES: [&str; 10] = [
+const JOINT_CASES: [&str; 11] = [
     "bolted-joint",
     "slideway-damping",
     "shrink-fit",
@@ -89,6 +89,7 @@ const JOINT_CASES: [&str; 10] = [
     "cattaneo-mindlin",
     "shrink-fit-torque",
     "shrink-fit-combined",
+    "face-coupling-torque",
 ];
 
 /// The damping cases (issue 28) also check the amplitude sweep's fit.
@@ -131,7 +132,7 @@ struct Gold {
     prefix: Option<&'static str>,
 }
 
-const CASES: [Gold; 22] = [
+const CASES: [Gold; 23] = [
     Gold {
         case: "bolted-joint",
         args: &[],
@@ -239,6 +240,11 @@ const CASES: [Gold; 22] = [
     },
     Gold {
         case: "punch-adaptive",
+        args: &[],
+        prefix: None,
+    },
+    Gold {
+        case: "face-coupling-torque",
         args: &[],
         prefix: None,
     },
@@ -663,4 +669,9 @@ fn punch_rounded_stress() {
 #[test]
 fn punch_rounded_strain() {
     check("punch-rounded-strain");
+}
+
+#[test]
+fn face_coupling_torque() {
+    check("face-coupling-torque");
 }
