@@ -462,12 +462,7 @@ pub fn add_point(
 
 /// Change of the normal, tangential and (twist) circumferential relative
 /// displacement at a point; the last is 0 without twist.
-pub(super) fn increment(
-    im: &InterfaceModel,
-    pt: &Point,
-    committed: &[f64],
-    u: &[f64],
-) -> [f64; 3] {
+pub(super) fn increment(im: &InterfaceModel, pt: &Point, committed: &[f64], u: &[f64]) -> [f64; 3] {
     let (n1, t1) = im.point_kinematics(pt, u);
     let (n0, t0) = im.point_kinematics(pt, committed);
     let dh = im.point_hoop_slip(pt, u) - im.point_hoop_slip(pt, committed);

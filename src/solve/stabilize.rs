@@ -16,7 +16,10 @@
 //!   K_s = k_s A (g_N g_Nᵀ + g_T g_Tᵀ)   (g: derivatives of d_N, d_T, as for the law)
 //! ```
 //!
-//! integrated with the interface's own quadrature. Abaqus ramps that damping
+//! integrated with the interface's own quadrature. With twist the springs act
+//! around the axis too, k_s A Δu_Tθ g_θ (u_Tθ = u_θB − u_θA): a body that only
+//! the friction of an interface holds about the axis (no rotation of its
+//! own) has no stiffness in that rotation either while its pairs are open. Abaqus ramps that damping
 //! to zero by the end of its step; here it is removed outright, so that the
 //! accepted answer never depends on it:
 //!

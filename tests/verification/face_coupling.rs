@@ -144,7 +144,10 @@ fn a_disk_held_about_the_axis_only_by_friction_twists_as_the_closed_form_while_i
     let torque = |t: f64| T * (t - 1.0).clamp(0.0, 1.0);
     let clamp = |t: f64| P * t.clamp(0.0, 1.0);
     let (stick, slip) = check(&case_text(), torque, clamp);
-    assert!(stick > 20 && slip > 5, "{stick} sticking and {slip} slipping increments");
+    assert!(
+        stick > 20 && slip > 5,
+        "{stick} sticking and {slip} slipping increments"
+    );
 }
 
 /// Clamped and twisted at once across an initial gap of 2 µm: nothing but
@@ -155,12 +158,21 @@ fn a_disk_held_about_the_axis_only_by_friction_twists_as_the_closed_form_while_i
 #[test]
 fn a_disk_twisted_before_its_face_closes_is_held_by_the_stabilization_then_released() {
     let text = case_text()
-        .replace("weights = \"consistent\"", "weights = \"consistent\"\ngap = 0.002")
-        .replace("torque = 12000.0\nhistory = \"turn\"", "torque = 3000.0\nhistory = \"clamp\"")
+        .replace(
+            "weights = \"consistent\"",
+            "weights = \"consistent\"\ngap = 0.002",
+        )
+        .replace(
+            "torque = 12000.0\nhistory = \"turn\"",
+            "torque = 3000.0\nhistory = \"clamp\"",
+        )
         .replace("turn  = [[0.0, 0.0], [1.0, 0.0], [2.0, 1.0]]", "");
     assert!(text.contains("gap = 0.002") && !text.contains("\"turn\""));
     let torque = |t: f64| 3000.0 * t.clamp(0.0, 1.0);
     let clamp = |t: f64| P * t.clamp(0.0, 1.0);
     let (stick, slip) = check(&text, torque, clamp);
-    assert!(stick > 20 && slip == 0, "{stick} sticking and {slip} slipping increments");
+    assert!(
+        stick > 20 && slip == 0,
+        "{stick} sticking and {slip} slipping increments"
+    );
 }
