@@ -164,7 +164,12 @@ impl Writer {
         )?;
         self.write(
             "probes.csv",
-            &probes::csv(&plan.probes, result, |v| plan.part(v, &l.probes)),
+            &probes::csv(
+                &plan.probes,
+                probes::components(model.node_dofs()),
+                result,
+                |v| plan.part(v, &l.probes),
+            ),
         )?;
         self.write(
             "peaks.csv",

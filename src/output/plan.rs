@@ -69,7 +69,7 @@ impl Plan {
             .map(|(im, iface)| crate::interface::joint::arc_lengths(mesh, iface, im))
             .collect();
         let r = reactions::width(&reactions);
-        let p = r + 2 * probes.len();
+        let p = r + probes::components(mesh.node_dofs) * probes.len();
         let b = p + peaks::PER_BODY * mesh.bodies.len();
         let i = b + peaks::PER_INTERFACE * interfaces.len();
         Ok(Plan {

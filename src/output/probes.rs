@@ -40,27 +40,32 @@ pub struct Probe {
     pub target: Target,
 }
 
+/// Values a probe reads per increment: u_x and u_y, and u_θ with twist.
+pub fn components(nd: NodeDofs) -> usize {
+    nd.per_node()
+}
+
 impl Probe {
-    /// (u_x, u_y) in a state's displacements (all dofs, numbered by `nd`).
-    pub fn value(&self, nd: NodeDofs, u: &[f64]) -> [f64; 2] {
-        match &self.target {
-            // + 0.0: no negative zero (a fixed dof scaled by a negative history)
-            Target::Point { node, .. } => [u[nd.dof(*node, 0)] + 0.0, u[nd.dof(*node, 1)] + 0.0],
-            Target::Nodes {
-                nodes, statistic, ..
-            } => {
-                let mut out = [0.0; 2];
-                for (c, o) in out.iter_mut().enumerate() {
+    /// (u_x, u_y), with twist (u_x, u_y, u_θ), in a state's displacements
+    /// (all dofs, numbered by `nd`).
+    pub fn value(&self, nd: NodeDofs, u: &[f64]) -> Vec<f64> {
+        let of = |c: usize| -> f64 {
+            match &self.target {
+                Target::Point { node, .. } => u[nd.dof(*node, c)],
+                Target::Nodes {
+                    nodes, statistic, ..
+                } => {
                     let vals = nodes.iter().map(|&n| u[nd.dof(n, c)]);
-                    *o = match statistic {
+                    match statistic {
                         Statistic::Mean => vals.sum::<f64>() / nodes.len().max(1) as f64,
                         Statistic::Min => vals.fold(f64::INFINITY, f64::min),
                         Statistic::Max => vals.fold(f64::NEG_INFINITY, f64::max),
-                    } + 0.0;
+                    }
                 }
-                out
             }
-        }
+        };
+        // + 0.0: no negative zero (a fixed dof scaled by a negative history)
+        (0..components(nd)).map(|c| of(c) + 0.0).collect()
     }
 }
 
@@ -248,29 +253,39 @@ fn nearest(mesh: &Mesh, p: [f64; 2], body: Option<usize>) -> usize {
         .unwrap_or(0)
 }
 
-/// Values of every probe, (u_x, u_y) each, in order.
+/// Values of every probe, [`components`] each, in order.
 pub fn values(probes: &[Probe], nd: NodeDofs, u: &[f64]) -> Vec<f64> {
     probes.iter().flat_map(|p| p.value(nd, u)).collect()
 }
 
 pub const HEADER: &str = "increment,time,probe,ux_mm,uy_mm\n";
 
+/// The header of a model with twist: u_θ as a third column.
+pub const HEADER_TWIST: &str = "increment,time,probe,ux_mm,uy_mm,utheta_mm\n";
+
 /// `probes.csv`: one row per increment and probe (the header alone without
-/// probes).
-pub fn csv(probes: &[Probe], r: &RunResult, at: impl Fn(&[f64]) -> Option<&[f64]>) -> String {
-    let mut s = String::from(HEADER);
+/// probes), `per` values each ([`components`]).
+pub fn csv(
+    probes: &[Probe],
+    per: usize,
+    r: &RunResult,
+    at: impl Fn(&[f64]) -> Option<&[f64]>,
+) -> String {
+    let mut s = String::from(if per == 3 { HEADER_TWIST } else { HEADER });
     for inc in &r.increments {
         let Some(v) = at(&inc.record) else { continue };
-        for (p, u) in probes.iter().zip(v.chunks_exact(2)) {
-            let _ = writeln!(
+        for (p, u) in probes.iter().zip(v.chunks_exact(per)) {
+            let _ = write!(
                 s,
-                "{},{:.9},{},{:.9e},{:.9e}",
+                "{},{:.9},{}",
                 inc.increment,
                 inc.load_factor,
-                csv_field(&p.name),
-                u[0],
-                u[1]
+                csv_field(&p.name)
             );
+            for x in u {
+                let _ = write!(s, ",{x:.9e}");
+            }
+            s.push('\n');
         }
     }
     s
@@ -280,20 +295,26 @@ pub fn csv(probes: &[Probe], r: &RunResult, at: impl Fn(&[f64]) -> Option<&[f64]
 /// coordinates, or the set and statistic) and its last, smallest and
 /// largest values.
 pub fn summary(probes: &[Probe], mesh: &Mesh, rows: &[&[f64]]) -> Value {
+    let per = components(mesh.node_dofs);
     probes
         .iter()
         .enumerate()
         .map(|(k, p)| {
-            let col = |c: usize| rows.iter().map(move |r| r[2 * k + c]);
+            let col = |c: usize| rows.iter().map(move |r| r[per * k + c]);
             let pick = |f: fn(f64, f64) -> f64| {
-                super::events::numbers(&[col(0).fold(f64::NAN, f), col(1).fold(f64::NAN, f)])
+                let v: Vec<f64> = (0..per).map(|c| col(c).fold(f64::NAN, f)).collect();
+                super::events::numbers(&v)
             };
-            let last = rows
-                .last()
-                .map_or([f64::NAN; 2], |r| [r[2 * k], r[2 * k + 1]]);
+            let last: Vec<f64> = (0..per)
+                .map(|c| rows.last().map_or(f64::NAN, |r| r[per * k + c]))
+                .collect();
+            let mut fin = json!({"ux_mm": super::events::number(last[0]), "uy_mm": super::events::number(last[1])});
+            if per == 3 {
+                fin["utheta_mm"] = super::events::number(last[2]);
+            }
             let mut o = json!({
                 "name": p.name,
-                "final": {"ux_mm": super::events::number(last[0]), "uy_mm": super::events::number(last[1])},
+                "final": fin,
                 "min_mm": pick(f64::min),
                 "max_mm": pick(f64::max),
             });

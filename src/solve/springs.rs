@@ -478,9 +478,29 @@ mod tests {
             centre: [10.0, 10.0],
             size: 20.0,
             bc: [0.0; 6],
+            turn: 0.0,
             load: Vec::new(),
+            torque: Vec::new(),
             driven: Vec::new(),
         }
+    }
+
+    #[test]
+    fn the_rotation_about_the_axis_is_held_by_rows_off_the_axis_only() {
+        let b = body();
+        let mut g = [0.0; 6];
+        add_row(&mut g, [1.0, 0.0, 0.0]);
+        add_row(&mut g, [0.0, 0.0, 1.0]);
+        add_row(&mut g, b.row([3.0, 0.0], [0.0, 1.0]));
+        assert!(fixes_all(&g));
+        // in-plane held, but nothing about the axis (twist)
+        assert!(!fixes(&g, b.turn));
+        // a u_θ on the axis holds nothing (u_θ = ω r vanishes there)
+        assert_eq!(b.turn_row([0.0, 5.0]), 0.0);
+        assert!(!fixes(&g, b.turn + b.turn_row([0.0, 5.0])));
+        // one off the axis holds it: (r/L)² = (5/20)²
+        assert_eq!(b.turn_row([5.0, 5.0]), 0.0625);
+        assert!(fixes(&g, b.turn + b.turn_row([5.0, 5.0])));
     }
 
     #[test]

@@ -213,6 +213,9 @@ fn summary_json_matches_the_documented_schema() {
     with_cycle["damping"][0] = asperity::output::damping::fit_json("contact", &sweep);
     // twist: the torque, circumferential slip and twist of a joint
     let torque = summary_of("torque", &cases.join("shrink-fit-torque"), &[]);
+    // twist with a [[probe]]: u_θ as its third value
+    let face = summary_of("face", &cases.join("face-coupling-torque"), &[]);
+    assert_eq!(face["probes"][0]["max_mm"].as_array().unwrap().len(), 3);
     assert!(torque["joints"][0]["final"]["torque_nmm"].as_f64().unwrap() > 0.0);
     assert!(
         with["joints"][0]["final"].get("torque_nmm").is_none(),
@@ -227,6 +230,7 @@ fn summary_json_matches_the_documented_schema() {
         &stack,
         &bolt,
         &torque,
+        &face,
     ] {
         let mut l = Vec::new();
         leaves("", s, &mut l);

@@ -81,3 +81,42 @@ fn a_twisting_models_restart_file_of_an_earlier_build_resumes() {
         &["joints.csv", "curve.csv", "interface/0008.csv"],
     );
 }
+
+/// A torque-driven face coupling (cases/face-coupling-torque) with a point
+/// probe on the disk's top rim: its records carry u_θ as a third value per
+/// probe, so a stopped run resumes to the same probes.csv; while the face
+/// sticks that u_θ is the closed form R [T 2h/(G J) + T/(k_T^e J)]
+/// (tests/verification/face_coupling.rs).
+#[test]
+fn a_torque_driven_face_coupling_resumes_with_its_probe_around_the_axis() {
+    let case = common::root().join("cases/face-coupling-torque");
+    resume(
+        "twist-restart-probe",
+        &case,
+        "30",
+        |_| {},
+        &["probes.csv", "joints.csv", "reactions.csv", "curve.csv"],
+    );
+    let whole = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join("twist-restart-probe")
+        .join("whole");
+    let csv = read(&whole, "probes.csv");
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next(),
+        Some("increment,time,probe,ux_mm,uy_mm,utheta_mm")
+    );
+    // t = 1.6: T = 7200 N·mm, below the micro-slip onset 7363 N·mm
+    let row = lines.find(|l| l.starts_with("32,1.600000000,")).unwrap();
+    let v: Vec<f64> = row.split(',').skip(3).map(|x| x.parse().unwrap()).collect();
+    let (t, r, h, p): (f64, f64, f64, f64) = (7200.0, 10.0, 10.0, 50.0);
+    let g = 206_000.0 / 2.6;
+    let j = std::f64::consts::PI * r.powi(4) / 2.0;
+    let kt = 1000.0 * p.sqrt() / 0.9;
+    let want = r * (t * 2.0 * h / (g * j) + t / (kt * j));
+    assert!(
+        (v[2] - want).abs() <= 1e-8 * want,
+        "u_θ at the rim {} vs {want}",
+        v[2]
+    );
+}
