@@ -301,21 +301,27 @@ impl Stabilizer {
     /// acting on it at factor 0 there (all of them at λ = 0 without
     /// histories), and no interference on its interfaces.
     pub(super) fn unloaded(&self, model: &Model, lambda: f64) -> Option<usize> {
-        (0..self.bodies.len()).find(|&b| {
-            let body = &self.bodies[b];
-            let off = |h: Option<usize>| model.factor(h, lambda) == 0.0;
-            self.loose[b]
-                && body
-                    .load
-                    .iter()
-                    .zip(model.patterns())
-                    .all(|(&l, (h, _))| l == 0.0 || off(h))
-                && body.driven.iter().all(|&h| off(h))
-                && !model
-                    .interfaces
-                    .iter()
-                    .any(|im| (im.body_a == b || im.body_b == b) && im.gap_at(lambda) < 0.0)
-        })
+        (0..self.bodies.len()).find(|&b| self.loose[b] && !self.carries_load(model, b, lambda))
+    }
+
+    /// Whether some body held only through interfaces carries a load at
+    /// `lambda`: then a body of [`Stabilizer::unloaded`] may still be pressed
+    /// into place by it (the middle disk of a stack loaded on its top), and a
+    /// stabilized step is released when it can be.
+    pub(super) fn any_loaded(&self, model: &Model, lambda: f64) -> bool {
+        (0..self.bodies.len()).any(|b| self.loose[b] && self.carries_load(model, b, lambda))
+    }
+
+    /// Whether body `b` carries a load at `lambda`: a load pattern or a
+    /// prescribed displacement acting on it at a non-zero factor, or an
+    /// interference on one of its interfaces.
+    fn carries_load(&self, model: &Model, b: usize, lambda: f64) -> bool {
+        let body = &self.bodies[b];
+        let on = |h: Option<usize>| model.factor(h, lambda) != 0.0;
+        (body.load.iter().zip(model.patterns())).any(|(&l, (h, _))| l != 0.0 && on(h))
+            || body.driven.iter().any(|&h| on(h))
+            || (model.interfaces.iter())
+                .any(|im| (im.body_a == b || im.body_b == b) && im.gap_at(lambda) < 0.0)
     }
 
     /// A body held about the axis only by friction (twist: no prescribed

@@ -33,7 +33,9 @@
 //!    step's answer, to the Newton tolerance the answer of any other path to
 //!    the same equilibrium (displacement control included).
 //! 3. When no release is possible (the body carries no load at this load
-//!    factor: its position is indeterminate), the last stabilized solution is
+//!    factor, nor does any other body held only through interfaces that
+//!    could press it into place: its position is indeterminate; or the
+//!    release of such an unloaded body fails), the last stabilized solution is
 //!    accepted if the energy the springs dissipated over the run, W_s = Σ
 //!    k_s A |Δd|² per accepted step (the work of a damper moving at constant
 //!    rate over the step), stays below `stabilization_energy` times the
@@ -254,6 +256,9 @@ fn stabilized_step(
     let st = engine.stabilizer.as_mut().expect("checked by the caller");
     st.used += 1;
     let loaded = st.unloaded(m, lambda).is_none();
+    // a body without a load of its own may be pressed into place by one that
+    // has (a stack held about the axis by friction): released when it can be
+    let pressed = loaded || st.any_loaded(m, lambda);
     let mut guess: Option<Vec<f64>> = None;
     // the iterations reported (curve.csv, automatic step control) are those
     // of the solve whose answer is kept: the release, or the last stabilized
@@ -279,7 +284,7 @@ fn stabilized_step(
         };
         iterations = its;
         let held = st.floating(m, &state.u, lambda).is_empty();
-        if engine.backend.agree(loaded && held) {
+        if engine.backend.agree(pressed && held) {
             engine.stabilizer.as_mut().expect("checked").guess = Some(state.u.clone());
             match engine.plain_step(committed, lambda, response, None) {
                 Ok((exact, its)) => {
