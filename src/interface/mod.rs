@@ -100,6 +100,11 @@ pub struct Mortar {
     pub gap: f64,
     /// Arc length of the slave node along the slave side, mm.
     pub s: f64,
+    /// (1/A_i) ∫ N_i x dA, mm: the slave side's x (r in axisymmetry)
+    /// averaged with the node's weight function, the arm about the axis of
+    /// the spring's force on the slave nodes (Σ_j x_j ∂u_Tθ/∂u_θj over them,
+    /// with the sign reversed), which is not the node's own x.
+    pub radius: f64,
 }
 
 /// An integration point of the interface energy.

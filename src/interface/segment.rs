@@ -165,6 +165,8 @@ pub(super) fn mortar(
         x: [f64; 2],
         s: f64,
         area: f64,
+        /// ∫ N_i r dA: the moment arm of the spring's force, times its area
+        moment: f64,
         gap: f64,
         normal: [f64; 2],
         /// node → (∂u_N/∂u, ∂u_T/∂u), before the division by the area
@@ -252,6 +254,7 @@ pub(super) fn mortar(
                     let wi = wq * weight[i];
                     let a = &mut acc[ids[i]];
                     a.area += wi;
+                    a.moment += wi * x[0];
                     a.gap += wi * f.gap;
                     let wn = wq * weight[i].abs();
                     a.normal = [a.normal[0] + wn * n[0], a.normal[1] + wn * n[1]];
@@ -321,6 +324,7 @@ pub(super) fn mortar(
                 dh,
                 gap: a.gap / a.area,
                 s: a.s,
+                radius: a.moment / a.area,
             })),
         });
     }

@@ -70,7 +70,10 @@ impl InterfaceModel {
 
     /// The radius of every point (index as `points`), mm: on coincident
     /// pairs interpolated from the pairs' positions by the point's shape
-    /// values, on a non-matching interface the slave point's.
+    /// values, on a non-matching interface the slave point's, on a mortar
+    /// spring [`super::Mortar::radius`] (the arm of its force, so that
+    /// Σ A r p_Tθ is the torque on the slave nodes and a rigid twist Δφ
+    /// gives u_Tθ / r = Δφ).
     pub fn point_radii(&self) -> Vec<f64> {
         let mut r: Vec<f64> = self
             .points
@@ -83,7 +86,10 @@ impl InterfaceModel {
             .collect();
         for p in &self.pairs {
             if let Some(j) = p.spring {
-                r[j] = p.x[0];
+                r[j] = match &self.points[j].mortar {
+                    Some(m) => m.radius,
+                    None => p.x[0],
+                };
             }
         }
         r
