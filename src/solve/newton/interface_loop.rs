@@ -30,8 +30,11 @@
 //! rows of M and K are the same, and `(M⁻¹ [0; e])_I = S⁻¹ e`). The global
 //! iteration then checks the true residual as before: the loop changes the
 //! path to a step's solution, never its convergence test. Where it does not
-//! converge within [`MAX_INNER`] iterations, or its matrix is singular (a
-//! body held only by points the loop opened), the plain correction stands.
+//! converge within [`MAX_INNER`] iterations, or its matrix turns singular (a
+//! body held only by points the loop opened), the iterate of the smallest
+//! ‖F‖ is taken if that is below ‖F(Δ⁰_I)‖, else the plain correction stands:
+//! any correction is a valid start for the next global iteration, which
+//! alone decides convergence.
 //!
 //! For elastic bodies (R_b linear) one global correction then solves the
 //! whole contact problem of the step; for plastic ones the outer loop still
@@ -62,7 +65,8 @@ pub struct LoopStats {
     pub loops: usize,
     /// Its iterations (dense LU solves), in all.
     pub iterations: usize,
-    /// Loops that did not converge (the plain correction kept).
+    /// Loops that did not converge (their iterate of the smallest ‖F‖
+    /// taken, or the plain correction where none was below its ‖F‖).
     pub fallbacks: usize,
 }
 
@@ -326,6 +330,8 @@ pub(super) fn refine(
     let (mut j, mut rs, mut step, mut diff) =
         (vec![0.0; m * m], vec![0.0; m], vec![0.0; m], vec![0.0; m]);
     let mut converged = false;
+    // the iterate of the smallest ‖F‖ so far (Δ⁰_I to begin with)
+    let mut best = (norm(&f), None::<Vec<f64>>);
     for _ in 0..MAX_INNER {
         // J = A + K_s(x_k + d); J δ = −F
         j.copy_from_slice(&a);
@@ -356,13 +362,20 @@ pub(super) fn refine(
             converged = true;
             break;
         }
+        if f_norm < best.0 {
+            best = (f_norm, Some(diff.clone()));
+        }
     }
     let total = &mut engine.stats.interface;
     total.loops += st.loops;
     total.iterations += st.iterations;
     if !converged {
+        // the smallest ‖F‖ seen, where it is below the plain correction's
         total.fallbacks += 1;
-        return false;
+        match best.1 {
+            Some(b) => diff = b,
+            None => return false,
+        }
     }
     // Δ = Δ⁰ + M⁻¹ [0; S (d − Δ⁰_I)]
     let mut e = vec![0.0; m];
