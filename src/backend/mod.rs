@@ -95,6 +95,27 @@ pub trait Backend {
     fn matrix_values(&mut self) -> Option<&[f64]> {
         None
     }
+    /// The last factorization's condensation on the interface equations,
+    /// where the backend holds one (serial Cholesky with the interface
+    /// ordered last, for `[solver] interface_loop`): else `None`, and the
+    /// Newton correction is the plain solve's.
+    fn condensed(&mut self) -> Option<&mut dyn Condensed> {
+        None
+    }
+}
+
+/// The factored matrix M condensed on the interface equations I (ordered
+/// last, [`trailing`]): `S = L_II L_IIᵀ = M_II − M_IB M_BB⁻¹ M_BI`, its Schur
+/// complement on I, and the lift of an interface load back to every
+/// equation. Used by the interface loop (`solve::newton::interface_loop`).
+pub trait Condensed {
+    /// The interface equations, in the factor's order (the rows of S).
+    fn equations(&self) -> &[usize];
+    /// S, dense, column-major m × m (both triangles).
+    fn schur(&self) -> Vec<f64>;
+    /// `x ← x + M⁻¹ [0; e]`: e on the interface equations (in their order),
+    /// x over every free equation. One solve with the whole factor.
+    fn lift(&mut self, e: &[f64], x: &mut [f64]);
 }
 
 /// The row-major block `coef · g_t g_nᵀ` of an interface point's rank-one

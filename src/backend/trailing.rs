@@ -14,6 +14,7 @@
 
 use crate::error::{Error, Result};
 use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::matmul::triangular::BlockStructure;
 use faer::sparse::linalg::amd;
 use faer::sparse::linalg::cholesky::{SymbolicCholesky, SymbolicCholeskyRaw};
 use faer::sparse::SymbolicSparseColMat;
@@ -111,6 +112,28 @@ pub fn prefer_interface_last(last: (f64, f64), plain: (f64, f64)) -> bool {
     cost(last, 2.0) <= cost(plain, PLAIN_SOLVES)
 }
 
+/// Largest cost of an interface-last iteration against a plain one that the
+/// interface loop accepts ([`prefer_condensed`]). Every shipped case is
+/// within it (the largest, punch-rounded-*, 3.3, where the run's wall time
+/// with the interface loop equals the plain run's: docs/performance.md,
+/// "Contact status convergence").
+pub const CONDENSED_COST: f64 = 4.0;
+
+/// Whether the interface-last factor is worth it for the interface loop
+/// (`solve::newton::interface_loop`) on a symmetric tangent, from both
+/// factors' (entries, flops) and the m interface equations: the
+/// interface-last factorization plus the dense work of one loop iteration
+/// (S = L_II L_IIᵀ, m³/3 flops, and a dense LU of an m × m matrix, 2m³/3)
+/// may cost at most [`CONDENSED_COST`] times the plain factorization. The
+/// loop saves whole Newton iterations (assembly, factorization, solves)
+/// where contact statuses change, hence the generous bound; a very long
+/// interface (m³ beyond the factor's flops) gets the plain factor and no
+/// loop.
+pub fn prefer_condensed(m: usize, last: (f64, f64), plain: (f64, f64)) -> bool {
+    let m = m as f64;
+    last.1 + m * m * m <= CONDENSED_COST * plain.1
+}
+
 /// The trailing m × m block of the factor, dense (column-major, lower), with
 /// where each of its entries sits in the factor's values.
 pub struct Trailing {
@@ -169,6 +192,32 @@ impl Trailing {
         for &(v, d) in &self.map {
             self.l[d] = values[v];
         }
+    }
+
+    /// `S = L_II L_IIᵀ`, the Schur complement of the factored matrix on the
+    /// interface, dense column-major (both triangles): m³/3 flops.
+    pub fn schur(&self) -> Vec<f64> {
+        let m = self.m;
+        let mut s = vec![0.0; m * m];
+        let l = faer::MatRef::from_column_major_slice(&self.l, m, m);
+        let mut dst = faer::MatMut::from_column_major_slice_mut(&mut s, m, m);
+        faer::linalg::matmul::triangular::matmul(
+            dst.as_mut(),
+            BlockStructure::TriangularLower,
+            faer::Accum::Replace,
+            l,
+            BlockStructure::TriangularLower,
+            l.transpose(),
+            BlockStructure::TriangularUpper,
+            1.0,
+            faer::Par::Seq,
+        );
+        for j in 0..m {
+            for i in j + 1..m {
+                s[i * m + j] = s[j * m + i];
+            }
+        }
+        s
     }
 
     /// `v ← L_II⁻ᵀ L_II⁻¹ v`.

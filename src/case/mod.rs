@@ -492,6 +492,11 @@ pub struct SolverSpec {
     /// docs/performance.md "Contact status convergence").
     #[serde(default = "yes")]
     pub line_search: bool,
+    /// Full Newton, serial: within each Newton iteration, the interface law
+    /// solved exactly on the tangent condensed on the interface equations
+    /// (`solve::newton::interface_loop`; docs/performance.md, "Contact
+    /// status convergence"). Read it with [`SolverSpec::interface_loop`].
+    pub interface_loop: Option<bool>,
     /// "auto" or "off": contact stabilization of bodies held only through open
     /// interface pairs, or at zero load (see `solve::stabilize`).
     #[serde(default)]
@@ -500,6 +505,18 @@ pub struct SolverSpec {
     /// the largest internal energy of the run; default 1e-3.
     #[serde(default = "default_stabilization_energy")]
     pub stabilization_energy: f64,
+}
+
+/// `[solver] interface_loop` where the case does not say
+/// (docs/performance.md, "The interface loop (2026-11-27)").
+pub const INTERFACE_LOOP_DEFAULT: bool = false;
+
+impl SolverSpec {
+    /// Whether the interface loop is asked for (the case's key, else
+    /// [`INTERFACE_LOOP_DEFAULT`]).
+    pub fn interface_loop(&self) -> bool {
+        self.interface_loop.unwrap_or(INTERFACE_LOOP_DEFAULT)
+    }
 }
 
 impl Default for SolverSpec {

@@ -546,6 +546,15 @@ fn check_solver(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
             format!("{} must be at most {MAX_CUTBACKS}", s.max_cutbacks),
         ));
     }
+    if s.interface_loop == Some(true) && s.method != super::Method::FullNewton {
+        return Err(Error::input(
+            at("[solver] interface_loop"),
+            format!(
+                "true needs method = \"full-newton\" (the loop condenses the consistent tangent), not \"{}\"",
+                s.method.name()
+            ),
+        ));
+    }
     if s.anderson_depth > MAX_ANDERSON_DEPTH {
         return Err(Error::input(
             at("[solver] anderson_depth"),

@@ -27,6 +27,10 @@ pub struct SerialBackend {
     /// for the LU fallback and for [`crate::backend::Backend::matrix_values`].
     whole: Vec<f64>,
     stats: CoupledStats,
+    /// `[solver] interface_loop` applies to this model: the interface
+    /// equations are ordered last where that pays, and the factor's
+    /// condensation is offered to the Newton loop.
+    interface_loop: bool,
 }
 
 /// Counters of the [`Factorization::SymmetricPart`] path.
@@ -58,7 +62,8 @@ impl SerialBackend {
         // the free equations of every interface point, in increasing order
         let mut pos_of = vec![u32::MAX; pattern.n];
         let mut interface = Vec::new();
-        if kind == Factorization::SymmetricPart {
+        let interface_loop = wants_interface_loop(model) && kind != Factorization::Lu;
+        if kind == Factorization::SymmetricPart || interface_loop {
             // the interface points' blocks (over their masters where a
             // point holds a constrained dof): what add_coupling touches
             let first = model
@@ -90,6 +95,7 @@ impl SerialBackend {
             terms: Couplings::default(),
             whole: Vec::new(),
             stats: CoupledStats::default(),
+            interface_loop,
         })
     }
 
@@ -183,11 +189,29 @@ impl crate::backend::Backend for SerialBackend {
         self.direct.factor_lu(&self.whole)?;
         self.direct.solve(x)
     }
+    fn condensed(&mut self) -> Option<&mut dyn crate::backend::Condensed> {
+        if !self.interface_loop {
+            return None;
+        }
+        self.direct.condensed()
+    }
     fn linear_solver(&self) -> String {
         self.direct.kind().name().into()
     }
     fn diagnostics(&self) -> Vec<(&'static str, f64)> {
         match self.direct.kind() {
+            Factorization::Cholesky if self.interface_loop => vec![
+                ("lu_fallbacks", self.direct.fallbacks as f64),
+                ("cholesky_factor_mb", self.direct.factor_mb()),
+                (
+                    "interface_equations",
+                    self.pos_of.iter().filter(|&&p| p != u32::MAX).count() as f64,
+                ),
+                (
+                    "interface_last",
+                    f64::from(u8::from(self.direct.interface_last())),
+                ),
+            ],
             Factorization::Cholesky => vec![
                 ("lu_fallbacks", self.direct.fallbacks as f64),
                 ("cholesky_factor_mb", self.direct.factor_mb()),
@@ -216,4 +240,19 @@ impl crate::backend::Backend for SerialBackend {
             }
         }
     }
+}
+
+/// Whether `[solver] interface_loop` applies to a model: asked for, full
+/// Newton, interface points, none of them on a constrained dof (an
+/// interface point's block expanded over masters, [`crate::constraint`]).
+pub fn wants_interface_loop(model: &Model) -> bool {
+    let first = model
+        .interface_block_base
+        .first()
+        .copied()
+        .unwrap_or(model.section_block_base);
+    model.solver.interface_loop()
+        && model.solver.method == crate::case::Method::FullNewton
+        && first < model.section_block_base
+        && !(first..model.section_block_base).any(|b| model.expansions.contains_key(&b))
 }

@@ -249,35 +249,51 @@ impl SerialDirect {
             scratch: Vec::new(),
         };
         match kind {
-            Factorization::Cholesky => {
-                let symbolic = s.symbolic_cholesky(SymmetricOrdering::Amd)?;
-                s.cholesky = Some(Cholesky::new(symbolic, s.par)?);
-            }
-            Factorization::SymmetricPart => {
+            Factorization::Cholesky | Factorization::SymmetricPart => {
                 let plain = s.symbolic_cholesky(SymmetricOrdering::Amd)?;
-                let mut chosen = plain;
-                if !s.interface.is_empty() && s.interface.len() < pattern.n {
-                    let (fwd, inv) = trail::ordering_with_last(&s.symbolic_mat, &s.interface)?;
-                    let perm = PermRef::new_checked(&fwd, &inv, pattern.n);
-                    let last = s.symbolic_cholesky(SymmetricOrdering::Custom(perm))?;
-                    if trail::prefer_interface_last(
-                        trail::factor_cost(&last),
-                        trail::factor_cost(&chosen),
-                    ) {
-                        // the dense block and the map into the factor
-                        let m = s.interface.len() as f64;
-                        check_memory("Cholesky factor's interface block", 16.0 * m * m, false)?;
-                        s.trailing = Trailing::new(&last, s.interface.len());
-                        if s.trailing.is_some() {
-                            chosen = last;
-                        }
-                    }
-                }
+                let chosen = if s.interface.is_empty() || s.interface.len() >= pattern.n {
+                    plain
+                } else {
+                    s.with_interface_last(plain, kind)?
+                };
                 s.cholesky = Some(Cholesky::new(chosen, s.par)?);
             }
             Factorization::Lu => s.lu = Some(s.analyse_lu()?),
         }
         Ok(s)
+    }
+
+    /// The interface-last analysis where it pays against the plain one
+    /// (with its trailing block), else the plain one. Which cost decides:
+    /// [`trail::prefer_interface_last`] for the Woodbury-GMRES steps of
+    /// [`Factorization::SymmetricPart`], [`trail::prefer_condensed`] for the
+    /// interface loop on a symmetric tangent.
+    fn with_interface_last(
+        &mut self,
+        plain: SymbolicCholesky<usize>,
+        kind: Factorization,
+    ) -> Result<SymbolicCholesky<usize>> {
+        let n = self.symbolic_mat.nrows();
+        let (fwd, inv) = trail::ordering_with_last(&self.symbolic_mat, &self.interface)?;
+        let perm = PermRef::new_checked(&fwd, &inv, n);
+        let last = self.symbolic_cholesky(SymmetricOrdering::Custom(perm))?;
+        let (c_last, c_plain) = (trail::factor_cost(&last), trail::factor_cost(&plain));
+        let m = self.interface.len();
+        let pays = match kind {
+            Factorization::SymmetricPart => trail::prefer_interface_last(c_last, c_plain),
+            _ => trail::prefer_condensed(m, c_last, c_plain),
+        };
+        if !pays {
+            return Ok(plain);
+        }
+        // the dense block and the map into the factor
+        check_memory(
+            "Cholesky factor's interface block",
+            16.0 * (m as f64).powi(2),
+            false,
+        )?;
+        self.trailing = Trailing::new(&last, m);
+        Ok(if self.trailing.is_some() { last } else { plain })
     }
 
     fn symbolic_cholesky(
@@ -465,6 +481,38 @@ impl SerialDirect {
             check_solution(rhs)?;
         }
         Ok(out)
+    }
+}
+
+impl SerialDirect {
+    /// The condensation of the last factorization: where it is a Cholesky
+    /// factor with the interface ordered last.
+    pub fn condensed(&mut self) -> Option<&mut dyn crate::backend::Condensed> {
+        (self.held == Held::Cholesky && self.trailing.is_some()).then_some(self)
+    }
+}
+
+impl crate::backend::Condensed for SerialDirect {
+    fn equations(&self) -> &[usize] {
+        &self.interface
+    }
+    fn schur(&self) -> Vec<f64> {
+        self.trailing
+            .as_ref()
+            .map_or_else(Vec::new, Trailing::schur)
+    }
+    fn lift(&mut self, e: &[f64], x: &mut [f64]) {
+        let mut w = std::mem::take(&mut self.scratch);
+        w.clear();
+        w.resize(self.symbolic_mat.nrows(), 0.0);
+        for (k, &eq) in self.interface.iter().enumerate() {
+            w[eq] = e[k];
+        }
+        self.apply(&mut w);
+        for (xi, wi) in x.iter_mut().zip(&w) {
+            *xi += wi;
+        }
+        self.scratch = w;
     }
 }
 

@@ -151,3 +151,58 @@ fn the_cholesky_path_reads_only_the_lower_triangle() {
         "{x:?}"
     );
 }
+
+/// The condensation the interface loop uses, against closed forms on a
+/// small SPD matrix: `schur()` is `K_II − K_IB K_BB⁻¹ K_BI` (dense, by
+/// nalgebra), and `lift(e)` adds `K⁻¹ [0; e]` (a dense solve).
+#[test]
+fn the_condensation_is_the_schur_complement_and_its_lift_the_solve() {
+    let g = 7;
+    let (pattern, vals) = grid(g);
+    let n = g * g;
+    let iface: Vec<usize> = (0..g).map(|x| 3 * g + x).collect();
+    let mut d =
+        SerialDirect::with_interface(&pattern, Factorization::Cholesky, iface.clone(), 1).unwrap();
+    assert!(d.interface_last(), "a separator is cheap to order last");
+    assert!(d.factor_cholesky(&vals).unwrap());
+    let mut k = nalgebra::DMatrix::<f64>::zeros(n, n);
+    for j in 0..n {
+        for p in pattern.col_ptr[j]..pattern.col_ptr[j + 1] {
+            k[(pattern.row_idx[p] as usize, j)] = vals[p];
+        }
+    }
+    let bulk: Vec<usize> = (0..n).filter(|e| !iface.contains(e)).collect();
+    let pick = |rows: &[usize], cols: &[usize]| {
+        nalgebra::DMatrix::from_fn(rows.len(), cols.len(), |i, j| k[(rows[i], cols[j])])
+    };
+    let kbb = pick(&bulk, &bulk);
+    let schur = pick(&iface, &iface)
+        - pick(&iface, &bulk) * kbb.clone().lu().solve(&pick(&bulk, &iface)).unwrap();
+    let c = d.condensed().expect("Cholesky with the interface last");
+    assert_eq!(c.equations(), &iface[..]);
+    let s = c.schur();
+    for i in 0..g {
+        for j in 0..g {
+            let (got, want) = (s[j * g + i], schur[(i, j)]);
+            assert!(
+                (got - want).abs() < 1e-13 * 8.0,
+                "S[{i},{j}] {got} vs {want}"
+            );
+        }
+    }
+    let e: Vec<f64> = (0..g).map(|q| (q as f64 * 0.9).cos()).collect();
+    let mut x = vec![1.0; n];
+    c.lift(&e, &mut x);
+    let mut rhs = nalgebra::DVector::zeros(n);
+    for (q, &eq) in iface.iter().enumerate() {
+        rhs[eq] = e[q];
+    }
+    let want = k.lu().solve(&rhs).unwrap();
+    for i in 0..n {
+        assert!((x[i] - 1.0 - want[i]).abs() < 1e-14, "x[{i}]");
+    }
+    // the plain ordering (no interface given) offers no condensation
+    let mut plain = SerialDirect::new(&pattern, Factorization::Cholesky, 1).unwrap();
+    assert!(plain.factor_cholesky(&vals).unwrap());
+    assert!(plain.condensed().is_none());
+}

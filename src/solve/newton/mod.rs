@@ -12,6 +12,7 @@
 //! paper does. A step converges when the residual and the displacement correction
 //! are small and no interface point changed status in the last iteration.
 
+pub mod interface_loop;
 mod step;
 pub use step::StepProblem;
 
@@ -38,9 +39,6 @@ const ELEMENT_BATCH: usize = 2048;
 /// takes fewer threads): starting a thread costs about as much as computing
 /// a few elastic elements.
 const MIN_ELEMENTS_PER_THREAD: usize = 128;
-/// Approach (mm) above which a pair counts as "at zero approach or beyond" for
-/// the secant start of eq. 2.8-2.9 in the first iteration of a step.
-const ZERO_APPROACH: f64 = 1e-12;
 
 /// Counters over a whole run.
 #[derive(Clone, Debug, Default)]
@@ -52,6 +50,8 @@ pub struct Stats {
     pub predictor_restarts: usize,
     pub assembly_seconds: f64,
     pub solve_seconds: f64,
+    /// The interface loop's counters ([`interface_loop`]).
+    pub interface: interface_loop::LoopStats,
     /// Peak memory of this process when each stage was reached, MB: "model",
     /// "setup" (backend and solver objects), "first_assembly",
     /// "first_increment" (solved and written); summed over ranks in the result.
@@ -323,6 +323,7 @@ impl<'m> Engine<'m> {
             for v in du.iter_mut() {
                 *v = -*v;
             }
+            p.interface_loop(&x, &mut du);
             p.engine.stats.solve_seconds += t1.elapsed().as_secs_f64();
             p.correct(&x, &mut du);
             for (xk, dk) in x.iter_mut().zip(&du) {
@@ -388,7 +389,7 @@ impl<'m> Engine<'m> {
     /// Secant start stiffness (eq. 2.8-2.9) for pairs at zero approach, at
     /// the reference pressure of a step to pseudo-time `lambda`
     /// ([`Model::reference_pressure`]).
-    fn start_stiffness(&self, lambda: f64) -> Vec<f64> {
+    pub(super) fn start_stiffness(&self, lambda: f64) -> Vec<f64> {
         let m = self.model;
         (0..m.interfaces.len())
             .map(|i| {
@@ -585,29 +586,19 @@ impl<'m> Engine<'m> {
                     continue;
                 }
                 let nd = im.point_ndofs(pt);
-                let un = im.point_kinematics_at(pt, &trial.u, gap).0;
-                let kfloor = kf.filter(|_| un > -ZERO_APPROACH);
-                let ev = im.eval_point_parts(
+                let ev = interface_loop::point_parts(
+                    im,
                     pt,
                     &trial.u,
                     gap,
+                    &committed.u,
                     &committed.contact[q],
-                    kfloor,
+                    kf,
+                    springs.map(|ks| ks[i]),
                     &mut rl[..nd],
-                    Some(&mut kl[..nd * nd]),
+                    &mut kl[..nd * nd],
                     !split,
                 );
-                if let Some(ks) = springs {
-                    super::springs::add_point(
-                        im,
-                        pt,
-                        ks[i],
-                        &committed.u,
-                        &trial.u,
-                        &mut rl[..nd],
-                        &mut kl[..nd * nd],
-                    );
-                }
                 codes[q] = ev.status as u8 as f64;
                 trial.contact[q] = ev.state;
                 let pdofs = im.point_dofs(pt);

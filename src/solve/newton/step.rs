@@ -235,6 +235,24 @@ impl<'a, 'm> StepProblem<'a, 'm> {
         }
     }
 
+    /// The interface loop on the plain Newton correction `du` from `x`
+    /// ([`super::interface_loop`]; full Newton with `[solver] interface_loop`,
+    /// where the backend offers the condensation of its factor).
+    pub(super) fn interface_loop(&mut self, x: &[f64], du: &mut [f64]) {
+        if self.method != Method::FullNewton || !self.engine.model.solver.interface_loop() {
+            return;
+        }
+        let mut u = self.trial.u.clone();
+        for (k, &d) in self.free.iter().enumerate() {
+            u[d] = x[k];
+        }
+        let spec = &self.engine.model.solver;
+        let tol = super::interface_loop::INNER_TOLERANCE * spec.residual_tolerance * self.reference;
+        // the tangent holds the secant floor after the step's first evaluation only
+        let first = self.evaluations == 1;
+        super::interface_loop::refine(self.engine, self.committed, &u, self.lambda, first, tol, du);
+    }
+
     /// The converged state, or why the step failed (`solved`: the solver's own
     /// failure, if any).
     pub(super) fn finish(

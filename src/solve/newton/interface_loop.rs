@@ -1,0 +1,421 @@
+//! The interface loop: within one Newton iteration, the interface law solved
+//! exactly on the tangent condensed on the interface equations (issue 29,
+//! docs/performance.md "Contact status convergence", docs/theory.md "The
+//! interface loop").
+//!
+//! The bodies' linearization at x_k is held fixed and only the springs'
+//! law is nonlinear. With K = K_b + K_s (K_s: the interface points' blocks
+//! as assembled, on the interface equations I only) the correction Δ solves
+//!
+//! ```text
+//!   R(x_k) + K_b Δ + r_s(x_k + Δ) − r_s(x_k) = 0.
+//! ```
+//!
+//! Eliminating the bulk equations B (`Δ_B = −K_BB⁻¹ (R_B + K_BI Δ_I)`) leaves
+//! m equations in d = Δ_I. The plain Newton correction Δ⁰ = −K⁻¹ R has
+//! Δ⁰_I = −(A + K_s0)⁻¹ g with g the condensed residual and A = S − K_s0 the
+//! Schur complement of K_b on I (S = L_II L_IIᵀ, of the factored matrix, with
+//! the interface ordered last: [`crate::backend::Condensed`]), so
+//!
+//! ```text
+//!   F(d) = A (d − Δ⁰_I) + r_s(x_k + d) − r_s(x_k) − K_s0 Δ⁰_I = 0,
+//!   J(d) = A + K_s(x_k + d)                     (dense m × m)
+//! ```
+//!
+//! F(Δ⁰_I) is the springs' linearization error: where it is below a tenth of
+//! the residual tolerance the plain correction stands, untouched (bit for
+//! bit). Otherwise semismooth Newton on F from d = Δ⁰_I, each iteration a
+//! dense LU of J, until ‖F‖ is below that; then the bulk follows by one
+//! solve with the whole factor, `Δ = Δ⁰ + M⁻¹ [0; S (d − Δ⁰_I)]` (the bulk
+//! rows of M and K are the same, and `(M⁻¹ [0; e])_I = S⁻¹ e`). The global
+//! iteration then checks the true residual as before: the loop changes the
+//! path to a step's solution, never its convergence test. Where it does not
+//! converge within [`MAX_INNER`] iterations, or its matrix turns singular (a
+//! body held only by points the loop opened), the iterate of the smallest
+//! ‖F‖ is taken if that is below ‖F(Δ⁰_I)‖, else the plain correction stands:
+//! any correction is a valid start for the next global iteration, which
+//! alone decides convergence.
+//!
+//! For elastic bodies (R_b linear) one global correction then solves the
+//! whole contact problem of the step; for plastic ones the outer loop still
+//! handles the plasticity.
+
+use super::Engine;
+use crate::interface::{InterfaceModel, Point, PointEval, PointState};
+use crate::model::Model;
+use crate::solve::State;
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::lu::partial_pivoting::{factor, solve};
+use faer::{Conj, MatMut, MatRef, Par};
+
+/// Most iterations of the interface loop in one Newton iteration.
+pub const MAX_INNER: usize = 20;
+/// The loop stops when ‖F‖ ≤ this fraction of the Newton residual tolerance
+/// (times the step's reference force).
+pub const INNER_TOLERANCE: f64 = 0.1;
+/// Approach (mm) above which a pair counts as "at zero approach or beyond" for
+/// the secant start of eq. 2.8-2.9 in the first iteration of a step.
+pub(super) const ZERO_APPROACH: f64 = 1e-12;
+
+/// Counters of the interface loop over a run (summary.json).
+#[derive(Clone, Debug, Default)]
+pub struct LoopStats {
+    /// Newton iterations in which the loop ran (the springs' linearization
+    /// error above its tolerance).
+    pub loops: usize,
+    /// Its iterations (dense LU solves), in all.
+    pub iterations: usize,
+    /// Loops that did not converge (their iterate of the smallest ‖F‖
+    /// taken, or the plain correction where none was below its ‖F‖).
+    pub fallbacks: usize,
+}
+
+/// One interface point's local residual `rl` and tangent `kl` at `u` (all
+/// dofs), as the Newton assembly adds them: the interface law
+/// ([`InterfaceModel::eval_point_parts`], its unsymmetric coupling part in
+/// `kl` when `with_coupling`), the secant floor `kf` where the point is at
+/// zero approach or beyond, and the stabilization spring of stiffness
+/// `spring` ([`crate::solve::springs::add_point`]).
+#[allow(clippy::too_many_arguments)] // the point, two states and its options
+pub(super) fn point_parts(
+    im: &InterfaceModel,
+    pt: &Point,
+    u: &[f64],
+    gap: f64,
+    committed_u: &[f64],
+    committed: &PointState,
+    kf: Option<f64>,
+    spring: Option<f64>,
+    rl: &mut [f64],
+    kl: &mut [f64],
+    with_coupling: bool,
+) -> PointEval {
+    let un = im.point_kinematics_at(pt, u, gap).0;
+    let kfloor = kf.filter(|_| un > -ZERO_APPROACH);
+    let ev = im.eval_point_parts(pt, u, gap, committed, kfloor, rl, Some(kl), with_coupling);
+    if let Some(ks) = spring {
+        crate::solve::springs::add_point(im, pt, ks, committed_u, u, rl, kl);
+    }
+    ev
+}
+
+/// The interface points on the interface equations: per point, the
+/// position among them of each local dof (`u32::MAX`: prescribed).
+struct Points<'a> {
+    model: &'a Model,
+    /// The stabilization's spring stiffness per interface, while it acts.
+    springs: Option<&'a [f64]>,
+    committed: &'a State,
+    lambda: f64,
+    /// Flat over the points, in point order; `start[q]..start[q + 1]`.
+    at: Vec<u32>,
+    start: Vec<usize>,
+    m: usize,
+}
+
+impl<'a> Points<'a> {
+    fn new(
+        model: &'a Model,
+        springs: Option<&'a [f64]>,
+        committed: &'a State,
+        lambda: f64,
+        eqs: &[usize],
+    ) -> Self {
+        let mut pos = vec![u32::MAX; model.dofs.n_eq];
+        for (k, &e) in eqs.iter().enumerate() {
+            pos[e] = k as u32;
+        }
+        let (mut at, mut start) = (Vec::new(), vec![0]);
+        for im in &model.interfaces {
+            for pt in &im.points {
+                for d in im.point_dofs(pt) {
+                    at.push(model.dofs.equation(d).map_or(u32::MAX, |e| pos[e]));
+                }
+                start.push(at.len());
+            }
+        }
+        Points {
+            model,
+            springs,
+            committed,
+            lambda,
+            at,
+            start,
+            m: eqs.len(),
+        }
+    }
+
+    /// Σ of the points' residuals at `u` into `r` (m) and, with `k`, their
+    /// tangents added into the dense column-major `k` (m × m) with `sign`.
+    /// `floor`: the secant start of the step's first evaluation.
+    fn eval(
+        &self,
+        u: &[f64],
+        floor: Option<&[f64]>,
+        with_coupling: bool,
+        r: &mut [f64],
+        mut k: Option<(&mut [f64], f64)>,
+    ) {
+        let (model, springs) = (self.model, self.springs);
+        r.fill(0.0);
+        let m = self.m;
+        let (mut rl, mut kl) = (Vec::new(), Vec::new());
+        let mut q = 0;
+        for (i, im) in model.interfaces.iter().enumerate() {
+            let gap = im.gap_at(self.lambda);
+            for pt in &im.points {
+                let nd = im.point_ndofs(pt);
+                rl.resize(nd, 0.0);
+                kl.resize(nd * nd, 0.0);
+                point_parts(
+                    im,
+                    pt,
+                    u,
+                    gap,
+                    &self.committed.u,
+                    &self.committed.contact[q],
+                    floor.map(|f| f[i]),
+                    springs.map(|s| s[i]),
+                    &mut rl,
+                    &mut kl,
+                    with_coupling,
+                );
+                let at = &self.at[self.start[q]..self.start[q + 1]];
+                for (a, &p) in at.iter().enumerate() {
+                    if p == u32::MAX {
+                        continue;
+                    }
+                    r[p as usize] += rl[a];
+                    if let Some((k, sign)) = k.as_mut() {
+                        for (b, &pb) in at.iter().enumerate() {
+                            if pb != u32::MAX {
+                                k[pb as usize * m + p as usize] += *sign * kl[a * nd + b];
+                            }
+                        }
+                    }
+                }
+                q += 1;
+            }
+        }
+    }
+}
+
+/// `y = A x` (A dense column-major m × m).
+fn mat_vec(a: &[f64], x: &[f64], y: &mut [f64]) {
+    let m = x.len();
+    y.fill(0.0);
+    for (j, &xj) in x.iter().enumerate() {
+        if xj != 0.0 {
+            for (yi, aij) in y.iter_mut().zip(&a[j * m..(j + 1) * m]) {
+                *yi += aij * xj;
+            }
+        }
+    }
+}
+
+fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+/// `x ← J⁻¹ x` by a dense LU with partial pivoting, on one thread (`j`
+/// overwritten); false where J is singular.
+pub(super) fn dense_solve(j: &mut [f64], x: &mut [f64]) -> bool {
+    let m = x.len();
+    let (mut perm, mut perm_inv) = (vec![0usize; m], vec![0usize; m]);
+    let req = factor::lu_in_place_scratch::<usize, f64>(m, m, Par::Seq, Default::default())
+        .or(solve::solve_in_place_scratch::<usize, f64>(m, 1, Par::Seq));
+    let Ok(mut buf) = MemBuffer::try_new(req) else {
+        return false;
+    };
+    let stack = MemStack::new(&mut buf);
+    let mut a = MatMut::from_column_major_slice_mut(j, m, m);
+    let (_, p) = factor::lu_in_place(
+        a.as_mut(),
+        &mut perm,
+        &mut perm_inv,
+        Par::Seq,
+        stack,
+        Default::default(),
+    );
+    let a = MatRef::from_column_major_slice(j, m, m);
+    if (0..m).any(|i| a[(i, i)] == 0.0 || !a[(i, i)].is_finite()) {
+        return false;
+    }
+    let rhs = MatMut::from_column_major_slice_mut(x, m, 1);
+    solve::solve_in_place_with_conj(a, a, p, Conj::No, rhs, Par::Seq, stack);
+    x.iter().all(|v| v.is_finite())
+}
+
+/// Refines the plain Newton correction `du` (free equations) at the
+/// iterate `u` (all dofs) by the interface loop, where the backend offers
+/// the condensation of its factor. `first`: the step's first evaluation
+/// (its tangent holds the secant floor); `tol`: the loop's tolerance on
+/// ‖F‖. Returns whether `du` changed.
+pub(super) fn refine(
+    engine: &mut Engine,
+    committed: &State,
+    u: &[f64],
+    lambda: f64,
+    first: bool,
+    tol: f64,
+    du: &mut [f64],
+) -> bool {
+    let Some(eqs) = engine.backend.condensed().map(|c| c.equations().to_vec()) else {
+        return false;
+    };
+    let m = eqs.len();
+    let split = engine.backend.splits_coupling();
+    let floor = first.then(|| engine.start_stiffness(lambda));
+    let model = engine.model;
+    let springs = engine
+        .stabilizer
+        .as_ref()
+        .and_then(|s| s.springs.as_deref());
+    // the dof of each interface equation
+    let mut dof_of = vec![0usize; m];
+    let mut pos = vec![u32::MAX; model.dofs.n_eq];
+    for (k, &e) in eqs.iter().enumerate() {
+        pos[e] = k as u32;
+    }
+    for d in 0..model.dofs.eq.len() {
+        if let Some(e) = model.dofs.equation(d).filter(|&e| pos[e] != u32::MAX) {
+            dof_of[pos[e] as usize] = d;
+        }
+    }
+    let pts = Points::new(model, springs, committed, lambda, &eqs);
+    let d0: Vec<f64> = eqs.iter().map(|&e| du[e]).collect();
+    // r_s(x_k) and the points' whole tangent K_s0 (the coupling terms in)
+    let (mut r0, mut k0) = (vec![0.0; m], vec![0.0; m * m]);
+    pts.eval(u, floor.as_deref(), true, &mut r0, Some((&mut k0, 1.0)));
+    // c0 = r_s(x_k) + K_s0 Δ⁰_I, and F(Δ⁰_I) = r_s(x_k + Δ⁰) − c0
+    let mut c0 = vec![0.0; m];
+    mat_vec(&k0, &d0, &mut c0);
+    for (ci, ri) in c0.iter_mut().zip(&r0) {
+        *ci += ri;
+    }
+    let mut ud = u.to_vec();
+    let shift = |ud: &mut [f64], d: &[f64]| {
+        for (k, &dof) in dof_of.iter().enumerate() {
+            ud[dof] = u[dof] + d[k];
+        }
+    };
+    shift(&mut ud, &d0);
+    let mut f = vec![0.0; m];
+    pts.eval(&ud, None, true, &mut f, None);
+    for (fi, ci) in f.iter_mut().zip(&c0) {
+        *fi -= ci;
+    }
+    if norm(&f) <= tol {
+        return false;
+    }
+    // A = S − K_s0 (the part of K_s0 the factored matrix holds: without the
+    // coupling terms where the backend keeps them apart)
+    let Some(s) = engine.backend.condensed().map(|c| c.schur()) else {
+        return false;
+    };
+    let mut a = s.clone();
+    if split {
+        pts.eval(u, floor.as_deref(), false, &mut r0, Some((&mut a, -1.0)));
+    } else {
+        for (ai, ki) in a.iter_mut().zip(&k0) {
+            *ai -= ki;
+        }
+    }
+    drop(k0);
+    let mut d = d0.clone();
+    let mut st = LoopStats {
+        loops: 1,
+        ..LoopStats::default()
+    };
+    let (mut j, mut rs, mut step, mut diff) =
+        (vec![0.0; m * m], vec![0.0; m], vec![0.0; m], vec![0.0; m]);
+    let mut converged = false;
+    // the iterate of the smallest ‖F‖ so far (Δ⁰_I to begin with)
+    let mut best = (norm(&f), None::<Vec<f64>>);
+    for _ in 0..MAX_INNER {
+        // J = A + K_s(x_k + d); J δ = −F
+        j.copy_from_slice(&a);
+        pts.eval(&ud, None, true, &mut rs, Some((&mut j, 1.0)));
+        step.iter_mut().zip(&f).for_each(|(s, fi)| *s = -fi);
+        st.iterations += 1;
+        if !dense_solve(&mut j, &mut step) {
+            break;
+        }
+        for (di, si) in d.iter_mut().zip(&step) {
+            *di += si;
+        }
+        shift(&mut ud, &d);
+        // F(d) = A (d − Δ⁰_I) + r_s(x_k + d) − c0
+        for ((x, di), d0i) in diff.iter_mut().zip(&d).zip(&d0) {
+            *x = di - d0i;
+        }
+        mat_vec(&a, &diff, &mut f);
+        pts.eval(&ud, None, true, &mut rs, None);
+        for ((fi, ri), ci) in f.iter_mut().zip(&rs).zip(&c0) {
+            *fi += ri - ci;
+        }
+        let f_norm = norm(&f);
+        if !f_norm.is_finite() {
+            break;
+        }
+        if f_norm <= tol {
+            converged = true;
+            break;
+        }
+        if f_norm < best.0 {
+            best = (f_norm, Some(diff.clone()));
+        }
+    }
+    let total = &mut engine.stats.interface;
+    total.loops += st.loops;
+    total.iterations += st.iterations;
+    if !converged {
+        // the smallest ‖F‖ seen, where it is below the plain correction's
+        total.fallbacks += 1;
+        match best.1 {
+            Some(b) => diff = b,
+            None => return false,
+        }
+    }
+    // Δ = Δ⁰ + M⁻¹ [0; S (d − Δ⁰_I)]
+    let mut e = vec![0.0; m];
+    mat_vec(&s, &diff, &mut e);
+    match engine.backend.condensed() {
+        Some(c) => {
+            c.lift(&e, du);
+            true
+        }
+        None => false,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_dense_solve_solves_and_refuses_a_singular_matrix() {
+        let m = 6;
+        // unsymmetric, needs pivoting (zero first diagonal)
+        let a: Vec<f64> = (0..m * m)
+            .map(|k| {
+                let (i, j) = (k % m, k / m);
+                if i == j && i == 0 {
+                    0.0
+                } else {
+                    1.0 / (1.0 + i as f64 + 2.0 * j as f64) + f64::from(u8::from(i == j))
+                }
+            })
+            .collect();
+        let x: Vec<f64> = (0..m).map(|i| (i as f64).sin() + 0.5).collect();
+        let mut b = vec![0.0; m];
+        mat_vec(&a, &x, &mut b);
+        let mut j = a.clone();
+        assert!(dense_solve(&mut j, &mut b));
+        for (p, q) in b.iter().zip(&x) {
+            assert!((p - q).abs() < 1e-13, "{b:?} vs {x:?}");
+        }
+        let mut singular = vec![1.0; m * m];
+        assert!(!dense_solve(&mut singular, &mut vec![1.0; m]));
+    }
+}
