@@ -332,17 +332,27 @@ fn stabilized_step(
         }
         Ok((state, iterations))
     } else {
-        Err(StepFailure::Unheld(format!(
-            "{why}; holding it would take the contact stabilization {total:.3e} N·mm of \
-             dissipated energy, above stabilization_energy = {} × the internal energy \
-             {:.3e} N·mm{}",
-            st.report.limit,
-            st.report.internal,
-            if failure.is_empty() {
-                String::new()
-            } else {
-                format!(" ({failure})")
-            }
-        )))
+        let failure = if failure.is_empty() {
+            String::new()
+        } else {
+            format!(" ({failure})")
+        };
+        Err(StepFailure::Unheld(if st.report.internal > 0.0 {
+            format!(
+                "{why}; holding it would take the contact stabilization {total:.3e} N·mm of \
+                 dissipated energy, above stabilization_energy = {} × the internal energy \
+                 {:.3e} N·mm{failure}",
+                st.report.limit, st.report.internal,
+            )
+        } else {
+            // "0 N·mm above 0 × 0 N·mm" would say nothing: nothing is loaded
+            format!(
+                "{why}; nothing in the model has been loaded yet (internal energy 0 N·mm), so \
+                 no contact force fixes its position, and the contact stabilization holds a \
+                 body only against a positive internal energy (stabilization_energy = {} × \
+                 it){failure}",
+                st.report.limit,
+            )
+        }))
     }
 }
