@@ -182,6 +182,20 @@ pub fn check(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
             "\"torque\" needs a twisting model ([model] twist = true): without twist no interface carries a torque",
         ));
     }
+    // a torque-driven model: the torque through the interface is the applied
+    // torque by equilibrium, the same on every mesh, so the run would stop
+    // after two cycles, "reached", whatever the mesh
+    if a.quantity == Quantity::Torque
+        && !case
+            .boundary
+            .iter()
+            .any(|b| b.rotation.is_some_and(|r| r != 0.0))
+    {
+        return Err(Error::input(
+            at("[adapt] quantity"),
+            "\"torque\" in a model driven by a torque (no [[boundary]] rotation other than 0): the interface transmits the applied torque by equilibrium on every mesh, so it measures no error; adapt on \"energy\", or prescribe the rotation",
+        ));
+    }
     // every named answer is read at the interfaces (curve.csv's first
     // interface, the probe node of body B): without one it is 0 on every
     // mesh, and the run would stop at once, "reached"
