@@ -46,6 +46,19 @@ impl Observer for All {
     }
 }
 
+/// The joint measures of every interface in a converged state.
+fn joints(model: &Model, s: &State) -> Vec<asperity::interface::joint::JointMeasures> {
+    asperity::interface::joint::measures(
+        &model.interfaces,
+        model.section,
+        s.time,
+        &s.u,
+        &s.status,
+        &s.contact,
+        &[],
+    )
+}
+
 fn case_text() -> String {
     std::fs::read_to_string(common::root().join("cases/face-coupling-torque/case.toml")).unwrap()
 }
@@ -95,15 +108,7 @@ fn check(
             "t = {}: reaction torque {reaction} vs applied {t}",
             s.time
         );
-        let m = asperity::interface::joint::measures(
-            &model.interfaces,
-            model.section,
-            s.time,
-            &s.u,
-            &s.status,
-            &s.contact,
-            &[],
-        );
+        let m = joints(&model, s);
         for face in &m {
             assert!(
                 (face.torque - t).abs() <= 1e-8 * T,
@@ -253,15 +258,7 @@ fn a_mortar_face_carries_the_applied_torque_with_its_springs_arms() {
         let mut twisted = 0;
         for s in &all.0 {
             let t = T * (s.time - 1.0).clamp(0.0, 1.0);
-            let m = asperity::interface::joint::measures(
-                &model.interfaces,
-                model.section,
-                s.time,
-                &s.u,
-                &s.status,
-                &s.contact,
-                &[],
-            );
+            let m = joints(&model, s);
             assert!(
                 (m[0].torque - t).abs() <= 1e-8 * T,
                 "{disk_edges}, t = {}: face torque {} vs applied {t}",
