@@ -490,7 +490,12 @@ pub fn check(case_path: &Path) -> Result<String> {
     }
     if model.section.axisymmetric {
         s += &format!(
-            "  plane Axisymmetric (x = r, y = z; forces, areas and kN for the full revolution), {:?} integration ({} Gauss points per element)\n",
+            "  plane Axisymmetric{} (x = r, y = z; forces, areas and kN for the full revolution), {:?} integration ({} Gauss points per element)\n",
+            if model.node_dofs().twist() {
+                " with twist (u_θ, torques about the axis)"
+            } else {
+                ""
+            },
             model.integration,
             model.n_gauss()
         );
@@ -511,12 +516,23 @@ pub fn check(case_path: &Path) -> Result<String> {
         model.dofs.n_eq,
         model.pattern().nnz()
     );
+    let own = crate::model::supports::own_rotation(&model.mesh, &model.prescribed);
     for (b, name) in model.mesh.bodies.iter().enumerate() {
         let m = &model.materials[b];
         s += &format!(
             "  body {name}: E = {} MPa, ν = {}, σ_Y = {} MPa, H = {} MPa\n",
             m.young, m.poisson, m.yield_stress, m.hardening
         );
+        if model.node_dofs().twist() && !own[b] {
+            let by: Vec<&str> = (model.interfaces.iter())
+                .filter(|im| im.tangential.is_some() && (im.body_a == b || im.body_b == b))
+                .map(|im| im.name.as_str())
+                .collect();
+            s += &format!(
+                "    about the axis: no rotation of its own, held only by the friction of interface \"{}\" (past Σ μ p_N r dA a torque on it has no equilibrium)\n",
+                by.join("\", \"")
+            );
+        }
     }
     for im in &model.interfaces {
         let t = crate::interface::joint::direction(im);

@@ -16,7 +16,7 @@ use crate::mesh::{Mesh, NodeDofs};
 mod hanging;
 mod meshes;
 use meshes::{check_mesh, make_mesh};
-mod supports;
+pub mod supports;
 use supports::check_supports;
 
 pub struct Model {

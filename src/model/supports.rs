@@ -64,14 +64,7 @@ pub(super) fn check_supports(
     // holds nothing before the first contact, when the contact stabilization
     // holds the rotation too ([`crate::solve::stabilize`])
     if mesh.node_dofs.twist() {
-        let tol = crate::case::whole::tolerance(mesh);
-        let mut turns = vec![true; mesh.bodies.len()];
-        for &(d, _) in prescribed.iter().filter(|p| p.0 < mesh.num_dofs()) {
-            let (n, c) = mesh.node_dofs.node_of(d);
-            if c == 2 && mesh.nodes[n][0].abs() > tol {
-                turns[node_body[n]] = false;
-            }
-        }
+        let mut turns: Vec<bool> = own_rotation(mesh, prescribed).iter().map(|h| !h).collect();
         loop {
             let mut changed = false;
             for im in interfaces.iter().filter(|im| im.tangential.is_some()) {
@@ -110,4 +103,24 @@ pub(super) fn check_supports(
         }
     }
     Ok(())
+}
+
+/// Twist: whether each body is held about the axis by a prescribed u_θ of its
+/// own at r > 0 (without one only the friction of an interface can hold it).
+pub fn own_rotation(mesh: &Mesh, prescribed: &[(usize, f64)]) -> Vec<bool> {
+    let mut node_body = vec![usize::MAX; mesh.nodes.len()];
+    for el in &mesh.elements {
+        for &n in &el.nodes {
+            node_body[n] = el.body;
+        }
+    }
+    let tol = crate::case::whole::tolerance(mesh);
+    let mut own = vec![false; mesh.bodies.len()];
+    for &(d, _) in prescribed.iter().filter(|p| p.0 < mesh.num_dofs()) {
+        let (n, c) = mesh.node_dofs.node_of(d);
+        if c == 2 && node_body[n] < own.len() && mesh.nodes[n][0].abs() > tol {
+            own[node_body[n]] = true;
+        }
+    }
+    own
 }

@@ -120,3 +120,31 @@ fn a_torque_driven_face_coupling_resumes_with_its_probe_around_the_axis() {
         v[2]
     );
 }
+
+/// `asperity check` of a twisting model says so, and names the bodies that
+/// only the friction of an interface holds about the axis (the face
+/// coupling's disk), not those with a rotation of their own (its base; both
+/// bodies of shrink-fit-torque).
+#[test]
+fn check_names_the_bodies_only_friction_holds_about_the_axis() {
+    let face = common::root().join("cases/face-coupling-torque");
+    let (code, err, out) = common::run_asperity_out(&["check", face.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("plane Axisymmetric with twist"), "{out}");
+    let held: Vec<&str> = out
+        .lines()
+        .filter(|l| l.contains("held only by the friction of interface \"face\""))
+        .collect();
+    assert_eq!(held.len(), 1, "{out}");
+    let disk = out.find("  body disk:").unwrap();
+    let base = out.find("  body base:").unwrap();
+    let line = out.find(held[0]).unwrap();
+    assert!(disk < line && line < base, "{out}");
+    let fit = common::root().join("cases/shrink-fit-torque");
+    let (code, err, out) = common::run_asperity_out(&["check", fit.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.contains("with twist") && !out.contains("held only by"),
+        "{out}"
+    );
+}
