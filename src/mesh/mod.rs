@@ -85,6 +85,18 @@ impl std::error::Error for MeshError {}
 
 impl Mesh {
     /// Every node's dofs ([`Mesh::node_dofs`] per node).
+    /// The body of every node (the last element's that holds it; usize::MAX
+    /// for a node of no element).
+    pub fn node_bodies(&self) -> Vec<usize> {
+        let mut node_body = vec![usize::MAX; self.nodes.len()];
+        for el in &self.elements {
+            for &n in &el.nodes {
+                node_body[n] = el.body;
+            }
+        }
+        node_body
+    }
+
     pub fn num_dofs(&self) -> usize {
         self.node_dofs.count(self.nodes.len())
     }
@@ -162,12 +174,7 @@ impl Mesh {
                 self.nodes[n]
             ));
         }
-        let mut node_body = vec![usize::MAX; self.nodes.len()];
-        for el in &self.elements {
-            for &n in &el.nodes {
-                node_body[n] = el.body;
-            }
-        }
+        let node_body = self.node_bodies();
         for iface in &self.interfaces {
             for (k, edge) in iface.edges.iter().enumerate() {
                 for i in 0..3 {

@@ -20,12 +20,7 @@ pub(super) fn check_supports(
     // a body of revolution cannot move rigidly in r: u_r = c strains it by c/r
     // in the hoop direction (and nodes on the axis are held by u_r = 0)
     let mut held = vec![[axisymmetric, false]; mesh.bodies.len()];
-    let mut node_body = vec![usize::MAX; mesh.nodes.len()];
-    for el in &mesh.elements {
-        for &n in &el.nodes {
-            node_body[n] = el.body;
-        }
-    }
+    let node_body = mesh.node_bodies();
     // (a pretension section's reference node is no node of a body)
     for &(d, _) in prescribed.iter().filter(|p| p.0 < mesh.num_dofs()) {
         let (n, c) = mesh.node_dofs.node_of(d);
@@ -108,12 +103,7 @@ pub(super) fn check_supports(
 /// Twist: whether each body is held about the axis by a prescribed u_θ of its
 /// own at r > 0 (without one only the friction of an interface can hold it).
 pub fn own_rotation(mesh: &Mesh, prescribed: &[(usize, f64)]) -> Vec<bool> {
-    let mut node_body = vec![usize::MAX; mesh.nodes.len()];
-    for el in &mesh.elements {
-        for &n in &el.nodes {
-            node_body[n] = el.body;
-        }
-    }
+    let node_body = mesh.node_bodies();
     let tol = crate::case::whole::tolerance(mesh);
     let mut own = vec![false; mesh.bodies.len()];
     for &(d, _) in prescribed.iter().filter(|p| p.0 < mesh.num_dofs()) {

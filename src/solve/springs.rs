@@ -138,12 +138,7 @@ impl Stabilizer {
     pub fn new(model: &Model) -> Stabilizer {
         let mesh = &model.mesh;
         let nb = mesh.bodies.len();
-        let mut body_of = vec![usize::MAX; mesh.nodes.len()];
-        for el in &mesh.elements {
-            for &n in &el.nodes {
-                body_of[n] = el.body;
-            }
-        }
+        let body_of = mesh.node_bodies();
         let mut lo = vec![[f64::INFINITY; 2]; nb];
         let mut hi = vec![[f64::NEG_INFINITY; 2]; nb];
         for (n, x) in mesh.nodes.iter().enumerate() {
