@@ -83,9 +83,9 @@ fn engine<'m>(
 ) -> Result<Engine<'m>> {
     let at_model = crate::solve::peak_memory_mb();
     let linear = LinearDefault::for_model(model);
-    let backend = PetscBackend::new(petsc, world.duplicate(), model, linear)?;
+    let mut backend = PetscBackend::new(petsc, world.duplicate(), model, linear)?;
     let snes = if opts.snes {
-        Some(SnesSolver::new(
+        let snes = SnesSolver::new(
             petsc,
             backend.system_matrix(),
             &backend.part,
@@ -94,7 +94,10 @@ fn engine<'m>(
             model.solver.iteration_limit(),
             linear,
             opts.lean_memory,
-        )?)
+        )?;
+        // the interface loop condenses the factor that solved the Newton system
+        backend.factor_of(snes.ksp()?)?;
+        Some(snes)
     } else {
         None
     };

@@ -111,11 +111,13 @@ pub trait Backend {
 pub trait Condensed {
     /// The interface equations, in the factor's order (the rows of S).
     fn equations(&self) -> &[usize];
-    /// S, dense, column-major m × m (both triangles).
-    fn schur(&self) -> Vec<f64>;
+    /// S, dense, column-major m × m (both triangles); `None` where it could
+    /// not be formed (the same on every rank).
+    fn schur(&mut self) -> Option<Vec<f64>>;
     /// `x ← x + M⁻¹ [0; e]`: e on the interface equations (in their order),
-    /// x over every free equation. One solve with the whole factor.
-    fn lift(&mut self, e: &[f64], x: &mut [f64]);
+    /// x over every free equation. One solve with the whole factor; false
+    /// (x unchanged) where that solve failed.
+    fn lift(&mut self, e: &[f64], x: &mut [f64]) -> bool;
 }
 
 /// The row-major block `coef · g_t g_nᵀ` of an interface point's rank-one

@@ -509,7 +509,7 @@ pub struct SolverSpec {
 
 /// `[solver] interface_loop` where the case does not say
 /// (docs/performance.md, "The interface loop (2026-11-27)").
-pub const INTERFACE_LOOP_DEFAULT: bool = false;
+pub const INTERFACE_LOOP_DEFAULT: bool = true;
 
 impl SolverSpec {
     /// Whether the interface loop is asked for (the case's key, else

@@ -422,9 +422,9 @@ pub struct Cycle {
     /// W at the end minus W at the start, N·mm.
     pub work: f64,
     /// ΔF_T / Δū_T between the increments of the cycle's largest and
-    /// smallest F_T (of those, the largest and the smallest ū_T: the loop's
-    /// tips when it slides at the extreme forces), N/mm; None when they have
-    /// the same ū_T.
+    /// smallest F_T (of those, equal within [`TIP_TIE`], the largest and
+    /// the smallest ū_T: the loop's tips when it slides at the extreme
+    /// forces), N/mm; None when they have the same ū_T.
     pub secant_stiffness: Option<f64>,
     /// Smallest and largest F_T over the cycle's increments, N.
     pub force_range: [f64; 2],
@@ -557,25 +557,52 @@ pub fn cycle_windows(marks: &[Option<Vec<f64>>]) -> Vec<(usize, usize)> {
     out
 }
 
+/// Forces (torques) within this fraction of the span's largest magnitude
+/// of its extreme count as equal when the loop's tips are picked
+/// ([`tips`]): equilibrium holds them only to the Newton tolerance (10⁻⁸ of
+/// the reference force by default), so an exact comparison would let
+/// round-off choose between two increments at the same prescribed extreme
+/// (a cycle window from tip to tip, a sliding plateau) whose slips differ.
+pub const TIP_TIE: f64 = 1e-6;
+
+/// The measures at the loop's tips over `span`: the increments of the
+/// smallest and of the largest force `f` (`key` = (force, slip)), each
+/// tie within [`TIP_TIE`] broken by the slip (the smallest at the low tip,
+/// the largest at the high one).
+fn tips(
+    span: &[(f64, JointMeasures)],
+    key: impl Fn(&JointMeasures) -> (f64, f64),
+) -> Option<(JointMeasures, JointMeasures)> {
+    let forces = span.iter().map(|r| key(&r.1).0);
+    let scale = forces.clone().fold(0.0f64, |a, f| a.max(f.abs()));
+    let f_hi = forces.clone().fold(f64::NEG_INFINITY, f64::max);
+    let f_lo = forces.fold(f64::INFINITY, f64::min);
+    let tie = TIP_TIE * scale;
+    let by_slip =
+        |a: &&(f64, JointMeasures), b: &&(f64, JointMeasures)| key(&a.1).1.total_cmp(&key(&b.1).1);
+    let hi = span
+        .iter()
+        .filter(|r| key(&r.1).0 >= f_hi - tie)
+        .max_by(by_slip)?;
+    let lo = span
+        .iter()
+        .filter(|r| key(&r.1).0 <= f_lo + tie)
+        .min_by(by_slip)?;
+    Some((lo.1, hi.1))
+}
+
 /// The cycle of one interface over the increments `i..=j` of `rows`
 /// (pseudo-time and joint measures per committed increment, in order).
 pub fn cycle_of(rows: &[(f64, JointMeasures)], (i, j): (usize, usize)) -> Cycle {
     let span = &rows[i..=j];
-    // ties (a plateau of macro-slip) broken by ū_T: the loop's tips
-    let by_force = |a: &&(f64, JointMeasures), b: &&(f64, JointMeasures)| {
-        (a.1.tangential_force.total_cmp(&b.1.tangential_force))
-            .then(a.1.mean_slip.total_cmp(&b.1.mean_slip))
-    };
-    let hi = span.iter().max_by(by_force).map_or(rows[j].1, |r| r.1);
-    let lo = span.iter().min_by(by_force).map_or(rows[j].1, |r| r.1);
+    // the loop's tips: the largest and smallest F_T, ties (a plateau of
+    // macro-slip, or a window from tip to tip) broken by ū_T
+    let (lo, hi) =
+        tips(span, |m| (m.tangential_force, m.mean_slip)).unwrap_or((rows[j].1, rows[j].1));
     let ds = hi.mean_slip - lo.mean_slip;
     let slip = span.iter().map(|r| r.1.mean_slip);
     // the torque-twist loop's tips, ties (a sliding plateau) broken by φ̄
-    let by_torque = |a: &&(f64, JointMeasures), b: &&(f64, JointMeasures)| {
-        (a.1.torque.total_cmp(&b.1.torque)).then(a.1.twist.total_cmp(&b.1.twist))
-    };
-    let t_hi = span.iter().max_by(by_torque).map_or(rows[j].1, |r| r.1);
-    let t_lo = span.iter().min_by(by_torque).map_or(rows[j].1, |r| r.1);
+    let (t_lo, t_hi) = tips(span, |m| (m.torque, m.twist)).unwrap_or((rows[j].1, rows[j].1));
     let dphi = t_hi.twist - t_lo.twist;
     let twist = span.iter().map(|r| r.1.twist);
     Cycle {

@@ -31,8 +31,10 @@ pub trait Problem {
     /// Judges the last evaluation; `it` counts the corrections made so far.
     fn verdict(&mut self, it: usize) -> Verdict;
     /// The correction `du` about to be added to `x` (may be changed in place, as
-    /// Anderson mixing does); counts the iteration.
-    fn correct(&mut self, x: &[f64], du: &mut [f64]);
+    /// Anderson mixing and the interface loop do); counts the iteration.
+    /// `whole`: `du` is the whole Newton correction −K⁻¹R (not a line
+    /// search's fraction of it), which the interface loop needs.
+    fn correct(&mut self, x: &[f64], du: &mut [f64], whole: bool);
     /// The problem has stopped (converged or failed).
     fn stopped(&self) -> bool;
     /// The problem has stopped converged.

@@ -32,6 +32,24 @@ pub fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
+/// Case text with `[solver] interface_loop` set (a `[solver]` table added
+/// where the text has none); replaces a setting already there.
+pub fn with_interface_loop(text: &str, on: bool) -> String {
+    let kept: Vec<&str> = text
+        .lines()
+        .filter(|l| !l.trim_start().starts_with("interface_loop"))
+        .collect();
+    let text = kept.join("\n") + "\n";
+    let key = format!("interface_loop = {on}\n");
+    if text.starts_with("[solver]\n") {
+        text.replacen("[solver]\n", &format!("[solver]\n{key}"), 1)
+    } else if text.contains("\n[solver]\n") {
+        text.replacen("\n[solver]\n", &format!("\n[solver]\n{key}"), 1)
+    } else {
+        format!("{text}\n[solver]\n{key}")
+    }
+}
+
 /// Relative difference |a − b| / max(|a|, |b|, tiny).
 pub fn rel(a: f64, b: f64) -> f64 {
     (a - b).abs() / a.abs().max(b.abs()).max(1e-300)

@@ -7,6 +7,7 @@
 //! is allowed it, as are two documented system calls (the signal handler's
 //! registration and the output folder's atomic swap).
 
+mod condensed;
 pub mod ffi;
 pub mod snes;
 pub mod solver;

@@ -222,7 +222,7 @@ unsafe extern "C" fn postcheck_cb(
         }
         l.gather(x, Which::Scratch)?;
         let Layout { scratch, du, .. } = &mut *c.layout;
-        c.problem.correct(scratch, du);
+        c.problem.correct(scratch, du, lambda == 1.0);
         for (s, d) in scratch.iter_mut().zip(du.iter()) {
             *s += d;
         }
@@ -398,6 +398,16 @@ impl<'p> SnesSolver<'p> {
             )?;
             Ok(solver)
         }
+    }
+}
+
+impl SnesSolver<'_> {
+    /// The KSP that solves the Newton systems (owned by the SNES).
+    pub fn ksp(&self) -> Result<ffi::KSP> {
+        let mut ksp = std::ptr::null_mut();
+        // SAFETY: valid SNES; out-pointer; the KSP belongs to it.
+        chk(unsafe { ffi::SNESGetKSP(self.raw, &mut ksp) }, "SNESGetKSP")?;
+        Ok(ksp)
     }
 }
 

@@ -3,7 +3,7 @@
 //! element and every potential contact coupling, and KSP from the options
 //! database (default: [`LinearDefault`], by size).
 
-use super::{ffi, Ksp, LinearDefault, PMat, PVec, Petsc, ToAll};
+use super::{chk, ffi, Ksp, LinearDefault, PMat, PVec, Petsc, ToAll};
 use crate::assembly::Pattern;
 use crate::error::{Error, Result};
 use crate::model::Model;
@@ -235,30 +235,49 @@ impl Partition {
 }
 
 pub struct PetscBackend<'p> {
-    world: SimpleCommunicator,
-    rank: usize,
+    pub(super) world: SimpleCommunicator,
+    pub(super) rank: usize,
     ranks: usize,
     model: &'p Model,
     pub part: Partition,
     /// (local position, equation) of this rank's equations.
-    owned: Vec<(usize, usize)>,
+    pub(super) owned: Vec<(usize, usize)>,
     /// Owned rows of prescribed dofs: 1 on the diagonal, nothing else.
     prescribed: Vec<ffi::PetscInt>,
-    petsc: &'p Petsc<'p>,
+    pub(super) petsc: &'p Petsc<'p>,
     /// The solid part, kept apart only when a method reuses it under new
     /// springs ([`crate::backend::Backend::reuse_solid`]); otherwise element
     /// blocks go straight into `mat` and this second matrix is not held.
     solid: Option<PMat<'p>>,
     mat: PMat<'p>,
-    ksp: Ksp<'p>,
-    b: PVec<'p>,
-    x: PVec<'p>,
-    to_all: ToAll<'p>,
-    gathered: Vec<f64>,
+    pub(super) ksp: Ksp<'p>,
+    pub(super) b: PVec<'p>,
+    pub(super) x: PVec<'p>,
+    pub(super) to_all: ToAll<'p>,
+    pub(super) gathered: Vec<f64>,
     idx: Vec<ffi::PetscInt>,
     /// Krylov iterations over the run.
     pub ksp_iterations: usize,
     keep_solid: bool,
+    /// The interface equations where the interface loop runs on this model
+    /// (the serial backend's rule), increasing; else empty
+    /// ([`super::condensed`]).
+    pub(super) loop_equations: Vec<usize>,
+    /// The KSP whose factor the interface loop uses when SNES solves the
+    /// Newton systems ([`PetscBackend::factor_of`]); else the backend's own.
+    pub(super) factor_ksp: Option<HeldKsp>,
+}
+
+/// A reference to a KSP that another object owns, released on drop.
+pub(super) struct HeldKsp(pub(super) ffi::KSP);
+
+impl Drop for HeldKsp {
+    fn drop(&mut self) {
+        // SAFETY: referenced in `PetscBackend::factor_of`; released once.
+        unsafe {
+            ffi::KSPDestroy(&mut self.0);
+        }
+    }
 }
 
 /// Fixes a matrix's nonzero structure once: explicit zeros over the whole
@@ -300,7 +319,7 @@ const REDUCE_CHUNK: usize = 1 << 16;
 impl<'p> PetscBackend<'p> {
     /// Reduces `v` over all ranks in place, in chunks of [`REDUCE_CHUNK`], so
     /// the send copy (and MPI's temporaries) stay small for long vectors.
-    fn reduce(&self, v: &mut [f64], op: SystemOperation) {
+    pub(super) fn reduce(&self, v: &mut [f64], op: SystemOperation) {
         let mut send = Vec::with_capacity(REDUCE_CHUNK.min(v.len()));
         for chunk in v.chunks_mut(REDUCE_CHUNK) {
             send.clear();
@@ -353,7 +372,28 @@ impl<'p> PetscBackend<'p> {
             idx: Vec::with_capacity(24),
             ksp_iterations: 0,
             keep_solid: false,
+            loop_equations: match linear {
+                LinearDefault::Direct { .. } => {
+                    crate::backend::serial::interface_loop_equations(model)?
+                }
+                LinearDefault::Multigrid { .. } => Vec::new(),
+            },
+            factor_ksp: None,
         })
+    }
+
+    /// The interface loop uses the factor of `ksp` (SNES's, which solves the
+    /// Newton systems when SNES drives the steps) instead of the backend's
+    /// own; the backend holds a reference to it.
+    pub fn factor_of(&mut self, ksp: ffi::KSP) -> Result<()> {
+        // SAFETY: a valid KSP (the caller's SNES's); the reference is
+        // released by `HeldKsp`'s drop.
+        chk(
+            unsafe { ffi::PetscObjectReference(ksp as ffi::PetscObject) },
+            "PetscObjectReference",
+        )?;
+        self.factor_ksp = Some(HeldKsp(ksp));
+        Ok(())
     }
 
     /// PETSc indices of local dofs; −1 for prescribed ones (ignored by PETSc).
@@ -486,6 +526,9 @@ impl crate::backend::Backend for PetscBackend<'_> {
     }
     fn linear_solver(&self) -> String {
         self.ksp.describe()
+    }
+    fn condensed(&mut self) -> Option<&mut dyn crate::backend::Condensed> {
+        self.condensation()
     }
     fn diagnostics(&self) -> Vec<(&'static str, f64)> {
         vec![

@@ -59,31 +59,15 @@ impl SerialBackend {
     pub fn with_factorization(model: &Model, kind: Factorization) -> Result<Self> {
         let blocks = model.blocks();
         let pattern = &Pattern::new(&model.dofs, &blocks);
-        // the free equations of every interface point, in increasing order
-        let mut pos_of = vec![u32::MAX; pattern.n];
-        let mut interface = Vec::new();
         let interface_loop = wants_interface_loop(model) && kind != Factorization::Lu;
-        if kind == Factorization::SymmetricPart || interface_loop {
-            // the interface points' blocks (over their masters where a
-            // point holds a constrained dof): what add_coupling touches
-            let first = model
-                .interface_block_base
-                .first()
-                .copied()
-                .unwrap_or(model.section_block_base);
-            for b in first..model.section_block_base {
-                for &d in blocks.get(b) {
-                    if let Some(e) = model.dofs.equation(d as usize) {
-                        pos_of[e] = 0;
-                    }
-                }
-            }
-            for (e, p) in pos_of.iter_mut().enumerate() {
-                if *p == 0 {
-                    *p = interface.len() as u32;
-                    interface.push(e);
-                }
-            }
+        let interface = if kind == Factorization::SymmetricPart || interface_loop {
+            interface_equations(model, &blocks, pattern.n)
+        } else {
+            Vec::new()
+        };
+        let mut pos_of = vec![u32::MAX; pattern.n];
+        for (k, &e) in interface.iter().enumerate() {
+            pos_of[e] = k as u32;
         }
         Ok(SerialBackend {
             asm: Assembler::new(pattern, &model.dofs, &blocks),
@@ -240,6 +224,53 @@ impl crate::backend::Backend for SerialBackend {
             }
         }
     }
+}
+
+/// The free equations of every interface point's block (over their masters
+/// where a point holds a constrained dof: what `add_coupling` touches), in
+/// increasing order.
+fn interface_equations(model: &Model, blocks: &crate::assembly::Blocks, n: usize) -> Vec<usize> {
+    let first = model
+        .interface_block_base
+        .first()
+        .copied()
+        .unwrap_or(model.section_block_base);
+    let mut on = vec![false; n];
+    for b in first..model.section_block_base {
+        for &d in blocks.get(b) {
+            if let Some(e) = model.dofs.equation(d as usize) {
+                on[e] = true;
+            }
+        }
+    }
+    (0..n).filter(|&e| on[e]).collect()
+}
+
+/// The interface equations where the serial backend of this model offers
+/// the interface loop the condensation of its factor (`[solver]
+/// interface_loop` applies and the interface-last ordering pays,
+/// [`SerialDirect::plans_trailing`]), from the symbolic analyses alone; else
+/// none. The PETSc backend runs the loop on exactly these models, so that
+/// both take the same iterates.
+pub fn interface_loop_equations(model: &Model) -> Result<Vec<usize>> {
+    if !wants_interface_loop(model) {
+        return Ok(Vec::new());
+    }
+    let kind = if model.symmetric_tangent() {
+        Factorization::Cholesky
+    } else {
+        Factorization::SymmetricPart
+    };
+    let blocks = model.blocks();
+    let pattern = Pattern::new(&model.dofs, &blocks);
+    let interface = interface_equations(model, &blocks, pattern.n);
+    Ok(
+        if SerialDirect::plans_trailing(&pattern, kind, &interface)? {
+            interface
+        } else {
+            Vec::new()
+        },
+    )
 }
 
 /// Whether `[solver] interface_loop` applies to a model: asked for, full

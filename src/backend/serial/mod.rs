@@ -206,6 +206,58 @@ fn check_memory(what: &str, bytes: f64, exact: bool) -> Result<()> {
     Ok(())
 }
 
+/// The pattern as faer's symbolic matrix.
+fn symbolic_of(pattern: &Pattern) -> SymbolicSparseColMat<usize> {
+    SymbolicSparseColMat::new_checked(
+        pattern.n,
+        pattern.n,
+        pattern.col_ptr.clone(),
+        None,
+        pattern.row_idx.iter().map(|&r| r as usize).collect(),
+    )
+}
+
+fn symbolic_cholesky(
+    mat: &SymbolicSparseColMat<usize>,
+    ordering: SymmetricOrdering<usize>,
+) -> Result<SymbolicCholesky<usize>> {
+    factorize_symbolic_cholesky(
+        mat.as_ref(),
+        Side::Lower,
+        ordering,
+        // supernodal at every size: faer's automatic choice takes the
+        // simplicial (column by column) factorization for the default
+        // punch (1,541 equations), 2.8x slower there (docs/performance.md)
+        CholeskySymbolicParams {
+            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+            ..Default::default()
+        },
+    )
+    .map_err(|e| Error::Solver(format!("symbolic Cholesky failed: {e:?}")))
+}
+
+/// The interface-last analysis where it pays against the plain one, else
+/// `None`. Which cost decides: [`trail::prefer_interface_last`] for the
+/// Woodbury-GMRES steps of [`Factorization::SymmetricPart`],
+/// [`trail::prefer_condensed`] for the interface loop on a symmetric tangent.
+fn interface_last_pays(
+    mat: &SymbolicSparseColMat<usize>,
+    interface: &[usize],
+    kind: Factorization,
+    plain: &SymbolicCholesky<usize>,
+) -> Result<Option<SymbolicCholesky<usize>>> {
+    let n = mat.nrows();
+    let (fwd, inv) = trail::ordering_with_last(mat, interface)?;
+    let perm = PermRef::new_checked(&fwd, &inv, n);
+    let last = symbolic_cholesky(mat, SymmetricOrdering::Custom(perm))?;
+    let (c_last, c_plain) = (trail::factor_cost(&last), trail::factor_cost(plain));
+    let pays = match kind {
+        Factorization::SymmetricPart => trail::prefer_interface_last(c_last, c_plain),
+        _ => trail::prefer_condensed(interface.len(), c_last, c_plain),
+    };
+    Ok(pays.then_some(last))
+}
+
 impl SerialDirect {
     /// Symbolic analysis (fill-reducing ordering, elimination tree, factor
     /// structure) of the pattern for the given factorization, whose numeric
@@ -224,13 +276,7 @@ impl SerialDirect {
         interface: Vec<usize>,
         threads: usize,
     ) -> Result<Self> {
-        let symbolic_mat = SymbolicSparseColMat::new_checked(
-            pattern.n,
-            pattern.n,
-            pattern.col_ptr.clone(),
-            None,
-            pattern.row_idx.iter().map(|&r| r as usize).collect(),
-        );
+        let symbolic_mat = symbolic_of(pattern);
         let mut s = SerialDirect {
             symbolic_mat,
             kind,
@@ -250,7 +296,7 @@ impl SerialDirect {
         };
         match kind {
             Factorization::Cholesky | Factorization::SymmetricPart => {
-                let plain = s.symbolic_cholesky(SymmetricOrdering::Amd)?;
+                let plain = symbolic_cholesky(&s.symbolic_mat, SymmetricOrdering::Amd)?;
                 let chosen = if s.interface.is_empty() || s.interface.len() >= pattern.n {
                     plain
                 } else {
@@ -264,28 +310,17 @@ impl SerialDirect {
     }
 
     /// The interface-last analysis where it pays against the plain one
-    /// (with its trailing block), else the plain one. Which cost decides:
-    /// [`trail::prefer_interface_last`] for the Woodbury-GMRES steps of
-    /// [`Factorization::SymmetricPart`], [`trail::prefer_condensed`] for the
-    /// interface loop on a symmetric tangent.
+    /// (with its trailing block), else the plain one ([`interface_last_pays`]).
     fn with_interface_last(
         &mut self,
         plain: SymbolicCholesky<usize>,
         kind: Factorization,
     ) -> Result<SymbolicCholesky<usize>> {
-        let n = self.symbolic_mat.nrows();
-        let (fwd, inv) = trail::ordering_with_last(&self.symbolic_mat, &self.interface)?;
-        let perm = PermRef::new_checked(&fwd, &inv, n);
-        let last = self.symbolic_cholesky(SymmetricOrdering::Custom(perm))?;
-        let (c_last, c_plain) = (trail::factor_cost(&last), trail::factor_cost(&plain));
-        let m = self.interface.len();
-        let pays = match kind {
-            Factorization::SymmetricPart => trail::prefer_interface_last(c_last, c_plain),
-            _ => trail::prefer_condensed(m, c_last, c_plain),
-        };
-        if !pays {
+        let Some(last) = interface_last_pays(&self.symbolic_mat, &self.interface, kind, &plain)?
+        else {
             return Ok(plain);
-        }
+        };
+        let m = self.interface.len();
         // the dense block and the map into the factor
         check_memory(
             "Cholesky factor's interface block",
@@ -296,23 +331,22 @@ impl SerialDirect {
         Ok(if self.trailing.is_some() { last } else { plain })
     }
 
-    fn symbolic_cholesky(
-        &self,
-        ordering: SymmetricOrdering<usize>,
-    ) -> Result<SymbolicCholesky<usize>> {
-        factorize_symbolic_cholesky(
-            self.symbolic_mat.as_ref(),
-            Side::Lower,
-            ordering,
-            // supernodal at every size: faer's automatic choice takes the
-            // simplicial (column by column) factorization for the default
-            // punch (1,541 equations), 2.8x slower there (docs/performance.md)
-            CholeskySymbolicParams {
-                supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
-                ..Default::default()
-            },
-        )
-        .map_err(|e| Error::Solver(format!("symbolic Cholesky failed: {e:?}")))
+    /// Whether [`SerialDirect::with_interface`] on this pattern orders the
+    /// interface last with its trailing block, from the symbolic analyses
+    /// alone (no numeric storage): the PETSc backend asks it so that both
+    /// backends run the interface loop on the same models.
+    pub fn plans_trailing(
+        pattern: &Pattern,
+        kind: Factorization,
+        interface: &[usize],
+    ) -> Result<bool> {
+        if kind == Factorization::Lu || interface.is_empty() || interface.len() >= pattern.n {
+            return Ok(false);
+        }
+        let mat = symbolic_of(pattern);
+        let plain = symbolic_cholesky(&mat, SymmetricOrdering::Amd)?;
+        Ok(interface_last_pays(&mat, interface, kind, &plain)?
+            .is_some_and(|last| Trailing::new(&last, interface.len()).is_some()))
     }
 
     /// Whether the interface equations are ordered last (the trailing block
@@ -496,12 +530,10 @@ impl crate::backend::Condensed for SerialDirect {
     fn equations(&self) -> &[usize] {
         &self.interface
     }
-    fn schur(&self) -> Vec<f64> {
-        self.trailing
-            .as_ref()
-            .map_or_else(Vec::new, Trailing::schur)
+    fn schur(&mut self) -> Option<Vec<f64>> {
+        self.trailing.as_ref().map(Trailing::schur)
     }
-    fn lift(&mut self, e: &[f64], x: &mut [f64]) {
+    fn lift(&mut self, e: &[f64], x: &mut [f64]) -> bool {
         let mut w = std::mem::take(&mut self.scratch);
         w.clear();
         w.resize(self.symbolic_mat.nrows(), 0.0);
@@ -513,6 +545,7 @@ impl crate::backend::Condensed for SerialDirect {
             *xi += wi;
         }
         self.scratch = w;
+        true
     }
 }
 
@@ -565,7 +598,7 @@ fn check_solution(x: &[f64]) -> Result<()> {
 }
 
 mod backend;
-pub use backend::SerialBackend;
+pub use backend::{interface_loop_equations, SerialBackend};
 
 #[cfg(test)]
 mod tests;

@@ -218,6 +218,42 @@ fn a_cycle_reports_its_dissipation_stiffness_and_ranges() {
     assert_eq!(flat.secant_stiffness, None);
 }
 
+/// Two increments at the same prescribed extreme force, held by
+/// equilibrium only to the Newton tolerance, are one tip: the one of the
+/// larger slip at the top (the smaller at the bottom), whichever force
+/// round-off made larger.
+#[test]
+fn forces_equal_to_round_off_are_one_tip_of_the_loop() {
+    let (f, k) = (72.0, 2.0e5);
+    let row = |force: f64, u: f64| {
+        (
+            0.0,
+            JointMeasures {
+                tangential_force: force,
+                mean_slip: u,
+                ..JointMeasures::default()
+            },
+        )
+    };
+    for (eps_a, eps_b) in [(0.0, -2.7e-6), (-2.7e-6, 0.0)] {
+        // tip to tip: the window starts and ends at +f, the end slid further
+        let rows = [
+            row(f + eps_a, 3.50e-4),
+            row(0.0, 0.0),
+            row(-f, -3.30e-4),
+            row(0.0, -1.0e-5),
+            row(f + eps_b, 3.39e-4),
+        ];
+        let c = cycle_of(&rows, (0, 4));
+        assert_eq!(c.tip_slip, [-3.30e-4, 3.50e-4], "{eps_a} {eps_b}");
+        let secant = (rows[0].1.tangential_force + f) / (3.50e-4 + 3.30e-4);
+        assert!((c.secant_stiffness.unwrap() - secant).abs() < 1e-9 * k);
+    }
+    // a force short of the extreme by more than the tie is not a tip
+    let rows = [row(f - 1e-3, 5.0e-4), row(-f, -3.30e-4), row(f, 3.39e-4)];
+    assert_eq!(cycle_of(&rows, (0, 2)).tip_slip, [-3.30e-4, 3.39e-4]);
+}
+
 #[test]
 fn a_parallelogram_loop_has_the_closed_form_stored_energy_and_loss_factor() {
     // from the tip (d, f) around the loop and back; stick slope k, slip at ±f

@@ -218,12 +218,14 @@ fn norm(v: &[f64]) -> f64 {
 }
 
 /// `x ← J⁻¹ x` by a dense LU with partial pivoting, on one thread (`j`
-/// overwritten); false where J is singular.
-pub(super) fn dense_solve(j: &mut [f64], x: &mut [f64]) -> bool {
-    let m = x.len();
+/// overwritten; x column-major with `cols` columns); false where J is
+/// singular.
+pub(crate) fn dense_solve(j: &mut [f64], x: &mut [f64], cols: usize) -> bool {
+    let m = x.len() / cols.max(1);
     let (mut perm, mut perm_inv) = (vec![0usize; m], vec![0usize; m]);
-    let req = factor::lu_in_place_scratch::<usize, f64>(m, m, Par::Seq, Default::default())
-        .or(solve::solve_in_place_scratch::<usize, f64>(m, 1, Par::Seq));
+    let req = factor::lu_in_place_scratch::<usize, f64>(m, m, Par::Seq, Default::default()).or(
+        solve::solve_in_place_scratch::<usize, f64>(m, cols, Par::Seq),
+    );
     let Ok(mut buf) = MemBuffer::try_new(req) else {
         return false;
     };
@@ -241,7 +243,7 @@ pub(super) fn dense_solve(j: &mut [f64], x: &mut [f64]) -> bool {
     if (0..m).any(|i| a[(i, i)] == 0.0 || !a[(i, i)].is_finite()) {
         return false;
     }
-    let rhs = MatMut::from_column_major_slice_mut(x, m, 1);
+    let rhs = MatMut::from_column_major_slice_mut(x, m, cols);
     solve::solve_in_place_with_conj(a, a, p, Conj::No, rhs, Par::Seq, stack);
     x.iter().all(|v| v.is_finite())
 }
@@ -305,12 +307,18 @@ pub(super) fn refine(
     for (fi, ci) in f.iter_mut().zip(&c0) {
         *fi -= ci;
     }
-    if norm(&f) <= tol {
+    // every decision below is rank 0's (the data are replicated and equal
+    // on every rank; the backend's operations after it are collective)
+    if engine.backend.agree(norm(&f) <= tol) {
         return false;
     }
     // A = S − K_s0 (the part of K_s0 the factored matrix holds: without the
     // coupling terms where the backend keeps them apart)
-    let Some(s) = engine.backend.condensed().map(|c| c.schur()) else {
+    let s = engine.backend.condensed().and_then(|c| c.schur());
+    if !engine.backend.agree(s.is_some()) {
+        return false;
+    }
+    let Some(s) = s else {
         return false;
     };
     let mut a = s.clone();
@@ -338,7 +346,7 @@ pub(super) fn refine(
         pts.eval(&ud, None, true, &mut rs, Some((&mut j, 1.0)));
         step.iter_mut().zip(&f).for_each(|(s, fi)| *s = -fi);
         st.iterations += 1;
-        if !dense_solve(&mut j, &mut step) {
+        if !dense_solve(&mut j, &mut step, 1) {
             break;
         }
         for (di, si) in d.iter_mut().zip(&step) {
@@ -366,27 +374,25 @@ pub(super) fn refine(
             best = (f_norm, Some(diff.clone()));
         }
     }
+    let converged = engine.backend.agree(converged);
+    let has_best = engine.backend.agree(best.1.is_some());
     let total = &mut engine.stats.interface;
     total.loops += st.loops;
     total.iterations += st.iterations;
     if !converged {
         // the smallest ‖F‖ seen, where it is below the plain correction's
         total.fallbacks += 1;
-        match best.1 {
-            Some(b) => diff = b,
-            None => return false,
+        if !has_best {
+            return false;
+        }
+        if let Some(b) = best.1 {
+            diff = b;
         }
     }
     // Δ = Δ⁰ + M⁻¹ [0; S (d − Δ⁰_I)]
     let mut e = vec![0.0; m];
     mat_vec(&s, &diff, &mut e);
-    match engine.backend.condensed() {
-        Some(c) => {
-            c.lift(&e, du);
-            true
-        }
-        None => false,
-    }
+    engine.backend.condensed().is_some_and(|c| c.lift(&e, du))
 }
 
 #[cfg(test)]
@@ -411,11 +417,11 @@ mod tests {
         let mut b = vec![0.0; m];
         mat_vec(&a, &x, &mut b);
         let mut j = a.clone();
-        assert!(dense_solve(&mut j, &mut b));
+        assert!(dense_solve(&mut j, &mut b, 1));
         for (p, q) in b.iter().zip(&x) {
             assert!((p - q).abs() < 1e-13, "{b:?} vs {x:?}");
         }
         let mut singular = vec![1.0; m * m];
-        assert!(!dense_solve(&mut singular, &mut vec![1.0; m]));
+        assert!(!dense_solve(&mut singular, &mut vec![1.0; m], 1));
     }
 }

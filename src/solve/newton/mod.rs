@@ -323,9 +323,8 @@ impl<'m> Engine<'m> {
             for v in du.iter_mut() {
                 *v = -*v;
             }
-            p.interface_loop(&x, &mut du);
             p.engine.stats.solve_seconds += t1.elapsed().as_secs_f64();
-            p.correct(&x, &mut du);
+            p.correct(&x, &mut du, true);
             for (xk, dk) in x.iter_mut().zip(&du) {
                 *xk += dk;
             }

@@ -423,8 +423,13 @@ impl Problem for StepProblem<'_, '_> {
         Verdict::Continue
     }
 
-    fn correct(&mut self, x: &[f64], du: &mut [f64]) {
+    fn correct(&mut self, x: &[f64], du: &mut [f64], whole: bool) {
         self.engine.stats.factorizations += 1;
+        // both paths (the built-in loop and SNES's post-check) hand the
+        // plain correction here: the interface loop refines it on either
+        if whole {
+            self.interface_loop(x, du);
+        }
         if let Some(acc) = self.anderson.as_mut() {
             let mixed = acc.step(x, du);
             du.copy_from_slice(&mixed);
