@@ -12,9 +12,13 @@
 //!   Z = E_Iᵀ M⁻¹ E_I = (M⁻¹)_II = (M_II − M_IB M_BB⁻¹ M_BI)⁻¹ = S⁻¹,
 //! ```
 //!
-//! m right-hand sides in one `MatMatSolve` with the factor (MUMPS solves them
-//! as a block), the rows on I gathered onto every rank, and S = Z⁻¹ by a dense
-//! LU, identically on every rank. The lift `x += M⁻¹ [0; e]` is one
+//! MUMPS's selected entries of the inverse where the factor is MUMPS's
+//! (`MatMumpsGetInverse`, ICNTL(30): the requested entries I × I held on
+//! rank 0 as a sparse matrix, the right-hand sides and the solution entries
+//! sparse, so the solves prune the elimination tree), else m right-hand
+//! sides in one `MatMatSolve` with the factor; Z is summed onto every rank
+//! (each entry from the one rank that holds it), and S = Z⁻¹ by a dense LU,
+//! identically on every rank. The lift `x += M⁻¹ [0; e]` is one
 //! `MatSolve`. The factor is the one of the KSP that solved the Newton
 //! system: SNES's where SNES drives the step ([`PetscBackend::factor_of`]),
 //! else the backend's own. Only a factorization (`-pc_type cholesky|lu`)
@@ -23,7 +27,7 @@
 //! line) the loop does not run and the plain Newton correction stands.
 //!
 //! Which models run the loop is the serial backend's rule
-//! ([`crate::backend::serial::plans_interface_loop`]), so that a model runs it
+//! ([`crate::backend::serial::interface_loop_equations`]), so that a model runs it
 //! on both backends or on neither: then serial and PETSc runs take the same
 //! iterates to round-off.
 
@@ -33,16 +37,27 @@ use crate::error::Result;
 use mpi::collective::SystemOperation;
 use mpi::traits::*;
 
-/// A dense PETSc matrix, destroyed on drop.
-struct Dense(ffi::Mat);
+/// A PETSc matrix, destroyed on drop.
+pub(super) struct Owned(ffi::Mat);
 
-impl Drop for Dense {
+impl Drop for Owned {
     fn drop(&mut self) {
-        // SAFETY: created by MatCreateDense, destroyed once.
+        // SAFETY: created by this module, destroyed once (MatDestroy of a
+        // null handle does nothing).
         unsafe {
             ffi::MatDestroy(&mut self.0);
         }
     }
+}
+
+/// The entries I × I of the inverse that `MatMumpsGetInverse` computes: a
+/// sparse matrix whose rows all sit on rank 0 (MUMPS wants its sparse
+/// right-hand sides on the host), and its transpose (the form PETSc passes
+/// to MUMPS); after the call the sparse matrix holds (M⁻¹)ᵀ on that
+/// pattern. Built once per run.
+pub(super) struct InversePattern {
+    sparse: Owned,
+    transpose: Owned,
 }
 
 impl PetscBackend<'_> {
@@ -87,8 +102,145 @@ impl PetscBackend<'_> {
         all == 1
     }
 
+    /// Whether `f` is a MUMPS factor.
+    fn is_mumps(f: ffi::Mat) -> bool {
+        let mut kind = std::ptr::null();
+        // SAFETY: valid factor; out-pointer to a string PETSc owns.
+        unsafe { ffi::MatFactorGetSolverType(f, &mut kind) == 0 && type_is(kind, b"mumps") }
+    }
+
+    /// The pattern I × I of [`InversePattern`] (the interface equations'
+    /// PETSc indices, every row on rank 0).
+    fn inverse_pattern(&self) -> Result<InversePattern> {
+        let global = self.part.global_len();
+        let rows = if self.rank == 0 { global } else { 0 };
+        let mut idx: Vec<ffi::PetscInt> = self
+            .loop_equations
+            .iter()
+            .map(|&e| self.part.petsc_index[e])
+            .collect();
+        idx.sort_unstable();
+        let mut nnz = vec![0 as ffi::PetscInt; rows];
+        for &p in &idx {
+            if self.rank == 0 {
+                nnz[p as usize] = idx.len() as ffi::PetscInt;
+            }
+        }
+        let ones = vec![1.0; idx.len()];
+        let mut sparse = Owned(std::ptr::null_mut());
+        let mut transpose = Owned(std::ptr::null_mut());
+        // SAFETY: a fresh matrix on the backend's communicator, preallocated
+        // for exactly the entries set below; out-pointers.
+        unsafe {
+            chk(
+                ffi::MatCreate(self.petsc.comm(), &mut sparse.0),
+                "MatCreate",
+            )?;
+            let (n, g) = (rows as ffi::PetscInt, global as ffi::PetscInt);
+            chk(ffi::MatSetSizes(sparse.0, n, n, g, g), "MatSetSizes")?;
+            chk(ffi::MatSetType(sparse.0, c"aij".as_ptr()), "MatSetType")?;
+            chk(
+                ffi::MatSeqAIJSetPreallocation(sparse.0, 0, nnz.as_ptr()),
+                "MatSeqAIJSetPreallocation",
+            )?;
+            chk(
+                ffi::MatMPIAIJSetPreallocation(sparse.0, 0, nnz.as_ptr(), 0, std::ptr::null()),
+                "MatMPIAIJSetPreallocation",
+            )?;
+            if self.rank == 0 {
+                for &p in &idx {
+                    chk(
+                        ffi::MatSetValues(
+                            sparse.0,
+                            1,
+                            &p,
+                            idx.len() as ffi::PetscInt,
+                            idx.as_ptr(),
+                            ones.as_ptr(),
+                            ffi::InsertMode_INSERT_VALUES,
+                        ),
+                        "MatSetValues",
+                    )?;
+                }
+            }
+            let fin = ffi::MatAssemblyType_MAT_FINAL_ASSEMBLY;
+            chk(ffi::MatAssemblyBegin(sparse.0, fin), "MatAssemblyBegin")?;
+            chk(ffi::MatAssemblyEnd(sparse.0, fin), "MatAssemblyEnd")?;
+            chk(
+                ffi::MatCreateTranspose(sparse.0, &mut transpose.0),
+                "MatCreateTranspose",
+            )?;
+        }
+        Ok(InversePattern { sparse, transpose })
+    }
+
+    /// Z = (M⁻¹)_II by MUMPS's selected entries of the inverse, on every rank.
+    fn inverse_entries(&mut self, f: ffi::Mat) -> Result<Vec<f64>> {
+        if self.inverse_pattern.is_none() {
+            self.inverse_pattern = Some(self.inverse_pattern()?);
+        }
+        let m = self.loop_equations.len();
+        let mut z = vec![0.0; m * m];
+        let pat = self.inverse_pattern.as_ref().expect("built above");
+        // position in I of each PETSc index of an interface equation
+        let pos: std::collections::HashMap<ffi::PetscInt, usize> = self
+            .loop_equations
+            .iter()
+            .enumerate()
+            .map(|(k, &e)| (self.part.petsc_index[e], k))
+            .collect();
+        // SAFETY: valid MUMPS factor and the pattern built for it; the rows
+        // read on rank 0, which holds them all, and restored.
+        unsafe {
+            // MatMumpsGetInverse switches MUMPS to sparse right-hand sides,
+            // a centralized solution and selected entries (ICNTL(20), (21),
+            // (30)) and leaves them so: restored after, for the Newton solves
+            // that follow (without, the next solve fails on two ranks)
+            let mut saved = [(20, 0), (21, 0), (30, 0)];
+            for (k, v) in saved.iter_mut() {
+                chk(ffi::MatMumpsGetIcntl(f, *k, v), "MatMumpsGetIcntl")?;
+            }
+            let got = chk(
+                ffi::MatMumpsGetInverse(f, pat.transpose.0),
+                "MatMumpsGetInverse",
+            );
+            for (k, v) in saved {
+                chk(ffi::MatMumpsSetIcntl(f, k, v), "MatMumpsSetIcntl")?;
+            }
+            got?;
+            if self.rank == 0 {
+                for (&p, &ki) in &pos {
+                    let (mut ncols, mut cols, mut vals) = (0, std::ptr::null(), std::ptr::null());
+                    chk(
+                        ffi::MatGetRow(pat.sparse.0, p, &mut ncols, &mut cols, &mut vals),
+                        "MatGetRow",
+                    )?;
+                    let (c, v) = (
+                        std::slice::from_raw_parts(cols, ncols as usize),
+                        std::slice::from_raw_parts(vals, ncols as usize),
+                    );
+                    // the sparse matrix holds (M⁻¹)ᵀ: its (p_i, p_j) is Z(j, i)
+                    for (cj, vj) in c.iter().zip(v) {
+                        if let Some(&kj) = pos.get(cj) {
+                            z[ki * m + kj] = *vj;
+                        }
+                    }
+                    chk(
+                        ffi::MatRestoreRow(pat.sparse.0, p, &mut ncols, &mut cols, &mut vals),
+                        "MatRestoreRow",
+                    )?;
+                }
+            }
+        }
+        self.reduce(&mut z, SystemOperation::sum());
+        Ok(z)
+    }
+
     /// Z = (M⁻¹)_II on every rank (dense, column-major m × m).
     fn inverse_block(&mut self, f: ffi::Mat) -> Result<Vec<f64>> {
+        if Self::is_mumps(f) {
+            return self.inverse_entries(f);
+        }
         let m = self.loop_equations.len();
         let local = self.part.local_len(self.rank);
         let global = self.part.global_len();
@@ -100,7 +252,7 @@ impl PetscBackend<'_> {
             }
         }
         let comm = self.petsc.comm();
-        let dense = |what: &str| -> Result<Dense> {
+        let dense = |what: &str| -> Result<Owned> {
             let mut raw = std::ptr::null_mut();
             // SAFETY: out-pointer; PETSc allocates the storage.
             chk(
@@ -117,7 +269,7 @@ impl PetscBackend<'_> {
                 },
                 what,
             )?;
-            Ok(Dense(raw))
+            Ok(Owned(raw))
         };
         let (b, x) = (dense("MatCreateDense (B)")?, dense("MatCreateDense (X)")?);
         let mut z = vec![0.0; m * m];

@@ -22,8 +22,29 @@ fn chk(code: ffi::PetscErrorCode, call: &str) -> Result<()> {
     if code == 0 {
         Ok(())
     } else {
+        // PETSc's text for the code and the message of its last error
+        let (mut text, mut specific): (*const c_char, *mut c_char) =
+            (std::ptr::null(), std::ptr::null_mut());
+        // SAFETY: out-pointers to strings PETSc owns (static or its buffer).
+        let known = unsafe { ffi::PetscErrorMessage(code, &mut text, &mut specific) } == 0;
+        let say = |p: *const c_char| {
+            // SAFETY: null or a NUL-terminated string of PETSc's.
+            (!p.is_null())
+                .then(|| {
+                    unsafe { std::ffi::CStr::from_ptr(p) }
+                        .to_string_lossy()
+                        .trim()
+                        .to_string()
+                })
+                .filter(|t| !t.is_empty())
+        };
+        let why = match (known, say(text), say(specific)) {
+            (true, Some(t), Some(s)) => format!(": {t}: {s}"),
+            (true, Some(t), None) => format!(": {t}"),
+            _ => String::new(),
+        };
         Err(Error::Solver(format!(
-            "PETSc {call} failed with error code {code}"
+            "PETSc {call} failed with error code {code}{why}"
         )))
     }
 }

@@ -266,6 +266,9 @@ pub struct PetscBackend<'p> {
     /// The KSP whose factor the interface loop uses when SNES solves the
     /// Newton systems ([`PetscBackend::factor_of`]); else the backend's own.
     pub(super) factor_ksp: Option<HeldKsp>,
+    /// The requested entries of the inverse for MUMPS, built at the first
+    /// condensation ([`super::condensed`]).
+    pub(super) inverse_pattern: Option<super::condensed::InversePattern>,
 }
 
 /// A reference to a KSP that another object owns, released on drop.
@@ -379,6 +382,7 @@ impl<'p> PetscBackend<'p> {
                 LinearDefault::Multigrid { .. } => Vec::new(),
             },
             factor_ksp: None,
+            inverse_pattern: None,
         })
     }
 
