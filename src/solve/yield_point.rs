@@ -57,16 +57,24 @@ pub fn max_yield_ratio(model: &Model, state: &State, held: &[u32]) -> (f64, usiz
     best
 }
 
+/// First yield between the last elastic state `last_elastic` (at `lambda0`,
+/// its yield ratio `ratio0`) and `lambda1`, where the step's solution has
+/// yielded. `before`: the elastic solution (load factor, displacements)
+/// before `last_elastic`, when the run has one; with it the first solve, at
+/// `lambda1`, starts from the two's linear extrapolation (the step's own
+/// predictor, [`super::predict`]) instead of from `last_elastic`.
 pub(super) fn locate(
     engine: &mut Engine,
     last_elastic: &State,
     (lambda0, ratio0): (f64, f64),
     lambda1: f64,
+    before: Option<(f64, Vec<f64>)>,
 ) -> std::result::Result<Located, (f64, StepFailure)> {
     let model = engine.model;
     // the two latest solutions (load factor, displacements): each solve
     // starts from their linear inter- or extrapolation to its load factor
-    let mut known: Vec<(f64, Vec<f64>)> = vec![(lambda0, last_elastic.u.clone())];
+    let mut known: Vec<(f64, Vec<f64>)> = before.into_iter().collect();
+    known.push((lambda0, last_elastic.u.clone()));
     let mut eval = |l: f64| -> std::result::Result<(f64, State), (f64, StepFailure)> {
         let start = match known.as_slice() {
             [.., (l0, u0), (l1, u1)] if (l1 - l0).abs() > 0.0 => {
