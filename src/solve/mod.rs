@@ -411,6 +411,23 @@ fn attempt(
     }
 }
 
+/// The converged state before the committed one, (load factor,
+/// displacements) = (λ_n − Δλ_prev, u_n − Δu_prev), where the predictor
+/// would extrapolate from it ([`predict`]: not at a history breakpoint, nor
+/// after a step the stabilization held, nor before the second increment).
+/// Before first yield it is an elastic solution, the one before the
+/// committed state: the first-yield search starts its first elastic solve
+/// from the two ([`yield_point::locate`]).
+fn elastic_before(model: &Model, ck: &Checkpoint) -> Option<(f64, Vec<f64>)> {
+    let usable = ck.last_step > 0.0
+        && ck.last_du.len() == ck.committed.u.len()
+        && !model.breakpoints().contains(&ck.lambda);
+    usable.then(|| {
+        let u = ck.committed.u.iter().zip(&ck.last_du);
+        (ck.lambda - ck.last_step, u.map(|(u, d)| u - d).collect())
+    })
+}
+
 /// What became of a converged step.
 enum Accepted {
     /// Committed and written.
@@ -459,6 +476,7 @@ fn accept(
             &ck.committed,
             (ck.lambda, ck.elastic_ratio_prev),
             target,
+            elastic_before(model, ck),
         ) {
             Ok(at) => {
                 found.push(events::first_yield(

@@ -38,35 +38,73 @@ pub(super) struct Located {
     pub state: State,
 }
 
+/// Relative width of a tie in the yield ratio: the Gauss points whose ratio
+/// is within it of the largest are tied, and the lowest (element, point)
+/// among them is the one named. Mirror-image points of a symmetric model
+/// (the bolted joint's bolt) reach the same ratio up to round-off, which
+/// would otherwise pick either one from run to run as the iterates change
+/// in their last digits.
+pub const RATIO_TIE: f64 = 1e-12;
+
 /// Max yield ratio over the Gauss points of the `held` elements (whose points
 /// `state.gauss` holds, in this order) and the (element, point) where it
-/// occurs; [`Engine::max_yield_ratio`] takes it over every rank.
+/// occurs, the lowest within [`RATIO_TIE`] of it; [`Engine::max_yield_ratio`]
+/// takes it over every rank.
 pub fn max_yield_ratio(model: &Model, state: &State, held: &[u32]) -> (f64, usize, usize) {
-    let ng = model.n_gauss();
-    let mut best = (0.0, 0, 0);
-    for (k, &e) in held.iter().enumerate() {
-        let e = e as usize;
-        let mat = &model.materials[model.mesh.elements[e].body];
-        for ip in 0..ng {
-            let r = yield_ratio(mat, &state.gauss[k * ng + ip]);
-            if r > best.0 {
-                best = (r, e, ip);
-            }
-        }
-    }
-    best
+    let best = ratios(model, state, held).fold(0.0, |a: f64, (r, _, _)| a.max(r));
+    let (e, ip) = lowest_tied(model, state, held, best).unwrap_or((0, 0));
+    (best, e, ip)
 }
 
+/// The lowest (element, point) of the `held` elements whose yield ratio is
+/// within [`RATIO_TIE`] of `best` (none where `best` is not positive or no
+/// point reaches it).
+pub fn lowest_tied(
+    model: &Model,
+    state: &State,
+    held: &[u32],
+    best: f64,
+) -> Option<(usize, usize)> {
+    let floor = best * (1.0 - RATIO_TIE);
+    (best > 0.0)
+        .then(|| ratios(model, state, held).find(|&(r, _, _)| r >= floor))
+        .flatten()
+        .map(|(_, e, ip)| (e, ip))
+}
+
+/// The yield ratio of every held Gauss point with its (element, point), in
+/// element order.
+fn ratios<'a>(
+    model: &'a Model,
+    state: &'a State,
+    held: &'a [u32],
+) -> impl Iterator<Item = (f64, usize, usize)> + 'a {
+    let ng = model.n_gauss();
+    held.iter().enumerate().flat_map(move |(k, &e)| {
+        let e = e as usize;
+        let mat = &model.materials[model.mesh.elements[e].body];
+        (0..ng).map(move |ip| (yield_ratio(mat, &state.gauss[k * ng + ip]), e, ip))
+    })
+}
+
+/// First yield between the last elastic state `last_elastic` (at `lambda0`,
+/// its yield ratio `ratio0`) and `lambda1`, where the step's solution has
+/// yielded. `before`: the elastic solution (load factor, displacements)
+/// before `last_elastic`, when the run has one; with it the first solve, at
+/// `lambda1`, starts from the two's linear extrapolation (the step's own
+/// predictor, [`super::predict`]) instead of from `last_elastic`.
 pub(super) fn locate(
     engine: &mut Engine,
     last_elastic: &State,
     (lambda0, ratio0): (f64, f64),
     lambda1: f64,
+    before: Option<(f64, Vec<f64>)>,
 ) -> std::result::Result<Located, (f64, StepFailure)> {
     let model = engine.model;
     // the two latest solutions (load factor, displacements): each solve
     // starts from their linear inter- or extrapolation to its load factor
-    let mut known: Vec<(f64, Vec<f64>)> = vec![(lambda0, last_elastic.u.clone())];
+    let mut known: Vec<(f64, Vec<f64>)> = before.into_iter().collect();
+    known.push((lambda0, last_elastic.u.clone()));
     let mut eval = |l: f64| -> std::result::Result<(f64, State), (f64, StepFailure)> {
         let start = match known.as_slice() {
             [.., (l0, u0), (l1, u1)] if (l1 - l0).abs() > 0.0 => {

@@ -158,3 +158,37 @@ fn the_first_yield_event_is_the_first_yield_search() {
     assert!(lo <= fy.load_factor && fy.load_factor <= hi, "{e:?}");
     assert!(common::rel(e.values[0], fy.total_load_kn) < 1e-12);
 }
+
+/// First yield names the lowest (element, point) among the Gauss points
+/// whose yield ratios are tied within round-off (`RATIO_TIE`, 1e-12
+/// relative), so that mirror-image points of a symmetric model (the bolted
+/// joint's bolt) do not swap as the iterates change in their last digits;
+/// a point clearly above the others is named whatever its index.
+#[test]
+fn first_yield_names_the_lowest_of_points_tied_within_round_off() {
+    let text =
+        std::fs::read_to_string(common::root().join("cases/punch-plane-strain/case.toml")).unwrap();
+    let model = common::model(&text);
+    let engine =
+        asperity::driver::serial_engine(&model, asperity::case::Method::FullNewton, 1).unwrap();
+    let ng = model.n_gauss();
+    let body = model.mesh.elements[0].body;
+    let sy = model.materials[body].yield_stress;
+    // three elements of one body, in mesh order
+    let same: Vec<usize> = (0..model.mesh.elements.len())
+        .filter(|&e| model.mesh.elements[e].body == body)
+        .collect();
+    let (a, b, c) = (same[1], same[5], same[6]);
+    let mut state = asperity::solve::State::initial(&model);
+    // uniaxial σxx = ratio · σ_Y at (element, point)
+    let at = |e: usize, ip: usize| e * ng + ip;
+    state.gauss[at(a, 3)].stress[0] = 0.9 * sy;
+    state.gauss[at(b, 2)].stress[0] = 0.9 * (1.0 + 3e-15) * sy;
+    state.gauss[at(c, 0)].stress[0] = 0.9 * (1.0 - 4e-15) * sy;
+    let (ratio, e, ip) = engine.max_yield_ratio(&state);
+    assert!(common::rel(ratio, 0.9) < 1e-14, "{ratio}");
+    assert_eq!((e, ip), (a, 3), "the lowest of three tied points");
+    state.gauss[at(b, 2)].stress[0] = 0.9 * (1.0 + 1e-9) * sy;
+    let (_, e, ip) = engine.max_yield_ratio(&state);
+    assert_eq!((e, ip), (b, 2), "a point 1e-9 above the others is not tied");
+}

@@ -273,3 +273,115 @@ fn assembled_tangent_matches_finite_differences_of_the_residual() {
         }
     }
 }
+
+/// Steps a shipped case to `last` in load steps of `step` (each from the
+/// linear extrapolation of the two latest solutions, as a run starts them);
+/// the last two converged states.
+fn states_near_the_limit_load(
+    engine: &mut asperity::solve::Engine,
+    model: &asperity::model::Model,
+    step: f64,
+    last: f64,
+) -> (State, State) {
+    let (mut before, mut now) = (State::initial(model), State::initial(model));
+    let mut lambda = 0.0;
+    while lambda < last - 1e-12 {
+        let du: Vec<f64> = now.u.iter().zip(&before.u).map(|(a, b)| a - b).collect();
+        let start = (lambda > 0.0)
+            .then(|| asperity::solve::predict(&now, &du, step, step))
+            .flatten();
+        lambda += step;
+        let (next, _) = engine
+            .step_from(&now, lambda, Response::Plastic, start.as_deref())
+            .unwrap_or_else(|e| panic!("λ = {lambda}: {e}"));
+        engine.committed();
+        before = std::mem::replace(&mut now, next);
+    }
+    (before, now)
+}
+
+/// The assembled tangent is the derivative of the assembled residual at the
+/// states where the rounded punches' Newton increments are long (issue 29,
+/// docs/performance.md "Plastic Newton near the limit load"): most of the
+/// foundation plastic, plane stress (projected return) and plane strain
+/// (radial return), a non-matching interface. Directional derivatives
+/// (K v against central differences of R along v) with v on the nodes of the
+/// elements that hold a yielding Gauss point, so that their tangents are what
+/// K v measures.
+#[test]
+fn assembled_tangent_is_the_derivative_of_the_residual_near_the_limit_load() {
+    for case in ["punch-rounded-stress", "punch-rounded-strain"] {
+        let path = common::root().join("cases").join(case).join("case.toml");
+        let model = common::model(&std::fs::read_to_string(path).unwrap());
+        let mut engine = asperity::driver::serial_engine(&model, Method::FullNewton, 1).unwrap();
+        let (before, now) = states_near_the_limit_load(&mut engine, &model, 0.1, 0.8);
+        let ng = model.n_gauss();
+        let plastic: Vec<usize> = (0..model.mesh.elements.len())
+            .filter(|&e| now.gauss[e * ng..(e + 1) * ng].iter().any(|g| g.yielding))
+            .collect();
+        assert!(
+            plastic.len() > 50,
+            "{case}: {} plastic elements",
+            plastic.len()
+        );
+        let mut on = vec![false; now.u.len()];
+        for &e in &plastic {
+            for &n in &model.mesh.elements[e].nodes {
+                on[2 * n] = true;
+                on[2 * n + 1] = true;
+            }
+        }
+        let free: Vec<usize> = (0..now.u.len())
+            .filter(|&d| model.dofs.equation(d).is_some())
+            .collect();
+        let pattern = model.pattern();
+        let u_max = now.u.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        // at the converged state and off it
+        for wobble in [0.0, 1e-3] {
+            let u: Vec<f64> = (0..now.u.len())
+                .map(|i| now.u[i] * (1.0 + wobble * (i as f64).sin()))
+                .collect();
+            engine.linearize(&before, &u, 0.8).unwrap();
+            let k = engine.backend.matrix_values().unwrap().to_vec();
+            for seed in 0..2 {
+                let v: Vec<f64> = free
+                    .iter()
+                    .enumerate()
+                    .map(|(c, &d)| {
+                        let s = ((c * 7 + seed * 13) as f64 * 0.731).sin();
+                        if on[d] {
+                            s
+                        } else {
+                            0.0
+                        }
+                    })
+                    .collect();
+                let mut kv = vec![0.0; free.len()];
+                for (c, &vc) in v.iter().enumerate() {
+                    for at in pattern.col_ptr[c]..pattern.col_ptr[c + 1] {
+                        kv[pattern.row_idx[at] as usize] += k[at] * vc;
+                    }
+                }
+                let h = 1e-8 * u_max;
+                let (mut up, mut um) = (u.clone(), u.clone());
+                for (c, &d) in free.iter().enumerate() {
+                    up[d] += h * v[c];
+                    um[d] -= h * v[c];
+                }
+                let rp = engine.linearize(&before, &up, 0.8).unwrap();
+                let rm = engine.linearize(&before, &um, 0.8).unwrap();
+                let (mut err, mut norm) = (0.0, 0.0);
+                for (row, &d) in free.iter().enumerate() {
+                    let fd = (rp[d] - rm[d]) / (2.0 * h);
+                    err += (fd - kv[row]).powi(2);
+                    norm += kv[row].powi(2);
+                }
+                let rel = (err / norm).sqrt();
+                assert!(
+                    rel < 1e-6,
+                    "{case} (wobble {wobble}, direction {seed}): |FD − K v| / |K v| = {rel:e}"
+                );
+            }
+        }
+    }
+}

@@ -209,20 +209,22 @@ impl<'m> Engine<'m> {
     }
 
     /// Max yield ratio over every Gauss point of the model (all ranks) and the
-    /// (element, point) where it occurs: the lowest such index on ties, as
-    /// one process finds it.
+    /// (element, point) where it occurs: the lowest such index among the
+    /// points tied with it ([`super::yield_point::RATIO_TIE`]), as one
+    /// process finds it.
     pub fn max_yield_ratio(&self, state: &State) -> (f64, usize, usize) {
-        let local = super::yield_point::max_yield_ratio(self.model, state, &self.held_elements);
+        use super::yield_point::{lowest_tied, max_yield_ratio};
+        let local = max_yield_ratio(self.model, state, &self.held_elements);
         if self.backend.ranks() == 1 {
             return local;
         }
         let ng = self.model.n_gauss();
         let mut best = [local.0];
         self.backend.max(&mut best);
-        let mut key = [if local.0 == best[0] && local.0 > 0.0 {
-            -((local.1 * ng + local.2) as f64)
-        } else {
-            f64::NEG_INFINITY
+        let tied = lowest_tied(self.model, state, &self.held_elements, best[0]);
+        let mut key = [match tied {
+            Some((e, ip)) => -((e * ng + ip) as f64),
+            None => f64::NEG_INFINITY,
         }];
         self.backend.max(&mut key);
         if key[0] == f64::NEG_INFINITY {
