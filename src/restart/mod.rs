@@ -25,7 +25,9 @@
 //! `pending_load_factor`,
 //! `pending_depth` (fixed schedule), `auto_waypoints`, `auto_step`,
 //! `auto_failures` (automatic step control), `cutbacks` (total, since the last increment),
-//! `elastic_ratio_prev`, `counters` (Newton iterations, factorizations), `u`,
+//! `elastic_ratio_prev`, `counters` (Newton iterations, factorizations),
+//! `interface_counters` (the interface loop's loops, iterations and fallbacks; absent from
+//! files written before 2026-11-27: zeros), `u`,
 //! `gauss` (10 per Gauss point: σxx σyy σxy σzz, εᵖ ×4, ε̄ᵖ, yielding),
 //! `status` (interface status codes), `contact` (25 per interface point, as
 //! [`crate::interface::PointState::pack`] lays them out:
@@ -353,6 +355,14 @@ fn sections(e: &mut Encoder, ck: &Checkpoint, pvd: &[(f64, String)]) -> std::io:
     e.u64s(
         "counters",
         &[ck.iterations as u64, ck.factorizations as u64],
+    )?;
+    e.u64s(
+        "interface_counters",
+        &[
+            ck.interface.loops as u64,
+            ck.interface.iterations as u64,
+            ck.interface.fallbacks as u64,
+        ],
     )?;
     e.f64s("u", &s.u)?;
     let w = PointState::packed_len(ck.twist);

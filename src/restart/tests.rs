@@ -222,6 +222,37 @@ fn decode_refuses_what_the_case_cannot_have_produced() {
     assert!(decode(&encode(&model, &c, &pvd), &model).is_ok());
     c.factorizations += 1;
     refused(&c, &pvd, "section counters: ");
+    // the interface loop's counters: at most a loop per Newton iteration,
+    // MAX_INNER iterations per loop, a fallback per loop; restored as written
+    let inner = crate::solve::newton::interface_loop::MAX_INNER;
+    let mut c = ck.clone();
+    c.iterations = 10;
+    c.interface.loops = 10;
+    c.interface.iterations = 10 * inner;
+    c.interface.fallbacks = 10;
+    let back = decode(&encode(&model, &c, &pvd), &model)
+        .expect("within the bounds")
+        .0;
+    assert_eq!(
+        (
+            back.interface.loops,
+            back.interface.iterations,
+            back.interface.fallbacks
+        ),
+        (10, 10 * inner, 10)
+    );
+    for forge in [
+        |c: &mut Checkpoint| c.interface.loops = 11,
+        |c: &mut Checkpoint| c.interface.iterations += 1,
+        |c: &mut Checkpoint| {
+            c.interface.loops = 5;
+            c.interface.iterations = 5;
+        },
+    ] {
+        let mut f = c.clone();
+        forge(&mut f);
+        refused(&f, &pvd, "section interface_counters: ");
+    }
     // displacements beyond the displacement range
     let mut c = ck.clone();
     c.committed.u[3] = -2e4;

@@ -184,6 +184,8 @@ pub struct Checkpoint {
     /// Newton iterations and factorizations so far.
     pub iterations: usize,
     pub factorizations: usize,
+    /// The interface loop's counters so far (`newton::interface_loop`).
+    pub interface: newton::interface_loop::LoopStats,
     /// Frictional dissipation and tangential work of every interface so far.
     pub joint_totals: Vec<JointTotals>,
     /// The largest approach and pressure of every interface over the
@@ -212,6 +214,7 @@ impl Checkpoint {
             cutbacks_here: 0,
             iterations: 0,
             factorizations: 0,
+            interface: Default::default(),
             joint_totals: vec![JointTotals::default(); model.interfaces.len()],
             table_reach: vec![Default::default(); model.interfaces.len()],
             events: Vec::new(),
@@ -292,6 +295,7 @@ pub fn run_from(
     engine.localize(&mut ck.committed);
     engine.stats.iterations = ck.iterations;
     engine.stats.factorizations = ck.factorizations;
+    engine.stats.interface = ck.interface.clone();
     let mut stopped = None;
     while let Some(target) = ck.stepper.next(ck.lambda) {
         if ck.increments.len() >= crate::case::MAX_INCREMENTS {
@@ -587,6 +591,7 @@ fn accept(
     ck.cutbacks_here = 0;
     ck.iterations = engine.stats.iterations;
     ck.factorizations = engine.stats.factorizations;
+    ck.interface = engine.stats.interface.clone();
     write_increment(engine, observer, ck, inc)?;
     Ok(Accepted::Yes)
 }

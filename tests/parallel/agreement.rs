@@ -60,7 +60,11 @@ fn compare_on(case: &str, refine: &str, ranks: &[usize]) {
         // iteration factored by LU has no trailing block and no loop, while
         // MUMPS (LDLᵀ with pivoting, or LU) condenses every factor
         if s["backend_stats"]["lu_fallbacks"].as_f64().unwrap_or(0.0) == 0.0 {
-            for k in ["interface_loops", "interface_iterations", "interface_fallbacks"] {
+            for k in [
+                "interface_loops",
+                "interface_iterations",
+                "interface_fallbacks",
+            ] {
                 assert_eq!(p[k], s[k], "{run}: {k}");
             }
         }

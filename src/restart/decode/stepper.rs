@@ -147,6 +147,23 @@ pub(in crate::restart) fn restore_stepper(
         }
     }
     (ck.iterations, ck.factorizations) = (ct[0] as usize, ct[1] as usize);
+    // the interface loop runs at most once per Newton iteration, at most
+    // MAX_INNER iterations each, and falls back at most once per run of it
+    if s.0.contains_key("interface_counters") {
+        let lc = s.u("interface_counters", Some(3))?;
+        let inner = crate::solve::newton::interface_loop::MAX_INNER as u64;
+        if lc[0] > ct[0] || lc[2] > lc[0] || lc[1] > lc[0].saturating_mul(inner) {
+            return Err(format!(
+                "section interface_counters: {} loops, {} iterations and {} fallbacks, where a run of {} Newton iterations has at most one loop per iteration, {inner} iterations per loop and one fallback per loop",
+                lc[0], lc[1], lc[2], ct[0]
+            ));
+        }
+        ck.interface = crate::solve::newton::interface_loop::LoopStats {
+            loops: lc[0] as usize,
+            iterations: lc[1] as usize,
+            fallbacks: lc[2] as usize,
+        };
+    }
     ck.elastic_ratio_prev = s.finite("elastic_ratio_prev", Some(1))?[0];
     if ck.elastic_ratio_prev < 0.0 {
         return Err(format!(
