@@ -39,6 +39,10 @@ pub struct StepProblem<'a, 'm> {
     method: Method,
     free: Vec<usize>,
     evaluations: usize,
+    /// The interface loop fell back in this step: not tried again in it
+    /// (its condensed problem is singular or far from converging here, and
+    /// what it then returns hangs on round-off).
+    loop_failed: bool,
     evaluate_seconds: f64,
     status: Vec<Status>,
     last_status: Option<Vec<Status>>,
@@ -101,6 +105,7 @@ impl<'a, 'm> StepProblem<'a, 'm> {
             method,
             free,
             evaluations: 0,
+            loop_failed: false,
             evaluate_seconds: 0.0,
             status: Vec::new(),
             last_status: None,
@@ -239,7 +244,10 @@ impl<'a, 'm> StepProblem<'a, 'm> {
     /// ([`super::interface_loop`]; full Newton with `[solver] interface_loop`,
     /// where the backend offers the condensation of its factor).
     pub(super) fn interface_loop(&mut self, x: &[f64], du: &mut [f64]) {
-        if self.method != Method::FullNewton || !self.engine.model.solver.interface_loop() {
+        if self.method != Method::FullNewton
+            || !self.engine.model.solver.interface_loop()
+            || self.loop_failed
+        {
             return;
         }
         let mut u = self.trial.u.clone();
@@ -250,7 +258,10 @@ impl<'a, 'm> StepProblem<'a, 'm> {
         let tol = super::interface_loop::INNER_TOLERANCE * spec.residual_tolerance * self.reference;
         // the tangent holds the secant floor after the step's first evaluation only
         let first = self.evaluations == 1;
+        let fallbacks = self.engine.stats.interface.fallbacks;
         super::interface_loop::refine(self.engine, self.committed, &u, self.lambda, first, tol, du);
+        // the fallback is decided on rank 0's data (`agree`): the same on every rank
+        self.loop_failed = self.engine.stats.interface.fallbacks > fallbacks;
     }
 
     /// The converged state, or why the step failed (`solved`: the solver's own
