@@ -424,7 +424,8 @@ pub struct Cycle {
     /// ΔF_T / Δū_T between the increments of the cycle's largest and
     /// smallest F_T (of those, equal within [`TIP_TIE`], the largest and
     /// the smallest ū_T: the loop's tips when it slides at the extreme
-    /// forces), N/mm; None when they have the same ū_T.
+    /// forces), N/mm; None when they have the same ū_T, or when the force
+    /// range is round-off ([`held`]: a force held constant has no loop).
     pub secant_stiffness: Option<f64>,
     /// Smallest and largest F_T over the cycle's increments, N.
     pub force_range: [f64; 2],
@@ -441,7 +442,8 @@ pub struct Cycle {
     /// With twist: the torque-twist loop, as the force-slip one: smallest
     /// and largest T (N·mm) and φ̄ (rad) over the cycle's increments, and
     /// the torsional secant stiffness ΔT/Δφ̄ between the increments of the
-    /// largest and smallest T (N·mm/rad; None when they have the same φ̄),
+    /// largest and smallest T (N·mm/rad; None when they have the same φ̄
+    /// or the torque range is round-off, [`held`]),
     /// and φ̄ at those two increments (smallest T first: the loop's tips).
     /// Zero and None without twist.
     pub torque_range: [f64; 2],
@@ -452,9 +454,10 @@ pub struct Cycle {
 
 impl Cycle {
     /// The force amplitude F_a = (F_T,hi − F_T,lo) / 2, N (hi, lo: the
-    /// loop's tips, the cycle's largest and smallest F_T).
+    /// loop's tips, the cycle's largest and smallest F_T); 0 when the range
+    /// is round-off ([`held`]).
     pub fn force_amplitude(&self) -> f64 {
-        0.5 * (self.force_range[1] - self.force_range[0])
+        amplitude(self.force_range)
     }
 
     /// The slip amplitude u_a = (ū_T,hi − ū_T,lo) / 2 at the loop's tips, mm.
@@ -479,9 +482,10 @@ impl Cycle {
         self.ratio(self.stored_energy())
     }
 
-    /// With twist: the torque amplitude T_a = (T_hi − T_lo) / 2, N·mm.
+    /// With twist: the torque amplitude T_a = (T_hi − T_lo) / 2, N·mm; 0
+    /// when the range is round-off ([`held`]).
     pub fn torque_amplitude(&self) -> f64 {
-        0.5 * (self.torque_range[1] - self.torque_range[0])
+        amplitude(self.torque_range)
     }
 
     /// With twist: the twist amplitude φ_a = (φ̄_hi − φ̄_lo) / 2 at the
@@ -565,6 +569,24 @@ pub fn cycle_windows(marks: &[Option<Vec<f64>>]) -> Vec<(usize, usize)> {
 /// (a cycle window from tip to tip, a sliding plateau) whose slips differ.
 pub const TIP_TIE: f64 = 1e-6;
 
+/// Whether a cycle's force (or torque) range [lo, hi] is round-off: within
+/// [`TIP_TIE`] of its largest magnitude, as the two tips of a loop whose
+/// force is held constant (an axial preload under a cycled torque: the
+/// extremes differ by 1e-12 of 10 kN). Such a range has no amplitude and no
+/// secant stiffness; reporting its difference would be reporting noise.
+pub fn held(range: [f64; 2]) -> bool {
+    range[1] - range[0] <= TIP_TIE * range[0].abs().max(range[1].abs())
+}
+
+/// (hi − lo) / 2 of a range, 0 where it is [`held`].
+fn amplitude(range: [f64; 2]) -> f64 {
+    if held(range) {
+        0.0
+    } else {
+        0.5 * (range[1] - range[0])
+    }
+}
+
 /// The measures at the loop's tips over `span`: the increments of the
 /// smallest and of the largest force `f` (`key` = (force, slip)), each
 /// tie within [`TIP_TIE`] broken by the slip (the smallest at the low tip,
@@ -611,7 +633,8 @@ pub fn cycle_of(rows: &[(f64, JointMeasures)], (i, j): (usize, usize)) -> Cycle 
             twist.clone().fold(f64::INFINITY, f64::min),
             twist.fold(f64::NEG_INFINITY, f64::max),
         ],
-        torsional_stiffness: (dphi != 0.0).then(|| (t_hi.torque - t_lo.torque) / dphi),
+        torsional_stiffness: (dphi != 0.0 && !held([t_lo.torque, t_hi.torque]))
+            .then(|| (t_hi.torque - t_lo.torque) / dphi),
         tip_twist: [t_lo.twist, t_hi.twist],
         start_increment: i + 1,
         end_increment: j + 1,
@@ -619,7 +642,8 @@ pub fn cycle_of(rows: &[(f64, JointMeasures)], (i, j): (usize, usize)) -> Cycle 
         end_time: rows[j].0,
         dissipation: rows[j].1.dissipation - rows[i].1.dissipation,
         work: rows[j].1.work - rows[i].1.work,
-        secant_stiffness: (ds != 0.0).then(|| (hi.tangential_force - lo.tangential_force) / ds),
+        secant_stiffness: (ds != 0.0 && !held([lo.tangential_force, hi.tangential_force]))
+            .then(|| (hi.tangential_force - lo.tangential_force) / ds),
         force_range: [lo.tangential_force, hi.tangential_force],
         slip_range: [
             slip.clone().fold(f64::INFINITY, f64::min),

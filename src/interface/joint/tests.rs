@@ -443,3 +443,56 @@ fn a_jenkins_torque_twist_loop_has_the_closed_form_torsional_loss_factor() {
         (0.0, None)
     );
 }
+
+/// A force held constant (an axial preload under a cycled torque) varies
+/// over a cycle by the solver's round-off only: no amplitude, no secant
+/// stiffness, no stored energy and no loss factor, where the raw
+/// differences would give a stiffness of 1e-4 N/mm. A range just above
+/// [`TIP_TIE`] is a loop again; the same for the torque.
+#[test]
+fn a_force_held_to_round_off_has_no_amplitude_and_no_secant_stiffness() {
+    let row = |f: f64, s: f64, t: f64, phi: f64| {
+        let jm = JointMeasures {
+            tangential_force: f,
+            mean_slip: s,
+            torque: t,
+            twist: phi,
+            dissipation: 80.0 * s.abs(),
+            ..JointMeasures::default()
+        };
+        (0.0, jm)
+    };
+    let f = -1e4;
+    let held_rows = vec![
+        row(f, -4.0e-4, 0.0, 0.0),
+        row(f + 1.8e-8, -4.8e-4, 4e5, 7e-5),
+        row(f - 1.6e-8, -4.4e-4, -4e5, -7e-5),
+        row(f, -4.0e-4, 0.0, 0.0),
+    ];
+    let c = cycle_of(&held_rows, (0, 3));
+    // the tips within the tie are chosen by slip: their raw difference is
+    // round-off of either sign
+    assert!(held(c.force_range) && c.force_range[1] != c.force_range[0]);
+    assert_eq!(c.force_amplitude(), 0.0);
+    assert_eq!(c.secant_stiffness, None);
+    assert_eq!((c.stored_energy(), c.loss_factor()), (0.0, None));
+    // the torque is cycled: its loop is measured
+    assert_eq!(c.torque_amplitude(), 4e5);
+    assert!((c.torsional_stiffness.unwrap() - 8e5 / 14e-5).abs() < 1e-3);
+    // 2 × 10⁻⁶ of the force: a loop
+    let mut small = held_rows.clone();
+    small[1].1.tangential_force = f + 0.02;
+    let c = cycle_of(&small, (0, 3));
+    assert!(!held(c.force_range));
+    assert!((c.force_amplitude() - 0.5 * (0.02 + 1.6e-8)).abs() < 1e-12);
+    assert!(c.secant_stiffness.is_some());
+    // the same for a torque held to round-off
+    let mut torque_held = held_rows;
+    for (k, r) in torque_held.iter_mut().enumerate() {
+        r.1.torque = 5e5 + if k == 1 { 1e-7 } else { 0.0 };
+    }
+    let c = cycle_of(&torque_held, (0, 3));
+    assert_eq!(c.torque_amplitude(), 0.0);
+    assert_eq!(c.torsional_stiffness, None);
+    assert_eq!(c.torsional_loss_factor(), None);
+}
