@@ -258,6 +258,18 @@ fn cg_with_gamg_follows_lu_through_the_plastic_steps() {
     let text =
         std::fs::read_to_string(common::root().join("cases/punch-plane-stress-fine/case.toml"))
             .unwrap();
+    // the four steps the case shipped with until 2026-11-27 (0.3, 0.6, 0.8, 1):
+    // the long plastic steps where CG met an indefinite preconditioner
+    let kept: Vec<&str> = text
+        .lines()
+        .filter(|l| !l.starts_with("increments") && !l.starts_with("first_increment"))
+        .collect();
+    let text = (kept.join("\n") + "\n").replacen(
+        "\n[solver]\n",
+        "\n[solver]\nload_factors = [0.3, 0.6, 0.8, 1.0]\n",
+        1,
+    );
+    assert!(text.contains("load_factors") && !text.contains("\nincrements"));
     let case = common::case_dir(
         "parallel-gamg-plastic-case",
         &common::with_interface_loop(&text, false),

@@ -30,8 +30,8 @@
 //! increments only (`--stop-after N` in [`CASES`]; its expected.json says so
 //! in `"prefix"`). None is today: `punch-plane-stress-fine` (93,508 dofs),
 //! checked on 3 of its 4 increments while the serial solver was LU (90 s and
-//! 1.5 GB for the whole run), runs whole since the Cholesky path (10-25 s,
-//! 250 MB).
+//! 1.5 GB for the whole run), runs whole since the Cholesky path (its 20
+//! steps since 2026-11-27: about 50 s of one core, 250 MB).
 //!
 //! **Regenerating** (only after a change of the answers that is understood and
 //! intended; review the diff of every expected.json before committing it):

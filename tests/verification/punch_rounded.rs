@@ -147,13 +147,19 @@ fn rounded_punch_first_yield_converges_at_order_above_1_5_on_refine_2_4_8() {
     }
 }
 
-/// Every increment of a run of `cases/punch-rounded-strain` (as shipped, or
-/// with `[solver] line_search = true`), with the run's cutbacks and Newton
-/// iterations (those of failed attempts included).
+/// Every increment of a run of `cases/punch-rounded-strain` on the fixed
+/// schedule it shipped with until 2026-11-27 (20 steps of 0.05: the steps
+/// near the limit load that made plain Newton cut back; it now ships with
+/// automatic steps), with or without the line search, with the run's
+/// cutbacks and Newton iterations (those of failed attempts included).
 fn rounded_strain_run(line_search: bool) -> (Vec<Increment>, usize, usize) {
     let path = common::root().join("cases/punch-rounded-strain");
     let mut model =
         driver::load_model(&path, &RunOptions::default()).unwrap_or_else(|e| panic!("{e}"));
+    model.solver.step_control = Some(asperity::case::StepControl::Fixed);
+    model.solver.increments = Some(20);
+    model.solver.first_increment = Some(0.05);
+    model.solver.max_increment = None;
     model.solver.line_search = line_search;
     let engine = driver::serial_engine(&model, model.solver.method, 1).unwrap();
     let r = solve::run_from(
