@@ -361,11 +361,11 @@ impl Observer for Writer {
         Ok(())
     }
 
-    fn cutback(&mut self, from: f64, to: f64, reason: &str) {
+    fn cutback(&mut self, from: f64, to: f64, next: f64, reason: &str) {
         self.log.progress(
             "cutback",
-            json!({"from": from, "to": to, "next_to": 0.5 * (from + to), "reason": reason}),
-            || format!("  cutback: step {from:.4} → {to:.4} failed ({reason}); halving it"),
+            json!({"from": from, "to": to, "next_to": next, "reason": reason}),
+            || format!("  cutback: step {from:.4} → {to:.4} not taken ({reason}); next {from:.4} → {next:.4}"),
         );
     }
 

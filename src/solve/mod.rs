@@ -136,7 +136,10 @@ impl Measures {
 /// Callbacks of a run (progress, output).
 pub trait Observer {
     fn increment(&mut self, model: &Model, state: &State, inc: &Increment) -> Result<()>;
-    fn cutback(&mut self, _from: f64, _to: f64, _reason: &str) {}
+    /// A step from `from` to `to` failed or was rejected; `next` is the
+    /// target tried next (the midpoint under fixed steps, the automatic
+    /// control's choice otherwise).
+    fn cutback(&mut self, _from: f64, _to: f64, _next: f64, _reason: &str) {}
     /// Called after every converged increment with everything needed to resume
     /// the run from it (the writer stores it as `restart.bin`).
     fn checkpoint(&mut self, _model: &Model, _ck: &Checkpoint) -> Result<()> {
@@ -670,8 +673,8 @@ fn cut_back(
                 ck.stepper.max_cutbacks()
             ),
         }),
-        stepping::Retry::At(_) => {
-            observer.cutback(ck.lambda, target, &reason);
+        stepping::Retry::At(next) => {
+            observer.cutback(ck.lambda, target, next, &reason);
             ck.cutbacks_total += 1;
             ck.cutbacks_here += 1;
             Ok(())

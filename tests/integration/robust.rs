@@ -334,6 +334,88 @@ fn json_lines(stderr: &str) -> Vec<Value> {
         .collect()
 }
 
+/// A `cutback` event names the target actually tried next: the midpoint
+/// under fixed steps, the automatic control's resized step when it rejects
+/// a step for its plastic strain (the line said "halving it" for both until
+/// 2026-11-27). The attempt after every cutback (a converged increment or
+/// another cutback) starts at `from` and goes to `next_to`.
+#[test]
+fn a_cutback_event_names_the_step_tried_next() {
+    let dir = common::scratch("robust-cutback-next");
+    let text =
+        std::fs::read_to_string(common::root().join("cases/punch-plane-stress/case.toml")).unwrap();
+    let i = text.find("\n[solver]\n").unwrap();
+    for (name, solver, redone) in [
+        // a step far above the plastic strain target: redone smaller
+        (
+            "auto",
+            "step_control = \"auto\"\nmax_increment = 0.5\nplastic_strain_step = 2e-4\n",
+            "plastic strain increment",
+        ),
+        // two iterations cannot converge the contact's first step: halved
+        (
+            "fixed",
+            "increments = 2\nmax_iterations = 3\nmax_cutbacks = 3\n",
+            "",
+        ),
+    ] {
+        let case = common::case_dir(
+            &format!("robust-cutback-{name}"),
+            &format!("{}\n[solver]\n{solver}", &text[..i]),
+        );
+        let out = dir.join(name).display().to_string();
+        let (_, _, err) = asperity(&[
+            "run",
+            case.to_str().unwrap(),
+            "--out",
+            &out,
+            "--log-format",
+            "json",
+        ]);
+        let ev: Vec<Value> = err
+            .lines()
+            .filter_map(|l| serde_json::from_str::<Value>(l).ok())
+            .collect();
+        let cuts: Vec<usize> = (0..ev.len())
+            .filter(|&k| ev[k]["event"] == "cutback")
+            .collect();
+        assert!(!cuts.is_empty(), "{name}: no cutback\n{err}");
+        let mut seen_redo = false;
+        for &k in &cuts {
+            let c = &ev[k];
+            let (from, to, next) = (
+                c["from"].as_f64().unwrap(),
+                c["to"].as_f64().unwrap(),
+                c["next_to"].as_f64().unwrap(),
+            );
+            assert!(next > from && next < to, "{name}: {c}");
+            let reason = c["reason"].as_str().unwrap();
+            if name == "fixed" {
+                assert!((next - 0.5 * (from + to)).abs() < 1e-12, "{c}");
+            } else if reason.contains(redone) {
+                seen_redo = true;
+            }
+            // what came next tried `next`
+            let after = ev[k + 1..]
+                .iter()
+                .find(|e| e["event"] == "increment" || e["event"] == "cutback");
+            if let Some(a) = after {
+                let tried = if a["event"] == "increment" {
+                    a["load_factor"].as_f64().unwrap()
+                } else {
+                    assert_eq!(a["from"].as_f64(), Some(from), "{name}: {a}");
+                    a["to"].as_f64().unwrap()
+                };
+                assert!((tried - next).abs() <= 1e-12, "{name}: {c} then {a}");
+            }
+        }
+        assert!(
+            name == "fixed" || seen_redo,
+            "{name}: no plastic redo\n{err}"
+        );
+    }
+}
+
 #[test]
 fn json_log_lines_parse_and_carry_their_fields() {
     let dir = common::scratch("robust-json");

@@ -71,7 +71,13 @@ impl SerialBackend {
         }
         Ok(SerialBackend {
             asm: Assembler::new(pattern, &model.dofs, &blocks),
-            direct: SerialDirect::with_interface(pattern, kind, interface, FACTOR_THREADS)?,
+            direct: SerialDirect::with_interface(
+                pattern,
+                kind,
+                interface,
+                interface_loop,
+                FACTOR_THREADS,
+            )?,
             solid: None,
             vals: vec![0.0; pattern.nnz()],
             eq_of: model.dofs.eq.clone(),

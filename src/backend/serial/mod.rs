@@ -238,22 +238,32 @@ fn symbolic_cholesky(
 
 /// The interface-last analysis where it pays against the plain one, else
 /// `None`. Which cost decides: [`trail::prefer_interface_last`] for the
-/// Woodbury-GMRES steps of [`Factorization::SymmetricPart`],
+/// Woodbury-GMRES steps of [`Factorization::SymmetricPart`] (or, `for_loop`:
+/// the interface loop runs, the loop's rule as well),
 /// [`trail::prefer_condensed`] for the interface loop on a symmetric tangent.
 fn interface_last_pays(
     mat: &SymbolicSparseColMat<usize>,
     interface: &[usize],
     kind: Factorization,
     plain: &SymbolicCholesky<usize>,
+    for_loop: bool,
 ) -> Result<Option<SymbolicCholesky<usize>>> {
     let n = mat.nrows();
     let (fwd, inv) = trail::ordering_with_last(mat, interface)?;
     let perm = PermRef::new_checked(&fwd, &inv, n);
     let last = symbolic_cholesky(mat, SymmetricOrdering::Custom(perm))?;
     let (c_last, c_plain) = (trail::factor_cost(&last), trail::factor_cost(plain));
+    let condensed = || trail::prefer_condensed(interface.len(), c_last, c_plain);
     let pays = match kind {
-        Factorization::SymmetricPart => trail::prefer_interface_last(c_last, c_plain),
-        _ => trail::prefer_condensed(interface.len(), c_last, c_plain),
+        // the unsymmetric tangent: the trailing block serves the Woodbury
+        // GMRES steps, and with the interface loop the loop as well, which
+        // the Cholesky rule prices (a friction case on a mesh whose
+        // interface-last factor costs more than the GMRES steps save still
+        // gets the loop when the Cholesky case would)
+        Factorization::SymmetricPart => {
+            trail::prefer_interface_last(c_last, c_plain) || (for_loop && condensed())
+        }
+        _ => condensed(),
     };
     Ok(pays.then_some(last))
 }
@@ -264,16 +274,18 @@ impl SerialDirect {
     /// factorizations and solves use `threads` threads (faer's parallel
     /// kernels on rayon's global pool; a run uses [`FACTOR_THREADS`]).
     pub fn new(pattern: &Pattern, kind: Factorization, threads: usize) -> Result<Self> {
-        Self::with_interface(pattern, kind, Vec::new(), threads)
+        Self::with_interface(pattern, kind, Vec::new(), false, threads)
     }
 
     /// [`SerialDirect::new`] given the interface equations (for
-    /// [`Factorization::SymmetricPart`]): they are ordered last where the
-    /// symbolic analysis finds that costs little fill ([`trail`]).
+    /// [`Factorization::SymmetricPart`], or for the interface loop,
+    /// `for_loop`): they are ordered last where the symbolic analysis finds
+    /// that pays ([`interface_last_pays`]).
     pub fn with_interface(
         pattern: &Pattern,
         kind: Factorization,
         interface: Vec<usize>,
+        for_loop: bool,
         threads: usize,
     ) -> Result<Self> {
         let symbolic_mat = symbolic_of(pattern);
@@ -300,7 +312,7 @@ impl SerialDirect {
                 let chosen = if s.interface.is_empty() || s.interface.len() >= pattern.n {
                     plain
                 } else {
-                    s.with_interface_last(plain, kind)?
+                    s.with_interface_last(plain, kind, for_loop)?
                 };
                 s.cholesky = Some(Cholesky::new(chosen, s.par)?);
             }
@@ -315,8 +327,10 @@ impl SerialDirect {
         &mut self,
         plain: SymbolicCholesky<usize>,
         kind: Factorization,
+        for_loop: bool,
     ) -> Result<SymbolicCholesky<usize>> {
-        let Some(last) = interface_last_pays(&self.symbolic_mat, &self.interface, kind, &plain)?
+        let Some(last) =
+            interface_last_pays(&self.symbolic_mat, &self.interface, kind, &plain, for_loop)?
         else {
             return Ok(plain);
         };
@@ -345,7 +359,7 @@ impl SerialDirect {
         }
         let mat = symbolic_of(pattern);
         let plain = symbolic_cholesky(&mat, SymmetricOrdering::Amd)?;
-        Ok(interface_last_pays(&mat, interface, kind, &plain)?
+        Ok(interface_last_pays(&mat, interface, kind, &plain, true)?
             .is_some_and(|last| Trailing::new(&last, interface.len()).is_some()))
     }
 

@@ -63,9 +63,14 @@ fn the_trailing_block_gives_the_interface_part_of_the_inverse() {
     let g = 9;
     let (pattern, vals) = grid(g);
     let iface: Vec<usize> = (0..g).map(|x| 4 * g + x).collect();
-    let mut d =
-        SerialDirect::with_interface(&pattern, Factorization::SymmetricPart, iface.clone(), 1)
-            .unwrap();
+    let mut d = SerialDirect::with_interface(
+        &pattern,
+        Factorization::SymmetricPart,
+        iface.clone(),
+        false,
+        1,
+    )
+    .unwrap();
     assert!(d.interface_last(), "a separator is cheap to order last");
     assert!(d.factor_cholesky(&vals).unwrap());
     let a: Vec<f64> = (0..g).map(|k| 1.0 + (k as f64).sin()).collect();
@@ -162,7 +167,8 @@ fn the_condensation_is_the_schur_complement_and_its_lift_the_solve() {
     let n = g * g;
     let iface: Vec<usize> = (0..g).map(|x| 3 * g + x).collect();
     let mut d =
-        SerialDirect::with_interface(&pattern, Factorization::Cholesky, iface.clone(), 1).unwrap();
+        SerialDirect::with_interface(&pattern, Factorization::Cholesky, iface.clone(), true, 1)
+            .unwrap();
     assert!(d.interface_last(), "a separator is cheap to order last");
     assert!(d.factor_cholesky(&vals).unwrap());
     let mut k = nalgebra::DMatrix::<f64>::zeros(n, n);
