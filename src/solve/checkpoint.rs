@@ -39,7 +39,7 @@ pub struct Checkpoint {
     /// The largest approach and pressure of every interface over the
     /// converged states so far (how far its tables were used).
     pub table_reach: Vec<crate::interface::extrapolation::Reach>,
-    /// The events located so far ([`events`](super::events)).
+    /// The events located so far ([`events`]).
     pub events: Vec<events::Event>,
     /// The model has twist: its Gauss states carry six stress components
     /// (the width of their restart layout, [`PointState::packed_len`](crate::material::PointState::packed_len)).
