@@ -14,7 +14,11 @@ mod agreement;
 mod common;
 #[path = "parallel/failures.rs"]
 mod failures;
+#[path = "parallel/interface_loop.rs"]
+mod interface_loop;
 #[path = "parallel/solvers.rs"]
 mod solvers;
 #[path = "parallel/support.rs"]
 mod support;
+#[path = "parallel/twist.rs"]
+mod twist;

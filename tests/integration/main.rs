@@ -12,6 +12,8 @@ mod adapt_stop;
 mod axisymmetric;
 mod bad_inputs;
 mod calibrate;
+mod calibrate_bad;
+mod calibrate_roughness;
 mod cli;
 mod damping;
 mod designer;

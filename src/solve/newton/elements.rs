@@ -1,0 +1,235 @@
+//! The element loop of an assembly: internal forces, Gauss states and
+//! element tangents of the held elements, computed on threads in batches and
+//! added in element order, with a result independent of the thread count.
+
+use super::{held_out, Engine};
+use crate::fem::solid::{element_forces, Response, Tangent};
+use crate::material::PointState;
+use crate::mesh::NodeDofs;
+use crate::model::Model;
+use crate::solve::failure::StepFailure;
+use crate::solve::State;
+
+/// Elements per batch of the element loop ([`Engine::assemble_solids`]): the
+/// batch's element forces and tangents (ne + ne² numbers per element, ne the
+/// element's dofs: 272 and 4.5 MB with 2 dofs a node, 600 and 9.8 MB with
+/// twist) are the only memory the threads add.
+pub(super) const ELEMENT_BATCH: usize = 2048;
+/// Fewest elements one thread of the element loop is given (a smaller batch
+/// takes fewer threads): starting a thread costs about as much as computing
+/// a few elastic elements.
+const MIN_ELEMENTS_PER_THREAD: usize = 128;
+
+impl Engine<'_> {
+    /// The element loop over the held elements: internal forces into
+    /// `self.r`, Gauss states into `trial`, element tangents into the backend
+    /// when `solid_tangent` asks for them. Returns this rank's failure (a
+    /// return mapping, or an injected fault), not yet shared.
+    ///
+    /// Threaded, with a result independent of the thread count, bit for bit:
+    /// the held elements are taken in batches of [`ELEMENT_BATCH`]; a batch is
+    /// cut into contiguous chunks, one per thread, and each thread computes
+    /// its chunk's element forces and tangents into the batch buffers and its
+    /// elements' Gauss states into its own slice of `trial.gauss` (an
+    /// element's numbers depend on that element alone). Then this thread adds
+    /// them into `self.r` and the backend in element order, as one thread
+    /// would. A chunk stops at its first failing element; the first failure
+    /// in element order gives the message, the elements before it are added
+    /// and no later batch is computed, as on one thread (later elements of
+    /// the batch may hold trial Gauss states, in a trial that is discarded).
+    pub(super) fn assemble_solids(
+        &mut self,
+        committed: &State,
+        trial: &mut State,
+        response: Response,
+        solid_tangent: Option<Tangent>,
+    ) -> Result<Option<String>, StepFailure> {
+        let m = self.model;
+        let ng = m.n_gauss();
+        let be = &mut self.backend;
+        let err = StepFailure::Linear;
+        if solid_tangent.is_some() {
+            be.begin_solid().map_err(err)?;
+        }
+        let n = self.held_elements.len();
+        let batch = n.min(ELEMENT_BATCH);
+        let nd = m.node_dofs();
+        let (k, ne) = (nd.per_node(), nd.element());
+        if self.fe_batch.len() < batch * ne {
+            self.fe_batch.resize(batch * ne, 0.0);
+        }
+        if solid_tangent.is_some() && self.ke_batch.len() < batch * ne * ne {
+            self.ke_batch.resize(batch * ne * ne, 0.0);
+        }
+        let mut failure: Option<String> = None;
+        let mut dofs = [0usize; NodeDofs::MAX_ELEMENT];
+        let mut b0 = 0;
+        while b0 < n && failure.is_none() {
+            let b1 = (b0 + ELEMENT_BATCH).min(n);
+            let len = b1 - b0;
+            let fe = &mut self.fe_batch[..len * ne];
+            let ke = if solid_tangent.is_some() {
+                &mut self.ke_batch[..len * ne * ne]
+            } else {
+                &mut self.ke_batch[..0]
+            };
+            let first = element_batch(
+                m,
+                &self.held_elements[b0..b1],
+                &committed.gauss[b0 * ng..b1 * ng],
+                &mut trial.gauss[b0 * ng..b1 * ng],
+                &trial.u,
+                response,
+                solid_tangent,
+                fe,
+                ke,
+                self.threads,
+            );
+            let done = first.as_ref().map_or(len, |f| f.0);
+            for i in 0..done {
+                let el = &m.mesh.elements[self.held_elements[b0 + i] as usize];
+                let fe = &self.fe_batch[i * ne..(i + 1) * ne];
+                for (a, &n) in el.nodes.iter().enumerate() {
+                    for (c, d) in nd.of(n).enumerate() {
+                        self.r[d] += fe[k * a + c];
+                        dofs[k * a + c] = d;
+                    }
+                }
+                if solid_tangent.is_some() {
+                    let b = self.held_elements[b0 + i] as usize;
+                    let ke = &self.ke_batch[i * ne * ne..(i + 1) * ne * ne];
+                    match m.expansions.get(&b) {
+                        None => be.add_solid(b, &dofs[..ne], ke),
+                        Some(x) => be.add_solid(b, &x.dofs, &held_out(x, &self.held, ke)),
+                    }
+                    .map_err(err)?;
+                }
+            }
+            if let Some((i, msg)) = first {
+                let e = self.held_elements[b0 + i] as usize;
+                let body = m.mesh.elements[e].body;
+                failure = Some(format!(
+                    "element {e} (body \"{}\"): {msg}",
+                    m.mesh.bodies[body]
+                ));
+            }
+            b0 = b1;
+        }
+        if self
+            .fault
+            .is_some_and(|(r, a)| r == be.rank() && self.assemblies >= a)
+        {
+            failure = Some(format!(
+                "fault injected on rank {r} (--inject-fault)",
+                r = be.rank()
+            ));
+        }
+        Ok(failure)
+    }
+}
+
+/// Element forces (and tangents, when `tangent` asks and `ke` has room) of
+/// the elements `ids` into `fe`/`ke` (ne and ne² numbers per element, in
+/// order; ne = [`NodeDofs::element`]), their Gauss states into `trial` (`ng`
+/// per element, as `committed`), on up to `threads` threads: contiguous
+/// chunks, the first on this thread. Returns the first failing element in
+/// order (its position in `ids`) and the message.
+#[allow(clippy::too_many_arguments)]
+fn element_batch(
+    m: &Model,
+    ids: &[u32],
+    committed: &[PointState],
+    trial: &mut [PointState],
+    u: &[f64],
+    response: Response,
+    tangent: Option<Tangent>,
+    fe: &mut [f64],
+    ke: &mut [f64],
+    threads: usize,
+) -> Option<(usize, String)> {
+    let len = ids.len();
+    let ng = m.n_gauss();
+    let ne = m.node_dofs().element();
+    let t = threads.min(len.div_ceil(MIN_ELEMENTS_PER_THREAD)).max(1);
+    if t == 1 {
+        return element_chunk(m, ids, committed, trial, u, response, tangent, fe, ke);
+    }
+    let per = len.div_ceil(t);
+    // ke is empty without a tangent: every chunk then gets an empty slice
+    let ke_per = if ke.is_empty() {
+        usize::MAX
+    } else {
+        per * ne * ne
+    };
+    let mut ke_chunks: Vec<&mut [f64]> = ke.chunks_mut(ke_per).collect();
+    ke_chunks.resize_with(ids.chunks(per).len(), || &mut []);
+    let mut chunks = ids
+        .chunks(per)
+        .zip(committed.chunks(per * ng))
+        .zip(trial.chunks_mut(per * ng))
+        .zip(fe.chunks_mut(per * ne))
+        .zip(ke_chunks)
+        .enumerate()
+        .map(|(c, ((((ids, cg), tg), fe), ke))| (c * per, ids, cg, tg, fe, ke));
+    let (_, ids0, cg0, tg0, fe0, ke0) = chunks.next().expect("a batch holds an element");
+    std::thread::scope(|s| {
+        let others: Vec<_> = chunks
+            .map(|(at, ids, cg, tg, fe, ke)| {
+                s.spawn(move || {
+                    element_chunk(m, ids, cg, tg, u, response, tangent, fe, ke)
+                        .map(|(i, msg)| (at + i, msg))
+                })
+            })
+            .collect();
+        let first = element_chunk(m, ids0, cg0, tg0, u, response, tangent, fe0, ke0);
+        // every thread is joined; the earliest chunk that failed holds the
+        // first failing element
+        let rest: Vec<_> = others
+            .into_iter()
+            .map(|h| h.join().unwrap_or_else(|p| std::panic::resume_unwind(p)))
+            .collect();
+        first.or_else(|| rest.into_iter().flatten().next())
+    })
+}
+
+/// [`element_batch`] on one thread: stops at the first failing element.
+#[allow(clippy::too_many_arguments)]
+fn element_chunk(
+    m: &Model,
+    ids: &[u32],
+    committed: &[PointState],
+    trial: &mut [PointState],
+    u: &[f64],
+    response: Response,
+    tangent: Option<Tangent>,
+    fe: &mut [f64],
+    ke: &mut [f64],
+) -> Option<(usize, String)> {
+    let ne = m.node_dofs().element();
+    let ng = m.n_gauss();
+    let mut scratch = [0.0; NodeDofs::MAX_ELEMENT * NodeDofs::MAX_ELEMENT];
+    for (i, &e) in ids.iter().enumerate() {
+        let e = e as usize;
+        let el = &m.mesh.elements[e];
+        let ue = m.element_u(e, u);
+        let gs = i * ng..(i + 1) * ng;
+        let ke = match ke.get_mut(i * ne * ne..(i + 1) * ne * ne) {
+            Some(ke) => ke,
+            None => &mut scratch[..ne * ne],
+        };
+        if let Err(msg) = element_forces(
+            &m.geometry(e),
+            &m.materials[el.body],
+            &ue[..ne],
+            &committed[gs.clone()],
+            &mut trial[gs],
+            response,
+            tangent,
+            &mut fe[i * ne..(i + 1) * ne],
+            ke,
+        ) {
+            return Some((i, msg));
+        }
+    }
+    None
+}
