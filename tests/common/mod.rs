@@ -50,6 +50,17 @@ pub fn with_interface_loop(text: &str, on: bool) -> String {
     }
 }
 
+/// Case text with its `[solver]` table replaced by one holding `body`
+/// (TOML lines; the table must exist and not be the first line).
+pub fn with_solver_table(text: &str, body: &str) -> String {
+    let i = text.find("\n[solver]\n").expect("a [solver] table") + 1;
+    let rest = &text[i + "[solver]\n".len()..];
+    let end = rest
+        .find("\n[")
+        .map_or(text.len(), |j| i + "[solver]\n".len() + j + 1);
+    format!("{}[solver]\n{body}\n{}", &text[..i], &text[end..])
+}
+
 /// Relative difference |a − b| / max(|a|, |b|, tiny).
 pub fn rel(a: f64, b: f64) -> f64 {
     (a - b).abs() / a.abs().max(b.abs()).max(1e-300)

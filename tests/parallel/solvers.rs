@@ -260,16 +260,11 @@ fn cg_with_gamg_follows_lu_through_the_plastic_steps() {
             .unwrap();
     // the four steps the case shipped with until 2026-11-27 (0.3, 0.6, 0.8, 1):
     // the long plastic steps where CG met an indefinite preconditioner
-    let kept: Vec<&str> = text
-        .lines()
-        .filter(|l| !l.starts_with("increments") && !l.starts_with("first_increment"))
-        .collect();
-    let text = (kept.join("\n") + "\n").replacen(
-        "\n[solver]\n",
-        "\n[solver]\nload_factors = [0.3, 0.6, 0.8, 1.0]\n",
-        1,
+    let text = common::with_solver_table(
+        &text,
+        "method = \"full-newton\"\nload_factors = [0.3, 0.6, 0.8, 1.0]",
     );
-    assert!(text.contains("load_factors") && !text.contains("\nincrements"));
+    assert!(text.contains("[output]") && !text.contains("\nincrements"));
     let case = common::case_dir(
         "parallel-gamg-plastic-case",
         &common::with_interface_loop(&text, false),
