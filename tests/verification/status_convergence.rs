@@ -235,3 +235,41 @@ fn the_interface_loop_converges_to_the_plain_newton_answer_on_the_hertz_sphere()
         );
     }
 }
+
+/// The rounded plane-strain punch with the paper's friction law: on its
+/// non-matching mesh the Woodbury-GMRES rule alone does not order the
+/// interface last (the interface-last factor costs more than the GMRES
+/// steps save), so until 2026-11-27 the friction model ran without the
+/// interface loop that its frictionless twin runs. With the loop on, the
+/// loop's own rule decides for the friction path too.
+#[test]
+fn the_interface_loop_runs_on_a_friction_model_the_woodbury_rule_alone_refuses() {
+    let text = std::fs::read_to_string(common::root().join("cases/punch-rounded-strain/case.toml"))
+        .unwrap();
+    let text = common::with_solver_table(&text, "increments = 20\nfirst_increment = 0.05");
+    let friction = "m = 0.5\n\n[interface.contact.tangential]\nr = 0.9\ns = 0.5\n\
+                    kp_ratio = 0.05\nmu = 0.2\nbeta = 1.0\nn = 275.0\nyield_ratio = 0.625\n";
+    assert_eq!(text.matches("m = 0.5\n").count(), 1);
+    let text = text.replacen("m = 0.5\n", friction, 1);
+    let stats = |on: bool| {
+        let case = common::case_dir(
+            &format!("status-friction-rounded-{on}"),
+            &common::with_interface_loop(&text, on),
+        );
+        let out = case.parent().unwrap().join("out");
+        let (code, err) = common::run_case(&case, &out, &["--stop-after", "3"]);
+        assert_eq!(code, 3, "{err}");
+        let s: Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
+                .unwrap();
+        (
+            s["backend_stats"]["interface_last"].as_f64(),
+            get(&s, "interface_loops"),
+        )
+    };
+    // the Woodbury rule alone: not ordered last, no loop
+    assert_eq!(stats(false), (Some(0.0), 0));
+    let (last, loops) = stats(true);
+    assert_eq!(last, Some(1.0));
+    assert!(loops > 0);
+}
