@@ -132,8 +132,13 @@ pub fn load_case(case_path: &Path, opts: &RunOptions) -> Result<Case> {
     if let Some(c) = opts.max_cutbacks {
         case.solver.max_cutbacks = c;
     }
-    if let Some(sc) = opts.step_control {
-        case.solver.step_control = Some(sc);
+    match (opts.step_control, opts.increments) {
+        (Some(sc), _) => case.solver.step_control = Some(sc),
+        // `--increments N` alone: N equal steps, as its help says, also in a
+        // case whose `[solver]` asks for automatic steps (which would take
+        // N only as the size of its first step)
+        (None, Some(_)) => case.solver.step_control = Some(crate::case::StepControl::Fixed),
+        (None, None) => {}
     }
     if (opts.increments.is_some() || opts.step_control.is_some())
         && case.solver.step_mode() == crate::case::StepControl::Fixed

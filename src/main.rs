@@ -83,7 +83,8 @@ struct RunArgs {
     /// docs/running.md, "Adaptive runs").
     #[arg(long, value_name = "TOL", allow_hyphen_values = true)]
     adapt: Option<String>,
-    /// Override: this many equal load steps.
+    /// Override: this many equal load steps (fixed steps; with
+    /// `--step-control auto`, the size of the automatic control's first step).
     #[arg(long)]
     increments: Option<usize>,
     /// Override: halvings allowed per scheduled step (0: fail at the first failure).

@@ -416,6 +416,46 @@ fn a_cutback_event_names_the_step_tried_next() {
     }
 }
 
+/// `--increments N` is N equal steps, as its help says, also on a case
+/// whose `[solver]` asks for automatic steps (it took N only as the size of
+/// the automatic control's first step until 2026-11-27); with
+/// `--step-control auto` beside it, that is what it does.
+#[test]
+fn increments_on_the_command_line_are_equal_steps_in_an_automatic_case() {
+    let case = common::root().join("cases/punch-rounded-stress");
+    let text = std::fs::read_to_string(case.join("case.toml")).unwrap();
+    assert!(text.contains("step_control = \"auto\""));
+    let dir = common::scratch("robust-increments-auto");
+    for (name, extra, mode, lambdas) in [
+        ("fixed", vec![], "fixed", [0.25, 0.5]),
+        // the first step 1/4, capped by the case's max_increment (0.05)
+        ("auto", vec!["--step-control", "auto"], "auto", [0.05, 0.1]),
+    ] {
+        let out = dir.join(name);
+        let mut args = vec!["--increments", "4", "--stop-after", "2"];
+        args.extend(extra);
+        let (code, err) = common::run_case(&case, &out, &args);
+        assert_eq!(code, 3, "{name}: {err}");
+        let s: Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
+                .unwrap();
+        assert_eq!(s["step_control"], mode, "{name}");
+        let got: Vec<f64> = std::fs::read_to_string(out.join("curve.csv"))
+            .unwrap()
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').nth(1).unwrap().parse().unwrap())
+            .collect();
+        assert_eq!(got.len(), 2, "{name}: {got:?}");
+        for (g, w) in got.iter().zip(lambdas) {
+            assert!(
+                (g - w).abs() < 1e-12,
+                "{name}: load factors {got:?}, expected {lambdas:?}"
+            );
+        }
+    }
+}
+
 #[test]
 fn json_log_lines_parse_and_carry_their_fields() {
     let dir = common::scratch("robust-json");
