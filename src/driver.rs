@@ -125,9 +125,23 @@ pub fn load_case(case_path: &Path, opts: &RunOptions) -> Result<Case> {
         ));
     }
     if let Some(n) = opts.increments {
+        // fixed steps: N equal steps replace the case's schedule, which must
+        // not be an explicit list (the case file refuses `increments` beside
+        // `load_factors` too); automatic steps: `load_factors` are the
+        // waypoints, kept, and N sizes the first step
+        let auto = opts.step_control == Some(crate::case::StepControl::Auto);
+        if case.solver.load_factors.is_some() && !auto {
+            return Err(crate::error::Error::input(
+                "--increments",
+                format!(
+                    "{} gives its load steps as [solver] load_factors: edit them, or add \
+                     --step-control auto (the load factors as waypoints, 1/{n} the first step)",
+                    case.source.display()
+                ),
+            ));
+        }
         case.solver.increments = Some(n);
         case.solver.first_increment = None;
-        case.solver.load_factors = None;
     }
     if let Some(c) = opts.max_cutbacks {
         case.solver.max_cutbacks = c;

@@ -454,6 +454,38 @@ fn increments_on_the_command_line_are_equal_steps_in_an_automatic_case() {
             );
         }
     }
+    // automatic steps keep a case's load_factors as waypoints (the unloading
+    // to 0.2 here); fixed steps would replace them, which is refused
+    // (tests/bad_inputs/550)
+    let case = common::root().join("tests/bad_inputs/550-increments-flag-beside-load-factors");
+    let out = dir.join("waypoints");
+    let (code, err) = common::run_case(
+        &case,
+        &out,
+        &[
+            "--increments",
+            "8",
+            "--step-control",
+            "auto",
+            "--stop-after",
+            "5",
+        ],
+    );
+    assert_eq!(code, 3, "{err}");
+    let got: Vec<f64> = std::fs::read_to_string(out.join("curve.csv"))
+        .unwrap()
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(1).unwrap().parse().unwrap())
+        .collect();
+    let want = [0.125, 0.3, 0.6, 0.35, 0.2];
+    assert_eq!(got.len(), want.len(), "{got:?}");
+    for (g, w) in got.iter().zip(want) {
+        assert!(
+            (g - w).abs() < 1e-9,
+            "load factors {got:?}, expected {want:?}"
+        );
+    }
 }
 
 #[test]
