@@ -434,6 +434,10 @@ pub struct Cycle {
     /// ū_T at the loop's tips, mm: at the increment of the smallest F_T and
     /// at that of the largest (the increments the secant stiffness uses).
     pub tip_slip: [f64; 2],
+    /// The largest |F_T| or |F_N| over the cycle's increments, N: the scale
+    /// against which the force range is round-off ([`held`]; 0: the range's
+    /// own magnitude only).
+    pub force_scale: f64,
     /// Energies at or below this are the solver's round-off, N·mm: 10⁻¹²
     /// of the run's largest max |F_T| × (ū_T range), or with twist
     /// max |T| × (φ̄ range), over every cycle of every interface ([`cycles`]
@@ -457,7 +461,7 @@ impl Cycle {
     /// loop's tips, the cycle's largest and smallest F_T); 0 when the range
     /// is round-off ([`held`]).
     pub fn force_amplitude(&self) -> f64 {
-        amplitude(self.force_range)
+        amplitude(self.force_range, self.force_scale)
     }
 
     /// The slip amplitude u_a = (ū_T,hi − ū_T,lo) / 2 at the loop's tips, mm.
@@ -470,7 +474,12 @@ impl Cycle {
     /// F_a / u_a taken to the amplitude (Ungar & Kerwin 1962, the energy
     /// that the loss factor refers to).
     pub fn stored_energy(&self) -> f64 {
-        0.5 * self.force_amplitude() * self.slip_amplitude()
+        let f_a = self.force_amplitude();
+        if f_a == 0.0 {
+            0.0
+        } else {
+            0.5 * f_a * self.slip_amplitude()
+        }
     }
 
     /// The loss factor η = D / (2π U) (Ungar & Kerwin 1962, J. Acoust. Soc.
@@ -485,7 +494,7 @@ impl Cycle {
     /// With twist: the torque amplitude T_a = (T_hi − T_lo) / 2, N·mm; 0
     /// when the range is round-off ([`held`]).
     pub fn torque_amplitude(&self) -> f64 {
-        amplitude(self.torque_range)
+        amplitude(self.torque_range, 0.0)
     }
 
     /// With twist: the twist amplitude φ_a = (φ̄_hi − φ̄_lo) / 2 at the
@@ -499,7 +508,12 @@ impl Cycle {
     /// spring of the secant stiffness T_a / φ_a turned to the amplitude,
     /// as [`Cycle::stored_energy`] for the force-slip loop).
     pub fn torsional_stored_energy(&self) -> f64 {
-        0.5 * self.torque_amplitude() * self.twist_amplitude()
+        let t_a = self.torque_amplitude();
+        if t_a == 0.0 {
+            0.0
+        } else {
+            0.5 * t_a * self.twist_amplitude()
+        }
     }
 
     /// With twist: the torsional loss factor η_θ = D / (2π U_θ) (Ungar &
@@ -570,17 +584,22 @@ pub fn cycle_windows(marks: &[Option<Vec<f64>>]) -> Vec<(usize, usize)> {
 pub const TIP_TIE: f64 = 1e-6;
 
 /// Whether a cycle's force (or torque) range [lo, hi] is round-off: within
-/// [`TIP_TIE`] of its largest magnitude, as the two tips of a loop whose
-/// force is held constant (an axial preload under a cycled torque: the
-/// extremes differ by 1e-12 of 10 kN). Such a range has no amplitude and no
-/// secant stiffness; reporting its difference would be reporting noise.
-pub fn held(range: [f64; 2]) -> bool {
-    range[1] - range[0] <= TIP_TIE * range[0].abs().max(range[1].abs())
+/// [`TIP_TIE`] of its largest magnitude or of `scale` (the cycle's
+/// [`Cycle::force_scale`]: a force held at zero has a range and a magnitude
+/// of noise alike), as the two tips of a loop whose force is held constant
+/// (an axial preload under a cycled torque: the extremes differ by 1e-12 of
+/// 10 kN). Such a range has no amplitude and no secant stiffness; reporting
+/// its difference would be reporting noise. The threshold is the tips' own
+/// tie: the solver resolves a joint's force to about 10⁻⁸ of the loads
+/// (the Newton tolerance), so an amplitude below 10⁻⁶ of the force is not
+/// a measurement this solver can vouch for.
+pub fn held(range: [f64; 2], scale: f64) -> bool {
+    range[1] - range[0] <= TIP_TIE * range[0].abs().max(range[1].abs()).max(scale)
 }
 
 /// (hi − lo) / 2 of a range, 0 where it is [`held`].
-fn amplitude(range: [f64; 2]) -> f64 {
-    if held(range) {
+fn amplitude(range: [f64; 2], scale: f64) -> f64 {
+    if held(range, scale) {
         0.0
     } else {
         0.5 * (range[1] - range[0])
@@ -590,13 +609,15 @@ fn amplitude(range: [f64; 2]) -> f64 {
 /// The measures at the loop's tips over `span`: the increments of the
 /// smallest and of the largest force `f` (`key` = (force, slip)), each
 /// tie within [`TIP_TIE`] broken by the slip (the smallest at the low tip,
-/// the largest at the high one).
+/// the largest at the high one); `scale`: a force magnitude the tie is
+/// relative to besides the span's own ([`held`]).
 fn tips(
     span: &[(f64, JointMeasures)],
     key: impl Fn(&JointMeasures) -> (f64, f64),
+    scale: f64,
 ) -> Option<(JointMeasures, JointMeasures)> {
     let forces = span.iter().map(|r| key(&r.1).0);
-    let scale = forces.clone().fold(0.0f64, |a, f| a.max(f.abs()));
+    let scale = forces.clone().fold(scale, |a, f| a.max(f.abs()));
     let f_hi = forces.clone().fold(f64::NEG_INFINITY, f64::max);
     let f_lo = forces.fold(f64::INFINITY, f64::min);
     let tie = TIP_TIE * scale;
@@ -617,14 +638,19 @@ fn tips(
 /// (pseudo-time and joint measures per committed increment, in order).
 pub fn cycle_of(rows: &[(f64, JointMeasures)], (i, j): (usize, usize)) -> Cycle {
     let span = &rows[i..=j];
+    // F_T is round-off against F_N as well (a shear held at zero)
+    let force_scale = span.iter().fold(0.0f64, |a, r| {
+        a.max(r.1.tangential_force.abs())
+            .max(r.1.normal_force.abs())
+    });
     // the loop's tips: the largest and smallest F_T, ties (a plateau of
     // macro-slip, or a window from tip to tip) broken by ū_T
-    let (lo, hi) =
-        tips(span, |m| (m.tangential_force, m.mean_slip)).unwrap_or((rows[j].1, rows[j].1));
+    let (lo, hi) = tips(span, |m| (m.tangential_force, m.mean_slip), force_scale)
+        .unwrap_or((rows[j].1, rows[j].1));
     let ds = hi.mean_slip - lo.mean_slip;
     let slip = span.iter().map(|r| r.1.mean_slip);
     // the torque-twist loop's tips, ties (a sliding plateau) broken by φ̄
-    let (t_lo, t_hi) = tips(span, |m| (m.torque, m.twist)).unwrap_or((rows[j].1, rows[j].1));
+    let (t_lo, t_hi) = tips(span, |m| (m.torque, m.twist), 0.0).unwrap_or((rows[j].1, rows[j].1));
     let dphi = t_hi.twist - t_lo.twist;
     let twist = span.iter().map(|r| r.1.twist);
     Cycle {
@@ -633,7 +659,7 @@ pub fn cycle_of(rows: &[(f64, JointMeasures)], (i, j): (usize, usize)) -> Cycle 
             twist.clone().fold(f64::INFINITY, f64::min),
             twist.fold(f64::NEG_INFINITY, f64::max),
         ],
-        torsional_stiffness: (dphi != 0.0 && !held([t_lo.torque, t_hi.torque]))
+        torsional_stiffness: (dphi != 0.0 && !held([t_lo.torque, t_hi.torque], 0.0))
             .then(|| (t_hi.torque - t_lo.torque) / dphi),
         tip_twist: [t_lo.twist, t_hi.twist],
         start_increment: i + 1,
@@ -642,14 +668,16 @@ pub fn cycle_of(rows: &[(f64, JointMeasures)], (i, j): (usize, usize)) -> Cycle 
         end_time: rows[j].0,
         dissipation: rows[j].1.dissipation - rows[i].1.dissipation,
         work: rows[j].1.work - rows[i].1.work,
-        secant_stiffness: (ds != 0.0 && !held([lo.tangential_force, hi.tangential_force]))
-            .then(|| (hi.tangential_force - lo.tangential_force) / ds),
+        secant_stiffness: (ds != 0.0
+            && !held([lo.tangential_force, hi.tangential_force], force_scale))
+        .then(|| (hi.tangential_force - lo.tangential_force) / ds),
         force_range: [lo.tangential_force, hi.tangential_force],
         slip_range: [
             slip.clone().fold(f64::INFINITY, f64::min),
             slip.fold(f64::NEG_INFINITY, f64::max),
         ],
         tip_slip: [lo.mean_slip, hi.mean_slip],
+        force_scale,
         floor: 0.0,
     }
 }

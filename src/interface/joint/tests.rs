@@ -472,7 +472,7 @@ fn a_force_held_to_round_off_has_no_amplitude_and_no_secant_stiffness() {
     let c = cycle_of(&held_rows, (0, 3));
     // the tips within the tie are chosen by slip: their raw difference is
     // round-off of either sign
-    assert!(held(c.force_range) && c.force_range[1] != c.force_range[0]);
+    assert!(held(c.force_range, c.force_scale) && c.force_range[1] != c.force_range[0]);
     assert_eq!(c.force_amplitude(), 0.0);
     assert_eq!(c.secant_stiffness, None);
     assert_eq!((c.stored_energy(), c.loss_factor()), (0.0, None));
@@ -483,7 +483,7 @@ fn a_force_held_to_round_off_has_no_amplitude_and_no_secant_stiffness() {
     let mut small = held_rows.clone();
     small[1].1.tangential_force = f + 0.02;
     let c = cycle_of(&small, (0, 3));
-    assert!(!held(c.force_range));
+    assert!(!held(c.force_range, c.force_scale));
     assert!((c.force_amplitude() - 0.5 * (0.02 + 1.6e-8)).abs() < 1e-12);
     assert!(c.secant_stiffness.is_some());
     // the same for a torque held to round-off
@@ -495,4 +495,39 @@ fn a_force_held_to_round_off_has_no_amplitude_and_no_secant_stiffness() {
     assert_eq!(c.torque_amplitude(), 0.0);
     assert_eq!(c.torsional_stiffness, None);
     assert_eq!(c.torsional_loss_factor(), None);
+}
+
+/// A shear held at zero while the normal force cycles: F_T and its range
+/// are both noise (1e-13 N), so the range is round-off against F_N, not
+/// against itself. No amplitude, no secant stiffness, no negative stored
+/// energy or slip amplitude from tips that noise picked.
+#[test]
+fn a_shear_held_at_zero_under_a_cycled_normal_force_has_no_loop() {
+    let row = |f_t: f64, f_n: f64, s: f64| {
+        let jm = JointMeasures {
+            tangential_force: f_t,
+            normal_force: f_n,
+            mean_slip: s,
+            ..JointMeasures::default()
+        };
+        (0.0, jm)
+    };
+    let rows = vec![
+        row(2e-13, 100.0, 1e-11),
+        row(-5.9e-13, 60.0, 4e-11),
+        row(5.8e-13, 100.0, -3e-11),
+        row(-1e-13, 60.0, 2e-11),
+        row(2e-13, 100.0, 1e-11),
+    ];
+    let c = cycle_of(&rows, (0, 4));
+    assert_eq!(c.force_scale, 100.0);
+    assert!(held(c.force_range, c.force_scale));
+    assert_eq!(c.force_amplitude(), 0.0);
+    assert_eq!(c.secant_stiffness, None);
+    assert_eq!((c.stored_energy(), c.loss_factor()), (0.0, None));
+    // every increment is one tip: the smallest and the largest slip
+    assert_eq!(c.tip_slip, [-3e-11, 4e-11]);
+    assert!(c.slip_amplitude() > 0.0);
+    // without F_N the noise would be a loop of its own
+    assert!(!held([-5.9e-13, 5.8e-13], 0.0));
 }

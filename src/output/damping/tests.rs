@@ -13,6 +13,7 @@ fn cycle(f_a: f64, u_a: f64, d: f64) -> Cycle {
         force_range: [-f_a, f_a],
         slip_range: [-u_a, u_a],
         tip_slip: [-u_a, u_a],
+        force_scale: 0.0,
         floor: 0.0,
         torque_range: [0.0; 2],
         twist_range: [0.0; 2],
