@@ -383,7 +383,13 @@ fn run_model_as(
             let wall = started.elapsed().as_secs_f64();
             result.estimate = writer.last_estimate().cloned();
             let dir = writer.finish(model, &result, wall)?;
-            report_end(&log, model, &dir, &result, wall);
+            // a stopped run continues where it was written (`--out` may
+            // name the restart folder itself)
+            let mut again = override_args(opts);
+            if opts.out.is_some() {
+                again += &format!(" --out {}", dir.display());
+            }
+            report_end(&log, model, &dir, &result, wall, &again);
             for w in crate::output::warnings(model, &result) {
                 log.always("warning", json!({ "message": w }), || {
                     format!("warning: {w}")
@@ -398,8 +404,50 @@ fn run_model_as(
     }
 }
 
-/// The `finish` (progress) or `stop` (always) event of a run that wrote `dir`.
-fn report_end(log: &Log, model: &Model, dir: &Path, r: &RunResult, wall: f64) {
+/// The overrides of the model given on the command line, as `asperity run`
+/// arguments (each with a leading space): a restart must be given the same
+/// ones (the restart file's fingerprint), so the suggested command repeats
+/// them.
+fn override_args(o: &RunOptions) -> String {
+    let mut a = String::new();
+    if let Some(m) = o.method {
+        a += &format!(" --method {}", m.name());
+    }
+    if let Some(r) = o.refine {
+        a += &format!(" --refine {r}");
+    }
+    if o.uniform {
+        a += " --uniform";
+    }
+    if let Some(n) = o.increments {
+        a += &format!(" --increments {n}");
+    }
+    if let Some(sc) = o.step_control {
+        a += match sc {
+            crate::case::StepControl::Fixed => " --step-control fixed",
+            crate::case::StepControl::Auto => " --step-control auto",
+        };
+    }
+    if let Some(c) = o.max_cutbacks {
+        a += &format!(" --max-cutbacks {c}");
+    }
+    if o.plain {
+        a += " --plain";
+    }
+    if let Some(fs) = o.friction_scheme {
+        a += match fs {
+            crate::interface::FrictionScheme::ReturnMapping => " --friction-scheme return-mapping",
+            crate::interface::FrictionScheme::StiffnessModification => {
+                " --friction-scheme stiffness-modification"
+            }
+        };
+    }
+    a
+}
+
+/// The `finish` (progress) or `stop` (always) event of a run that wrote
+/// `dir`; `overrides`: [`override_args`] of the run.
+fn report_end(log: &Log, model: &Model, dir: &Path, r: &RunResult, wall: f64, overrides: &str) {
     let last = r.increments.last();
     let m = last.map(|i| i.measures).unwrap_or_default();
     let lambda = last.map_or(0.0, |i| i.load_factor);
@@ -421,7 +469,7 @@ fn report_end(log: &Log, model: &Model, dir: &Path, r: &RunResult, wall: f64) {
             }),
             || {
                 format!(
-                    "stopped by {} after increment {}/{} (λ = {:.4}, {:.3} kN): partial results in {}; continue with `asperity run {} --restart {}`",
+                    "stopped by {} after increment {}/{} (λ = {:.4}, {:.3} kN): partial results in {}; continue with `asperity run {}{} --restart {}`",
                     stop.name(),
                     r.increments.len(),
                     planned.map_or("auto".into(), |p| p.max(r.increments.len()).to_string()),
@@ -429,6 +477,7 @@ fn report_end(log: &Log, model: &Model, dir: &Path, r: &RunResult, wall: f64) {
                     m.total_load_kn,
                     dir.display(),
                     case,
+                    overrides,
                     dir.display()
                 )
             },

@@ -24,6 +24,7 @@ mod joints;
 mod links;
 mod output_schema;
 mod output_writer;
+mod overrides;
 mod pretension;
 mod refine;
 mod restart;
