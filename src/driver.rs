@@ -124,6 +124,21 @@ pub fn load_case(case_path: &Path, opts: &RunOptions) -> Result<Case> {
             "an adaptive run solves every mesh from the start of the history: it cannot resume (--restart)",
         ));
     }
+    // the command line's own values, named as such (else the case file's
+    // keys would be blamed for them)
+    use crate::case::{MAX_CUTBACKS, MAX_INCREMENTS};
+    if let Some(n) = opts.increments.filter(|&n| n == 0 || n > MAX_INCREMENTS) {
+        return Err(crate::error::Error::input(
+            "--increments",
+            format!("{n} must be in 1..={MAX_INCREMENTS}"),
+        ));
+    }
+    if let Some(c) = opts.max_cutbacks.filter(|&c| c > MAX_CUTBACKS) {
+        return Err(crate::error::Error::input(
+            "--max-cutbacks",
+            format!("{c} must be at most {MAX_CUTBACKS}"),
+        ));
+    }
     if let Some(n) = opts.increments {
         // fixed steps: N equal steps replace the case's schedule, which must
         // not be an explicit list (the case file refuses `increments` beside

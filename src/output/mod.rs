@@ -530,8 +530,13 @@ fn coarse_cycles(model: &Model, r: &RunResult, place: &str) -> Vec<String> {
                 .collect();
             let first = *coarse.first()?;
             let c = &list[first - 1];
+            // the key that sets the step under the run's step control
+            let fix = match model.solver.step_mode() {
+                crate::case::StepControl::Auto => "max_increment to a quarter of a leg or less",
+                crate::case::StepControl::Fixed => "increments to 4 or more per unit of pseudo-time",
+            };
             Some(format!(
-                "{place}: interface {:?}: {} closed cycle(s) of fewer than {CYCLE_INCREMENTS} increments (cycle {first}: {} increments, t = {} … {}): their dissipation and loss factor are trapezoid sums over too few steps (0 with one step a leg); set [solver] max_increment to a quarter of a leg or less",
+                "{place}: interface {:?}: {} closed cycle(s) of fewer than {CYCLE_INCREMENTS} increments (cycle {first}: {} increments, t = {} … {}): their dissipation and loss factor are trapezoid sums over too few steps (0 with one step a leg); set [solver] {fix}",
                 im.name,
                 coarse.len(),
                 c.end_increment - c.start_increment,

@@ -211,8 +211,21 @@ fn cycles_of_too_few_increments_are_warned_about() {
         lines[0].contains("interface \"way\": 11 closed cycle(s) of fewer than 4 increments"),
         "{err}"
     );
+    // the advice names the key that sets the step under this step control
+    assert!(lines[0].ends_with("set [solver] max_increment to a quarter of a leg or less"));
     let summary: serde_json::Value = serde_json::from_str(&read(&out, "summary.json")).unwrap();
     assert_eq!(summary["warnings"].as_array().unwrap().len(), 1);
+    // fixed steps, one a unit of pseudo-time: max_increment would be refused
+    let (code, err) = run(
+        &case("slideway-damping"),
+        &dir.join("fixed"),
+        &["--increments", "1"],
+    );
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("set [solver] increments to 4 or more per unit of pseudo-time"),
+        "{err}"
+    );
     let (code, err) = run(&case("slideway-damping"), &dir.join("shipped"), &[]);
     assert_eq!(code, 0, "{err}");
     assert!(!err.contains("warning"), "{err}");
