@@ -111,12 +111,7 @@ fn increments_on_the_command_line_are_equal_steps_in_an_automatic_case() {
             serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
                 .unwrap();
         assert_eq!(s["step_control"], mode, "{name}");
-        let got: Vec<f64> = std::fs::read_to_string(out.join("curve.csv"))
-            .unwrap()
-            .lines()
-            .skip(1)
-            .map(|l| l.split(',').nth(1).unwrap().parse().unwrap())
-            .collect();
+        let got: Vec<f64> = common::csv_column(&out.join("curve.csv"), "load_factor");
         assert_eq!(got.len(), 2, "{name}: {got:?}");
         for (g, w) in got.iter().zip(lambdas) {
             assert!(
@@ -143,12 +138,7 @@ fn increments_on_the_command_line_are_equal_steps_in_an_automatic_case() {
         ],
     );
     assert_eq!(code, 3, "{err}");
-    let got: Vec<f64> = std::fs::read_to_string(out.join("curve.csv"))
-        .unwrap()
-        .lines()
-        .skip(1)
-        .map(|l| l.split(',').nth(1).unwrap().parse().unwrap())
-        .collect();
+    let got: Vec<f64> = common::csv_column(&out.join("curve.csv"), "load_factor");
     let want = [0.125, 0.3, 0.6, 0.35, 0.2];
     assert_eq!(got.len(), want.len(), "{got:?}");
     for (g, w) in got.iter().zip(want) {
