@@ -46,12 +46,7 @@ struct CoupledStats {
 impl SerialBackend {
     /// The backend with the factorization the model's tangent calls for.
     pub fn new(model: &Model) -> Result<Self> {
-        let kind = if model.symmetric_tangent() {
-            Factorization::Cholesky
-        } else {
-            Factorization::SymmetricPart
-        };
-        Self::with_factorization(model, kind)
+        Self::with_factorization(model, Factorization::for_model(model))
     }
 
     /// The backend with a given factorization (LU and SymmetricPart work for
@@ -262,11 +257,7 @@ pub fn interface_loop_equations(model: &Model) -> Result<Vec<usize>> {
     if !wants_interface_loop(model) {
         return Ok(Vec::new());
     }
-    let kind = if model.symmetric_tangent() {
-        Factorization::Cholesky
-    } else {
-        Factorization::SymmetricPart
-    };
+    let kind = Factorization::for_model(model);
     let blocks = model.blocks();
     let pattern = Pattern::new(&model.dofs, &blocks);
     let interface = interface_equations(model, &blocks, pattern.n);

@@ -55,6 +55,16 @@ pub enum Factorization {
 }
 
 impl Factorization {
+    /// The factorization a model's tangent calls for: Cholesky where it is
+    /// symmetric, else the symmetric part with the interface terms apart.
+    pub fn for_model(model: &crate::model::Model) -> Factorization {
+        if model.symmetric_tangent() {
+            Factorization::Cholesky
+        } else {
+            Factorization::SymmetricPart
+        }
+    }
+
     /// How summary.json names it (`linear_solver`).
     pub fn name(self) -> &'static str {
         match self {
