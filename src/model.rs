@@ -183,6 +183,7 @@ impl Model {
         let n_dofs = crate::pretension::total_dofs(&case, &mesh);
         let mut list = crate::pretension::constraints(
             mesh.node_dofs,
+            &mesh.nodes,
             &sections,
             &prescribed,
             &loads.prescribed_history,

@@ -380,12 +380,22 @@ pub fn finish(
 }
 
 /// The constraints of the sections: the copies follow their nodes (or,
-/// where only a copy is held, the node follows its copy); a tangential tie
-/// whose two dofs are both prescribed to the same value (a cut node on the
-/// axis, held u_r = 0 on both) is left out, a node held on both sides of
-/// the cut otherwise is refused.
+/// where only a copy is held, the node follows its copy); a tie whose two
+/// dofs are both prescribed to the same value and that no section's
+/// shortening enters (a cut node on the axis, held u_r = 0 on both sides)
+/// is left out; a node held on both sides of a cut otherwise is refused.
+///
+/// The copies of one mesh node form a group: one copy per section through
+/// it, and where two sections cross, copies of copies (the quadrant beyond
+/// both cuts holds the node moved by both shortenings). In each component
+/// every member is u(root) − Σ s_k over the sections k between it and the
+/// group's mesh node whose normal is that component; the group's master is
+/// its first held member (else the mesh node itself), and every other
+/// member follows the master directly, so a hold anywhere in the group is
+/// one master, never a dof tied twice.
 pub fn constraints(
     nd: NodeDofs,
+    nodes: &[[f64; 2]],
     sections: &[Section],
     prescribed: &[(usize, f64)],
     prescribed_history: &[Option<usize>],
@@ -396,46 +406,142 @@ pub fn constraints(
         .zip(prescribed_history)
         .map(|(&(d, v), &h)| (d, (v, h)))
         .collect();
-    let mut out = Vec::new();
+    // each copy's node and section, then each cut node's sections back to
+    // its mesh node (ascending)
+    let parent: HashMap<usize, (usize, usize)> = sections
+        .iter()
+        .enumerate()
+        .flat_map(|(k, s)| s.pairs.iter().map(move |&(n, c)| (c, (n, k))))
+        .collect();
+    let root = |mut c: usize| -> (usize, Vec<usize>) {
+        let mut path = Vec::new();
+        while let Some(&(n, k)) = parent.get(&c) {
+            path.push(k);
+            c = n;
+        }
+        path.sort_unstable();
+        (c, path)
+    };
+    let mut groups: std::collections::BTreeMap<usize, Vec<(usize, Vec<usize>)>> =
+        std::collections::BTreeMap::new();
     for s in sections {
-        let origin = format!("pretension \"{}\"", s.name);
+        for &(n, c) in &s.pairs {
+            for m in [n, c] {
+                let (r, path) = root(m);
+                let g = groups.entry(r).or_default();
+                if !g.iter().any(|x| x.0 == m) {
+                    g.push((m, path));
+                }
+            }
+        }
+    }
+    let names = |ks: &[usize]| -> String {
+        ks.iter()
+            .map(|&k| format!("\"{}\"", sections[k].name))
+            .collect::<Vec<_>>()
+            .join(" and ")
+    };
+    // slave dof → its constraint
+    let mut made: HashMap<usize, Constraint> = HashMap::new();
+    for (&r, members) in &mut groups {
+        members.sort_unstable_by_key(|m| m.0);
+        for comp in 0..2 {
+            // the sections whose shortening enters this component of member m
+            let enter = |path: &[usize]| -> Vec<usize> {
+                path.iter()
+                    .copied()
+                    .filter(|&k| sections[k].axis == comp)
+                    .collect()
+            };
+            let held = |m: usize| given.get(&nd.dof(m, comp));
+            let (master, master_path) = members
+                .iter()
+                .find(|m| held(m.0).is_some())
+                .unwrap_or(&members[0]);
+            let from = enter(master_path);
+            for (m, path) in members.iter() {
+                if m == master {
+                    continue;
+                }
+                let to = enter(path);
+                // u(m) = u(master) + Σ_{from∖to} s − Σ_{to∖from} s
+                let mut terms = vec![(nd.dof(*master, comp), 1.0)];
+                let mut through: Vec<usize> = Vec::new();
+                for k in 0..sections.len() {
+                    match (from.contains(&k), to.contains(&k)) {
+                        (true, false) => terms.push((sections[k].dof, 1.0)),
+                        (false, true) => terms.push((sections[k].dof, -1.0)),
+                        _ => continue,
+                    }
+                    through.push(k);
+                }
+                let mut path_all: Vec<usize> = path.iter().chain(master_path).copied().collect();
+                path_all.sort_unstable();
+                path_all.dedup();
+                if let Some(v) = held(*m) {
+                    if through.is_empty() && Some(v) == held(*master) {
+                        continue;
+                    }
+                    return Err(held_twice(nodes, r, comp, &path_all, &through, place, &names));
+                }
+                made.insert(
+                    nd.dof(*m, comp),
+                    Constraint {
+                        slave: nd.dof(*m, comp),
+                        terms,
+                        offset: 0.0,
+                        history: None,
+                        origin: format!("pretension {}", names(&path_all)),
+                    },
+                );
+            }
+        }
+    }
+    // in the order of the sections' pairs (the copy's tie, then the node's)
+    let mut out = Vec::with_capacity(made.len());
+    for s in sections {
         for &(n, c) in &s.pairs {
             for comp in 0..2 {
-                let (master, slave) = (nd.dof(n, comp), nd.dof(c, comp));
-                let normal = comp == s.axis;
-                // the copy follows its node, u(copy) = u(node) − s n; where
-                // only the copy is held (a support beyond the cut), the node
-                // follows the copy instead, u(node) = u(copy) + s n
-                let sign = match (given.get(&slave), given.get(&master)) {
-                    (None, _) => -1.0,
-                    (Some(_), None) => 1.0,
-                    (Some(a), Some(b)) if !normal && a == b => continue,
-                    (Some(_), Some(_)) => {
-                        let x = "xy".as_bytes()[comp] as char;
-                        return Err(Error::input(
-                            format!("{place}: {origin}"),
-                            format!("node {n} on the cut is held in u{x} on both sides of the cut{}: the section could not shorten (move the cut away from the supports)", if normal { "" } else { " with different values" }),
-                        ));
+                for m in [c, n] {
+                    if let Some(k) = made.remove(&nd.dof(m, comp)) {
+                        out.push(k);
                     }
-                };
-                let (slave, master) = if sign < 0.0 {
-                    (slave, master)
-                } else {
-                    (master, slave)
-                };
-                let mut terms = vec![(master, 1.0)];
-                if normal {
-                    terms.push((s.dof, sign));
                 }
-                out.push(Constraint {
-                    slave,
-                    terms,
-                    offset: 0.0,
-                    history: None,
-                    origin: origin.clone(),
-                });
             }
         }
     }
     Ok(out)
+}
+
+/// The refusal of a cut node held on both sides of a cut: `through`, the
+/// sections whose shortening the two holds would fix (none: held with two
+/// values where no section enters), `sections_at` all sections through it.
+#[allow(clippy::too_many_arguments)]
+fn held_twice(
+    nodes: &[[f64; 2]],
+    node: usize,
+    comp: usize,
+    sections_at: &[usize],
+    through: &[usize],
+    place: &str,
+    names: &dyn Fn(&[usize]) -> String,
+) -> Error {
+    let x = ["ux", "uy"][comp];
+    let [px, py] = nodes[node];
+    let at = format!("node {node} at ({px}, {py})");
+    let where_ = if sections_at.len() > 1 {
+        format!("{at}, where the cuts of pretension {} meet,", names(sections_at))
+    } else {
+        format!("{at} on the cut")
+    };
+    let what = if through.is_empty() {
+        format!("{where_} is held in {x} with different values on the two sides of a cut, which its ties keep together")
+    } else {
+        format!(
+            "{where_} is held in {x} on both sides of the cut of pretension {}: the section{} could not shorten (move the cut away from the supports)",
+            names(through),
+            if through.len() > 1 { "s" } else { "" }
+        )
+    };
+    Error::input(format!("{place}: pretension {}", names(sections_at)), what)
 }

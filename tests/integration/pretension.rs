@@ -128,3 +128,87 @@ fn a_forged_section_in_a_restart_file_is_refused() {
         assert!(!out.exists(), "{what}: output left behind");
     }
 }
+
+/// A square plate of four blocks held on its four sides, cut by two
+/// sections that cross at (10, 10), "a" along x = 10 and "b" along y = 10,
+/// each loaded with 1 kN; the crossing node is also held in ux from the
+/// blocks `holds` name (their `all` sets: before both cuts, LL, the original
+/// node; beyond both, RU, the copy of its copy).
+fn crossing(holds: &[&str]) -> String {
+    let mut s = String::from("[model]\nplane = \"stress\"\nthickness = 2.0\n");
+    for (name, x, y) in [
+        ("LL", [0.0, 10.0], [0.0, 10.0]),
+        ("RL", [10.0, 20.0], [0.0, 10.0]),
+        ("LU", [0.0, 10.0], [10.0, 20.0]),
+        ("RU", [10.0, 20.0], [10.0, 20.0]),
+    ] {
+        s += &format!(
+            "[[mesh.block]]\nname = \"{name}\"\nbody = \"plate\"\nx = {x:?}\nnx = [2]\ny = {y:?}\nny = [2]\n"
+        );
+    }
+    s += "[materials.plate]\nyoung = 200000.0\npoisson = 0.3\n";
+    for (set, key) in [
+        ("LL.left", "ux"),
+        ("LU.left", "ux"),
+        ("RL.right", "ux"),
+        ("RU.right", "ux"),
+        ("LL.bottom", "uy"),
+        ("RL.bottom", "uy"),
+        ("LU.top", "uy"),
+        ("RU.top", "uy"),
+    ] {
+        s += &format!("[[boundary]]\nset = \"{set}\"\n{key} = 0.0\n");
+    }
+    for b in holds {
+        s += &format!(
+            "[[boundary]]\nset = \"{b}.all\"\nux = 0.0\nx_range = [10.0, 10.0]\ny_range = [10.0, 10.0]\n"
+        );
+    }
+    for (name, line) in [("a", "x"), ("b", "y")] {
+        s += &format!(
+            "[[pretension]]\nname = \"{name}\"\nbody = \"plate\"\n{line} = 10.0\nforce = 1000.0\n"
+        );
+    }
+    s
+}
+
+/// Two crossing sections whose crossing node is held beyond both cuts (the
+/// copy of its copy) solve, to the shortenings of the mirror image, the
+/// node held before both cuts (the plate turned by 180° about the crossing:
+/// the same shortenings). The hold beyond both cuts was refused as "dof N
+/// is constrained twice": the copy between followed both its node and, the
+/// other way round, the held copy of it. Held on both sides, the node is
+/// refused naming the sections and the node (tests/bad_inputs/580).
+#[test]
+fn crossing_sections_held_beyond_both_cuts_solve_as_their_mirror_image() {
+    let root = common::scratch("pretension-crossing");
+    let mut shortenings = Vec::new();
+    for hold in ["LL", "RU"] {
+        let case = common::case_dir(&format!("pretension-crossing-{hold}"), &crossing(&[hold]));
+        let out = root.join(hold);
+        common::run_ok(&case, &out);
+        let csv = out.join("pretension.csv");
+        let last = |c: &str| *common::csv_column(&csv, c).last().unwrap();
+        assert!((last("a_force_n") - 1000.0).abs() < 1e-6);
+        assert!((last("b_force_n") - 1000.0).abs() < 1e-6);
+        shortenings.push([last("a_shortening_mm"), last("b_shortening_mm")]);
+    }
+    let [before, beyond] = [shortenings[0], shortenings[1]];
+    assert!(before[0] > 0.0 && before[1] > 0.0, "{before:?}");
+    // the holds break the square's symmetry about its diagonal: a ≠ b
+    assert!(common::rel(before[0], before[1]) > 0.1, "{before:?}");
+    for k in 0..2 {
+        assert!(
+            common::rel(before[k], beyond[k]) < 1e-9,
+            "{before:?} vs {beyond:?}"
+        );
+    }
+    let case = common::case_dir("pretension-crossing-both", &crossing(&["LL", "RU"]));
+    let (code, e) = common::run_asperity(&["check", case.to_str().unwrap()]);
+    assert_eq!(code, 2, "{e}");
+    assert!(
+        e.contains("node 20 at (10, 10), where the cuts of pretension \"a\" and \"b\" meet")
+            && e.contains("held in ux on both sides of the cut of pretension \"a\""),
+        "{e}"
+    );
+}
