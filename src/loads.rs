@@ -142,6 +142,13 @@ pub fn build(case: &Case, mesh: &Mesh, section: Section, place: &str) -> Result<
         add(pattern(&mut patterns, h, nd), &terms);
         scaled.push((format!("{at} pressure"), ld.pressure, &ranges::PRESSURE, h));
         scaled.push((format!("{at} shear"), ld.shear, &ranges::PRESSURE, h));
+        // twist's loads about the axis, alike
+        if let Some(v) = ld.hoop_shear {
+            scaled.push((format!("{at} hoop_shear"), v, &ranges::PRESSURE, h));
+        }
+        if let Some(v) = ld.torque {
+            scaled.push((format!("{at} torque"), v, &crate::twist::TORQUE, h));
+        }
         // a straight edge's round-off along its own direction is no load
         let big = terms.iter().fold(0.0f64, |a, t| a.max(t.1.abs()));
         acting.push(Acting {
@@ -711,4 +718,77 @@ pub fn names<'a>(it: impl Iterator<Item = &'a String>) -> String {
         s.push(format!("… {} more", all.len() - 30));
     }
     s.join(", ")
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::model::Model;
+
+    /// A twisting shaft off the axis, held at its bottom, loaded by `load`
+    /// (a `[[load]]`, `[[force]]` or `[[boundary]]` table) and `solver`.
+    fn shaft(load: &str, solver: &str) -> crate::error::Result<Model> {
+        let text = format!(
+            r#"
+[model]
+plane = "axisymmetric"
+twist = true
+
+[[mesh.block]]
+body = "shaft"
+x = [1.0, 10.0]
+nx = [2]
+y = [0.0, 20.0]
+ny = [2]
+
+[materials.shaft]
+young = 206000.0
+poisson = 0.3
+
+[[boundary]]
+set = "shaft.bottom"
+uy = 0.0
+rotation = 0.0
+
+{load}
+
+[solver]
+{solver}
+"#
+        );
+        Model::parse(&text, "case.toml")
+    }
+
+    /// Every value a history or a load factor scales is range-checked times
+    /// the largest of them, twist's torque and hoop shear as the pressure
+    /// (they escaped the check until issue 42): each value below is within
+    /// its range and 10⁵ times it is not.
+    #[test]
+    fn every_scaled_load_is_range_checked_times_its_largest_factor() {
+        let loads = [
+            ("pressure", "[[load]]\nedges = \"shaft.top\"\npressure = 100.0"),
+            ("shear", "[[load]]\nedges = \"shaft.top\"\nshear = 100.0"),
+            ("hoop_shear", "[[load]]\nedges = \"shaft.top\"\nhoop_shear = 100.0"),
+            ("torque", "[[load]]\nedges = \"shaft.top\"\ntorque = 1e14"),
+            ("fx", "[[force]]\nnodes = \"shaft.top\"\nfx = 1e8"),
+            ("uy", "[[boundary]]\nset = \"shaft.top\"\nuy = 1.0"),
+            ("rotation", "[[boundary]]\nset = \"shaft.top\"\nrotation = 0.1"),
+        ];
+        for (key, load) in loads {
+            // the value alone is sound
+            shaft(load, "increments = 1").unwrap_or_else(|e| panic!("{key}: {e}"));
+            for (by, with, solver) in [
+                ("history", "\nhistory = [[0.0, 0.0], [1.0, 1e5]]", "increments = 1"),
+                ("load factor", "", "load_factors = [1.0, 1e5]"),
+            ] {
+                let e = shaft(&format!("{load}{with}"), solver)
+                    .err()
+                    .unwrap_or_else(|| panic!("{key} times a {by} of 1e5 was accepted"))
+                    .to_string();
+                assert!(
+                    e.contains(&format!("{key}: ")) && e.contains("times 1e5"),
+                    "{key} by a {by}: {e}"
+                );
+            }
+        }
+    }
 }
