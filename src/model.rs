@@ -207,6 +207,7 @@ impl Model {
             section.axisymmetric,
             &place,
         )?;
+        supports::check_sections_held(&mesh, &sections, &prescribed, &interfaces, &place)?;
         let tied: std::collections::HashMap<usize, usize> = sections
             .iter()
             .flat_map(|s| s.pairs.iter().map(|&(n, c)| (c, n)))

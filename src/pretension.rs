@@ -545,3 +545,34 @@ fn held_twice(
     };
     Error::input(format!("{place}: pretension {}", names(sections_at)), what)
 }
+
+/// The two sides of a section's cut when the cut divides its body in two
+/// (the nodes of the elements beyond the line and those of the elements
+/// before it share none): each node's side, `true` beyond (the side the
+/// normal points to; nodes of other bodies `false`). `None` when the body
+/// stays in one piece around the cut's end (a cut part way across): then
+/// the shortening strains the body, it moves no part of it rigidly.
+pub fn sides(mesh: &Mesh, section: &Section) -> Option<Vec<bool>> {
+    let mut side = vec![[false; 2]; mesh.nodes.len()];
+    for el in mesh.elements.iter().filter(|el| el.body == section.body) {
+        // every element lies on one side of its body's cuts
+        // ([`cut`]): its centre tells which
+        let centre = el.nodes[..4]
+            .iter()
+            .map(|&n| mesh.nodes[n][section.axis])
+            .sum::<f64>()
+            / 4.0;
+        let beyond = usize::from(centre > section.at);
+        for &n in &el.nodes {
+            side[n][beyond] = true;
+        }
+    }
+    (!side.iter().any(|s| s[0] && s[1])).then(|| side.iter().map(|s| s[1]).collect())
+}
+
+/// Whether section `s` is free at pseudo-time t (a step to t): controlled
+/// by its force and not locked yet, so its sides move apart or together
+/// with nothing but that force between them.
+pub fn free_at(s: &Section, t: f64) -> bool {
+    s.control == "force" && t <= s.lock_after
+}
