@@ -54,6 +54,10 @@ pub struct Cycle {
     /// settlement (mm) and the first-yield load (kN, NaN: no yield).
     pub settlement_mm: f64,
     pub first_yield_kn: f64,
+    /// The sum of the applied nodal forces in x and in y at the end of the
+    /// history (N, the model as meshed; pretension forces, internal to
+    /// their bodies, apart): the same on every cycle ([`applied_force`]).
+    pub applied_n: [f64; 2],
 }
 
 /// How an adaptive run ended.
@@ -65,6 +69,9 @@ pub enum End {
     Cycles,
     /// The next mesh would exceed `max_dofs`.
     Dofs,
+    /// The next mesh would exceed the element limit of every mesh
+    /// ([`crate::case::MAX_ELEMENTS`]).
+    Elements,
     /// Nothing left to refine (no element marked).
     Nothing,
 }
@@ -75,6 +82,7 @@ impl End {
             End::Reached => "reached",
             End::Cycles => "max_cycles",
             End::Dofs => "max_dofs",
+            End::Elements => "max_elements",
             End::Nothing => "nothing_to_refine",
         }
     }
@@ -97,6 +105,17 @@ pub fn value(q: Quantity, model: &Model, r: &RunResult, eta_relative: f64) -> f6
             .and_then(|i| i.joints.first())
             .map_or(f64::NAN, |j| j.torque),
     }
+}
+
+/// The sum of the applied nodal forces of the mesh's nodes at pseudo-time
+/// t, per direction x, y (N).
+pub fn applied_force(model: &Model, t: f64) -> [f64; 2] {
+    let mut f = vec![0.0; model.n_dofs];
+    model.external_force(t, &mut f);
+    let nd = model.node_dofs();
+    (0..model.mesh.nodes.len()).fold([0.0, 0.0], |s, n| {
+        [s[0] + f[nd.dof(n, 0)], s[1] + f[nd.dof(n, 1)]]
+    })
 }
 
 /// The largest contact pressure of a state over every interface's points.
@@ -131,13 +150,13 @@ pub fn cycle_estimate(q: Quantity, relative_eta: f64, value: f64, previous: Opti
 /// `adapt.csv`: one row per cycle.
 pub fn csv(spec: &AdaptSpec, cycles: &[Cycle]) -> String {
     let mut s = format!(
-        "cycle,elements,nodes,dofs,hanging_nodes,eta,relative_eta,{},estimate,tolerance,increments,newton_iterations,wall_s,settlement_mm,first_yield_kn\n",
+        "cycle,elements,nodes,dofs,hanging_nodes,eta,relative_eta,{},estimate,tolerance,increments,newton_iterations,wall_s,settlement_mm,first_yield_kn,applied_fx_n,applied_fy_n\n",
         spec.quantity.name()
     );
     for c in cycles {
         let _ = writeln!(
             s,
-            "{},{},{},{},{},{:.9e},{:.9e},{:.9e},{:.9e},{:e},{},{},{:.3},{:.9e},{:.9e}",
+            "{},{},{},{},{},{:.9e},{:.9e},{:.9e},{:.9e},{:e},{},{},{:.3},{:.9e},{:.9e},{:.9e},{:.9e}",
             c.cycle,
             c.elements,
             c.nodes,
@@ -152,7 +171,9 @@ pub fn csv(spec: &AdaptSpec, cycles: &[Cycle]) -> String {
             c.iterations,
             c.wall_s,
             c.settlement_mm,
-            c.first_yield_kn
+            c.first_yield_kn,
+            c.applied_n[0],
+            c.applied_n[1]
         );
     }
     s.replace("NaN", "")
@@ -230,12 +251,16 @@ pub fn run(
     let log = Log::new(opts.log_format, opts.quiet || !root);
     let per_node = if case.model.twist { 3 } else { 2 };
     let mut mesh = Refined::start(&Model::mesh_of(&case)?);
+    let start_nodes = mesh.mesh.nodes.len();
     let mut cycles: Vec<Cycle> = Vec::new();
     loop {
         let started = Instant::now();
         // the first cycle on the case's own mesh: its checks as a plain run's
         // (the dof cap against the start mesh among them)
-        let given = (!cycles.is_empty()).then(|| mesh.mesh.clone());
+        let given = (!cycles.is_empty()).then(|| crate::model::Adapted {
+            mesh: mesh.mesh.clone(),
+            start_nodes,
+        });
         let model = Model::build_on(case.clone(), given)?;
         let (dir, result) = solve(&model, started)?;
         if let Some(stop) = result.stopped {
@@ -284,38 +309,28 @@ pub fn run(
             wall_s: started.elapsed().as_secs_f64(),
             settlement_mm: value(Quantity::Settlement, &model, &result, 0.0),
             first_yield_kn: value(Quantity::FirstYield, &model, &result, 0.0),
+            applied_n: applied_force(&model, result.final_state.time),
         });
         let end = if estimate <= spec.tolerance {
             Some(End::Reached)
         } else if cycles.len() >= spec.max_cycles {
             Some(End::Cycles)
         } else {
-            // an element at the deepest level is not split again
-            let marked: Vec<usize> = crate::estimate::doerfler_mark(&numbers[3..], spec.fraction)
-                .into_iter()
-                .filter(|&e| mesh.state.level[e] < crate::mesh::refine::MAX_LEVEL)
-                .collect();
-            if marked.is_empty() {
-                Some(End::Nothing)
-            } else {
-                let next = match mesh.refine(&marked) {
-                    Ok(next) => next,
-                    Err(e) => {
-                        // the folder holds this cycle's run: its record too
-                        if root {
-                            record(&dir, &spec, &cycles, None)?;
-                        }
-                        return Err(Error::Mesh {
-                            place: format!("{place}: [adapt]"),
-                            message: e.to_string(),
-                        });
-                    }
-                };
-                if next.mesh.nodes.len() * per_node > spec.max_dofs {
-                    Some(End::Dofs)
-                } else {
+            match next_mesh(&case, &spec, &mesh, &numbers[3..], per_node) {
+                Ok(Ok(next)) => {
                     mesh = next;
                     None
+                }
+                Ok(Err(end)) => Some(end),
+                Err(e) => {
+                    // the folder holds this cycle's run: its record too
+                    if root {
+                        record(&dir, &spec, &cycles, None)?;
+                    }
+                    return Err(Error::Mesh {
+                        place: format!("{place}: [adapt]"),
+                        message: e.to_string(),
+                    });
                 }
             }
         };
@@ -369,6 +384,37 @@ pub fn run(
     }
 }
 
+/// The next mesh: the elements that hold the share θ of the estimate
+/// (`eta_sq`, per element) split, with the two sides of every pretension
+/// cut split together ([`crate::pretension::facing`]); or why there is none
+/// (nothing left to mark, or a mesh beyond `max_dofs` or the element limit,
+/// found here before it is built or solved).
+fn next_mesh(
+    case: &Case,
+    spec: &AdaptSpec,
+    mesh: &Refined,
+    eta_sq: &[f64],
+    per_node: usize,
+) -> std::result::Result<std::result::Result<Refined, End>, crate::mesh::MeshError> {
+    // an element at the deepest level is not split again
+    let marked: Vec<usize> = crate::estimate::doerfler_mark(eta_sq, spec.fraction)
+        .into_iter()
+        .filter(|&e| mesh.state.level[e] < crate::mesh::refine::MAX_LEVEL)
+        .collect();
+    if marked.is_empty() {
+        return Ok(Err(End::Nothing));
+    }
+    let tied = crate::pretension::facing(case, &mesh.mesh);
+    let next = mesh.refine_tied(&marked, &tied)?;
+    Ok(if next.mesh.elements.len() > crate::case::MAX_ELEMENTS {
+        Err(End::Elements)
+    } else if next.mesh.nodes.len() * per_node > spec.max_dofs {
+        Err(End::Dofs)
+    } else {
+        Ok(next)
+    })
+}
+
 /// The stop line of an adaptive run interrupted in cycle `cycle` (its
 /// partial run was not written).
 fn stopped(log: &Log, stop: crate::interrupt::Stop, cycle: usize, r: &RunResult, dir: &Path) {
@@ -405,6 +451,10 @@ fn not_reached(end: End, spec: &AdaptSpec, c: &Cycle) -> String {
     let why = match end {
         End::Cycles => format!("after max_cycles = {} solves", spec.max_cycles),
         End::Dofs => format!("the next mesh would exceed max_dofs = {}", spec.max_dofs),
+        End::Elements => format!(
+            "the next mesh would have more than {} elements (the limit of every mesh)",
+            crate::case::MAX_ELEMENTS
+        ),
         End::Nothing => "no element is left to refine".into(),
         End::Reached => String::new(),
     };

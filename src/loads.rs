@@ -18,6 +18,8 @@ use crate::history::History;
 use crate::mesh::Mesh;
 use std::collections::BTreeMap;
 
+mod adaptive;
+
 /// One force vector (all dofs, at factor 1) and its history (`None`: the
 /// load factor, or the default ramp).
 #[derive(Clone, Debug)]
@@ -124,8 +126,16 @@ fn clip(s: &str) -> String {
 }
 
 /// Reads every load of the case on its mesh; `section` gives the
-/// out-of-plane measure of the edge tractions.
-pub fn build(case: &Case, mesh: &Mesh, section: Section, place: &str) -> Result<Loads> {
+/// out-of-plane measure of the edge tractions. A `[[force]]` acts on the
+/// nodes of its selection that `start` marks (an adaptive run's start mesh:
+/// every node of a plain run), so that refinement adds none to it.
+pub fn build(
+    case: &Case,
+    mesh: &Mesh,
+    start: &[bool],
+    section: Section,
+    place: &str,
+) -> Result<Loads> {
     let mut res = Resolver::new(case, place)?;
     // the mesh's dofs, then each pretension section's reference node
     let nd = crate::pretension::total_dofs(case, mesh);
@@ -165,7 +175,7 @@ pub fn build(case: &Case, mesh: &Mesh, section: Section, place: &str) -> Result<
     for (i, fs) in case.force.iter().enumerate() {
         let at = format!("{place}: force[{i}] (nodes \"{}\")", fs.nodes);
         let h = res.resolve(fs.history.as_ref(), &format!("{at} history"))?;
-        let terms = concentrated_force(fs, mesh, &at)?;
+        let terms = concentrated_force(fs, mesh, start, &at)?;
         add(pattern(&mut patterns, h, nd), &terms);
         scaled.push((format!("{at} fx"), fs.fx, &ranges::FORCE, h));
         scaled.push((format!("{at} fy"), fs.fy, &ranges::FORCE, h));
@@ -405,6 +415,9 @@ fn edge_traction(
             ),
         )
     })?;
+    if case.adapt.is_some() {
+        adaptive::check_edges(mesh, edges, [&ld.x_range, &ld.y_range], at)?;
+    }
     let (p, tau) = (ld.pressure, ld.shear);
     // twist: τ_θ given, or a torque (τ_θ = T r / ∫ r² dA below)
     let hoop = ld.hoop_shear.or(ld.torque);
@@ -544,11 +557,14 @@ fn symmetric_traction(
     Ok(())
 }
 
-/// A force (fx, fy) at every selected node of a node set: its (dof, force)
-/// terms at factor 1.
+/// A force (fx, fy) at every selected node of a node set that `start`
+/// marks: its (dof, force) terms at factor 1. An adaptive run's refined
+/// set holds more nodes than its start mesh's, but the force stays on the
+/// start mesh's nodes: the same load on every cycle.
 fn concentrated_force(
     fs: &crate::case::ForceSpec,
     mesh: &Mesh,
+    start: &[bool],
     at: &str,
 ) -> Result<Vec<(usize, f64)>> {
     let nodes = mesh.node_sets.get(&fs.nodes).ok_or_else(|| {
@@ -576,7 +592,7 @@ fn concentrated_force(
         ));
     }
     let mut terms = Vec::new();
-    for &n in nodes {
+    for &n in nodes.iter().filter(|&&n| start[n]) {
         let x = mesh.nodes[n];
         if in_range(x[0], &fs.x_range) && in_range(x[1], &fs.y_range) {
             let nd = mesh.node_dofs;
@@ -630,6 +646,9 @@ fn boundary_conditions(
                     "give ux and/or uy"
                 },
             ));
+        }
+        if case.adapt.is_some() {
+            adaptive::check_nodes(mesh, nodes, [&bc.x_range, &bc.y_range], &at)?;
         }
         let h = res.resolve(bc.history.as_ref(), &format!("{at} history"))?;
         if h.is_some()

@@ -14,10 +14,20 @@ use crate::material::{Plane, VonMises};
 use crate::mesh::{Mesh, NodeDofs};
 
 mod hanging;
+mod measurable;
 mod meshes;
 use meshes::{check_mesh, make_mesh};
 pub mod supports;
 use supports::check_supports;
+
+/// A mesh an adaptive run refined from the case's ([`crate::adapt`]), and
+/// how many of its nodes are the start mesh's: a refinement keeps every
+/// node and numbers its new ones after them, so nodes `0..start_nodes` are
+/// the start mesh's own on every cycle.
+pub struct Adapted {
+    pub mesh: Mesh,
+    pub start_nodes: usize,
+}
 
 pub struct Model {
     /// The solution settings (method, schedule, tolerances, cutbacks, ...).
@@ -115,15 +125,19 @@ impl Model {
         make_mesh(case, &case.source.display().to_string())
     }
 
-    /// [`Model::build`] on a given mesh (`None`: the case's), e.g. one that an
+    /// [`Model::build`] on a given mesh (`None`: the case's), one that an
     /// adaptive run refined from [`Model::mesh_of`]; a given mesh is checked
     /// like the case's own.
-    pub fn build_on(case: Case, mesh: Option<Mesh>) -> Result<Model> {
+    pub fn build_on(case: Case, given: Option<Adapted>) -> Result<Model> {
         let place = case.source.display().to_string();
         let checked = check_case(&case)?;
-        let mut mesh = match mesh {
-            None => make_mesh(&case, &place)?,
-            Some(mesh) => check_mesh(&case, mesh, &place)?,
+        let (mut mesh, start_nodes) = match given {
+            None => {
+                let mesh = make_mesh(&case, &place)?;
+                let n = mesh.nodes.len();
+                (mesh, n)
+            }
+            Some(a) => (check_mesh(&case, a.mesh, &place)?, a.start_nodes),
         };
         if case.model.twist {
             mesh.node_dofs = NodeDofs::TWIST;
@@ -152,10 +166,16 @@ impl Model {
             Integration::Full => q8::gauss_3x3(),
             Integration::Reduced => q8::gauss_2x2(),
         };
+        // the start mesh's nodes (and their copies across the cuts): where
+        // a [[force]] acts and the probe is read on every adaptive cycle
+        let start: Vec<bool> = crate::pretension::origins(&sections, mesh.nodes.len())
+            .into_iter()
+            .map(|o| o < start_nodes)
+            .collect();
         let materials = materials(&case, &mesh, &place)?;
         check_elements(&mesh, &rule, &section, &place)?;
         let mut interfaces = interface_models(&case, &checked, &mesh, section, &place)?;
-        let mut loads = crate::loads::build(&case, &mesh, section, &place)?;
+        let mut loads = crate::loads::build(&case, &mesh, &start, section, &place)?;
         let f_ext = loads.patterns.remove(0).f;
         for im in interfaces.iter_mut() {
             im.gap_history = loads
@@ -193,6 +213,7 @@ impl Model {
             &mesh,
             &hanging_nodes,
             &prescribed,
+            &loads.prescribed_history,
             &sections,
             &place,
         )?);
@@ -207,6 +228,7 @@ impl Model {
             section.axisymmetric,
             &place,
         )?;
+        supports::check_sections_held(&mesh, &sections, &prescribed, &interfaces, &place)?;
         let tied: std::collections::HashMap<usize, usize> = sections
             .iter()
             .flat_map(|s| s.pairs.iter().map(|&(n, c)| (c, n)))
@@ -217,11 +239,11 @@ impl Model {
             block_dofs(&mesh, &interfaces, &constraints, &sections);
         let section_block_base = blocks.len() - sections.len();
         drop(blocks);
-        let (probe_node, surface_y) = probe(&case, &mesh, &interfaces);
+        let (probe_node, surface_y) = probe(&case, &mesh, &start, &interfaces);
         let plan =
             crate::output::plan::Plan::build(&case, &mesh, &interfaces, &prescribed, &place)?;
         let force_floor = force_floor(&mesh, &materials, section);
-        Ok(Model {
+        let model = Model {
             name: case.display_name(),
             plane,
             thickness,
@@ -253,7 +275,11 @@ impl Model {
             description: case.description.clone(),
             integration: case.model.integration,
             case_key: case.key(),
-        })
+        };
+        if let Some(a) = &case.adapt {
+            measurable::check(&model, a, &place)?;
+        }
+        Ok(model)
     }
 
     /// The dof lists of every element, then every interface point (rebuilt
@@ -544,11 +570,22 @@ fn block_dofs(
     (blocks, base, expansions)
 }
 
-fn probe(case: &Case, mesh: &Mesh, interfaces: &[InterfaceModel]) -> (usize, f64) {
+fn probe(
+    case: &Case,
+    mesh: &Mesh,
+    start: &[bool],
+    interfaces: &[InterfaceModel],
+) -> (usize, f64) {
     let p = case.output.probe;
+    // a node that refinement added is never nearer: an adaptive run reads
+    // the same node on every mesh (a start mesh node, [`Adapted`])
     let dist = |n: usize| {
         let x = mesh.nodes[n];
-        (x[0] - p[0]).hypot(x[1] - p[1])
+        if start[n] {
+            (x[0] - p[0]).hypot(x[1] - p[1])
+        } else {
+            f64::INFINITY
+        }
     };
     // body B's interface nodes: the pairs' B nodes, and every node of the
     // master side of a non-matching interface (mortar gives a slave node on

@@ -209,6 +209,59 @@ pub fn cut(case: &Case, mesh: &mut Mesh, place: &str) -> Result<Vec<Section>> {
     Ok(out)
 }
 
+/// The node each node of a cut mesh (`nodes` of them) was before the cuts:
+/// itself, or for a copy the node it copies (through every section, in
+/// order: a copy of a copy is its first original).
+pub fn origins(sections: &[Section], nodes: usize) -> Vec<usize> {
+    let mut origin: Vec<usize> = (0..nodes).collect();
+    for s in sections {
+        for &(n, c) in &s.pairs {
+            origin[c] = origin[n];
+        }
+    }
+    origin
+}
+
+/// The pairs of elements that face each other across a section's line in
+/// the uncut `mesh` (an element edge of the body on the line, one element
+/// on each side): an adaptive run splits both together
+/// ([`crate::mesh::refine::Refined::refine_tied`]), so that no hanging node
+/// lies on a cut, where it would hang across the cut from the nodes of the
+/// other side. A section the cut would refuse (an unknown body, no line)
+/// gives none.
+pub fn facing(case: &Case, mesh: &Mesh) -> Vec<(usize, usize)> {
+    let tol = crate::case::whole::tolerance(mesh);
+    let mut out = Vec::new();
+    for spec in &case.pretension {
+        let Some(body) = mesh.bodies.iter().position(|b| *b == spec.body) else {
+            continue;
+        };
+        let (axis, value) = match (spec.x, spec.y) {
+            (None, Some(y)) => (1, y),
+            (Some(x), None) => (0, x),
+            _ => continue,
+        };
+        let d = |n: usize| mesh.nodes[n][axis] - value;
+        // each edge on the line: the element before it and the one beyond
+        let mut sides: HashMap<(usize, usize), [Option<usize>; 2]> = HashMap::new();
+        for (e, el) in mesh.elements.iter().enumerate() {
+            if el.body != body {
+                continue;
+            }
+            let beyond = el.nodes.iter().any(|&n| d(n) > tol);
+            for [a, m, b] in crate::mesh::refine::EDGES {
+                let [a, m, b] = [el.nodes[a], el.nodes[m], el.nodes[b]];
+                if [a, m, b].iter().all(|&n| d(n).abs() <= tol) {
+                    sides.entry((a.min(b), a.max(b))).or_default()[usize::from(beyond)] = Some(e);
+                }
+            }
+        }
+        out.extend(sides.values().filter_map(|s| Some((s[0]?, s[1]?))));
+    }
+    out.sort_unstable();
+    out
+}
+
 /// Splits body `body` along the line x_axis = value: the node pairs.
 fn split(
     mesh: &mut Mesh,
@@ -544,4 +597,35 @@ fn held_twice(
         )
     };
     Error::input(format!("{place}: pretension {}", names(sections_at)), what)
+}
+
+/// The two sides of a section's cut when the cut divides its body in two
+/// (the nodes of the elements beyond the line and those of the elements
+/// before it share none): each node's side, `true` beyond (the side the
+/// normal points to; nodes of other bodies `false`). `None` when the body
+/// stays in one piece around the cut's end (a cut part way across): then
+/// the shortening strains the body, it moves no part of it rigidly.
+pub fn sides(mesh: &Mesh, section: &Section) -> Option<Vec<bool>> {
+    let mut side = vec![[false; 2]; mesh.nodes.len()];
+    for el in mesh.elements.iter().filter(|el| el.body == section.body) {
+        // every element lies on one side of its body's cuts
+        // ([`cut`]): its centre tells which
+        let centre = el.nodes[..4]
+            .iter()
+            .map(|&n| mesh.nodes[n][section.axis])
+            .sum::<f64>()
+            / 4.0;
+        let beyond = usize::from(centre > section.at);
+        for &n in &el.nodes {
+            side[n][beyond] = true;
+        }
+    }
+    (!side.iter().any(|s| s[0] && s[1])).then(|| side.iter().map(|s| s[1]).collect())
+}
+
+/// Whether section `s` is free at pseudo-time t (a step to t): controlled
+/// by its force and not locked yet, so its sides move apart or together
+/// with nothing but that force between them.
+pub fn free_at(s: &Section, t: f64) -> bool {
+    s.control == "force" && t <= s.lock_after
 }

@@ -17,6 +17,11 @@ pub const DEFAULT_CYCLES: usize = 8;
 pub const DEFAULT_FRACTION: f64 = 0.5;
 /// The default cap on the dofs of an adapted mesh.
 pub const DEFAULT_MAX_DOFS: usize = 400_000;
+/// The largest cap a case may give: about the dofs of a plane mesh of
+/// [`super::MAX_ELEMENTS`] Q8 elements (some 3 nodes an element, 2 dofs a
+/// node), the limit of every mesh, which each adapted mesh is held to as
+/// well ([`crate::adapt`]).
+pub const MAX_DOFS: usize = 6 * super::MAX_ELEMENTS;
 
 /// `[adapt]`: an adaptive run.
 #[derive(Clone, Debug, Deserialize)]
@@ -156,6 +161,16 @@ pub fn check(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
             format!(
                 "{} must be in 1..={MAX_CYCLES}: the solves, the start mesh's included",
                 a.max_cycles
+            ),
+        ));
+    }
+    if a.max_dofs > MAX_DOFS {
+        return Err(Error::input(
+            at("[adapt] max_dofs"),
+            format!(
+                "{} is above {MAX_DOFS}, about the dofs of a mesh of {} elements (the limit of every mesh, adapted or not); a serial run takes some 3 kB of memory a dof (0.7 GB at 210 000 dofs): give at most {MAX_DOFS}",
+                a.max_dofs,
+                super::MAX_ELEMENTS
             ),
         ));
     }

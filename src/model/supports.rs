@@ -114,3 +114,60 @@ pub fn own_rotation(mesh: &Mesh, prescribed: &[(usize, f64)]) -> Vec<bool> {
     }
     own
 }
+
+/// Every force-controlled pretension section that cuts its body in two
+/// ([`crate::pretension::sides`]) needs something on each side of the cut
+/// to pull against: the section's force moves the two sides apart or
+/// together by any amount (its shortening is free until it is locked), so a
+/// side without a prescribed dof along the cut's normal and without an
+/// interface that can carry that direction (its normal along it, or a
+/// tangential law) is a mechanism the section force drives, whatever the
+/// loads: a bolt without an interface under its head. Refused, naming the
+/// section and the side. (A side with an interface whose pairs are open
+/// is held, or not, at run time: [`crate::solve::stabilize`].)
+pub(super) fn check_sections_held(
+    mesh: &Mesh,
+    sections: &[crate::pretension::Section],
+    prescribed: &[(usize, f64)],
+    interfaces: &[InterfaceModel],
+    place: &str,
+) -> Result<()> {
+    for s in sections.iter().filter(|s| s.control == "force") {
+        let Some(beyond) = crate::pretension::sides(mesh, s) else {
+            continue;
+        };
+        let node_body = mesh.node_bodies();
+        let mut held = [false; 2];
+        for &(d, _) in prescribed.iter().filter(|p| p.0 < mesh.num_dofs()) {
+            let (n, c) = mesh.node_dofs.node_of(d);
+            if c == s.axis && node_body[n] == s.body {
+                held[usize::from(beyond[n])] = true;
+            }
+        }
+        for im in interfaces {
+            for p in &im.pairs {
+                let carries = im.tangential.is_some()
+                    || p.normal[s.axis].abs() >= p.normal[1 - s.axis].abs();
+                for (body, n) in [(im.body_a, p.a), (im.body_b, p.b)] {
+                    if carries && body == s.body {
+                        held[usize::from(beyond[n])] = true;
+                    }
+                }
+            }
+        }
+        if let Some(side) = held.iter().position(|h| !h) {
+            let line = ["x", "y"][s.axis];
+            return Err(Error::input(
+                format!("{place}: pretension \"{}\"", crate::error::clip(&s.name)),
+                format!(
+                    "cuts body \"{}\" in two at {line} = {}, and its side {line} {} {} has no support in u{line} and no interface that carries u{line}: nothing holds that side against the section's force, which moves it freely (force control); give that side an interface (a bolt needs one under its head and one under its nut) or a support",
+                    mesh.bodies[s.body],
+                    s.at,
+                    if side == 1 { ">" } else { "<" },
+                    s.at,
+                ),
+            ));
+        }
+    }
+    Ok(())
+}

@@ -32,15 +32,24 @@
 //!    without the springs, from that solution. If it converges, that is the
 //!    step's answer, to the Newton tolerance the answer of any other path to
 //!    the same equilibrium (displacement control included).
-//! 3. When no release is possible (the body carries no load at this load
-//!    factor, nor does any other body held only through interfaces that
-//!    could press it into place: its position is indeterminate; or the
-//!    release of such an unloaded body fails), the last stabilized solution is
-//!    accepted if the energy the springs dissipated over the run, W_s = Σ
-//!    k_s A |Δd|² per accepted step (the work of a damper moving at constant
-//!    rate over the step), stays below `stabilization_energy` times the
-//!    largest internal energy of the run; otherwise the step fails with the
-//!    body named.
+//! 3. When no release is possible — no body held only through interfaces
+//!    carries a load at this load factor (the force of a pretension section
+//!    counts as a load of the body it cuts), so nothing presses the floating
+//!    body into place and its position is indeterminate — the last
+//!    stabilized solution is accepted if the energy the springs dissipated
+//!    over the run, W_s = Σ k_s A |Δd|² per accepted step (the work of a
+//!    damper moving at constant rate over the step), stays below
+//!    `stabilization_energy` times the largest internal energy of the run;
+//!    otherwise the step fails with the body named. A step in which such a
+//!    body carries a load is accepted released only: when no release
+//!    converges it fails (and is cut back), since the springs would carry
+//!    part of that load and the answer would depend on them.
+//!
+//! A pretension section that cuts its body in two leaves it one rigid motion
+//! more while the section is force-controlled and not yet locked: its
+//! shortening moves the side beyond the cut along the normal, so the body is
+//! held only when both sides are (a bolt with a gap under its head floats on
+//! its nut until the head touches down; [`super::springs`]).
 //!
 //! Which steps use it: those whose committed state leaves a body held only
 //! through open pairs (approach below −1e-12 mm, where the secant start does
@@ -302,8 +311,9 @@ fn stabilized_step(
     }
     let st = engine.stabilizer.as_ref().expect("checked");
     let why = st.explain(m, committed, lambda);
-    let (Some((state, ks)), false) = (last, loaded) else {
-        // a loaded body: only a released answer is accepted
+    let (Some((state, ks)), false) = (last, pressed) else {
+        // a loaded body (a section's force included): only a released
+        // answer is accepted, whichever body the springs hold
         let failure = if failure.is_empty() {
             "no stabilized solution rested on closed pairs".to_string()
         } else {

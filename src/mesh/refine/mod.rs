@@ -125,7 +125,19 @@ impl Refined {
 
     /// Refines this mesh again: `marked` are element ids of `self.mesh`.
     pub fn refine(&self, marked: &[usize]) -> Result<Refined, MeshError> {
-        refine_with(&self.mesh, &self.state, marked)
+        refine_with(&self.mesh, &self.state, marked, &[])
+    }
+
+    /// [`Refined::refine`] with pairs of elements that are split together
+    /// (each pair's two elements face each other across an edge the
+    /// refinement must keep matched, e.g. a pretension cut:
+    /// [`crate::pretension::facing`]).
+    pub fn refine_tied(
+        &self,
+        marked: &[usize],
+        tied: &[(usize, usize)],
+    ) -> Result<Refined, MeshError> {
+        refine_with(&self.mesh, &self.state, marked, tied)
     }
 
     /// Every hanging node's constraints (dof components from the mesh's
@@ -142,7 +154,7 @@ impl Refined {
 /// Refines the marked elements of `mesh` (each split into four, plus the
 /// closure: [`closure`]); the mesh may hold hanging nodes already.
 pub fn refine(mesh: &Mesh, marked: &[usize]) -> Result<Refined, MeshError> {
-    refine_with(mesh, &RefineState::new(mesh), marked)
+    refine_with(mesh, &RefineState::new(mesh), marked, &[])
 }
 
 /// Every element split into four (no hanging node is made).
@@ -253,14 +265,22 @@ pub fn hanging_nodes(mesh: &Mesh) -> Vec<HangingNode> {
 
 /// The marked elements and those the closure adds, to a fixed point: the
 /// coarser neighbour across a marked element's half edge (its refinement
-/// would otherwise hang a second level on that edge), and the facing
-/// element across a matching interface edge (the coincident pairs stay
-/// pairs). Refused: an element id out of range.
-pub fn closure(mesh: &Mesh, marked: &[usize]) -> Result<Vec<bool>, MeshError> {
+/// would otherwise hang a second level on that edge), the facing element
+/// across a matching interface edge (the coincident pairs stay pairs), and
+/// the other element of a `tied` pair. Refused: an element id out of range.
+pub fn closure(
+    mesh: &Mesh,
+    marked: &[usize],
+    tied: &[(usize, usize)],
+) -> Result<Vec<bool>, MeshError> {
     let n = mesh.elements.len();
-    if let Some(&e) = marked.iter().find(|&&e| e >= n) {
+    if let Some(&e) = marked
+        .iter()
+        .chain(tied.iter().flat_map(|(a, b)| [a, b]))
+        .find(|&&e| e >= n)
+    {
         return Err(MeshError(format!(
-            "refinement: element {e} is marked but the mesh has {n} elements"
+            "refinement: element {e} is marked or tied but the mesh has {n} elements"
         )));
     }
     let map = EdgeMap::new(mesh);
@@ -284,6 +304,10 @@ pub fn closure(mesh: &Mesh, marked: &[usize]) -> Result<Vec<bool>, MeshError> {
                 facing.entry(eb).or_default().push(ea);
             }
         }
+    }
+    for &(a, b) in tied {
+        facing.entry(a).or_default().push(b);
+        facing.entry(b).or_default().push(a);
     }
     let mut on = vec![false; n];
     let mut work: Vec<usize> = marked.to_vec();
@@ -331,11 +355,13 @@ impl Quarters {
     }
 }
 
-/// [`refine`] of a mesh whose elements carry `state` (levels, origins).
+/// [`refine`] of a mesh whose elements carry `state` (levels, origins);
+/// the two elements of a `tied` pair are split together ([`closure`]).
 pub fn refine_with(
     mesh: &Mesh,
     state: &RefineState,
     marked: &[usize],
+    tied: &[(usize, usize)],
 ) -> Result<Refined, MeshError> {
     let n = mesh.elements.len();
     if state.level.len() != n || state.origin.len() != n {
@@ -344,7 +370,7 @@ pub fn refine_with(
             state.level.len()
         )));
     }
-    let on = closure(mesh, marked)?;
+    let on = closure(mesh, marked, tied)?;
     if let Some(e) = (0..n).find(|&e| on[e] && state.level[e] >= MAX_LEVEL) {
         return Err(MeshError(format!(
             "refinement: element {e} is at level {MAX_LEVEL}, the deepest"

@@ -57,3 +57,33 @@ fn one_refined_element_hangs_four_nodes_and_a_second_refinement_closes() {
     assert_eq!(again.mesh.elements.len(), 1 + 4 * 3 - 1 + 4);
     again.mesh.validate().unwrap();
 }
+
+#[test]
+fn a_tied_pair_is_split_together() {
+    // elements 0 and 2 of a 2 × 2 grid face each other across y = 1 (a
+    // pretension cut's line): marking one splits both, so no node hangs
+    // on that line
+    let mesh = grid(2, 2);
+    let below = (0..4)
+        .find(|&e| mesh.element_coords(e)[0] == [0.0, 0.0])
+        .unwrap();
+    let above = (0..4)
+        .find(|&e| mesh.element_coords(e)[0] == [0.0, 1.0])
+        .unwrap();
+    let alone = refine(&mesh, &[below]).unwrap();
+    let on_line = |r: &Refined| {
+        r.hanging
+            .iter()
+            .filter(|h| (r.mesh.nodes[h.node][1] - 1.0).abs() < 1e-12)
+            .count()
+    };
+    assert_eq!(on_line(&alone), 2);
+    let start = Refined::start(&mesh);
+    let tied = start.refine_tied(&[below], &[(below, above)]).unwrap();
+    assert_eq!(tied.mesh.elements.len(), 4 + 2 * 3);
+    assert_eq!(on_line(&tied), 0);
+    // the pair is refined whichever of the two is marked
+    let other = start.refine_tied(&[above], &[(below, above)]).unwrap();
+    assert_eq!(other.mesh.elements.len(), 10);
+    assert!(start.refine_tied(&[0], &[(0, 9)]).is_err());
+}
