@@ -316,7 +316,8 @@ pub fn run(
         } else if cycles.len() >= spec.max_cycles {
             Some(End::Cycles)
         } else {
-            match next_mesh(&case, &spec, &mesh, &numbers[3..], per_node) {
+            let limits = [crate::case::MAX_ELEMENTS, spec.max_dofs];
+            match next_mesh(&case, spec.fraction, &mesh, &numbers[3..], per_node, limits) {
                 Ok(Ok(next)) => {
                     mesh = next;
                     None
@@ -384,20 +385,21 @@ pub fn run(
     }
 }
 
-/// The next mesh: the elements that hold the share θ of the estimate
-/// (`eta_sq`, per element) split, with the two sides of every pretension
-/// cut split together ([`crate::pretension::facing`]); or why there is none
-/// (nothing left to mark, or a mesh beyond `max_dofs` or the element limit,
-/// found here before it is built or solved).
+/// The next mesh: the elements that hold the share `fraction` (θ) of the
+/// estimate (`eta_sq`, per element) split, with the two sides of every
+/// pretension cut split together ([`crate::pretension::facing`]); or why
+/// there is none (nothing left to mark, or a mesh beyond `limits`, the
+/// element limit and `max_dofs`, found here before it is built or solved).
 fn next_mesh(
     case: &Case,
-    spec: &AdaptSpec,
+    fraction: f64,
     mesh: &Refined,
     eta_sq: &[f64],
     per_node: usize,
+    [max_elements, max_dofs]: [usize; 2],
 ) -> std::result::Result<std::result::Result<Refined, End>, crate::mesh::MeshError> {
     // an element at the deepest level is not split again
-    let marked: Vec<usize> = crate::estimate::doerfler_mark(eta_sq, spec.fraction)
+    let marked: Vec<usize> = crate::estimate::doerfler_mark(eta_sq, fraction)
         .into_iter()
         .filter(|&e| mesh.state.level[e] < crate::mesh::refine::MAX_LEVEL)
         .collect();
@@ -406,9 +408,9 @@ fn next_mesh(
     }
     let tied = crate::pretension::facing(case, &mesh.mesh);
     let next = mesh.refine_tied(&marked, &tied)?;
-    Ok(if next.mesh.elements.len() > crate::case::MAX_ELEMENTS {
+    Ok(if next.mesh.elements.len() > max_elements {
         Err(End::Elements)
-    } else if next.mesh.nodes.len() * per_node > spec.max_dofs {
+    } else if next.mesh.nodes.len() * per_node > max_dofs {
         Err(End::Dofs)
     } else {
         Ok(next)
@@ -471,4 +473,100 @@ fn not_reached(end: End, spec: &AdaptSpec, c: &Cycle) -> String {
         spec.tolerance,
         c.dofs
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A stepped bolt of revolution cut along its step (y = 0): the
+    /// re-entrant corner (4, 0) lies on the cut.
+    const BOLT: &str = r#"
+[model]
+plane = "axisymmetric"
+[[mesh.block]]
+body = "bolt"
+name = "head"
+x = [0.0, 4.0, 6.0]
+nx = [2, 1]
+y = [0.0, 6.0]
+ny = [3]
+[[mesh.block]]
+body = "bolt"
+name = "shank"
+x = [0.0, 4.0]
+nx = [2]
+y = [-6.0, 0.0]
+ny = [3]
+[materials.bolt]
+young = 206000.0
+poisson = 0.3
+[[pretension]]
+name = "cut"
+body = "bolt"
+y = 0.0
+force = 1000.0
+[[boundary]]
+set = "shank.bottom"
+uy = 0.0
+[[boundary]]
+set = "head.top"
+uy = 0.0
+"#;
+
+    fn start() -> (Case, Refined) {
+        let case = Case::parse(BOLT, "bolt").unwrap();
+        let mesh = Refined::start(&Model::mesh_of(&case).unwrap());
+        (case, mesh)
+    }
+
+    #[test]
+    fn the_next_mesh_is_refused_beyond_either_limit_before_it_is_built() {
+        let (case, mesh) = start();
+        let n = mesh.mesh.elements.len();
+        let all = vec![1.0; n];
+        let next = |limits| next_mesh(&case, 1.0, &mesh, &all, 2, limits).unwrap();
+        // every element split in four
+        let fine = next([4 * n, usize::MAX]).unwrap();
+        assert_eq!(fine.mesh.elements.len(), 4 * n);
+        let dofs = 2 * fine.mesh.nodes.len();
+        assert_eq!(next([4 * n - 1, usize::MAX]).unwrap_err(), End::Elements);
+        assert_eq!(next([4 * n, dofs - 1]).unwrap_err(), End::Dofs);
+        assert!(next([4 * n, dofs]).is_ok());
+        assert_eq!(
+            next_mesh(&case, 1.0, &mesh, &vec![0.0; n], 2, [usize::MAX; 2])
+                .unwrap()
+                .unwrap_err(),
+            End::Nothing
+        );
+    }
+
+    #[test]
+    fn an_element_on_a_pretension_cut_is_split_with_the_one_across() {
+        let (case, mesh) = start();
+        // the estimate in the head's element at the corner of the shank
+        let n = mesh.mesh.elements.len();
+        let corner = (0..n)
+            .find(|&e| mesh.mesh.element_coords(e)[0] == [2.0, 0.0])
+            .unwrap();
+        let mut eta = vec![0.0; n];
+        eta[corner] = 1.0;
+        let next = next_mesh(&case, 0.5, &mesh, &eta, 2, [usize::MAX; 2])
+            .unwrap()
+            .unwrap();
+        // it and the shank's element below it: 8 children
+        assert_eq!(next.mesh.elements.len(), n + 6);
+        let on_cut = next
+            .hanging
+            .iter()
+            .filter(|h| next.mesh.nodes[h.node][1].abs() < 1e-12)
+            .count();
+        assert_eq!(on_cut, 0, "{:?}", next.hanging);
+        // and the cycle's model builds on it
+        let given = crate::model::Adapted {
+            start_nodes: mesh.mesh.nodes.len(),
+            mesh: next.mesh,
+        };
+        Model::build_on(case, Some(given)).unwrap();
+    }
 }

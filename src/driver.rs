@@ -104,39 +104,38 @@ pub fn load_case(case_path: &Path, opts: &RunOptions) -> Result<Case> {
         let dir = case.source.parent().unwrap_or(Path::new(""));
         check_out(opts.out.as_deref(), &[&dir.join(file)])?;
     }
+    // each override is recorded with the keys it replaces, so that a
+    // refusal of the setting names the option, not the case file's key
+    // (`Case::at`)
+    let o = &mut case.overrides;
     if let Some(m) = opts.method {
         case.solver.method = m;
+        o.set("[solver] method", format!("--method {}", m.name()));
     }
     if let Some(r) = opts.refine {
         case.mesh.refine = r;
+        o.set("[mesh] refine", format!("--refine {r}"));
     }
     if let Some(t) = opts.adapt {
+        let option = format!("--adapt {}", crate::calibrate::limits::exact(t));
         case.adapt = Some(match case.adapt.take() {
-            Some(a) => crate::case::adapt::AdaptSpec { tolerance: t, ..a },
-            None => crate::case::adapt::AdaptSpec::with_tolerance(t),
+            Some(a) => {
+                o.set("[adapt] tolerance", option);
+                crate::case::adapt::AdaptSpec { tolerance: t, ..a }
+            }
+            None => {
+                // every key of the table: the defaults of `--adapt`
+                o.set("[adapt]", option);
+                crate::case::adapt::AdaptSpec::with_tolerance(t)
+            }
         });
     }
     if case.adapt.is_some() && opts.restart.is_some() {
         // refused before the restart folder is read: its checkpoint is of
         // one cycle's mesh, and every cycle starts from the beginning
         return Err(crate::error::Error::input(
-            format!("{}: [adapt]", case.source.display()),
+            case.at("[adapt]"),
             "an adaptive run solves every mesh from the start of the history: it cannot resume (--restart)",
-        ));
-    }
-    // the command line's own values, named as such (else the case file's
-    // keys would be blamed for them)
-    use crate::case::{MAX_CUTBACKS, MAX_INCREMENTS};
-    if let Some(n) = opts.increments.filter(|&n| n == 0 || n > MAX_INCREMENTS) {
-        return Err(crate::error::Error::input(
-            "--increments",
-            format!("{n} must be in 1..={MAX_INCREMENTS}"),
-        ));
-    }
-    if let Some(c) = opts.max_cutbacks.filter(|&c| c > MAX_CUTBACKS) {
-        return Err(crate::error::Error::input(
-            "--max-cutbacks",
-            format!("{c} must be at most {MAX_CUTBACKS}"),
         ));
     }
     if let Some(n) = opts.increments {
@@ -147,7 +146,7 @@ pub fn load_case(case_path: &Path, opts: &RunOptions) -> Result<Case> {
         let auto = opts.step_control == Some(crate::case::StepControl::Auto);
         if case.solver.load_factors.is_some() && !auto {
             return Err(crate::error::Error::input(
-                "--increments",
+                format!("--increments {n}"),
                 format!(
                     "{} gives its load steps as [solver] load_factors: edit them, or add \
                      --step-control auto (the load factors as waypoints, 1/{n} the first step)",
@@ -157,16 +156,30 @@ pub fn load_case(case_path: &Path, opts: &RunOptions) -> Result<Case> {
         }
         case.solver.increments = Some(n);
         case.solver.first_increment = None;
+        case.overrides
+            .set("[solver] increments", format!("--increments {n}"));
     }
     if let Some(c) = opts.max_cutbacks {
         case.solver.max_cutbacks = c;
+        case.overrides
+            .set("[solver] max_cutbacks", format!("--max-cutbacks {c}"));
     }
     match (opts.step_control, opts.increments) {
-        (Some(sc), _) => case.solver.step_control = Some(sc),
+        (Some(sc), _) => {
+            case.solver.step_control = Some(sc);
+            case.overrides.set(
+                "[solver] step_control",
+                format!("--step-control {}", step_name(sc)),
+            );
+        }
         // `--increments N` alone: N equal steps, as its help says, also in a
         // case whose `[solver]` asks for automatic steps (which would take
         // N only as the size of its first step)
-        (None, Some(_)) => case.solver.step_control = Some(crate::case::StepControl::Fixed),
+        (None, Some(n)) => {
+            case.solver.step_control = Some(crate::case::StepControl::Fixed);
+            case.overrides
+                .set("[solver] step_control", format!("--increments {n}"));
+        }
         (None, None) => {}
     }
     if (opts.increments.is_some() || opts.step_control.is_some())
@@ -180,21 +193,29 @@ pub fn load_case(case_path: &Path, opts: &RunOptions) -> Result<Case> {
     }
     if opts.plain {
         case.solver.acceleration = crate::case::Acceleration::None;
+        case.overrides.set("[solver] acceleration", "--plain");
     }
     if let Some(fs) = opts.friction_scheme {
-        for spec in case.interface.values_mut() {
+        let option = format!("--friction-scheme {}", scheme_name(fs));
+        for (name, spec) in case.interface.iter_mut() {
             if let Some(t) = spec.tangential.as_mut() {
                 t.scheme = fs;
+                case.overrides
+                    .set(format!("[interface.{name}.tangential] scheme"), &option);
             }
         }
     }
     if opts.uniform {
         if case.mesh.file.is_some() {
             return Err(crate::error::Error::input(
-                format!("{}: [mesh] file", case.source.display()),
-                "--uniform cannot regrade a mesh read from a file",
+                "--uniform",
+                format!(
+                    "cannot regrade a mesh read from a file ({}: [mesh] file)",
+                    case.source.display()
+                ),
             ));
         }
+        case.overrides.graded_blocks = Some(case.mesh.block.clone());
         for b in &mut case.mesh.block {
             b.rx.clear();
             b.ry.clear();
@@ -438,10 +459,7 @@ fn override_args(o: &RunOptions) -> String {
         a += &format!(" --increments {n}");
     }
     if let Some(sc) = o.step_control {
-        a += match sc {
-            crate::case::StepControl::Fixed => " --step-control fixed",
-            crate::case::StepControl::Auto => " --step-control auto",
-        };
+        a += &format!(" --step-control {}", step_name(sc));
     }
     if let Some(c) = o.max_cutbacks {
         a += &format!(" --max-cutbacks {c}");
@@ -450,14 +468,25 @@ fn override_args(o: &RunOptions) -> String {
         a += " --plain";
     }
     if let Some(fs) = o.friction_scheme {
-        a += match fs {
-            crate::interface::FrictionScheme::ReturnMapping => " --friction-scheme return-mapping",
-            crate::interface::FrictionScheme::StiffnessModification => {
-                " --friction-scheme stiffness-modification"
-            }
-        };
+        a += &format!(" --friction-scheme {}", scheme_name(fs));
     }
     a
+}
+
+/// `--step-control`'s value for a step control.
+fn step_name(sc: crate::case::StepControl) -> &'static str {
+    match sc {
+        crate::case::StepControl::Fixed => "fixed",
+        crate::case::StepControl::Auto => "auto",
+    }
+}
+
+/// `--friction-scheme`'s value for a scheme.
+fn scheme_name(fs: crate::interface::FrictionScheme) -> &'static str {
+    match fs {
+        crate::interface::FrictionScheme::ReturnMapping => "return-mapping",
+        crate::interface::FrictionScheme::StiffnessModification => "stiffness-modification",
+    }
 }
 
 /// The `finish` (progress) or `stop` (always) event of a run that wrote
@@ -552,9 +581,10 @@ impl crate::solve::Observer for Silent {
     }
 }
 
-/// `asperity check`: validates a case and describes what would be solved.
-pub fn check(case_path: &Path) -> Result<String> {
-    let case = load_case(case_path, &RunOptions::default())?;
+/// `asperity check`: validates a case with the overrides of `opts` (the
+/// others are `run`'s alone) and describes what that run would solve.
+pub fn check(case_path: &Path, opts: &RunOptions) -> Result<String> {
+    let case = load_case(case_path, opts)?;
     let adapt = case.adapt.clone();
     let model = Model::build(case)?;
     // a table the applied load alone takes far beyond its data
@@ -567,7 +597,12 @@ pub fn check(case_path: &Path) -> Result<String> {
             );
         }
     }
-    let mut s = format!("{}: valid\n", model.name);
+    let mut s = format!("{}: valid", model.name);
+    let overrides = override_args(opts);
+    if !overrides.is_empty() {
+        s += &format!(" with{overrides}");
+    }
+    s.push('\n');
     if let Some(d) = &model.description {
         s += &format!("  {}\n", d.trim());
     }
@@ -689,32 +724,7 @@ pub fn check(case_path: &Path) -> Result<String> {
                 .unwrap_or(1.0)
         );
     }
-    match model.solver.step_mode() {
-        crate::case::StepControl::Fixed => {
-            let sched = solve::stepping::Stepper::schedule(&model.solver, &breakpoints);
-            s += &format!(
-                "  solver: {}, {} increments (first {:.4}, last {:.4}), ≤ {} iterations each, ≤ {} cutbacks\n",
-                model.solver.method.name(),
-                sched.len(),
-                sched[0],
-                sched[sched.len() - 1],
-                model.solver.iteration_limit(),
-                model.solver.max_cutbacks
-            );
-        }
-        crate::case::StepControl::Auto => {
-            s += &format!(
-                "  solver: {}, automatic steps to λ = {:.4} (first {:.4}, at most {:.4}, plastic strain ≈ {} per step), ≤ {} iterations each, ≤ {} cutbacks in a row\n",
-                model.solver.method.name(),
-                solve::stepping::Stepper::for_model(&model).final_target(0.0),
-                model.solver.first_increment.unwrap_or(1.0 / model.solver.n_increments() as f64),
-                model.solver.max_increment.unwrap_or(0.25),
-                model.solver.plastic_strain_step,
-                model.solver.iteration_limit(),
-                model.solver.max_cutbacks
-            );
-        }
-    }
+    s += &steps_text(&model);
     if let Some(a) = &adapt {
         s += &format!(
             "  adaptive: the whole history solved again on each refined mesh until the estimate of {} is at most {:e} (at most {} solves and {} dofs, refining the elements that hold {} of η²); the mesh above is the first\n",
@@ -729,6 +739,35 @@ pub fn check(case_path: &Path) -> Result<String> {
         );
     }
     Ok(s)
+}
+
+/// The load steps as `check` prints them: the first increment's target as
+/// the run takes it (the case's initial stepper asked from λ = 0,
+/// [`solve::stepping::Stepper::first_target`]), then the fixed schedule's
+/// length and end, or the automatic control's end and step bounds.
+fn steps_text(model: &Model) -> String {
+    let stepper = solve::stepping::Stepper::for_model(model);
+    let first = stepper.first_target().unwrap_or(0.0);
+    let solver = &model.solver;
+    match stepper.mode() {
+        crate::case::StepControl::Fixed => format!(
+            "  solver: {}, {} increments (first to λ = {first}, last to λ = {}), ≤ {} iterations each, ≤ {} cutbacks\n",
+            solver.method.name(),
+            solve::stepping::Stepper::planned(solver, &model.breakpoints()).unwrap_or(0),
+            stepper.final_target(0.0),
+            solver.iteration_limit(),
+            solver.max_cutbacks
+        ),
+        crate::case::StepControl::Auto => format!(
+            "  solver: {}, automatic steps to λ = {} (first to λ = {first}, steps of at most {}, plastic strain ≈ {} per step), ≤ {} iterations each, ≤ {} cutbacks in a row\n",
+            solver.method.name(),
+            stepper.final_target(0.0),
+            stepper.step_bounds().1,
+            solver.plastic_strain_step,
+            solver.iteration_limit(),
+            solver.max_cutbacks
+        ),
+    }
 }
 
 /// The normal law as `check` prints it.

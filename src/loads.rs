@@ -300,8 +300,17 @@ fn check_step_count(case: &Case, breakpoints: &[f64], place: &str) -> Result<()>
     let end = breakpoints.last().copied().unwrap_or(1.0).max(1.0);
     if let Some(n) = crate::schedule::planned(&case.solver, breakpoints) {
         if n > most {
+            // the steps per unit of pseudo-time: `--increments`, else the
+            // case's (or the default) under fixed steps `--step-control`
+            // may have asked for
+            let key = "[solver] increments";
+            let at = match (case.option(key), case.option("[solver] step_control")) {
+                (Some(o), _) => o.to_string(),
+                (None, Some(o)) => format!("{o} ({place}: {key})"),
+                (None, None) => case.at(key),
+            };
             return Err(Error::input(
-                format!("{place}: [solver] increments"),
+                at,
                 format!(
                     "{} steps per unit of pseudo-time through the histories (to t = {end}) make {n} increments, more than {most}",
                     case.solver.n_increments(),
@@ -312,7 +321,7 @@ fn check_step_count(case: &Case, breakpoints: &[f64], place: &str) -> Result<()>
         let n = (end / m).ceil();
         if n > most as f64 {
             return Err(Error::input(
-                format!("{place}: [solver] max_increment"),
+                case.at("[solver] max_increment"),
                 format!(
                     "{m} takes at least {n} increments to reach t = {end}, more than {most}: raise max_increment"
                 ),
@@ -784,19 +793,32 @@ rotation = 0.0
     #[test]
     fn every_scaled_load_is_range_checked_times_its_largest_factor() {
         let loads = [
-            ("pressure", "[[load]]\nedges = \"shaft.top\"\npressure = 100.0"),
+            (
+                "pressure",
+                "[[load]]\nedges = \"shaft.top\"\npressure = 100.0",
+            ),
             ("shear", "[[load]]\nedges = \"shaft.top\"\nshear = 100.0"),
-            ("hoop_shear", "[[load]]\nedges = \"shaft.top\"\nhoop_shear = 100.0"),
+            (
+                "hoop_shear",
+                "[[load]]\nedges = \"shaft.top\"\nhoop_shear = 100.0",
+            ),
             ("torque", "[[load]]\nedges = \"shaft.top\"\ntorque = 1e14"),
             ("fx", "[[force]]\nnodes = \"shaft.top\"\nfx = 1e8"),
             ("uy", "[[boundary]]\nset = \"shaft.top\"\nuy = 1.0"),
-            ("rotation", "[[boundary]]\nset = \"shaft.top\"\nrotation = 0.1"),
+            (
+                "rotation",
+                "[[boundary]]\nset = \"shaft.top\"\nrotation = 0.1",
+            ),
         ];
         for (key, load) in loads {
             // the value alone is sound
             shaft(load, "increments = 1").unwrap_or_else(|e| panic!("{key}: {e}"));
             for (by, with, solver) in [
-                ("history", "\nhistory = [[0.0, 0.0], [1.0, 1e5]]", "increments = 1"),
+                (
+                    "history",
+                    "\nhistory = [[0.0, 0.0], [1.0, 1e5]]",
+                    "increments = 1",
+                ),
                 ("load factor", "", "load_factors = [1.0, 1e5]"),
             ] {
                 let e = shaft(&format!("{load}{with}"), solver)

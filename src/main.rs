@@ -44,33 +44,21 @@ enum Command {
         #[arg(long)]
         out: PathBuf,
     },
-    /// Validate a case and print what it would solve (dofs, increments), without solving.
+    /// Validate a case and print what it would solve (dofs, increments, the
+    /// first step), without solving; with `run`'s overrides, what that run
+    /// would solve.
     Check {
         /// Case file (case.toml) or the folder that holds it.
         case: PathBuf,
+        #[command(flatten)]
+        overrides: Overrides,
     },
 }
 
-/// The arguments of `asperity run`.
+/// The overrides of the case's keys, of `run` and `check` alike
+/// (docs/running.md): a refusal of a setting one of them made names it.
 #[derive(Args)]
-struct RunArgs {
-    /// Case file (case.toml) or the folder that holds it.
-    case: PathBuf,
-    /// Output folder (default: out/<case name>). Replaced if it exists.
-    #[arg(long)]
-    out: Option<PathBuf>,
-    /// No progress lines (a stop or an error is still reported).
-    #[arg(long)]
-    quiet: bool,
-    /// Format of the progress lines on stderr: text, or json (one object per line).
-    #[arg(long, value_enum, default_value = "text")]
-    log_format: LogFormatArg,
-    /// Continue the stopped run whose output folder is DIR (its restart.bin).
-    #[arg(long, value_name = "DIR")]
-    restart: Option<PathBuf>,
-    /// Test hook: stop like SIGINT after N converged increments (exit 3).
-    #[arg(long, value_name = "N", hide = true)]
-    stop_after: Option<usize>,
+struct Overrides {
     /// Override the solution method of the case.
     #[arg(long, value_enum)]
     method: Option<MethodArg>,
@@ -103,6 +91,52 @@ struct RunArgs {
     /// Override: friction scheme (return-mapping | stiffness-modification).
     #[arg(long, value_parser = parse_scheme)]
     friction_scheme: Option<asperity::interface::FrictionScheme>,
+}
+
+impl Overrides {
+    /// The run's options with these overrides (`--adapt` checked).
+    fn options(&self) -> asperity::error::Result<RunOptions> {
+        let adapt = match self.adapt.as_deref() {
+            None => None,
+            Some(text) => Some(parse_adapt(text)?),
+        };
+        Ok(RunOptions {
+            adapt,
+            method: self.method.map(Into::into),
+            refine: self.refine,
+            increments: self.increments,
+            max_cutbacks: self.max_cutbacks,
+            uniform: self.uniform,
+            plain: self.plain,
+            step_control: self.step_control,
+            friction_scheme: self.friction_scheme,
+            ..RunOptions::default()
+        })
+    }
+}
+
+/// The arguments of `asperity run`.
+#[derive(Args)]
+struct RunArgs {
+    /// Case file (case.toml) or the folder that holds it.
+    case: PathBuf,
+    /// Output folder (default: out/<case name>). Replaced if it exists.
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// No progress lines (a stop or an error is still reported).
+    #[arg(long)]
+    quiet: bool,
+    /// Format of the progress lines on stderr: text, or json (one object per line).
+    #[arg(long, value_enum, default_value = "text")]
+    log_format: LogFormatArg,
+    /// Continue the stopped run whose output folder is DIR (its restart.bin).
+    #[arg(long, value_name = "DIR")]
+    restart: Option<PathBuf>,
+    /// Test hook: stop like SIGINT after N converged increments (exit 3).
+    #[arg(long, value_name = "N", hide = true)]
+    stop_after: Option<usize>,
+    #[command(flatten)]
+    overrides: Overrides,
     /// Threads of this process's element loop, 1 to 1024. Default: the
     /// ASPERITY_THREADS environment variable, else every core on one process
     /// and 1 per rank under MPI. Results do not depend on it (docs/running.md).
@@ -342,7 +376,10 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let outcome = match cli.command {
         Command::Run(args) => return run(args),
-        Command::Check { case } => driver::check(&case).map(|s| print!("{s}")),
+        Command::Check { case, overrides } => overrides
+            .options()
+            .and_then(|opts| driver::check(&case, &opts))
+            .map(|s| print!("{s}")),
         Command::Study(StudyCommand::Refine {
             case,
             levels,
@@ -409,29 +446,17 @@ impl RunArgs {
                 "must be at least 1 (a run stopped before its first increment has nothing to resume)",
             ));
         }
-        let adapt = match self.adapt.as_deref() {
-            None => None,
-            Some(text) => Some(parse_adapt(text)?),
-        };
-        if adapt.is_some() && self.restart.is_some() {
+        let overrides = self.overrides.options()?;
+        if overrides.adapt.is_some() && self.restart.is_some() {
             return Err(asperity::error::Error::input(
                 "--adapt",
                 "an adaptive run solves every mesh from the start of the history: it cannot resume (--restart)",
             ));
         }
         Ok(RunOptions {
-            adapt,
             out: self.out.clone(),
             quiet: self.quiet,
-            method: self.method.map(Into::into),
-            refine: self.refine,
             fault: self.inject_fault,
-            increments: self.increments,
-            max_cutbacks: self.max_cutbacks,
-            uniform: self.uniform,
-            plain: self.plain,
-            step_control: self.step_control,
-            friction_scheme: self.friction_scheme,
             restart: self.restart.clone(),
             stop_after: self.stop_after,
             log_format: self.log_format.into(),
@@ -439,6 +464,7 @@ impl RunArgs {
             lean_memory: self.memory == MemoryArg::Lean,
             factorization: None,
             threads: asperity::threads::requested(self.threads.as_deref())?,
+            ..overrides
         })
     }
 }

@@ -121,14 +121,28 @@ impl Model {
     /// checked, before the model's own changes (a pretension section's cut,
     /// twist's third dof): what an adaptive run refines ([`crate::adapt`]).
     pub fn mesh_of(case: &Case) -> Result<Mesh> {
-        check_case(case)?;
-        make_mesh(case, &case.source.display().to_string())
+        let mesh = |case: &Case| {
+            check_case(case)?;
+            make_mesh(case, &case.source.display().to_string())
+        };
+        mesh(case).map_err(|e| meshes::blame_uniform(case, e, |c| mesh(&c).map(drop)))
     }
 
     /// [`Model::build`] on a given mesh (`None`: the case's), one that an
     /// adaptive run refined from [`Model::mesh_of`]; a given mesh is checked
     /// like the case's own.
     pub fn build_on(case: Case, given: Option<Adapted>) -> Result<Model> {
+        // a refusal of the case's own mesh may be `--uniform`'s
+        let ungraded =
+            (given.is_none() && case.overrides.graded_blocks.is_some()).then(|| case.clone());
+        Model::assemble(case, given).map_err(|e| match ungraded {
+            Some(case) => meshes::blame_uniform(&case, e, |c| Model::assemble(c, None).map(drop)),
+            None => e,
+        })
+    }
+
+    /// [`Model::build_on`], whoever is to blame.
+    fn assemble(case: Case, given: Option<Adapted>) -> Result<Model> {
         let place = case.source.display().to_string();
         let checked = check_case(&case)?;
         let (mut mesh, start_nodes) = match given {
@@ -145,11 +159,19 @@ impl Model {
         // an adaptive run builds its start mesh here too (given, as every
         // cycle's); it never refines past the cap, so only that one can fail
         if let Some(a) = case.adapt.as_ref().filter(|a| mesh.num_dofs() > a.max_dofs) {
+            // the cap of `--adapt` (its default) or the file's; the mesh
+            // perhaps of `--refine`
+            let cap = match case.option("[adapt] max_dofs") {
+                Some(_) => format!("its default max_dofs ({})", a.max_dofs),
+                None => a.max_dofs.to_string(),
+            };
+            let refined = case
+                .option("[mesh] refine")
+                .map_or(String::new(), |o| format!(" (of {o})"));
             return Err(Error::input(
-                format!("{place}: [adapt] max_dofs"),
+                case.at("[adapt] max_dofs"),
                 format!(
-                    "{} is below the {} dofs of the start mesh: not even the first mesh may be solved",
-                    a.max_dofs,
+                    "{cap} is below the {} dofs of the start mesh{refined}: not even the first mesh may be solved",
                     mesh.num_dofs()
                 ),
             ));

@@ -116,10 +116,18 @@ pub fn check_case(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
     for (name, spec) in &case.interface {
         let scheme = spec.tangential.as_ref().map(|t| t.scheme);
         if scheme == Some(crate::interface::FrictionScheme::StiffnessModification) {
-            return Err(Error::input(
-                at(&format!("[interface.{}.tangential] scheme", clip(name))),
-                "\"stiffness-modification\" in a model with twist: its secant Δp_T/Δu_T is one of a scalar slip, and the slip of a twisting interface is a 2-vector (along the meridian and around the axis); use scheme = \"return-mapping\" (the default)",
-            ));
+            let why = "its secant Δp_T/Δu_T is one of a scalar slip, and the slip of a twisting interface is a 2-vector (along the meridian and around the axis)";
+            let key = format!("[interface.{name}.tangential] scheme");
+            return Err(match case.option(&key) {
+                Some(o) => Error::input(
+                    o,
+                    format!("a model with twist ([model] twist = true in {}) takes no stiffness modification: {why}; use --friction-scheme return-mapping, or none (the case's scheme)", case.source.display()),
+                ),
+                None => Error::input(
+                    at(&format!("[interface.{}.tangential] scheme", clip(name))),
+                    format!("\"stiffness-modification\" in a model with twist: {why}; use scheme = \"return-mapping\" (the default)"),
+                ),
+            });
         }
     }
     if let Some(p) = case.pretension.first() {

@@ -8,6 +8,7 @@
 pub mod adapt;
 pub mod axis;
 pub mod outputs;
+pub mod overrides;
 pub mod ranges;
 mod validate;
 pub mod whole;
@@ -56,6 +57,10 @@ pub struct Case {
     /// Where the case was read from (not part of the schema).
     #[serde(skip)]
     pub source: PathBuf,
+    /// What the command line set in place of the file's keys (not part of
+    /// the schema, nor of [`Case::key`]: the effective values are).
+    #[serde(skip)]
+    pub overrides: overrides::Overrides,
     // the keys added with load histories come last: a case without them
     // keeps the restart fingerprint it had before (`Case::key`)
     /// Concentrated forces on node sets.
@@ -567,6 +572,7 @@ impl Case {
         let mut key = self.clone();
         key.source = Default::default();
         key.description = None;
+        key.overrides = Default::default();
         // the VTU encoding is part of the key (a resumed run continues the
         // series in the same encoding); the default one is left out, so
         // keys of builds before `vtu_format` stay as they were
@@ -575,6 +581,10 @@ impl Case {
         // twist's keys (`[model] twist`, `rotation`, `hoop_shear`, `torque`)
         // likewise
         let full = format!("{key:?}")
+            .replace(
+                ", overrides: Overrides { keys: [], graded_blocks: None }",
+                "",
+            )
             .replace(", adapt: None }", " }")
             .replace(", twist: false }", " }")
             .replace(", rotation: None }", " }")

@@ -54,8 +54,8 @@ fn check_axisymmetric(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
 
 /// Validates everything that does not depend on the mesh.
 pub fn check_case(case: &Case) -> Result<Checked> {
-    let place = case.source.display().to_string();
-    let at = |key: &str| format!("{place}: {key}");
+    // a key the command line set is named by its option (`Case::at`)
+    let at = |key: &str| case.at(key);
     check_model_and_mesh(case, &at)?;
     crate::twist::check_case(case, &at)?;
     check_element_count(case, &at)?;
@@ -103,10 +103,16 @@ fn check_model_and_mesh(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> 
         if case.mesh.refine != 1 {
             return Err(Error::input(
                 at("[mesh] refine"),
-                format!(
-                    "refine = {} (or --refine) cannot refine a mesh read from a file; refine it in Gmsh",
-                    case.mesh.refine
-                ),
+                match case.option("[mesh] refine") {
+                    Some(_) => {
+                        "cannot refine a mesh read from a file ([mesh] file); refine it in Gmsh"
+                            .to_string()
+                    }
+                    None => format!(
+                        "{} cannot refine a mesh read from a file; refine it in Gmsh",
+                        case.mesh.refine
+                    ),
+                },
             ));
         }
     }
@@ -422,10 +428,11 @@ fn check_names(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
 fn check_element_count(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
     let mut total: usize = 0;
     for b in &case.mesh.block {
-        let key = at(&format!(
-            "[[mesh.block]] \"{}\" nx, ny, [mesh] refine",
-            clip(b.name())
-        ));
+        let block = format!("[[mesh.block]] \"{}\" nx, ny", clip(b.name()));
+        let key = match case.option("[mesh] refine") {
+            Some(o) => format!("{o} ({})", at(&block)),
+            None => at(&format!("{block}, [mesh] refine")),
+        };
         match block_elements(b, case.mesh.refine).and_then(|n| total.checked_add(n)) {
             Some(n) if n <= MAX_ELEMENTS => total = n,
             Some(n) => {
@@ -547,13 +554,23 @@ fn check_solver(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
         ));
     }
     if s.interface_loop == Some(true) && s.method != super::Method::FullNewton {
-        return Err(Error::input(
-            at("[solver] interface_loop"),
-            format!(
-                "true needs method = \"full-newton\" (the loop condenses the consistent tangent), not \"{}\"",
-                s.method.name()
+        let why = "the loop condenses the consistent tangent";
+        return Err(match case.option("[solver] method") {
+            Some(o) => Error::input(
+                o,
+                format!(
+                    "{} sets [solver] interface_loop = true, which needs full-newton ({why})",
+                    case.source.display()
+                ),
             ),
-        ));
+            None => Error::input(
+                at("[solver] interface_loop"),
+                format!(
+                    "true needs method = \"full-newton\" ({why}), not \"{}\"",
+                    s.method.name()
+                ),
+            ),
+        });
     }
     if s.anderson_depth > MAX_ANDERSON_DEPTH {
         return Err(Error::input(
@@ -593,7 +610,7 @@ fn check_solver(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
             ));
         }
     }
-    check_step_keys(s, at)?;
+    check_step_keys(case, at)?;
     if let Some(v) = s.max_increment {
         if !(v.is_finite() && v > 0.0 && v <= 1.0) {
             return Err(Error::input(
@@ -641,10 +658,14 @@ fn check_solver(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
 /// under fixed steps `load_factors` is the whole schedule (`increments` and
 /// `first_increment` beside it say nothing), and `max_increment` and
 /// `plastic_strain_step` steer only the automatic control.
-fn check_step_keys(s: &super::SolverSpec, at: &dyn Fn(&str) -> String) -> Result<()> {
+fn check_step_keys(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
+    let s = &case.solver;
     if s.step_mode() != super::StepControl::Fixed {
         return Ok(());
     }
+    // fixed steps asked for on the command line (whose keys of the
+    // automatic control are dropped, `driver::load_case`)
+    let option = case.option("[solver] step_control");
     let why = if s.step_control.is_some() {
         "step_control = \"fixed\""
     } else {
@@ -655,12 +676,19 @@ fn check_step_keys(s: &super::SolverSpec, at: &dyn Fn(&str) -> String) -> Result
             ("increments", s.increments.is_some()),
             ("first_increment", s.first_increment.is_some()),
         ] {
-            if given {
-                return Err(Error::input(
+            if !given {
+                continue;
+            }
+            return Err(match option {
+                Some(o) => Error::input(
+                    o,
+                    format!("leaves [solver] {key} of {} without effect beside load_factors: under fixed steps load_factors is the whole schedule; keep the case's automatic steps (load_factors are their waypoints), or remove {key}", case.source.display()),
+                ),
+                None => Error::input(
                     at(&format!("[solver] {key}")),
                     format!("has no effect beside load_factors under {why}: load_factors is the whole schedule; remove {key}, or set step_control = \"auto\" (load_factors are then waypoints)"),
-                ));
-            }
+                ),
+            });
         }
     }
     for (key, given) in [

@@ -24,7 +24,11 @@ pub(super) fn make_mesh(case: &Case, place: &str) -> Result<Mesh> {
         return check_mesh(case, mesh, place);
     };
     let mesh = check_mesh_only(mesh, place)?;
-    let at = format!("{place}: [mesh] refine_region");
+    // on the mesh `--refine` may have made finer
+    let at = match case.option("[mesh] refine") {
+        Some(o) => format!("{place}: [mesh] refine_region, on the mesh of {o}"),
+        None => format!("{place}: [mesh] refine_region"),
+    };
     let refined = crate::mesh::refine::in_box(&mesh, r.x, r.y, r.levels, crate::case::MAX_ELEMENTS)
         .map_err(|e| Error::Mesh {
             place: at.clone(),
@@ -33,6 +37,32 @@ pub(super) fn make_mesh(case: &Case, place: &str) -> Result<Mesh> {
     let mesh = check_mesh_only(refined.mesh, &at)?;
     whole::check_mesh(case, &mesh, place)?;
     Ok(mesh)
+}
+
+/// A refusal of a case that `--uniform` ungraded (`case.overrides`): when
+/// the case graded as its file says passes `again` (the same checks), the
+/// option made it, and is named; else it is the case's own, as it was.
+pub(super) fn blame_uniform(
+    case: &Case,
+    e: Error,
+    again: impl FnOnce(Case) -> Result<()>,
+) -> Error {
+    let Some(graded) = case.overrides.graded_blocks.clone() else {
+        return e;
+    };
+    if !matches!(e, Error::Input { .. } | Error::Mesh { .. }) {
+        return e;
+    }
+    let mut case = case.clone();
+    case.mesh.block = graded;
+    case.overrides.graded_blocks = None;
+    if again(case).is_err() {
+        return e;
+    }
+    Error::input(
+        "--uniform",
+        format!("the mesh with every block ungraded is refused, graded as the case file says it is not: {e}"),
+    )
 }
 
 /// A mesh checked as a mesh ([`Mesh::validate`]) and as a whole

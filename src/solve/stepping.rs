@@ -153,6 +153,14 @@ impl Stepper {
         crate::schedule::planned(spec, breakpoints)
     }
 
+    /// Where the first increment of a run from the start goes (`None`: a
+    /// history with nothing to do): what [`Stepper::next`] of this, the
+    /// case's initial stepper, gives at λ = 0, as the run asks it
+    /// ([`crate::solve::run_from`]). `asperity check` prints it.
+    pub fn first_target(&self) -> Option<f64> {
+        self.clone().next(0.0)
+    }
+
     /// The mode in force.
     pub fn mode(&self) -> StepControl {
         self.mode

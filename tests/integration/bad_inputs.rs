@@ -10,7 +10,9 @@
 //! or fail with the very same line. Failures are collected and reported together.
 //! A folder whose bad input is a run option rather than the case holds a valid
 //! case and `args.txt` (more `run` arguments, one a line) and/or `env.txt`
-//! (`NAME=value` lines for the run's environment); `check` must accept its case.
+//! (`NAME=value` lines for the run's environment); `check` must accept its case,
+//! and, when the arguments are all overrides of the case (which `check` takes
+//! too, [`RUN_ONLY`] none of them), refuse it with them with the run's very line.
 //! See docs/reliability.md.
 
 use std::path::{Path, PathBuf};
@@ -30,6 +32,21 @@ struct Outcome {
 /// Environment variables a folder's `env.txt` may set: removed from every run,
 /// so that the corpus does not depend on the caller's environment.
 const OPTION_VARS: [&str; 1] = ["ASPERITY_THREADS"];
+
+/// The options of `run` that `check` does not take (the others override the
+/// case, and `check` takes them as `run` does).
+const RUN_ONLY: [&str; 10] = [
+    "--out",
+    "--quiet",
+    "--log-format",
+    "--restart",
+    "--stop-after",
+    "--threads",
+    "--backend",
+    "--inject-fault",
+    "--nonlinear",
+    "--memory",
+];
 
 /// Runs the binary with a time limit and extra environment variables; a
 /// process that overruns is killed.
@@ -193,6 +210,24 @@ fn every_bad_input_is_rejected_with_one_clear_line() {
         // `check` validates without solving: it fails with the same line, or it
         // accepts a case whose trouble only shows when solving
         let check = asperity(&["check".as_ref(), folder.as_os_str()], &[]);
+        let overrides_only = options
+            && env.is_empty()
+            && !extra
+                .iter()
+                .any(|a| RUN_ONLY.iter().any(|o| a.split('=').next() == Some(*o)));
+        if overrides_only {
+            // `check` with the same overrides: the run's very line
+            let mut args: Vec<&std::ffi::OsStr> = vec!["check".as_ref(), folder.as_os_str()];
+            args.extend(extra.iter().map(std::ffi::OsStr::new));
+            let with = asperity(&args, &[]);
+            judge("check with the overrides", &with, &expect, &mut problems);
+            if with.stderr != run.stderr {
+                problems.push(format!(
+                    "check with the overrides and run disagree: {:?} vs {:?}",
+                    with.stderr, run.stderr
+                ));
+            }
+        }
         match check.code {
             // the case is valid: the run's options are what is wrong
             _ if options => {

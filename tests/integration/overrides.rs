@@ -192,3 +192,148 @@ fn the_suggested_restart_command_repeats_the_overrides_and_runs() {
     assert_eq!(s["complete"], true);
     assert_eq!(s["final"]["load_factor"], 1.0);
 }
+
+/// `check` prints the load factor the run's first increment goes to, as
+/// the run takes it (one function: the case's initial stepper asked from
+/// λ = 0): under automatic steps capped by `max_increment`, onto a waypoint
+/// of `load_factors` or a history breakpoint within reach, and with the
+/// command line's overrides, which `check` takes as `run` does. It printed
+/// `first_increment` (or 1/increments) whatever the run took, and took no
+/// overrides, until issue 42.
+#[test]
+fn check_prints_the_first_step_the_run_takes() {
+    let text =
+        std::fs::read_to_string(common::root().join("cases/punch-plane-stress/case.toml")).unwrap();
+    let ramp = text.replace(
+        "pressure = 250.0 ",
+        "history = [[0.0, 0.0], [0.03, 0.03], [1.0, 1.0]]\npressure = 250.0 ",
+    );
+    let auto = "method = \"full-newton\"\nstep_control = \"auto\"\n";
+    let variants: [(&str, String, &[&str], f64); 7] = [
+        // the first step capped by max_increment (check said 0.5)
+        (
+            "capped",
+            common::with_solver_table(
+                &text,
+                &format!("{auto}first_increment = 0.5\nmax_increment = 0.1"),
+            ),
+            &[],
+            0.1,
+        ),
+        // a waypoint within 1.2 steps is taken (check said 0.05)
+        (
+            "waypoint",
+            common::with_solver_table(
+                &text,
+                &format!("{auto}first_increment = 0.05\nload_factors = [0.06, 1.0]"),
+            ),
+            &[],
+            0.06,
+        ),
+        // a waypoint nearer than the first step (check said 0.05)
+        (
+            "breakpoint",
+            common::with_solver_table(&ramp, &format!("{auto}first_increment = 0.05")),
+            &[],
+            0.03,
+        ),
+        // fixed steps with a first increment
+        (
+            "fixed-first",
+            common::with_solver_table(&text, "increments = 10\nfirst_increment = 0.02"),
+            &[],
+            0.02,
+        ),
+        // the overrides: 1/4 capped by the case's max_increment
+        (
+            "overrides-auto",
+            common::with_solver_table(&text, &format!("{auto}max_increment = 0.04")),
+            &["--increments", "4", "--step-control", "auto"],
+            0.04,
+        ),
+        // --step-control fixed drops max_increment; the case's first_increment stays
+        (
+            "overrides-fixed",
+            common::with_solver_table(
+                &text,
+                &format!("{auto}first_increment = 0.03\nmax_increment = 0.02"),
+            ),
+            &["--step-control", "fixed"],
+            0.03,
+        ),
+        // --increments replaces the case's first_increment
+        (
+            "overrides-increments",
+            common::with_solver_table(&text, "increments = 20\nfirst_increment = 0.01"),
+            &["--increments", "25"],
+            0.04,
+        ),
+    ];
+    let dir = common::scratch("overrides-first-step");
+    for (name, case_text, overrides, want) in variants {
+        let case = common::case_dir(&format!("overrides-first-step-{name}"), &case_text);
+        let c = case.to_str().unwrap();
+        let mut args = vec!["check", c];
+        args.extend_from_slice(overrides);
+        let (code, err, out) = common::run_asperity_out(&args);
+        assert_eq!(code, 0, "{name}: {err}");
+        let line = out.lines().find(|l| l.contains("solver:")).unwrap();
+        let printed: f64 = line
+            .split("first to λ = ")
+            .nth(1)
+            .and_then(|r| r.split([',', ')']).next())
+            .unwrap_or_else(|| panic!("{name}: no first step in {line:?}"))
+            .parse()
+            .unwrap();
+        let out_dir = dir.join(name);
+        let mut run = vec!["--stop-after", "1"];
+        run.extend_from_slice(overrides);
+        let (code, err) = common::run_case(&case, &out_dir, &run);
+        assert_eq!(code, 3, "{name}: {err}");
+        let taken = common::csv_column(&out_dir.join("curve.csv"), "load_factor")[0];
+        assert!(
+            (printed - taken).abs() < 1e-9 && (taken - want).abs() < 1e-9,
+            "{name}: check printed {printed}, the run took {taken}, expected {want}"
+        );
+    }
+}
+
+/// Every override of the case (each option `check` takes, as `run` does)
+/// has a bad input in tests/bad_inputs whose refusal arises from the
+/// setting it made and names it first (`--increments 60000: …`; the corpus
+/// runner checks `run` and `check` with the option give that very line),
+/// so that a new override gets one too. Until issue 42 an `--increments`
+/// too large through histories, a `--friction-scheme` that twist refuses
+/// and a `--uniform` that unmatched a body's blocks were blamed on keys of
+/// the case file, which did not hold them. `--plain` (no Anderson
+/// acceleration) makes no setting any check refuses.
+#[test]
+fn every_override_has_a_refusal_that_names_it() {
+    let (code, _, help) = common::run_asperity_out(&["check", "--help"]);
+    assert_eq!(code, 0);
+    let options: Vec<&str> = help
+        .lines()
+        .filter_map(|l| l.trim_start().strip_prefix("--"))
+        .map(|l| l.split_whitespace().next().unwrap())
+        .collect();
+    assert!(options.len() >= 9, "{options:?}");
+    let refuses_nothing = ["plain"];
+    let corpus = common::root().join("tests/bad_inputs");
+    let mut missing = Vec::new();
+    for option in options {
+        let flag = format!("--{option}");
+        let named = std::fs::read_dir(&corpus).unwrap().any(|e| {
+            let dir = e.unwrap().path();
+            let args = std::fs::read_to_string(dir.join("args.txt")).unwrap_or_default();
+            let expect = std::fs::read_to_string(dir.join("expect.txt")).unwrap_or_default();
+            args.lines().next() == Some(flag.as_str()) && expect.starts_with(&flag)
+        });
+        if named == refuses_nothing.contains(&option) {
+            missing.push(flag);
+        }
+    }
+    assert!(
+        missing.is_empty(),
+        "overrides without a bad input that names them (or with one, though listed as refusing nothing): {missing:?}"
+    );
+}

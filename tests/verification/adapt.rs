@@ -222,3 +222,190 @@ fn the_torque_of_a_twisted_fit_adapts_by_its_change() {
             .join("; ")
     );
 }
+
+/// A case written into a scratch folder `tag`/case, run adaptively: its
+/// output folder `tag`/out and the run's stderr.
+fn run_text(tag: &str, text: &str, extra: &[&str]) -> (std::path::PathBuf, String) {
+    let dir = common::scratch(tag);
+    let case = dir.join("case");
+    std::fs::create_dir_all(&case).unwrap();
+    std::fs::write(case.join("case.toml"), text).unwrap();
+    let out = dir.join("out");
+    let (code, err) = common::run_case(&case, &out, extra);
+    assert_eq!(code, 0, "{tag}: {err}");
+    (out, err)
+}
+
+/// The punch of punch-adaptive with its top in two blocks' edges (a
+/// breakpoint at x = 10 in both bodies), loaded by 100 N at each of the 17
+/// nodes of punch.top on the start mesh and by 100 MPa over x ∈ [0, 10]:
+/// fy = −(1700 + 1000) N on the (unit-thickness) half model.
+const TWO_LOADS: &str = r#"
+[model]
+plane = "stress"
+thickness = 1.0
+symmetric_half = true
+[[mesh.block]]
+body = "punch"
+x = [0.0, 10.0, 20.0]
+nx = [4, 4]
+rx = [1.0, 0.2]
+y = [0.0, 20.0]
+ny = [6]
+ry = [5.0]
+[[mesh.block]]
+body = "foundation"
+x = [0.0, 10.0, 20.0, 60.0]
+nx = [4, 4, 8]
+rx = [1.0, 0.2, 8.0]
+y = [-60.0, 0.0]
+ny = [12]
+ry = [0.1]
+[[mesh.interface]]
+name = "contact"
+upper = "punch"
+lower = "foundation"
+[materials.punch]
+young = 206000.0
+poisson = 0.3
+[materials.foundation]
+young = 206000.0
+poisson = 0.3
+yield_stress = 196.0
+hardening = 2060.0
+[interface.contact]
+law = "power"
+c_n = 0.001
+m = 0.5
+[[boundary]]
+set = "punch.left"
+ux = 0.0
+[[boundary]]
+set = "foundation.left"
+ux = 0.0
+[[boundary]]
+set = "foundation.bottom"
+uy = 0.0
+[[force]]
+nodes = "punch.top"
+fy = -100.0
+[[load]]
+edges = "punch.top"
+pressure = 100.0
+x_range = [0.0, 10.0]
+[solver]
+increments = 4
+[adapt]
+tolerance = 1e-4
+max_cycles = 4
+"#;
+
+/// Every adaptive cycle solves the same problem: the applied forces summed
+/// per direction (adapt.csv, a row per cycle) are those of the case on its
+/// start mesh on every mesh, though refinement adds nodes to punch.top.
+/// Until issue 42 the [[force]] acted on every node of the refined set, and
+/// the settlement of the fourth mesh was 7 times the first's.
+#[test]
+fn every_adaptive_cycle_applies_the_same_load() {
+    let (out, _) = run_text("adapt-same-load", TWO_LOADS, &[]);
+    let csv = out.join("adapt.csv");
+    let fx = common::csv_column(&csv, "applied_fx_n");
+    let fy = common::csv_column(&csv, "applied_fy_n");
+    let hanging = common::csv_column(&csv, "hanging_nodes");
+    assert_eq!(fy.len(), 4, "{fy:?}");
+    assert!(hanging[3] > 0.0, "{hanging:?}");
+    let exact: f64 = -(17.0 * 100.0 + 100.0 * 10.0);
+    for (x, y) in fx.iter().zip(&fy) {
+        assert!(x.abs() < 1e-9 * exact.abs(), "fx {fx:?}");
+        assert!(common::rel(*y, exact) < 1e-12, "fy {fy:?} vs {exact}");
+    }
+    // the same problem on finer meshes: the settlement moves by 3e-5 of
+    // itself over the cycles (a force on every node of the refined set
+    // moved it 7 times over: -0.030, -0.036, -0.049, -0.203 mm)
+    let w = common::csv_column(&csv, "settlement_mm");
+    for v in &w {
+        assert!(common::rel(*v, w[0]) < 1e-3, "{w:?}");
+    }
+}
+
+/// A foundation held at every node (`foundation.all`): the closure splits
+/// its elements under the punch's, and their hanging nodes are held by the
+/// support that holds their edges alike. Until issue 42 the second cycle
+/// was refused ("hanging node … is held by a support").
+#[test]
+fn a_body_held_as_a_whole_is_refined_with_its_supports() {
+    let text = TWO_LOADS
+        .replace(
+            "set = \"foundation.bottom\"\nuy = 0.0",
+            "set = \"foundation.all\"\nux = 0.0\nuy = 0.0",
+        )
+        .replace("max_cycles = 4", "max_cycles = 3");
+    let (out, _) = run_text("adapt-rigid-foundation", &text, &[]);
+    let s = summary(&out);
+    let cycles = s["adapt"]["cycles"].as_array().unwrap();
+    assert_eq!(cycles.len(), 3, "{}", s["adapt"]);
+    assert!(cycles[2]["hanging_nodes"].as_u64().unwrap() > 0);
+    // the foundation does not move: the probe node on it settles by 0
+    for c in cycles {
+        assert_eq!(c["settlement_mm"].as_f64(), Some(0.0), "{c}");
+    }
+}
+
+/// A stepped bolt of revolution pretensioned across its step: the
+/// re-entrant corner of the step lies on the cut, the estimate peaks there,
+/// and each cycle refines next to the cut (both sides of it together).
+/// Until issue 42 the second cycle was refused ("the cut passes through
+/// node … of the hanging node …").
+#[test]
+fn an_adaptive_run_refines_next_to_a_pretension_cut() {
+    let text = r#"
+[model]
+plane = "axisymmetric"
+[[mesh.block]]
+body = "bolt"
+name = "head"
+x = [0.0, 4.0, 6.0]
+nx = [2, 1]
+y = [0.0, 6.0]
+ny = [3]
+[[mesh.block]]
+body = "bolt"
+name = "shank"
+x = [0.0, 4.0]
+nx = [2]
+y = [-6.0, 0.0]
+ny = [3]
+[materials.bolt]
+young = 206000.0
+poisson = 0.3
+[[pretension]]
+name = "cut"
+body = "bolt"
+y = 0.0
+force = 1000.0
+lock = false
+[[boundary]]
+set = "shank.bottom"
+uy = 0.0
+[[boundary]]
+set = "head.top"
+uy = 0.0
+[solver]
+increments = 1
+[adapt]
+tolerance = 1e-4
+max_cycles = 4
+"#;
+    let (out, _) = run_text("adapt-pretension-cut", text, &[]);
+    let s = summary(&out);
+    let cycles = s["adapt"]["cycles"].as_array().unwrap();
+    assert_eq!(cycles.len(), 4, "{}", s["adapt"]);
+    assert!(cycles[3]["hanging_nodes"].as_u64().unwrap() > 0);
+    // the section carries its force on the last mesh
+    let f = common::csv_column(&out.join("pretension.csv"), "cut_force_n");
+    assert!(common::rel(*f.last().unwrap(), 1000.0) < 1e-9, "{f:?}");
+    // the energy estimate falls as the corner is refined
+    for w in cycles.windows(2) {
+        assert!(w[1]["relative_eta"].as_f64() < w[0]["relative_eta"].as_f64());
+    }
+}
