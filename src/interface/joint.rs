@@ -27,26 +27,31 @@
 //!
 //! Energies, N·mm, accumulated over committed increments by the trapezoid
 //! rule at every integration point (A its area):
-//! * dissipation D = Σ A ½ (p_T,n + p_T,n+1)(u_p,n+1 − u_p,n), the frictional
-//!   work on the plastic slip u_p (positive: slip follows the shear);
+//! * dissipation D = Σ A Σ_sliders max(0, ½ (f_n + f_n+1) s), the work of
+//!   the law's friction forces f on their own slips s (the point's one
+//!   slider under the isotropic memory: ½ (p_T,n + p_T,n+1)(u_p,n+1 −
+//!   u_p,n); its Jenkins elements under the kinematic one;
+//!   [`crate::interface::tangential::Side`] and the module `work` there):
+//!   it never decreases;
 //! * work W = Σ A ½ (p_T,n + p_T,n+1)(u_T,n+1 − u_T,n), the tangential work
-//!   done on the interface. With p_T = k_T^e (u_T − u_p) and k_T^e constant,
-//!   W − D is the trapezoid of the elastic energy, exact for a linear
-//!   function: over a cycle that returns every spring to its start W = D.
+//!   done on the interface. With k_T^e constant, W − D is the change of the
+//!   energy the sliders' springs store, exact step by step: over a cycle
+//!   that returns every spring to its start W = D.
 //!
 //! Both conventions give the same energies (both factors change sign).
 //!
 //! With twist (`[model] twist = true`) the slip and shear are 2-vectors,
 //! (u_T, u_Tθ) and (p_T, p_Tθ), u_Tθ = u_θB − u_θA = r Δφ around the axis;
-//! the energies take their dot products, D = Σ A ½ (p_T,n + p_T,n+1)·(u_p,n+1 −
-//! u_p,n), and three measures more, in the joint convention (A relative to
+//! the energies take their dot products (force and slip vectors of each
+//! slider), and three measures more, in the joint convention (A relative to
 //! B, about +z by the right hand: θ from r toward the viewer of an r-z plot):
 //! the torque T = −Σ A r p_Tθ (N·mm, the torque applied to A that the joint
 //! resists), the mean circumferential slip ū_θ = −Σ A u_Tθ / Σ A (mm) and
 //! the mean twist φ̄ = −Σ A (u_Tθ / r) / Σ A (rad, A's rotation relative to
 //! B). The status of a point comes from |p_T| against its limit.
 
-use super::{InterfaceModel, PointState, Status};
+use super::tangential::{Side, Side2};
+use super::{InterfaceModel, PointState, Status, TangentialLaw};
 use crate::fem::Section;
 use crate::mesh::{Interface, Mesh};
 
@@ -141,38 +146,85 @@ pub struct JointTotals {
 }
 
 /// The dissipation and work of one point of area `area` over one increment
-/// from `before` to `after` (trapezoid rule, see the module comment).
-pub fn point_energy(area: f64, before: &PointState, after: &PointState) -> (f64, f64) {
+/// from `before` to `after`, each with its normal pressure p_N: D the work
+/// of the law's friction forces on their own slips
+/// ([`TangentialLaw::slip_work`], never negative; 0 without a law), W the
+/// trapezoid of the shear on u_T (see the module comment).
+pub fn point_energy(
+    law: Option<&TangentialLaw>,
+    area: f64,
+    (p0, before): (f64, &PointState),
+    (p1, after): (f64, &PointState),
+) -> (f64, f64) {
+    let d = law.map_or(0.0, |l| l.slip_work(&side(p0, before), &side(p1, after)));
     let p = 0.5 * (before.p_t + after.p_t);
-    (
-        area * p * (after.slip.u_p - before.slip.u_p),
-        area * p * (after.u_t - before.u_t),
-    )
+    (area * d, area * p * (after.u_t - before.u_t))
 }
 
-/// [`point_energy`] of a point of a twisting model: the dot products of the
-/// mean shear (p_T, p_Tθ) with the changes of the vector plastic slip and of
-/// the slip (u_T, u_Tθ).
-pub fn point_energy_twist(area: f64, before: &PointState, after: &PointState) -> (f64, f64) {
+/// [`point_energy`] of a point of a twisting model: the vector law's
+/// friction work ([`TangentialLaw::slip_work2`]) and the dot product of the
+/// mean shear (p_T, p_Tθ) with the change of the slip (u_T, u_Tθ).
+pub fn point_energy_twist(
+    law: Option<&TangentialLaw>,
+    area: f64,
+    (p0, before): (f64, &PointState),
+    (p1, after): (f64, &PointState),
+) -> (f64, f64) {
+    let d = law.map_or(0.0, |l| l.slip_work2(&side2(p0, before), &side2(p1, after)));
     let p = [
         0.5 * (before.p_t + after.p_t),
         0.5 * (before.p_h + after.p_h),
     ];
-    let (b, a) = (before.slip2.u_p, after.slip2.u_p);
     (
-        area * (p[0] * (a[0] - b[0]) + p[1] * (a[1] - b[1])),
+        area * d,
         area * (p[0] * (after.u_t - before.u_t) + p[1] * (after.u_h - before.u_h)),
     )
 }
 
-/// Adds the energies of an accepted increment (committed → trial tangential
-/// states of every interface point, all interfaces in order) to the running
-/// totals, one per interface. Every MPI rank holds every point's state after
-/// the step, so every rank computes the same totals.
+/// A point's state as the scalar law's side of a step at pressure p_N.
+fn side(p_n: f64, s: &PointState) -> Side<'_> {
+    Side {
+        p_n,
+        u_t: s.u_t,
+        p_t: s.p_t,
+        slip: &s.slip,
+    }
+}
+
+/// A point's state as the vector law's side of a step at pressure p_N.
+fn side2(p_n: f64, s: &PointState) -> Side2<'_> {
+    Side2 {
+        p_n,
+        u_t: [s.u_t, s.u_h],
+        p_t: [s.p_t, s.p_h],
+        slip: &s.slip2,
+    }
+}
+
+/// One end of an accepted increment: every dof, the pseudo-time (whose gaps
+/// the approach is taken across) and every interface point's state, all
+/// interfaces in order.
+#[derive(Clone, Copy, Debug)]
+pub struct Snapshot<'a> {
+    pub u: &'a [f64],
+    pub time: f64,
+    pub contact: &'a [PointState],
+}
+
+impl<'a> Snapshot<'a> {
+    pub fn of(u: &'a [f64], time: f64, contact: &'a [PointState]) -> Self {
+        Snapshot { u, time, contact }
+    }
+}
+
+/// Adds the energies of an accepted increment (committed → trial state) to
+/// the running totals, one per interface. Every MPI rank holds every
+/// point's tangential state and every dof after the step, so every rank
+/// computes the same totals.
 pub fn accumulate(
     interfaces: &[InterfaceModel],
-    committed: &[PointState],
-    trial: &[PointState],
+    committed: Snapshot,
+    trial: Snapshot,
     totals: &mut [JointTotals],
 ) {
     let mut q = 0;
@@ -182,8 +234,18 @@ pub fn accumulate(
         } else {
             point_energy
         };
+        let law = im.tangential.as_ref();
+        let (g0, g1) = (im.gap_at(committed.time), im.gap_at(trial.time));
+        // p_N as the law saw it: across the gap of each end's pseudo-time
+        let pressure = |pt, u, gap| im.law.pressure(im.point_kinematics_at(pt, u, gap).0).0;
         for pt in &im.points {
-            let (d, w) = energy(pt.area, &committed[q], &trial[q]);
+            let (p0, p1) = (pressure(pt, committed.u, g0), pressure(pt, trial.u, g1));
+            let (d, w) = energy(
+                law,
+                pt.area,
+                (p0, &committed.contact[q]),
+                (p1, &trial.contact[q]),
+            );
             tot.dissipation += d;
             tot.work += w;
             q += 1;

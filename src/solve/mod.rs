@@ -476,12 +476,12 @@ fn accept(
     ck.last_du.clear();
     ck.last_du
         .extend(trial.u.iter().zip(&ck.committed.u).map(|(a, b)| a - b));
-    // every rank holds every point's tangential state (share_state): the
-    // same totals everywhere
+    // every rank holds every point's tangential state (share_state) and
+    // every dof: the same totals everywhere
     joint::accumulate(
         &model.interfaces,
-        &ck.committed.contact,
-        &trial.contact,
+        joint::Snapshot::of(&ck.committed.u, ck.committed.time, &ck.committed.contact),
+        joint::Snapshot::of(&trial.u, trial.time, &trial.contact),
         &mut ck.joint_totals,
     );
     ck.committed = trial;

@@ -15,6 +15,7 @@ mod calibration;
 mod column;
 mod cycles;
 mod damping_line;
+mod dissipation;
 mod estimate;
 mod events;
 mod face_coupling;

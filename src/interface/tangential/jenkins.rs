@@ -181,6 +181,23 @@ impl Elements {
         up
     }
 
+    /// The work of the elements' friction over one step
+    /// ([`super::work`]): Σᵢ mᵢ max(0, Fᵢ·sᵢ) with the element's slip
+    /// sᵢ = eᵢ⁰ + du − eᵢ¹ (what its projection removed) and its mean force
+    /// Fᵢ = ½ (k₀ eᵢ⁰ + k₁ eᵢ¹) (k₀, k₁: k_T^e at the step's start and end,
+    /// MPa/mm), eᵢ⁰ from `from`, eᵢ¹ from `to`. MPa·mm.
+    pub fn slip_work(&self, from: &Stretch2, k0: f64, du: [f64; 2], to: &Stretch2, k1: f64) -> f64 {
+        (0..self.len)
+            .map(|i| {
+                let (e0, e1) = (from.e[i], to.e[i]);
+                let dot = (0..2)
+                    .map(|j| 0.5 * (k0 * e0[j] + k1 * e1[j]) * (e0[j] + du[j] - e1[j]))
+                    .sum::<f64>();
+                self.mass[i] * dot.max(0.0)
+            })
+            .sum()
+    }
+
     /// Σ mᵢ eᵢ of stored stretches, mm.
     pub fn sum(&self, s: &Stretch2) -> [f64; 2] {
         let mut v = [0.0; 2];

@@ -179,6 +179,11 @@ impl Stretch {
         false
     }
 
+    /// e(η), mm: the stored function between its breakpoints.
+    pub fn at(&self, eta: f64) -> f64 {
+        self.points().at(eta)
+    }
+
     /// The largest |e(η)| / η over the breakpoints: the slip range φ the
     /// stretches fit in, mm.
     pub fn largest_ratio(&self) -> f64 {
@@ -320,6 +325,90 @@ impl Density {
             slipping_moment: moment,
             slips,
         }
+    }
+}
+
+/// Merged breakpoints of two functions: at most every point of both.
+const MERGED: usize = 2 * (MEMORY_POINTS + 1) + 1;
+
+impl Density {
+    /// ∫ₐᵇ c (1+χ) η^{χ+j} dη for j = 0, 1, 2.
+    fn moments(&self, a: f64, b: f64) -> [f64; 3] {
+        if self.c == 0.0 {
+            return [0.0; 3];
+        }
+        let p1 = self.chi + 1.0;
+        let pw = |x: f64, q: f64| if x > 0.0 { x.powf(q) } else { 0.0 };
+        std::array::from_fn(|j| {
+            let q = p1 + j as f64;
+            self.c * p1 / q * (pw(b, q) - pw(a, q))
+        })
+    }
+
+    /// The work of the elements' friction over one step ([`super::work`]),
+    /// per unit of k_T^e-weighted area: ∫ w(η) max(0, F(η) s(η)) dη with
+    /// the element's slip s = e₀ + du − e₁ (what the return mapping clipped)
+    /// and its mean force F = ½ (k₀ e₀ + k₁ e₁) (k₀, k₁: k_T^e at the
+    /// step's start and end, MPa/mm), e₀ = `from`, e₁ = `to`. Exact for
+    /// the piecewise-linear stretches: both functions are cut at each
+    /// other's breakpoints and at the zeros of F and s, and the weight's
+    /// moments integrate the quadratic F s on each piece. MPa·mm.
+    pub fn slip_work(&self, from: &Stretch, k0: f64, du: f64, to: &Stretch, k1: f64) -> f64 {
+        let (p0, p1) = (from.points(), to.points());
+        let force = |eta: f64| 0.5 * (k0 * p0.at(eta) + k1 * p1.at(eta));
+        let slip = |eta: f64| p0.at(eta) + du - p1.at(eta);
+        let mut sum = 0.0;
+        if self.c > 0.0 {
+            // the breakpoints of both, in order
+            let mut cuts = [0.0; MERGED];
+            let mut n = 0;
+            for &eta in p0.eta[1..p0.len].iter().chain(&p1.eta[1..p1.len]) {
+                cuts[n] = eta;
+                n += 1;
+            }
+            cuts[..n].sort_by(f64::total_cmp);
+            let mut a = 0.0;
+            for &b in &cuts[..n] {
+                if b > a {
+                    sum += self.positive_part(a, b, &force, &slip);
+                    a = b;
+                }
+            }
+        }
+        for &(eta, m) in &self.masses {
+            if m > 0.0 {
+                sum += m * (force(eta) * slip(eta)).max(0.0);
+            }
+        }
+        sum
+    }
+
+    /// ∫ₐᵇ c (1+χ) η^χ max(0, F s) dη for F and s linear on [a, b].
+    fn positive_part(&self, a: f64, b: f64, f: &dyn Fn(f64) -> f64, s: &dyn Fn(f64) -> f64) -> f64 {
+        let (fa, fb, sa, sb) = (f(a), f(b), s(a), s(b));
+        let (f1, s1) = ((fb - fa) / (b - a), (sb - sa) / (b - a));
+        let (f0, s0) = (fa - f1 * a, sa - s1 * a);
+        // where F or s changes sign inside (a, b)
+        let mut cuts = [b; 3];
+        let mut n = 0;
+        for (x, y) in [(fa, fb), (sa, sb)] {
+            if x * y < 0.0 {
+                cuts[n] = a + (b - a) * x / (x - y);
+                n += 1;
+            }
+        }
+        cuts[..n].sort_by(f64::total_cmp);
+        let mut sum = 0.0;
+        let mut lo = a;
+        for &hi in &cuts[..=n] {
+            let mid = 0.5 * (lo + hi);
+            if hi > lo && (f0 + f1 * mid) * (s0 + s1 * mid) > 0.0 {
+                let m = self.moments(lo, hi);
+                sum += f0 * s0 * m[0] + (f0 * s1 + f1 * s0) * m[1] + f1 * s1 * m[2];
+            }
+            lo = hi;
+        }
+        sum
     }
 }
 

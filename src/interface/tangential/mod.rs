@@ -30,9 +30,11 @@ use std::sync::Arc;
 mod jenkins;
 mod kinematic;
 mod vector;
+mod work;
 pub use jenkins::{Elements, Stretch2, IWAN_LOWEST, JENKINS};
 pub use kinematic::{Density, Stretch, MEMORY_POINTS};
 pub use vector::{SlipState2, VectorEval};
+pub use work::{Side, Side2};
 
 /// How the law remembers its slip history.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
@@ -509,3 +511,5 @@ mod tests;
 mod vector_paths_tests;
 #[cfg(test)]
 mod vector_tests;
+#[cfg(test)]
+mod work_tests;
