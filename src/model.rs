@@ -592,12 +592,7 @@ fn block_dofs(
     (blocks, base, expansions)
 }
 
-fn probe(
-    case: &Case,
-    mesh: &Mesh,
-    start: &[bool],
-    interfaces: &[InterfaceModel],
-) -> (usize, f64) {
+fn probe(case: &Case, mesh: &Mesh, start: &[bool], interfaces: &[InterfaceModel]) -> (usize, f64) {
     let p = case.output.probe;
     // a node that refinement added is never nearer: an adaptive run reads
     // the same node on every mesh (a start mesh node, [`Adapted`])

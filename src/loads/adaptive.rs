@@ -56,7 +56,10 @@ fn along([e0, e1]: [f64; 2], range: &Option<[f64; 2]>) -> Along {
 /// piece has points both selected and not beyond its own boundary.
 fn cutting(extent: [[f64; 2]; 2], ranges: [&Option<[f64; 2]>; 2]) -> Option<usize> {
     let rel = [along(extent[0], ranges[0]), along(extent[1], ranges[1])];
-    if rel.iter().any(|r| matches!(r, Along::Apart | Along::Touching)) {
+    if rel
+        .iter()
+        .any(|r| matches!(r, Along::Apart | Along::Touching))
+    {
         return None;
     }
     rel.iter().position(|&r| r == Along::Cut)

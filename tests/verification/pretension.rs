@@ -91,7 +91,11 @@ fn a_pretensioned_bar_refined_beside_its_cut_is_exact() {
     assert!(common::rel(force, f) < 1e-10, "force {force}");
     assert!(common::rel(s, f * L / (E * a)) < 1e-10, "shortening {s}");
     for g in &states.last().unwrap().gauss {
-        assert!(common::rel(g.stress[0], f / a) < 1e-9, "σ_xx {}", g.stress[0]);
+        assert!(
+            common::rel(g.stress[0], f / a) < 1e-9,
+            "σ_xx {}",
+            g.stress[0]
+        );
         assert!(g.stress[1].abs() < 1e-9 * f / a && g.stress[2].abs() < 1e-9 * f / a);
     }
 }
