@@ -63,8 +63,9 @@ pub enum Backbone {
     Bilinear,
     /// An Iwan density of slip thresholds (Segalman 2005): (1 − spike) (1 + χ) η^χ
     /// on η ∈ [0, 1] plus a point mass `spike` at η = 1. The stiffness falls
-    /// from k_T^e at once, the dissipation per cycle grows as the amplitude
-    /// to the power 3 + χ from zero on ([`kinematic`]).
+    /// from k_T^e at once, the dissipation per cycle grows as the slip
+    /// amplitude to the power 3 + χ from zero on ([`kinematic`]; against the
+    /// force amplitude faster, docs/theory.md).
     Iwan { chi: f64, spike: f64 },
 }
 
