@@ -310,7 +310,7 @@ fn file_meshes_refuse_refine_and_uniform() {
         ..RunOptions::default()
     };
     let e = driver::load_model(&dir, &opts).err().unwrap().to_string();
-    assert!(e.contains("--uniform cannot regrade"), "{e}");
+    assert!(e.contains("--uniform: cannot regrade"), "{e}");
     let opts = RunOptions {
         refine: Some(2),
         ..RunOptions::default()
