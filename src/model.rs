@@ -39,6 +39,9 @@ pub struct Model {
     pub plan: crate::output::plan::Plan,
     /// The case file the model came from (the text's name for [`Model::parse`]).
     pub source: std::path::PathBuf,
+    /// What the command line set in place of the case's keys: the run's
+    /// advice names the option ([`crate::case::overrides`]).
+    pub overrides: crate::case::overrides::Overrides,
     /// The case's free-text description.
     pub description: Option<String>,
     /// Full or reduced Gauss integration of the elements ([`Model::rule`] is the rule).
@@ -294,6 +297,7 @@ impl Model {
             output: case.output.clone(),
             plan,
             source: case.source.clone(),
+            overrides: case.overrides.clone(),
             description: case.description.clone(),
             integration: case.model.integration,
             case_key: case.key(),

@@ -214,19 +214,75 @@ impl Limit {
         warnings: &mut Vec<Warning>,
         hint: Option<&str>,
     ) -> Result<()> {
+        self.judge(place, key, None, v, warnings, hint)
+    }
+
+    /// A value no key gives, derived from the input keys `inputs` (σ_s, η
+    /// and β from a profile's heights or from Ra / Rz): refused or warned as
+    /// [`Limit::check_hinted`], at those keys (`place: inputs`, never a name
+    /// of the derived quantity), the message naming the quantity and `how`
+    /// the keys made it ("derived from them, H = 0.8 assumed").
+    pub fn check_derived(
+        &self,
+        place: &str,
+        inputs: &str,
+        how: &str,
+        v: f64,
+        warnings: &mut Vec<Warning>,
+        hint: Option<&str>,
+    ) -> Result<()> {
+        self.judge(place, inputs, Some(how), v, warnings, hint)
+    }
+
+    /// The checks of [`Limit::check_hinted`] and [`Limit::check_derived`]
+    /// (`derived`: how `key`, the inputs, made `v`).
+    fn judge(
+        &self,
+        place: &str,
+        key: &str,
+        derived: Option<&str>,
+        v: f64,
+        warnings: &mut Vec<Warning>,
+        hint: Option<&str>,
+    ) -> Result<()> {
         let refuse = |message: String| Err(Error::input(format!("{place}: {key}"), message));
-        if !v.is_finite() {
-            return refuse(format!("must be a finite number, got {v}"));
-        }
-        if v <= 0.0 {
-            return refuse(format!("must be a positive finite number, got {}", num(v)));
+        // what the messages call the value, and the quantity after "as"
+        // and "of": a key's value is the quantity, a derived one is named
+        let (value, as_q, of_q) = match derived {
+            None => (
+                self.with_unit(v),
+                format!(" as {}", self.quantity),
+                format!("the usual range of {}", self.quantity),
+            ),
+            Some(how) => (
+                format!("{} for {}, {how},", self.with_unit(v), self.quantity),
+                String::new(),
+                "its usual range".to_string(),
+            ),
+        };
+        if !v.is_finite() || v <= 0.0 {
+            return refuse(match derived {
+                None if !v.is_finite() => format!("must be a finite number, got {v}"),
+                None => format!("must be a positive finite number, got {}", num(v)),
+                Some(how) => format!(
+                    "{} for {}, {how}, is not a positive finite number",
+                    num(v),
+                    self.quantity
+                ),
+            });
         }
         let [lo, hi] = self.accepted;
         if v < f64::MIN_POSITIVE {
+            let not = match derived {
+                None => format!(", not {}", self.quantity),
+                Some(_) => String::new(),
+            };
+            let value = match derived {
+                None => num(v),
+                Some(how) => format!("{} for {}, {how},", num(v), self.quantity),
+            };
             return refuse(format!(
-                "{} is a subnormal number (below 2.2e-308), not {}: accepted {} to {}",
-                num(v),
-                self.quantity,
+                "{value} is a subnormal number (below 2.2e-308){not}: accepted {} to {}",
                 self.with_unit(lo),
                 self.with_unit(hi)
             ));
@@ -238,9 +294,7 @@ impl Limit {
                 format!("; usual {}", self.usual_is)
             };
             return refuse(format!(
-                "{} is far outside any use as {}: accepted {} to {}{usual}",
-                self.with_unit(v),
-                self.quantity,
+                "{value} is far outside any use{as_q}: accepted {} to {}{usual}",
                 self.with_unit(lo),
                 self.with_unit(hi),
             ));
@@ -255,12 +309,7 @@ impl Limit {
             warnings.push(Warning {
                 place: place.to_string(),
                 key: key.to_string(),
-                message: format!(
-                    "{} is {side} the usual range of {}, {}: {hint}",
-                    self.with_unit(v),
-                    self.quantity,
-                    self.usual_is
-                ),
+                message: format!("{value} is {side} {of_q}, {}: {hint}", self.usual_is),
             });
         }
         Ok(())

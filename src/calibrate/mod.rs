@@ -426,10 +426,15 @@ pub fn prepare(input: &Input, place: &str, base: &Path) -> Result<Prepared> {
             let m = heights.rough_moments(how, &fplace)?;
             let s = m.summits(&fplace)?;
             // the summits the moments give, against the same ranges as GW input
+            // named by the keys that made them: σ_s scales with the
+            // heights, η and β with their spacing too
             let hint = Some("are the heights in mm and surface.sampling in mm?");
-            limits::SIGMA.check_hinted(&fplace, "σ_s of the profile", s.sigma, w, hint)?;
-            limits::DENSITY.check_hinted(&fplace, "η of the profile", s.density, w, hint)?;
-            limits::RADIUS.check_hinted(&fplace, "β of the profile", s.radius, w, hint)?;
+            let heights = format!("derived from the heights of {fplace}");
+            let spaced = format!("{heights} and their spacing");
+            let (file, both) = ("surface.file", "surface.file, surface.sampling");
+            limits::SIGMA.check_derived(place, file, &heights, s.sigma, w, hint)?;
+            limits::DENSITY.check_derived(place, both, &spaced, s.density, w, hint)?;
+            limits::RADIUS.check_derived(place, both, &spaced, s.radius, w, hint)?;
             profile_place = Some(fplace);
             let gw = Gw {
                 density: s.density,
@@ -459,10 +464,12 @@ pub fn prepare(input: &Input, place: &str, base: &Path) -> Result<Prepared> {
             };
             let d = roughness::derive(&given, overrides, place, w)?;
             let s = d.moments.summits(&format!("{place}: {}", d.keys()))?;
+            // named by the keys that made them, not as derived quantities
             let hint = Some("are the Ra / Rz values in mm?");
-            limits::SIGMA.check_hinted(place, "σ_s from the roughness", s.sigma, w, hint)?;
-            limits::DENSITY.check_hinted(place, "η from the roughness", s.density, w, hint)?;
-            limits::RADIUS.check_hinted(place, "β from the roughness", s.radius, w, hint)?;
+            let (keys, how) = d.inputs(&overrides);
+            limits::SIGMA.check_derived(place, &keys, &how, s.sigma, w, hint)?;
+            limits::DENSITY.check_derived(place, &keys, &how, s.density, w, hint)?;
+            limits::RADIUS.check_derived(place, &keys, &how, s.radius, w, hint)?;
             derived = Some(d);
             let gw = Gw {
                 density: s.density,

@@ -236,6 +236,49 @@ impl Derived {
         keys.dedup();
         keys.join(" and ")
     }
+
+    /// The input keys the summits (η, β, σ_s) come from, and how, for a
+    /// message about one of them: the faces' keys and the spectrum's keys
+    /// given in `o` ("surface.ra, surface.cutoff"), and "derived from them"
+    /// with what the spectrum assumed in place of the others.
+    pub fn inputs(&self, o: &Overrides) -> (String, String) {
+        let mut keys = vec![self.keys()];
+        let mut assumed = Vec::new();
+        for (key, given, otherwise) in [
+            (
+                "surface.hurst",
+                o.hurst.is_some(),
+                format!("H = {HURST} assumed"),
+            ),
+            (
+                "surface.cutoff",
+                o.cutoff.is_some(),
+                "λc of ISO 4288".to_string(),
+            ),
+            (
+                "surface.short_cutoff",
+                o.short_cutoff.is_some(),
+                "λs of ISO 3274".to_string(),
+            ),
+        ] {
+            if given {
+                keys.push(key.to_string());
+            } else {
+                assumed.push(otherwise);
+            }
+        }
+        let them = if keys.len() > 1 || self.keys().contains(" and ") {
+            "them"
+        } else {
+            "it"
+        };
+        let how = if assumed.is_empty() {
+            format!("derived from {them}")
+        } else {
+            format!("derived from {them} with {}", assumed.join(", "))
+        };
+        (keys.join(", "), how)
+    }
 }
 
 /// The numbers of `ra` / `rz`: one (the pair's combined roughness, or one

@@ -54,7 +54,7 @@ pub fn check_mesh(case: &Case, mesh: &Mesh, place: &str) -> Result<()> {
         ));
     }
     names(mesh, place)?;
-    magnitudes(mesh, place)?;
+    magnitudes(case, mesh, place)?;
     match &case.mesh.file {
         None => blocks_overlap(case, place)?,
         Some(_) => elements_overlap(mesh, place)?,
@@ -239,8 +239,9 @@ fn shared_sides(mesh: &Mesh, place: &str) -> Result<()> {
 }
 
 /// Node coordinates and element sizes within [`ranges::COORDINATE`] and
-/// [`ranges::ELEMENT_SIZE`].
-fn magnitudes(mesh: &Mesh, place: &str) -> Result<()> {
+/// [`ranges::ELEMENT_SIZE`]; an element size, which no key gives, is refused
+/// at the keys that made it ([`sized_by`]).
+fn magnitudes(case: &Case, mesh: &Mesh, place: &str) -> Result<()> {
     for (n, x) in mesh.nodes.iter().enumerate() {
         for v in x {
             if !ranges::COORDINATE.admits(*v) {
@@ -267,8 +268,9 @@ fn magnitudes(mesh: &Mesh, place: &str) -> Result<()> {
         }
         let size = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
         if !ranges::ELEMENT_SIZE.admits(size) || size == 0.0 {
-            return Err(mesh_err(
-                place,
+            let centre = [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])];
+            return Err(Error::input(
+                sized_by(case, el.body, mesh, centre, place),
                 format!(
                     "element {e} of body \"{}\" near ({}, {}): {}",
                     clip(&mesh.bodies[el.body]),
@@ -280,6 +282,51 @@ fn magnitudes(mesh: &Mesh, place: &str) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// The keys that sized an element of `body` centred at `centre`: the Gmsh
+/// file, or its block's breakpoints, counts and ratios (the block whose
+/// rectangle holds the centre, else every block of the body), with the
+/// refinement (`[mesh] refine`, `--refine`, `refine_region`) when there is
+/// one.
+fn sized_by(case: &Case, body: usize, mesh: &Mesh, centre: [f64; 2], place: &str) -> String {
+    if case.mesh.file.is_some() {
+        return case.at("[mesh] file");
+    }
+    let name = &mesh.bodies[body];
+    let of_body: Vec<_> = case.mesh.block.iter().filter(|b| b.body == *name).collect();
+    let within = |v: f64, at: &[f64]| {
+        let (a, b) = (at.first().copied(), at.last().copied());
+        a.zip(b)
+            .is_some_and(|(a, b)| v >= a.min(b) && v <= a.max(b))
+    };
+    let mut keys = match of_body
+        .iter()
+        .find(|b| within(centre[0], &b.x) && within(centre[1], &b.y))
+    {
+        Some(b) => {
+            let mut k = vec!["x", "nx"];
+            k.extend((!b.rx.is_empty()).then_some("rx"));
+            k.extend(["y", "ny"]);
+            k.extend((!b.ry.is_empty()).then_some("ry"));
+            format!("[[mesh.block]] \"{}\" {}", clip(b.name()), k.join(", "))
+        }
+        None => format!("the [[mesh.block]] entries of body \"{}\"", clip(name)),
+    };
+    if let Some(r) = &case.mesh.refine_region {
+        let inside = centre[0] >= r.x[0]
+            && centre[0] <= r.x[1]
+            && centre[1] >= r.y[0]
+            && centre[1] <= r.y[1];
+        if inside {
+            keys += ", [mesh] refine_region";
+        }
+    }
+    match case.option("[mesh] refine") {
+        Some(o) => format!("{place}: {keys} (refined by {o})"),
+        None if case.mesh.refine != 1 => format!("{place}: {keys}, [mesh] refine"),
+        None => format!("{place}: {keys}"),
+    }
 }
 
 /// The area two rectangles [x0, x1, y0, y1] share, if any: more than 1e-9

@@ -78,7 +78,8 @@ impl NormalLaw {
         let dudp = c * m * p_c.powf(m - 1.0);
         if slope > dudp * (1.0 + 1e-12) {
             return Err(format!(
-                "slope A = {slope} mm/MPa is softer than the power law at p_c (du/dp = {dudp:.4e}); \
+                "slope A = {slope} mm/MPa is softer than the power law at p_c (its du/dp there, \
+                 c_n m p_c^(m-1) = {c} · {m} · {p_c}^({m} - 1), is {dudp:.4e} mm/MPa); \
                  the linear branch must be stiffer"
             ));
         }

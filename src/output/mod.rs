@@ -530,13 +530,20 @@ fn coarse_cycles(model: &Model, r: &RunResult, place: &str) -> Vec<String> {
                 .collect();
             let first = *coarse.first()?;
             let c = &list[first - 1];
-            // the key that sets the step under the run's step control
+            // the key that sets the step under the run's step control, or
+            // the option that set it for this run
+            let o = &model.overrides;
             let fix = match model.solver.step_mode() {
-                crate::case::StepControl::Auto => "max_increment to a quarter of a leg or less",
-                crate::case::StepControl::Fixed => "increments to 4 or more per unit of pseudo-time",
+                crate::case::StepControl::Auto => {
+                    "set [solver] max_increment to a quarter of a leg or less".to_string()
+                }
+                crate::case::StepControl::Fixed => match o.option("[solver] increments") {
+                    Some(given) => format!("raise {given} to 4 or more per unit of pseudo-time"),
+                    None => "set [solver] increments to 4 or more per unit of pseudo-time".to_string(),
+                },
             };
             Some(format!(
-                "{place}: interface {:?}: {} closed cycle(s) of fewer than {CYCLE_INCREMENTS} increments (cycle {first}: {} increments, t = {} … {}): their dissipation and loss factor are trapezoid sums over too few steps (0 with one step a leg); set [solver] {fix}",
+                "{place}: interface {:?}: {} closed cycle(s) of fewer than {CYCLE_INCREMENTS} increments (cycle {first}: {} increments, t = {} … {}): their dissipation and loss factor are trapezoid sums over too few steps (0 with one step a leg); {fix}",
                 im.name,
                 coarse.len(),
                 c.end_increment - c.start_increment,

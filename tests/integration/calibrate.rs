@@ -274,4 +274,27 @@ fn unit_slips_are_calibrated_with_warnings() {
     assert_eq!(fit["warnings"].as_array().unwrap().len(), lines.len());
     let text = std::fs::read_to_string(out.join("interface.toml")).unwrap();
     assert_eq!(text.matches("# WARNING: ").count(), lines.len(), "{text}");
+    // a summit value no key gives is named by the key that made it, Ra in
+    // mm here ("σ_s from the roughness" until issue 42), in the warning line
+    // and fit.json
+    let rough = format!("{MATERIALS}[surface]\nmodel = \"roughness\"\nra = 0.9\n{FIT}");
+    std::fs::write(&input, rough).unwrap();
+    let (code, _, err) = calibrate(&input, &out);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.lines().any(|l| l.contains(
+            "surface.toml: surface.ra: 1.127 mm for σ_s, the standard deviation of summit heights, derived from it with H = 0.8 assumed, λc of ISO 4288, λs of ISO 3274, is above its usual range"
+        )),
+        "{err}"
+    );
+    let fit: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("fit.json")).unwrap()).unwrap();
+    let warnings = fit["warnings"].as_array().unwrap();
+    assert!(
+        warnings
+            .iter()
+            .any(|w| w.as_str().unwrap().contains("surface.ra: 1.127 mm for σ_s")),
+        "{warnings:?}"
+    );
+    assert!(!err.contains("from the roughness"), "{err}");
 }

@@ -39,6 +39,16 @@ fn bad(name: &str, input: &str, expect: &str) {
     std::fs::write(dir.join("nbsp.csv"), "1e-3\n2\u{a0}000\n").unwrap();
     std::fs::write(dir.join("huge.csv"), "1e-3\n2e-3\n1e300\n").unwrap();
     std::fs::write(dir.join("subnormal.csv"), "1e-3\n4e-320\n").unwrap();
+    // a rough line profile (heights of ±5 µm)
+    let rough: String = (0..400)
+        .map(|i| {
+            format!(
+                "{}\n",
+                1e-3 * ((i * 37 % 11) - 5) as f64 + 4e-4 * ((i * 13 % 7) - 3) as f64
+            )
+        })
+        .collect();
+    std::fs::write(dir.join("rough.csv"), rough).unwrap();
     let path = dir.join("surface.toml");
     std::fs::write(&path, input).unwrap();
     let (code, out, err) = calibrate(&path, &dir.join("out"));
@@ -196,6 +206,19 @@ fn bad_inputs_are_one_error_line_and_exit_2() {
         "subnormal-reference",
         &format!("{MATERIALS}{GW}{FIT}reference_pressure = 5e-324\n"),
         "fit.reference_pressure: 5e-324 is a subnormal number",
+    );
+    // a summit value no key gives, refused at the keys that made it (it was
+    // named as itself, "β from the roughness", "η of the profile", until
+    // issue 42)
+    bad(
+        "derived-density-of-a-profile",
+        &profile("rough.csv", "").replace("sampling = 1e-3", "sampling = 1e-9"),
+        "surface.toml: surface.file, surface.sampling: 9.5107e16 /mm² for η, the summit density, derived from the heights of",
+    );
+    bad(
+        "derived-radius-of-a-roughness",
+        &format!("{MATERIALS}[surface]\nmodel = \"roughness\"\nra = 0.5\ncutoff = 1e-3\nshort_cutoff = 1e-6\n{FIT}"),
+        "surface.toml: surface.ra, surface.cutoff, surface.short_cutoff: 8.2653e-12 mm for β, the summit radius, derived from them with H = 0.8 assumed, is far outside any use",
     );
     bad(
         "subnormal-sampling",
