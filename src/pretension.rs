@@ -482,7 +482,9 @@ pub fn constraints(
                     if through.is_empty() && Some(v) == held(*master) {
                         continue;
                     }
-                    return Err(held_twice(nodes, r, comp, &path_all, &through, place, &names));
+                    return Err(held_twice(
+                        nodes, r, comp, &path_all, &through, place, &names,
+                    ));
                 }
                 made.insert(
                     nd.dof(*m, comp),
@@ -530,7 +532,10 @@ fn held_twice(
     let [px, py] = nodes[node];
     let at = format!("node {node} at ({px}, {py})");
     let where_ = if sections_at.len() > 1 {
-        format!("{at}, where the cuts of pretension {} meet,", names(sections_at))
+        format!(
+            "{at}, where the cuts of pretension {} meet,",
+            names(sections_at)
+        )
     } else {
         format!("{at} on the cut")
     };

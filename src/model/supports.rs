@@ -146,8 +146,8 @@ pub(super) fn check_sections_held(
         }
         for im in interfaces {
             for p in &im.pairs {
-                let carries = im.tangential.is_some()
-                    || p.normal[s.axis].abs() >= p.normal[1 - s.axis].abs();
+                let carries =
+                    im.tangential.is_some() || p.normal[s.axis].abs() >= p.normal[1 - s.axis].abs();
                 for (body, n) in [(im.body_a, p.a), (im.body_b, p.b)] {
                     if carries && body == s.body {
                         held[usize::from(beyond[n])] = true;

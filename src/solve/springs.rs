@@ -6,9 +6,9 @@
 
 use super::State;
 use crate::case::Stabilization;
-use gram::Gram;
 use crate::interface::{InterfaceModel, Point};
 use crate::model::Model;
+use gram::Gram;
 
 /// An approach above this counts as contact able to carry load (mm): the
 /// first iteration of a step gives such pairs the secant start stiffness.
@@ -210,7 +210,11 @@ impl Stabilizer {
             // rotate in the meridian plane
             for b in &mut bodies {
                 let n = 3 + b.cuts.len();
-                let unit = |i: usize| (0..n).map(|j| f64::from(u8::from(i == j))).collect::<Vec<_>>();
+                let unit = |i: usize| {
+                    (0..n)
+                        .map(|j| f64::from(u8::from(i == j)))
+                        .collect::<Vec<_>>()
+                };
                 b.bc.add(&unit(0));
                 b.bc.add(&unit(2));
             }
@@ -260,9 +264,7 @@ impl Stabilizer {
         // a body without an interface and without enough supports is a
         // mechanism no interface spring can hold (and mostly refused up front)
         let linked = (0..nb)
-            .map(|b| {
-                (model.interfaces.iter()).any(|im| im.body_a == b || im.body_b == b)
-            })
+            .map(|b| (model.interfaces.iter()).any(|im| im.body_a == b || im.body_b == b))
             .collect();
         Stabilizer {
             bodies,
@@ -406,7 +408,8 @@ impl Stabilizer {
     /// acting on it at factor 0 there (all of them at λ = 0 without
     /// histories), and no interference on its interfaces.
     pub(super) fn unloaded(&self, model: &Model, lambda: f64) -> Option<usize> {
-        (0..self.bodies.len()).find(|&b| self.loose(model, b, lambda) && !self.carries_load(model, b, lambda))
+        (0..self.bodies.len())
+            .find(|&b| self.loose(model, b, lambda) && !self.carries_load(model, b, lambda))
     }
 
     /// Whether some body held only through interfaces carries a load at
@@ -414,7 +417,8 @@ impl Stabilizer {
     /// into place by it (the middle disk of a stack loaded on its top), and a
     /// stabilized step is released when it can be.
     pub(super) fn any_loaded(&self, model: &Model, lambda: f64) -> bool {
-        (0..self.bodies.len()).any(|b| self.loose(model, b, lambda) && self.carries_load(model, b, lambda))
+        (0..self.bodies.len())
+            .any(|b| self.loose(model, b, lambda) && self.carries_load(model, b, lambda))
     }
 
     /// Whether body `b` carries a load at `lambda`: a load pattern or a

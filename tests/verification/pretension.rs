@@ -399,7 +399,8 @@ vtu_every = 1000
 /// accepted with the springs still acting, its shortening 1.2e-9 mm short.)
 #[test]
 fn a_bolt_with_a_gap_under_its_head_is_released_not_held_by_the_springs() {
-    let text = std::fs::read_to_string(common::root().join("cases/bolted-joint/case.toml")).unwrap();
+    let text =
+        std::fs::read_to_string(common::root().join("cases/bolted-joint/case.toml")).unwrap();
     let gap = 0.01;
     let with_gap = text.replacen(
         "[interface.under_head]      # the paper's power law, handbook constants\nlaw = \"power\"",
@@ -409,15 +410,26 @@ fn a_bolt_with_a_gap_under_its_head_is_released_not_held_by_the_springs() {
     assert_ne!(text, with_gap);
     let (base, _) = solve(&common::model(&text));
     let (r, _) = solve(&common::model(&with_gap));
-    let st = r.stabilization.as_ref().expect("the first step floats the head");
+    let st = r
+        .stabilization
+        .as_ref()
+        .expect("the first step floats the head");
     assert!(st.released >= 1 && st.stabilized == 0, "{st:?}");
     let mut shared = 0;
     for inc in &r.increments {
-        let Some(b) = base.increments.iter().find(|b| b.load_factor == inc.load_factor) else {
+        let Some(b) = base
+            .increments
+            .iter()
+            .find(|b| b.load_factor == inc.load_factor)
+        else {
             continue;
         };
         let ([f, s], [fb, sb]) = (inc.sections[0], b.sections[0]);
-        assert!(common::rel(f, fb) < 1e-9, "λ = {}: {f} vs {fb}", inc.load_factor);
+        assert!(
+            common::rel(f, fb) < 1e-9,
+            "λ = {}: {f} vs {fb}",
+            inc.load_factor
+        );
         assert!(
             common::rel(s, sb + gap) < 1e-9,
             "λ = {}: shortening {s} vs {sb} + {gap}",
