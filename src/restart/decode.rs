@@ -73,7 +73,7 @@ pub(super) fn decode_with(
     restore_stepper(&mut ck, &s, model)?;
     restore_state(&mut ck, &s, model)?;
     ck.committed.time = ck.lambda;
-    check_last_curve_row(&ck, model)?;
+    check_curve(&ck, model)?;
     restore_joints(&mut ck, &s, model)?;
     restore_sections(&mut ck, &s, model)?;
     restore_table_reach(&mut ck, &s, model)?;

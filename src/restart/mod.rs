@@ -99,8 +99,11 @@
 //!   `table_reach` (u_N, p_N) within [0, [`MAX_DISPLACEMENT`]] ×
 //!   [0, [`MAX_PRESSURE`]], p_N the normal law's pressure at u_N, and at
 //!   least the restored state's own reach ([`Reach::of`]);
-//! - the records beside the state (`decode/records.rs`): the last
-//!   increment's `curve` row, `joints` / `joints_twist` rows and `records`
+//! - the records beside the state (`decode/records.rs`): every `curve`
+//!   row's normal force within [0, the pressure range × the first
+//!   interface's area], its mean pressure and load that force over the area
+//!   and in kN, exactly, its displacement and PEEQ within the state's
+//!   ranges; the last increment's `curve` row, `joints` / `joints_twist` rows and `records`
 //!   from the probes on exactly what the restored state gives
 //!   ([`Measures::of`], [`crate::solve::joint_measures`],
 //!   [`crate::output::plan::Plan::state_part`]); every joint row's normal

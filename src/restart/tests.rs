@@ -229,8 +229,16 @@ fn decode_refuses_what_the_case_cannot_have_produced() {
     );
     // the last row of the curve is the state's
     let mut c = ck.clone();
-    c.increments[3].measures.normal_force += 1.0;
-    refused(&c, &pvd, "section curve: row 4 (the last): normal force 1");
+    c.increments[3].measures.center_displacement += 0.5;
+    refused(
+        &c,
+        &pvd,
+        "section curve: row 4 (the last): centre displacement 0.5",
+    );
+    // and every row's mean pressure and load are its normal force's
+    let mut c = ck.clone();
+    c.increments[1].measures.mean_pressure += 100.0;
+    refused(&c, &pvd, "section curve: row 2: mean pressure 100 MPa");
     // and the last joints row
     let mut c = ck.clone();
     c.increments[3].joints[0].normal_force = 1.0;

@@ -360,11 +360,55 @@ fn same(a: f64, b: f64) -> bool {
     a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan())
 }
 
-/// The curve's last row against the restored state: its measures (the first
-/// interface's normal force, mean pressure and load, the probe node's
-/// displacement, the largest PEEQ, the prescribed reaction) are the state's
-/// own ([`Measures::of`]).
-pub(super) fn check_last_curve_row(ck: &Checkpoint, model: &Model) -> Decoded<()> {
+/// The curve's rows against the case and the last one against the
+/// restored state. Every row: the first interface's normal force within
+/// [0, the pressure range × its area], its mean pressure and load that force
+/// over the area and in kN (as every run computes them: exactly), none of
+/// the three without an interface; the probe node's displacement within the
+/// displacement range; the largest PEEQ within [0, [`MAX_PEEQ`]]. The last
+/// row: its measures (those and the prescribed reaction) the state's own
+/// ([`Measures::of`]).
+pub(super) fn check_curve(ck: &Checkpoint, model: &Model) -> Decoded<()> {
+    for inc in &ck.increments {
+        let m = &inc.measures;
+        let (area, scale) = match model.interfaces.first() {
+            Some(im) => (im.area(), model.load_scale_kn()),
+            None => (0.0, 0.0),
+        };
+        let bad = |what: String| Err(format!("section curve: row {}: {what}", inc.increment));
+        let most = MAX_PRESSURE * area;
+        if !(m.normal_force >= 0.0 && m.normal_force <= most) {
+            return bad(format!(
+                "normal force {} N, outside [0, {}] N (compressive, at most the pressure range over the interface)",
+                num(m.normal_force),
+                num(most)
+            ));
+        }
+        let (mean, load) = match model.interfaces.first() {
+            Some(_) => (m.normal_force / area, m.normal_force * scale),
+            None => (0.0, 0.0),
+        };
+        if !same(m.mean_pressure, mean) || !same(m.total_load_kn, load) {
+            return bad(format!(
+                "mean pressure {} MPa and load {} kN, but its normal force {} N gives {} MPa and {} kN",
+                num(m.mean_pressure),
+                num(m.total_load_kn),
+                num(m.normal_force),
+                num(mean),
+                num(load)
+            ));
+        }
+        if m.center_displacement.abs() > MAX_DISPLACEMENT || !(0.0..=MAX_PEEQ).contains(&m.max_peeq)
+        {
+            return bad(format!(
+                "centre displacement {} mm or largest PEEQ {} beyond the ranges of a state (±{} mm, [0, {}])",
+                num(m.center_displacement),
+                num(m.max_peeq),
+                num(MAX_DISPLACEMENT),
+                num(MAX_PEEQ)
+            ));
+        }
+    }
     let Some(last) = ck.increments.last() else {
         return Ok(());
     };
