@@ -467,10 +467,10 @@ pub fn constraints(
                 // u(m) = u(master) + Σ_{from∖to} s − Σ_{to∖from} s
                 let mut terms = vec![(nd.dof(*master, comp), 1.0)];
                 let mut through: Vec<usize> = Vec::new();
-                for k in 0..sections.len() {
+                for (k, sec) in sections.iter().enumerate() {
                     match (from.contains(&k), to.contains(&k)) {
-                        (true, false) => terms.push((sections[k].dof, 1.0)),
-                        (false, true) => terms.push((sections[k].dof, -1.0)),
+                        (true, false) => terms.push((sec.dof, 1.0)),
+                        (false, true) => terms.push((sec.dof, -1.0)),
                         _ => continue,
                     }
                     through.push(k);

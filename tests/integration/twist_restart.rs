@@ -149,10 +149,13 @@ fn check_names_the_bodies_only_friction_holds_about_the_axis() {
     );
 }
 
+/// A forgery: the text its refusal must contain, and the edit.
+type Forgery<'a> = (&'a str, &'a dyn Fn(&mut common::Forge));
+
 /// Stops `case` after `stop` increments, lets each forgery edit a copy of
 /// the restart file, and asserts that resuming from it is refused: exit 2,
-/// one line naming restart.bin and `needle`, no output folder.
-fn refused(tag: &str, case: &Path, stop: &str, forgeries: &[(&str, &dyn Fn(&mut common::Forge))]) {
+/// one line naming restart.bin and the forgery's text, no output folder.
+fn refused(tag: &str, case: &Path, stop: &str, forgeries: &[Forgery]) {
     let dir = common::scratch(tag);
     let part = dir.join("part");
     let (code, err) = run(case, &part, &["--stop-after", stop]);

@@ -316,7 +316,10 @@ pub(super) fn check_records(ck: &Checkpoint, model: &Model) -> Decoded<()> {
         let Some(v) = plan.part(&inc.record, &probes) else {
             continue;
         };
-        if let Some(i) = v.iter().position(|x| !(x.abs() <= MAX_DISPLACEMENT)) {
+        if let Some(i) = v
+            .iter()
+            .position(|x| x.is_nan() || x.abs() > MAX_DISPLACEMENT)
+        {
             return Err(format!(
                 "section records: increment {}: probe value {} is {} mm, a displacement beyond the ±{} mm of a case",
                 inc.increment,
