@@ -17,14 +17,23 @@
 //! so s > 0 shortens the body across the cut, rigidly over the whole cut.
 //! The virtual work of the cut is N δs with N the force the body transmits
 //! across the cut (tension positive): the force on s's equation is the
-//! section force, and it is what is reported ([`crate::solve::State::section_force`]).
+//! section force ([`crate::solve::State::section_force`]), what is reported
+//! once the section is locked or its shortening prescribed; while it is
+//! free (force control before its lock, [`free_at`]) the applied F h(t),
+//! which its equation makes the section force to Newton's tolerance, is
+//! reported instead ([`crate::model::Model::section_row`]): a value of the
+//! case, which no restart file can alter. While free, a section that cuts
+//! its body in two also leaves that body one rigid motion more, the side
+//! beyond the cut moving with s ([`sides`]; each side must be held,
+//! [`crate::solve::stabilize`]).
 //! Three ways to load it, each over a history:
 //! * `force = F`: a force F h(t) on s's equation, then, by default
 //!   (`lock = true`), **locked** after the history's last time: s keeps the
 //!   value it had there (its equation is held, [`crate::constraint`]) and
 //!   the section force follows the service loads — the bolt's share of them,
 //!   VDI 2230's load factor Φ;
-//! * `lock = false`: the force is kept (a bolt force no real bolt keeps);
+//! * `lock = false`: the force is kept (a bolt force no real bolt keeps: a
+//!   service load past it has no equilibrium);
 //! * `shortening = s₀`: s = s₀ h(t) prescribed (the nut turned by a known
 //!   amount), held by its history.
 
