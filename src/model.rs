@@ -446,6 +446,35 @@ impl Model {
         }
     }
 
+    /// The force applied to section `k`'s shortening at pseudo-time t (N):
+    /// F h(t) for a force-controlled section, 0 for a prescribed shortening;
+    /// the term of [`Model::external_force`] on its dof, summed alike.
+    pub fn section_load(&self, k: usize, t: f64) -> f64 {
+        let d = self.sections[k].dof;
+        let mut f = self.factor(None, t) * self.f_ext[d];
+        for p in &self.loads {
+            f += self.factor(p.history, t) * p.f[d];
+        }
+        f
+    }
+
+    /// What section `k` of a converged state at pseudo-time t reports
+    /// (pretension.csv: force, shortening), from the force `across` its cut
+    /// and the displacements `u`. While the section is free (force control,
+    /// not yet locked, [`crate::pretension::free_at`]) its force is the
+    /// applied F h(t), which its equation makes the force across the cut to
+    /// Newton's tolerance: a value of the case, which a restart file cannot
+    /// change ([`crate::restart`]).
+    pub fn section_row(&self, k: usize, across: f64, u: &[f64], t: f64) -> [f64; 2] {
+        let s = &self.sections[k];
+        let force = if crate::pretension::free_at(s, t) {
+            self.section_load(k, t)
+        } else {
+            across
+        };
+        [force, u[s.dof]]
+    }
+
     /// The prescribed dofs and their values at pseudo-time t.
     pub fn prescribed_at(&self, t: f64) -> impl Iterator<Item = (usize, f64)> + '_ {
         self.prescribed

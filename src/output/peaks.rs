@@ -28,16 +28,36 @@ pub const PER_INTERFACE: usize = 10;
 /// The body peaks of a state (collective under MPI): [`PER_BODY`] values
 /// per body. A body without plastic strain has PEEQ 0 and no place (NaN).
 pub fn bodies(engine: &Engine, state: &State) -> Vec<f64> {
-    let model = engine.model;
+    body_peaks(engine.model, engine.held_elements(), &state.gauss, |v| {
+        engine.backend.max(v)
+    })
+}
+
+/// [`bodies`] of a whole state in one process (every element's Gauss
+/// states, as a restart file holds them): what a run's record holds,
+/// whatever its ranks.
+pub fn bodies_whole(model: &Model, gauss: &[crate::material::PointState]) -> Vec<f64> {
+    let all: Vec<u32> = (0..model.mesh.elements.len() as u32).collect();
+    body_peaks(model, &all, gauss, |_| {})
+}
+
+/// The body peaks over the elements `held` (their Gauss states `gauss`, in
+/// that order), `max` the reduction over the ranks.
+fn body_peaks(
+    model: &Model,
+    held: &[u32],
+    gauss: &[crate::material::PointState],
+    max: impl Fn(&mut [f64]),
+) -> Vec<f64> {
     let nb = model.mesh.bodies.len();
     let ng = model.n_gauss();
     // this rank's largest von Mises and PEEQ per body, and their point index
     let mut best = vec![(f64::NEG_INFINITY, usize::MAX); 2 * nb];
-    for (k, &e) in engine.held_elements().iter().enumerate() {
+    for (k, &e) in held.iter().enumerate() {
         let e = e as usize;
         let b = model.mesh.elements[e].body;
         for ip in 0..ng {
-            let g = &state.gauss[k * ng + ip];
+            let g = &gauss[k * ng + ip];
             let i = e * ng + ip;
             for (slot, v) in [
                 (b, VonMises::equivalent_stress(&g.stress)),
@@ -50,7 +70,7 @@ pub fn bodies(engine: &Engine, state: &State) -> Vec<f64> {
         }
     }
     let mut top: Vec<f64> = best.iter().map(|b| b.0).collect();
-    engine.backend.max(&mut top);
+    max(&mut top);
     // the lowest index holding the largest value (negated: a max reduction)
     let mut key: Vec<f64> = best
         .iter()
@@ -63,7 +83,7 @@ pub fn bodies(engine: &Engine, state: &State) -> Vec<f64> {
             }
         })
         .collect();
-    engine.backend.max(&mut key);
+    max(&mut key);
     let place = |slot: usize| -> [f64; 3] {
         if key[slot] == f64::NEG_INFINITY {
             return [f64::NAN; 3];

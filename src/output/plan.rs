@@ -105,6 +105,19 @@ impl Plan {
         v
     }
 
+    /// The part of a converged state's record from the probes on (the
+    /// probes, the body peaks and the interface peaks: what its displacements
+    /// and Gauss states fix), computed in one process from the whole state,
+    /// as a restart file holds it; the reactions before them come from the
+    /// residual, which the state does not keep.
+    pub fn state_part(&self, model: &crate::model::Model, state: &State) -> Vec<f64> {
+        let mut v = Vec::with_capacity(self.width() - self.layout.probes.start);
+        v.extend(probes::values(&self.probes, model.node_dofs(), &state.u));
+        v.extend(peaks::bodies_whole(model, &state.gauss));
+        v.extend(peaks::interfaces(model, &self.arcs, &state.u, state.time));
+        v
+    }
+
     /// Restores a restart file's designer sections into a checkpoint whose
     /// curve is restored: `records`, each increment's record (this plan's
     /// width per increment: finite or NaN, no infinity; a row all NaN is an

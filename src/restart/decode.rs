@@ -4,7 +4,9 @@
 use super::*;
 
 mod contact;
+mod records;
 mod stepper;
+use records::*;
 pub(super) use stepper::*;
 
 pub(super) struct Reader<'a> {
@@ -71,11 +73,13 @@ pub(super) fn decode_with(
     restore_stepper(&mut ck, &s, model)?;
     restore_state(&mut ck, &s, model)?;
     ck.committed.time = ck.lambda;
-    restore_joints(&mut ck, &s, model.interfaces.len())?;
+    check_curve(&ck, model)?;
+    restore_joints(&mut ck, &s, model)?;
     restore_sections(&mut ck, &s, model)?;
     restore_table_reach(&mut ck, &s, model)?;
     ck.first_yield = restore_first_yield(&s, model, &ck.increments)?;
     restore_designer(&mut ck, &s, model)?;
+    check_records(&ck, model)?;
     let pvd = restore_vtu_series(&s, model, &ck.increments)?;
     Ok((ck, pvd))
 }
@@ -454,116 +458,6 @@ pub(super) fn check_gauss_point(model: &Model, i: usize, v: &[f64]) -> Decoded<(
             num(q),
             num(y)
         ));
-    }
-    Ok(())
-}
-
-/// The joint energy totals and every increment's joint measures, when the
-/// file has them (a file of an earlier build has neither: the totals start
-/// from zero, the earlier increments keep no joint measures). Totals are
-/// finite; an increment's row is either finite or all NaN (an increment
-/// restored from a file of an earlier build), and NaN rows come first.
-pub(super) fn restore_joints(ck: &mut Checkpoint, s: &Sections, interfaces: usize) -> Decoded<()> {
-    if s.0.contains_key("joint_totals") {
-        let v = s.finite("joint_totals", Some(2 * interfaces))?;
-        ck.joint_totals = v
-            .chunks_exact(2)
-            .map(|t| JointTotals {
-                dissipation: t[0],
-                work: t[1],
-            })
-            .collect();
-    }
-    if s.0.contains_key("joints") {
-        let w = JointMeasures::PACKED * interfaces;
-        let v = s.f("joints", Some(w * ck.increments.len()))?;
-        let mut measured = false;
-        for (inc, row) in ck.increments.iter_mut().zip(v.chunks_exact(w.max(1))) {
-            if row.iter().all(|x| x.is_nan()) && !measured {
-                continue;
-            }
-            if let Some(x) = row.iter().find(|x| !x.is_finite()) {
-                return Err(format!(
-                    "section joints: increment {}: a value {} (a row is finite, or all NaN before the first finite one)",
-                    inc.increment,
-                    num(*x)
-                ));
-            }
-            measured = true;
-            inc.joints = row
-                .chunks_exact(JointMeasures::PACKED)
-                .map(JointMeasures::unpack)
-                .collect();
-        }
-    }
-    // twist: torque, circumferential slip and twist of the measured rows
-    // (a file of an earlier build has none: they stay 0)
-    if s.0.contains_key("joints_twist") {
-        let w = JointMeasures::PACKED_TWIST * interfaces;
-        let v = s.f("joints_twist", Some(w * ck.increments.len()))?;
-        for (inc, row) in ck.increments.iter_mut().zip(v.chunks_exact(w.max(1))) {
-            if inc.joints.len() != interfaces {
-                continue;
-            }
-            if let Some(x) = row.iter().find(|x| !x.is_finite()) {
-                return Err(format!(
-                    "section joints_twist: increment {}: a value {} in a row whose joints are finite",
-                    inc.increment,
-                    num(*x)
-                ));
-            }
-            for (m, t) in inc
-                .joints
-                .iter_mut()
-                .zip(row.chunks_exact(JointMeasures::PACKED_TWIST))
-            {
-                (m.torque, m.hoop_slip, m.twist) = (t[0], t[1], t[2]);
-            }
-        }
-    }
-    Ok(())
-}
-
-/// Every increment's pretension section forces and shortenings (a section
-/// `pretension`, 2 numbers per section and increment, finite), when the
-/// model has sections; a model without any has no such section.
-pub(super) fn restore_sections(ck: &mut Checkpoint, s: &Sections, model: &Model) -> Decoded<()> {
-    let sections = model.sections.len();
-    if sections == 0 || ck.increments.is_empty() {
-        return Ok(());
-    }
-    let w = 2 * sections;
-    let v = s.finite("pretension", Some(w * ck.increments.len()))?;
-    for (inc, row) in ck.increments.iter_mut().zip(v.chunks_exact(w)) {
-        for p in row.chunks_exact(2) {
-            let (force, shortening) = (p[0], p[1]);
-            if !(crate::case::ranges::FORCE.admits(force) || force == 0.0)
-                || shortening.abs() > MAX_DISPLACEMENT
-            {
-                return Err(format!(
-                    "section pretension: increment {}: a force {} or shortening {} outside any engineering use",
-                    inc.increment,
-                    num(force),
-                    num(shortening)
-                ));
-            }
-        }
-        inc.sections = row.chunks_exact(2).map(|p| [p[0], p[1]]).collect();
-    }
-    // the committed shortening is the last increment's (a locked one never
-    // moves, so a file whose state disagrees with its own record is forged)
-    if let Some(last) = ck.increments.last() {
-        for (k, sec) in model.sections.iter().enumerate() {
-            let (u, rec) = (ck.committed.u[sec.dof], last.sections[k][1]);
-            if u != rec {
-                return Err(format!(
-                    "section u: the shortening of pretension \"{}\" is {} but the last increment records {}",
-                    sec.name,
-                    num(u),
-                    num(rec)
-                ));
-            }
-        }
     }
     Ok(())
 }

@@ -99,6 +99,21 @@
 //!   `table_reach` (u_N, p_N) within [0, [`MAX_DISPLACEMENT`]] ×
 //!   [0, [`MAX_PRESSURE`]], p_N the normal law's pressure at u_N, and at
 //!   least the restored state's own reach ([`Reach::of`]);
+//! - the records beside the state (`decode/records.rs`): every `curve`
+//!   row's normal force within [0, the pressure range × the first
+//!   interface's area], its mean pressure and load that force over the area
+//!   and in kN, exactly, its displacement and PEEQ within the state's
+//!   ranges; the last increment's `curve` row, `joints` / `joints_twist` rows and `records`
+//!   from the probes on exactly what the restored state gives
+//!   ([`Measures::of`], [`crate::solve::joint_measures`],
+//!   [`crate::output::plan::Plan::state_part`]); every joint row's normal
+//!   force within [0, the pressure range × its area], its status measures
+//!   ≥ 0 and adding up to the interface's, its tangential force and torque
+//!   within μ F_N and μ r_max F_N; every probe value within
+//!   ±[`MAX_DISPLACEMENT`]; `pretension` rows: a free section's force
+//!   (force control before its lock) and a prescribed shortening
+//!   recomputed from the case ([`Model::section_row`]), a locked section's
+//!   shortening the one at its lock in every later row and in `u`;
 //! - names: every `pvd_file` name is `vtu/NNNN.vtu` exactly as the writer
 //!   names an increment ([`vtu_name`]), for increasing converged increments,
 //!   with that increment's load factor; every file a resumed run copies

@@ -31,7 +31,8 @@ fn model() -> Model {
 
 /// A checkpoint after `n` increments of the case's schedule, as a run
 /// leaves it (no solve: the state stays the initial one), with a VTU
-/// file per increment.
+/// file per increment; each increment's records those of the state at its
+/// load factor ([`honest`]), the reactions of its record made up.
 fn checkpoint(model: &Model, n: usize) -> (Checkpoint, Vec<(f64, String)>) {
     let mut ck = Checkpoint::initial(model);
     let mut pvd = Vec::new();
@@ -46,13 +47,30 @@ fn checkpoint(model: &Model, n: usize) -> (Checkpoint, Vec<(f64, String)>) {
             iterations: 3,
             cutbacks: 0,
             measures: Measures::default(),
-            joints: vec![JointMeasures::default(); model.interfaces.len()],
+            joints: Vec::new(),
             sections: Vec::new(),
             record: (0..model.plan.width()).map(|i| (k * i) as f64).collect(),
         });
+        honest(model, &mut ck);
         pvd.push((t, vtu_name(k)));
     }
     (ck, pvd)
+}
+
+/// The last increment's records made the committed state's (at the
+/// checkpoint's load factor), as a run writes them: the curve's measures,
+/// the joints' rows and the record from its probes on.
+fn honest(model: &Model, ck: &mut Checkpoint) {
+    ck.committed.time = ck.lambda;
+    let joints = crate::solve::joint_measures(model, &ck.committed, &ck.joint_totals);
+    let part = model.plan.state_part(model, &ck.committed);
+    let measures = Measures::of(model, &ck.committed);
+    let inc = ck.increments.last_mut().unwrap();
+    inc.measures = measures;
+    inc.joints = joints;
+    let start = model.plan.layout.probes.start;
+    inc.record.truncate(start);
+    inc.record.extend(part);
 }
 
 #[test]
@@ -97,8 +115,9 @@ fn decode_refuses_what_the_case_cannot_have_produced() {
     assert_eq!(back.stepper.pending, ck.stepper.pending);
     assert_eq!(back.increments.len(), 4);
     // the designer's records and events, bit for bit
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
     for (a, b) in back.increments.iter().zip(&ck.increments) {
-        assert_eq!(a.record, b.record);
+        assert_eq!(bits(&a.record), bits(&b.record));
     }
     let mut c = ck.clone();
     let event = crate::solve::events::Event {
@@ -196,6 +215,46 @@ fn decode_refuses_what_the_case_cannot_have_produced() {
     let mut c = ck.clone();
     c.increments[1].record[0] = f64::INFINITY;
     refused(&c, &pvd, "section records: value");
+    // the last record from its probes on (here the peaks) is the state's
+    let mut c = ck.clone();
+    let peak = model.plan.layout.bodies.start;
+    c.increments[3].record[peak] += 0.5;
+    refused(
+        &c,
+        &pvd,
+        &format!(
+            "section records: increment 4 (the last): value {} (a body peak) is",
+            peak + 1
+        ),
+    );
+    // the last row of the curve is the state's
+    let mut c = ck.clone();
+    c.increments[3].measures.center_displacement += 0.5;
+    refused(
+        &c,
+        &pvd,
+        "section curve: row 4 (the last): centre displacement 0.5",
+    );
+    // and every row's mean pressure and load are its normal force's
+    let mut c = ck.clone();
+    c.increments[1].measures.mean_pressure += 100.0;
+    refused(&c, &pvd, "section curve: row 2: mean pressure 100 MPa");
+    // and the last joints row
+    let mut c = ck.clone();
+    c.increments[3].joints[0].normal_force = 1.0;
+    refused(
+        &c,
+        &pvd,
+        "section joints: increment 4 (the last): interface \"contact\": normal force = 1",
+    );
+    // an earlier row beyond what the interface carries
+    let mut c = ck.clone();
+    c.increments[1].joints[0].open = -1.0;
+    refused(
+        &c,
+        &pvd,
+        "section joints: increment 2: interface \"contact\": status measures",
+    );
     let mut c = ck.clone();
     let mut e = event.clone();
     c.events.push(e.clone());
@@ -272,6 +331,7 @@ fn decode_refuses_what_the_case_cannot_have_produced() {
     let norm = (ep[0] * ep[0] + ep[1] * ep[1] + ep[3] * ep[3] + 2.0 * ep[2] * ep[2]).sqrt();
     c.committed.gauss[5].plastic_strain = [ep[0], ep[1], ep[2], ep[3], 0.0, 0.0];
     c.committed.gauss[5].peeq = (2.0f64 / 3.0).sqrt() * norm;
+    honest(&model, &mut c);
     assert!(decode(&encode(&model, &c, &pvd), &model).is_ok());
     c.committed.gauss[5].peeq *= 1.0 - 1e-6;
     refused(
@@ -342,10 +402,10 @@ fn a_twisting_models_vector_states_round_trip_and_are_checked() {
         p_n: 100.0,
     }];
     ck.increments[1].joints[0].torque = 1234.5;
-    ck.increments[2].joints[0].twist = -2e-4;
+    ck.increments[1].joints[0].twist = -2e-4;
     let (back, _) = decode(&encode(&model, &ck, &pvd), &model).unwrap();
     assert_eq!(back.increments[1].joints[0].torque, 1234.5);
-    assert_eq!(back.increments[2].joints[0].twist, -2e-4);
+    assert_eq!(back.increments[1].joints[0].twist, -2e-4);
     assert_eq!(back.committed.contact, ck.committed.contact);
     let refused = |c: &Checkpoint, needle: &str| {
         let e = decode(&encode(&model, c, &pvd), &model).unwrap_err();
@@ -369,4 +429,52 @@ fn a_twisting_models_vector_states_round_trip_and_are_checked() {
     let mut c = ck.clone();
     c.increments[0].joints[0].torque = f64::NAN;
     refused(&c, "section joints_twist: increment 1");
+    // a torque spike beyond what friction holds at the row's normal force
+    let mut c = ck.clone();
+    let hold = c.increments[1].joints[0].normal_force;
+    c.increments[1].joints[0].torque = 1e3 * hold;
+    refused(
+        &c,
+        "section joints_twist: increment 2: interface \"fit\": torque",
+    );
+    // the last row is the restored state's
+    let mut c = ck.clone();
+    c.increments[2].joints[0].torque += 1.0;
+    refused(
+        &c,
+        "section joints_twist: increment 3 (the last): interface \"fit\": torque = 1, but the restored state",
+    );
+}
+
+/// A probe spike in a restart file: a probe value beyond the displacement
+/// range in any record, and in the last record anything but the restored
+/// state's displacement, are refused (the face coupling's probe on the
+/// disk's rim: u_x, u_y, u_θ).
+#[test]
+fn a_forged_probe_is_refused() {
+    let model = Model::parse(
+        include_str!("../../cases/face-coupling-torque/case.toml"),
+        "case.toml",
+    )
+    .unwrap();
+    let probes = model.plan.layout.probes.clone();
+    assert_eq!(probes.len(), 3);
+    let (ck, pvd) = checkpoint(&model, 3);
+    assert!(decode(&encode(&model, &ck, &pvd), &model).is_ok());
+    let refused = |c: &Checkpoint, needle: &str| {
+        let e = decode(&encode(&model, c, &pvd), &model).unwrap_err();
+        assert!(e.contains(needle), "{e:?} should contain {needle:?}");
+    };
+    let mut c = ck.clone();
+    c.increments[1].record[probes.start + 2] = -3e4;
+    refused(&c, "section records: increment 2: probe value 3 is -3e4 mm");
+    let mut c = ck.clone();
+    c.increments[2].record[probes.start + 1] = 0.25;
+    refused(
+        &c,
+        &format!(
+            "section records: increment 3 (the last): value {} (a probe) is 0.25, but the restored state (sections u, gauss) gives 0",
+            probes.start + 2
+        ),
+    );
 }

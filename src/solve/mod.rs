@@ -136,6 +136,25 @@ impl Measures {
     }
 }
 
+/// The joint measures of every interface in a committed state, with the
+/// energies so far `totals`: an increment's `joints` (a restart file's last
+/// row is compared with them, [`crate::restart`]).
+pub fn joint_measures(
+    model: &Model,
+    state: &State,
+    totals: &[joint::JointTotals],
+) -> Vec<joint::JointMeasures> {
+    joint::measures(
+        &model.interfaces,
+        model.section,
+        state.time,
+        &state.u,
+        &state.status,
+        &state.contact,
+        totals,
+    )
+}
+
 /// Callbacks of a run (progress, output).
 pub trait Observer {
     fn increment(&mut self, model: &Model, state: &State, inc: &Increment) -> Result<()>;
@@ -505,27 +524,12 @@ fn accept(
         iterations,
         cutbacks: ck.cutbacks_here,
         measures: engine.measures(&ck.committed),
-        joints: joint::measures(
-            &model.interfaces,
-            model.section,
-            ck.committed.time,
-            &ck.committed.u,
-            &ck.committed.status,
-            &ck.committed.contact,
-            &ck.joint_totals,
-        ),
-        sections: model
-            .sections
-            .iter()
-            .enumerate()
-            .map(|(k, s)| {
-                let f = ck
-                    .committed
-                    .section_force
-                    .get(k)
-                    .copied()
-                    .unwrap_or(f64::NAN);
-                [f, ck.committed.u[s.dof]]
+        joints: joint_measures(model, &ck.committed, &ck.joint_totals),
+        sections: (0..model.sections.len())
+            .map(|k| {
+                let c = &ck.committed;
+                let across = c.section_force.get(k).copied().unwrap_or(f64::NAN);
+                model.section_row(k, across, &c.u, c.time)
             })
             .collect(),
         record: model.plan.record(engine, &ck.committed),

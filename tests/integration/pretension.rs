@@ -97,6 +97,32 @@ fn a_forged_section_in_a_restart_file_is_refused() {
             }),
             "outside any engineering use",
         ),
+        // the state and its last row moved together: the locked section
+        // shortened after its lock, which Newton never does
+        (
+            "locked shortening and its row",
+            Box::new(|f: &mut common::Forge| {
+                let mut u = f.f64s("u");
+                let k = u.len() - 2;
+                u[k] += 1e-3;
+                f.set_f64s("u", &u);
+                let mut v = f.f64s("pretension");
+                let last = v.len() - 1;
+                v[last] = u[k];
+                f.set_f64s("pretension", &v);
+            }),
+            "section pretension: increment 8: the shortening of pretension \"bolt\" is",
+        ),
+        // a row after the lock (increment 7, t = 1.15) alone
+        (
+            "locked row",
+            Box::new(|f: &mut common::Forge| {
+                let mut v = f.f64s("pretension");
+                v[2 * 6 + 1] *= 1.5;
+                f.set_f64s("pretension", &v);
+            }),
+            "section pretension: increment 7: the shortening of pretension \"bolt\" is",
+        ),
     ];
     for (what, edit, needle) in forgeries {
         let mut f = common::Forge::parse(&bin);
@@ -125,8 +151,65 @@ fn a_forged_section_in_a_restart_file_is_refused() {
             e.contains("restart.bin") && e.contains(needle),
             "{what}: {e}"
         );
+        if needle.contains("increment") {
+            assert!(
+                e.contains("but it is locked from t = 1 on at"),
+                "{what}: {e}"
+            );
+        }
         assert!(!out.exists(), "{what}: output left behind");
     }
+}
+
+/// Before its lock a force-controlled section's force is the case's F h(t)
+/// (its equation makes it so): a restart file's row of it is recomputed, so
+/// a forged pre-lock force (3 kN at t = 0.35 for 350 N) changes nothing:
+/// the resumed run writes the uninterrupted run's pretension.csv and
+/// summary, the force at the lock exactly 1 kN. (It was written out as
+/// forged, and summary.json's force_at_lock_n and force_max_n with it.)
+#[test]
+fn a_forged_pre_lock_force_is_recomputed_from_the_case() {
+    let case = common::case_dir("pretension-prelock-case", &bar());
+    let root = common::scratch("pretension-prelock");
+    let c = case.display().to_string();
+    let o = |n: &str| root.join(n).display().to_string();
+    let (full, stopped, resumed) = (o("full"), o("stopped"), o("resumed"));
+    let (code, e) = asperity(&["run", &c, "--out", &full, "--quiet"]);
+    assert_eq!(code, 0, "{e}");
+    let (code, e) = asperity(&["run", &c, "--out", &stopped, "--quiet", "--stop-after", "4"]);
+    assert_eq!(code, 3, "{e}");
+    let bin = root.join("stopped/restart.bin");
+    let mut f = common::Forge::parse(&std::fs::read(&bin).unwrap());
+    let mut v = f.f64s("pretension");
+    assert_eq!(v.len(), 8);
+    assert!(
+        common::rel(v[4], 350.0) < 1e-15,
+        "t = 0.35: F h(t) {}",
+        v[4]
+    );
+    v[4] = 3000.0;
+    f.set_f64s("pretension", &v);
+    std::fs::write(&bin, f.bytes()).unwrap();
+    let (code, e) = asperity(&[
+        "run",
+        &c,
+        "--out",
+        &resumed,
+        "--quiet",
+        "--restart",
+        &stopped,
+    ]);
+    assert_eq!(code, 0, "{e}");
+    let read = |d: &str, n: &str| std::fs::read_to_string(std::path::Path::new(d).join(n)).unwrap();
+    assert_eq!(
+        read(&full, "pretension.csv"),
+        read(&resumed, "pretension.csv")
+    );
+    let s: serde_json::Value = serde_json::from_str(&read(&resumed, "summary.json")).unwrap();
+    let p = &s["pretension"][0];
+    assert_eq!(p["force_at_lock_n"], 1000.0);
+    let whole: serde_json::Value = serde_json::from_str(&read(&full, "summary.json")).unwrap();
+    assert_eq!(p["force_max_n"], whole["pretension"][0]["force_max_n"]);
 }
 
 /// A square plate of four blocks held on its four sides, cut by two

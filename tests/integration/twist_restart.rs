@@ -148,3 +148,104 @@ fn check_names_the_bodies_only_friction_holds_about_the_axis() {
         "{out}"
     );
 }
+
+/// A forgery: the text its refusal must contain, and the edit.
+type Forgery<'a> = (&'a str, &'a dyn Fn(&mut common::Forge));
+
+/// Stops `case` after `stop` increments, lets each forgery edit a copy of
+/// the restart file, and asserts that resuming from it is refused: exit 2,
+/// one line naming restart.bin and the forgery's text, no output folder.
+fn refused(tag: &str, case: &Path, stop: &str, forgeries: &[Forgery]) {
+    let dir = common::scratch(tag);
+    let part = dir.join("part");
+    let (code, err) = run(case, &part, &["--stop-after", stop]);
+    assert_eq!(code, 3, "{err}");
+    let bin = std::fs::read(part.join("restart.bin")).unwrap();
+    for (needle, forge) in forgeries {
+        let mut f = common::Forge::parse(&bin);
+        forge(&mut f);
+        std::fs::write(part.join("restart.bin"), f.bytes()).unwrap();
+        let out = dir.join("resumed");
+        let r = part.display().to_string();
+        let (code, err) = run(case, &out, &["--restart", &r]);
+        assert_eq!(code, 2, "{needle}: {err}");
+        assert_eq!(err.trim().lines().count(), 1, "{err}");
+        assert!(
+            err.contains("restart.bin") && err.contains(needle),
+            "{needle}: {err}"
+        );
+        assert!(!out.exists(), "{needle}: output left behind");
+    }
+}
+
+/// A torque spike in a twisted fit's restart file: an earlier row's torque
+/// beyond what the fit's friction holds at that row's normal force, and the
+/// last row's anything but the restored state's own, are refused (they
+/// were written out into joints.csv as the run's torque).
+#[test]
+fn a_forged_torque_row_is_refused() {
+    let case = common::root().join("cases/shrink-fit-torque");
+    // increment 20: 1000 mm times the row's normal force, past any μ r F_N;
+    // the last: the torque changed in its ninth digit
+    let early = |f: &mut common::Forge| {
+        let normal = f.f64s("joints")[11 * 19];
+        assert!(normal > 0.0);
+        let mut t = f.f64s("joints_twist");
+        assert_eq!(t.len(), 3 * 30, "one interface, 30 increments");
+        t[3 * 19] = 1e3 * normal;
+        f.set_f64s("joints_twist", &t);
+    };
+    let last = |f: &mut common::Forge| {
+        let mut t = f.f64s("joints_twist");
+        assert!(t[3 * 29] != 0.0);
+        t[3 * 29] *= 1.0 + 1e-9;
+        f.set_f64s("joints_twist", &t);
+    };
+    refused(
+        "twist-forged-torque",
+        &case,
+        "30",
+        &[
+            (
+                "section joints_twist: increment 20: interface \"fit\": torque",
+                &early,
+            ),
+            (
+                "section joints_twist: increment 30 (the last): interface \"fit\": torque = ",
+                &last,
+            ),
+        ],
+    );
+}
+
+/// A probe spike in the face coupling's restart file: a probe value beyond
+/// the displacement range in an earlier record, and the last record's
+/// probe anything but the restored displacement, are refused (probes.csv
+/// showed them).
+#[test]
+fn a_forged_probe_is_refused() {
+    let case = common::root().join("cases/face-coupling-torque");
+    let model = common::model(&std::fs::read_to_string(case.join("case.toml")).unwrap());
+    let (width, probe) = (model.plan.width(), model.plan.layout.probes.start);
+    let set = move |row: usize, k: usize, v: f64| {
+        move |f: &mut common::Forge| {
+            let mut r = f.f64s("records");
+            assert_eq!(r.len(), width * 10);
+            r[width * row + probe + k] = v;
+            f.set_f64s("records", &r);
+        }
+    };
+    let (early, last) = (set(4, 2, 1e5), set(9, 2, 0.125));
+    refused(
+        "twist-forged-probe",
+        &case,
+        "10",
+        &[
+            (
+                "section records: increment 5: probe value 3 is 1e5 mm",
+                &early,
+            ),
+            ("section records: increment 10 (the last): value", &last),
+        ],
+    );
+}

@@ -90,12 +90,11 @@ impl Stabilizer {
         }
         let unloaded = self.unloaded(model, lambda);
         let floating = self.floating(model, &committed.u, lambda);
-        if unloaded.is_none() {
-            // held if its free sections were held: a side of a cut floats
-            let cuts_held = self.floating_as(model, &committed.u, lambda, |_| false);
-            if let Some(&b) = floating.iter().find(|b| !cuts_held.contains(b)) {
-                return Some(self.loose_side(model, &committed.u, lambda, b));
-            }
+        // held if its free sections were held: a side of a cut floats, which
+        // the section's force drives (whatever else carries no load)
+        let cuts_held = self.floating_as(model, &committed.u, lambda, |_| false);
+        if let Some(&b) = floating.iter().find(|b| !cuts_held.contains(b)) {
+            return Some(self.loose_side(model, &committed.u, lambda, b));
         }
         let Some(b) = unloaded.or(floating.first().copied()) else {
             return self.free_section(model, lambda);
