@@ -504,7 +504,7 @@ fn report_end(log: &Log, model: &Model, dir: &Path, r: &RunResult, wall: f64, ov
         json!({
             "output": dir.display().to_string(),
             "increments": r.increments.len(),
-            "newton_iterations": r.stats.iterations,
+            "newton_iterations": r.stats.run_iterations(),
             "cutbacks": r.cutbacks,
             "load_factor": lambda,
             "total_load_kn": m.total_load_kn,
@@ -531,7 +531,7 @@ fn report_end(log: &Log, model: &Model, dir: &Path, r: &RunResult, wall: f64, ov
                 m.mean_pressure,
                 m.center_displacement,
                 r.increments.len(),
-                r.stats.iterations
+                r.stats.run_iterations()
             );
             s
         },
