@@ -703,11 +703,15 @@ pub fn check(case_path: &Path) -> Result<String> {
             );
         }
         crate::case::StepControl::Auto => {
+            // the first step the run takes: the case's first increment
+            // within the largest step, and never past the first breakpoint
+            let mut stepper = solve::stepping::Stepper::for_model(&model);
+            let first = stepper.next(0.0).map_or(0.0, f64::abs);
             s += &format!(
                 "  solver: {}, automatic steps to λ = {:.4} (first {:.4}, at most {:.4}, plastic strain ≈ {} per step), ≤ {} iterations each, ≤ {} cutbacks in a row\n",
                 model.solver.method.name(),
-                solve::stepping::Stepper::for_model(&model).final_target(0.0),
-                model.solver.first_increment.unwrap_or(1.0 / model.solver.n_increments() as f64),
+                stepper.final_target(0.0),
+                first,
                 model.solver.max_increment.unwrap_or(0.25),
                 model.solver.plastic_strain_step,
                 model.solver.iteration_limit(),
