@@ -304,7 +304,7 @@ pub fn run(
             relative_eta,
             value: q,
             estimate,
-            iterations: result.stats.iterations,
+            iterations: result.stats.run_iterations(),
             increments: result.increments.len(),
             wall_s: started.elapsed().as_secs_f64(),
             settlement_mm: value(Quantity::Settlement, &model, &result, 0.0),

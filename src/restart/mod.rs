@@ -27,7 +27,8 @@
 //! `auto_failures` (automatic step control), `cutbacks` (total, since the last increment),
 //! `elastic_ratio_prev`, `counters` (Newton iterations, factorizations),
 //! `interface_counters` (the interface loop's loops, iterations and fallbacks; absent from
-//! files written before 2026-11-27: zeros), `u`,
+//! files written before 2026-11-27: zeros), `event_counters` (the event searches' share of
+//! the Newton iterations; absent from earlier files: 0), `u`,
 //! `gauss` (10 per Gauss point: σxx σyy σxy σzz, εᵖ ×4, ε̄ᵖ, yielding),
 //! `status` (interface status codes), `contact` (25 per interface point, as
 //! [`crate::interface::PointState::pack`] lays them out:
@@ -78,7 +79,8 @@
 //!   the resumed run ends where the case's history ends; `auto_step` within
 //!   the case's smallest and largest step; no failures or cutbacks pending
 //!   and the cutback total the curve's;
-//! - the counters: Newton iterations and factorizations at most what a run
+//! - the counters: Newton iterations (the event searches' share, at most
+//!   all of them, set apart) and factorizations at most what a run
 //!   of the case can count after the curve's increments and cutbacks
 //!   ([`most_iterations`]: per attempt a predicted and a plain solve, each
 //!   with the stabilization's levels and releases, plus one first-yield
@@ -379,6 +381,7 @@ fn sections(e: &mut Encoder, ck: &Checkpoint, pvd: &[(f64, String)]) -> std::io:
             ck.interface.fallbacks as u64,
         ],
     )?;
+    e.u64s("event_counters", &[ck.event_iterations as u64])?;
     e.f64s("u", &s.u)?;
     let w = PointState::packed_len(ck.twist);
     e.f64_iter(

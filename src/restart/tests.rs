@@ -281,6 +281,27 @@ fn decode_refuses_what_the_case_cannot_have_produced() {
     assert!(decode(&encode(&model, &c, &pvd), &model).is_ok());
     c.factorizations += 1;
     refused(&c, &pvd, "section counters: ");
+    // the event searches' share: restored as written, beyond the bound on
+    // the run's own iterations, never more than all of them
+    let mut c = ck.clone();
+    c.iterations = most as usize + 7;
+    c.event_iterations = 7;
+    let back = decode(&encode(&model, &c, &pvd), &model)
+        .expect("the run's own within the bound")
+        .0;
+    assert_eq!(
+        (back.iterations, back.event_iterations),
+        (most as usize + 7, 7)
+    );
+    c.event_iterations = 6;
+    refused(&c, &pvd, "section counters: ");
+    c.iterations = 3;
+    c.event_iterations = 4;
+    refused(
+        &c,
+        &pvd,
+        "section event_counters: 4 Newton iterations of event searches",
+    );
     // the interface loop's counters: at most a loop per Newton iteration,
     // MAX_INNER iterations per loop, a fallback per loop; restored as written
     let inner = crate::solve::newton::interface_loop::MAX_INNER;

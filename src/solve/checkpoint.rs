@@ -29,9 +29,11 @@ pub struct Checkpoint {
     pub cutbacks_total: usize,
     /// Cutbacks since the last converged increment.
     pub cutbacks_here: usize,
-    /// Newton iterations and factorizations so far.
+    /// Newton iterations and factorizations so far (the event searches'
+    /// included), and the event searches' iterations.
     pub iterations: usize,
     pub factorizations: usize,
+    pub event_iterations: usize,
     /// The interface loop's counters so far (`newton::interface_loop`).
     pub interface: newton::interface_loop::LoopStats,
     /// Frictional dissipation and tangential work of every interface so far.
@@ -62,6 +64,7 @@ impl Checkpoint {
             cutbacks_here: 0,
             iterations: 0,
             factorizations: 0,
+            event_iterations: 0,
             interface: Default::default(),
             joint_totals: vec![JointTotals::default(); model.interfaces.len()],
             table_reach: vec![Default::default(); model.interfaces.len()],

@@ -460,6 +460,8 @@ pub(super) fn search(
     }
     // the search's steps leave the stabilization as the accepted step left it
     let saved = engine.stabilizer.clone();
+    // and count apart from the run's own iterations
+    let before = engine.stats.iterations;
     let mut out = Vec::new();
     let mut result = Ok(());
     for m in &monitors {
@@ -471,11 +473,13 @@ pub(super) fn search(
             }
             Err(e) => {
                 engine.stabilizer = saved;
+                engine.stats.event_iterations += engine.stats.iterations - before;
                 return Err(e);
             }
         }
     }
     engine.stabilizer = saved;
+    engine.stats.event_iterations += engine.stats.iterations - before;
     Ok(match result {
         Ok(()) => Found::Events(out),
         Err(signal) => Found::Interrupted(signal),

@@ -256,6 +256,7 @@ pub fn run_from(
     engine.localize(&mut ck.committed);
     engine.stats.iterations = ck.iterations;
     engine.stats.factorizations = ck.factorizations;
+    engine.stats.event_iterations = ck.event_iterations;
     engine.stats.interface = ck.interface.clone();
     let mut stopped = None;
     while let Some(target) = ck.stepper.next(ck.lambda) {
@@ -537,6 +538,7 @@ fn accept(
     ck.cutbacks_here = 0;
     ck.iterations = engine.stats.iterations;
     ck.factorizations = engine.stats.factorizations;
+    ck.event_iterations = engine.stats.event_iterations;
     ck.interface = engine.stats.interface.clone();
     write_increment(engine, observer, ck, inc)?;
     Ok(Accepted::Yes)

@@ -327,3 +327,59 @@ fn the_output_folder_never_replaces_input() {
     assert_eq!(names, ["afile", "sandbox"]);
     assert_eq!(std::fs::read_dir(dir.join("sandbox")).unwrap().count(), 2);
 }
+
+/// `check` names the first step the run takes (issue 42): under automatic
+/// steps the case's first increment within `max_increment` and up to the
+/// first history breakpoint. It printed the case's `first_increment`
+/// whatever the run then took (0.5 against 0.25, 0.05 against 0.01 or a
+/// breakpoint at 0.02).
+#[test]
+fn check_names_the_first_step_the_run_takes() {
+    let text =
+        std::fs::read_to_string(common::root().join("cases/shrink-fit-torque/case.toml")).unwrap();
+    let early = text.replacen(
+        "press = [[0.0, 0.0], [1.0, 1.0]]",
+        "press = [[0.0, 0.0], [0.02, 0.1], [1.0, 1.0]]",
+        1,
+    );
+    for (k, (text, solver)) in [
+        (&text, "step_control = \"auto\"\nfirst_increment = 0.5"),
+        (&text, "step_control = \"auto\"\nmax_increment = 0.01"),
+        (&early, "step_control = \"auto\"\nfirst_increment = 0.5"),
+        (&text, "increments = 3"),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let case = common::case_dir(
+            &format!("check-first-step-{k}"),
+            &common::with_solver_table(text, solver),
+        );
+        let case = case.to_str().unwrap();
+        let (code, out, err) = asperity(&["check", case]);
+        assert_eq!(code, 0, "{err}");
+        let said: f64 = out
+            .split("(first to λ = ")
+            .nth(1)
+            .and_then(|r| r.split([',', ')']).next())
+            .unwrap_or_else(|| panic!("{out}"))
+            .parse()
+            .unwrap();
+        let dir = std::path::Path::new(case).parent().unwrap().join("out");
+        let (code, _, err) = asperity(&[
+            "run",
+            case,
+            "--out",
+            dir.to_str().unwrap(),
+            "--quiet",
+            "--stop-after",
+            "1",
+        ]);
+        assert_eq!(code, 3, "{err}");
+        let taken = common::csv_column(&dir.join("curve.csv"), "load_factor")[0];
+        assert!(
+            (said - taken).abs() < 5e-5,
+            "{solver}: check says the first step is {said}, the run takes {taken}"
+        );
+    }
+}

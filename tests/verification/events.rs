@@ -192,3 +192,67 @@ fn first_yield_names_the_lowest_of_points_tied_within_round_off() {
     let (_, e, ip) = engine.max_yield_ratio(&state);
     assert_eq!((e, ip), (b, 2), "a point 1e-9 above the others is not tied");
 }
+
+/// Issue 42: a pressed-then-turned fit (cases/shrink-fit-torque on fixed
+/// steps of 1/2 and 1/3 per unit of pseudo-time) brackets its full slip
+/// inside the first turning step, with the interface loop and without it.
+/// The search's steps (from the pressed state to the bracket's midpoints)
+/// swung the fit between two slip states, each linearizing into the other,
+/// until the iteration limit: "converged: false" with the bracket
+/// [1, 1.1667], 70 Newton iterations of failed solves counted as the run's.
+/// Now each of its solves converges; the event is that of one step from
+/// the pressed state, so both step sizes find it at the same load factor,
+/// and it lies within a few tolerances of the fine run's (steps of 0.05:
+/// 1.1516, another load path). The run's `newton_iterations` is its own
+/// increments' (here no cutback, no first yield: the sum over curve.csv),
+/// the search's apart.
+#[test]
+fn a_pressed_then_turned_fit_brackets_its_full_slip_and_counts_the_search_apart() {
+    let text =
+        std::fs::read_to_string(common::root().join("cases/shrink-fit-torque/case.toml")).unwrap();
+    let mut found = Vec::new();
+    for n in [2, 3] {
+        for on in [true, false] {
+            let tag = format!("events-turned-fit-{n}-{on}");
+            let case = common::with_solver_table(
+                &text,
+                &format!("increments = {n}\ninterface_loop = {on}"),
+            );
+            let path = common::case_dir(&tag, &case);
+            let out = path.parent().unwrap().join("out");
+            let opts = RunOptions {
+                out: Some(out.clone()),
+                quiet: true,
+                ..Default::default()
+            };
+            let (_, model, r) = run(&path, &opts).unwrap_or_else(|e| panic!("{tag}: {e}"));
+            let e = one(&r.events, Kind::FullSlip);
+            let tol = model.plan.event_tolerance;
+            assert!(e.converged && !e.solve_failed, "{tag}: {e:?}");
+            assert!(e.after - e.before <= tol, "{tag}: {e:?}");
+            assert!(
+                e.before >= 1.0 && e.after <= 1.0 + 1.0 / n as f64,
+                "{tag}: {e:?}"
+            );
+            found.push(e.load_factor);
+            // the accounting: the run's own iterations, the search's apart
+            assert_eq!(r.cutbacks, 0, "{tag}");
+            assert!(r.first_yield.is_none(), "{tag}");
+            let own: usize = r.increments.iter().map(|i| i.iterations).sum();
+            assert_eq!(r.stats.run_iterations(), own, "{tag}");
+            assert!(r.stats.event_iterations > 0, "{tag}");
+            let summary: serde_json::Value =
+                serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
+                    .unwrap();
+            assert_eq!(summary["newton_iterations"], own, "{tag}");
+            assert_eq!(
+                summary["event_search_iterations"], r.stats.event_iterations,
+                "{tag}"
+            );
+        }
+    }
+    for l in &found {
+        assert!((l - found[0]).abs() <= 1e-3, "{found:?}");
+        assert!((l - 1.1516).abs() <= 3e-3, "{found:?}");
+    }
+}

@@ -65,15 +65,19 @@ const MET_WITH_LOOP: [&str; 6] = [
 /// Runs the case in `dir` (relative to the project root) as shipped
 /// (`interface_loop: None`) or with `interface_loop` set in its `[solver]`
 /// table (a copy of the case folder), into a scratch folder; its
-/// summary.json and the output folder.
+/// summary.json and the output folder. Every call has a folder of its own:
+/// tests running at once run the same case (a shared folder was removed
+/// under a running case, "interface/0020.csv: No such file").
 fn run(dir: &str, interface_loop: Option<bool>) -> (Value, PathBuf) {
+    static RUNS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
     let case = dir.rsplit('/').next().unwrap_or(dir);
     let tag = match interface_loop {
         None => "shipped",
         Some(true) => "loop",
         Some(false) => "plain",
     };
-    let scratch = common::scratch(&format!("status-{case}-{tag}"));
+    let n = RUNS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let scratch = common::scratch(&format!("status-{case}-{tag}-{n}"));
     let mut dir = common::root().join(dir);
     if let Some(on) = interface_loop {
         let copy = scratch.join("case");

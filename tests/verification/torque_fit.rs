@@ -309,3 +309,80 @@ fn a_twisted_fit_meshed_apart_holds_two_pi_mu_p_b2_l() {
         assert!(common::rel(end.torque, hand) < 1e-9, "{weights}");
     }
 }
+
+/// cases/shrink-fit-torque (pressed over 0 ≤ t ≤ 1, then its shaft's end
+/// turned over 1 ≤ t ≤ 2) with its `[solver]` table replaced by `solver`,
+/// run through the library.
+fn shipped_fit(tag: &str, solver: &str) -> (Model, RunResult) {
+    let text =
+        std::fs::read_to_string(common::root().join("cases/shrink-fit-torque/case.toml")).unwrap();
+    let text = common::with_solver_table(&text, solver);
+    let case = common::case_dir(tag, &text);
+    let opts = asperity::driver::RunOptions {
+        out: Some(case.parent().unwrap().join("out")),
+        quiet: true,
+        ..Default::default()
+    };
+    let (_, model, r) =
+        asperity::driver::run(&case, &opts).unwrap_or_else(|e| panic!("{tag}: {e}"));
+    (model, r)
+}
+
+/// Issue 42: a pressed fit's first turn (cases/shrink-fit-torque on fixed
+/// steps of 1/n per unit of pseudo-time) converges in one step of any
+/// size, with the interface loop and without it. It failed with "contact
+/// status still changing" at steps of 0.1, 0.2 and 0.5 (0.05 and 1/3
+/// converged), cut back 1-2 times: the step started from the pressed state
+/// with the whole turn in the shaft's top element layer, which yielded
+/// (300 MPa of shear over one 1 mm element at 0.1), and the consistent
+/// tangent of that layer swung the shaft and the fit's slip states from
+/// one iteration to the next. The first evaluation of such a step is now
+/// elastic (`StepProblem::new`): nothing yields in this fit (the largest
+/// plastic strain stays 0), and the supports' torque is the joint's.
+#[test]
+fn a_pressed_fit_takes_its_first_turn_in_one_step_of_any_size() {
+    for n in [2, 5, 10] {
+        for on in [true, false] {
+            let tag = format!("fit-first-turn-{n}-{on}");
+            let (model, r) = shipped_fit(&tag, &format!("increments = {n}\ninterface_loop = {on}"));
+            assert_eq!(r.cutbacks, 0, "{tag}");
+            let first = r
+                .increments
+                .iter()
+                .position(|i| i.load_factor > 1.0 + 1e-12)
+                .unwrap();
+            let turn = &r.increments[first];
+            assert!(
+                (turn.load_factor - (1.0 + 1.0 / n as f64)).abs() < 1e-12,
+                "{tag}: first turn to {}",
+                turn.load_factor
+            );
+            let last = r.increments.last().unwrap();
+            assert_eq!(last.load_factor, 2.0, "{tag}");
+            assert_eq!(last.measures.max_peeq, 0.0, "{tag}");
+            // the torque on the shaft's driven end (global residual) is the
+            // joint's
+            let nd = model.node_dofs();
+            let support: f64 = model
+                .prescribed
+                .iter()
+                .zip(&r.final_state.reactions)
+                .filter_map(|(&(d, _), &rr)| {
+                    let (node, c) = nd.node_of(d);
+                    let x = model.mesh.nodes[node];
+                    (c == 2 && x[1] == 30.0 && x[0] <= B).then_some(x[0] * rr)
+                })
+                .sum();
+            let torque = last.joints[0].torque;
+            assert!(
+                common::rel(support, torque) < 1e-7,
+                "{tag}: supports {support} vs joint {torque}"
+            );
+            eprintln!(
+                "{tag}: {} increments, {} iterations, T = {torque:.1} N·mm",
+                r.increments.len(),
+                r.stats.run_iterations()
+            );
+        }
+    }
+}

@@ -136,8 +136,21 @@ pub(in crate::restart) fn restore_stepper(
     ck.stepper.failures = 0;
     (ck.cutbacks_total, ck.cutbacks_here) = (total as usize, 0);
     let ct = s.u("counters", Some(2))?;
+    // the event searches' share of the Newton iterations (absent from files
+    // of earlier builds: none set apart); the bound is on the run's own
+    let ev = if s.0.contains_key("event_counters") {
+        s.u("event_counters", Some(1))?[0]
+    } else {
+        0
+    };
+    if ev > ct[0] {
+        return Err(format!(
+            "section event_counters: {ev} Newton iterations of event searches, more than the {} of the whole run",
+            ct[0]
+        ));
+    }
     let most = most_iterations(model, n as u64, total);
-    for (v, what) in [(ct[0], "Newton iterations"), (ct[1], "factorizations")] {
+    for (v, what) in [(ct[0] - ev, "Newton iterations"), (ct[1], "factorizations")] {
         if u128::from(v) > most {
             return Err(format!(
                 "section counters: {v} {what}, more than a run of this case can count after {n} increments and {total} cutbacks ({most}: per step attempt a predicted and a plain solve, each with {} stabilization levels, and a first-yield search, at the iteration limit {}, × {COUNTER_MARGIN})",
@@ -147,6 +160,7 @@ pub(in crate::restart) fn restore_stepper(
         }
     }
     (ck.iterations, ck.factorizations) = (ct[0] as usize, ct[1] as usize);
+    ck.event_iterations = ev as usize;
     // the interface loop runs at most once per Newton iteration, at most
     // MAX_INNER iterations each, and falls back at most once per run of it
     if s.0.contains_key("interface_counters") {

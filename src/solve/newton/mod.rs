@@ -34,7 +34,11 @@ const SHARE_CHUNK: usize = 8192;
 /// Counters over a whole run.
 #[derive(Clone, Debug, Default)]
 pub struct Stats {
+    /// Newton corrections of every solve, the event searches' included.
     pub iterations: usize,
+    /// The event searches' share of `iterations` ([`crate::solve::events`]):
+    /// reported apart, so that the run's count is its own path's.
+    pub event_iterations: usize,
     pub factorizations: usize,
     /// Steps whose predicted start failed and that were solved again from
     /// the committed state (see [`super::predict`]).
@@ -83,6 +87,15 @@ pub struct Engine<'m> {
     /// The dofs held in the current step ([`Model::held_dofs`]); a cached
     /// solid matrix is of one set of them.
     held: Vec<usize>,
+}
+
+impl Stats {
+    /// The Newton iterations of the run's own steps: every solve of its
+    /// increments (failed attempts, the first-yield search and the contact
+    /// stabilization's solves included), not the event searches'.
+    pub fn run_iterations(&self) -> usize {
+        self.iterations - self.event_iterations
+    }
 }
 
 impl<'m> Engine<'m> {

@@ -36,6 +36,9 @@ pub struct StepProblem<'a, 'm> {
     trial: State,
     lambda: f64,
     response: Response,
+    /// The step starts from the committed state and moves prescribed
+    /// dofs: its first evaluation is elastic ([`StepProblem::new`]).
+    lift: bool,
     method: Method,
     free: Vec<usize>,
     evaluations: usize,
@@ -46,6 +49,9 @@ pub struct StepProblem<'a, 'm> {
     evaluate_seconds: f64,
     status: Vec<Status>,
     last_status: Option<Vec<Status>>,
+    /// The statuses of this step's earlier iterates (before `last_status`),
+    /// while a line search may ask for them.
+    visited: Vec<Vec<Status>>,
     du_inf: f64,
     /// ‖Δu‖∞ of the correction before the last (∞ before the second).
     du_prev_inf: f64,
@@ -66,6 +72,29 @@ pub struct StepProblem<'a, 'm> {
 }
 
 impl<'a, 'm> StepProblem<'a, 'm> {
+    /// The step from `committed` to `lambda`, its iteration started at
+    /// `start` (all dofs), else at the committed displacements.
+    ///
+    /// **The first evaluation lifts the prescribed increments elastically**
+    /// where the step starts from the committed state (no predictor: the
+    /// first step, a history breakpoint, a predictor restart) and a
+    /// prescribed dof moves. Its start then carries the whole increment
+    /// of every prescribed dof in the element layer next to it (the
+    /// neighbours still at their committed values): a strain that layer
+    /// never sees, which the return mapping yields wherever the step is not
+    /// small (a shaft's end turned by 0.25 mrad: 300 MPa of shear over one
+    /// 1 mm element). The consistent tangent of that spuriously plastic
+    /// layer hardly transmits the prescribed motion, so the first
+    /// correction swings the bodies and their interface far from the
+    /// solution (a pressed fit turned in one step of 0.1 failed with
+    /// "contact status still changing" while 0.05 converged). The first
+    /// evaluation therefore takes the elastic response from the committed
+    /// plastic strain ([`Response::ElasticOnly`], exact where nothing
+    /// yields), so the first correction spreads the prescribed increment as
+    /// the linear tangent predictor does; every later evaluation is the
+    /// step's own response and the convergence test is unchanged. Under
+    /// modified Newton the solid matrix is formed again at the second
+    /// evaluation (the tangent at the lifted start, not the elastic one).
     pub fn new(
         engine: &'a mut Engine<'m>,
         committed: &'a State,
@@ -80,9 +109,12 @@ impl<'a, 'm> StepProblem<'a, 'm> {
             trial.u.copy_from_slice(start);
         }
         trial.time = lambda;
+        let mut moved = false;
         for (d, v) in m.prescribed_at(lambda) {
+            moved |= v != committed.u[d];
             trial.u[d] = v;
         }
+        let lift = start.is_none() && moved && response == Response::Plastic;
         engine.hold_for(lambda);
         m.fill_slaves(&mut trial.u, lambda);
         let method = if response == Response::ElasticOnly {
@@ -102,6 +134,7 @@ impl<'a, 'm> StepProblem<'a, 'm> {
             trial,
             lambda,
             response,
+            lift,
             method,
             free,
             evaluations: 0,
@@ -109,6 +142,7 @@ impl<'a, 'm> StepProblem<'a, 'm> {
             evaluate_seconds: 0.0,
             status: Vec::new(),
             last_status: None,
+            visited: Vec::new(),
             du_inf: f64::INFINITY,
             du_prev_inf: f64::INFINITY,
             r_norm: f64::NAN,
@@ -164,9 +198,14 @@ impl<'a, 'm> StepProblem<'a, 'm> {
     /// Full Newton with `[solver] line_search = true`: backtracking on the
     /// residual norm (issue 29, docs/performance.md
     /// "Contact status convergence"): the full correction is kept when it
-    /// lowers ‖R‖ (Armijo, [`ARMIJO`]) or changes a contact status (an
-    /// active-set step of the nonsmooth residual, whose norm is no guide);
-    /// else the step is cut (the minimum of a quadratic model of ½‖R‖²,
+    /// lowers ‖R‖ (Armijo, [`ARMIJO`]) or changes a contact status to a set
+    /// no iterate of this step had (an active-set step of the nonsmooth
+    /// residual, whose norm is no guide); a status change back to a set an
+    /// earlier iterate had is a cycle of the active set, which taken whole
+    /// repeats itself (friction near the stick-slip transition: two sets
+    /// that each linearize into the other, a pressed fit's first turn
+    /// swinging between them for 30 iterations), so it is searched like any
+    /// other correction. Else the step is cut (the minimum of a quadratic model of ½‖R‖²,
     /// kept within [0.1, 0.5] of the last step) at most [`BACKTRACKS`]
     /// times, and the step of the smallest residual is taken. Not searched:
     /// the first correction of a step ([`SEARCH_FROM`]) and a correction
@@ -209,8 +248,12 @@ impl<'a, 'm> StepProblem<'a, 'm> {
                 best = (merit, alpha);
             }
             // a step that changes contact statuses is an active-set step of
-            // a nonsmooth residual, whose norm says little: taken whole
-            let flips = ok && alpha == 1.0 && self.last_status.as_ref() != Some(&self.status);
+            // a nonsmooth residual, whose norm says little: taken whole,
+            // unless it returns to the set of an earlier iterate (a cycle)
+            let flips = ok
+                && alpha == 1.0
+                && self.last_status.as_ref() != Some(&self.status)
+                && !self.visited.contains(&self.status);
             let accept = self
                 .engine
                 .backend
@@ -313,15 +356,25 @@ impl Problem for StepProblem<'_, '_> {
             _ => None,
         };
         let floor = (self.evaluations == 0).then(|| e.start_stiffness(self.lambda));
+        let lifting = self.lift && self.evaluations == 0;
+        let response = if lifting {
+            Response::ElasticOnly
+        } else {
+            self.response
+        };
         self.evaluations += 1;
         let assembled = e.assemble(
             self.committed,
             &mut self.trial,
             self.lambda,
-            self.response,
+            response,
             solid_tangent,
             floor,
         );
+        if lifting && self.method == Method::ModifiedNewton {
+            // its matrix is the tangent at the step's (lifted) start
+            e.solid_valid = false;
+        }
         let dt = t0.elapsed().as_secs_f64();
         e.stats.assembly_seconds += dt;
         self.evaluate_seconds += dt;
@@ -428,6 +481,12 @@ impl Problem for StepProblem<'_, '_> {
                 residual: r_norm / reference,
             }));
             return Verdict::Stop;
+        }
+        let wanted = self.method == Method::FullNewton && m.solver.line_search;
+        if let Some(last) = self.last_status.take().filter(|_| wanted) {
+            if !self.visited.contains(&last) {
+                self.visited.push(last);
+            }
         }
         self.last_status = Some(std::mem::take(&mut self.status));
         self.r_prev = r_norm;
