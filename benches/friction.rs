@@ -19,9 +19,9 @@
 //!
 //! docs/performance.md ("Friction against frictionless") quotes the tables.
 
-use asperity::backend::serial::Factorization;
-use asperity::case::Method;
-use asperity::driver::{self, RunOptions};
+use asperity::app::driver::{self, RunOptions};
+use asperity::input::case::Method;
+use asperity::linalg::backend::serial::Factorization;
 use asperity::solve::RunResult;
 use std::path::{Path, PathBuf};
 use std::time::Instant;

@@ -5,8 +5,8 @@
 //! refinement sequence beside the paper's values. docs/performance.md quotes the
 //! first, docs/verification.md the second.
 
-use asperity::case::Method;
-use asperity::driver::{self, RunOptions};
+use asperity::app::driver::{self, RunOptions};
+use asperity::input::case::Method;
 use std::path::PathBuf;
 
 fn run(

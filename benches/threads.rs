@@ -16,11 +16,11 @@
 //!
 //! docs/performance.md ("Threads in the one-process path") quotes the tables.
 
-use asperity::backend::serial::{Factorization, SerialBackend, SerialDirect};
-use asperity::case::Method;
-use asperity::driver::{self, RunOptions};
-use asperity::fem::solid::Response;
+use asperity::app::driver::{self, RunOptions};
+use asperity::input::case::Method;
+use asperity::linalg::backend::serial::{Factorization, SerialBackend, SerialDirect};
 use asperity::model::Model;
+use asperity::physics::element::solid::Response;
 use asperity::solve::{RunResult, State};
 use std::path::{Path, PathBuf};
 use std::time::Instant;

@@ -22,33 +22,21 @@
 
 #![deny(unsafe_code)]
 
-pub mod adapt;
-pub mod assembly;
-pub mod backend;
-pub mod calibrate;
-pub mod case;
-pub mod constraint;
-pub mod driver;
+// The ground floor, used by every layer: errors, interrupts, threads, log lines.
 pub mod error;
-pub mod estimate;
-pub mod fem;
-pub mod history;
-pub mod interface;
 pub mod interrupt;
-pub mod loads;
-pub mod material;
-pub mod mesh;
-pub mod model;
-pub mod output;
-#[cfg(feature = "parallel")]
-pub mod parallel;
-pub mod pretension;
 pub mod progress;
-pub mod restart;
-pub mod schedule;
-pub mod solve;
-pub mod study;
 pub mod threads;
-pub mod twist;
+
+// The pipeline, from the bottom up (ARCHITECTURE.md): each layer uses only
+// the layers listed before it.
+pub mod app;
+pub mod files;
+pub mod input;
+pub mod linalg;
+pub mod model;
+pub mod physics;
+pub mod post;
+pub mod solve;
 
 pub use error::{Error, Result};

@@ -1,7 +1,7 @@
 //! The `asperity` command line.
 
-use asperity::case::Method;
-use asperity::driver::{self, RunOptions};
+use asperity::app::driver::{self, RunOptions};
+use asperity::input::case::Method;
 use asperity::progress::{Log, LogFormat};
 use asperity::solve::RunResult;
 use clap::{Args, Parser, Subcommand, ValueEnum};
@@ -87,10 +87,10 @@ struct Overrides {
     /// Override: load steps `fixed` (the case's schedule) or `auto` (adapted to
     /// iterations and plastic strain; see docs/case-schema.md).
     #[arg(long, value_parser = parse_step_control)]
-    step_control: Option<asperity::case::StepControl>,
+    step_control: Option<asperity::input::case::StepControl>,
     /// Override: friction scheme (return-mapping | stiffness-modification).
     #[arg(long, value_parser = parse_scheme)]
-    friction_scheme: Option<asperity::interface::FrictionScheme>,
+    friction_scheme: Option<asperity::input::case::settings::FrictionScheme>,
 }
 
 impl Overrides {
@@ -258,18 +258,20 @@ enum BackendArg {
     Petsc,
 }
 
-fn parse_scheme(s: &str) -> Result<asperity::interface::FrictionScheme, String> {
+fn parse_scheme(s: &str) -> Result<asperity::input::case::settings::FrictionScheme, String> {
     match s {
-        "return-mapping" => Ok(asperity::interface::FrictionScheme::ReturnMapping),
-        "stiffness-modification" => Ok(asperity::interface::FrictionScheme::StiffnessModification),
+        "return-mapping" => Ok(asperity::input::case::settings::FrictionScheme::ReturnMapping),
+        "stiffness-modification" => {
+            Ok(asperity::input::case::settings::FrictionScheme::StiffnessModification)
+        }
         _ => Err("expected return-mapping or stiffness-modification".into()),
     }
 }
 
-fn parse_step_control(s: &str) -> Result<asperity::case::StepControl, String> {
+fn parse_step_control(s: &str) -> Result<asperity::input::case::StepControl, String> {
     match s {
-        "fixed" => Ok(asperity::case::StepControl::Fixed),
-        "auto" => Ok(asperity::case::StepControl::Auto),
+        "fixed" => Ok(asperity::input::case::StepControl::Fixed),
+        "auto" => Ok(asperity::input::case::StepControl::Auto),
         _ => Err("expected fixed or auto".into()),
     }
 }
@@ -410,7 +412,7 @@ fn main() -> ExitCode {
             out,
         }) => study_stability(&case, &steps, methods, schemes, time_limit, &out),
         Command::Figures { cases, out } => figures(&cases, &out),
-        Command::Calibrate { input, out } => asperity::calibrate::run(&input, &out).map(|w| {
+        Command::Calibrate { input, out } => asperity::app::calibrate::run(&input, &out).map(|w| {
             for warning in &w.warnings {
                 eprintln!("warning: {warning}");
             }
@@ -439,7 +441,7 @@ impl RunArgs {
     /// The run's settings, as the driver takes them (the thread count
     /// validated: `--threads`, else `ASPERITY_THREADS`).
     fn options(&self) -> asperity::error::Result<RunOptions> {
-        asperity::driver::check_out(self.out.as_deref(), &[&self.case])?;
+        asperity::app::driver::check_out(self.out.as_deref(), &[&self.case])?;
         if self.stop_after == Some(0) {
             return Err(asperity::error::Error::input(
                 "--stop-after",
@@ -577,13 +579,13 @@ fn study_refine(
     lines: StudyLines,
     out: &std::path::Path,
 ) -> asperity::error::Result<()> {
-    use asperity::study::refine::{refine, Config};
+    use asperity::app::study::refine::{refine, Config};
     let StudyLines {
         petsc,
         uniform,
         adapt,
     } = lines;
-    use asperity::study::runner::Which;
+    use asperity::app::study::runner::Which;
     let mut configs: Vec<Config> = methods
         .iter()
         .map(|&m| Config {
@@ -648,7 +650,7 @@ fn study_stability(
     } else {
         &[]
     };
-    asperity::study::stability::stability(
+    asperity::app::study::stability::stability(
         case,
         steps,
         &methods,
@@ -666,7 +668,7 @@ fn study_stability(
 
 /// `asperity figures`: prints the files written.
 fn figures(cases: &std::path::Path, out: &std::path::Path) -> asperity::error::Result<()> {
-    asperity::study::figures::figures(cases, out).map(|files| {
+    asperity::app::study::figures::figures(cases, out).map(|files| {
         for f in files {
             println!("{}", f.display());
         }
@@ -695,7 +697,7 @@ fn run_petsc(case: &std::path::Path, opts: &RunOptions, petsc_options: &[String]
     let report = |e: &asperity::error::Error| {
         fail(opts.log_format, &e.to_string());
     };
-    let (outcome, root) = asperity::parallel::run(case, opts, petsc_options, &report);
+    let (outcome, root) = asperity::app::parallel::run(case, opts, petsc_options, &report);
     match outcome {
         Ok((dir, result)) => {
             if root && dir.exists() {

@@ -1,6 +1,6 @@
 //! How many threads one process computes with: the element loop
 //! ([`crate::solve::Engine::set_threads`]). The serial factorization stays on
-//! one ([`crate::backend::serial::FACTOR_THREADS`]).
+//! one ([`crate::linalg::backend::serial::FACTOR_THREADS`]).
 //!
 //! Chosen by `asperity run --threads N`, else by the environment variable
 //! [`VAR`], else all the cores this process may run on on one process and one

@@ -5,7 +5,7 @@
 //! must come back as an `Err` with a one-line message.
 #![no_main]
 
-use asperity::case::{check_case, Case};
+use asperity::input::case::{check_case, Case};
 use asperity::model::Model;
 use libfuzzer_sys::fuzz_target;
 

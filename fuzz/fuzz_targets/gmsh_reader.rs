@@ -5,8 +5,8 @@
 //!       -- -dict=fuzz/gmsh.dict -max_total_time=600
 #![no_main]
 
-use asperity::mesh::blocks::InterfaceSpec;
-use asperity::mesh::gmsh::{build_mesh, parse_msh};
+use asperity::input::mesh::blocks::InterfaceSpec;
+use asperity::input::mesh::gmsh::{build_mesh, parse_msh};
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {

@@ -1,11 +1,11 @@
 //! The hanging nodes of a locally refined mesh as linear constraints of the
-//! model ([`crate::mesh::refine`], [`crate::constraint`]).
+//! model ([`crate::input::mesh::refine`], [`crate::model::constraint`]).
 
-use crate::constraint::Constraint;
 use crate::error::{Error, Result};
-use crate::mesh::refine::HangingNode;
-use crate::mesh::Mesh;
-use crate::pretension::Section;
+use crate::input::mesh::refine::HangingNode;
+use crate::input::mesh::Mesh;
+use crate::model::constraint::Constraint;
+use crate::model::pretension::Section;
 use std::collections::{HashMap, HashSet};
 
 /// The constraints u_q = Σ N_i(s) u_i of every hanging node (found on the
@@ -16,7 +16,7 @@ use std::collections::{HashMap, HashSet};
 /// a coarse edge that ends on a cut (a hanging node beside the cut, on the
 /// same side as its coarse element) follows that side's copy, which follows
 /// the other side through the section's own constraint (the chain is
-/// substituted, [`crate::constraint::Constraints::new`]).
+/// substituted, [`crate::model::constraint::Constraints::new`]).
 ///
 /// A hanging node that a support holds keeps the support's value where
 /// the support holds its edge alike (the same history, and the value the
@@ -30,7 +30,7 @@ use std::collections::{HashMap, HashSet};
 /// dropped), and a hanging node on a cut whose coarse element lies on the
 /// other side of it (`[mesh] refine_region` on one side of a cut: the node
 /// would hang from the other side's nodes). An adaptive run splits the two
-/// sides of a cut together ([`crate::pretension::facing`]).
+/// sides of a cut together ([`crate::model::pretension::facing`]).
 pub(super) fn constraints(
     mesh: &Mesh,
     hanging: &[HangingNode],
@@ -45,7 +45,7 @@ pub(super) fn constraints(
         .map(|(&(d, v), &h)| (d, (v, h)))
         .collect();
     // every node's node before the cuts (a copy's original)
-    let origin = crate::pretension::origins(sections, mesh.nodes.len());
+    let origin = crate::model::pretension::origins(sections, mesh.nodes.len());
     let of_q: HashSet<usize> = hanging.iter().map(|h| h.node).collect();
     let mut holder: HashMap<usize, usize> = HashMap::new();
     for (e, el) in mesh.elements.iter().enumerate() {

@@ -1,9 +1,9 @@
 //! Whether an adaptive run's named answer (`[adapt] quantity`,
-//! [`crate::adapt`]) can measure the mesh at all. Its estimate is the
+//! [`crate::app::adapt`]) can measure the mesh at all. Its estimate is the
 //! answer's change between two meshes; an answer that equilibrium or a
 //! support fixes is the same on every mesh, to round-off, and the run would
 //! stop at once, "reached", whatever the mesh. Refused here, on the built
-//! model (the checks that need no mesh are in [`crate::case::adapt::check`]):
+//! model (the checks that need no mesh are in [`crate::input::case::adapt::check`]):
 //!
 //! - `settlement` read at a node whose vertical displacement is prescribed;
 //! - `total_load` and `mean_pressure` (the first interface's normal force)
@@ -18,9 +18,9 @@
 //!   carries none), or where one of its bodies is held about the axis by
 //!   that interface alone (it carries the torque applied to that body).
 
-use crate::case::adapt::{AdaptSpec, Quantity};
 use crate::error::{Error, Result};
-use crate::interface::InterfaceModel;
+use crate::input::case::adapt::{AdaptSpec, Quantity};
+use crate::model::interface::InterfaceModel;
 use std::collections::HashSet;
 
 /// The refusals of the module text for the model `m`.
@@ -91,7 +91,7 @@ pub(super) fn check(m: &super::Model, spec: &AdaptSpec, place: &str) -> Result<(
 /// interface); in axisymmetry only a face across the axis (normal ±y).
 fn straight_normal(im: &InterfaceModel, axisymmetric: bool) -> Option<[f64; 2]> {
     let n = im.points.first()?.normal;
-    let same = |p: &crate::interface::Point| {
+    let same = |p: &crate::model::interface::Point| {
         (p.normal[0] - n[0]).abs() <= 1e-9 && (p.normal[1] - n[1]).abs() <= 1e-9
     };
     if !im.points.iter().all(same) || (axisymmetric && n[0].abs() > 1e-9) {
@@ -111,7 +111,7 @@ fn free_body(
 ) -> Option<usize> {
     let nd = m.mesh.node_dofs;
     let body_of = m.mesh.node_bodies();
-    let tol = crate::case::whole::tolerance(&m.mesh);
+    let tol = crate::model::consistency::tolerance(&m.mesh);
     // the axis's own u_r = u_θ = 0 holds no force: no area, no lever arm
     let axis = |node: usize, c: usize| {
         m.section.axisymmetric && c != 1 && m.mesh.nodes[node][0].abs() <= tol

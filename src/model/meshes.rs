@@ -1,9 +1,10 @@
 //! The mesh of a model: made from the case (blocks or a Gmsh file, with
 //! `refine_region`) or handed in (an adaptive run's), and checked.
 
-use crate::case::{whole, Case};
 use crate::error::{Error, Result};
-use crate::mesh::{blocks, gmsh, Mesh};
+use crate::input::case::Case;
+use crate::input::mesh::{blocks, gmsh, Mesh};
+use crate::model::consistency as whole;
 
 /// The mesh of a case (a Gmsh file beside the case, or its blocks), checked
 /// as a mesh and as a whole ([`whole::check_mesh`]).
@@ -29,11 +30,17 @@ pub(super) fn make_mesh(case: &Case, place: &str) -> Result<Mesh> {
         Some(o) => format!("{place}: [mesh] refine_region, on the mesh of {o}"),
         None => format!("{place}: [mesh] refine_region"),
     };
-    let refined = crate::mesh::refine::in_box(&mesh, r.x, r.y, r.levels, crate::case::MAX_ELEMENTS)
-        .map_err(|e| Error::Mesh {
-            place: at.clone(),
-            message: e.to_string(),
-        })?;
+    let refined = crate::input::mesh::refine::in_box(
+        &mesh,
+        r.x,
+        r.y,
+        r.levels,
+        crate::input::case::MAX_ELEMENTS,
+    )
+    .map_err(|e| Error::Mesh {
+        place: at.clone(),
+        message: e.to_string(),
+    })?;
     let mesh = check_mesh_only(refined.mesh, &at)?;
     whole::check_mesh(case, &mesh, place)?;
     Ok(mesh)

@@ -3,8 +3,8 @@
 //! tangent singular).
 
 use crate::error::{Error, Result};
-use crate::interface::InterfaceModel;
-use crate::mesh::Mesh;
+use crate::input::mesh::Mesh;
+use crate::model::interface::InterfaceModel;
 
 /// Every body must be held in x and in y, by its own prescribed dofs or through
 /// an interface (along the interface normal) to a body held in that direction;
@@ -57,7 +57,7 @@ pub(super) fn check_supports(
     // axis) unless a prescribed u_θ at r > 0 holds it, or the friction of an
     // interface (a tangential law) to a body that is held: that friction
     // holds nothing before the first contact, when the contact stabilization
-    // holds the rotation too ([`crate::solve::stabilize`])
+    // holds the rotation too ([`crate::solve::stabilization`])
     if mesh.node_dofs.twist() {
         let mut turns: Vec<bool> = own_rotation(mesh, prescribed).iter().map(|h| !h).collect();
         loop {
@@ -104,7 +104,7 @@ pub(super) fn check_supports(
 /// own at r > 0 (without one only the friction of an interface can hold it).
 pub fn own_rotation(mesh: &Mesh, prescribed: &[(usize, f64)]) -> Vec<bool> {
     let node_body = mesh.node_bodies();
-    let tol = crate::case::whole::tolerance(mesh);
+    let tol = crate::model::consistency::tolerance(mesh);
     let mut own = vec![false; mesh.bodies.len()];
     for &(d, _) in prescribed.iter().filter(|p| p.0 < mesh.num_dofs()) {
         let (n, c) = mesh.node_dofs.node_of(d);
@@ -116,7 +116,7 @@ pub fn own_rotation(mesh: &Mesh, prescribed: &[(usize, f64)]) -> Vec<bool> {
 }
 
 /// Every force-controlled pretension section that cuts its body in two
-/// ([`crate::pretension::sides`]) needs something on each side of the cut
+/// ([`crate::model::pretension::sides`]) needs something on each side of the cut
 /// to pull against: the section's force moves the two sides apart or
 /// together by any amount (its shortening is free until it is locked), so a
 /// side without a prescribed dof along the cut's normal and without an
@@ -124,16 +124,16 @@ pub fn own_rotation(mesh: &Mesh, prescribed: &[(usize, f64)]) -> Vec<bool> {
 /// tangential law) is a mechanism the section force drives, whatever the
 /// loads: a bolt without an interface under its head. Refused, naming the
 /// section and the side. (A side with an interface whose pairs are open
-/// is held, or not, at run time: [`crate::solve::stabilize`].)
+/// is held, or not, at run time: [`crate::solve::stabilization`].)
 pub(super) fn check_sections_held(
     mesh: &Mesh,
-    sections: &[crate::pretension::Section],
+    sections: &[crate::model::pretension::Section],
     prescribed: &[(usize, f64)],
     interfaces: &[InterfaceModel],
     place: &str,
 ) -> Result<()> {
     for s in sections.iter().filter(|s| s.control == "force") {
-        let Some(beyond) = crate::pretension::sides(mesh, s) else {
+        let Some(beyond) = crate::model::pretension::sides(mesh, s) else {
             continue;
         };
         let node_body = mesh.node_bodies();

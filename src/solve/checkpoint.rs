@@ -4,7 +4,7 @@
 
 use super::{events, newton, stepping, Engine, FirstYield, Increment, Observer, State};
 use crate::error::{Error, Result};
-use crate::interface::joint::JointTotals;
+use crate::model::interface::joint::JointTotals;
 use crate::model::Model;
 
 /// The committed state of the increment loop: enough to continue a run exactly
@@ -40,11 +40,11 @@ pub struct Checkpoint {
     pub joint_totals: Vec<JointTotals>,
     /// The largest approach and pressure of every interface over the
     /// converged states so far (how far its tables were used).
-    pub table_reach: Vec<crate::interface::extrapolation::Reach>,
+    pub table_reach: Vec<crate::model::interface::extrapolation::Reach>,
     /// The events located so far ([`events`]).
     pub events: Vec<events::Event>,
     /// The model has twist: its Gauss states carry six stress components
-    /// (the width of their restart layout, [`PointState::packed_len`](crate::material::PointState::packed_len)).
+    /// (the width of their restart layout, [`PointState::packed_len`](crate::physics::material::PointState::packed_len)).
     pub twist: bool,
 }
 

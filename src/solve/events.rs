@@ -35,9 +35,10 @@
 
 use super::{Checkpoint, Engine, State, StepFailure};
 use crate::error::Result;
-use crate::fem::solid::Response;
-use crate::interface::{InterfaceModel, Status};
+use crate::model::interface::InterfaceModel;
 use crate::model::Model;
+use crate::physics::contact::Status;
+use crate::physics::element::solid::Response;
 
 /// Most halvings of one search (2⁻⁵⁰ of the step: round-off).
 pub const MAX_HALVINGS: usize = 50;
@@ -222,7 +223,7 @@ impl Event {
                     "load factor {lf} outside its bracket [{lo}, {hi}] or its increment {increment} ({bottom} … {top})"
                 )));
             }
-            let coordinate = crate::case::ranges::COORDINATE;
+            let coordinate = crate::input::case::ranges::COORDINATE;
             if r[8..11]
                 .iter()
                 .any(|&x| !(x.is_nan() || coordinate.admits(x) || x == 0.0))
@@ -540,7 +541,7 @@ fn bisect(
     }
     let i = m.interface;
     let meas = engine.measures(&sb);
-    let joint = crate::interface::joint::measures(
+    let joint = crate::model::interface::joint::measures(
         &model.interfaces[i..=i],
         model.section,
         sb.time,

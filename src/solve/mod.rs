@@ -8,12 +8,12 @@ pub mod events;
 pub mod failure;
 pub mod newton;
 pub mod nonlinear;
-pub mod springs;
-pub mod stabilize;
+pub mod schedule;
+pub mod stabilization;
 pub mod stepping;
 pub(crate) mod yield_point;
 
-pub use crate::case::settings::{Acceleration, Method, Stabilization, StepControl};
+pub use crate::input::case::settings::{Acceleration, Method, Stabilization, StepControl};
 pub use checkpoint::Checkpoint;
 use checkpoint::{write_increment, write_last_state, written_everywhere};
 pub use failure::StepFailure;
@@ -21,12 +21,12 @@ pub use newton::{Engine, Stats};
 pub use yield_point::FirstYield;
 
 use crate::error::{Error, Result};
-use crate::fem::solid::Response;
-use crate::interface::joint::{self, JointMeasures};
-use crate::interface::Status;
 use crate::interrupt::Stop;
-use crate::material::{PointState, VonMises};
+use crate::model::interface::joint::{self, JointMeasures};
 use crate::model::Model;
+use crate::physics::contact::Status;
+use crate::physics::element::solid::Response;
+use crate::physics::material::{PointState, VonMises};
 
 /// Evolving state: displacements, Gauss point states and interface statuses.
 #[derive(Clone, Debug)]
@@ -38,7 +38,7 @@ pub struct State {
     pub gauss: Vec<PointState>,
     pub status: Vec<Status>,
     /// Tangential state of every interface point (all interfaces, in order).
-    pub contact: Vec<crate::interface::PointState>,
+    pub contact: Vec<crate::physics::contact::PointState>,
     /// Sum of the reactions at the dofs with a non-zero prescribed displacement
     /// (the force needed to impose it), N.
     pub prescribed_reaction: f64,
@@ -63,7 +63,7 @@ impl State {
             u: vec![0.0; model.num_dofs()],
             gauss: vec![PointState::default(); model.mesh.elements.len() * model.n_gauss()],
             status: vec![Status::Closed; n_points],
-            contact: vec![crate::interface::PointState::default(); n_points],
+            contact: vec![crate::physics::contact::PointState::default(); n_points],
             prescribed_reaction: 0.0,
             section_force: Vec::new(),
             reactions: Vec::new(),
@@ -82,12 +82,12 @@ pub struct Increment {
     pub cutbacks: usize,
     pub measures: Measures,
     /// Joint quantities of every interface, in order
-    /// ([`crate::interface::joint`]); empty for increments restored from a
+    /// ([`crate::model::interface::joint`]); empty for increments restored from a
     /// restart file of an earlier build.
     pub joints: Vec<JointMeasures>,
     /// Every pretension section's [force (N), shortening (mm)], in order.
     pub sections: Vec<[f64; 2]>,
-    /// The designer's outputs of the state ([`crate::output::plan`]); empty
+    /// The designer's outputs of the state ([`crate::files::output::plan`]); empty
     /// for increments restored from a restart file of an earlier build.
     pub record: Vec<f64>,
 }
@@ -138,7 +138,7 @@ impl Measures {
 
 /// The joint measures of every interface in a committed state, with the
 /// energies so far `totals`: an increment's `joints` (a restart file's last
-/// row is compared with them, [`crate::restart`]).
+/// row is compared with them, [`crate::files::restart`]).
 pub fn joint_measures(
     model: &Model,
     state: &State,
@@ -172,7 +172,7 @@ pub trait Observer {
     /// always shows (the writer adds its VTU file if `vtu_every` skipped it);
     /// [`Observer::checkpoint`] follows. Also called, without a checkpoint,
     /// when a resumed run has no increment left to solve (the writer then
-    /// estimates its error, [`crate::estimate`]).
+    /// estimates its error, [`crate::post::estimate`]).
     fn last_state(&mut self, _model: &Model, _state: &State, _inc: &Increment) -> Result<()> {
         Ok(())
     }
@@ -216,15 +216,15 @@ pub struct RunResult {
     /// Increments taken over from a restart file (0: a fresh run).
     pub resumed_from: usize,
     /// The contact stabilization's account, when any step used it.
-    pub stabilization: Option<stabilize::Report>,
+    pub stabilization: Option<stabilization::Report>,
     /// The largest approach and pressure of every interface over the run
     /// ([`Checkpoint::table_reach`]).
-    pub table_reach: Vec<crate::interface::extrapolation::Reach>,
+    pub table_reach: Vec<crate::model::interface::extrapolation::Reach>,
     /// The events located ([`events`]), in the order found.
     pub events: Vec<events::Event>,
     /// The error estimate of the last increment, where the run's writer made
-    /// one (the process that writes the output; [`crate::estimate`]).
-    pub estimate: Option<crate::estimate::Estimate>,
+    /// one (the process that writes the output; [`crate::post::estimate`]).
+    pub estimate: Option<crate::post::estimate::Estimate>,
 }
 
 /// Runs the whole load history with a given engine (any backend). Under MPI
@@ -260,7 +260,7 @@ pub fn run_from(
     engine.stats.interface = ck.interface.clone();
     let mut stopped = None;
     while let Some(target) = ck.stepper.next(ck.lambda) {
-        if ck.increments.len() >= crate::case::MAX_INCREMENTS {
+        if ck.increments.len() >= crate::input::case::MAX_INCREMENTS {
             // the automatic step control kept its steps tiny: a bound on
             // the run's length (identical on every rank)
             return Err(Error::Convergence {
@@ -506,7 +506,7 @@ fn accept(
     );
     ck.committed = trial;
     for (r, im) in ck.table_reach.iter_mut().zip(&model.interfaces) {
-        *r = r.max(crate::interface::extrapolation::Reach::of(
+        *r = r.max(crate::model::interface::extrapolation::Reach::of(
             im,
             &ck.committed.u,
             ck.committed.time,
@@ -578,7 +578,7 @@ fn finish(
     stopped: Option<Stop>,
     resumed_from: usize,
 ) -> RunResult {
-    let stabilization = stabilize::final_report(&engine, &ck.committed);
+    let stabilization = stabilization::final_report(&engine, &ck.committed);
     // the peak and every stage, summed over ranks (every rank passed the same stages)
     let mut memory: Vec<f64> = std::iter::once(peak_memory_mb())
         .chain(engine.stats.memory_mb.iter().map(|s| s.1))

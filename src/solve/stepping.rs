@@ -23,8 +23,8 @@
 //! control takes each breakpoint as a waypoint. Without histories the
 //! schedule is the case's own, as it always was.
 
-use crate::case::{SolverSpec, StepControl};
-pub use crate::schedule::{segment_schedule, segment_steps, waypoints};
+use crate::input::case::{SolverSpec, StepControl};
+pub use crate::solve::schedule::{segment_schedule, segment_steps, waypoints};
 
 /// Relative tolerance under which two load factors are the same waypoint.
 const SAME: f64 = 1e-12;
@@ -120,10 +120,10 @@ impl Stepper {
             max_step,
             min_step: first.min(max_step) * 0.5f64.powi(spec.max_cutbacks as i32),
             target_iterations: match spec.method {
-                crate::case::Method::FullNewton => NEWTON_TARGET_ITERATIONS,
+                crate::input::case::Method::FullNewton => NEWTON_TARGET_ITERATIONS,
                 _ => (spec.iteration_limit() as f64 * FIXED_TARGET_FRACTION).max(MIN_FIXED_TARGET),
             },
-            newton: spec.method == crate::case::Method::FullNewton,
+            newton: spec.method == crate::input::case::Method::FullNewton,
             plastic_step: spec.plastic_strain_step,
             failures: 0,
             max_cutbacks: spec.max_cutbacks,
@@ -143,14 +143,14 @@ impl Stepper {
         }
     }
 
-    /// The fixed schedule ([`crate::schedule::schedule`]).
+    /// The fixed schedule ([`crate::solve::schedule::schedule`]).
     pub fn schedule(spec: &SolverSpec, breakpoints: &[f64]) -> Vec<f64> {
-        crate::schedule::schedule(spec, breakpoints)
+        crate::solve::schedule::schedule(spec, breakpoints)
     }
 
-    /// Increments planned ([`crate::schedule::planned`]).
+    /// Increments planned ([`crate::solve::schedule::planned`]).
     pub fn planned(spec: &SolverSpec, breakpoints: &[f64]) -> Option<usize> {
-        crate::schedule::planned(spec, breakpoints)
+        crate::solve::schedule::planned(spec, breakpoints)
     }
 
     /// Where the first increment of a run from the start goes (`None`: a
@@ -217,7 +217,7 @@ impl Stepper {
             let k = i + 1;
             // the values come from a file: quoted short (a forged 1e300 as
             // `1e300`, not 301 digits)
-            let num = crate::calibrate::limits::exact;
+            let num = crate::app::calibrate::limits::exact;
             let Some(mut target) = self.next(lambda) else {
                 return Err(format!(
                     "increment {k} (load factor {}) comes after the end of the case's load history",

@@ -7,12 +7,12 @@
 
 use super::{yield_ratio, Engine, State, StepFailure};
 
-use crate::fem::solid::Response;
 use crate::model::Model;
+use crate::physics::element::solid::Response;
 
 /// Regula-falsi steps of the search after its first solve: at most
 /// `1 + SEARCH_STEPS` elastic solves locate first yield (a restart file's
-/// counters are bounded by it, [`crate::restart`]).
+/// counters are bounded by it, [`crate::files::restart`]).
 pub const SEARCH_STEPS: usize = 60;
 
 /// Where and at what load the first Gauss point reaches the yield stress.

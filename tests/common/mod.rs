@@ -1,7 +1,7 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
-use asperity::case::Case;
+use asperity::input::case::Case;
 use asperity::model::Model;
 use std::path::PathBuf;
 
@@ -98,7 +98,7 @@ pub fn strip_restart_sections(bytes: &[u8], names: &[&str]) -> Vec<u8> {
     let mut out = body[..24].to_vec();
     out.extend_from_slice(&count.to_le_bytes());
     out.extend_from_slice(&kept);
-    let sum = asperity::restart::fnv1a(&out);
+    let sum = asperity::files::restart::fnv1a(&out);
     out.extend_from_slice(&sum.to_le_bytes());
     out
 }
@@ -206,7 +206,7 @@ impl Forge {
             out.extend_from_slice(&s.count.to_le_bytes());
             out.extend_from_slice(&s.data);
         }
-        let sum = asperity::restart::fnv1a(&out);
+        let sum = asperity::files::restart::fnv1a(&out);
         out.extend_from_slice(&sum.to_le_bytes());
         out
     }

@@ -106,7 +106,7 @@ fn the_example_writes_a_curve_a_fit_and_pasteable_laws() {
     let snippet = text[snippet_start..snippet_end]
         .replace("[interface.calibrated_power]", "[interface.contact]");
     let pasted = format!("{}{}\n{}", &case[..start], snippet, &case[end..]);
-    let parsed = asperity::case::Case::parse(&pasted, "pasted.toml").unwrap();
+    let parsed = asperity::input::case::Case::parse(&pasted, "pasted.toml").unwrap();
     assert_eq!(
         parsed.interface["contact"].c_n,
         Some(power["c_n"].as_float().unwrap())

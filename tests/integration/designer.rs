@@ -3,7 +3,7 @@
 //! extent, and that all of it survives a restart.
 
 use crate::common;
-use asperity::driver::{run, RunOptions};
+use asperity::app::driver::{run, RunOptions};
 use asperity::model::Model;
 use asperity::solve::RunResult;
 use std::path::{Path, PathBuf};

@@ -4,7 +4,7 @@
 //! loop is drawn.
 
 use crate::common;
-use asperity::study::figures::figures;
+use asperity::app::study::figures::figures;
 
 fn rows(path: &std::path::Path) -> Vec<(String, f64, f64)> {
     std::fs::read_to_string(path)

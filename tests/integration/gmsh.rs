@@ -5,7 +5,7 @@
 //! `cargo test --release --test integration gmsh::`
 
 use crate::common;
-use asperity::driver::{self, RunOptions};
+use asperity::app::driver::{self, RunOptions};
 use asperity::model::Model;
 use asperity::solve::RunResult;
 use std::path::{Path, PathBuf};
@@ -47,7 +47,7 @@ fn ascii_and_binary_files_give_identical_models() {
         }
     }
     assert_eq!(ma.bodies, mb.bodies);
-    let els = |m: &asperity::mesh::Mesh| -> Vec<([usize; 8], usize)> {
+    let els = |m: &asperity::input::mesh::Mesh| -> Vec<([usize; 8], usize)> {
         m.elements.iter().map(|e| (e.nodes, e.body)).collect()
     };
     assert_eq!(els(ma), els(mb));
@@ -73,8 +73,8 @@ fn ascii_and_binary_files_give_identical_models() {
 
 /// Every node of the Gmsh mesh has a node of the generated mesh within 1e-6 mm
 /// and vice versa; returns the largest distance.
-fn node_distance(g: &asperity::mesh::Mesh, p: &asperity::mesh::Mesh) -> f64 {
-    let nearest = |x: [f64; 2], m: &asperity::mesh::Mesh| {
+fn node_distance(g: &asperity::input::mesh::Mesh, p: &asperity::input::mesh::Mesh) -> f64 {
+    let nearest = |x: [f64; 2], m: &asperity::input::mesh::Mesh| {
         m.nodes
             .iter()
             .map(|y| (x[0] - y[0]).hypot(x[1] - y[1]))

@@ -4,8 +4,8 @@
 //! without them still resume).
 
 use crate::common;
-use asperity::interface::joint::{self, JointMeasures};
-use asperity::output::joints as out;
+use asperity::files::output::joints_csv as out;
+use asperity::model::interface::joint::{self, JointMeasures};
 use serde_json::Value;
 use std::path::Path;
 
@@ -120,7 +120,7 @@ fn a_run_writes_joint_rows_matching_its_summary_and_no_figure_without_a_cycle() 
     assert_eq!(j["cycles"], serde_json::json!([]));
     assert_eq!(
         read(&dir.join("damping.csv")),
-        asperity::output::damping::DAMPING_HEADER
+        asperity::files::output::damping::DAMPING_HEADER
     );
     assert!(s["damping"][0]["exponent"].is_null(), "{s}");
     for f in [
@@ -150,7 +150,7 @@ fn a_closed_cycle_gets_its_row_and_the_hysteresis_figure() {
     let text = read(&common::root().join("cases/punch-friction-b/case.toml"))
         .replace("increments = 20", "increments = 2");
     let model = common::model(&text);
-    let mut r = asperity::driver::solve(&model, &mut Quiet).unwrap();
+    let mut r = asperity::app::driver::solve(&model, &mut Quiet).unwrap();
     // a synthetic load history over the two real increments and five more:
     // the tangential factor 0 → 1 → −1 → 0 at t = 1 … 4 (breakpoints), the
     // joint a parallelogram loop
@@ -205,7 +205,7 @@ fn a_closed_cycle_gets_its_row_and_the_hysteresis_figure() {
     let points = read(&dir.join("hysteresis.csv"));
     // the origin, then one point per increment
     assert_eq!(points.lines().count(), 1 + 1 + loop_pts.len(), "{points}");
-    if asperity::study::plot::load_font() {
+    if asperity::files::plot::load_font() {
         for f in ["hysteresis.svg", "hysteresis.png"] {
             assert!(files.contains(&dir.join(f)), "{f} not reported: {files:?}");
             let len = std::fs::metadata(dir.join(f)).unwrap().len();
@@ -331,7 +331,7 @@ fn the_slideway_sweep_fits_its_three_rising_amplitudes() {
     let d = table(&dir.join("damping.csv"));
     assert_eq!(
         d.0.join(",") + "\n",
-        asperity::output::damping::DAMPING_HEADER
+        asperity::files::output::damping::DAMPING_HEADER
     );
     assert_eq!(numbers(&d, "block"), [1.0, 2.0, 3.0]);
     for name in ["first_in_block", "last_in_block", "in_fit"] {
@@ -395,7 +395,7 @@ fn the_slideway_sweep_fits_its_three_rising_amplitudes() {
     let before = numbers(&j, "time").iter().filter(|&&t| t <= 2.0).count();
     assert_eq!(bt.len(), before);
     assert!(common::rel(*numbers(&b, "tangential_force_n").last().unwrap(), 54.0) < 1e-6);
-    if asperity::study::plot::load_font() {
+    if asperity::files::plot::load_font() {
         assert!(read(&dir.join("damping.svg")).contains("<svg"));
         assert!(std::fs::metadata(dir.join("damping.png")).unwrap().len() > 1000);
     }

@@ -154,9 +154,9 @@ fn summary_json_matches_the_documented_schema() {
     let mut errors = Vec::new();
     // a closed load cycle needs a load history: the summary's cycle object
     // from a synthetic cycle (src/output/joints.rs writes it the same way)
-    let cycle = asperity::output::joints::cycle_json(
+    let cycle = asperity::files::output::joints_csv::cycle_json(
         1,
-        &asperity::interface::joint::Cycle {
+        &asperity::model::interface::joint::Cycle {
             start_increment: 2,
             end_increment: 9,
             start_time: 1.0,
@@ -192,7 +192,7 @@ fn summary_json_matches_the_documented_schema() {
     let mut with_cycle = with.clone();
     with_cycle["joints"][0]["cycles"] = Value::Array(vec![cycle]);
     // a fitted sweep (src/output/damping.rs writes it the same way)
-    let sweep_of = |f: f64, d: f64| asperity::interface::joint::Cycle {
+    let sweep_of = |f: f64, d: f64| asperity::model::interface::joint::Cycle {
         start_increment: 1,
         end_increment: 2,
         start_time: 1.0,
@@ -210,9 +210,10 @@ fn summary_json_matches_the_documented_schema() {
         torsional_stiffness: None,
         tip_twist: [0.0; 2],
     };
-    let sweep = asperity::output::damping::sweep(&[sweep_of(10.0, 0.1), sweep_of(20.0, 0.6)]);
+    let sweep =
+        asperity::files::output::damping::sweep(&[sweep_of(10.0, 0.1), sweep_of(20.0, 0.6)]);
     assert!(sweep.fit.is_some());
-    with_cycle["damping"][0] = asperity::output::damping::fit_json("contact", &sweep);
+    with_cycle["damping"][0] = asperity::files::output::damping::fit_json("contact", &sweep);
     // twist: the torque, circumferential slip and twist of a joint
     let torque = summary_of("torque", &cases.join("shrink-fit-torque"), &[]);
     // twist with a [[probe]]: u_θ as its third value
@@ -281,7 +282,7 @@ fn documented_columns(doc: &str, name: &str) -> Vec<String> {
 
 #[test]
 fn the_joint_csv_files_have_the_documented_columns() {
-    use asperity::output::{damping, joints};
+    use asperity::files::output::{damping, joints_csv as joints};
     let doc = std::fs::read_to_string(common::root().join("docs/output.md")).unwrap();
     for (name, header) in [
         ("joints.csv", joints::JOINTS_HEADER),

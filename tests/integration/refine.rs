@@ -5,7 +5,7 @@
 //! a Gmsh mesh refines the same way.
 
 use crate::common;
-use asperity::mesh::refine::{edge_shape, hanging_nodes};
+use asperity::input::mesh::refine::{edge_shape, hanging_nodes};
 
 /// cases/punch-plane-stress with its punch corner refined `levels` times.
 fn punch(levels: usize) -> String {

@@ -581,25 +581,25 @@ fn restart_file_cost() {
     let n = 20;
     let t = Instant::now();
     for _ in 0..n {
-        let bytes = asperity::restart::encode(&model, &ck, &[]);
+        let bytes = asperity::files::restart::encode(&model, &ck, &[]);
         std::fs::write(dir.join("restart.bin.tmp"), &bytes).unwrap();
         std::fs::rename(dir.join("restart.bin.tmp"), dir.join("restart.bin")).unwrap();
     }
     let per = t.elapsed().as_secs_f64() / n as f64;
     let t = Instant::now();
     for _ in 0..n {
-        std::hint::black_box(asperity::restart::encode(&model, &ck, &[]));
+        std::hint::black_box(asperity::files::restart::encode(&model, &ck, &[]));
     }
     let enc = t.elapsed().as_secs_f64() / n as f64;
     let t = Instant::now();
     for _ in 0..n {
-        std::hint::black_box(asperity::restart::fingerprint(&model));
+        std::hint::black_box(asperity::files::restart::fingerprint(&model));
     }
     let fp = t.elapsed().as_secs_f64() / n as f64;
     let big = vec![7u8; size_hint(&model)];
     let t = Instant::now();
     for _ in 0..n {
-        std::hint::black_box(asperity::restart::fnv1a(std::hint::black_box(&big)));
+        std::hint::black_box(asperity::files::restart::fnv1a(std::hint::black_box(&big)));
     }
     let sum = t.elapsed().as_secs_f64() / n as f64;
     eprintln!(
@@ -610,7 +610,7 @@ fn restart_file_cost() {
     );
     let size = std::fs::metadata(dir.join("restart.bin")).unwrap().len();
     let t = Instant::now();
-    let (back, _) = asperity::restart::read(&dir, &model).unwrap();
+    let (back, _) = asperity::files::restart::read(&dir, &model).unwrap();
     let read = t.elapsed().as_secs_f64();
     assert_eq!(back.committed.u, ck.committed.u);
     eprintln!(

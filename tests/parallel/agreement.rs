@@ -375,14 +375,14 @@ fn serial_petsc1_and_petsc2_agree_with_friction() {
 /// deterministic), and the answer is still the serial one, to the same 1e-6.
 #[test]
 fn serial_and_petsc4_agree_where_a_rank_holds_no_interface_point() {
-    use asperity::backend::petsc::solver::Partition;
+    use asperity::linalg::backend::petsc::solver::Partition;
     let (case, refine) = ("strip-lift-off", "2");
-    let opts = asperity::driver::RunOptions {
+    let opts = asperity::app::driver::RunOptions {
         refine: Some(refine.parse().unwrap()),
         ..Default::default()
     };
     let model =
-        asperity::driver::load_model(&common::root().join("cases").join(case), &opts).unwrap();
+        asperity::app::driver::load_model(&common::root().join("cases").join(case), &opts).unwrap();
     let part = Partition::new(&model, 4).unwrap();
     let without_points: Vec<usize> = (0..4).filter(|r| !part.point_owner.contains(r)).collect();
     assert!(

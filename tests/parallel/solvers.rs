@@ -150,7 +150,7 @@ fn snes_options_from_the_command_line_apply() {
 /// the same on both bodies), and together they span all three.
 #[test]
 fn the_rigid_body_modes_are_orthonormal_rigid_motions_of_the_assembly() {
-    use asperity::backend::petsc::solver::Partition;
+    use asperity::linalg::backend::petsc::solver::Partition;
     let text =
         std::fs::read_to_string(common::root().join("cases/punch-plane-stress/case.toml")).unwrap();
     let model = common::model(&text);
@@ -216,7 +216,7 @@ fn the_rigid_body_modes_are_orthonormal_rigid_motions_of_the_assembly() {
 /// return-mapping friction scheme's unsymmetric one.
 #[test]
 fn the_default_linear_solver_follows_the_size_of_the_model() {
-    use asperity::backend::petsc::LinearDefault;
+    use asperity::linalg::backend::petsc::LinearDefault;
     let text =
         std::fs::read_to_string(common::root().join("cases/punch-plane-stress-fine/case.toml"))
             .unwrap();

@@ -4,11 +4,11 @@
 //! compression, elastic and elastic-plastic with linear hardening.
 
 use crate::common::{self, CaseText};
-use asperity::fem::q8::{gauss_2x2, gauss_3x3, GaussRule};
-use asperity::fem::solid::{element_forces, ElementGeometry, Response, Tangent};
-use asperity::fem::Section;
-use asperity::material::{Plane, PointState, VonMises};
 use asperity::model::Model;
+use asperity::physics::element::q8::{gauss_2x2, gauss_3x3, GaussRule};
+use asperity::physics::element::solid::{element_forces, ElementGeometry, Response, Tangent};
+use asperity::physics::element::Section;
+use asperity::physics::material::{Plane, PointState, VonMises};
 use asperity::solve::State;
 use nalgebra::{DMatrix, DVector, Vector4};
 
@@ -148,7 +148,7 @@ fn axisymmetric_patch_test_reproduces_u_r_ar_u_z_bz() {
 /// Solves a case given as text; the model and its final state.
 fn solve(text: &str) -> (Model, State) {
     let model = common::model(text);
-    let r = asperity::driver::solve(&model, &mut Quiet).unwrap();
+    let r = asperity::app::driver::solve(&model, &mut Quiet).unwrap();
     (model, r.final_state)
 }
 
@@ -356,7 +356,7 @@ fn stacked_cylinders_weight_the_interface_by_the_full_revolution() {
             .tolerances(1e-12, 1e-12)
             .build();
         let model = common::model(&text);
-        let r = asperity::driver::solve(&model, &mut Quiet).unwrap();
+        let r = asperity::app::driver::solve(&model, &mut Quiet).unwrap();
         let im = &model.interfaces[0];
         let area = std::f64::consts::PI * radius * radius;
         assert!(

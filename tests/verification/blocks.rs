@@ -14,7 +14,7 @@ use std::collections::HashMap;
 use crate::common::Quiet;
 
 fn solve(model: &Model) -> RunResult {
-    asperity::driver::solve(model, &mut Quiet).unwrap_or_else(|e| panic!("{e}"))
+    asperity::app::driver::solve(model, &mut Quiet).unwrap_or_else(|e| panic!("{e}"))
 }
 
 const SOLVER: &str = "method = \"full-newton\"\nincrements = 4\nresidual_tolerance = 1e-12\ndisplacement_tolerance = 1e-12";
@@ -298,7 +298,7 @@ fn an_l_shaped_bolt_of_two_blocks_carries_its_pull_across_the_seat() {
     );
     // a support on the shank's top is a support on nothing
     let inside = bolt(pull, "[[boundary]]\nset = \"shank.top\"\nux = 0.0");
-    let case = asperity::case::Case::parse(&inside, "test.toml").unwrap();
+    let case = asperity::input::case::Case::parse(&inside, "test.toml").unwrap();
     let e = Model::build(case).err().expect("refused").to_string();
     assert!(e.contains("the set is empty"), "{e}");
 }

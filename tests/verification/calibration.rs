@@ -1,9 +1,9 @@
 //! `asperity calibrate` (issue 20): the Greenwood-Williamson integrals, the
 //! profile moments and the power-law fit against closed forms.
 
-use asperity::calibrate::fit::{self, Point};
-use asperity::calibrate::gw::{self, Asperity, Distribution, Gw};
-use asperity::calibrate::profile::{Detrend, Heights};
+use asperity::app::calibrate::fit::{self, Point};
+use asperity::app::calibrate::gw::{self, Asperity, Distribution, Gw};
+use asperity::app::calibrate::profile::{Detrend, Heights};
 use std::f64::consts::PI;
 
 fn surface(distribution: Distribution) -> Gw {

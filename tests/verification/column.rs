@@ -46,7 +46,7 @@ fn pressed(column: CaseText) -> String {
 
 fn settle(text: &str) -> (f64, f64, Model, State) {
     let model = common::model(text);
-    let r = asperity::driver::solve(&model, &mut Quiet).unwrap();
+    let r = asperity::app::driver::solve(&model, &mut Quiet).unwrap();
     let st = r.final_state;
     // top-left corner node: maximum y, x = 0
     let top = (0..model.mesh.nodes.len())
@@ -106,7 +106,7 @@ fn initial_gap_adds_to_the_settlement_under_displacement_free_load() {
 }
 
 /// Records every converged increment.
-struct Record(Vec<(f64, f64, Vec<asperity::interface::Status>)>);
+struct Record(Vec<(f64, f64, Vec<asperity::physics::contact::Status>)>);
 impl Observer for Record {
     fn increment(&mut self, _: &Model, s: &State, inc: &Increment) -> asperity::Result<()> {
         self.0.push((
@@ -130,7 +130,7 @@ fn loss_of_contact_and_recontact_follow_the_closed_form() {
         .build();
     let model = common::model(&text);
     let mut rec = Record(Vec::new());
-    asperity::driver::solve(&model, &mut rec).unwrap();
+    asperity::app::driver::solve(&model, &mut rec).unwrap();
     assert_eq!(rec.0.len(), 7);
     for (lambda, p, status) in &rec.0 {
         let delta = 0.05 * lambda;
@@ -148,10 +148,10 @@ fn loss_of_contact_and_recontact_follow_the_closed_form() {
         };
         let closed = status
             .iter()
-            .all(|s| *s == asperity::interface::Status::Closed);
+            .all(|s| *s == asperity::physics::contact::Status::Closed);
         let open = status
             .iter()
-            .all(|s| *s == asperity::interface::Status::Open);
+            .all(|s| *s == asperity::physics::contact::Status::Open);
         if q == 0.0 {
             assert!(
                 open && *p == 0.0,

@@ -20,7 +20,7 @@
 use crate::common;
 
 mod damping;
-use asperity::interface::joint::{self, JointMeasures};
+use asperity::model::interface::joint::{self, JointMeasures};
 use asperity::model::Model;
 use asperity::solve::{Increment, Observer, RunResult, State};
 use serde_json::Value;
@@ -243,7 +243,7 @@ fn the_loop_area_of_identical_springs_is_the_reported_dissipation() {
 use crate::common::Quiet;
 
 fn solve(model: &Model) -> RunResult {
-    asperity::driver::solve(model, &mut Quiet).unwrap_or_else(|e| panic!("{e}"))
+    asperity::app::driver::solve(model, &mut Quiet).unwrap_or_else(|e| panic!("{e}"))
 }
 
 #[test]
@@ -355,7 +355,7 @@ fn reversal_below_the_earlier_maximum_adds_no_slip() {
 
 /// Every converged increment's pseudo-time and tangential point states.
 #[derive(Default)]
-struct Capture(Vec<(f64, Vec<asperity::interface::PointState>)>);
+struct Capture(Vec<(f64, Vec<asperity::physics::contact::PointState>)>);
 impl Observer for Capture {
     fn increment(&mut self, _: &Model, s: &State, inc: &Increment) -> asperity::Result<()> {
         self.0.push((inc.load_factor, s.contact.clone()));
@@ -395,7 +395,7 @@ fn a_slider_dragged_back_and_forth_balances_the_shear_and_shakes_down() {
         .build();
     let model = common::model(&text);
     let mut cap = Capture::default();
-    let r = asperity::driver::solve(&model, &mut cap).unwrap_or_else(|e| panic!("{e}"));
+    let r = asperity::app::driver::solve(&model, &mut cap).unwrap_or_else(|e| panic!("{e}"));
     let times: Vec<f64> = r.increments.iter().map(|i| i.load_factor).collect();
     let joints: Vec<JointMeasures> = r.increments.iter().map(|i| i.joints[0]).collect();
     assert_eq!(*times.last().unwrap(), 7.0);
@@ -443,7 +443,7 @@ fn a_slider_dragged_back_and_forth_balances_the_shear_and_shakes_down() {
         let (mut d, mut w, mut nonuniform) = (0.0, 0.0, 0.0);
         for k in i..j {
             let (s0, s1) = (&states[k].1, &states[k + 1].1);
-            let mean = |s: &[asperity::interface::PointState]| {
+            let mean = |s: &[asperity::physics::contact::PointState]| {
                 im.points
                     .iter()
                     .zip(s)

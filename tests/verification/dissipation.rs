@@ -8,7 +8,7 @@
 //! memory.rs), under twist and while a preload was removed.
 
 use crate::common;
-use asperity::interface::joint::JointMeasures;
+use asperity::model::interface::joint::JointMeasures;
 use asperity::solve::RunResult;
 
 /// The tangential keys of every memory with every backbone: the paper's
@@ -35,7 +35,7 @@ const LAWS: [(&str, &str); 4] = [
 
 fn solve(text: &str) -> RunResult {
     let model = common::model(text);
-    asperity::driver::solve(&model, &mut common::Quiet).unwrap_or_else(|e| panic!("{e}"))
+    asperity::app::driver::solve(&model, &mut common::Quiet).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// (pseudo-time, the joint's measures) per increment.

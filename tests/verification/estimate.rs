@@ -1,4 +1,4 @@
-//! The a posteriori error estimate ([`asperity::estimate`]): Zienkiewicz–Zhu
+//! The a posteriori error estimate ([`asperity::post::estimate`]): Zienkiewicz–Zhu
 //! with superconvergent patch recovery (Zienkiewicz & Zhu 1992, IJNME 33,
 //! parts 1 and 2) and the interface's traction jump.
 //!
@@ -15,16 +15,16 @@
 //! * Dörfler marking of a real estimate holds θ of η² and is minimal.
 
 use crate::common::{self, Quiet};
-use asperity::estimate::{compliance, doerfler_mark, estimate};
-use asperity::fem::q8::{gauss_1d, GaussRule};
-use asperity::fem::solid::{elastic_state, ElementGeometry};
-use asperity::material::PointState;
 use asperity::model::Model;
+use asperity::physics::element::q8::{gauss_1d, GaussRule};
+use asperity::physics::element::solid::{elastic_state, ElementGeometry};
+use asperity::physics::material::PointState;
+use asperity::post::estimate::{compliance, doerfler_mark, estimate};
 use asperity::solve::State;
 
 fn solve(text: &str) -> (Model, State) {
     let model = common::model(text);
-    let r = asperity::driver::solve(&model, &mut Quiet).unwrap();
+    let r = asperity::app::driver::solve(&model, &mut Quiet).unwrap();
     (model, r.final_state)
 }
 
@@ -254,7 +254,7 @@ fn doerfler_marking_of_the_punch_estimate_holds_theta_and_is_minimal() {
     let dir = common::root().join("cases/punch-plane-stress/case.toml");
     let text = std::fs::read_to_string(&dir).unwrap();
     let model = Model::parse(&text, "punch-plane-stress").unwrap();
-    let r = asperity::driver::solve(&model, &mut Quiet).unwrap();
+    let r = asperity::app::driver::solve(&model, &mut Quiet).unwrap();
     // the cost (docs/performance.md): the best of 5
     let mut best = f64::MAX;
     for _ in 0..5 {

@@ -4,7 +4,7 @@
 //! the loads reported there are the closed form's.
 
 use crate::common;
-use asperity::driver::{run, RunOptions};
+use asperity::app::driver::{run, RunOptions};
 use asperity::solve::events::{Event, Kind};
 use std::path::Path;
 
@@ -84,10 +84,13 @@ fn separation_is_bracketed_at_the_closed_form_and_converges_with_the_tolerance()
             // the loads there: the top's displacement is the history's
             // value, and the reactions have (nearly) vanished with it
             assert_eq!(e.increment, 5, "{kind:?}: inside (4/3, 5/3]");
-            let travel =
-                asperity::history::History::new(&[vec![0.0, 0.0], vec![1.0, -1.0], vec![2.0, 1.2]])
-                    .unwrap()
-                    .value(e.load_factor);
+            let travel = asperity::model::history::History::new(&[
+                vec![0.0, 0.0],
+                vec![1.0, -1.0],
+                vec![2.0, 1.2],
+            ])
+            .unwrap()
+            .value(e.load_factor);
             assert!(travel.abs() <= 2.2 * tol, "{kind:?}: travel {travel}");
         }
         assert!(last < 1e-5, "{kind:?}: {last}");
@@ -170,7 +173,8 @@ fn first_yield_names_the_lowest_of_points_tied_within_round_off() {
         std::fs::read_to_string(common::root().join("cases/punch-plane-strain/case.toml")).unwrap();
     let model = common::model(&text);
     let engine =
-        asperity::driver::serial_engine(&model, asperity::case::Method::FullNewton, 1).unwrap();
+        asperity::app::driver::serial_engine(&model, asperity::input::case::Method::FullNewton, 1)
+            .unwrap();
     let ng = model.n_gauss();
     let body = model.mesh.elements[0].body;
     let sy = model.materials[body].yield_stress;

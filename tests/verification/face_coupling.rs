@@ -47,8 +47,8 @@ impl Observer for All {
 }
 
 /// The joint measures of every interface in a converged state.
-fn joints(model: &Model, s: &State) -> Vec<asperity::interface::joint::JointMeasures> {
-    asperity::interface::joint::measures(
+fn joints(model: &Model, s: &State) -> Vec<asperity::model::interface::joint::JointMeasures> {
+    asperity::model::interface::joint::measures(
         &model.interfaces,
         model.section,
         s.time,
@@ -78,7 +78,7 @@ fn check(
 ) -> (usize, usize) {
     let model = common::model(text);
     let mut all = All::default();
-    let result = asperity::driver::solve(&model, &mut all).unwrap_or_else(|e| panic!("{e}"));
+    let result = asperity::app::driver::solve(&model, &mut all).unwrap_or_else(|e| panic!("{e}"));
     let report = (result.stabilization.as_ref()).expect("the first step is stabilized");
     assert!(report.released >= 1 && report.stabilized == 0, "{report:?}");
     let g = E / (2.0 * (1.0 + NU));
@@ -253,7 +253,7 @@ fn a_mortar_face_carries_the_applied_torque_with_its_springs_arms() {
         assert!(text.contains("\"mortar\"") && text.contains(disk_edges));
         let model = common::model(&text);
         let mut all = All::default();
-        asperity::driver::solve(&model, &mut all).unwrap_or_else(|e| panic!("{e}"));
+        asperity::app::driver::solve(&model, &mut all).unwrap_or_else(|e| panic!("{e}"));
         let j = std::f64::consts::PI * R.powi(4) / 2.0;
         let mut twisted = 0;
         for s in &all.0 {

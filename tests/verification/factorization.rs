@@ -2,10 +2,10 @@
 //! tangent is symmetric, LU otherwise, and both on the same iterates.
 
 use crate::common;
-use asperity::backend::serial::{Factorization, SerialBackend};
-use asperity::case::Method;
-use asperity::fem::solid::Response;
+use asperity::input::case::Method;
+use asperity::linalg::backend::serial::{Factorization, SerialBackend};
 use asperity::model::Model;
+use asperity::physics::element::solid::Response;
 use asperity::solve::{Engine, State};
 
 const PUNCH: &str = include_str!("../../cases/punch-plane-stress/case.toml");
@@ -14,9 +14,12 @@ const FRICTION_RM: &str = include_str!("../../cases/punch-friction-b/case.toml")
 /// Largest |K_ij − K_ji| over max |K| of the assembled tangent at a plastic
 /// state near the full load.
 fn asymmetry(model: &Model) -> f64 {
-    let mut engine =
-        asperity::driver::serial_engine(model, Method::FullNewton, asperity::threads::available())
-            .unwrap();
+    let mut engine = asperity::app::driver::serial_engine(
+        model,
+        Method::FullNewton,
+        asperity::threads::available(),
+    )
+    .unwrap();
     let mut committed = State::initial(model);
     let mut state = committed.clone();
     for k in 1..=9 {

@@ -3,7 +3,7 @@
 //! (section 6), and the two friction schemes reaching the same answer.
 
 use crate::common;
-use asperity::driver::{self, RunOptions};
+use asperity::app::driver::{self, RunOptions};
 use asperity::model::Model;
 use asperity::solve::{Increment, Observer, RunResult, State};
 
@@ -38,7 +38,7 @@ fn a_block_slides_at_mu_m_times_the_normal_load_once_hardening_saturates() {
         .build();
     let model = common::model(&text);
     let mut rec = Record(Vec::new());
-    asperity::driver::solve(&model, &mut rec).unwrap_or_else(|e| panic!("{e}"));
+    asperity::app::driver::solve(&model, &mut rec).unwrap_or_else(|e| panic!("{e}"));
     let ratios: Vec<f64> = rec
         .0
         .iter()

@@ -20,7 +20,7 @@ fn gap_case() -> String {
 }
 
 fn solve(model: &Model) -> RunResult {
-    asperity::driver::solve(model, &mut Quiet).unwrap_or_else(|e| panic!("{e}"))
+    asperity::app::driver::solve(model, &mut Quiet).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// Largest difference of two displacement fields over the largest displacement.
@@ -207,7 +207,7 @@ fn unloading_to_zero_is_held_by_the_stabilization_within_its_energy_limit() {
         "[solver]\n",
         "[solver]\nstabilization_energy = 1e-15\nmax_cutbacks = 1\n",
     );
-    let e = asperity::driver::solve(&common::model(&strict), &mut Quiet)
+    let e = asperity::app::driver::solve(&common::model(&strict), &mut Quiet)
         .expect_err("cannot meet the limit")
         .to_string();
     eprintln!("{e}");
@@ -224,7 +224,7 @@ fn without_stabilization_the_failure_names_the_floating_body() {
         "[solver]\n",
         "[solver]\nstabilization = \"off\"\nmax_cutbacks = 1\n",
     );
-    let e = asperity::driver::solve(&common::model(&text), &mut Quiet)
+    let e = asperity::app::driver::solve(&common::model(&text), &mut Quiet)
         .expect_err("a floating punch cannot be solved without stabilization")
         .to_string();
     eprintln!("{e}");
@@ -238,7 +238,7 @@ fn without_stabilization_the_failure_names_the_floating_body() {
         "[solver]\n",
         "[solver]\nstabilization = \"off\"\nmax_cutbacks = 1\n",
     );
-    let e = asperity::driver::solve(&common::model(&text), &mut Quiet)
+    let e = asperity::app::driver::solve(&common::model(&text), &mut Quiet)
         .err()
         .unwrap()
         .to_string();

@@ -1,12 +1,12 @@
 //! Local refinement with hanging nodes (`[mesh] refine_region`,
-//! `asperity::mesh::refine`): the hanging-node constraints u_q = Σ N_i(s) u_i
+//! `asperity::input::mesh::refine`): the hanging-node constraints u_q = Σ N_i(s) u_i
 //! pass the patch test (plane strain, axisymmetric) and carry an exact
 //! quadratic field (pure bending); the closure keeps the mesh 1-irregular;
 //! a matching interface stays matching (both sides refined together).
 
 use crate::common::{self, Quiet};
-use asperity::mesh::refine::{self, edge_shape, Refined};
-use asperity::mesh::Mesh;
+use asperity::input::mesh::refine::{self, edge_shape, Refined};
+use asperity::input::mesh::Mesh;
 use asperity::model::Model;
 use asperity::solve::State;
 
@@ -59,7 +59,7 @@ fn solve_prescribed(mut model: Model, exact: impl Fn([f64; 2]) -> [f64; 2]) -> (
     model
         .set_constraints(model.constraints.list.clone())
         .unwrap();
-    let r = asperity::driver::solve(&model, &mut Quiet).unwrap_or_else(|e| panic!("{e}"));
+    let r = asperity::app::driver::solve(&model, &mut Quiet).unwrap_or_else(|e| panic!("{e}"));
     (model, r.final_state)
 }
 
@@ -259,9 +259,9 @@ fn closure_keeps_random_refinements_one_irregular() {
     let area = |m: &Mesh| -> f64 {
         (0..m.elements.len())
             .map(|e| {
-                let g = asperity::fem::solid::ElementGeometry::new(
+                let g = asperity::physics::element::solid::ElementGeometry::new(
                     &m.element_coords(e),
-                    &asperity::fem::q8::gauss_3x3(),
+                    &asperity::physics::element::q8::gauss_3x3(),
                     1.0,
                 )
                 .unwrap();
@@ -315,7 +315,7 @@ fn shipped(name: &str, mesh: &str) -> String {
 /// The punch's settlement (mm), its dof count, and whether the run ended.
 fn settle(text: &str) -> (f64, usize) {
     let model = common::model(text);
-    let r = asperity::driver::solve(&model, &mut Quiet).unwrap_or_else(|e| panic!("{e}"));
+    let r = asperity::app::driver::solve(&model, &mut Quiet).unwrap_or_else(|e| panic!("{e}"));
     let last = r.increments.last().unwrap();
     assert!((last.load_factor - 1.0).abs() < 1e-12, "the run stopped");
     (last.measures.center_displacement, model.num_dofs())
@@ -389,7 +389,7 @@ fn a_matching_interface_stays_matching_under_one_sided_refinement() {
         .count();
     assert!(fine_below > 12, "the lower block was not refined");
     hanging(&model.mesh);
-    let r = asperity::driver::solve(&model, &mut Quiet).unwrap();
+    let r = asperity::app::driver::solve(&model, &mut Quiet).unwrap();
     let st = r.final_state;
     for (g, p) in st.gauss.iter().enumerate() {
         assert!(
@@ -496,7 +496,7 @@ fn twist_ties_the_third_component_of_a_hanging_node() {
     model
         .set_constraints(model.constraints.list.clone())
         .unwrap();
-    let st = asperity::driver::solve(&model, &mut Quiet)
+    let st = asperity::app::driver::solve(&model, &mut Quiet)
         .unwrap_or_else(|e| panic!("{e}"))
         .final_state;
     let scale = 2e-3 * 5.0 * 4.0;

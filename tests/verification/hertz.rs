@@ -313,7 +313,7 @@ fn small_sphere(weights: &str, load: &str) -> String {
 
 #[test]
 fn a_sphere_under_force_control_starts_on_its_axis_spring_with_lumped_weights() {
-    use asperity::driver::{self, RunOptions};
+    use asperity::app::driver::{self, RunOptions};
     let run = |name: &str, text: &str| {
         let case = common::case_dir(name, text);
         let opts = RunOptions {

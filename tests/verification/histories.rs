@@ -8,7 +8,7 @@
 //! does; the stepper stops at every breakpoint and never crosses one.
 
 use crate::common::{self, CaseText};
-use asperity::case::SolverSpec;
+use asperity::input::case::SolverSpec;
 use asperity::model::Model;
 use asperity::solve::stepping::{segment_steps, Retry, Stepper, Why};
 use asperity::solve::{Increment, Observer, RunResult, State};
@@ -25,7 +25,7 @@ impl Observer for Capture {
 
 fn solve(model: &Model) -> (RunResult, Vec<(f64, Vec<f64>)>) {
     let mut c = Capture::default();
-    let r = asperity::driver::solve(model, &mut c).unwrap_or_else(|e| panic!("{e}"));
+    let r = asperity::app::driver::solve(model, &mut c).unwrap_or_else(|e| panic!("{e}"));
     (r, c.0)
 }
 
@@ -55,9 +55,12 @@ fn field_difference(a: &[f64], b: &[f64]) -> f64 {
 /// The support reactions (residual at the prescribed dofs) of a converged
 /// state, summed in x and in y.
 fn reactions(model: &Model, r: &RunResult) -> [f64; 2] {
-    let mut engine =
-        asperity::driver::serial_engine(model, model.solver.method, asperity::threads::available())
-            .unwrap();
+    let mut engine = asperity::app::driver::serial_engine(
+        model,
+        model.solver.method,
+        asperity::threads::available(),
+    )
+    .unwrap();
     let t = r.increments.last().unwrap().load_factor;
     let res = engine
         .linearize(&r.final_state, &r.final_state.u, t)
@@ -476,7 +479,7 @@ fn slideway(solver: &str) -> String {
 
 #[test]
 fn a_run_with_histories_stopped_and_restarted_takes_the_same_steps() {
-    use asperity::driver::{self, RunOptions};
+    use asperity::app::driver::{self, RunOptions};
     for (tag, solver) in [
         ("fixed", "increments = 4"),
         ("auto", "step_control = \"auto\"\nmax_increment = 0.25"),

@@ -6,14 +6,14 @@
 //! several interfaces in one model, each in equilibrium.
 
 use crate::common::{self, CaseText};
-use asperity::interface::joint::{self, JointMeasures};
+use asperity::model::interface::joint::{self, JointMeasures};
 use asperity::model::Model;
 use asperity::solve::RunResult;
 
 use crate::common::Quiet;
 
 fn solve(model: &Model) -> RunResult {
-    asperity::driver::solve(model, &mut Quiet).unwrap_or_else(|e| panic!("{e}"))
+    asperity::app::driver::solve(model, &mut Quiet).unwrap_or_else(|e| panic!("{e}"))
 }
 
 fn last_joints(r: &RunResult) -> &[JointMeasures] {
@@ -230,7 +230,7 @@ fn a_shaft_in_a_hub_on_a_base_balances_both_interfaces() {
         assert_eq!(joint::arc_lengths(&model.mesh, &back, im), s);
     }
     // the interface CSV: both interfaces, named, each in order of s
-    let csv = asperity::output::interface_csv(&model, &r.final_state);
+    let csv = asperity::files::output::interface_csv(&model, &r.final_state);
     let head: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
     assert_eq!(&head[9..], ["y_mm", "s_mm", "interface"]);
     let rows: Vec<Vec<&str>> = csv

@@ -87,7 +87,7 @@ fn limit_pressure(plane: &Plane, refine: usize) -> (f64, f64) {
         .build();
     let started = std::time::Instant::now();
     let model = common::model(&text);
-    let r = asperity::driver::solve(&model, &mut Quiet).unwrap_or_else(|e| panic!("{e}"));
+    let r = asperity::app::driver::solve(&model, &mut Quiet).unwrap_or_else(|e| panic!("{e}"));
     let last = r.increments.last().unwrap();
     assert!(last.load_factor == 1.0);
     // reaction on the punch: sum of the residual at the prescribed settlement dofs

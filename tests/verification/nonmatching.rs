@@ -9,9 +9,10 @@
 //! quads, swapped curves, an arc.
 
 use crate::common;
-use asperity::driver::{self, RunOptions};
-use asperity::interface::{InterfaceModel, Status};
+use asperity::app::driver::{self, RunOptions};
+use asperity::model::interface::InterfaceModel;
 use asperity::model::Model;
+use asperity::physics::contact::Status;
 use asperity::solve::{RunResult, State};
 
 fn run(name: &str, text: &str) -> (Model, RunResult) {

@@ -2,9 +2,9 @@
 //! displacement field exactly (constant strain and stress), both plane states,
 //! full and reduced integration.
 
-use asperity::fem::q8::{gauss_2x2, gauss_3x3};
-use asperity::fem::solid::{element_forces, ElementGeometry, Response, Tangent};
-use asperity::material::{Plane, PointState, VonMises};
+use asperity::physics::element::q8::{gauss_2x2, gauss_3x3};
+use asperity::physics::element::solid::{element_forces, ElementGeometry, Response, Tangent};
+use asperity::physics::material::{Plane, PointState, VonMises};
 use nalgebra::{DMatrix, DVector};
 
 /// 2×2 elements on [0,4]² with the centre node and midsides moved off-grid.

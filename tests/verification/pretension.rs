@@ -7,7 +7,7 @@
 //! constrained inside an element edge (a hanging node).
 
 use crate::common;
-use asperity::constraint::Constraint;
+use asperity::model::constraint::Constraint;
 use asperity::model::Model;
 use asperity::solve::{Increment, Observer, RunResult, State};
 
@@ -22,7 +22,7 @@ impl Observer for Capture {
 
 fn solve(model: &Model) -> (RunResult, Vec<State>) {
     let mut c = Capture::default();
-    let r = asperity::driver::solve(model, &mut c).unwrap_or_else(|e| panic!("{e}"));
+    let r = asperity::app::driver::solve(model, &mut c).unwrap_or_else(|e| panic!("{e}"));
     (r, c.0)
 }
 
@@ -72,7 +72,7 @@ fn a_pretensioned_bar_refined_beside_its_cut_is_exact() {
         1,
     );
     let model = common::model(&text);
-    let hanging = asperity::mesh::refine::hanging_nodes(&model.mesh);
+    let hanging = asperity::input::mesh::refine::hanging_nodes(&model.mesh);
     let cut = &model.sections[0];
     let on_cut: Vec<usize> = cut.pairs.iter().flat_map(|&(n, c)| [n, c]).collect();
     // coarse edges with an end on the cut, on either side of it
@@ -270,7 +270,7 @@ fn a_hanging_node_passes_the_patch_test() {
     mesh.nodes = nodes.clone();
     mesh.elements = els
         .iter()
-        .map(|&nodes| asperity::mesh::Element { nodes, body: 0 })
+        .map(|&nodes| asperity::input::mesh::Element { nodes, body: 0 })
         .collect();
     mesh.node_sets.clear();
     mesh.edge_sets.clear();

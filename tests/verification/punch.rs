@@ -4,8 +4,8 @@
 //! first-yield loads, and the three solution methods agreeing.
 
 use crate::common;
-use asperity::case::Method;
-use asperity::driver::{self, RunOptions};
+use asperity::app::driver::{self, RunOptions};
+use asperity::input::case::Method;
 use asperity::solve::RunResult;
 
 fn run(case: &str, method: Option<Method>, refine: Option<usize>) -> RunResult {

@@ -24,7 +24,7 @@
 //! tangent point. About 25 s in release on 2 cores.
 
 use crate::common;
-use asperity::driver::{self, RunOptions};
+use asperity::app::driver::{self, RunOptions};
 use asperity::model::Model;
 use asperity::solve::{self, Checkpoint, Control, Increment, Observer, State};
 
@@ -74,7 +74,7 @@ fn rounded_punch_first_yield_settles_under_refinement_where_the_sharp_one_keeps_
             .map(|&k| first_yield(rounded, k, 10))
             .collect();
         let loads = [q[0].0, q[1].0, q[2].0];
-        let order = asperity::study::refine::richardson([1.0, 0.5, 0.25], loads);
+        let order = asperity::app::study::refine::richardson([1.0, 0.5, 0.25], loads);
         eprintln!(
             "{rounded}: first yield {:?} kN at x = {:?} mm, {:?} dofs; Richardson (limit, order) {order:?}; {:.1} s",
             loads,
@@ -130,7 +130,7 @@ fn rounded_punch_first_yield_converges_at_order_above_1_5_on_refine_2_4_8() {
             .map(|&k| first_yield(case, k, 10))
             .collect();
         let loads = [q[0].0, q[1].0, q[2].0];
-        let (limit, order) = asperity::study::refine::richardson([0.5, 0.25, 0.125], loads)
+        let (limit, order) = asperity::app::study::refine::richardson([0.5, 0.25, 0.125], loads)
             .unwrap_or_else(|| panic!("{case}: no Richardson order from {loads:?}"));
         eprintln!(
             "{case}: refine 2, 4, 8: first yield {loads:?} kN at x = {:?} mm, {:?} dofs; limit {limit:.6} kN, order {order:.2}; {:.0} s",
@@ -156,7 +156,7 @@ fn rounded_strain_run(line_search: bool) -> (Vec<Increment>, usize, usize) {
     let path = common::root().join("cases/punch-rounded-strain");
     let mut model =
         driver::load_model(&path, &RunOptions::default()).unwrap_or_else(|e| panic!("{e}"));
-    model.solver.step_control = Some(asperity::case::StepControl::Fixed);
+    model.solver.step_control = Some(asperity::input::case::StepControl::Fixed);
     model.solver.increments = Some(20);
     model.solver.first_increment = Some(0.05);
     model.solver.max_increment = None;

@@ -123,7 +123,7 @@ fn long_shrink_fit_matches_the_lame_closed_form_with_the_rough_interface() {
         let model = common::model(&case(c_n, true, None));
         let area = 2.0 * std::f64::consts::PI * B * 10.0;
         assert!(common::rel(model.interfaces[0].area(), area) < 1e-12);
-        let r = asperity::driver::solve(&model, &mut Quiet).unwrap_or_else(|e| panic!("{e}"));
+        let r = asperity::app::driver::solve(&model, &mut Quiet).unwrap_or_else(|e| panic!("{e}"));
         let (mean, pairs) = pressures(&model, &r);
         let err = common::rel(mean, p);
         let (lo, hi) = pairs
@@ -176,7 +176,8 @@ fn long_shrink_fit_matches_the_lame_closed_form_with_the_rough_interface() {
 
         // the interference imposed at once ends at the same pressure
         let at_once = common::model(&case(c_n, false, None));
-        let ra = asperity::driver::solve(&at_once, &mut Quiet).unwrap_or_else(|e| panic!("{e}"));
+        let ra =
+            asperity::app::driver::solve(&at_once, &mut Quiet).unwrap_or_else(|e| panic!("{e}"));
         let (mean_once, _) = pressures(&at_once, &ra);
         eprintln!(
             "  at once: {mean_once:.6} MPa ({:.1e})",
@@ -201,7 +202,7 @@ fn the_pushed_out_shaft_is_held_by_mu_times_the_fit_pressure() {
     let (c_n, mu) = (1e-4, 0.15);
     let text = case(c_n, true, Some(mu));
     let model = common::model(&text);
-    let r = asperity::driver::solve(&model, &mut Quiet).unwrap_or_else(|e| panic!("{e}"));
+    let r = asperity::app::driver::solve(&model, &mut Quiet).unwrap_or_else(|e| panic!("{e}"));
     let area = 2.0 * std::f64::consts::PI * B * 10.0;
     let p = fit_pressure(c_n);
     let rows: Vec<_> = r

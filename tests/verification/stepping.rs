@@ -8,8 +8,8 @@
 //! the Newton tolerance; both are held to that accuracy.)
 
 use crate::common;
-use asperity::case::{Method, StepControl};
-use asperity::driver::{self, RunOptions};
+use asperity::app::driver::{self, RunOptions};
+use asperity::input::case::{Method, StepControl};
 use asperity::solve::RunResult;
 
 fn run(tag: &str, opts: RunOptions) -> RunResult {
@@ -91,12 +91,12 @@ fn a_case_without_a_schedule_gets_automatic_steps() {
         .map(|l| format!("{l}\n"))
         .collect();
     std::fs::write(dir.join("case.toml"), stripped).unwrap();
-    let case = asperity::case::Case::load(&dir.join("case.toml")).unwrap();
+    let case = asperity::input::case::Case::load(&dir.join("case.toml")).unwrap();
     assert_eq!(case.solver.step_mode(), StepControl::Auto);
     let text =
         std::fs::read_to_string(common::root().join("cases/punch-plane-stress/case.toml")).unwrap();
     std::fs::write(dir.join("case.toml"), text).unwrap();
-    let case = asperity::case::Case::load(&dir.join("case.toml")).unwrap();
+    let case = asperity::input::case::Case::load(&dir.join("case.toml")).unwrap();
     assert_eq!(case.solver.step_mode(), StepControl::Fixed);
 }
 
@@ -104,7 +104,7 @@ fn a_case_without_a_schedule_gets_automatic_steps() {
 fn the_stability_study_writes_a_well_formed_map() {
     let out = common::scratch("stepping-study");
     std::env::set_var("ASPERITY_EXE", env!("CARGO_BIN_EXE_asperity"));
-    let (files, outcomes, best) = asperity::study::stability::stability(
+    let (files, outcomes, best) = asperity::app::study::stability::stability(
         &common::root().join("cases/punch-plane-stress"),
         &[2, 10],
         &[Method::FullNewton],
@@ -160,7 +160,7 @@ fn richardson_order_of_the_load_step_error_is_near_one() {
             settlement(&r)
         })
         .collect();
-    let (limit, order) = asperity::study::refine::richardson(
+    let (limit, order) = asperity::app::study::refine::richardson(
         [1.0 / 20.0, 1.0 / 40.0, 1.0 / 80.0],
         [q[0], q[1], q[2]],
     )
@@ -176,8 +176,8 @@ fn richardson_order_of_the_load_step_error_is_near_one() {
 /// refinement on the graded mesh and over the adaptive cycles.
 #[test]
 fn the_refine_study_writes_well_formed_data() {
-    use asperity::study::refine::{refine, Config};
-    use asperity::study::runner::Which;
+    use asperity::app::study::refine::{refine, Config};
+    use asperity::app::study::runner::Which;
     std::env::set_var("ASPERITY_EXE", env!("CARGO_BIN_EXE_asperity"));
     let out = common::scratch("stepping-refine");
     let configs = [(false, false), (true, false), (false, true)].map(|(uniform, adapt)| Config {

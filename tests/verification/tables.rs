@@ -5,8 +5,8 @@
 //! twice the segments comes closer.
 
 use crate::common;
-use asperity::driver::{self, RunOptions};
-use asperity::interface::{NormalLaw, TangentialLaw};
+use asperity::app::driver::{self, RunOptions};
+use asperity::physics::contact::{NormalLaw, TangentialLaw};
 use asperity::solve::RunResult;
 
 const C_N: f64 = 0.001;

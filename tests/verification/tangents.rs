@@ -3,10 +3,10 @@
 //! and consistent, every normal law) and the assembled residual of a punch model.
 
 use crate::common;
-use asperity::case::Method;
-use asperity::fem::q8;
-use asperity::fem::solid::{element_forces, ElementGeometry, Response, Tangent};
-use asperity::material::{Plane, PointState, VonMises};
+use asperity::input::case::Method;
+use asperity::physics::element::q8;
+use asperity::physics::element::solid::{element_forces, ElementGeometry, Response, Tangent};
+use asperity::physics::material::{Plane, PointState, VonMises};
 use asperity::solve::State;
 
 fn distorted() -> [[f64; 2]; 8] {
@@ -121,7 +121,7 @@ fn check_element_geometry(plane: Plane, geom: &ElementGeometry, scale: f64, hard
 
 #[test]
 fn axisymmetric_element_tangent_matches_finite_differences() {
-    let section = asperity::fem::Section {
+    let section = asperity::physics::element::Section {
         axisymmetric: true,
         thickness: 1.0,
     };
@@ -213,7 +213,7 @@ fn assembled_tangent_matches_finite_differences_of_the_residual() {
     for (plane, base) in [("stress", PUNCH), ("strain", PUNCH), ("stress", friction)] {
         let text = base.replace("plane = \"stress\"", &format!("plane = \"{plane}\""));
         let model = common::model(&text);
-        let mut engine = asperity::driver::serial_engine(
+        let mut engine = asperity::app::driver::serial_engine(
             &model,
             Method::FullNewton,
             asperity::threads::available(),
@@ -313,7 +313,8 @@ fn assembled_tangent_is_the_derivative_of_the_residual_near_the_limit_load() {
     for case in ["punch-rounded-stress", "punch-rounded-strain"] {
         let path = common::root().join("cases").join(case).join("case.toml");
         let model = common::model(&std::fs::read_to_string(path).unwrap());
-        let mut engine = asperity::driver::serial_engine(&model, Method::FullNewton, 1).unwrap();
+        let mut engine =
+            asperity::app::driver::serial_engine(&model, Method::FullNewton, 1).unwrap();
         let (before, now) = states_near_the_limit_load(&mut engine, &model, 0.1, 0.8);
         let ng = model.n_gauss();
         let plastic: Vec<usize> = (0..model.mesh.elements.len())

@@ -12,10 +12,10 @@
 //!   for bit: its parallel kernels sum some updates in another order.
 
 use crate::common;
-use asperity::case::Method;
-use asperity::driver::{self, RunOptions};
-use asperity::fem::solid::Response;
+use asperity::app::driver::{self, RunOptions};
+use asperity::input::case::Method;
 use asperity::model::Model;
+use asperity::physics::element::solid::Response;
 use asperity::solve::{RunResult, State};
 
 const PUNCH: &str = include_str!("../../cases/punch-plane-stress/case.toml");
@@ -194,8 +194,8 @@ fn a_plastic_run_does_not_depend_on_the_thread_count_lu() {
 /// 2 and 3 threads split the work, and agree with one thread's to round-off.
 #[test]
 fn the_parallel_factorization_agrees_to_round_off() {
-    use asperity::assembly::Pattern;
-    use asperity::backend::serial::{Factorization, SerialDirect};
+    use asperity::linalg::assembly::Pattern;
+    use asperity::linalg::backend::serial::{Factorization, SerialDirect};
     let n = 600;
     let pattern = Pattern {
         n,

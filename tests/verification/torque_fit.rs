@@ -120,7 +120,7 @@ vtu = false
 
 fn run(text: &str) -> (Model, RunResult) {
     let model = common::model(text);
-    let r = asperity::driver::solve(&model, &mut Quiet).unwrap_or_else(|e| panic!("{e}"));
+    let r = asperity::app::driver::solve(&model, &mut Quiet).unwrap_or_else(|e| panic!("{e}"));
     (model, r)
 }
 
@@ -318,13 +318,13 @@ fn shipped_fit(tag: &str, solver: &str) -> (Model, RunResult) {
         std::fs::read_to_string(common::root().join("cases/shrink-fit-torque/case.toml")).unwrap();
     let text = common::with_solver_table(&text, solver);
     let case = common::case_dir(tag, &text);
-    let opts = asperity::driver::RunOptions {
+    let opts = asperity::app::driver::RunOptions {
         out: Some(case.parent().unwrap().join("out")),
         quiet: true,
         ..Default::default()
     };
     let (_, model, r) =
-        asperity::driver::run(&case, &opts).unwrap_or_else(|e| panic!("{tag}: {e}"));
+        asperity::app::driver::run(&case, &opts).unwrap_or_else(|e| panic!("{tag}: {e}"));
     (model, r)
 }
 

@@ -26,7 +26,7 @@ impl Observer for Last {
 
 fn solve(model: &Model) -> State {
     let mut c = Last::default();
-    asperity::driver::solve(model, &mut c).unwrap_or_else(|e| panic!("{e}"));
+    asperity::app::driver::solve(model, &mut c).unwrap_or_else(|e| panic!("{e}"));
     c.0.expect("an increment converged")
 }
 

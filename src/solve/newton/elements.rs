@@ -3,10 +3,10 @@
 //! added in element order, with a result independent of the thread count.
 
 use super::{held_out, Engine};
-use crate::fem::solid::{element_forces, Response, Tangent};
-use crate::material::PointState;
-use crate::mesh::NodeDofs;
+use crate::input::mesh::NodeDofs;
 use crate::model::Model;
+use crate::physics::element::solid::{element_forces, Response, Tangent};
+use crate::physics::material::PointState;
 use crate::solve::failure::StepFailure;
 use crate::solve::State;
 

@@ -15,7 +15,7 @@
 //! m equations in d = Δ_I. The plain Newton correction Δ⁰ = −K⁻¹ R has
 //! Δ⁰_I = −(A + K_s0)⁻¹ g with g the condensed residual and A = S − K_s0 the
 //! Schur complement of K_b on I (S = L_II L_IIᵀ, of the factored matrix, with
-//! the interface ordered last: [`crate::backend::Condensed`]), so
+//! the interface ordered last: [`crate::linalg::backend::Condensed`]), so
 //!
 //! ```text
 //!   F(d) = A (d − Δ⁰_I) + r_s(x_k + d) − r_s(x_k) − K_s0 Δ⁰_I = 0,
@@ -41,8 +41,9 @@
 //! handles the plasticity.
 
 use super::Engine;
-use crate::interface::{InterfaceModel, Point, PointEval, PointState};
+use crate::model::interface::{InterfaceModel, Point, PointEval};
 use crate::model::Model;
+use crate::physics::contact::PointState;
 use crate::solve::State;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::lu::partial_pivoting::{factor, solve};
@@ -78,7 +79,7 @@ pub struct LoopStats {
 /// ([`InterfaceModel::eval_point_parts`], its unsymmetric coupling part in
 /// `kl` when `with_coupling`), the secant floor `kf` where the point is at
 /// zero approach or beyond, and the stabilization spring of stiffness
-/// `spring` ([`crate::solve::springs::add_point`]).
+/// `spring` ([`crate::solve::stabilization::mechanism::add_point`]).
 #[allow(clippy::too_many_arguments)] // the point, two states and its options
 pub(super) fn point_parts(
     im: &InterfaceModel,
@@ -97,7 +98,7 @@ pub(super) fn point_parts(
     let kfloor = kf.filter(|_| un > -ZERO_APPROACH);
     let ev = im.eval_point_parts(pt, u, gap, committed, kfloor, rl, Some(kl), with_coupling);
     if let Some(ks) = spring {
-        crate::solve::springs::add_point(im, pt, ks, committed_u, u, rl, kl);
+        crate::solve::stabilization::mechanism::add_point(im, pt, ks, committed_u, u, rl, kl);
     }
     ev
 }

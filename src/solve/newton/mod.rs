@@ -19,14 +19,14 @@ pub use step::StepProblem;
 
 use super::failure::StepFailure;
 use super::nonlinear::{NonlinearSolver, Problem, Verdict};
-use super::springs::Stabilizer;
+use super::stabilization::mechanism::Stabilizer;
 use super::State;
-use crate::backend::Backend;
-use crate::case::Method;
-use crate::fem::solid::{Response, Tangent};
-use crate::interface::Status;
-use crate::material::PointState;
+use crate::input::case::Method;
+use crate::linalg::backend::Backend;
 use crate::model::Model;
+use crate::physics::contact::Status;
+use crate::physics::element::solid::{Response, Tangent};
+use crate::physics::material::PointState;
 
 /// Points per reduction in `Engine::share_state` and `Engine::gather_gauss`.
 const SHARE_CHUNK: usize = 8192;
@@ -81,7 +81,7 @@ pub struct Engine<'m> {
     threads: usize,
     /// One batch's element forces and tangents ([`ELEMENT_BATCH`](elements::ELEMENT_BATCH)), element
     /// after element, ne and ne² numbers each (ne = the model's
-    /// [`NodeDofs::element`](crate::mesh::NodeDofs::element): a model without twist holds no room for it).
+    /// [`NodeDofs::element`](crate::input::mesh::NodeDofs::element): a model without twist holds no room for it).
     fe_batch: Vec<f64>,
     ke_batch: Vec<f64>,
     /// The dofs held in the current step ([`Model::held_dofs`]); a cached
@@ -99,7 +99,7 @@ impl Stats {
 }
 
 impl<'m> Engine<'m> {
-    /// An engine on a backend (the caller's factory: [`crate::driver::serial_engine`]
+    /// An engine on a backend (the caller's factory: [`crate::app::driver::serial_engine`]
     /// for the serial one, `parallel::run` for PETSc).
     pub fn with_backend(
         model: &'m Model,
@@ -369,7 +369,7 @@ impl<'m> Engine<'m> {
         if self.backend.ranks() == 1 {
             return;
         }
-        use crate::interface::PointState;
+        use crate::physics::contact::PointState;
         let twist = self.model.node_dofs().twist();
         let w = PointState::packed_len(twist);
         let mut g = Vec::with_capacity(SHARE_CHUNK * w);
@@ -561,9 +561,9 @@ impl<'m> Engine<'m> {
     }
 }
 
-/// The block Tᵀ k T of a block that holds a slave dof ([`crate::constraint`]),
+/// The block Tᵀ k T of a block that holds a slave dof ([`crate::model::constraint`]),
 /// with the rows and columns of the held dofs zero.
-fn held_out(x: &crate::constraint::Expansion, held: &[usize], k: &[f64]) -> Vec<f64> {
+fn held_out(x: &crate::model::constraint::Expansion, held: &[usize], k: &[f64]) -> Vec<f64> {
     let mut kx = x.matrix(k);
     let m = x.dofs.len();
     for (i, d) in x.dofs.iter().enumerate() {

@@ -3,9 +3,9 @@
 //! built-in Newton loop ([`Engine::step`]) or PETSc's SNES drives.
 
 use super::Engine;
-use crate::case::{Acceleration, Method};
-use crate::fem::solid::{Response, Tangent};
-use crate::interface::Status;
+use crate::input::case::{Acceleration, Method};
+use crate::physics::contact::Status;
+use crate::physics::element::solid::{Response, Tangent};
 use crate::solve::accelerate::Anderson;
 use crate::solve::failure::StepFailure;
 use crate::solve::nonlinear::{Problem, Verdict};

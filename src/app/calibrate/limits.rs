@@ -1,0 +1,444 @@
+//! The ranges of every number of a calibration input (issue 30).
+//!
+//! Each quantity has two ranges. Outside the *accepted* range the value is not
+//! a surface or a material anyone means (a subnormal σ, a modulus of 1e300 MPa,
+//! summits closer than atoms) and is refused with the key's name: it would
+//! otherwise turn into a meaningless curve or an error blamed on another key.
+//! Outside the *usual* range (the engineering range of the quantity) the value
+//! is legal but suspicious, typically a slip of unit prefix (σ in µm written as
+//! mm, a density per m² written per mm²): the calibration is made and a
+//! warning names the key. docs/calibration.md ("Ranges") has the table, checked
+//! by a test below.
+
+use crate::error::{Error, Result};
+use std::fmt;
+
+/// The ranges of one quantity: refused outside `accepted`, warned outside
+/// `usual` (both inclusive).
+#[derive(Clone, Copy, Debug)]
+pub struct Limit {
+    /// What it is, as in a sentence: "σ_s, the standard deviation of summit heights".
+    pub quantity: &'static str,
+    pub unit: &'static str,
+    pub accepted: [f64; 2],
+    pub usual: [f64; 2],
+    /// What the usual range spans, for the messages and the docs.
+    pub usual_is: &'static str,
+    /// The likely slip when a value is above / below the usual range.
+    pub above: &'static str,
+    pub below: &'static str,
+}
+
+/// Young's modulus: accepted as by the case file (src/case/ranges.rs MODULUS).
+pub const YOUNG: Limit = Limit {
+    quantity: "Young's modulus",
+    unit: "MPa",
+    accepted: [
+        crate::input::case::ranges::MODULUS.lo,
+        crate::input::case::ranges::MODULUS.hi,
+    ],
+    usual: [1.0, 1.2e6],
+    usual_is: "1 MPa for soft elastomers to 1.2e6 MPa for diamond",
+    above: "a value in kPa or Pa written as MPa?",
+    below: "a value in GPa written as MPa?",
+};
+/// Hardness of the softer body (CEB summits).
+pub const HARDNESS: Limit = Limit {
+    quantity: "the hardness",
+    unit: "MPa",
+    accepted: [
+        crate::input::case::ranges::YIELD_STRESS.lo,
+        crate::input::case::ranges::YIELD_STRESS.hi,
+    ],
+    usual: [10.0, 1.0e5],
+    usual_is: "10 MPa for indium or lead to 1e5 MPa for diamond",
+    above: "a value in kPa written as MPa?",
+    below: "a value in GPa written as MPa?",
+};
+/// η, summits per mm².
+pub const DENSITY: Limit = Limit {
+    quantity: "η, the summit density",
+    unit: "/mm²",
+    // one summit per m² to summits 0.1 nm apart (an atomic distance)
+    accepted: [1e-6, 1e14],
+    usual: [1.0, 1.0e6],
+    usual_is: "1 to 1e6 per mm², summits 1 mm to 1 µm apart",
+    above: "a density per m² written as per mm² (1 /mm² = 1e6 /m²)?",
+    below: "a density per µm² written as per mm² (1 /µm² = 1e6 /mm²)?",
+};
+/// β, mm.
+pub const RADIUS: Limit = Limit {
+    quantity: "β, the summit radius",
+    unit: "mm",
+    accepted: [1e-7, 1e4],
+    usual: [1e-4, 10.0],
+    usual_is: "0.1 µm to 10 mm",
+    above: "a value in µm written as mm?",
+    below: "a value in m written as mm?",
+};
+/// σ_s, mm.
+pub const SIGMA: Limit = Limit {
+    quantity: "σ_s, the standard deviation of summit heights",
+    unit: "mm",
+    // 0.1 nm (atomic) to 100 mm
+    accepted: [1e-7, 100.0],
+    usual: [1e-5, 0.1],
+    usual_is: "0.01 µm for lapped or polished to 100 µm for sand-cast or rough-turned faces",
+    above: "a value in µm written as mm?",
+    below: "a value in m written as mm?",
+};
+/// Δ, mm.
+pub const SAMPLING: Limit = Limit {
+    quantity: "Δ, the sampling interval",
+    unit: "mm",
+    accepted: [1e-9, 100.0],
+    usual: [1e-6, 0.1],
+    usual_is: "1 nm for an atomic force microscope to 100 µm for a coarse profilometer",
+    above: "a value in µm written as mm?",
+    below: "a value in m written as mm?",
+};
+/// The fit range: accepted as the case file's pressures (src/case/ranges.rs PRESSURE).
+pub const PRESSURE: Limit = Limit {
+    quantity: "a fit pressure",
+    unit: "MPa",
+    accepted: [
+        crate::input::case::ranges::PRESSURE.lo,
+        crate::input::case::ranges::PRESSURE.hi,
+    ],
+    usual: [1e-3, 1e4],
+    usual_is: "1 kPa to 10 GPa, the hardness of the hardest steels",
+    above: "a value in kPa or Pa written as MPa?",
+    below: "a value in GPa written as MPa?",
+};
+/// The reference pressure (u_N = 0): small by design, so no usual range.
+pub const REFERENCE: Limit = Limit {
+    quantity: "the reference pressure",
+    unit: "MPa",
+    accepted: [1e-12, crate::input::case::ranges::PRESSURE.hi],
+    usual: [1e-12, crate::input::case::ranges::PRESSURE.hi],
+    usual_is: "",
+    above: "",
+    below: "",
+};
+
+/// Every limit, in the order of the documentation's table.
+pub const ALL: [(&str, &Limit); 13] = [
+    ("young", &YOUNG),
+    ("hardness", &HARDNESS),
+    ("density", &DENSITY),
+    ("radius", &RADIUS),
+    ("sigma", &SIGMA),
+    ("sampling", &SAMPLING),
+    ("ra", &super::roughness::RA),
+    ("rz", &super::roughness::RZ),
+    ("hurst", &super::roughness::HURST_LIMIT),
+    ("cutoff", &super::roughness::CUTOFF),
+    ("short_cutoff", &super::roughness::SHORT_CUTOFF),
+    ("pressure", &PRESSURE),
+    ("reference_pressure", &REFERENCE),
+];
+
+/// A legal but suspicious value: `place: key: message`, printed as
+/// `warning: …` and kept in fit.json and interface.toml.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Warning {
+    pub place: String,
+    pub key: String,
+    pub message: String,
+}
+
+impl fmt::Display for Warning {
+    /// One line, escaped like an error.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let line = format!("{}: {}: {}", self.place, self.key, self.message);
+        f.write_str(&crate::error::bounded(&crate::error::escape_controls(
+            &line,
+        )))
+    }
+}
+
+/// `1e-310` as `1e-310`, `2000` as `2000`, `0.05` as `0.05`: the shortest
+/// form that reads back as the value; a value that needs more than 10
+/// characters (one computed rather than typed) with 5 significant digits.
+pub fn num(v: f64) -> String {
+    let short = exact(v);
+    if short.len() > 10 {
+        sig(v, 5)
+    } else {
+        short
+    }
+}
+
+/// The shorter of `v`'s plain and scientific forms, every digit that reads
+/// back as `v` (for values typed in and compared: `10.0000000001`).
+pub fn exact(v: f64) -> String {
+    let plain = format!("{v}");
+    let sci = format!("{v:e}");
+    if plain.len() <= sci.len() {
+        plain
+    } else {
+        sci
+    }
+}
+
+/// `v` to `digits` significant digits, in the shorter of plain and scientific
+/// form: 4 significant digits of 23.86547 are `23.87`, of 1.2884e-16 `1.288e-16`.
+pub fn sig(v: f64, digits: usize) -> String {
+    let rounded: f64 = format!("{:.*e}", digits.max(1) - 1, v).parse().unwrap_or(v);
+    exact(rounded)
+}
+
+impl Limit {
+    fn with_unit(&self, v: f64) -> String {
+        if self.unit.is_empty() {
+            num(v)
+        } else {
+            format!("{} {}", num(v), self.unit)
+        }
+    }
+
+    /// Refuses `v` outside the accepted range (and non-finite, non-positive or
+    /// subnormal) with `place: key`; outside the usual range, a warning is
+    /// pushed to `warnings`.
+    pub fn check(&self, place: &str, key: &str, v: f64, warnings: &mut Vec<Warning>) -> Result<()> {
+        self.check_hinted(place, key, v, warnings, None)
+    }
+
+    /// [`Limit::check`] with the warning's guess at the slip given (a value
+    /// derived from a profile has other likely causes than its key's unit).
+    pub fn check_hinted(
+        &self,
+        place: &str,
+        key: &str,
+        v: f64,
+        warnings: &mut Vec<Warning>,
+        hint: Option<&str>,
+    ) -> Result<()> {
+        self.judge(place, key, None, v, warnings, hint)
+    }
+
+    /// A value no key gives, derived from the input keys `inputs` (σ_s, η
+    /// and β from a profile's heights or from Ra / Rz): refused or warned as
+    /// [`Limit::check_hinted`], at those keys (`place: inputs`, never a name
+    /// of the derived quantity), the message naming the quantity and `how`
+    /// the keys made it ("derived from them, H = 0.8 assumed").
+    pub fn check_derived(
+        &self,
+        place: &str,
+        inputs: &str,
+        how: &str,
+        v: f64,
+        warnings: &mut Vec<Warning>,
+        hint: Option<&str>,
+    ) -> Result<()> {
+        self.judge(place, inputs, Some(how), v, warnings, hint)
+    }
+
+    /// The checks of [`Limit::check_hinted`] and [`Limit::check_derived`]
+    /// (`derived`: how `key`, the inputs, made `v`).
+    fn judge(
+        &self,
+        place: &str,
+        key: &str,
+        derived: Option<&str>,
+        v: f64,
+        warnings: &mut Vec<Warning>,
+        hint: Option<&str>,
+    ) -> Result<()> {
+        let refuse = |message: String| Err(Error::input(format!("{place}: {key}"), message));
+        // what the messages call the value, and the quantity after "as"
+        // and "of": a key's value is the quantity, a derived one is named
+        let (value, as_q, of_q) = match derived {
+            None => (
+                self.with_unit(v),
+                format!(" as {}", self.quantity),
+                format!("the usual range of {}", self.quantity),
+            ),
+            Some(how) => (
+                format!("{} for {}, {how},", self.with_unit(v), self.quantity),
+                String::new(),
+                "its usual range".to_string(),
+            ),
+        };
+        if !v.is_finite() || v <= 0.0 {
+            return refuse(match derived {
+                None if !v.is_finite() => format!("must be a finite number, got {v}"),
+                None => format!("must be a positive finite number, got {}", num(v)),
+                Some(how) => format!(
+                    "{} for {}, {how}, is not a positive finite number",
+                    num(v),
+                    self.quantity
+                ),
+            });
+        }
+        let [lo, hi] = self.accepted;
+        if v < f64::MIN_POSITIVE {
+            let not = match derived {
+                None => format!(", not {}", self.quantity),
+                Some(_) => String::new(),
+            };
+            let value = match derived {
+                None => num(v),
+                Some(how) => format!("{} for {}, {how},", num(v), self.quantity),
+            };
+            return refuse(format!(
+                "{value} is a subnormal number (below 2.2e-308){not}: accepted {} to {}",
+                self.with_unit(lo),
+                self.with_unit(hi)
+            ));
+        }
+        if v < lo || v > hi {
+            let usual = if self.usual_is.is_empty() {
+                String::new()
+            } else {
+                format!("; usual {}", self.usual_is)
+            };
+            return refuse(format!(
+                "{value} is far outside any use{as_q}: accepted {} to {}{usual}",
+                self.with_unit(lo),
+                self.with_unit(hi),
+            ));
+        }
+        let [ulo, uhi] = self.usual;
+        if v < ulo || v > uhi {
+            let (side, hint) = if v > uhi {
+                ("above", hint.unwrap_or(self.above))
+            } else {
+                ("below", hint.unwrap_or(self.below))
+            };
+            warnings.push(Warning {
+                place: place.to_string(),
+                key: key.to_string(),
+                message: format!("{value} is {side} {of_q}, {}: {hint}", self.usual_is),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// ν: accepted in (−1, 0.5) (zero included, subnormals not), usual [0, 0.5).
+pub fn check_poisson(place: &str, key: &str, v: f64, warnings: &mut Vec<Warning>) -> Result<()> {
+    let refuse = |message: String| Err(Error::input(format!("{place}: {key}"), message));
+    if !(v > -1.0 && v < 0.5) {
+        return refuse(format!("must be in (−1, 0.5), got {}", num(v)));
+    }
+    if v != 0.0 && v.abs() < f64::MIN_POSITIVE {
+        return refuse(format!(
+            "{} is a subnormal number (below 2.2e-308), not a Poisson ratio",
+            num(v)
+        ));
+    }
+    if v < 0.0 {
+        warnings.push(Warning {
+            place: place.to_string(),
+            key: key.to_string(),
+            message: format!(
+                "{} is negative: only auxetic foams and lattices have ν < 0 (metals 0.25-0.35, polymers 0.35-0.5); a minus sign too many?",
+                num(v)
+            ),
+        });
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn subnormal_huge_and_negative_values_are_refused_naming_the_key() {
+        let mut w = Vec::new();
+        for (v, says) in [
+            (1e-310, "subnormal"),
+            (1e300, "far outside"),
+            (f64::INFINITY, "finite"),
+            (f64::NAN, "finite"),
+            (0.0, "positive"),
+            (-1e-3, "positive"),
+        ] {
+            let e = SIGMA
+                .check("s.toml", "surface.sigma", v, &mut w)
+                .unwrap_err()
+                .to_string();
+            assert!(
+                e.starts_with("s.toml: surface.sigma: ") && e.contains(says),
+                "{v}: {e}"
+            );
+        }
+        assert!(w.is_empty());
+    }
+
+    #[test]
+    fn a_unit_slip_warns_and_passes() {
+        let mut w = Vec::new();
+        SIGMA.check("s.toml", "surface.sigma", 1.0, &mut w).unwrap();
+        DENSITY
+            .check("s.toml", "surface.density", 1e12, &mut w)
+            .unwrap();
+        SIGMA
+            .check("s.toml", "surface.sigma", 1e-3, &mut w)
+            .unwrap();
+        assert_eq!(w.len(), 2, "{w:?}");
+        let s = w[0].to_string();
+        assert!(
+            s.starts_with("s.toml: surface.sigma: 1 mm is above the usual range")
+                && s.contains("µm written as mm"),
+            "{s}"
+        );
+        assert!(
+            w[1].to_string().contains("per m² written as per mm²"),
+            "{}",
+            w[1]
+        );
+        check_poisson("s.toml", "materials.a.poisson", -0.2, &mut w).unwrap();
+        assert_eq!(w.len(), 3);
+        assert!(check_poisson("s.toml", "materials.a.poisson", 5e-324, &mut w).is_err());
+        assert!(check_poisson("s.toml", "materials.a.poisson", 0.0, &mut w).is_ok());
+    }
+
+    #[test]
+    fn usual_ranges_lie_inside_the_accepted_ones() {
+        for (key, l) in ALL {
+            assert!(
+                l.accepted[0] >= f64::MIN_POSITIVE
+                    && l.accepted[0] <= l.usual[0]
+                    && l.usual[0] < l.usual[1]
+                    && l.usual[1] <= l.accepted[1],
+                "{key}"
+            );
+        }
+    }
+
+    /// docs/calibration.md lists every range with these bounds.
+    #[test]
+    fn the_docs_table_matches() {
+        let doc = std::fs::read_to_string(
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/calibration.md"),
+        )
+        .unwrap();
+        for (key, l) in ALL {
+            let row = format!(
+                "| `{key}` | {} | {} – {} | {} – {} |",
+                l.unit,
+                num(l.usual[0]),
+                num(l.usual[1]),
+                num(l.accepted[0]),
+                num(l.accepted[1])
+            );
+            let row = if key == "reference_pressure" {
+                format!(
+                    "| `{key}` | {} | – | {} – {} |",
+                    l.unit,
+                    num(l.accepted[0]),
+                    num(l.accepted[1])
+                )
+            } else {
+                row
+            };
+            assert!(
+                doc.contains(&row),
+                "docs/calibration.md lacks the row {row}"
+            );
+        }
+    }
+}

@@ -1,0 +1,868 @@
+//! The top-level jobs behind the command line: `run` and `check`.
+
+use crate::error::Result;
+use crate::files::output::{Resume, Writer};
+use crate::input::case::{Case, Method};
+use crate::model::Model;
+use crate::progress::{Log, LogFormat};
+use crate::solve::{self, Checkpoint, Control, Engine, RunResult};
+use serde_json::json;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Options of `asperity run`.
+#[derive(Clone, Debug, Default)]
+pub struct RunOptions {
+    pub out: Option<PathBuf>,
+    pub quiet: bool,
+    pub method: Option<Method>,
+    pub refine: Option<usize>,
+    /// Test hook: make the element loop fail on (rank, assembly number).
+    pub fault: Option<(usize, usize)>,
+    /// Override: equal load steps (drops the case's first_increment / load_factors).
+    pub increments: Option<usize>,
+    pub max_cutbacks: Option<usize>,
+    /// Override: ungraded mesh (every size ratio 1) with the same element counts.
+    pub uniform: bool,
+    /// Override: plain fixed-matrix iterations (no Anderson acceleration).
+    pub plain: bool,
+    /// Override: fixed or automatic load steps.
+    pub step_control: Option<crate::input::case::StepControl>,
+    /// Override: friction scheme of every tangential law.
+    pub friction_scheme: Option<crate::input::case::settings::FrictionScheme>,
+    /// Continue from the `restart.bin` in this output folder.
+    pub restart: Option<PathBuf>,
+    /// Test hook: stop (like SIGINT, but exit 3) after this many increments.
+    pub stop_after: Option<usize>,
+    /// Progress line format.
+    pub log_format: LogFormat,
+    /// PETSc backend only: drive the steps with SNES (default) or the built-in loop.
+    pub snes: bool,
+    /// PETSc backend only: the memory-lean GAMG settings (`--memory lean`).
+    pub lean_memory: bool,
+    /// Serial backend only, library use (benchmarks): this factorization
+    /// instead of the one the model's tangent calls for.
+    pub factorization: Option<crate::linalg::backend::serial::Factorization>,
+    /// Threads of this process (`--threads`, `ASPERITY_THREADS`; see
+    /// [`crate::threads`]); `None`: every core on one process, one per rank
+    /// under MPI.
+    pub threads: Option<usize>,
+    /// `--adapt TOL`: an adaptive run to this relative estimate (the case's
+    /// `[adapt]` table with its tolerance replaced, else the energy norm).
+    pub adapt: Option<f64>,
+}
+
+/// Refuses an output folder that would destroy input: `--out` replaces the
+/// folder it names as a whole, so it must not be (or hold) an input of the
+/// run (the case file or folder, its Gmsh mesh), and it must not name an
+/// existing file.
+pub fn check_out(out: Option<&Path>, inputs: &[&Path]) -> Result<()> {
+    let Some(out) = out else { return Ok(()) };
+    let err = |msg: String| Err(crate::error::Error::input("--out", msg));
+    if out.exists() && !out.is_dir() {
+        return err(format!(
+            "{} is a file; the output is a folder that the run replaces as a whole: name a folder or a new path",
+            out.display()
+        ));
+    }
+    // where `out` is or would be, links resolved
+    let resolved = if out.exists() {
+        out.canonicalize().ok()
+    } else {
+        let parent = out
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        match (parent.canonicalize(), out.file_name()) {
+            (Ok(p), Some(name)) => Some(p.join(name)),
+            _ => None,
+        }
+    };
+    let Some(o) = resolved else { return Ok(()) };
+    for input in inputs {
+        if input.canonicalize().is_ok_and(|c| c.starts_with(&o)) {
+            return err(format!(
+                "{} holds {}, an input of this run, and the run replaces that folder as a whole: choose an output folder elsewhere",
+                out.display(),
+                input.display()
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Loads a case and applies command-line overrides.
+pub fn load_model(case_path: &Path, opts: &RunOptions) -> Result<Model> {
+    Model::build(load_case(case_path, opts)?)
+}
+
+/// Reads a case and applies the command-line overrides (not yet checked:
+/// [`Model::build`] checks it).
+pub fn load_case(case_path: &Path, opts: &RunOptions) -> Result<Case> {
+    let mut case = Case::load(case_path)?;
+    if let Some(file) = &case.mesh.file {
+        let dir = case.source.parent().unwrap_or(Path::new(""));
+        check_out(opts.out.as_deref(), &[&dir.join(file)])?;
+    }
+    // each override is recorded with the keys it replaces, so that a
+    // refusal of the setting names the option, not the case file's key
+    // (`Case::at`)
+    let o = &mut case.overrides;
+    if let Some(m) = opts.method {
+        case.solver.method = m;
+        o.set("[solver] method", format!("--method {}", m.name()));
+    }
+    if let Some(r) = opts.refine {
+        case.mesh.refine = r;
+        o.set("[mesh] refine", format!("--refine {r}"));
+    }
+    if let Some(t) = opts.adapt {
+        let option = format!("--adapt {}", crate::app::calibrate::limits::exact(t));
+        case.adapt = Some(match case.adapt.take() {
+            Some(a) => {
+                o.set("[adapt] tolerance", option);
+                crate::input::case::adapt::AdaptSpec { tolerance: t, ..a }
+            }
+            None => {
+                // every key of the table: the defaults of `--adapt`
+                o.set("[adapt]", option);
+                crate::input::case::adapt::AdaptSpec::with_tolerance(t)
+            }
+        });
+    }
+    if case.adapt.is_some() && opts.restart.is_some() {
+        // refused before the restart folder is read: its checkpoint is of
+        // one cycle's mesh, and every cycle starts from the beginning
+        return Err(crate::error::Error::input(
+            case.at("[adapt]"),
+            "an adaptive run solves every mesh from the start of the history: it cannot resume (--restart)",
+        ));
+    }
+    if let Some(n) = opts.increments {
+        // fixed steps: N equal steps replace the case's schedule, which must
+        // not be an explicit list (the case file refuses `increments` beside
+        // `load_factors` too); automatic steps: `load_factors` are the
+        // waypoints, kept, and N sizes the first step
+        let auto = opts.step_control == Some(crate::input::case::StepControl::Auto);
+        if case.solver.load_factors.is_some() && !auto {
+            return Err(crate::error::Error::input(
+                format!("--increments {n}"),
+                format!(
+                    "{} gives its load steps as [solver] load_factors: edit them, or add \
+                     --step-control auto (the load factors as waypoints, 1/{n} the first step)",
+                    case.source.display()
+                ),
+            ));
+        }
+        case.solver.increments = Some(n);
+        case.solver.first_increment = None;
+        case.overrides
+            .set("[solver] increments", format!("--increments {n}"));
+    }
+    if let Some(c) = opts.max_cutbacks {
+        case.solver.max_cutbacks = c;
+        case.overrides
+            .set("[solver] max_cutbacks", format!("--max-cutbacks {c}"));
+    }
+    match (opts.step_control, opts.increments) {
+        (Some(sc), _) => {
+            case.solver.step_control = Some(sc);
+            case.overrides.set(
+                "[solver] step_control",
+                format!("--step-control {}", step_name(sc)),
+            );
+        }
+        // `--increments N` alone: N equal steps, as its help says, also in a
+        // case whose `[solver]` asks for automatic steps (which would take
+        // N only as the size of its first step)
+        (None, Some(n)) => {
+            case.solver.step_control = Some(crate::input::case::StepControl::Fixed);
+            case.overrides
+                .set("[solver] step_control", format!("--increments {n}"));
+        }
+        (None, None) => {}
+    }
+    if (opts.increments.is_some() || opts.step_control.is_some())
+        && case.solver.step_mode() == crate::input::case::StepControl::Fixed
+    {
+        // a fixed schedule asked for on the command line: the case's keys of
+        // the automatic control no longer apply (a case refuses them beside
+        // fixed steps)
+        case.solver.max_increment = None;
+        case.solver.plastic_strain_step = crate::input::case::default_plastic_strain_step();
+    }
+    if opts.plain {
+        case.solver.acceleration = crate::input::case::Acceleration::None;
+        case.overrides.set("[solver] acceleration", "--plain");
+    }
+    if let Some(fs) = opts.friction_scheme {
+        let option = format!("--friction-scheme {}", scheme_name(fs));
+        for (name, spec) in case.interface.iter_mut() {
+            if let Some(t) = spec.tangential.as_mut() {
+                t.scheme = fs;
+                case.overrides
+                    .set(format!("[interface.{name}.tangential] scheme"), &option);
+            }
+        }
+    }
+    if opts.uniform {
+        if case.mesh.file.is_some() {
+            return Err(crate::error::Error::input(
+                "--uniform",
+                format!(
+                    "cannot regrade a mesh read from a file ({}: [mesh] file)",
+                    case.source.display()
+                ),
+            ));
+        }
+        case.overrides.graded_blocks = Some(case.mesh.block.clone());
+        for b in &mut case.mesh.block {
+            b.rx.clear();
+            b.ry.clear();
+        }
+    }
+    Ok(case)
+}
+
+/// The serial backend's engine for a model, with the given method, its
+/// element loop on `threads` threads (the factorization on
+/// [`crate::linalg::backend::serial::FACTOR_THREADS`]): the backend factory of a run
+/// on one process (the factorization follows the model's
+/// [`Model::symmetric_tangent`]).
+pub fn serial_engine(model: &Model, method: Method, threads: usize) -> Result<Engine<'_>> {
+    let backend = crate::linalg::backend::serial::SerialBackend::new(model)?;
+    let mut engine = Engine::with_backend(model, method, Box::new(backend));
+    engine.set_threads(threads);
+    Ok(engine)
+}
+
+/// [`serial_engine`] on a given factorization (benchmarks, tests).
+pub fn serial_engine_on(
+    model: &Model,
+    method: Method,
+    threads: usize,
+    kind: crate::linalg::backend::serial::Factorization,
+) -> Result<Engine<'_>> {
+    let backend = crate::linalg::backend::serial::SerialBackend::with_factorization(model, kind)?;
+    let mut engine = Engine::with_backend(model, method, Box::new(backend));
+    engine.set_threads(threads);
+    Ok(engine)
+}
+
+/// Runs the whole load history of a built model on the serial backend, with
+/// the model's method, on every core, reporting to `observer` (no output
+/// folder).
+pub fn solve(model: &Model, observer: &mut dyn solve::Observer) -> Result<RunResult> {
+    let threads = crate::threads::available();
+    solve::run_with(
+        serial_engine(model, model.solver.method, threads)?,
+        observer,
+    )
+}
+
+/// The one place an engine is made ready for a run, whatever its backend:
+/// the memory stages so far ("model" when the model was built, "setup" now,
+/// after the backend and solver objects) and the fault-injection test hook.
+pub fn prepare(engine: &mut Engine, opts: &RunOptions, at_model: f64) {
+    engine.stats.memory_mb = vec![
+        ("model", at_model),
+        ("setup", crate::solve::peak_memory_mb()),
+    ];
+    engine.fault = opts.fault;
+}
+
+/// Runs a case to completion on the serial backend and writes its output
+/// folder. Returns the folder, the model and the result.
+pub fn run(case_path: &Path, opts: &RunOptions) -> Result<(PathBuf, Model, RunResult)> {
+    let started = Instant::now();
+    let case = load_case(case_path, opts)?;
+    if case.adapt.is_some() {
+        let mut solve = |model: &Model, started: Instant| {
+            let mut engine = serial_engine(
+                model,
+                model.solver.method,
+                opts.threads.unwrap_or_else(crate::threads::available),
+            )?;
+            prepare(&mut engine, opts, crate::solve::peak_memory_mb());
+            run_cycle(model, engine, opts, true, started)
+        };
+        return crate::app::adapt::run(case, opts, true, &mut solve, &|_| {});
+    }
+    let model = Model::build(case)?;
+    let at_model = crate::solve::peak_memory_mb();
+    let threads = opts.threads.unwrap_or_else(crate::threads::available);
+    let mut engine = match opts.factorization {
+        Some(kind) => serial_engine_on(&model, model.solver.method, threads, kind)?,
+        None => serial_engine(&model, model.solver.method, threads)?,
+    };
+    prepare(&mut engine, opts, at_model);
+    let (dir, result) = run_model(&model, engine, opts, true, started)?;
+    Ok((dir, model, result))
+}
+
+/// Runs a built model with an engine. `write`: this process writes the output
+/// and prints progress (rank 0 under MPI). With `opts.restart` every rank reads
+/// the checkpoint and continues from it.
+pub fn run_model(
+    model: &Model,
+    engine: Engine,
+    opts: &RunOptions,
+    write: bool,
+    started: Instant,
+) -> Result<(PathBuf, RunResult)> {
+    run_model_as(model, engine, opts, write, started, false)
+}
+
+/// [`run_model`] for one cycle of an adaptive run ([`crate::app::adapt`]): a
+/// cycle stopped early (SIGINT, SIGTERM, `--stop-after`) writes nothing, so
+/// the output folder keeps the previous cycle's complete run; the caller
+/// reports the stop.
+pub fn run_cycle(
+    model: &Model,
+    engine: Engine,
+    opts: &RunOptions,
+    write: bool,
+    started: Instant,
+) -> Result<(PathBuf, RunResult)> {
+    run_model_as(model, engine, opts, write, started, true)
+}
+
+fn run_model_as(
+    model: &Model,
+    engine: Engine,
+    opts: &RunOptions,
+    write: bool,
+    started: Instant,
+    cycle: bool,
+) -> Result<(PathBuf, RunResult)> {
+    let dir = opts
+        .out
+        .clone()
+        .unwrap_or_else(|| Path::new("out").join(&model.name));
+    // 0: automatic step control, the count is not known in advance
+    let planned =
+        solve::stepping::Stepper::planned(&model.solver, &model.breakpoints()).unwrap_or(0);
+    let control = Control {
+        stop_after: opts.stop_after,
+    };
+    let (start, pvd) = match &opts.restart {
+        Some(from) => crate::files::restart::read(from, model)?,
+        None => (Checkpoint::initial(model), Vec::new()),
+    };
+    if !write {
+        let result = solve::run_from(engine, &mut Silent, start, control)?;
+        return Ok((dir, result));
+    }
+    let mut log = Log::new(opts.log_format, opts.quiet);
+    let lambda_end = start.stepper.final_target(start.lambda);
+    log.range(start.lambda, lambda_end);
+    let pairs: usize = model.interfaces.iter().map(|i| i.pairs.len()).sum();
+    let resumed = start.increments.len();
+    log.progress(
+        "start",
+        json!({
+            "case": model.name,
+            "dofs": model.mesh.num_dofs(),
+            "elements": model.mesh.elements.len(),
+            "interface_pairs": pairs,
+            "method": model.solver.method.name(),
+            "backend": engine.backend.name(),
+            "ranks": engine.backend.ranks(),
+            "threads": engine.threads(),
+            "planned": planned,
+            "resumed_from": resumed,
+            "load_factor": start.lambda,
+            "output": dir.display().to_string(),
+        }),
+        || {
+            let mut line = format!(
+                "asperity: {} — {} dofs, {} elements, {} interface pairs, {}, {} on {} rank(s) × {} thread(s) ({})",
+                model.name,
+                model.mesh.num_dofs(),
+                model.mesh.elements.len(),
+                pairs,
+                model.solver.method.name(),
+                engine.backend.name(),
+                engine.backend.ranks(),
+                engine.threads(),
+                if planned > 0 {
+                    format!("{planned} increments planned")
+                } else {
+                    "automatic steps".to_string()
+                }
+            );
+            if let Some(from) = &opts.restart {
+                line += &format!(
+                    "; resuming after increment {resumed} (λ = {:.4}) from {}",
+                    start.lambda,
+                    from.display()
+                );
+            }
+            line
+        },
+    );
+    let resume = opts.restart.as_deref().map(|d| Resume {
+        dir: d,
+        files: crate::files::restart::folder_files(
+            &crate::files::restart::Bounds::of(model),
+            resumed,
+            &pvd,
+        ),
+        pvd,
+    });
+    let mut writer = Writer::new(&dir, log.clone(), planned, resume)?;
+    writer.final_load_factor = lambda_end;
+    match solve::run_from(engine, &mut writer, start, control) {
+        Ok(result) if cycle && result.stopped.is_some() => {
+            // not a result of the history: no partial folder replaces the
+            // previous cycle's complete one (and none could be resumed)
+            writer.abandon();
+            Ok((dir, result))
+        }
+        Ok(mut result) => {
+            let wall = started.elapsed().as_secs_f64();
+            result.estimate = writer.last_estimate().cloned();
+            let dir = writer.finish(model, &result, wall)?;
+            // a stopped run continues where it was written (`--out` may
+            // name the restart folder itself)
+            let mut again = override_args(opts);
+            if opts.out.is_some() {
+                again += &format!(" --out {}", dir.display());
+            }
+            report_end(&log, model, &dir, &result, wall, &again);
+            for w in crate::files::output::warnings(model, &result) {
+                log.always("warning", json!({ "message": w }), || {
+                    format!("warning: {w}")
+                });
+            }
+            Ok((dir, result))
+        }
+        Err(e) => {
+            writer.abandon();
+            Err(e)
+        }
+    }
+}
+
+/// The overrides of the model given on the command line, as `asperity run`
+/// arguments (each with a leading space): a restart must be given the same
+/// ones (the restart file's fingerprint), so the suggested command repeats
+/// them.
+fn override_args(o: &RunOptions) -> String {
+    let mut a = String::new();
+    if let Some(m) = o.method {
+        a += &format!(" --method {}", m.name());
+    }
+    if let Some(r) = o.refine {
+        a += &format!(" --refine {r}");
+    }
+    if o.uniform {
+        a += " --uniform";
+    }
+    if let Some(n) = o.increments {
+        a += &format!(" --increments {n}");
+    }
+    if let Some(sc) = o.step_control {
+        a += &format!(" --step-control {}", step_name(sc));
+    }
+    if let Some(c) = o.max_cutbacks {
+        a += &format!(" --max-cutbacks {c}");
+    }
+    if o.plain {
+        a += " --plain";
+    }
+    if let Some(fs) = o.friction_scheme {
+        a += &format!(" --friction-scheme {}", scheme_name(fs));
+    }
+    a
+}
+
+/// `--step-control`'s value for a step control.
+fn step_name(sc: crate::input::case::StepControl) -> &'static str {
+    match sc {
+        crate::input::case::StepControl::Fixed => "fixed",
+        crate::input::case::StepControl::Auto => "auto",
+    }
+}
+
+/// `--friction-scheme`'s value for a scheme.
+fn scheme_name(fs: crate::input::case::settings::FrictionScheme) -> &'static str {
+    match fs {
+        crate::input::case::settings::FrictionScheme::ReturnMapping => "return-mapping",
+        crate::input::case::settings::FrictionScheme::StiffnessModification => {
+            "stiffness-modification"
+        }
+    }
+}
+
+/// The `finish` (progress) or `stop` (always) event of a run that wrote
+/// `dir`; `overrides`: [`override_args`] of the run.
+fn report_end(log: &Log, model: &Model, dir: &Path, r: &RunResult, wall: f64, overrides: &str) {
+    let last = r.increments.last();
+    let m = last.map(|i| i.measures).unwrap_or_default();
+    let lambda = last.map_or(0.0, |i| i.load_factor);
+    let planned = solve::stepping::Stepper::planned(&model.solver, &model.breakpoints());
+    let fy = r.first_yield.as_ref();
+    if let Some(stop) = r.stopped {
+        let case = model.source.display().to_string();
+        log.always(
+            "stop",
+            json!({
+                "stopped_by": stop.name(),
+                "increments": r.increments.len(),
+                "planned": planned,
+                "load_factor": lambda,
+                "total_load_kn": m.total_load_kn,
+                "output": dir.display().to_string(),
+                "restart": dir.join(crate::files::restart::FILE).display().to_string(),
+                "exit_code": stop.exit_code(),
+            }),
+            || {
+                format!(
+                    "stopped by {} after increment {}/{} (λ = {:.4}, {:.3} kN): partial results in {}; continue with `asperity run {}{} --restart {}`",
+                    stop.name(),
+                    r.increments.len(),
+                    planned.map_or("auto".into(), |p| p.max(r.increments.len()).to_string()),
+                    lambda,
+                    m.total_load_kn,
+                    dir.display(),
+                    case,
+                    overrides,
+                    dir.display()
+                )
+            },
+        );
+        return;
+    }
+    log.progress(
+        "finish",
+        json!({
+            "output": dir.display().to_string(),
+            "increments": r.increments.len(),
+            "newton_iterations": r.stats.iterations,
+            "cutbacks": r.cutbacks,
+            "load_factor": lambda,
+            "total_load_kn": m.total_load_kn,
+            "mean_pressure_mpa": m.mean_pressure,
+            "center_displacement_mm": m.center_displacement,
+            "first_yield_kn": fy.map(|f| f.total_load_kn),
+            "wall_seconds": crate::progress::round3(wall),
+        }),
+        || {
+            let mut s = String::new();
+            if let Some(fy) = fy {
+                s += &format!(
+                    "first yield: {:.4} kN ({:.2} MPa mean pressure) in {} at x = {:.3} mm, depth {:.3} mm\n",
+                    fy.total_load_kn, fy.mean_pressure, fy.body, fy.x, fy.depth
+                );
+            }
+            for e in r.events.iter().filter(|e| e.interface.is_some()) {
+                s += &crate::files::output::events::line(model, e);
+                s.push('\n');
+            }
+            s += &format!(
+                "final: {:.4} kN, mean pressure {:.2} MPa, center displacement {:.5} mm; {} increments, {} iterations",
+                m.total_load_kn,
+                m.mean_pressure,
+                m.center_displacement,
+                r.increments.len(),
+                r.stats.iterations
+            );
+            s
+        },
+    );
+}
+
+/// An observer that does nothing (ranks other than 0).
+struct Silent;
+
+impl crate::solve::Observer for Silent {
+    fn increment(
+        &mut self,
+        _: &Model,
+        _: &crate::solve::State,
+        _: &crate::solve::Increment,
+    ) -> Result<()> {
+        Ok(())
+    }
+}
+
+/// `asperity check`: validates a case with the overrides of `opts` (the
+/// others are `run`'s alone) and describes what that run would solve.
+pub fn check(case_path: &Path, opts: &RunOptions) -> Result<String> {
+    let case = load_case(case_path, opts)?;
+    let adapt = case.adapt.clone();
+    let model = Model::build(case)?;
+    // a table the applied load alone takes far beyond its data
+    let place = model.source.display().to_string();
+    for t in predicted(&model) {
+        if t.far() {
+            eprintln!(
+                "warning: {}",
+                t.warning(&place, "the applied load's mean pressure alone needs")
+            );
+        }
+    }
+    let mut s = format!("{}: valid", model.name);
+    let overrides = override_args(opts);
+    if !overrides.is_empty() {
+        s += &format!(" with{overrides}");
+    }
+    s.push('\n');
+    if let Some(d) = &model.description {
+        s += &format!("  {}\n", d.trim());
+    }
+    if model.section.axisymmetric {
+        s += &format!(
+            "  plane Axisymmetric{} (x = r, y = z; forces, areas and kN for the full revolution), {:?} integration ({} Gauss points per element)\n",
+            if model.node_dofs().twist() {
+                " with twist (u_θ, torques about the axis)"
+            } else {
+                ""
+            },
+            model.integration,
+            model.n_gauss()
+        );
+    } else {
+        s += &format!(
+            "  plane {:?}, thickness {} mm, {:?} integration ({} Gauss points per element)\n",
+            model.plane,
+            model.thickness,
+            model.integration,
+            model.n_gauss()
+        );
+    }
+    s += &format!(
+        "  mesh: {} nodes, {} elements, {} dofs ({} free), {} nonzeros in the tangent\n",
+        model.mesh.nodes.len(),
+        model.mesh.elements.len(),
+        model.mesh.num_dofs(),
+        model.dofs.n_eq,
+        model.pattern().nnz()
+    );
+    let own = crate::model::supports::own_rotation(&model.mesh, &model.prescribed);
+    for (b, name) in model.mesh.bodies.iter().enumerate() {
+        let m = &model.materials[b];
+        s += &format!(
+            "  body {name}: E = {} MPa, ν = {}, σ_Y = {} MPa, H = {} MPa\n",
+            m.young, m.poisson, m.yield_stress, m.hardening
+        );
+        if model.node_dofs().twist() && !own[b] {
+            let by: Vec<&str> = (model.interfaces.iter())
+                .filter(|im| im.tangential.is_some() && (im.body_a == b || im.body_b == b))
+                .map(|im| im.name.as_str())
+                .collect();
+            s += &format!(
+                "    about the axis: no rotation of its own, held only by the friction of interface \"{}\" (past Σ μ p_N r dA a torque on it has no equilibrium)\n",
+                by.join("\", \"")
+            );
+        }
+    }
+    for im in &model.interfaces {
+        let t = crate::model::interface::joint::direction(im);
+        s += &format!(
+            "  interface {}: {} pairs, {} points, area {:.4} mm², law {}; A = {}, B = {}, joint direction t = ({}, {})\n",
+            im.name,
+            im.pairs.len(),
+            im.points.len(),
+            im.area(),
+            normal_text(&im.law),
+            model.mesh.bodies[im.body_a],
+            model.mesh.bodies[im.body_b],
+            t[0],
+            t[1]
+        );
+        if let Some(law) = &im.tangential {
+            s += &format!("    friction: {}\n", tangential_text(law, im.scheme));
+        }
+        // a non-matching interface: its coupling and the geometric gaps
+        let gaps: Vec<f64> = im.points.iter().filter_map(|p| p.geometric_gap()).collect();
+        if !gaps.is_empty() {
+            let kind = if im.points.iter().any(|p| p.mortar.is_some()) {
+                "mortar springs at A's nodes"
+            } else {
+                "node-to-segment springs at A's quadrature points"
+            };
+            let widest = im
+                .points
+                .iter()
+                .map(|p| im.point_ndofs(p))
+                .max()
+                .unwrap_or(0);
+            let (lo, hi) = gaps
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &g| {
+                    (l.min(g), h.max(g))
+                });
+            s += &format!(
+                "    meshed apart (matching = false): {kind} (slave A, master B), up to {widest} dofs each; geometric gaps {lo:.4e} … {hi:.4e} mm\n"
+            );
+        }
+    }
+    for p in &model.plan.probes {
+        s += &format!("  probe {}: {}\n", p.name, p.describe(&model.mesh));
+    }
+    s += &format!(
+        "  outputs: reactions of {} group(s) ({}); events bracketed to {} in load factor\n",
+        model.plan.reactions.len(),
+        model
+            .plan
+            .reactions
+            .iter()
+            .map(|g| g.name.as_str())
+            .collect::<Vec<_>>()
+            .join(", "),
+        model.plan.event_tolerance
+    );
+    let breakpoints = model.breakpoints();
+    if !breakpoints.is_empty() {
+        s += &format!(
+            "  load histories: {}, breakpoints at t = {}; the run ends at t = {}\n",
+            model.histories.len(),
+            breakpoints
+                .iter()
+                .map(|t| t.to_string())
+                .collect::<Vec<_>>()
+                .join(", "),
+            solve::stepping::waypoints(&breakpoints)
+                .last()
+                .copied()
+                .unwrap_or(1.0)
+        );
+    }
+    s += &steps_text(&model);
+    if let Some(a) = &adapt {
+        s += &format!(
+            "  adaptive: the whole history solved again on each refined mesh until the estimate of {} is at most {:e} (at most {} solves and {} dofs, refining the elements that hold {} of η²); the mesh above is the first\n",
+            match a.quantity {
+                crate::input::case::adapt::Quantity::Energy => "η/‖u_h‖_E".to_string(),
+                q => format!("the change of {} between two meshes", q.name()),
+            },
+            a.tolerance,
+            a.max_cycles,
+            a.max_dofs,
+            a.fraction
+        );
+    }
+    Ok(s)
+}
+
+/// The load steps as `check` prints them: the first increment's target as
+/// the run takes it (the case's initial stepper asked from λ = 0,
+/// [`solve::stepping::Stepper::first_target`]), then the fixed schedule's
+/// length and end, or the automatic control's end and step bounds.
+fn steps_text(model: &Model) -> String {
+    let stepper = solve::stepping::Stepper::for_model(model);
+    let first = stepper.first_target().unwrap_or(0.0);
+    let solver = &model.solver;
+    match stepper.mode() {
+        crate::input::case::StepControl::Fixed => format!(
+            "  solver: {}, {} increments (first to λ = {first}, last to λ = {}), ≤ {} iterations each, ≤ {} cutbacks\n",
+            solver.method.name(),
+            solve::stepping::Stepper::planned(solver, &model.breakpoints()).unwrap_or(0),
+            stepper.final_target(0.0),
+            solver.iteration_limit(),
+            solver.max_cutbacks
+        ),
+        crate::input::case::StepControl::Auto => format!(
+            "  solver: {}, automatic steps to λ = {} (first to λ = {first}, steps of at most {}, plastic strain ≈ {} per step), ≤ {} iterations each, ≤ {} cutbacks in a row\n",
+            solver.method.name(),
+            stepper.final_target(0.0),
+            stepper.step_bounds().1,
+            solver.plastic_strain_step,
+            solver.iteration_limit(),
+            solver.max_cutbacks
+        ),
+    }
+}
+
+/// The normal law as `check` prints it.
+fn normal_text(law: &crate::physics::contact::NormalLaw) -> String {
+    use crate::physics::contact::NormalLaw::*;
+    match law {
+        Power { c, m } => format!("power u_N = c_N p^m (c_N = {c}, m = {m})"),
+        Exponential { a, b } => {
+            format!("exponential p = a (e^(b u_N) - 1) (a = {a} MPa, b = {b} 1/mm)")
+        }
+        Linear { c, m, slope, p_c } => {
+            format!(
+                "power-linear (c_N = {c}, m = {m}, slope = {slope} MPa/mm beyond p_c = {p_c} MPa)"
+            )
+        }
+        Table(t) => format!(
+            "table of {} rows up to u_N = {} mm",
+            t.points().count(),
+            t.last().0
+        ),
+    }
+}
+
+/// The tangential law as `check` prints it: stiffness, backbone, memory.
+fn tangential_text(
+    law: &crate::physics::contact::TangentialLaw,
+    scheme: crate::input::case::settings::FrictionScheme,
+) -> String {
+    use crate::physics::contact::{Backbone, Memory};
+    let stiffness = match &law.k_table {
+        Some(t) => format!("k_T^e from a k_table of {} rows", t.points().count()),
+        None => format!("k_T^e = p^S/R (R = {}, S = {})", law.r, law.s),
+    };
+    let backbone = match law.backbone {
+        Backbone::Bilinear => format!(
+            "bilinear backbone (k_T^p/k_T^e = {}, yield ratio {}, beta = {}, n = {} 1/mm)",
+            law.kp_ratio, law.yield_ratio, law.beta, law.n
+        ),
+        Backbone::Iwan { chi, spike } => format!("Iwan backbone (chi = {chi}, spike = {spike})"),
+    };
+    let memory = match law.memory {
+        Memory::Isotropic => "isotropic memory (section 2.2)",
+        Memory::Kinematic => "kinematic memory (Masing)",
+    };
+    let scheme = match scheme {
+        crate::input::case::settings::FrictionScheme::ReturnMapping => "return mapping",
+        crate::input::case::settings::FrictionScheme::StiffnessModification => {
+            "stiffness modification"
+        }
+    };
+    format!(
+        "mu = {}, {stiffness}, {backbone}, {memory}, {scheme}",
+        law.mu
+    )
+}
+
+/// The tables' use the applied loads alone predict, for `asperity check`:
+/// at every waypoint of the load path (the load factors, or every history
+/// breakpoint: the loads are linear between them, so their extremes are
+/// there) the mean pressure p̄ of the applied loads on each interface
+/// ([`crate::model::Model::applied_pressure`]) stands for p_N and, through
+/// the normal law's inverse, for u_N. Where the applied load crosses the
+/// interface, its largest point pressure is at least p̄: a far use predicted
+/// here is certain. Loads the model does not apply (a prescribed
+/// displacement) predict nothing; the run reports what it met.
+fn predicted(model: &Model) -> Vec<crate::model::interface::extrapolation::TableUse> {
+    let times = if model.histories.is_empty() {
+        model
+            .solver
+            .load_factors
+            .clone()
+            .unwrap_or_else(|| vec![1.0])
+    } else {
+        crate::solve::stepping::waypoints(&model.breakpoints())
+    };
+    let reach: Vec<crate::model::interface::extrapolation::Reach> = model
+        .interfaces
+        .iter()
+        .enumerate()
+        .map(|(i, im)| {
+            let p = times
+                .iter()
+                .map(|&t| model.applied_pressure(i, t))
+                .fold(0.0, f64::max);
+            crate::model::interface::extrapolation::Reach {
+                u_n: im.law.approach(p),
+                p_n: p,
+            }
+        })
+        .collect();
+    crate::model::interface::extrapolation::table_uses(&model.interfaces, &reach)
+}

@@ -1,0 +1,10 @@
+//! The jobs behind the command line: `run` and `check` ([`driver`]),
+//! adaptive runs ([`adapt`]), studies ([`study`]), `calibrate`
+//! ([`calibrate`]) and the MPI entry ([`parallel`]).
+
+pub mod adapt;
+pub mod calibrate;
+pub mod driver;
+#[cfg(feature = "parallel")]
+pub mod parallel;
+pub mod study;

@@ -1,0 +1,541 @@
+//! VTK XML unstructured grid (.vtu) per increment and a .pvd series that
+//! ParaView opens. Cells are VTK_QUADRATIC_QUAD (type 23), whose node order is
+//! ours: corners counter-clockwise, then the midsides of edges 0-1, 1-2, 2-3, 3-0.
+//!
+//! Writing is split in two so that the expensive part can run beside the
+//! solver: [`Frame::of`] takes what one state shows (nodal averages, contact
+//! values) into owned arrays, quickly, on the solver's thread; [`Layout`]
+//! (made once per model: the mesh, and everything of the document that does
+//! not change between increments, already encoded) and [`Layout::write`] turn
+//! a frame into the document, on the writer's thread
+//! ([`super::background`]). Two encodings ([`VtuFormat`]): `binary`, raw
+//! appended data (the arrays' little-endian bytes after the XML, each block
+//! preceded by its byte count as a UInt64), and `ascii`, every number as text.
+
+use crate::input::case::VtuFormat;
+use crate::model::Model;
+use crate::physics::element::q8;
+use crate::physics::material::VonMises;
+use crate::solve::State;
+use std::fmt::Write;
+use std::io::Write as _;
+
+const VTK_QUADRATIC_QUAD: u8 = 23;
+
+/// Nodal fields obtained by extrapolating Gauss point values to the nodes of each
+/// element and averaging over the elements that share a node.
+pub struct NodalFields {
+    /// σxx, σyy, σxy, σzz (σ_rr, σ_zz, σ_rz, σ_θθ in axisymmetry)
+    pub stress: Vec<[f64; 4]>,
+    pub von_mises: Vec<f64>,
+    pub peeq: Vec<f64>,
+    /// σ_rθ, σ_zθ (a model with twist; empty without).
+    pub twist_shear: Vec<[f64; 2]>,
+}
+
+/// The extrapolation of [`q8::extrapolate_to_nodes`] as a matrix, row by
+/// node: `w[a][k]` is node a's value for Gauss point k at 1 and the others
+/// at 0. Σ_k w[a][k] v_k, summed in k's order from 0, is bit for bit what
+/// `extrapolate_to_nodes` returns (it sums the same products, weight times
+/// value, in the same order; the unit values only add exact zeros), without
+/// its Lagrange products for every element and field.
+fn extrapolation_weights(rule: &q8::GaussRule) -> Vec<[f64; 8]> {
+    let ng = rule.points.len();
+    (0..ng)
+        .map(|k| {
+            let mut unit = vec![0.0; ng];
+            unit[k] = 1.0;
+            q8::extrapolate_to_nodes(rule, &unit)
+        })
+        .collect()
+}
+
+pub fn nodal_fields(model: &Model, state: &State) -> NodalFields {
+    let nn = model.mesh.nodes.len();
+    let ng = model.n_gauss();
+    let w = extrapolation_weights(&model.rule);
+    // the six fields (σ components, Mises, PEEQ) at every Gauss point, then
+    // with twist σ_rθ and σ_zθ
+    let fields = if model.node_dofs().twist() { 8 } else { 6 };
+    let mut acc = vec![[0.0f64; 8]; nn];
+    let mut count = vec![0u32; nn];
+    let mut vals = vec![[0.0f64; 8]; ng];
+    for (e, el) in model.mesh.elements.iter().enumerate() {
+        let gp = &state.gauss[e * ng..(e + 1) * ng];
+        for (v, g) in vals.iter_mut().zip(gp) {
+            *v = [
+                g.stress[0],
+                g.stress[1],
+                g.stress[2],
+                g.stress[3],
+                VonMises::equivalent_stress(&g.stress),
+                g.peeq,
+                g.stress[4],
+                g.stress[5],
+            ];
+        }
+        for (a, &n) in el.nodes.iter().enumerate() {
+            for c in 0..fields {
+                let mut at_node = 0.0;
+                for (wk, v) in w.iter().zip(&vals) {
+                    at_node += wk[a] * v[c];
+                }
+                acc[n][c] += at_node;
+            }
+            count[n] += 1;
+        }
+    }
+    let mut f = NodalFields {
+        stress: Vec::with_capacity(nn),
+        von_mises: Vec::with_capacity(nn),
+        peeq: Vec::with_capacity(nn),
+        twist_shear: Vec::new(),
+    };
+    for (a, &c) in acc.iter().zip(&count) {
+        let c = f64::from(c.max(1));
+        f.stress.push([a[0] / c, a[1] / c, a[2] / c, a[3] / c]);
+        f.von_mises.push(a[4] / c);
+        f.peeq.push((a[5] / c).max(0.0));
+        if fields == 8 {
+            f.twist_shear.push([a[6] / c, a[7] / c]);
+        }
+    }
+    f
+}
+
+/// What one state shows, as owned arrays (node by node, or cell by cell):
+/// the per-increment part of a VTU document.
+#[derive(Default)]
+pub struct Frame {
+    /// u_x, u_y, 0 per node (u_r, u_z, u_θ with twist).
+    displacement: Vec<f64>,
+    /// Four components per node.
+    stress: Vec<f64>,
+    /// σ_rθ, σ_zθ per node (twist only; empty without).
+    twist_shear: Vec<f64>,
+    von_mises: Vec<f64>,
+    peeq: Vec<f64>,
+    contact_pressure: Vec<f64>,
+    contact_shear: Vec<f64>,
+    /// 1 closed, 0 open, −1 not on an interface.
+    contact_closed: Vec<f64>,
+    /// With twist: the circumferential shear p_Tθ of the interface (empty
+    /// without twist).
+    contact_hoop_shear: Vec<f64>,
+    /// Per cell.
+    max_peeq: Vec<f64>,
+    /// Per cell: η_e² of the error estimate (N·mm, [`crate::post::estimate`]).
+    error_estimate: Vec<f64>,
+    /// Per cell: η_e² / η².
+    error_share: Vec<f64>,
+}
+
+impl Frame {
+    /// The frame of a state, with its error estimate computed here.
+    pub fn of(model: &Model, state: &State) -> Frame {
+        Frame::with(model, state, &crate::post::estimate::estimate(model, state))
+    }
+
+    /// The frame of a state whose error estimate is `estimate`.
+    pub fn with(model: &Model, state: &State, estimate: &crate::post::estimate::Estimate) -> Frame {
+        let mesh = &model.mesh;
+        let nn = mesh.nodes.len();
+        let ne = mesh.elements.len();
+        let nf = nodal_fields(model, state);
+        // interface tractions at the nodes of both sides
+        let mut p_n = vec![0.0; nn];
+        let mut p_t = vec![0.0; nn];
+        let twist = model.node_dofs().twist();
+        let mut p_h = if twist { vec![0.0; nn] } else { Vec::new() };
+        let mut status = vec![-1.0; nn];
+        let mut base = 0;
+        for im in &model.interfaces {
+            // shear tractions live at the spring points: one per pair when lumped
+            let lumped = im.points.len() == im.pairs.len() && im.tangential.is_some();
+            for (i, pr) in im.pairs.iter().enumerate() {
+                let un = im.pair_approach_at(pr, &state.u, im.gap_at(state.time));
+                let p = im.law.pressure(un).0;
+                let (t, h) = if lumped {
+                    (state.contact[base + i].p_t, state.contact[base + i].p_h)
+                } else {
+                    (0.0, 0.0)
+                };
+                for n in [pr.a, pr.b] {
+                    p_n[n] = p;
+                    p_t[n] = t;
+                    if twist {
+                        p_h[n] = h;
+                    }
+                    status[n] = f64::from(i32::from(un > 0.0));
+                }
+            }
+            base += im.points.len();
+        }
+        let ng = model.n_gauss();
+        Frame {
+            displacement: (0..nn)
+                .flat_map(|i| {
+                    let nd = model.node_dofs();
+                    let u_theta = if nd.twist() {
+                        state.u[nd.dof(i, 2)]
+                    } else {
+                        0.0
+                    };
+                    [state.u[nd.dof(i, 0)], state.u[nd.dof(i, 1)], u_theta]
+                })
+                .collect(),
+            stress: nf.stress.iter().flat_map(|v| v.iter().copied()).collect(),
+            twist_shear: nf
+                .twist_shear
+                .iter()
+                .flat_map(|v| v.iter().copied())
+                .collect(),
+            von_mises: nf.von_mises,
+            peeq: nf.peeq,
+            contact_pressure: p_n,
+            contact_shear: p_t,
+            contact_closed: status,
+            contact_hoop_shear: p_h,
+            max_peeq: (0..ne)
+                .map(|e| {
+                    state.gauss[e * ng..(e + 1) * ng]
+                        .iter()
+                        .fold(0.0f64, |a, g| a.max(g.peeq))
+                })
+                .collect(),
+            error_estimate: estimate.element.clone(),
+            error_share: estimate.shares(),
+        }
+    }
+
+    /// The cell arrays after `body`, in document order.
+    fn cell_arrays(&self) -> [(&'static str, Values<'_>); 3] {
+        [
+            ("max_peeq", Values::All(&self.max_peeq)),
+            ("error_estimate", Values::All(&self.error_estimate)),
+            ("error_share", Values::All(&self.error_share)),
+        ]
+    }
+
+    /// The point arrays in document order: name, components, values. The
+    /// hoop stress (axisymmetry) is the fourth stress component again.
+    /// With twist, `twist_shear` (σ_rθ, σ_zθ) follows, and
+    /// `contact_hoop_shear` (p_Tθ) ends the list.
+    fn point_arrays(&self, hoop: bool, twist: bool) -> Vec<(&'static str, usize, Values<'_>)> {
+        let mut v = vec![
+            ("displacement", 3, Values::All(&self.displacement)),
+            ("stress", 4, Values::All(&self.stress)),
+        ];
+        if hoop {
+            v.push(("hoop_stress", 1, Values::Every4th(&self.stress)));
+        }
+        if twist {
+            v.push(("twist_shear", 2, Values::All(&self.twist_shear)));
+        }
+        v.extend([
+            ("von_mises", 1, Values::All(&self.von_mises)),
+            ("peeq", 1, Values::All(&self.peeq)),
+            ("contact_pressure", 1, Values::All(&self.contact_pressure)),
+            ("contact_shear", 1, Values::All(&self.contact_shear)),
+            ("contact_closed", 1, Values::All(&self.contact_closed)),
+        ]);
+        if twist {
+            v.push((
+                "contact_hoop_shear",
+                1,
+                Values::All(&self.contact_hoop_shear),
+            ));
+        }
+        v
+    }
+}
+
+/// The values of one array: a whole vector, or its every fourth (from the
+/// fourth on: σ_θθ of the stress).
+#[derive(Clone, Copy)]
+enum Values<'a> {
+    All(&'a [f64]),
+    Every4th(&'a [f64]),
+}
+
+impl Values<'_> {
+    fn len(self) -> usize {
+        match self {
+            Values::All(v) => v.len(),
+            Values::Every4th(v) => v.len() / 4,
+        }
+    }
+    fn for_each(self, mut f: impl FnMut(f64)) {
+        match self {
+            Values::All(v) => v.iter().for_each(|&x| f(x)),
+            Values::Every4th(v) => v.chunks_exact(4).for_each(|c| f(c[3])),
+        }
+    }
+}
+
+/// Everything of a model's VTU documents that does not change between
+/// increments, encoded once: the XML before and after the per-increment
+/// arrays and the mesh's own arrays (points, cells, `body`).
+pub struct Layout {
+    format: VtuFormat,
+    hoop: bool,
+    /// The model has twist: the `twist_shear` array is written.
+    twist: bool,
+    /// From the XML declaration to where the first per-increment array goes.
+    head: Vec<u8>,
+    /// ascii: `</PointData>` and the `body` array;
+    /// binary: the end of the XML and the appended mesh blocks.
+    middle: Vec<u8>,
+    /// binary: the `body` block (it follows the point data blocks).
+    body: Vec<u8>,
+}
+
+impl Layout {
+    pub fn of(model: &Model, format: VtuFormat) -> Layout {
+        let mesh = &model.mesh;
+        let nn = mesh.nodes.len();
+        let ne = mesh.elements.len();
+        let hoop = model.section.axisymmetric;
+        let twist = model.node_dofs().twist();
+        let points: Vec<f64> = mesh.nodes.iter().flat_map(|x| [x[0], x[1], 0.0]).collect();
+        let body: Vec<f64> = mesh.elements.iter().map(|e| e.body as f64).collect();
+        let mut head = Vec::new();
+        let mut middle = Vec::new();
+        let mut body_block = Vec::new();
+        // the names of the point arrays, with their components (the values
+        // are each frame's)
+        let empty = Frame::default();
+        let names: Vec<(&str, usize)> = empty
+            .point_arrays(hoop, twist)
+            .iter()
+            .map(|&(n, c, _)| (n, c))
+            .collect();
+        match format {
+            VtuFormat::Ascii => {
+                let h = &mut head;
+                h.extend_from_slice(b"<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n<UnstructuredGrid>\n");
+                let _ = writeln!(h, "<Piece NumberOfPoints=\"{nn}\" NumberOfCells=\"{ne}\">");
+                h.extend_from_slice(
+                    b"<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n",
+                );
+                for x in &mesh.nodes {
+                    let _ = writeln!(h, "{:e} {:e} 0", x[0], x[1]);
+                }
+                h.extend_from_slice(b"</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
+                for el in &mesh.elements {
+                    let n = &el.nodes;
+                    let _ = writeln!(
+                        h,
+                        "{} {} {} {} {} {} {} {}",
+                        n[0], n[1], n[2], n[3], n[4], n[5], n[6], n[7]
+                    );
+                }
+                h.extend_from_slice(
+                    b"</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n",
+                );
+                for e in 0..ne {
+                    let _ = write!(h, "{} ", 8 * (e + 1));
+                }
+                h.extend_from_slice(
+                    b"\n</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n",
+                );
+                for _ in 0..ne {
+                    let _ = write!(h, "{VTK_QUADRATIC_QUAD} ");
+                }
+                h.extend_from_slice(b"\n</DataArray>\n</Cells>\n<PointData Vectors=\"displacement\" Scalars=\"von_mises\">\n");
+                middle.extend_from_slice(b"</PointData>\n<CellData>\n");
+                let _ = ascii_array(&mut middle, "body", 1, Values::All(&body));
+            }
+            VtuFormat::Binary => {
+                // every block: its byte count (UInt64), then its bytes
+                let f64s = |n: usize| 8 + 8 * n as u64;
+                let mut offset = 0u64;
+                let mut next = |bytes: u64| {
+                    let at = offset;
+                    offset += bytes;
+                    at
+                };
+                let h = &mut head;
+                h.extend_from_slice(b"<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n<UnstructuredGrid>\n");
+                let _ = writeln!(h, "<Piece NumberOfPoints=\"{nn}\" NumberOfCells=\"{ne}\">");
+                let _ = writeln!(
+                    h,
+                    "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"appended\" offset=\"{}\"/>\n</Points>\n<Cells>",
+                    next(f64s(3 * nn))
+                );
+                let _ = writeln!(
+                    h,
+                    "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"appended\" offset=\"{}\"/>",
+                    next(f64s(8 * ne))
+                );
+                let _ = writeln!(
+                    h,
+                    "<DataArray type=\"Int64\" Name=\"offsets\" format=\"appended\" offset=\"{}\"/>",
+                    next(f64s(ne))
+                );
+                let _ = writeln!(
+                    h,
+                    "<DataArray type=\"UInt8\" Name=\"types\" format=\"appended\" offset=\"{}\"/>\n</Cells>",
+                    next(8 + ne as u64)
+                );
+                h.extend_from_slice(
+                    b"<PointData Vectors=\"displacement\" Scalars=\"von_mises\">\n",
+                );
+                for &(name, comps) in &names {
+                    let _ = writeln!(
+                        h,
+                        "<DataArray type=\"Float64\" Name=\"{name}\" NumberOfComponents=\"{comps}\" format=\"appended\" offset=\"{}\"/>",
+                        next(f64s(comps * nn))
+                    );
+                }
+                h.extend_from_slice(b"</PointData>\n<CellData>\n");
+                let cells = std::iter::once("body").chain(empty.cell_arrays().map(|a| a.0));
+                for name in cells {
+                    let _ = writeln!(
+                        h,
+                        "<DataArray type=\"Float64\" Name=\"{name}\" NumberOfComponents=\"1\" format=\"appended\" offset=\"{}\"/>",
+                        next(f64s(ne))
+                    );
+                }
+                h.extend_from_slice(b"</CellData>\n</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_");
+                // the mesh blocks follow the XML directly
+                raw_f64(h, Values::All(&points));
+                raw_len(h, 8 * 8 * ne);
+                for el in &mesh.elements {
+                    for &n in el.nodes.iter() {
+                        h.extend_from_slice(&(n as i64).to_le_bytes());
+                    }
+                }
+                raw_len(h, 8 * ne);
+                for e in 0..ne {
+                    h.extend_from_slice(&(8 * (e as i64 + 1)).to_le_bytes());
+                }
+                raw_len(h, ne);
+                h.extend(std::iter::repeat_n(VTK_QUADRATIC_QUAD, ne));
+                raw_f64(&mut body_block, Values::All(&body));
+                middle.extend_from_slice(b"\n</AppendedData>\n</VTKFile>\n");
+            }
+        }
+        Layout {
+            format,
+            hoop,
+            twist,
+            head,
+            middle,
+            body: body_block,
+        }
+    }
+
+    /// Writes the document of one frame to `w` (the document of a 1M-dof
+    /// model is about 150 MB in ASCII; it is never held in memory whole).
+    pub fn write(&self, w: &mut dyn std::io::Write, frame: &Frame) -> std::io::Result<()> {
+        let mut buf = Vec::with_capacity(1 << 16);
+        w.write_all(&self.head)?;
+        match self.format {
+            VtuFormat::Ascii => {
+                for (name, comps, vals) in frame.point_arrays(self.hoop, self.twist) {
+                    ascii_tag(&mut buf, name, comps);
+                    ascii_values(w, &mut buf, comps, vals)?;
+                }
+                w.write_all(&self.middle)?;
+                for (name, vals) in frame.cell_arrays() {
+                    ascii_tag(&mut buf, name, 1);
+                    ascii_values(w, &mut buf, 1, vals)?;
+                }
+                w.write_all(b"</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n")
+            }
+            VtuFormat::Binary => {
+                for (_, _, vals) in frame.point_arrays(self.hoop, self.twist) {
+                    raw_f64(&mut buf, vals);
+                    w.write_all(&buf)?;
+                    buf.clear();
+                }
+                w.write_all(&self.body)?;
+                for (_, vals) in frame.cell_arrays() {
+                    raw_f64(&mut buf, vals);
+                    w.write_all(&buf)?;
+                    buf.clear();
+                }
+                w.write_all(&self.middle)
+            }
+        }
+    }
+}
+
+/// Writes the VTU document of one state to `w` (both steps at once).
+pub fn write_vtu(
+    w: &mut dyn std::io::Write,
+    model: &Model,
+    state: &State,
+    format: VtuFormat,
+) -> std::io::Result<()> {
+    Layout::of(model, format).write(w, &Frame::of(model, state))
+}
+
+fn ascii_tag(buf: &mut Vec<u8>, name: &str, comps: usize) {
+    let _ = writeln!(
+        buf,
+        "<DataArray type=\"Float64\" Name=\"{name}\" NumberOfComponents=\"{comps}\" format=\"ascii\">"
+    );
+}
+
+/// The values as text (`{:e}`, `comps` to a line) and the closing tag,
+/// flushed to `w` every 64 KB through `buf`, which it leaves empty.
+fn ascii_values(
+    w: &mut dyn std::io::Write,
+    buf: &mut Vec<u8>,
+    comps: usize,
+    vals: Values,
+) -> std::io::Result<()> {
+    let mut i = 0;
+    let mut result = Ok(());
+    vals.for_each(|v| {
+        let _ = write!(buf, "{v:e}");
+        i += 1;
+        buf.push(if i % comps == 0 { b'\n' } else { b' ' });
+        if buf.len() >= 1 << 16 && result.is_ok() {
+            result = w.write_all(buf);
+            buf.clear();
+        }
+    });
+    result?;
+    buf.extend_from_slice(b"</DataArray>\n");
+    w.write_all(buf)?;
+    buf.clear();
+    Ok(())
+}
+
+fn ascii_array(
+    w: &mut dyn std::io::Write,
+    name: &str,
+    comps: usize,
+    vals: Values,
+) -> std::io::Result<()> {
+    let mut buf = Vec::new();
+    ascii_tag(&mut buf, name, comps);
+    ascii_values(w, &mut buf, comps, vals)
+}
+
+/// A block's header: its byte count, UInt64 little-endian.
+fn raw_len(buf: &mut Vec<u8>, bytes: usize) {
+    buf.extend_from_slice(&(bytes as u64).to_le_bytes());
+}
+
+/// One block of Float64 values: header and little-endian bytes.
+fn raw_f64(buf: &mut Vec<u8>, vals: Values) {
+    raw_len(buf, 8 * vals.len());
+    buf.reserve(8 * vals.len());
+    vals.for_each(|v| buf.extend_from_slice(&v.to_le_bytes()));
+}
+
+/// The .pvd collection listing (time = load factor, file name).
+pub fn pvd(entries: &[(f64, String)]) -> String {
+    let mut s = String::from(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n<Collection>\n",
+    );
+    for (t, f) in entries {
+        let _ = writeln!(s, "<DataSet timestep=\"{t}\" part=\"0\" file=\"{f}\"/>");
+    }
+    s.push_str("</Collection>\n</VTKFile>\n");
+    s
+}

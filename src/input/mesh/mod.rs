@@ -1,0 +1,212 @@
+//! Meshes of 8-node quads: bodies, named node and edge sets, and contact
+//! interfaces made of paired (coincident, distinct) nodes, or of two sides
+//! meshed apart ([`NonMatching`]).
+
+pub mod blocks;
+mod dofs;
+pub mod gmsh;
+pub mod refine;
+
+pub use dofs::NodeDofs;
+
+use crate::physics::element::q8;
+use std::collections::BTreeMap;
+use std::fmt;
+
+#[derive(Clone, Debug)]
+pub struct Element {
+    /// Corners counter-clockwise, then midsides (see [`crate::physics::element::q8`]).
+    pub nodes: [usize; 8],
+    pub body: usize,
+}
+
+/// One contact edge: a quadratic edge [end, mid, end] of body A (upper) and the
+/// facing edge of body B (lower); `a[i]` and `b[i]` are paired nodes, both
+/// ordered along the interface with B on the right (increasing x for a
+/// horizontal interface with A on top).
+#[derive(Clone, Debug)]
+pub struct ContactEdge {
+    pub a: [usize; 3],
+    pub b: [usize; 3],
+}
+
+#[derive(Clone, Debug)]
+pub struct Interface {
+    pub name: String,
+    pub body_a: usize,
+    pub body_b: usize,
+    /// Coincident node pairs (a matching interface); empty when the sides
+    /// are meshed apart ([`Interface::nonmatching`]).
+    pub edges: Vec<ContactEdge>,
+    /// A non-matching interface (`matching = false`): the two sides' edges,
+    /// node-to-segment springs instead of node pairs ([`crate::model::interface`]).
+    pub nonmatching: Option<NonMatching>,
+}
+
+/// The two sides of a non-matching interface: quadratic edges [end, mid,
+/// end], both walked in the interface's walk direction (slave edges with A
+/// on the left, master edges with B on the right: increasing x on a
+/// horizontal block interface, increasing y on a vertical one). The slave
+/// edges follow one another end to start (their arc length is accumulated).
+/// The spring points live on the slave side (body A) and are projected onto
+/// the master side (body B).
+#[derive(Clone, Debug)]
+pub struct NonMatching {
+    pub slave: Vec<[usize; 3]>,
+    pub master: Vec<[usize; 3]>,
+}
+
+#[derive(Clone, Debug, Default)]
+pub struct Mesh {
+    pub nodes: Vec<[f64; 2]>,
+    pub elements: Vec<Element>,
+    pub bodies: Vec<String>,
+    /// Sorted, unique node ids.
+    pub node_sets: BTreeMap<String, Vec<usize>>,
+    /// Boundary edges [end, mid, end], walked with the body on the left.
+    pub edge_sets: BTreeMap<String, Vec<[usize; 3]>>,
+    pub interfaces: Vec<Interface>,
+    /// Dofs per node and their numbering ([`NodeDofs`]): set by the model
+    /// (3 with twist), 2 otherwise.
+    pub node_dofs: NodeDofs,
+}
+
+/// A broken mesh or mesh specification; the text names what and where.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MeshError(pub String);
+
+impl fmt::Display for MeshError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for MeshError {}
+
+impl Mesh {
+    /// Every node's dofs ([`Mesh::node_dofs`] per node).
+    /// The body of every node (the last element's that holds it; usize::MAX
+    /// for a node of no element).
+    pub fn node_bodies(&self) -> Vec<usize> {
+        let mut node_body = vec![usize::MAX; self.nodes.len()];
+        for el in &self.elements {
+            for &n in &el.nodes {
+                node_body[n] = el.body;
+            }
+        }
+        node_body
+    }
+
+    pub fn num_dofs(&self) -> usize {
+        self.node_dofs.count(self.nodes.len())
+    }
+
+    pub fn element_coords(&self, e: usize) -> [[f64; 2]; 8] {
+        std::array::from_fn(|a| self.nodes[self.elements[e].nodes[a]])
+    }
+
+    /// Length of a quadratic edge by 3-point Gauss.
+    pub fn edge_length(&self, edge: &[usize; 3]) -> f64 {
+        let x: [[f64; 2]; 3] = std::array::from_fn(|i| self.nodes[edge[i]]);
+        q8::gauss_1d(3)
+            .iter()
+            .map(|&(s, w)| {
+                let dn = [s - 0.5, -2.0 * s, s + 0.5];
+                let t = (0..3).fold([0.0, 0.0], |t, i| {
+                    [t[0] + dn[i] * x[i][0], t[1] + dn[i] * x[i][1]]
+                });
+                w * t[0].hypot(t[1])
+            })
+            .sum()
+    }
+
+    fn centroid(&self, e: usize) -> [f64; 2] {
+        let c = self.element_coords(e);
+        let s = c[..4]
+            .iter()
+            .fold([0.0, 0.0], |s, x| [s[0] + x[0], s[1] + x[1]]);
+        [s[0] / 4.0, s[1] / 4.0]
+    }
+
+    /// Checks the mesh for everything that would make the model meaningless:
+    /// bad node ids, NaN coordinates, repeated nodes in an element, inverted or
+    /// degenerate elements (det J ≤ 0 at a 3×3 Gauss point or a node), unused
+    /// nodes, and interface pairs that are not coincident or not on their bodies.
+    pub fn validate(&self) -> Result<(), MeshError> {
+        let err = |s: String| Err(MeshError(s));
+        for (n, x) in self.nodes.iter().enumerate() {
+            if !(x[0].is_finite() && x[1].is_finite()) {
+                return err(format!("node {n} has a non-finite coordinate {x:?}"));
+            }
+        }
+        let mut used = vec![false; self.nodes.len()];
+        for (e, el) in self.elements.iter().enumerate() {
+            if el.body >= self.bodies.len() {
+                return err(format!(
+                    "element {e} refers to body {} which does not exist",
+                    el.body
+                ));
+            }
+            for (a, &n) in el.nodes.iter().enumerate() {
+                if n >= self.nodes.len() {
+                    return err(format!("element {e}: node {n} does not exist"));
+                }
+                if el.nodes[..a].contains(&n) {
+                    return err(format!("element {e}: node {n} appears twice"));
+                }
+                used[n] = true;
+            }
+            let coords = self.element_coords(e);
+            let gp = q8::gauss_3x3().points.into_iter().map(|p| p.0);
+            for [xi, eta] in gp.chain(q8::NODE_XI) {
+                if let Err(m) = q8::physical_derivs(&coords, xi, eta) {
+                    let c = self.centroid(e);
+                    return err(format!(
+                        "element {e} of body \"{}\" near ({:.4}, {:.4}): {m}",
+                        self.bodies[el.body], c[0], c[1]
+                    ));
+                }
+            }
+        }
+        if let Some(n) = used.iter().position(|u| !u) {
+            return err(format!(
+                "node {n} at {:?} belongs to no element",
+                self.nodes[n]
+            ));
+        }
+        let node_body = self.node_bodies();
+        for iface in &self.interfaces {
+            for (k, edge) in iface.edges.iter().enumerate() {
+                for i in 0..3 {
+                    let (a, b) = (edge.a[i], edge.b[i]);
+                    let (xa, xb) = (self.nodes[a], self.nodes[b]);
+                    let scale = self.edge_length(&edge.b).max(1e-300);
+                    if (xa[0] - xb[0]).hypot(xa[1] - xb[1]) > 1e-9 * scale {
+                        return err(format!(
+                            "interface \"{}\" edge {k}: nodes {a} at {xa:?} and {b} at {xb:?} are paired but not coincident",
+                            iface.name
+                        ));
+                    }
+                    if node_body[a] != iface.body_a || node_body[b] != iface.body_b {
+                        return err(format!(
+                            "interface \"{}\" edge {k}: pair ({a}, {b}) is not on bodies \"{}\" / \"{}\"",
+                            iface.name, self.bodies[iface.body_a], self.bodies[iface.body_b]
+                        ));
+                    }
+                }
+            }
+            if let Some(nm) = &iface.nonmatching {
+                let sides = [(&nm.slave, iface.body_a), (&nm.master, iface.body_b)];
+                for (edges, body) in sides {
+                    if let Some(&n) = edges.iter().flatten().find(|&&n| node_body[n] != body) {
+                        return err(format!(
+                            "interface \"{}\": node {n} at {:?} is not on body \"{}\"",
+                            iface.name, self.nodes[n], self.bodies[body]
+                        ));
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+}

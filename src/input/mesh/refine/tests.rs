@@ -1,0 +1,89 @@
+use super::*;
+use crate::input::mesh::blocks;
+
+/// A mesh of `nx` × `ny` unit squares from the block generator (with a
+/// `bottom` edge set and node set), through the case parser.
+fn grid(nx: usize, ny: usize) -> Mesh {
+    let text = format!(
+        "[[block]]\nbody = \"b\"\nx = [0.0, {nx}.0]\nnx = [{nx}]\ny = [0.0, {ny}.0]\nny = [{ny}]\n"
+    );
+    let spec: crate::input::case::MeshSpec = toml::from_str(&text).unwrap();
+    blocks::generate(&spec.block, &spec.interface, 1).unwrap()
+}
+
+#[test]
+fn edge_shape_is_the_quadratic_interpolant() {
+    assert_eq!(edge_shape(-0.5), [0.375, 0.75, -0.125]);
+    assert_eq!(edge_shape(0.5), [-0.125, 0.75, 0.375]);
+}
+
+#[test]
+fn uniform_refinement_of_a_grid_is_the_doubled_grid() {
+    let mesh = grid(2, 2);
+    let r = uniform(&mesh).unwrap();
+    assert_eq!(r.mesh.elements.len(), 16);
+    // a 4 × 4 Q8 grid: 9 × 9 points but the 16 element centres
+    assert_eq!(r.mesh.nodes.len(), 81 - 16);
+    assert!(r.hanging.is_empty());
+    assert!(r.state.level.iter().all(|&l| l == 1));
+    r.mesh.validate().unwrap();
+}
+
+#[test]
+fn one_refined_element_hangs_four_nodes_and_a_second_refinement_closes() {
+    let mesh = grid(2, 2);
+    let r = refine(&mesh, &[0]).unwrap();
+    assert_eq!(r.mesh.elements.len(), 7);
+    assert_eq!(r.hanging.len(), 4);
+    r.mesh.validate().unwrap();
+    for h in &r.hanging {
+        // on the straight coarse edge, s = ∓½ is the quarter point
+        let w = edge_shape(h.s);
+        let x = (0..3).fold([0.0; 2], |x, i| {
+            let p = r.mesh.nodes[h.edge[i]];
+            [x[0] + w[i] * p[0], x[1] + w[i] * p[1]]
+        });
+        let q = r.mesh.nodes[h.node];
+        assert!((x[0] - q[0]).abs() < 1e-14 && (x[1] - q[1]).abs() < 1e-14);
+    }
+    // refining the child at the centre again forces its coarse neighbours
+    let centre = (0..7)
+        .find(|&e| r.state.level[e] == 1 && r.mesh.element_coords(e)[2] == [1.0, 1.0])
+        .unwrap();
+    let again = r.refine(&[centre]).unwrap();
+    // elements 1 and 2 (the coarse neighbours) were refined, 3 was not
+    assert_eq!(again.state.level.iter().filter(|&&l| l == 0).count(), 1);
+    assert_eq!(again.state.level.iter().filter(|&&l| l == 2).count(), 4);
+    assert_eq!(again.mesh.elements.len(), 1 + 4 * 3 - 1 + 4);
+    again.mesh.validate().unwrap();
+}
+
+#[test]
+fn a_tied_pair_is_split_together() {
+    // elements 0 and 2 of a 2 × 2 grid face each other across y = 1 (a
+    // pretension cut's line): marking one splits both, so no node hangs
+    // on that line
+    let mesh = grid(2, 2);
+    let below = (0..4)
+        .find(|&e| mesh.element_coords(e)[0] == [0.0, 0.0])
+        .unwrap();
+    let above = (0..4)
+        .find(|&e| mesh.element_coords(e)[0] == [0.0, 1.0])
+        .unwrap();
+    let alone = refine(&mesh, &[below]).unwrap();
+    let on_line = |r: &Refined| {
+        r.hanging
+            .iter()
+            .filter(|h| (r.mesh.nodes[h.node][1] - 1.0).abs() < 1e-12)
+            .count()
+    };
+    assert_eq!(on_line(&alone), 2);
+    let start = Refined::start(&mesh);
+    let tied = start.refine_tied(&[below], &[(below, above)]).unwrap();
+    assert_eq!(tied.mesh.elements.len(), 4 + 2 * 3);
+    assert_eq!(on_line(&tied), 0);
+    // the pair is refined whichever of the two is marked
+    let other = start.refine_tied(&[above], &[(below, above)]).unwrap();
+    assert_eq!(other.mesh.elements.len(), 10);
+    assert!(start.refine_tied(&[0], &[(0, 9)]).is_err());
+}

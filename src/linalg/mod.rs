@@ -1,0 +1,6 @@
+//! Linear algebra: the dof map and sparse pattern ([`assembly`]) and the
+//! backends that factor and solve (the serial faer one, PETSc under MPI;
+//! [`backend`]).
+
+pub mod assembly;
+pub mod backend;

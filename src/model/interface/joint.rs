@@ -1,0 +1,801 @@
+//! The joint as a designer reads it: per interface and per increment the
+//! resultant forces, the mean approach and slip, how much of the interface is
+//! open, sticking or slipping, and the frictional energy dissipated so far;
+//! per closed load cycle its dissipation and secant stiffness.
+//!
+//! ```text
+//!   horizontal interface                 vertical interface
+//!   (A = upper, B = lower)               (A = left, B = right)
+//!
+//!         body A                           body A │ body B
+//!     ───────────────  ← interface                │
+//!         body B          walked in +x     n ◄────┤ walked in +y
+//!                                                 │ ▲ t
+//!     n = +y (from B into A), t = +x       n = −x, t = +y
+//! ```
+//!
+//! Internal convention (the per-pair interface CSVs, [`super::PointState`]):
+//! u_T = (u_B − u_A)·t and p_T is the shear B's springs carry along t, so
+//! moving A in +t relative to B gives u_T < 0 and p_T < 0.
+//!
+//! Joint convention (these outputs): the motion and drag of A relative to B
+//! along t, ū_T = −Σ A u_T / Σ A and F_T = −Σ A p_T. Dragging A in +t gives
+//! ū_T > 0 and F_T > 0 (a loop that starts in the first quadrant); F_T is the
+//! tangential force applied to A that the joint resists. Normal force F_N = Σ
+//! A p_N (compressive positive) and mean approach ū_N = Σ A u_N / Σ A have one
+//! sign in both conventions.
+//!
+//! Energies, N·mm, accumulated over committed increments by the trapezoid
+//! rule at every integration point (A its area):
+//! * dissipation D = Σ A Σ_sliders max(0, ½ (f_n + f_n+1) s), the work of
+//!   the law's friction forces f on their own slips s (the point's one
+//!   slider under the isotropic memory: ½ (p_T,n + p_T,n+1)(u_p,n+1 −
+//!   u_p,n); its Jenkins elements under the kinematic one;
+//!   [`crate::physics::contact::tangential::Side`] and the module `work` there):
+//!   it never decreases;
+//! * work W = Σ A ½ (p_T,n + p_T,n+1)(u_T,n+1 − u_T,n), the tangential work
+//!   done on the interface. With k_T^e constant, W − D is the change of the
+//!   energy the sliders' springs store, exact step by step: over a cycle
+//!   that returns every spring to its start W = D.
+//!
+//! Both conventions give the same energies (both factors change sign).
+//!
+//! With twist (`[model] twist = true`) the slip and shear are 2-vectors,
+//! (u_T, u_Tθ) and (p_T, p_Tθ), u_Tθ = u_θB − u_θA = r Δφ around the axis;
+//! the energies take their dot products (force and slip vectors of each
+//! slider), and three measures more, in the joint convention (A relative to
+//! B, about +z by the right hand: θ from r toward the viewer of an r-z plot):
+//! the torque T = −Σ A r p_Tθ (N·mm, the torque applied to A that the joint
+//! resists), the mean circumferential slip ū_θ = −Σ A u_Tθ / Σ A (mm) and
+//! the mean twist φ̄ = −Σ A (u_Tθ / r) / Σ A (rad, A's rotation relative to
+//! B). The status of a point comes from |p_T| against its limit.
+
+use super::tangential::{Side, Side2};
+use super::{InterfaceModel, PointState, Status, TangentialLaw};
+use crate::input::mesh::{Interface, Mesh};
+use crate::physics::element::Section;
+
+/// One interface's joint quantities at one increment, in the joint
+/// convention (see the module comment). Forces in N for the model as meshed
+/// (thickness t, or the full revolution in axisymmetry); measures in mm
+/// (plane: length of interface) or mm² (axisymmetric: area).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct JointMeasures {
+    /// F_N = Σ A p_N, compressive positive, N.
+    pub normal_force: f64,
+    /// F_T = −Σ A p_T: the drag of A relative to B along t, N.
+    pub tangential_force: f64,
+    /// ū_N = Σ A u_N / Σ A (positive = closing), mm.
+    pub mean_approach: f64,
+    /// ū_T = −Σ A u_T / Σ A: A's motion relative to B along t, mm.
+    pub mean_slip: f64,
+    /// Measure of the points in each status.
+    pub open: f64,
+    pub closed: f64,
+    pub stick: f64,
+    pub micro_slip: f64,
+    pub macro_slip: f64,
+    /// Frictional energy dissipated so far, N·mm.
+    pub dissipation: f64,
+    /// Tangential work done on the interface so far, N·mm.
+    pub work: f64,
+    /// With twist: T = −Σ A r p_Tθ, the torque on A the joint resists, N·mm.
+    pub torque: f64,
+    /// With twist: ū_θ = −Σ A u_Tθ / Σ A, A's circumferential slip, mm.
+    pub hoop_slip: f64,
+    /// With twist: φ̄ = −Σ A u_Tθ/r / Σ A, A's twist relative to B, rad.
+    pub twist: f64,
+}
+
+impl JointMeasures {
+    /// Doubles per interface and increment in [`JointMeasures::pack_twist`].
+    pub const PACKED_TWIST: usize = 3;
+
+    /// The measures of twist (restart section `joints_twist`): T, ū_θ, φ̄.
+    pub fn pack_twist(&self) -> [f64; Self::PACKED_TWIST] {
+        [self.torque, self.hoop_slip, self.twist]
+    }
+
+    /// Doubles per interface and increment in [`JointMeasures::pack`].
+    pub const PACKED: usize = 11;
+
+    /// The layout of the `joints` section of restart files: the fields in
+    /// declaration order.
+    pub fn pack(&self) -> [f64; Self::PACKED] {
+        [
+            self.normal_force,
+            self.tangential_force,
+            self.mean_approach,
+            self.mean_slip,
+            self.open,
+            self.closed,
+            self.stick,
+            self.micro_slip,
+            self.macro_slip,
+            self.dissipation,
+            self.work,
+        ]
+    }
+
+    /// The inverse of [`JointMeasures::pack`] (`v` holds at least `PACKED` values).
+    pub fn unpack(v: &[f64]) -> Self {
+        JointMeasures {
+            normal_force: v[0],
+            tangential_force: v[1],
+            mean_approach: v[2],
+            mean_slip: v[3],
+            open: v[4],
+            closed: v[5],
+            stick: v[6],
+            micro_slip: v[7],
+            macro_slip: v[8],
+            dissipation: v[9],
+            work: v[10],
+            ..Default::default()
+        }
+    }
+}
+
+/// Running energy totals of one interface (kept in the checkpoint).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct JointTotals {
+    /// D so far, N·mm.
+    pub dissipation: f64,
+    /// W so far, N·mm.
+    pub work: f64,
+}
+
+/// The dissipation and work of one point of area `area` over one increment
+/// from `before` to `after`, each with its normal pressure p_N: D the work
+/// of the law's friction forces on their own slips
+/// ([`TangentialLaw::slip_work`], never negative; 0 without a law), W the
+/// trapezoid of the shear on u_T (see the module comment).
+pub fn point_energy(
+    law: Option<&TangentialLaw>,
+    area: f64,
+    (p0, before): (f64, &PointState),
+    (p1, after): (f64, &PointState),
+) -> (f64, f64) {
+    let d = law.map_or(0.0, |l| l.slip_work(&side(p0, before), &side(p1, after)));
+    let p = 0.5 * (before.p_t + after.p_t);
+    (area * d, area * p * (after.u_t - before.u_t))
+}
+
+/// [`point_energy`] of a point of a twisting model: the vector law's
+/// friction work ([`TangentialLaw::slip_work2`]) and the dot product of the
+/// mean shear (p_T, p_Tθ) with the change of the slip (u_T, u_Tθ).
+pub fn point_energy_twist(
+    law: Option<&TangentialLaw>,
+    area: f64,
+    (p0, before): (f64, &PointState),
+    (p1, after): (f64, &PointState),
+) -> (f64, f64) {
+    let d = law.map_or(0.0, |l| l.slip_work2(&side2(p0, before), &side2(p1, after)));
+    let p = [
+        0.5 * (before.p_t + after.p_t),
+        0.5 * (before.p_h + after.p_h),
+    ];
+    (
+        area * d,
+        area * (p[0] * (after.u_t - before.u_t) + p[1] * (after.u_h - before.u_h)),
+    )
+}
+
+/// A point's state as the scalar law's side of a step at pressure p_N.
+fn side(p_n: f64, s: &PointState) -> Side<'_> {
+    Side {
+        p_n,
+        u_t: s.u_t,
+        p_t: s.p_t,
+        slip: &s.slip,
+    }
+}
+
+/// A point's state as the vector law's side of a step at pressure p_N.
+fn side2(p_n: f64, s: &PointState) -> Side2<'_> {
+    Side2 {
+        p_n,
+        u_t: [s.u_t, s.u_h],
+        p_t: [s.p_t, s.p_h],
+        slip: &s.slip2,
+    }
+}
+
+/// One end of an accepted increment: every dof, the pseudo-time (whose gaps
+/// the approach is taken across) and every interface point's state, all
+/// interfaces in order.
+#[derive(Clone, Copy, Debug)]
+pub struct Snapshot<'a> {
+    pub u: &'a [f64],
+    pub time: f64,
+    pub contact: &'a [PointState],
+}
+
+impl<'a> Snapshot<'a> {
+    pub fn of(u: &'a [f64], time: f64, contact: &'a [PointState]) -> Self {
+        Snapshot { u, time, contact }
+    }
+}
+
+/// Adds the energies of an accepted increment (committed → trial state) to
+/// the running totals, one per interface. Every MPI rank holds every
+/// point's tangential state and every dof after the step, so every rank
+/// computes the same totals.
+pub fn accumulate(
+    interfaces: &[InterfaceModel],
+    committed: Snapshot,
+    trial: Snapshot,
+    totals: &mut [JointTotals],
+) {
+    let mut q = 0;
+    for (im, tot) in interfaces.iter().zip(totals.iter_mut()) {
+        let energy = if im.twist() {
+            point_energy_twist
+        } else {
+            point_energy
+        };
+        let law = im.tangential.as_ref();
+        let (g0, g1) = (im.gap_at(committed.time), im.gap_at(trial.time));
+        // p_N as the law saw it: across the gap of each end's pseudo-time
+        let pressure = |pt, u, gap| im.law.pressure(im.point_kinematics_at(pt, u, gap).0).0;
+        for pt in &im.points {
+            let (p0, p1) = (pressure(pt, committed.u, g0), pressure(pt, trial.u, g1));
+            let (d, w) = energy(
+                law,
+                pt.area,
+                (p0, &committed.contact[q]),
+                (p1, &trial.contact[q]),
+            );
+            tot.dissipation += d;
+            tot.work += w;
+            q += 1;
+        }
+    }
+}
+
+/// What one integration point contributes to its interface's measures.
+#[derive(Clone, Copy, Debug)]
+pub struct PointSample {
+    pub area: f64,
+    pub p_n: f64,
+    pub u_n: f64,
+    /// Internal convention: (u_B − u_A)·t and B's shear along t.
+    pub u_t: f64,
+    pub p_t: f64,
+    pub status: Status,
+    /// With twist: the radius, u_Tθ and p_Tθ (internal convention); None
+    /// without.
+    pub hoop: Option<[f64; 3]>,
+}
+
+/// Sums point samples into joint measures (joint convention); `per_measure`
+/// turns an area into the reported measure (1/thickness for plane models).
+pub fn aggregate(
+    samples: impl Iterator<Item = PointSample>,
+    per_measure: f64,
+    totals: JointTotals,
+) -> JointMeasures {
+    let mut m = JointMeasures {
+        dissipation: totals.dissipation,
+        work: totals.work,
+        ..JointMeasures::default()
+    };
+    let mut area = 0.0;
+    for s in samples {
+        area += s.area;
+        m.normal_force += s.area * s.p_n;
+        m.tangential_force -= s.area * s.p_t;
+        m.mean_approach += s.area * s.u_n;
+        m.mean_slip -= s.area * s.u_t;
+        if let Some([r, u_h, p_h]) = s.hoop {
+            m.torque -= s.area * r * p_h;
+            m.hoop_slip -= s.area * u_h;
+            if r > 0.0 {
+                m.twist -= s.area * u_h / r;
+            }
+        }
+        let a = s.area * per_measure;
+        match s.status {
+            Status::Open => m.open += a,
+            Status::Closed => m.closed += a,
+            Status::Stick => m.stick += a,
+            Status::MicroSlip => m.micro_slip += a,
+            Status::MacroSlip => m.macro_slip += a,
+        }
+    }
+    if area > 0.0 {
+        m.mean_approach /= area;
+        m.mean_slip /= area;
+        m.hoop_slip /= area;
+        m.twist /= area;
+    }
+    m
+}
+
+/// The joint measures of every interface in a committed state (`u` all
+/// dofs at pseudo-time `time`, whose gaps the approach is taken across;
+/// `status` and `contact` every point of every interface in order).
+pub fn measures(
+    interfaces: &[InterfaceModel],
+    section: Section,
+    time: f64,
+    u: &[f64],
+    status: &[Status],
+    contact: &[PointState],
+    totals: &[JointTotals],
+) -> Vec<JointMeasures> {
+    // plane: areas are length × thickness; axisymmetric: areas of revolution
+    let per_measure = if section.axisymmetric {
+        1.0
+    } else {
+        1.0 / section.thickness
+    };
+    let mut base = 0;
+    let mut out = Vec::with_capacity(interfaces.len());
+    for (i, im) in interfaces.iter().enumerate() {
+        // the gap at the state's pseudo-time (an interference pressed in
+        // by its gap_history), as the solver and the interface CSV take it
+        let gap = im.gap_at(time);
+        let radii = im.twist().then(|| im.point_radii());
+        let samples = im.points.iter().enumerate().map(|(j, pt)| {
+            let (u_n, u_t) = im.point_kinematics_at(pt, u, gap);
+            PointSample {
+                area: pt.area,
+                p_n: im.law.pressure(u_n).0,
+                u_n,
+                u_t,
+                p_t: contact[base + j].p_t,
+                status: status[base + j],
+                hoop: radii
+                    .as_ref()
+                    .map(|r| [r[j], im.point_hoop_slip(pt, u), contact[base + j].p_h]),
+            }
+        });
+        let tot = totals.get(i).copied().unwrap_or_default();
+        out.push(aggregate(samples, per_measure, tot));
+        base += im.points.len();
+    }
+    out
+}
+
+/// The joint direction t of an interface: the internal tangent (n_y, −n_x)
+/// at its first pair (+x on a horizontal interface, +y on a vertical one).
+pub fn direction(im: &InterfaceModel) -> [f64; 2] {
+    im.pairs
+        .first()
+        // + 0.0: no negative zero
+        .map_or([1.0, 0.0], |p| [p.normal[1] + 0.0, -p.normal[0] + 0.0])
+}
+
+/// Length of the piece ξ ∈ [from, to] of a quadratic edge (3-point Gauss).
+pub(crate) fn piece_length(x: &[[f64; 2]; 3], from: f64, to: f64) -> f64 {
+    let (mid, half) = (0.5 * (from + to), 0.5 * (to - from));
+    crate::physics::element::q8::gauss_1d(3)
+        .iter()
+        .map(|&(g, w)| {
+            let s = mid + half * g;
+            let dn = [s - 0.5, -2.0 * s, s + 0.5];
+            let t = (0..3).fold([0.0, 0.0], |t, i| {
+                [t[0] + dn[i] * x[i][0], t[1] + dn[i] * x[i][1]]
+            });
+            w * half * t[0].hypot(t[1])
+        })
+        .sum()
+}
+
+/// The arc length s of every pair of an interface (index as `im.pairs`),
+/// mm, from its first pair along the walk direction (B on the right). The
+/// edges are chained end to start; pieces that do not join (an interface
+/// interrupted, or edges listed out of order in a mesh file) follow one
+/// another by the position of their start along the interface's mean
+/// direction, s continuing across a break by the straight distance.
+///
+/// On a non-matching interface (one pair per spring point) s is the slave
+/// point's arc length along the slave side, from its first edge.
+pub fn arc_lengths(mesh: &Mesh, iface: &Interface, im: &InterfaceModel) -> Vec<f64> {
+    if iface.nonmatching.is_some() {
+        return im
+            .points
+            .iter()
+            .map(|p| p.slave_arc().unwrap_or(f64::NAN))
+            .collect();
+    }
+    use std::collections::HashMap;
+    let index: HashMap<(usize, usize), usize> = im
+        .pairs
+        .iter()
+        .enumerate()
+        .map(|(i, p)| ((p.a, p.b), i))
+        .collect();
+    let pair =
+        |e: &crate::input::mesh::ContactEdge, i: usize| index.get(&(e.a[i], e.b[i])).copied();
+    // edge by its start pair; a chain starts where no edge ends
+    let mut by_start: HashMap<usize, usize> = HashMap::new();
+    let mut ends = std::collections::HashSet::new();
+    let mut dir = [0.0; 2];
+    for (k, e) in iface.edges.iter().enumerate() {
+        if let (Some(s), Some(t)) = (pair(e, 0), pair(e, 2)) {
+            by_start.entry(s).or_insert(k);
+            ends.insert(t);
+        }
+        let (p, q) = (mesh.nodes[e.b[0]], mesh.nodes[e.b[2]]);
+        dir = [dir[0] + q[0] - p[0], dir[1] + q[1] - p[1]];
+    }
+    let along = |n: usize| mesh.nodes[n][0] * dir[0] + mesh.nodes[n][1] * dir[1];
+    let mut starts: Vec<usize> = iface
+        .edges
+        .iter()
+        .enumerate()
+        .filter(|(_, e)| pair(e, 0).is_some_and(|s| !ends.contains(&s)))
+        .map(|(k, _)| k)
+        .collect();
+    starts.sort_by(|&a, &b| along(iface.edges[a].b[0]).total_cmp(&along(iface.edges[b].b[0])));
+    let mut s = vec![f64::NAN; im.pairs.len()];
+    let mut done = vec![false; iface.edges.len()];
+    let mut at = 0.0;
+    let mut last: Option<[f64; 2]> = None;
+    // the chains from their starts, then any closed loop left over
+    let order: Vec<usize> = starts.into_iter().chain(0..iface.edges.len()).collect();
+    for first in order {
+        let mut k = first;
+        while !done[k] {
+            done[k] = true;
+            let e = &iface.edges[k];
+            let x: [[f64; 2]; 3] = std::array::from_fn(|i| mesh.nodes[e.b[i]]);
+            if let Some(p) = last {
+                at += (x[0][0] - p[0]).hypot(x[0][1] - p[1]);
+            }
+            let ids: [Option<usize>; 3] = std::array::from_fn(|i| pair(e, i));
+            let marks = [
+                at,
+                at + piece_length(&x, -1.0, 0.0),
+                at + piece_length(&x, -1.0, 1.0),
+            ];
+            for (id, mark) in ids.iter().zip(marks) {
+                if let Some(&id) = id.as_ref() {
+                    if s[id].is_nan() {
+                        s[id] = mark;
+                    }
+                }
+            }
+            at = marks[2];
+            last = Some(x[2]);
+            match ids[2].and_then(|t| by_start.get(&t)) {
+                Some(&next) => k = next,
+                None => break,
+            }
+        }
+    }
+    // every pair lies on an edge; 0 only for a pair no edge names
+    s.iter()
+        .map(|v| if v.is_nan() { 0.0 } else { *v })
+        .collect()
+}
+
+/// A closed load cycle of one interface (see [`cycle_windows`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Cycle {
+    /// Increment numbers (1-based, as in the output) where it starts and ends.
+    pub start_increment: usize,
+    pub end_increment: usize,
+    pub start_time: f64,
+    pub end_time: f64,
+    /// D at the end minus D at the start, N·mm.
+    pub dissipation: f64,
+    /// W at the end minus W at the start, N·mm.
+    pub work: f64,
+    /// ΔF_T / Δū_T between the increments of the cycle's largest and
+    /// smallest F_T (of those, equal within [`TIP_TIE`], the largest and
+    /// the smallest ū_T: the loop's tips when it slides at the extreme
+    /// forces), N/mm; None when they have the same ū_T, or when the force
+    /// range is round-off ([`held`]: a force held constant has no loop).
+    pub secant_stiffness: Option<f64>,
+    /// Smallest and largest F_T over the cycle's increments, N.
+    pub force_range: [f64; 2],
+    /// Smallest and largest ū_T over the cycle's increments, mm.
+    pub slip_range: [f64; 2],
+    /// ū_T at the loop's tips, mm: at the increment of the smallest F_T and
+    /// at that of the largest (the increments the secant stiffness uses).
+    pub tip_slip: [f64; 2],
+    /// The largest |F_T| or |F_N| over the cycle's increments, N: the scale
+    /// against which the force range is round-off ([`held`]; 0: the range's
+    /// own magnitude only).
+    pub force_scale: f64,
+    /// Energies at or below this are the solver's round-off, N·mm: 10⁻¹²
+    /// of the run's largest max |F_T| × (ū_T range), or with twist
+    /// max |T| × (φ̄ range), over every cycle of every interface ([`cycles`]
+    /// sets it; 0 for a cycle alone).
+    pub floor: f64,
+    /// With twist: the torque-twist loop, as the force-slip one: smallest
+    /// and largest T (N·mm) and φ̄ (rad) over the cycle's increments, and
+    /// the torsional secant stiffness ΔT/Δφ̄ between the increments of the
+    /// largest and smallest T (N·mm/rad; None when they have the same φ̄
+    /// or the torque range is round-off, [`held`]),
+    /// and φ̄ at those two increments (smallest T first: the loop's tips).
+    /// Zero and None without twist.
+    pub torque_range: [f64; 2],
+    pub twist_range: [f64; 2],
+    pub torsional_stiffness: Option<f64>,
+    pub tip_twist: [f64; 2],
+}
+
+impl Cycle {
+    /// The force amplitude F_a = (F_T,hi − F_T,lo) / 2, N (hi, lo: the
+    /// loop's tips, the cycle's largest and smallest F_T); 0 when the range
+    /// is round-off ([`held`]).
+    pub fn force_amplitude(&self) -> f64 {
+        amplitude(self.force_range, self.force_scale)
+    }
+
+    /// The slip amplitude u_a = (ū_T,hi − ū_T,lo) / 2 at the loop's tips, mm.
+    pub fn slip_amplitude(&self) -> f64 {
+        0.5 * (self.tip_slip[1] - self.tip_slip[0])
+    }
+
+    /// The loop's stored energy U = ½ F_a u_a = ΔF_T Δū_T / 8, N·mm: the
+    /// largest elastic energy of a linear spring of the secant stiffness
+    /// F_a / u_a taken to the amplitude (Ungar & Kerwin 1962, the energy
+    /// that the loss factor refers to).
+    pub fn stored_energy(&self) -> f64 {
+        let f_a = self.force_amplitude();
+        if f_a == 0.0 {
+            0.0
+        } else {
+            0.5 * f_a * self.slip_amplitude()
+        }
+    }
+
+    /// The loss factor η = D / (2π U) (Ungar & Kerwin 1962, J. Acoust. Soc.
+    /// Am. 34, 954: the energy dissipated per cycle over 2π times the energy
+    /// stored); None when U ≤ 0 (no loop: no force or no slip range).
+    /// Also None when D or U is round-off ([`Cycle::floor`]: an interface
+    /// that carries no shear has no loss factor, not a negative one).
+    pub fn loss_factor(&self) -> Option<f64> {
+        self.ratio(self.stored_energy())
+    }
+
+    /// With twist: the torque amplitude T_a = (T_hi − T_lo) / 2, N·mm; 0
+    /// when the range is round-off ([`held`]).
+    pub fn torque_amplitude(&self) -> f64 {
+        amplitude(self.torque_range, 0.0)
+    }
+
+    /// With twist: the twist amplitude φ_a = (φ̄_hi − φ̄_lo) / 2 at the
+    /// torque-twist loop's tips, rad.
+    pub fn twist_amplitude(&self) -> f64 {
+        0.5 * (self.tip_twist[1] - self.tip_twist[0])
+    }
+
+    /// With twist: the torque-twist loop's stored energy U_θ = ½ T_a φ_a =
+    /// ΔT Δφ̄ / 8, N·mm (T·φ is work as F·u is: the energy of a torsional
+    /// spring of the secant stiffness T_a / φ_a turned to the amplitude,
+    /// as [`Cycle::stored_energy`] for the force-slip loop).
+    pub fn torsional_stored_energy(&self) -> f64 {
+        let t_a = self.torque_amplitude();
+        if t_a == 0.0 {
+            0.0
+        } else {
+            0.5 * t_a * self.twist_amplitude()
+        }
+    }
+
+    /// With twist: the torsional loss factor η_θ = D / (2π U_θ) (Ungar &
+    /// Kerwin 1962, with the torque-twist loop's stored energy
+    /// [`Cycle::torsional_stored_energy`]). D is the whole dissipation of the
+    /// cycle, the slip in both directions: for a loop driven by a torque (an
+    /// axial force held or absent) it is the torsional loop's. None as
+    /// [`Cycle::loss_factor`]: no loop, or round-off energies.
+    pub fn torsional_loss_factor(&self) -> Option<f64> {
+        self.ratio(self.torsional_stored_energy())
+    }
+
+    /// D / (2π u) when u and D are above round-off ([`Cycle::floor`]).
+    fn ratio(&self, u: f64) -> Option<f64> {
+        (u > self.floor && u > 0.0 && self.dissipation.abs() > self.floor)
+            .then(|| self.dissipation / (2.0 * std::f64::consts::PI * u))
+    }
+}
+
+/// The closed load cycles of a run: pairs (i, j) of indices into `marks`,
+/// one entry per committed increment, `Some(history values)` where its
+/// pseudo-time is a history breakpoint. A cycle closes at a marked j when
+/// its values equal those of the latest marked i before it, at or after the
+/// end of the previous cycle, and the values differ at some marked
+/// increment in between. Values are equal within 1e-12 of the largest
+/// magnitude each history takes at the marked increments.
+pub fn cycle_windows(marks: &[Option<Vec<f64>>]) -> Vec<(usize, usize)> {
+    let width = marks.iter().flatten().map(Vec::len).max().unwrap_or(0);
+    let mut scale = vec![0.0f64; width];
+    for v in marks.iter().flatten() {
+        for (s, x) in scale.iter_mut().zip(v) {
+            *s = s.max(x.abs());
+        }
+    }
+    let equal = |a: &[f64], b: &[f64]| {
+        a.len() == b.len()
+            && a.iter()
+                .zip(b)
+                .zip(&scale)
+                .all(|((x, y), s)| (x - y).abs() <= 1e-12 * s)
+    };
+    let marked: Vec<(usize, &Vec<f64>)> = marks
+        .iter()
+        .enumerate()
+        .filter_map(|(k, v)| v.as_ref().map(|v| (k, v)))
+        .collect();
+    let mut out = Vec::new();
+    let mut from = 0; // index into `marked` of the previous cycle's end
+    for jm in 0..marked.len() {
+        let (j, vj) = marked[jm];
+        let Some(im) = (from..jm).rev().find(|&im| equal(marked[im].1, vj)) else {
+            continue;
+        };
+        if marked[im + 1..jm].iter().any(|(_, v)| !equal(v, vj)) {
+            out.push((marked[im].0, j));
+            from = jm;
+        }
+    }
+    out
+}
+
+/// Forces (torques) within this fraction of the span's largest magnitude
+/// of its extreme count as equal when the loop's tips are picked
+/// ([`tips`]): equilibrium holds them only to the Newton tolerance (10⁻⁸ of
+/// the reference force by default), so an exact comparison would let
+/// round-off choose between two increments at the same prescribed extreme
+/// (a cycle window from tip to tip, a sliding plateau) whose slips differ.
+pub const TIP_TIE: f64 = 1e-6;
+
+/// Whether a cycle's force (or torque) range [lo, hi] is round-off: within
+/// [`TIP_TIE`] of its largest magnitude or of `scale` (the cycle's
+/// [`Cycle::force_scale`]: a force held at zero has a range and a magnitude
+/// of noise alike), as the two tips of a loop whose force is held constant
+/// (an axial preload under a cycled torque: the extremes differ by 1e-12 of
+/// 10 kN). Such a range has no amplitude and no secant stiffness; reporting
+/// its difference would be reporting noise. The threshold is the tips' own
+/// tie: the solver resolves a joint's force to about 10⁻⁸ of the loads
+/// (the Newton tolerance), so an amplitude below 10⁻⁶ of the force is not
+/// a measurement this solver can vouch for.
+pub fn held(range: [f64; 2], scale: f64) -> bool {
+    range[1] - range[0] <= TIP_TIE * range[0].abs().max(range[1].abs()).max(scale)
+}
+
+/// (hi − lo) / 2 of a range, 0 where it is [`held`].
+fn amplitude(range: [f64; 2], scale: f64) -> f64 {
+    if held(range, scale) {
+        0.0
+    } else {
+        0.5 * (range[1] - range[0])
+    }
+}
+
+/// The measures at the loop's tips over `span`: the increments of the
+/// smallest and of the largest force `f` (`key` = (force, slip)), each
+/// tie within [`TIP_TIE`] broken by the slip (the smallest at the low tip,
+/// the largest at the high one); `scale`: a force magnitude the tie is
+/// relative to besides the span's own ([`held`]).
+fn tips(
+    span: &[(f64, JointMeasures)],
+    key: impl Fn(&JointMeasures) -> (f64, f64),
+    scale: f64,
+) -> Option<(JointMeasures, JointMeasures)> {
+    let forces = span.iter().map(|r| key(&r.1).0);
+    let scale = forces.clone().fold(scale, |a, f| a.max(f.abs()));
+    let f_hi = forces.clone().fold(f64::NEG_INFINITY, f64::max);
+    let f_lo = forces.fold(f64::INFINITY, f64::min);
+    let tie = TIP_TIE * scale;
+    let by_slip =
+        |a: &&(f64, JointMeasures), b: &&(f64, JointMeasures)| key(&a.1).1.total_cmp(&key(&b.1).1);
+    let hi = span
+        .iter()
+        .filter(|r| key(&r.1).0 >= f_hi - tie)
+        .max_by(by_slip)?;
+    let lo = span
+        .iter()
+        .filter(|r| key(&r.1).0 <= f_lo + tie)
+        .min_by(by_slip)?;
+    Some((lo.1, hi.1))
+}
+
+/// The cycle of one interface over the increments `i..=j` of `rows`
+/// (pseudo-time and joint measures per committed increment, in order).
+pub fn cycle_of(rows: &[(f64, JointMeasures)], (i, j): (usize, usize)) -> Cycle {
+    let span = &rows[i..=j];
+    // F_T is round-off against F_N as well (a shear held at zero)
+    let force_scale = span.iter().fold(0.0f64, |a, r| {
+        a.max(r.1.tangential_force.abs())
+            .max(r.1.normal_force.abs())
+    });
+    // the loop's tips: the largest and smallest F_T, ties (a plateau of
+    // macro-slip, or a window from tip to tip) broken by ū_T
+    let (lo, hi) = tips(span, |m| (m.tangential_force, m.mean_slip), force_scale)
+        .unwrap_or((rows[j].1, rows[j].1));
+    let ds = hi.mean_slip - lo.mean_slip;
+    let slip = span.iter().map(|r| r.1.mean_slip);
+    // the torque-twist loop's tips, ties (a sliding plateau) broken by φ̄
+    let (t_lo, t_hi) = tips(span, |m| (m.torque, m.twist), 0.0).unwrap_or((rows[j].1, rows[j].1));
+    let dphi = t_hi.twist - t_lo.twist;
+    let twist = span.iter().map(|r| r.1.twist);
+    Cycle {
+        torque_range: [t_lo.torque, t_hi.torque],
+        twist_range: [
+            twist.clone().fold(f64::INFINITY, f64::min),
+            twist.fold(f64::NEG_INFINITY, f64::max),
+        ],
+        torsional_stiffness: (dphi != 0.0 && !held([t_lo.torque, t_hi.torque], 0.0))
+            .then(|| (t_hi.torque - t_lo.torque) / dphi),
+        tip_twist: [t_lo.twist, t_hi.twist],
+        start_increment: i + 1,
+        end_increment: j + 1,
+        start_time: rows[i].0,
+        end_time: rows[j].0,
+        dissipation: rows[j].1.dissipation - rows[i].1.dissipation,
+        work: rows[j].1.work - rows[i].1.work,
+        secant_stiffness: (ds != 0.0
+            && !held([lo.tangential_force, hi.tangential_force], force_scale))
+        .then(|| (hi.tangential_force - lo.tangential_force) / ds),
+        force_range: [lo.tangential_force, hi.tangential_force],
+        slip_range: [
+            slip.clone().fold(f64::INFINITY, f64::min),
+            slip.fold(f64::NEG_INFINITY, f64::max),
+        ],
+        tip_slip: [lo.mean_slip, hi.mean_slip],
+        force_scale,
+        floor: 0.0,
+    }
+}
+
+/// Whether pseudo-time `t` is one of the sorted `breakpoints` (within 1e-12
+/// of the last one's magnitude: the stepping lands on them exactly or nearly).
+pub fn at_breakpoint(t: f64, breakpoints: &[f64]) -> bool {
+    let scale = breakpoints.iter().fold(1.0f64, |a, b| a.max(b.abs()));
+    let k = breakpoints.partition_point(|&b| b < t - 1e-12 * scale);
+    breakpoints
+        .get(k)
+        .is_some_and(|&b| (b - t).abs() <= 1e-12 * scale)
+}
+
+/// The closed cycles of every interface of a run: `times` and `joints` (one
+/// entry per interface) per committed increment, `breakpoints` and
+/// `values` the model's histories ([`crate::model::Model::breakpoints`],
+/// [`crate::model::Model::history_values`]). Increments without joint
+/// measures (resumed from a restart file of an earlier build) end the search.
+pub fn cycles(
+    times: &[f64],
+    joints: &[&[JointMeasures]],
+    breakpoints: &[f64],
+    values: impl Fn(f64) -> Vec<f64>,
+    interfaces: usize,
+) -> Vec<Vec<Cycle>> {
+    let n = joints
+        .iter()
+        .position(|j| j.len() != interfaces)
+        .unwrap_or(joints.len())
+        .min(times.len());
+    let marks: Vec<Option<Vec<f64>>> = times[..n]
+        .iter()
+        .map(|&t| at_breakpoint(t, breakpoints).then(|| values(t)))
+        .collect();
+    let windows = cycle_windows(&marks);
+    let mut all: Vec<Vec<Cycle>> = (0..interfaces)
+        .map(|k| {
+            let rows: Vec<(f64, JointMeasures)> =
+                (0..n).map(|r| (times[r], joints[r][k])).collect();
+            windows.iter().map(|&w| cycle_of(&rows, w)).collect()
+        })
+        .collect();
+    // the torque-twist loop's energies too (zero without twist)
+    let scale = all.iter().flatten().fold(0.0f64, |m, c| {
+        let f = c.force_range[0].abs().max(c.force_range[1].abs());
+        let t = c.torque_range[0].abs().max(c.torque_range[1].abs());
+        m.max(f * (c.slip_range[1] - c.slip_range[0]))
+            .max(t * (c.twist_range[1] - c.twist_range[0]))
+    });
+    for c in all.iter_mut().flatten() {
+        c.floor = 1e-12 * scale;
+    }
+    all
+}
+
+#[cfg(test)]
+mod tests;

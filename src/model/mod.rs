@@ -1,0 +1,849 @@
+//! The discrete model built from a case: mesh, element geometry, materials,
+//! interfaces, prescribed dofs, external load vector and the sparsity pattern.
+//! Everything here is fixed for the whole run; evolving state lives in
+//! [`crate::solve::State`].
+
+use crate::error::{Error, Result};
+use crate::input::case::{check_case, Case, Integration};
+use crate::input::mesh::{Mesh, NodeDofs};
+use crate::linalg::assembly::{Blocks, DofMap, Pattern};
+use crate::model::interface::InterfaceModel;
+use crate::physics::element::q8::{self, GaussRule};
+use crate::physics::element::solid::ElementGeometry;
+use crate::physics::element::solid::ElementVector;
+use crate::physics::material::{Plane, VonMises};
+
+pub mod axis;
+pub mod consistency;
+use consistency as whole;
+pub mod constraint;
+mod hanging;
+pub mod history;
+pub mod interface;
+pub mod loads;
+mod measurable;
+mod meshes;
+pub mod pretension;
+use meshes::{check_mesh, make_mesh};
+pub mod supports;
+use supports::check_supports;
+
+/// A mesh an adaptive run refined from the case's ([`crate::app::adapt`]), and
+/// how many of its nodes are the start mesh's: a refinement keeps every
+/// node and numbers its new ones after them, so nodes `0..start_nodes` are
+/// the start mesh's own on every cycle.
+pub struct Adapted {
+    pub mesh: Mesh,
+    pub start_nodes: usize,
+}
+
+pub struct Model {
+    /// The solution settings (method, schedule, tolerances, cutbacks, ...).
+    pub solver: crate::input::case::SolverSpec,
+    /// What is written, and how often.
+    pub output: crate::input::case::OutputSpec,
+    /// The designer's outputs: reaction groups, probes, events
+    /// ([`crate::files::output::plan`]).
+    pub plan: crate::files::output::plan::Plan,
+    /// The case file the model came from (the text's name for [`Model::parse`]).
+    pub source: std::path::PathBuf,
+    /// What the command line set in place of the case's keys: the run's
+    /// advice names the option ([`crate::input::case::overrides`]).
+    pub overrides: crate::input::case::overrides::Overrides,
+    /// The case's free-text description.
+    pub description: Option<String>,
+    /// Full or reduced Gauss integration of the elements ([`Model::rule`] is the rule).
+    pub integration: Integration,
+    /// The effective case (after command-line overrides) without its location
+    /// and description, as text: what a restart file's fingerprint identifies
+    /// besides the mesh ([`crate::files::restart::fingerprint`]).
+    pub case_key: String,
+    pub name: String,
+    pub mesh: Mesh,
+    pub plane: Plane,
+    pub thickness: f64,
+    /// Thickness or revolution: the out-of-plane measure of every integral.
+    pub section: crate::physics::element::Section,
+    pub symmetric_half: bool,
+    pub rule: GaussRule,
+    /// Material per body.
+    pub materials: Vec<VonMises>,
+    pub interfaces: Vec<InterfaceModel>,
+    /// Prescribed dofs and their values at factor 1 (the value at
+    /// pseudo-time t: [`Model::prescribed_at`]).
+    pub prescribed: Vec<(usize, f64)>,
+    /// The history of each prescribed dof (`None`: the load factor, or the
+    /// default ramp); parallel to [`Model::prescribed`].
+    pub prescribed_history: Vec<Option<usize>>,
+    /// External nodal forces at factor 1 (all dofs) of the loads without a
+    /// history of their own: those of the load factor t, or of the default
+    /// ramp in a case with histories (the force at pseudo-time t:
+    /// [`Model::external_force`]).
+    pub f_ext: Vec<f64>,
+    /// External nodal forces at factor 1 of the loads with histories, one
+    /// vector per history ([`Model::patterns`]).
+    pub loads: Vec<crate::model::loads::LoadPattern>,
+    /// Every history of the case: the named ones in name order, then those
+    /// given in place (empty: the case has none, and t is the load factor).
+    pub histories: Vec<crate::model::history::History>,
+    pub dofs: DofMap,
+    /// Index of the first interface block in [`Model::blocks`] (elements come first).
+    pub interface_block_base: Vec<usize>,
+    /// The lower body's interface node nearest to the output probe.
+    pub probe_node: usize,
+    /// y of the probe node: depths are measured below it.
+    pub surface_y: f64,
+    /// Every dof: the mesh's ([`NodeDofs`] per node), then as many per
+    /// pretension section (its reference node, [`crate::model::pretension`]).
+    pub n_dofs: usize,
+    /// The linear constraints u_s = Σ c u_m + g(t) ([`crate::model::constraint`]).
+    pub constraints: crate::model::constraint::Constraints,
+    /// The transformation of every block ([`Model::blocks`]) that holds a
+    /// slave dof, by block index.
+    pub expansions: std::collections::HashMap<usize, crate::model::constraint::Expansion>,
+    /// The pretension sections.
+    pub sections: Vec<crate::model::pretension::Section>,
+    /// The block of each section's reference node (after the interface
+    /// points): where a held (locked) shortening gets its diagonal.
+    pub section_block_base: usize,
+    /// Force scale for the residual test when nothing is loaded (an open joint
+    /// under prescribed displacement): 1e-6 · E_max · model size · thickness, N.
+    pub force_floor: f64,
+}
+
+impl Model {
+    /// Parses case text and builds its model, reading and writing no file (the
+    /// fuzz target's entry point). `place` names the text in errors.
+    pub fn parse(text: &str, place: &str) -> Result<Model> {
+        let mut case = Case::parse(text, place)?;
+        case.source = place.into();
+        Model::build(case)
+    }
+
+    /// Validates the case, generates the mesh and builds the model: the case
+    /// checked key by key, the mesh made and checked as a whole, then the
+    /// materials, the interfaces and the loads and supports, each refused
+    /// with the key and place at fault.
+    pub fn build(case: Case) -> Result<Model> {
+        Model::build_on(case, None)
+    }
+
+    /// The case's mesh (blocks or a Gmsh file, `refine_region` applied),
+    /// checked, before the model's own changes (a pretension section's cut,
+    /// twist's third dof): what an adaptive run refines ([`crate::app::adapt`]).
+    pub fn mesh_of(case: &Case) -> Result<Mesh> {
+        let mesh = |case: &Case| {
+            check_case(case)?;
+            make_mesh(case, &case.source.display().to_string())
+        };
+        mesh(case).map_err(|e| meshes::blame_uniform(case, e, |c| mesh(&c).map(drop)))
+    }
+
+    /// [`Model::build`] on a given mesh (`None`: the case's), one that an
+    /// adaptive run refined from [`Model::mesh_of`]; a given mesh is checked
+    /// like the case's own.
+    pub fn build_on(case: Case, given: Option<Adapted>) -> Result<Model> {
+        // a refusal of the case's own mesh may be `--uniform`'s
+        let ungraded =
+            (given.is_none() && case.overrides.graded_blocks.is_some()).then(|| case.clone());
+        Model::assemble(case, given).map_err(|e| match ungraded {
+            Some(case) => meshes::blame_uniform(&case, e, |c| Model::assemble(c, None).map(drop)),
+            None => e,
+        })
+    }
+
+    /// [`Model::build_on`], whoever is to blame.
+    fn assemble(case: Case, given: Option<Adapted>) -> Result<Model> {
+        let place = case.source.display().to_string();
+        let checked = check_case(&case)?;
+        let (mut mesh, start_nodes) = match given {
+            None => {
+                let mesh = make_mesh(&case, &place)?;
+                let n = mesh.nodes.len();
+                (mesh, n)
+            }
+            Some(a) => (check_mesh(&case, a.mesh, &place)?, a.start_nodes),
+        };
+        if case.model.twist {
+            mesh.node_dofs = NodeDofs::TWIST;
+        }
+        // an adaptive run builds its start mesh here too (given, as every
+        // cycle's); it never refines past the cap, so only that one can fail
+        if let Some(a) = case.adapt.as_ref().filter(|a| mesh.num_dofs() > a.max_dofs) {
+            // the cap of `--adapt` (its default) or the file's; the mesh
+            // perhaps of `--refine`
+            let cap = match case.option("[adapt] max_dofs") {
+                Some(_) => format!("its default max_dofs ({})", a.max_dofs),
+                None => a.max_dofs.to_string(),
+            };
+            let refined = case
+                .option("[mesh] refine")
+                .map_or(String::new(), |o| format!(" (of {o})"));
+            return Err(Error::input(
+                case.at("[adapt] max_dofs"),
+                format!(
+                    "{cap} is below the {} dofs of the start mesh{refined}: not even the first mesh may be solved",
+                    mesh.num_dofs()
+                ),
+            ));
+        }
+        let hanging_nodes = crate::input::mesh::refine::hanging_nodes(&mesh);
+        let mut sections = crate::model::pretension::cut(&case, &mut mesh, &place)?;
+        let plane = case.model.plane;
+        let thickness = case.model.thickness.value();
+        let section = crate::physics::element::Section {
+            axisymmetric: plane == Plane::Axisymmetric,
+            thickness,
+        };
+        let rule = match case.model.integration {
+            Integration::Full => q8::gauss_3x3(),
+            Integration::Reduced => q8::gauss_2x2(),
+        };
+        // the start mesh's nodes (and their copies across the cuts): where
+        // a [[force]] acts and the probe is read on every adaptive cycle
+        let start: Vec<bool> = crate::model::pretension::origins(&sections, mesh.nodes.len())
+            .into_iter()
+            .map(|o| o < start_nodes)
+            .collect();
+        let materials = materials(&case, &mesh, &place)?;
+        check_elements(&mesh, &rule, &section, &place)?;
+        let mut interfaces = interface_models(&case, &checked, &mesh, section, &place)?;
+        let mut loads = crate::model::loads::build(&case, &mesh, &start, section, &place)?;
+        let f_ext = loads.patterns.remove(0).f;
+        for im in interfaces.iter_mut() {
+            im.gap_history = loads
+                .gap_history
+                .get(&im.name)
+                .map(|&h| loads.histories[h].clone());
+        }
+        let prescribed = supports(&case, &mesh, &mut loads, &place)?;
+        let lock_end: Vec<Option<f64>> = loads
+            .pretension_history
+            .iter()
+            .map(|&h| match h {
+                Some(h) => Some(loads.histories[h].end()),
+                None if loads.histories.is_empty() => None,
+                None => Some(1.0),
+            })
+            .collect();
+        crate::model::pretension::finish(
+            &case,
+            &mut sections,
+            mesh.node_dofs,
+            mesh.nodes.len(),
+            &lock_end,
+        );
+        let n_dofs = crate::model::pretension::total_dofs(&case, &mesh);
+        let mut list = crate::model::pretension::constraints(
+            mesh.node_dofs,
+            &mesh.nodes,
+            &sections,
+            &prescribed,
+            &loads.prescribed_history,
+            &place,
+        )?;
+        list.extend(hanging::constraints(
+            &mesh,
+            &hanging_nodes,
+            &prescribed,
+            &loads.prescribed_history,
+            &sections,
+            &place,
+        )?);
+        let constraints = crate::model::constraint::Constraints::new(list, n_dofs)
+            .map_err(|m| Error::input(&place, m))?;
+        crate::model::loads::check_acting(&loads.acting, &mesh, &prescribed, section.axisymmetric)?;
+        check_loaded(&f_ext, &loads, &prescribed, &interfaces, &place)?;
+        check_supports(
+            &mesh,
+            &prescribed,
+            &interfaces,
+            section.axisymmetric,
+            &place,
+        )?;
+        supports::check_sections_held(&mesh, &sections, &prescribed, &interfaces, &place)?;
+        let tied: std::collections::HashMap<usize, usize> = sections
+            .iter()
+            .flat_map(|s| s.pairs.iter().map(|&(n, c)| (c, n)))
+            .collect();
+        whole::check_symmetry_supports(&case, &mesh, &prescribed, &tied, &place)?;
+        let dofs = dof_map(n_dofs, &prescribed, &constraints);
+        let (blocks, interface_block_base, expansions) =
+            block_dofs(&mesh, &interfaces, &constraints, &sections);
+        let section_block_base = blocks.len() - sections.len();
+        drop(blocks);
+        let (probe_node, surface_y) = probe(&case, &mesh, &start, &interfaces);
+        let plan = crate::files::output::plan::Plan::build(
+            &case,
+            &mesh,
+            &interfaces,
+            &prescribed,
+            &place,
+        )?;
+        let force_floor = force_floor(&mesh, &materials, section);
+        let model = Model {
+            name: case.display_name(),
+            plane,
+            thickness,
+            section,
+            symmetric_half: case.model.symmetric_half,
+            rule,
+            materials,
+            interfaces,
+            prescribed,
+            prescribed_history: loads.prescribed_history,
+            f_ext,
+            loads: loads.patterns,
+            histories: loads.histories,
+            dofs,
+            interface_block_base,
+            n_dofs,
+            constraints,
+            expansions,
+            sections,
+            section_block_base,
+            probe_node,
+            surface_y,
+            force_floor,
+            mesh,
+            solver: case.solver.clone(),
+            output: case.output.clone(),
+            plan,
+            source: case.source.clone(),
+            overrides: case.overrides.clone(),
+            description: case.description.clone(),
+            integration: case.model.integration,
+            case_key: case.key(),
+        };
+        if let Some(a) = &case.adapt {
+            measurable::check(&model, a, &place)?;
+        }
+        Ok(model)
+    }
+
+    /// The dof lists of every element, then every interface point (rebuilt
+    /// on demand: only the serial backend keeps per-block data).
+    pub fn blocks(&self) -> Blocks {
+        block_dofs(
+            &self.mesh,
+            &self.interfaces,
+            &self.constraints,
+            &self.sections,
+        )
+        .0
+    }
+
+    /// The diagonal of a held equation ([`crate::model::constraint`]): its row and
+    /// column are otherwise zero, so any positive value leaves every other
+    /// unknown exact; one of the model's scale, E_max × the model's diagonal
+    /// × its out-of-plane measure (N/mm), from [`Model::force_floor`] (no
+    /// pass over the nodes in the assembly).
+    pub fn held_stiffness(&self) -> f64 {
+        1e6 * self.force_floor
+    }
+
+    /// Every dof: the mesh's, then the pretension sections' reference nodes.
+    pub fn num_dofs(&self) -> usize {
+        self.n_dofs
+    }
+
+    /// Sets the constraints again after a change of the mesh, the
+    /// prescribed dofs or the constraints themselves (tests): the dof map
+    /// and the blocks' expansions follow.
+    pub fn set_constraints(
+        &mut self,
+        list: Vec<crate::model::constraint::Constraint>,
+    ) -> Result<()> {
+        self.n_dofs = crate::model::pretension::total_dofs_of(&self.mesh, self.sections.len());
+        self.constraints = crate::model::constraint::Constraints::new(list, self.n_dofs)
+            .map_err(|m| Error::input(self.source.display().to_string(), m))?;
+        self.dofs = dof_map(self.n_dofs, &self.prescribed, &self.constraints);
+        let (blocks, base, expansions) = block_dofs(
+            &self.mesh,
+            &self.interfaces,
+            &self.constraints,
+            &self.sections,
+        );
+        self.section_block_base = blocks.len() - self.sections.len();
+        self.interface_block_base = base;
+        self.expansions = expansions;
+        Ok(())
+    }
+
+    /// The dofs whose value follows from the others, set from them in `u`
+    /// at pseudo-time t: the constraints' slaves.
+    pub fn fill_slaves(&self, u: &mut [f64], t: f64) {
+        self.constraints.fill(u, |h| self.factor(h, t));
+    }
+
+    /// The dofs held at pseudo-time t (a step to t): the shortening of
+    /// every pretension section locked before t.
+    pub fn held_dofs(&self, t: f64) -> Vec<usize> {
+        self.sections
+            .iter()
+            .filter(|s| t > s.lock_after)
+            .map(|s| s.dof)
+            .collect()
+    }
+
+    /// Sparsity of the tangent over the free equations, every potential contact
+    /// coupling included (built on demand, O(nonzeros): the serial backend
+    /// builds it once and keeps what it needs).
+    pub fn pattern(&self) -> Pattern {
+        Pattern::new(&self.dofs, &self.blocks())
+    }
+
+    /// The columns of [`Model::pattern`] that `keep` selects (one PETSc
+    /// rank's equations), the others empty.
+    pub fn pattern_of(&self, keep: impl Fn(usize) -> bool) -> Pattern {
+        Pattern::columns(&self.dofs, &self.blocks(), keep)
+    }
+
+    /// Gauss point geometry of element e (checked valid when the model was built).
+    pub fn geometry(&self, e: usize) -> ElementGeometry {
+        ElementGeometry::with_section(&self.mesh.element_coords(e), &self.rule, &self.section)
+            .expect("element geometry was checked when the model was built")
+    }
+
+    /// Whether the assembled tangent is symmetric, as the model's laws make
+    /// it: the solids' tangents (elastic, continuum and consistent von Mises
+    /// with associative flow) and the normal springs are; a tangential law
+    /// makes it unsymmetric under the return-mapping scheme (p_T depends on
+    /// p_N, eq. 2.18-2.21) but not under stiffness modification (eq. 2.25,
+    /// no p_T-p_N coupling). Chooses the serial factorization.
+    pub fn symmetric_tangent(&self) -> bool {
+        self.interfaces.iter().all(|i| i.symmetric_tangent())
+    }
+
+    /// Pseudo-times of every history breakpoint, ascending: where the load
+    /// path may turn (empty when the case has no history). With histories,
+    /// 0 and 1 (the default ramp's points) are among them.
+    pub fn breakpoints(&self) -> Vec<f64> {
+        crate::model::history::breakpoints(&self.histories)
+    }
+
+    /// The value of every history of the case at pseudo-time t, in a fixed
+    /// order (empty when the case has no history): two times with equal
+    /// values have the same applied loads.
+    pub fn history_values(&self, t: f64) -> Vec<f64> {
+        self.histories.iter().map(|h| h.value(t)).collect()
+    }
+
+    /// The factor of a load with history `h` at pseudo-time t: the history's
+    /// value; without one, t itself (a case without histories: the load
+    /// factor) or the default ramp [[0, 0], [1, 1]] held at 1.
+    pub fn factor(&self, h: Option<usize>, t: f64) -> f64 {
+        match h {
+            Some(i) => self.histories[i].value(t),
+            None if self.histories.is_empty() => t,
+            None => t.clamp(0.0, 1.0),
+        }
+    }
+
+    /// Every load pattern: its history and its forces at factor 1 (all
+    /// dofs); [`Model::f_ext`] first, with no history of its own.
+    pub fn patterns(&self) -> impl Iterator<Item = (Option<usize>, &[f64])> + '_ {
+        std::iter::once((None, self.f_ext.as_slice()))
+            .chain(self.loads.iter().map(|p| (p.history, p.f.as_slice())))
+    }
+
+    /// The external nodal forces at pseudo-time t (all dofs) into `out`:
+    /// Σ_p h_p(t) f_p, exactly t · f_ext in a case without histories.
+    pub fn external_force(&self, t: f64, out: &mut [f64]) {
+        let a = self.factor(None, t);
+        for (o, f) in out.iter_mut().zip(&self.f_ext) {
+            *o = a * f;
+        }
+        for p in &self.loads {
+            let a = self.factor(p.history, t);
+            for (o, f) in out.iter_mut().zip(&p.f) {
+                *o += a * f;
+            }
+        }
+    }
+
+    /// The force applied to section `k`'s shortening at pseudo-time t (N):
+    /// F h(t) for a force-controlled section, 0 for a prescribed shortening;
+    /// the term of [`Model::external_force`] on its dof, summed alike.
+    pub fn section_load(&self, k: usize, t: f64) -> f64 {
+        let d = self.sections[k].dof;
+        let mut f = self.factor(None, t) * self.f_ext[d];
+        for p in &self.loads {
+            f += self.factor(p.history, t) * p.f[d];
+        }
+        f
+    }
+
+    /// What section `k` of a converged state at pseudo-time t reports
+    /// (pretension.csv: force, shortening), from the force `across` its cut
+    /// and the displacements `u`. While the section is free (force control,
+    /// not yet locked, [`crate::model::pretension::free_at`]) its force is the
+    /// applied F h(t), which its equation makes the force across the cut to
+    /// Newton's tolerance: a value of the case, which a restart file cannot
+    /// change ([`crate::files::restart`]).
+    pub fn section_row(&self, k: usize, across: f64, u: &[f64], t: f64) -> [f64; 2] {
+        let s = &self.sections[k];
+        let force = if crate::model::pretension::free_at(s, t) {
+            self.section_load(k, t)
+        } else {
+            across
+        };
+        [force, u[s.dof]]
+    }
+
+    /// The prescribed dofs and their values at pseudo-time t.
+    pub fn prescribed_at(&self, t: f64) -> impl Iterator<Item = (usize, f64)> + '_ {
+        self.prescribed
+            .iter()
+            .zip(&self.prescribed_history)
+            .map(move |(&(d, v), &h)| (d, self.factor(h, t) * v))
+    }
+
+    /// The gap of interface `i` at pseudo-time t (mm): g₀, or g₀ · h(t)
+    /// with a gap history.
+    pub fn gap_at(&self, i: usize, t: f64) -> f64 {
+        self.interfaces[i].gap_at(t)
+    }
+
+    /// The reference pressure of interface `i` in a step to pseudo-time t
+    /// (MPa): the case's `start_pressure`, else the mean pressure of the
+    /// applied load normal to the interface, at least 1 MPa; with no such
+    /// load and an interference, the law's pressure at the interference.
+    /// The secant start of eq. 2.8-2.9 and the contact stabilization's
+    /// spring scale use it.
+    pub fn reference_pressure(&self, i: usize, t: f64) -> f64 {
+        let im = &self.interfaces[i];
+        im.start_pressure.unwrap_or_else(|| {
+            let p = self.applied_pressure(i, t);
+            let gap = im.gap_at(t);
+            if p == 0.0 && gap < 0.0 {
+                im.law.pressure(-gap).0.max(1.0)
+            } else {
+                p.max(1.0)
+            }
+        })
+    }
+
+    /// The mean pressure of the applied loads on interface `i` at
+    /// pseudo-time t (MPa): the resultant of the external forces along the
+    /// interface's normal (at its first pair) over its area; 0 without such
+    /// a load.
+    pub fn applied_pressure(&self, i: usize, t: f64) -> f64 {
+        let im = &self.interfaces[i];
+        let n = im.pairs.first().map_or([0.0, 1.0], |p| p.normal);
+        let nd = self.mesh.node_dofs;
+        let normal = |f: &[f64]| -> f64 {
+            (0..self.mesh.nodes.len())
+                .map(|i| f[nd.dof(i, 0)] * n[0] + f[nd.dof(i, 1)] * n[1])
+                .sum()
+        };
+        if self.histories.is_empty() {
+            // the load factor times the pattern's normal resultant, as always
+            t * normal(&self.f_ext).abs() / im.area()
+        } else {
+            let f: f64 = self
+                .patterns()
+                .map(|(h, f)| self.factor(h, t) * normal(f))
+                .sum();
+            f.abs() / im.area()
+        }
+    }
+
+    pub fn n_gauss(&self) -> usize {
+        self.rule.points.len()
+    }
+
+    /// Dofs per node and their numbering (the mesh's [`NodeDofs`]).
+    pub fn node_dofs(&self) -> NodeDofs {
+        self.mesh.node_dofs
+    }
+
+    /// Element displacement vector, node-major: the first
+    /// [`NodeDofs::element`] entries are used.
+    pub fn element_u(&self, e: usize, u: &[f64]) -> ElementVector {
+        let nd = self.mesh.node_dofs;
+        let k = nd.per_node();
+        let mut ue = [0.0; NodeDofs::MAX_ELEMENT];
+        for (a, &n) in self.mesh.elements[e].nodes.iter().enumerate() {
+            ue[k * a..k * (a + 1)].copy_from_slice(&u[nd.of(n)]);
+        }
+        ue
+    }
+
+    /// Factor from the half model's force (N) to kN per mm of thickness of the
+    /// whole body; in axisymmetry, from the force of the full revolution (N) to kN.
+    pub fn load_scale_kn(&self) -> f64 {
+        if self.section.axisymmetric {
+            return 1.0 / 1000.0;
+        }
+        let sym = if self.symmetric_half { 2.0 } else { 1.0 };
+        sym / self.thickness / 1000.0
+    }
+}
+
+/// The dof map: prescribed dofs and the constraints' slaves have no equation.
+fn dof_map(
+    n_dofs: usize,
+    prescribed: &[(usize, f64)],
+    constraints: &crate::model::constraint::Constraints,
+) -> DofMap {
+    let mut mask = vec![false; n_dofs];
+    for &(d, _) in prescribed {
+        mask[d] = true;
+    }
+    for c in &constraints.list {
+        mask[c.slave] = true;
+    }
+    DofMap::new(n_dofs, &mask)
+}
+
+/// Element and interface-point dof lists (a block that holds a slave dof:
+/// its masters, with its expansion), then one block per pretension
+/// section's reference node; and the index of each interface's first block.
+fn block_dofs(
+    mesh: &Mesh,
+    interfaces: &[InterfaceModel],
+    constraints: &crate::model::constraint::Constraints,
+    sections: &[crate::model::pretension::Section],
+) -> (
+    Blocks,
+    Vec<usize>,
+    std::collections::HashMap<usize, crate::model::constraint::Expansion>,
+) {
+    let mut blocks = Blocks::new();
+    let mut expansions = std::collections::HashMap::new();
+    let mut push = |blocks: &mut Blocks, dofs: Vec<usize>| match constraints.expand(&dofs) {
+        Some(x) => {
+            blocks.push(x.dofs.iter().copied());
+            expansions.insert(blocks.len() - 1, x);
+        }
+        None => blocks.push(dofs),
+    };
+    for el in &mesh.elements {
+        push(
+            &mut blocks,
+            el.nodes
+                .iter()
+                .flat_map(|&n| mesh.node_dofs.of(n))
+                .collect(),
+        );
+    }
+    let mut base = Vec::new();
+    for im in interfaces {
+        base.push(blocks.len());
+        for p in &im.points {
+            push(&mut blocks, im.point_dofs(p));
+        }
+    }
+    for s in sections {
+        blocks.push([s.dof, s.dof + 1]);
+    }
+    (blocks, base, expansions)
+}
+
+fn probe(case: &Case, mesh: &Mesh, start: &[bool], interfaces: &[InterfaceModel]) -> (usize, f64) {
+    let p = case.output.probe;
+    // a node that refinement added is never nearer: an adaptive run reads
+    // the same node on every mesh (a start mesh node, [`Adapted`])
+    let dist = |n: usize| {
+        let x = mesh.nodes[n];
+        if start[n] {
+            (x[0] - p[0]).hypot(x[1] - p[1])
+        } else {
+            f64::INFINITY
+        }
+    };
+    // body B's interface nodes: the pairs' B nodes, and every node of the
+    // master side of a non-matching interface (mortar gives a slave node on
+    // the axis no pair, so the pairs alone may miss the node under the probe)
+    let master = mesh
+        .interfaces
+        .iter()
+        .filter_map(|i| i.nonmatching.as_ref())
+        .flat_map(|nm| nm.master.iter().flatten().copied());
+    let best = interfaces
+        .iter()
+        .flat_map(|im| im.pairs.iter().map(|pr| pr.b))
+        .chain(master)
+        .min_by(|&a, &b| dist(a).total_cmp(&dist(b)))
+        .unwrap_or_else(|| {
+            (0..mesh.nodes.len())
+                .min_by(|&a, &b| dist(a).total_cmp(&dist(b)))
+                .unwrap_or(0)
+        });
+    (best, mesh.nodes.get(best).map_or(0.0, |x| x[1]))
+}
+
+/// The material of every body, in body order; a body without
+/// `[materials.<body>]` and an entry without a body are refused.
+fn materials(case: &Case, mesh: &Mesh, place: &str) -> Result<Vec<VonMises>> {
+    let mut materials = Vec::new();
+    for body in &mesh.bodies {
+        let spec = case.materials.get(body).ok_or_else(|| {
+            Error::input(
+                place,
+                format!("[materials] has no entry for body \"{body}\""),
+            )
+        })?;
+        let mat = VonMises::new(
+            spec.young,
+            spec.poisson,
+            spec.yield_stress.unwrap_or(f64::INFINITY),
+            spec.hardening,
+            case.model.plane,
+        )
+        .map_err(|e| Error::input(format!("{place}: [materials.{body}]"), e))?;
+        materials.push(mat);
+    }
+    for name in case.materials.keys() {
+        if !mesh.bodies.contains(name) {
+            return Err(Error::input(
+                format!("{place}: [materials.{name}]"),
+                format!(
+                    "no body named \"{name}\" (bodies: {})",
+                    mesh.bodies.join(", ")
+                ),
+            ));
+        }
+    }
+    Ok(materials)
+}
+
+/// Every element's Jacobian, checked once; the geometry itself is
+/// recomputed when needed ([`Model::geometry`]).
+fn check_elements(
+    mesh: &Mesh,
+    rule: &GaussRule,
+    section: &crate::physics::element::Section,
+    place: &str,
+) -> Result<()> {
+    for (e, el) in mesh.elements.iter().enumerate() {
+        ElementGeometry::with_section(&mesh.element_coords(e), rule, section).map_err(|m| {
+            Error::Mesh {
+                place: place.to_string(),
+                message: format!("element {e} of body \"{}\": {m}", mesh.bodies[el.body]),
+            }
+        })?;
+    }
+    Ok(())
+}
+
+/// The interface models, one per mesh interface with its checked law; an
+/// `[interface.<name>]` without a mesh interface is refused.
+fn interface_models(
+    case: &Case,
+    checked: &crate::input::case::Checked,
+    mesh: &Mesh,
+    section: crate::physics::element::Section,
+    place: &str,
+) -> Result<Vec<InterfaceModel>> {
+    let mut interfaces = Vec::new();
+    for iface in &mesh.interfaces {
+        let law = checked.laws.get(&iface.name).ok_or_else(|| {
+            Error::input(
+                place,
+                format!(
+                    "[interface] has no law for interface \"{0}\": add [interface.{0}] with its law (e.g. law = \"power\", c_n, m)",
+                    iface.name
+                ),
+            )
+        })?;
+        let spec = &case.interface[&iface.name];
+        interfaces.push(
+            InterfaceModel::new(
+                mesh,
+                iface,
+                law.clone(),
+                spec.gap,
+                spec.weights,
+                section,
+                spec.start_pressure,
+                checked.tangential.get(&iface.name).cloned(),
+            )
+            .map_err(|m| Error::input(place, m))?,
+        );
+    }
+    for name in case.interface.keys() {
+        if !mesh.interfaces.iter().any(|i| &i.name == name) {
+            return Err(Error::input(
+                format!("{place}: [interface.{name}]"),
+                format!("the mesh has no interface named \"{name}\""),
+            ));
+        }
+    }
+    Ok(interfaces)
+}
+
+/// The prescribed dofs with u_r = 0 added on the axis of an axisymmetric
+/// model (no history: always 0); `loads.prescribed_history` follows them.
+fn supports(
+    case: &Case,
+    mesh: &Mesh,
+    loads: &mut crate::model::loads::Loads,
+    place: &str,
+) -> Result<Vec<(usize, f64)>> {
+    let given: std::collections::HashMap<usize, Option<usize>> = loads
+        .prescribed
+        .iter()
+        .zip(&loads.prescribed_history)
+        .map(|(&(d, _), &h)| (d, h))
+        .collect();
+    let prescribed =
+        crate::model::axis::hold_axis(case, mesh, std::mem::take(&mut loads.prescribed), place)?;
+    loads.prescribed_history = prescribed
+        .iter()
+        .map(|(d, _)| given.get(d).copied().flatten())
+        .collect();
+    Ok(prescribed)
+}
+
+/// Something must load the model: a load, a force, a non-zero prescribed
+/// displacement or an interference.
+fn check_loaded(
+    f_ext: &[f64],
+    loads: &crate::model::loads::Loads,
+    prescribed: &[(usize, f64)],
+    interfaces: &[InterfaceModel],
+    place: &str,
+) -> Result<()> {
+    let interference = interfaces
+        .iter()
+        .any(|im| im.gap < 0.0 || (im.gap != 0.0 && im.gap_history.is_some()));
+    if f_ext.iter().all(|&f| f == 0.0)
+        && loads.patterns.iter().all(|p| p.f.iter().all(|&f| f == 0.0))
+        && prescribed.iter().all(|&(_, v)| v == 0.0)
+        && !interference
+    {
+        return Err(Error::input(
+            place,
+            "nothing loads the model: no [[load]], no [[force]], no non-zero prescribed displacement in [[boundary]] and no interference (negative gap) or gap_history",
+        ));
+    }
+    Ok(())
+}
+
+/// The force below which a residual is zero: 10⁻⁶ E_max × the model's
+/// diagonal × its out-of-plane measure (the thickness, or the outer
+/// circumference 2π r_max in axisymmetry).
+fn force_floor(
+    mesh: &Mesh,
+    materials: &[VonMises],
+    section: crate::physics::element::Section,
+) -> f64 {
+    let e_max = materials.iter().fold(0.0f64, |a, m| a.max(m.young));
+    let (lo, hi) = mesh
+        .nodes
+        .iter()
+        .fold(([f64::MAX; 2], [f64::MIN; 2]), |(lo, hi), x| {
+            (
+                [lo[0].min(x[0]), lo[1].min(x[1])],
+                [hi[0].max(x[0]), hi[1].max(x[1])],
+            )
+        });
+    let measure = if section.axisymmetric {
+        section.measure(hi)
+    } else {
+        section.thickness
+    };
+    1e-6 * e_max * (hi[0] - lo[0]).hypot(hi[1] - lo[1]) * measure
+}

@@ -1,0 +1,204 @@
+//! A posteriori error estimate: the Zienkiewicz–Zhu estimator with
+//! superconvergent patch recovery (Zienkiewicz & Zhu 1992, IJNME 33,
+//! part 1: the recovery; part 2: the estimate and its effectivity), plus
+//! the interface's traction jump, and Dörfler's bulk marking.
+//!
+//! ```text
+//!   η_e² = ∫_e (σ* − σ_h)ᵀ C⁻¹ (σ* − σ_h) dΩ  (+ η²_I,e, [`jump`])     (part 2)
+//!   ‖u_h‖²_E = ∫_Ω σ_hᵀ C⁻¹ σ_h dΩ,     η² = Σ_e η_e²,   relative η / ‖u_h‖_E
+//!   effectivity θ = η / ‖u − u_h‖_E   (→ 1 on smooth problems, part 2)
+//! ```
+//! σ* is the stress recovered by SPR ([`recovery`]) and interpolated with
+//! the Q8 shape functions, σ_h the element's own ([`sample`]); both are
+//! integrated by 3×3 Gauss with the model's volume element (thickness, or
+//! 2π r in axisymmetry). C⁻¹ is the isotropic 3D compliance on all six
+//! components (xx, yy, xy, zz or θθ, rθ, zθ),
+//! ```text
+//!   sᵀC⁻¹s = [s_xx² + s_yy² + s_zz² − 2ν (s_xx s_yy + s_yy s_zz + s_zz s_xx)] / E
+//!            + (s_xy² + s_rθ² + s_zθ²) / G
+//! ```
+//! which is the plane-strain energy with σ_zz = ν(σ_xx + σ_yy) (ε_zz = 0
+//! adds nothing), the plane-stress one with σ_zz = 0, the axisymmetric one
+//! with the hoop stress, and the twist one with both shears. Plastic
+//! elements use the elastic compliance too (as usual for ZZ applied to
+//! plasticity, a known limitation: there it measures the stress jumps, not
+//! the error in the plastic energy).
+
+mod jump;
+pub mod recovery;
+mod sample;
+
+use crate::model::Model;
+use crate::physics::element::q8;
+use crate::physics::element::solid::ElementGeometry;
+use crate::physics::material::VonMises;
+use crate::solve::State;
+use serde_json::json;
+
+/// The estimate of one state.
+#[derive(Clone, Debug, Default)]
+pub struct Estimate {
+    /// η_e² per element (N·mm): the recovery part plus the interface part.
+    pub element: Vec<f64>,
+    /// The interface's part of η_e² per element (N·mm; 0 off interfaces).
+    pub interface: Vec<f64>,
+    /// η = √Σ η_e² (√(N·mm)).
+    pub total: f64,
+    /// ‖u_h‖_E = √∫ σ_hᵀ C⁻¹ σ_h dΩ (√(N·mm)).
+    pub norm: f64,
+}
+
+impl Estimate {
+    /// η / ‖u_h‖_E (0 for an unstressed body).
+    pub fn relative(&self) -> f64 {
+        if self.norm > 0.0 {
+            self.total / self.norm
+        } else {
+            0.0
+        }
+    }
+
+    /// Each element's share of η², η_e² / η² (0 everywhere when η = 0).
+    pub fn shares(&self) -> Vec<f64> {
+        let t2 = self.total * self.total;
+        self.element
+            .iter()
+            .map(|&e| if t2 > 0.0 { e / t2 } else { 0.0 })
+            .collect()
+    }
+
+    /// summary.json's `estimate`: η and η/‖u_h‖_E, the interface's part, how
+    /// many elements hold half of η² ([`doerfler_mark`] at θ = 0.5) and the
+    /// five largest η_e² with their body and centroid.
+    pub fn summary(&self, model: &Model) -> serde_json::Value {
+        let mut order: Vec<usize> = (0..self.element.len()).collect();
+        order.sort_by(|&a, &b| self.element[b].total_cmp(&self.element[a]).then(a.cmp(&b)));
+        let t2 = self.total * self.total;
+        let top: Vec<serde_json::Value> = order
+            .iter()
+            .take(5)
+            .map(|&e| {
+                let el = &model.mesh.elements[e];
+                let c = centroid(model, e);
+                json!({
+                    "element": e,
+                    "body": model.mesh.bodies.get(el.body).cloned().unwrap_or_default(),
+                    "x_mm": c[0],
+                    "y_mm": c[1],
+                    "eta_sq_nmm": self.element[e],
+                    "share": if t2 > 0.0 { self.element[e] / t2 } else { 0.0 },
+                })
+            })
+            .collect();
+        json!({
+            "method": "zienkiewicz-zhu-spr",
+            "eta": self.total,
+            "energy_norm": self.norm,
+            "relative": self.relative(),
+            "interface_share": if t2 > 0.0 { self.interface.iter().sum::<f64>() / t2 } else { 0.0 },
+            "elements_holding_half": doerfler_mark(&self.element, 0.5).len(),
+            "top": top,
+        })
+    }
+}
+
+/// The estimate of a state whose Gauss states are every element's (the
+/// whole state: serial, or what rank 0's writer sees under MPI).
+pub fn estimate(model: &Model, state: &State) -> Estimate {
+    let mesh = &model.mesh;
+    let ne = mesh.elements.len();
+    let (r2, r3) = (q8::gauss_2x2(), q8::gauss_3x3());
+    // σ_h at the 2×2 points of every element: what is recovered
+    let mut points = vec![[[0.0; 2]; 4]; ne];
+    let mut values = vec![[[0.0; 6]; 4]; ne];
+    for e in 0..ne {
+        let g = geometry(model, e, &r2);
+        let s = sample::stresses(model, &state.gauss, &state.u, e, &r2, &g);
+        for ip in 0..4 {
+            points[e][ip] = g.x[ip];
+            values[e][ip] = s[ip];
+        }
+    }
+    let recovered = recovery::recover(mesh, &points, &values);
+    let mut element = vec![0.0; ne];
+    let mut norm2 = 0.0;
+    for e in 0..ne {
+        let mat = &model.materials[mesh.elements[e].body];
+        let g = geometry(model, e, &r3);
+        let s = sample::stresses(model, &state.gauss, &state.u, e, &r3, &g);
+        for (ip, sh) in s.iter().enumerate().take(g.n) {
+            let d: [f64; 6] = std::array::from_fn(|c| {
+                let star: f64 = (0..8).map(|a| g.shape[ip][a] * recovered[e][a][c]).sum();
+                star - sh[c]
+            });
+            element[e] += g.dv[ip] * compliance(mat, &d);
+            norm2 += g.dv[ip] * compliance(mat, sh);
+        }
+    }
+    let mut interface = vec![0.0; ne];
+    jump::add(model, state, &recovered, &mut interface);
+    for (e, i) in element.iter_mut().zip(&interface) {
+        *e += i;
+    }
+    let total = element.iter().sum::<f64>().sqrt();
+    Estimate {
+        element,
+        interface,
+        total,
+        norm: norm2.sqrt(),
+    }
+}
+
+/// sᵀ C⁻¹ s with the isotropic 3D compliance (module text), MPa.
+pub fn compliance(mat: &VonMises, s: &[f64; 6]) -> f64 {
+    let (e, nu, g) = (mat.young, mat.poisson, mat.shear_modulus());
+    (s[0] * s[0] + s[1] * s[1] + s[3] * s[3] - 2.0 * nu * (s[0] * s[1] + s[1] * s[3] + s[3] * s[0]))
+        / e
+        + (s[2] * s[2] + s[4] * s[4] + s[5] * s[5]) / g
+}
+
+/// Dörfler's bulk marking (Dörfler 1996, "A convergent adaptive algorithm
+/// for Poisson's equation", SIAM J. Numer. Anal. 33, 1106–1124; θ the bulk
+/// fraction): the smallest set M of elements with
+/// Σ_{e∈M} η_e² ≥ θ Σ_e η_e², taken largest first (ties by index); sorted
+/// by index. θ ≤ 0 or a zero estimate marks nothing; θ ≥ 1 marks every
+/// element with η_e² > 0.
+pub fn doerfler_mark(eta_sq: &[f64], theta: f64) -> Vec<usize> {
+    let total: f64 = eta_sq.iter().sum();
+    if theta <= 0.0 || total <= 0.0 {
+        return Vec::new();
+    }
+    let mut order: Vec<usize> = (0..eta_sq.len()).filter(|&e| eta_sq[e] > 0.0).collect();
+    order.sort_by(|&a, &b| eta_sq[b].total_cmp(&eta_sq[a]).then(a.cmp(&b)));
+    let goal = theta.min(1.0) * total;
+    let mut held = 0.0;
+    let mut marked = Vec::new();
+    for e in order {
+        if held >= goal {
+            break;
+        }
+        held += eta_sq[e];
+        marked.push(e);
+    }
+    marked.sort_unstable();
+    marked
+}
+
+/// The geometry of element e at `rule` (checked valid when the model was built).
+fn geometry(model: &Model, e: usize, rule: &q8::GaussRule) -> ElementGeometry {
+    ElementGeometry::with_section(&model.mesh.element_coords(e), rule, &model.section)
+        .expect("element geometry was checked when the model was built")
+}
+
+/// The mean of an element's node coordinates (mm).
+fn centroid(model: &Model, e: usize) -> [f64; 2] {
+    let mut c = [0.0; 2];
+    for &n in &model.mesh.elements[e].nodes {
+        c[0] += model.mesh.nodes[n][0] / 8.0;
+        c[1] += model.mesh.nodes[n][1] / 8.0;
+    }
+    c
+}
+
+#[cfg(test)]
+mod tests;

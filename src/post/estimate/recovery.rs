@@ -1,0 +1,263 @@
+//! Superconvergent patch recovery (SPR; Zienkiewicz & Zhu 1992, part 1) of
+//! the stress of 8-node quadrilaterals, body by body.
+//!
+//! For each vertex (corner) node v interior to its body, the patch is the
+//! body's elements that share v. Each stress component is fitted, in the
+//! least-squares sense, over the σ_h of the patch's 2×2 Gauss points x_k
+//! (the superconvergent points of the 8-node element) by a complete
+//! quadratic polynomial, the degree of the element's displacement:
+//! ```text
+//!   σ*_p(x) = P(x̂) a,   P = [1, x̂, ŷ, x̂², x̂ŷ, ŷ²],   x̂ = (x − x_v)/h_p
+//!   minimise F(a) = Σ_k (σ_h(x_k) − P(x̂_k) a)²   ⇒   A a = b,
+//!   A = Σ_k Pᵀ(x̂_k) P(x̂_k),   b = Σ_k Pᵀ(x̂_k) σ_h(x_k)
+//! ```
+//! (part 1, §2; the coordinates are centred on v and scaled by the patch
+//! size h_p so that A is well conditioned). The fit gives values at the
+//! central vertex, at the midside nodes of the edges through v and at
+//! every node of the patch that lies on the body's boundary (boundary
+//! nodes take their values from interior patches, part 1 §2); a node
+//! reached by several patches gets their average. A boundary vertex that
+//! no interior patch reaches (a body one element thick, a corner element)
+//! is fitted over its own patch when A is regular there (its smallest
+//! eigenvalue above 1e-8 of its largest, which takes at least six points
+//! off any one conic); a node still without a value takes the average of
+//! its elements' bilinear extrapolations of their 2×2 values. The field
+//! σ* inside an element is Σ N_a σ*_a with the Q8 shape functions.
+//!
+//! A linear stress field is reproduced exactly by every branch (the
+//! quadratic fit and the bilinear extrapolation): the patch test.
+//! Recovery never crosses bodies, so it never smooths across an interface
+//! or a change of material.
+
+use crate::input::mesh::Mesh;
+use crate::physics::element::q8;
+use nalgebra::{Matrix6, SymmetricEigen, Vector6};
+use std::collections::HashMap;
+
+/// The stress components recovered (the [`crate::physics::material::PointState::stress`] order).
+pub type Stress = [f64; 6];
+
+/// σ* at the 8 nodes of every element, from `points` (the physical
+/// coordinates of each element's 2×2 Gauss points) and `values` (σ_h there).
+pub fn recover(mesh: &Mesh, points: &[[[f64; 2]; 4]], values: &[[Stress; 4]]) -> Vec<[Stress; 8]> {
+    let nn = mesh.nodes.len();
+    let ne = mesh.elements.len();
+    // node → elements, as CSR
+    let mut start = vec![0usize; nn + 1];
+    for el in &mesh.elements {
+        for &n in &el.nodes {
+            start[n + 1] += 1;
+        }
+    }
+    for i in 0..nn {
+        start[i + 1] += start[i];
+    }
+    let mut fill = start.clone();
+    let mut adj = vec![0usize; start[nn]];
+    for (e, el) in mesh.elements.iter().enumerate() {
+        for &n in &el.nodes {
+            adj[fill[n]] = e;
+            fill[n] += 1;
+        }
+    }
+    let boundary = boundary_nodes(mesh);
+    let mut sum = vec![[0.0f64; 6]; nn];
+    let mut count = vec![0u32; nn];
+    let mut out = vec![[[0.0; 6]; 8]; ne];
+    for body in 0..mesh.bodies.len().max(1) {
+        let elems: Vec<usize> = (0..ne).filter(|&e| mesh.elements[e].body == body).collect();
+        if elems.is_empty() {
+            continue;
+        }
+        let patch = |v: usize| -> Vec<usize> {
+            adj[start[v]..start[v + 1]]
+                .iter()
+                .copied()
+                .filter(|&e| mesh.elements[e].body == body)
+                .collect()
+        };
+        let mut nodes: Vec<usize> = elems.iter().flat_map(|&e| mesh.elements[e].nodes).collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        let vertices: Vec<usize> = nodes
+            .iter()
+            .copied()
+            .filter(|&n| {
+                patch(n)
+                    .iter()
+                    .any(|&e| mesh.elements[e].nodes[..4].contains(&n))
+            })
+            .collect();
+        // interior patches
+        let add = |n: usize, s: Stress, sum: &mut Vec<Stress>, count: &mut Vec<u32>| {
+            for c in 0..6 {
+                sum[n][c] += s[c];
+            }
+            count[n] += 1;
+        };
+        for &v in vertices.iter().filter(|&&v| !boundary[v]) {
+            let pe = patch(v);
+            let Some(fit) = Fit::new(mesh.nodes[v], &pe, points, values) else {
+                continue;
+            };
+            for &e in &pe {
+                let en = &mesh.elements[e].nodes;
+                for (a, &n) in en.iter().enumerate() {
+                    if n == v || boundary[n] || (a >= 4 && on_edge_through(en, a, v)) {
+                        add(n, fit.at(mesh.nodes[n]), &mut sum, &mut count);
+                    }
+                }
+            }
+        }
+        // boundary vertices no interior patch reached: their own patch
+        let mut second = Vec::new();
+        for &v in vertices.iter().filter(|&&v| boundary[v] && count[v] == 0) {
+            let pe = patch(v);
+            if let Some(fit) = Fit::new(mesh.nodes[v], &pe, points, values) {
+                second.push((v, fit.at(mesh.nodes[v])));
+                for &e in &pe {
+                    let en = &mesh.elements[e].nodes;
+                    for a in 4..8 {
+                        if count[en[a]] == 0 && on_edge_through(en, a, v) {
+                            second.push((en[a], fit.at(mesh.nodes[en[a]])));
+                        }
+                    }
+                }
+            }
+        }
+        for (n, s) in second {
+            add(n, s, &mut sum, &mut count);
+        }
+        // the rest: the elements' own extrapolation
+        let rule = q8::gauss_2x2();
+        let mut third = Vec::new();
+        for &e in &elems {
+            let en = mesh.elements[e].nodes;
+            if en.iter().all(|&n| count[n] > 0) {
+                continue;
+            }
+            let mut ex = [[0.0; 6]; 8];
+            for c in 0..6 {
+                let v: Vec<f64> = values[e].iter().map(|s| s[c]).collect();
+                let x = q8::extrapolate_to_nodes(&rule, &v);
+                for a in 0..8 {
+                    ex[a][c] = x[a];
+                }
+            }
+            for a in 0..8 {
+                if count[en[a]] == 0 {
+                    third.push((en[a], ex[a]));
+                }
+            }
+        }
+        for (n, s) in third {
+            add(n, s, &mut sum, &mut count);
+        }
+        for &e in &elems {
+            for (a, &n) in mesh.elements[e].nodes.iter().enumerate() {
+                let k = f64::from(count[n].max(1));
+                out[e][a] = sum[n].map(|s| s / k);
+            }
+        }
+        for &n in &nodes {
+            (sum[n], count[n]) = ([0.0; 6], 0);
+        }
+    }
+    out
+}
+
+/// Whether midside node `a` (4..8) of an element with nodes `en` lies on an
+/// edge that ends at node v.
+fn on_edge_through(en: &[usize; 8], a: usize, v: usize) -> bool {
+    let k = a - 4;
+    en[k] == v || en[(k + 1) % 4] == v
+}
+
+/// Nodes on the boundary of their body: those of an element edge that no
+/// other element of the same body shares.
+fn boundary_nodes(mesh: &Mesh) -> Vec<bool> {
+    let mut edges: HashMap<(usize, usize, usize), u32> = HashMap::new();
+    for el in &mesh.elements {
+        for k in 0..4 {
+            let (a, b) = (el.nodes[k], el.nodes[(k + 1) % 4]);
+            *edges.entry((el.body, a.min(b), a.max(b))).or_default() += 1;
+        }
+    }
+    let mut boundary = vec![false; mesh.nodes.len()];
+    for el in &mesh.elements {
+        for k in 0..4 {
+            let (a, b) = (el.nodes[k], el.nodes[(k + 1) % 4]);
+            if edges[&(el.body, a.min(b), a.max(b))] == 1 {
+                boundary[a] = true;
+                boundary[b] = true;
+                boundary[el.nodes[4 + k]] = true;
+            }
+        }
+    }
+    boundary
+}
+
+/// The least-squares quadratic of one patch (module text), all six
+/// components at once (one matrix A, six right-hand sides).
+struct Fit {
+    centre: [f64; 2],
+    h: f64,
+    coef: [Vector6<f64>; 6],
+}
+
+impl Fit {
+    /// The fit over the 2×2 points of `elems`; `None` when A is singular
+    /// or nearly so (too few points, or all on one conic).
+    fn new(
+        centre: [f64; 2],
+        elems: &[usize],
+        points: &[[[f64; 2]; 4]],
+        values: &[[Stress; 4]],
+    ) -> Option<Fit> {
+        let h = elems
+            .iter()
+            .flat_map(|&e| points[e])
+            .map(|x| (x[0] - centre[0]).hypot(x[1] - centre[1]))
+            .fold(0.0f64, f64::max);
+        if elems.len() * 4 < 6 || h <= 0.0 {
+            return None;
+        }
+        let mut a = Matrix6::zeros();
+        let mut b = [Vector6::zeros(); 6];
+        for &e in elems {
+            for k in 0..4 {
+                let p = basis(centre, h, points[e][k]);
+                a += p * p.transpose();
+                for (c, bc) in b.iter_mut().enumerate() {
+                    *bc += p * values[e][k][c];
+                }
+            }
+        }
+        let eig = SymmetricEigen::new(a);
+        let (lo, hi) = eig
+            .eigenvalues
+            .iter()
+            .fold((f64::MAX, 0.0f64), |(lo, hi), &l| (lo.min(l), hi.max(l)));
+        if lo <= 1e-8 * hi {
+            return None;
+        }
+        let chol = a.cholesky()?;
+        Some(Fit {
+            centre,
+            h,
+            coef: b.map(|bc| chol.solve(&bc)),
+        })
+    }
+
+    /// σ*_p at x.
+    fn at(&self, x: [f64; 2]) -> Stress {
+        let p = basis(self.centre, self.h, x);
+        self.coef.map(|a| a.dot(&p))
+    }
+}
+
+/// P(x̂) = [1, x̂, ŷ, x̂², x̂ŷ, ŷ²] with x̂ = (x − centre)/h.
+fn basis(centre: [f64; 2], h: f64, x: [f64; 2]) -> Vector6<f64> {
+    let (u, v) = ((x[0] - centre[0]) / h, (x[1] - centre[1]) / h);
+    Vector6::new(1.0, u, v, u * u, u * v, v * v)
+}

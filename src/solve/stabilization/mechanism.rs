@@ -1,0 +1,567 @@
+//! The contact stabilization's springs (the mechanism of [`super`],
+//! which decides when they act): the rigid-body bookkeeping of each body, the
+//! spring stiffness and start guess an engine holds while a stabilized solve
+//! runs, and the spring's contribution at one interface point, which the
+//! Newton assembly adds. This layer knows nothing of the engine.
+
+use crate::input::case::Stabilization;
+use crate::model::interface::{InterfaceModel, Point};
+use crate::model::Model;
+use crate::solve::State;
+use gram::Gram;
+
+mod explain;
+mod gram;
+
+/// An approach above this counts as contact able to carry load (mm): the
+/// first iteration of a step gives such pairs the secant start stiffness.
+const TOUCH: f64 = -1e-12;
+
+/// A closed pair supports a body when its pressure is at least this fraction
+/// of the step's reference pressure: a pair left touching at a pressure of
+/// 10⁻¹⁷ MPa after unloading to zero has a tangent (2p/u for m = 1/2) too
+/// small to carry the next load step.
+const SUPPORT: f64 = 1e-8;
+
+/// A failed step whose torque on a body held about the axis only by
+/// friction is at least this fraction of what that friction held at the last
+/// converged pressures is explained by it: the pressures of the step's end
+/// are unknown (a clamp unloaded under a held torque lowers them: the step
+/// that crosses the slip torque starts below it), and close to the slip
+/// torque the sticking core that is left carries the whole torque, whose
+/// last steps Newton may not reach (a shrink fit failed at 98.9 % of it).
+const NEAR_SLIP: f64 = 0.98;
+
+/// Rigid-body constraint data of one body: centroid, size and the Gram matrix
+/// of the rows its boundary conditions impose on (t_x, t_y, θ·L, then the
+/// motion of each pretension section that cuts it in two, [`Cut`]); with
+/// twist also the rotation about the axis, u_θ = ω r, whose rows (r/L) ω are
+/// gathered in the scalar `turn`.
+#[derive(Clone, Debug)]
+struct Body {
+    centre: [f64; 2],
+    size: f64,
+    /// The body's cuts (indices into [`Stabilizer::cuts`]), in the order of
+    /// their motions after the first three.
+    cuts: Vec<usize>,
+    bc: Gram,
+    /// Σ (r/L)² over the prescribed u_θ at r > 0 (1 without twist: nothing
+    /// to hold).
+    turn: f64,
+    /// Force of each load pattern at factor 1 (N, Σ |f| over the body's nodes).
+    load: Vec<f64>,
+    /// Torque of each load pattern about the axis at factor 1 (N·mm, Σ r f_θ
+    /// over the body's nodes; zero without twist).
+    torque: Vec<f64>,
+    /// The histories of the non-zero prescribed displacements acting on it
+    /// (a prescribed shortening of a section through it among them).
+    driven: Vec<Option<usize>>,
+}
+
+/// A pretension section that cuts its body in two
+/// ([`crate::model::pretension::sides`]): while it is free (force control before
+/// its lock) its shortening moves the side beyond the cut rigidly along the
+/// cut's normal, one rigid motion more of the body, which only a support or
+/// a supporting pair on that side (along the normal) holds; locked or
+/// prescribed, the shortening holds it.
+#[derive(Clone, Debug)]
+struct Cut {
+    section: usize,
+    /// Each node's side: beyond the cut.
+    beyond: Vec<bool>,
+}
+
+/// What the run reports about stabilization (summary.json "stabilization").
+#[derive(Clone, Debug, Default)]
+pub struct Report {
+    /// Steps that started stabilized and were released (exact answer).
+    pub released: usize,
+    /// Steps accepted with the springs still acting (no release possible).
+    pub stabilized: usize,
+    /// Energy dissipated by the springs in accepted steps, N·mm.
+    pub dissipated: f64,
+    /// Largest internal energy seen (strain + plastic work + interface), N·mm.
+    pub internal: f64,
+    /// The limit on dissipated / internal.
+    pub limit: f64,
+}
+
+/// The stabilization of one engine.
+#[derive(Clone, Debug)]
+pub struct Stabilizer {
+    bodies: Vec<Body>,
+    /// The force-controlled pretension sections that cut their bodies in two.
+    cuts: Vec<Cut>,
+    /// Bodies with an interface.
+    linked: Vec<bool>,
+    /// Per interface, whether each pair can carry force
+    /// ([`InterfaceModel::carrying_pairs`]), fixed with the model.
+    carrying: Vec<Vec<bool>>,
+    pub(in crate::solve) enabled: bool,
+    /// Spring stiffness per interface (MPa/mm) while a stabilized solve runs.
+    pub(in crate::solve) springs: Option<Vec<f64>>,
+    /// Start of the next solve (all dofs) instead of the committed state.
+    pub(in crate::solve) guess: Option<Vec<f64>>,
+    /// Filled by the last step, moved into the report when it is committed.
+    pub(in crate::solve) pending: Option<(bool, f64)>,
+    pub report: Report,
+    /// Steps that used the stabilization at all (committed or not).
+    pub used: usize,
+}
+
+/// Whether the Gram matrix `g` and the rotation's `turn` fix every rigid
+/// motion of a body.
+fn fixes(g: &Gram, turn: f64) -> bool {
+    g.fixes_all() && turn > 0.0
+}
+
+impl Body {
+    /// The constraint row of a displacement along unit vector `e` at node
+    /// `node`, at `x`: on the three in-plane motions, then on each cut's
+    /// (the component along the cut's normal on the side beyond it).
+    fn row(&self, cuts: &[Cut], model: &Model, node: usize, x: [f64; 2], e: [f64; 2]) -> Vec<f64> {
+        let mut r = self.plane_row(x, e).to_vec();
+        r.extend(self.cuts.iter().map(|&c| {
+            let cut = &cuts[c];
+            match cut.beyond.get(node) {
+                Some(true) => e[model.sections[cut.section].axis],
+                _ => 0.0,
+            }
+        }));
+        r
+    }
+
+    /// The row of a displacement along `e` at `x` on the three in-plane
+    /// motions.
+    fn plane_row(&self, x: [f64; 2], e: [f64; 2]) -> [f64; 3] {
+        let (rx, ry) = (
+            (x[0] - self.centre[0]) / self.size,
+            (x[1] - self.centre[1]) / self.size,
+        );
+        [e[0], e[1], e[1] * rx - e[0] * ry]
+    }
+
+    /// The row holding the motion of the body's `k`-th cut (its section's
+    /// shortening locked or prescribed).
+    fn cut_row(&self, k: usize) -> Vec<f64> {
+        let mut r = vec![0.0; 3 + self.cuts.len()];
+        r[3 + k] = 1.0;
+        r
+    }
+
+    /// The row (r/L) of a u_θ at `x` on the rotation about the axis; zero
+    /// on the axis, where u_θ = ω r vanishes.
+    fn turn_row(&self, x: [f64; 2]) -> f64 {
+        let r = x[0].abs() / self.size;
+        if r > 1e-9 {
+            r * r
+        } else {
+            0.0
+        }
+    }
+}
+
+impl Stabilizer {
+    pub fn new(model: &Model) -> Stabilizer {
+        let mesh = &model.mesh;
+        let nb = mesh.bodies.len();
+        let body_of = mesh.node_bodies();
+        let mut lo = vec![[f64::INFINITY; 2]; nb];
+        let mut hi = vec![[f64::NEG_INFINITY; 2]; nb];
+        for (n, x) in mesh.nodes.iter().enumerate() {
+            if let Some(b) = body_of.get(n).copied().filter(|&b| b < nb) {
+                for c in 0..2 {
+                    lo[b][c] = lo[b][c].min(x[c]);
+                    hi[b][c] = hi[b][c].max(x[c]);
+                }
+            }
+        }
+        let twist = model.node_dofs().twist();
+        // a prescribed shortening holds its cut: only a force-controlled
+        // section adds a motion (held again once it is locked)
+        let cuts: Vec<Cut> = (model.sections.iter().enumerate())
+            .filter(|(_, s)| s.control == "force")
+            .filter_map(|(k, s)| {
+                crate::model::pretension::sides(mesh, s).map(|beyond| Cut { section: k, beyond })
+            })
+            .collect();
+        let mut bodies: Vec<Body> = (0..nb)
+            .map(|b| {
+                let cuts: Vec<usize> = (0..cuts.len())
+                    .filter(|&c| model.sections[cuts[c].section].body == b)
+                    .collect();
+                Body {
+                    centre: [0.5 * (lo[b][0] + hi[b][0]), 0.5 * (lo[b][1] + hi[b][1])],
+                    size: (hi[b][0] - lo[b][0])
+                        .max(hi[b][1] - lo[b][1])
+                        .max(f64::MIN_POSITIVE),
+                    bc: Gram::new(3 + cuts.len()),
+                    cuts,
+                    turn: if twist { 0.0 } else { 1.0 },
+                    load: vec![0.0; model.patterns().count()],
+                    torque: vec![0.0; model.patterns().count()],
+                    driven: Vec::new(),
+                }
+            })
+            .collect();
+        if model.section.axisymmetric {
+            // a body of revolution has one rigid motion, along the axis: a
+            // radial translation strains it around the hoop, and it cannot
+            // rotate in the meridian plane
+            for b in &mut bodies {
+                let n = 3 + b.cuts.len();
+                let unit = |i: usize| {
+                    (0..n)
+                        .map(|j| f64::from(u8::from(i == j)))
+                        .collect::<Vec<_>>()
+                };
+                b.bc.add(&unit(0));
+                b.bc.add(&unit(2));
+            }
+        }
+        for (&(d, v), &h) in model.prescribed.iter().zip(&model.prescribed_history) {
+            // u_θ (twist) holds the rotation about the axis, the in-plane
+            // dofs the motions in the meridian plane; a section's reference
+            // node (after the mesh's) belongs to the body it cuts
+            let (n, c) = model.node_dofs().node_of(d);
+            let b = match body_of.get(n) {
+                Some(&b) if b < nb => b,
+                Some(_) => continue,
+                None => match model.sections.get(n - mesh.nodes.len()) {
+                    Some(s) if c == 0 => s.body,
+                    _ => continue,
+                },
+            };
+            match c {
+                _ if n >= mesh.nodes.len() => {}
+                0 | 1 => {
+                    let e = if c == 0 { [1.0, 0.0] } else { [0.0, 1.0] };
+                    let r = bodies[b].row(&cuts, model, n, mesh.nodes[n], e);
+                    bodies[b].bc.add(&r);
+                }
+                _ => bodies[b].turn += bodies[b].turn_row(mesh.nodes[n]),
+            }
+            if v != 0.0 && !bodies[b].driven.contains(&h) {
+                bodies[b].driven.push(h);
+            }
+        }
+        for (p, (_, f)) in model.patterns().enumerate() {
+            for (n, &b) in body_of.iter().enumerate() {
+                if b < nb {
+                    let v = &f[model.node_dofs().of(n)];
+                    bodies[b].load[p] +=
+                        v.iter().skip(2).fold(v[0].hypot(v[1]), |a, x| a.hypot(*x));
+                    if twist {
+                        bodies[b].torque[p] += mesh.nodes[n][0] * v[2];
+                    }
+                }
+            }
+            // a section's force loads the body it cuts
+            for s in &model.sections {
+                bodies[s.body].load[p] += f[s.dof].abs();
+            }
+        }
+        // a body without an interface and without enough supports is a
+        // mechanism no interface spring can hold (and mostly refused up front)
+        let linked = (0..nb)
+            .map(|b| (model.interfaces.iter()).any(|im| im.body_a == b || im.body_b == b))
+            .collect();
+        Stabilizer {
+            bodies,
+            cuts,
+            linked,
+            carrying: model
+                .interfaces
+                .iter()
+                .map(InterfaceModel::carrying_pairs)
+                .collect(),
+            enabled: model.solver.stabilization == Stabilization::Auto,
+            springs: None,
+            guess: None,
+            pending: None,
+            report: Report {
+                limit: model.solver.stabilization_energy,
+                ..Report::default()
+            },
+            used: 0,
+        }
+    }
+
+    /// The bodies not held at displacement `u` in a step to `lambda`: neither
+    /// by their boundary conditions nor through supporting pairs with a held
+    /// body (approach in (−1e-12, 0] mm, where the secant start applies, or
+    /// closed with a pressure of at least [`SUPPORT`] × the step's reference
+    /// pressure); ascending. Only pairs that can carry force support
+    /// ([`InterfaceModel::carrying_pairs`]): a pair without area, such as the
+    /// apex of a sphere on the axis under lumped weights, touches at zero
+    /// approach but holds nothing.
+    pub fn floating(&self, model: &Model, u: &[f64], lambda: f64) -> Vec<usize> {
+        self.floating_as(model, u, lambda, |s| {
+            crate::model::pretension::free_at(s, lambda)
+        })
+    }
+
+    /// [`Stabilizer::floating`] with the sections `free` says are free
+    /// (the others hold their cuts).
+    fn floating_as(
+        &self,
+        model: &Model,
+        u: &[f64],
+        lambda: f64,
+        free: impl Fn(&crate::model::pretension::Section) -> bool,
+    ) -> Vec<usize> {
+        let mut held: Vec<bool> = (0..self.bodies.len())
+            .map(|b| !self.loose_as(model, b, &free))
+            .collect();
+        if held.iter().all(|&h| h) {
+            return Vec::new();
+        }
+        let p_min: Vec<f64> = (0..model.interfaces.len())
+            .map(|i| SUPPORT * model.reference_pressure(i, lambda))
+            .collect();
+        loop {
+            let mut changed = false;
+            for b in 0..self.bodies.len() {
+                if held[b] {
+                    continue;
+                }
+                let body = &self.bodies[b];
+                let mut g = self.own(model, b, &free);
+                let mut turn = body.turn;
+                for (i, im) in model.interfaces.iter().enumerate() {
+                    let other = if im.body_a == b {
+                        im.body_b
+                    } else if im.body_b == b {
+                        im.body_a
+                    } else {
+                        continue;
+                    };
+                    if !held[other] {
+                        continue;
+                    }
+                    let gap = im.gap_at(lambda);
+                    for (pr, _) in im.pairs.iter().zip(&self.carrying[i]).filter(|(_, &c)| c) {
+                        let un = im.pair_approach_at(pr, u, gap);
+                        let supports = if un > 0.0 {
+                            im.law.pressure(un).0 >= p_min[i]
+                        } else {
+                            un > TOUCH
+                        };
+                        if supports {
+                            let node = if im.body_a == b { pr.a } else { pr.b };
+                            let row = |e| body.row(&self.cuts, model, node, pr.x, e);
+                            g.add(&row(pr.normal));
+                            if im.tangential.is_some() && un > 0.0 {
+                                g.add(&row([pr.normal[1], -pr.normal[0]]));
+                                // friction around the axis as well (twist)
+                                turn += body.turn_row(pr.x);
+                            }
+                        }
+                    }
+                }
+                if fixes(&g, turn) {
+                    held[b] = true;
+                    changed = true;
+                }
+            }
+            if !changed {
+                break;
+            }
+        }
+        (0..held.len()).filter(|&b| !held[b]).collect()
+    }
+
+    /// The rows body `b`'s own supports impose, and its cuts whose sections
+    /// `free` does not free (locked, [`crate::model::pretension::free_at`]).
+    fn own(
+        &self,
+        model: &Model,
+        b: usize,
+        free: &impl Fn(&crate::model::pretension::Section) -> bool,
+    ) -> Gram {
+        let body = &self.bodies[b];
+        let mut g = body.bc.clone();
+        for (k, &c) in body.cuts.iter().enumerate() {
+            if !free(&model.sections[self.cuts[c].section]) {
+                g.add(&body.cut_row(k));
+            }
+        }
+        g
+    }
+
+    /// Whether body `b` has an interface and its own supports leave a rigid
+    /// motion free (its cuts' sections free as `free` says).
+    fn loose_as(
+        &self,
+        model: &Model,
+        b: usize,
+        free: &impl Fn(&crate::model::pretension::Section) -> bool,
+    ) -> bool {
+        self.linked[b] && !fixes(&self.own(model, b, free), self.bodies[b].turn)
+    }
+
+    /// [`Stabilizer::loose_as`] in a step to `lambda`.
+    fn loose(&self, model: &Model, b: usize, lambda: f64) -> bool {
+        self.loose_as(model, b, &|s| crate::model::pretension::free_at(s, lambda))
+    }
+
+    /// Whether a body held only through interfaces carries no load at
+    /// pseudo-time `lambda`: every load pattern and prescribed displacement
+    /// acting on it at factor 0 there (all of them at λ = 0 without
+    /// histories), and no interference on its interfaces.
+    pub(in crate::solve) fn unloaded(&self, model: &Model, lambda: f64) -> Option<usize> {
+        (0..self.bodies.len())
+            .find(|&b| self.loose(model, b, lambda) && !self.carries_load(model, b, lambda))
+    }
+
+    /// Whether some body held only through interfaces carries a load at
+    /// `lambda`: then a body of [`Stabilizer::unloaded`] may still be pressed
+    /// into place by it (the middle disk of a stack loaded on its top), and a
+    /// stabilized step is released when it can be.
+    pub(in crate::solve) fn any_loaded(&self, model: &Model, lambda: f64) -> bool {
+        (0..self.bodies.len())
+            .any(|b| self.loose(model, b, lambda) && self.carries_load(model, b, lambda))
+    }
+
+    /// Whether body `b` carries a load at `lambda`: a load pattern or a
+    /// prescribed displacement acting on it at a non-zero factor, or an
+    /// interference on one of its interfaces.
+    fn carries_load(&self, model: &Model, b: usize, lambda: f64) -> bool {
+        let body = &self.bodies[b];
+        let on = |h: Option<usize>| model.factor(h, lambda) != 0.0;
+        (body.load.iter().zip(model.patterns())).any(|(&l, (h, _))| l != 0.0 && on(h))
+            || body.driven.iter().any(|&h| on(h))
+            || (model.interfaces.iter())
+                .any(|im| (im.body_a == b || im.body_b == b) && im.gap_at(lambda) < 0.0)
+    }
+
+    /// Called when the engine's last step is committed; whether that step
+    /// was a plain one (neither stabilized nor released).
+    pub(in crate::solve) fn commit(&mut self) -> bool {
+        let Some((stabilized, w)) = self.pending.take() else {
+            return true;
+        };
+        if stabilized {
+            self.report.stabilized += 1;
+            self.report.dissipated += w;
+        } else {
+            self.report.released += 1;
+        }
+        false
+    }
+}
+
+/// Adds the stabilization spring of one interface point to its local residual
+/// `r` and matrix `k` (the layout of [`InterfaceModel::eval_point`]): stiffness
+/// `ks` per area on the change of the relative displacement since `committed`.
+/// Abaqus-style contact stabilization (see the module documentation).
+pub fn add_point(
+    im: &InterfaceModel,
+    pt: &Point,
+    ks: f64,
+    committed: &[f64],
+    u: &[f64],
+    r: &mut [f64],
+    k: &mut [f64],
+) {
+    let [dn, dt, dh] = increment(im, pt, committed, u);
+    let g = im.point_gradients(pt);
+    let (gn, gt) = (g.n, g.t);
+    let nd = im.point_ndofs(pt);
+    let a = pt.area * ks;
+    for i in 0..nd {
+        r[i] += a * (dn * gn[i] + dt * gt[i]);
+        for j in 0..nd {
+            k[i * nd + j] += a * (gn[i] * gn[j] + gt[i] * gt[j]);
+        }
+    }
+    // with twist, around the axis as well: u_Tθ's spring holds a body that
+    // only friction would hold about the axis once in contact
+    let gh = g.h;
+    if !gh.is_empty() {
+        for i in 0..nd {
+            r[i] += a * dh * gh[i];
+            for j in 0..nd {
+                k[i * nd + j] += a * gh[i] * gh[j];
+            }
+        }
+    }
+}
+
+/// Change of the normal, tangential and (twist) circumferential relative
+/// displacement at a point; the last is 0 without twist.
+pub(in crate::solve) fn increment(
+    im: &InterfaceModel,
+    pt: &Point,
+    committed: &[f64],
+    u: &[f64],
+) -> [f64; 3] {
+    let (n1, t1) = im.point_kinematics(pt, u);
+    let (n0, t0) = im.point_kinematics(pt, committed);
+    let dh = im.point_hoop_slip(pt, u) - im.point_hoop_slip(pt, committed);
+    [n1 - n0, t1 - t0, dh]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn body() -> Body {
+        Body {
+            centre: [10.0, 10.0],
+            size: 20.0,
+            cuts: Vec::new(),
+            bc: Gram::new(3),
+            turn: 0.0,
+            load: Vec::new(),
+            torque: Vec::new(),
+            driven: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn the_rotation_about_the_axis_is_held_by_rows_off_the_axis_only() {
+        let b = body();
+        let mut g = Gram::new(3);
+        g.add(&[1.0, 0.0, 0.0]);
+        g.add(&[0.0, 0.0, 1.0]);
+        g.add(&b.plane_row([3.0, 0.0], [0.0, 1.0]));
+        assert!(g.fixes_all());
+        // in-plane held, but nothing about the axis (twist)
+        assert!(!fixes(&g, b.turn));
+        // a u_θ on the axis holds nothing (u_θ = ω r vanishes there)
+        assert_eq!(b.turn_row([0.0, 5.0]), 0.0);
+        assert!(!fixes(&g, b.turn + b.turn_row([0.0, 5.0])));
+        // one off the axis holds it: (r/L)² = (5/20)²
+        assert_eq!(b.turn_row([5.0, 5.0]), 0.0625);
+        assert!(fixes(&g, b.turn + b.turn_row([5.0, 5.0])));
+    }
+
+    #[test]
+    fn rows_fix_the_rigid_motions_they_should() {
+        let b = body();
+        // u_x = 0 along the left edge: x translation and rotation, not y
+        let mut g = Gram::new(3);
+        for y in [0.0, 5.0, 10.0, 20.0] {
+            g.add(&b.plane_row([0.0, y], [1.0, 0.0]));
+        }
+        assert!(!g.fixes_all());
+        // one vertical support more fixes all three
+        let mut h = g.clone();
+        h.add(&b.plane_row([3.0, 0.0], [0.0, 1.0]));
+        assert!(h.fixes_all());
+        // normal springs along a horizontal interface: y and rotation, with
+        // the left edge's x: all three
+        let mut s = g.clone();
+        for x in [0.0, 10.0, 20.0] {
+            s.add(&b.plane_row([x, 0.0], [0.0, 1.0]));
+        }
+        assert!(s.fixes_all());
+        // vertical springs at one point only leave the rotation free without x
+        let mut one = Gram::new(3);
+        one.add(&b.plane_row([5.0, 0.0], [0.0, 1.0]));
+        one.add(&b.plane_row([5.0, 0.0], [0.0, 1.0]));
+        assert!(!one.fixes_all());
+        assert!(!Gram::new(3).fixes_all());
+    }
+}

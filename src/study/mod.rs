@@ -1,7 +1,0 @@
-//! Studies and pictures: the paper's figures regenerated from our runs.
-
-pub mod figures;
-pub mod plot;
-pub mod refine;
-pub mod runner;
-pub mod stability;
