@@ -18,7 +18,7 @@ import xml.etree.ElementTree as ET
 import meshio
 import numpy as np
 
-POINT_ARRAYS = {  # name: components (see src/output/vtu.rs)
+POINT_ARRAYS = {  # name: components (see src/files/output/vtu.rs)
     "displacement": 3,
     "stress": 4,
     "von_mises": 1,

@@ -153,7 +153,7 @@ fn summary_json_matches_the_documented_schema() {
     let mut seen = std::collections::BTreeSet::new();
     let mut errors = Vec::new();
     // a closed load cycle needs a load history: the summary's cycle object
-    // from a synthetic cycle (src/output/joints.rs writes it the same way)
+    // from a synthetic cycle (src/files/output/joints_csv.rs writes it the same way)
     let cycle = asperity::files::output::joints_csv::cycle_json(
         1,
         &asperity::model::interface::joint::Cycle {
@@ -191,7 +191,7 @@ fn summary_json_matches_the_documented_schema() {
     assert!(with.get("pretension").is_none(), "{with}");
     let mut with_cycle = with.clone();
     with_cycle["joints"][0]["cycles"] = Value::Array(vec![cycle]);
-    // a fitted sweep (src/output/damping.rs writes it the same way)
+    // a fitted sweep (src/files/output/damping.rs writes it the same way)
     let sweep_of = |f: f64, d: f64| asperity::model::interface::joint::Cycle {
         start_increment: 1,
         end_increment: 2,

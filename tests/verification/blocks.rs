@@ -1,4 +1,4 @@
-//! Bodies of several blocks (issue 27, src/mesh/blocks/merge.rs): a body
+//! Bodies of several blocks (issue 27, src/input/mesh/blocks/merge.rs): a body
 //! split into blocks is the body meshed as one block, to round-off: the same
 //! displacements at the same points and the same plastic strains, elastic
 //! and elastic-plastic, split in x and in y, also under a face that spans

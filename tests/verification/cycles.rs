@@ -1,5 +1,5 @@
 //! Joint loops against the energies the program reports (issue 18 part 6,
-//! src/interface/joint.rs, docs/output.md "Joints: sign conventions"):
+//! src/model/interface/joint.rs, docs/output.md "Joints: sign conventions"):
 //!
 //! * every spring alike (all nodes of both bodies prescribed): the loop area
 //!   of F_T against ū_T in joints.csv, by the trapezoid rule, equals each

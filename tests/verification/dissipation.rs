@@ -1,6 +1,6 @@
 //! The running dissipation never decreases (issue 42): joints.csv's
 //! `dissipation_nmm` is the friction work of the law's sliders
-//! (src/interface/tangential/work.rs), for every memory and backbone, in
+//! (src/physics/contact/tangential/work.rs), for every memory and backbone, in
 //! the plane and under twist (the vector law), through reversals and while
 //! a preload is removed. Until issue 42 it was the shear on u_T − p_T/k_T^e
 //! and fell after reversals under the kinematic memory (the shipped

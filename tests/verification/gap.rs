@@ -1,5 +1,5 @@
 //! Force control across a gap and bodies held only through the interface
-//! (src/solve/stabilize.rs): the stabilized answer once contact is established
+//! (src/solve/stabilization/mod.rs): the stabilized answer once contact is established
 //! equals the displacement-controlled one and the gap-free one; the
 //! stabilization's dissipated energy stays within its stated fraction; a run
 //! that cannot be solved names the floating body.

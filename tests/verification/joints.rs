@@ -1,5 +1,5 @@
 //! Vertical interfaces between blocks and the joint outputs against closed
-//! forms and equilibrium (src/mesh/blocks.rs, src/interface/joint.rs):
+//! forms and equilibrium (src/input/mesh/blocks.rs, src/model/interface/joint.rs):
 //! blocks pressed together sideways carry p_N = q at every point; the joint
 //! convention (A dragged in +t relative to B gives F_T, ū_T > 0) on a
 //! horizontal and a vertical interface, with F_T the force that drags A;

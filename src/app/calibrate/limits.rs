@@ -29,7 +29,7 @@ pub struct Limit {
     pub below: &'static str,
 }
 
-/// Young's modulus: accepted as by the case file (src/case/ranges.rs MODULUS).
+/// Young's modulus: accepted as by the case file (src/input/case/ranges.rs MODULUS).
 pub const YOUNG: Limit = Limit {
     quantity: "Young's modulus",
     unit: "MPa",
@@ -97,7 +97,7 @@ pub const SAMPLING: Limit = Limit {
     above: "a value in µm written as mm?",
     below: "a value in m written as mm?",
 };
-/// The fit range: accepted as the case file's pressures (src/case/ranges.rs PRESSURE).
+/// The fit range: accepted as the case file's pressures (src/input/case/ranges.rs PRESSURE).
 pub const PRESSURE: Limit = Limit {
     quantity: "a fit pressure",
     unit: "MPa",
