@@ -25,6 +25,7 @@
 // The ground floor, used by every layer: errors, interrupts, threads, log lines.
 pub mod error;
 pub mod interrupt;
+pub mod numbers;
 pub mod progress;
 pub mod threads;
 

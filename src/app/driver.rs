@@ -117,7 +117,7 @@ pub fn load_case(case_path: &Path, opts: &RunOptions) -> Result<Case> {
         o.set("[mesh] refine", format!("--refine {r}"));
     }
     if let Some(t) = opts.adapt {
-        let option = format!("--adapt {}", crate::app::calibrate::limits::exact(t));
+        let option = format!("--adapt {}", crate::numbers::exact(t));
         case.adapt = Some(match case.adapt.take() {
             Some(a) => {
                 o.set("[adapt] tolerance", option);

@@ -8,7 +8,7 @@
 use crate::app::driver::{self, RunOptions};
 use crate::error::{Error, Result};
 use crate::linalg::backend::petsc::{snes::SnesSolver, solver::PetscBackend, LinearDefault, Petsc};
-use crate::solve::nonlinear::NonlinearSolver;
+use crate::linalg::nonlinear::NonlinearSolver;
 use crate::solve::Engine;
 use mpi::traits::*;
 use std::path::{Path, PathBuf};

@@ -2,5 +2,7 @@
 //! backends that factor and solve (the serial faer one, PETSc under MPI;
 //! [`backend`]).
 
-pub mod assembly;
 pub mod backend;
+pub mod dense;
+pub mod failure;
+pub mod nonlinear;

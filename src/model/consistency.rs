@@ -329,19 +329,6 @@ fn sized_by(case: &Case, body: usize, mesh: &Mesh, centre: [f64; 2], place: &str
     }
 }
 
-/// The area two rectangles [x0, x1, y0, y1] share, if any: more than 1e-9
-/// of the larger side in both directions (rectangles that touch share none).
-pub(crate) fn common_area(r: [f64; 4], s: [f64; 4]) -> Option<[f64; 4]> {
-    let size = (r[1] - r[0])
-        .max(r[3] - r[2])
-        .max(s[1] - s[0])
-        .max(s[3] - s[2]);
-    let tol = 1e-9 * size;
-    let (x0, x1) = (r[0].max(s[0]), r[1].min(s[1]));
-    let (y0, y1) = (r[2].max(s[2]), r[3].min(s[3]));
-    (x1 - x0 > tol && y1 - y0 > tol).then_some([x0, x1, y0, y1])
-}
-
 /// Generated blocks: no two rectangles share area.
 fn blocks_overlap(case: &Case, place: &str) -> Result<()> {
     let rect = |b: &crate::input::mesh::blocks::BlockSpec| {
@@ -357,7 +344,7 @@ fn blocks_overlap(case: &Case, place: &str) -> Result<()> {
     for (j, b) in blocks.iter().enumerate() {
         let r = rect(b);
         for a in &blocks[..j] {
-            if let Some([x0, x1, y0, y1]) = common_area(r, rect(a)) {
+            if let Some([x0, x1, y0, y1]) = crate::input::mesh::blocks::common_area(r, rect(a)) {
                 return Err(Error::input(
                     format!("{place}: [[mesh.block]]"),
                     format!(

@@ -6,13 +6,14 @@
 use crate::error::{Error, Result};
 use crate::input::case::{check_case, Case, Integration};
 use crate::input::mesh::{Mesh, NodeDofs};
-use crate::linalg::assembly::{Blocks, DofMap, Pattern};
+use crate::model::assembly::{Blocks, DofMap, Pattern};
 use crate::model::interface::InterfaceModel;
 use crate::physics::element::q8::{self, GaussRule};
 use crate::physics::element::solid::ElementGeometry;
 use crate::physics::element::solid::ElementVector;
 use crate::physics::material::{Plane, VonMises};
 
+pub mod assembly;
 pub mod axis;
 pub mod consistency;
 use consistency as whole;
@@ -24,6 +25,7 @@ pub mod loads;
 mod measurable;
 mod meshes;
 pub mod pretension;
+pub mod schedule;
 use meshes::{check_mesh, make_mesh};
 pub mod supports;
 use supports::check_supports;

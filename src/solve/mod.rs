@@ -5,10 +5,7 @@
 mod accelerate;
 mod checkpoint;
 pub mod events;
-pub mod failure;
 pub mod newton;
-pub mod nonlinear;
-pub mod schedule;
 pub mod stabilization;
 pub mod stepping;
 pub(crate) mod yield_point;
@@ -16,7 +13,7 @@ pub(crate) mod yield_point;
 pub use crate::input::case::settings::{Acceleration, Method, Stabilization, StepControl};
 pub use checkpoint::Checkpoint;
 use checkpoint::{write_increment, write_last_state, written_everywhere};
-pub use failure::StepFailure;
+pub use crate::linalg::failure::StepFailure;
 pub use newton::{Engine, Stats};
 pub use yield_point::FirstYield;
 

@@ -24,7 +24,7 @@
 //! schedule is the case's own, as it always was.
 
 use crate::input::case::{SolverSpec, StepControl};
-pub use crate::solve::schedule::{segment_schedule, segment_steps, waypoints};
+pub use crate::model::schedule::{segment_schedule, segment_steps, waypoints};
 
 /// Relative tolerance under which two load factors are the same waypoint.
 const SAME: f64 = 1e-12;
@@ -143,14 +143,14 @@ impl Stepper {
         }
     }
 
-    /// The fixed schedule ([`crate::solve::schedule::schedule`]).
+    /// The fixed schedule ([`crate::model::schedule::schedule`]).
     pub fn schedule(spec: &SolverSpec, breakpoints: &[f64]) -> Vec<f64> {
-        crate::solve::schedule::schedule(spec, breakpoints)
+        crate::model::schedule::schedule(spec, breakpoints)
     }
 
-    /// Increments planned ([`crate::solve::schedule::planned`]).
+    /// Increments planned ([`crate::model::schedule::planned`]).
     pub fn planned(spec: &SolverSpec, breakpoints: &[f64]) -> Option<usize> {
-        crate::solve::schedule::planned(spec, breakpoints)
+        crate::model::schedule::planned(spec, breakpoints)
     }
 
     /// Where the first increment of a run from the start goes (`None`: a
@@ -217,7 +217,7 @@ impl Stepper {
             let k = i + 1;
             // the values come from a file: quoted short (a forged 1e300 as
             // `1e300`, not 301 digits)
-            let num = crate::app::calibrate::limits::exact;
+            let num = crate::numbers::exact;
             let Some(mut target) = self.next(lambda) else {
                 return Err(format!(
                     "increment {k} (load factor {}) comes after the end of the case's load history",

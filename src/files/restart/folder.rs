@@ -48,7 +48,7 @@ pub(super) const COUNTER_MARGIN: u128 = 2;
 /// plain or scientific (at most 24 characters: a forged 1e300 is `1e300`,
 /// not 301 digits).
 pub(super) fn num(x: f64) -> String {
-    crate::app::calibrate::limits::exact(x)
+    crate::numbers::exact(x)
 }
 
 /// The most Newton iterations (and as many factorizations: one per

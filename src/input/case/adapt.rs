@@ -136,7 +136,7 @@ impl<'de> Deserialize<'de> for Quantity {
 /// The checks of `[adapt]` that need no mesh.
 pub fn check(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
     let Some(a) = &case.adapt else { return Ok(()) };
-    let exact = crate::app::calibrate::limits::exact;
+    let exact = crate::numbers::exact;
     if !(a.tolerance.is_finite() && a.tolerance > 0.0 && a.tolerance < 1.0) {
         return Err(Error::input(
             at("[adapt] tolerance"),

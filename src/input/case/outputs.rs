@@ -95,7 +95,7 @@ pub fn check(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
                 at("[output] event_tolerance"),
                 format!(
                     "{} must be in [{MIN_EVENT_TOLERANCE:e}, 1): the width of an event's bracket in load factor (pseudo-time)",
-                    crate::app::calibrate::limits::exact(t)
+                    crate::numbers::exact(t)
                 ),
             ));
         }

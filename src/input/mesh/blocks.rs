@@ -608,3 +608,16 @@ fn match_sides(mesh: &Mesh, name: &str, f: &Facing) -> Result<Vec<ContactEdge>, 
 
 #[cfg(test)]
 mod tests;
+
+/// The area two rectangles [x0, x1, y0, y1] share, if any: more than 1e-9
+/// of the larger side in both directions (rectangles that touch share none).
+pub(crate) fn common_area(r: [f64; 4], s: [f64; 4]) -> Option<[f64; 4]> {
+    let size = (r[1] - r[0])
+        .max(r[3] - r[2])
+        .max(s[1] - s[0])
+        .max(s[3] - s[2]);
+    let tol = 1e-9 * size;
+    let (x0, x1) = (r[0].max(s[0]), r[1].min(s[1]));
+    let (y0, y1) = (r[2].max(s[2]), r[3].min(s[3]));
+    (x1 - x0 > tol && y1 - y0 > tol).then_some([x0, x1, y0, y1])
+}

@@ -3,11 +3,10 @@
 //! meshed apart ([`NonMatching`]).
 
 pub mod blocks;
-mod dofs;
 pub mod gmsh;
 pub mod refine;
 
-pub use dofs::NodeDofs;
+pub use crate::physics::element::dofs::NodeDofs;
 
 use crate::physics::element::q8;
 use std::collections::BTreeMap;

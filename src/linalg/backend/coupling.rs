@@ -34,7 +34,7 @@
 //! factors the whole K by LU instead. Measurements: docs/performance.md,
 //! "The unsymmetric tangent at Cholesky cost".
 
-use crate::linalg::assembly::Assembler;
+use crate::model::assembly::Assembler;
 
 /// Most GMRES steps on the capacitance system before the LU of the whole
 /// tangent takes over.
@@ -280,7 +280,7 @@ fn norm(a: &[f64]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::linalg::assembly::{Assembler, Blocks, DofMap, Pattern};
+    use crate::model::assembly::{Assembler, Blocks, DofMap, Pattern};
 
     /// M⁻¹ by a dense LU; the interface equations: `iface`.
     struct Dense {

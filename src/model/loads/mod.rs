@@ -303,7 +303,7 @@ fn check_step_count(case: &Case, breakpoints: &[f64], place: &str) -> Result<()>
         ));
     }
     let end = breakpoints.last().copied().unwrap_or(1.0).max(1.0);
-    if let Some(n) = crate::solve::schedule::planned(&case.solver, breakpoints) {
+    if let Some(n) = crate::model::schedule::planned(&case.solver, breakpoints) {
         if n > most {
             // the steps per unit of pseudo-time: `--increments`, else the
             // case's (or the default) under fixed steps `--step-control`

@@ -1,6 +1,7 @@
 //! Finite elements: the 8-node serendipity quad and the solid element.
 
 pub mod axisymmetric_twist;
+pub mod dofs;
 pub mod q8;
 pub mod solid;
 

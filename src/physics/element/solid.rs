@@ -25,7 +25,7 @@
 //! evaluated rather than stored: about 1,000 flops against the element's
 //! 20,000, and it saves 1.4 KB per element (a quarter of the model's memory).
 
-use crate::input::mesh::NodeDofs;
+use super::dofs::NodeDofs;
 use crate::physics::element::q8::{physical_derivs, GaussRule};
 use crate::physics::element::Section;
 use crate::physics::material::{Plane, PointState, VonMises};

@@ -17,8 +17,8 @@ pub mod interface_loop;
 mod step;
 pub use step::StepProblem;
 
-use super::failure::StepFailure;
-use super::nonlinear::{NonlinearSolver, Problem, Verdict};
+use crate::linalg::failure::StepFailure;
+use crate::linalg::nonlinear::{NonlinearSolver, Problem, Verdict};
 use super::stabilization::mechanism::Stabilizer;
 use super::State;
 use crate::input::case::Method;

@@ -7,8 +7,8 @@ use crate::input::case::{Acceleration, Method};
 use crate::physics::contact::Status;
 use crate::physics::element::solid::{Response, Tangent};
 use crate::solve::accelerate::Anderson;
-use crate::solve::failure::StepFailure;
-use crate::solve::nonlinear::{Problem, Verdict};
+use crate::linalg::failure::StepFailure;
+use crate::linalg::nonlinear::{Problem, Verdict};
 use crate::solve::State;
 
 /// A residual this many times the reference, after the first iterations, is

@@ -119,7 +119,7 @@ fn rect(g: &Grid) -> [f64; 4] {
 /// Two blocks of one body may touch, not share area (within 1e-9 of the
 /// larger block's size, as between bodies: [`crate::model::consistency`]).
 fn no_common_area(mesh: &Mesh, a: &Grid, b: &Grid) -> Result<(), MeshError> {
-    if let Some([x0, x1, y0, y1]) = crate::model::consistency::common_area(rect(a), rect(b)) {
+    if let Some([x0, x1, y0, y1]) = crate::input::mesh::blocks::common_area(rect(a), rect(b)) {
         return Err(MeshError(format!(
             "blocks \"{}\" and \"{}\" of body \"{}\" overlap in x = {x0} … {x1}, y = {y0} … {y1}: the blocks of one body may share sides, not area",
             clip(&a.name),

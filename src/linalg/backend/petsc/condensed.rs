@@ -362,7 +362,7 @@ impl crate::linalg::backend::Condensed for PetscBackend<'_> {
         for k in 0..m {
             s[k * m + k] = 1.0;
         }
-        crate::solve::newton::interface_loop::dense_solve(&mut z, &mut s, m).then_some(s)
+        crate::linalg::dense::dense_solve(&mut z, &mut s, m).then_some(s)
     }
 
     fn lift(&mut self, e: &[f64], x: &mut [f64]) -> bool {

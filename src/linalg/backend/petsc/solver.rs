@@ -5,7 +5,7 @@
 
 use super::{chk, ffi, Ksp, LinearDefault, PMat, PVec, Petsc, ToAll};
 use crate::error::{Error, Result};
-use crate::linalg::assembly::Pattern;
+use crate::model::assembly::Pattern;
 use crate::model::Model;
 use mpi::collective::SystemOperation;
 use mpi::topology::SimpleCommunicator;

@@ -3,7 +3,7 @@
 
 use super::{Factorization, SerialDirect, FACTOR_THREADS};
 use crate::error::Result;
-use crate::linalg::assembly::{Assembler, Pattern};
+use crate::model::assembly::{Assembler, Pattern};
 use crate::linalg::backend::coupling::{Couplings, Outcome};
 use crate::model::Model;
 
@@ -232,7 +232,7 @@ impl crate::linalg::backend::Backend for SerialBackend {
 /// increasing order.
 fn interface_equations(
     model: &Model,
-    blocks: &crate::linalg::assembly::Blocks,
+    blocks: &crate::model::assembly::Blocks,
     n: usize,
 ) -> Vec<usize> {
     let first = model

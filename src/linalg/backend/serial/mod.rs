@@ -27,7 +27,7 @@
 use super::coupling::{self, Couplings, Inverse, Outcome};
 use super::trailing::{self as trail, Trailing};
 use crate::error::{Error, Result};
-use crate::linalg::assembly::Pattern;
+use crate::model::assembly::Pattern;
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::perm::PermRef;

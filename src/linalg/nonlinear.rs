@@ -49,7 +49,7 @@ pub trait NonlinearSolver {
     fn name(&self) -> &'static str;
     /// Iterates from `problem.initial()` until the problem says stop. An `Err`
     /// is a failure of the solver itself (linear solve, line search).
-    fn solve(&mut self, problem: &mut dyn Problem) -> Result<(), super::StepFailure>;
+    fn solve(&mut self, problem: &mut dyn Problem) -> Result<(), super::failure::StepFailure>;
     /// The linear solver inside, when it is not the backend's.
     fn linear_solver(&self) -> Option<String> {
         None
