@@ -68,7 +68,10 @@ fn src_tokens(line: &str) -> Vec<String> {
             Some('/') => {
                 let dirs = before.trim_end_matches(['.', '/']);
                 let rel = &before[dirs.len()..];
-                !rel.is_empty() && rel.split('/').all(|p| p.is_empty() || p == "." || p == "..")
+                !rel.is_empty()
+                    && rel
+                        .split('/')
+                        .all(|p| p.is_empty() || p == "." || p == "..")
                     && !dirs.ends_with(|c: char| c.is_ascii_alphanumeric() || c == '_' || c == '-')
             }
             Some(c) => !(c.is_ascii_alphanumeric() || matches!(c, '_' | '-' | '.')),
@@ -131,7 +134,9 @@ fn bare_names(description: &str) -> Vec<String> {
         .filter(|w| {
             !w.is_empty()
                 && !w.starts_with("src/")
-                && w.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || matches!(c, '_' | '/' | '.'))
+                && w.chars().all(|c| {
+                    c.is_ascii_lowercase() || c.is_ascii_digit() || matches!(c, '_' | '/' | '.')
+                })
                 && !w.starts_with('/')
                 && (w.ends_with(".rs") || (w.ends_with('/') && w.len() > 1))
         })
@@ -175,15 +180,14 @@ fn named_paths(text: &str) -> Vec<(usize, String)> {
                 .collect::<Vec<_>>()
                 .join(" ")
         } else if raw.starts_with(char::is_whitespace) && !trimmed.is_empty() {
-            if entry.is_none() {
-                continue;
-            }
             raw.to_string()
         } else {
             entry = None;
             continue;
         };
-        let folder = entry.clone().unwrap();
+        let Some(folder) = &entry else {
+            continue;
+        };
         for name in bare_names(&description) {
             found.push((n + 1, format!("{folder}{name}")));
         }
@@ -203,13 +207,10 @@ fn exists(root: &Path, path: &str) -> bool {
 
 /// A hint for a missing path: the module's other form where it exists.
 fn hint(root: &Path, path: &str) -> String {
-    let other = if let Some(stem) = path.strip_suffix(".rs") {
-        Some(format!("{stem}/mod.rs"))
-    } else if let Some(dir) = path.strip_suffix('/') {
-        Some(format!("{dir}.rs"))
-    } else {
-        None
-    };
+    let other = path
+        .strip_suffix(".rs")
+        .map(|stem| format!("{stem}/mod.rs"))
+        .or_else(|| path.strip_suffix('/').map(|dir| format!("{dir}.rs")));
     match other {
         Some(o) if exists(root, &o) => format!(" (there is {o})"),
         _ => String::new(),
@@ -298,7 +299,8 @@ cases/           case files (mod.rs is not a code map entry here)
 /// A folder of its own with a small source tree, for the tests of the
 /// checker (the real tree moves).
 fn fixture(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("asperity-doc-paths-{name}-{}", std::process::id()));
+    let dir =
+        std::env::temp_dir().join(format!("asperity-doc-paths-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(dir.join("src/solve/newton")).unwrap();
     for f in ["src/lib.rs", "src/solve/mod.rs", "src/solve/newton/step.rs"] {
@@ -335,4 +337,23 @@ src/solve/       its settings (no_such_file.rs), the step (newton/step.rs)
         ]
     );
     std::fs::remove_dir_all(&root).unwrap();
+}
+
+/// docs/performance.md holds the current figures only, at most 40 KB; the
+/// dated measurements and their history live in docs/performance-log.md.
+#[test]
+fn performance_md_is_at_most_40_kb_and_links_its_log() {
+    let root = root();
+    let n = std::fs::metadata(root.join("docs/performance.md"))
+        .unwrap()
+        .len();
+    assert!(
+        n <= 40 * 1024,
+        "docs/performance.md is {n} bytes, more than 40 KB"
+    );
+    let text = std::fs::read_to_string(root.join("docs/performance.md")).unwrap();
+    assert!(
+        text.contains("(performance-log.md"),
+        "docs/performance.md does not link docs/performance-log.md"
+    );
 }
