@@ -17,6 +17,7 @@ mod calibrate_roughness;
 mod cli;
 mod damping;
 mod designer;
+mod doc_paths;
 mod figures;
 mod gmsh;
 mod help;
