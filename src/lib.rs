@@ -30,14 +30,30 @@ pub mod progress;
 pub mod threads;
 
 // The pipeline, from the bottom up (ARCHITECTURE.md): each layer uses only
-// the layers listed before it.
-pub mod app;
-pub mod files;
-pub mod input;
-pub mod linalg;
-pub mod model;
+// the layers above it in this list and the ground floor.
+
+// the laws of a point and an element
 pub mod physics;
-pub mod post;
+
+// what the user gives: the case file and the meshes
+pub mod input;
+
+// the discrete model built from them, fixed for the run
+pub mod model;
+
+// linear algebra: the backends, the nonlinear seam
+pub mod linalg;
+
+// what a converged state measures
+pub mod measure;
+
+// the increment loop: stepping, Newton, stabilization, events
 pub mod solve;
+
+// the files a run writes and reads back
+pub mod files;
+
+// the jobs behind the command line
+pub mod app;
 
 pub use error::{Error, Result};

@@ -1,5 +1,5 @@
 //! Adaptive runs (`[adapt]`, `asperity run CASE --adapt TOL`): solve the whole
-//! load history, estimate the error ([`crate::post::estimate`]), mark the elements
+//! load history, estimate the error ([`crate::measure::estimate`]), mark the elements
 //! that hold a share θ of it (Dörfler's bulk criterion), split them with
 //! hanging nodes ([`crate::input::mesh::refine`]), and solve again **from the start
 //! of the history** on the new mesh, until the estimate is below the
@@ -399,7 +399,7 @@ fn next_mesh(
     [max_elements, max_dofs]: [usize; 2],
 ) -> std::result::Result<std::result::Result<Refined, End>, crate::input::mesh::MeshError> {
     // an element at the deepest level is not split again
-    let marked: Vec<usize> = crate::post::estimate::doerfler_mark(eta_sq, fraction)
+    let marked: Vec<usize> = crate::measure::estimate::doerfler_mark(eta_sq, fraction)
         .into_iter()
         .filter(|&e| mesh.state.level[e] < crate::input::mesh::refine::MAX_LEVEL)
         .collect();

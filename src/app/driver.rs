@@ -659,7 +659,7 @@ pub fn check(case_path: &Path, opts: &RunOptions) -> Result<String> {
         }
     }
     for im in &model.interfaces {
-        let t = crate::model::interface::joint::direction(im);
+        let t = crate::model::interface::arcs::direction(im);
         s += &format!(
             "  interface {}: {} pairs, {} points, area {:.4} mm², law {}; A = {}, B = {}, joint direction t = ({}, {})\n",
             im.name,

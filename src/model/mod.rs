@@ -24,8 +24,10 @@ pub mod interface;
 pub mod loads;
 mod measurable;
 mod meshes;
+pub mod outputs;
 pub mod pretension;
 pub mod schedule;
+pub mod state;
 use meshes::{check_mesh, make_mesh};
 pub mod supports;
 use supports::check_supports;
@@ -45,8 +47,8 @@ pub struct Model {
     /// What is written, and how often.
     pub output: crate::input::case::OutputSpec,
     /// The designer's outputs: reaction groups, probes, events
-    /// ([`crate::files::output::plan`]).
-    pub plan: crate::files::output::plan::Plan,
+    /// ([`crate::model::outputs`]).
+    pub plan: crate::model::outputs::Plan,
     /// The case file the model came from (the text's name for [`Model::parse`]).
     pub source: std::path::PathBuf,
     /// What the command line set in place of the case's keys: the run's
@@ -275,13 +277,8 @@ impl Model {
         let section_block_base = blocks.len() - sections.len();
         drop(blocks);
         let (probe_node, surface_y) = probe(&case, &mesh, &start, &interfaces);
-        let plan = crate::files::output::plan::Plan::build(
-            &case,
-            &mesh,
-            &interfaces,
-            &prescribed,
-            &place,
-        )?;
+        let plan =
+            crate::model::outputs::Plan::build(&case, &mesh, &interfaces, &prescribed, &place)?;
         let force_floor = force_floor(&mesh, &materials, section);
         let model = Model {
             name: case.display_name(),

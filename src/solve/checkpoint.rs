@@ -4,7 +4,7 @@
 
 use super::{events, newton, stepping, Engine, FirstYield, Increment, Observer, State};
 use crate::error::{Error, Result};
-use crate::model::interface::joint::JointTotals;
+use crate::measure::joint::JointTotals;
 use crate::model::Model;
 
 /// The committed state of the increment loop: enough to continue a run exactly

@@ -307,7 +307,7 @@ pub(super) fn first_yield(
         solve_failed: false,
         place,
         values: [m.total_load_kn, m.mean_pressure, f64::NAN, f64::NAN],
-        record: model.plan.record(engine, state),
+        record: engine.record(state),
     }
 }
 
@@ -541,7 +541,7 @@ fn bisect(
     }
     let i = m.interface;
     let meas = engine.measures(&sb);
-    let joint = crate::model::interface::joint::measures(
+    let joint = crate::measure::joint::measures(
         &model.interfaces[i..=i],
         model.section,
         sb.time,
@@ -568,6 +568,6 @@ fn bisect(
             j.normal_force,
             j.tangential_force,
         ],
-        record: model.plan.record(engine, &sb),
+        record: engine.record(&sb),
     }))
 }

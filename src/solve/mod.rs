@@ -11,63 +11,21 @@ pub mod stepping;
 pub(crate) mod yield_point;
 
 pub use crate::input::case::settings::{Acceleration, Method, Stabilization, StepControl};
+pub use crate::linalg::failure::StepFailure;
+pub use crate::measure::{joint_measures, Measures};
+pub use crate::model::state::State;
 pub use checkpoint::Checkpoint;
 use checkpoint::{write_increment, write_last_state, written_everywhere};
-pub use crate::linalg::failure::StepFailure;
 pub use newton::{Engine, Stats};
 pub use yield_point::FirstYield;
 
 use crate::error::{Error, Result};
 use crate::interrupt::Stop;
-use crate::model::interface::joint::{self, JointMeasures};
+use crate::measure::joint::{self, JointMeasures};
 use crate::model::Model;
-use crate::physics::contact::Status;
+
 use crate::physics::element::solid::Response;
 use crate::physics::material::{PointState, VonMises};
-
-/// Evolving state: displacements, Gauss point states and interface statuses.
-#[derive(Clone, Debug)]
-pub struct State {
-    pub u: Vec<f64>,
-    /// Gauss point states, element by element: of every element in a whole
-    /// state (one process, restart files, what the writer sees), of the
-    /// elements a rank owns inside an MPI run ([`Engine::localize`]).
-    pub gauss: Vec<PointState>,
-    pub status: Vec<Status>,
-    /// Tangential state of every interface point (all interfaces, in order).
-    pub contact: Vec<crate::physics::contact::PointState>,
-    /// Sum of the reactions at the dofs with a non-zero prescribed displacement
-    /// (the force needed to impose it), N.
-    pub prescribed_reaction: f64,
-    /// The force across each pretension section (N, tension positive): the
-    /// condensed internal force on its shortening's equation, set when a
-    /// step converges (empty before; not kept in restart files, whose
-    /// increments carry it).
-    pub section_force: Vec<f64>,
-    /// The residual at every prescribed dof (in the order of
-    /// [`Model::prescribed`]): the reactions of a converged state, N (empty
-    /// before the first step and in a state restored from a restart file).
-    pub reactions: Vec<f64>,
-    /// The pseudo-time of the state (the load factor without histories):
-    /// where its loads, prescribed values and gaps are taken.
-    pub time: f64,
-}
-
-impl State {
-    pub fn initial(model: &Model) -> State {
-        let n_points: usize = model.interfaces.iter().map(|i| i.points.len()).sum();
-        State {
-            u: vec![0.0; model.num_dofs()],
-            gauss: vec![PointState::default(); model.mesh.elements.len() * model.n_gauss()],
-            status: vec![Status::Closed; n_points],
-            contact: vec![crate::physics::contact::PointState::default(); n_points],
-            prescribed_reaction: 0.0,
-            section_force: Vec::new(),
-            reactions: Vec::new(),
-            time: 0.0,
-        }
-    }
-}
 
 /// What is recorded for each converged increment.
 #[derive(Clone, Debug)]
@@ -79,77 +37,14 @@ pub struct Increment {
     pub cutbacks: usize,
     pub measures: Measures,
     /// Joint quantities of every interface, in order
-    /// ([`crate::model::interface::joint`]); empty for increments restored from a
+    /// ([`crate::measure::joint`]); empty for increments restored from a
     /// restart file of an earlier build.
     pub joints: Vec<JointMeasures>,
     /// Every pretension section's [force (N), shortening (mm)], in order.
     pub sections: Vec<[f64; 2]>,
-    /// The designer's outputs of the state ([`crate::files::output::plan`]); empty
+    /// The designer's outputs of the state ([`crate::model::outputs`]); empty
     /// for increments restored from a restart file of an earlier build.
     pub record: Vec<f64>,
-}
-
-/// Scalar measures of a state.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct Measures {
-    /// Normal force carried by the (first) interface, N, model as meshed.
-    pub normal_force: f64,
-    /// Mean contact pressure: normal force / nominal interface area, MPa.
-    pub mean_pressure: f64,
-    /// Whole-body load per mm of thickness, kN.
-    pub total_load_kn: f64,
-    /// Vertical displacement of the probe node, mm (negative = down).
-    pub center_displacement: f64,
-    pub max_peeq: f64,
-    /// See [`State::prescribed_reaction`].
-    pub prescribed_reaction: f64,
-}
-
-impl Measures {
-    pub fn of(model: &Model, state: &State) -> Measures {
-        let mut m = Measures {
-            center_displacement: state.u[model.node_dofs().dof(model.probe_node, 1)],
-            max_peeq: state.gauss.iter().fold(0.0f64, |a, g| a.max(g.peeq)),
-            prescribed_reaction: state.prescribed_reaction,
-            ..Measures::default()
-        };
-        if let Some(im) = model.interfaces.first() {
-            let gap = im.gap_at(state.time);
-            let force: f64 = im
-                .points
-                .iter()
-                .map(|pt| {
-                    pt.area
-                        * im.law
-                            .pressure(im.point_kinematics_at(pt, &state.u, gap).0)
-                            .0
-                })
-                .sum();
-            m.normal_force = force;
-            m.mean_pressure = force / im.area();
-            m.total_load_kn = force * model.load_scale_kn();
-        }
-        m
-    }
-}
-
-/// The joint measures of every interface in a committed state, with the
-/// energies so far `totals`: an increment's `joints` (a restart file's last
-/// row is compared with them, [`crate::files::restart`]).
-pub fn joint_measures(
-    model: &Model,
-    state: &State,
-    totals: &[joint::JointTotals],
-) -> Vec<joint::JointMeasures> {
-    joint::measures(
-        &model.interfaces,
-        model.section,
-        state.time,
-        &state.u,
-        &state.status,
-        &state.contact,
-        totals,
-    )
 }
 
 /// Callbacks of a run (progress, output).
@@ -169,7 +64,7 @@ pub trait Observer {
     /// always shows (the writer adds its VTU file if `vtu_every` skipped it);
     /// [`Observer::checkpoint`] follows. Also called, without a checkpoint,
     /// when a resumed run has no increment left to solve (the writer then
-    /// estimates its error, [`crate::post::estimate`]).
+    /// estimates its error, [`crate::measure::estimate`]).
     fn last_state(&mut self, _model: &Model, _state: &State, _inc: &Increment) -> Result<()> {
         Ok(())
     }
@@ -220,8 +115,8 @@ pub struct RunResult {
     /// The events located ([`events`]), in the order found.
     pub events: Vec<events::Event>,
     /// The error estimate of the last increment, where the run's writer made
-    /// one (the process that writes the output; [`crate::post::estimate`]).
-    pub estimate: Option<crate::post::estimate::Estimate>,
+    /// one (the process that writes the output; [`crate::measure::estimate`]).
+    pub estimate: Option<crate::measure::estimate::Estimate>,
 }
 
 /// Runs the whole load history with a given engine (any backend). Under MPI
@@ -530,7 +425,7 @@ fn accept(
                 model.section_row(k, across, &c.u, c.time)
             })
             .collect(),
-        record: model.plan.record(engine, &ck.committed),
+        record: engine.record(&ck.committed),
     };
     ck.cutbacks_here = 0;
     ck.iterations = engine.stats.iterations;

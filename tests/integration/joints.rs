@@ -5,7 +5,7 @@
 
 use crate::common;
 use asperity::files::output::joints_csv as out;
-use asperity::model::interface::joint::{self, JointMeasures};
+use asperity::measure::joint::{self, JointMeasures};
 use serde_json::Value;
 use std::path::Path;
 

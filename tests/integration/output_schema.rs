@@ -156,7 +156,7 @@ fn summary_json_matches_the_documented_schema() {
     // from a synthetic cycle (src/files/output/joints_csv.rs writes it the same way)
     let cycle = asperity::files::output::joints_csv::cycle_json(
         1,
-        &asperity::model::interface::joint::Cycle {
+        &asperity::measure::joint::Cycle {
             start_increment: 2,
             end_increment: 9,
             start_time: 1.0,
@@ -192,7 +192,7 @@ fn summary_json_matches_the_documented_schema() {
     let mut with_cycle = with.clone();
     with_cycle["joints"][0]["cycles"] = Value::Array(vec![cycle]);
     // a fitted sweep (src/files/output/damping.rs writes it the same way)
-    let sweep_of = |f: f64, d: f64| asperity::model::interface::joint::Cycle {
+    let sweep_of = |f: f64, d: f64| asperity::measure::joint::Cycle {
         start_increment: 1,
         end_increment: 2,
         start_time: 1.0,

@@ -169,7 +169,7 @@ fn compare_on(case: &str, refine: &str, ranks: &[usize]) {
     }
 }
 
-/// The designer's outputs (src/files/output/plan.rs: reductions over every rank):
+/// The designer's outputs (src/model/outputs/mod.rs: reductions over every rank):
 /// the last reactions to 1e-6 of the largest, each body's peak von Mises
 /// stress and PEEQ to 1e-6 of their values at the same element, each
 /// interface's peak pressure and contact extent, and the same events (kind,
@@ -263,7 +263,7 @@ fn compare_designer(run: &str, s: &serde_json::Value, p: &serde_json::Value) {
     }
 }
 
-/// The joint outputs of the last increment (src/model/interface/joint.rs, summed
+/// The joint outputs of the last increment (src/measure/joint.rs, summed
 /// on every rank from the shared point states): forces to 1e-6 of the normal
 /// force, mean displacements of the larger of the two, status measures of
 /// the interface's length, energies of the work.

@@ -1,5 +1,5 @@
 //! Joint loops against the energies the program reports (issue 18 part 6,
-//! src/model/interface/joint.rs, docs/output.md "Joints: sign conventions"):
+//! src/measure/joint.rs, docs/output.md "Joints: sign conventions"):
 //!
 //! * every spring alike (all nodes of both bodies prescribed): the loop area
 //!   of F_T against ū_T in joints.csv, by the trapezoid rule, equals each
@@ -20,7 +20,7 @@
 use crate::common;
 
 mod damping;
-use asperity::model::interface::joint::{self, JointMeasures};
+use asperity::measure::joint::{self, JointMeasures};
 use asperity::model::Model;
 use asperity::solve::{Increment, Observer, RunResult, State};
 use serde_json::Value;

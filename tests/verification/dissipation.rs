@@ -8,7 +8,7 @@
 //! memory.rs), under twist and while a preload was removed.
 
 use crate::common;
-use asperity::model::interface::joint::JointMeasures;
+use asperity::measure::joint::JointMeasures;
 use asperity::solve::RunResult;
 
 /// The tangential keys of every memory with every backbone: the paper's

@@ -1,4 +1,4 @@
-//! The a posteriori error estimate ([`asperity::post::estimate`]): Zienkiewicz–Zhu
+//! The a posteriori error estimate ([`asperity::measure::estimate`]): Zienkiewicz–Zhu
 //! with superconvergent patch recovery (Zienkiewicz & Zhu 1992, IJNME 33,
 //! parts 1 and 2) and the interface's traction jump.
 //!
@@ -15,11 +15,11 @@
 //! * Dörfler marking of a real estimate holds θ of η² and is minimal.
 
 use crate::common::{self, Quiet};
+use asperity::measure::estimate::{compliance, doerfler_mark, estimate};
 use asperity::model::Model;
 use asperity::physics::element::q8::{gauss_1d, GaussRule};
 use asperity::physics::element::solid::{elastic_state, ElementGeometry};
 use asperity::physics::material::PointState;
-use asperity::post::estimate::{compliance, doerfler_mark, estimate};
 use asperity::solve::State;
 
 fn solve(text: &str) -> (Model, State) {

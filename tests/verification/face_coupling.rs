@@ -47,8 +47,8 @@ impl Observer for All {
 }
 
 /// The joint measures of every interface in a converged state.
-fn joints(model: &Model, s: &State) -> Vec<asperity::model::interface::joint::JointMeasures> {
-    asperity::model::interface::joint::measures(
+fn joints(model: &Model, s: &State) -> Vec<asperity::measure::joint::JointMeasures> {
+    asperity::measure::joint::measures(
         &model.interfaces,
         model.section,
         s.time,

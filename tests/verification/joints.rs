@@ -1,12 +1,12 @@
 //! Vertical interfaces between blocks and the joint outputs against closed
-//! forms and equilibrium (src/input/mesh/blocks.rs, src/model/interface/joint.rs):
+//! forms and equilibrium (src/input/mesh/blocks.rs, src/measure/joint.rs):
 //! blocks pressed together sideways carry p_N = q at every point; the joint
 //! convention (A dragged in +t relative to B gives F_T, ū_T > 0) on a
 //! horizontal and a vertical interface, with F_T the force that drags A;
 //! several interfaces in one model, each in equilibrium.
 
 use crate::common::{self, CaseText};
-use asperity::model::interface::joint::{self, JointMeasures};
+use asperity::measure::joint::JointMeasures;
 use asperity::model::Model;
 use asperity::solve::RunResult;
 
@@ -73,7 +73,7 @@ fn blocks_pressed_together_sideways_carry_the_applied_pressure_everywhere() {
             let p = im.law.pressure(im.point_kinematics(pt, &st.u).0).0;
             assert!(common::rel(p, q) < 1e-9, "{w}: point p_N = {p}");
         }
-        assert_eq!(joint::direction(im), [0.0, 1.0]);
+        assert_eq!(asperity::model::interface::arcs::direction(im), [0.0, 1.0]);
         let j = last_joints(&r)[0];
         assert!(common::rel(j.normal_force, q * h * t) < 1e-9, "{w}: {j:?}");
         assert!(
@@ -159,7 +159,10 @@ fn dragging_body_a_along_the_joint_gives_positive_force_and_slip() {
         .solver(SOLVER)
         .build();
     let model = common::model(&text);
-    assert_eq!(joint::direction(&model.interfaces[0]), [1.0, 0.0]);
+    assert_eq!(
+        asperity::model::interface::arcs::direction(&model.interfaces[0]),
+        [1.0, 0.0]
+    );
     check_drag("horizontal", &model, &solve(&model));
 }
 
@@ -215,7 +218,7 @@ fn a_shaft_in_a_hub_on_a_base_balances_both_interfaces() {
     // the arc length runs from each interface's first pair along its walk
     for (k, (origin, axis)) in [(10.0, 1), (10.0, 0)].into_iter().enumerate() {
         let (im, iface) = (&model.interfaces[k], &model.mesh.interfaces[k]);
-        let s = joint::arc_lengths(&model.mesh, iface, im);
+        let s = asperity::model::interface::arcs::arc_lengths(&model.mesh, iface, im);
         for (pr, s) in im.pairs.iter().zip(&s) {
             assert!(
                 (s - (pr.x[axis] - origin)).abs() < 1e-12,
@@ -227,7 +230,10 @@ fn a_shaft_in_a_hub_on_a_base_balances_both_interfaces() {
         // the same with the edges listed backwards (a mesh file's order)
         let mut back = iface.clone();
         back.edges.reverse();
-        assert_eq!(joint::arc_lengths(&model.mesh, &back, im), s);
+        assert_eq!(
+            asperity::model::interface::arcs::arc_lengths(&model.mesh, &back, im),
+            s
+        );
     }
     // the interface CSV: both interfaces, named, each in order of s
     let csv = asperity::files::output::interface_csv(&model, &r.final_state);

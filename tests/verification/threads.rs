@@ -194,8 +194,8 @@ fn a_plastic_run_does_not_depend_on_the_thread_count_lu() {
 /// 2 and 3 threads split the work, and agree with one thread's to round-off.
 #[test]
 fn the_parallel_factorization_agrees_to_round_off() {
-    use asperity::model::assembly::Pattern;
     use asperity::linalg::backend::serial::{Factorization, SerialDirect};
+    use asperity::model::assembly::Pattern;
     let n = 600;
     let pattern = Pattern {
         n,

@@ -10,8 +10,8 @@
 //! warning names the key. docs/calibration.md ("Ranges") has the table, checked
 //! by a test below.
 
-pub use crate::numbers::{exact, num, sig};
 use crate::error::{Error, Result};
+pub use crate::numbers::{exact, num, sig};
 use std::fmt;
 
 /// The ranges of one quantity: refused outside `accepted`, warned outside

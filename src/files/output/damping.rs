@@ -17,7 +17,7 @@
 
 use super::joints_csv::{csv_field, opt};
 use crate::error::Result;
-use crate::model::interface::joint::{Cycle, JointMeasures};
+use crate::measure::joint::{Cycle, JointMeasures};
 use crate::model::Model;
 use crate::solve::RunResult;
 use serde_json::{json, Value};

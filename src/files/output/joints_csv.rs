@@ -1,11 +1,11 @@
-//! The joint outputs of a run ([`crate::model::interface::joint`]): `joints.csv`
+//! The joint outputs of a run ([`crate::measure::joint`]): `joints.csv`
 //! (per increment and interface), `cycles.csv` (per closed load cycle and
 //! interface), the `joints` entry of `summary.json`, the hysteresis
 //! figure (tangential force against slip) of a run with a cycle and, with
 //! twist, the torque-twist figure.
 
 use crate::error::Result;
-use crate::model::interface::joint::{self, Cycle, JointMeasures};
+use crate::measure::joint::{self, Cycle, JointMeasures};
 use crate::model::Model;
 use crate::solve::RunResult;
 use serde_json::{json, Value};
@@ -244,7 +244,7 @@ pub fn summary(model: &Model, r: &RunResult, cycles: &[Vec<Cycle>]) -> Value {
                 "interface": im.name,
                 "body_a": model.mesh.bodies[im.body_a],
                 "body_b": model.mesh.bodies[im.body_b],
-                "direction": joint::direction(im),
+                "direction": crate::model::interface::arcs::direction(im),
                 "measure_unit": measure_unit(model),
                 "final": fin,
                 "cycles": cyc,

@@ -12,7 +12,6 @@ pub mod damping;
 pub mod events;
 pub mod joints_csv;
 pub mod peaks;
-pub mod plan;
 pub mod probes;
 pub mod reactions;
 pub mod vtu;
@@ -47,9 +46,9 @@ pub struct Writer {
     /// The increment of the last VTU file queued (0: none this run).
     last_vtu: usize,
     /// The error estimate of the last increment that got one (the VTU
-    /// increments and the last one; [`crate::post::estimate`]), with that
+    /// increments and the last one; [`crate::measure::estimate`]), with that
     /// increment and its load factor: summary.json's `estimate`.
-    estimate: Option<(usize, f64, crate::post::estimate::Estimate)>,
+    estimate: Option<(usize, f64, crate::measure::estimate::Estimate)>,
 }
 
 /// Where a resumed run takes its earlier increments from.
@@ -119,7 +118,7 @@ impl Writer {
     }
 
     /// The error estimate of the last increment that got one.
-    pub fn last_estimate(&self) -> Option<&crate::post::estimate::Estimate> {
+    pub fn last_estimate(&self) -> Option<&crate::measure::estimate::Estimate> {
         self.estimate.as_ref().map(|e| &e.2)
     }
 
@@ -166,7 +165,7 @@ impl Writer {
             "probes.csv",
             &probes::csv(
                 &plan.probes,
-                probes::components(model.node_dofs()),
+                crate::model::outputs::probes::components(model.node_dofs()),
                 result,
                 |v| plan.part(v, &l.probes),
             ),
@@ -207,7 +206,7 @@ impl Writer {
     /// The error estimate of increment `inc` (computed once per increment).
     fn estimate_of(&mut self, model: &Model, state: &State, inc: &Increment) {
         if self.estimate.as_ref().is_none_or(|e| e.0 != inc.increment) {
-            let est = crate::post::estimate::estimate(model, state);
+            let est = crate::measure::estimate::estimate(model, state);
             self.estimate = Some((inc.increment, inc.load_factor, est));
         }
     }
@@ -402,7 +401,7 @@ impl Observer for Writer {
 /// direction: increasing x on a horizontal interface, increasing y on a
 /// vertical one). With lumped weights each pair is one integration point and
 /// carries its own tangential state (internal convention,
-/// [`crate::model::interface::joint`]). A twisting model's rows end with the
+/// [`crate::measure::joint`]). A twisting model's rows end with the
 /// circumferential shear, slip and plastic slip (p_Tθ, u_Tθ, u_Tθ^p), and
 /// its u_t_plastic_mm is the meridional component of the vector plastic slip.
 pub fn interface_csv(model: &Model, state: &State) -> String {
@@ -418,7 +417,7 @@ pub fn interface_csv(model: &Model, state: &State) -> String {
     let mut base = 0;
     for (im, iface) in model.interfaces.iter().zip(&model.mesh.interfaces) {
         let lumped = im.points.len() == im.pairs.len();
-        let arc = crate::model::interface::joint::arc_lengths(&model.mesh, iface, im);
+        let arc = crate::model::interface::arcs::arc_lengths(&model.mesh, iface, im);
         let name = joints_csv::csv_field(&im.name);
         let mut rows: Vec<usize> = (0..im.pairs.len()).collect();
         rows.sort_by(|&a, &b| arc[a].total_cmp(&arc[b]));

@@ -124,7 +124,7 @@ pub struct Frame {
     contact_hoop_shear: Vec<f64>,
     /// Per cell.
     max_peeq: Vec<f64>,
-    /// Per cell: η_e² of the error estimate (N·mm, [`crate::post::estimate`]).
+    /// Per cell: η_e² of the error estimate (N·mm, [`crate::measure::estimate`]).
     error_estimate: Vec<f64>,
     /// Per cell: η_e² / η².
     error_share: Vec<f64>,
@@ -133,11 +133,19 @@ pub struct Frame {
 impl Frame {
     /// The frame of a state, with its error estimate computed here.
     pub fn of(model: &Model, state: &State) -> Frame {
-        Frame::with(model, state, &crate::post::estimate::estimate(model, state))
+        Frame::with(
+            model,
+            state,
+            &crate::measure::estimate::estimate(model, state),
+        )
     }
 
     /// The frame of a state whose error estimate is `estimate`.
-    pub fn with(model: &Model, state: &State, estimate: &crate::post::estimate::Estimate) -> Frame {
+    pub fn with(
+        model: &Model,
+        state: &State,
+        estimate: &crate::measure::estimate::Estimate,
+    ) -> Frame {
         let mesh = &model.mesh;
         let nn = mesh.nodes.len();
         let ne = mesh.elements.len();

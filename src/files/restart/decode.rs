@@ -463,7 +463,7 @@ pub(super) fn check_gauss_point(model: &Model, i: usize, v: &[f64]) -> Decoded<(
 }
 
 /// The designer's outputs: each increment's record and the events located
-/// so far, checked by [`crate::files::output::plan::Plan::restore`]; only when the
+/// so far, checked by [`crate::model::outputs::Plan::restore`]; only when the
 /// file's records have the model's width (a file of an earlier build has
 /// none, one of another layout is left alone).
 pub(super) fn restore_designer(ck: &mut Checkpoint, s: &Sections, model: &Model) -> Decoded<()> {
@@ -480,7 +480,7 @@ pub(super) fn restore_designer(ck: &mut Checkpoint, s: &Sections, model: &Model)
             false => Ok(None),
         }
     };
-    model.plan.restore(ck, f("records")?, f("events")?, model)
+    restore_records(&model.plan, ck, f("records")?, f("events")?, model)
 }
 
 /// How far every interface's laws were used so far; a file of an earlier
@@ -641,4 +641,47 @@ pub(super) fn restore_vtu_series(
         .zip(files)
         .map(|(&l, f)| (l, f.to_string()))
         .collect())
+}
+
+/// Restores a restart file's designer sections into a checkpoint whose
+/// curve is restored: `records`, each increment's record (`plan`'s width
+/// per increment: finite or NaN, no infinity; a row all NaN is an increment
+/// without one, restored from a file of an earlier build), and `events`
+/// ([`crate::solve::events::Event::unpack`]). A section that is absent or
+/// empty restores nothing. The error is a message for the restart file's
+/// line.
+pub fn restore_records(
+    plan: &crate::model::outputs::Plan,
+    ck: &mut crate::solve::Checkpoint,
+    records: Option<&[f64]>,
+    events: Option<&[f64]>,
+    model: &crate::model::Model,
+) -> std::result::Result<(), String> {
+    let w = plan.width();
+    if let Some(v) = records.filter(|v| !v.is_empty()) {
+        if v.len() != w * ck.increments.len() {
+            return Err(format!(
+                "section records has {} values, the model needs {}",
+                v.len(),
+                w * ck.increments.len()
+            ));
+        }
+        if let Some(i) = v.iter().position(|x| x.is_infinite()) {
+            return Err(format!(
+                "section records: value {} is infinite ({})",
+                i + 1,
+                v[i]
+            ));
+        }
+        for (inc, row) in ck.increments.iter_mut().zip(v.chunks_exact(w.max(1))) {
+            if !row.iter().all(|x| x.is_nan()) {
+                inc.record = row.to_vec();
+            }
+        }
+    }
+    if let Some(v) = events {
+        let load_factors: Vec<f64> = ck.increments.iter().map(|i| i.load_factor).collect();
+        ck.events = crate::solve::events::Event::unpack(v, w, model, &load_factors)?;
+    }
+    Ok(())
 }

@@ -41,12 +41,12 @@
 //! element) with `first_yield_body`, the VTU series `pvd_load_factor`,
 //! `pvd_file` (names separated by newlines), `joint_totals` (2 per interface:
 //! frictional dissipation and tangential work so far) and `joints` (11 per
-//! interface and increment, as [`crate::model::interface::joint::JointMeasures::pack`]
+//! interface and increment, as [`crate::measure::joint::JointMeasures::pack`]
 //! lays them out; with twist `joints_twist`, 3 more: torque, circumferential
-//! slip, twist, [`crate::model::interface::joint::JointMeasures::pack_twist`]), `table_reach` (2 per interface: the largest approach u_N
+//! slip, twist, [`crate::measure::joint::JointMeasures::pack_twist`]), `table_reach` (2 per interface: the largest approach u_N
 //! and pressure p_N over the converged states so far, see
 //! [`crate::model::interface::extrapolation`]), `record_width` (the values of one
-//! designer's record, [`crate::files::output::plan`]), `records` (the record of every
+//! designer's record, [`crate::model::outputs`]), `records` (the record of every
 //! increment) and `events` (the events located so far,
 //! [`crate::solve::events::Event::pack`]); a file whose records have another
 //! width than the model's (another build's layout) restores neither. Unknown sections are ignored;
@@ -108,7 +108,7 @@
 //!   ranges; the last increment's `curve` row, `joints` / `joints_twist` rows and `records`
 //!   from the probes on exactly what the restored state gives
 //!   ([`Measures::of`], [`crate::solve::joint_measures`],
-//!   [`crate::files::output::plan::Plan::state_part`]); every joint row's normal
+//!   [`crate::model::outputs::Plan::state_part`]); every joint row's normal
 //!   force within [0, the pressure range × its area], its status measures
 //!   ≥ 0 and adding up to the interface's, its tangential force and torque
 //!   within μ F_N and μ r_max F_N; every probe value within
@@ -127,8 +127,8 @@
 
 use crate::error::{Error, Result};
 use crate::input::case::ranges;
+use crate::measure::joint::{JointMeasures, JointTotals};
 use crate::model::interface::extrapolation::Reach;
-use crate::model::interface::joint::{JointMeasures, JointTotals};
 use crate::model::Model;
 use crate::physics::contact::{PointState as ContactState, Status};
 use crate::physics::material::{PointState, VonMises};

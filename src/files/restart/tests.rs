@@ -66,7 +66,7 @@ fn checkpoint(model: &Model, n: usize) -> (Checkpoint, Vec<(f64, String)>) {
 fn honest(model: &Model, ck: &mut Checkpoint) {
     ck.committed.time = ck.lambda;
     let joints = crate::solve::joint_measures(model, &ck.committed, &ck.joint_totals);
-    let part = model.plan.state_part(model, &ck.committed);
+    let part = crate::measure::state_part(model, &ck.committed);
     let measures = Measures::of(model, &ck.committed);
     let inc = ck.increments.last_mut().unwrap();
     inc.measures = measures;

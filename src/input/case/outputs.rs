@@ -1,7 +1,7 @@
 //! The keys of the designer's outputs (docs/case-schema.md, "Probes and
 //! events"): `[[probe]]` entries and `[output] event_tolerance`. What they
 //! name on the mesh (sets, bodies, points inside the model) is checked when
-//! the model is built ([`crate::files::output::plan`]); here, what the case alone
+//! the model is built ([`crate::model::outputs`]); here, what the case alone
 //! decides: names, coordinates, the tolerance.
 
 use super::{two_numbers_opt, Case};

@@ -19,15 +19,36 @@ pub mod trailing;
 
 use crate::error::Result;
 
-pub trait Backend {
-    /// "serial-faer" or "petsc".
-    fn name(&self) -> &'static str;
+/// What the ranks of a run share: the reductions and decisions every layer
+/// above the backend needs (the measures, the events, the stepping), and
+/// nothing of the matrices. On one process every value is its own.
+pub trait Comm {
     fn ranks(&self) -> usize {
         1
     }
     fn rank(&self) -> usize {
         0
     }
+    /// Sums a vector over all ranks, in place (replicated result).
+    fn sum(&self, _v: &mut [f64]) {}
+    /// Element-wise maximum of a vector over all ranks, in place (replicated
+    /// result); serial: unchanged. Used for collective stop decisions.
+    fn max(&self, _v: &mut [f64]) {}
+    /// Rank 0's value of a decision, on every rank.
+    fn agree(&self, flag: bool) -> bool {
+        flag
+    }
+    /// The message of the lowest rank that has one, on every rank.
+    fn share_message(&self, msg: Option<String>) -> Option<String> {
+        msg
+    }
+}
+
+/// A linear-algebra backend: assembles the tangent block by block and
+/// solves; its ranks share through [`Comm`].
+pub trait Backend: Comm {
+    /// "serial-faer" or "petsc".
+    fn name(&self) -> &'static str;
     fn owns_element(&self, _e: usize) -> bool {
         true
     }
@@ -69,19 +90,6 @@ pub trait Backend {
     }
     /// Solves K x = rhs over the free equations (replicated in and out).
     fn solve(&mut self, rhs: &[f64], x: &mut [f64]) -> Result<()>;
-    /// Sums a vector over all ranks, in place (replicated result).
-    fn sum(&self, _v: &mut [f64]) {}
-    /// Element-wise maximum of a vector over all ranks, in place (replicated
-    /// result); serial: unchanged. Used for collective stop decisions.
-    fn max(&self, _v: &mut [f64]) {}
-    /// Rank 0's value of a decision, on every rank.
-    fn agree(&self, flag: bool) -> bool {
-        flag
-    }
-    /// The message of the lowest rank that has one, on every rank.
-    fn share_message(&self, msg: Option<String>) -> Option<String> {
-        msg
-    }
     /// The linear solver, as summary.json reports it.
     fn linear_solver(&self) -> String {
         "faer sparse LU".into()

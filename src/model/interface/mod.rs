@@ -21,14 +21,14 @@
 //! its three nodes through the edge's shape functions N(ξ) (node-to-segment,
 //! small sliding: docs/theory.md, "Non-matching interfaces"); see [`Segment`].
 
+pub mod arcs;
 mod circumferential;
 pub mod extrapolation;
-pub mod joint;
 mod segment;
 
 use crate::input::case::settings::{FrictionScheme, Weights};
 use crate::input::mesh::{Interface, Mesh};
-use crate::physics::contact::{tangential, NormalLaw, PointState, Slip, Status, TangentialLaw};
+use crate::physics::contact::{NormalLaw, PointState, Slip, Status, TangentialLaw};
 pub use circumferential::Gradients;
 pub use segment::{project, OVERLAP_LIMIT};
 

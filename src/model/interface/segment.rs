@@ -36,8 +36,8 @@ pub(super) fn node_to_segment(
     for e in &nm.slave {
         let xs = coords(e);
         let half = [
-            joint::piece_length(&xs, -1.0, 0.0),
-            joint::piece_length(&xs, -1.0, 1.0),
+            super::arcs::piece_length(&xs, -1.0, 0.0),
+            super::arcs::piece_length(&xs, -1.0, 1.0),
         ];
         match weights {
             Weights::Lumped => {
@@ -67,7 +67,7 @@ pub(super) fn node_to_segment(
                     let (nl, ds) = edge_normal(&xs, xi);
                     let shape = crate::physics::element::q8::edge_shape(xi);
                     let x = [0, 1].map(|c| (0..3).map(|k| shape[k] * xs[k][c]).sum::<f64>());
-                    let s = s0 + joint::piece_length(&xs, -1.0, xi);
+                    let s = s0 + super::arcs::piece_length(&xs, -1.0, xi);
                     slave.push(SlavePoint {
                         a: *e,
                         na: shape,
@@ -178,8 +178,8 @@ pub(super) fn mortar(
     for e in &nm.slave {
         let xs = coords(e);
         let half = [
-            joint::piece_length(&xs, -1.0, 0.0),
-            joint::piece_length(&xs, -1.0, 1.0),
+            super::arcs::piece_length(&xs, -1.0, 0.0),
+            super::arcs::piece_length(&xs, -1.0, 1.0),
         ];
         let mut ids = [0usize; 3];
         for i in 0..3 {

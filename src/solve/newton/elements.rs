@@ -4,10 +4,10 @@
 
 use super::{held_out, Engine};
 use crate::input::mesh::NodeDofs;
+use crate::linalg::failure::StepFailure;
 use crate::model::Model;
 use crate::physics::element::solid::{element_forces, Response, Tangent};
 use crate::physics::material::PointState;
-use crate::linalg::failure::StepFailure;
 use crate::solve::State;
 
 /// Elements per batch of the element loop ([`Engine::assemble_solids`]): the

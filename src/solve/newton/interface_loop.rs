@@ -41,11 +41,11 @@
 //! handles the plasticity.
 
 use super::Engine;
+use crate::linalg::dense::dense_solve;
 use crate::model::interface::{InterfaceModel, Point, PointEval};
 use crate::model::Model;
 use crate::physics::contact::PointState;
 use crate::solve::State;
-use crate::linalg::dense::dense_solve;
 
 /// Most iterations of the interface loop in one Newton iteration.
 pub const MAX_INNER: usize = 20;

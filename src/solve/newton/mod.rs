@@ -17,12 +17,12 @@ pub mod interface_loop;
 mod step;
 pub use step::StepProblem;
 
-use crate::linalg::failure::StepFailure;
-use crate::linalg::nonlinear::{NonlinearSolver, Problem, Verdict};
 use super::stabilization::mechanism::Stabilizer;
 use super::State;
 use crate::input::case::Method;
 use crate::linalg::backend::Backend;
+use crate::linalg::failure::StepFailure;
+use crate::linalg::nonlinear::{NonlinearSolver, Problem, Verdict};
 use crate::model::Model;
 use crate::physics::contact::Status;
 use crate::physics::element::solid::{Response, Tangent};
@@ -144,6 +144,12 @@ impl<'m> Engine<'m> {
     }
 
     /// The elements whose Gauss states this process holds, ascending.
+    /// The designer's record of a converged state
+    /// ([`crate::measure::record`]; collective under MPI).
+    pub fn record(&self, state: &State) -> Vec<f64> {
+        crate::measure::record(self.model, &*self.backend, &self.held_elements, state)
+    }
+
     pub fn held_elements(&self) -> &[u32] {
         &self.held_elements
     }

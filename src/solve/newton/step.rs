@@ -4,11 +4,11 @@
 
 use super::Engine;
 use crate::input::case::{Acceleration, Method};
+use crate::linalg::failure::StepFailure;
+use crate::linalg::nonlinear::{Problem, Verdict};
 use crate::physics::contact::Status;
 use crate::physics::element::solid::{Response, Tangent};
 use crate::solve::accelerate::Anderson;
-use crate::linalg::failure::StepFailure;
-use crate::linalg::nonlinear::{Problem, Verdict};
 use crate::solve::State;
 
 /// A residual this many times the reference, after the first iterations, is

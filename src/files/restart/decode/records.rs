@@ -306,7 +306,7 @@ pub(super) fn restore_sections(ck: &mut Checkpoint, s: &Sections, model: &Model)
 /// The designer's records against the state and the case: every probe
 /// value within the displacement range (a probe is a displacement), and the
 /// last increment's record from its probes on (probes, body and interface
-/// peaks: [`crate::files::output::plan::Plan::state_part`]) the restored state's,
+/// peaks: [`crate::model::outputs::Plan::state_part`]) the restored state's,
 /// NaN where the state gives NaN (no place). The reactions before them come
 /// from the residual, which the state does not keep: range-free.
 pub(super) fn check_records(ck: &Checkpoint, model: &Model) -> Decoded<()> {
@@ -336,7 +336,7 @@ pub(super) fn check_records(ck: &Checkpoint, model: &Model) -> Decoded<()> {
     else {
         return Ok(());
     };
-    let own = plan.state_part(model, &ck.committed);
+    let own = crate::measure::state_part(model, &ck.committed);
     let got = &last.record[probes.start..];
     if let Some(k) = (0..own.len()).find(|&k| !same(got[k], own[k])) {
         let at = probes.start + k;

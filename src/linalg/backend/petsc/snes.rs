@@ -22,8 +22,8 @@
 use super::solver::Partition;
 use super::{chk, default_option, ffi, gamg_defaults, option_given, PVec, Petsc, ToAll};
 use crate::error::{Error, Result};
-use crate::linalg::nonlinear::{NonlinearSolver, Problem, Verdict};
 use crate::linalg::failure::StepFailure;
+use crate::linalg::nonlinear::{NonlinearSolver, Problem, Verdict};
 use std::os::raw::c_void;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 

@@ -428,15 +428,54 @@ impl<'p> PetscBackend<'p> {
     }
 }
 
-impl crate::linalg::backend::Backend for PetscBackend<'_> {
-    fn name(&self) -> &'static str {
-        "petsc"
-    }
+impl crate::linalg::backend::Comm for PetscBackend<'_> {
     fn ranks(&self) -> usize {
         self.ranks
     }
     fn rank(&self) -> usize {
         self.rank
+    }
+    fn sum(&self, v: &mut [f64]) {
+        self.reduce(v, SystemOperation::sum());
+    }
+    fn max(&self, v: &mut [f64]) {
+        self.reduce(v, SystemOperation::max());
+    }
+    fn share_message(&self, msg: Option<String>) -> Option<String> {
+        let mine = if msg.is_some() {
+            self.rank as i32
+        } else {
+            i32::MAX
+        };
+        let mut first = i32::MAX;
+        self.world
+            .all_reduce_into(&mine, &mut first, SystemOperation::min());
+        if first == i32::MAX {
+            return None;
+        }
+        let root = self.world.process_at_rank(first);
+        let mut bytes = msg.map(String::into_bytes).unwrap_or_default();
+        let mut len = bytes.len() as u64;
+        root.broadcast_into(&mut len);
+        bytes.resize(len as usize, 0);
+        root.broadcast_into(&mut bytes[..]);
+        let text = String::from_utf8_lossy(&bytes).into_owned();
+        Some(if first == 0 {
+            text
+        } else {
+            format!("rank {first}: {text}")
+        })
+    }
+    fn agree(&self, flag: bool) -> bool {
+        let mut f = i32::from(flag);
+        self.world.process_at_rank(0).broadcast_into(&mut f);
+        f == 1
+    }
+}
+
+impl crate::linalg::backend::Backend for PetscBackend<'_> {
+    fn name(&self) -> &'static str {
+        "petsc"
     }
     fn owns_element(&self, e: usize) -> bool {
         self.part.element_owner[e] == self.rank
@@ -540,41 +579,5 @@ impl crate::linalg::backend::Backend for PetscBackend<'_> {
             ("assembly_mallocs", self.mallocs().unwrap_or(f64::NAN)),
             ("owned_equations_rank0", self.part.owned(0).len() as f64),
         ]
-    }
-    fn sum(&self, v: &mut [f64]) {
-        self.reduce(v, SystemOperation::sum());
-    }
-    fn max(&self, v: &mut [f64]) {
-        self.reduce(v, SystemOperation::max());
-    }
-    fn share_message(&self, msg: Option<String>) -> Option<String> {
-        let mine = if msg.is_some() {
-            self.rank as i32
-        } else {
-            i32::MAX
-        };
-        let mut first = i32::MAX;
-        self.world
-            .all_reduce_into(&mine, &mut first, SystemOperation::min());
-        if first == i32::MAX {
-            return None;
-        }
-        let root = self.world.process_at_rank(first);
-        let mut bytes = msg.map(String::into_bytes).unwrap_or_default();
-        let mut len = bytes.len() as u64;
-        root.broadcast_into(&mut len);
-        bytes.resize(len as usize, 0);
-        root.broadcast_into(&mut bytes[..]);
-        let text = String::from_utf8_lossy(&bytes).into_owned();
-        Some(if first == 0 {
-            text
-        } else {
-            format!("rank {first}: {text}")
-        })
-    }
-    fn agree(&self, flag: bool) -> bool {
-        let mut f = i32::from(flag);
-        self.world.process_at_rank(0).broadcast_into(&mut f);
-        f == 1
     }
 }

@@ -3,8 +3,8 @@
 
 use super::{Factorization, SerialDirect, FACTOR_THREADS};
 use crate::error::Result;
-use crate::model::assembly::{Assembler, Pattern};
 use crate::linalg::backend::coupling::{Couplings, Outcome};
+use crate::model::assembly::{Assembler, Pattern};
 use crate::model::Model;
 
 /// The serial backend: CSC values on the fixed pattern, factored by [`SerialDirect`].
@@ -91,6 +91,8 @@ impl SerialBackend {
         self.terms.add_to(&self.asm, &mut self.whole);
     }
 }
+
+impl crate::linalg::backend::Comm for SerialBackend {}
 
 impl crate::linalg::backend::Backend for SerialBackend {
     fn name(&self) -> &'static str {

@@ -28,11 +28,11 @@ mod jump;
 pub mod recovery;
 mod sample;
 
+use crate::model::state::State;
 use crate::model::Model;
 use crate::physics::element::q8;
 use crate::physics::element::solid::ElementGeometry;
 use crate::physics::material::VonMises;
-use crate::solve::State;
 use serde_json::json;
 
 /// The estimate of one state.

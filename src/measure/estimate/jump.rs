@@ -24,8 +24,8 @@
 
 use super::recovery::Stress;
 use crate::model::interface::{InterfaceModel, Point};
+use crate::model::state::State;
 use crate::model::Model;
-use crate::solve::State;
 use std::collections::{HashMap, HashSet};
 
 /// Adds each interface's jump term to `out` (per element, N·mm), from the
