@@ -19,7 +19,7 @@
 //! latest mesh that solved), plus `adapt.csv` and summary.json's `adapt`
 //! entry for every cycle so far.
 
-use crate::app::driver::RunOptions;
+use crate::app::options::RunOptions;
 use crate::error::{Error, Result};
 use crate::input::case::adapt::{AdaptSpec, Quantity};
 use crate::input::case::Case;

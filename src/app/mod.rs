@@ -5,6 +5,7 @@
 pub mod adapt;
 pub mod calibrate;
 pub mod driver;
+pub mod options;
 #[cfg(feature = "parallel")]
 pub mod parallel;
 pub mod study;

@@ -5,8 +5,9 @@
 
 use crate::common::{self, CaseText};
 use asperity::model::Model;
+use asperity::physics::element::element_forces;
 use asperity::physics::element::q8::{gauss_2x2, gauss_3x3, GaussRule};
-use asperity::physics::element::solid::{element_forces, ElementGeometry, Response, Tangent};
+use asperity::physics::element::solid::{ElementGeometry, Response, Tangent};
 use asperity::physics::element::Section;
 use asperity::physics::material::{Plane, PointState, VonMises};
 use asperity::solve::State;

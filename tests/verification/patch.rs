@@ -2,8 +2,9 @@
 //! displacement field exactly (constant strain and stress), both plane states,
 //! full and reduced integration.
 
+use asperity::physics::element::element_forces;
 use asperity::physics::element::q8::{gauss_2x2, gauss_3x3};
-use asperity::physics::element::solid::{element_forces, ElementGeometry, Response, Tangent};
+use asperity::physics::element::solid::{ElementGeometry, Response, Tangent};
 use asperity::physics::material::{Plane, PointState, VonMises};
 use nalgebra::{DMatrix, DVector};
 

@@ -4,8 +4,9 @@
 
 use crate::common;
 use asperity::input::case::Method;
+use asperity::physics::element::element_forces;
 use asperity::physics::element::q8;
-use asperity::physics::element::solid::{element_forces, ElementGeometry, Response, Tangent};
+use asperity::physics::element::solid::{ElementGeometry, Response, Tangent};
 use asperity::physics::material::{Plane, PointState, VonMises};
 use asperity::solve::State;
 

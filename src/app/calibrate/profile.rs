@@ -253,7 +253,7 @@ impl Heights {
         if rms.is_nan() || rms <= FLAT * top {
             let shape = if self.rows > 1 { "plane" } else { "line" };
             let level = top > 0.0;
-            let (rms, top) = (super::limits::sig(rms, 4), super::limits::sig(top, 4));
+            let (rms, top) = (crate::numbers::sig(rms, 4), crate::numbers::sig(top, 4));
             let what = match (how, level) {
                 (_, false) => "every height is 0".to_string(),
                 (Detrend::Linear, true) => format!(

@@ -22,7 +22,7 @@
 //! N being Rice's (1945) number of zero up-crossings in lr. Two faces add
 //! their spectra (independent heights): m_n = m_n,a + m_n,b, so σ² = σ_a² + σ_b².
 
-use super::limits::{self, Limit, Warning};
+use super::limits::{self, Warning, CUTOFF, HURST_LIMIT, RA, RZ, SHORT_CUTOFF};
 use super::profile::Moments;
 use crate::error::{Error, Result};
 use std::f64::consts::PI;
@@ -36,57 +36,6 @@ const EULER_GAMMA: f64 = 0.577_215_664_901_532_9;
 /// Smallest λc / λs accepted: a band narrower than a decade has no summits
 /// to speak of (the ISO pairs are 30 to 300).
 pub const MIN_BAND: f64 = 10.0;
-
-/// Ra, mm: ISO 4288 tabulates 0.006 to 80 µm.
-pub const RA: Limit = Limit {
-    quantity: "Ra, the arithmetic mean height",
-    unit: "mm",
-    accepted: [1e-7, 1.0],
-    usual: [6e-6, 0.08],
-    usual_is: "0.006 µm to 80 µm, the span of ISO 4288 Table 1",
-    above: "a value in µm written as mm (Ra 0.8 µm is ra = 0.8e-3)?",
-    below: "a value in m written as mm?",
-};
-/// Rz, mm: ISO 4288 tabulates 0.025 to 200 µm.
-pub const RZ: Limit = Limit {
-    quantity: "Rz, the mean peak-to-valley height",
-    unit: "mm",
-    accepted: [1e-7, 5.0],
-    usual: [2.5e-5, 0.2],
-    usual_is: "0.025 µm to 200 µm, the span of ISO 4288 Table 2",
-    above: "a value in µm written as mm (Rz 6.3 µm is rz = 6.3e-3)?",
-    below: "a value in m written as mm?",
-};
-/// H, the Hurst exponent of the assumed spectrum.
-pub const HURST_LIMIT: Limit = Limit {
-    quantity: "H, the Hurst exponent",
-    unit: "",
-    accepted: [0.1, 1.0],
-    usual: [0.5, 1.0],
-    usual_is: "0.5 to 1 for machined and blasted surfaces (Persson et al. 2005)",
-    above: "",
-    below: "a spectrum this rich in short waves is rare for machined faces",
-};
-/// λc, mm.
-pub const CUTOFF: Limit = Limit {
-    quantity: "λc, the cutoff wavelength",
-    unit: "mm",
-    accepted: [1e-3, 100.0],
-    usual: [0.08, 8.0],
-    usual_is: "0.08 to 8 mm, the cutoffs of ISO 4288",
-    above: "a value in µm written as mm?",
-    below: "a value in m written as mm?",
-};
-/// λs, mm.
-pub const SHORT_CUTOFF: Limit = Limit {
-    quantity: "λs, the short-wavelength cutoff",
-    unit: "mm",
-    accepted: [1e-6, 10.0],
-    usual: [2.5e-4, 0.025],
-    usual_is: "0.25 to 25 µm (ISO 3274 gives 2.5, 8 and 25 µm)",
-    above: "a value in µm written as mm?",
-    below: "a value in m written as mm?",
-};
 
 /// Which height parameter was given.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -2,25 +2,12 @@
 //! summary entries built from the increments' records: `reactions`,
 //! `probes`, `peaks`, `contact`.
 
+pub use super::json::{number, numbers};
 use super::{peaks, probes, reactions};
 use crate::model::Model;
 use crate::solve::events::{Event, Kind};
 use crate::solve::RunResult;
 use serde_json::{json, Value};
-
-/// A JSON number, null when not finite (no such value).
-pub fn number(x: f64) -> Value {
-    if x.is_finite() {
-        json!(x)
-    } else {
-        Value::Null
-    }
-}
-
-/// JSON numbers, null where not finite.
-pub fn numbers(v: &[f64]) -> Value {
-    v.iter().map(|&x| number(x)).collect()
-}
 
 /// One event as the summary states it: what, where, when (the load factor
 /// and its bracket), and the loads there: the applied forces' resultant,

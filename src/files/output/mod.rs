@@ -11,6 +11,7 @@ pub mod background;
 pub mod damping;
 pub mod events;
 pub mod joints_csv;
+pub mod json;
 pub mod peaks;
 pub mod probes;
 pub mod reactions;

@@ -53,14 +53,14 @@ pub fn summary(probes: &[Probe], mesh: &Mesh, rows: &[&[f64]]) -> Value {
             let col = |c: usize| rows.iter().map(move |r| r[per * k + c]);
             let pick = |f: fn(f64, f64) -> f64| {
                 let v: Vec<f64> = (0..per).map(|c| col(c).fold(f64::NAN, f)).collect();
-                super::events::numbers(&v)
+                super::json::numbers(&v)
             };
             let last: Vec<f64> = (0..per)
                 .map(|c| rows.last().map_or(f64::NAN, |r| r[per * k + c]))
                 .collect();
-            let mut fin = json!({"ux_mm": super::events::number(last[0]), "uy_mm": super::events::number(last[1])});
+            let mut fin = json!({"ux_mm": super::json::number(last[0]), "uy_mm": super::json::number(last[1])});
             if per == 3 {
-                fin["utheta_mm"] = super::events::number(last[2]);
+                fin["utheta_mm"] = super::json::number(last[2]);
             }
             let mut o = json!({
                 "name": p.name,

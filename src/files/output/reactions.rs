@@ -63,9 +63,9 @@ pub fn summary(groups: &[Group], rows: &[&[f64]]) -> Value {
                 "source": g.source,
                 "set": g.set,
                 "components": g.components.iter().map(|c| c.label).collect::<Vec<_>>(),
-                "final": super::events::numbers(&last),
-                "min": super::events::numbers(&min),
-                "max": super::events::numbers(&max),
+                "final": super::json::numbers(&last),
+                "min": super::json::numbers(&min),
+                "max": super::json::numbers(&max),
             })
         })
         .collect()

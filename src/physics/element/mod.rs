@@ -28,3 +28,32 @@ impl Section {
         }
     }
 }
+
+/// Internal force and (optionally) tangent of one element. `trial` receives the
+/// updated Gauss point states. Errors name the Gauss point.
+///
+/// The element's dofs are `ue.len()` (= `fe.len()`, `ke.len()` = its square):
+/// 16 (two per node, [`NodeDofs::PLANE`]), or 24 in an axisymmetric model
+/// with twist ([`NodeDofs::TWIST`], [`crate::physics::element::axisymmetric_twist`]).
+#[allow(clippy::too_many_arguments)]
+pub fn element_forces(
+    geom: &solid::ElementGeometry,
+    mat: &crate::physics::material::VonMises,
+    ue: &[f64],
+    committed: &[crate::physics::material::PointState],
+    trial: &mut [crate::physics::material::PointState],
+    response: solid::Response,
+    tangent: Option<solid::Tangent>,
+    fe: &mut [f64],
+    ke: &mut [f64],
+) -> Result<(), String> {
+    if ue.len() == dofs::NodeDofs::TWIST.element() {
+        if mat.plane != crate::physics::material::Plane::Axisymmetric {
+            return Err("three dofs per node need an axisymmetric model (twist)".into());
+        }
+        return axisymmetric_twist::forces(
+            geom, mat, ue, committed, trial, response, tangent, fe, ke,
+        );
+    }
+    solid::forces(geom, mat, ue, committed, trial, response, tangent, fe, ke)
+}

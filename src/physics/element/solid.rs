@@ -149,14 +149,11 @@ pub type ElementVector = [f64; NodeDofs::MAX_ELEMENT];
 /// twist).
 pub type ElementMatrix = [f64; NodeDofs::MAX_ELEMENT * NodeDofs::MAX_ELEMENT];
 
-/// Internal force and (optionally) tangent of one element. `trial` receives the
-/// updated Gauss point states. Errors name the Gauss point.
-///
-/// The element's dofs are `ue.len()` (= `fe.len()`, `ke.len()` = its square):
-/// 16 (two per node, [`NodeDofs::PLANE`]), or 24 in an axisymmetric model
-/// with twist ([`NodeDofs::TWIST`], [`crate::physics::element::axisymmetric_twist`]).
+/// Internal force and (optionally) tangent of one element of a plane or
+/// axisymmetric model with two dofs per node ([`super::element_forces`]
+/// chooses the element).
 #[allow(clippy::too_many_arguments)]
-pub fn element_forces(
+pub fn forces(
     geom: &ElementGeometry,
     mat: &VonMises,
     ue: &[f64],
@@ -167,14 +164,6 @@ pub fn element_forces(
     fe: &mut [f64],
     ke: &mut [f64],
 ) -> Result<(), String> {
-    if ue.len() == NodeDofs::TWIST.element() {
-        if mat.plane != Plane::Axisymmetric {
-            return Err("three dofs per node need an axisymmetric model (twist)".into());
-        }
-        return crate::physics::element::axisymmetric_twist::forces(
-            geom, mat, ue, committed, trial, response, tangent, fe, ke,
-        );
-    }
     if mat.plane == Plane::Axisymmetric {
         return axisymmetric_forces(geom, mat, ue, committed, trial, response, tangent, fe, ke);
     }

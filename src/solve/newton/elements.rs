@@ -6,7 +6,8 @@ use super::{held_out, Engine};
 use crate::input::mesh::NodeDofs;
 use crate::linalg::failure::StepFailure;
 use crate::model::Model;
-use crate::physics::element::solid::{element_forces, Response, Tangent};
+use crate::physics::element::element_forces;
+use crate::physics::element::solid::{Response, Tangent};
 use crate::physics::material::PointState;
 use crate::solve::State;
 

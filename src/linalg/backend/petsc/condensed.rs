@@ -31,34 +31,12 @@
 //! on both backends or on neither: then serial and PETSc runs take the same
 //! iterates to round-off.
 
+use super::owned::{InversePattern, Owned};
 use super::solver::PetscBackend;
 use super::{chk, ffi, type_is};
 use crate::error::Result;
 use mpi::collective::SystemOperation;
 use mpi::traits::*;
-
-/// A PETSc matrix, destroyed on drop.
-pub(super) struct Owned(ffi::Mat);
-
-impl Drop for Owned {
-    fn drop(&mut self) {
-        // SAFETY: created by this module, destroyed once (MatDestroy of a
-        // null handle does nothing).
-        unsafe {
-            ffi::MatDestroy(&mut self.0);
-        }
-    }
-}
-
-/// The entries I × I of the inverse that `MatMumpsGetInverse` computes: a
-/// sparse matrix whose rows all sit on rank 0 (MUMPS wants its sparse
-/// right-hand sides on the host), and its transpose (the form PETSc passes
-/// to MUMPS); after the call the sparse matrix holds (M⁻¹)ᵀ on that
-/// pattern. Built once per run.
-pub(super) struct InversePattern {
-    sparse: Owned,
-    transpose: Owned,
-}
 
 impl PetscBackend<'_> {
     /// The factored matrix of the KSP that solves the Newton system, where

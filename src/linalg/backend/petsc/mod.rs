@@ -9,6 +9,7 @@
 
 mod condensed;
 pub mod ffi;
+mod owned;
 pub mod snes;
 pub mod solver;
 

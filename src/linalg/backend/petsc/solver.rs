@@ -268,7 +268,7 @@ pub struct PetscBackend<'p> {
     pub(super) factor_ksp: Option<HeldKsp>,
     /// The requested entries of the inverse for MUMPS, built at the first
     /// condensation ([`super::condensed`]).
-    pub(super) inverse_pattern: Option<super::condensed::InversePattern>,
+    pub(super) inverse_pattern: Option<super::owned::InversePattern>,
 }
 
 /// A reference to a KSP that another object owns, released on drop.
