@@ -2,8 +2,9 @@
 //! model ([`crate::input::mesh::refine`], [`crate::model::constraint`]).
 
 use crate::error::{Error, Result};
+use crate::input::mesh::refine::edge_shape;
 use crate::input::mesh::refine::HangingNode;
-use crate::input::mesh::Mesh;
+use crate::input::mesh::{Mesh, NodeDofs};
 use crate::model::constraint::Constraint;
 use crate::model::pretension::Section;
 use std::collections::{HashMap, HashSet};
@@ -83,7 +84,7 @@ pub(super) fn constraints(
             ));
         }
         let h = HangingNode { edge, ..h.clone() };
-        for c in h.constraints(nd) {
+        for c in node_constraints(&h, nd) {
             if !given.contains_key(&c.slave) {
                 out.push(c);
             } else if !agrees(&c, &given) {
@@ -120,4 +121,21 @@ fn agrees(c: &Constraint, given: &HashMap<usize, (f64, Option<usize>)>) -> bool 
         }
     }
     (sum - v).abs() <= 1e-12 * scale
+}
+
+/// u_q = Σ N_i(s) u_i for every dof component of the hanging node `h`.
+fn node_constraints(h: &HangingNode, nd: NodeDofs) -> Vec<Constraint> {
+    let w = edge_shape(h.s);
+    (0..nd.per_node())
+        .map(|c| Constraint {
+            slave: nd.dof(h.node, c),
+            terms: (0..3).map(|i| (nd.dof(h.edge[i], c), w[i])).collect(),
+            offset: 0.0,
+            history: None,
+            origin: format!(
+                "hanging node {} on the edge of element {}",
+                h.node, h.element
+            ),
+        })
+        .collect()
 }

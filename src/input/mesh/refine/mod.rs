@@ -41,8 +41,7 @@ mod sets;
 #[cfg(test)]
 mod tests;
 
-use super::{Element, Mesh, MeshError, NodeDofs};
-use crate::model::constraint::Constraint;
+use super::{Element, Mesh, MeshError};
 use crate::physics::element::q8;
 use std::collections::{BTreeSet, HashMap};
 
@@ -65,25 +64,6 @@ pub struct HangingNode {
     pub edge: [usize; 3],
     pub s: f64,
     pub element: usize,
-}
-
-impl HangingNode {
-    /// u_q = Σ N_i(s) u_i for every dof component of the node.
-    pub fn constraints(&self, nd: NodeDofs) -> Vec<Constraint> {
-        let w = edge_shape(self.s);
-        (0..nd.per_node())
-            .map(|c| Constraint {
-                slave: nd.dof(self.node, c),
-                terms: (0..3).map(|i| (nd.dof(self.edge[i], c), w[i])).collect(),
-                offset: 0.0,
-                history: None,
-                origin: format!(
-                    "hanging node {} on the edge of element {}",
-                    self.node, self.element
-                ),
-            })
-            .collect()
-    }
 }
 
 /// Each element's refinement level (0: an element of the start mesh) and
@@ -138,16 +118,6 @@ impl Refined {
         tied: &[(usize, usize)],
     ) -> Result<Refined, MeshError> {
         refine_with(&self.mesh, &self.state, marked, tied)
-    }
-
-    /// Every hanging node's constraints (dof components from the mesh's
-    /// [`NodeDofs`]).
-    pub fn constraints(&self) -> Vec<Constraint> {
-        let nd = self.mesh.node_dofs;
-        self.hanging
-            .iter()
-            .flat_map(|h| h.constraints(nd))
-            .collect()
     }
 }
 
