@@ -4,7 +4,7 @@
 //! hanging nodes ([`crate::input::mesh::refine`]), and solve again **from the start
 //! of the history** on the new mesh, until the estimate is below the
 //! tolerance. Re-solving from zero is exact for history-dependent plasticity:
-//! no state is transferred between meshes (DESIGN.md section 5).
+//! no state is transferred between meshes.
 //!
 //! The estimate of a cycle is, for `quantity = "energy"`, the recovery
 //! estimate relative to the energy norm, η / ‖u_h‖_E; for a named answer Q

@@ -1,7 +1,7 @@
-//! Linear multi-point constraints of the model, u_s = Σ_i c_i u_i + g h(t)
-//! (DESIGN.md section 5): one mechanism for every dof whose value follows
-//! from others — the two sides of a pretension section ([`crate::model::pretension`]),
-//! and, later, hanging nodes of a refined mesh and ties.
+//! Linear multi-point constraints of the model, u_s = Σ_i c_i u_i + g h(t):
+//! one mechanism for every dof whose value follows from others — the two
+//! sides of a pretension section ([`crate::model::pretension`]) and the
+//! hanging nodes of a refined mesh ([`crate::model::hanging`]).
 //!
 //! The constraints are **eliminated**: a slave dof s has no equation; with
 //! T the map from the remaining (master, free or prescribed) dofs to all

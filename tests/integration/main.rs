@@ -9,6 +9,7 @@
 mod common;
 
 mod adapt_stop;
+mod architecture;
 mod axisymmetric;
 mod bad_inputs;
 mod calibrate;
