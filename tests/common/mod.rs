@@ -1,6 +1,8 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
+pub mod corpus;
+
 use asperity::case::Case;
 use asperity::model::Model;
 use std::path::PathBuf;
