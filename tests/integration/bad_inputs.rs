@@ -447,3 +447,63 @@ fn patches_make_what_the_format_says_and_refuse_what_it_does_not() {
         "{e}"
     );
 }
+
+/// Every base case is valid (`asperity check` accepts it), so that a corpus
+/// case is a valid case with what its patch changes. A base that reads
+/// `mesh.msh` names the mesh base it goes with (`tiny.msh`), which is put
+/// beside it.
+#[test]
+fn every_base_case_is_valid() {
+    let scratch = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bad_inputs_bases");
+    let _ = std::fs::remove_dir_all(&scratch);
+    let mut names: Vec<String> = std::fs::read_dir(corpus::base_dir())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    let meshes: Vec<&String> = names.iter().filter(|n| n.ends_with(".msh")).collect();
+    let mut failures = Vec::new();
+    let mut checked = 0;
+    for name in names.iter().filter(|n| n.ends_with(".toml")) {
+        let text = std::fs::read_to_string(corpus::base_dir().join(name)).unwrap();
+        let dir = scratch.join(name.trim_end_matches(".toml"));
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(dir.join("case.toml"), &text).unwrap();
+        let named: Vec<&&String> = meshes
+            .iter()
+            .filter(|m| text.contains(m.as_str()))
+            .collect();
+        match named.as_slice() {
+            [] if text.contains("\"mesh.msh\"") => {
+                failures.push(format!(
+                    "base/{name}: reads mesh.msh but names no mesh base"
+                ));
+                continue;
+            }
+            [] => {}
+            [m] => {
+                std::fs::copy(corpus::base_dir().join(m.as_str()), dir.join("mesh.msh")).unwrap();
+            }
+            more => {
+                failures.push(format!("base/{name}: names several mesh bases {more:?}"));
+                continue;
+            }
+        }
+        let o = asperity(&["check".as_ref(), dir.as_os_str()], &[]);
+        checked += 1;
+        if o.code != Some(0) {
+            failures.push(format!(
+                "base/{name}: `asperity check` exit code {:?}: {}",
+                o.code,
+                o.stderr.trim()
+            ));
+        }
+    }
+    assert!(checked >= 10, "only {checked} base cases");
+    assert!(
+        failures.is_empty(),
+        "{} base case(s) not valid:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
