@@ -1,6 +1,8 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
+pub mod corpus;
+
 use asperity::input::case::Case;
 use asperity::model::Model;
 use std::path::PathBuf;

@@ -1,11 +1,16 @@
 //! The bad-input corpus: every folder `tests/bad_inputs/NN-name/` holds a case
-//! (`case.toml`, perhaps with other files beside it) that `asperity` must reject,
-//! and `expect.txt`, a piece of text the error message must contain.
+//! that `asperity` must reject, and `expect.txt`, a piece of text the error
+//! message must contain. The case is stored as patches (`case.toml.patch`: a base
+//! case of `tests/bad_inputs/base/` and what to change, see
+//! `tests/bad_inputs/README.md`) or, when it cannot be one, as raw files; each
+//! folder is assembled into a scratch folder of the same name under
+//! `CARGO_TARGET_TMPDIR/bad_inputs/NN-name/`, and that is what runs. A patch
+//! that does not apply fails the test naming its folder and line.
 //!
-//! For each folder, in order, `asperity run <folder> --out <scratch>/out --quiet`
+//! For each folder, in order, `asperity run <case> --out <scratch>/out --quiet`
 //! must exit with code 2, print exactly one line on stderr, starting `error: `
 //! and containing the expected text, never mention a panic, and leave neither the
-//! output folder nor a `.partial` folder behind. `asperity check <folder>` must
+//! output folder nor a `.partial` folder behind. `asperity check <case>` must
 //! then either accept the case (the failure is one of solving, not of the input)
 //! or fail with the very same line. Failures are collected and reported together.
 //! A folder whose bad input is a run option rather than the case holds a valid
@@ -15,6 +20,7 @@
 //! too, [`RUN_ONLY`] none of them), refuse it with them with the run's very line.
 //! See docs/reliability.md.
 
+use crate::common::corpus;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -133,44 +139,38 @@ fn judge(what: &str, o: &Outcome, expect: &str, problems: &mut Vec<String>) {
     }
 }
 
-/// The corpus folders, sorted by name.
-fn folders() -> Vec<PathBuf> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/bad_inputs");
-    let mut v: Vec<PathBuf> = std::fs::read_dir(&root)
-        .unwrap_or_else(|e| panic!("{}: {e}", root.display()))
-        .filter_map(|e| e.ok())
-        .map(|e| e.path())
-        .filter(|p| p.is_dir())
-        .collect();
-    v.sort();
-    v
-}
-
 #[test]
 fn every_bad_input_is_rejected_with_one_clear_line() {
     let scratch = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bad_inputs");
     let _ = std::fs::remove_dir_all(&scratch);
     let mut failures: Vec<String> = Vec::new();
     let mut checked_only = 0;
-    let all = folders();
+    let all = corpus::folders();
     assert!(all.len() >= 60, "only {} corpus folders", all.len());
-    for folder in &all {
-        let name = folder.file_name().unwrap().to_string_lossy().into_owned();
+    for source in &all {
+        let name = source.file_name().unwrap().to_string_lossy().into_owned();
         let mut problems = Vec::new();
-        let expect = match std::fs::read_to_string(folder.join("expect.txt")) {
+        let expect = match std::fs::read_to_string(source.join("expect.txt")) {
             Ok(s) if !s.trim().is_empty() => s.trim_end_matches(['\n', '\r']).to_string(),
             _ => {
                 failures.push(format!("{name}: no expect.txt (or it is empty)"));
                 continue;
             }
         };
-        // a scratch folder of its own: `out` must not exist afterwards, nor any
+        // a scratch folder of its own: the assembled case, named like the
+        // corpus folder, and `out`, which must not exist afterwards, nor any
         // `.out.partial-*` beside it
         let parent = scratch.join(&name);
         std::fs::create_dir_all(&parent).unwrap();
+        let folder = parent.join(&name);
+        if let Err(e) = corpus::assemble(source, &folder) {
+            failures.push(format!("{name}: the case does not assemble: {e}"));
+            continue;
+        }
+        let folder = &folder;
         let out = parent.join("out");
         let lines = |file: &str| -> Vec<String> {
-            std::fs::read_to_string(folder.join(file))
+            std::fs::read_to_string(source.join(file))
                 .map(|s| s.lines().map(str::to_string).collect())
                 .unwrap_or_default()
         };
@@ -275,6 +275,234 @@ fn every_bad_input_is_rejected_with_one_clear_line() {
     assert!(
         failures.is_empty(),
         "{} problem(s) in the bad-input corpus:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
+
+/// Every corpus folder assembles (each patch applies to its base), without
+/// running anything: a fast first check of the corpus files. Every base is
+/// used by some patch, and no folder is left without an input.
+#[test]
+fn every_corpus_folder_assembles_and_every_base_is_used() {
+    let scratch = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bad_inputs_assembled");
+    let _ = std::fs::remove_dir_all(&scratch);
+    let mut failures = Vec::new();
+    let mut used = std::collections::BTreeSet::new();
+    let all = corpus::folders();
+    assert!(all.len() >= 60, "only {} corpus folders", all.len());
+    for source in &all {
+        let name = source.file_name().unwrap().to_string_lossy().into_owned();
+        match corpus::assemble(source, &scratch.join(&name)) {
+            Ok(bases) => used.extend(bases),
+            Err(e) => failures.push(format!("{name}: {e}")),
+        }
+    }
+    let bases: Vec<String> = std::fs::read_dir(corpus::base_dir())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert!(
+        !bases.is_empty(),
+        "no base in {}",
+        corpus::base_dir().display()
+    );
+    for b in &bases {
+        if !used.contains(b) {
+            failures.push(format!("base/{b}: no patch uses it"));
+        }
+    }
+    println!(
+        "{} folders assembled from {} bases into {}",
+        all.len(),
+        bases.len(),
+        scratch.display()
+    );
+    assert!(
+        failures.is_empty(),
+        "{} corpus folder(s) do not assemble:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
+
+/// The patch format, directive by directive, on a small base: what each one
+/// makes, byte for byte, and that a malformed patch is refused naming its line
+/// (an unknown directive, key, table or base, a table that needs its number, a
+/// base line already gone, a truncation that is not last).
+#[test]
+fn patches_make_what_the_format_says_and_refuse_what_it_does_not() {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bad_inputs_patch_format");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("b.toml"),
+        "name = \"b\"\n\n[model]\nplane = \"stress\"\n\n[[load]]\nset = \"a\"\n\n[[load]]\nset = \"b\"\n\n[solver]\nincrements = 4\n",
+    )
+    .unwrap();
+    let make =
+        |patch: &str| corpus::apply_patch(patch, &dir).map(|(_, b)| String::from_utf8(b).unwrap());
+    let cases = [
+        (
+            "base b.toml\nset [model] plane = \"strain\"\nadd [model] thickness = 2.0\n",
+            "name = \"b\"\n\n[model]\nplane = \"strain\"\nthickness = 2.0\n\n[[load]]\nset = \"a\"\n\n[[load]]\nset = \"b\"\n\n[solver]\nincrements = 4\n",
+        ),
+        (
+            "base b.toml\n# a comment\nadd-first colour = \"red\"\nadd-first [[load]]#2 x = 1\ndelete [[load]]#1 set\n",
+            "colour = \"red\"\nname = \"b\"\n\n[model]\nplane = \"stress\"\n\n[[load]]\n\n[[load]]\nx = 1\nset = \"b\"\n\n[solver]\nincrements = 4\n",
+        ),
+        (
+            "base b.toml\ndelete [[load]]#2\nbefore [solver] [output]\nbefore [solver] vtu = false\nbefore [solver]\nappend max_cutbacks = 2\n",
+            "name = \"b\"\n\n[model]\nplane = \"stress\"\n\n[[load]]\nset = \"a\"\n\n[output]\nvtu = false\n\n[solver]\nincrements = 4\nmax_cutbacks = 2\n",
+        ),
+        (
+            "base b.toml\nreplace 1 # the first line\ninsert 4 thickness = 1.0\nremove 5-10\nappend\ntruncate 43\n",
+            "# the first line\n\n[model]\nthickness = 1.0\np",
+        ),
+        (
+            "base b.toml\nremove 2\nreplace 3\ninsert 13 x\n",
+            "name = \"b\"\n\nplane = \"stress\"\n\n[[load]]\nset = \"a\"\n\n[[load]]\nset = \"b\"\n\n[solver]\nx\nincrements = 4\n",
+        ),
+    ];
+    for (patch, want) in cases {
+        match make(patch) {
+            Ok(got) => assert_eq!(got, want, "{patch}"),
+            Err(e) => panic!("{patch}: {e}"),
+        }
+    }
+    let refused = [
+        (
+            "base b.toml\nset [model] plane = 1\nfrobnicate x\n",
+            "line 3: \"frobnicate x\": unknown directive \"frobnicate\"",
+        ),
+        (
+            "base b.toml\nset [model] young = 1.0\n",
+            "line 2: \"set [model] young = 1.0\": no line of key young in [model]",
+        ),
+        ("base b.toml\nset [mesh] refine = 2\n", "no table [mesh]"),
+        (
+            "base b.toml\nadd [[load]] x = 1\n",
+            "2 tables [[load]]: say which with [[load]]#N",
+        ),
+        (
+            "base b.toml\nadd [[load]]#3 x = 1\n",
+            "no table [[load]]#3 (there are 2)",
+        ),
+        (
+            "base b.toml\nset [solver] no key here\n",
+            "not a `key = value` line",
+        ),
+        (
+            "base c.toml\nset [model] plane = 1\n",
+            "line 1: unknown base \"c.toml\"",
+        ),
+        ("base ../b.toml\n", "is not a file name"),
+        (
+            "set [model] plane = 1\n",
+            "line 1: \"set [model] plane = 1\": the first line must be `base NAME`",
+        ),
+        ("", "empty patch"),
+        (
+            "base b.toml\nremove 3\nreplace 3 x\n",
+            "line 3: \"replace 3 x\": line 3 of the base is not there",
+        ),
+        (
+            "base b.toml\nreplace 14 x\n",
+            "line 14 of the base is not there",
+        ),
+        ("base b.toml\nremove 5-4\n", "bad line range"),
+        (
+            "base b.toml\ntruncate 10\nappend x\n",
+            "truncate must be the last directive",
+        ),
+        ("base b.toml\ntruncate 1000\n", "past the end"),
+        ("base b.toml\nbefore x = 1\n", "before needs a table"),
+        ("base b.toml\ndelete\n", "delete needs a key or a table"),
+    ];
+    for (patch, needle) in refused {
+        match make(patch) {
+            Ok(got) => panic!("{patch:?} was accepted, made {got:?}"),
+            Err(e) => assert!(
+                e.contains(needle),
+                "{patch:?}: {e:?} does not say {needle:?}"
+            ),
+        }
+    }
+    // a folder with a patch that does not apply, or with nothing to run, does
+    // not assemble, and says which file and line
+    let folder = dir.join("99-broken");
+    std::fs::create_dir_all(&folder).unwrap();
+    std::fs::write(folder.join("expect.txt"), "x\n").unwrap();
+    let e = corpus::assemble(&folder, &dir.join("out-empty")).unwrap_err();
+    assert!(e.contains("no input"), "{e}");
+    std::fs::write(
+        folder.join("case.toml.patch"),
+        "base punch.toml\nset [model] colour = 1\n",
+    )
+    .unwrap();
+    let e = corpus::assemble(&folder, &dir.join("out-patch")).unwrap_err();
+    assert!(
+        e.starts_with("case.toml.patch: line 2: ")
+            && e.contains("no line of key colour in [model]"),
+        "{e}"
+    );
+}
+
+/// Every base case is valid (`asperity check` accepts it), so that a corpus
+/// case is a valid case with what its patch changes. A base that reads
+/// `mesh.msh` names the mesh base it goes with (`tiny.msh`), which is put
+/// beside it.
+#[test]
+fn every_base_case_is_valid() {
+    let scratch = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bad_inputs_bases");
+    let _ = std::fs::remove_dir_all(&scratch);
+    let mut names: Vec<String> = std::fs::read_dir(corpus::base_dir())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    let meshes: Vec<&String> = names.iter().filter(|n| n.ends_with(".msh")).collect();
+    let mut failures = Vec::new();
+    let mut checked = 0;
+    for name in names.iter().filter(|n| n.ends_with(".toml")) {
+        let text = std::fs::read_to_string(corpus::base_dir().join(name)).unwrap();
+        let dir = scratch.join(name.trim_end_matches(".toml"));
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(dir.join("case.toml"), &text).unwrap();
+        let named: Vec<&&String> = meshes
+            .iter()
+            .filter(|m| text.contains(m.as_str()))
+            .collect();
+        match named.as_slice() {
+            [] if text.contains("\"mesh.msh\"") => {
+                failures.push(format!(
+                    "base/{name}: reads mesh.msh but names no mesh base"
+                ));
+                continue;
+            }
+            [] => {}
+            [m] => {
+                std::fs::copy(corpus::base_dir().join(m.as_str()), dir.join("mesh.msh")).unwrap();
+            }
+            more => {
+                failures.push(format!("base/{name}: names several mesh bases {more:?}"));
+                continue;
+            }
+        }
+        let o = asperity(&["check".as_ref(), dir.as_os_str()], &[]);
+        checked += 1;
+        if o.code != Some(0) {
+            failures.push(format!(
+                "base/{name}: `asperity check` exit code {:?}: {}",
+                o.code,
+                o.stderr.trim()
+            ));
+        }
+    }
+    assert!(checked >= 10, "only {checked} base cases");
+    assert!(
+        failures.is_empty(),
+        "{} base case(s) not valid:\n{}",
         failures.len(),
         failures.join("\n")
     );

@@ -3,7 +3,7 @@
 //! `src/…` in the text, code spans and code blocks included, wherever it
 //! stands: in a link (`../src/x.rs`), in code, in a sentence. Trailing
 //! punctuation, a `:line` suffix and a `#anchor` are stripped; `{a,b}` names
-//! several (`src/interface/{table,normal}.rs`); a path ending in `/` must be a
+//! several (`src/model/interface/{table,normal}.rs`); a path ending in `/` must be a
 //! folder, any other a file or a folder. Inside a fenced code block a line
 //! that starts with a `src/` path is an entry of a code map: the bare file
 //! and folder names of its description (`mod.rs`, `newton/step.rs`,
@@ -261,12 +261,12 @@ fn every_src_path_named_in_the_documentation_exists() {
 fn the_parser_finds_src_paths_and_skips_what_is_not_one() {
     let text = "\
 See `src/solve/newton/step.rs:120` and [the code](../src/constraint.rs#L3), src/lib.rs.
-Unit tests (`src/interface/{table,normal}.rs`); touch src/lib.rs; `src/material/`.
+Unit tests (`src/model/interface/{table,normal}.rs`); touch src/lib.rs; `src/physics/material/`.
 Not ours: https://github.com/o/r/blob/main/src/x.rs, fuzz/src/y.rs, mysrc/z.rs, `src/…/x.rs`.
 ```
 src/solve/       the loop (mod.rs: phases; newton/step.rs), settings (settings.rs)
                  automatic steps (stepping.rs); Cholesky (serial/), restart.bin
-src/driver.rs    one run (parallel.rs makes PETSc's)
+src/app/driver.rs    one run (parallel.rs makes PETSc's)
 cases/           case files (mod.rs is not a code map entry here)
 ```
 ";
@@ -276,20 +276,20 @@ cases/           case files (mod.rs is not a code map entry here)
         paths,
         [
             "src/solve/newton/step.rs",
-            "src/constraint.rs",
+            "src/model/constraint.rs",
             "src/lib.rs",
-            "src/interface/table.rs",
-            "src/interface/normal.rs",
+            "src/physics/contact/table.rs",
+            "src/physics/contact/normal.rs",
             "src/lib.rs",
-            "src/material/",
+            "src/physics/material/",
             "src/solve/",
             "src/solve/mod.rs",
             "src/solve/newton/step.rs",
             "src/solve/settings.rs",
             "src/solve/stepping.rs",
             "src/solve/serial/",
-            "src/driver.rs",
-            "src/parallel.rs",
+            "src/app/driver.rs",
+            "src/app/parallel.rs",
         ]
     );
     let lines: Vec<usize> = found.iter().map(|(l, _)| *l).collect();

@@ -123,7 +123,7 @@ fn increments_on_the_command_line_are_equal_steps_in_an_automatic_case() {
     // automatic steps keep a case's load_factors as waypoints (the unloading
     // to 0.2 here); fixed steps would replace them, which is refused
     // (tests/bad_inputs/550)
-    let case = common::root().join("tests/bad_inputs/550-increments-flag-beside-load-factors");
+    let case = common::corpus::bad_input("550-increments-flag-beside-load-factors");
     let out = dir.join("waypoints");
     let (code, err) = common::run_case(
         &case,
@@ -318,12 +318,11 @@ fn every_override_has_a_refusal_that_names_it() {
         .collect();
     assert!(options.len() >= 9, "{options:?}");
     let refuses_nothing = ["plain"];
-    let corpus = common::root().join("tests/bad_inputs");
+    let corpus = common::corpus::folders();
     let mut missing = Vec::new();
     for option in options {
         let flag = format!("--{option}");
-        let named = std::fs::read_dir(&corpus).unwrap().any(|e| {
-            let dir = e.unwrap().path();
+        let named = corpus.iter().any(|dir| {
             let args = std::fs::read_to_string(dir.join("args.txt")).unwrap_or_default();
             let expect = std::fs::read_to_string(dir.join("expect.txt")).unwrap_or_default();
             args.lines().next() == Some(flag.as_str()) && expect.starts_with(&flag)

@@ -30,7 +30,7 @@ fn a_fault_on_rank_1_ends_every_rank_with_its_message_and_no_output() {
 #[test]
 fn a_load_snes_cannot_converge_ends_every_rank_cleanly() {
     let root = common::scratch("parallel-snes-fail");
-    let case = common::root().join("tests/bad_inputs/85-cannot-converge");
+    let case = common::corpus::bad_input("85-cannot-converge");
     let err = fails_cleanly_on_two_ranks(&root, &case, &[]);
     assert!(err.contains("did not converge"), "{err}");
 }
@@ -56,7 +56,7 @@ fn a_model_wrong_as_a_whole_is_refused_once_on_two_ranks() {
         ("340-arc-apex-off-block", "center"),
     ] {
         let root = common::scratch(&format!("parallel-whole-{name}"));
-        let case = common::root().join("tests/bad_inputs").join(name);
+        let case = common::corpus::bad_input(name);
         let err = fails_cleanly_on_two_ranks(&root, &case, &[]);
         assert!(err.contains(needle), "{name}: {err}");
     }

@@ -136,22 +136,20 @@ fn elastic_loading_and_unloading_returns_to_zero() {
     assert_eq!(r.increments.last().unwrap().load_factor, 2.0);
 }
 
-/// The coarse punch of the bad-input corpus (plane stress, half model), its
-/// pressure following `history`.
+/// The coarse punch of the bad-input corpus (its base case `punch.toml`: plane
+/// stress, half model), its pressure following `history`.
 fn punch(pressure: f64, yield_stress: &str, history: &str) -> String {
-    let base =
-        std::fs::read_to_string(common::root().join("tests/bad_inputs/119-gap-huge/case.toml"))
-            .unwrap()
-            .replace("gap = 1e30\n", "")
-            .replace("yield_stress = 196.0\n", yield_stress)
-            .replace(
-                "increments = 4\nfirst_increment = 0.05\n",
-                "increments = 8\n",
-            )
-            .replace(
-                "pressure = 250.0\n",
-                &format!("pressure = {pressure}\nhistory = {history}\n"),
-            );
+    let base = std::fs::read_to_string(common::corpus::base_dir().join("punch.toml"))
+        .unwrap()
+        .replace("yield_stress = 196.0\n", yield_stress)
+        .replace(
+            "increments = 4\nfirst_increment = 0.05\n",
+            "increments = 8\n",
+        )
+        .replace(
+            "pressure = 250.0\n",
+            &format!("pressure = {pressure}\nhistory = {history}\n"),
+        );
     assert!(base.contains(history) && !base.contains("gap ="));
     base
 }
