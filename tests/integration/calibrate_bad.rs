@@ -1,7 +1,7 @@
 //! `asperity calibrate`'s bad inputs: one `error:` line naming file and key,
 //! exit code 2, no output folder (nor a temporary folder beside it).
 
-use crate::app::calibrate::{asperity, calibrate, FIT, GW, MATERIALS};
+use crate::calibrate::{asperity, calibrate, FIT, GW, MATERIALS};
 use crate::common;
 
 fn bad(name: &str, input: &str, expect: &str) {

@@ -2,7 +2,7 @@
 //! band) and tangential laws (every surface model, the Iwan backbone): the
 //! snippets pasted into a case with a tangential law and checked.
 
-use crate::app::calibrate::{asperity, calibrate, three_harmonics, FIT, GW, MATERIALS};
+use crate::calibrate::{asperity, calibrate, three_harmonics, FIT, GW, MATERIALS};
 use crate::calibrate_bad::profile;
 use crate::common;
 
