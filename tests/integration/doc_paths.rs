@@ -260,8 +260,8 @@ fn every_src_path_named_in_the_documentation_exists() {
 #[test]
 fn the_parser_finds_src_paths_and_skips_what_is_not_one() {
     let text = "\
-See `src/solve/newton/step.rs:120` and [the code](../src/constraint.rs#L3), src/lib.rs.
-Unit tests (`src/model/interface/{table,normal}.rs`); touch src/lib.rs; `src/physics/material/`.
+See `src/solve/newton/step.rs:120` and [the code](../src/model/constraint.rs#L3), src/lib.rs.
+Unit tests (`src/physics/contact/{table,normal}.rs`); touch src/lib.rs; `src/physics/material/`.
 Not ours: https://github.com/o/r/blob/main/src/x.rs, fuzz/src/y.rs, mysrc/z.rs, `src/…/x.rs`.
 ```
 src/solve/       the loop (mod.rs: phases; newton/step.rs), settings (settings.rs)
