@@ -311,6 +311,59 @@ pub fn check_poisson(place: &str, key: &str, v: f64, warnings: &mut Vec<Warning>
     Ok(())
 }
 
+/// The ranges of the roughness parameters of `[surface] model = "roughness"`
+/// ([`super::roughness`]).
+/// Ra, mm: ISO 4288 tabulates 0.006 to 80 µm.
+pub const RA: Limit = Limit {
+    quantity: "Ra, the arithmetic mean height",
+    unit: "mm",
+    accepted: [1e-7, 1.0],
+    usual: [6e-6, 0.08],
+    usual_is: "0.006 µm to 80 µm, the span of ISO 4288 Table 1",
+    above: "a value in µm written as mm (Ra 0.8 µm is ra = 0.8e-3)?",
+    below: "a value in m written as mm?",
+};
+/// Rz, mm: ISO 4288 tabulates 0.025 to 200 µm.
+pub const RZ: Limit = Limit {
+    quantity: "Rz, the mean peak-to-valley height",
+    unit: "mm",
+    accepted: [1e-7, 5.0],
+    usual: [2.5e-5, 0.2],
+    usual_is: "0.025 µm to 200 µm, the span of ISO 4288 Table 2",
+    above: "a value in µm written as mm (Rz 6.3 µm is rz = 6.3e-3)?",
+    below: "a value in m written as mm?",
+};
+/// H, the Hurst exponent of the assumed spectrum.
+pub const HURST_LIMIT: Limit = Limit {
+    quantity: "H, the Hurst exponent",
+    unit: "",
+    accepted: [0.1, 1.0],
+    usual: [0.5, 1.0],
+    usual_is: "0.5 to 1 for machined and blasted surfaces (Persson et al. 2005)",
+    above: "",
+    below: "a spectrum this rich in short waves is rare for machined faces",
+};
+/// λc, mm.
+pub const CUTOFF: Limit = Limit {
+    quantity: "λc, the cutoff wavelength",
+    unit: "mm",
+    accepted: [1e-3, 100.0],
+    usual: [0.08, 8.0],
+    usual_is: "0.08 to 8 mm, the cutoffs of ISO 4288",
+    above: "a value in µm written as mm?",
+    below: "a value in m written as mm?",
+};
+/// λs, mm.
+pub const SHORT_CUTOFF: Limit = Limit {
+    quantity: "λs, the short-wavelength cutoff",
+    unit: "mm",
+    accepted: [1e-6, 10.0],
+    usual: [2.5e-4, 0.025],
+    usual_is: "0.25 to 25 µm (ISO 3274 gives 2.5, 8 and 25 µm)",
+    above: "a value in µm written as mm?",
+    below: "a value in m written as mm?",
+};
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -412,56 +465,3 @@ mod tests {
         }
     }
 }
-
-/// The ranges of the roughness parameters of `[surface] model = "roughness"`
-/// ([`super::roughness`]).
-/// Ra, mm: ISO 4288 tabulates 0.006 to 80 µm.
-pub const RA: Limit = Limit {
-    quantity: "Ra, the arithmetic mean height",
-    unit: "mm",
-    accepted: [1e-7, 1.0],
-    usual: [6e-6, 0.08],
-    usual_is: "0.006 µm to 80 µm, the span of ISO 4288 Table 1",
-    above: "a value in µm written as mm (Ra 0.8 µm is ra = 0.8e-3)?",
-    below: "a value in m written as mm?",
-};
-/// Rz, mm: ISO 4288 tabulates 0.025 to 200 µm.
-pub const RZ: Limit = Limit {
-    quantity: "Rz, the mean peak-to-valley height",
-    unit: "mm",
-    accepted: [1e-7, 5.0],
-    usual: [2.5e-5, 0.2],
-    usual_is: "0.025 µm to 200 µm, the span of ISO 4288 Table 2",
-    above: "a value in µm written as mm (Rz 6.3 µm is rz = 6.3e-3)?",
-    below: "a value in m written as mm?",
-};
-/// H, the Hurst exponent of the assumed spectrum.
-pub const HURST_LIMIT: Limit = Limit {
-    quantity: "H, the Hurst exponent",
-    unit: "",
-    accepted: [0.1, 1.0],
-    usual: [0.5, 1.0],
-    usual_is: "0.5 to 1 for machined and blasted surfaces (Persson et al. 2005)",
-    above: "",
-    below: "a spectrum this rich in short waves is rare for machined faces",
-};
-/// λc, mm.
-pub const CUTOFF: Limit = Limit {
-    quantity: "λc, the cutoff wavelength",
-    unit: "mm",
-    accepted: [1e-3, 100.0],
-    usual: [0.08, 8.0],
-    usual_is: "0.08 to 8 mm, the cutoffs of ISO 4288",
-    above: "a value in µm written as mm?",
-    below: "a value in m written as mm?",
-};
-/// λs, mm.
-pub const SHORT_CUTOFF: Limit = Limit {
-    quantity: "λs, the short-wavelength cutoff",
-    unit: "mm",
-    accepted: [1e-6, 10.0],
-    usual: [2.5e-4, 0.025],
-    usual_is: "0.25 to 25 µm (ISO 3274 gives 2.5, 8 and 25 µm)",
-    above: "a value in µm written as mm?",
-    below: "a value in m written as mm?",
-};
