@@ -252,6 +252,13 @@ pub fn run(
     let per_node = if case.model.twist { 3 } else { 2 };
     let mut mesh = Refined::start(&Model::mesh_of(&case)?);
     let start_nodes = mesh.mesh.nodes.len();
+    let run = Adaptive {
+        case: &case,
+        spec: &spec,
+        place: &place,
+        log: &log,
+        root,
+    };
     let mut cycles: Vec<Cycle> = Vec::new();
     loop {
         let started = Instant::now();
@@ -271,21 +278,7 @@ pub fn run(
             }
             return Ok((dir, model, result));
         }
-        // rank 0's estimate and answer, on every rank: [η, ‖u‖, Q, η_e²…]
-        let ne = model.mesh.elements.len();
-        let mut numbers = vec![0.0; 3 + ne];
-        if let Some(est) = result.estimate.as_ref().filter(|_| root) {
-            numbers[0] = est.total;
-            numbers[1] = est.norm;
-            numbers[2] = value(spec.quantity, &model, &result, est.relative());
-            numbers[3..].copy_from_slice(&est.element);
-        } else if root {
-            return Err(Error::input(
-                &place,
-                "[adapt] needs the error estimate of the last increment, which this run did not make",
-            ));
-        }
-        share(&mut numbers);
+        let numbers = run.shared_numbers(&model, &result, share)?;
         let (eta, norm, q) = (numbers[0], numbers[1], numbers[2]);
         let relative_eta = if norm > 0.0 { eta / norm } else { 0.0 };
         let estimate = cycle_estimate(
@@ -296,7 +289,7 @@ pub fn run(
         );
         cycles.push(Cycle {
             cycle: cycles.len() + 1,
-            elements: ne,
+            elements: model.mesh.elements.len(),
             nodes: model.mesh.nodes.len(),
             dofs: model.mesh.num_dofs(),
             hanging_nodes: mesh.hanging.len(),
@@ -311,77 +304,141 @@ pub fn run(
             first_yield_kn: value(Quantity::FirstYield, &model, &result, 0.0),
             applied_n: applied_force(&model, result.final_state.time),
         });
-        let end = if estimate <= spec.tolerance {
+        let end = run.next(&mut mesh, &cycles, &numbers[3..], per_node, &dir)?;
+        if root {
+            run.report(&dir, &cycles, end)?;
+        }
+        if end.is_some() {
+            return Ok((dir, model, result));
+        }
+    }
+}
+
+/// What every cycle of an adaptive run reads: the case, its `[adapt]`
+/// table, the place that messages name, the log and whether this process
+/// writes (`root`).
+struct Adaptive<'a> {
+    case: &'a Case,
+    spec: &'a AdaptSpec,
+    place: &'a str,
+    log: &'a Log,
+    root: bool,
+}
+
+impl Adaptive<'_> {
+    /// Rank 0's estimate and answer, on every rank: [η, ‖u‖, Q, η_e²…]
+    /// (the last, per element); refuses a run that made no estimate.
+    fn shared_numbers(
+        &self,
+        model: &Model,
+        result: &RunResult,
+        share: &dyn Fn(&mut [f64]),
+    ) -> Result<Vec<f64>> {
+        let ne = model.mesh.elements.len();
+        let mut numbers = vec![0.0; 3 + ne];
+        if let Some(est) = result.estimate.as_ref().filter(|_| self.root) {
+            numbers[0] = est.total;
+            numbers[1] = est.norm;
+            numbers[2] = value(self.spec.quantity, model, result, est.relative());
+            numbers[3..].copy_from_slice(&est.element);
+        } else if self.root {
+            return Err(Error::input(
+                self.place,
+                "[adapt] needs the error estimate of the last increment, which this run did not make",
+            ));
+        }
+        share(&mut numbers);
+        Ok(numbers)
+    }
+
+    /// Whether the run ends after the last of `cycles` (the tolerance
+    /// reached, or no further cycle allowed); if not, `mesh` becomes the next
+    /// cycle's mesh, refined where `eta_sq` (per element) is largest. A mesh
+    /// that cannot be refined is an error, `dir`'s record written first.
+    fn next(
+        &self,
+        mesh: &mut Refined,
+        cycles: &[Cycle],
+        eta_sq: &[f64],
+        per_node: usize,
+        dir: &Path,
+    ) -> Result<Option<End>> {
+        let spec = self.spec;
+        let estimate = cycles.last().expect("pushed above").estimate;
+        Ok(if estimate <= spec.tolerance {
             Some(End::Reached)
         } else if cycles.len() >= spec.max_cycles {
             Some(End::Cycles)
         } else {
             let limits = [crate::input::case::MAX_ELEMENTS, spec.max_dofs];
-            match next_mesh(&case, spec.fraction, &mesh, &numbers[3..], per_node, limits) {
+            match next_mesh(self.case, spec.fraction, mesh, eta_sq, per_node, limits) {
                 Ok(Ok(next)) => {
-                    mesh = next;
+                    *mesh = next;
                     None
                 }
                 Ok(Err(end)) => Some(end),
                 Err(e) => {
                     // the folder holds this cycle's run: its record too
-                    if root {
-                        record(&dir, &spec, &cycles, None)?;
+                    if self.root {
+                        record(dir, spec, cycles, None)?;
                     }
                     return Err(Error::Mesh {
-                        place: format!("{place}: [adapt]"),
+                        place: format!("{}: [adapt]", self.place),
                         message: e.to_string(),
                     });
                 }
             }
-        };
+        })
+    }
+
+    /// The writing process's record of the last cycle: `adapt.csv` and
+    /// summary.json in `dir`, the `adapt` event and, when the run ends short
+    /// of the tolerance, a warning.
+    fn report(&self, dir: &Path, cycles: &[Cycle], end: Option<End>) -> Result<()> {
+        let (spec, log) = (self.spec, self.log);
         let c = cycles.last().expect("pushed above");
-        if root {
-            record(&dir, &spec, &cycles, end)?;
-            log.progress(
-                "adapt",
-                json!({
-                    "cycle": c.cycle,
-                    "dofs": c.dofs,
-                    "elements": c.elements,
-                    "hanging_nodes": c.hanging_nodes,
-                    "relative_eta": c.relative_eta,
-                    "quantity": spec.quantity.name(),
-                    "value": if c.value.is_finite() { json!(c.value) } else { json!(null) },
-                    "estimate": if c.estimate.is_finite() { json!(c.estimate) } else { json!(null) },
-                    "tolerance": spec.tolerance,
-                    "end": end.map(End::name),
-                }),
-                || {
-                    format!(
-                        "adapt: cycle {} — {} dofs, {} elements, {} hanging nodes: η/‖u‖ = {:.3e}, {} = {:.6e}, estimate {} (tolerance {:e}){}",
-                        c.cycle,
-                        c.dofs,
-                        c.elements,
-                        c.hanging_nodes,
-                        c.relative_eta,
-                        spec.quantity.name(),
-                        c.value,
-                        if c.estimate.is_finite() { format!("{:.3e}", c.estimate) } else { "not yet known".into() },
-                        spec.tolerance,
-                        match end {
-                            None => String::new(),
-                            Some(e) => format!("; {}", e.name()),
-                        }
-                    )
-                },
+        record(dir, spec, cycles, end)?;
+        log.progress(
+            "adapt",
+            json!({
+                "cycle": c.cycle,
+                "dofs": c.dofs,
+                "elements": c.elements,
+                "hanging_nodes": c.hanging_nodes,
+                "relative_eta": c.relative_eta,
+                "quantity": spec.quantity.name(),
+                "value": if c.value.is_finite() { json!(c.value) } else { json!(null) },
+                "estimate": if c.estimate.is_finite() { json!(c.estimate) } else { json!(null) },
+                "tolerance": spec.tolerance,
+                "end": end.map(End::name),
+            }),
+            || {
+                format!(
+                    "adapt: cycle {} — {} dofs, {} elements, {} hanging nodes: η/‖u‖ = {:.3e}, {} = {:.6e}, estimate {} (tolerance {:e}){}",
+                    c.cycle,
+                    c.dofs,
+                    c.elements,
+                    c.hanging_nodes,
+                    c.relative_eta,
+                    spec.quantity.name(),
+                    c.value,
+                    if c.estimate.is_finite() { format!("{:.3e}", c.estimate) } else { "not yet known".into() },
+                    spec.tolerance,
+                    match end {
+                        None => String::new(),
+                        Some(e) => format!("; {}", e.name()),
+                    }
+                )
+            },
+        );
+        if let Some(e) = end.filter(|&e| e != End::Reached) {
+            log.always(
+                "warning",
+                json!({ "message": not_reached(e, spec, c) }),
+                || format!("warning: {}", not_reached(e, spec, c)),
             );
-            if let Some(e) = end.filter(|&e| e != End::Reached) {
-                log.always(
-                    "warning",
-                    json!({ "message": not_reached(e, &spec, c) }),
-                    || format!("warning: {}", not_reached(e, &spec, c)),
-                );
-            }
         }
-        if end.is_some() {
-            return Ok((dir, model, result));
-        }
+        Ok(())
     }
 }
 

@@ -66,6 +66,15 @@ pub fn load_case(case_path: &Path, opts: &RunOptions) -> Result<Case> {
     // each override is recorded with the keys it replaces, so that a
     // refusal of the setting names the option, not the case file's key
     // (`Case::at`)
+    override_method_and_adapt(&mut case, opts)?;
+    override_steps(&mut case, opts)?;
+    override_scheme_and_grading(&mut case, opts)?;
+    Ok(case)
+}
+
+/// `--method`, `--refine` and `--adapt`; refuses an adaptive run resumed
+/// from `--restart`.
+fn override_method_and_adapt(case: &mut Case, opts: &RunOptions) -> Result<()> {
     let o = &mut case.overrides;
     if let Some(m) = opts.method {
         case.solver.method = m;
@@ -97,6 +106,12 @@ pub fn load_case(case_path: &Path, opts: &RunOptions) -> Result<Case> {
             "an adaptive run solves every mesh from the start of the history: it cannot resume (--restart)",
         ));
     }
+    Ok(())
+}
+
+/// `--increments`, `--max-cutbacks` and `--step-control`: the load steps;
+/// a fixed schedule asked for drops the keys of the automatic control.
+fn override_steps(case: &mut Case, opts: &RunOptions) -> Result<()> {
     if let Some(n) = opts.increments {
         // fixed steps: N equal steps replace the case's schedule, which must
         // not be an explicit list (the case file refuses `increments` beside
@@ -150,6 +165,12 @@ pub fn load_case(case_path: &Path, opts: &RunOptions) -> Result<Case> {
         case.solver.max_increment = None;
         case.solver.plastic_strain_step = crate::input::case::default_plastic_strain_step();
     }
+    Ok(())
+}
+
+/// `--plain`, `--friction-scheme` and `--uniform` (the generated blocks
+/// without their grading).
+fn override_scheme_and_grading(case: &mut Case, opts: &RunOptions) -> Result<()> {
     if opts.plain {
         case.solver.acceleration = crate::input::case::Acceleration::None;
         case.overrides.set("[solver] acceleration", "--plain");
@@ -180,7 +201,7 @@ pub fn load_case(case_path: &Path, opts: &RunOptions) -> Result<Case> {
             b.ry.clear();
         }
     }
-    Ok(case)
+    Ok(())
 }
 
 /// The serial backend's engine for a model, with the given method, its
@@ -315,9 +336,57 @@ fn run_model_as(
     let mut log = Log::new(opts.log_format, opts.quiet);
     let lambda_end = start.stepper.final_target(start.lambda);
     log.range(start.lambda, lambda_end);
-    let pairs: usize = model.interfaces.iter().map(|i| i.pairs.len()).sum();
     let resumed = start.increments.len();
-    log.progress(
+    let run = RunStart {
+        model,
+        opts,
+        dir: &dir,
+        planned,
+    };
+    run.log_start(&log, &engine, &start);
+    let resume = opts.restart.as_deref().map(|d| Resume {
+        dir: d,
+        files: crate::files::restart::folder_files(
+            &crate::files::restart::Bounds::of(model),
+            resumed,
+            &pvd,
+        ),
+        pvd,
+    });
+    let mut writer = Writer::new(&dir, log.clone(), planned, resume)?;
+    writer.final_load_factor = lambda_end;
+    match solve::run_from(engine, &mut writer, start, control) {
+        Ok(result) if cycle && result.stopped.is_some() => {
+            // not a result of the history: no partial folder replaces the
+            // previous cycle's complete one (and none could be resumed)
+            writer.abandon();
+            Ok((dir, result))
+        }
+        Ok(result) => run.finish(&log, writer, result, started),
+        Err(e) => {
+            writer.abandon();
+            Err(e)
+        }
+    }
+}
+
+/// What a written run starts from: the model, the options, its output
+/// folder and the increments planned (0: automatic steps).
+struct RunStart<'a> {
+    model: &'a Model,
+    opts: &'a RunOptions,
+    dir: &'a Path,
+    planned: usize,
+}
+
+impl RunStart<'_> {
+    /// The `start` event: the problem's size, the backend, the increments
+    /// planned and where a resumed run continues from.
+    fn log_start(&self, log: &Log, engine: &Engine, start: &Checkpoint) {
+        let (model, opts, dir, planned) = (self.model, self.opts, self.dir, self.planned);
+        let pairs: usize = model.interfaces.iter().map(|i| i.pairs.len()).sum();
+        let resumed = start.increments.len();
+        log.progress(
         "start",
         json!({
             "case": model.name,
@@ -360,46 +429,35 @@ fn run_model_as(
             line
         },
     );
-    let resume = opts.restart.as_deref().map(|d| Resume {
-        dir: d,
-        files: crate::files::restart::folder_files(
-            &crate::files::restart::Bounds::of(model),
-            resumed,
-            &pvd,
-        ),
-        pvd,
-    });
-    let mut writer = Writer::new(&dir, log.clone(), planned, resume)?;
-    writer.final_load_factor = lambda_end;
-    match solve::run_from(engine, &mut writer, start, control) {
-        Ok(result) if cycle && result.stopped.is_some() => {
-            // not a result of the history: no partial folder replaces the
-            // previous cycle's complete one (and none could be resumed)
-            writer.abandon();
-            Ok((dir, result))
+    }
+
+    /// A run that reached the end of its history (or stopped where it may be
+    /// resumed): the output folder finished, the `finish` or `stop` event
+    /// and the warnings of its result.
+    fn finish(
+        &self,
+        log: &Log,
+        writer: Writer,
+        mut result: RunResult,
+        started: Instant,
+    ) -> Result<(PathBuf, RunResult)> {
+        let (model, opts) = (self.model, self.opts);
+        let wall = started.elapsed().as_secs_f64();
+        result.estimate = writer.last_estimate().cloned();
+        let dir = writer.finish(model, &result, wall)?;
+        // a stopped run continues where it was written (`--out` may
+        // name the restart folder itself)
+        let mut again = override_args(opts);
+        if opts.out.is_some() {
+            again += &format!(" --out {}", dir.display());
         }
-        Ok(mut result) => {
-            let wall = started.elapsed().as_secs_f64();
-            result.estimate = writer.last_estimate().cloned();
-            let dir = writer.finish(model, &result, wall)?;
-            // a stopped run continues where it was written (`--out` may
-            // name the restart folder itself)
-            let mut again = override_args(opts);
-            if opts.out.is_some() {
-                again += &format!(" --out {}", dir.display());
-            }
-            report_end(&log, model, &dir, &result, wall, &again);
-            for w in crate::files::output::warnings(model, &result) {
-                log.always("warning", json!({ "message": w }), || {
-                    format!("warning: {w}")
-                });
-            }
-            Ok((dir, result))
+        report_end(log, model, &dir, &result, wall, &again);
+        for w in crate::files::output::warnings(model, &result) {
+            log.always("warning", json!({ "message": w }), || {
+                format!("warning: {w}")
+            });
         }
-        Err(e) => {
-            writer.abandon();
-            Err(e)
-        }
+        Ok((dir, result))
     }
 }
 
@@ -571,6 +629,21 @@ pub fn check(case_path: &Path, opts: &RunOptions) -> Result<String> {
     if let Some(d) = &model.description {
         s += &format!("  {}\n", d.trim());
     }
+    s += &plane_text(&model);
+    s += &bodies_text(&model);
+    s += &interfaces_text(&model);
+    s += &outputs_text(&model);
+    s += &steps_text(&model);
+    if let Some(a) = &adapt {
+        s += &adapt_text(a);
+    }
+    Ok(s)
+}
+
+/// `check`'s lines of the plane (or axisymmetry), the integration and the
+/// mesh's size.
+fn plane_text(model: &Model) -> String {
+    let mut s = String::new();
     if model.section.axisymmetric {
         s += &format!(
             "  plane Axisymmetric{} (x = r, y = z; forces, areas and kN for the full revolution), {:?} integration ({} Gauss points per element)\n",
@@ -599,6 +672,13 @@ pub fn check(case_path: &Path, opts: &RunOptions) -> Result<String> {
         model.dofs.n_eq,
         model.pattern().nnz()
     );
+    s
+}
+
+/// `check`'s line of each body: its material, and a body held about the
+/// axis only by friction.
+fn bodies_text(model: &Model) -> String {
+    let mut s = String::new();
     let own = crate::model::supports::own_rotation(&model.mesh, &model.prescribed);
     for (b, name) in model.mesh.bodies.iter().enumerate() {
         let m = &model.materials[b];
@@ -617,6 +697,13 @@ pub fn check(case_path: &Path, opts: &RunOptions) -> Result<String> {
             );
         }
     }
+    s
+}
+
+/// `check`'s lines of each interface: its size, laws and joint direction,
+/// and the coupling and gaps of one meshed apart.
+fn interfaces_text(model: &Model) -> String {
+    let mut s = String::new();
     for im in &model.interfaces {
         let t = crate::model::interface::arcs::direction(im);
         s += &format!(
@@ -658,6 +745,13 @@ pub fn check(case_path: &Path, opts: &RunOptions) -> Result<String> {
             );
         }
     }
+    s
+}
+
+/// `check`'s lines of the probes, the reaction groups and the load
+/// histories' breakpoints.
+fn outputs_text(model: &Model) -> String {
+    let mut s = String::new();
     for p in &model.plan.probes {
         s += &format!("  probe {}: {}\n", p.name, p.describe(&model.mesh));
     }
@@ -689,21 +783,22 @@ pub fn check(case_path: &Path, opts: &RunOptions) -> Result<String> {
                 .unwrap_or(1.0)
         );
     }
-    s += &steps_text(&model);
-    if let Some(a) = &adapt {
-        s += &format!(
-            "  adaptive: the whole history solved again on each refined mesh until the estimate of {} is at most {:e} (at most {} solves and {} dofs, refining the elements that hold {} of η²); the mesh above is the first\n",
-            match a.quantity {
-                crate::input::case::adapt::Quantity::Energy => "η/‖u_h‖_E".to_string(),
-                q => format!("the change of {} between two meshes", q.name()),
-            },
-            a.tolerance,
-            a.max_cycles,
-            a.max_dofs,
-            a.fraction
-        );
-    }
-    Ok(s)
+    s
+}
+
+/// `check`'s line of the adaptive run.
+fn adapt_text(a: &crate::input::case::adapt::AdaptSpec) -> String {
+    format!(
+        "  adaptive: the whole history solved again on each refined mesh until the estimate of {} is at most {:e} (at most {} solves and {} dofs, refining the elements that hold {} of η²); the mesh above is the first\n",
+        match a.quantity {
+            crate::input::case::adapt::Quantity::Energy => "η/‖u_h‖_E".to_string(),
+            q => format!("the change of {} between two meshes", q.name()),
+        },
+        a.tolerance,
+        a.max_cycles,
+        a.max_dofs,
+        a.fraction
+    )
 }
 
 /// The load steps as `check` prints them: the first increment's target as

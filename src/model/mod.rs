@@ -160,37 +160,7 @@ impl Model {
     fn assemble(case: Case, given: Option<Adapted>) -> Result<Model> {
         let place = case.source.display().to_string();
         let checked = check_case(&case)?;
-        let (mut mesh, start_nodes) = match given {
-            None => {
-                let mesh = make_mesh(&case, &place)?;
-                let n = mesh.nodes.len();
-                (mesh, n)
-            }
-            Some(a) => (check_mesh(&case, a.mesh, &place)?, a.start_nodes),
-        };
-        if case.model.twist {
-            mesh.node_dofs = NodeDofs::TWIST;
-        }
-        // an adaptive run builds its start mesh here too (given, as every
-        // cycle's); it never refines past the cap, so only that one can fail
-        if let Some(a) = case.adapt.as_ref().filter(|a| mesh.num_dofs() > a.max_dofs) {
-            // the cap of `--adapt` (its default) or the file's; the mesh
-            // perhaps of `--refine`
-            let cap = match case.option("[adapt] max_dofs") {
-                Some(_) => format!("its default max_dofs ({})", a.max_dofs),
-                None => a.max_dofs.to_string(),
-            };
-            let refined = case
-                .option("[mesh] refine")
-                .map_or(String::new(), |o| format!(" (of {o})"));
-            return Err(Error::input(
-                case.at("[adapt] max_dofs"),
-                format!(
-                    "{cap} is below the {} dofs of the start mesh{refined}: not even the first mesh may be solved",
-                    mesh.num_dofs()
-                ),
-            ));
-        }
+        let (mut mesh, start_nodes) = start_mesh(&case, given, &place)?;
         let hanging_nodes = crate::input::mesh::refine::hanging_nodes(&mesh);
         let mut sections = crate::model::pretension::cut(&case, &mut mesh, &place)?;
         let plane = case.model.plane;
@@ -221,56 +191,19 @@ impl Model {
                 .map(|&h| loads.histories[h].clone());
         }
         let prescribed = supports(&case, &mesh, &mut loads, &place)?;
-        let lock_end: Vec<Option<f64>> = loads
-            .pretension_history
-            .iter()
-            .map(|&h| match h {
-                Some(h) => Some(loads.histories[h].end()),
-                None if loads.histories.is_empty() => None,
-                None => Some(1.0),
-            })
-            .collect();
-        crate::model::pretension::finish(
-            &case,
-            &mut sections,
-            mesh.node_dofs,
-            mesh.nodes.len(),
-            &lock_end,
-        );
+        finish_sections(&case, &mut sections, &mesh, &loads);
         let n_dofs = crate::model::pretension::total_dofs(&case, &mesh);
-        let mut list = crate::model::pretension::constraints(
-            mesh.node_dofs,
-            &mesh.nodes,
-            &sections,
-            &prescribed,
-            &loads.prescribed_history,
-            &place,
-        )?;
-        list.extend(hanging::constraints(
-            &mesh,
-            &hanging_nodes,
-            &prescribed,
-            &loads.prescribed_history,
-            &sections,
-            &place,
-        )?);
-        let constraints = crate::model::constraint::Constraints::new(list, n_dofs)
-            .map_err(|m| Error::input(&place, m))?;
-        crate::model::loads::check_acting(&loads.acting, &mesh, &prescribed, section.axisymmetric)?;
-        check_loaded(&f_ext, &loads, &prescribed, &interfaces, &place)?;
-        check_supports(
-            &mesh,
-            &prescribed,
-            &interfaces,
-            section.axisymmetric,
-            &place,
-        )?;
-        supports::check_sections_held(&mesh, &sections, &prescribed, &interfaces, &place)?;
-        let tied: std::collections::HashMap<usize, usize> = sections
-            .iter()
-            .flat_map(|s| s.pairs.iter().map(|&(n, c)| (c, n)))
-            .collect();
-        whole::check_symmetry_supports(&case, &mesh, &prescribed, &tied, &place)?;
+        let held = Held {
+            case: &case,
+            place: &place,
+            mesh: &mesh,
+            sections: &sections,
+            prescribed: &prescribed,
+            loads: &loads,
+            interfaces: &interfaces,
+        };
+        let constraints = held.constraints(&hanging_nodes, n_dofs)?;
+        held.check(&f_ext, section.axisymmetric)?;
         let dofs = dof_map(n_dofs, &prescribed, &constraints);
         let (blocks, interface_block_base, expansions) =
             block_dofs(&mesh, &interfaces, &constraints, &sections);
@@ -771,6 +704,136 @@ fn interface_models(
         }
     }
     Ok(interfaces)
+}
+
+/// The mesh a model is built on, and the number of nodes of the run's start
+/// mesh: the case's own (generated or read) or an adaptive cycle's `given`,
+/// with the twist's dofs; refuses a start mesh above `[adapt] max_dofs`.
+fn start_mesh(case: &Case, given: Option<Adapted>, place: &str) -> Result<(Mesh, usize)> {
+    let (mut mesh, start_nodes) = match given {
+        None => {
+            let mesh = make_mesh(case, place)?;
+            let n = mesh.nodes.len();
+            (mesh, n)
+        }
+        Some(a) => (check_mesh(case, a.mesh, place)?, a.start_nodes),
+    };
+    if case.model.twist {
+        mesh.node_dofs = NodeDofs::TWIST;
+    }
+    // an adaptive run builds its start mesh here too (given, as every
+    // cycle's); it never refines past the cap, so only that one can fail
+    if let Some(a) = case.adapt.as_ref().filter(|a| mesh.num_dofs() > a.max_dofs) {
+        // the cap of `--adapt` (its default) or the file's; the mesh
+        // perhaps of `--refine`
+        let cap = match case.option("[adapt] max_dofs") {
+            Some(_) => format!("its default max_dofs ({})", a.max_dofs),
+            None => a.max_dofs.to_string(),
+        };
+        let refined = case
+            .option("[mesh] refine")
+            .map_or(String::new(), |o| format!(" (of {o})"));
+        return Err(Error::input(
+            case.at("[adapt] max_dofs"),
+            format!(
+                "{cap} is below the {} dofs of the start mesh{refined}: not even the first mesh may be solved",
+                mesh.num_dofs()
+            ),
+        ));
+    }
+    Ok((mesh, start_nodes))
+}
+
+/// Gives each pretension section its dof and the end of its locking (the end
+/// of its history, or of the run's).
+fn finish_sections(
+    case: &Case,
+    sections: &mut [crate::model::pretension::Section],
+    mesh: &Mesh,
+    loads: &crate::model::loads::Loads,
+) {
+    let lock_end: Vec<Option<f64>> = loads
+        .pretension_history
+        .iter()
+        .map(|&h| match h {
+            Some(h) => Some(loads.histories[h].end()),
+            None if loads.histories.is_empty() => None,
+            None => Some(1.0),
+        })
+        .collect();
+    crate::model::pretension::finish(case, sections, mesh.node_dofs, mesh.nodes.len(), &lock_end);
+}
+
+/// What holds and loads a model, as [`Model::assemble`] has built it: the
+/// constraints are made from it and its consistency checked.
+struct Held<'a> {
+    case: &'a Case,
+    place: &'a str,
+    mesh: &'a Mesh,
+    sections: &'a [crate::model::pretension::Section],
+    prescribed: &'a [(usize, f64)],
+    loads: &'a crate::model::loads::Loads,
+    interfaces: &'a [InterfaceModel],
+}
+
+impl Held<'_> {
+    /// The constraints of the pretension sections and the hanging nodes
+    /// over `n_dofs` dofs.
+    fn constraints(
+        &self,
+        hanging_nodes: &[crate::input::mesh::refine::HangingNode],
+        n_dofs: usize,
+    ) -> Result<crate::model::constraint::Constraints> {
+        let (mesh, sections, prescribed, loads, place) = (
+            self.mesh,
+            self.sections,
+            self.prescribed,
+            self.loads,
+            self.place,
+        );
+        let mut list = crate::model::pretension::constraints(
+            mesh.node_dofs,
+            &mesh.nodes,
+            sections,
+            prescribed,
+            &loads.prescribed_history,
+            place,
+        )?;
+        list.extend(hanging::constraints(
+            mesh,
+            hanging_nodes,
+            prescribed,
+            &loads.prescribed_history,
+            sections,
+            place,
+        )?);
+        crate::model::constraint::Constraints::new(list, n_dofs).map_err(|m| Error::input(place, m))
+    }
+
+    /// Checks that the loads act where they can, that something loads the
+    /// model, and that the supports hold its bodies, its sections and, on a
+    /// symmetric half, the symmetry plane.
+    fn check(&self, f_ext: &[f64], axisymmetric: bool) -> Result<()> {
+        let (case, mesh, sections, prescribed, loads, interfaces, place) = (
+            self.case,
+            self.mesh,
+            self.sections,
+            self.prescribed,
+            self.loads,
+            self.interfaces,
+            self.place,
+        );
+        crate::model::loads::check_acting(&loads.acting, mesh, prescribed, axisymmetric)?;
+        check_loaded(f_ext, loads, prescribed, interfaces, place)?;
+        check_supports(mesh, prescribed, interfaces, axisymmetric, place)?;
+        supports::check_sections_held(mesh, sections, prescribed, interfaces, place)?;
+        let tied: std::collections::HashMap<usize, usize> = sections
+            .iter()
+            .flat_map(|s| s.pairs.iter().map(|&(n, c)| (c, n)))
+            .collect();
+        whole::check_symmetry_supports(case, mesh, prescribed, &tied, place)?;
+        Ok(())
+    }
 }
 
 /// The prescribed dofs with u_r = 0 added on the axis of an axisymmetric

@@ -307,7 +307,6 @@ fn accept(
     target: f64,
     iterations: usize,
 ) -> Result<Accepted> {
-    let model = engine.model;
     // each rank holds its elements' Gauss states: maxima over all ranks
     let dpeeq = engine.max_over_points(
         trial
@@ -321,9 +320,45 @@ fn accept(
             format!("largest plastic strain increment {dpeeq:.2e} above 3 × plastic_strain_step");
         return Ok(Accepted::No((stepping::Why::TooPlastic(dpeeq), reason)));
     }
+    let increment = ck.increments.len() + 1;
+    let (found, located) = match step_events(engine, ck, &trial, target, increment)? {
+        StepEvents::Found(found, located) => (found, located),
+        StepEvents::Interrupted(signal) => return Ok(Accepted::Interrupted(signal)),
+    };
+    ck.events.extend(found);
+    if located.is_some() {
+        ck.first_yield = located;
+    }
+    let step = Step {
+        target,
+        iterations,
+        dpeeq,
+    };
+    commit(engine, ck, trial, step);
+    let inc = increment_row(engine, ck, iterations);
+    ck.cutbacks_here = 0;
+    ck.iterations = engine.stats.iterations;
+    ck.factorizations = engine.stats.factorizations;
+    ck.event_iterations = engine.stats.event_iterations;
+    ck.interface = engine.stats.interface.clone();
+    write_increment(engine, observer, ck, inc)?;
+    Ok(Accepted::Yes)
+}
+
+/// An accepted step's events, in the order of their load factors along the
+/// step: first yield (located by root finding when the case asks for it)
+/// and the interface events ([`events::search`]), with the first yield to
+/// keep once the whole step is accepted.
+fn step_events(
+    engine: &mut Engine,
+    ck: &mut Checkpoint,
+    trial: &State,
+    target: f64,
+    increment: usize,
+) -> Result<StepEvents> {
+    let model = engine.model;
     let yielded_now = ck.first_yield.is_none()
         && engine.max_over_points(trial.gauss.iter().map(|g| g.peeq)) > 0.0;
-    let increment = ck.increments.len() + 1;
     let mut found = Vec::new();
     // kept once the whole step is accepted (the event search may still be
     // interrupted: the checkpoint then stays the committed one)
@@ -348,7 +383,7 @@ fn accept(
                 located = Some(at.first_yield);
             }
             Err((_, StepFailure::Interrupted { signal, .. })) => {
-                return Ok(Accepted::Interrupted(signal))
+                return Ok(StepEvents::Interrupted(signal))
             }
             Err((load_factor, f)) => {
                 return Err(Error::Convergence {
@@ -366,24 +401,50 @@ fn accept(
                 None,
                 [ck.lambda, target],
                 false,
-                &trial,
+                trial,
                 increment,
             ));
         }
-        ck.elastic_ratio_prev = engine.max_yield_ratio(&trial).0;
+        ck.elastic_ratio_prev = engine.max_yield_ratio(trial).0;
     }
-    match events::search(engine, ck, &trial, target, increment)? {
+    match events::search(engine, ck, trial, target, increment)? {
         events::Found::Events(e) => found.extend(e),
-        events::Found::Interrupted(signal) => return Ok(Accepted::Interrupted(signal)),
+        events::Found::Interrupted(signal) => return Ok(StepEvents::Interrupted(signal)),
     }
     // in the order of their load factors along the step
     found.sort_by(|a, b| {
         ((a.load_factor - ck.lambda).abs()).total_cmp(&(b.load_factor - ck.lambda).abs())
     });
-    ck.events.extend(found);
-    if located.is_some() {
-        ck.first_yield = located;
-    }
+    Ok(StepEvents::Found(found, located))
+}
+
+/// What [`step_events`] found.
+enum StepEvents {
+    /// The events, and the first yield located (kept once the step is accepted).
+    Found(Vec<events::Event>, Option<FirstYield>),
+    /// A second stop signal abandoned a search.
+    Interrupted(i32),
+}
+
+/// A converged step's numbers as [`commit`] takes them.
+#[derive(Clone, Copy)]
+struct Step {
+    target: f64,
+    iterations: usize,
+    /// The largest plastic strain increment of the step.
+    dpeeq: f64,
+}
+
+/// Commits `trial` as the converged state at `step.target`: the stepper
+/// told, the step's displacement kept for the predictor, the joints'
+/// totals accumulated and the tables' reach widened.
+fn commit(engine: &mut Engine, ck: &mut Checkpoint, trial: State, step: Step) {
+    let model = engine.model;
+    let Step {
+        target,
+        iterations,
+        dpeeq,
+    } = step;
     ck.stepper.accepted(ck.lambda, target, iterations, dpeeq);
     ck.last_du.clear();
     ck.last_du
@@ -411,7 +472,13 @@ fn accept(
     }
     ck.last_step = target - ck.lambda;
     ck.lambda = target;
-    let inc = Increment {
+}
+
+/// The increment's row of the run: its measures, the joints', the
+/// pretension sections' and the record of the committed state.
+fn increment_row(engine: &Engine, ck: &Checkpoint, iterations: usize) -> Increment {
+    let model = engine.model;
+    Increment {
         increment: ck.increments.len() + 1,
         load_factor: ck.lambda,
         iterations,
@@ -426,14 +493,7 @@ fn accept(
             })
             .collect(),
         record: engine.record(&ck.committed),
-    };
-    ck.cutbacks_here = 0;
-    ck.iterations = engine.stats.iterations;
-    ck.factorizations = engine.stats.factorizations;
-    ck.event_iterations = engine.stats.event_iterations;
-    ck.interface = engine.stats.interface.clone();
-    write_increment(engine, observer, ck, inc)?;
-    Ok(Accepted::Yes)
+    }
 }
 
 /// A failed or rejected step: the stepper's next try, or the end of the run

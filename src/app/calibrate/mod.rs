@@ -271,6 +271,81 @@ fn roughness_faces(
 pub fn prepare(input: &Input, place: &str, base: &Path) -> Result<Prepared> {
     let mut warnings = Vec::new();
     let w = &mut warnings;
+    check_materials(input, place, w)?;
+    // the fit's numbers: cheap, checked before a profile is read
+    let fit = fit_numbers(&input.fit, place, w)?;
+    let c = SurfaceContext {
+        input,
+        place,
+        base,
+        e_star: composite_modulus(&input.materials.a, &input.materials.b),
+    };
+    let tangential = match &input.tangential {
+        Some(t) => Some(tangential::spec(
+            t,
+            &input.materials.a,
+            &input.materials.b,
+            place,
+        )?),
+        None => None,
+    };
+    let surface = c.analyse(w)?;
+    let (d_lo, contacts_lo) = c.check_reach(&surface, &fit, w)?;
+    let (d0, d_hi) = check_resolved(place, &surface.gw, &fit, d_lo)?;
+    let Analysed {
+        gw,
+        moments,
+        derived,
+        ..
+    } = surface;
+    Ok(Prepared {
+        gw,
+        moments,
+        range: [fit.lo, fit.hi],
+        reference_pressure: fit.p_ref,
+        table_points: fit.n_table,
+        d0,
+        d_lo,
+        d_hi,
+        contacts_lo,
+        warnings,
+        roughness: derived,
+        tangential,
+    })
+}
+
+/// The fit's numbers as checked by [`fit_numbers`].
+struct FitNumbers {
+    lo: f64,
+    hi: f64,
+    /// The reference pressure and the key that names it (given or default).
+    p_ref: f64,
+    ref_key: &'static str,
+    n_table: usize,
+}
+
+/// The surface as analysed by [`SurfaceContext::analyse`], before the
+/// pressures are mapped to separations.
+struct Analysed {
+    gw: Gw,
+    moments: Option<(profile::Moments, profile::Summits)>,
+    /// The profile's path as messages name it (profile input only).
+    profile_place: Option<String>,
+    /// The roughness model's derivation (roughness input only).
+    derived: Option<roughness::Derived>,
+}
+
+/// What the analysis of the surface reads besides the surface itself.
+struct SurfaceContext<'a> {
+    input: &'a Input,
+    place: &'a str,
+    /// The folder that relative profile paths start from.
+    base: &'a Path,
+    e_star: f64,
+}
+
+/// Checks both bodies' elastic constants and hardness against their ranges.
+fn check_materials(input: &Input, place: &str, w: &mut Vec<Warning>) -> Result<()> {
     for (name, body) in [("a", &input.materials.a), ("b", &input.materials.b)] {
         let p = format!("materials.{name}");
         limits::YOUNG.check(place, &format!("{p}.young"), body.young, w)?;
@@ -279,8 +354,12 @@ pub fn prepare(input: &Input, place: &str, base: &Path) -> Result<Prepared> {
             limits::HARDNESS.check(place, &format!("{p}.hardness"), h, w)?;
         }
     }
-    // the fit's numbers: cheap, checked before a profile is read
-    let fs = &input.fit;
+    Ok(())
+}
+
+/// Checks `[fit]`: the pressure range, the reference pressure below it and the
+/// number of table points.
+fn fit_numbers(fs: &FitSpec, place: &str, w: &mut Vec<Warning>) -> Result<FitNumbers> {
     let [lo, hi] = match fs.pressure[..] {
         [lo, hi] => [lo, hi],
         _ => {
@@ -319,8 +398,19 @@ pub fn prepare(input: &Input, place: &str, base: &Path) -> Result<Prepared> {
             format!("must be 2 to 100, got {n_table}"),
         ));
     }
-    let e_star = composite_modulus(&input.materials.a, &input.materials.b);
-    let asperity = |key: &str| -> Result<Asperity> {
+    Ok(FitNumbers {
+        lo,
+        hi,
+        p_ref,
+        ref_key,
+        n_table,
+    })
+}
+
+impl SurfaceContext<'_> {
+    /// The summits' law named by `surface.asperities`.
+    fn asperity(&self, key: &str) -> Result<Asperity> {
+        let (input, place) = (self.input, self.place);
         match key {
             "elastic" => Ok(Asperity::Elastic),
             "elastic-plastic" => {
@@ -345,199 +435,275 @@ pub fn prepare(input: &Input, place: &str, base: &Path) -> Result<Prepared> {
                 format!("unknown \"{other}\" (elastic | elastic-plastic)"),
             )),
         }
-    };
-    let tangential = match &input.tangential {
-        Some(t) => Some(tangential::spec(
-            t,
-            &input.materials.a,
-            &input.materials.b,
-            place,
-        )?),
-        None => None,
-    };
-    let mut profile_place = None;
-    let mut derived = None;
-    let (gw, moments) = match &input.surface {
-        Surface::Gw {
-            density,
-            radius,
-            sigma,
-            distribution,
-            asperities,
-        } => {
-            limits::DENSITY.check(place, "surface.density", *density, w)?;
-            limits::RADIUS.check(place, "surface.radius", *radius, w)?;
-            limits::SIGMA.check(place, "surface.sigma", *sigma, w)?;
-            let distribution = match distribution.as_str() {
-                "gaussian" => Distribution::Gaussian,
-                "exponential" => Distribution::Exponential,
-                other => {
-                    return Err(Error::input(
-                        format!("{place}: surface.distribution"),
-                        format!("unknown \"{other}\" (gaussian | exponential)"),
-                    ))
-                }
-            };
-            let gw = Gw {
-                density: *density,
-                radius: *radius,
-                sigma: *sigma,
+    }
+
+    /// The surface as a GW model: given directly, from a profile's moments
+    /// ([`Self::profile`]) or from the roughness model ([`Self::roughness`]).
+    fn analyse(&self, w: &mut Vec<Warning>) -> Result<Analysed> {
+        let place = self.place;
+        match &self.input.surface {
+            Surface::Gw {
+                density,
+                radius,
+                sigma,
                 distribution,
-                asperity: asperity(asperities)?,
-                e_star,
-            };
-            (gw, None)
+                asperities,
+            } => {
+                limits::DENSITY.check(place, "surface.density", *density, w)?;
+                limits::RADIUS.check(place, "surface.radius", *radius, w)?;
+                limits::SIGMA.check(place, "surface.sigma", *sigma, w)?;
+                let distribution = match distribution.as_str() {
+                    "gaussian" => Distribution::Gaussian,
+                    "exponential" => Distribution::Exponential,
+                    other => {
+                        return Err(Error::input(
+                            format!("{place}: surface.distribution"),
+                            format!("unknown \"{other}\" (gaussian | exponential)"),
+                        ))
+                    }
+                };
+                let gw = Gw {
+                    density: *density,
+                    radius: *radius,
+                    sigma: *sigma,
+                    distribution,
+                    asperity: self.asperity(asperities)?,
+                    e_star: self.e_star,
+                };
+                Ok(Analysed {
+                    gw,
+                    moments: None,
+                    profile_place: None,
+                    derived: None,
+                })
+            }
+            Surface::Profile {
+                file,
+                sampling,
+                kind,
+                detrend,
+                asperities,
+            } => {
+                limits::SAMPLING.check(place, "surface.sampling", *sampling, w)?;
+                let areal = match kind.as_str() {
+                    "line" => false,
+                    "areal" => true,
+                    other => {
+                        return Err(Error::input(
+                            format!("{place}: surface.kind"),
+                            format!("unknown \"{other}\" (line | areal)"),
+                        ))
+                    }
+                };
+                let how = match detrend.as_str() {
+                    "linear" => profile::Detrend::Linear,
+                    "mean" => profile::Detrend::Mean,
+                    other => {
+                        return Err(Error::input(
+                            format!("{place}: surface.detrend"),
+                            format!("unknown \"{other}\" (linear | mean)"),
+                        ))
+                    }
+                };
+                let asperity = self.asperity(asperities)?;
+                let read = ProfileRead {
+                    file,
+                    sampling: *sampling,
+                    areal,
+                    how,
+                };
+                self.profile(&read, asperity, w)
+            }
+            Surface::Roughness {
+                ra,
+                rz,
+                a,
+                b,
+                hurst,
+                cutoff,
+                short_cutoff,
+                asperities,
+            } => {
+                let given = roughness_faces(ra, rz, a, b, place)?;
+                let overrides = roughness::Overrides {
+                    hurst: *hurst,
+                    cutoff: *cutoff,
+                    short_cutoff: *short_cutoff,
+                };
+                self.roughness(&given, overrides, asperities, w)
+            }
         }
-        Surface::Profile {
-            file,
-            sampling,
-            kind,
-            detrend,
-            asperities,
-        } => {
-            limits::SAMPLING.check(place, "surface.sampling", *sampling, w)?;
-            let areal = match kind.as_str() {
-                "line" => false,
-                "areal" => true,
-                other => {
-                    return Err(Error::input(
-                        format!("{place}: surface.kind"),
-                        format!("unknown \"{other}\" (line | areal)"),
-                    ))
-                }
-            };
-            let how = match detrend.as_str() {
-                "linear" => profile::Detrend::Linear,
-                "mean" => profile::Detrend::Mean,
-                other => {
-                    return Err(Error::input(
-                        format!("{place}: surface.detrend"),
-                        format!("unknown \"{other}\" (linear | mean)"),
-                    ))
-                }
-            };
-            let asperity = asperity(asperities)?;
-            let path = base.join(file);
-            let fplace = path.display().to_string();
-            let bytes = crate::input::case::read_input(&path, MAX_PROFILE_BYTES, "profile")?;
-            let text = String::from_utf8(bytes)
-                .map_err(|_| Error::input(&fplace, "the profile is not valid UTF-8 text"))?;
-            let heights = profile::parse(&text, &fplace, areal, *sampling)?;
-            let m = heights.rough_moments(how, &fplace)?;
-            let s = m.summits(&fplace)?;
-            // the summits the moments give, against the same ranges as GW input
-            // named by the keys that made them: σ_s scales with the
-            // heights, η and β with their spacing too
-            let hint = Some("are the heights in mm and surface.sampling in mm?");
-            let heights = format!("derived from the heights of {fplace}");
-            let spaced = format!("{heights} and their spacing");
-            let (file, both) = ("surface.file", "surface.file, surface.sampling");
-            limits::SIGMA.check_derived(place, file, &heights, s.sigma, w, hint)?;
-            limits::DENSITY.check_derived(place, both, &spaced, s.density, w, hint)?;
-            limits::RADIUS.check_derived(place, both, &spaced, s.radius, w, hint)?;
-            profile_place = Some(fplace);
-            let gw = Gw {
-                density: s.density,
-                radius: s.radius,
-                sigma: s.sigma,
-                distribution: Distribution::Gaussian,
-                asperity,
-                e_star,
-            };
-            (gw, Some((m, s)))
-        }
-        Surface::Roughness {
-            ra,
-            rz,
-            a,
-            b,
-            hurst,
-            cutoff,
-            short_cutoff,
-            asperities,
-        } => {
-            let given = roughness_faces(ra, rz, a, b, place)?;
-            let overrides = roughness::Overrides {
-                hurst: *hurst,
-                cutoff: *cutoff,
-                short_cutoff: *short_cutoff,
-            };
-            let d = roughness::derive(&given, overrides, place, w)?;
-            let s = d.moments.summits(&format!("{place}: {}", d.keys()))?;
-            // named by the keys that made them, not as derived quantities
-            let hint = Some("are the Ra / Rz values in mm?");
-            let (keys, how) = d.inputs(&overrides);
-            limits::SIGMA.check_derived(place, &keys, &how, s.sigma, w, hint)?;
-            limits::DENSITY.check_derived(place, &keys, &how, s.density, w, hint)?;
-            limits::RADIUS.check_derived(place, &keys, &how, s.radius, w, hint)?;
-            derived = Some(d);
-            let gw = Gw {
-                density: s.density,
-                radius: s.radius,
-                sigma: s.sigma,
-                distribution: Distribution::Gaussian,
-                asperity: asperity(asperities)?,
-                e_star,
-            };
-            (gw, None)
-        }
-    };
-    let values = || surface_values(input, &gw, profile_place.as_deref(), derived.as_ref());
-    let sigma = gw.sigma;
-    // the upper pressure: the curve runs to 2 hi, within DEEPEST σ of approach
-    let deepest = gw.pressure(-DEEPEST * sigma);
-    if deepest.is_nan() || deepest <= 2.0 * hi {
-        return Err(combined(
-            w,
-            place,
-            "fit.pressure",
-            format!(
-                "the surface carries {} MPa at an approach of {DEEPEST} σ_s (the summits flattened {DEEPEST} times their height spread, far beyond Greenwood-Williamson), not twice the upper fit pressure fit.pressure = {} MPa that the curve runs to, for {}",
-                limits::sig(deepest, 4),
-                limits::num(hi),
-                values()
-            ),
-        ));
     }
-    // the lower pressure: how many summits touch there
-    let d_lo = gw.separation(lo);
-    let contacts_lo = gw.density * gw.contact_fraction(d_lo);
-    if contacts_lo.is_nan() || contacts_lo < NO_CONTACT {
-        let onset = NO_CONTACT / gw.density;
-        let from = if onset < 0.5 {
-            format!(
-                "; one summit per m² touches from {} MPa up",
-                limits::sig(gw.pressure(gw.separation_for_fraction(onset)), 4)
-            )
-        } else {
-            String::new()
+
+    /// Reads and analyses a profile: its moments, its summits (checked
+    /// against the same ranges as GW input) and the GW model they make.
+    fn profile(
+        &self,
+        read: &ProfileRead,
+        asperity: Asperity,
+        w: &mut Vec<Warning>,
+    ) -> Result<Analysed> {
+        let place = self.place;
+        let path = self.base.join(read.file);
+        let fplace = path.display().to_string();
+        let bytes = crate::input::case::read_input(&path, MAX_PROFILE_BYTES, "profile")?;
+        let text = String::from_utf8(bytes)
+            .map_err(|_| Error::input(&fplace, "the profile is not valid UTF-8 text"))?;
+        let heights = profile::parse(&text, &fplace, read.areal, read.sampling)?;
+        let m = heights.rough_moments(read.how, &fplace)?;
+        let s = m.summits(&fplace)?;
+        // the summits the moments give, against the same ranges as GW input
+        // named by the keys that made them: σ_s scales with the
+        // heights, η and β with their spacing too
+        let hint = Some("are the heights in mm and surface.sampling in mm?");
+        let heights = format!("derived from the heights of {fplace}");
+        let spaced = format!("{heights} and their spacing");
+        let (file, both) = ("surface.file", "surface.file, surface.sampling");
+        limits::SIGMA.check_derived(place, file, &heights, s.sigma, w, hint)?;
+        limits::DENSITY.check_derived(place, both, &spaced, s.density, w, hint)?;
+        limits::RADIUS.check_derived(place, both, &spaced, s.radius, w, hint)?;
+        let gw = Gw {
+            density: s.density,
+            radius: s.radius,
+            sigma: s.sigma,
+            distribution: Distribution::Gaussian,
+            asperity,
+            e_star: self.e_star,
         };
-        return Err(combined(
-            w,
-            place,
-            "fit.pressure",
-            format!(
-                "no summit touches at the lower fit pressure fit.pressure = {} MPa: it maps to a separation of {} σ_s above the mean summit height, where {} summits per mm² touch (fewer than one per m² of nominal area), for {}{from}",
-                limits::num(lo),
-                limits::sig(d_lo / sigma, 4),
-                limits::sig(contacts_lo, 4),
-                values()
-            ),
-        ));
+        Ok(Analysed {
+            gw,
+            moments: Some((m, s)),
+            profile_place: Some(fplace),
+            derived: None,
+        })
     }
-    if contacts_lo < FEW_CONTACTS {
-        w.push(Warning {
-            place: place.to_string(),
-            key: "fit.pressure".into(),
-            message: format!(
-                "at the lower fit pressure {} MPa only {} summits per mm² touch (one per {} mm²): Greenwood-Williamson averages over many summits, so the law holds only on contacts far larger than that; for {}",
-                limits::num(lo),
-                limits::sig(contacts_lo, 4),
-                limits::sig(1.0 / contacts_lo, 4),
-                values()
-            ),
-        });
+
+    /// The roughness model from Ra / Rz: its moments, its summits (checked
+    /// against the same ranges as GW input, named by the keys that made them)
+    /// and the GW model they make.
+    fn roughness(
+        &self,
+        given: &[roughness::Given],
+        overrides: roughness::Overrides,
+        asperities: &str,
+        w: &mut Vec<Warning>,
+    ) -> Result<Analysed> {
+        let place = self.place;
+        let d = roughness::derive(given, overrides, place, w)?;
+        let s = d.moments.summits(&format!("{place}: {}", d.keys()))?;
+        // named by the keys that made them, not as derived quantities
+        let hint = Some("are the Ra / Rz values in mm?");
+        let (keys, how) = d.inputs(&overrides);
+        limits::SIGMA.check_derived(place, &keys, &how, s.sigma, w, hint)?;
+        limits::DENSITY.check_derived(place, &keys, &how, s.density, w, hint)?;
+        limits::RADIUS.check_derived(place, &keys, &how, s.radius, w, hint)?;
+        let gw = Gw {
+            density: s.density,
+            radius: s.radius,
+            sigma: s.sigma,
+            distribution: Distribution::Gaussian,
+            asperity: self.asperity(asperities)?,
+            e_star: self.e_star,
+        };
+        Ok(Analysed {
+            gw,
+            moments: None,
+            profile_place: None,
+            derived: Some(d),
+        })
     }
+
+    /// Checks that the surface carries twice the upper pressure within
+    /// [`DEEPEST`] σ_s and that summits touch at the lower one (warning when
+    /// few do); returns the separation at lo and the summits touching there.
+    fn check_reach(
+        &self,
+        s: &Analysed,
+        fit: &FitNumbers,
+        w: &mut Vec<Warning>,
+    ) -> Result<(f64, f64)> {
+        let (place, gw, lo, hi) = (self.place, &s.gw, fit.lo, fit.hi);
+        let values = || {
+            surface_values(
+                self.input,
+                gw,
+                s.profile_place.as_deref(),
+                s.derived.as_ref(),
+            )
+        };
+        let sigma = gw.sigma;
+        // the upper pressure: the curve runs to 2 hi, within DEEPEST σ of approach
+        let deepest = gw.pressure(-DEEPEST * sigma);
+        if deepest.is_nan() || deepest <= 2.0 * hi {
+            return Err(combined(
+                w,
+                place,
+                "fit.pressure",
+                format!(
+                    "the surface carries {} MPa at an approach of {DEEPEST} σ_s (the summits flattened {DEEPEST} times their height spread, far beyond Greenwood-Williamson), not twice the upper fit pressure fit.pressure = {} MPa that the curve runs to, for {}",
+                    limits::sig(deepest, 4),
+                    limits::num(hi),
+                    values()
+                ),
+            ));
+        }
+        // the lower pressure: how many summits touch there
+        let d_lo = gw.separation(lo);
+        let contacts_lo = gw.density * gw.contact_fraction(d_lo);
+        if contacts_lo.is_nan() || contacts_lo < NO_CONTACT {
+            let onset = NO_CONTACT / gw.density;
+            let from = if onset < 0.5 {
+                format!(
+                    "; one summit per m² touches from {} MPa up",
+                    limits::sig(gw.pressure(gw.separation_for_fraction(onset)), 4)
+                )
+            } else {
+                String::new()
+            };
+            return Err(combined(
+                w,
+                place,
+                "fit.pressure",
+                format!(
+                    "no summit touches at the lower fit pressure fit.pressure = {} MPa: it maps to a separation of {} σ_s above the mean summit height, where {} summits per mm² touch (fewer than one per m² of nominal area), for {}{from}",
+                    limits::num(lo),
+                    limits::sig(d_lo / sigma, 4),
+                    limits::sig(contacts_lo, 4),
+                    values()
+                ),
+            ));
+        }
+        if contacts_lo < FEW_CONTACTS {
+            w.push(Warning {
+                place: place.to_string(),
+                key: "fit.pressure".into(),
+                message: format!(
+                    "at the lower fit pressure {} MPa only {} summits per mm² touch (one per {} mm²): Greenwood-Williamson averages over many summits, so the law holds only on contacts far larger than that; for {}",
+                    limits::num(lo),
+                    limits::sig(contacts_lo, 4),
+                    limits::sig(1.0 / contacts_lo, 4),
+                    values()
+                ),
+            });
+        }
+        Ok((d_lo, contacts_lo))
+    }
+}
+
+/// How [`SurfaceContext::profile`] reads a profile.
+struct ProfileRead<'a> {
+    file: &'a str,
+    sampling: f64,
+    areal: bool,
+    how: profile::Detrend,
+}
+
+/// Checks that the separations at the reference, lower and upper pressures
+/// are far enough apart to be resolved; returns those at the reference
+/// pressure (d₀) and at hi.
+fn check_resolved(place: &str, gw: &Gw, fit: &FitNumbers, d_lo: f64) -> Result<(f64, f64)> {
+    let (lo, hi, p_ref, ref_key) = (fit.lo, fit.hi, fit.p_ref, fit.ref_key);
+    let sigma = gw.sigma;
     let d0 = gw.separation(p_ref);
     let step = d0 - d_lo;
     if step.is_nan() || step <= RESOLVED * sigma {
@@ -553,7 +719,7 @@ pub fn prepare(input: &Input, place: &str, base: &Path) -> Result<Prepared> {
     }
     let d_hi = gw.separation(hi);
     let span = d_lo - d_hi;
-    if span.is_nan() || span <= RESOLVED * sigma * (n_table - 1) as f64 {
+    if span.is_nan() || span <= RESOLVED * sigma * (fit.n_table - 1) as f64 {
         return Err(Error::input(
             format!("{place}: fit.pressure"),
             format!(
@@ -564,20 +730,7 @@ pub fn prepare(input: &Input, place: &str, base: &Path) -> Result<Prepared> {
             ),
         ));
     }
-    Ok(Prepared {
-        gw,
-        moments,
-        range: [lo, hi],
-        reference_pressure: p_ref,
-        table_points: n_table,
-        d0,
-        d_lo,
-        d_hi,
-        contacts_lo,
-        warnings,
-        roughness: derived,
-        tangential,
-    })
+    Ok((d0, d_hi))
 }
 
 /// Checks the input ([`prepare`]) and computes the curve, the fit and the

@@ -554,7 +554,41 @@ fn coarse_cycles(model: &Model, r: &RunResult, place: &str) -> Vec<String> {
         .collect()
 }
 
+/// summary.json: the run's numbers ([`run_summary`]), then its joints,
+/// damping, pretension, events, tables, warnings and stabilization.
 pub fn summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
+    let mut s = run_summary(model, r, wall);
+    if model.section.axisymmetric {
+        s["forces"] = json!(
+            "full revolution: forces, areas and kN are for the whole body of revolution (2π r)"
+        );
+    }
+    let cycles = joints_csv::run_cycles(model, r);
+    s["joints"] = joints_csv::summary(model, r, &cycles);
+    s["damping"] = damping::summary(model, &damping::sweeps(&cycles));
+    if !model.sections.is_empty() {
+        s["pretension"] = pretension_summary(model, r);
+    }
+    events::summary(model, r, &mut s);
+    // only cases with a tabulated law (the others write what they always did)
+    let uses = table_uses(&model.interfaces, &r.table_reach);
+    if !uses.is_empty() {
+        s["tables"] = tables_summary(&uses);
+    }
+    let w = warnings(model, r);
+    if !w.is_empty() {
+        s["warnings"] = json!(w);
+    }
+    // only runs where some step needed it (a case without one writes what it always did)
+    if let Some(st) = &r.stabilization {
+        s["stabilization"] = stabilization_summary(st);
+    }
+    s
+}
+
+/// summary.json's numbers of the run: what was solved and how (backend,
+/// counts, time, memory), first yield and the final state.
+fn run_summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
     let last = r.increments.last().map(|i| i.measures).unwrap_or_default();
     let fy = r.first_yield.as_ref().map(|f| {
         json!({
@@ -567,7 +601,7 @@ pub fn summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
             "element": f.element,
         })
     });
-    let mut s = json!({
+    json!({
         "schema": 1,
         "asperity_version": env!("CARGO_PKG_VERSION"),
         "step_control": match model.solver.step_mode() {
@@ -611,54 +645,38 @@ pub fn summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
             "center_displacement_mm": last.center_displacement,
             "max_peeq": last.max_peeq,
         },
-    });
-    if model.section.axisymmetric {
-        s["forces"] = json!(
-            "full revolution: forces, areas and kN are for the whole body of revolution (2π r)"
-        );
-    }
-    let cycles = joints_csv::run_cycles(model, r);
-    s["joints"] = joints_csv::summary(model, r, &cycles);
-    s["damping"] = damping::summary(model, &damping::sweeps(&cycles));
-    if !model.sections.is_empty() {
-        s["pretension"] = pretension_summary(model, r);
-    }
-    events::summary(model, r, &mut s);
-    // only cases with a tabulated law (the others write what they always did)
-    let uses = table_uses(&model.interfaces, &r.table_reach);
-    if !uses.is_empty() {
-        s["tables"] = uses
-            .iter()
-            .map(|t| {
-                json!({
-                    "interface": t.interface,
-                    "key": t.key,
-                    "argument": t.argument,
-                    "unit": t.unit,
-                    "last_row": t.last_row,
-                    "largest": t.largest,
-                    "ratio": t.ratio(),
-                    "beyond_limit": t.far(),
-                })
+    })
+}
+
+/// summary.json's `tables`: how far each tabulated law was evaluated.
+fn tables_summary(uses: &[crate::model::interface::extrapolation::TableUse]) -> serde_json::Value {
+    uses.iter()
+        .map(|t| {
+            json!({
+                "interface": t.interface,
+                "key": t.key,
+                "argument": t.argument,
+                "unit": t.unit,
+                "last_row": t.last_row,
+                "largest": t.largest,
+                "ratio": t.ratio(),
+                "beyond_limit": t.far(),
             })
-            .collect();
-    }
-    let w = warnings(model, r);
-    if !w.is_empty() {
-        s["warnings"] = json!(w);
-    }
-    // only runs where some step needed it (a case without one writes what it always did)
-    if let Some(st) = &r.stabilization {
-        s["stabilization"] = json!({
-            "steps_released": st.released,
-            "steps_stabilized": st.stabilized,
-            "dissipated_energy_nmm": st.dissipated,
-            "internal_energy_nmm": st.internal,
-            "energy_ratio": if st.internal > 0.0 { st.dissipated / st.internal } else { 0.0 },
-            "energy_limit": st.limit,
-        });
-    }
-    s
+        })
+        .collect()
+}
+
+/// summary.json's `stabilization`: the steps it held or released and its
+/// energy against the limit.
+fn stabilization_summary(st: &crate::solve::stabilization::Report) -> serde_json::Value {
+    json!({
+        "steps_released": st.released,
+        "steps_stabilized": st.stabilized,
+        "dissipated_energy_nmm": st.dissipated,
+        "internal_energy_nmm": st.internal,
+        "energy_ratio": if st.internal > 0.0 { st.dissipated / st.internal } else { 0.0 },
+        "energy_limit": st.limit,
+    })
 }
 
 /// `pretension.csv`: every increment's section force (N, tension positive;

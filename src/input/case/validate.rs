@@ -543,7 +543,19 @@ fn table_rows(rows: &[Vec<f64>], a: &str, b: &str) -> std::result::Result<Vec<(f
         .collect()
 }
 
+/// Checks `[solver]` (and the `[output]` keys beside it), key by key in
+/// the order of the phases below.
 fn check_solver(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
+    check_counts_and_method(case, at)?;
+    check_schedule(case, at)?;
+    check_step_keys(case, at)?;
+    check_step_limits(case, at)?;
+    check_output_keys(case, at)
+}
+
+/// The counts of increments and cutbacks, and the method's keys (the
+/// interface loop needs full Newton, Anderson's depth).
+fn check_counts_and_method(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
     let s = &case.solver;
     if let Some(n) = s.increments.filter(|&n| n == 0 || n > MAX_INCREMENTS) {
         return Err(Error::input(
@@ -582,6 +594,13 @@ fn check_solver(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
             format!("{} must be at most {MAX_ANDERSON_DEPTH}", s.anderson_depth),
         ));
     }
+    Ok(())
+}
+
+/// The schedule: the first increment, the list of load factors, and the
+/// convergence tolerances.
+fn check_schedule(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
+    let s = &case.solver;
     if let Some(f) = s.first_increment {
         if !(f.is_finite() && f > 0.0 && f <= 1.0) {
             return Err(Error::input(
@@ -614,7 +633,13 @@ fn check_solver(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
             ));
         }
     }
-    check_step_keys(case, at)?;
+    Ok(())
+}
+
+/// The automatic control's limits, the stabilization's energy and the
+/// iterations of a step.
+fn check_step_limits(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
+    let s = &case.solver;
     if let Some(v) = s.max_increment {
         if !(v.is_finite() && v > 0.0 && v <= 1.0) {
             return Err(Error::input(
@@ -645,6 +670,11 @@ fn check_solver(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
             ));
         }
     }
+    Ok(())
+}
+
+/// `[output]`: how often a VTU file is written and the probe point.
+fn check_output_keys(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
     if case.output.vtu_every == 0 {
         return Err(Error::input(at("[output] vtu_every"), "must be at least 1"));
     }

@@ -86,118 +86,11 @@ impl Monotone {
         names: (&str, &str),
         first: usize,
     ) -> Result<Self, String> {
-        let (xn, yn) = names;
-        if points.len() < 2 {
-            return Err(format!(
-                "has {} point{} besides the origin; a table needs at least 2",
-                points.len(),
-                if points.len() == 1 { "" } else { "s" }
-            ));
-        }
-        for (i, &(x, y)) in points.iter().enumerate() {
-            let row = i + first;
-            if !x.is_finite() || !y.is_finite() {
-                return Err(format!(
-                    "row {row}: [{x}, {y}] is not a pair of finite numbers"
-                ));
-            }
-            if x <= 0.0 {
-                return Err(format!(
-                    "row {row}: {xn} = {x} must be positive (only a first row [0, 0] may stand for the origin)"
-                ));
-            }
-            if y <= 0.0 {
-                return Err(format!(
-                    "row {row}: {yn} = {y} must be positive (negative or zero)"
-                ));
-            }
-            if i > 0 {
-                let (x0, y0) = points[i - 1];
-                if x <= x0 {
-                    return Err(format!(
-                        "row {row}: {xn} = {x} does not increase on row {} ({xn} = {x0}); the table is not monotone",
-                        row - 1
-                    ));
-                }
-                if strict && y <= y0 {
-                    return Err(format!(
-                        "row {row}: {yn} = {y} does not increase on row {} ({yn} = {y0}); the table is not monotone",
-                        row - 1
-                    ));
-                }
-                if y < y0 {
-                    return Err(format!(
-                        "row {row}: {yn} = {y} falls below row {}'s {yn} = {y0}; the table is not monotone",
-                        row - 1
-                    ));
-                }
-                for (name, a, b) in [(xn, x0, x), (yn, y0, y)] {
-                    if b != a && b - a < MIN_RELATIVE_STEP * b {
-                        return Err(format!(
-                            "row {row}: {name} = {b} is within {:.1e} (relative) of row {}'s {name} = {a}: the slope between the rows would be round-off, not a measurement (rows must differ by at least {MIN_RELATIVE_STEP:e} of their value{}); drop one of them",
-                            (b - a) / b,
-                            row - 1,
-                            if name == yn && !strict { ", or repeat it exactly for a level stretch" } else { "" }
-                        ));
-                    }
-                }
-            }
-        }
-        let n = points.len();
-        let x: Vec<f64> = points.iter().map(|p| p.0).collect();
-        let y: Vec<f64> = points.iter().map(|p| p.1).collect();
-        let h: Vec<f64> = (0..n - 1).map(|k| x[k + 1] - x[k]).collect();
-        let delta: Vec<f64> = (0..n - 1).map(|k| (y[k + 1] - y[k]) / h[k]).collect();
-        let q = ((y[1] / y[0]).ln() / (x[1] / x[0]).ln()).clamp(q_range.0, q_range.1);
-        let mut d = vec![0.0; n];
-        d[0] = q * y[0] / x[0];
-        for k in 1..n - 1 {
-            let (a, b) = (delta[k - 1], delta[k]);
-            if a > 0.0 && b > 0.0 {
-                let w1 = 2.0 * h[k] + h[k - 1];
-                let w2 = h[k] + 2.0 * h[k - 1];
-                d[k] = (w1 + w2) / (w1 / a + w2 / b);
-            }
-        }
-        let last = delta[n - 2];
-        d[n - 1] = if n == 2 {
-            last
-        } else {
-            let (h1, h0) = (h[n - 2], h[n - 3]);
-            let three = ((2.0 * h1 + h0) * last - h1 * delta[n - 3]) / (h1 + h0);
-            three.clamp(0.5 * last, 2.0 * last)
-        };
-        // each segment's slope stays ≥ 0 (> 0 when strict) between its knots
-        for k in 0..n - 1 {
-            let (c2, c3) = coefficients(d[k], d[k + 1], delta[k], h[k]);
-            // slope d_k + 2c₂ s + 3c₃ s² on [0, h]: its minimum
-            let mut lo = d[k].min(d[k + 1]);
-            if c3 != 0.0 {
-                let s = -c2 / (3.0 * c3);
-                if s > 0.0 && s < h[k] {
-                    lo = lo.min(d[k] + 2.0 * c2 * s + 3.0 * c3 * s * s);
-                }
-            }
-            let bad = if strict {
-                lo.is_nan() || lo <= 0.0
-            } else {
-                lo < -1e-12 * delta[k].max(d[k]).max(d[k + 1])
-            };
-            if bad {
-                return Err(if k == 0 {
-                    format!(
-                        "rows {first}-{}: the table softens too fast after row {first} for a monotone interpolation with a continuous slope (the power law below row {first}, exponent {q:.3}, reaches row {first} with d{yn}/d{xn} = {:.4e}, more than 3 times the slope {:.4e} to row {}); add points or check the units",
-                        first + 1, d[0], delta[0], first + 1
-                    )
-                } else {
-                    format!(
-                        "rows {}-{}: no monotone interpolation with a continuous slope; add points or check the units",
-                        k + first,
-                        k + first + 1
-                    )
-                });
-            }
-        }
+        check_rows(points, strict, names, first)?;
+        let knots = Knots::new(points, q_range);
+        knots.check_monotone(strict, names, first)?;
+        let Knots { x, y, h, d, q, .. } = knots;
+        let n = x.len();
         let mut area = vec![y[0] * x[0] / (q + 1.0); n];
         for k in 0..n - 1 {
             area[k + 1] = area[k] + segment_area(&y, &d, k, h[k]);
@@ -317,6 +210,171 @@ impl Monotone {
         let h = self.x[k + 1] - self.x[k];
         let delta = (self.y[k + 1] - self.y[k]) / h;
         coefficients(self.d[k], self.d[k + 1], delta, h)
+    }
+}
+
+/// Checks the rows of a table (numbered from `first` in the messages):
+/// finite, positive, increasing (`strict`: both columns) and rows not closer
+/// than [`MIN_RELATIVE_STEP`].
+fn check_rows(
+    points: &[(f64, f64)],
+    strict: bool,
+    names: (&str, &str),
+    first: usize,
+) -> Result<(), String> {
+    let (xn, yn) = names;
+    if points.len() < 2 {
+        return Err(format!(
+            "has {} point{} besides the origin; a table needs at least 2",
+            points.len(),
+            if points.len() == 1 { "" } else { "s" }
+        ));
+    }
+    for (i, &(x, y)) in points.iter().enumerate() {
+        let row = i + first;
+        if !x.is_finite() || !y.is_finite() {
+            return Err(format!(
+                "row {row}: [{x}, {y}] is not a pair of finite numbers"
+            ));
+        }
+        if x <= 0.0 {
+            return Err(format!(
+                "row {row}: {xn} = {x} must be positive (only a first row [0, 0] may stand for the origin)"
+            ));
+        }
+        if y <= 0.0 {
+            return Err(format!(
+                "row {row}: {yn} = {y} must be positive (negative or zero)"
+            ));
+        }
+        if i > 0 {
+            let (x0, y0) = points[i - 1];
+            if x <= x0 {
+                return Err(format!(
+                    "row {row}: {xn} = {x} does not increase on row {} ({xn} = {x0}); the table is not monotone",
+                    row - 1
+                ));
+            }
+            if strict && y <= y0 {
+                return Err(format!(
+                    "row {row}: {yn} = {y} does not increase on row {} ({yn} = {y0}); the table is not monotone",
+                    row - 1
+                ));
+            }
+            if y < y0 {
+                return Err(format!(
+                    "row {row}: {yn} = {y} falls below row {}'s {yn} = {y0}; the table is not monotone",
+                    row - 1
+                ));
+            }
+            for (name, a, b) in [(xn, x0, x), (yn, y0, y)] {
+                if b != a && b - a < MIN_RELATIVE_STEP * b {
+                    return Err(format!(
+                        "row {row}: {name} = {b} is within {:.1e} (relative) of row {}'s {name} = {a}: the slope between the rows would be round-off, not a measurement (rows must differ by at least {MIN_RELATIVE_STEP:e} of their value{}); drop one of them",
+                        (b - a) / b,
+                        row - 1,
+                        if name == yn && !strict { ", or repeat it exactly for a level stretch" } else { "" }
+                    ));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The knots of the interpolant: the points, the segments' widths h_k and
+/// slopes δ_k, the knot derivatives d_k (Fritsch & Butland inside, the
+/// power law's slope at the first, the clamped three-point one at the last)
+/// and the exponent q below the first point.
+struct Knots {
+    x: Vec<f64>,
+    y: Vec<f64>,
+    h: Vec<f64>,
+    delta: Vec<f64>,
+    d: Vec<f64>,
+    q: f64,
+}
+
+impl Knots {
+    /// The knots of checked rows ([`check_rows`]); `q_range` clamps q.
+    fn new(points: &[(f64, f64)], q_range: (f64, f64)) -> Knots {
+        let n = points.len();
+        let x: Vec<f64> = points.iter().map(|p| p.0).collect();
+        let y: Vec<f64> = points.iter().map(|p| p.1).collect();
+        let h: Vec<f64> = (0..n - 1).map(|k| x[k + 1] - x[k]).collect();
+        let delta: Vec<f64> = (0..n - 1).map(|k| (y[k + 1] - y[k]) / h[k]).collect();
+        let q = ((y[1] / y[0]).ln() / (x[1] / x[0]).ln()).clamp(q_range.0, q_range.1);
+        let mut d = vec![0.0; n];
+        d[0] = q * y[0] / x[0];
+        for k in 1..n - 1 {
+            let (a, b) = (delta[k - 1], delta[k]);
+            if a > 0.0 && b > 0.0 {
+                let w1 = 2.0 * h[k] + h[k - 1];
+                let w2 = h[k] + 2.0 * h[k - 1];
+                d[k] = (w1 + w2) / (w1 / a + w2 / b);
+            }
+        }
+        let last = delta[n - 2];
+        d[n - 1] = if n == 2 {
+            last
+        } else {
+            let (h1, h0) = (h[n - 2], h[n - 3]);
+            let three = ((2.0 * h1 + h0) * last - h1 * delta[n - 3]) / (h1 + h0);
+            three.clamp(0.5 * last, 2.0 * last)
+        };
+        Knots {
+            x,
+            y,
+            h,
+            delta,
+            d,
+            q,
+        }
+    }
+
+    /// Checks that each segment's slope stays ≥ 0 (> 0 when `strict`)
+    /// between its knots; the rows are numbered from `first`.
+    fn check_monotone(
+        &self,
+        strict: bool,
+        names: (&str, &str),
+        first: usize,
+    ) -> Result<(), String> {
+        let (xn, yn) = names;
+        let (h, delta, d, q) = (&self.h, &self.delta, &self.d, self.q);
+        let n = self.x.len();
+        // each segment's slope stays ≥ 0 (> 0 when strict) between its knots
+        for k in 0..n - 1 {
+            let (c2, c3) = coefficients(d[k], d[k + 1], delta[k], h[k]);
+            // slope d_k + 2c₂ s + 3c₃ s² on [0, h]: its minimum
+            let mut lo = d[k].min(d[k + 1]);
+            if c3 != 0.0 {
+                let s = -c2 / (3.0 * c3);
+                if s > 0.0 && s < h[k] {
+                    lo = lo.min(d[k] + 2.0 * c2 * s + 3.0 * c3 * s * s);
+                }
+            }
+            let bad = if strict {
+                lo.is_nan() || lo <= 0.0
+            } else {
+                lo < -1e-12 * delta[k].max(d[k]).max(d[k + 1])
+            };
+            if bad {
+                return Err(if k == 0 {
+                    format!(
+                        "rows {first}-{}: the table softens too fast after row {first} for a monotone interpolation with a continuous slope (the power law below row {first}, exponent {q:.3}, reaches row {first} with d{yn}/d{xn} = {:.4e}, more than 3 times the slope {:.4e} to row {}); add points or check the units",
+                        first + 1, d[0], delta[0], first + 1
+                    )
+                } else {
+                    format!(
+                        "rows {}-{}: no monotone interpolation with a continuous slope; add points or check the units",
+                        k + first,
+                        k + first + 1
+                    )
+                });
+            }
+        }
+        Ok(())
     }
 }
 

@@ -344,7 +344,6 @@ pub(super) fn refine(
     let Some(eqs) = engine.backend.condensed().map(|c| c.equations().to_vec()) else {
         return false;
     };
-    let m = eqs.len();
     let split = engine.backend.splits_coupling();
     let floor = first.then(|| engine.start_stiffness(lambda));
     let model = engine.model;
@@ -352,37 +351,16 @@ pub(super) fn refine(
         .stabilizer
         .as_ref()
         .and_then(|s| s.springs.as_deref());
-    // the dof of each interface equation
-    let mut dof_of = vec![0usize; m];
-    let mut pos = vec![u32::MAX; model.dofs.n_eq];
-    for (k, &e) in eqs.iter().enumerate() {
-        pos[e] = k as u32;
-    }
-    for d in 0..model.dofs.eq.len() {
-        if let Some(e) = model.dofs.equation(d).filter(|&e| pos[e] != u32::MAX) {
-            dof_of[pos[e] as usize] = d;
-        }
-    }
+    let dof_of = equation_dofs(model, &eqs);
     let pts = Points::new(model, springs, committed, lambda, &eqs);
     let d0: Vec<f64> = eqs.iter().map(|&e| du[e]).collect();
-    // r_s(x_k) and the points' whole tangent K_s0 (the coupling terms in)
-    let (mut r0, mut k0) = (vec![0.0; m], vec![0.0; m * m]);
-    pts.eval(u, floor.as_deref(), true, &mut r0, Some((&mut k0, 1.0)));
-    // c0 = r_s(x_k) + K_s0 Δ⁰_I, and F(Δ⁰_I) = r_s(x_k + Δ⁰) − c0
-    let mut c0 = vec![0.0; m];
-    mat_vec(&k0, &d0, &mut c0);
-    for (ci, ri) in c0.iter_mut().zip(&r0) {
-        *ci += ri;
-    }
-    let mut ud = u.to_vec();
-    for (k, &dof) in dof_of.iter().enumerate() {
-        ud[dof] = u[dof] + d0[k];
-    }
-    let mut f = vec![0.0; m];
-    pts.eval(&ud, None, true, &mut f, None);
-    for (fi, ci) in f.iter_mut().zip(&c0) {
-        *fi -= ci;
-    }
+    let Linearized {
+        mut r0,
+        k0,
+        c0,
+        mut ud,
+        mut f,
+    } = linearize(&pts, u, floor.as_deref(), &d0, &dof_of);
     // every decision below is rank 0's (the data are replicated and equal
     // on every rank; the backend's operations after it are collective)
     if engine.backend.agree(norm(&f) <= tol) {
@@ -414,45 +392,14 @@ pub(super) fn refine(
         d0,
         c0,
     };
-    let mut st = LoopStats {
-        loops: 1,
-        ..LoopStats::default()
-    };
-    let (mut j, mut rs, mut step, mut diff) =
-        (vec![0.0; m * m], vec![0.0; m], vec![0.0; m], vec![0.0; m]);
-    // the iterate of the smallest ‖F‖ so far (Δ⁰_I to begin with)
-    let mut best = (norm(&f), None::<Vec<f64>>);
-    let mut d = vec![0.0; m];
-    problem.start(&mut d, &mut ud, &mut diff, &mut f, &mut rs);
-    let mut f_norm = norm(&f);
-    let mut converged = f_norm <= tol;
-    if f_norm < best.0 {
-        best = (f_norm, Some(diff.clone()));
-    }
-    while !converged && st.iterations < MAX_INNER {
-        // J = A + K_s(x_k + d); J δ = −F
-        j.copy_from_slice(&problem.a);
-        pts.eval(&ud, None, true, &mut rs, Some((&mut j, 1.0)));
-        step.iter_mut().zip(&f).for_each(|(s, fi)| *s = -fi);
-        st.iterations += 1;
-        if !dense_solve(&mut j, &mut step, 1) {
-            break;
-        }
-        for (di, si) in d.iter_mut().zip(&step) {
-            *di += si;
-        }
-        problem.residual(&d, &mut ud, &mut diff, &mut f, &mut rs);
-        f_norm = norm(&f);
-        if !f_norm.is_finite() {
-            break;
-        }
-        converged = f_norm <= tol;
-        if f_norm < best.0 {
-            best = (f_norm, Some(diff.clone()));
-        }
-    }
+    let Inner {
+        converged,
+        best,
+        mut diff,
+        stats: st,
+    } = problem.iterate(&mut ud, &mut f, tol);
     let converged = engine.backend.agree(converged);
-    let has_best = engine.backend.agree(best.1.is_some());
+    let has_best = engine.backend.agree(best.is_some());
     let total = &mut engine.stats.interface;
     total.loops += st.loops;
     total.iterations += st.iterations;
@@ -462,14 +409,134 @@ pub(super) fn refine(
         if !has_best {
             return false;
         }
-        if let Some(b) = best.1 {
+        if let Some(b) = best {
             diff = b;
         }
     }
     // Δ = Δ⁰ + M⁻¹ [0; S (d − Δ⁰_I)]
-    let mut e = vec![0.0; m];
+    let mut e = vec![0.0; eqs.len()];
     mat_vec(&s, &diff, &mut e);
     engine.backend.condensed().is_some_and(|c| c.lift(&e, du))
+}
+
+/// The dof of each interface equation `eqs`.
+fn equation_dofs(model: &Model, eqs: &[usize]) -> Vec<usize> {
+    let mut dof_of = vec![0usize; eqs.len()];
+    let mut pos = vec![u32::MAX; model.dofs.n_eq];
+    for (k, &e) in eqs.iter().enumerate() {
+        pos[e] = k as u32;
+    }
+    for d in 0..model.dofs.eq.len() {
+        if let Some(e) = model.dofs.equation(d).filter(|&e| pos[e] != u32::MAX) {
+            dof_of[pos[e] as usize] = d;
+        }
+    }
+    dof_of
+}
+
+/// The springs linearized at the iterate x_k, as [`linearize`] returns them.
+struct Linearized {
+    /// r_s(x_k) and the points' whole tangent K_s0 (the coupling terms in).
+    r0: Vec<f64>,
+    k0: Vec<f64>,
+    /// c0 = r_s(x_k) + K_s0 Δ⁰_I.
+    c0: Vec<f64>,
+    /// x_k + Δ⁰ (all dofs) and F(Δ⁰_I) = r_s(x_k + Δ⁰) − c0.
+    ud: Vec<f64>,
+    f: Vec<f64>,
+}
+
+/// The springs' residual and tangent at the iterate `u` and the loop's
+/// residual F at the plain correction `d0` (the interface equations' part).
+fn linearize(
+    pts: &Points,
+    u: &[f64],
+    floor: Option<&[f64]>,
+    d0: &[f64],
+    dof_of: &[usize],
+) -> Linearized {
+    let m = d0.len();
+    // r_s(x_k) and the points' whole tangent K_s0 (the coupling terms in)
+    let (mut r0, mut k0) = (vec![0.0; m], vec![0.0; m * m]);
+    pts.eval(u, floor, true, &mut r0, Some((&mut k0, 1.0)));
+    // c0 = r_s(x_k) + K_s0 Δ⁰_I, and F(Δ⁰_I) = r_s(x_k + Δ⁰) − c0
+    let mut c0 = vec![0.0; m];
+    mat_vec(&k0, d0, &mut c0);
+    for (ci, ri) in c0.iter_mut().zip(&r0) {
+        *ci += ri;
+    }
+    let mut ud = u.to_vec();
+    for (k, &dof) in dof_of.iter().enumerate() {
+        ud[dof] = u[dof] + d0[k];
+    }
+    let mut f = vec![0.0; m];
+    pts.eval(&ud, None, true, &mut f, None);
+    for (fi, ci) in f.iter_mut().zip(&c0) {
+        *fi -= ci;
+    }
+    Linearized { r0, k0, c0, ud, f }
+}
+
+/// The end of the loop's Newton iterations ([`Condensed::iterate`]).
+struct Inner {
+    /// ‖F‖ ≤ tol on this rank.
+    converged: bool,
+    /// d − Δ⁰_I of the smallest ‖F‖ seen below the plain correction's.
+    best: Option<Vec<f64>>,
+    /// d − Δ⁰_I of the last iterate.
+    diff: Vec<f64>,
+    stats: LoopStats,
+}
+
+impl Condensed<'_> {
+    /// Newton's iterations on F(d) = 0 from the start [`Condensed::start`]
+    /// finds, at most [`MAX_INNER`], from `ud` (x_k + Δ⁰) and `f` (F(Δ⁰_I)).
+    fn iterate(&self, ud: &mut [f64], f: &mut [f64], tol: f64) -> Inner {
+        let (pts, m) = (self.pts, self.d0.len());
+        let mut st = LoopStats {
+            loops: 1,
+            ..LoopStats::default()
+        };
+        let (mut j, mut rs, mut step, mut diff) =
+            (vec![0.0; m * m], vec![0.0; m], vec![0.0; m], vec![0.0; m]);
+        // the iterate of the smallest ‖F‖ so far (Δ⁰_I to begin with)
+        let mut best = (norm(f), None::<Vec<f64>>);
+        let mut d = vec![0.0; m];
+        self.start(&mut d, ud, &mut diff, f, &mut rs);
+        let mut f_norm = norm(f);
+        let mut converged = f_norm <= tol;
+        if f_norm < best.0 {
+            best = (f_norm, Some(diff.clone()));
+        }
+        while !converged && st.iterations < MAX_INNER {
+            // J = A + K_s(x_k + d); J δ = −F
+            j.copy_from_slice(&self.a);
+            pts.eval(ud, None, true, &mut rs, Some((&mut j, 1.0)));
+            step.iter_mut().zip(f.iter()).for_each(|(s, fi)| *s = -fi);
+            st.iterations += 1;
+            if !dense_solve(&mut j, &mut step, 1) {
+                break;
+            }
+            for (di, si) in d.iter_mut().zip(&step) {
+                *di += si;
+            }
+            self.residual(&d, ud, &mut diff, f, &mut rs);
+            f_norm = norm(f);
+            if !f_norm.is_finite() {
+                break;
+            }
+            converged = f_norm <= tol;
+            if f_norm < best.0 {
+                best = (f_norm, Some(diff.clone()));
+            }
+        }
+        Inner {
+            converged,
+            best: best.1,
+            diff,
+            stats: st,
+        }
+    }
 }
 
 #[cfg(test)]

@@ -521,49 +521,79 @@ impl<'m> Engine<'m> {
                 .map_err(err)?;
                 if split && (ev.coupling != 0.0 || ev.coupling_hoop != 0.0) {
                     let g = im.point_gradients(pt);
-                    // u = coupling g_T1 (+ coupling_hoop g_θ with twist), v = g_N
-                    let (coef, g_u) = if g.h.is_empty() {
-                        (ev.coupling, g.t)
-                    } else {
-                        let u = g.t.iter().zip(&g.h);
-                        let u = u.map(|(t, h)| ev.coupling * t + ev.coupling_hoop * h);
-                        (1.0, u.collect())
+                    let at = PointBlock {
+                        block,
+                        dofs: &pdofs,
+                        expansion: x,
                     };
-                    let g_n = g.n;
-                    match x {
-                        None => be.add_coupling(block, &pdofs, coef, &g_u, &g_n),
-                        Some(x) => {
-                            let (mut gt, mut gn) = (x.vector(&g_u), x.vector(&g_n));
-                            for (k, d) in x.dofs.iter().enumerate() {
-                                if self.held.contains(d) {
-                                    gt[k] = 0.0;
-                                    gn[k] = 0.0;
-                                }
-                            }
-                            be.add_coupling(block, &x.dofs, coef, &gt, &gn)
-                        }
-                    }
-                    .map_err(err)?;
+                    add_coupling(be.as_mut(), &self.held, &at, g, &ev).map_err(err)?;
                 }
                 q += 1;
             }
         }
-        // a held dof's equation: its row and column are zero (held_out),
-        // its diagonal a stiffness of the model's scale, added once (rank 0)
-        if be.rank() == 0 {
-            for (k, s) in m.sections.iter().enumerate() {
-                if self.held.contains(&s.dof) {
-                    let kh = m.held_stiffness();
-                    be.add_contact(
-                        m.section_block_base + k,
-                        &[s.dof, s.dof + 1],
-                        &[kh, 0.0, 0.0, 0.0],
-                    )
-                    .map_err(err)?;
-                }
+        add_held_sections(m, be.as_mut(), &self.held).map_err(err)?;
+        Ok(codes)
+    }
+}
+
+/// A held dof's equation: its row and column are zero ([`held_out`]), its
+/// diagonal a stiffness of the model's scale, added once (rank 0), for each
+/// pretension section whose dof is `held`.
+fn add_held_sections(m: &Model, be: &mut dyn Backend, held: &[usize]) -> crate::error::Result<()> {
+    if be.rank() == 0 {
+        for (k, s) in m.sections.iter().enumerate() {
+            if held.contains(&s.dof) {
+                let kh = m.held_stiffness();
+                be.add_contact(
+                    m.section_block_base + k,
+                    &[s.dof, s.dof + 1],
+                    &[kh, 0.0, 0.0, 0.0],
+                )?;
             }
         }
-        Ok(codes)
+    }
+    Ok(())
+}
+
+/// An interface point's block in the backend: its number, the point's dofs
+/// and, where it holds a slave dof, its expansion onto the masters.
+struct PointBlock<'a> {
+    block: usize,
+    dofs: &'a [usize],
+    expansion: Option<&'a crate::model::constraint::Expansion>,
+}
+
+/// Adds a point's unsymmetric tangent term u vᵀ, u = coupling g_T1
+/// (+ coupling_hoop g_θ with twist), v = g_N, to its block (the backend keeps
+/// it apart from the factored matrix); the entries of `held` dofs zero.
+fn add_coupling(
+    be: &mut dyn Backend,
+    held: &[usize],
+    at: &PointBlock,
+    g: crate::model::interface::Gradients,
+    ev: &crate::model::interface::PointEval,
+) -> crate::error::Result<()> {
+    // u = coupling g_T1 (+ coupling_hoop g_θ with twist), v = g_N
+    let (coef, g_u) = if g.h.is_empty() {
+        (ev.coupling, g.t)
+    } else {
+        let u = g.t.iter().zip(&g.h);
+        let u = u.map(|(t, h)| ev.coupling * t + ev.coupling_hoop * h);
+        (1.0, u.collect())
+    };
+    let g_n = g.n;
+    match at.expansion {
+        None => be.add_coupling(at.block, at.dofs, coef, &g_u, &g_n),
+        Some(x) => {
+            let (mut gt, mut gn) = (x.vector(&g_u), x.vector(&g_n));
+            for (k, d) in x.dofs.iter().enumerate() {
+                if held.contains(d) {
+                    gt[k] = 0.0;
+                    gn[k] = 0.0;
+                }
+            }
+            be.add_coupling(at.block, &x.dofs, coef, &gt, &gn)
+        }
     }
 }
 

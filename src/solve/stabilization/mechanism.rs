@@ -161,22 +161,125 @@ impl Body {
     }
 }
 
+/// Each body's box (its centre and size scale the rows of its rigid
+/// motions), the force-controlled cuts it holds and, on a body of
+/// revolution, the motions its symmetry holds; no support or load yet.
+fn rigid_bodies(model: &Model, body_of: &[usize], cuts: &[Cut]) -> Vec<Body> {
+    let mesh = &model.mesh;
+    let nb = mesh.bodies.len();
+    let twist = model.node_dofs().twist();
+    let mut lo = vec![[f64::INFINITY; 2]; nb];
+    let mut hi = vec![[f64::NEG_INFINITY; 2]; nb];
+    for (n, x) in mesh.nodes.iter().enumerate() {
+        if let Some(b) = body_of.get(n).copied().filter(|&b| b < nb) {
+            for c in 0..2 {
+                lo[b][c] = lo[b][c].min(x[c]);
+                hi[b][c] = hi[b][c].max(x[c]);
+            }
+        }
+    }
+    let mut bodies: Vec<Body> = (0..nb)
+        .map(|b| {
+            let cuts: Vec<usize> = (0..cuts.len())
+                .filter(|&c| model.sections[cuts[c].section].body == b)
+                .collect();
+            Body {
+                centre: [0.5 * (lo[b][0] + hi[b][0]), 0.5 * (lo[b][1] + hi[b][1])],
+                size: (hi[b][0] - lo[b][0])
+                    .max(hi[b][1] - lo[b][1])
+                    .max(f64::MIN_POSITIVE),
+                bc: Gram::new(3 + cuts.len()),
+                cuts,
+                turn: if twist { 0.0 } else { 1.0 },
+                load: vec![0.0; model.patterns().count()],
+                torque: vec![0.0; model.patterns().count()],
+                driven: Vec::new(),
+            }
+        })
+        .collect();
+    if model.section.axisymmetric {
+        // a body of revolution has one rigid motion, along the axis: a
+        // radial translation strains it around the hoop, and it cannot
+        // rotate in the meridian plane
+        for b in &mut bodies {
+            let n = 3 + b.cuts.len();
+            let unit = |i: usize| {
+                (0..n)
+                    .map(|j| f64::from(u8::from(i == j)))
+                    .collect::<Vec<_>>()
+            };
+            b.bc.add(&unit(0));
+            b.bc.add(&unit(2));
+        }
+    }
+    bodies
+}
+
+/// Adds each prescribed dof to the rows of the motions its body's supports
+/// hold (or, u_θ, to the rotation about the axis), and the load histories
+/// that drive a body.
+fn hold_by_supports(model: &Model, body_of: &[usize], cuts: &[Cut], bodies: &mut [Body]) {
+    let mesh = &model.mesh;
+    let nb = mesh.bodies.len();
+    for (&(d, v), &h) in model.prescribed.iter().zip(&model.prescribed_history) {
+        // u_θ (twist) holds the rotation about the axis, the in-plane
+        // dofs the motions in the meridian plane; a section's reference
+        // node (after the mesh's) belongs to the body it cuts
+        let (n, c) = model.node_dofs().node_of(d);
+        let b = match body_of.get(n) {
+            Some(&b) if b < nb => b,
+            Some(_) => continue,
+            None => match model.sections.get(n - mesh.nodes.len()) {
+                Some(s) if c == 0 => s.body,
+                _ => continue,
+            },
+        };
+        match c {
+            _ if n >= mesh.nodes.len() => {}
+            0 | 1 => {
+                let e = if c == 0 { [1.0, 0.0] } else { [0.0, 1.0] };
+                let r = bodies[b].row(cuts, model, n, mesh.nodes[n], e);
+                bodies[b].bc.add(&r);
+            }
+            _ => bodies[b].turn += bodies[b].turn_row(mesh.nodes[n]),
+        }
+        if v != 0.0 && !bodies[b].driven.contains(&h) {
+            bodies[b].driven.push(h);
+        }
+    }
+}
+
+/// Adds the size of each load pattern's forces on a body (and, with twist,
+/// their torque about the axis): the scale of the forces that move it.
+fn add_loads(model: &Model, body_of: &[usize], bodies: &mut [Body]) {
+    let mesh = &model.mesh;
+    let nb = mesh.bodies.len();
+    let twist = model.node_dofs().twist();
+    for (p, (_, f)) in model.patterns().enumerate() {
+        for (n, &b) in body_of.iter().enumerate() {
+            if b < nb {
+                let v = &f[model.node_dofs().of(n)];
+                bodies[b].load[p] += v.iter().skip(2).fold(v[0].hypot(v[1]), |a, x| a.hypot(*x));
+                if twist {
+                    bodies[b].torque[p] += mesh.nodes[n][0] * v[2];
+                }
+            }
+        }
+        // a section's force loads the body it cuts
+        for s in &model.sections {
+            bodies[s.body].load[p] += f[s.dof].abs();
+        }
+    }
+}
+
 impl Stabilizer {
+    /// The stabilizer of a model: its bodies' rigid motions, what holds and
+    /// what loads each, the force-controlled cuts and the interfaces' carrying
+    /// pairs.
     pub fn new(model: &Model) -> Stabilizer {
         let mesh = &model.mesh;
         let nb = mesh.bodies.len();
         let body_of = mesh.node_bodies();
-        let mut lo = vec![[f64::INFINITY; 2]; nb];
-        let mut hi = vec![[f64::NEG_INFINITY; 2]; nb];
-        for (n, x) in mesh.nodes.iter().enumerate() {
-            if let Some(b) = body_of.get(n).copied().filter(|&b| b < nb) {
-                for c in 0..2 {
-                    lo[b][c] = lo[b][c].min(x[c]);
-                    hi[b][c] = hi[b][c].max(x[c]);
-                }
-            }
-        }
-        let twist = model.node_dofs().twist();
         // a prescribed shortening holds its cut: only a force-controlled
         // section adds a motion (held again once it is locked)
         let cuts: Vec<Cut> = (model.sections.iter().enumerate())
@@ -185,82 +288,9 @@ impl Stabilizer {
                 crate::model::pretension::sides(mesh, s).map(|beyond| Cut { section: k, beyond })
             })
             .collect();
-        let mut bodies: Vec<Body> = (0..nb)
-            .map(|b| {
-                let cuts: Vec<usize> = (0..cuts.len())
-                    .filter(|&c| model.sections[cuts[c].section].body == b)
-                    .collect();
-                Body {
-                    centre: [0.5 * (lo[b][0] + hi[b][0]), 0.5 * (lo[b][1] + hi[b][1])],
-                    size: (hi[b][0] - lo[b][0])
-                        .max(hi[b][1] - lo[b][1])
-                        .max(f64::MIN_POSITIVE),
-                    bc: Gram::new(3 + cuts.len()),
-                    cuts,
-                    turn: if twist { 0.0 } else { 1.0 },
-                    load: vec![0.0; model.patterns().count()],
-                    torque: vec![0.0; model.patterns().count()],
-                    driven: Vec::new(),
-                }
-            })
-            .collect();
-        if model.section.axisymmetric {
-            // a body of revolution has one rigid motion, along the axis: a
-            // radial translation strains it around the hoop, and it cannot
-            // rotate in the meridian plane
-            for b in &mut bodies {
-                let n = 3 + b.cuts.len();
-                let unit = |i: usize| {
-                    (0..n)
-                        .map(|j| f64::from(u8::from(i == j)))
-                        .collect::<Vec<_>>()
-                };
-                b.bc.add(&unit(0));
-                b.bc.add(&unit(2));
-            }
-        }
-        for (&(d, v), &h) in model.prescribed.iter().zip(&model.prescribed_history) {
-            // u_θ (twist) holds the rotation about the axis, the in-plane
-            // dofs the motions in the meridian plane; a section's reference
-            // node (after the mesh's) belongs to the body it cuts
-            let (n, c) = model.node_dofs().node_of(d);
-            let b = match body_of.get(n) {
-                Some(&b) if b < nb => b,
-                Some(_) => continue,
-                None => match model.sections.get(n - mesh.nodes.len()) {
-                    Some(s) if c == 0 => s.body,
-                    _ => continue,
-                },
-            };
-            match c {
-                _ if n >= mesh.nodes.len() => {}
-                0 | 1 => {
-                    let e = if c == 0 { [1.0, 0.0] } else { [0.0, 1.0] };
-                    let r = bodies[b].row(&cuts, model, n, mesh.nodes[n], e);
-                    bodies[b].bc.add(&r);
-                }
-                _ => bodies[b].turn += bodies[b].turn_row(mesh.nodes[n]),
-            }
-            if v != 0.0 && !bodies[b].driven.contains(&h) {
-                bodies[b].driven.push(h);
-            }
-        }
-        for (p, (_, f)) in model.patterns().enumerate() {
-            for (n, &b) in body_of.iter().enumerate() {
-                if b < nb {
-                    let v = &f[model.node_dofs().of(n)];
-                    bodies[b].load[p] +=
-                        v.iter().skip(2).fold(v[0].hypot(v[1]), |a, x| a.hypot(*x));
-                    if twist {
-                        bodies[b].torque[p] += mesh.nodes[n][0] * v[2];
-                    }
-                }
-            }
-            // a section's force loads the body it cuts
-            for s in &model.sections {
-                bodies[s.body].load[p] += f[s.dof].abs();
-            }
-        }
+        let mut bodies = rigid_bodies(model, &body_of, &cuts);
+        hold_by_supports(model, &body_of, &cuts, &mut bodies);
+        add_loads(model, &body_of, &mut bodies);
         // a body without an interface and without enough supports is a
         // mechanism no interface spring can hold (and mostly refused up front)
         let linked = (0..nb)

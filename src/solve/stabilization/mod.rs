@@ -254,6 +254,11 @@ fn step(
     }
 }
 
+/// A step solved with the contact stabilization's springs on the bodies not
+/// held: the springs softened level by level until the answer can be
+/// released (solved again without them) or, at zero load, kept if the
+/// springs' work stays within `stabilization_energy`. `prior`: why the
+/// plain step failed, if it was tried.
 fn stabilized_step(
     engine: &mut Engine,
     committed: &State,
@@ -270,47 +275,20 @@ fn stabilized_step(
     // a body without a load of its own may be pressed into place by one that
     // has (a stack held about the axis by friction): released when it can be
     let pressed = loaded || st.any_loaded(m, lambda);
-    let mut guess: Option<Vec<f64>> = None;
-    // the iterations reported (curve.csv, automatic step control) are those
-    // of the solve whose answer is kept: the release, or the last stabilized
-    // solve at zero load; summary.json's newton_iterations counts them all
-    let mut iterations = 0;
-    let mut last: Option<(State, Vec<f64>)> = None;
-    let mut failure = String::new();
-    for level in 0..LEVELS {
-        let ks: Vec<f64> = base.iter().map(|k| k * 1e-2f64.powi(level)).collect();
-        let st = engine.stabilizer.as_mut().expect("checked");
-        st.springs = Some(ks.clone());
-        st.guess = guess.take();
-        let solved = engine.plain_step(committed, lambda, response, None);
-        let st = engine.stabilizer.as_mut().expect("checked");
-        st.springs = None;
-        let (state, its) = match solved {
-            Ok(s) => s,
-            Err(e) if e.signal().is_some() || e.is_fatal() => return Err(e),
-            Err(e) => {
-                failure = format!("stabilized solve (k_s = {:.3e} MPa/mm) failed: {e}", ks[0]);
-                break;
-            }
-        };
-        iterations = its;
-        let held = st.floating(m, &state.u, lambda).is_empty();
-        if engine.backend.agree(pressed && held) {
-            engine.stabilizer.as_mut().expect("checked").guess = Some(state.u.clone());
-            match engine.plain_step(committed, lambda, response, None) {
-                Ok((exact, its)) => {
-                    if main {
-                        engine.stabilizer.as_mut().expect("checked").pending = Some((false, 0.0));
-                    }
-                    return Ok((exact, its));
-                }
-                Err(e) if e.signal().is_some() || e.is_fatal() => return Err(e),
-                Err(e) => failure = format!("release of the stabilization failed: {e}"),
-            }
-        }
-        guess = Some(state.u.clone());
-        last = Some((state, ks));
-    }
+    let step = Stabilized {
+        committed,
+        lambda,
+        response,
+        main,
+    };
+    let Descended {
+        last,
+        iterations,
+        failure,
+    } = match step.descend(engine, &base, pressed)? {
+        Descent::Released(exact, its) => return Ok((exact, its)),
+        Descent::Held(d) => d,
+    };
     let st = engine.stabilizer.as_ref().expect("checked");
     let why = st.explain(m, committed, lambda);
     let (Some((state, ks)), false) = (last, pressed) else {
@@ -329,42 +307,156 @@ fn stabilized_step(
         }));
     };
     let why = why.unwrap_or_else(|| "a body is held only by the contact stabilization".into());
-    let w = spring_work(engine, &ks, &committed.u, &state.u);
-    let e_now = internal_energy(engine, committed).max(internal_energy(engine, &state));
-    let st = engine.stabilizer.as_mut().expect("checked");
-    st.report.internal = st.report.internal.max(e_now);
-    let total = st.report.dissipated + w;
-    let limit = st.report.limit * st.report.internal;
-    if engine
-        .backend
-        .agree(total <= limit && st.report.internal > 0.0)
-    {
-        if main {
-            st.pending = Some((true, w));
+    let held = Descended {
+        last: Some((state, ks)),
+        iterations,
+        failure,
+    };
+    step.within_energy(engine, held, &why)
+}
+
+/// The step that [`stabilized_step`] solves.
+struct Stabilized<'a> {
+    committed: &'a State,
+    lambda: f64,
+    response: Response,
+    /// The run's own step (not a search's): the stabilization it used is
+    /// reported.
+    main: bool,
+}
+
+/// How the stabilized solves of [`Stabilized::descend`] ended.
+enum Descent {
+    /// Released: the exact answer without springs, and its iterations.
+    Released(State, usize),
+    /// Not released.
+    Held(Descended),
+}
+
+/// The last stabilized solve not released: its state and springs (none if
+/// the first failed), its iterations and why a solve failed ("" if none did).
+struct Descended {
+    last: Option<(State, Vec<f64>)>,
+    iterations: usize,
+    failure: String,
+}
+
+impl Stabilized<'_> {
+    /// Solves with the springs `base` softened by 10⁻² per level; after each
+    /// solve that holds every body, where the bodies are `pressed` (loaded,
+    /// or by a loaded one), the step is solved again without the springs
+    /// from it (the release).
+    fn descend(
+        &self,
+        engine: &mut Engine,
+        base: &[f64],
+        pressed: bool,
+    ) -> Result<Descent, StepFailure> {
+        let (m, committed, lambda, response) =
+            (engine.model, self.committed, self.lambda, self.response);
+        let mut guess: Option<Vec<f64>> = None;
+        // the iterations reported (curve.csv, automatic step control) are those
+        // of the solve whose answer is kept: the release, or the last stabilized
+        // solve at zero load; summary.json's newton_iterations counts them all
+        let mut iterations = 0;
+        let mut last: Option<(State, Vec<f64>)> = None;
+        let mut failure = String::new();
+        for level in 0..LEVELS {
+            let ks: Vec<f64> = base.iter().map(|k| k * 1e-2f64.powi(level)).collect();
+            let st = engine.stabilizer.as_mut().expect("checked");
+            st.springs = Some(ks.clone());
+            st.guess = guess.take();
+            let solved = engine.plain_step(committed, lambda, response, None);
+            let st = engine.stabilizer.as_mut().expect("checked");
+            st.springs = None;
+            let (state, its) = match solved {
+                Ok(s) => s,
+                Err(e) if e.signal().is_some() || e.is_fatal() => return Err(e),
+                Err(e) => {
+                    failure = format!("stabilized solve (k_s = {:.3e} MPa/mm) failed: {e}", ks[0]);
+                    break;
+                }
+            };
+            iterations = its;
+            let held = st.floating(m, &state.u, lambda).is_empty();
+            if engine.backend.agree(pressed && held) {
+                engine.stabilizer.as_mut().expect("checked").guess = Some(state.u.clone());
+                match engine.plain_step(committed, lambda, response, None) {
+                    Ok((exact, its)) => {
+                        if self.main {
+                            engine.stabilizer.as_mut().expect("checked").pending =
+                                Some((false, 0.0));
+                        }
+                        return Ok(Descent::Released(exact, its));
+                    }
+                    Err(e) if e.signal().is_some() || e.is_fatal() => return Err(e),
+                    Err(e) => failure = format!("release of the stabilization failed: {e}"),
+                }
+            }
+            guess = Some(state.u.clone());
+            last = Some((state, ks));
         }
-        Ok((state, iterations))
-    } else {
-        let failure = if failure.is_empty() {
-            String::new()
-        } else {
-            format!(" ({failure})")
-        };
-        Err(StepFailure::Unheld(if st.report.internal > 0.0 {
-            format!(
-                "{why}; holding it would take the contact stabilization {total:.3e} N·mm of \
-                 dissipated energy, above stabilization_energy = {} × the internal energy \
-                 {:.3e} N·mm{failure}",
-                st.report.limit, st.report.internal,
-            )
-        } else {
-            // "0 N·mm above 0 × 0 N·mm" would say nothing: nothing is loaded
-            format!(
-                "{why}; nothing in the model has been loaded yet (internal energy 0 N·mm), so \
-                 no contact force fixes its position, and the contact stabilization holds a \
-                 body only against a positive internal energy (stabilization_energy = {} × \
-                 it){failure}",
-                st.report.limit,
-            )
+        Ok(Descent::Held(Descended {
+            last,
+            iterations,
+            failure,
         }))
+    }
+
+    /// Keeps the last stabilized solve of an unloaded step if the springs'
+    /// work, with that of the run so far, stays within
+    /// `stabilization_energy` × the internal energy; else refuses it
+    /// (`why`: the body the springs hold).
+    fn within_energy(
+        &self,
+        engine: &mut Engine,
+        held: Descended,
+        why: &str,
+    ) -> Result<(State, usize), StepFailure> {
+        let committed = self.committed;
+        let Descended {
+            last,
+            iterations,
+            failure,
+        } = held;
+        let (state, ks) = last.expect("a stabilized solve to keep");
+        let w = spring_work(engine, &ks, &committed.u, &state.u);
+        let e_now = internal_energy(engine, committed).max(internal_energy(engine, &state));
+        let st = engine.stabilizer.as_mut().expect("checked");
+        st.report.internal = st.report.internal.max(e_now);
+        let total = st.report.dissipated + w;
+        let limit = st.report.limit * st.report.internal;
+        if engine
+            .backend
+            .agree(total <= limit && st.report.internal > 0.0)
+        {
+            if self.main {
+                st.pending = Some((true, w));
+            }
+            Ok((state, iterations))
+        } else {
+            let failure = if failure.is_empty() {
+                String::new()
+            } else {
+                format!(" ({failure})")
+            };
+            Err(StepFailure::Unheld(if st.report.internal > 0.0 {
+                format!(
+                    "{why}; holding it would take the contact stabilization {total:.3e} N·mm of \
+                     dissipated energy, above stabilization_energy = {} × the internal energy \
+                     {:.3e} N·mm{failure}",
+                    st.report.limit, st.report.internal,
+                )
+            } else {
+                // "0 N·mm above 0 × 0 N·mm" would say nothing: nothing is loaded
+                format!(
+                    "{why}; nothing in the model has been loaded yet (internal energy 0 N·mm), so \
+                     no contact force fixes its position, and the contact stabilization holds a \
+                     body only against a positive internal energy (stabilization_energy = {} × \
+                     it){failure}",
+                    st.report.limit,
+                )
+            }))
+        }
     }
 }
