@@ -615,6 +615,20 @@ fn a_file_holds_exactly_the_sections_of_its_format() {
     more.push(("extra".into(), extra));
     let e = decode(&file_of(&head, &more), &model).unwrap_err();
     assert_eq!(e, "section \"extra\" is no section of restart format 2");
+    // a body of a first yield the file does not have
+    let mut body = sections.clone();
+    let k = names.iter().position(|n| *n == "first_yield_body").unwrap();
+    let mut entry = 16u16.to_le_bytes().to_vec();
+    entry.extend_from_slice(b"first_yield_body");
+    entry.push(4);
+    entry.extend_from_slice(&5u64.to_le_bytes());
+    entry.extend_from_slice(b"punch");
+    body[k].1 = entry;
+    let e = decode(&file_of(&head, &body), &model).unwrap_err();
+    assert_eq!(
+        e,
+        "section first_yield_body: \"punch\" without a first yield (section first_yield is empty)"
+    );
     // a section of the wrong kind
     let mut kind = sections.clone();
     let at = 2 + "increment".len();
