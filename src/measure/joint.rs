@@ -644,8 +644,7 @@ pub fn at_breakpoint(t: f64, breakpoints: &[f64]) -> bool {
 /// The closed cycles of every interface of a run: `times` and `joints` (one
 /// entry per interface) per committed increment, `breakpoints` and
 /// `values` the model's histories ([`crate::model::Model::breakpoints`],
-/// [`crate::model::Model::history_values`]). Increments without joint
-/// measures (resumed from a restart file of an earlier build) end the search.
+/// [`crate::model::Model::history_values`]).
 pub fn cycles(
     times: &[f64],
     joints: &[&[JointMeasures]],
@@ -653,11 +652,7 @@ pub fn cycles(
     values: impl Fn(f64) -> Vec<f64>,
     interfaces: usize,
 ) -> Vec<Vec<Cycle>> {
-    let n = joints
-        .iter()
-        .position(|j| j.len() != interfaces)
-        .unwrap_or(joints.len())
-        .min(times.len());
+    let n = joints.len().min(times.len());
     let marks: Vec<Option<Vec<f64>>> = times[..n]
         .iter()
         .map(|&t| at_breakpoint(t, breakpoints).then(|| values(t)))

@@ -59,8 +59,9 @@ pub struct Model {
     /// Full or reduced Gauss integration of the elements ([`Model::rule`] is the rule).
     pub integration: Integration,
     /// The effective case (after command-line overrides) without its location
-    /// and description, as text: what a restart file's fingerprint identifies
-    /// besides the mesh ([`crate::files::restart::fingerprint`]).
+    /// and description, as canonical JSON ([`crate::input::case::Case::key`]):
+    /// what a restart file's fingerprint identifies besides the mesh
+    /// ([`crate::files::restart::fingerprint`]).
     pub case_key: String,
     pub name: String,
     pub mesh: Mesh,

@@ -46,6 +46,10 @@ pub struct Checkpoint {
     /// The model has twist: its Gauss states carry six stress components
     /// (the width of their restart layout, [`PointState::packed_len`](crate::physics::material::PointState::packed_len)).
     pub twist: bool,
+    /// The values of one designer's record (the model's
+    /// [`Plan::width`](crate::model::outputs::Plan::width)): the layout of
+    /// every increment's and event's record.
+    pub record_width: usize,
 }
 
 impl Checkpoint {
@@ -70,6 +74,7 @@ impl Checkpoint {
             table_reach: vec![Default::default(); model.interfaces.len()],
             events: Vec::new(),
             twist: model.node_dofs().twist(),
+            record_width: model.plan.width(),
         }
     }
 }

@@ -37,13 +37,12 @@ pub struct Increment {
     pub cutbacks: usize,
     pub measures: Measures,
     /// Joint quantities of every interface, in order
-    /// ([`crate::measure::joint`]); empty for increments restored from a
-    /// restart file of an earlier build.
+    /// ([`crate::measure::joint`]).
     pub joints: Vec<JointMeasures>,
     /// Every pretension section's [force (N), shortening (mm)], in order.
     pub sections: Vec<[f64; 2]>,
-    /// The designer's outputs of the state ([`crate::model::outputs`]); empty
-    /// for increments restored from a restart file of an earlier build.
+    /// The designer's outputs of the state ([`crate::model::outputs`]), the
+    /// model's record width.
     pub record: Vec<f64>,
 }
 

@@ -399,6 +399,37 @@ fn a_forged_schedule_state_or_section_table_is_refused() {
             with(&|f| f.set_f64s("elastic_ratio_prev", &[-1e-300])),
             "section elastic_ratio_prev: -1e-300 is negative",
         ),
+        // another format: refused from the header, naming both versions
+        (
+            "format-1",
+            with(&|f| f.head[8..12].copy_from_slice(&1u32.to_le_bytes())),
+            "restart.bin was written by an earlier asperity (restart format 1); this build reads format 2 only: run the case again from the start",
+        ),
+        (
+            "format-3",
+            with(&|f| f.head[8..12].copy_from_slice(&3u32.to_le_bytes())),
+            "restart.bin was written by a later asperity (restart format 3); this build reads format 2 only",
+        ),
+        // every section of the format is required, none other allowed
+        (
+            "no-event-counters",
+            with(&|f| f.sections.retain(|s| s.name != "event_counters")),
+            "section event_counters missing: every restart file of format 2 holds it",
+        ),
+        (
+            "no-last-du",
+            with(&|f| f.sections.retain(|s| s.name != "last_du")),
+            "section last_du missing: every restart file of format 2 holds it",
+        ),
+        (
+            "unknown-section",
+            with(&|f| {
+                let mut s = f.get("increment").clone();
+                s.name = "later_section".into();
+                f.sections.push(s);
+            }),
+            "section \"later_section\" is no section of restart format 2",
+        ),
     ];
     let runs = dir.join("runs");
     for (name, bytes, needle) in variants {
@@ -794,4 +825,24 @@ fn a_restart_keeps_the_vtu_encoding() {
         &s(&stop),
     ]);
     assert_eq!(code, 0, "{err}");
+}
+
+/// A restart folder of an earlier asperity (a genuine `restart.bin` of
+/// restart format 1, written by the build before format 2 after increment
+/// 2 of the coarse punch; the bad-input corpus's folder 584) is refused
+/// with one line naming the file and both formats, whether the run would
+/// write into a new folder or continue in the restart folder itself: exit
+/// 2, nothing written, no partial folder left.
+#[test]
+fn a_restart_file_of_format_1_is_refused() {
+    let corpus = common::root().join("tests/bad_inputs/584-restart-format-1");
+    let dir = common::scratch("restart-format-1");
+    let old = dir.join("old");
+    copy_dir(&corpus.join("stopped"), &old);
+    let bin = std::fs::read(old.join("restart.bin")).unwrap();
+    assert_eq!(&bin[..12], b"ASPRSTRT\x01\0\0\0", "a file of format 1");
+    let needle = "restart.bin was written by an earlier asperity (restart format 1); this build reads format 2 only: run the case again from the start";
+    for out in [dir.join("new"), old.clone()] {
+        refused_case(&corpus, &dir, &old, &out, &[], needle, "format 1");
+    }
 }

@@ -114,8 +114,8 @@ fn check_and_run_warn_when_a_table_is_used_far_beyond_its_data() {
 /// The reach is the largest over the whole run: loaded to λ = 1, unloaded
 /// to 0.25, stopped after λ = 0.5 and restarted, the run reports the peak
 /// of λ = 1 (from the restart file's `table_reach`), as the uninterrupted
-/// run does; from a file without that section (an earlier build) it starts
-/// again from the restored state's, which is smaller.
+/// run does; a file without that section (as the builds before it wrote
+/// it) is refused naming it, and its folder stays as it was.
 #[test]
 fn a_restart_keeps_how_far_the_tables_were_used() {
     let case = punch_with_table(
@@ -133,14 +133,26 @@ fn a_restart_keeps_how_far_the_tables_were_used() {
     }
     let rs = old.join("restart.bin");
     let stripped = common::strip_restart_sections(&std::fs::read(&rs).unwrap(), &["table_reach"]);
-    std::fs::write(&rs, stripped).unwrap();
-    for o in [&part, &old] {
-        let (code, err) = run(&case, o, &["--restart", o.to_str().unwrap()]);
-        assert_eq!(code, 0, "{err}");
-    }
-    let (a, b, c) = (summary(&full), summary(&part), summary(&old));
+    std::fs::write(&rs, &stripped).unwrap();
+    let (code, err) = run(&case, &part, &["--restart", part.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    let summary_before = std::fs::read(old.join("summary.json")).unwrap();
+    let (code, err) = run(&case, &old, &["--restart", old.to_str().unwrap()]);
+    assert_eq!(code, 2, "{err}");
+    // (after the case's warning of its table, when the run gives it first)
+    assert_eq!(
+        err.lines().last().unwrap_or(""),
+        format!(
+            "error: {}: section table_reach missing: every restart file of format 2 holds it",
+            rs.display()
+        )
+    );
+    assert_eq!(std::fs::read(&rs).unwrap(), stripped);
+    assert_eq!(
+        std::fs::read(old.join("summary.json")).unwrap(),
+        summary_before
+    );
+    let (a, b) = (summary(&full), summary(&part));
     assert_eq!(a["tables"], b["tables"]);
     assert_eq!(a["warnings"].as_array().map(|w| w.len()), Some(1), "{a}");
-    let largest = |s: &Value| s["tables"][0]["largest"].as_f64().unwrap();
-    assert!(largest(&c) < largest(&a), "{c} vs {a}");
 }

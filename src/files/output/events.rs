@@ -30,10 +30,10 @@ pub fn event_json(model: &Model, e: &Event) -> Value {
         .zip(&values)
         .map(|(n, v)| json!({"name": n, "value": v}))
         .collect();
-    let reactions = match plan.part(&e.record, &plan.layout.reactions) {
-        Some(v) => reactions::named_values(&plan.reactions, v),
-        None => json!([]),
-    };
+    let reactions = reactions::named_values(
+        &plan.reactions,
+        plan.part(&e.record, &plan.layout.reactions),
+    );
     let (lo, hi) = (e.before.min(e.after), e.before.max(e.after));
     let mut o = json!({
         "event": e.kind.name(),
@@ -95,15 +95,13 @@ pub fn line(model: &Model, e: &Event) -> String {
 }
 
 /// The designer's summary entries: `reactions`, `probes`, `peaks`,
-/// `contact`, `events` (from the increments with a record of this model's
-/// width; restored increments of an earlier build have none).
+/// `contact`, `events` (from every increment's record).
 pub fn summary(model: &Model, r: &RunResult, s: &mut Value) {
     let plan = &model.plan;
     let rows: Vec<(usize, &[f64])> = r
         .increments
         .iter()
         .enumerate()
-        .filter(|(_, i)| i.record.len() == plan.width())
         .map(|(k, i)| (k, i.record.as_slice()))
         .collect();
     let part = |range: &std::ops::Range<usize>| -> Vec<&[f64]> {

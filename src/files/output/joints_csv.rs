@@ -50,8 +50,7 @@ pub const JOINTS_HEADER: &str = "increment,time,interface,normal_force_n,tangent
 /// The columns a twisting model's `joints.csv` adds at the end of a row.
 pub const JOINTS_TWIST_COLUMNS: &str = ",torque_nmm,mean_hoop_slip_mm,mean_twist_rad";
 
-/// `joints.csv`: one row per committed increment and interface (increments
-/// without joint measures, restored from an older restart file, are skipped).
+/// `joints.csv`: one row per committed increment and interface.
 /// A twisting model's rows end with T, ū_θ and φ̄ ([`JOINTS_TWIST_COLUMNS`]).
 pub fn joints_csv(model: &Model, r: &RunResult) -> String {
     let twist = model.node_dofs().twist();

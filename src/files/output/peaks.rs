@@ -12,10 +12,10 @@ pub const BODIES_HEADER: &str = "increment,time,body,von_mises_mpa,von_mises_x_m
 
 /// `peaks.csv`: one row per increment and body (an empty place where there
 /// is none).
-pub fn bodies_csv(model: &Model, r: &RunResult, at: impl Fn(&[f64]) -> Option<&[f64]>) -> String {
+pub fn bodies_csv(model: &Model, r: &RunResult, at: impl Fn(&[f64]) -> &[f64]) -> String {
     let mut s = String::from(BODIES_HEADER);
     for inc in &r.increments {
-        let Some(v) = at(&inc.record) else { continue };
+        let v = at(&inc.record);
         for (name, b) in model.mesh.bodies.iter().zip(v.chunks_exact(PER_BODY)) {
             let _ = writeln!(
                 s,
@@ -40,10 +40,10 @@ pub fn bodies_csv(model: &Model, r: &RunResult, at: impl Fn(&[f64]) -> Option<&[
 pub const CONTACT_HEADER: &str = "increment,time,interface,max_pressure_mpa,max_pressure_x_mm,max_pressure_y_mm,max_pressure_s_mm,contact_from_s_mm,contact_to_s_mm,contact_from_x_mm,contact_from_y_mm,contact_to_x_mm,contact_to_y_mm\n";
 
 /// `contact.csv`: one row per increment and interface.
-pub fn contact_csv(model: &Model, r: &RunResult, at: impl Fn(&[f64]) -> Option<&[f64]>) -> String {
+pub fn contact_csv(model: &Model, r: &RunResult, at: impl Fn(&[f64]) -> &[f64]) -> String {
     let mut s = String::from(CONTACT_HEADER);
     for inc in &r.increments {
-        let Some(v) = at(&inc.record) else { continue };
+        let v = at(&inc.record);
         for (im, c) in model.interfaces.iter().zip(v.chunks_exact(PER_INTERFACE)) {
             let _ = write!(
                 s,

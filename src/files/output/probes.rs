@@ -15,15 +15,10 @@ pub const HEADER_TWIST: &str = "increment,time,probe,ux_mm,uy_mm,utheta_mm\n";
 
 /// `probes.csv`: one row per increment and probe (the header alone without
 /// probes), `per` values each ([`components`]).
-pub fn csv(
-    probes: &[Probe],
-    per: usize,
-    r: &RunResult,
-    at: impl Fn(&[f64]) -> Option<&[f64]>,
-) -> String {
+pub fn csv(probes: &[Probe], per: usize, r: &RunResult, at: impl Fn(&[f64]) -> &[f64]) -> String {
     let mut s = String::from(if per == 3 { HEADER_TWIST } else { HEADER });
     for inc in &r.increments {
-        let Some(v) = at(&inc.record) else { continue };
+        let v = at(&inc.record);
         for (p, u) in probes.iter().zip(v.chunks_exact(per)) {
             let _ = write!(
                 s,

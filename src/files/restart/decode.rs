@@ -98,8 +98,16 @@ pub(super) fn check_header<'a>(bytes: &'a [u8], model: &Model) -> Decoded<Reader
     let mut r = Reader { b: body, at: 8 };
     let version = r.u32()?;
     if version != VERSION {
+        let (by, then) = if version < VERSION {
+            ("an earlier", "run the case again from the start")
+        } else {
+            (
+                "a later",
+                "resume it with that build, or run the case again from the start",
+            )
+        };
         return Err(format!(
-            "restart file version {version}, this build reads version {VERSION}"
+            "{FILE} was written by {by} asperity (restart format {version}); this build reads format {VERSION} only: {then}"
         ));
     }
     if stored != fnv1a(body) {
@@ -117,7 +125,9 @@ pub(super) fn check_header<'a>(bytes: &'a [u8], model: &Model) -> Decoded<Reader
 
 /// Reads the section table by name: at most [`MAX_SECTIONS`] sections of
 /// distinct UTF-8 names, each within the bytes that remain (checked before
-/// its data is copied); the sections must end where the checksum begins.
+/// its data is copied); the sections must end where the checksum begins,
+/// and they are exactly those of the format ([`SECTIONS`]): one missing or
+/// of another name is refused by name.
 pub(super) fn read_sections(r: &mut Reader) -> Decoded<BTreeMap<String, Data>> {
     let n = r.u32()?;
     if n > MAX_SECTIONS {
@@ -174,6 +184,16 @@ pub(super) fn read_sections(r: &mut Reader) -> Decoded<BTreeMap<String, Data>> {
     if r.at != r.b.len() {
         return Err("trailing bytes after the last section".into());
     }
+    if let Some(name) = map.keys().find(|n| !SECTIONS.contains(&n.as_str())) {
+        return Err(format!(
+            "section {name:?} is no section of restart format {VERSION}"
+        ));
+    }
+    if let Some(name) = SECTIONS.iter().find(|n| !map.contains_key(**n)) {
+        return Err(format!(
+            "section {name} missing: every restart file of format {VERSION} holds it"
+        ));
+    }
     Ok(map)
 }
 
@@ -190,7 +210,7 @@ impl Sections {
                 v.len(),
                 len.unwrap_or(0)
             )),
-            _ => Err(format!("section {name} (f64) missing")),
+            _ => Err(format!("section {name}: not f64 values")),
         }
     }
     /// [`Sections::f`] with every value finite.
@@ -208,14 +228,14 @@ impl Sections {
                 v.len(),
                 len.unwrap_or(0)
             )),
-            _ => Err(format!("section {name} (u64) missing")),
+            _ => Err(format!("section {name}: not u64 values")),
         }
     }
     /// The text section `name`.
     fn text(&self, name: &str) -> Decoded<&str> {
         match self.0.get(name) {
             Some(Data::Text(v)) => Ok(v),
-            _ => Err(format!("section {name} (text) missing")),
+            _ => Err(format!("section {name}: not text")),
         }
     }
 }
@@ -463,28 +483,27 @@ pub(super) fn check_gauss_point(model: &Model, i: usize, v: &[f64]) -> Decoded<(
 }
 
 /// The designer's outputs: each increment's record and the events located
-/// so far, checked by [`crate::model::outputs::Plan::restore`]; only when the
-/// file's records have the model's width (a file of an earlier build has
-/// none, one of another layout is left alone).
+/// so far, in the layout of the model's records (`record_width`, the
+/// model's [`crate::model::outputs::Plan::width`]), checked by
+/// [`restore_records`].
 pub(super) fn restore_designer(ck: &mut Checkpoint, s: &Sections, model: &Model) -> Decoded<()> {
-    let width = match s.0.contains_key("record_width") {
-        true => s.u("record_width", Some(1))?[0],
-        false => return Ok(()),
-    };
-    if width != model.plan.width() as u64 {
-        return Ok(());
+    let width = s.u("record_width", Some(1))?[0];
+    let own = model.plan.width();
+    if width != own as u64 {
+        return Err(format!(
+            "section record_width: records of {width} values, but this case's have {own} (reactions, probes, peaks)"
+        ));
     }
-    let f = |name: &str| -> Decoded<Option<&[f64]>> {
-        match s.0.contains_key(name) {
-            true => s.f(name, None).map(|v| Some(v.as_slice())),
-            false => Ok(None),
-        }
-    };
-    restore_records(&model.plan, ck, f("records")?, f("events")?, model)
+    restore_records(
+        &model.plan,
+        ck,
+        s.f("records", None)?,
+        s.f("events", None)?,
+        model,
+    )
 }
 
-/// How far every interface's laws were used so far; a file of an earlier
-/// build has no such section: the committed state's own reach, then.
+/// How far every interface's laws were used so far.
 ///
 /// A stored reach (u_N, p_N) is a maximum over the converged states, each
 /// of them over the interface's points, starting from (0, 0): u_N within
@@ -500,10 +519,6 @@ pub(super) fn restore_table_reach(ck: &mut Checkpoint, s: &Sections, model: &Mod
         .iter()
         .map(|im| Reach::of(im, &ck.committed.u, ck.committed.time))
         .collect();
-    if !s.0.contains_key("table_reach") {
-        ck.table_reach = own;
-        return Ok(());
-    }
     let v = s.finite("table_reach", Some(Reach::PACKED * model.interfaces.len()))?;
     let below = |a: f64, b: f64| a < b - REACH_REL * b.abs() - REACH_ABS;
     for ((im, r), own) in model
@@ -544,14 +559,22 @@ pub(super) fn restore_table_reach(ck: &mut Checkpoint, s: &Sections, model: &Mod
     Ok(())
 }
 
-/// The first yield, if the run had reached it: finite values, a load factor
-/// the curve passed, an element of the mesh and the name of its body.
+/// The first yield, if the run had reached it (`first_yield` and
+/// `first_yield_body` empty otherwise): finite values, a load factor the
+/// curve passed, an element of the mesh and the name of its body.
 pub(super) fn restore_first_yield(
     s: &Sections,
     model: &Model,
     incs: &[Increment],
 ) -> Decoded<Option<FirstYield>> {
-    if !s.0.contains_key("first_yield") {
+    if s.f("first_yield", None)?.is_empty() {
+        let body = s.text("first_yield_body")?;
+        if !body.is_empty() {
+            return Err(format!(
+                "section first_yield_body: \"{}\" without a first yield (section first_yield is empty)",
+                crate::error::clip(body)
+            ));
+        }
         return Ok(None);
     }
     let v = s.finite("first_yield", Some(6))?;
@@ -645,43 +668,35 @@ pub(super) fn restore_vtu_series(
 
 /// Restores a restart file's designer sections into a checkpoint whose
 /// curve is restored: `records`, each increment's record (`plan`'s width
-/// per increment: finite or NaN, no infinity; a row all NaN is an increment
-/// without one, restored from a file of an earlier build), and `events`
-/// ([`crate::solve::events::Event::unpack`]). A section that is absent or
-/// empty restores nothing. The error is a message for the restart file's
-/// line.
-pub fn restore_records(
+/// per increment: finite or NaN, no infinity), and `events`
+/// ([`crate::solve::events::Event::unpack`]). The error is a message for
+/// the restart file's line.
+fn restore_records(
     plan: &crate::model::outputs::Plan,
     ck: &mut crate::solve::Checkpoint,
-    records: Option<&[f64]>,
-    events: Option<&[f64]>,
+    records: &[f64],
+    events: &[f64],
     model: &crate::model::Model,
 ) -> std::result::Result<(), String> {
     let w = plan.width();
-    if let Some(v) = records.filter(|v| !v.is_empty()) {
-        if v.len() != w * ck.increments.len() {
-            return Err(format!(
-                "section records has {} values, the model needs {}",
-                v.len(),
-                w * ck.increments.len()
-            ));
-        }
-        if let Some(i) = v.iter().position(|x| x.is_infinite()) {
-            return Err(format!(
-                "section records: value {} is infinite ({})",
-                i + 1,
-                v[i]
-            ));
-        }
-        for (inc, row) in ck.increments.iter_mut().zip(v.chunks_exact(w.max(1))) {
-            if !row.iter().all(|x| x.is_nan()) {
-                inc.record = row.to_vec();
-            }
-        }
+    if records.len() != w * ck.increments.len() {
+        return Err(format!(
+            "section records has {} values, the model needs {}",
+            records.len(),
+            w * ck.increments.len()
+        ));
     }
-    if let Some(v) = events {
-        let load_factors: Vec<f64> = ck.increments.iter().map(|i| i.load_factor).collect();
-        ck.events = crate::solve::events::Event::unpack(v, w, model, &load_factors)?;
+    if let Some(i) = records.iter().position(|x| x.is_infinite()) {
+        return Err(format!(
+            "section records: value {} is infinite ({})",
+            i + 1,
+            records[i]
+        ));
     }
+    for (k, inc) in ck.increments.iter_mut().enumerate() {
+        inc.record = records[w * k..w * (k + 1)].to_vec();
+    }
+    let load_factors: Vec<f64> = ck.increments.iter().map(|i| i.load_factor).collect();
+    ck.events = crate::solve::events::Event::unpack(events, w, model, &load_factors)?;
     Ok(())
 }

@@ -4,7 +4,8 @@
 
 use super::*;
 
-/// Most sections a restart file may list (this build writes 26).
+/// Most sections a restart file may list (the format has 32, [`SECTIONS`]:
+/// a count beyond this is refused before any section is read).
 pub const MAX_SECTIONS: u32 = 64;
 /// Longest section name (this build's longest has 19 bytes).
 pub(super) const MAX_SECTION_NAME: usize = 64;
@@ -82,7 +83,8 @@ pub struct Bounds {
     pub increments: usize,
     /// Bytes of `restart.bin`: the state (dofs, Gauss points, interface
     /// points), the stepping state, and per increment its curve row, joint
-    /// rows and VTU entry, with room for the section table.
+    /// rows, pretension row, record and VTU entry, with room for the
+    /// section table.
     pub restart_bytes: u64,
     /// Bytes of one `interface/NNNN.csv` (512 per interface pair and its name).
     pub csv_bytes: u64,
@@ -116,18 +118,17 @@ impl Bounds {
             + st.waypoints.len() as u64
             + events
             + 32;
-        // with the designer's record of every increment
-        let per_increment = 8
-            * (10 + (JointMeasures::PACKED + JointMeasures::PACKED_TWIST) as u64 * ni + 1 + record)
-            + MAX_VTU_NAME as u64
-            + 1;
+        // the curve's row, the joints' rows, the VTU series' load factor,
+        // the pretension sections' row and the designer's record of every
+        // increment, and its VTU name
+        let joints = (JointMeasures::PACKED + JointMeasures::PACKED_TWIST) as u64 * ni;
+        let sections = 2 * model.sections.len() as u64;
+        let per_increment = 8 * (10 + joints + 1 + sections + record) + MAX_VTU_NAME as u64 + 1;
 
         let table = 36 + u64::from(MAX_SECTIONS) * (11 + MAX_SECTION_NAME as u64);
         let restart_bytes = table
             .saturating_add(8 * words + np + body)
-            .saturating_add(per_increment.saturating_mul(increments))
-            // unknown sections of a later build
-            .saturating_add(64 << 10);
+            .saturating_add(per_increment.saturating_mul(increments));
         let pairs: u64 = model.interfaces.iter().map(|i| i.pairs.len() as u64).sum();
         let name = model
             .interfaces

@@ -6,11 +6,11 @@
 //!
 //! ```text
 //! magic        8 bytes  "ASPRSTRT"
-//! version      u32      1
+//! version      u32      2
 //! reserved     u32      0
 //! fingerprint  u64      FNV-1a of the effective case (after command-line
-//!                       overrides) and the mesh; a restart with another case
-//!                       or mesh is refused
+//!                       overrides, as its canonical JSON: Case::key) and the
+//!                       mesh; a restart with another case or mesh is refused
 //! sections     u32      count, then per section:
 //!                name   u16 length + UTF-8
 //!                kind   u8   1 = f64, 2 = u64, 3 = u8, 4 = UTF-8 text
@@ -20,15 +20,20 @@
 //!                       [`fnv1a`]) of every byte before it
 //! ```
 //!
-//! Sections: `increment`, `load_factor`, `last_step`, `last_du` (the last
-//! increment's displacement change, the predictor's direction; may be absent),
-//! `pending_load_factor`,
+//! A file of another version is refused before anything else of it is
+//! read (its version and this build's named: run the case again from the
+//! start); there are no compatibility branches for earlier layouts. A
+//! version-2 file holds exactly the sections of [`SECTIONS`], each once, in
+//! any order: a missing section and one of another name are refused by
+//! name. They are `increment`, `load_factor`, `last_step`, `last_du` (the
+//! last increment's displacement change, the predictor's direction; empty
+//! when the next step starts from the committed state), `pending_load_factor`,
 //! `pending_depth` (fixed schedule), `auto_waypoints`, `auto_step`,
-//! `auto_failures` (automatic step control), `cutbacks` (total, since the last increment),
-//! `elastic_ratio_prev`, `counters` (Newton iterations, factorizations),
-//! `interface_counters` (the interface loop's loops, iterations and fallbacks; absent from
-//! files written before 2026-11-27: zeros), `event_counters` (the event searches' share of
-//! the Newton iterations; absent from earlier files: 0), `u`,
+//! `auto_failures` (automatic step control), `cutbacks` (total, since the
+//! last increment), `elastic_ratio_prev`, `counters` (Newton iterations,
+//! factorizations), `interface_counters` (the interface loop's loops,
+//! iterations and fallbacks), `event_counters` (the event searches' share
+//! of the Newton iterations), `u`,
 //! `gauss` (10 per Gauss point: σxx σyy σxy σzz, εᵖ ×4, ε̄ᵖ, yielding),
 //! `status` (interface status codes), `contact` (25 per interface point, as
 //! [`crate::physics::contact::PointState::pack`] lays them out:
@@ -38,22 +43,22 @@
 //! `curve` (10 per increment: number, load factor, iterations, cutbacks, normal
 //! force, mean pressure, load kN, centre displacement, max ε̄ᵖ, prescribed
 //! reaction), `first_yield` (load factor, mean pressure, load kN, x, depth,
-//! element) with `first_yield_body`, the VTU series `pvd_load_factor`,
-//! `pvd_file` (names separated by newlines), `joint_totals` (2 per interface:
-//! frictional dissipation and tangential work so far) and `joints` (11 per
-//! interface and increment, as [`crate::measure::joint::JointMeasures::pack`]
-//! lays them out; with twist `joints_twist`, 3 more: torque, circumferential
-//! slip, twist, [`crate::measure::joint::JointMeasures::pack_twist`]), `table_reach` (2 per interface: the largest approach u_N
+//! element; empty before the first yield) with `first_yield_body` (empty
+//! then), the VTU series `pvd_load_factor`, `pvd_file` (names separated by
+//! newlines), `joint_totals` (2 per interface: frictional dissipation and
+//! tangential work so far), `joints` (11 per interface and increment, as
+//! [`crate::measure::joint::JointMeasures::pack`] lays them out),
+//! `joints_twist` (with twist 3 per interface and increment: torque,
+//! circumferential slip, twist,
+//! [`crate::measure::joint::JointMeasures::pack_twist`]; empty without),
+//! `pretension` (2 per pretension section and increment: force,
+//! shortening), `table_reach` (2 per interface: the largest approach u_N
 //! and pressure p_N over the converged states so far, see
-//! [`crate::model::interface::extrapolation`]), `record_width` (the values of one
-//! designer's record, [`crate::model::outputs`]), `records` (the record of every
-//! increment) and `events` (the events located so far,
-//! [`crate::solve::events::Event::pack`]); a file whose records have another
-//! width than the model's (another build's layout) restores neither. Unknown sections are ignored;
-//! `last_du`, `joint_totals`, `joints` and `table_reach` may be absent (files
-//! of earlier builds: the joint energies then restart from zero and the
-//! earlier increments have no joint rows, written as NaN rows of `joints`
-//! from then on; the reach starts from the restored state's).
+//! [`crate::model::interface::extrapolation`]), `record_width` (the values
+//! of one designer's record, [`crate::model::outputs`]: the model's), `records`
+//! (the record of every increment) and `events` (the events located so
+//! far, [`crate::solve::events::Event::pack`]). Every increment has its
+//! curve row, joint rows, pretension row and record.
 //!
 //! # A restart folder is input
 //!
@@ -94,8 +99,7 @@
 //!   `yield_stress`) εᵖ, ε̄ᵖ and the flag all 0; otherwise |εᵖ| ≤
 //!   [`MAX_PLASTIC_STRAIN`], ε̄ᵖ ≤ [`MAX_PEEQ`], εᵖ deviatoric (trace 0),
 //!   ε̄ᵖ ≥ √(2/3)|εᵖ| and σ_eq ≤ σ_Y + H ε̄ᵖ (round-off allowed); every
-//!   status code a status ([`Status::checked`]); `joints` rows finite, or all
-//!   NaN before the first finite one (the rows of earlier builds);
+//!   status code a status ([`Status::checked`]); `joints` rows finite;
 //!   `first_yield` finite, within the curve's load factors, at an element of
 //!   the mesh whose body `first_yield_body` names; every interface's
 //!   `table_reach` (u_N, p_N) within [0, [`MAX_DISPLACEMENT`]] ×
@@ -140,8 +144,45 @@ use std::io::Write;
 use std::path::Path;
 
 pub const MAGIC: &[u8; 8] = b"ASPRSTRT";
-pub const VERSION: u32 = 1;
+pub const VERSION: u32 = 2;
 pub const FILE: &str = "restart.bin";
+
+/// The sections of a restart file of this [`VERSION`], each exactly once
+/// (in the order they are written).
+pub const SECTIONS: [&str; 32] = [
+    "increment",
+    "load_factor",
+    "last_step",
+    "last_du",
+    "pending_load_factor",
+    "pending_depth",
+    "auto_waypoints",
+    "auto_step",
+    "auto_failures",
+    "cutbacks",
+    "elastic_ratio_prev",
+    "counters",
+    "interface_counters",
+    "event_counters",
+    "u",
+    "gauss",
+    "status",
+    "contact",
+    "prescribed_reaction",
+    "curve",
+    "first_yield",
+    "first_yield_body",
+    "joint_totals",
+    "joints",
+    "joints_twist",
+    "pretension",
+    "record_width",
+    "records",
+    "events",
+    "table_reach",
+    "pvd_load_factor",
+    "pvd_file",
+];
 
 /// FNV-1a with 64-bit state applied to 64-bit little-endian words (8× fewer
 /// multiplications than byte-wise FNV-1a), the last `len % 8` bytes one by one.
@@ -418,20 +459,22 @@ fn sections(e: &mut Encoder, ck: &Checkpoint, pvd: &[(f64, String)]) -> std::io:
         ]);
     }
     e.f64s("curve", &rows)?;
-    if let Some(fy) = &ck.first_yield {
-        e.f64s(
-            "first_yield",
-            &[
+    // empty before the first yield
+    let fy = ck.first_yield.as_ref();
+    e.f64s(
+        "first_yield",
+        &fy.map_or(Vec::new(), |fy| {
+            vec![
                 fy.load_factor,
                 fy.mean_pressure,
                 fy.total_load_kn,
                 fy.x,
                 fy.depth,
                 fy.element as f64,
-            ],
-        )?;
-        e.text("first_yield_body", &fy.body)?;
-    }
+            ]
+        }),
+    )?;
+    e.text("first_yield_body", fy.map_or("", |fy| &fy.body))?;
     e.f64s(
         "joint_totals",
         &ck.joint_totals
@@ -439,74 +482,31 @@ fn sections(e: &mut Encoder, ck: &Checkpoint, pvd: &[(f64, String)]) -> std::io:
             .flat_map(|t| [t.dissipation, t.work])
             .collect::<Vec<_>>(),
     )?;
-    // an increment without joint measures (restored from a file of an
-    // earlier build) is a row of NaN
-    let n = ck.joint_totals.len();
-    let none = vec![JointMeasures::unpack(&[f64::NAN; JointMeasures::PACKED]); n];
-    let rows = || {
-        ck.increments.iter().map(|i| {
-            if i.joints.len() == n {
-                &i.joints
-            } else {
-                &none
-            }
-        })
-    };
+    // every increment's rows: one per interface (the decoder checks the
+    // count against the model)
+    let joints = || ck.increments.iter().flat_map(|i| &i.joints);
+    let n = joints().count();
     e.f64_iter(
         "joints",
-        JointMeasures::PACKED * n * ck.increments.len(),
-        rows().flat_map(|j| j.iter().flat_map(JointMeasures::pack)),
+        JointMeasures::PACKED * n,
+        joints().flat_map(JointMeasures::pack),
     )?;
-    // twist: T, ū_θ, φ̄ per interface and increment (NaN where unmeasured)
-    if ck.twist {
-        e.f64_iter(
-            "joints_twist",
-            JointMeasures::PACKED_TWIST * n * ck.increments.len(),
-            rows().flat_map(|j| j.iter().flat_map(JointMeasures::pack_twist)),
-        )?;
-    }
-    // a model with pretension sections: their force and shortening per
-    // increment (no section otherwise, so older files stay as they were)
-    let sections = ck
-        .increments
-        .iter()
-        .map(|i| i.sections.len())
-        .max()
-        .unwrap_or(0);
-    if sections > 0 {
-        e.f64_iter(
-            "pretension",
-            2 * sections * ck.increments.len(),
-            ck.increments.iter().flat_map(|i| {
-                (0..sections).flat_map(move |k| i.sections.get(k).copied().unwrap_or([f64::NAN; 2]))
-            }),
-        )?;
-    }
-    // the designer's outputs: each increment's record, a row of NaN for an
-    // increment without one (restored from a file of an earlier build)
-    let width = ck
-        .increments
-        .iter()
-        .map(|i| i.record.len())
-        .chain(ck.events.iter().map(|v| v.record.len()))
-        .max()
-        .unwrap_or(0);
-    let none = vec![f64::NAN; width];
-    // the layout the rows have: a build whose records differ restores neither
-    e.u64s("record_width", &[width as u64])?;
+    // twist: T, ū_θ, φ̄ per interface and increment; empty without twist
+    let twist = if ck.twist { n } else { 0 };
     e.f64_iter(
-        "records",
-        width * ck.increments.len(),
-        ck.increments.iter().flat_map(|i| {
-            if i.record.len() == width {
-                &i.record
-            } else {
-                &none
-            }
-            .iter()
-            .copied()
-        }),
+        "joints_twist",
+        JointMeasures::PACKED_TWIST * twist,
+        joints().take(twist).flat_map(JointMeasures::pack_twist),
     )?;
+    // every pretension section's force and shortening per increment (empty
+    // in a model without sections)
+    let rows = || ck.increments.iter().flat_map(|i| &i.sections);
+    e.f64_iter("pretension", 2 * rows().count(), rows().flatten().copied())?;
+    // the designer's outputs: each increment's record, in the layout of
+    // the model's plan
+    e.u64s("record_width", &[ck.record_width as u64])?;
+    let records = || ck.increments.iter().flat_map(|i| &i.record);
+    e.f64_iter("records", records().count(), records().copied())?;
     e.f64_iter(
         "events",
         ck.events.iter().map(|v| v.pack().len()).sum(),

@@ -157,20 +157,37 @@ fn decode_refuses_what_the_case_cannot_have_produced() {
     refused_event(&|e| e.after = 5.0, "outside its bracket");
     refused_event(&|e| e.load_factor = 0.5, "outside its bracket");
     refused_event(&|e| e.place[0] = 1e300, "a place outside any model");
-    // records of another layout (another build's): neither they nor the
-    // events are restored, and the file is not refused for them
+    let refused = |ck: &Checkpoint, pvd: &[(f64, String)], needle: &str| {
+        let e = decode(&encode(&model, ck, pvd), &model).unwrap_err();
+        assert!(e.contains(needle), "{needle}: {e}");
+    };
+    // records of another layout than the model's are refused, whatever
+    // width the file gives them
+    let w = model.plan.width();
     let mut c = ck.clone();
     c.events.push(event.clone());
     for inc in c.increments.iter_mut() {
         inc.record.push(1.0);
     }
     c.events[0].record.push(1.0);
-    let (back, _) = decode(&encode(&model, &c, &pvd), &model).unwrap();
-    assert!(back.increments.iter().all(|i| i.record.is_empty()) && back.events.is_empty());
-    let refused = |ck: &Checkpoint, pvd: &[(f64, String)], needle: &str| {
-        let e = decode(&encode(&model, ck, pvd), &model).unwrap_err();
-        assert!(e.contains(needle), "{needle}: {e}");
-    };
+    refused(
+        &c,
+        &pvd,
+        &format!(
+            "section records has {} values, the model needs {}",
+            4 * (w + 1),
+            4 * w
+        ),
+    );
+    c.record_width += 1;
+    refused(
+        &c,
+        &pvd,
+        &format!(
+            "section record_width: records of {} values, but this case's have {w}",
+            w + 1
+        ),
+    );
     // names: a path outside, an increment not converged, out of order
     for name in ["../x.vtu", "vtu/0005.vtu", "vtu/0001.vtu"] {
         let mut p = pvd.clone();
@@ -202,16 +219,37 @@ fn decode_refuses_what_the_case_cannot_have_produced() {
     let mut c = ck.clone();
     c.joint_totals[0].work = f64::NAN;
     refused(&c, &pvd, "section joint_totals");
-    // an increment without joint rows after one with them (NaN rows
-    // only come first, from a file of an earlier build)
+    // every increment has its joint rows: none missing, first or later,
+    // and none of NaN
+    for missing in [vec![2], vec![0, 1]] {
+        let mut c = ck.clone();
+        for &k in &missing {
+            c.increments[k].joints.clear();
+        }
+        refused(
+            &c,
+            &pvd,
+            &format!(
+                "section joints has {} values, the model needs 44",
+                11 * (4 - missing.len())
+            ),
+        );
+    }
     let mut c = ck.clone();
-    c.increments[2].joints.clear();
-    refused(&c, &pvd, "section joints: increment 3");
+    c.increments[0].joints[0] = JointMeasures::unpack(&[f64::NAN; JointMeasures::PACKED]);
+    refused(&c, &pvd, "section joints: value 1 is not finite (NaN)");
+    // and its record
     let mut c = ck.clone();
-    c.increments[0].joints.clear();
-    c.increments[1].joints.clear();
-    let (back, _) = decode(&encode(&model, &c, &pvd), &model).unwrap();
-    assert!(back.increments[1].joints.is_empty() && !back.increments[2].joints.is_empty());
+    c.increments[1].record.clear();
+    refused(
+        &c,
+        &pvd,
+        &format!(
+            "section records has {} values, the model needs {}",
+            3 * w,
+            4 * w
+        ),
+    );
     let mut c = ck.clone();
     c.increments[3].measures.max_peeq = f64::NAN;
     refused(&c, &pvd, "section curve: value 39 is not finite");
@@ -455,7 +493,7 @@ fn a_twisting_models_vector_states_round_trip_and_are_checked() {
     refused(&c, "interface point 2 (fit): shear p_Tθ = 5 MPa");
     let mut c = ck.clone();
     c.increments[0].joints[0].torque = f64::NAN;
-    refused(&c, "section joints_twist: increment 1");
+    refused(&c, "section joints_twist: value 1 is not finite (NaN)");
     // a torque spike beyond what friction holds at the row's normal force
     let mut c = ck.clone();
     let hold = c.increments[1].joints[0].normal_force;
@@ -507,4 +545,113 @@ fn a_forged_probe_is_refused() {
             probes.start + 2
         ),
     );
+}
+
+/// The sections of a restart file: the name, kind, count and data of each,
+/// after the 24 bytes of magic, version, reserved and fingerprint.
+fn sections_of(bytes: &[u8]) -> (Vec<u8>, Vec<(String, Vec<u8>)>) {
+    let body = &bytes[..bytes.len() - 8];
+    let n = u32::from_le_bytes(body[24..28].try_into().unwrap());
+    let mut at = 28;
+    let mut out = Vec::new();
+    for _ in 0..n {
+        let len = u16::from_le_bytes(body[at..at + 2].try_into().unwrap()) as usize;
+        let name = String::from_utf8(body[at + 2..at + 2 + len].to_vec()).unwrap();
+        let kind = body[at + 2 + len];
+        let count = u64::from_le_bytes(body[at + 3 + len..at + 11 + len].try_into().unwrap());
+        let end = at + 11 + len + count as usize * if kind <= 2 { 8 } else { 1 };
+        out.push((name, body[at..end].to_vec()));
+        at = end;
+    }
+    assert_eq!(at, body.len());
+    (body[..24].to_vec(), out)
+}
+
+/// A restart file of `head` and `sections` (each its whole entry), with
+/// its count and checksum.
+fn file_of(head: &[u8], sections: &[(String, Vec<u8>)]) -> Vec<u8> {
+    let mut out = head.to_vec();
+    out.extend_from_slice(&(sections.len() as u32).to_le_bytes());
+    for (_, entry) in sections {
+        out.extend_from_slice(entry);
+    }
+    let sum = fnv1a(&out);
+    out.extend_from_slice(&sum.to_le_bytes());
+    out
+}
+
+/// A file of this format holds exactly its sections, in the order of
+/// [`SECTIONS`]: each is written (an empty one too: `first_yield` before the
+/// first yield, `joints_twist` without twist, `pretension` without
+/// sections), each is required (a file without it is refused naming it),
+/// and a section of another name is refused; the header's version is this
+/// build's, and a file of another version is refused before anything else
+/// of it is read, naming both versions.
+#[test]
+fn a_file_holds_exactly_the_sections_of_its_format() {
+    let model = model();
+    let (ck, pvd) = checkpoint(&model, 2);
+    let bytes = encode(&model, &ck, &pvd);
+    assert_eq!(&bytes[8..12], &2u32.to_le_bytes());
+    let (head, sections) = sections_of(&bytes);
+    let names: Vec<&str> = sections.iter().map(|s| s.0.as_str()).collect();
+    assert_eq!(names, SECTIONS);
+    assert!(decode(&file_of(&head, &sections), &model).is_ok());
+    for k in 0..sections.len() {
+        let mut without = sections.clone();
+        let (name, _) = without.remove(k);
+        let e = decode(&file_of(&head, &without), &model).unwrap_err();
+        assert_eq!(
+            e,
+            format!("section {name} missing: every restart file of format 2 holds it")
+        );
+    }
+    let mut more = sections.clone();
+    let mut extra = 5u16.to_le_bytes().to_vec();
+    extra.extend_from_slice(b"extra");
+    extra.push(2);
+    extra.extend_from_slice(&1u64.to_le_bytes());
+    extra.extend_from_slice(&7u64.to_le_bytes());
+    more.push(("extra".into(), extra));
+    let e = decode(&file_of(&head, &more), &model).unwrap_err();
+    assert_eq!(e, "section \"extra\" is no section of restart format 2");
+    // a body of a first yield the file does not have
+    let mut body = sections.clone();
+    let k = names.iter().position(|n| *n == "first_yield_body").unwrap();
+    let mut entry = 16u16.to_le_bytes().to_vec();
+    entry.extend_from_slice(b"first_yield_body");
+    entry.push(4);
+    entry.extend_from_slice(&5u64.to_le_bytes());
+    entry.extend_from_slice(b"punch");
+    body[k].1 = entry;
+    let e = decode(&file_of(&head, &body), &model).unwrap_err();
+    assert_eq!(
+        e,
+        "section first_yield_body: \"punch\" without a first yield (section first_yield is empty)"
+    );
+    // a section of the wrong kind
+    let mut kind = sections.clone();
+    let at = 2 + "increment".len();
+    kind[0].1[at] = 1;
+    let e = decode(&file_of(&head, &kind), &model).unwrap_err();
+    assert_eq!(e, "section increment: not u64 values");
+    // other versions: refused by the header alone (no checksum, no
+    // fingerprint, no section read)
+    for (version, words) in [
+        (1u32, "an earlier asperity (restart format 1)"),
+        (0, "an earlier asperity (restart format 0)"),
+        (3, "a later asperity (restart format 3)"),
+    ] {
+        let mut other = bytes.clone();
+        other[8..12].copy_from_slice(&version.to_le_bytes());
+        let e = decode(&other, &model).unwrap_err();
+        assert!(
+            e.starts_with(&format!(
+                "restart.bin was written by {words}; this build reads format 2 only: "
+            )),
+            "{e}"
+        );
+        other.truncate(40);
+        assert_eq!(decode(&other, &model).unwrap_err(), e);
+    }
 }

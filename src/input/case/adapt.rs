@@ -6,7 +6,7 @@
 
 use super::Case;
 use crate::error::{Error, Result};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// The largest number of adaptive cycles (solves) a case may ask for.
 pub const MAX_CYCLES: usize = 20;
@@ -24,7 +24,7 @@ pub const DEFAULT_MAX_DOFS: usize = 400_000;
 pub const MAX_DOFS: usize = 6 * super::MAX_ELEMENTS;
 
 /// `[adapt]`: an adaptive run.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct AdaptSpec {
     /// The estimate to reach, relative: of the energy norm, or of the named
@@ -104,6 +104,13 @@ impl Quantity {
             .find(|(_, q)| *q == self)
             .map(|(n, _)| *n)
             .expect("every quantity is named")
+    }
+}
+
+/// The name [`Quantity::name`] gives, as the case spells it.
+impl Serialize for Quantity {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        s.serialize_str(self.name())
     }
 }
 

@@ -24,15 +24,17 @@ pub mod settings;
 pub use settings::{Acceleration, Method, Stabilization, StepControl};
 mod solver;
 pub use solver::{default_plastic_strain_step, SolverSpec, INTERFACE_LOOP_DEFAULT};
+#[cfg(test)]
+mod tests;
 
 use crate::error::{Error, Result};
 use crate::input::mesh::blocks::{BlockSpec, InterfaceSpec};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 /// A parsed case file, before validation against its mesh.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Case {
     /// Name used for the output folder; default: the case folder's name.
@@ -61,25 +63,19 @@ pub struct Case {
     /// the schema, nor of [`Case::key`]: the effective values are).
     #[serde(skip)]
     pub overrides: overrides::Overrides,
-    // the keys added with load histories come last: a case without them
-    // keeps the restart fingerprint it had before (`Case::key`)
     /// Concentrated forces on node sets.
     #[serde(default)]
     pub force: Vec<ForceSpec>,
     /// Named load histories (pseudo-time → factor), referenced by name.
     #[serde(default)]
     pub history: BTreeMap<String, Vec<Vec<f64>>>,
-    /// Pretension sections (bolts): [`crate::model::pretension`]. Left out of
-    /// `Case::key` when empty, so a case without them keeps its restart
-    /// fingerprint.
+    /// Pretension sections (bolts): [`crate::model::pretension`].
     #[serde(default)]
     pub pretension: Vec<PretensionSpec>,
-    // the designer's outputs, last: a case without them keeps its key
     /// Named displacement probes (points or node sets).
     #[serde(default)]
     pub probe: Vec<outputs::ProbeSpec>,
-    /// An adaptive run (`[adapt]`, [`crate::app::adapt`]); left out of `Case::key`
-    /// when not given.
+    /// An adaptive run (`[adapt]`, [`crate::app::adapt`]).
     pub adapt: Option<adapt::AdaptSpec>,
 }
 
@@ -87,7 +83,7 @@ pub struct Case {
 /// a cut across a body along an element line, whose two sides are tied but
 /// for a relative displacement s along the cut's normal (the shortening),
 /// loaded by a force or a prescribed shortening ([`crate::model::pretension`]).
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct PretensionSpec {
     pub name: String,
@@ -110,7 +106,7 @@ pub struct PretensionSpec {
     pub lock: Option<bool>,
 }
 
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default)]
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq, Eq, Default)]
 #[serde(rename_all = "kebab-case")]
 pub enum Integration {
     /// 3×3 Gauss points (the paper's choice for the 8-node element).
@@ -120,7 +116,7 @@ pub enum Integration {
     Reduced,
 }
 
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct ModelSpec {
     /// "stress", "strain" or "axisymmetric" (x = r, y = z).
@@ -142,7 +138,7 @@ pub struct ModelSpec {
 }
 
 /// `[model] thickness` as given (None: not in the case file).
-#[derive(Clone, Copy, Default, Deserialize, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq)]
 #[serde(transparent)]
 pub struct Thickness(pub Option<f64>);
 
@@ -153,16 +149,15 @@ impl Thickness {
     }
 }
 
-/// Shows the value ([`Thickness::value`]) as a plain number: the effective
-/// case's text (a restart file's fingerprint, [`crate::files::restart::fingerprint`])
-/// stays what it was when the key was a number with default 1.
-impl std::fmt::Debug for Thickness {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        std::fmt::Debug::fmt(&self.value(), f)
+/// The value ([`Thickness::value`]): the case's key ([`Case::key`]) is of
+/// the effective case, and a thickness left out is 1 mm.
+impl Serialize for Thickness {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        s.serialize_f64(self.value())
     }
 }
 
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct MeshSpec {
     /// Multiplies every element count (mesh sequences); must be 1 for a file mesh.
@@ -180,7 +175,7 @@ pub struct MeshSpec {
 }
 
 /// `[mesh] refine_region = { x = [x₀, x₁], y = [y₀, y₁], levels = N }`.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct RefineRegion {
     pub x: [f64; 2],
@@ -188,7 +183,7 @@ pub struct RefineRegion {
     pub levels: usize,
 }
 
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialSpec {
     /// Young's modulus E, MPa.
@@ -205,7 +200,7 @@ pub struct MaterialSpec {
 /// Normal (and later tangential) law of one interface. The parameters that a law
 /// needs are checked by [`check_case`]; parameters that belong to another law are
 /// rejected there, so a typo cannot pass silently.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct InterfaceLawSpec {
     /// "power" (u_N = c_N p^m, eq. 2.1), "exponential" (p = a (e^{b u} − 1), eq. 2.2
@@ -247,9 +242,7 @@ pub struct InterfaceLawSpec {
 
 /// `[interface.<name>.tangential]`: elastic-plastic shear compliance with
 /// slip-hardening friction. Requires lumped weights (one spring, one history, per pair).
-/// Its `Debug` text (part of [`Case::key`]) is the one it had before `k_table`
-/// existed when R and S are given: older restart files still resume.
-#[derive(Clone, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct TangentialSpec {
     /// R: k_T^e = p_N^S / R in MPa/µm with p_N in MPa (eq. 2.6); not with `k_table`.
@@ -269,6 +262,8 @@ pub struct TangentialSpec {
     #[serde(default)]
     pub n: f64,
     /// p_T^Y / (μ_m p_N): 0.625 per eq. 2.18 (eq. 2.5 says 0.5); the bilinear backbone only.
+    /// In the case's key the ratio in force ([`TangentialSpec::yield_ratio`]).
+    #[serde(serialize_with = "effective_yield_ratio")]
     pub yield_ratio: Option<f64>,
     /// "return-mapping" (consistent tangent) or "stiffness-modification" (the paper's 2.25-2.26).
     #[serde(default)]
@@ -286,7 +281,7 @@ pub struct TangentialSpec {
 }
 
 /// `backbone` of `[interface.<name>.tangential]`.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum BackboneKind {
     #[default]
@@ -301,37 +296,12 @@ impl TangentialSpec {
     }
 }
 
-impl std::fmt::Debug for TangentialSpec {
-    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
-        let mut d = f.debug_struct("TangentialSpec");
-        match (self.r, self.s, &self.k_table) {
-            (Some(r), Some(s), None) => d.field("r", &r).field("s", &s),
-            _ => d
-                .field("r", &self.r)
-                .field("s", &self.s)
-                .field("k_table", &self.k_table),
-        };
-        // the text of a bilinear law is the one it had before `memory`,
-        // `backbone`, `chi` and `spike` existed: older restart files resume
-        match self.kp_ratio {
-            Some(kp) => d.field("kp_ratio", &kp),
-            None => d.field("kp_ratio", &self.kp_ratio),
-        };
-        d.field("mu", &self.mu)
-            .field("beta", &self.beta)
-            .field("n", &self.n)
-            .field("yield_ratio", &self.yield_ratio())
-            .field("scheme", &self.scheme);
-        if self.memory != Memory::Isotropic {
-            d.field("memory", &self.memory);
-        }
-        if self.backbone != BackboneKind::Bilinear || self.chi.is_some() || self.spike.is_some() {
-            d.field("backbone", &self.backbone)
-                .field("chi", &self.chi)
-                .field("spike", &self.spike);
-        }
-        d.finish()
-    }
+/// `yield_ratio` as the key holds it: the ratio in force, given or not.
+fn effective_yield_ratio<S: serde::Serializer>(
+    v: &Option<f64>,
+    s: S,
+) -> std::result::Result<S::Ok, S::Error> {
+    s.serialize_f64(v.unwrap_or_else(default_yield_ratio))
 }
 
 fn default_yield_ratio() -> f64 {
@@ -339,7 +309,8 @@ fn default_yield_ratio() -> f64 {
 }
 
 /// A load's history: the name of a `[history]` entry, or a table given in place.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(untagged)]
 pub enum HistoryRef {
     Name(String),
     Table(Vec<Vec<f64>>),
@@ -369,7 +340,7 @@ impl<'de> Deserialize<'de> for HistoryRef {
 }
 
 /// Prescribed displacement on a node set (value at factor 1; 0 = fixed).
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct BoundarySpec {
     /// Node set name, e.g. "foundation.bottom".
@@ -389,7 +360,7 @@ pub struct BoundarySpec {
 
 /// Uniform traction on an edge set (values at factor 1, MPa): a pressure
 /// pushing into the body and a shear along the edge's tangent.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct LoadSpec {
     /// Edge set name, e.g. "punch.top".
@@ -416,7 +387,7 @@ pub struct LoadSpec {
 
 /// A concentrated force at every node of a node set (N, at factor 1; for
 /// the model's thickness, or the whole revolution in axisymmetry).
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct ForceSpec {
     /// Node set name, e.g. "punch.top".
@@ -452,7 +423,7 @@ pub(crate) fn two_numbers_opt<'de, D: serde::Deserializer<'de>>(
     two_numbers(d).map(Some)
 }
 
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct OutputSpec {
     /// Point near which the "center" node is taken (the interface node of the lower
@@ -474,7 +445,8 @@ pub struct OutputSpec {
 }
 
 /// How the VTU files hold their arrays (docs/output.md, "VTU").
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize)]
+#[serde(rename_all = "lowercase")]
 pub enum VtuFormat {
     /// `<AppendedData encoding="raw">`: little-endian bytes, UInt64 block headers.
     #[default]
@@ -563,53 +535,22 @@ impl Case {
     }
 
     /// The effective case without its location and description, as text:
-    /// what a restart file's fingerprint identifies besides the mesh. A case
-    /// that uses none of the keys of load histories (`[history]`,
-    /// `[[force]]`, `shear`, `history`, `gap_history`) has the text it had
-    /// before they existed, so its older restart files still resume; the same
-    /// for an interface without a `table` (its `table: None` is left out).
+    /// what a restart file's fingerprint identifies besides the mesh
+    /// ([`crate::files::restart::fingerprint`]). It is the case's canonical
+    /// serialization: every key of the schema with its value after serde's
+    /// defaults and the command line's overrides, as compact JSON (object
+    /// keys sorted, numbers in their shortest round-trip form), without the
+    /// fields that say where the case came from (`source`, `description`,
+    /// `overrides`). Key order, whitespace, comments and the description of
+    /// the case file change nothing; any value of the schema does.
     pub fn key(&self) -> String {
         let mut key = self.clone();
-        key.source = Default::default();
         key.description = None;
-        key.overrides = Default::default();
-        // the VTU encoding is part of the key (a resumed run continues the
-        // series in the same encoding); the default one is left out, so
-        // keys of builds before `vtu_format` stay as they were
-        // the designer's outputs (`[[probe]]`, `event_tolerance`) are left
-        // out when not given, so keys of builds before them stay as they were
-        // twist's keys (`[model] twist`, `rotation`, `hoop_shear`, `torque`)
-        // likewise
-        let full = format!("{key:?}")
-            .replace(
-                ", overrides: Overrides { keys: [], graded_blocks: None }",
-                "",
-            )
-            .replace(", adapt: None }", " }")
-            .replace(", twist: false }", " }")
-            .replace(", rotation: None }", " }")
-            .replace(", hoop_shear: None, torque: None }", " }")
-            .replace(", event_tolerance: None }", " }")
-            .replace(", probe: [] }", " }")
-            .replace(", table: None,", ",")
-            .replace(", vtu_format: Binary }", " }")
-            .replace(", pretension: [] }", " }")
-            .replace(", refine_region: None }", " }");
-        let new_keys = !key.history.is_empty()
-            || !key.force.is_empty()
-            || key
-                .load
-                .iter()
-                .any(|l| l.shear != 0.0 || l.history.is_some())
-            || key.boundary.iter().any(|b| b.history.is_some())
-            || key.interface.values().any(|i| i.gap_history.is_some());
-        if new_keys {
-            return full;
-        }
-        full.replace(", shear: 0.0, history: None }", " }")
-            .replace(", history: None }", " }")
-            .replace(", gap_history: None }", " }")
-            .replace(", force: [], history: {} }", " }")
+        // through a `Value`: its objects are sorted maps, so the key does
+        // not depend on the order in which the structs declare their fields
+        let value = serde_json::to_value(&key)
+            .expect("a case is JSON: its strings and paths come from TOML text (UTF-8)");
+        serde_json::to_string(&value).expect("a JSON value is text")
     }
 
     /// The case name: `name`, else the folder holding the case file, else the file stem.

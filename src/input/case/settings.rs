@@ -3,9 +3,9 @@
 //! file spells them in kebab-case (`method = "modified-newton"`); `case`
 //! defines them and `solve` re-exports them.
 
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default)]
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq, Eq, Default)]
 #[serde(rename_all = "kebab-case")]
 pub enum Method {
     /// Consistent tangent at every iteration.
@@ -27,7 +27,7 @@ impl Method {
     }
 }
 
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default)]
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq, Eq, Default)]
 #[serde(rename_all = "kebab-case")]
 pub enum Acceleration {
     /// The plain method: u ← u + Δu.
@@ -38,7 +38,7 @@ pub enum Acceleration {
 }
 
 /// Contact stabilization of floating bodies (`solve::stabilize`).
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default)]
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq, Eq, Default)]
 #[serde(rename_all = "kebab-case")]
 pub enum Stabilization {
     /// Used only in the steps that need it: a body held only through open
@@ -50,7 +50,7 @@ pub enum Stabilization {
 }
 
 /// How the load-factor steps are chosen.
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default)]
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq, Eq, Default)]
 #[serde(rename_all = "kebab-case")]
 pub enum StepControl {
     /// The schedule as given (`increments`, `first_increment`, `load_factors`),
@@ -64,7 +64,7 @@ pub enum StepControl {
 
 /// Quadrature of the interface energy along a contact edge (the case's
 /// `weights`): the nodes themselves or 4-point Gauss (see the module comment).
-#[derive(Clone, Copy, Debug, serde::Deserialize, PartialEq, Eq, Default)]
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq, Eq, Default)]
 #[serde(rename_all = "kebab-case")]
 pub enum Weights {
     /// Row-sum weights 1/6, 2/3, 1/6 (eq. 3.30-3.31): one spring per pair.
@@ -80,7 +80,7 @@ pub enum Weights {
 }
 
 /// How the tangential stiffness enters the matrix.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Deserialize, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum FrictionScheme {
     /// Consistent tangent of the return mapping (unsymmetric ∂p_T/∂u_N included).

@@ -3,9 +3,9 @@
 //! the interface loop, the contact stabilization (its enums in `settings`).
 
 use super::{Acceleration, Method, Stabilization, StepControl};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct SolverSpec {
     #[serde(default)]

@@ -13,7 +13,7 @@
 
 use super::{ContactEdge, Element, Interface, Mesh, MeshError, NonMatching};
 use crate::error::clip;
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 mod merge;
 mod shape;
@@ -22,7 +22,7 @@ pub use shape::{ShapeError, SideShape, MIN_RELATIVE_CURVE};
 /// A rectangular block; x and y are split into segments at the breakpoints.
 /// Its bottom and top sides may be curved ([`SideShape`]); the block then
 /// lies inside its rectangle.
-#[derive(Clone, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct BlockSpec {
     pub body: String,
@@ -58,39 +58,13 @@ impl BlockSpec {
     }
 }
 
-/// As derived, but `name`, `bottom` / `top` only when given: a case with
-/// straight blocks of one body each keeps its text and so its restart
-/// fingerprint ([`crate::files::restart::fingerprint`]).
-impl std::fmt::Debug for BlockSpec {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let mut d = f.debug_struct("BlockSpec");
-        d.field("body", &self.body);
-        if let Some(n) = &self.name {
-            d.field("name", n);
-        }
-        d.field("x", &self.x)
-            .field("nx", &self.nx)
-            .field("rx", &self.rx)
-            .field("y", &self.y)
-            .field("ny", &self.ny)
-            .field("ry", &self.ry);
-        if let Some(b) = &self.bottom {
-            d.field("bottom", b);
-        }
-        if let Some(t) = &self.top {
-            d.field("top", t);
-        }
-        d.finish()
-    }
-}
-
 /// Contact between the bottom of block `upper` and the top of block `lower`
 /// (generated meshes, a horizontal interface: A = upper, B = lower), between
 /// the right side of block `left` and the left side of block `right`
 /// (generated meshes, a vertical interface: A = left, B = right), or between the physical curves `upper_curve` and
 /// `lower_curve` (meshes read from a file; `upper` / `lower` then optional,
 /// checked against the bodies the curves lie on).
-#[derive(Clone, Deserialize)]
+#[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct InterfaceSpec {
     pub name: String,
@@ -113,28 +87,6 @@ pub struct InterfaceSpec {
     /// body B the master side); default `true`, coincident node pairs.
     #[serde(default)]
     pub matching: Option<bool>,
-}
-
-/// As derived, but `left` / `right` only when given: the text of a case
-/// without them is what it was before they existed, and so is its restart
-/// fingerprint ([`crate::files::restart::fingerprint`]), so that restart files of
-/// earlier builds stay usable.
-impl std::fmt::Debug for InterfaceSpec {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let mut d = f.debug_struct("InterfaceSpec");
-        d.field("name", &self.name)
-            .field("upper", &self.upper)
-            .field("lower", &self.lower)
-            .field("upper_curve", &self.upper_curve)
-            .field("lower_curve", &self.lower_curve);
-        if self.left.is_some() || self.right.is_some() {
-            d.field("left", &self.left).field("right", &self.right);
-        }
-        if let Some(m) = self.matching {
-            d.field("matching", &m);
-        }
-        d.finish()
-    }
 }
 
 /// Corner coordinates along one axis from breakpoints, counts and ratios.

@@ -33,7 +33,7 @@ use std::fmt;
 
 /// The plane idealization of the 2D model (the case's `[model] plane`,
 /// "stress", "strain" or "axisymmetric").
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize, serde::Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Plane {
     /// σ_zz = 0 (thin bodies; the thickness scales the forces).

@@ -1,10 +1,6 @@
-//! The interface points' contact states of a restart file: the layout of
-//! this build (25 values a point; 56 with twist, the vector law's) or of the
-//! builds before the kinematic memory (5), each state one its law can
+//! The interface points' contact states of a restart file: 25 values a
+//! point (56 with twist, the vector law's), each state one its law can
 //! continue from and the one its law gives at the committed displacements.
-//! A twisting model's file of the builds before its interfaces carried the
-//! circumferential slip (25 values, no tangential law possible) resumes with
-//! u_Tθ from the displacements and an empty vector state.
 
 use super::*;
 use crate::model::interface::InterfaceModel;
@@ -26,54 +22,18 @@ pub(super) fn restore(
         .iter()
         .flat_map(|im| im.points.iter().map(move |_| im));
     let twist = model.node_dofs().twist();
-    // 5 values per point before the kinematic memory existed (issue 28):
-    // such a file resumes with every memory empty, as its laws keep none;
-    // 25 in a twisting model before its interfaces carried u_Tθ
-    let len = match s.0.get("contact") {
-        Some(Data::F64(v)) => Some(v.len()),
-        _ => None,
-    };
-    let width = match len {
-        Some(n) if np > 0 && n == OLD_CONTACT * np => OLD_CONTACT,
-        Some(n) if twist && np > 0 && n == ContactState::PACKED * np => ContactState::PACKED,
-        _ => ContactState::packed_len(twist),
-    };
-    let vector = twist && width == ContactState::PACKED_TWIST;
-    let mut full = [0.0; ContactState::PACKED_TWIST];
+    let width = ContactState::packed_len(twist);
     for (i, ((p, v), im)) in contact
         .iter_mut()
         .zip(s.finite("contact", Some(width * np))?.chunks_exact(width))
         .zip(laws)
         .enumerate()
     {
-        full.fill(0.0);
-        full[..width].copy_from_slice(v);
-        *p = ContactState::unpack_as(&full, vector);
-        if vector {
+        *p = ContactState::unpack_as(v, twist);
+        if twist {
             check_vector_point(im, i, p)?;
         } else {
             check_contact_point(im, i, p)?;
-        }
-    }
-    if twist && !vector {
-        // the scalar layout of a twisting model: no tangential law could
-        // act (refused then), so the state is the plane one plus u_Tθ
-        let mut q = 0;
-        for im in &model.interfaces {
-            for pt in &im.points {
-                let c = &mut contact[q];
-                if im.tangential.is_some() {
-                    return Err(format!(
-                        "section contact: interface point {} ({}): {} values a point in a model with twist, whose interfaces with a tangential law keep {}",
-                        q + 1,
-                        im.name,
-                        width,
-                        ContactState::PACKED_TWIST
-                    ));
-                }
-                c.u_h = im.point_hoop_slip(pt, u);
-                q += 1;
-            }
         }
     }
     check_contact_against_u(model, u, lambda, contact)
@@ -129,9 +89,6 @@ fn check_contact_against_u(
     }
     Ok(())
 }
-
-/// Values per interface point in the `contact` section of earlier builds.
-const OLD_CONTACT: usize = 5;
 
 /// A contact state a law can continue from: κ ≥ 0, and the kinematic
 /// memory's stretch function as it stores one (η rising to 1), its

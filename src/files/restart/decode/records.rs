@@ -12,78 +12,44 @@
 use super::*;
 use crate::model::pretension::free_at;
 
-/// The joint measures of every increment, when the file has them (a file of
-/// an earlier build has neither totals nor rows: the totals start from zero,
-/// the earlier increments keep no joint measures). Totals are finite; an
-/// increment's row is either finite or all NaN (an increment restored from a
-/// file of an earlier build), NaN rows first; every measured row within what
-/// the interface can carry ([`check_joint_row`]), and the last one the
-/// restored state's own ([`crate::solve::joint_measures`]).
+/// The joint measures of every increment: the totals finite, a row per
+/// interface and increment (`joints`, and with twist `joints_twist`; empty
+/// without), every value finite, every row within what the interface can
+/// carry ([`check_joint_row`]), and the last one the restored state's own
+/// ([`crate::solve::joint_measures`]).
 pub(super) fn restore_joints(ck: &mut Checkpoint, s: &Sections, model: &Model) -> Decoded<()> {
     let interfaces = model.interfaces.len();
-    let has_totals = s.0.contains_key("joint_totals");
-    if has_totals {
-        let v = s.finite("joint_totals", Some(2 * interfaces))?;
-        ck.joint_totals = v
-            .chunks_exact(2)
-            .map(|t| JointTotals {
-                dissipation: t[0],
-                work: t[1],
-            })
+    let v = s.finite("joint_totals", Some(2 * interfaces))?;
+    ck.joint_totals = v
+        .chunks_exact(2)
+        .map(|t| JointTotals {
+            dissipation: t[0],
+            work: t[1],
+        })
+        .collect();
+    let n = ck.increments.len();
+    let w = JointMeasures::PACKED * interfaces;
+    let v = s.finite("joints", Some(w * n))?;
+    for (inc, row) in ck.increments.iter_mut().zip(v.chunks_exact(w.max(1))) {
+        inc.joints = row
+            .chunks_exact(JointMeasures::PACKED)
+            .map(JointMeasures::unpack)
             .collect();
     }
-    if s.0.contains_key("joints") {
-        let w = JointMeasures::PACKED * interfaces;
-        let v = s.f("joints", Some(w * ck.increments.len()))?;
-        let mut measured = false;
-        for (inc, row) in ck.increments.iter_mut().zip(v.chunks_exact(w.max(1))) {
-            if row.iter().all(|x| x.is_nan()) && !measured {
-                continue;
-            }
-            if let Some(x) = row.iter().find(|x| !x.is_finite()) {
-                return Err(format!(
-                    "section joints: increment {}: a value {} (a row is finite, or all NaN before the first finite one)",
-                    inc.increment,
-                    num(*x)
-                ));
-            }
-            measured = true;
-            inc.joints = row
-                .chunks_exact(JointMeasures::PACKED)
-                .map(JointMeasures::unpack)
-                .collect();
+    // twist: torque, circumferential slip and twist of every row
+    let twist = if model.node_dofs().twist() { n } else { 0 };
+    let w = JointMeasures::PACKED_TWIST * interfaces;
+    let v = s.finite("joints_twist", Some(w * twist))?;
+    for (inc, row) in ck.increments.iter_mut().zip(v.chunks_exact(w.max(1))) {
+        for (m, t) in inc
+            .joints
+            .iter_mut()
+            .zip(row.chunks_exact(JointMeasures::PACKED_TWIST))
+        {
+            (m.torque, m.hoop_slip, m.twist) = (t[0], t[1], t[2]);
         }
     }
-    // twist: torque, circumferential slip and twist of the measured rows
-    // (a file of an earlier build has none: they stay 0)
-    if s.0.contains_key("joints_twist") {
-        let w = JointMeasures::PACKED_TWIST * interfaces;
-        let v = s.f("joints_twist", Some(w * ck.increments.len()))?;
-        for (inc, row) in ck.increments.iter_mut().zip(v.chunks_exact(w.max(1))) {
-            if inc.joints.len() != interfaces {
-                continue;
-            }
-            if let Some(x) = row.iter().find(|x| !x.is_finite()) {
-                return Err(format!(
-                    "section joints_twist: increment {}: a value {} in a row whose joints are finite",
-                    inc.increment,
-                    num(*x)
-                ));
-            }
-            for (m, t) in inc
-                .joints
-                .iter_mut()
-                .zip(row.chunks_exact(JointMeasures::PACKED_TWIST))
-            {
-                (m.torque, m.hoop_slip, m.twist) = (t[0], t[1], t[2]);
-            }
-        }
-    }
-    for inc in ck
-        .increments
-        .iter()
-        .filter(|i| i.joints.len() == interfaces)
-    {
+    for inc in &ck.increments {
         for (im, m) in model.interfaces.iter().zip(&inc.joints) {
             check_joint_row(model, im, m).map_err(|e| {
                 format!(
@@ -99,13 +65,8 @@ pub(super) fn restore_joints(ck: &mut Checkpoint, s: &Sections, model: &Model) -
             })?;
         }
     }
-    // the last row is the restored state's (with the file's totals: a file
-    // without them has its rows from an earlier build)
-    let last = ck
-        .increments
-        .last()
-        .filter(|i| i.joints.len() == interfaces);
-    if let (Some(last), true) = (last, has_totals) {
+    // the last row is the restored state's (with the file's totals)
+    if let Some(last) = ck.increments.last() {
         let own = crate::solve::joint_measures(model, &ck.committed, &ck.joint_totals);
         for ((im, got), want) in model.interfaces.iter().zip(&last.joints).zip(&own) {
             let (g, w) = (joint_values(got), joint_values(want));
@@ -222,9 +183,9 @@ fn check_joint_row(
     Ok(())
 }
 
-/// Every increment's pretension section forces and shortenings (a section
-/// `pretension`, 2 numbers per section and increment, finite), when the
-/// model has sections; a model without any has no such section. What the
+/// Every increment's pretension section forces and shortenings (section
+/// `pretension`, 2 numbers per section and increment, finite; empty in a
+/// model without sections). What the
 /// case fixes is the case's ([`Model::section_row`]): a free section's force
 /// (force control before its lock) is recomputed as F h(t), a prescribed
 /// shortening as its value at t, whatever the file holds; a locked section's
@@ -234,13 +195,9 @@ fn check_joint_row(
 /// section's force, a free one's shortening) within the force and
 /// displacement ranges.
 pub(super) fn restore_sections(ck: &mut Checkpoint, s: &Sections, model: &Model) -> Decoded<()> {
-    let sections = model.sections.len();
-    if sections == 0 || ck.increments.is_empty() {
-        return Ok(());
-    }
-    let w = 2 * sections;
+    let w = 2 * model.sections.len();
     let v = s.finite("pretension", Some(w * ck.increments.len()))?;
-    for (inc, row) in ck.increments.iter_mut().zip(v.chunks_exact(w)) {
+    for (inc, row) in ck.increments.iter_mut().zip(v.chunks_exact(w.max(1))) {
         for p in row.chunks_exact(2) {
             let (force, shortening) = (p[0], p[1]);
             if !(crate::input::case::ranges::FORCE.admits(force) || force == 0.0)
@@ -313,9 +270,7 @@ pub(super) fn check_records(ck: &Checkpoint, model: &Model) -> Decoded<()> {
     let plan = &model.plan;
     let probes = plan.layout.probes.clone();
     for inc in &ck.increments {
-        let Some(v) = plan.part(&inc.record, &probes) else {
-            continue;
-        };
+        let v = plan.part(&inc.record, &probes);
         if let Some(i) = v
             .iter()
             .position(|x| x.is_nan() || x.abs() > MAX_DISPLACEMENT)
@@ -329,11 +284,7 @@ pub(super) fn check_records(ck: &Checkpoint, model: &Model) -> Decoded<()> {
             ));
         }
     }
-    let Some(last) = ck
-        .increments
-        .last()
-        .filter(|i| i.record.len() == plan.width())
-    else {
+    let Some(last) = ck.increments.last() else {
         return Ok(());
     };
     let own = crate::measure::state_part(model, &ck.committed);

@@ -43,25 +43,24 @@ pub(in crate::files::restart) fn restore_stepper(
             num(step)
         ));
     }
-    // the predictor's direction; absent from files of earlier builds (the
-    // next increment then starts from the committed state)
-    if let Some(Data::F64(v)) = s.0.get("last_du") {
-        if !v.is_empty() && v.len() != nu {
-            return Err(format!(
-                "section last_du has {} values, the model needs {nu}",
-                v.len()
-            ));
-        }
-        all_finite("last_du", v)?;
-        all_within(
-            "last_du",
-            v,
-            MAX_DISPLACEMENT,
-            "mm",
-            "the displacement range of a case",
-        )?;
-        ck.last_du = v.clone();
+    // the predictor's direction: a value per dof, or none (the next
+    // increment then starts from the committed state)
+    let v = s.f("last_du", None)?;
+    if !v.is_empty() && v.len() != nu {
+        return Err(format!(
+            "section last_du has {} values, the model needs {nu} (or none)",
+            v.len()
+        ));
     }
+    all_finite("last_du", v)?;
+    all_within(
+        "last_du",
+        v,
+        MAX_DISPLACEMENT,
+        "mm",
+        "the displacement range of a case",
+    )?;
+    ck.last_du = v.clone();
     let pl = s.f("pending_load_factor", None)?;
     let pd = s.u("pending_depth", None)?;
     if pl.len() != pd.len() {
@@ -136,13 +135,9 @@ pub(in crate::files::restart) fn restore_stepper(
     ck.stepper.failures = 0;
     (ck.cutbacks_total, ck.cutbacks_here) = (total as usize, 0);
     let ct = s.u("counters", Some(2))?;
-    // the event searches' share of the Newton iterations (absent from files
-    // of earlier builds: none set apart); the bound is on the run's own
-    let ev = if s.0.contains_key("event_counters") {
-        s.u("event_counters", Some(1))?[0]
-    } else {
-        0
-    };
+    // the event searches' share of the Newton iterations; the bound is on
+    // the run's own
+    let ev = s.u("event_counters", Some(1))?[0];
     if ev > ct[0] {
         return Err(format!(
             "section event_counters: {ev} Newton iterations of event searches, more than the {} of the whole run",
@@ -163,21 +158,19 @@ pub(in crate::files::restart) fn restore_stepper(
     ck.event_iterations = ev as usize;
     // the interface loop runs at most once per Newton iteration, at most
     // MAX_INNER iterations each, and falls back at most once per run of it
-    if s.0.contains_key("interface_counters") {
-        let lc = s.u("interface_counters", Some(3))?;
-        let inner = crate::solve::newton::interface_loop::MAX_INNER as u64;
-        if lc[0] > ct[0] || lc[2] > lc[0] || lc[1] > lc[0].saturating_mul(inner) {
-            return Err(format!(
-                "section interface_counters: {} loops, {} iterations and {} fallbacks, where a run of {} Newton iterations has at most one loop per iteration, {inner} iterations per loop and one fallback per loop",
-                lc[0], lc[1], lc[2], ct[0]
-            ));
-        }
-        ck.interface = crate::solve::newton::interface_loop::LoopStats {
-            loops: lc[0] as usize,
-            iterations: lc[1] as usize,
-            fallbacks: lc[2] as usize,
-        };
+    let lc = s.u("interface_counters", Some(3))?;
+    let inner = crate::solve::newton::interface_loop::MAX_INNER as u64;
+    if lc[0] > ct[0] || lc[2] > lc[0] || lc[1] > lc[0].saturating_mul(inner) {
+        return Err(format!(
+            "section interface_counters: {} loops, {} iterations and {} fallbacks, where a run of {} Newton iterations has at most one loop per iteration, {inner} iterations per loop and one fallback per loop",
+            lc[0], lc[1], lc[2], ct[0]
+        ));
     }
+    ck.interface = crate::solve::newton::interface_loop::LoopStats {
+        loops: lc[0] as usize,
+        iterations: lc[1] as usize,
+        fallbacks: lc[2] as usize,
+    };
     ck.elastic_ratio_prev = s.finite("elastic_ratio_prev", Some(1))?[0];
     if ck.elastic_ratio_prev < 0.0 {
         return Err(format!(

@@ -1,7 +1,7 @@
 //! Curved bottom and top sides of a generated block (issue 19): an arc, or
 //! quarter-circle roundings at the ends.
 
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// The shape of a block's bottom or top side (issue 19: curved contact).
 /// The side bulges out of the block's rectangle no further than its straight
@@ -11,7 +11,7 @@ use serde::Deserialize;
 /// at the graded height fraction: x(ξ, η) = (1 − η̂) B(ξ) + η̂ T(ξ), the
 /// transfinite (Coons) map of a block whose left and right sides are straight.
 /// Every node of a curved side, midside nodes included, lies on the curve.
-#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct SideShape {
     /// A circular arc of this radius (mm) whose apex is the straight side's

@@ -259,17 +259,6 @@ fn vertical_interface_errors_are_named() {
 }
 
 #[test]
-fn the_debug_text_of_a_horizontal_spec_is_unchanged_by_left_and_right() {
-    let (_, ifs) = punch();
-    assert_eq!(
-        format!("{:?}", ifs[0]),
-        "InterfaceSpec { name: \"contact\", upper: Some(\"punch\"), lower: Some(\"foundation\"), upper_curve: None, lower_curve: None }"
-    );
-    let v = iface("fit", [None, None, Some("shaft"), Some("hub")]);
-    assert!(format!("{v:?}").ends_with("left: Some(\"shaft\"), right: Some(\"hub\") }"));
-}
-
-#[test]
 fn curved_sides_put_every_side_node_on_the_curve() {
     // a cylinder segment: bottom arc of radius 50 with its apex at x = 0
     let mut cyl = block(

@@ -37,7 +37,7 @@ pub use vector::{SlipState2, VectorEval};
 pub use work::{Side, Side2};
 
 /// How the law remembers its slip history.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize, serde::Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Memory {
     /// Section 2.2: the yield limit grows with the accumulated slip κ, so

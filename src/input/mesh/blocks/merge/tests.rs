@@ -214,7 +214,7 @@ fn four_blocks_round_a_point_merge_it_into_one_node() {
 }
 
 #[test]
-fn a_body_of_one_block_keeps_its_sets_and_its_debug_text() {
+fn a_body_of_one_block_keeps_its_sets() {
     let (bl, ifs) = punch();
     let m = generate(&bl, &ifs, 1).unwrap();
     let names: Vec<&str> = m.node_sets.keys().map(|k| k.as_str()).collect();
@@ -233,12 +233,10 @@ fn a_body_of_one_block_keeps_its_sets_and_its_debug_text() {
             "punch.top"
         ]
     );
-    assert!(format!("{:?}", bl[0]).starts_with("BlockSpec { body: \"punch\", x: "));
     let named = BlockSpec {
         name: Some("p".into()),
         ..bl[0].clone()
     };
-    assert!(format!("{named:?}").starts_with("BlockSpec { body: \"punch\", name: \"p\", x: "));
     // a single block named apart from its body: the body's set is its nodes
     let m = generate(&[named.clone(), bl[1].clone()], &[], 1).unwrap();
     assert_eq!(m.node_sets["punch.all"], m.node_sets["p.all"]);
