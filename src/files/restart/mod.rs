@@ -384,8 +384,19 @@ pub fn write_to(
     }
 }
 
+/// The sections of a restart file, in the order the decoder reads them:
+/// the load stepping ([`decode`]'s stepper), the committed state, the
+/// records every increment added, and the VTU series.
 fn sections(e: &mut Encoder, ck: &Checkpoint, pvd: &[(f64, String)]) -> std::io::Result<()> {
-    let s = &ck.committed;
+    stepper_sections(e, ck)?;
+    state_sections(e, ck)?;
+    record_sections(e, ck)?;
+    pvd_sections(e, pvd)
+}
+
+/// Where the load stepping stands: the increment, the load factor and the
+/// last step, the pending schedule, the automatic control, the counters.
+fn stepper_sections(e: &mut Encoder, ck: &Checkpoint) -> std::io::Result<()> {
     e.u64s("increment", &[ck.increments.len() as u64])?;
     e.f64s("load_factor", &[ck.lambda])?;
     e.f64s("last_step", &[ck.last_step])?;
@@ -423,6 +434,13 @@ fn sections(e: &mut Encoder, ck: &Checkpoint, pvd: &[(f64, String)]) -> std::io:
         ],
     )?;
     e.u64s("event_counters", &[ck.event_iterations as u64])?;
+    Ok(())
+}
+
+/// The committed state: displacements, Gauss points, the interface points'
+/// statuses and tangential states, the prescribed reaction.
+fn state_sections(e: &mut Encoder, ck: &Checkpoint) -> std::io::Result<()> {
+    let s = &ck.committed;
     e.f64s("u", &s.u)?;
     let w = PointState::packed_len(ck.twist);
     e.f64_iter(
@@ -442,6 +460,13 @@ fn sections(e: &mut Encoder, ck: &Checkpoint, pvd: &[(f64, String)]) -> std::io:
         s.contact.iter().flat_map(|c| c.pack_as(ck.twist)),
     )?;
     e.f64s("prescribed_reaction", &[s.prescribed_reaction])?;
+    Ok(())
+}
+
+/// What every increment recorded: the curve, first yield, the joints'
+/// totals and rows, the pretension rows, the designer's records, the
+/// events and the tables' reach.
+fn record_sections(e: &mut Encoder, ck: &Checkpoint) -> std::io::Result<()> {
     let mut rows = Vec::with_capacity(10 * ck.increments.len());
     for inc in &ck.increments {
         let m = &inc.measures;
@@ -517,6 +542,11 @@ fn sections(e: &mut Encoder, ck: &Checkpoint, pvd: &[(f64, String)]) -> std::io:
         Reach::PACKED * ck.table_reach.len(),
         ck.table_reach.iter().flat_map(Reach::pack),
     )?;
+    Ok(())
+}
+
+/// The VTU series written so far (`result.pvd`'s entries).
+fn pvd_sections(e: &mut Encoder, pvd: &[(f64, String)]) -> std::io::Result<()> {
     e.f64s(
         "pvd_load_factor",
         &pvd.iter().map(|p| p.0).collect::<Vec<_>>(),

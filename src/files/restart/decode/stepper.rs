@@ -16,7 +16,6 @@ pub(in crate::files::restart) fn restore_stepper(
     s: &Sections,
     model: &Model,
 ) -> Decoded<()> {
-    let nu = ck.committed.u.len();
     let incs = &ck.increments;
     let path: Vec<(f64, usize)> = incs.iter().map(|i| (i.load_factor, i.cutbacks)).collect();
     let mut expect = Stepper::for_model(model);
@@ -26,21 +25,38 @@ pub(in crate::files::restart) fn restore_stepper(
         .map_err(|m| format!("section curve: {m}"))?;
     let n = incs.len();
     let at = |k: usize| if k == 0 { 0.0 } else { incs[k - 1].load_factor };
+    let (end, last) = (at(n), if n == 0 { 0.0 } else { at(n) - at(n - 1) });
+    let total: u64 = incs.iter().map(|i| i.cutbacks as u64).sum();
+    restore_position(ck, s, n, end, last)?;
+    restore_schedule(ck, s, expect, &initial, n)?;
+    restore_counters(ck, s, model, n, total)
+}
+
+/// Where the curve ends: the load factor `end` of increment `n`, the last
+/// step `last` of the curve, and the predictor's direction (a value per
+/// dof, or none).
+fn restore_position(
+    ck: &mut Checkpoint,
+    s: &Sections,
+    n: usize,
+    end: f64,
+    last: f64,
+) -> Decoded<()> {
+    let nu = ck.committed.u.len();
     ck.lambda = s.finite("load_factor", Some(1))?[0];
-    if ck.lambda.to_bits() != at(n).to_bits() {
+    if ck.lambda.to_bits() != end.to_bits() {
         return Err(format!(
             "section load_factor: load factor {}, but increment {n} ended at {}",
             num(ck.lambda),
-            num(at(n))
+            num(end)
         ));
     }
     ck.last_step = s.finite("last_step", Some(1))?[0];
-    let step = if n == 0 { 0.0 } else { at(n) - at(n - 1) };
-    if ck.last_step.to_bits() != step.to_bits() {
+    if ck.last_step.to_bits() != last.to_bits() {
         return Err(format!(
             "section last_step: {}, but the curve's last step is {}",
             num(ck.last_step),
-            num(step)
+            num(last)
         ));
     }
     // the predictor's direction: a value per dof, or none (the next
@@ -61,6 +77,19 @@ pub(in crate::files::restart) fn restore_stepper(
         "the displacement range of a case",
     )?;
     ck.last_du = v.clone();
+    Ok(())
+}
+
+/// The pending schedule (fixed steps) or the waypoints ahead (automatic
+/// steps) and the step size: what the case's stepper `expect`, replayed
+/// over the curve's `n` increments from `initial`, leaves.
+fn restore_schedule(
+    ck: &mut Checkpoint,
+    s: &Sections,
+    expect: Stepper,
+    initial: &Stepper,
+    n: usize,
+) -> Decoded<()> {
     let pl = s.f("pending_load_factor", None)?;
     let pd = s.u("pending_depth", None)?;
     if pl.len() != pd.len() {
@@ -123,9 +152,22 @@ pub(in crate::files::restart) fn restore_stepper(
         });
     }
     ck.stepper.step = step;
+    Ok(())
+}
+
+/// The counters: no failure or cutback pending after a converged increment,
+/// the curve's `total` of cutbacks, Newton iterations, factorizations and
+/// the interface loop's counts within what a run of `n` increments can
+/// count, and the elastic ratio of the last step.
+fn restore_counters(
+    ck: &mut Checkpoint,
+    s: &Sections,
+    model: &Model,
+    n: usize,
+    total: u64,
+) -> Decoded<()> {
     let failures = s.u("auto_failures", Some(1))?[0];
     let cb = s.u("cutbacks", Some(2))?;
-    let total: u64 = incs.iter().map(|i| i.cutbacks as u64).sum();
     if failures != 0 || cb[1] != 0 || cb[0] != total {
         return Err(format!(
             "sections auto_failures/cutbacks: {failures} failures and {} cutbacks pending, {} cutbacks in all, where a converged increment leaves none pending and the curve counts {total}",
