@@ -5,6 +5,7 @@ use crate::error::Result;
 use crate::files::output::{Resume, Writer};
 use crate::input::case::{Case, Method};
 use crate::model::Model;
+use crate::physics::element::family::Family;
 use crate::progress::Log;
 use crate::solve::{self, Checkpoint, Control, Engine, RunResult};
 use serde_json::json;
@@ -642,26 +643,47 @@ pub fn check(case_path: &Path, opts: &RunOptions) -> Result<String> {
 
 /// `check`'s lines of the plane (or axisymmetry), the integration and the
 /// mesh's size.
+/// "9 Gauss points per element", or per family in a mixed mesh.
+fn points_per_element(model: &Model) -> String {
+    let present: Vec<Family> = Family::ALL
+        .into_iter()
+        .filter(|&f| model.mesh.elements.iter().any(|el| el.family == f))
+        .collect();
+    match present.as_slice() {
+        [f] => format!(
+            "{} Gauss points per element",
+            model.rule_of(*f).points.len()
+        ),
+        _ => {
+            let each: Vec<String> = present
+                .iter()
+                .map(|&f| format!("{} per {}", model.rule_of(f).points.len(), f.name()))
+                .collect();
+            format!("Gauss points: {}", each.join(", "))
+        }
+    }
+}
+
 fn plane_text(model: &Model) -> String {
     let mut s = String::new();
     if model.section.axisymmetric {
         s += &format!(
-            "  plane Axisymmetric{} (x = r, y = z; forces, areas and kN for the full revolution), {:?} integration ({} Gauss points per element)\n",
+            "  plane Axisymmetric{} (x = r, y = z; forces, areas and kN for the full revolution), {:?} integration ({})\n",
             if model.node_dofs().twist() {
                 " with twist (u_θ, torques about the axis)"
             } else {
                 ""
             },
             model.integration,
-            model.n_gauss()
+            points_per_element(model)
         );
     } else {
         s += &format!(
-            "  plane {:?}, thickness {} mm, {:?} integration ({} Gauss points per element)\n",
+            "  plane {:?}, thickness {} mm, {:?} integration ({})\n",
             model.plane,
             model.thickness,
             model.integration,
-            model.n_gauss()
+            points_per_element(model)
         );
     }
     s += &format!(

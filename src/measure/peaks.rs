@@ -41,15 +41,12 @@ fn body_peaks(
     max: impl Fn(&mut [f64]),
 ) -> Vec<f64> {
     let nb = model.mesh.bodies.len();
-    let ng = model.n_gauss();
     // this rank's largest von Mises and PEEQ per body, and their point index
     let mut best = vec![(f64::NEG_INFINITY, usize::MAX); 2 * nb];
-    for (k, &e) in held.iter().enumerate() {
-        let e = e as usize;
+    for (e, local) in model.held_points(held) {
         let b = model.mesh.elements[e].body;
-        for ip in 0..ng {
-            let g = &gauss[k * ng + ip];
-            let i = e * ng + ip;
+        for (ip, g) in gauss[local].iter().enumerate() {
+            let i = model.points(e).start + ip;
             for (slot, v) in [
                 (b, VonMises::equivalent_stress(&g.stress)),
                 (nb + b, g.peeq),
@@ -80,7 +77,8 @@ fn body_peaks(
             return [f64::NAN; 3];
         }
         let i = (-key[slot]) as usize;
-        let (e, ip) = (i / ng, i % ng);
+        let e = model.element_of_point(i);
+        let ip = i - model.points(e).start;
         let x = model.geometry(e).x[ip];
         [x[0], x[1], e as f64]
     };

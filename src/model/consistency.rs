@@ -12,8 +12,7 @@
 use crate::error::{clip, Error, Result};
 use crate::input::case::ranges;
 use crate::input::case::{Case, MAX_ELEMENTS};
-use crate::input::mesh::Mesh;
-use crate::physics::element::q8;
+use crate::input::mesh::{Family, Mesh};
 use std::collections::{BTreeMap, HashMap, HashSet};
 
 fn mesh_err(place: &str, message: String) -> Error {
@@ -79,7 +78,7 @@ fn axisymmetric_half_plane(mesh: &Mesh, place: &str) -> Result<()> {
     let body = mesh
         .elements
         .iter()
-        .find(|el| el.nodes.contains(&n))
+        .find(|el| el.nodes().contains(&n))
         .map_or("?", |el| mesh.bodies[el.body].as_str());
     Err(Error::input(
         format!("{place}: [model] plane"),
@@ -258,9 +257,8 @@ fn magnitudes(case: &Case, mesh: &Mesh, place: &str) -> Result<()> {
         }
     }
     for (e, el) in mesh.elements.iter().enumerate() {
-        let c = mesh.element_coords(e);
         let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        for x in &c[..4] {
+        for x in el.corners().iter().map(|&n| mesh.nodes[n]) {
             for k in 0..2 {
                 lo[k] = lo[k].min(x[k]);
                 hi[k] = hi[k].max(x[k]);
@@ -274,8 +272,8 @@ fn magnitudes(case: &Case, mesh: &Mesh, place: &str) -> Result<()> {
                 format!(
                     "element {e} of body \"{}\" near ({}, {}): {}",
                     clip(&mesh.bodies[el.body]),
-                    c[0][0],
-                    c[0][1],
+                    mesh.nodes[el.nodes()[0]][0],
+                    mesh.nodes[el.nodes()[0]][1],
                     ranges::ELEMENT_SIZE.refusal(size)
                 ),
             ));
@@ -359,9 +357,61 @@ fn blocks_overlap(case: &Case, place: &str) -> Result<()> {
     Ok(())
 }
 
-/// The element as a polygon through its 8 nodes (corner, midside, corner …).
-fn polygon(c: &[[f64; 2]; 8]) -> [[f64; 2]; 8] {
-    [c[0], c[4], c[1], c[5], c[2], c[6], c[3], c[7]]
+/// The points of element e that must not lie inside an element of another
+/// body: its nodes, its reduced rule's Gauss points and its centre.
+fn samples(mesh: &Mesh, e: usize) -> Vec<[f64; 2]> {
+    let el = &mesh.elements[e];
+    let c = mesh.element_coords(e);
+    let mut pts: Vec<[f64; 2]> = c[..el.nodes().len()].to_vec();
+    let rule = el.family.rule(false);
+    for xi in rule
+        .points
+        .iter()
+        .map(|p| p.0)
+        .chain([el.family.centre_xi()])
+    {
+        let nn = el.family.shape(xi);
+        let mut p = [0.0; 2];
+        for a in 0..el.nodes().len() {
+            p[0] += nn[a] * c[a][0];
+            p[1] += nn[a] * c[a][1];
+        }
+        pts.push(p);
+    }
+    pts
+}
+
+/// Do elements a and b share area by more than `tol` (a sample point of one
+/// strictly inside the other, or two sides crossing)? `h` is the smaller
+/// element's size.
+fn share_area(mesh: &Mesh, a: usize, b: usize, tol: f64, h: f64) -> bool {
+    let (pa, pb) = (mesh.outline(a), mesh.outline(b));
+    let (na, nb) = (pa.len(), pb.len());
+    samples(mesh, a)
+        .iter()
+        .any(|&p| strictly_inside(p, &pb, tol))
+        || samples(mesh, b)
+            .iter()
+            .any(|&p| strictly_inside(p, &pa, tol))
+        || (0..na).any(|i| {
+            (0..nb).any(|j| {
+                properly_cross(
+                    [pa[i], pa[(i + 1) % na]],
+                    [pb[j], pb[(j + 1) % nb]],
+                    tol * h,
+                )
+            })
+        })
+}
+
+/// Where a message places element e: the middle of its first diagonal (a
+/// quadrilateral), its centroid (a triangle).
+fn near(mesh: &Mesh, e: usize) -> [f64; 2] {
+    let c = mesh.element_coords(e);
+    match mesh.elements[e].family {
+        Family::Q8 => [(c[0][0] + c[2][0]) / 2.0, (c[0][1] + c[2][1]) / 2.0],
+        Family::T6 => mesh.centroid(e),
+    }
 }
 
 fn cross(o: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
@@ -369,10 +419,11 @@ fn cross(o: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
 }
 
 /// Is `p` inside the polygon by more than `tol` from its boundary?
-fn strictly_inside(p: [f64; 2], poly: &[[f64; 2]; 8], tol: f64) -> bool {
+fn strictly_inside(p: [f64; 2], poly: &[[f64; 2]], tol: f64) -> bool {
     let mut inside = false;
-    for i in 0..8 {
-        let (a, b) = (poly[i], poly[(i + 1) % 8]);
+    let n = poly.len();
+    for i in 0..n {
+        let (a, b) = (poly[i], poly[(i + 1) % n]);
         // distance to the segment
         let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
         let len2 = dx * dx + dy * dy;
@@ -429,13 +480,15 @@ fn elements_overlap(mesh: &Mesh, place: &str) -> Result<()> {
     let boxes: Vec<([f64; 2], [f64; 2])> = (0..n)
         .map(|e| {
             let c = mesh.element_coords(e);
-            c.iter()
-                .fold(([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]), |(l, h), x| {
+            c[..mesh.elements[e].nodes().len()].iter().fold(
+                ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
+                |(l, h), x| {
                     (
                         [l[0].min(x[0]), l[1].min(x[1])],
                         [h[0].max(x[0]), h[1].max(x[1])],
                     )
-                })
+                },
+            )
         })
         .collect();
     let mut grid: BTreeMap<(usize, usize), Vec<usize>> = BTreeMap::new();
@@ -446,20 +499,6 @@ fn elements_overlap(mesh: &Mesh, place: &str) -> Result<()> {
             }
         }
     }
-    let gauss = q8::gauss_2x2();
-    let samples = |c: &[[f64; 2]; 8]| -> Vec<[f64; 2]> {
-        let mut pts: Vec<[f64; 2]> = c.to_vec();
-        for xi in gauss.points.iter().map(|p| p.0).chain([[0.0, 0.0]]) {
-            let nn = q8::shape(xi[0], xi[1]);
-            let mut p = [0.0; 2];
-            for a in 0..8 {
-                p[0] += nn[a] * c[a][0];
-                p[1] += nn[a] * c[a][1];
-            }
-            pts.push(p);
-        }
-        pts
-    };
     // bodies joined by a non-matching interface were meshed apart: their
     // curved sides meet chord against chord, and up to the overlap the
     // node-to-segment springs accept (a fraction of the element) is the
@@ -500,21 +539,8 @@ fn elements_overlap(mesh: &Mesh, place: &str) -> Result<()> {
                 if !seen.insert((a.min(b), a.max(b))) {
                     continue;
                 }
-                let (ca, cb) = (mesh.element_coords(a), mesh.element_coords(b));
-                let (pa, pb) = (polygon(&ca), polygon(&cb));
-                let hit = samples(&ca).iter().any(|&p| strictly_inside(p, &pb, tol))
-                    || samples(&cb).iter().any(|&p| strictly_inside(p, &pa, tol))
-                    || (0..8).any(|i| {
-                        (0..8).any(|j| {
-                            properly_cross(
-                                [pa[i], pa[(i + 1) % 8]],
-                                [pb[j], pb[(j + 1) % 8]],
-                                tol * h,
-                            )
-                        })
-                    });
-                if hit {
-                    let m = [(ca[0][0] + ca[2][0]) / 2.0, (ca[0][1] + ca[2][1]) / 2.0];
+                if share_area(mesh, a, b, tol, h) {
+                    let m = near(mesh, a);
                     return Err(mesh_err(
                         place,
                         format!(

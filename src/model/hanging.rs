@@ -50,7 +50,7 @@ pub(super) fn constraints(
     let of_q: HashSet<usize> = hanging.iter().map(|h| h.node).collect();
     let mut holder: HashMap<usize, usize> = HashMap::new();
     for (e, el) in mesh.elements.iter().enumerate() {
-        for &n in el.nodes.iter().filter(|n| of_q.contains(n)) {
+        for &n in el.nodes().iter().filter(|n| of_q.contains(n)) {
             holder.entry(n).or_insert(e);
         }
     }
@@ -59,7 +59,7 @@ pub(super) fn constraints(
     let mut out = Vec::new();
     for h in hanging {
         // the coarse edge as its element holds it after the cuts
-        let coarse = &mesh.elements[h.element].nodes;
+        let coarse = mesh.elements[h.element].nodes();
         let edge = h.edge.map(|n| {
             coarse
                 .iter()
@@ -67,7 +67,7 @@ pub(super) fn constraints(
                 .find(|&c| origin[c] == n)
                 .unwrap_or(n)
         });
-        let fine = holder.get(&h.node).map(|&e| &mesh.elements[e].nodes);
+        let fine = holder.get(&h.node).map(|&e| mesh.elements[e].nodes());
         if fine.is_some_and(|f| !f.contains(&edge[1])) {
             let name = sections
                 .iter()

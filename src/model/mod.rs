@@ -8,7 +8,7 @@ use crate::input::case::{check_case, Case, Integration};
 use crate::input::mesh::{Mesh, NodeDofs};
 use crate::model::assembly::{Blocks, DofMap, Pattern};
 use crate::model::interface::InterfaceModel;
-use crate::physics::element::q8::{self, GaussRule};
+use crate::physics::element::family::{Family, GaussRule};
 use crate::physics::element::solid::ElementGeometry;
 use crate::physics::element::solid::ElementVector;
 use crate::physics::material::{Plane, VonMises};
@@ -56,7 +56,8 @@ pub struct Model {
     pub overrides: crate::input::case::overrides::Overrides,
     /// The case's free-text description.
     pub description: Option<String>,
-    /// Full or reduced Gauss integration of the elements ([`Model::rule`] is the rule).
+    /// Full or reduced Gauss integration of the elements ([`Model::rule`]
+    /// is an element's rule).
     pub integration: Integration,
     /// The effective case (after command-line overrides) without its location
     /// and description, as canonical JSON ([`crate::input::case::Case::key`]):
@@ -70,7 +71,12 @@ pub struct Model {
     /// Thickness or revolution: the out-of-plane measure of every integral.
     pub section: crate::physics::element::Section,
     pub symmetric_half: bool,
-    pub rule: GaussRule,
+    /// Each family's Gauss rule at the case's integration, in
+    /// [`Family::index`] order.
+    rules: [GaussRule; 2],
+    /// Element e's Gauss point states are `gauss_offsets[e]..gauss_offsets[e
+    /// + 1]` of every state vector ([`Model::points`]).
+    gauss_offsets: Vec<usize>,
     /// Material per body.
     pub materials: Vec<VonMises>,
     pub interfaces: Vec<InterfaceModel>,
@@ -170,10 +176,8 @@ impl Model {
             axisymmetric: plane == Plane::Axisymmetric,
             thickness,
         };
-        let rule = match case.model.integration {
-            Integration::Full => q8::gauss_3x3(),
-            Integration::Reduced => q8::gauss_2x2(),
-        };
+        let full = case.model.integration == Integration::Full;
+        let rules = Family::ALL.map(|f| f.rule(full));
         // the start mesh's nodes (and their copies across the cuts): where
         // a [[force]] acts and the probe is read on every adaptive cycle
         let start: Vec<bool> = crate::model::pretension::origins(&sections, mesh.nodes.len())
@@ -181,7 +185,7 @@ impl Model {
             .map(|o| o < start_nodes)
             .collect();
         let materials = materials(&case, &mesh, &place)?;
-        check_elements(&mesh, &rule, &section, &place)?;
+        check_elements(&mesh, &rules, &section, &place)?;
         let mut interfaces = interface_models(&case, &checked, &mesh, section, &place)?;
         let mut loads = crate::model::loads::build(&case, &mesh, &start, section, &place)?;
         let f_ext = loads.patterns.remove(0).f;
@@ -220,7 +224,8 @@ impl Model {
             thickness,
             section,
             symmetric_half: case.model.symmetric_half,
-            rule,
+            gauss_offsets: gauss_offsets(&mesh, &rules),
+            rules,
             materials,
             interfaces,
             prescribed,
@@ -334,8 +339,46 @@ impl Model {
 
     /// Gauss point geometry of element e (checked valid when the model was built).
     pub fn geometry(&self, e: usize) -> ElementGeometry {
-        ElementGeometry::with_section(&self.mesh.element_coords(e), &self.rule, &self.section)
+        let family = self.mesh.elements[e].family;
+        let coords = self.mesh.element_coords(e);
+        ElementGeometry::with_section(family, &coords, self.rule(e), &self.section)
             .expect("element geometry was checked when the model was built")
+    }
+
+    /// Element e's Gauss rule.
+    pub fn rule(&self, e: usize) -> &GaussRule {
+        self.rule_of(self.mesh.elements[e].family)
+    }
+
+    /// The Gauss rule of a family's elements.
+    pub fn rule_of(&self, family: Family) -> &GaussRule {
+        &self.rules[family.index()]
+    }
+
+    /// The positions of element e's Gauss point states in a state vector.
+    pub fn points(&self, e: usize) -> std::ops::Range<usize> {
+        self.gauss_offsets[e]..self.gauss_offsets[e + 1]
+    }
+
+    /// The elements of `held` (ascending) with the positions of their Gauss
+    /// point states in a state vector that holds theirs only, in order (one
+    /// process holds every element: the positions are [`Model::points`]).
+    pub fn held_points<'a>(
+        &'a self,
+        held: &'a [u32],
+    ) -> impl Iterator<Item = (usize, std::ops::Range<usize>)> + 'a {
+        let mut at = 0;
+        held.iter().map(move |&e| {
+            let e = e as usize;
+            let n = self.points(e).len();
+            at += n;
+            (e, at - n..at)
+        })
+    }
+
+    /// The element owning Gauss point state `i` (`i` < [`Model::n_points`]).
+    pub fn element_of_point(&self, i: usize) -> usize {
+        self.gauss_offsets.partition_point(|&o| o <= i) - 1
     }
 
     /// Whether the assembled tangent is symmetric, as the model's laws make
@@ -482,8 +525,9 @@ impl Model {
         }
     }
 
-    pub fn n_gauss(&self) -> usize {
-        self.rule.points.len()
+    /// Gauss points of the whole mesh (the length of a state vector).
+    pub fn n_points(&self) -> usize {
+        *self.gauss_offsets.last().unwrap_or(&0)
     }
 
     /// Dofs per node and their numbering (the mesh's [`NodeDofs`]).
@@ -497,7 +541,7 @@ impl Model {
         let nd = self.mesh.node_dofs;
         let k = nd.per_node();
         let mut ue = [0.0; NodeDofs::MAX_ELEMENT];
-        for (a, &n) in self.mesh.elements[e].nodes.iter().enumerate() {
+        for (a, &n) in self.mesh.elements[e].nodes().iter().enumerate() {
             ue[k * a..k * (a + 1)].copy_from_slice(&u[nd.of(n)]);
         }
         ue
@@ -555,7 +599,7 @@ fn block_dofs(
     for el in &mesh.elements {
         push(
             &mut blocks,
-            el.nodes
+            el.nodes()
                 .iter()
                 .flat_map(|&n| mesh.node_dofs.of(n))
                 .collect(),
@@ -646,12 +690,14 @@ fn materials(case: &Case, mesh: &Mesh, place: &str) -> Result<Vec<VonMises>> {
 /// recomputed when needed ([`Model::geometry`]).
 fn check_elements(
     mesh: &Mesh,
-    rule: &GaussRule,
+    rules: &[GaussRule; 2],
     section: &crate::physics::element::Section,
     place: &str,
 ) -> Result<()> {
     for (e, el) in mesh.elements.iter().enumerate() {
-        ElementGeometry::with_section(&mesh.element_coords(e), rule, section).map_err(|m| {
+        let rule = &rules[el.family.index()];
+        let coords = mesh.element_coords(e);
+        ElementGeometry::with_section(el.family, &coords, rule, section).map_err(|m| {
             Error::Mesh {
                 place: place.to_string(),
                 message: format!("element {e} of body \"{}\": {m}", mesh.bodies[el.body]),
@@ -659,6 +705,19 @@ fn check_elements(
         })?;
     }
     Ok(())
+}
+
+/// Where each element's Gauss point states start in a state vector (and,
+/// last, their total): elements in order, each its family's rule.
+fn gauss_offsets(mesh: &Mesh, rules: &[GaussRule; 2]) -> Vec<usize> {
+    let mut offsets = Vec::with_capacity(mesh.elements.len() + 1);
+    let mut at = 0;
+    offsets.push(at);
+    for el in &mesh.elements {
+        at += rules[el.family.index()].points.len();
+        offsets.push(at);
+    }
+    offsets
 }
 
 /// The interface models, one per mesh interface with its checked law; an

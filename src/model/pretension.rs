@@ -248,9 +248,8 @@ pub fn facing(case: &Case, mesh: &Mesh) -> Vec<(usize, usize)> {
             if el.body != body {
                 continue;
             }
-            let beyond = el.nodes.iter().any(|&n| d(n) > tol);
-            for [a, m, b] in crate::input::mesh::refine::EDGES {
-                let [a, m, b] = [el.nodes[a], el.nodes[m], el.nodes[b]];
+            let beyond = el.nodes().iter().any(|&n| d(n) > tol);
+            for [a, m, b] in el.edges() {
                 if [a, m, b].iter().all(|&n| d(n).abs() <= tol) {
                     sides.entry((a.min(b), a.max(b))).or_default()[usize::from(beyond)] = Some(e);
                 }
@@ -290,21 +289,20 @@ fn split(
         if el.body != body {
             continue;
         }
-        let s: Vec<i8> = el.nodes.iter().map(|&n| side(n)).collect();
+        let s: Vec<i8> = el.nodes().iter().map(|&n| side(n)).collect();
         let (plus, minus) = (s.contains(&1), s.contains(&-1));
         if plus && minus {
-            let c = mesh.element_coords(e);
+            let c = mesh.node_mean(e);
             return Err(Error::input(
                 at,
                 format!(
                     "the cut {line} runs through element {e} of body \"{name}\" near ({:.4}, {:.4}): a cut follows element edges (a block breakpoint at {line}, or a mesh line there in a Gmsh mesh)",
-                    c.iter().map(|x| x[0]).sum::<f64>() / 8.0,
-                    c.iter().map(|x| x[1]).sum::<f64>() / 8.0
+                    c[0], c[1]
                 ),
             ));
         }
         beyond[e] = plus;
-        for (&n, &sn) in el.nodes.iter().zip(&s) {
+        for (&n, &sn) in el.nodes().iter().zip(&s) {
             if sn == 0 {
                 on_sides.entry(n).or_default()[usize::from(plus)] = true;
             }
@@ -337,11 +335,10 @@ fn split(
     // edges [end, mid, end] of the elements beyond: their owner decides
     let mut owner: HashMap<[usize; 3], bool> = HashMap::new();
     for (e, el) in mesh.elements.iter().enumerate() {
-        if el.body != body || !el.nodes.iter().any(|n| copy.contains_key(n)) {
+        if el.body != body || !el.nodes().iter().any(|n| copy.contains_key(n)) {
             continue;
         }
-        for k in 0..4 {
-            let mut key = [el.nodes[k], el.nodes[4 + k], el.nodes[(k + 1) % 4]];
+        for mut key in el.edges() {
             key.sort_unstable();
             owner.insert(key, beyond[e]);
         }
@@ -377,7 +374,7 @@ fn split(
     let mut far_side = vec![[false; 2]; mesh.nodes.len()];
     for (e, el) in mesh.elements.iter().enumerate() {
         if el.body == body {
-            for &n in &el.nodes {
+            for &n in el.nodes() {
                 far_side[n][usize::from(beyond[e])] = true;
             }
         }
@@ -402,7 +399,7 @@ fn split(
     }
     for (e, el) in mesh.elements.iter_mut().enumerate() {
         if beyond[e] {
-            for n in el.nodes.iter_mut() {
+            for n in el.nodes_mut() {
                 if let Some(&c) = copy.get(n) {
                     *n = c;
                 }
@@ -615,13 +612,14 @@ pub fn sides(mesh: &Mesh, section: &Section) -> Option<Vec<bool>> {
     for el in mesh.elements.iter().filter(|el| el.body == section.body) {
         // every element lies on one side of its body's cuts
         // ([`cut`]): its centre tells which
-        let centre = el.nodes[..4]
+        let corners = el.corners();
+        let centre = corners
             .iter()
             .map(|&n| mesh.nodes[n][section.axis])
             .sum::<f64>()
-            / 4.0;
+            / corners.len() as f64;
         let beyond = usize::from(centre > section.at);
-        for &n in &el.nodes {
+        for &n in el.nodes() {
             side[n][beyond] = true;
         }
     }

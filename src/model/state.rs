@@ -38,7 +38,7 @@ impl State {
         let n_points: usize = model.interfaces.iter().map(|i| i.points.len()).sum();
         State {
             u: vec![0.0; model.num_dofs()],
-            gauss: vec![PointState::default(); model.mesh.elements.len() * model.n_gauss()],
+            gauss: vec![PointState::default(); model.n_points()],
             status: vec![Status::Closed; n_points],
             contact: vec![crate::physics::contact::PointState::default(); n_points],
             prescribed_reaction: 0.0,

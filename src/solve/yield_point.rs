@@ -79,11 +79,10 @@ fn ratios<'a>(
     state: &'a State,
     held: &'a [u32],
 ) -> impl Iterator<Item = (f64, usize, usize)> + 'a {
-    let ng = model.n_gauss();
-    held.iter().enumerate().flat_map(move |(k, &e)| {
-        let e = e as usize;
+    model.held_points(held).flat_map(move |(e, local)| {
         let mat = &model.materials[model.mesh.elements[e].body];
-        (0..ng).map(move |ip| (yield_ratio(mat, &state.gauss[k * ng + ip]), e, ip))
+        let states = &state.gauss[local];
+        (0..states.len()).map(move |ip| (yield_ratio(mat, &states[ip]), e, ip))
     })
 }
 

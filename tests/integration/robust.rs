@@ -623,5 +623,5 @@ fn restart_file_cost() {
 }
 
 fn size_hint(model: &asperity::model::Model) -> usize {
-    8 * (model.mesh.num_dofs() + 10 * model.mesh.elements.len() * model.n_gauss())
+    8 * (model.mesh.num_dofs() + 10 * model.mesh.elements.len() * model.rule(0).points.len())
 }

@@ -100,7 +100,7 @@ fn by_point(model: &Model, u: &[f64]) -> HashMap<(usize, u64, u64), [f64; 2]> {
     let mesh = &model.mesh;
     let mut out = HashMap::new();
     for el in &mesh.elements {
-        for &n in &el.nodes {
+        for &n in el.nodes() {
             let x = mesh.nodes[n];
             let key = (el.body, x[0].to_bits(), x[1].to_bits());
             out.insert(key, [u[2 * n], u[2 * n + 1]]);
@@ -112,7 +112,7 @@ fn by_point(model: &Model, u: &[f64]) -> HashMap<(usize, u64, u64), [f64; 2]> {
 /// The largest equivalent plastic strain of each element, by the element's
 /// corner coordinates.
 fn peeq_by_element(model: &Model, r: &RunResult) -> HashMap<Vec<u64>, f64> {
-    let ng = model.n_gauss();
+    let ng = model.rule(0).points.len();
     (0..model.mesh.elements.len())
         .map(|e| {
             let key = model.mesh.element_coords(e)[..4]

@@ -17,7 +17,8 @@
 use crate::common::{self, Quiet};
 use asperity::measure::estimate::{compliance, doerfler_mark, estimate};
 use asperity::model::Model;
-use asperity::physics::element::q8::{gauss_1d, GaussRule};
+use asperity::physics::element::edge::gauss_1d;
+use asperity::physics::element::family::GaussRule;
 use asperity::physics::element::solid::{elastic_state, ElementGeometry};
 use asperity::physics::material::PointState;
 use asperity::solve::State;
@@ -85,6 +86,7 @@ fn effectivity_on_lames_cylinder_is_near_one_and_tends_to_one() {
             let ue = model.element_u(e, &st.u);
             for rule in &quarters {
                 let g = ElementGeometry::with_section(
+                    asperity::physics::element::family::Family::Q8,
                     &model.mesh.element_coords(e),
                     rule,
                     &model.section,
@@ -140,7 +142,7 @@ fn linear_field(model: &Model) -> (f64, f64) {
         st.u[nd.dof(n, 0)] = 1e-3 * x - 4e-4 * y + 2e-5 * x * y + 1e-5 * x * x - 3e-6 * y * y;
         st.u[nd.dof(n, 1)] = 5e-4 * x - 2e-3 * y - 1e-5 * x * x + 4e-5 * x * y + 2e-6 * y * y;
     }
-    let ng = model.n_gauss();
+    let ng = model.rule(0).points.len();
     for e in 0..model.mesh.elements.len() {
         let g = model.geometry(e);
         let ue = model.element_u(e, &st.u);
@@ -224,7 +226,7 @@ fn a_uniform_pressure_through_a_rough_interface_leaves_no_jump() {
         let biggest = off.interface.iter().fold(0.0f64, |m, &x| m.max(x));
         let (mut h_lo, mut h_hi) = (f64::MAX, 0.0f64);
         for (e, &x) in off.interface.iter().enumerate() {
-            let n = &mesh.elements[e].nodes;
+            let n = &mesh.elements[e].nodes();
             if n.iter().filter(|k| on.contains(k)).count() == 3 {
                 assert!(x > 1e-3 * biggest, "{weights}: element {e}: {x}");
                 let d = |a: usize, b: usize| {

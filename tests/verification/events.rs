@@ -175,7 +175,7 @@ fn first_yield_names_the_lowest_of_points_tied_within_round_off() {
     let engine =
         asperity::app::driver::serial_engine(&model, asperity::input::case::Method::FullNewton, 1)
             .unwrap();
-    let ng = model.n_gauss();
+    let ng = model.rule(0).points.len();
     let body = model.mesh.elements[0].body;
     let sy = model.materials[body].yield_stress;
     // three elements of one body, in mesh order

@@ -88,7 +88,7 @@ fn check(
     for &(name, k) in faces {
         let b = model.mesh.bodies.iter().position(|b| b == name).unwrap();
         for el in model.mesh.elements.iter().filter(|e| e.body == b) {
-            for &n in &el.nodes {
+            for &n in el.nodes() {
                 below[n] = k;
             }
         }

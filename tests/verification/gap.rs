@@ -109,7 +109,7 @@ fn a_uniform_gap_only_shifts_the_punch() {
     let (ug, uf) = (&gap.final_state.u, &flush.final_state.u);
     let mut worst: f64 = 0.0;
     for el in m.mesh.elements.iter().filter(|e| e.body == punch) {
-        for &n in &el.nodes {
+        for &n in el.nodes() {
             worst = worst
                 .max((ug[2 * n] - uf[2 * n]).abs())
                 .max((ug[2 * n + 1] - (uf[2 * n + 1] - 0.01)).abs());

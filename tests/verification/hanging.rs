@@ -207,7 +207,7 @@ fn pure_bending_is_exact_at_every_node_including_hanging_ones() {
     let geo: Vec<_> = (0..model.mesh.elements.len())
         .map(|el| model.geometry(el))
         .collect();
-    let ng = model.rule.points.len();
+    let ng = model.rule(0).points.len();
     for (g, p) in st.gauss.iter().enumerate() {
         let y = geo[g / ng].x[g % ng][1];
         let want = e * k * (y - 2.0);
@@ -260,6 +260,7 @@ fn closure_keeps_random_refinements_one_irregular() {
         (0..m.elements.len())
             .map(|e| {
                 let g = asperity::physics::element::solid::ElementGeometry::new(
+                    asperity::physics::element::family::Family::Q8,
                     &m.element_coords(e),
                     &asperity::physics::element::q8::gauss_3x3(),
                     1.0,
@@ -290,7 +291,7 @@ fn closure_keeps_random_refinements_one_irregular() {
                 let coarse = r.state.level[h.element];
                 // the elements holding the hanging node are on the halves
                 for (e, el) in r.mesh.elements.iter().enumerate() {
-                    if el.nodes.contains(&h.node) {
+                    if el.nodes().contains(&h.node) {
                         assert_eq!(r.state.level[e], coarse + 1, "{at}: node {}", h.node);
                     }
                 }

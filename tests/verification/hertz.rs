@@ -598,7 +598,7 @@ fn the_probe_of_a_mortar_interface_is_the_master_node_under_it() {
         .mesh
         .elements
         .iter()
-        .find(|el| el.nodes.contains(&model.probe_node))
+        .find(|el| el.nodes().contains(&model.probe_node))
         .unwrap();
     assert_eq!(owner.body, flat);
 }

@@ -68,7 +68,13 @@ fn linear_fields_are_reproduced_to_round_off() {
                 .iter()
                 .map(|e| {
                     let c: [[f64; 2]; 8] = std::array::from_fn(|a| nodes[e[a]]);
-                    ElementGeometry::new(&c, &rule, 1.0).unwrap()
+                    ElementGeometry::new(
+                        asperity::physics::element::family::Family::Q8,
+                        &c,
+                        &rule,
+                        1.0,
+                    )
+                    .unwrap()
                 })
                 .collect();
             // assemble the dense stiffness, prescribe the boundary, solve the interior

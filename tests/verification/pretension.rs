@@ -270,7 +270,7 @@ fn a_hanging_node_passes_the_patch_test() {
     mesh.nodes = nodes.clone();
     mesh.elements = els
         .iter()
-        .map(|&nodes| asperity::input::mesh::Element { nodes, body: 0 })
+        .map(|&nodes| asperity::input::mesh::Element::q8(nodes, 0))
         .collect();
     mesh.node_sets.clear();
     mesh.edge_sets.clear();

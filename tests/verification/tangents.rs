@@ -34,7 +34,13 @@ fn distorted_at(r0: f64) -> [[f64; 2]; 8] {
 }
 
 fn check_element(plane: Plane, scale: f64, hardening: f64) {
-    let geom = ElementGeometry::new(&distorted(), &q8::gauss_3x3(), 1.5).unwrap();
+    let geom = ElementGeometry::new(
+        asperity::physics::element::family::Family::Q8,
+        &distorted(),
+        &q8::gauss_3x3(),
+        1.5,
+    )
+    .unwrap();
     check_element_geometry(plane, &geom, scale, hardening);
 }
 
@@ -129,7 +135,13 @@ fn axisymmetric_element_tangent_matches_finite_differences() {
     for r0 in [0.0, 0.5, 40.0] {
         let x = distorted_at(r0);
         for rule in [q8::gauss_3x3(), q8::gauss_2x2()] {
-            let geom = ElementGeometry::with_section(&x, &rule, &section).unwrap();
+            let geom = ElementGeometry::with_section(
+                asperity::physics::element::family::Family::Q8,
+                &x,
+                &rule,
+                &section,
+            )
+            .unwrap();
             check_element_geometry(Plane::Axisymmetric, &geom, 1e-5 * (1.0 + r0), 2000.0);
             check_element_geometry(Plane::Axisymmetric, &geom, 2e-3 * (1.0 + r0), 2000.0);
             check_element_geometry(Plane::Axisymmetric, &geom, 2e-3 * (1.0 + r0), 0.0);
@@ -317,7 +329,7 @@ fn assembled_tangent_is_the_derivative_of_the_residual_near_the_limit_load() {
         let mut engine =
             asperity::app::driver::serial_engine(&model, Method::FullNewton, 1).unwrap();
         let (before, now) = states_near_the_limit_load(&mut engine, &model, 0.1, 0.8);
-        let ng = model.n_gauss();
+        let ng = model.rule(0).points.len();
         let plastic: Vec<usize> = (0..model.mesh.elements.len())
             .filter(|&e| now.gauss[e * ng..(e + 1) * ng].iter().any(|g| g.yielding))
             .collect();
@@ -328,7 +340,7 @@ fn assembled_tangent_is_the_derivative_of_the_residual_near_the_limit_load() {
         );
         let mut on = vec![false; now.u.len()];
         for &e in &plastic {
-            for &n in &model.mesh.elements[e].nodes {
+            for &n in model.mesh.elements[e].nodes() {
                 on[2 * n] = true;
                 on[2 * n + 1] = true;
             }

@@ -80,14 +80,19 @@ fn the_first_failing_element_in_element_order_gives_the_message() {
     for elements in [vec![300, 1500, ne - 1], vec![1500, ne - 1], vec![ne - 1]] {
         let bad: Vec<usize> = elements
             .iter()
-            .map(|&e| model.mesh.elements[e].nodes[2])
+            .map(|&e| model.mesh.elements[e].nodes()[2])
             .collect();
         let mut u = state.u.clone();
         for &n in &bad {
             u[2 * n + 1] = -1e140;
         }
         let first = (0..ne)
-            .find(|&e| model.mesh.elements[e].nodes.iter().any(|n| bad.contains(n)))
+            .find(|&e| {
+                model.mesh.elements[e]
+                    .nodes()
+                    .iter()
+                    .any(|n| bad.contains(n))
+            })
             .unwrap();
         assert!(first <= elements[0]);
         let message = |threads: usize| {

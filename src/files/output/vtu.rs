@@ -1,6 +1,8 @@
 //! VTK XML unstructured grid (.vtu) per increment and a .pvd series that
-//! ParaView opens. Cells are VTK_QUADRATIC_QUAD (type 23), whose node order is
-//! ours: corners counter-clockwise, then the midsides of edges 0-1, 1-2, 2-3, 3-0.
+//! ParaView opens. Cells are VTK_QUADRATIC_QUAD (type 23) and
+//! VTK_QUADRATIC_TRIANGLE (type 22) ([`Family::vtk_cell`]), whose node order
+//! is ours: corners counter-clockwise, then the midsides of edges 0-1, 1-2,
+//! 2-3, 3-0 (2-0 for the triangle).
 //!
 //! Writing is split in two so that the expensive part can run beside the
 //! solver: [`Frame::of`] takes what one state shows (nodal averages, contact
@@ -14,13 +16,11 @@
 
 use crate::input::case::VtuFormat;
 use crate::model::Model;
-use crate::physics::element::q8;
+use crate::physics::element::family::{Family, GaussRule, MAX_NODES};
 use crate::physics::material::VonMises;
 use crate::solve::State;
 use std::fmt::Write;
 use std::io::Write as _;
-
-const VTK_QUADRATIC_QUAD: u8 = 23;
 
 /// Nodal fields obtained by extrapolating Gauss point values to the nodes of each
 /// element and averaging over the elements that share a node.
@@ -39,29 +39,29 @@ pub struct NodalFields {
 /// `extrapolate_to_nodes` returns (it sums the same products, weight times
 /// value, in the same order; the unit values only add exact zeros), without
 /// its Lagrange products for every element and field.
-fn extrapolation_weights(rule: &q8::GaussRule) -> Vec<[f64; 8]> {
+fn extrapolation_weights(family: Family, rule: &GaussRule) -> Vec<[f64; MAX_NODES]> {
     let ng = rule.points.len();
     (0..ng)
         .map(|k| {
             let mut unit = vec![0.0; ng];
             unit[k] = 1.0;
-            q8::extrapolate_to_nodes(rule, &unit)
+            family.extrapolate_to_nodes(rule, &unit)
         })
         .collect()
 }
 
 pub fn nodal_fields(model: &Model, state: &State) -> NodalFields {
     let nn = model.mesh.nodes.len();
-    let ng = model.n_gauss();
-    let w = extrapolation_weights(&model.rule);
+    let weights = Family::ALL.map(|f| extrapolation_weights(f, model.rule_of(f)));
     // the six fields (σ components, Mises, PEEQ) at every Gauss point, then
     // with twist σ_rθ and σ_zθ
     let fields = if model.node_dofs().twist() { 8 } else { 6 };
     let mut acc = vec![[0.0f64; 8]; nn];
     let mut count = vec![0u32; nn];
-    let mut vals = vec![[0.0f64; 8]; ng];
+    let mut vals = [[0.0f64; 8]; crate::physics::element::family::MAX_POINTS];
     for (e, el) in model.mesh.elements.iter().enumerate() {
-        let gp = &state.gauss[e * ng..(e + 1) * ng];
+        let gp = &state.gauss[model.points(e)];
+        let w = &weights[el.family.index()];
         for (v, g) in vals.iter_mut().zip(gp) {
             *v = [
                 g.stress[0],
@@ -74,7 +74,7 @@ pub fn nodal_fields(model: &Model, state: &State) -> NodalFields {
                 g.stress[5],
             ];
         }
-        for (a, &n) in el.nodes.iter().enumerate() {
+        for (a, &n) in el.nodes().iter().enumerate() {
             for c in 0..fields {
                 let mut at_node = 0.0;
                 for (wk, v) in w.iter().zip(&vals) {
@@ -179,7 +179,6 @@ impl Frame {
             }
             base += im.points.len();
         }
-        let ng = model.n_gauss();
         Frame {
             displacement: (0..nn)
                 .flat_map(|i| {
@@ -206,7 +205,7 @@ impl Frame {
             contact_hoop_shear: p_h,
             max_peeq: (0..ne)
                 .map(|e| {
-                    state.gauss[e * ng..(e + 1) * ng]
+                    state.gauss[model.points(e)]
                         .iter()
                         .fold(0.0f64, |a, g| a.max(g.peeq))
                 })
@@ -303,6 +302,16 @@ impl Layout {
         let mesh = &model.mesh;
         let nn = mesh.nodes.len();
         let ne = mesh.elements.len();
+        // each cell's end in the connectivity (VTK's offsets)
+        let ends: Vec<usize> = mesh
+            .elements
+            .iter()
+            .scan(0, |at, el| {
+                *at += el.nodes().len();
+                Some(*at)
+            })
+            .collect();
+        let connectivity = ends.last().copied().unwrap_or(0);
         let hoop = model.section.axisymmetric;
         let twist = model.node_dofs().twist();
         let points: Vec<f64> = mesh.nodes.iter().flat_map(|x| [x[0], x[1], 0.0]).collect();
@@ -331,24 +340,20 @@ impl Layout {
                 }
                 h.extend_from_slice(b"</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
                 for el in &mesh.elements {
-                    let n = &el.nodes;
-                    let _ = writeln!(
-                        h,
-                        "{} {} {} {} {} {} {} {}",
-                        n[0], n[1], n[2], n[3], n[4], n[5], n[6], n[7]
-                    );
+                    let n: Vec<String> = el.nodes().iter().map(|n| n.to_string()).collect();
+                    let _ = writeln!(h, "{}", n.join(" "));
                 }
                 h.extend_from_slice(
                     b"</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n",
                 );
-                for e in 0..ne {
-                    let _ = write!(h, "{} ", 8 * (e + 1));
+                for end in &ends {
+                    let _ = write!(h, "{end} ");
                 }
                 h.extend_from_slice(
                     b"\n</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n",
                 );
-                for _ in 0..ne {
-                    let _ = write!(h, "{VTK_QUADRATIC_QUAD} ");
+                for el in &mesh.elements {
+                    let _ = write!(h, "{} ", el.family.vtk_cell());
                 }
                 h.extend_from_slice(b"\n</DataArray>\n</Cells>\n<PointData Vectors=\"displacement\" Scalars=\"von_mises\">\n");
                 middle.extend_from_slice(b"</PointData>\n<CellData>\n");
@@ -374,7 +379,7 @@ impl Layout {
                 let _ = writeln!(
                     h,
                     "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"appended\" offset=\"{}\"/>",
-                    next(f64s(8 * ne))
+                    next(f64s(connectivity))
                 );
                 let _ = writeln!(
                     h,
@@ -408,18 +413,18 @@ impl Layout {
                 h.extend_from_slice(b"</CellData>\n</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_");
                 // the mesh blocks follow the XML directly
                 raw_f64(h, Values::All(&points));
-                raw_len(h, 8 * 8 * ne);
+                raw_len(h, 8 * connectivity);
                 for el in &mesh.elements {
-                    for &n in el.nodes.iter() {
+                    for &n in el.nodes().iter() {
                         h.extend_from_slice(&(n as i64).to_le_bytes());
                     }
                 }
                 raw_len(h, 8 * ne);
-                for e in 0..ne {
-                    h.extend_from_slice(&(8 * (e as i64 + 1)).to_le_bytes());
+                for &end in &ends {
+                    h.extend_from_slice(&(end as i64).to_le_bytes());
                 }
                 raw_len(h, ne);
-                h.extend(std::iter::repeat_n(VTK_QUADRATIC_QUAD, ne));
+                h.extend(mesh.elements.iter().map(|el| el.family.vtk_cell()));
                 raw_f64(&mut body_block, Values::All(&body));
                 middle.extend_from_slice(b"\n</AppendedData>\n</VTKFile>\n");
             }

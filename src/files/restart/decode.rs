@@ -379,7 +379,7 @@ pub(super) fn check_gauss_point(model: &Model, i: usize, v: &[f64]) -> Decoded<(
             num(v[9])
         ));
     }
-    let body = model.mesh.elements[i / model.n_gauss()].body;
+    let body = model.mesh.elements[model.element_of_point(i)].body;
     let mat = &model.materials[body];
     let at = || {
         format!(

@@ -99,7 +99,7 @@ impl Bounds {
         let st = Stepper::for_model(model);
         let increments = st.most_increments().min(MAX_RESUMED_INCREMENTS) as u64;
         let nu = model.num_dofs() as u64;
-        let ng = (model.mesh.elements.len() * model.n_gauss()) as u64;
+        let ng = model.n_points() as u64;
         let np: u64 = model.interfaces.iter().map(|i| i.points.len() as u64).sum();
         let ni = model.interfaces.len() as u64;
         let body = model.mesh.bodies.iter().map(|b| b.len()).max().unwrap_or(0) as u64;

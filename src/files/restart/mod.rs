@@ -259,7 +259,7 @@ pub fn fingerprint(model: &Model) -> u64 {
     }
     for el in &model.mesh.elements {
         bytes.extend_from_slice(&(el.body as u64).to_le_bytes());
-        for &n in el.nodes.iter() {
+        for &n in el.nodes().iter() {
             bytes.extend_from_slice(&(n as u64).to_le_bytes());
         }
     }

@@ -263,19 +263,17 @@ fn add_block(mesh: &mut Mesh, body: usize, xs: Vec<f64>, ys: Vec<f64>, spec: &Bl
         for ei in 0..(ni - 1) / 2 {
             let (i, j) = (2 * ei, 2 * ej);
             let n = |di: usize, dj: usize| ids[j + dj][i + di];
-            mesh.elements.push(Element {
-                nodes: [
-                    n(0, 0),
-                    n(2, 0),
-                    n(2, 2),
-                    n(0, 2),
-                    n(1, 0),
-                    n(2, 1),
-                    n(1, 2),
-                    n(0, 1),
-                ],
-                body,
-            });
+            let nodes = [
+                n(0, 0),
+                n(2, 0),
+                n(2, 2),
+                n(0, 2),
+                n(1, 0),
+                n(2, 1),
+                n(1, 2),
+                n(0, 1),
+            ];
+            mesh.elements.push(Element::q8(nodes, body));
         }
     }
     let name = spec.name();

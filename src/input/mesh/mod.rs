@@ -1,6 +1,7 @@
-//! Meshes of 8-node quads: bodies, named node and edge sets, and contact
-//! interfaces made of paired (coincident, distinct) nodes, or of two sides
-//! meshed apart ([`NonMatching`]).
+//! Meshes of 8-node quads and 6-node triangles (mixed as a mesh likes):
+//! bodies, named node and edge sets, and contact interfaces made of paired
+//! (coincident, distinct) nodes, or of two sides meshed apart
+//! ([`NonMatching`]).
 
 pub mod blocks;
 pub mod gmsh;
@@ -8,15 +9,72 @@ pub mod refine;
 
 pub use crate::physics::element::dofs::NodeDofs;
 
-use crate::physics::element::q8;
+use crate::physics::element::edge;
+pub use crate::physics::element::family::Family;
+use crate::physics::element::family::MAX_NODES;
 use std::collections::BTreeMap;
 use std::fmt;
 
-#[derive(Clone, Debug)]
+/// One element: its family, its nodes (corners counter-clockwise, then
+/// midsides; [`crate::physics::element::q8`], [`crate::physics::element::t6`])
+/// and its body.
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Element {
-    /// Corners counter-clockwise, then midsides (see [`crate::physics::element::q8`]).
-    pub nodes: [usize; 8],
+    pub family: Family,
+    /// The first `family.nodes()` are the element's, the rest usize::MAX.
+    slots: [usize; MAX_NODES],
     pub body: usize,
+}
+
+impl Element {
+    /// An element of `family` with `nodes` (the family's count).
+    pub fn new(family: Family, nodes: &[usize], body: usize) -> Element {
+        assert_eq!(
+            nodes.len(),
+            family.nodes(),
+            "a {} has {} nodes",
+            family.name(),
+            family.nodes()
+        );
+        let mut slots = [usize::MAX; MAX_NODES];
+        slots[..nodes.len()].copy_from_slice(nodes);
+        Element {
+            family,
+            slots,
+            body,
+        }
+    }
+
+    /// An 8-node quadrilateral.
+    pub fn q8(nodes: [usize; 8], body: usize) -> Element {
+        Element::new(Family::Q8, &nodes, body)
+    }
+
+    /// A 6-node triangle.
+    pub fn t6(nodes: [usize; 6], body: usize) -> Element {
+        Element::new(Family::T6, &nodes, body)
+    }
+
+    /// The element's nodes: corners, then midsides.
+    pub fn nodes(&self) -> &[usize] {
+        &self.slots[..self.family.nodes()]
+    }
+
+    /// The element's nodes, to renumber.
+    pub fn nodes_mut(&mut self) -> &mut [usize] {
+        let n = self.family.nodes();
+        &mut self.slots[..n]
+    }
+
+    /// The corner nodes.
+    pub fn corners(&self) -> &[usize] {
+        &self.slots[..self.family.corners()]
+    }
+
+    /// The sides [end, mid, end] in global node numbers, counter-clockwise.
+    pub fn edges(&self) -> impl Iterator<Item = [usize; 3]> + '_ {
+        self.family.edges().iter().map(|e| e.map(|a| self.slots[a]))
+    }
 }
 
 /// One contact edge: a quadratic edge [end, mid, end] of body A (upper) and the
@@ -89,7 +147,7 @@ impl Mesh {
     pub fn node_bodies(&self) -> Vec<usize> {
         let mut node_body = vec![usize::MAX; self.nodes.len()];
         for el in &self.elements {
-            for &n in &el.nodes {
+            for &n in el.nodes() {
                 node_body[n] = el.body;
             }
         }
@@ -100,14 +158,20 @@ impl Mesh {
         self.node_dofs.count(self.nodes.len())
     }
 
-    pub fn element_coords(&self, e: usize) -> [[f64; 2]; 8] {
-        std::array::from_fn(|a| self.nodes[self.elements[e].nodes[a]])
+    /// The coordinates of element e's nodes (the first `family.nodes()`
+    /// used, the rest zero).
+    pub fn element_coords(&self, e: usize) -> [[f64; 2]; MAX_NODES] {
+        let mut x = [[0.0; 2]; MAX_NODES];
+        for (a, &n) in self.elements[e].nodes().iter().enumerate() {
+            x[a] = self.nodes[n];
+        }
+        x
     }
 
     /// Length of a quadratic edge by 3-point Gauss.
     pub fn edge_length(&self, edge: &[usize; 3]) -> f64 {
         let x: [[f64; 2]; 3] = std::array::from_fn(|i| self.nodes[edge[i]]);
-        q8::gauss_1d(3)
+        edge::gauss_1d(3)
             .iter()
             .map(|&(s, w)| {
                 let dn = [s - 0.5, -2.0 * s, s + 0.5];
@@ -119,12 +183,33 @@ impl Mesh {
             .sum()
     }
 
-    fn centroid(&self, e: usize) -> [f64; 2] {
-        let c = self.element_coords(e);
-        let s = c[..4]
-            .iter()
-            .fold([0.0, 0.0], |s, x| [s[0] + x[0], s[1] + x[1]]);
-        [s[0] / 4.0, s[1] / 4.0]
+    /// Element e's outline through its nodes: corner, midside, corner, …
+    /// counter-clockwise.
+    pub fn outline(&self, e: usize) -> Vec<[f64; 2]> {
+        self.elements[e]
+            .edges()
+            .flat_map(|[a, m, _]| [self.nodes[a], self.nodes[m]])
+            .collect()
+    }
+
+    /// The mean of all of element e's nodes (where a message places it).
+    pub fn node_mean(&self, e: usize) -> [f64; 2] {
+        let nodes = self.elements[e].nodes();
+        let k = nodes.len() as f64;
+        let s = nodes.iter().fold([0.0, 0.0], |s, &n| {
+            [s[0] + self.nodes[n][0], s[1] + self.nodes[n][1]]
+        });
+        [s[0] / k, s[1] / k]
+    }
+
+    /// The mean of element e's corners.
+    pub fn centroid(&self, e: usize) -> [f64; 2] {
+        let corners = self.elements[e].corners();
+        let s = corners.iter().fold([0.0, 0.0], |s, &n| {
+            [s[0] + self.nodes[n][0], s[1] + self.nodes[n][1]]
+        });
+        let k = corners.len() as f64;
+        [s[0] / k, s[1] / k]
     }
 
     /// Checks the mesh for everything that would make the model meaningless:
@@ -146,19 +231,18 @@ impl Mesh {
                     el.body
                 ));
             }
-            for (a, &n) in el.nodes.iter().enumerate() {
+            for (a, &n) in el.nodes().iter().enumerate() {
                 if n >= self.nodes.len() {
                     return err(format!("element {e}: node {n} does not exist"));
                 }
-                if el.nodes[..a].contains(&n) {
+                if el.nodes()[..a].contains(&n) {
                     return err(format!("element {e}: node {n} appears twice"));
                 }
                 used[n] = true;
             }
             let coords = self.element_coords(e);
-            let gp = q8::gauss_3x3().points.into_iter().map(|p| p.0);
-            for [xi, eta] in gp.chain(q8::NODE_XI) {
-                if let Err(m) = q8::physical_derivs(&coords, xi, eta) {
+            for xi in el.family.check_points() {
+                if let Err(m) = el.family.physical_derivs(&coords, xi) {
                     let c = self.centroid(e);
                     return err(format!(
                         "element {e} of body \"{}\" near ({:.4}, {:.4}): {m}",

@@ -44,10 +44,10 @@ pub fn add(model: &Model, state: &State, recovered: &[[Stress; 8]], out: &mut [f
                 .collect();
             let mut map: HashMap<usize, Vec<(usize, usize)>> = HashMap::new();
             for (e, el) in mesh.elements.iter().enumerate() {
-                if el.body != body || el.nodes.iter().filter(|n| set.contains(n)).count() < 2 {
+                if el.body != body || el.nodes().iter().filter(|n| set.contains(n)).count() < 2 {
                     continue;
                 }
-                for (a, &n) in el.nodes.iter().enumerate() {
+                for (a, &n) in el.nodes().iter().enumerate() {
                     if set.contains(&n) {
                         map.entry(n).or_default().push((e, a));
                     }
@@ -137,12 +137,17 @@ fn mean(at: &[(usize, usize)], recovered: &[[Stress; 8]]) -> Stress {
     s
 }
 
-/// The element's diameter: the longer diagonal between its corners.
+/// The element's diameter: the longer diagonal between its corners (a
+/// quad), its longest side (a triangle).
 pub fn diameter(mesh: &crate::input::mesh::Mesh, e: usize) -> f64 {
-    let n = &mesh.elements[e].nodes;
+    let el = &mesh.elements[e];
+    let n = el.nodes();
     let d = |a: usize, b: usize| {
         let (p, q) = (mesh.nodes[n[a]], mesh.nodes[n[b]]);
         (p[0] - q[0]).hypot(p[1] - q[1])
     };
-    d(0, 2).max(d(1, 3))
+    match el.family {
+        crate::input::mesh::Family::Q8 => d(0, 2).max(d(1, 3)),
+        crate::input::mesh::Family::T6 => d(0, 1).max(d(1, 2)).max(d(2, 0)),
+    }
 }

@@ -30,7 +30,7 @@ mod sample;
 
 use crate::model::state::State;
 use crate::model::Model;
-use crate::physics::element::q8;
+use crate::physics::element::family::{Family, GaussRule};
 use crate::physics::element::solid::ElementGeometry;
 use crate::physics::material::VonMises;
 use serde_json::json;
@@ -107,28 +107,34 @@ impl Estimate {
 pub fn estimate(model: &Model, state: &State) -> Estimate {
     let mesh = &model.mesh;
     let ne = mesh.elements.len();
-    let (r2, r3) = (q8::gauss_2x2(), q8::gauss_3x3());
-    // σ_h at the 2×2 points of every element: what is recovered
-    let mut points = vec![[[0.0; 2]; 4]; ne];
-    let mut values = vec![[[0.0; 6]; 4]; ne];
-    for e in 0..ne {
-        let g = geometry(model, e, &r2);
-        let s = sample::stresses(model, &state.gauss, &state.u, e, &r2, &g);
-        for ip in 0..4 {
-            points[e][ip] = g.x[ip];
-            values[e][ip] = s[ip];
+    // each family's sampling (reduced) and full rule
+    let sampling = Family::ALL.map(|f| f.sampling_rule());
+    let full = Family::ALL.map(|f| f.rule(true));
+    // σ_h at the sampling points of every element: what is recovered
+    let mut samples = vec![recovery::Samples::default(); ne];
+    for (e, el) in mesh.elements.iter().enumerate() {
+        let rule = &sampling[el.family.index()];
+        let g = geometry(model, e, rule);
+        let s = sample::stresses(model, &state.gauss, &state.u, e, rule, &g);
+        samples[e].n = g.n;
+        for ip in 0..g.n {
+            samples[e].points[ip] = g.x[ip];
+            samples[e].values[ip] = s[ip];
         }
     }
-    let recovered = recovery::recover(mesh, &points, &values);
+    let recovered = recovery::recover(mesh, &samples);
     let mut element = vec![0.0; ne];
     let mut norm2 = 0.0;
-    for e in 0..ne {
-        let mat = &model.materials[mesh.elements[e].body];
-        let g = geometry(model, e, &r3);
-        let s = sample::stresses(model, &state.gauss, &state.u, e, &r3, &g);
+    for (e, el) in mesh.elements.iter().enumerate() {
+        let mat = &model.materials[el.body];
+        let rule = &full[el.family.index()];
+        let g = geometry(model, e, rule);
+        let s = sample::stresses(model, &state.gauss, &state.u, e, rule, &g);
         for (ip, sh) in s.iter().enumerate().take(g.n) {
             let d: [f64; 6] = std::array::from_fn(|c| {
-                let star: f64 = (0..8).map(|a| g.shape[ip][a] * recovered[e][a][c]).sum();
+                let star: f64 = (0..g.nodes)
+                    .map(|a| g.shape[ip][a] * recovered[e][a][c])
+                    .sum();
                 star - sh[c]
             });
             element[e] += g.dv[ip] * compliance(mat, &d);
@@ -185,17 +191,21 @@ pub fn doerfler_mark(eta_sq: &[f64], theta: f64) -> Vec<usize> {
 }
 
 /// The geometry of element e at `rule` (checked valid when the model was built).
-fn geometry(model: &Model, e: usize, rule: &q8::GaussRule) -> ElementGeometry {
-    ElementGeometry::with_section(&model.mesh.element_coords(e), rule, &model.section)
+fn geometry(model: &Model, e: usize, rule: &GaussRule) -> ElementGeometry {
+    let family = model.mesh.elements[e].family;
+    let coords = model.mesh.element_coords(e);
+    ElementGeometry::with_section(family, &coords, rule, &model.section)
         .expect("element geometry was checked when the model was built")
 }
 
 /// The mean of an element's node coordinates (mm).
 fn centroid(model: &Model, e: usize) -> [f64; 2] {
+    let nodes = model.mesh.elements[e].nodes();
+    let k = nodes.len() as f64;
     let mut c = [0.0; 2];
-    for &n in &model.mesh.elements[e].nodes {
-        c[0] += model.mesh.nodes[n][0] / 8.0;
-        c[1] += model.mesh.nodes[n][1] / 8.0;
+    for &n in nodes {
+        c[0] += model.mesh.nodes[n][0] / k;
+        c[1] += model.mesh.nodes[n][1] / k;
     }
     c
 }

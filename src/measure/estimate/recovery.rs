@@ -1,10 +1,11 @@
 //! Superconvergent patch recovery (SPR; Zienkiewicz & Zhu 1992, part 1) of
-//! the stress of 8-node quadrilaterals, body by body.
+//! the stress of 8-node quadrilaterals and 6-node triangles, body by body.
 //!
 //! For each vertex (corner) node v interior to its body, the patch is the
 //! body's elements that share v. Each stress component is fitted, in the
-//! least-squares sense, over the σ_h of the patch's 2×2 Gauss points x_k
-//! (the superconvergent points of the 8-node element) by a complete
+//! least-squares sense, over the σ_h of the patch's sampling points x_k
+//! (the superconvergent points: 2×2 Gauss points of the 8-node element, the
+//! 3-point rule's of the 6-node triangle) by a complete
 //! quadratic polynomial, the degree of the element's displacement:
 //! ```text
 //!   σ*_p(x) = P(x̂) a,   P = [1, x̂, ŷ, x̂², x̂ŷ, ŷ²],   x̂ = (x − x_v)/h_p
@@ -21,31 +22,49 @@
 //! is fitted over its own patch when A is regular there (its smallest
 //! eigenvalue above 1e-8 of its largest, which takes at least six points
 //! off any one conic); a node still without a value takes the average of
-//! its elements' bilinear extrapolations of their 2×2 values. The field
-//! σ* inside an element is Σ N_a σ*_a with the Q8 shape functions.
+//! its elements' extrapolations of their sampled values (bilinear from 2×2,
+//! linear from the triangle's 3 points). The field σ* inside an element is
+//! Σ N_a σ*_a with the element's shape functions.
 //!
 //! A linear stress field is reproduced exactly by every branch (the
 //! quadratic fit and the bilinear extrapolation): the patch test.
 //! Recovery never crosses bodies, so it never smooths across an interface
 //! or a change of material.
 
-use crate::input::mesh::Mesh;
-use crate::physics::element::q8;
+use crate::input::mesh::{Element, Mesh};
+use crate::physics::element::family::MAX_NODES;
 use nalgebra::{Matrix6, SymmetricEigen, Vector6};
 use std::collections::HashMap;
 
 /// The stress components recovered (the [`crate::physics::material::PointState::stress`] order).
 pub type Stress = [f64; 6];
 
-/// σ* at the 8 nodes of every element, from `points` (the physical
-/// coordinates of each element's 2×2 Gauss points) and `values` (σ_h there).
-pub fn recover(mesh: &Mesh, points: &[[[f64; 2]; 4]], values: &[[Stress; 4]]) -> Vec<[Stress; 8]> {
+/// σ_h of one element at its sampling points (the first `n` used).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Samples {
+    /// The points' physical coordinates.
+    pub points: [[f64; 2]; 4],
+    /// σ_h there.
+    pub values: [Stress; 4],
+    /// How many (4 for the quad's 2×2, 3 for the triangle's rule).
+    pub n: usize,
+}
+
+impl Samples {
+    fn each(&self) -> impl Iterator<Item = ([f64; 2], &Stress)> + '_ {
+        self.points.iter().copied().zip(&self.values).take(self.n)
+    }
+}
+
+/// σ* at the nodes of every element (the first `family.nodes()` of each),
+/// from each element's sampled σ_h.
+pub fn recover(mesh: &Mesh, samples: &[Samples]) -> Vec<[Stress; MAX_NODES]> {
     let nn = mesh.nodes.len();
     let ne = mesh.elements.len();
     // node → elements, as CSR
     let mut start = vec![0usize; nn + 1];
     for el in &mesh.elements {
-        for &n in &el.nodes {
+        for &n in el.nodes() {
             start[n + 1] += 1;
         }
     }
@@ -55,7 +74,7 @@ pub fn recover(mesh: &Mesh, points: &[[[f64; 2]; 4]], values: &[[Stress; 4]]) ->
     let mut fill = start.clone();
     let mut adj = vec![0usize; start[nn]];
     for (e, el) in mesh.elements.iter().enumerate() {
-        for &n in &el.nodes {
+        for &n in el.nodes() {
             adj[fill[n]] = e;
             fill[n] += 1;
         }
@@ -63,7 +82,7 @@ pub fn recover(mesh: &Mesh, points: &[[[f64; 2]; 4]], values: &[[Stress; 4]]) ->
     let boundary = boundary_nodes(mesh);
     let mut sum = vec![[0.0f64; 6]; nn];
     let mut count = vec![0u32; nn];
-    let mut out = vec![[[0.0; 6]; 8]; ne];
+    let mut out = vec![[[0.0; 6]; MAX_NODES]; ne];
     for body in 0..mesh.bodies.len().max(1) {
         let elems: Vec<usize> = (0..ne).filter(|&e| mesh.elements[e].body == body).collect();
         if elems.is_empty() {
@@ -76,7 +95,10 @@ pub fn recover(mesh: &Mesh, points: &[[[f64; 2]; 4]], values: &[[Stress; 4]]) ->
                 .filter(|&e| mesh.elements[e].body == body)
                 .collect()
         };
-        let mut nodes: Vec<usize> = elems.iter().flat_map(|&e| mesh.elements[e].nodes).collect();
+        let mut nodes: Vec<usize> = elems
+            .iter()
+            .flat_map(|&e| mesh.elements[e].nodes().iter().copied())
+            .collect();
         nodes.sort_unstable();
         nodes.dedup();
         let vertices: Vec<usize> = nodes
@@ -85,7 +107,7 @@ pub fn recover(mesh: &Mesh, points: &[[[f64; 2]; 4]], values: &[[Stress; 4]]) ->
             .filter(|&n| {
                 patch(n)
                     .iter()
-                    .any(|&e| mesh.elements[e].nodes[..4].contains(&n))
+                    .any(|&e| mesh.elements[e].corners().contains(&n))
             })
             .collect();
         // interior patches
@@ -97,13 +119,13 @@ pub fn recover(mesh: &Mesh, points: &[[[f64; 2]; 4]], values: &[[Stress; 4]]) ->
         };
         for &v in vertices.iter().filter(|&&v| !boundary[v]) {
             let pe = patch(v);
-            let Some(fit) = Fit::new(mesh.nodes[v], &pe, points, values) else {
+            let Some(fit) = Fit::new(mesh.nodes[v], &pe, samples) else {
                 continue;
             };
             for &e in &pe {
-                let en = &mesh.elements[e].nodes;
-                for (a, &n) in en.iter().enumerate() {
-                    if n == v || boundary[n] || (a >= 4 && on_edge_through(en, a, v)) {
+                let el = &mesh.elements[e];
+                for &n in el.nodes() {
+                    if n == v || boundary[n] || on_edge_through(el, n, v) {
                         add(n, fit.at(mesh.nodes[n]), &mut sum, &mut count);
                     }
                 }
@@ -113,13 +135,13 @@ pub fn recover(mesh: &Mesh, points: &[[[f64; 2]; 4]], values: &[[Stress; 4]]) ->
         let mut second = Vec::new();
         for &v in vertices.iter().filter(|&&v| boundary[v] && count[v] == 0) {
             let pe = patch(v);
-            if let Some(fit) = Fit::new(mesh.nodes[v], &pe, points, values) {
+            if let Some(fit) = Fit::new(mesh.nodes[v], &pe, samples) {
                 second.push((v, fit.at(mesh.nodes[v])));
                 for &e in &pe {
-                    let en = &mesh.elements[e].nodes;
-                    for a in 4..8 {
-                        if count[en[a]] == 0 && on_edge_through(en, a, v) {
-                            second.push((en[a], fit.at(mesh.nodes[en[a]])));
+                    let el = &mesh.elements[e];
+                    for [_, m, _] in el.edges() {
+                        if count[m] == 0 && on_edge_through(el, m, v) {
+                            second.push((m, fit.at(mesh.nodes[m])));
                         }
                     }
                 }
@@ -129,24 +151,25 @@ pub fn recover(mesh: &Mesh, points: &[[[f64; 2]; 4]], values: &[[Stress; 4]]) ->
             add(n, s, &mut sum, &mut count);
         }
         // the rest: the elements' own extrapolation
-        let rule = q8::gauss_2x2();
         let mut third = Vec::new();
         for &e in &elems {
-            let en = mesh.elements[e].nodes;
+            let el = &mesh.elements[e];
+            let en = el.nodes();
             if en.iter().all(|&n| count[n] > 0) {
                 continue;
             }
-            let mut ex = [[0.0; 6]; 8];
+            let rule = el.family.sampling_rule();
+            let mut ex = [[0.0; 6]; MAX_NODES];
             for c in 0..6 {
-                let v: Vec<f64> = values[e].iter().map(|s| s[c]).collect();
-                let x = q8::extrapolate_to_nodes(&rule, &v);
-                for a in 0..8 {
+                let v: Vec<f64> = samples[e].each().map(|(_, s)| s[c]).collect();
+                let x = el.family.extrapolate_to_nodes(&rule, &v);
+                for a in 0..en.len() {
                     ex[a][c] = x[a];
                 }
             }
-            for a in 0..8 {
-                if count[en[a]] == 0 {
-                    third.push((en[a], ex[a]));
+            for (a, &n) in en.iter().enumerate() {
+                if count[n] == 0 {
+                    third.push((n, ex[a]));
                 }
             }
         }
@@ -154,7 +177,7 @@ pub fn recover(mesh: &Mesh, points: &[[[f64; 2]; 4]], values: &[[Stress; 4]]) ->
             add(n, s, &mut sum, &mut count);
         }
         for &e in &elems {
-            for (a, &n) in mesh.elements[e].nodes.iter().enumerate() {
+            for (a, &n) in mesh.elements[e].nodes().iter().enumerate() {
                 let k = f64::from(count[n].max(1));
                 out[e][a] = sum[n].map(|s| s / k);
             }
@@ -166,11 +189,9 @@ pub fn recover(mesh: &Mesh, points: &[[[f64; 2]; 4]], values: &[[Stress; 4]]) ->
     out
 }
 
-/// Whether midside node `a` (4..8) of an element with nodes `en` lies on an
-/// edge that ends at node v.
-fn on_edge_through(en: &[usize; 8], a: usize, v: usize) -> bool {
-    let k = a - 4;
-    en[k] == v || en[(k + 1) % 4] == v
+/// Whether node `n` is the midside of an edge of `el` that ends at node v.
+fn on_edge_through(el: &Element, n: usize, v: usize) -> bool {
+    el.edges().any(|[a, m, b]| m == n && (a == v || b == v))
 }
 
 /// Nodes on the boundary of their body: those of an element edge that no
@@ -178,19 +199,17 @@ fn on_edge_through(en: &[usize; 8], a: usize, v: usize) -> bool {
 fn boundary_nodes(mesh: &Mesh) -> Vec<bool> {
     let mut edges: HashMap<(usize, usize, usize), u32> = HashMap::new();
     for el in &mesh.elements {
-        for k in 0..4 {
-            let (a, b) = (el.nodes[k], el.nodes[(k + 1) % 4]);
+        for [a, _, b] in el.edges() {
             *edges.entry((el.body, a.min(b), a.max(b))).or_default() += 1;
         }
     }
     let mut boundary = vec![false; mesh.nodes.len()];
     for el in &mesh.elements {
-        for k in 0..4 {
-            let (a, b) = (el.nodes[k], el.nodes[(k + 1) % 4]);
+        for [a, m, b] in el.edges() {
             if edges[&(el.body, a.min(b), a.max(b))] == 1 {
                 boundary[a] = true;
                 boundary[b] = true;
-                boundary[el.nodes[4 + k]] = true;
+                boundary[m] = true;
             }
         }
     }
@@ -206,30 +225,26 @@ struct Fit {
 }
 
 impl Fit {
-    /// The fit over the 2×2 points of `elems`; `None` when A is singular
-    /// or nearly so (too few points, or all on one conic).
-    fn new(
-        centre: [f64; 2],
-        elems: &[usize],
-        points: &[[[f64; 2]; 4]],
-        values: &[[Stress; 4]],
-    ) -> Option<Fit> {
+    /// The fit over the sampling points of `elems`; `None` when A is
+    /// singular or nearly so (too few points, or all on one conic).
+    fn new(centre: [f64; 2], elems: &[usize], samples: &[Samples]) -> Option<Fit> {
         let h = elems
             .iter()
-            .flat_map(|&e| points[e])
-            .map(|x| (x[0] - centre[0]).hypot(x[1] - centre[1]))
+            .flat_map(|&e| samples[e].each())
+            .map(|(x, _)| (x[0] - centre[0]).hypot(x[1] - centre[1]))
             .fold(0.0f64, f64::max);
-        if elems.len() * 4 < 6 || h <= 0.0 {
+        let count: usize = elems.iter().map(|&e| samples[e].n).sum();
+        if count < 6 || h <= 0.0 {
             return None;
         }
         let mut a = Matrix6::zeros();
         let mut b = [Vector6::zeros(); 6];
         for &e in elems {
-            for k in 0..4 {
-                let p = basis(centre, h, points[e][k]);
+            for (x, v) in samples[e].each() {
+                let p = basis(centre, h, x);
                 a += p * p.transpose();
                 for (c, bc) in b.iter_mut().enumerate() {
-                    *bc += p * values[e][k][c];
+                    *bc += p * v[c];
                 }
             }
         }

@@ -16,7 +16,7 @@ pub fn direction(im: &InterfaceModel) -> [f64; 2] {
 /// Length of the piece ξ ∈ [from, to] of a quadratic edge (3-point Gauss).
 pub(crate) fn piece_length(x: &[[f64; 2]; 3], from: f64, to: f64) -> f64 {
     let (mid, half) = (0.5 * (from + to), 0.5 * (to - from));
-    crate::physics::element::q8::gauss_1d(3)
+    crate::physics::element::edge::gauss_1d(3)
         .iter()
         .map(|&(g, w)| {
             let s = mid + half * g;

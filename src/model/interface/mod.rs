@@ -337,7 +337,7 @@ impl InterfaceModel {
             if weights == Weights::Consistent {
                 for (s, wg) in gauss4() {
                     let (n, ds) = edge_normal(&xb, s);
-                    let shape = crate::physics::element::q8::edge_shape(s);
+                    let shape = crate::physics::element::edge::shape(s);
                     let x = [0, 1].map(|c| (0..3).map(|k| shape[k] * xb[k][c]).sum::<f64>());
                     points.push(Point {
                         pairs: *ids,

@@ -65,7 +65,7 @@ pub(super) fn node_to_segment(
             Weights::Consistent | Weights::Mortar => {
                 for (xi, wg) in gauss4() {
                     let (nl, ds) = edge_normal(&xs, xi);
-                    let shape = crate::physics::element::q8::edge_shape(xi);
+                    let shape = crate::physics::element::edge::shape(xi);
                     let x = [0, 1].map(|c| (0..3).map(|k| shape[k] * xs[k][c]).sum::<f64>());
                     let s = s0 + super::arcs::piece_length(&xs, -1.0, xi);
                     slave.push(SlavePoint {
@@ -99,7 +99,7 @@ pub(super) fn node_to_segment(
     } in slave
     {
         let Foot { k, xi, n, gap } = foot(name, &masters, &ends, x, out, h)?;
-        let nb = crate::physics::element::q8::edge_shape(xi);
+        let nb = crate::physics::element::edge::shape(xi);
         let b = nm.master[k];
         let near = |nodes: &[usize], vals: &[f64]| {
             let i = (0..vals.len())
@@ -204,7 +204,7 @@ pub(super) fn mortar(
         // (r within 1e-9 of the edge's length), not by the sign of its area
         let mut own = [0.0f64; 3];
         for (xi, wg) in gauss4() {
-            let sh = crate::physics::element::q8::edge_shape(xi);
+            let sh = crate::physics::element::edge::shape(xi);
             let wq = wg * edge_normal(&xs, xi).1 * section.measure(point_on(&xs, xi));
             for k in 0..3 {
                 own[k] += wq * sh[k];
@@ -242,11 +242,11 @@ pub(super) fn mortar(
             for (g, wg) in gauss4() {
                 let xi = 0.5 * (lo + hi) + 0.5 * (hi - lo) * g;
                 let (nl, ds) = edge_normal(&xs, xi);
-                let shape = crate::physics::element::q8::edge_shape(xi);
+                let shape = crate::physics::element::edge::shape(xi);
                 let x = point_on(&xs, xi);
                 let wq = 0.5 * (hi - lo) * wg * ds * section.measure(x);
                 let f = foot(name, &masters, &ends, x, [-nl[0], -nl[1]], half[1])?;
-                let nb = crate::physics::element::q8::edge_shape(f.xi);
+                let nb = crate::physics::element::edge::shape(f.xi);
                 let (n, t) = (f.n, [f.n[1], -f.n[0]]);
                 let b = nm.master[f.k];
                 let weight = weights(&shape);
@@ -533,7 +533,7 @@ pub const OVERLAP_LIMIT: f64 = 0.01;
 
 /// x(ξ) on a quadratic edge.
 fn point_on(xe: &[[f64; 2]; 3], xi: f64) -> [f64; 2] {
-    let n = crate::physics::element::q8::edge_shape(xi);
+    let n = crate::physics::element::edge::shape(xi);
     [0, 1].map(|c| (0..3).map(|k| n[k] * xe[k][c]).sum())
 }
 

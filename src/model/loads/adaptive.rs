@@ -17,7 +17,6 @@
 //! quadratic edge curves, exact — decides that, axis by axis.
 
 use crate::error::{Error, Result};
-use crate::input::mesh::refine::EDGES;
 use crate::input::mesh::Mesh;
 use std::collections::HashSet;
 
@@ -143,8 +142,7 @@ pub(super) fn check_nodes(
     let held: HashSet<usize> = nodes.iter().copied().collect();
     for (i, el) in mesh.elements.iter().enumerate() {
         let mut area: Option<[[f64; 2]; 2]> = None;
-        for loc in EDGES {
-            let e = loc.map(|k| el.nodes[k]);
+        for e in el.edges() {
             let ext = edge_extent(mesh, e);
             area = Some(area.map_or(ext, |a| union(a, ext)));
             if !e.iter().all(|n| held.contains(n)) {
@@ -161,16 +159,15 @@ pub(super) fn check_nodes(
                 ));
             }
         }
-        let whole = el.nodes.iter().all(|n| held.contains(n));
+        let whole = el.nodes().iter().all(|n| held.contains(n));
         if let Some(axis) = area.filter(|_| whole).and_then(|a| cutting(a, ranges)) {
             let (name, range) = key(axis, ranges);
-            let c = mesh.element_coords(i);
+            let c = mesh.node_mean(i);
             return Err(Error::input(
                 format!("{at} {name}"),
                 format!(
                     "{range} ends inside element {i} near ({:.4}, {:.4}), all of whose nodes the set holds: an adaptive run ([adapt]) splits it and would hold the new nodes on one side of the range's end and not the other, another support on every mesh; end the range on an element edge (a block breakpoint there)",
-                    c.iter().map(|x| x[0]).sum::<f64>() / 8.0,
-                    c.iter().map(|x| x[1]).sum::<f64>() / 8.0
+                    c[0], c[1]
                 ),
             ));
         }

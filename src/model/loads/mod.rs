@@ -15,7 +15,7 @@ use crate::input::case::ranges::{self, Range};
 use crate::input::case::{Case, HistoryRef};
 use crate::input::mesh::Mesh;
 use crate::model::history::History;
-use crate::physics::element::{q8, Section};
+use crate::physics::element::Section;
 use std::collections::BTreeMap;
 
 mod adaptive;
@@ -451,7 +451,7 @@ fn edge_traction(
         ));
     }
     let tol = crate::model::consistency::tolerance(mesh);
-    let gp = q8::gauss_1d(3);
+    let gp = crate::physics::element::edge::gauss_1d(3);
     let nd = mesh.node_dofs;
     let mut terms = Vec::new();
     // twist: the u_θ forces of a unit τ_θ and of a unit τ_θ / r (a torque's
@@ -482,7 +482,7 @@ fn edge_traction(
             symmetric_traction(ld, &x, tol, at)?;
         }
         for &(s, w) in &gp {
-            let n = q8::edge_shape(s);
+            let n = crate::physics::element::edge::shape(s);
             let dn = [s - 0.5, -2.0 * s, s + 0.5];
             let (mut tx, mut ty) = (0.0, 0.0);
             let mut xg = [0.0; 2];

@@ -181,8 +181,7 @@ fn inside(mesh: &Mesh, p: [f64; 2], body: Option<usize>) -> bool {
     (0..mesh.elements.len())
         .filter(|&e| body.is_none_or(|b| mesh.elements[e].body == b))
         .any(|e| {
-            let c = mesh.element_coords(e);
-            let outline = [c[0], c[4], c[1], c[5], c[2], c[6], c[3], c[7]];
+            let outline = mesh.outline(e);
             let (lo, hi) = outline.iter().fold(
                 ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
                 |(lo, hi), x| {
@@ -237,7 +236,7 @@ fn nearest(mesh: &Mesh, p: [f64; 2], body: Option<usize>) -> usize {
     let mut of_body = vec![body.is_none(); mesh.nodes.len()];
     if let Some(b) = body {
         for el in mesh.elements.iter().filter(|el| el.body == b) {
-            for &n in &el.nodes {
+            for &n in el.nodes() {
                 of_body[n] = true;
             }
         }

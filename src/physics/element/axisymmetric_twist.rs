@@ -29,21 +29,22 @@ use crate::physics::element::solid::{ElementGeometry, Response, Tangent};
 use crate::physics::material::{PointState, VonMises};
 use nalgebra::Matrix6;
 
-/// Element dofs with twist (8 nodes × 3).
+/// Most element dofs with twist (8 nodes × 3); an element uses 3 ×
+/// [`ElementGeometry::nodes`] of them.
 const NE: usize = 24;
 
 /// The strain [ε_rr, ε_zz, γ_rz, ε_θθ, γ_rθ, γ_zθ] at Gauss point `ip` from the
 /// element displacements (node-major, u_r, u_z, u_θ per node).
 pub fn strain(geom: &ElementGeometry, ip: usize, ue: &[f64]) -> [f64; 6] {
     let b = b_matrix(geom, ip);
-    std::array::from_fn(|i| (0..NE).map(|j| b[i][j] * ue[j]).sum())
+    std::array::from_fn(|i| (0..3 * geom.nodes).map(|j| b[i][j] * ue[j]).sum())
 }
 
 /// The 6 × 24 B at Gauss point `ip` (module text).
 fn b_matrix(geom: &ElementGeometry, ip: usize) -> [[f64; NE]; 6] {
     let (d, n, r) = (&geom.dndx[ip], &geom.shape[ip], geom.x[ip][0]);
     let mut b = [[0.0; NE]; 6];
-    for a in 0..8 {
+    for a in 0..geom.nodes {
         let (ur, uz, ut) = (3 * a, 3 * a + 1, 3 * a + 2);
         b[0][ur] = d[a][0];
         b[1][uz] = d[a][1];
@@ -73,6 +74,7 @@ pub fn forces(
     fe: &mut [f64],
     ke: &mut [f64],
 ) -> Result<(), String> {
+    let ne = 3 * geom.nodes;
     fe.fill(0.0);
     if tangent.is_some() {
         ke.fill(0.0);
@@ -86,7 +88,7 @@ pub fn forces(
             ));
         }
         let b = b_matrix(geom, ip);
-        let eps: [f64; 6] = std::array::from_fn(|i| (0..NE).map(|j| b[i][j] * ue[j]).sum());
+        let eps: [f64; 6] = std::array::from_fn(|i| (0..ne).map(|j| b[i][j] * ue[j]).sum());
         let (state, c_alg) = match response {
             Response::Plastic => mat.update_twist(&committed[ip], &eps),
             Response::ElasticOnly => (
@@ -96,7 +98,7 @@ pub fn forces(
         };
         trial[ip] = state;
         let (dv, s) = (geom.dv[ip], &state.stress);
-        for (j, f) in fe.iter_mut().enumerate().take(NE) {
+        for (j, f) in fe.iter_mut().enumerate().take(ne) {
             *f += dv * (0..6).map(|i| b[i][j] * s[i]).sum::<f64>();
         }
         if let Some(t) = tangent {
@@ -105,23 +107,23 @@ pub fn forces(
                 Tangent::Continuum => mat.continuum_tangent_6(&committed[ip]),
                 Tangent::Elastic => mat.elastic_matrix_6(),
             };
-            add_btcb(&b, &c, dv, ke);
+            add_btcb(&b, ne, &c, dv, ke);
         }
     }
     Ok(())
 }
 
 /// ke += Bᵀ C B dv for the 6-row B.
-fn add_btcb(b: &[[f64; NE]; 6], c: &Matrix6<f64>, dv: f64, ke: &mut [f64]) {
+fn add_btcb(b: &[[f64; NE]; 6], ne: usize, c: &Matrix6<f64>, dv: f64, ke: &mut [f64]) {
     let mut cb = [[0.0f64; NE]; 6];
     for (i, row) in cb.iter_mut().enumerate() {
-        for (j, v) in row.iter_mut().enumerate() {
+        for (j, v) in row.iter_mut().enumerate().take(ne) {
             *v = (0..6).map(|k| c[(i, k)] * b[k][j]).sum();
         }
     }
-    for p in 0..NE {
-        for q in 0..NE {
-            ke[p * NE + q] += dv * (0..6).map(|i| b[i][p] * cb[i][q]).sum::<f64>();
+    for p in 0..ne {
+        for q in 0..ne {
+            ke[p * ne + q] += dv * (0..6).map(|i| b[i][p] * cb[i][q]).sum::<f64>();
         }
     }
 }
@@ -129,6 +131,7 @@ fn add_btcb(b: &[[f64; NE]; 6], c: &Matrix6<f64>, dv: f64, ke: &mut [f64]) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::physics::element::family::Family;
     use crate::physics::element::q8;
     use crate::physics::element::Section;
     use crate::physics::material::Plane;
@@ -147,7 +150,7 @@ mod tests {
             axisymmetric: true,
             thickness: 1.0,
         };
-        let g = ElementGeometry::with_section(&x, &q8::gauss_3x3(), &section).unwrap();
+        let g = ElementGeometry::with_section(Family::Q8, &x, &q8::gauss_3x3(), &section).unwrap();
         (x, g)
     }
 

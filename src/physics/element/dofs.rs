@@ -9,7 +9,7 @@
 //! [`NodeDofs`], so a model with three dofs is the same code as one with two.
 //!
 //! ```text
-//!   dof(n, c) = k·n + c          element dofs: 8·k, node-major
+//!   dof(n, c) = k·n + c          element dofs: nodes·k, node-major
 //! ```
 
 use std::ops::Range;
@@ -32,8 +32,8 @@ impl NodeDofs {
     pub const TWIST: NodeDofs = NodeDofs(3);
     /// The most dofs a node can have.
     pub const MAX: usize = 3;
-    /// The most dofs an 8-node element can have.
-    pub const MAX_ELEMENT: usize = 8 * Self::MAX;
+    /// The most dofs an element of any family can have (8 nodes × 3).
+    pub const MAX_ELEMENT: usize = crate::physics::element::family::MAX_NODES * Self::MAX;
 
     /// Dofs per node, k.
     pub fn per_node(self) -> usize {
@@ -62,9 +62,10 @@ impl NodeDofs {
         self.0 * nodes
     }
 
-    /// Dofs of one 8-node element (16 or 24).
-    pub fn element(self) -> usize {
-        8 * self.0
+    /// Dofs of one element of `nodes` nodes (16 or 24 for the quad, 12 or
+    /// 18 for the triangle).
+    pub fn element(self, nodes: usize) -> usize {
+        nodes * self.0
     }
 
     /// Whether the nodes carry the circumferential displacement u_θ.
@@ -89,8 +90,8 @@ mod tests {
                 }
             }
             assert_eq!(nd.count(4), 4 * k);
-            assert_eq!(nd.element(), 8 * k);
-            assert!(nd.element() <= NodeDofs::MAX_ELEMENT);
+            assert_eq!(nd.element(8), 8 * k);
+            assert!(nd.element(8) <= NodeDofs::MAX_ELEMENT);
         }
         assert_eq!(NodeDofs::default(), NodeDofs::PLANE);
         assert!(NodeDofs::TWIST.twist() && !NodeDofs::PLANE.twist());

@@ -1,9 +1,14 @@
-//! Finite elements: the 8-node serendipity quad and the solid element.
+//! Finite elements: the element families (the 8-node serendipity quad and
+//! the 6-node triangle, [`family::Family`]) and the solid element built on
+//! them.
 
 pub mod axisymmetric_twist;
 pub mod dofs;
+pub mod edge;
+pub mod family;
 pub mod q8;
 pub mod solid;
+pub mod t6;
 
 /// What turns an integral over the mesh plane into one over the body: the
 /// thickness t of a plane model, or 2π r (the full revolution) of an
@@ -33,8 +38,9 @@ impl Section {
 /// updated Gauss point states. Errors name the Gauss point.
 ///
 /// The element's dofs are `ue.len()` (= `fe.len()`, `ke.len()` = its square):
-/// 16 (two per node, [`NodeDofs::PLANE`]), or 24 in an axisymmetric model
-/// with twist ([`NodeDofs::TWIST`], [`crate::physics::element::axisymmetric_twist`]).
+/// two per node ([`NodeDofs::PLANE`]: 16 for the quad, 12 for the triangle),
+/// or three in an axisymmetric model with twist ([`NodeDofs::TWIST`],
+/// [`crate::physics::element::axisymmetric_twist`]).
 #[allow(clippy::too_many_arguments)]
 pub fn element_forces(
     geom: &solid::ElementGeometry,
@@ -47,7 +53,7 @@ pub fn element_forces(
     fe: &mut [f64],
     ke: &mut [f64],
 ) -> Result<(), String> {
-    if ue.len() == dofs::NodeDofs::TWIST.element() {
+    if ue.len() == dofs::NodeDofs::TWIST.per_node() * geom.nodes {
         if mat.plane != crate::physics::material::Plane::Axisymmetric {
             return Err("three dofs per node need an axisymmetric model (twist)".into());
         }

@@ -1,5 +1,6 @@
 //! The 8-node serendipity quadrilateral: shape functions, Gauss rules,
-//! Jacobian, and extrapolation of Gauss point values to the nodes.
+//! Jacobian, and extrapolation of Gauss point values to the nodes
+//! (Zienkiewicz, Taylor & Zhu, 7th ed., sec. 6.2, the serendipity quadrilateral).
 //!
 //! ```text
 //!   η
@@ -9,6 +10,9 @@
 //!   │         │      N_mid(ηᵢ=0) = ½(1+ξξᵢ)(1−η²)
 //!   0 ── 4 ── 1
 //! ```
+
+pub use super::edge::gauss_1d;
+use super::family::GaussRule;
 
 /// Natural coordinates of the nodes.
 pub const NODE_XI: [[f64; 2]; 8] = [
@@ -55,36 +59,6 @@ pub fn shape_derivs(xi: f64, eta: f64) -> [[f64; 2]; 8] {
     d
 }
 
-/// A tensor-product Gauss rule on [−1, 1]².
-#[derive(Clone, Debug)]
-pub struct GaussRule {
-    pub points: Vec<([f64; 2], f64)>,
-}
-
-/// Gauss–Legendre points and weights on [−1, 1] (n = 1..=4).
-pub fn gauss_1d(n: usize) -> Vec<(f64, f64)> {
-    match n {
-        1 => vec![(0.0, 2.0)],
-        2 => {
-            let a = 1.0 / 3f64.sqrt();
-            vec![(-a, 1.0), (a, 1.0)]
-        }
-        3 => {
-            let a = 0.6f64.sqrt();
-            vec![(-a, 5.0 / 9.0), (0.0, 8.0 / 9.0), (a, 5.0 / 9.0)]
-        }
-        _ => {
-            let r = (6.0f64 / 5.0).sqrt();
-            let (a, b) = (
-                (3.0 / 7.0 - 2.0 / 7.0 * r).sqrt(),
-                (3.0 / 7.0 + 2.0 / 7.0 * r).sqrt(),
-            );
-            let (wa, wb) = ((18.0 + 30f64.sqrt()) / 36.0, (18.0 - 30f64.sqrt()) / 36.0);
-            vec![(-b, wb), (-a, wa), (a, wa), (b, wb)]
-        }
-    }
-}
-
 fn tensor(n: usize) -> GaussRule {
     let g = gauss_1d(n);
     let mut points = Vec::with_capacity(n * n);
@@ -106,48 +80,20 @@ pub fn gauss_3x3() -> GaussRule {
     tensor(3)
 }
 
-/// det J and physical derivatives dN/dx at (ξ, η). Errs when det J ≤ 1e-12 ×
-/// (element size)², naming the value: the element is inverted or degenerate.
-pub fn physical_derivs(
-    coords: &[[f64; 2]; 8],
-    xi: f64,
-    eta: f64,
-) -> Result<(f64, [[f64; 2]; 8]), String> {
-    let d = shape_derivs(xi, eta);
-    let mut j = [[0.0; 2]; 2]; // j[i][k] = ∂x_i/∂ξ_k
-    for a in 0..8 {
-        for i in 0..2 {
-            for k in 0..2 {
-                j[i][k] += coords[a][i] * d[a][k];
-            }
-        }
-    }
-    let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
-    let size2 = (coords[2][0] - coords[0][0]).powi(2) + (coords[2][1] - coords[0][1]).powi(2);
-    #[allow(clippy::neg_cmp_op_on_partial_ord)] // !(x > tol) is meant to be true for NaN
-    if !(det > 1e-12 * size2) {
-        return Err(format!(
-            "Jacobian determinant {det:.3e} at (ξ, η) = ({xi:.3}, {eta:.3}): element inverted or degenerate"
-        ));
-    }
-    let inv = [
-        [j[1][1] / det, -j[0][1] / det],
-        [-j[1][0] / det, j[0][0] / det],
-    ];
-    let mut out = [[0.0; 2]; 8];
-    for a in 0..8 {
-        // dN/dx_i = Σ_k dN/dξ_k ∂ξ_k/∂x_i
-        for i in 0..2 {
-            out[a][i] = d[a][0] * inv[0][i] + d[a][1] * inv[1][i];
-        }
-    }
-    Ok((det, out))
-}
-
 /// Values at the 8 nodes from values at the Gauss points of a 2×2 or 3×3 rule:
 /// the bilinear (2×2) or biquadratic-Lagrange (3×3) interpolant through the Gauss
 /// points, evaluated at the nodes.
 pub fn extrapolate_to_nodes(rule: &GaussRule, values: &[f64]) -> [f64; 8] {
+    let mut out = [0.0; 8];
+    for (a, &x) in NODE_XI.iter().enumerate() {
+        out[a] = interpolate(rule, values, x);
+    }
+    out
+}
+
+/// The value at (ξ, η) of the tensor Lagrange interpolant through the points
+/// of a 2×2 or 3×3 rule (bilinear or biquadratic).
+pub fn interpolate(rule: &GaussRule, values: &[f64], [xa, ya]: [f64; 2]) -> f64 {
     let n = (rule.points.len() as f64).sqrt().round() as usize;
     let g: Vec<f64> = gauss_1d(n).iter().map(|p| p.0).collect();
     let lagrange = |x: f64, i: usize| -> f64 {
@@ -156,22 +102,13 @@ pub fn extrapolate_to_nodes(rule: &GaussRule, values: &[f64]) -> [f64; 8] {
             .map(|k| (x - g[k]) / (g[i] - g[k]))
             .product()
     };
-    let mut out = [0.0; 8];
-    for (a, &[xa, ya]) in NODE_XI.iter().enumerate() {
-        let mut v = 0.0;
-        for j in 0..n {
-            for i in 0..n {
-                v += lagrange(xa, i) * lagrange(ya, j) * values[j * n + i];
-            }
+    let mut v = 0.0;
+    for j in 0..n {
+        for i in 0..n {
+            v += lagrange(xa, i) * lagrange(ya, j) * values[j * n + i];
         }
-        out[a] = v;
     }
-    out
-}
-
-/// Shape functions of a quadratic edge [end, mid, end] at s ∈ [−1, 1].
-pub fn edge_shape(s: f64) -> [f64; 3] {
-    [0.5 * s * (s - 1.0), 1.0 - s * s, 0.5 * s * (s + 1.0)]
+    v
 }
 
 #[cfg(test)]
@@ -211,25 +148,6 @@ mod tests {
     }
 
     #[test]
-    fn gauss_rules_integrate_polynomials_exactly() {
-        for (n, deg) in [(2usize, 3i32), (3, 5), (4, 7)] {
-            let s: f64 = gauss_1d(n)
-                .iter()
-                .map(|&(x, w)| w * x.powi(deg - 1) * (x + 1.0))
-                .sum();
-            // ∫ x^{d−1}(x+1) over [−1,1]
-            let exact = |p: i32| {
-                if p % 2 == 0 {
-                    2.0 / (p as f64 + 1.0)
-                } else {
-                    0.0
-                }
-            };
-            assert!((s - exact(deg) - exact(deg - 1)).abs() < 1e-14, "n = {n}");
-        }
-    }
-
-    #[test]
     fn area_of_a_straight_sided_element_and_inversion() {
         let c = [[0.0, 0.0], [3.0, 0.5], [2.5, 2.0], [0.2, 1.5]];
         let mut x = [[0.0; 2]; 8];
@@ -240,7 +158,12 @@ mod tests {
         let area: f64 = gauss_3x3()
             .points
             .iter()
-            .map(|&([s, t], w)| w * physical_derivs(&x, s, t).unwrap().0)
+            .map(|&([s, t], w)| {
+                w * crate::physics::element::family::Family::Q8
+                    .physical_derivs(&x, [s, t])
+                    .unwrap()
+                    .0
+            })
             .sum();
         let shoelace = 0.5
             * (0..4)
@@ -251,7 +174,9 @@ mod tests {
         x.swap(1, 3);
         x.swap(4, 7);
         x.swap(5, 6);
-        assert!(physical_derivs(&x, 0.0, 0.0).is_err());
+        assert!(crate::physics::element::family::Family::Q8
+            .physical_derivs(&x, [0.0, 0.0])
+            .is_err());
     }
 
     #[test]

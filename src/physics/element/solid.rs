@@ -26,46 +26,53 @@
 //! 20,000, and it saves 1.4 KB per element (a quarter of the model's memory).
 
 use super::dofs::NodeDofs;
-use crate::physics::element::q8::{physical_derivs, GaussRule};
+use crate::physics::element::family::{Family, GaussRule, MAX_NODES};
 use crate::physics::element::Section;
 use crate::physics::material::{Plane, PointState, VonMises};
 use nalgebra::{Matrix3, Matrix4};
 
-/// Most Gauss points of a rule (3×3).
-pub const MAX_POINTS: usize = 9;
+pub use crate::physics::element::family::MAX_POINTS;
 
 /// Per-element Gauss point geometry, on the stack.
 #[derive(Clone, Debug)]
 pub struct ElementGeometry {
     /// Number of Gauss points.
     pub n: usize,
+    /// Number of nodes (the family's: 8 or 6).
+    pub nodes: usize,
     /// dN_a/dx, dN_a/dy for each Gauss point.
-    pub dndx: [[[f64; 2]; 8]; MAX_POINTS],
+    pub dndx: [[[f64; 2]; MAX_NODES]; MAX_POINTS],
     /// det J · weight · thickness (or · 2π r, [`Section::measure`]) for each
     /// Gauss point.
     pub dv: [f64; MAX_POINTS],
     /// Physical coordinates of each Gauss point.
     pub x: [[f64; 2]; MAX_POINTS],
     /// N_a at each Gauss point.
-    pub shape: [[f64; 8]; MAX_POINTS],
+    pub shape: [[f64; MAX_NODES]; MAX_POINTS],
 }
 
 impl ElementGeometry {
     /// Precomputes the geometry of a plane element of the given thickness; an
     /// Err names the Gauss point with det J ≤ 0.
-    pub fn new(coords: &[[f64; 2]; 8], rule: &GaussRule, thickness: f64) -> Result<Self, String> {
+    pub fn new(
+        family: Family,
+        coords: &[[f64; 2]],
+        rule: &GaussRule,
+        thickness: f64,
+    ) -> Result<Self, String> {
         let section = Section {
             axisymmetric: false,
             thickness,
         };
-        Self::with_section(coords, rule, &section)
+        Self::with_section(family, coords, rule, &section)
     }
 
     /// Precomputes the geometry, the volume element dv being det J · w ·
     /// `section.measure(x)` (thickness, or 2π r); an Err names the Gauss point
     /// with det J ≤ 0.
     pub fn with_section(
-        coords: &[[f64; 2]; 8],
+        family: Family,
+        coords: &[[f64; 2]],
         rule: &GaussRule,
         section: &Section,
     ) -> Result<Self, String> {
@@ -77,17 +84,19 @@ impl ElementGeometry {
         }
         let mut g = ElementGeometry {
             n: rule.points.len(),
-            dndx: [[[0.0; 2]; 8]; MAX_POINTS],
+            nodes: family.nodes(),
+            dndx: [[[0.0; 2]; MAX_NODES]; MAX_POINTS],
             dv: [0.0; MAX_POINTS],
             x: [[0.0; 2]; MAX_POINTS],
-            shape: [[0.0; 8]; MAX_POINTS],
+            shape: [[0.0; MAX_NODES]; MAX_POINTS],
         };
-        for (ip, &([xi, eta], w)) in rule.points.iter().enumerate() {
-            let (det, d) =
-                physical_derivs(coords, xi, eta).map_err(|e| format!("Gauss point {ip}: {e}"))?;
-            let n = crate::physics::element::q8::shape(xi, eta);
+        for (ip, &(xi, w)) in rule.points.iter().enumerate() {
+            let (det, d) = family
+                .physical_derivs(coords, xi)
+                .map_err(|e| format!("Gauss point {ip}: {e}"))?;
+            let n = family.shape(xi);
             let mut x = [0.0; 2];
-            for a in 0..8 {
+            for a in 0..family.nodes() {
                 x[0] += n[a] * coords[a][0];
                 x[1] += n[a] * coords[a][1];
             }
@@ -103,7 +112,7 @@ impl ElementGeometry {
     pub fn strain(&self, ip: usize, ue: &[f64]) -> [f64; 3] {
         let d = &self.dndx[ip];
         let mut e = [0.0; 3];
-        for a in 0..8 {
+        for a in 0..self.nodes {
             let (ux, uy) = (ue[2 * a], ue[2 * a + 1]);
             e[0] += d[a][0] * ux;
             e[1] += d[a][1] * uy;
@@ -116,7 +125,7 @@ impl ElementGeometry {
     /// ε_θθ = Σ N_a u_ra / r.
     pub fn strain_axisymmetric(&self, ip: usize, ue: &[f64]) -> [f64; 4] {
         let [e0, e1, e2] = self.strain(ip, ue);
-        let ur: f64 = (0..8).map(|a| self.shape[ip][a] * ue[2 * a]).sum();
+        let ur: f64 = (0..self.nodes).map(|a| self.shape[ip][a] * ue[2 * a]).sum();
         [e0, e1, e2, ur / self.x[ip][0]]
     }
 }
@@ -186,7 +195,7 @@ pub fn forces(
         let dv = geom.dv[ip];
         let d = &geom.dndx[ip];
         let s = &state.stress;
-        for a in 0..8 {
+        for a in 0..geom.nodes {
             fe[2 * a] += dv * (d[a][0] * s[0] + d[a][1] * s[2]);
             fe[2 * a + 1] += dv * (d[a][1] * s[1] + d[a][0] * s[2]);
         }
@@ -196,7 +205,7 @@ pub fn forces(
                 Tangent::Continuum => mat.continuum_tangent(&committed[ip]),
                 Tangent::Elastic => mat.elastic_matrix(),
             };
-            add_btcb(d, &c, dv, ke);
+            add_btcb(d, geom.nodes, &c, dv, ke);
         }
     }
     Ok(())
@@ -233,29 +242,30 @@ pub fn elastic_state(mat: &VonMises, committed: &PointState, eps: &[f64; 3]) -> 
 }
 
 /// ke += Bᵀ C B dv, exploiting the 2-row sparsity of each nodal B block.
-fn add_btcb(d: &[[f64; 2]; 8], c: &Matrix3<f64>, dv: f64, ke: &mut [f64]) {
+fn add_btcb(d: &[[f64; 2]; MAX_NODES], nn: usize, c: &Matrix3<f64>, dv: f64, ke: &mut [f64]) {
+    let ne = 2 * nn;
     // CB for each node b: 3×2 block
-    let mut cb = [[0.0f64; 6]; 8];
-    for b in 0..8 {
+    let mut cb = [[0.0f64; 6]; MAX_NODES];
+    for b in 0..nn {
         let (bx, by) = (d[b][0], d[b][1]);
         for r in 0..3 {
             cb[b][2 * r] = c[(r, 0)] * bx + c[(r, 2)] * by;
             cb[b][2 * r + 1] = c[(r, 1)] * by + c[(r, 2)] * bx;
         }
     }
-    for a in 0..8 {
+    for a in 0..nn {
         let (ax, ay) = (d[a][0], d[a][1]);
-        for b in 0..8 {
+        for b in 0..nn {
             let m = &cb[b];
             // rows of Bᵀ for node a: x-dof = [ax, 0, ay], y-dof = [0, ay, ax]
             let kxx = ax * m[0] + ay * m[4];
             let kxy = ax * m[1] + ay * m[5];
             let kyx = ay * m[2] + ax * m[4];
             let kyy = ay * m[3] + ax * m[5];
-            ke[(2 * a) * 16 + 2 * b] += dv * kxx;
-            ke[(2 * a) * 16 + 2 * b + 1] += dv * kxy;
-            ke[(2 * a + 1) * 16 + 2 * b] += dv * kyx;
-            ke[(2 * a + 1) * 16 + 2 * b + 1] += dv * kyy;
+            ke[(2 * a) * ne + 2 * b] += dv * kxx;
+            ke[(2 * a) * ne + 2 * b + 1] += dv * kxy;
+            ke[(2 * a + 1) * ne + 2 * b] += dv * kyx;
+            ke[(2 * a + 1) * ne + 2 * b + 1] += dv * kyy;
         }
     }
 }
@@ -302,7 +312,7 @@ pub fn axisymmetric_forces(
         trial[ip] = state;
         let b = b_axisymmetric(geom, ip);
         let (dv, s) = (geom.dv[ip], &state.stress);
-        for (j, f) in fe.iter_mut().enumerate() {
+        for (j, f) in fe.iter_mut().enumerate().take(2 * geom.nodes) {
             *f += dv * (0..4).map(|i| b[i][j] * s[i]).sum::<f64>();
         }
         if let Some(t) = tangent {
@@ -311,7 +321,7 @@ pub fn axisymmetric_forces(
                 Tangent::Continuum => mat.continuum_tangent_4(&committed[ip]),
                 Tangent::Elastic => mat.elastic_matrix_4(),
             };
-            add_btcb_4(&b, &c, dv, ke);
+            add_btcb_4(&b, 2 * geom.nodes, &c, dv, ke);
         }
     }
     Ok(())
@@ -321,7 +331,7 @@ pub fn axisymmetric_forces(
 fn b_axisymmetric(geom: &ElementGeometry, ip: usize) -> [[f64; 16]; 4] {
     let (d, n, r) = (&geom.dndx[ip], &geom.shape[ip], geom.x[ip][0]);
     let mut b = [[0.0; 16]; 4];
-    for a in 0..8 {
+    for a in 0..geom.nodes {
         b[0][2 * a] = d[a][0];
         b[1][2 * a + 1] = d[a][1];
         b[2][2 * a] = d[a][1];
@@ -332,16 +342,16 @@ fn b_axisymmetric(geom: &ElementGeometry, ip: usize) -> [[f64; 16]; 4] {
 }
 
 /// ke += Bᵀ C B dv for the 4-row B.
-fn add_btcb_4(b: &[[f64; 16]; 4], c: &Matrix4<f64>, dv: f64, ke: &mut [f64]) {
+fn add_btcb_4(b: &[[f64; 16]; 4], ne: usize, c: &Matrix4<f64>, dv: f64, ke: &mut [f64]) {
     let mut cb = [[0.0f64; 16]; 4];
     for (i, row) in cb.iter_mut().enumerate() {
-        for (j, v) in row.iter_mut().enumerate() {
+        for (j, v) in row.iter_mut().enumerate().take(ne) {
             *v = (0..4).map(|k| c[(i, k)] * b[k][j]).sum();
         }
     }
-    for p in 0..16 {
-        for q in 0..16 {
-            ke[p * 16 + q] += dv * (0..4).map(|i| b[i][p] * cb[i][q]).sum::<f64>();
+    for p in 0..ne {
+        for q in 0..ne {
+            ke[p * ne + q] += dv * (0..4).map(|i| b[i][p] * cb[i][q]).sum::<f64>();
         }
     }
 }

@@ -7,6 +7,7 @@ use crate::input::mesh::NodeDofs;
 use crate::linalg::failure::StepFailure;
 use crate::model::Model;
 use crate::physics::element::element_forces;
+use crate::physics::element::family::MAX_NODES;
 use crate::physics::element::solid::{Response, Tangent};
 use crate::physics::material::PointState;
 use crate::solve::State;
@@ -46,7 +47,6 @@ impl Engine<'_> {
         solid_tangent: Option<Tangent>,
     ) -> Result<Option<String>, StepFailure> {
         let m = self.model;
-        let ng = m.n_gauss();
         let be = &mut self.backend;
         let err = StepFailure::Linear;
         if solid_tangent.is_some() {
@@ -55,7 +55,8 @@ impl Engine<'_> {
         let n = self.held_elements.len();
         let batch = n.min(ELEMENT_BATCH);
         let nd = m.node_dofs();
-        let (k, ne) = (nd.per_node(), nd.element());
+        // one slot per element, as large as the largest element's
+        let (k, ne) = (nd.per_node(), nd.element(MAX_NODES));
         if self.fe_batch.len() < batch * ne {
             self.fe_batch.resize(batch * ne, 0.0);
         }
@@ -74,11 +75,14 @@ impl Engine<'_> {
             } else {
                 &mut self.ke_batch[..0]
             };
+            let points = &self.held_offsets[b0..=b1];
+            let gauss = points[0]..points[len];
             let first = element_batch(
                 m,
                 &self.held_elements[b0..b1],
-                &committed.gauss[b0 * ng..b1 * ng],
-                &mut trial.gauss[b0 * ng..b1 * ng],
+                points,
+                &committed.gauss[gauss.clone()],
+                &mut trial.gauss[gauss],
                 &trial.u,
                 response,
                 solid_tangent,
@@ -89,8 +93,9 @@ impl Engine<'_> {
             let done = first.as_ref().map_or(len, |f| f.0);
             for i in 0..done {
                 let el = &m.mesh.elements[self.held_elements[b0 + i] as usize];
-                let fe = &self.fe_batch[i * ne..(i + 1) * ne];
-                for (a, &n) in el.nodes.iter().enumerate() {
+                let own = nd.element(el.family.nodes());
+                let fe = &self.fe_batch[i * ne..][..own];
+                for (a, &n) in el.nodes().iter().enumerate() {
                     for (c, d) in nd.of(n).enumerate() {
                         self.r[d] += fe[k * a + c];
                         dofs[k * a + c] = d;
@@ -98,9 +103,9 @@ impl Engine<'_> {
                 }
                 if solid_tangent.is_some() {
                     let b = self.held_elements[b0 + i] as usize;
-                    let ke = &self.ke_batch[i * ne * ne..(i + 1) * ne * ne];
+                    let ke = &self.ke_batch[i * ne * ne..][..own * own];
                     match m.expansions.get(&b) {
-                        None => be.add_solid(b, &dofs[..ne], ke),
+                        None => be.add_solid(b, &dofs[..own], ke),
                         Some(x) => be.add_solid(b, &x.dofs, &held_out(x, &self.held, ke)),
                     }
                     .map_err(err)?;
@@ -130,15 +135,18 @@ impl Engine<'_> {
 }
 
 /// Element forces (and tangents, when `tangent` asks and `ke` has room) of
-/// the elements `ids` into `fe`/`ke` (ne and ne² numbers per element, in
-/// order; ne = [`NodeDofs::element`]), their Gauss states into `trial` (`ng`
-/// per element, as `committed`), on up to `threads` threads: contiguous
-/// chunks, the first on this thread. Returns the first failing element in
-/// order (its position in `ids`) and the message.
+/// the elements `ids` into `fe`/`ke` (one slot of ne and ne² numbers per
+/// element, in order, ne = [`NodeDofs::element`] of the largest element; an
+/// element fills the front of its slot), their Gauss states into `trial`
+/// (element i's at `points[i] − points[0]..points[i + 1] − points[0]`, as
+/// `committed`), on up to `threads` threads: contiguous chunks, the first on
+/// this thread. Returns the first failing element in order (its position in
+/// `ids`) and the message.
 #[allow(clippy::too_many_arguments)]
 fn element_batch(
     m: &Model,
     ids: &[u32],
+    points: &[usize],
     committed: &[PointState],
     trial: &mut [PointState],
     u: &[f64],
@@ -149,11 +157,11 @@ fn element_batch(
     threads: usize,
 ) -> Option<(usize, String)> {
     let len = ids.len();
-    let ng = m.n_gauss();
-    let ne = m.node_dofs().element();
+    let ne = m.node_dofs().element(MAX_NODES);
     let t = threads.min(len.div_ceil(MIN_ELEMENTS_PER_THREAD)).max(1);
     if t == 1 {
-        return element_chunk(m, ids, committed, trial, u, response, tangent, fe, ke);
+        let work = (ids, points, committed, trial);
+        return element_chunk(m, work, u, response, tangent, fe, ke);
     }
     let per = len.div_ceil(t);
     // ke is empty without a tangent: every chunk then gets an empty slice
@@ -164,25 +172,35 @@ fn element_batch(
     };
     let mut ke_chunks: Vec<&mut [f64]> = ke.chunks_mut(ke_per).collect();
     ke_chunks.resize_with(ids.chunks(per).len(), || &mut []);
+    // each chunk's Gauss states: its elements' points, in order
+    let mut gauss = Vec::new();
+    let (mut rest_c, mut rest_t) = (committed, trial);
+    for c in 0..ids.chunks(per).len() {
+        let (i0, i1) = (c * per, ((c + 1) * per).min(len));
+        let n = points[i1] - points[i0];
+        let (cg, rc) = rest_c.split_at(n);
+        let (tg, rt) = std::mem::take(&mut rest_t).split_at_mut(n);
+        (rest_c, rest_t) = (rc, rt);
+        gauss.push((&points[i0..=i1], cg, tg));
+    }
     let mut chunks = ids
         .chunks(per)
-        .zip(committed.chunks(per * ng))
-        .zip(trial.chunks_mut(per * ng))
+        .zip(gauss)
         .zip(fe.chunks_mut(per * ne))
         .zip(ke_chunks)
         .enumerate()
-        .map(|(c, ((((ids, cg), tg), fe), ke))| (c * per, ids, cg, tg, fe, ke));
-    let (_, ids0, cg0, tg0, fe0, ke0) = chunks.next().expect("a batch holds an element");
+        .map(|(c, (((ids, (p, cg, tg)), fe), ke))| (c * per, (ids, p, cg, tg), fe, ke));
+    let (_, work0, fe0, ke0) = chunks.next().expect("a batch holds an element");
     std::thread::scope(|s| {
         let others: Vec<_> = chunks
-            .map(|(at, ids, cg, tg, fe, ke)| {
+            .map(|(at, work, fe, ke)| {
                 s.spawn(move || {
-                    element_chunk(m, ids, cg, tg, u, response, tangent, fe, ke)
+                    element_chunk(m, work, u, response, tangent, fe, ke)
                         .map(|(i, msg)| (at + i, msg))
                 })
             })
             .collect();
-        let first = element_chunk(m, ids0, cg0, tg0, u, response, tangent, fe0, ke0);
+        let first = element_chunk(m, work0, u, response, tangent, fe0, ke0);
         // every thread is joined; the earliest chunk that failed holds the
         // first failing element
         let rest: Vec<_> = others
@@ -193,29 +211,36 @@ fn element_batch(
     })
 }
 
+/// One chunk of [`element_batch`]: its elements, their Gauss point offsets,
+/// and their committed and trial states.
+type Work<'a> = (
+    &'a [u32],
+    &'a [usize],
+    &'a [PointState],
+    &'a mut [PointState],
+);
+
 /// [`element_batch`] on one thread: stops at the first failing element.
-#[allow(clippy::too_many_arguments)]
 fn element_chunk(
     m: &Model,
-    ids: &[u32],
-    committed: &[PointState],
-    trial: &mut [PointState],
+    (ids, points, committed, trial): Work<'_>,
     u: &[f64],
     response: Response,
     tangent: Option<Tangent>,
     fe: &mut [f64],
     ke: &mut [f64],
 ) -> Option<(usize, String)> {
-    let ne = m.node_dofs().element();
-    let ng = m.n_gauss();
+    let nd = m.node_dofs();
+    let slot = nd.element(MAX_NODES);
     let mut scratch = [0.0; NodeDofs::MAX_ELEMENT * NodeDofs::MAX_ELEMENT];
     for (i, &e) in ids.iter().enumerate() {
         let e = e as usize;
         let el = &m.mesh.elements[e];
+        let ne = nd.element(el.family.nodes());
         let ue = m.element_u(e, u);
-        let gs = i * ng..(i + 1) * ng;
-        let ke = match ke.get_mut(i * ne * ne..(i + 1) * ne * ne) {
-            Some(ke) => ke,
+        let gs = points[i] - points[0]..points[i + 1] - points[0];
+        let ke = match ke.get_mut(i * slot * slot..(i + 1) * slot * slot) {
+            Some(ke) => &mut ke[..ne * ne],
             None => &mut scratch[..ne * ne],
         };
         if let Err(msg) = element_forces(
@@ -226,7 +251,7 @@ fn element_chunk(
             &mut trial[gs],
             response,
             tangent,
-            &mut fe[i * ne..(i + 1) * ne],
+            &mut fe[i * slot..][..ne],
             ke,
         ) {
             return Some((i, msg));

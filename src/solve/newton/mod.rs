@@ -75,6 +75,9 @@ pub struct Engine<'m> {
     /// them on one process, the owned ones under MPI. A state's `gauss` holds
     /// these elements' points in this order ([`Engine::localize`]).
     held_elements: Vec<u32>,
+    /// Where held element k's Gauss states start in this process's state
+    /// vector (and, last, their count; [`Model::held_points`]).
+    held_offsets: Vec<usize>,
     /// Contact stabilization of floating bodies ([`super::stabilize`]).
     pub stabilizer: Option<Stabilizer>,
     /// Threads of the element loop ([`Engine::set_threads`]).
@@ -107,9 +110,12 @@ impl<'m> Engine<'m> {
         mut backend: Box<dyn Backend + 'm>,
     ) -> Self {
         backend.reuse_solid(method != Method::FullNewton);
-        let held_elements = (0..model.mesh.elements.len())
+        let held_elements: Vec<u32> = (0..model.mesh.elements.len())
             .filter(|&e| backend.owns_element(e))
             .map(|e| e as u32)
+            .collect();
+        let held_offsets = std::iter::once(0)
+            .chain(model.held_points(&held_elements).map(|(_, r)| r.end))
             .collect();
         Engine {
             nonlinear: None,
@@ -124,6 +130,7 @@ impl<'m> Engine<'m> {
             fault: None,
             assemblies: 0,
             held_elements,
+            held_offsets,
             stabilizer: Some(Stabilizer::new(model)),
             threads: 1,
             fe_batch: Vec::new(),
@@ -163,14 +170,13 @@ impl<'m> Engine<'m> {
     /// [`State::initial`] or read from a restart file) the Gauss states of
     /// the elements this process does not hold; unchanged on one process.
     pub fn localize(&self, state: &mut State) {
-        let ng = self.model.n_gauss();
-        if self.holds_all() || state.gauss.len() != self.model.mesh.elements.len() * ng {
+        let m = self.model;
+        if self.holds_all() || state.gauss.len() != m.n_points() {
             return;
         }
-        let mut local = Vec::with_capacity(self.held_elements.len() * ng);
+        let mut local = Vec::new();
         for &e in &self.held_elements {
-            let e = e as usize;
-            local.extend_from_slice(&state.gauss[e * ng..(e + 1) * ng]);
+            local.extend_from_slice(&state.gauss[m.points(e as usize)]);
         }
         state.gauss = local;
     }
@@ -185,29 +191,29 @@ impl<'m> Engine<'m> {
         if self.backend.ranks() == 1 {
             return None;
         }
-        let ng = self.model.n_gauss();
-        let ne = self.model.mesh.elements.len();
+        let m = self.model;
+        let ne = m.mesh.elements.len();
         let root = self.backend.rank() == 0;
         let mut full = if root {
-            Vec::with_capacity(ne * ng)
+            Vec::with_capacity(m.n_points())
         } else {
             Vec::new()
         };
-        let w = PointState::packed_len(self.model.node_dofs().twist());
-        let per = (SHARE_CHUNK / ng).max(1);
-        let mut g = Vec::with_capacity(per * ng * w);
-        let mut k = 0; // next held element
+        let w = PointState::packed_len(m.node_dofs().twist());
+        let per = (SHARE_CHUNK / crate::physics::element::family::MAX_POINTS).max(1);
+        let mut g = Vec::new();
+        let mut held = m.held_points(&self.held_elements).peekable();
         let mut e0 = 0;
         while e0 < ne {
             let e1 = (e0 + per).min(ne);
+            let p0 = m.points(e0).start;
             g.clear();
-            g.resize((e1 - e0) * ng * w, 0.0);
-            while k < self.held_elements.len() && (self.held_elements[k] as usize) < e1 {
-                let at = (self.held_elements[k] as usize - e0) * ng * w;
-                for (ip, s) in state.gauss[k * ng..(k + 1) * ng].iter().enumerate() {
+            g.resize((m.points(e1 - 1).end - p0) * w, 0.0);
+            while let Some((e, local)) = held.next_if(|(e, _)| *e < e1) {
+                let at = (m.points(e).start - p0) * w;
+                for (ip, s) in state.gauss[local].iter().enumerate() {
                     g[at + ip * w..][..w].copy_from_slice(&s.pack()[..w]);
                 }
-                k += 1;
             }
             self.backend.sum(&mut g);
             if root {
@@ -228,12 +234,12 @@ impl<'m> Engine<'m> {
         if self.backend.ranks() == 1 {
             return local;
         }
-        let ng = self.model.n_gauss();
+        let m = self.model;
         let mut best = [local.0];
         self.backend.max(&mut best);
         let tied = lowest_tied(self.model, state, &self.held_elements, best[0]);
         let mut key = [match tied {
-            Some((e, ip)) => -((e * ng + ip) as f64),
+            Some((e, ip)) => -((m.points(e).start + ip) as f64),
             None => f64::NEG_INFINITY,
         }];
         self.backend.max(&mut key);
@@ -241,7 +247,8 @@ impl<'m> Engine<'m> {
             return (best[0], 0, 0);
         }
         let i = (-key[0]) as usize;
-        (best[0], i / ng, i % ng)
+        let e = m.element_of_point(i);
+        (best[0], e, i - m.points(e).start)
     }
 
     /// Largest of `values` (one per held Gauss point) over every rank, 0 when

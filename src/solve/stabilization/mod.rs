@@ -101,14 +101,11 @@ fn spring_work(engine: &Engine, ks: &[f64], committed: &[f64], u: &[f64]) -> f64
 /// interface, ∫ φ(u_N) dA with φ' = p_N; summed over ranks.
 fn internal_energy(engine: &Engine, state: &State) -> f64 {
     let m = engine.model;
-    let ng = m.n_gauss();
     let mut w = 0.0;
-    for (k, &e) in engine.held_elements().iter().enumerate() {
-        let e = e as usize;
+    for (e, local) in m.held_points(engine.held_elements()) {
         let mat = &m.materials[m.mesh.elements[e].body];
         let geo = m.geometry(e);
-        for ip in 0..ng {
-            let g = &state.gauss[k * ng + ip];
+        for (ip, g) in state.gauss[local].iter().enumerate() {
             let s = g.stress;
             let nu = mat.poisson;
             let elastic = (s[0] * s[0] + s[1] * s[1] + s[3] * s[3]

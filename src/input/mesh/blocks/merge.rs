@@ -269,7 +269,7 @@ pub(super) fn apply(mesh: &mut Mesh, plan: &Plan) {
             .elements
             .iter()
             .filter(|el| el.body == b)
-            .flat_map(|el| el.nodes)
+            .flat_map(|el| el.nodes().iter().copied())
             .collect();
         set.sort_unstable();
         set.dedup();
@@ -309,7 +309,9 @@ fn merge(mesh: &mut Mesh, plan: &Plan) {
     let map3 = |e: &[usize; 3]| e.map(|n| new[n]);
     let outer = |e: &&[usize; 3]| !plan.inner.contains(&e[1]);
     for el in &mut mesh.elements {
-        el.nodes = el.nodes.map(|n| new[n]);
+        for n in el.nodes_mut() {
+            *n = new[*n];
+        }
     }
     for edges in mesh.edge_sets.values_mut() {
         *edges = edges.iter().filter(outer).map(map3).collect();

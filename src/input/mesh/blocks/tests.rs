@@ -378,7 +378,7 @@ fn curved_side_errors_are_named() {
 fn inverted_element_is_detected() {
     let (bl, ifs) = punch();
     let mut m = generate(&bl, &ifs, 1).unwrap();
-    m.elements[3].nodes.swap(1, 3);
+    m.elements[3].nodes_mut().swap(1, 3);
     let e = m.validate().unwrap_err();
     assert!(e.0.contains("element 3") && e.0.contains("inverted"), "{e}");
 }

@@ -6,7 +6,7 @@
 use super::parse::MshFile;
 use crate::error::{Error, Result};
 use crate::input::mesh::blocks::InterfaceSpec;
-use crate::input::mesh::{ContactEdge, Element, Interface, Mesh, NonMatching};
+use crate::input::mesh::{ContactEdge, Element, Family, Interface, Mesh, NonMatching};
 use std::collections::{BTreeMap, HashMap, HashSet};
 
 fn mesh_err<T>(place: &str, message: impl Into<String>) -> Result<T> {
@@ -84,7 +84,7 @@ fn assign_bodies(msh: &MshFile, file: &str) -> Result<(Vec<Option<usize>>, Vec<i
     if body_tags.is_empty() {
         return mesh_err(
             file,
-            "no 8-node quadrangles in any physical surface: the mesh has no body",
+            "no 8-node quadrangles or 6-node triangles in any physical surface: the mesh has no body",
         );
     }
     body_tags.sort_unstable();
@@ -123,24 +123,28 @@ fn add_body_nodes(
     (new_id, tag_of)
 }
 
-/// The body elements, counter-clockwise.
+/// The body elements (8-node quadrangles, Gmsh type 16, and 6-node
+/// triangles, type 9), counter-clockwise.
 fn add_elements(msh: &MshFile, block_body: &[Option<usize>], new_id: &[usize], mesh: &mut Mesh) {
     for (k, b) in msh.blocks.iter().enumerate() {
         let Some(body) = block_body[k] else { continue };
-        for conn in b.conn.chunks_exact(8) {
-            let mut n: [usize; 8] = std::array::from_fn(|a| new_id[conn[a]]);
-            let x: [[f64; 2]; 4] = std::array::from_fn(|a| mesh.nodes[n[a]]);
-            let area2: f64 = (0..4)
+        let family = if b.etype == 9 { Family::T6 } else { Family::Q8 };
+        for conn in b.conn.chunks_exact(family.nodes()) {
+            let n: Vec<usize> = conn.iter().map(|&c| new_id[c]).collect();
+            let corners = family.corners();
+            let area2: f64 = (0..corners)
                 .map(|a| {
-                    let (p, q) = (x[a], x[(a + 1) % 4]);
+                    let (p, q) = (mesh.nodes[n[a]], mesh.nodes[n[(a + 1) % corners]]);
                     p[0] * q[1] - q[0] * p[1]
                 })
                 .sum();
-            if area2 < 0.0 {
-                // clockwise: walk the corners the other way round
-                n = [n[0], n[3], n[2], n[1], n[7], n[6], n[5], n[4]];
-            }
-            mesh.elements.push(Element { nodes: n, body });
+            // clockwise: walk the corners the other way round
+            let n = match (area2 < 0.0, family) {
+                (false, _) => n,
+                (true, Family::Q8) => vec![n[0], n[3], n[2], n[1], n[7], n[6], n[5], n[4]],
+                (true, Family::T6) => vec![n[0], n[2], n[1], n[5], n[4], n[3]],
+            };
+            mesh.elements.push(Element::new(family, &n, body));
         }
     }
 }
@@ -149,7 +153,7 @@ fn add_elements(msh: &MshFile, block_body: &[Option<usize>], new_id: &[usize], m
 fn check_bodies_apart(mesh: &Mesh, tag_of: &[u64], file: &str) -> Result<()> {
     let mut node_body = vec![usize::MAX; mesh.nodes.len()];
     for el in &mesh.elements {
-        for &n in &el.nodes {
+        for &n in el.nodes() {
             if node_body[n] != usize::MAX && node_body[n] != el.body {
                 return mesh_err(
                     file,
@@ -172,7 +176,7 @@ fn add_body_node_sets(mesh: &mut Mesh) {
             .elements
             .iter()
             .filter(|e| e.body == b)
-            .flat_map(|e| e.nodes)
+            .flat_map(|e| e.nodes().iter().copied())
             .collect();
         set.sort_unstable();
         set.dedup();
@@ -180,13 +184,13 @@ fn add_body_node_sets(mesh: &mut Mesh) {
     }
 }
 
-/// The element edges: sorted corner pair → (element, local edge).
-fn edge_index(mesh: &Mesh) -> HashMap<(usize, usize), (usize, usize)> {
-    let mut edge_of: HashMap<(usize, usize), (usize, usize)> = HashMap::new();
+/// The element edges: sorted corner pair → (element, the edge [end, mid,
+/// end] as the element walks it).
+fn edge_index(mesh: &Mesh) -> HashMap<(usize, usize), (usize, [usize; 3])> {
+    let mut edge_of = HashMap::new();
     for (e, el) in mesh.elements.iter().enumerate() {
-        for i in 0..4 {
-            let (p, q) = (el.nodes[i], el.nodes[(i + 1) % 4]);
-            edge_of.entry((p.min(q), p.max(q))).or_insert((e, i));
+        for edge @ [p, _, q] in el.edges() {
+            edge_of.entry((p.min(q), p.max(q))).or_insert((e, edge));
         }
     }
     edge_of
@@ -236,16 +240,14 @@ fn add_curve_sets(
                     );
                 }
                 let [p, q, mid] = ids;
-                let edge = edge_of.get(&(p.min(q), p.max(q))).and_then(|&(e, i)| {
-                    let el = &mesh.elements[e];
-                    (el.nodes[4 + i] == mid)
-                        .then(|| ([el.nodes[i], mid, el.nodes[(i + 1) % 4]], el.body))
-                });
+                let edge = edge_of
+                    .get(&(p.min(q), p.max(q)))
+                    .and_then(|&(e, edge)| (edge[1] == mid).then(|| (edge, mesh.elements[e].body)));
                 let Some((edge, body)) = edge else {
                     return mesh_err(
                         &b.at,
                         format!(
-                            "line element {} of physical curve \"{name}\" is not an edge of any quadrangle",
+                            "line element {} of physical curve \"{name}\" is not an edge of any quadrangle or triangle",
                             b.tags[k]
                         ),
                     );
@@ -383,13 +385,12 @@ fn nonmatching_curves(
     Ok(NonMatching { slave, master })
 }
 
-/// The element edges (sorted corner pairs) shared by two or more quadrangles.
+/// The element edges (sorted corner pairs) shared by two or more elements.
 fn inner_edges(mesh: &Mesh) -> HashSet<(usize, usize)> {
     let mut seen = HashSet::new();
     let mut inner = HashSet::new();
     for el in &mesh.elements {
-        for i in 0..4 {
-            let (p, q) = (el.nodes[i], el.nodes[(i + 1) % 4]);
+        for [p, _, q] in el.edges() {
             let key = (p.min(q), p.max(q));
             if !seen.insert(key) {
                 inner.insert(key);
@@ -418,7 +419,7 @@ fn on_boundary(
     for e in edges {
         if inner.contains(&(e[0].min(e[2]), e[0].max(e[2]))) {
             return Err(format!(
-                "curve \"{name}\" in {file} runs inside its body between two of its quadrangles, from {} to {}: an interface curve must lie on the body's boundary",
+                "curve \"{name}\" in {file} runs inside its body between two of its elements, from {} to {}: an interface curve must lie on the body's boundary",
                 node_at(mesh, tag_of, e[0]),
                 node_at(mesh, tag_of, e[2])
             ));

@@ -117,7 +117,7 @@ mod tests {
         assert_ne!(text, TINY);
         let turned = build(&text).unwrap();
         turned.validate().unwrap();
-        assert_eq!(turned.elements[0].nodes, ccw.elements[0].nodes);
+        assert_eq!(turned.elements[0].nodes(), ccw.elements[0].nodes());
     }
 
     #[test]
@@ -222,9 +222,9 @@ mod tests {
 
     #[test]
     fn element_and_physical_errors() {
-        let e = err(TINY.replace("\n2 1 16 1\n", "\n2 1 9 1\n").as_bytes());
+        let e = err(TINY.replace("\n2 1 16 1\n", "\n2 1 10 1\n").as_bytes());
         assert!(
-            e.contains("element type 9 (6-node triangle) not supported"),
+            e.contains("element type 10 (9-node quadrangle) not supported"),
             "{e}"
         );
         let line = TINY[..TINY.find("\n2 1 16 1\n").unwrap() + 1]

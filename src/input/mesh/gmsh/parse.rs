@@ -41,6 +41,7 @@ fn element_type(t: i32) -> Option<(usize, i32, &'static str)> {
         15 => Some((1, 0, "1-node point")),
         8 => Some((3, 1, "3-node line")),
         16 => Some((8, 2, "8-node quadrangle")),
+        9 => Some((6, 2, "6-node triangle")),
         _ => None,
     }
 }
@@ -597,14 +598,13 @@ fn elements(c: &mut Cursor, msh: &mut MshFile, tag_index: &HashMap<u64, usize>) 
         let Some((nn, tdim, _)) = element_type(etype) else {
             let hint = match etype {
                 1..=3 => ": the mesh is first order; set Mesh.ElementOrder = 2 and Mesh.SecondOrderIncomplete = 1",
-                9 => ": mesh the surfaces with quadrangles (Recombine Surface, or Mesh.RecombineAll = 1)",
                 10 => ": set Mesh.SecondOrderIncomplete = 1 for 8-node quadrangles",
                 _ => "",
             };
             return c.err(
                 at,
                 format!(
-                    "element type {etype} ({}) not supported: asperity reads 8-node quadrangles (16) and 3-node lines (8){hint}",
+                    "element type {etype} ({}) not supported: asperity reads 8-node quadrangles (16), 6-node triangles (9) and 3-node lines (8){hint}",
                     element_type_name(etype)
                 ),
             );

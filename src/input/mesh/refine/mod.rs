@@ -1,6 +1,7 @@
-//! Local refinement of a Q8 mesh with hanging nodes (issue 31).
+//! Local refinement of a mesh of 8-node quads and 6-node triangles with
+//! hanging nodes.
 //!
-//! A marked element is split into four Q8 children at ξ = 0 and η = 0 of
+//! A marked quad is split into four Q8 children at ξ = 0 and η = 0 of
 //! its own natural coordinates; the 13 new nodes are placed by the parent's
 //! isoparametric map x(ξ, η) = Σ Nₐ(ξ, η) xₐ ([`crate::physics::element::q8::shape`]), so a
 //! curved edge stays on the parent's quadratic geometry:
@@ -16,6 +17,12 @@
 //!   │       │       │        corner it holds.
 //!   0 ─ q ─ 4 ─ q ─ 1
 //! ```
+//!
+//! A marked triangle is split into four T6 children by its midsides (the
+//! three corner triangles and the inverted centre one); its 9 new nodes (the
+//! 6 edge quarter points and 3 interior midsides) are placed by its own map
+//! ([`split_t6`]). Both families split each edge at its midside, so a quad
+//! and a triangle side by side refine alike.
 //!
 //! Where a refined element meets an unrefined one, the coarse edge [a, m, b]
 //! faces two fine edges [a, q₁, m] and [m, q₂, b]: q₁ and q₂ are **hanging
@@ -41,12 +48,9 @@ mod sets;
 #[cfg(test)]
 mod tests;
 
-use super::{Element, Mesh, MeshError};
-use crate::physics::element::q8;
+use super::{Element, Family, Mesh, MeshError};
+use crate::physics::element::family::MAX_NODES;
 use std::collections::{BTreeSet, HashMap};
-
-/// The corners of the four edges of a Q8 (local node ids) and their midside.
-pub(crate) const EDGES: [[usize; 3]; 4] = [[0, 4, 1], [1, 5, 2], [2, 6, 3], [3, 7, 0]];
 
 /// The deepest level an element may reach (4⁸ children of one element).
 pub const MAX_LEVEL: u8 = 8;
@@ -148,7 +152,8 @@ pub fn in_box(
     for level in 1..=levels {
         let marked: Vec<usize> = (0..r.mesh.elements.len())
             .filter(|&e| {
-                let c = map_point(&r.mesh.element_coords(e), 0.0, 0.0);
+                let el = &r.mesh.elements[e];
+                let c = map_point(el.family, &r.mesh.element_coords(e), el.family.centre_xi());
                 (x[0]..=x[1]).contains(&c[0]) && (y[0]..=y[1]).contains(&c[1])
             })
             .collect();
@@ -189,10 +194,10 @@ impl EdgeMap {
         let mut owner: HashMap<(usize, usize), Vec<usize>> = HashMap::new();
         let mut mid = HashMap::new();
         for (e, el) in mesh.elements.iter().enumerate() {
-            for [a, m, b] in EDGES {
-                let k = key(el.nodes[a], el.nodes[b]);
+            for [a, m, b] in el.edges() {
+                let k = key(a, b);
                 owner.entry(k).or_default().push(e);
-                mid.insert(k, el.nodes[m]);
+                mid.insert(k, m);
             }
         }
         EdgeMap { owner, mid }
@@ -212,8 +217,7 @@ pub fn hanging_nodes(mesh: &Mesh) -> Vec<HangingNode> {
     let map = EdgeMap::new(mesh);
     let mut out = Vec::new();
     for (e, el) in mesh.elements.iter().enumerate() {
-        for loc in EDGES {
-            let edge = loc.map(|i| el.nodes[i]);
+        for edge in el.edges() {
             if let Some([q1, q2]) = map.halves(edge) {
                 out.push(HangingNode {
                     node: q1,
@@ -286,8 +290,8 @@ pub fn closure(
             continue;
         }
         let el = &mesh.elements[e];
-        for [a, _, b] in EDGES {
-            if let Some(&c) = coarser.get(&key(el.nodes[a], el.nodes[b])) {
+        for [a, _, b] in el.edges() {
+            if let Some(&c) = coarser.get(&key(a, b)) {
                 work.push(c);
             }
         }
@@ -296,10 +300,10 @@ pub fn closure(
     Ok(on)
 }
 
-/// The point of element `el` at natural (ξ, η).
-fn map_point(c: &[[f64; 2]; 8], xi: f64, eta: f64) -> [f64; 2] {
-    let n = q8::shape(xi, eta);
-    (0..8).fold([0.0, 0.0], |p, a| {
+/// The point at natural ξ of an element of `family` with nodes at `c`.
+fn map_point(family: Family, c: &[[f64; 2]; MAX_NODES], xi: [f64; 2]) -> [f64; 2] {
+    let n = family.shape(xi);
+    (0..family.nodes()).fold([0.0, 0.0], |p, a| {
         [p[0] + n[a] * c[a][0], p[1] + n[a] * c[a][1]]
     })
 }
@@ -368,7 +372,11 @@ pub fn refine_with(
             next.origin.push(state.origin[e]);
             continue;
         }
-        let (children, inner) = split(&mut out, &mut quarters, el, &mesh.element_coords(e));
+        let c = mesh.element_coords(e);
+        let (children, inner) = match el.family {
+            Family::Q8 => split(&mut out, &mut quarters, el, &c),
+            Family::T6 => split_t6(&mut out, &mut quarters, el, &c),
+        };
         interior[e] = inner;
         for c in children {
             out.elements.push(c);
@@ -391,7 +399,7 @@ fn split(
     out: &mut Mesh,
     quarters: &mut Quarters,
     el: &Element,
-    c: &[[f64; 2]; 8],
+    c: &[[f64; 2]; MAX_NODES],
 ) -> ([Element; 4], Vec<usize>) {
     // the 5 × 5 grid of natural points ξ = i/2 − 1, η = j/2 − 1
     let mut grid = [[usize::MAX; 5]; 5];
@@ -408,9 +416,10 @@ fn split(
     .iter()
     .enumerate()
     {
-        grid[i][j] = el.nodes[loc];
+        grid[i][j] = el.nodes()[loc];
     }
-    let point = |i: usize, j: usize| map_point(c, i as f64 / 2.0 - 1.0, j as f64 / 2.0 - 1.0);
+    let point =
+        |i: usize, j: usize| map_point(Family::Q8, c, [i as f64 / 2.0 - 1.0, j as f64 / 2.0 - 1.0]);
     let add = |out: &mut Mesh, x: [f64; 2]| {
         out.nodes.push(x);
         out.nodes.len() - 1
@@ -422,8 +431,7 @@ fn split(
         [(3, 4), (1, 4)],
         [(0, 3), (0, 1)],
     ];
-    for (k, [a, _, b]) in EDGES.iter().enumerate() {
-        let (na, nb) = (el.nodes[*a], el.nodes[*b]);
+    for (k, [na, _, nb]) in el.edges().enumerate() {
         let kk = key(na, nb);
         quarters.split.insert(kk);
         let [pa, pb] = edge_points[k];
@@ -444,19 +452,74 @@ fn split(
     }
     let child = |i0: usize, j0: usize| {
         let g = |di: usize, dj: usize| grid[i0 + di][j0 + dj];
-        Element {
-            nodes: [
-                g(0, 0),
-                g(2, 0),
-                g(2, 2),
-                g(0, 2),
-                g(1, 0),
-                g(2, 1),
-                g(1, 2),
-                g(0, 1),
-            ],
-            body: el.body,
-        }
+        let nodes = [
+            g(0, 0),
+            g(2, 0),
+            g(2, 2),
+            g(0, 2),
+            g(1, 0),
+            g(2, 1),
+            g(1, 2),
+            g(0, 1),
+        ];
+        Element::q8(nodes, el.body)
     };
     ([child(0, 0), child(2, 0), child(2, 2), child(0, 2)], inner)
+}
+
+/// Splits one triangle of `out` (its coordinates `c`) into four T6
+/// children (module text); also its 3 new interior nodes. The children, in
+/// natural coordinates of the parent:
+/// ```text
+///   2                 c0 = (0, 3, 5), c1 = (3, 1, 4), c2 = (5, 4, 2),
+///   │ ╲               c3 = (4, 5, 3) the centre; each child's midsides
+///   5 ─ 4             are quarter points of the parent's edges or the
+///   │ ╲ │ ╲           midpoints of the inner triangle's sides
+///   0 ─ 3 ─ 1         (¼, ¼), (½, ¼), (¼, ½)
+/// ```
+fn split_t6(
+    out: &mut Mesh,
+    quarters: &mut Quarters,
+    el: &Element,
+    c: &[[f64; 2]; MAX_NODES],
+) -> ([Element; 4], Vec<usize>) {
+    let point = |xi: [f64; 2]| map_point(Family::T6, c, xi);
+    let add = |out: &mut Mesh, x: [f64; 2]| {
+        out.nodes.push(x);
+        out.nodes.len() - 1
+    };
+    // each edge's quarter points in walk order (near its start, near its end)
+    let along: [[[f64; 2]; 2]; 3] = [
+        [[0.25, 0.0], [0.75, 0.0]],
+        [[0.75, 0.25], [0.25, 0.75]],
+        [[0.0, 0.75], [0.0, 0.25]],
+    ];
+    let mut q = [[usize::MAX; 2]; 3];
+    for (k, [na, _, nb]) in el.edges().enumerate() {
+        let kk = key(na, nb);
+        quarters.split.insert(kk);
+        let slot = quarters.of.entry(kk).or_insert([usize::MAX; 2]);
+        // slot 0 is near the smaller id
+        let walk = if na < nb { [0, 1] } else { [1, 0] };
+        for (s, w) in walk.into_iter().enumerate() {
+            if slot[s] == usize::MAX {
+                slot[s] = add(out, point(along[k][w]));
+            }
+            q[k][w] = slot[s];
+        }
+    }
+    let inner: Vec<usize> = [[0.25, 0.25], [0.5, 0.25], [0.25, 0.5]]
+        .into_iter()
+        .map(|xi| add(out, point(xi)))
+        .collect();
+    let [i35, i34, i45] = [inner[0], inner[1], inner[2]];
+    let n = el.nodes();
+    let children = [
+        [n[0], n[3], n[5], q[0][0], i35, q[2][1]],
+        [n[3], n[1], n[4], q[0][1], q[1][0], i34],
+        [n[5], n[4], n[2], i45, q[1][1], q[2][0]],
+        [n[4], n[5], n[3], i45, i35, i34],
+    ]
+    .map(|nodes| Element::t6(nodes, el.body));
+    (children, inner)
 }

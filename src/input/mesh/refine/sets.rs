@@ -1,7 +1,7 @@
 //! What a refinement carries over besides the elements: node sets, edge
 //! sets and interfaces.
 
-use super::{Quarters, EDGES};
+use super::Quarters;
 use crate::input::mesh::{ContactEdge, Mesh, MeshError};
 use std::collections::HashSet;
 
@@ -44,13 +44,12 @@ pub(crate) fn carry(
     for set in out.node_sets.values_mut() {
         let held: HashSet<usize> = set.iter().copied().collect();
         for (e, el) in mesh.elements.iter().enumerate().filter(|(e, _)| on[*e]) {
-            for loc in EDGES {
-                let edge = loc.map(|i| el.nodes[i]);
+            for edge in el.edges() {
                 if edge.iter().all(|n| held.contains(n)) {
                     set.extend(q.along(edge).into_iter().flatten());
                 }
             }
-            if el.nodes.iter().all(|n| held.contains(n)) {
+            if el.nodes().iter().all(|n| held.contains(n)) {
                 set.extend(&interior[e]);
             }
         }

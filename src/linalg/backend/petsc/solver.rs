@@ -127,11 +127,16 @@ impl Partition {
         let ne = mesh.elements.len();
         let mut element_owner = vec![0usize; ne];
         if ranks > 1 {
-            let eptr: Vec<metis::Idx> = (0..=ne).map(|e| (4 * e) as metis::Idx).collect();
+            let eptr: Vec<metis::Idx> = std::iter::once(0)
+                .chain(mesh.elements.iter().scan(0, |at, el| {
+                    *at += el.corners().len();
+                    Some(*at as metis::Idx)
+                }))
+                .collect();
             let eind: Vec<metis::Idx> = mesh
                 .elements
                 .iter()
-                .flat_map(|el| el.nodes[..4].iter().map(|&n| n as metis::Idx))
+                .flat_map(|el| el.corners().iter().map(|&n| n as metis::Idx))
                 .collect();
             let nn = eind.iter().copied().max().unwrap_or(0) as usize + 1;
             let (mut epart, mut npart) = (vec![0; ne], vec![0; nn]);

@@ -16,7 +16,7 @@ fn model(node_dofs: NodeDofs) -> InterfaceModel {
             spring: None,
         })
         .collect();
-    let shape = crate::physics::element::q8::edge_shape(0.3);
+    let shape = crate::physics::element::edge::shape(0.3);
     let coincident = Point {
         pairs: [0, 1, 2],
         shape,
@@ -32,7 +32,7 @@ fn model(node_dofs: NodeDofs) -> InterfaceModel {
             na: shape,
             len_a: 3,
             b: [3, 4, 5],
-            nb: crate::physics::element::q8::edge_shape(0.25),
+            nb: crate::physics::element::edge::shape(0.25),
             gap: 0.0,
             s: 0.6,
         }),

@@ -208,8 +208,8 @@ fn four_blocks_round_a_point_merge_it_into_one_node() {
     let mut used = vec![false; m.nodes.len()];
     m.elements
         .iter()
-        .flat_map(|e| e.nodes)
-        .for_each(|n| used[n] = true);
+        .flat_map(|e| e.nodes())
+        .for_each(|&n| used[n] = true);
     assert!(used.iter().all(|&u| u));
 }
 

@@ -47,9 +47,9 @@ fn owner_centroid(m: &Mesh, e: &[usize; 3]) -> [f64; 2] {
     let el = m
         .elements
         .iter()
-        .find(|el| el.nodes[..4].contains(&e[0]) && el.nodes[..4].contains(&e[2]))
+        .find(|el| el.nodes()[..4].contains(&e[0]) && el.nodes()[..4].contains(&e[2]))
         .expect("an element has the edge");
-    let c = el.nodes[..4].iter().fold([0.0, 0.0], |s, &n| {
+    let c = el.nodes()[..4].iter().fold([0.0, 0.0], |s, &n| {
         [s[0] + m.nodes[n][0] / 4.0, s[1] + m.nodes[n][1] / 4.0]
     });
     c
@@ -271,14 +271,8 @@ fn a_curve_between_two_quadrangles_of_its_body_is_refused() {
     let m = Mesh {
         nodes,
         elements: vec![
-            Element {
-                nodes: [0, 1, 4, 5, 6, 7, 8, 9],
-                body: 0,
-            },
-            Element {
-                nodes: [1, 2, 3, 4, 10, 11, 12, 7],
-                body: 0,
-            },
+            Element::q8([0, 1, 4, 5, 6, 7, 8, 9], 0),
+            Element::q8([1, 2, 3, 4, 10, 11, 12, 7], 0),
         ],
         bodies: vec!["b".into()],
         ..Mesh::default()

@@ -1,0 +1,317 @@
+//! The element families a plane or axisymmetric mesh may mix: the 8-node
+//! serendipity quadrilateral ([`super::q8`]) and the 6-node quadratic
+//! triangle ([`super::t6`]). A family answers everything the rest of the
+//! code asks of an element's shape: its nodes and their natural coordinates,
+//! shape functions and derivatives, the Jacobian, the Gauss rules, the
+//! interpolation of Gauss point values (to the nodes, or to other points),
+//! its sides (quadratic edges [end, mid, end], [`super::edge`]) and its VTK
+//! cell type. Both families have straight or curved quadratic sides with
+//! three nodes, so interfaces, edge loads and pretension cuts see one kind of
+//! side whichever element it bounds.
+
+use super::{q8, t6};
+use nalgebra::{DMatrix, DVector};
+
+/// Most nodes of an element of any family (the 8-node quad).
+pub const MAX_NODES: usize = 8;
+
+/// Most Gauss points of a rule of any family (3×3).
+pub const MAX_POINTS: usize = 9;
+
+/// A Gauss rule: natural coordinates and weights (on [−1, 1]² for the quad,
+/// on the reference triangle of area ½ for the triangle).
+#[derive(Clone, Debug, PartialEq)]
+pub struct GaussRule {
+    pub points: Vec<([f64; 2], f64)>,
+}
+
+/// An element family.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Family {
+    /// The 8-node serendipity quadrilateral.
+    Q8,
+    /// The 6-node quadratic triangle.
+    T6,
+}
+
+impl Family {
+    /// Both families, in the order of their index.
+    pub const ALL: [Family; 2] = [Family::Q8, Family::T6];
+
+    /// 0 for Q8, 1 for T6 (a slot in per-family tables).
+    pub const fn index(self) -> usize {
+        self as usize
+    }
+
+    /// Nodes per element.
+    pub const fn nodes(self) -> usize {
+        match self {
+            Family::Q8 => 8,
+            Family::T6 => 6,
+        }
+    }
+
+    /// Corner nodes (numbered first, counter-clockwise; the midsides follow).
+    pub const fn corners(self) -> usize {
+        match self {
+            Family::Q8 => 4,
+            Family::T6 => 3,
+        }
+    }
+
+    /// What a user calls it (messages).
+    pub const fn name(self) -> &'static str {
+        match self {
+            Family::Q8 => "8-node quadrilateral",
+            Family::T6 => "6-node triangle",
+        }
+    }
+
+    /// Natural coordinates of the nodes.
+    pub fn node_xi(self) -> &'static [[f64; 2]] {
+        match self {
+            Family::Q8 => &q8::NODE_XI,
+            Family::T6 => &t6::NODE_XI,
+        }
+    }
+
+    /// The natural coordinates of the element's centre.
+    pub const fn centre_xi(self) -> [f64; 2] {
+        match self {
+            Family::Q8 => [0.0, 0.0],
+            Family::T6 => [1.0 / 3.0, 1.0 / 3.0],
+        }
+    }
+
+    /// The sides, each [end, mid, end] in local node numbers, walked
+    /// counter-clockwise (the element on the left).
+    pub fn edges(self) -> &'static [[usize; 3]] {
+        match self {
+            Family::Q8 => &[[0, 4, 1], [1, 5, 2], [2, 6, 3], [3, 7, 0]],
+            Family::T6 => &[[0, 3, 1], [1, 4, 2], [2, 5, 0]],
+        }
+    }
+
+    /// The VTK cell type: VTK_QUADRATIC_QUAD (23) or VTK_QUADRATIC_TRIANGLE
+    /// (22); both number the nodes as this code does.
+    pub const fn vtk_cell(self) -> u8 {
+        match self {
+            Family::Q8 => 23,
+            Family::T6 => 22,
+        }
+    }
+
+    /// Shape functions at ξ, the first [`Family::nodes`] used.
+    pub fn shape(self, [xi, eta]: [f64; 2]) -> [f64; MAX_NODES] {
+        let mut n = [0.0; MAX_NODES];
+        match self {
+            Family::Q8 => n = q8::shape(xi, eta),
+            Family::T6 => n[..6].copy_from_slice(&t6::shape(xi, eta)),
+        }
+        n
+    }
+
+    /// Shape function derivatives (∂N/∂ξ, ∂N/∂η) at ξ.
+    pub fn shape_derivs(self, [xi, eta]: [f64; 2]) -> [[f64; 2]; MAX_NODES] {
+        let mut d = [[0.0; 2]; MAX_NODES];
+        match self {
+            Family::Q8 => d = q8::shape_derivs(xi, eta),
+            Family::T6 => d[..6].copy_from_slice(&t6::shape_derivs(xi, eta)),
+        }
+        d
+    }
+
+    /// The element's rule: `full` 3×3 (quad) or the 6-point degree-4 rule
+    /// (triangle); otherwise 2×2 or the 3-point degree-2 rule, which
+    /// integrate the stiffness of an undistorted element exactly for the
+    /// triangle and under-integrate the quad (no volumetric locking in
+    /// plane-strain plastic flow).
+    pub fn rule(self, full: bool) -> GaussRule {
+        match (self, full) {
+            (Family::Q8, true) => q8::gauss_3x3(),
+            (Family::Q8, false) => q8::gauss_2x2(),
+            (Family::T6, true) => t6::gauss_6(),
+            (Family::T6, false) => t6::gauss_3(),
+        }
+    }
+
+    /// The points where the stresses of the element are most accurate
+    /// (superconvergent), sampled by the recovery of the error estimate:
+    /// 2×2 for the quad, the 3-point rule for the triangle.
+    pub fn sampling_rule(self) -> GaussRule {
+        self.rule(false)
+    }
+
+    /// The points where a valid element has det J > 0: the full rule's points
+    /// and the nodes.
+    pub fn check_points(self) -> Vec<[f64; 2]> {
+        let rule = self.rule(true);
+        let mut pts: Vec<[f64; 2]> = rule.points.into_iter().map(|p| p.0).collect();
+        pts.extend_from_slice(self.node_xi());
+        pts
+    }
+
+    /// det J and the physical derivatives dN/dx at ξ of an element with
+    /// nodes at `coords` (the family's count). Errs when det J ≤ 1e-12 ×
+    /// (element size)², naming the value: the element is inverted or
+    /// degenerate.
+    pub fn physical_derivs(
+        self,
+        coords: &[[f64; 2]],
+        xi: [f64; 2],
+    ) -> Result<(f64, [[f64; 2]; MAX_NODES]), String> {
+        let nn = self.nodes();
+        let d = self.shape_derivs(xi);
+        let mut j = [[0.0; 2]; 2]; // j[i][k] = ∂x_i/∂ξ_k
+        for a in 0..nn {
+            for i in 0..2 {
+                for k in 0..2 {
+                    j[i][k] += coords[a][i] * d[a][k];
+                }
+            }
+        }
+        let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+        let dist2 = |p: usize, q: usize| {
+            (coords[q][0] - coords[p][0]).powi(2) + (coords[q][1] - coords[p][1]).powi(2)
+        };
+        let size2 = match self {
+            Family::Q8 => dist2(0, 2),
+            Family::T6 => dist2(0, 1).max(dist2(1, 2)).max(dist2(2, 0)),
+        };
+        #[allow(clippy::neg_cmp_op_on_partial_ord)] // !(x > tol) is meant to be true for NaN
+        if !(det > 1e-12 * size2) {
+            let [x, e] = xi;
+            return Err(format!(
+                "Jacobian determinant {det:.3e} at (ξ, η) = ({x:.3}, {e:.3}): element inverted or degenerate"
+            ));
+        }
+        let inv = [
+            [j[1][1] / det, -j[0][1] / det],
+            [-j[1][0] / det, j[0][0] / det],
+        ];
+        let mut out = [[0.0; 2]; MAX_NODES];
+        for a in 0..nn {
+            // dN/dx_i = Σ_k dN/dξ_k ∂ξ_k/∂x_i
+            for i in 0..2 {
+                out[a][i] = d[a][0] * inv[0][i] + d[a][1] * inv[1][i];
+            }
+        }
+        Ok((det, out))
+    }
+
+    /// The weights w with Σ wᵢ vᵢ the value at ξ of the polynomial through
+    /// values vᵢ at the points of `rule`: the tensor Lagrange interpolant of a
+    /// quad's 2×2 or 3×3 rule (bilinear, biquadratic), the complete linear
+    /// (3 points) or quadratic (6 points) polynomial in (ξ, η) of the
+    /// triangle's.
+    pub fn interpolation_weights(self, rule: &GaussRule, xi: [f64; 2]) -> [f64; MAX_POINTS] {
+        let n = rule.points.len();
+        let mut w = [0.0; MAX_POINTS];
+        match self {
+            Family::Q8 => {
+                let mut unit = [0.0; MAX_POINTS];
+                for k in 0..n {
+                    unit[k] = 1.0;
+                    w[k] = q8::interpolate(rule, &unit[..n], xi);
+                    unit[k] = 0.0;
+                }
+            }
+            Family::T6 => {
+                // the monomials 1, ξ, η (, ξ², ξη, η²) at the points: V c = v,
+                // value at ξ = m(ξ)ᵀ V⁻¹ v, so w = V⁻ᵀ m(ξ)
+                let mono = |[x, y]: [f64; 2]| [1.0, x, y, x * x, x * y, y * y];
+                let v = DMatrix::from_fn(n, n, |i, k| mono(rule.points[i].0)[k]);
+                let m = DVector::from_fn(n, |k, _| mono(xi)[k]);
+                let solved = v
+                    .transpose()
+                    .lu()
+                    .solve(&m)
+                    .expect("a triangle rule's points are unisolvent");
+                w[..n].copy_from_slice(solved.as_slice());
+            }
+        }
+        w
+    }
+
+    /// Values at the nodes from values at the points of `rule`
+    /// ([`Family::interpolation_weights`] at each node).
+    pub fn extrapolate_to_nodes(self, rule: &GaussRule, values: &[f64]) -> [f64; MAX_NODES] {
+        let mut out = [0.0; MAX_NODES];
+        if self == Family::Q8 {
+            return q8::extrapolate_to_nodes(rule, values);
+        }
+        for (a, &x) in self.node_xi().iter().enumerate() {
+            let w = self.interpolation_weights(rule, x);
+            out[a] = values.iter().zip(w).map(|(v, w)| v * w).sum();
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn interpolation_reproduces_the_rules_polynomials() {
+        let linear = |[x, y]: [f64; 2]| 1.0 + 2.0 * x - 0.5 * y;
+        let quadratic = |[x, y]: [f64; 2]| linear([x, y]) + x * x - 3.0 * x * y + 0.7 * y * y;
+        for (family, full, f) in [
+            (Family::T6, false, &linear as &dyn Fn([f64; 2]) -> f64),
+            (Family::T6, true, &quadratic),
+            (Family::Q8, false, &|[x, y]: [f64; 2]| {
+                1.0 + x - y + 0.3 * x * y
+            }),
+        ] {
+            let rule = family.rule(full);
+            let v: Vec<f64> = rule.points.iter().map(|p| f(p.0)).collect();
+            let nodes = family.extrapolate_to_nodes(&rule, &v);
+            for (a, &x) in family.node_xi().iter().enumerate() {
+                assert!((nodes[a] - f(x)).abs() < 1e-12, "{family:?} node {a}");
+            }
+        }
+    }
+
+    #[test]
+    fn edges_walk_around_the_element_counter_clockwise() {
+        for family in Family::ALL {
+            let xi = family.node_xi();
+            let edges = family.edges();
+            assert_eq!(edges.len(), family.corners());
+            let mut twice_area = 0.0;
+            for (k, e) in edges.iter().enumerate() {
+                // consecutive, the midside halfway
+                assert_eq!(e[2], edges[(k + 1) % edges.len()][0]);
+                let mid = [
+                    (xi[e[0]][0] + xi[e[2]][0]) / 2.0,
+                    (xi[e[0]][1] + xi[e[2]][1]) / 2.0,
+                ];
+                assert_eq!(xi[e[1]], mid);
+                twice_area += xi[e[0]][0] * xi[e[2]][1] - xi[e[2]][0] * xi[e[0]][1];
+            }
+            assert!(twice_area > 0.0, "{family:?}");
+        }
+    }
+
+    #[test]
+    fn a_straight_sided_triangles_area_and_inversion() {
+        let c = [[0.0, 0.0], [3.0, 0.5], [0.8, 2.0]];
+        let mut x = [[0.0; 2]; 6];
+        x[..3].copy_from_slice(&c);
+        for (k, (a, b)) in [(0, 1), (1, 2), (2, 0)].into_iter().enumerate() {
+            x[3 + k] = [(c[a][0] + c[b][0]) / 2.0, (c[a][1] + c[b][1]) / 2.0];
+        }
+        let area: f64 = t6::gauss_3()
+            .points
+            .iter()
+            .map(|&(p, w)| w * Family::T6.physical_derivs(&x, p).unwrap().0)
+            .sum();
+        let exact = 0.5
+            * ((c[1][0] - c[0][0]) * (c[2][1] - c[0][1])
+                - (c[2][0] - c[0][0]) * (c[1][1] - c[0][1]));
+        assert!((area - exact).abs() < 1e-12);
+        x.swap(1, 2);
+        x.swap(3, 5);
+        assert!(Family::T6.physical_derivs(&x, [0.2, 0.2]).is_err());
+    }
+}
