@@ -4,6 +4,7 @@
 use asperity::app::calibrate::fit::{self, Point};
 use asperity::app::calibrate::gw::{self, Asperity, Distribution, Gw};
 use asperity::app::calibrate::profile::{Detrend, Heights};
+use asperity::numbers::fd;
 use std::f64::consts::PI;
 
 fn surface(distribution: Distribution) -> Gw {
@@ -33,7 +34,7 @@ fn gw_exponential_slope_is_minus_one_over_sigma() {
         let d = h * s;
         let step = 1e-3 * s;
         let d = d + step; // both samples at d ≥ 0
-        let slope = (g.pressure(d + step).ln() - g.pressure(d - step).ln()) / (2.0 * step);
+        let slope = fd::central_derivative(|d| g.pressure(d).ln(), d, step);
         worst_slope = worst_slope.max((slope * s + 1.0).abs());
         worst_p = worst_p.max((g.pressure(d) / (coef * (-d / s).exp()) - 1.0).abs());
     }
@@ -314,7 +315,7 @@ fn tangential_over_normal_stiffness_is_four_g_star_over_e_star() {
         for h in [-0.5, 0.5, 1.5, 3.0] {
             let d = h * g.sigma;
             let step = 1e-4 * g.sigma;
-            let dp = (g.pressure(d - step) - g.pressure(d + step)) / (2.0 * step);
+            let dp = -fd::central_derivative(|d| g.pressure(d), d, step);
             let want = 4.0 * G_STAR / g.e_star * dp;
             let err = (g.tangential_stiffness(d, G_STAR) / want - 1.0).abs();
             worst = worst.max(err);

@@ -196,6 +196,7 @@ fn check_c_m(c: f64, m: f64) -> Result<(), String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::numbers::fd;
 
     fn laws() -> Vec<NormalLaw> {
         vec![
@@ -212,7 +213,7 @@ mod tests {
         for law in laws() {
             for &u in &[1e-4, 2e-3, 3.1e-3, 0.01, 0.02] {
                 let h = 1e-7 * u;
-                let fd = (law.pressure(u + h).0 - law.pressure(u - h).0) / (2.0 * h);
+                let fd = fd::central_derivative(|u| law.pressure(u).0, u, h);
                 let k = law.pressure(u).1;
                 assert!(
                     (fd - k).abs() <= 1e-6 * k.abs().max(1e-9),
@@ -229,7 +230,7 @@ mod tests {
                 let u = law.approach(p);
                 assert!((law.pressure(u).0 - p).abs() <= 1e-9 * p, "{law:?} p={p}");
                 let h = 1e-6 * u;
-                let fd = (law.energy(u + h) - law.energy(u - h)) / (2.0 * h);
+                let fd = fd::central_derivative(|u| law.energy(u), u, h);
                 assert!(
                     (fd - p).abs() <= 1e-6 * p,
                     "{law:?} energy derivative {fd} vs {p}"
@@ -258,9 +259,9 @@ mod tests {
             let (p, k) = law.pressure(u);
             assert!(p > 0.0 && k > 0.0, "u = {u}: p {p}, k {k}");
             let h = 1e-7 * u;
-            let fd = (law.pressure(u + h).0 - law.pressure(u - h).0) / (2.0 * h);
+            let fd = fd::central_derivative(|u| law.pressure(u).0, u, h);
             assert!((fd - k).abs() <= 1e-6 * k, "u = {u}: dp/du {k} vs FD {fd}");
-            let fe = (law.energy(u + h) - law.energy(u - h)) / (2.0 * h);
+            let fe = fd::central_derivative(|u| law.energy(u), u, h);
             assert!((fe - p).abs() <= 1e-6 * p, "u = {u}: dφ/du {fe} vs p {p}");
             assert!((law.approach(p) - u).abs() <= 1e-12 * u, "u = {u}: inverse");
             let sec = law.secant_stiffness(p);

@@ -394,6 +394,7 @@ fn segment_area(y: &[f64], d: &[f64], k: usize, h: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::numbers::fd;
 
     fn sample(f: impl Fn(f64) -> f64, xs: &[f64]) -> Vec<(f64, f64)> {
         xs.iter().map(|&x| (x, f(x))).collect()
@@ -428,7 +429,7 @@ mod tests {
         let t = Monotone::new(&pts, true, (1.0, f64::INFINITY), ("u", "p")).unwrap();
         for &x in &[0.1, 0.5, 0.7, 1.2, 3.1, 4.0, 6.0, 9.0] {
             let h = 1e-6 * x;
-            let fd = (t.integral(x + h) - t.integral(x - h)) / (2.0 * h);
+            let fd = fd::central_derivative(|x| t.integral(x), x, h);
             assert!((fd - t.eval(x).0).abs() <= 1e-7 * fd, "x = {x}");
             let y = t.eval(x).0;
             assert!((t.inverse(y) - x).abs() <= 1e-12 * x, "x = {x}");

@@ -114,6 +114,7 @@ pub fn interpolate(rule: &GaussRule, values: &[f64], [xa, ya]: [f64; 2]) -> f64 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::numbers::fd;
 
     #[test]
     fn partition_of_unity_and_kronecker() {
@@ -135,16 +136,9 @@ mod tests {
     fn derivatives_match_finite_differences() {
         let (x, y, h) = (0.31, -0.47, 1e-6);
         let d = shape_derivs(x, y);
-        let (px, mx, py, my) = (
-            shape(x + h, y),
-            shape(x - h, y),
-            shape(x, y + h),
-            shape(x, y - h),
-        );
-        for a in 0..8 {
-            assert!((d[a][0] - (px[a] - mx[a]) / (2.0 * h)).abs() < 1e-9);
-            assert!((d[a][1] - (py[a] - my[a]) / (2.0 * h)).abs() < 1e-9);
-        }
+        let jac = fd::central_jacobian(|p| shape(p[0], p[1]).to_vec(), &[x, y], h);
+        let worst = fd::worst(&jac, |a, k| d[a][k], fd::Scale::Absolute);
+        assert!(worst.diff < 1e-9, "∂N_a/∂ξ_k, {worst}");
     }
 
     #[test]

@@ -1,6 +1,7 @@
 use super::super::{FrictionScheme, NormalLaw, Pair, Point, Segment, TangentialLaw};
 use super::*;
 use crate::input::mesh::NodeDofs;
+use crate::numbers::fd;
 
 /// A vertical interface at r = 20 (A left, B right: n = −x, t = +y) of three
 /// coincident pairs, nodes A 0..3, B 3..6; one consistent point on it and
@@ -120,23 +121,17 @@ fn the_twisting_point_tangent_is_the_derivative_of_its_residual() {
             let (r, k, ev) = eval(&im, pt, &u, &committed, true);
             assert!(ev.p_n > 0.0);
             let nd = dofs.len();
-            let mut worst = 0.0f64;
             let scale = k.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-            for (j, &d) in dofs.iter().enumerate() {
-                let h = 1e-9;
-                let (mut up, mut um) = (u.clone(), u.clone());
-                up[d] += h;
-                um[d] -= h;
-                let rp = eval(&im, pt, &up, &committed, true).0;
-                let rm = eval(&im, pt, &um, &committed, true).0;
-                for i in 0..nd {
-                    let fd = (rp[i] - rm[i]) / (2.0 * h);
-                    worst = worst.max((fd - k[i * nd + j]).abs());
-                }
-            }
+            let h = 1e-9;
+            let jac = fd::central_columns(&vec![h; nd], |j, s| {
+                let mut up = u.clone();
+                up[dofs[j]] += s;
+                eval(&im, pt, &up, &committed, true).0
+            });
+            let worst = fd::worst(&jac, |i, j| k[i * nd + j], fd::Scale::Absolute);
             assert!(
-                worst < 1e-5 * scale,
-                "slip ({s1}, {s2}) from {from:?}: tangent off by {worst:e} of {scale:e} ({:?})",
+                worst.diff < 1e-5 * scale,
+                "slip ({s1}, {s2}) from {from:?}: tangent off by {worst} of {scale:e} ({:?})",
                 ev.status
             );
             // the residual is a (p_N g_N + p_T1 g_T1 + p_Tθ g_θ): the hoop

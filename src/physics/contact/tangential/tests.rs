@@ -1,4 +1,5 @@
 use super::*;
+use crate::numbers::fd;
 
 fn laws() -> Vec<TangentialLaw> {
     vec![
@@ -30,7 +31,7 @@ fn k_table_stiffness_is_continuous_with_its_derivative() {
         let (k, dk) = law.elastic_stiffness(p);
         assert!(k > 0.0 && dk > 0.0, "p = {p}");
         let h = 1e-6 * p;
-        let fd = (law.elastic_stiffness(p + h).0 - law.elastic_stiffness(p - h).0) / (2.0 * h);
+        let fd = fd::central_derivative(|p| law.elastic_stiffness(p).0, p, h);
         assert!(
             (fd - dk).abs() <= 1e-6 * dk,
             "p = {p}: dk/dp {dk} vs FD {fd}"
@@ -72,21 +73,26 @@ fn k_table_consistent_tangent_matches_finite_differences_in_every_regime() {
                         law.eval(p, kn, ut, &committed).p_t
                     };
                     let h = 1e-10;
-                    let fd_t = (f(un, ut + h) - f(un, ut - h)) / (2.0 * h);
-                    let fd_n = (f(un + h, ut) - f(un - h, ut)) / (2.0 * h);
+                    // columns ∂/∂u_N, ∂/∂u_T
+                    let jac = fd::central_jacobian(|x| vec![f(x[0], x[1])], &[un, ut], h);
                     let scale = law.elastic_stiffness(p).0;
+                    let t = fd::Mismatch::of(0, 1, ev.d_ut, jac[(0, 1)], fd::Scale::Absolute);
                     assert!(
-                        (fd_t - ev.d_ut).abs() < 1e-5 * scale,
-                        "un={un} ut={ut} {:?}: d_ut {} vs FD {fd_t}",
+                        t.diff < 1e-5 * scale,
+                        "un={un} ut={ut} {:?}: d_ut {t}",
                         ev.slip,
-                        ev.d_ut
                     );
-                    let nscale = ev.d_un.abs().max(scale * 1e-3).max(fd_n.abs());
+                    let n = fd::Mismatch::of(
+                        0,
+                        0,
+                        ev.d_un,
+                        jac[(0, 0)],
+                        fd::Scale::Relative(scale * 1e-3),
+                    );
                     assert!(
-                        (fd_n - ev.d_un).abs() < 1e-5 * nscale,
-                        "un={un} ut={ut} {:?}: d_un {} vs FD {fd_n}",
+                        n.diff < 1e-5 * n.scale,
+                        "un={un} ut={ut} {:?}: d_un {n}",
                         ev.slip,
-                        ev.d_un
                     );
                 }
             }
@@ -143,21 +149,26 @@ fn consistent_tangent_matches_finite_differences_in_every_regime() {
                     let (p, kn) = pressure(un);
                     law.eval(p, kn, ut, &committed).p_t
                 };
-                let fd_t = (f(un, ut + h) - f(un, ut - h)) / (2.0 * h);
-                let fd_n = (f(un + h, ut) - f(un - h, ut)) / (2.0 * h);
+                // columns ∂/∂u_N, ∂/∂u_T
+                let jac = fd::central_jacobian(|x| vec![f(x[0], x[1])], &[un, ut], h);
                 let scale = law.elastic_stiffness(p).0;
+                let t = fd::Mismatch::of(0, 1, ev.d_ut, jac[(0, 1)], fd::Scale::Absolute);
                 assert!(
-                    (fd_t - ev.d_ut).abs() < 1e-5 * scale,
-                    "{law:?} {committed:?} ut={ut} {:?}: d_ut {} vs FD {fd_t}",
+                    t.diff < 1e-5 * scale,
+                    "{law:?} {committed:?} ut={ut} {:?}: d_ut {t}",
                     ev.slip,
-                    ev.d_ut
                 );
-                let nscale = ev.d_un.abs().max(scale * 1e-3);
+                let n = fd::Mismatch::of(
+                    0,
+                    0,
+                    ev.d_un,
+                    jac[(0, 0)],
+                    fd::Scale::Relative(scale * 1e-3),
+                );
                 assert!(
-                    (fd_n - ev.d_un).abs() < 1e-5 * nscale.max(fd_n.abs()),
-                    "{law:?} ut={ut} {:?}: d_un {} vs FD {fd_n}",
+                    n.diff < 1e-5 * n.scale,
+                    "{law:?} ut={ut} {:?}: d_un {n}",
                     ev.slip,
-                    ev.d_un
                 );
             }
         }

@@ -4,6 +4,7 @@
 //! error: `vector_paths_tests`.
 
 use super::*;
+use crate::numbers::fd;
 
 /// p(u_N) = (u/c)², as in the scalar law's tests.
 pub(super) fn pressure(un: f64) -> (f64, f64) {
@@ -271,46 +272,52 @@ fn vector_tangents_match_finite_differences_after_2d_histories() {
                         seen.push(ev.slip);
                         let k = law.elastic_stiffness(p).0;
                         let (h, hn) = (1e-7 * f, 1e-9);
-                        let t0 = g(un, u);
                         // columns ∂p/∂u₁, ∂p/∂u₂, ∂p/∂u_N by central differences;
                         // one-sided ones that disagree: a kink (an element
                         // starting or ending to slide) here, not checked
-                        let mut cols = [[0.0; 2]; 3];
-                        let mut smooth = true;
-                        for (j, col) in cols.iter_mut().enumerate() {
-                            let (tp, tm, step, scale) = if j < 2 {
-                                let (mut up, mut um) = (u, u);
-                                up[j] += h;
-                                um[j] -= h;
-                                (g(un, up), g(un, um), h, k)
+                        let diffs = fd::sided_columns(&[h, h, hn], |j, step| {
+                            if j < 2 {
+                                let mut v = u;
+                                v[j] += step;
+                                g(un, v).to_vec()
                             } else {
-                                let s = ev.d_un[0].hypot(ev.d_un[1]).max(k * 1e-2);
-                                (g(un + hn, u), g(un - hn, u), hn, s)
-                            };
-                            for i in 0..2 {
-                                let (fwd, bwd) = ((tp[i] - t0[i]) / step, (t0[i] - tm[i]) / step);
-                                smooth &= (fwd - bwd).abs() < 1e-4 * scale;
-                                col[i] = (tp[i] - tm[i]) / (2.0 * step);
+                                g(un + step, u).to_vec()
                             }
-                        }
+                        });
+                        let s = ev.d_un[0].hypot(ev.d_un[1]).max(k * 1e-2);
+                        let smooth = (0..3).all(|j| {
+                            let scale = if j < 2 { k } else { s };
+                            (0..2).all(|i| diffs.kink(i, j) < 1e-4 * scale)
+                        });
                         if !smooth {
                             continue;
                         }
                         checked += 1;
                         for (i, (row, dun)) in ev.d_ut.iter().zip(ev.d_un).enumerate() {
-                            for (j, (&dij, col)) in row.iter().zip(&cols).enumerate() {
+                            for (j, &dij) in row.iter().enumerate() {
+                                let m = fd::Mismatch::of(
+                                    i,
+                                    j,
+                                    dij,
+                                    diffs.central[(i, j)],
+                                    fd::Scale::Absolute,
+                                );
                                 assert!(
-                                    (col[i] - dij).abs() < 1e-5 * k,
-                                    "{law:?} {name}, d = {d} f, α = {alpha}, {:?}: ∂p{i}/∂u{j} {dij} vs FD {}",
+                                    m.diff < 1e-5 * k,
+                                    "{law:?} {name}, d = {d} f, α = {alpha}, {:?}: ∂p{i}/∂u{j} {m}",
                                     ev.slip,
-                                    col[i]
                                 );
                             }
-                            let fd = cols[2][i];
-                            let nscale = dun.abs().max(fd.abs()).max(k * 1e-3);
+                            let m = fd::Mismatch::of(
+                                i,
+                                2,
+                                dun,
+                                diffs.central[(i, 2)],
+                                fd::Scale::Relative(k * 1e-3),
+                            );
                             assert!(
-                                (fd - dun).abs() < 1e-5 * nscale,
-                                "{law:?} {name}, d = {d} f, α = {alpha}, {:?}: ∂p{i}/∂u_N {dun} vs FD {fd}",
+                                m.diff < 1e-5 * m.scale,
+                                "{law:?} {name}, d = {d} f, α = {alpha}, {:?}: ∂p{i}/∂u_N {m}",
                                 ev.slip
                             );
                         }
