@@ -376,6 +376,13 @@ impl Model {
         })
     }
 
+    /// Replaces the mesh's elements and their Gauss point layout together
+    /// (a model posed by hand, in tests: the layout follows the elements).
+    pub fn set_elements(&mut self, elements: Vec<crate::input::mesh::Element>) {
+        self.mesh.elements = elements;
+        self.gauss_offsets = gauss_offsets(&self.mesh, &self.rules);
+    }
+
     /// The element owning Gauss point state `i` (`i` < [`Model::n_points`]).
     pub fn element_of_point(&self, i: usize) -> usize {
         self.gauss_offsets.partition_point(|&o| o <= i) - 1

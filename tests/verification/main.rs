@@ -43,3 +43,4 @@ mod tangents;
 mod threads;
 mod torque_fit;
 mod torsion;
+mod triangles;

@@ -266,12 +266,13 @@ fn a_hanging_node_passes_the_patch_test() {
             1e-3 * (0.4 * p[0] + 1.1 * p[1]) - 0.02,
         ]
     };
+    model.set_elements(
+        els.iter()
+            .map(|&nodes| asperity::input::mesh::Element::q8(nodes, 0))
+            .collect(),
+    );
     let mesh = &mut model.mesh;
     mesh.nodes = nodes.clone();
-    mesh.elements = els
-        .iter()
-        .map(|&nodes| asperity::input::mesh::Element::q8(nodes, 0))
-        .collect();
     mesh.node_sets.clear();
     mesh.edge_sets.clear();
     model.sections.clear();
