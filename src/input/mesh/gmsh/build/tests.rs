@@ -297,3 +297,28 @@ fn a_curve_between_two_quadrangles_of_its_body_is_refused() {
         "{e}"
     );
 }
+
+/// The punch meshed by Gmsh in 6-node triangles (type 9).
+const TRIANGLES: &str = include_str!(concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/tests/data/tiny-t6.msh"
+));
+
+/// A triangle given clockwise (corners 0, 2, 1 and its midsides to match)
+/// is read as the same counter-clockwise element.
+#[test]
+fn a_clockwise_triangle_is_turned_counter_clockwise() {
+    let read = |text: &str| {
+        let msh = parse_msh(text.as_bytes(), "t.msh").unwrap();
+        build_mesh(&msh, &[], "case.toml").unwrap()
+    };
+    let mesh = read(TRIANGLES);
+    assert!(mesh.elements.iter().all(|el| el.family == Family::T6));
+    mesh.validate().unwrap();
+    // element 13: corners 1 2 28, midsides 11 29 30 → 1 28 2, 30 29 11
+    let turned = TRIANGLES.replacen("\n13 1 2 28 11 29 30 \n", "\n13 1 28 2 30 29 11 \n", 1);
+    assert_ne!(turned, TRIANGLES);
+    let again = read(&turned);
+    again.validate().unwrap();
+    assert_eq!(again.elements, mesh.elements);
+}
