@@ -12,7 +12,7 @@
 use crate::error::{clip, Error, Result};
 use crate::input::case::ranges;
 use crate::input::case::{Case, MAX_ELEMENTS};
-use crate::input::mesh::{Family, Mesh};
+use crate::input::mesh::Mesh;
 use std::collections::{BTreeMap, HashMap, HashSet};
 
 fn mesh_err(place: &str, message: String) -> Error {
@@ -404,14 +404,9 @@ fn share_area(mesh: &Mesh, a: usize, b: usize, tol: f64, h: f64) -> bool {
         })
 }
 
-/// Where a message places element e: the middle of its first diagonal (a
-/// quadrilateral), its centroid (a triangle).
+/// Where a message places element e ([`crate::input::mesh::Family::label_point`]).
 fn near(mesh: &Mesh, e: usize) -> [f64; 2] {
-    let c = mesh.element_coords(e);
-    match mesh.elements[e].family {
-        Family::Q8 => [(c[0][0] + c[2][0]) / 2.0, (c[0][1] + c[2][1]) / 2.0],
-        Family::T6 => mesh.centroid(e),
-    }
+    mesh.elements[e].family.label_point(&mesh.element_coords(e))
 }
 
 fn cross(o: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {

@@ -140,14 +140,5 @@ fn mean(at: &[(usize, usize)], recovered: &[[Stress; 8]]) -> Stress {
 /// The element's diameter: the longer diagonal between its corners (a
 /// quad), its longest side (a triangle).
 pub fn diameter(mesh: &crate::input::mesh::Mesh, e: usize) -> f64 {
-    let el = &mesh.elements[e];
-    let n = el.nodes();
-    let d = |a: usize, b: usize| {
-        let (p, q) = (mesh.nodes[n[a]], mesh.nodes[n[b]]);
-        (p[0] - q[0]).hypot(p[1] - q[1])
-    };
-    match el.family {
-        crate::input::mesh::Family::Q8 => d(0, 2).max(d(1, 3)),
-        crate::input::mesh::Family::T6 => d(0, 1).max(d(1, 2)).max(d(2, 0)),
-    }
+    mesh.elements[e].family.diameter(&mesh.element_coords(e))
 }

@@ -101,6 +101,37 @@ impl Family {
         }
     }
 
+    /// The element's local nodes in the order that walks it the other way
+    /// round (a clockwise element given to the reader, turned).
+    pub fn reversed(self) -> &'static [usize] {
+        match self {
+            Family::Q8 => &[0, 3, 2, 1, 7, 6, 5, 4],
+            Family::T6 => &[0, 2, 1, 5, 4, 3],
+        }
+    }
+
+    /// The element's diameter from its node coordinates: the longer diagonal
+    /// between its corners (a quad), its longest side (a triangle).
+    pub fn diameter(self, c: &[[f64; 2]]) -> f64 {
+        let d = |a: usize, b: usize| (c[a][0] - c[b][0]).hypot(c[a][1] - c[b][1]);
+        match self {
+            Family::Q8 => d(0, 2).max(d(1, 3)),
+            Family::T6 => d(0, 1).max(d(1, 2)).max(d(2, 0)),
+        }
+    }
+
+    /// Where a message places the element: the middle of its first
+    /// diagonal (a quad), the mean of its corners (a triangle).
+    pub fn label_point(self, c: &[[f64; 2]]) -> [f64; 2] {
+        match self {
+            Family::Q8 => [(c[0][0] + c[2][0]) / 2.0, (c[0][1] + c[2][1]) / 2.0],
+            Family::T6 => [
+                (c[0][0] + c[1][0] + c[2][0]) / 3.0,
+                (c[0][1] + c[1][1] + c[2][1]) / 3.0,
+            ],
+        }
+    }
+
     /// Shape functions at ξ, the first [`Family::nodes`] used.
     pub fn shape(self, [xi, eta]: [f64; 2]) -> [f64; MAX_NODES] {
         let mut n = [0.0; MAX_NODES];

@@ -139,10 +139,10 @@ fn add_elements(msh: &MshFile, block_body: &[Option<usize>], new_id: &[usize], m
                 })
                 .sum();
             // clockwise: walk the corners the other way round
-            let n = match (area2 < 0.0, family) {
-                (false, _) => n,
-                (true, Family::Q8) => vec![n[0], n[3], n[2], n[1], n[7], n[6], n[5], n[4]],
-                (true, Family::T6) => vec![n[0], n[2], n[1], n[5], n[4], n[3]],
+            let n = if area2 < 0.0 {
+                family.reversed().iter().map(|&a| n[a]).collect()
+            } else {
+                n
             };
             mesh.elements.push(Element::new(family, &n, body));
         }

@@ -1,6 +1,6 @@
 use super::*;
-use crate::input::mesh::Element;
 use crate::input::mesh::blocks;
+use crate::input::mesh::Element;
 
 /// A mesh of `nx` × `ny` unit squares from the block generator (with a
 /// `bottom` edge set and node set), through the case parser.
@@ -105,8 +105,10 @@ fn triangles(nx: usize, ny: usize) -> Mesh {
         let (a, c) = (mesh.nodes[q[0]], mesh.nodes[q[2]]);
         mesh.nodes.push([(a[0] + c[0]) / 2.0, (a[1] + c[1]) / 2.0]);
         let d = mesh.nodes.len() - 1;
-        mesh.elements.push(Element::t6([q[0], q[1], q[2], q[4], q[5], d], el.body));
-        mesh.elements.push(Element::t6([q[0], q[2], q[3], d, q[6], q[7]], el.body));
+        mesh.elements
+            .push(Element::t6([q[0], q[1], q[2], q[4], q[5], d], el.body));
+        mesh.elements
+            .push(Element::t6([q[0], q[2], q[3], d, q[6], q[7]], el.body));
     }
     mesh.validate().unwrap();
     mesh
@@ -133,7 +135,12 @@ fn uniform_refinement_of_triangles_and_quads_keeps_the_area_and_hangs_nothing() 
     assert_eq!(mesh.elements.len(), 7);
     let r = uniform(&mesh).unwrap();
     assert_eq!(r.mesh.elements.len(), 28);
-    let t6 = r.mesh.elements.iter().filter(|el| el.family == Family::T6).count();
+    let t6 = r
+        .mesh
+        .elements
+        .iter()
+        .filter(|el| el.family == Family::T6)
+        .count();
     assert_eq!(t6, 24);
     assert!(r.hanging.is_empty());
     r.mesh.validate().unwrap();
