@@ -9,6 +9,7 @@
 //! three nodes, so interfaces, edge loads and pretension cuts see one kind of
 //! side whichever element it bounds.
 
+pub use super::gauss::GaussRule;
 use super::{q8, t6};
 use nalgebra::{DMatrix, DVector};
 
@@ -17,13 +18,6 @@ pub const MAX_NODES: usize = 8;
 
 /// Most Gauss points of a rule of any family (3×3).
 pub const MAX_POINTS: usize = 9;
-
-/// A Gauss rule: natural coordinates and weights (on [−1, 1]² for the quad,
-/// on the reference triangle of area ½ for the triangle).
-#[derive(Clone, Debug, PartialEq)]
-pub struct GaussRule {
-    pub points: Vec<([f64; 2], f64)>,
-}
 
 /// An element family.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]

@@ -6,6 +6,7 @@ pub mod axisymmetric_twist;
 pub mod dofs;
 pub mod edge;
 pub mod family;
+pub mod gauss;
 pub mod q8;
 pub mod solid;
 pub mod t6;

@@ -12,7 +12,7 @@
 //! ```
 
 pub use super::edge::gauss_1d;
-use super::family::GaussRule;
+use super::gauss::GaussRule;
 
 /// Natural coordinates of the nodes.
 pub const NODE_XI: [[f64; 2]; 8] = [

@@ -16,7 +16,7 @@
 //! coordinates (ZTZ table 6.3; Strang & Fix / Dunavant): 3 points exact for
 //! degree 2, 6 points exact for degree 4.
 
-use super::family::GaussRule;
+use super::gauss::GaussRule;
 
 /// Natural coordinates (ξ, η) of the nodes.
 pub const NODE_XI: [[f64; 2]; 6] = [
