@@ -297,12 +297,29 @@ pub struct Layout {
     body: Vec<u8>,
 }
 
+/// What both encodings write of the mesh: counts, node coordinates,
+/// connectivity ends, element bodies and the point arrays' names.
+struct MeshArrays<'m> {
+    mesh: &'m crate::input::mesh::Mesh,
+    nn: usize,
+    ne: usize,
+    /// Each cell's end in the connectivity (VTK's offsets).
+    ends: Vec<usize>,
+    /// The connectivity's length.
+    connectivity: usize,
+    /// x, y, 0 per node.
+    points: Vec<f64>,
+    /// The body of each cell.
+    body: Vec<f64>,
+    /// The point arrays with their components (the values are each frame's).
+    names: Vec<(&'static str, usize)>,
+}
+
 impl Layout {
     pub fn of(model: &Model, format: VtuFormat) -> Layout {
         let mesh = &model.mesh;
-        let nn = mesh.nodes.len();
-        let ne = mesh.elements.len();
-        // each cell's end in the connectivity (VTK's offsets)
+        let hoop = model.section.axisymmetric;
+        let twist = model.node_dofs().twist();
         let ends: Vec<usize> = mesh
             .elements
             .iter()
@@ -311,132 +328,166 @@ impl Layout {
                 Some(*at)
             })
             .collect();
-        let connectivity = ends.last().copied().unwrap_or(0);
-        let hoop = model.section.axisymmetric;
-        let twist = model.node_dofs().twist();
-        let points: Vec<f64> = mesh.nodes.iter().flat_map(|x| [x[0], x[1], 0.0]).collect();
-        let body: Vec<f64> = mesh.elements.iter().map(|e| e.body as f64).collect();
-        let mut head = Vec::new();
-        let mut middle = Vec::new();
-        let mut body_block = Vec::new();
-        // the names of the point arrays, with their components (the values
-        // are each frame's)
-        let empty = Frame::default();
-        let names: Vec<(&str, usize)> = empty
-            .point_arrays(hoop, twist)
-            .iter()
-            .map(|&(n, c, _)| (n, c))
-            .collect();
-        match format {
-            VtuFormat::Ascii => {
-                let h = &mut head;
-                h.extend_from_slice(b"<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n<UnstructuredGrid>\n");
-                let _ = writeln!(h, "<Piece NumberOfPoints=\"{nn}\" NumberOfCells=\"{ne}\">");
-                h.extend_from_slice(
-                    b"<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n",
-                );
-                for x in &mesh.nodes {
-                    let _ = writeln!(h, "{:e} {:e} 0", x[0], x[1]);
-                }
-                h.extend_from_slice(b"</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
-                for el in &mesh.elements {
-                    let n: Vec<String> = el.nodes().iter().map(|n| n.to_string()).collect();
-                    let _ = writeln!(h, "{}", n.join(" "));
-                }
-                h.extend_from_slice(
-                    b"</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n",
-                );
-                for end in &ends {
-                    let _ = write!(h, "{end} ");
-                }
-                h.extend_from_slice(
-                    b"\n</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n",
-                );
-                for el in &mesh.elements {
-                    let _ = write!(h, "{} ", el.family.vtk_cell());
-                }
-                h.extend_from_slice(b"\n</DataArray>\n</Cells>\n<PointData Vectors=\"displacement\" Scalars=\"von_mises\">\n");
-                middle.extend_from_slice(b"</PointData>\n<CellData>\n");
-                let _ = ascii_array(&mut middle, "body", 1, Values::All(&body));
-            }
-            VtuFormat::Binary => {
-                // every block: its byte count (UInt64), then its bytes
-                let f64s = |n: usize| 8 + 8 * n as u64;
-                let mut offset = 0u64;
-                let mut next = |bytes: u64| {
-                    let at = offset;
-                    offset += bytes;
-                    at
-                };
-                let h = &mut head;
-                h.extend_from_slice(b"<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n<UnstructuredGrid>\n");
-                let _ = writeln!(h, "<Piece NumberOfPoints=\"{nn}\" NumberOfCells=\"{ne}\">");
-                let _ = writeln!(
-                    h,
-                    "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"appended\" offset=\"{}\"/>\n</Points>\n<Cells>",
-                    next(f64s(3 * nn))
-                );
-                let _ = writeln!(
-                    h,
-                    "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"appended\" offset=\"{}\"/>",
-                    next(f64s(connectivity))
-                );
-                let _ = writeln!(
-                    h,
-                    "<DataArray type=\"Int64\" Name=\"offsets\" format=\"appended\" offset=\"{}\"/>",
-                    next(f64s(ne))
-                );
-                let _ = writeln!(
-                    h,
-                    "<DataArray type=\"UInt8\" Name=\"types\" format=\"appended\" offset=\"{}\"/>\n</Cells>",
-                    next(8 + ne as u64)
-                );
-                h.extend_from_slice(
-                    b"<PointData Vectors=\"displacement\" Scalars=\"von_mises\">\n",
-                );
-                for &(name, comps) in &names {
-                    let _ = writeln!(
-                        h,
-                        "<DataArray type=\"Float64\" Name=\"{name}\" NumberOfComponents=\"{comps}\" format=\"appended\" offset=\"{}\"/>",
-                        next(f64s(comps * nn))
-                    );
-                }
-                h.extend_from_slice(b"</PointData>\n<CellData>\n");
-                let cells = std::iter::once("body").chain(empty.cell_arrays().map(|a| a.0));
-                for name in cells {
-                    let _ = writeln!(
-                        h,
-                        "<DataArray type=\"Float64\" Name=\"{name}\" NumberOfComponents=\"1\" format=\"appended\" offset=\"{}\"/>",
-                        next(f64s(ne))
-                    );
-                }
-                h.extend_from_slice(b"</CellData>\n</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_");
-                // the mesh blocks follow the XML directly
-                raw_f64(h, Values::All(&points));
-                raw_len(h, 8 * connectivity);
-                for el in &mesh.elements {
-                    for &n in el.nodes().iter() {
-                        h.extend_from_slice(&(n as i64).to_le_bytes());
-                    }
-                }
-                raw_len(h, 8 * ne);
-                for &end in &ends {
-                    h.extend_from_slice(&(end as i64).to_le_bytes());
-                }
-                raw_len(h, ne);
-                h.extend(mesh.elements.iter().map(|el| el.family.vtk_cell()));
-                raw_f64(&mut body_block, Values::All(&body));
-                middle.extend_from_slice(b"\n</AppendedData>\n</VTKFile>\n");
-            }
-        }
+        let m = MeshArrays {
+            mesh,
+            nn: mesh.nodes.len(),
+            ne: mesh.elements.len(),
+            connectivity: ends.last().copied().unwrap_or(0),
+            ends,
+            points: mesh.nodes.iter().flat_map(|x| [x[0], x[1], 0.0]).collect(),
+            body: mesh.elements.iter().map(|e| e.body as f64).collect(),
+            names: Frame::default()
+                .point_arrays(hoop, twist)
+                .iter()
+                .map(|&(n, c, _)| (n, c))
+                .collect(),
+        };
+        let (head, middle, body) = match format {
+            VtuFormat::Ascii => Self::ascii(&m),
+            VtuFormat::Binary => Self::binary(&m),
+        };
         Layout {
             format,
             hoop,
             twist,
             head,
             middle,
-            body: body_block,
+            body,
         }
+    }
+
+    /// The ASCII document's head (up to the point data) and its middle
+    /// (from the point data to the cell data's `body`); no body block.
+    fn ascii(m: &MeshArrays<'_>) -> (Vec<u8>, Vec<u8>, Vec<u8>) {
+        let MeshArrays {
+            mesh,
+            nn,
+            ne,
+            ends,
+            body,
+            ..
+        } = m;
+        let (nn, ne) = (*nn, *ne);
+        let mut head = Vec::new();
+        let mut middle = Vec::new();
+        let h = &mut head;
+        h.extend_from_slice(b"<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n<UnstructuredGrid>\n");
+        let _ = writeln!(h, "<Piece NumberOfPoints=\"{nn}\" NumberOfCells=\"{ne}\">");
+        h.extend_from_slice(
+            b"<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n",
+        );
+        for x in &mesh.nodes {
+            let _ = writeln!(h, "{:e} {:e} 0", x[0], x[1]);
+        }
+        h.extend_from_slice(b"</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
+        for el in &mesh.elements {
+            let n: Vec<String> = el.nodes().iter().map(|n| n.to_string()).collect();
+            let _ = writeln!(h, "{}", n.join(" "));
+        }
+        h.extend_from_slice(
+            b"</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n",
+        );
+        for end in ends.iter() {
+            let _ = write!(h, "{end} ");
+        }
+        h.extend_from_slice(
+            b"\n</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n",
+        );
+        for el in &mesh.elements {
+            let _ = write!(h, "{} ", el.family.vtk_cell());
+        }
+        h.extend_from_slice(b"\n</DataArray>\n</Cells>\n<PointData Vectors=\"displacement\" Scalars=\"von_mises\">\n");
+        middle.extend_from_slice(b"</PointData>\n<CellData>\n");
+        let _ = ascii_array(&mut middle, "body", 1, Values::All(&body));
+        (head, middle, Vec::new())
+    }
+
+    /// The binary document's head (the XML and the mesh blocks), its middle
+    /// (its end) and the `body` block, which follows the point data blocks.
+    fn binary(m: &MeshArrays<'_>) -> (Vec<u8>, Vec<u8>, Vec<u8>) {
+        let MeshArrays {
+            mesh,
+            nn,
+            ne,
+            ends,
+            connectivity,
+            points,
+            body,
+            names,
+        } = m;
+        let (nn, ne, connectivity) = (*nn, *ne, *connectivity);
+        let empty = Frame::default();
+        let mut head = Vec::new();
+        let mut middle = Vec::new();
+        let mut body_block = Vec::new();
+        // every block: its byte count (UInt64), then its bytes
+        let f64s = |n: usize| 8 + 8 * n as u64;
+        let mut offset = 0u64;
+        let mut next = |bytes: u64| {
+            let at = offset;
+            offset += bytes;
+            at
+        };
+        let h = &mut head;
+        h.extend_from_slice(b"<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n<UnstructuredGrid>\n");
+        let _ = writeln!(h, "<Piece NumberOfPoints=\"{nn}\" NumberOfCells=\"{ne}\">");
+        let _ = writeln!(
+        h,
+        "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"appended\" offset=\"{}\"/>\n</Points>\n<Cells>",
+        next(f64s(3 * nn))
+    );
+        let _ = writeln!(
+            h,
+            "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"appended\" offset=\"{}\"/>",
+            next(f64s(connectivity))
+        );
+        let _ = writeln!(
+            h,
+            "<DataArray type=\"Int64\" Name=\"offsets\" format=\"appended\" offset=\"{}\"/>",
+            next(f64s(ne))
+        );
+        let _ = writeln!(
+        h,
+        "<DataArray type=\"UInt8\" Name=\"types\" format=\"appended\" offset=\"{}\"/>\n</Cells>",
+        next(8 + ne as u64)
+    );
+        h.extend_from_slice(b"<PointData Vectors=\"displacement\" Scalars=\"von_mises\">\n");
+        for &(name, comps) in names.iter() {
+            let _ = writeln!(
+            h,
+            "<DataArray type=\"Float64\" Name=\"{name}\" NumberOfComponents=\"{comps}\" format=\"appended\" offset=\"{}\"/>",
+            next(f64s(comps * nn))
+        );
+        }
+        h.extend_from_slice(b"</PointData>\n<CellData>\n");
+        let cells = std::iter::once("body").chain(empty.cell_arrays().map(|a| a.0));
+        for name in cells {
+            let _ = writeln!(
+            h,
+            "<DataArray type=\"Float64\" Name=\"{name}\" NumberOfComponents=\"1\" format=\"appended\" offset=\"{}\"/>",
+            next(f64s(ne))
+        );
+        }
+        h.extend_from_slice(
+            b"</CellData>\n</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_",
+        );
+        // the mesh blocks follow the XML directly
+        raw_f64(h, Values::All(&points));
+        raw_len(h, 8 * connectivity);
+        for el in &mesh.elements {
+            for &n in el.nodes().iter() {
+                h.extend_from_slice(&(n as i64).to_le_bytes());
+            }
+        }
+        raw_len(h, 8 * ne);
+        for &end in ends.iter() {
+            h.extend_from_slice(&(end as i64).to_le_bytes());
+        }
+        raw_len(h, ne);
+        h.extend(mesh.elements.iter().map(|el| el.family.vtk_cell()));
+        raw_f64(&mut body_block, Values::All(&body));
+        middle.extend_from_slice(b"\n</AppendedData>\n</VTKFile>\n");
+        (head, middle, body_block)
     }
 
     /// Writes the document of one frame to `w` (the document of a 1M-dof
