@@ -42,7 +42,7 @@ fn model(node_dofs: NodeDofs) -> InterfaceModel {
         name: "fit".into(),
         body_a: 0,
         body_b: 1,
-        law: NormalLaw::new_power(0.001, 0.5).unwrap(),
+        law: crate::physics::contact::normal::power::new(0.001, 0.5).unwrap(),
         gap: -0.004,
         gap_history: None,
         pairs,

@@ -15,91 +15,175 @@
 //! [`super::table`]: a power law through the origin below the first point,
 //! Fritsch-Butland monotone cubic Hermite between points, linear beyond the last).
 //!
+//! Each law is one file of this folder: its parameters (keys, engineering
+//! ranges), how it is built from them and checked, how `asperity check`
+//! describes it, and its evaluation ([`Law`]); [`KINDS`] lists them. The
+//! case's checks, the documentation's table of ranges and `check` go through
+//! [`KINDS`] and [`Law`], never through a list of their own.
+//!
 //! For u_N ≤ 0 the pair is open: p = 0, k = 0 (loss of contact, section 2.3).
 //! The power law has k = 0 at u = 0 when m < 1, so the first iteration of a
 //! load step uses the secant stiffness k = p_ref / u(p_ref) (eq. 2.8-2.9).
 
+pub mod exponential;
+pub mod linear;
+pub mod power;
+pub mod table;
+
 use super::table::Monotone;
+use crate::physics::range::Range;
 use std::sync::Arc;
 
-/// A normal compliance law. Parameters are validated by [`NormalLaw::new_power`] & co.
-/// `Clone` (not `Copy`): a table holds its points (shared, behind an `Arc`).
-#[derive(Clone, Debug, PartialEq)]
-pub enum NormalLaw {
-    Power {
-        c: f64,
-        m: f64,
-    },
-    Exponential {
-        a: f64,
-        b: f64,
-    },
-    Linear {
-        c: f64,
-        m: f64,
-        slope: f64,
-        p_c: f64,
-    },
-    /// Measured (u_N, p) points, interpolated monotonically.
-    Table(Arc<Monotone>),
+/// Every normal law, in the order the case's refusals list them
+/// (`law = "…" is not a known law (power, exponential, linear, table)`).
+pub const KINDS: &[&Kind] = &[
+    &power::KIND,
+    &exponential::KIND,
+    &linear::KIND,
+    &table::KIND,
+];
+
+/// A normal law's kind: its name (the case's `law`), its parameters and how
+/// it is built from them. One per file of this folder.
+pub struct Kind {
+    pub name: &'static str,
+    /// Its keys in `[interface.<name>]`, in the order their ranges are checked.
+    pub params: &'static [Param],
+    /// The law from its parameters (every one given, checked by the law:
+    /// the message names the key).
+    pub build: fn(&Given) -> Result<NormalLaw, String>,
 }
 
+/// One parameter of a law: its key and what it holds.
+#[derive(Clone, Copy, Debug)]
+pub struct Param {
+    pub key: &'static str,
+    pub holds: Holds,
+}
+
+/// What a parameter holds.
+#[derive(Clone, Copy, Debug)]
+pub enum Holds {
+    /// A number within a range (none: the law's own check bounds it, as m ∈ (0, 1]).
+    Number(Option<&'static Range>),
+    /// Rows of two numbers, each column named and within its range.
+    Rows([(&'static str, &'static Range); 2]),
+}
+
+/// A value of a parameter as the case gives it.
+#[derive(Clone, Copy, Debug)]
+pub enum Value<'a> {
+    Number(f64),
+    Rows(&'a [Vec<f64>]),
+}
+
+/// The law parameters a case gives (key, value), whichever law they belong to.
+pub struct Given<'a>(pub Vec<(&'static str, Value<'a>)>);
+
+impl Given<'_> {
+    /// Is `key` given?
+    pub fn has(&self, key: &str) -> bool {
+        self.0.iter().any(|(k, _)| *k == key)
+    }
+
+    /// The number at `key` (NaN when not given or not a number: the law's
+    /// check refuses it).
+    pub fn number(&self, key: &str) -> f64 {
+        self.0
+            .iter()
+            .find_map(|(k, v)| match v {
+                Value::Number(x) if *k == key => Some(*x),
+                _ => None,
+            })
+            .unwrap_or(f64::NAN)
+    }
+
+    /// The rows at `key` (none when not given).
+    pub fn rows(&self, key: &str) -> &[Vec<f64>] {
+        self.0
+            .iter()
+            .find_map(|(k, v)| match v {
+                Value::Rows(r) if *k == key => Some(*r),
+                _ => None,
+            })
+            .unwrap_or(&[])
+    }
+}
+
+/// Every parameter of every law once, the tables first, then the numbers in
+/// the order of [`KINDS`]: the order in which a case's law keys are checked
+/// (and the first refusal named).
+pub fn all_params() -> Vec<&'static Param> {
+    let mut out: Vec<&'static Param> = Vec::new();
+    let rows = |p: &&Param| matches!(p.holds, Holds::Rows(_));
+    for tables in [true, false] {
+        for p in KINDS.iter().flat_map(|k| k.params) {
+            if rows(&p) == tables && !out.iter().any(|q| q.key == p.key) {
+                out.push(p);
+            }
+        }
+    }
+    out
+}
+
+/// The law named `name` (the case's `law`).
+pub fn kind(name: &str) -> Result<&'static Kind, String> {
+    KINDS
+        .iter()
+        .copied()
+        .find(|k| k.name == name)
+        .ok_or_else(|| {
+            let names: Vec<&str> = KINDS.iter().map(|k| k.name).collect();
+            format!("law = \"{name}\" is not a known law ({})", names.join(", "))
+        })
+}
+
+impl Kind {
+    /// The law from the parameters a case gives: each of its own needed,
+    /// every other law's refused (in the order of [`all_params`]), then
+    /// built and checked.
+    pub fn from_given(&self, given: &Given) -> Result<NormalLaw, String> {
+        let law = self.name;
+        for p in all_params() {
+            let own = self.params.iter().any(|q| q.key == p.key);
+            match (own, given.has(p.key)) {
+                (true, false) => return Err(format!("the {law} law needs `{}`", p.key)),
+                (false, true) => {
+                    return Err(format!("`{}` is not a parameter of the {law} law", p.key))
+                }
+                _ => {}
+            }
+        }
+        (self.build)(given)
+    }
+}
+
+/// One normal law's evaluation (for an approach u > 0 and a pressure p > 0:
+/// [`NormalLaw`] answers the open pair itself).
+pub trait Law: std::fmt::Debug + Send + Sync {
+    /// Pressure and stiffness (p, dp/du) at approach u > 0.
+    fn pressure(&self, u: f64) -> (f64, f64);
+    /// Approach u at pressure p > 0 (the law's inverse).
+    fn approach(&self, p: f64) -> f64;
+    /// Stored energy per unit area ∫₀ᵘ p(s) ds, u > 0.
+    fn energy(&self, u: f64) -> f64;
+    /// The law as `asperity check` prints it.
+    fn describe(&self) -> String;
+    /// The measured points, when the law is a table (its extrapolation is reported).
+    fn table(&self) -> Option<&Monotone> {
+        None
+    }
+}
+
+/// A normal compliance law (one of [`KINDS`], built by its file's `new`).
+/// `Clone`: the law is shared behind an `Arc`.
+#[derive(Clone, Debug)]
+pub struct NormalLaw(Arc<dyn Law>);
+
 impl NormalLaw {
-    /// Power law u = c p^m; c > 0, m ∈ (0, 1].
-    pub fn new_power(c: f64, m: f64) -> Result<Self, String> {
-        check_c_m(c, m)?;
-        Ok(NormalLaw::Power { c, m })
-    }
-
-    /// Exponential law p = a (e^{b u} − 1); a > 0, b > 0.
-    pub fn new_exponential(a: f64, b: f64) -> Result<Self, String> {
-        if !(a.is_finite() && a > 0.0) {
-            return Err(format!("a = {a} must be a positive number (MPa)"));
-        }
-        if !(b.is_finite() && b > 0.0) {
-            return Err(format!("b = {b} must be a positive number (1/mm)"));
-        }
-        Ok(NormalLaw::Exponential { a, b })
-    }
-
-    /// Power law below p_c, linear u = A p + B above; A > 0, p_c > 0, and the
-    /// linear branch must be at least as stiff as the power law at p_c
-    /// (A ≤ du/dp there) so the law stays convex-monotone.
-    pub fn new_linear(c: f64, m: f64, slope: f64, p_c: f64) -> Result<Self, String> {
-        check_c_m(c, m)?;
-        if !(slope.is_finite() && slope > 0.0) {
-            return Err(format!(
-                "slope A = {slope} must be a positive number (mm/MPa)"
-            ));
-        }
-        if !(p_c.is_finite() && p_c > 0.0) {
-            return Err(format!("p_c = {p_c} must be a positive number (MPa)"));
-        }
-        let dudp = c * m * p_c.powf(m - 1.0);
-        if slope > dudp * (1.0 + 1e-12) {
-            return Err(format!(
-                "slope A = {slope} mm/MPa is softer than the power law at p_c (its du/dp there, \
-                 c_n m p_c^(m-1) = {c} · {m} · {p_c}^({m} - 1), is {dudp:.4e} mm/MPa); \
-                 the linear branch must be stiffer"
-            ));
-        }
-        Ok(NormalLaw::Linear { c, m, slope, p_c })
-    }
-
-    /// Measured points (u_N mm, p MPa), the origin implied: at least 2, both
-    /// columns positive and strictly increasing, finite. A first row (0, 0) is
-    /// the origin itself and is dropped. Below the first point p = p₁ (u/u₁)^{1/m₁},
-    /// m₁ = ln(u₂/u₁)/ln(p₂/p₁) clamped to (0, 1] (the paper's power law 2.1 near
-    /// u = 0); above the last point linear with the end stiffness.
-    pub fn new_table(rows: &[(f64, f64)]) -> Result<Self, String> {
-        // the messages number the rows as written, the origin included
-        let (rows, first) = match rows.first() {
-            Some(&(u, p)) if u == 0.0 && p == 0.0 => (&rows[1..], 2),
-            _ => (rows, 1),
-        };
-        // q = 1/m ≥ 1: m in (0, 1]
-        let t = Monotone::numbered(rows, true, (1.0, f64::INFINITY), ("u_N", "p"), first)?;
-        Ok(NormalLaw::Table(Arc::new(t)))
+    /// A checked law.
+    pub fn new(law: impl Law + 'static) -> Self {
+        NormalLaw(Arc::new(law))
     }
 
     /// Pressure and stiffness (p, dp/du) at approach u. Open (u ≤ 0): (0, 0).
@@ -107,22 +191,7 @@ impl NormalLaw {
         if u <= 0.0 {
             return (0.0, 0.0);
         }
-        match *self {
-            NormalLaw::Table(ref t) => t.eval(u),
-            NormalLaw::Power { c, m } => power(c, m, u),
-            NormalLaw::Exponential { a, b } => {
-                let e = (b * u).exp();
-                (a * (e - 1.0), a * b * e)
-            }
-            NormalLaw::Linear { c, m, slope, p_c } => {
-                let u_c = c * p_c.powf(m);
-                if u < u_c {
-                    power(c, m, u)
-                } else {
-                    (p_c + (u - u_c) / slope, 1.0 / slope)
-                }
-            }
-        }
+        self.0.pressure(u)
     }
 
     /// Approach u at pressure p ≥ 0 (the law's inverse).
@@ -130,18 +199,7 @@ impl NormalLaw {
         if p <= 0.0 {
             return 0.0;
         }
-        match *self {
-            NormalLaw::Table(ref t) => t.inverse(p),
-            NormalLaw::Power { c, m } => c * p.powf(m),
-            NormalLaw::Exponential { a, b } => (p / a).ln_1p() / b,
-            NormalLaw::Linear { c, m, slope, p_c } => {
-                if p < p_c {
-                    c * p.powf(m)
-                } else {
-                    c * p_c.powf(m) + slope * (p - p_c)
-                }
-            }
-        }
+        self.0.approach(p)
     }
 
     /// Secant stiffness p / u(p) from the origin to pressure p (eq. 2.9).
@@ -155,42 +213,18 @@ impl NormalLaw {
         if u <= 0.0 {
             return 0.0;
         }
-        match *self {
-            NormalLaw::Table(ref t) => t.integral(u),
-            NormalLaw::Power { c, m } => {
-                let q = 1.0 / m;
-                c * (u / c).powf(q + 1.0) / (q + 1.0)
-            }
-            NormalLaw::Exponential { a, b } => a * (((b * u).exp() - 1.0) / b - u),
-            NormalLaw::Linear { c, m, slope, p_c } => {
-                let u_c = c * p_c.powf(m);
-                let power_part = NormalLaw::Power { c, m }.energy(u.min(u_c));
-                if u <= u_c {
-                    power_part
-                } else {
-                    let d = u - u_c;
-                    power_part + p_c * d + 0.5 * d * d / slope
-                }
-            }
-        }
+        self.0.energy(u)
     }
-}
 
-fn power(c: f64, m: f64, u: f64) -> (f64, f64) {
-    let q = 1.0 / m;
-    let r = u / c;
-    let p = r.powf(q);
-    (p, q * p / u)
-}
+    /// The law as `asperity check` prints it.
+    pub fn describe(&self) -> String {
+        self.0.describe()
+    }
 
-fn check_c_m(c: f64, m: f64) -> Result<(), String> {
-    if !(c.is_finite() && c > 0.0) {
-        return Err(format!("c_n = {c} must be a positive number (mm/MPa^m)"));
+    /// The measured points of a table law.
+    pub fn table(&self) -> Option<&Monotone> {
+        self.0.table()
     }
-    if !(m.is_finite() && m > 0.0 && m <= 1.0) {
-        return Err(format!("m = {m} must be in (0, 1]"));
-    }
-    Ok(())
 }
 
 #[cfg(test)]
@@ -199,11 +233,11 @@ mod tests {
 
     fn laws() -> Vec<NormalLaw> {
         vec![
-            NormalLaw::new_power(0.001, 0.5).unwrap(),
-            NormalLaw::new_power(0.002, 1.0).unwrap(),
-            NormalLaw::new_power(0.003, 0.3).unwrap(),
-            NormalLaw::new_exponential(0.8, 150.0).unwrap(),
-            NormalLaw::new_linear(0.001, 0.5, 1e-5, 10.0).unwrap(),
+            power::new(0.001, 0.5).unwrap(),
+            power::new(0.002, 1.0).unwrap(),
+            power::new(0.003, 0.3).unwrap(),
+            exponential::new(0.8, 150.0).unwrap(),
+            linear::new(0.001, 0.5, 1e-5, 10.0).unwrap(),
         ]
     }
 
@@ -244,7 +278,7 @@ mod tests {
             .iter()
             .map(|&u| (u, (u / 0.001f64).powi(2)))
             .collect();
-        NormalLaw::new_table(&rows).unwrap()
+        table::new(&rows).unwrap()
     }
 
     #[test]
@@ -308,7 +342,7 @@ mod tests {
 
     #[test]
     fn bad_tables_are_named() {
-        let e = |rows: &[(f64, f64)]| NormalLaw::new_table(rows).unwrap_err();
+        let e = |rows: &[(f64, f64)]| table::new(rows).unwrap_err();
         assert!(e(&[(0.0, 0.0), (1e-3, 1.0)]).contains("1 point"));
         assert!(e(&[(1e-3, 1.0), (2e-3, 0.5)]).contains("not monotone"));
         assert!(e(&[(1e-3, -1.0), (2e-3, 4.0)]).contains("row 1: p = -1"));
@@ -326,10 +360,25 @@ mod tests {
         );
     }
 
+    /// The order in which a case's law keys are checked, and so which of
+    /// two faults is named: the table first, then the numbers by law.
+    #[test]
+    fn the_keys_of_every_law_once_in_the_order_they_are_checked() {
+        let keys: Vec<&str> = all_params().iter().map(|p| p.key).collect();
+        assert_eq!(keys, ["table", "c_n", "m", "a", "b", "slope", "p_c"]);
+        let names: Vec<&str> = KINDS.iter().map(|k| k.name).collect();
+        assert_eq!(names, ["power", "exponential", "linear", "table"]);
+        let e = kind("hertz").err().unwrap();
+        assert_eq!(
+            e,
+            "law = \"hertz\" is not a known law (power, exponential, linear, table)"
+        );
+    }
+
     #[test]
     fn paper_values_and_open_pairs() {
         // c_N = 0.001, m = 0.5: 200 MPa needs √200 · 1 µm ≈ 14.1 µm of approach.
-        let law = NormalLaw::new_power(0.001, 0.5).unwrap();
+        let law = power::new(0.001, 0.5).unwrap();
         assert!((law.approach(200.0) - 0.001 * 200f64.sqrt()).abs() < 1e-15);
         assert_eq!(law.pressure(-1e-3), (0.0, 0.0));
         assert_eq!(law.pressure(0.0), (0.0, 0.0));
@@ -340,18 +389,12 @@ mod tests {
 
     #[test]
     fn bad_parameters_are_named() {
-        assert!(NormalLaw::new_power(-1.0, 0.5).unwrap_err().contains("c_n"));
-        assert!(NormalLaw::new_power(0.001, 1.5)
-            .unwrap_err()
-            .contains("m = 1.5"));
-        assert!(NormalLaw::new_power(0.001, 0.0)
-            .unwrap_err()
-            .contains("(0, 1]"));
-        assert!(NormalLaw::new_power(f64::NAN, 0.5).is_err());
-        assert!(NormalLaw::new_exponential(1.0, -2.0)
-            .unwrap_err()
-            .contains("b ="));
-        assert!(NormalLaw::new_linear(0.001, 0.5, 1.0, 10.0)
+        assert!(power::new(-1.0, 0.5).unwrap_err().contains("c_n"));
+        assert!(power::new(0.001, 1.5).unwrap_err().contains("m = 1.5"));
+        assert!(power::new(0.001, 0.0).unwrap_err().contains("(0, 1]"));
+        assert!(power::new(f64::NAN, 0.5).is_err());
+        assert!(exponential::new(1.0, -2.0).unwrap_err().contains("b ="));
+        assert!(linear::new(0.001, 0.5, 1.0, 10.0)
             .unwrap_err()
             .contains("softer"));
     }
