@@ -724,7 +724,7 @@ fn interfaces_text(model: &Model) -> String {
         // a non-matching interface: its coupling and the geometric gaps
         let gaps: Vec<f64> = im.points.iter().filter_map(|p| p.geometric_gap()).collect();
         if !gaps.is_empty() {
-            let kind = if im.points.iter().any(|p| p.mortar.is_some()) {
+            let kind = if im.points.iter().any(|p| p.coupling.is_mortar()) {
                 "mortar springs at A's nodes"
             } else {
                 "node-to-segment springs at A's quadrature points"
