@@ -6,7 +6,7 @@
 
 use crate::common;
 use asperity::app::driver::{self, RunOptions};
-use asperity::physics::contact::{NormalLaw, TangentialLaw};
+use asperity::physics::contact::TangentialLaw;
 use asperity::solve::RunResult;
 
 const C_N: f64 = 0.001;

@@ -1,6 +1,6 @@
 //! `law = "exponential"`: p = a (e^{b u} − 1) (paper eq. 2.2, shifted so p(0) = 0).
 
-use super::{Given, Holds, Kind, Law, NormalLaw, Param};
+use super::law::{Given, Holds, Kind, Law, NormalLaw, Param};
 use crate::physics::range::{Range, PRESSURE};
 
 /// b of the exponential law: 150 /mm in the docs.

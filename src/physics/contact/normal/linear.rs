@@ -1,8 +1,8 @@
 //! `law = "linear"` (paper eq. 2.3): the power law u = c_N p^m below the
 //! critical pressure p_c, u = A p + B above, B = c_N p_c^m − A p_c (continuity).
 
+use super::law::{Given, Holds, Kind, Law, NormalLaw, Param};
 use super::power::{check_c_m, Power, C_N, M};
-use super::{Given, Holds, Kind, Law, NormalLaw, Param};
 use crate::physics::range::{Range, PRESSURE};
 
 /// Slope A of the linear law's upper branch.

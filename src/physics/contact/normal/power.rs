@@ -1,6 +1,6 @@
 //! `law = "power"`: u_N = c_N p^m (paper eq. 2.1), p = (u/c_N)^{1/m}.
 
-use super::{Given, Holds, Kind, Law, NormalLaw, Param};
+use super::law::{Given, Holds, Kind, Law, NormalLaw, Param};
 use crate::physics::range::Range;
 
 /// c_N of the power and linear laws (mm/MPa^m): 0.001 in the paper.

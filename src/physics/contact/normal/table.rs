@@ -3,7 +3,7 @@
 //! the first point, Fritsch-Butland monotone cubic Hermite between points,
 //! linear beyond the last).
 
-use super::{Given, Holds, Kind, Law, NormalLaw, Param};
+use super::law::{Given, Holds, Kind, Law, NormalLaw, Param};
 use crate::physics::contact::table::{rows_of_two, Monotone};
 use crate::physics::range::{DISPLACEMENT, PRESSURE};
 use std::sync::Arc;
