@@ -734,7 +734,7 @@ fn interfaces_text(model: &Model) -> String {
             im.pairs.len(),
             im.points.len(),
             im.area(),
-            normal_text(&im.law),
+            im.law.describe(),
             model.mesh.bodies[im.body_a],
             model.mesh.bodies[im.body_b],
             t[0],
@@ -746,7 +746,7 @@ fn interfaces_text(model: &Model) -> String {
         // a non-matching interface: its coupling and the geometric gaps
         let gaps: Vec<f64> = im.points.iter().filter_map(|p| p.geometric_gap()).collect();
         if !gaps.is_empty() {
-            let kind = if im.points.iter().any(|p| p.mortar.is_some()) {
+            let kind = if im.points.iter().any(|p| p.coupling.is_mortar()) {
                 "mortar springs at A's nodes"
             } else {
                 "node-to-segment springs at A's quadrature points"
@@ -852,58 +852,19 @@ fn steps_text(model: &Model) -> String {
     }
 }
 
-/// The normal law as `check` prints it.
-fn normal_text(law: &crate::physics::contact::NormalLaw) -> String {
-    use crate::physics::contact::NormalLaw::*;
-    match law {
-        Power { c, m } => format!("power u_N = c_N p^m (c_N = {c}, m = {m})"),
-        Exponential { a, b } => {
-            format!("exponential p = a (e^(b u_N) - 1) (a = {a} MPa, b = {b} 1/mm)")
-        }
-        Linear { c, m, slope, p_c } => {
-            format!(
-                "power-linear (c_N = {c}, m = {m}, slope = {slope} MPa/mm beyond p_c = {p_c} MPa)"
-            )
-        }
-        Table(t) => format!(
-            "table of {} rows up to u_N = {} mm",
-            t.points().count(),
-            t.last().0
-        ),
-    }
-}
-
-/// The tangential law as `check` prints it: stiffness, backbone, memory.
+/// The tangential law as `check` prints it: stiffness, backbone, memory
+/// ([`crate::physics::contact::TangentialLaw::describe`]), then the scheme.
 fn tangential_text(
     law: &crate::physics::contact::TangentialLaw,
     scheme: crate::input::case::settings::FrictionScheme,
 ) -> String {
-    use crate::physics::contact::{Backbone, Memory};
-    let stiffness = match &law.k_table {
-        Some(t) => format!("k_T^e from a k_table of {} rows", t.points().count()),
-        None => format!("k_T^e = p^S/R (R = {}, S = {})", law.r, law.s),
-    };
-    let backbone = match law.backbone {
-        Backbone::Bilinear => format!(
-            "bilinear backbone (k_T^p/k_T^e = {}, yield ratio {}, beta = {}, n = {} 1/mm)",
-            law.kp_ratio, law.yield_ratio, law.beta, law.n
-        ),
-        Backbone::Iwan { chi, spike } => format!("Iwan backbone (chi = {chi}, spike = {spike})"),
-    };
-    let memory = match law.memory {
-        Memory::Isotropic => "isotropic memory (section 2.2)",
-        Memory::Kinematic => "kinematic memory (Masing)",
-    };
     let scheme = match scheme {
         crate::input::case::settings::FrictionScheme::ReturnMapping => "return mapping",
         crate::input::case::settings::FrictionScheme::StiffnessModification => {
             "stiffness modification"
         }
     };
-    format!(
-        "mu = {}, {stiffness}, {backbone}, {memory}, {scheme}",
-        law.mu
-    )
+    format!("{}, {scheme}", law.describe())
 }
 
 /// The tables' use the applied loads alone predict, for `asperity check`:

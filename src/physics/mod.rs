@@ -7,3 +7,4 @@
 pub mod contact;
 pub mod element;
 pub mod material;
+pub mod range;

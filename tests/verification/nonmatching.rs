@@ -10,11 +10,19 @@
 
 use crate::common;
 use asperity::app::driver::{self, RunOptions};
-use asperity::model::interface::InterfaceModel;
+use asperity::model::interface::{Coupling, InterfaceModel, Point, Segment};
 use asperity::model::Model;
 use asperity::numbers::fd;
 use asperity::physics::contact::Status;
 use asperity::solve::{RunResult, State};
+
+/// A node-to-segment point's coupling.
+fn segment_of(p: &Point) -> Segment {
+    match &p.coupling {
+        Coupling::NodeToSegment { segment, .. } => *segment,
+        c => panic!("not a node-to-segment point: {c:?}"),
+    }
+}
 
 fn run(name: &str, text: &str) -> (Model, RunResult) {
     let case = common::case_dir(name, text);
@@ -223,7 +231,7 @@ fn mortar_coupling_passes_the_patch_test_whatever_the_divisions() {
     let model = common::model(&patch(false, "mortar", coarse_slave, fine_master));
     let im = &model.interfaces[0];
     assert_eq!(im.points.len(), 2 * 6 + 1);
-    assert!(im.points.iter().all(|p| p.mortar.is_some()));
+    assert!(im.points.iter().all(|p| p.coupling.is_mortar()));
     // a slave node couples its edges' slave nodes and every master edge they
     // face: wider than a node-to-segment spring's 12 dofs
     let widest = im.points.iter().map(|p| p.ndofs()).max().unwrap();
@@ -327,7 +335,7 @@ fn a_curved_non_matching_gmsh_interface_carries_the_load() {
             pt.normal[1] > 0.98 && pn > 80.0 && pn < 120.0,
             "{pt:?}: {pn}"
         );
-        assert!(pt.segment.unwrap().gap.abs() < 1e-5, "{pt:?}");
+        assert!(segment_of(pt).gap.abs() < 1e-5, "{pt:?}");
         lift += pn * area * pt.normal[1];
     }
     let want = 100.0 * 10.0 * 2.0;
@@ -385,7 +393,7 @@ fn an_offset_division_of_a_curve_is_accepted_and_carries_the_load() {
     let mut widest = 0.0f64;
     for (pt, &(pn, area)) in im.points.iter().zip(&p) {
         assert!(pt.normal[1] > 0.98 && pn > 0.0, "{pt:?}: {pn}");
-        widest = widest.max(pt.segment.unwrap().gap.abs());
+        widest = widest.max(segment_of(pt).gap.abs());
         lift += pn * area * pt.normal[1];
     }
     eprintln!("{name}: {} points, largest |gap| {widest:.3e} mm", p.len());
@@ -427,7 +435,7 @@ fn a_slave_point_facing_the_node_between_two_rounding_edges_is_accepted() {
             .find(|(_, pr)| pr.x == [20.0, 0.0])
             .map(|(pt, _)| pt)
             .expect("a spring at the punch corner");
-        let g = corner.segment.unwrap();
+        let g = segment_of(corner);
         let want = 2.0 * std::f64::consts::SQRT_2 - 2.0;
         let r2 = std::f64::consts::FRAC_1_SQRT_2;
         eprintln!(
@@ -474,7 +482,7 @@ fn non_matching_point_tangents_match_finite_differences() {
         assert!(im
             .points
             .iter()
-            .all(|p| p.segment.is_some() != p.mortar.is_some()));
+            .all(|p| !matches!(p.coupling, Coupling::Coincident { .. })));
         let mut u = vec![0.0; model.mesh.num_dofs()];
         for (i, v) in u.iter_mut().enumerate() {
             *v = 0.004 * ((i as f64 * 0.37).sin() + 0.8);

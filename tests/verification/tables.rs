@@ -6,7 +6,7 @@
 
 use crate::common;
 use asperity::app::driver::{self, RunOptions};
-use asperity::physics::contact::{NormalLaw, TangentialLaw};
+use asperity::physics::contact::TangentialLaw;
 use asperity::solve::RunResult;
 
 const C_N: f64 = 0.001;
@@ -129,7 +129,7 @@ struct Compared {
 
 fn normal_table(n: usize, reference: &(std::path::PathBuf, RunResult)) -> Compared {
     let rows: Vec<(f64, f64)> = pressures(n).iter().map(|&p| (C_N * p.powf(M), p)).collect();
-    let law = NormalLaw::new_table(&rows).unwrap();
+    let law = asperity::physics::contact::normal::table::new(&rows).unwrap();
     // p(u) against the power law over the table (below the first point the
     // table's power law is the paper's, exactly: checked too)
     let (u_lo, u_hi) = (rows[0].0 * 1e-2, rows[n - 1].0);

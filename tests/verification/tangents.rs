@@ -174,7 +174,7 @@ fn interface_point_tangents_match_finite_differences() {
             u[2 * pr.a + 1] -= 0.01 * (1.0 + (pr.x[0] * 0.7).sin());
         }
         for pt in &im.points {
-            let nd = 4 * pt.len;
+            let nd = pt.ndofs();
             let dofs = im.point_dofs(pt);
             let (mut r, mut k) = (vec![0.0; nd], vec![0.0; nd * nd]);
             let ev = im.eval_point(pt, &u, &Default::default(), None, &mut r, Some(&mut k));

@@ -780,7 +780,7 @@ pub fn calibrate(input: &Input, place: &str, base: &Path) -> Result<Calibration>
             (r(q.approach), r(q.pressure))
         })
         .collect();
-    if let Err(m) = crate::physics::contact::NormalLaw::new_table(&written) {
+    if let Err(m) = crate::physics::contact::normal::table::new(&written) {
         return Err(Error::input(
             format!("{place}: fit.pressure"),
             format!("[{lo}, {hi}] MPa gives a table that a case file would refuse ({m}); widen the fit range"),

@@ -29,6 +29,7 @@ mod tests;
 
 use crate::error::{Error, Result};
 use crate::input::mesh::blocks::{BlockSpec, InterfaceSpec};
+use crate::physics::contact::normal::{Given, Value};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -238,6 +239,30 @@ pub struct InterfaceLawSpec {
     /// The gap at pseudo-time t is g₀ · h(t) (an interference pressed in
     /// gradually); none: g₀ from the start.
     pub gap_history: Option<HistoryRef>,
+}
+
+impl InterfaceLawSpec {
+    /// The normal law's parameters as written, whichever law they belong to
+    /// (the law's file, `physics/contact/normal/`, says which it takes).
+    /// A new parameter key is a field above and a row here.
+    pub fn law_params(&self) -> Given<'_> {
+        let numbers = [
+            ("c_n", self.c_n),
+            ("m", self.m),
+            ("a", self.a),
+            ("b", self.b),
+            ("slope", self.slope),
+            ("p_c", self.p_c),
+        ];
+        let rows = [("table", self.table.as_deref())];
+        let numbers = numbers
+            .into_iter()
+            .filter_map(|(k, v)| Some((k, Value::Number(v?))));
+        let rows = rows
+            .into_iter()
+            .filter_map(|(k, v)| Some((k, Value::Rows(v?))));
+        Given(rows.chain(numbers).collect())
+    }
 }
 
 /// `[interface.<name>.tangential]`: elastic-plastic shear compliance with

@@ -1,24 +1,19 @@
-//! Sane magnitudes per physical quantity (mm, N, MPa).
+//! Sane magnitudes per physical quantity (mm, N, MPa): [`Range`] (see
+//! [`crate::physics::range`] for why each is refused up front).
 //!
-//! Each range is generous: several orders of magnitude beyond any engineering
-//! use on either side. A value outside it is not a model anyone means (a
-//! thickness of 1e-310 mm, a modulus of 1e300 MPa) and would either make every
-//! result zero (denormal numbers: every increment "converges" in 0 iterations)
-//! or overflow later; it is refused up front with the key's name. The table is
-//! repeated in `docs/case-schema.md` ("Ranges"), checked by a test below.
+//! The ranges of the interface laws' parameters are declared with their law
+//! (`physics/contact/normal/<law>.rs`, `physics/contact/tangential/params.rs`)
+//! and re-exported here; the case's other quantities are here. [`all`] lists
+//! them all, in the order of the table in `docs/case-schema.md` ("Ranges"),
+//! checked by a test below.
 
-use crate::error::{Error, Result};
-
-/// The accepted magnitudes of one quantity: `lo ≤ |v| ≤ hi` (zero and the sign
-/// are the caller's business: the existing per-key checks say which sign a key
-/// takes and whether 0 is allowed).
-#[derive(Clone, Copy, Debug)]
-pub struct Range {
-    pub quantity: &'static str,
-    pub unit: &'static str,
-    pub lo: f64,
-    pub hi: f64,
-}
+pub use crate::physics::contact::normal::exponential::EXP_RATE;
+pub use crate::physics::contact::normal::linear::SLOPE;
+pub use crate::physics::contact::normal::power::COMPLIANCE;
+pub use crate::physics::contact::tangential::params::{
+    FRICTION, SHEAR_R, SHEAR_STIFFNESS, SLIP_RATE,
+};
+pub use crate::physics::range::{Range, DISPLACEMENT, PRESSURE};
 
 /// Every node coordinate, block breakpoint, probe coordinate (1 km).
 pub const COORDINATE: Range = Range {
@@ -60,13 +55,6 @@ pub const HARDENING: Range = Range {
     lo: 1e-4,
     hi: 1e9,
 };
-/// Applied pressures, start pressures, critical pressures, exponential `a`.
-pub const PRESSURE: Range = Range {
-    quantity: "a pressure",
-    unit: "MPa",
-    lo: 1e-6,
-    hi: 1e6,
-};
 /// Concentrated forces (`[[force]] fx`, `fy`): 1 µN to 1 TN.
 pub const FORCE: Range = Range {
     quantity: "a force",
@@ -74,116 +62,36 @@ pub const FORCE: Range = Range {
     lo: 1e-6,
     hi: 1e12,
 };
-/// Non-zero prescribed displacements and gaps.
-pub const DISPLACEMENT: Range = Range {
-    quantity: "a displacement or gap",
-    unit: "mm",
-    lo: 1e-9,
-    hi: 1e4,
-};
-/// c_N of the power and linear laws (mm/MPa^m): 0.001 in the paper.
-pub const COMPLIANCE: Range = Range {
-    quantity: "an interface compliance c_N",
-    unit: "mm/MPa^m",
-    lo: 1e-12,
-    hi: 1e3,
-};
-/// Slope A of the linear law's upper branch.
-pub const SLOPE: Range = Range {
-    quantity: "a compliance slope A",
-    unit: "mm/MPa",
-    lo: 1e-15,
-    hi: 1e3,
-};
-/// b of the exponential law: 150 /mm in the docs.
-pub const EXP_RATE: Range = Range {
-    quantity: "an exponential rate b",
-    unit: "1/mm",
-    lo: 1e-3,
-    hi: 1e9,
-};
-/// R of the tangential law (k_T^e = p_N^S / R, MPa/µm).
-pub const SHEAR_R: Range = Range {
-    quantity: "the shear compliance R",
-    unit: "µm·MPa^(S-1)",
-    lo: 1e-6,
-    hi: 1e6,
-};
-/// The elastic shear stiffness k_T^e (MPa/µm) of a `k_table`: the values
-/// p^S/R takes over the ranges of a pressure and of R with S in [0, 1].
-pub const SHEAR_STIFFNESS: Range = Range {
-    quantity: "a shear stiffness k_T^e",
-    unit: "MPa/µm",
-    lo: 1e-12,
-    hi: 1e12,
-};
-pub const FRICTION: Range = Range {
-    quantity: "a friction coefficient",
-    unit: "",
-    lo: 1e-4,
-    hi: 100.0,
-};
-/// Slip-hardening rate n (0 allowed).
-pub const SLIP_RATE: Range = Range {
-    quantity: "a slip-hardening rate",
-    unit: "1/mm",
-    lo: 1e-6,
-    hi: 1e9,
-};
 
-/// Every range, in the order of the documentation's table.
-pub const ALL: [&Range; 16] = [
-    &COORDINATE,
-    &ELEMENT_SIZE,
-    &THICKNESS,
-    &MODULUS,
-    &YIELD_STRESS,
-    &HARDENING,
-    &PRESSURE,
-    &FORCE,
-    &DISPLACEMENT,
-    &COMPLIANCE,
-    &SLOPE,
-    &EXP_RATE,
-    &SHEAR_R,
-    &SHEAR_STIFFNESS,
-    &FRICTION,
-    &SLIP_RATE,
-];
-
-impl Range {
-    /// Is `v` (finite) within the range? Zero passes: the per-key checks decide
-    /// whether a key may be 0.
-    pub fn admits(&self, v: f64) -> bool {
-        v == 0.0 || (v.abs() >= self.lo && v.abs() <= self.hi)
-    }
-
-    /// `Ok` when `v` is zero, not finite (left to the per-key checks) or in the
-    /// range; otherwise an input error at `place` naming the range.
-    pub fn check(&self, place: impl Into<String>, v: f64) -> Result<()> {
-        if !v.is_finite() || self.admits(v) {
-            return Ok(());
+/// Every range: the case's quantities, then the normal laws' (in the order
+/// of [`crate::physics::contact::normal::KINDS`], each quantity once), then
+/// the tangential law's. A new law's ranges join by its parameters.
+pub fn all() -> Vec<&'static Range> {
+    let mut out: Vec<&'static Range> = vec![
+        &COORDINATE,
+        &ELEMENT_SIZE,
+        &THICKNESS,
+        &MODULUS,
+        &YIELD_STRESS,
+        &HARDENING,
+        &PRESSURE,
+        &FORCE,
+        &DISPLACEMENT,
+    ];
+    use crate::physics::contact::normal::{all_params, Holds};
+    for p in all_params() {
+        let ranges: Vec<&'static Range> = match p.holds {
+            Holds::Number(r) => r.into_iter().collect(),
+            Holds::Rows(columns) => columns.iter().map(|c| c.1).collect(),
+        };
+        for r in ranges {
+            if !out.iter().any(|q| q.quantity == r.quantity) {
+                out.push(r);
+            }
         }
-        Err(Error::input(place, self.refusal(v)))
     }
-
-    /// "1e-310 is far outside any engineering use (the thickness: 1e-6 … 1e6 mm in magnitude)".
-    pub fn refusal(&self, v: f64) -> String {
-        let unit = if self.unit.is_empty() {
-            String::new()
-        } else {
-            format!(" {}", self.unit)
-        };
-        let within = if self.lo == 0.0 {
-            format!("at most {:e}{unit}", self.hi)
-        } else {
-            format!("{:e} … {:e}{unit}", self.lo, self.hi)
-        };
-        format!(
-            "{v:e} is far outside any engineering use ({}: {within} in magnitude)",
-            self.quantity
-        )
-    }
+    out.extend(crate::physics::contact::tangential::params::RANGES);
+    out
 }
 
 #[cfg(test)]
@@ -225,7 +133,7 @@ mod tests {
     #[test]
     fn the_documented_table_matches() {
         let doc = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/case-schema.md"));
-        for r in ALL {
+        for r in all() {
             let row = doc
                 .lines()
                 .find(|l| l.starts_with(&format!("| {} |", r.quantity)))
@@ -236,6 +144,53 @@ mod tests {
                 format!("| {:e} … {:e} |", r.lo, r.hi)
             };
             assert!(row.contains(&bounds), "{row:?} should contain {bounds:?}");
+        }
+    }
+
+    /// Every normal law's name and keys are in docs/case-schema.md: the name
+    /// on the `law = ` line, each key in the `[interface]` example, and each
+    /// ranged key (or table column) in the row of its range.
+    #[test]
+    fn every_normal_law_and_its_keys_are_documented() {
+        use crate::physics::contact::normal::{all_params, Holds, KINDS};
+        let doc = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/case-schema.md"));
+        let law_line = doc.lines().find(|l| l.starts_with("law = \"")).unwrap();
+        for k in KINDS {
+            assert!(
+                law_line.contains(&format!("\"{}\"", k.name)),
+                "{law_line:?}: {}",
+                k.name
+            );
+        }
+        let row = |quantity: &str| {
+            doc.lines()
+                .find(|l| l.starts_with(&format!("| {quantity} |")))
+                .unwrap_or_else(|| panic!("no row for {quantity}"))
+        };
+        for p in all_params() {
+            let example = |l: &str| {
+                l.trim_start_matches("# ")
+                    .starts_with(&format!("{} ", p.key))
+            };
+            assert!(
+                doc.lines().any(example),
+                "`{}` is not in the example",
+                p.key
+            );
+            match p.holds {
+                Holds::Number(Some(r)) => {
+                    let r = row(r.quantity);
+                    assert!(r.contains(&format!("`{}`", p.key)), "{r:?}: `{}`", p.key);
+                }
+                Holds::Number(None) => {}
+                Holds::Rows(columns) => {
+                    for (column, r) in columns {
+                        let r = row(r.quantity);
+                        let named = format!("`{}` {column}", p.key);
+                        assert!(r.contains(&named), "{r:?}: {named}");
+                    }
+                }
+            }
         }
     }
 }

@@ -142,7 +142,7 @@ pub fn check_case(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
 #[cfg(test)]
 mod tests {
     /// docs/case-schema.md lists twist's ranges with these bounds (as
-    /// `ranges::ALL`'s, [`crate::input::case::ranges`]).
+    /// `ranges::all()`'s, [`crate::input::case::ranges`]).
     #[test]
     fn the_documented_ranges_match() {
         let doc = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/case-schema.md"));

@@ -6,7 +6,7 @@ use super::Weights;
 use super::{BackboneKind, Case, InterfaceLawSpec, TangentialSpec};
 use crate::error::{Error, Result};
 use crate::input::case::settings::FrictionScheme;
-use crate::physics::contact::{Backbone, NormalLaw, TangentialLaw};
+use crate::physics::contact::{normal, Backbone, NormalLaw, TangentialLaw};
 use std::collections::BTreeMap;
 
 mod tangential;
@@ -262,11 +262,17 @@ fn interface_laws(
         // every column within the range of its scalar parameter, before the
         // table is interpolated (a 1e-300 pressure would otherwise surface as
         // a slope message, or not at all)
-        for (i, row) in spec.table.iter().flatten().enumerate() {
-            let row_key = |k: &str| at(&format!("{key} table row {} {k}", i + 1));
-            if let [u, p] = row.as_slice() {
-                ranges::DISPLACEMENT.check(row_key("u_N"), *u)?;
-                ranges::PRESSURE.check(row_key("p"), *p)?;
+        let given = spec.law_params();
+        for p in normal::all_params() {
+            if let normal::Holds::Rows(columns) = p.holds {
+                for (i, row) in given.rows(p.key).iter().enumerate() {
+                    if let [u, v] = row.as_slice() {
+                        for ((name, range), x) in columns.iter().zip([u, v]) {
+                            range
+                                .check(at(&format!("{key} {} row {} {name}", p.key, i + 1)), *x)?;
+                        }
+                    }
+                }
             }
         }
         let law = normal_law(spec).map_err(|m| Error::input(at(&key), m))?;
@@ -284,12 +290,15 @@ fn interface_laws(
                 ));
             }
         }
+        // the law's numbers within their ranges (another law's keys were refused)
+        for p in normal::all_params() {
+            if let normal::Holds::Number(Some(range)) = p.holds {
+                if given.has(p.key) {
+                    range.check(at(&format!("{key} {}", p.key)), given.number(p.key))?;
+                }
+            }
+        }
         for (k, v, range) in [
-            ("c_n", spec.c_n, &ranges::COMPLIANCE),
-            ("a", spec.a, &ranges::PRESSURE),
-            ("b", spec.b, &ranges::EXP_RATE),
-            ("slope", spec.slope, &ranges::SLOPE),
-            ("p_c", spec.p_c, &ranges::PRESSURE),
             ("gap", Some(spec.gap), &ranges::DISPLACEMENT),
             ("start_pressure", spec.start_pressure, &ranges::PRESSURE),
         ] {
@@ -478,69 +487,11 @@ impl Case {
     }
 }
 
+/// The normal law of an interface: its kind by name ([`normal::KINDS`]), its
+/// own keys needed and every other law's refused, then built and checked by
+/// its file.
 fn normal_law(s: &InterfaceLawSpec) -> std::result::Result<NormalLaw, String> {
-    let given = [
-        ("table", s.table.as_ref().map(|_| 0.0)),
-        ("c_n", s.c_n),
-        ("m", s.m),
-        ("a", s.a),
-        ("b", s.b),
-        ("slope", s.slope),
-        ("p_c", s.p_c),
-    ];
-    let (needed, law): (&[&str], _) = match s.law.as_str() {
-        "power" => (&["c_n", "m"], "power"),
-        "exponential" => (&["a", "b"], "exponential"),
-        "linear" => (&["c_n", "m", "slope", "p_c"], "linear"),
-        "table" => (&["table"], "table"),
-        other => {
-            return Err(format!(
-                "law = \"{other}\" is not a known law (power, exponential, linear, table)"
-            ))
-        }
-    };
-    for (k, v) in given {
-        match (needed.contains(&k), v) {
-            (true, None) => return Err(format!("the {law} law needs `{k}`")),
-            (false, Some(_)) => return Err(format!("`{k}` is not a parameter of the {law} law")),
-            _ => {}
-        }
-    }
-    let g = |v: Option<f64>| v.unwrap_or(f64::NAN);
-    match law {
-        "power" => NormalLaw::new_power(g(s.c_n), g(s.m)),
-        "exponential" => NormalLaw::new_exponential(g(s.a), g(s.b)),
-        "table" => {
-            let rows = table_rows(s.table.as_deref().unwrap_or(&[]), "u_N", "p")
-                .map_err(|m| format!("table: {m}"))?;
-            NormalLaw::new_table(&rows).map_err(|m| format!("table: {m}"))
-        }
-        _ => NormalLaw::new_linear(g(s.c_n), g(s.m), g(s.slope), g(s.p_c)),
-    }
-}
-
-/// Most rows of a `table` or `k_table` (a bound on what a case file can make the model hold).
-pub const MAX_TABLE_ROWS: usize = 10_000;
-
-/// The rows of a two-column table as pairs; the message names the row (1-based).
-fn table_rows(rows: &[Vec<f64>], a: &str, b: &str) -> std::result::Result<Vec<(f64, f64)>, String> {
-    if rows.len() > MAX_TABLE_ROWS {
-        return Err(format!(
-            "{} rows, more than {MAX_TABLE_ROWS} (the limit)",
-            rows.len()
-        ));
-    }
-    rows.iter()
-        .enumerate()
-        .map(|(i, r)| match r.as_slice() {
-            &[x, y] => Ok((x, y)),
-            _ => Err(format!(
-                "row {}: {} numbers, expected 2 ([{a}, {b}])",
-                i + 1,
-                r.len()
-            )),
-        })
-        .collect()
+    normal::kind(&s.law)?.from_given(&s.law_params())
 }
 
 /// Checks `[solver]` (and the `[output]` keys beside it), key by key in

@@ -23,7 +23,7 @@
 //! that side holding the nodes, by the same weights.
 
 use super::recovery::Stress;
-use crate::model::interface::{InterfaceModel, Point};
+use crate::model::interface::{Coupling, InterfaceModel, Point};
 use crate::model::state::State;
 use crate::model::Model;
 use std::collections::{HashMap, HashSet};
@@ -102,19 +102,23 @@ pub fn add(model: &Model, state: &State, recovered: &[[Stress; 8]], out: &mut [f
 /// ∫ N_i N_k dA / A_i, negative on the slave side).
 fn sides(im: &InterfaceModel, pt: &Point) -> [Vec<(usize, f64)>; 2] {
     let mut out: [Vec<(usize, f64)>; 2] = [Vec::new(), Vec::new()];
-    if let Some(m) = &pt.mortar {
-        for (j, &node) in m.nodes.iter().enumerate() {
-            let d = m.dn[j][0] * pt.normal[0] + m.dn[j][1] * pt.normal[1];
-            out[usize::from(d > 0.0)].push((node, d.abs()));
+    match &pt.coupling {
+        Coupling::Mortar { mortar: m, .. } => {
+            for (j, &node) in m.nodes.iter().enumerate() {
+                let d = m.dn[j][0] * pt.normal[0] + m.dn[j][1] * pt.normal[1];
+                out[usize::from(d > 0.0)].push((node, d.abs()));
+            }
         }
-    } else if let Some(g) = &pt.segment {
-        out[0] = (0..g.len_a).map(|i| (g.a[i], g.na[i])).collect();
-        out[1] = (0..3).map(|j| (g.b[j], g.nb[j])).collect();
-    } else {
-        for i in 0..pt.len {
-            let pr = &im.pairs[pt.pairs[i]];
-            out[0].push((pr.a, pt.shape[i]));
-            out[1].push((pr.b, pt.shape[i]));
+        Coupling::NodeToSegment { segment: g, .. } => {
+            out[0] = (0..g.len_a).map(|i| (g.a[i], g.na[i])).collect();
+            out[1] = (0..3).map(|j| (g.b[j], g.nb[j])).collect();
+        }
+        Coupling::Coincident { .. } => {
+            for (pair, w) in pt.coupling.pairs() {
+                let pr = &im.pairs[pair];
+                out[0].push((pr.a, w));
+                out[1].push((pr.b, w));
+            }
         }
     }
     for side in out.iter_mut() {

@@ -23,7 +23,7 @@
 //! scheme, a secant of one scalar slip, is refused with twist
 //! ([`crate::input::case::twist`]).
 
-use super::{InterfaceModel, Point, PointEval, PointState, Slip, Status};
+use super::{Coupling, InterfaceModel, Point, PointEval, PointState, Slip, Status};
 
 /// The gradients of a point's approach u_N, meridional slip u_T1 and
 /// circumferential slip u_Tθ with respect to its local dofs.
@@ -44,55 +44,51 @@ impl InterfaceModel {
     /// non-matching interface the slave nodes, then the master edge's; on a
     /// mortar spring its nodes.
     pub fn point_nodes(&self, pt: &Point) -> Vec<usize> {
-        if let Some(m) = &pt.mortar {
-            return m.nodes.clone();
+        match &pt.coupling {
+            Coupling::Mortar { mortar: m, .. } => m.nodes.clone(),
+            Coupling::NodeToSegment { segment: g, .. } => {
+                g.a[..g.len_a].iter().chain(&g.b).copied().collect()
+            }
+            Coupling::Coincident { pairs, len, .. } => {
+                let pairs = || pairs[..*len].iter().map(|&p| &self.pairs[p]);
+                pairs().map(|p| p.a).chain(pairs().map(|p| p.b)).collect()
+            }
         }
-        if let Some(g) = &pt.segment {
-            return g.a[..g.len_a].iter().chain(&g.b).copied().collect();
-        }
-        let pairs = || pt.pairs[..pt.len].iter().map(|&p| &self.pairs[p]);
-        pairs().map(|p| p.a).chain(pairs().map(|p| p.b)).collect()
     }
 
     /// The weight of each local node's u_θ in u_Tθ (order of
     /// [`InterfaceModel::point_nodes`]).
     fn hoop_weights(&self, pt: &Point) -> Vec<f64> {
-        if let Some(m) = &pt.mortar {
-            return m.dh.clone();
+        match &pt.coupling {
+            Coupling::Mortar { mortar: m, .. } => m.dh.clone(),
+            Coupling::NodeToSegment { segment: g, .. } => {
+                let a = g.na[..g.len_a].iter().map(|v| -v);
+                a.chain(g.nb).collect()
+            }
+            Coupling::Coincident { shape, len, .. } => {
+                let s = &shape[..*len];
+                s.iter().map(|v| -v).chain(s.iter().copied()).collect()
+            }
         }
-        if let Some(g) = &pt.segment {
-            let a = g.na[..g.len_a].iter().map(|v| -v);
-            return a.chain(g.nb).collect();
-        }
-        let s = &pt.shape[..pt.len];
-        s.iter().map(|v| -v).chain(s.iter().copied()).collect()
     }
 
     /// The radius of every point (index as `points`), mm: on coincident
     /// pairs interpolated from the pairs' positions by the point's shape
-    /// values, on a non-matching interface the slave point's, on a mortar
-    /// spring [`super::Mortar::radius`] (the arm of its force, so that
-    /// Σ A r p_Tθ is the torque on the slave nodes and a rigid twist Δφ
-    /// gives u_Tθ / r = Δφ).
+    /// values, on a non-matching interface the slave point's (its pair's),
+    /// on a mortar spring [`super::Mortar::radius`] (the arm of its force,
+    /// so that Σ A r p_Tθ is the torque on the slave nodes and a rigid twist
+    /// Δφ gives u_Tθ / r = Δφ).
     pub fn point_radii(&self) -> Vec<f64> {
-        let mut r: Vec<f64> = self
-            .points
+        self.points
             .iter()
-            .map(|pt| {
-                (0..pt.len)
-                    .map(|i| pt.shape[i] * self.pairs[pt.pairs[i]].x[0])
-                    .sum()
+            .map(|pt| match &pt.coupling {
+                Coupling::Coincident { pairs, shape, len } => (0..*len)
+                    .map(|i| shape[i] * self.pairs[pairs[i]].x[0])
+                    .sum(),
+                Coupling::NodeToSegment { pair, .. } => self.pairs[*pair].x[0],
+                Coupling::Mortar { mortar: m, .. } => m.radius,
             })
-            .collect();
-        for p in &self.pairs {
-            if let Some(j) = p.spring {
-                r[j] = match &self.points[j].mortar {
-                    Some(m) => m.radius,
-                    None => p.x[0],
-                };
-            }
-        }
-        r
+            .collect()
     }
 
     /// Number of a point's local dofs: [`Point::ndofs`] without twist, 3 per

@@ -10,7 +10,7 @@
 //! `tables` and `warnings` fields of summary.json, and, where the applied load
 //! alone predicts it, a warning of `asperity check`.
 
-use super::{InterfaceModel, NormalLaw};
+use super::InterfaceModel;
 use crate::physics::contact::table::{Monotone, EXTRAPOLATION_LIMIT};
 
 /// The largest arguments an interface's laws met: the approach u_N (of the
@@ -112,7 +112,7 @@ pub fn table_uses(interfaces: &[InterfaceModel], reach: &[Reach]) -> Vec<TableUs
     let mut out = Vec::new();
     for (im, r) in interfaces.iter().zip(reach) {
         let last = |t: &Monotone| t.last().0;
-        if let NormalLaw::Table(t) = &im.law {
+        if let Some(t) = im.law.table() {
             out.push(TableUse {
                 interface: im.name.clone(),
                 key: "table",

@@ -105,51 +105,92 @@ pub struct Mortar {
 /// An integration point of the interface energy.
 #[derive(Clone, Debug)]
 pub struct Point {
-    /// Pairs involved (only the first `len` are used).
-    pub pairs: [usize; 3],
-    pub shape: [f64; 3],
-    pub len: usize,
     /// Integration weight: area represented, mm².
     pub area: f64,
     pub normal: [f64; 2],
-    /// Non-matching interfaces: the node-to-segment coupling (then `pairs`,
-    /// `shape` and `len` are unused); `None` on coincident pairs.
-    pub segment: Option<Segment>,
-    /// Mortar non-matching interfaces: the segment-to-segment coupling
-    /// (then `pairs`, `shape`, `len` and `segment` are unused).
-    pub mortar: Option<std::sync::Arc<Mortar>>,
+    /// How the point couples the two sides' nodes.
+    pub coupling: Coupling,
+}
+
+/// How a point couples the two sides: coincident pairs of a matching
+/// interface, or a spring of a non-matching one (node-to-segment or mortar),
+/// each with what it needs and nothing else.
+#[derive(Clone, Debug)]
+pub enum Coupling {
+    /// A matching interface: the point interpolates its pairs (the first
+    /// `len` of `pairs`, indices into [`InterfaceModel::pairs`]) by the
+    /// edge's shape values.
+    Coincident {
+        pairs: [usize; 3],
+        shape: [f64; 3],
+        len: usize,
+    },
+    /// A non-matching interface's node-to-segment spring; `pair` is its row
+    /// in [`InterfaceModel::pairs`] (whose `spring` names this point).
+    NodeToSegment { pair: usize, segment: Segment },
+    /// A mortar spring (`weights = "mortar"`); `pair` as for node-to-segment.
+    Mortar {
+        pair: usize,
+        mortar: std::sync::Arc<Mortar>,
+    },
+}
+
+impl Coupling {
+    /// The pairs the point stands on, with their weights: a coincident
+    /// point's pairs and shape values, a spring's own row with weight 1.
+    pub fn pairs(&self) -> impl Iterator<Item = (usize, f64)> + '_ {
+        let (pairs, shape): (&[usize], &[f64]) = match self {
+            Coupling::Coincident { pairs, shape, len } => (&pairs[..*len], &shape[..*len]),
+            Coupling::NodeToSegment { pair, .. } | Coupling::Mortar { pair, .. } => {
+                (std::slice::from_ref(pair), &[1.0])
+            }
+        };
+        pairs.iter().copied().zip(shape.iter().copied())
+    }
+
+    /// The point's first pair (a spring's own row): where a partition places it.
+    pub fn first_pair(&self) -> usize {
+        match self {
+            Coupling::Coincident { pairs, .. } => pairs[0],
+            Coupling::NodeToSegment { pair, .. } | Coupling::Mortar { pair, .. } => *pair,
+        }
+    }
+
+    /// Is the point a spring of a mortar interface?
+    pub fn is_mortar(&self) -> bool {
+        matches!(self, Coupling::Mortar { .. })
+    }
 }
 
 impl Point {
     /// On a non-matching interface: the geometric initial gap of the spring
     /// (node-to-segment or mortar), mm; `None` on coincident pairs.
     pub fn geometric_gap(&self) -> Option<f64> {
-        match (&self.segment, &self.mortar) {
-            (Some(g), _) => Some(g.gap),
-            (_, Some(m)) => Some(m.gap),
-            _ => None,
+        match &self.coupling {
+            Coupling::Coincident { .. } => None,
+            Coupling::NodeToSegment { segment, .. } => Some(segment.gap),
+            Coupling::Mortar { mortar, .. } => Some(mortar.gap),
         }
     }
 
     /// On a non-matching interface: the spring's arc length along the slave
     /// side, mm; `None` on coincident pairs.
     pub fn slave_arc(&self) -> Option<f64> {
-        match (&self.segment, &self.mortar) {
-            (Some(g), _) => Some(g.s),
-            (_, Some(m)) => Some(m.s),
-            _ => None,
+        match &self.coupling {
+            Coupling::Coincident { .. } => None,
+            Coupling::NodeToSegment { segment, .. } => Some(segment.s),
+            Coupling::Mortar { mortar, .. } => Some(mortar.s),
         }
     }
 
     /// Number of local dofs: 4·len for coincident pairs, 2·(slave nodes + 3)
-    /// for a node-to-segment point (at most 12 either way).
+    /// for a node-to-segment point (at most 12 either way), 2 per node of a
+    /// mortar spring.
     pub fn ndofs(&self) -> usize {
-        if let Some(m) = &self.mortar {
-            return 2 * m.nodes.len();
-        }
-        match &self.segment {
-            None => 4 * self.len,
-            Some(g) => 2 * (g.len_a + 3),
+        match &self.coupling {
+            Coupling::Coincident { len, .. } => 4 * len,
+            Coupling::NodeToSegment { segment: g, .. } => 2 * (g.len_a + 3),
+            Coupling::Mortar { mortar: m, .. } => 2 * m.nodes.len(),
         }
     }
 
@@ -163,38 +204,42 @@ impl Point {
     /// On a mortar interface the entries are the coefficients dn, dt of
     /// [`Mortar`]. The vectors have [`Point::ndofs`] entries.
     pub fn gradients(&self) -> (Vec<f64>, Vec<f64>) {
-        if let Some(m) = &self.mortar {
-            let flat = |d: &[[f64; 2]]| d.iter().flat_map(|v| *v).collect::<Vec<f64>>();
-            return (flat(&m.dn), flat(&m.dt));
-        }
-        let n = self.len;
         let t = [self.normal[1], -self.normal[0]];
-        let nd = self.ndofs();
-        let (mut gn, mut gt) = (vec![0.0f64; nd], vec![0.0f64; nd]);
-        if let Some(g) = &self.segment {
-            let m = g.len_a;
-            for c in 0..2 {
-                for i in 0..m {
-                    gn[2 * i + c] = -g.na[i] * self.normal[c];
-                    gt[2 * i + c] = -g.na[i] * t[c];
-                }
-                for j in 0..3 {
-                    gn[2 * m + 2 * j + c] = g.nb[j] * self.normal[c];
-                    gt[2 * m + 2 * j + c] = g.nb[j] * t[c];
-                }
+        let zeros = || (vec![0.0f64; self.ndofs()], vec![0.0f64; self.ndofs()]);
+        match &self.coupling {
+            Coupling::Mortar { mortar: m, .. } => {
+                let flat = |d: &[[f64; 2]]| d.iter().flat_map(|v| *v).collect::<Vec<f64>>();
+                (flat(&m.dn), flat(&m.dt))
             }
-            return (gn, gt);
-        }
-        for i in 0..n {
-            let s = self.shape[i];
-            for c in 0..2 {
-                gn[2 * i + c] = -s * self.normal[c];
-                gn[2 * n + 2 * i + c] = s * self.normal[c];
-                gt[2 * i + c] = -s * t[c];
-                gt[2 * n + 2 * i + c] = s * t[c];
+            Coupling::NodeToSegment { segment: g, .. } => {
+                let (mut gn, mut gt) = zeros();
+                let m = g.len_a;
+                for c in 0..2 {
+                    for i in 0..m {
+                        gn[2 * i + c] = -g.na[i] * self.normal[c];
+                        gt[2 * i + c] = -g.na[i] * t[c];
+                    }
+                    for j in 0..3 {
+                        gn[2 * m + 2 * j + c] = g.nb[j] * self.normal[c];
+                        gt[2 * m + 2 * j + c] = g.nb[j] * t[c];
+                    }
+                }
+                (gn, gt)
+            }
+            Coupling::Coincident { shape, len, .. } => {
+                let (mut gn, mut gt) = zeros();
+                let n = *len;
+                for (i, &s) in shape.iter().enumerate().take(n) {
+                    for c in 0..2 {
+                        gn[2 * i + c] = -s * self.normal[c];
+                        gn[2 * n + 2 * i + c] = s * self.normal[c];
+                        gt[2 * i + c] = -s * t[c];
+                        gt[2 * n + 2 * i + c] = s * t[c];
+                    }
+                }
+                (gn, gt)
             }
         }
-        (gn, gt)
     }
 }
 
@@ -340,13 +385,13 @@ impl InterfaceModel {
                     let shape = crate::physics::element::edge::shape(s);
                     let x = [0, 1].map(|c| (0..3).map(|k| shape[k] * xb[k][c]).sum::<f64>());
                     points.push(Point {
-                        pairs: *ids,
-                        shape,
-                        len: 3,
                         area: wg * ds * section.measure(x),
                         normal: n,
-                        segment: None,
-                        mortar: None,
+                        coupling: Coupling::Coincident {
+                            pairs: *ids,
+                            shape,
+                            len: 3,
+                        },
                     });
                 }
             }
@@ -360,13 +405,13 @@ impl InterfaceModel {
                 .iter()
                 .enumerate()
                 .map(|(i, p)| Point {
-                    pairs: [i, i, i],
-                    shape: [1.0, 0.0, 0.0],
-                    len: 1,
                     area: p.area,
                     normal: p.normal,
-                    segment: None,
-                    mortar: None,
+                    coupling: Coupling::Coincident {
+                        pairs: [i, i, i],
+                        shape: [1.0, 0.0, 0.0],
+                        len: 1,
+                    },
                 })
                 .collect();
         }
@@ -381,9 +426,9 @@ impl InterfaceModel {
     pub fn carrying_pairs(&self) -> Vec<bool> {
         let mut carries = vec![false; self.pairs.len()];
         for pt in self.points.iter().filter(|pt| pt.area > 0.0) {
-            for i in 0..pt.len {
-                if pt.shape[i] != 0.0 {
-                    carries[pt.pairs[i]] = true;
+            for (pair, w) in pt.coupling.pairs() {
+                if w != 0.0 {
+                    carries[pair] = true;
                 }
             }
         }
@@ -435,40 +480,44 @@ impl InterfaceModel {
     /// edge and u_A = Σ N_i^A u_{a_i} at the slave point.
     pub fn point_kinematics_at(&self, pt: &Point, u: &[f64], gap: f64) -> (f64, f64) {
         let nd = self.node_dofs;
-        if let Some(m) = &pt.mortar {
-            let (mut un, mut ut) = (-m.gap - gap, 0.0);
-            for (j, &node) in m.nodes.iter().enumerate() {
-                let u_j = [u[nd.dof(node, 0)], u[nd.dof(node, 1)]];
-                un += m.dn[j][0] * u_j[0] + m.dn[j][1] * u_j[1];
-                ut += m.dt[j][0] * u_j[0] + m.dt[j][1] * u_j[1];
-            }
-            return (un, ut);
-        }
         let (n, t) = (pt.normal, [pt.normal[1], -pt.normal[0]]);
-        if let Some(g) = &pt.segment {
-            let mut du = [0.0f64; 2];
-            for c in 0..2 {
-                for j in 0..3 {
-                    du[c] += g.nb[j] * u[nd.dof(g.b[j], c)];
+        match &pt.coupling {
+            Coupling::Mortar { mortar: m, .. } => {
+                let (mut un, mut ut) = (-m.gap - gap, 0.0);
+                for (j, &node) in m.nodes.iter().enumerate() {
+                    let u_j = [u[nd.dof(node, 0)], u[nd.dof(node, 1)]];
+                    un += m.dn[j][0] * u_j[0] + m.dn[j][1] * u_j[1];
+                    ut += m.dt[j][0] * u_j[0] + m.dt[j][1] * u_j[1];
                 }
-                for i in 0..g.len_a {
-                    du[c] -= g.na[i] * u[nd.dof(g.a[i], c)];
-                }
+                (un, ut)
             }
-            let un = du[0] * n[0] + du[1] * n[1] - g.gap - gap;
-            return (un, du[0] * t[0] + du[1] * t[1]);
+            Coupling::NodeToSegment { segment: g, .. } => {
+                let mut du = [0.0f64; 2];
+                for c in 0..2 {
+                    for j in 0..3 {
+                        du[c] += g.nb[j] * u[nd.dof(g.b[j], c)];
+                    }
+                    for i in 0..g.len_a {
+                        du[c] -= g.na[i] * u[nd.dof(g.a[i], c)];
+                    }
+                }
+                let un = du[0] * n[0] + du[1] * n[1] - g.gap - gap;
+                (un, du[0] * t[0] + du[1] * t[1])
+            }
+            Coupling::Coincident { pairs, shape, len } => {
+                let (mut un, mut ut) = (-gap, 0.0);
+                for i in 0..*len {
+                    let pr = &self.pairs[pairs[i]];
+                    let du = [
+                        u[nd.dof(pr.b, 0)] - u[nd.dof(pr.a, 0)],
+                        u[nd.dof(pr.b, 1)] - u[nd.dof(pr.a, 1)],
+                    ];
+                    un += shape[i] * (du[0] * n[0] + du[1] * n[1]);
+                    ut += shape[i] * (du[0] * t[0] + du[1] * t[1]);
+                }
+                (un, ut)
+            }
         }
-        let (mut un, mut ut) = (-gap, 0.0);
-        for i in 0..pt.len {
-            let pr = &self.pairs[pt.pairs[i]];
-            let du = [
-                u[nd.dof(pr.b, 0)] - u[nd.dof(pr.a, 0)],
-                u[nd.dof(pr.b, 1)] - u[nd.dof(pr.a, 1)],
-            ];
-            un += pt.shape[i] * (du[0] * n[0] + du[1] * n[1]);
-            ut += pt.shape[i] * (du[0] * t[0] + du[1] * t[1]);
-        }
-        (un, ut)
     }
 
     /// The dofs of a point in local order: A pairs (x, y) then B pairs (x, y);

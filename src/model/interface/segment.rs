@@ -116,21 +116,20 @@ pub(super) fn node_to_segment(
             spring: Some(points.len()),
         });
         points.push(Point {
-            pairs: [pairs.len() - 1; 3],
-            shape: [1.0, 0.0, 0.0],
-            len: 1,
             area,
             normal: n,
-            segment: Some(Segment {
-                a,
-                na,
-                len_a,
-                b,
-                nb,
-                gap,
-                s,
-            }),
-            mortar: None,
+            coupling: Coupling::NodeToSegment {
+                pair: pairs.len() - 1,
+                segment: Segment {
+                    a,
+                    na,
+                    len_a,
+                    b,
+                    nb,
+                    gap,
+                    s,
+                },
+            },
         });
     }
     Ok((pairs, points))
@@ -311,21 +310,20 @@ pub(super) fn mortar(
             spring: Some(points.len()),
         });
         points.push(Point {
-            pairs: [pairs.len() - 1; 3],
-            shape: [1.0, 0.0, 0.0],
-            len: 1,
             area: a.area,
             normal,
-            segment: None,
-            mortar: Some(std::sync::Arc::new(Mortar {
-                nodes,
-                dn,
-                dt,
-                dh,
-                gap: a.gap / a.area,
-                s: a.s,
-                radius: a.moment / a.area,
-            })),
+            coupling: Coupling::Mortar {
+                pair: pairs.len() - 1,
+                mortar: std::sync::Arc::new(Mortar {
+                    nodes,
+                    dn,
+                    dt,
+                    dh,
+                    gap: a.gap / a.area,
+                    s: a.s,
+                    radius: a.moment / a.area,
+                }),
+            },
         });
     }
     Ok((pairs, points))
@@ -589,6 +587,14 @@ pub fn project(xe: &[[f64; 2]; 3], x: [f64; 2]) -> Option<f64> {
 mod tests {
     use super::*;
 
+    /// A node-to-segment point's coupling.
+    fn segment_of(p: &Point) -> Segment {
+        match &p.coupling {
+            Coupling::NodeToSegment { segment, .. } => *segment,
+            c => panic!("not a node-to-segment point: {c:?}"),
+        }
+    }
+
     /// A slave edge along y = `ys` from x = 0 to 2 (walked toward `dir`)
     /// over a master edge along y = 0 from −1 to 3, walked in +x (B below).
     fn springs(ys: f64, dir: f64) -> Result<(Vec<Pair>, Vec<Point>), String> {
@@ -623,7 +629,7 @@ mod tests {
     fn gaps_come_from_the_geometry_and_overlap_and_facing_away_are_refused() {
         let (_, points) = springs(0.3, 1.0).unwrap();
         for p in &points {
-            let g = p.segment.unwrap();
+            let g = segment_of(p);
             assert!((g.gap - 0.3).abs() < 1e-14, "{}", g.gap);
             assert_eq!(p.normal, [0.0, 1.0]);
         }
@@ -692,7 +698,7 @@ mod tests {
         let node = [18.0 + 2.0 * r2, -2.0 + 2.0 * r2];
         let (_, points) = rounded(20.0).expect("the corner is inside the master side");
         let p = &points[2];
-        let g = p.segment.unwrap();
+        let g = segment_of(p);
         // the node's lower-numbered edge, at its end ξ = 1, normal along
         // the 45° ray, gap the distance to the node
         assert_eq!(g.b, [5, 6, 7]);

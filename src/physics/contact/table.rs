@@ -391,6 +391,30 @@ fn segment_area(y: &[f64], d: &[f64], k: usize, h: f64) -> f64 {
     h * 0.5 * (y[k] + y[k + 1]) + h * h * (d[k] - d[k + 1]) / 12.0
 }
 
+/// Most rows of a `table` or `k_table` (a bound on what a case file can make the model hold).
+pub const MAX_TABLE_ROWS: usize = 10_000;
+
+/// The rows of a two-column table as pairs; the message names the row (1-based).
+pub fn rows_of_two(rows: &[Vec<f64>], a: &str, b: &str) -> Result<Vec<(f64, f64)>, String> {
+    if rows.len() > MAX_TABLE_ROWS {
+        return Err(format!(
+            "{} rows, more than {MAX_TABLE_ROWS} (the limit)",
+            rows.len()
+        ));
+    }
+    rows.iter()
+        .enumerate()
+        .map(|(i, r)| match r.as_slice() {
+            &[x, y] => Ok((x, y)),
+            _ => Err(format!(
+                "row {}: {} numbers, expected 2 ([{a}, {b}])",
+                i + 1,
+                r.len()
+            )),
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -4,6 +4,7 @@
 //! the key. `asperity calibrate` checks its `[tangential]` by the same rules.
 
 use super::*;
+use crate::physics::contact::tangential::params;
 
 /// The tangential law of interface `name`: r and s, or a k_table, with
 /// lumped springs or a non-matching interface.
@@ -37,10 +38,12 @@ pub(super) fn tangential_law(
         }
         (Some(rows), None, None) => {
             let key = format!("{key} k_table");
-            let rows = table_rows(rows, "p_N", "k_T").map_err(|m| Error::input(at(&key), m))?;
+            let rows = crate::physics::contact::table::rows_of_two(rows, "p_N", "k_T")
+                .map_err(|m| Error::input(at(&key), m))?;
             for (i, &(p, k)) in rows.iter().enumerate() {
-                ranges::PRESSURE.check(at(&format!("{key} row {} p_N", i + 1)), p)?;
-                ranges::SHEAR_STIFFNESS.check(at(&format!("{key} row {} k_T", i + 1)), k)?;
+                for ((column, range), v) in params::K_TABLE_COLUMNS.iter().zip([p, k]) {
+                    range.check(at(&format!("{key} row {} {column}", i + 1)), v)?;
+                }
             }
             TangentialLaw::with_k_table(&rows, kp_ratio, t.mu, t.beta, t.n, t.yield_ratio())
                 .map_err(|m| Error::input(at(&key), m))?
@@ -60,11 +63,7 @@ pub(super) fn tangential_law(
             ));
         }
     };
-    for (k, v, range) in [
-        ("r", t.r.unwrap_or(0.0), &ranges::SHEAR_R),
-        ("mu", t.mu, &ranges::FRICTION),
-        ("n", t.n, &ranges::SLIP_RATE),
-    ] {
+    for ((k, range), v) in params::NUMBERS.iter().zip([t.r.unwrap_or(0.0), t.mu, t.n]) {
         range.check(at(&format!("{key} {k}")), v)?;
     }
     let backbone = match t.backbone {

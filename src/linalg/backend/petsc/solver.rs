@@ -160,7 +160,7 @@ impl Partition {
             .flat_map(|im| {
                 im.points
                     .iter()
-                    .map(|pt| node_owner[im.pairs[pt.pairs[0]].b])
+                    .map(|pt| node_owner[im.pairs[pt.coupling.first_pair()].b])
             })
             .collect();
         // dofs sorted by (owner, node, component); every node has an owner

@@ -1,4 +1,4 @@
-use super::super::{FrictionScheme, NormalLaw, Pair, Point, Segment, TangentialLaw};
+use super::super::{Coupling, FrictionScheme, Pair, Point, Segment, TangentialLaw};
 use super::*;
 use crate::input::mesh::NodeDofs;
 use crate::numbers::fd;
@@ -19,31 +19,34 @@ fn model(node_dofs: NodeDofs) -> InterfaceModel {
         .collect();
     let shape = crate::physics::element::edge::shape(0.3);
     let coincident = Point {
-        pairs: [0, 1, 2],
-        shape,
-        len: 3,
         area: 55.0,
         normal: [-1.0, 0.1f64.sin()],
-        segment: None,
-        mortar: None,
+        coupling: Coupling::Coincident {
+            pairs: [0, 1, 2],
+            shape,
+            len: 3,
+        },
     };
     let segment = Point {
-        segment: Some(Segment {
-            a: [0, 1, 2],
-            na: shape,
-            len_a: 3,
-            b: [3, 4, 5],
-            nb: crate::physics::element::edge::shape(0.25),
-            gap: 0.0,
-            s: 0.6,
-        }),
+        coupling: Coupling::NodeToSegment {
+            pair: 0,
+            segment: Segment {
+                a: [0, 1, 2],
+                na: shape,
+                len_a: 3,
+                b: [3, 4, 5],
+                nb: crate::physics::element::edge::shape(0.25),
+                gap: 0.0,
+                s: 0.6,
+            },
+        },
         ..coincident.clone()
     };
     InterfaceModel {
         name: "fit".into(),
         body_a: 0,
         body_b: 1,
-        law: NormalLaw::new_power(0.001, 0.5).unwrap(),
+        law: crate::physics::contact::normal::power::new(0.001, 0.5).unwrap(),
         gap: -0.004,
         gap_history: None,
         pairs,

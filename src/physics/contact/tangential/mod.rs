@@ -29,6 +29,7 @@ use std::sync::Arc;
 
 mod jenkins;
 mod kinematic;
+pub mod params;
 mod vector;
 mod work;
 pub use jenkins::{Elements, Stretch2, IWAN_LOWEST, JENKINS};
