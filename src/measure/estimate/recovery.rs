@@ -59,42 +59,86 @@ impl Samples {
 /// σ* at the nodes of every element (the first `family.nodes()` of each),
 /// from each element's sampled σ_h.
 pub fn recover(mesh: &Mesh, samples: &[Samples]) -> Vec<[Stress; MAX_NODES]> {
-    let nn = mesh.nodes.len();
-    let ne = mesh.elements.len();
-    // node → elements, as CSR
-    let mut start = vec![0usize; nn + 1];
-    for el in &mesh.elements {
-        for &n in el.nodes() {
-            start[n + 1] += 1;
-        }
-    }
-    for i in 0..nn {
-        start[i + 1] += start[i];
-    }
-    let mut fill = start.clone();
-    let mut adj = vec![0usize; start[nn]];
-    for (e, el) in mesh.elements.iter().enumerate() {
-        for &n in el.nodes() {
-            adj[fill[n]] = e;
-            fill[n] += 1;
-        }
-    }
-    let boundary = boundary_nodes(mesh);
-    let mut sum = vec![[0.0f64; 6]; nn];
-    let mut count = vec![0u32; nn];
-    let mut out = vec![[[0.0; 6]; MAX_NODES]; ne];
+    let mut r = Recovery::new(mesh, samples);
+    let mut out = vec![[[0.0; 6]; MAX_NODES]; mesh.elements.len()];
     for body in 0..mesh.bodies.len().max(1) {
-        let elems: Vec<usize> = (0..ne).filter(|&e| mesh.elements[e].body == body).collect();
-        if elems.is_empty() {
-            continue;
+        r.body(body, &mut out);
+    }
+    out
+}
+
+/// The recovery's working state: the node → elements adjacency, the
+/// boundary nodes, and each node's sum and count of fitted values (reset
+/// body by body).
+struct Recovery<'a> {
+    mesh: &'a Mesh,
+    samples: &'a [Samples],
+    /// Node n's elements are `adj[start[n]..start[n + 1]]` (CSR).
+    start: Vec<usize>,
+    adj: Vec<usize>,
+    boundary: Vec<bool>,
+    sum: Vec<Stress>,
+    count: Vec<u32>,
+}
+
+impl<'a> Recovery<'a> {
+    fn new(mesh: &'a Mesh, samples: &'a [Samples]) -> Self {
+        let nn = mesh.nodes.len();
+        let mut start = vec![0usize; nn + 1];
+        for el in &mesh.elements {
+            for &n in el.nodes() {
+                start[n + 1] += 1;
+            }
         }
-        let patch = |v: usize| -> Vec<usize> {
-            adj[start[v]..start[v + 1]]
-                .iter()
-                .copied()
-                .filter(|&e| mesh.elements[e].body == body)
-                .collect()
-        };
+        for i in 0..nn {
+            start[i + 1] += start[i];
+        }
+        let mut fill = start.clone();
+        let mut adj = vec![0usize; start[nn]];
+        for (e, el) in mesh.elements.iter().enumerate() {
+            for &n in el.nodes() {
+                adj[fill[n]] = e;
+                fill[n] += 1;
+            }
+        }
+        Recovery {
+            mesh,
+            samples,
+            start,
+            adj,
+            boundary: boundary_nodes(mesh),
+            sum: vec![[0.0f64; 6]; nn],
+            count: vec![0u32; nn],
+        }
+    }
+
+    /// The patch of vertex v in `body`: its elements of that body.
+    fn patch(&self, v: usize, body: usize) -> Vec<usize> {
+        self.adj[self.start[v]..self.start[v + 1]]
+            .iter()
+            .copied()
+            .filter(|&e| self.mesh.elements[e].body == body)
+            .collect()
+    }
+
+    fn add(&mut self, n: usize, s: Stress) {
+        for c in 0..6 {
+            self.sum[n][c] += s[c];
+        }
+        self.count[n] += 1;
+    }
+
+    /// The recovery of one body (module text) into `out`: the interior
+    /// patches, then boundary vertices no interior patch reached, then the
+    /// elements' own extrapolation for what is left.
+    fn body(&mut self, body: usize, out: &mut [[Stress; MAX_NODES]]) {
+        let mesh = self.mesh;
+        let elems: Vec<usize> = (0..mesh.elements.len())
+            .filter(|&e| mesh.elements[e].body == body)
+            .collect();
+        if elems.is_empty() {
+            return;
+        }
         let mut nodes: Vec<usize> = elems
             .iter()
             .flat_map(|&e| mesh.elements[e].nodes().iter().copied())
@@ -105,88 +149,106 @@ pub fn recover(mesh: &Mesh, samples: &[Samples]) -> Vec<[Stress; MAX_NODES]> {
             .iter()
             .copied()
             .filter(|&n| {
-                patch(n)
+                self.patch(n, body)
                     .iter()
                     .any(|&e| mesh.elements[e].corners().contains(&n))
             })
             .collect();
-        // interior patches
-        let add = |n: usize, s: Stress, sum: &mut Vec<Stress>, count: &mut Vec<u32>| {
-            for c in 0..6 {
-                sum[n][c] += s[c];
+        self.interior_patches(&vertices, body);
+        let second = self.boundary_patches(&vertices, body);
+        for (n, s) in second {
+            self.add(n, s);
+        }
+        let third = self.extrapolated(&elems);
+        for (n, s) in third {
+            self.add(n, s);
+        }
+        for &e in &elems {
+            for (a, &n) in mesh.elements[e].nodes().iter().enumerate() {
+                let k = f64::from(self.count[n].max(1));
+                out[e][a] = self.sum[n].map(|s| s / k);
             }
-            count[n] += 1;
-        };
-        for &v in vertices.iter().filter(|&&v| !boundary[v]) {
-            let pe = patch(v);
-            let Some(fit) = Fit::new(mesh.nodes[v], &pe, samples) else {
+        }
+        for &n in &nodes {
+            (self.sum[n], self.count[n]) = ([0.0; 6], 0);
+        }
+    }
+
+    /// Each interior vertex's patch fit, at the vertex, the midsides of the
+    /// edges through it and the patch's boundary nodes.
+    fn interior_patches(&mut self, vertices: &[usize], body: usize) {
+        let mesh = self.mesh;
+        for &v in vertices {
+            if self.boundary[v] {
+                continue;
+            }
+            let pe = self.patch(v, body);
+            let Some(fit) = Fit::new(mesh.nodes[v], &pe, self.samples) else {
                 continue;
             };
             for &e in &pe {
                 let el = &mesh.elements[e];
                 for &n in el.nodes() {
-                    if n == v || boundary[n] || on_edge_through(el, n, v) {
-                        add(n, fit.at(mesh.nodes[n]), &mut sum, &mut count);
+                    if n == v || self.boundary[n] || on_edge_through(el, n, v) {
+                        self.add(n, fit.at(mesh.nodes[n]));
                     }
                 }
             }
         }
-        // boundary vertices no interior patch reached: their own patch
+    }
+
+    /// Boundary vertices no interior patch reached: their own patch's fit
+    /// at the vertex and the midsides through it still without a value.
+    fn boundary_patches(&self, vertices: &[usize], body: usize) -> Vec<(usize, Stress)> {
+        let mesh = self.mesh;
         let mut second = Vec::new();
-        for &v in vertices.iter().filter(|&&v| boundary[v] && count[v] == 0) {
-            let pe = patch(v);
-            if let Some(fit) = Fit::new(mesh.nodes[v], &pe, samples) {
+        for &v in vertices
+            .iter()
+            .filter(|&&v| self.boundary[v] && self.count[v] == 0)
+        {
+            let pe = self.patch(v, body);
+            if let Some(fit) = Fit::new(mesh.nodes[v], &pe, self.samples) {
                 second.push((v, fit.at(mesh.nodes[v])));
                 for &e in &pe {
                     let el = &mesh.elements[e];
                     for [_, m, _] in el.edges() {
-                        if count[m] == 0 && on_edge_through(el, m, v) {
+                        if self.count[m] == 0 && on_edge_through(el, m, v) {
                             second.push((m, fit.at(mesh.nodes[m])));
                         }
                     }
                 }
             }
         }
-        for (n, s) in second {
-            add(n, s, &mut sum, &mut count);
-        }
-        // the rest: the elements' own extrapolation
+        second
+    }
+
+    /// The nodes still without a value: their elements' own extrapolation
+    /// of the sampled values.
+    fn extrapolated(&self, elems: &[usize]) -> Vec<(usize, Stress)> {
         let mut third = Vec::new();
-        for &e in &elems {
-            let el = &mesh.elements[e];
+        for &e in elems {
+            let el = &self.mesh.elements[e];
             let en = el.nodes();
-            if en.iter().all(|&n| count[n] > 0) {
+            if en.iter().all(|&n| self.count[n] > 0) {
                 continue;
             }
             let rule = el.family.sampling_rule();
             let mut ex = [[0.0; 6]; MAX_NODES];
             for c in 0..6 {
-                let v: Vec<f64> = samples[e].each().map(|(_, s)| s[c]).collect();
+                let v: Vec<f64> = self.samples[e].each().map(|(_, s)| s[c]).collect();
                 let x = el.family.extrapolate_to_nodes(&rule, &v);
                 for a in 0..en.len() {
                     ex[a][c] = x[a];
                 }
             }
             for (a, &n) in en.iter().enumerate() {
-                if count[n] == 0 {
+                if self.count[n] == 0 {
                     third.push((n, ex[a]));
                 }
             }
         }
-        for (n, s) in third {
-            add(n, s, &mut sum, &mut count);
-        }
-        for &e in &elems {
-            for (a, &n) in mesh.elements[e].nodes().iter().enumerate() {
-                let k = f64::from(count[n].max(1));
-                out[e][a] = sum[n].map(|s| s / k);
-            }
-        }
-        for &n in &nodes {
-            (sum[n], count[n]) = ([0.0; 6], 0);
-        }
+        third
     }
-    out
 }
 
 /// Whether node `n` is the midside of an edge of `el` that ends at node v.
