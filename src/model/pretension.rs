@@ -99,25 +99,8 @@ pub fn cut(case: &Case, mesh: &mut Mesh, place: &str) -> Result<Vec<Section>> {
     for (k, spec) in case.pretension.iter().enumerate() {
         let at = at(place, k, spec);
         let err = |m: String| Err(Error::input(&at, m));
-        if spec.name.trim().is_empty() {
-            return err("name is empty".into());
-        }
-        let plain = spec.name.trim() == spec.name
-            && spec.name.len() <= crate::input::case::MAX_NAME_BYTES
-            && !spec
-                .name
-                .chars()
-                .any(|c| c.is_control() || c == ',' || c == '"');
-        if !plain {
-            return err(format!(
-                "name {:?} is not a usable section name (no blanks around it, at most {} bytes, no comma, quote or control character): it heads pretension.csv's columns",
-                crate::error::clip(&spec.name),
-                crate::input::case::MAX_NAME_BYTES
-            ));
-        }
-        if out.iter().any(|s| s.name == spec.name) {
-            return err("two [[pretension]] sections have this name".into());
-        }
+        let blame = |m: String| Error::input(&at, m);
+        check_name(spec, &out).map_err(blame)?;
         let Some(body) = mesh.bodies.iter().position(|b| *b == spec.body) else {
             return err(format!(
                 "body \"{}\" does not exist (bodies: {})",
@@ -125,62 +108,8 @@ pub fn cut(case: &Case, mesh: &mut Mesh, place: &str) -> Result<Vec<Section>> {
                 mesh.bodies.join(", ")
             ));
         };
-        let (axis, value) = match (spec.x, spec.y) {
-            (None, Some(y)) => (1, y),
-            (Some(x), None) => {
-                if case.model.plane == crate::physics::material::Plane::Axisymmetric {
-                    return err("x = c cuts a body of revolution along a cylinder: in an axisymmetric model a section is a cut y = h across the axis (a bolt along y)".into());
-                }
-                (0, x)
-            }
-            (Some(_), Some(_)) => return err("give x or y (the line of the cut), not both".into()),
-            (None, None) => {
-                return err("give the line of the cut: y = h (normal +y) or, in plane models, x = c (normal +x)".into())
-            }
-        };
-        if !crate::input::case::ranges::COORDINATE.admits(value) {
-            return err(format!(
-                "{} = {value}: {}",
-                ["x", "y"][axis],
-                crate::input::case::ranges::COORDINATE.refusal(value)
-            ));
-        }
-        match (spec.force, spec.shortening) {
-            (Some(_), Some(_)) => {
-                return err("give force or shortening, not both".into());
-            }
-            (None, None) => {
-                return err("give force (N, tension positive) or shortening (mm)".into());
-            }
-            (None, Some(_)) if spec.lock.is_some() => {
-                return err("lock is given with shortening: a prescribed shortening is held by its history (lock applies to a force-controlled section)".into());
-            }
-            _ => {}
-        }
-        if let Some(f) = spec.force {
-            if f == 0.0 || !crate::input::case::ranges::FORCE.admits(f) {
-                return err(format!(
-                    "force = {f}: {}",
-                    if f == 0.0 {
-                        "a section without force (give the bolt force, N)".to_string()
-                    } else {
-                        crate::input::case::ranges::FORCE.refusal(f)
-                    }
-                ));
-            }
-        }
-        if let Some(s) = spec.shortening {
-            if s == 0.0 || !crate::input::case::ranges::DISPLACEMENT.admits(s) {
-                return err(format!(
-                    "shortening = {s}: {}",
-                    if s == 0.0 {
-                        "a section without shortening (give the shortening, mm)".to_string()
-                    } else {
-                        crate::input::case::ranges::DISPLACEMENT.refusal(s)
-                    }
-                ));
-            }
-        }
+        let (axis, value) = line_of(case, spec).map_err(blame)?;
+        check_control(spec).map_err(blame)?;
         if let Some(other) = out
             .iter()
             .find(|s| s.body == body && s.axis == axis && (s.at - value).abs() <= tol)
@@ -207,6 +136,95 @@ pub fn cut(case: &Case, mesh: &mut Mesh, place: &str) -> Result<Vec<Section>> {
         });
     }
     Ok(out)
+}
+
+/// A section's name: not empty, plain (it heads pretension.csv's
+/// columns), not taken by an earlier section of `out`.
+fn check_name(spec: &PretensionSpec, out: &[Section]) -> std::result::Result<(), String> {
+    if spec.name.trim().is_empty() {
+        return Err("name is empty".into());
+    }
+    let plain = spec.name.trim() == spec.name
+        && spec.name.len() <= crate::input::case::MAX_NAME_BYTES
+        && !spec
+            .name
+            .chars()
+            .any(|c| c.is_control() || c == ',' || c == '"');
+    if !plain {
+        return Err(format!(
+            "name {:?} is not a usable section name (no blanks around it, at most {} bytes, no comma, quote or control character): it heads pretension.csv's columns",
+            crate::error::clip(&spec.name),
+            crate::input::case::MAX_NAME_BYTES
+        ));
+    }
+    if out.iter().any(|s| s.name == spec.name) {
+        return Err("two [[pretension]] sections have this name".into());
+    }
+    Ok(())
+}
+
+/// The line of a section's cut: (axis, value) of x_axis = value.
+fn line_of(case: &Case, spec: &PretensionSpec) -> std::result::Result<(usize, f64), String> {
+    let (axis, value) = match (spec.x, spec.y) {
+        (None, Some(y)) => (1, y),
+        (Some(x), None) => {
+            if case.model.plane == crate::physics::material::Plane::Axisymmetric {
+                return Err("x = c cuts a body of revolution along a cylinder: in an axisymmetric model a section is a cut y = h across the axis (a bolt along y)".into());
+            }
+            (0, x)
+        }
+        (Some(_), Some(_)) => return Err("give x or y (the line of the cut), not both".into()),
+        (None, None) => return Err(
+            "give the line of the cut: y = h (normal +y) or, in plane models, x = c (normal +x)"
+                .into(),
+        ),
+    };
+    if !crate::input::case::ranges::COORDINATE.admits(value) {
+        return Err(format!(
+            "{} = {value}: {}",
+            ["x", "y"][axis],
+            crate::input::case::ranges::COORDINATE.refusal(value)
+        ));
+    }
+    Ok((axis, value))
+}
+
+/// A section's control: a force or a shortening, one of them, in range
+/// and not zero; `lock` with a force only.
+fn check_control(spec: &PretensionSpec) -> std::result::Result<(), String> {
+    match (spec.force, spec.shortening) {
+        (Some(_), Some(_)) => return Err("give force or shortening, not both".into()),
+        (None, None) => return Err("give force (N, tension positive) or shortening (mm)".into()),
+        (None, Some(_)) if spec.lock.is_some() => {
+            return Err("lock is given with shortening: a prescribed shortening is held by its history (lock applies to a force-controlled section)".into());
+        }
+        _ => {}
+    }
+    if let Some(f) = spec.force {
+        if f == 0.0 || !crate::input::case::ranges::FORCE.admits(f) {
+            return Err(format!(
+                "force = {f}: {}",
+                if f == 0.0 {
+                    "a section without force (give the bolt force, N)".to_string()
+                } else {
+                    crate::input::case::ranges::FORCE.refusal(f)
+                }
+            ));
+        }
+    }
+    if let Some(s) = spec.shortening {
+        if s == 0.0 || !crate::input::case::ranges::DISPLACEMENT.admits(s) {
+            return Err(format!(
+                "shortening = {s}: {}",
+                if s == 0.0 {
+                    "a section without shortening (give the shortening, mm)".to_string()
+                } else {
+                    crate::input::case::ranges::DISPLACEMENT.refusal(s)
+                }
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// The node each node of a cut mesh (`nodes` of them) was before the cuts:
@@ -270,6 +288,48 @@ fn split(
     at: &str,
     name: &str,
 ) -> Result<Vec<(usize, usize)>> {
+    let line = format!("{} = {value}", ["x", "y"][axis]);
+    let (beyond, on_sides) = sides_of_line(mesh, body, axis, value, at, name)?;
+    let mut cut: Vec<usize> = on_sides
+        .iter()
+        .filter(|(_, s)| s[0] && s[1])
+        .map(|(&n, _)| n)
+        .collect();
+    cut.sort_unstable();
+    if cut.is_empty() {
+        return Err(Error::input(
+            at,
+            format!(
+                "does not cut body \"{name}\": no element edge of the body on {line} has elements of the body on both sides"
+            ),
+        ));
+    }
+    let copy: HashMap<usize, usize> = cut
+        .iter()
+        .enumerate()
+        .map(|(i, &n)| (n, mesh.nodes.len() + i))
+        .collect();
+    let pairs: Vec<(usize, usize)> = cut.iter().map(|&n| (n, copy[&n])).collect();
+    for &n in &cut {
+        let x = mesh.nodes[n];
+        mesh.nodes.push(x);
+    }
+    carry_to_copies(mesh, body, &beyond, &copy);
+    Ok(pairs)
+}
+
+/// Each element of `body` beyond the line x_axis = value (or before it),
+/// and for each node on the line the sides its elements lie on; an element
+/// the line runs through is refused.
+#[allow(clippy::type_complexity)]
+fn sides_of_line(
+    mesh: &Mesh,
+    body: usize,
+    axis: usize,
+    value: f64,
+    at: &str,
+    name: &str,
+) -> Result<(Vec<bool>, HashMap<usize, [bool; 2]>)> {
     let tol = crate::model::consistency::tolerance(mesh);
     let line = format!("{} = {value}", ["x", "y"][axis]);
     let side = |n: usize| -> i8 {
@@ -308,30 +368,12 @@ fn split(
             }
         }
     }
-    let mut cut: Vec<usize> = on_sides
-        .iter()
-        .filter(|(_, s)| s[0] && s[1])
-        .map(|(&n, _)| n)
-        .collect();
-    cut.sort_unstable();
-    if cut.is_empty() {
-        return Err(Error::input(
-            at,
-            format!(
-                "does not cut body \"{name}\": no element edge of the body on {line} has elements of the body on both sides"
-            ),
-        ));
-    }
-    let copy: HashMap<usize, usize> = cut
-        .iter()
-        .enumerate()
-        .map(|(i, &n)| (n, mesh.nodes.len() + i))
-        .collect();
-    let pairs: Vec<(usize, usize)> = cut.iter().map(|&n| (n, copy[&n])).collect();
-    for &n in &cut {
-        let x = mesh.nodes[n];
-        mesh.nodes.push(x);
-    }
+    Ok((beyond, on_sides))
+}
+
+/// The elements beyond the cut, and the edges, interface sides and node
+/// sets that belong to them, take the copies of the cut's nodes.
+fn carry_to_copies(mesh: &mut Mesh, body: usize, beyond: &[bool], copy: &HashMap<usize, usize>) {
     // edges [end, mid, end] of the elements beyond: their owner decides
     let mut owner: HashMap<[usize; 3], bool> = HashMap::new();
     for (e, el) in mesh.elements.iter().enumerate() {
@@ -406,7 +448,6 @@ fn split(
             }
         }
     }
-    Ok(pairs)
 }
 
 /// Completes the sections once the loads are known: each one's dof after

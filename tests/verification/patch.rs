@@ -177,7 +177,9 @@ fn mixed_patch() -> (Vec<[f64; 2]>, Vec<(Family, Vec<usize>)>) {
         [x, y]
     };
     let g = |i: usize, j: usize| (i, j);
-    let mut cells: Vec<(Family, Vec<(usize, usize)>)> = vec![
+    // each element: its family and its nodes as grid points (i, j)
+    type Cell = (Family, Vec<(usize, usize)>);
+    let mut cells: Vec<Cell> = vec![
         (
             Family::T6,
             vec![g(0, 0), g(2, 0), g(2, 2), g(1, 0), g(2, 1), g(1, 1)],

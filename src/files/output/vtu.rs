@@ -398,7 +398,7 @@ impl Layout {
         }
         h.extend_from_slice(b"\n</DataArray>\n</Cells>\n<PointData Vectors=\"displacement\" Scalars=\"von_mises\">\n");
         middle.extend_from_slice(b"</PointData>\n<CellData>\n");
-        let _ = ascii_array(&mut middle, "body", 1, Values::All(&body));
+        let _ = ascii_array(&mut middle, "body", 1, Values::All(body));
         (head, middle, Vec::new())
     }
 
@@ -472,7 +472,7 @@ impl Layout {
             b"</CellData>\n</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_",
         );
         // the mesh blocks follow the XML directly
-        raw_f64(h, Values::All(&points));
+        raw_f64(h, Values::All(points));
         raw_len(h, 8 * connectivity);
         for el in &mesh.elements {
             for &n in el.nodes().iter() {
@@ -485,7 +485,7 @@ impl Layout {
         }
         raw_len(h, ne);
         h.extend(mesh.elements.iter().map(|el| el.family.vtk_cell()));
-        raw_f64(&mut body_block, Values::All(&body));
+        raw_f64(&mut body_block, Values::All(body));
         middle.extend_from_slice(b"\n</AppendedData>\n</VTKFile>\n");
         (head, middle, body_block)
     }

@@ -117,10 +117,8 @@ pub fn estimate(model: &Model, state: &State) -> Estimate {
         let g = geometry(model, e, rule);
         let s = sample::stresses(model, &state.gauss, &state.u, e, rule, &g);
         samples[e].n = g.n;
-        for ip in 0..g.n {
-            samples[e].points[ip] = g.x[ip];
-            samples[e].values[ip] = s[ip];
-        }
+        samples[e].points[..g.n].copy_from_slice(&g.x[..g.n]);
+        samples[e].values[..g.n].copy_from_slice(&s[..g.n]);
     }
     let recovered = recovery::recover(mesh, &samples);
     let mut element = vec![0.0; ne];

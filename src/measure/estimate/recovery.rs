@@ -122,8 +122,8 @@ impl<'a> Recovery<'a> {
     }
 
     fn add(&mut self, n: usize, s: Stress) {
-        for c in 0..6 {
-            self.sum[n][c] += s[c];
+        for (t, v) in self.sum[n].iter_mut().zip(s) {
+            *t += v;
         }
         self.count[n] += 1;
     }
