@@ -139,89 +139,20 @@ pub fn build(
     let mut res = Resolver::new(case, place)?;
     // the mesh's dofs, then each pretension section's reference node
     let nd = crate::model::pretension::total_dofs(case, mesh);
-    let mut patterns = vec![LoadPattern {
-        history: None,
-        f: vec![0.0; nd],
-    }];
-    let mut acting = Vec::new();
-    let mut scaled: Vec<Scaled> = Vec::new();
-    for (i, ld) in case.load.iter().enumerate() {
-        let at = format!("{place}: load[{i}] (edges \"{}\")", ld.edges);
-        let h = res.resolve(ld.history.as_ref(), &format!("{at} history"))?;
-        let terms = edge_traction(case, ld, mesh, section, &at)?;
-        add(pattern(&mut patterns, h, nd), &terms);
-        scaled.push((format!("{at} pressure"), ld.pressure, &ranges::PRESSURE, h));
-        scaled.push((format!("{at} shear"), ld.shear, &ranges::PRESSURE, h));
-        // twist's loads about the axis, alike
-        if let Some(v) = ld.hoop_shear {
-            scaled.push((format!("{at} hoop_shear"), v, &ranges::PRESSURE, h));
-        }
-        if let Some(v) = ld.torque {
-            scaled.push((
-                format!("{at} torque"),
-                v,
-                &crate::input::case::twist::TORQUE,
-                h,
-            ));
-        }
-        // a straight edge's round-off along its own direction is no load
-        let big = terms.iter().fold(0.0f64, |a, t| a.max(t.1.abs()));
-        acting.push(Acting {
-            at,
-            dofs: terms
-                .iter()
-                .filter(|t| t.1.abs() > 1e-12 * big)
-                .map(|t| t.0)
-                .collect(),
-            concentrated: false,
-        });
-    }
-    let mut prescribed = boundary_conditions(case, mesh, place, &mut res, &mut scaled)?;
-    for (i, fs) in case.force.iter().enumerate() {
-        let at = format!("{place}: force[{i}] (nodes \"{}\")", fs.nodes);
-        let h = res.resolve(fs.history.as_ref(), &format!("{at} history"))?;
-        let terms = concentrated_force(fs, mesh, start, &at)?;
-        add(pattern(&mut patterns, h, nd), &terms);
-        scaled.push((format!("{at} fx"), fs.fx, &ranges::FORCE, h));
-        scaled.push((format!("{at} fy"), fs.fy, &ranges::FORCE, h));
-        acting.push(Acting {
-            at,
-            dofs: terms.iter().filter(|t| t.1 != 0.0).map(|t| t.0).collect(),
-            concentrated: true,
-        });
-    }
-    let mut pretension_history = Vec::new();
-    for (k, ps) in case.pretension.iter().enumerate() {
-        let at = format!("{place}: pretension[{k}] (\"{}\")", clip(&ps.name));
-        let h = res.resolve(ps.history.as_ref(), &format!("{at} history"))?;
-        let d = crate::model::pretension::dof(mesh.node_dofs, mesh.nodes.len(), k);
-        if let Some(f) = ps.force {
-            add(pattern(&mut patterns, h, nd), &[(d, f)]);
-            scaled.push((format!("{at} force"), f, &ranges::FORCE, h));
-        }
-        if let Some(v) = ps.shortening {
-            prescribed.push(((d, v), h));
-            scaled.push((format!("{at} shortening"), v, &ranges::DISPLACEMENT, h));
-        }
-        // the reference node's second dof is no unknown
-        prescribed.push(((d + 1, 0.0), None));
-        pretension_history.push(h);
-    }
-    let mut gap_history = BTreeMap::new();
-    for (name, spec) in &case.interface {
-        let at = format!("{place}: [interface.{}] gap_history", clip(name));
-        if let Some(h) = res.resolve(spec.gap_history.as_ref(), &at)? {
-            if spec.gap == 0.0 {
-                return Err(Error::input(
-                    at,
-                    "is given, but the interface has no gap (gap = 0): a gap history scales `gap`; give the gap (negative: an interference) or remove gap_history",
-                ));
-            }
-            gap_history.insert(name.clone(), h);
-            let at = format!("{place}: [interface.{}] gap", clip(name));
-            scaled.push((at, spec.gap, &ranges::DISPLACEMENT, Some(h)));
-        }
-    }
+    let mut g = Gathered {
+        patterns: vec![LoadPattern {
+            history: None,
+            f: vec![0.0; nd],
+        }],
+        nd,
+        acting: Vec::new(),
+        scaled: Vec::new(),
+    };
+    g.edge_loads(case, mesh, section, place, &mut res)?;
+    let mut prescribed = boundary_conditions(case, mesh, place, &mut res, &mut g.scaled)?;
+    g.forces(case, mesh, start, place, &mut res)?;
+    let pretension_history = g.pretension(case, mesh, place, &mut res, &mut prescribed)?;
+    let gap_history = g.gap_histories(case, place, &mut res)?;
     if let Some(k) = res.used.iter().position(|&u| !u) {
         return Err(Error::input(
             format!("{place}: [history] {}", clip(res.named[k])),
@@ -235,7 +166,7 @@ pub fn build(
             "cannot be given with load histories ([history], or `history` / `gap_history` on a load, boundary, force or interface): the histories say how the loads change; remove load_factors",
         ));
     }
-    for (at, v, range, h) in scaled {
+    for (at, v, range, h) in g.scaled {
         let peak = match h {
             Some(h) => histories[h].peak(),
             None => largest_factor(case, &histories),
@@ -247,13 +178,151 @@ pub fn build(
     let (prescribed, prescribed_history) = prescribed.into_iter().unzip();
     Ok(Loads {
         histories,
-        patterns,
+        patterns: g.patterns,
         prescribed,
         prescribed_history,
         gap_history,
-        acting,
+        acting: g.acting,
         pretension_history,
     })
+}
+
+/// What [`build`] gathers load by load: the patterns (one per history),
+/// where each load acts, and every value a history scales, to be checked
+/// against its range once the histories are known.
+struct Gathered {
+    patterns: Vec<LoadPattern>,
+    /// Dofs of a pattern (the mesh's and the sections' reference nodes).
+    nd: usize,
+    acting: Vec<Acting>,
+    scaled: Vec<Scaled>,
+}
+
+impl Gathered {
+    /// The `[[load]]` edge tractions.
+    fn edge_loads(
+        &mut self,
+        case: &Case,
+        mesh: &Mesh,
+        section: Section,
+        place: &str,
+        res: &mut Resolver<'_>,
+    ) -> Result<()> {
+        for (i, ld) in case.load.iter().enumerate() {
+            let at = format!("{place}: load[{i}] (edges \"{}\")", ld.edges);
+            let h = res.resolve(ld.history.as_ref(), &format!("{at} history"))?;
+            let terms = edge_traction(case, ld, mesh, section, &at)?;
+            add(pattern(&mut self.patterns, h, self.nd), &terms);
+            let scaled = &mut self.scaled;
+            scaled.push((format!("{at} pressure"), ld.pressure, &ranges::PRESSURE, h));
+            scaled.push((format!("{at} shear"), ld.shear, &ranges::PRESSURE, h));
+            // twist's loads about the axis, alike
+            if let Some(v) = ld.hoop_shear {
+                scaled.push((format!("{at} hoop_shear"), v, &ranges::PRESSURE, h));
+            }
+            if let Some(v) = ld.torque {
+                let range = &crate::input::case::twist::TORQUE;
+                scaled.push((format!("{at} torque"), v, range, h));
+            }
+            // a straight edge's round-off along its own direction is no load
+            let big = terms.iter().fold(0.0f64, |a, t| a.max(t.1.abs()));
+            self.acting.push(Acting {
+                at,
+                dofs: terms
+                    .iter()
+                    .filter(|t| t.1.abs() > 1e-12 * big)
+                    .map(|t| t.0)
+                    .collect(),
+                concentrated: false,
+            });
+        }
+        Ok(())
+    }
+
+    /// The `[[force]]` concentrated forces, on the nodes `start` marks.
+    fn forces(
+        &mut self,
+        case: &Case,
+        mesh: &Mesh,
+        start: &[bool],
+        place: &str,
+        res: &mut Resolver<'_>,
+    ) -> Result<()> {
+        for (i, fs) in case.force.iter().enumerate() {
+            let at = format!("{place}: force[{i}] (nodes \"{}\")", fs.nodes);
+            let h = res.resolve(fs.history.as_ref(), &format!("{at} history"))?;
+            let terms = concentrated_force(fs, mesh, start, &at)?;
+            add(pattern(&mut self.patterns, h, self.nd), &terms);
+            self.scaled
+                .push((format!("{at} fx"), fs.fx, &ranges::FORCE, h));
+            self.scaled
+                .push((format!("{at} fy"), fs.fy, &ranges::FORCE, h));
+            self.acting.push(Acting {
+                at,
+                dofs: terms.iter().filter(|t| t.1 != 0.0).map(|t| t.0).collect(),
+                concentrated: true,
+            });
+        }
+        Ok(())
+    }
+
+    /// Each pretension section's force (a load on its reference node) or
+    /// shortening (prescribed); its history.
+    fn pretension(
+        &mut self,
+        case: &Case,
+        mesh: &Mesh,
+        place: &str,
+        res: &mut Resolver<'_>,
+        prescribed: &mut Vec<Prescribed>,
+    ) -> Result<Vec<Option<usize>>> {
+        let mut histories = Vec::new();
+        for (k, ps) in case.pretension.iter().enumerate() {
+            let at = format!("{place}: pretension[{k}] (\"{}\")", clip(&ps.name));
+            let h = res.resolve(ps.history.as_ref(), &format!("{at} history"))?;
+            let d = crate::model::pretension::dof(mesh.node_dofs, mesh.nodes.len(), k);
+            if let Some(f) = ps.force {
+                add(pattern(&mut self.patterns, h, self.nd), &[(d, f)]);
+                self.scaled
+                    .push((format!("{at} force"), f, &ranges::FORCE, h));
+            }
+            if let Some(v) = ps.shortening {
+                prescribed.push(((d, v), h));
+                let range = &ranges::DISPLACEMENT;
+                self.scaled.push((format!("{at} shortening"), v, range, h));
+            }
+            // the reference node's second dof is no unknown
+            prescribed.push(((d + 1, 0.0), None));
+            histories.push(h);
+        }
+        Ok(histories)
+    }
+
+    /// Each interface's gap history (a gap it scales must be given).
+    fn gap_histories(
+        &mut self,
+        case: &Case,
+        place: &str,
+        res: &mut Resolver<'_>,
+    ) -> Result<BTreeMap<String, usize>> {
+        let mut gap_history = BTreeMap::new();
+        for (name, spec) in &case.interface {
+            let at = format!("{place}: [interface.{}] gap_history", clip(name));
+            if let Some(h) = res.resolve(spec.gap_history.as_ref(), &at)? {
+                if spec.gap == 0.0 {
+                    return Err(Error::input(
+                        at,
+                        "is given, but the interface has no gap (gap = 0): a gap history scales `gap`; give the gap (negative: an interference) or remove gap_history",
+                    ));
+                }
+                gap_history.insert(name.clone(), h);
+                let at = format!("{place}: [interface.{}] gap", clip(name));
+                self.scaled
+                    .push((at, spec.gap, &ranges::DISPLACEMENT, Some(h)));
+            }
+        }
+        Ok(gap_history)
+    }
 }
 
 /// The largest magnitude a load without a history of its own reaches: the
@@ -451,13 +520,7 @@ fn edge_traction(
         ));
     }
     let tol = crate::model::consistency::tolerance(mesh);
-    let gp = crate::physics::element::edge::gauss_1d(3);
-    let nd = mesh.node_dofs;
-    let mut terms = Vec::new();
-    // twist: the u_θ forces of a unit τ_θ and of a unit τ_θ / r (a torque's
-    // traction), and ∫ r² dA of the selected edges
-    let mut torque_terms = Vec::new();
-    let (mut hoop_terms, mut moment) = (Vec::new(), 0.0);
+    let mut acc = Traction::default();
     let (mut count, mut on_axis) = (0, 0);
     for edge in edges {
         let x: Vec<[f64; 2]> = edge.iter().map(|&n| mesh.nodes[n]).collect();
@@ -481,38 +544,14 @@ fn edge_traction(
             }
             symmetric_traction(ld, &x, tol, at)?;
         }
-        for &(s, w) in &gp {
-            let n = crate::physics::element::edge::shape(s);
-            let dn = [s - 0.5, -2.0 * s, s + 0.5];
-            let (mut tx, mut ty) = (0.0, 0.0);
-            let mut xg = [0.0; 2];
-            for k in 0..3 {
-                tx += dn[k] * x[k][0];
-                ty += dn[k] * x[k][1];
-                xg[0] += n[k] * x[k][0];
-                xg[1] += n[k] * x[k][1];
-            }
-            let measure = section.measure(xg);
-            // body on the left: outward normal × ds = (t_y, −t_x) dξ; pressure
-            // pushes inward; the shear direction (n_y, −n_x) × ds = (−t_x, −t_y) dξ
-            for k in 0..3 {
-                if p != 0.0 {
-                    terms.push((nd.dof(edge[k], 0), -p * n[k] * ty * w * measure));
-                    terms.push((nd.dof(edge[k], 1), p * n[k] * tx * w * measure));
-                }
-                if tau != 0.0 {
-                    terms.push((nd.dof(edge[k], 0), -tau * n[k] * tx * w * measure));
-                    terms.push((nd.dof(edge[k], 1), -tau * n[k] * ty * w * measure));
-                }
-                if hoop.is_some() {
-                    let ds = tx.hypot(ty) * w;
-                    hoop_terms.push((nd.dof(edge[k], 2), n[k] * ds * measure));
-                    torque_terms.push((nd.dof(edge[k], 2), n[k] * xg[0] * ds * measure));
-                    moment += n[k] * xg[0] * xg[0] * ds * measure;
-                }
-            }
-        }
+        acc.add_edge(edge, &x, [p, tau], hoop.is_some(), section, mesh.node_dofs);
     }
+    let Traction {
+        mut terms,
+        hoop_terms,
+        torque_terms,
+        moment,
+    } = acc;
     if count == 0 {
         return Err(Error::input(at, selects_none("edge", edges.is_empty())));
     }
@@ -536,6 +575,69 @@ fn edge_traction(
         terms.extend(per.into_iter().map(|(d, v)| (d, scale * v)));
     }
     Ok(terms)
+}
+
+/// The nodal forces of an edge load, gathered edge by edge; with twist also
+/// the u_θ forces of a unit τ_θ and of a unit τ_θ / r (a torque's traction),
+/// and ∫ r² dA of the edges.
+#[derive(Default)]
+struct Traction {
+    terms: Vec<(usize, f64)>,
+    hoop_terms: Vec<(usize, f64)>,
+    torque_terms: Vec<(usize, f64)>,
+    moment: f64,
+}
+
+impl Traction {
+    /// Adds the edge [end, mid, end] at `x` under pressure p and shear τ
+    /// (`[p, tau]`), by 3-point Gauss along it: with the body on the left,
+    /// the outward normal × ds is (t_y, −t_x) dξ, the pressure pushes
+    /// inward, the shear direction (n_y, −n_x) × ds is (−t_x, −t_y) dξ.
+    fn add_edge(
+        &mut self,
+        edge: &[usize; 3],
+        x: &[[f64; 2]],
+        [p, tau]: [f64; 2],
+        hoop: bool,
+        section: Section,
+        nd: crate::input::mesh::NodeDofs,
+    ) {
+        for (s, w) in crate::physics::element::edge::gauss_1d(3) {
+            let n = crate::physics::element::edge::shape(s);
+            let dn = [s - 0.5, -2.0 * s, s + 0.5];
+            let (mut tx, mut ty) = (0.0, 0.0);
+            let mut xg = [0.0; 2];
+            for k in 0..3 {
+                tx += dn[k] * x[k][0];
+                ty += dn[k] * x[k][1];
+                xg[0] += n[k] * x[k][0];
+                xg[1] += n[k] * x[k][1];
+            }
+            let measure = section.measure(xg);
+            for k in 0..3 {
+                if p != 0.0 {
+                    self.terms
+                        .push((nd.dof(edge[k], 0), -p * n[k] * ty * w * measure));
+                    self.terms
+                        .push((nd.dof(edge[k], 1), p * n[k] * tx * w * measure));
+                }
+                if tau != 0.0 {
+                    self.terms
+                        .push((nd.dof(edge[k], 0), -tau * n[k] * tx * w * measure));
+                    self.terms
+                        .push((nd.dof(edge[k], 1), -tau * n[k] * ty * w * measure));
+                }
+                if hoop {
+                    let ds = tx.hypot(ty) * w;
+                    self.hoop_terms
+                        .push((nd.dof(edge[k], 2), n[k] * ds * measure));
+                    let lever = n[k] * xg[0] * ds * measure;
+                    self.torque_terms.push((nd.dof(edge[k], 2), lever));
+                    self.moment += n[k] * xg[0] * xg[0] * ds * measure;
+                }
+            }
+        }
+    }
 }
 
 /// On a symmetric half model, the traction at an edge end on the plane x = 0
@@ -706,28 +808,8 @@ fn boundary_conditions(
                 }
                 let (first, fh, j) = *out.entry(mesh.node_dofs.dof(n, c)).or_insert((v, h, i));
                 if first != v || fh != h {
-                    let axis = ["x", "y", "θ"][c];
-                    // the key of u_θ is the rotation (u_θ = φ r)
-                    let key = if c == 2 {
-                        "rotation".to_string()
-                    } else {
-                        format!("u{axis}")
-                    };
-                    let what = if first != v {
-                        format!("u{axis} = {v}, but boundary[{j}] (set \"{}\") already gives it {first}", clip(&case.boundary[j].set))
-                    } else {
-                        format!(
-                            "u{axis} with another history than boundary[{j}] (set \"{}\")",
-                            clip(&case.boundary[j].set)
-                        )
-                    };
-                    return Err(Error::input(
-                        format!("{at} {key}"),
-                        format!(
-                            "gives node {n} at ({}, {}) {what}: one prescribed value per node and direction",
-                            x[0], x[1]
-                        ),
-                    ));
+                    let set = clip(&case.boundary[j].set);
+                    return Err(twice_prescribed(&at, n, x, c, (v, first), j, &set));
                 }
             }
         }
@@ -736,6 +818,39 @@ fn boundary_conditions(
         }
     }
     Ok(out.into_iter().map(|(d, (v, h, _))| ((d, v), h)).collect())
+}
+
+/// The refusal of a node and direction prescribed twice: by `at` with v,
+/// and before by boundary[j] (set `set`) with `first` (another value, or
+/// the same with another history).
+fn twice_prescribed(
+    at: &str,
+    n: usize,
+    x: [f64; 2],
+    c: usize,
+    (v, first): (f64, f64),
+    j: usize,
+    set: &str,
+) -> Error {
+    let axis = ["x", "y", "θ"][c];
+    // the key of u_θ is the rotation (u_θ = φ r)
+    let key = if c == 2 {
+        "rotation".to_string()
+    } else {
+        format!("u{axis}")
+    };
+    let what = if first != v {
+        format!("u{axis} = {v}, but boundary[{j}] (set \"{set}\") already gives it {first}")
+    } else {
+        format!("u{axis} with another history than boundary[{j}] (set \"{set}\")")
+    };
+    Error::input(
+        format!("{at} {key}"),
+        format!(
+            "gives node {n} at ({}, {}) {what}: one prescribed value per node and direction",
+            x[0], x[1]
+        ),
+    )
 }
 
 /// Why a load or support selects nothing: its filters, or a set that is
