@@ -9,6 +9,11 @@ use super::*;
 /// master edge ([`project`]). One pair per point, for the per-point outputs.
 /// An error names the interface, the point and the master side's extent if a
 /// point projects outside every master edge.
+///
+/// Longer than a screen, on purpose: the lumped and the consistent weights
+/// make their points in two branches that read alike side by side, and the
+/// projection's refusal names what both gathered (the point, its edge, the
+/// master side's extent).
 pub(super) fn node_to_segment(
     mesh: &Mesh,
     name: &str,
@@ -147,6 +152,12 @@ pub(super) fn node_to_segment(
 /// hands its weight function to the edge's other nodes in proportion to
 /// their areas (the weights still sum to 1, so the patch test holds) and
 /// carries no spring.
+///
+/// Longer than a screen, on purpose: it is one pass — cut the slave edges
+/// at the master corners, integrate each piece, hand the axis nodes' weight
+/// on, make the springs — over one set of shared tables (the master ends,
+/// the pieces' feet, the weight integrals per slave node); split, each part
+/// would take and return most of them.
 pub(super) fn mortar(
     mesh: &Mesh,
     name: &str,
