@@ -77,7 +77,10 @@ fn run_on(
     factorization: Option<Factorization>,
 ) -> Run {
     let opts = RunOptions {
-        factorization,
+        hooks: asperity::app::options::Hooks {
+            factorization,
+            ..Default::default()
+        },
         out: Some(scratch().join("out").join(tag)),
         quiet: true,
         method: Some(Method::FullNewton),

@@ -458,13 +458,15 @@ impl RunArgs {
         Ok(RunOptions {
             out: self.out.clone(),
             quiet: self.quiet,
-            fault: self.inject_fault,
             restart: self.restart.clone(),
-            stop_after: self.stop_after,
+            hooks: asperity::app::options::Hooks {
+                fault: self.inject_fault,
+                stop_after: self.stop_after,
+                factorization: None,
+            },
             log_format: self.log_format.into(),
             snes: self.nonlinear == NonlinearArg::Snes,
             lean_memory: self.memory == MemoryArg::Lean,
-            factorization: None,
             threads: asperity::threads::requested(self.threads.as_deref())?,
             ..overrides
         })

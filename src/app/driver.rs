@@ -249,7 +249,7 @@ pub fn prepare(engine: &mut Engine, opts: &RunOptions, at_model: f64) {
         ("model", at_model),
         ("setup", crate::solve::peak_memory_mb()),
     ];
-    engine.fault = opts.fault;
+    engine.fault = opts.hooks.fault;
 }
 
 /// Runs a case to completion on the serial backend and writes its output
@@ -272,7 +272,7 @@ pub fn run(case_path: &Path, opts: &RunOptions) -> Result<(PathBuf, Model, RunRe
     let model = Model::build(case)?;
     let at_model = crate::solve::peak_memory_mb();
     let threads = opts.threads.unwrap_or_else(crate::threads::available);
-    let mut engine = match opts.factorization {
+    let mut engine = match opts.hooks.factorization {
         Some(kind) => serial_engine_on(&model, model.solver.method, threads, kind)?,
         None => serial_engine(&model, model.solver.method, threads)?,
     };
@@ -324,7 +324,7 @@ fn run_model_as(
     let planned =
         solve::stepping::Stepper::planned(&model.solver, &model.breakpoints()).unwrap_or(0);
     let control = Control {
-        stop_after: opts.stop_after,
+        stop_after: opts.hooks.stop_after,
     };
     let (start, pvd) = match &opts.restart {
         Some(from) => crate::files::restart::read(from, model)?,

@@ -11,8 +11,6 @@ pub struct RunOptions {
     pub quiet: bool,
     pub method: Option<Method>,
     pub refine: Option<usize>,
-    /// Test hook: make the element loop fail on (rank, assembly number).
-    pub fault: Option<(usize, usize)>,
     /// Override: equal load steps (drops the case's first_increment / load_factors).
     pub increments: Option<usize>,
     pub max_cutbacks: Option<usize>,
@@ -26,17 +24,12 @@ pub struct RunOptions {
     pub friction_scheme: Option<crate::input::case::settings::FrictionScheme>,
     /// Continue from the `restart.bin` in this output folder.
     pub restart: Option<PathBuf>,
-    /// Test hook: stop (like SIGINT, but exit 3) after this many increments.
-    pub stop_after: Option<usize>,
     /// Progress line format.
     pub log_format: LogFormat,
     /// PETSc backend only: drive the steps with SNES (default) or the built-in loop.
     pub snes: bool,
     /// PETSc backend only: the memory-lean GAMG settings (`--memory lean`).
     pub lean_memory: bool,
-    /// Serial backend only, library use (benchmarks): this factorization
-    /// instead of the one the model's tangent calls for.
-    pub factorization: Option<crate::linalg::backend::serial::Factorization>,
     /// Threads of this process (`--threads`, `ASPERITY_THREADS`; see
     /// [`crate::threads`]); `None`: every core on one process, one per rank
     /// under MPI.
@@ -44,4 +37,21 @@ pub struct RunOptions {
     /// `--adapt TOL`: an adaptive run to this relative estimate (the case's
     /// `[adapt]` table with its tolerance replaced, else the energy norm).
     pub adapt: Option<f64>,
+    /// What tests and benchmarks ask of a run (not options of a user).
+    #[doc(hidden)]
+    pub hooks: Hooks,
+}
+
+/// Test and benchmark hooks of a run: failures injected, early stops,
+/// another factorization. Hidden from the public options; the command
+/// line's `--inject-fault` and `--stop-after` set them.
+#[derive(Clone, Debug, Default)]
+pub struct Hooks {
+    /// Make the element loop fail on (rank, assembly number).
+    pub fault: Option<(usize, usize)>,
+    /// Stop (like SIGINT, but exit 3) after this many increments.
+    pub stop_after: Option<usize>,
+    /// Serial backend only (benchmarks): this factorization instead of the
+    /// one the model's tangent calls for.
+    pub factorization: Option<crate::linalg::backend::serial::Factorization>,
 }

@@ -255,7 +255,10 @@ fn a_resumed_run_keeps_its_records_and_events() {
         let (_, _, r) = run(
             &case,
             &RunOptions {
-                stop_after: Some(stop),
+                hooks: asperity::app::options::Hooks {
+                    stop_after: Some(stop),
+                    ..Default::default()
+                },
                 ..opts(&part)
             },
         )
