@@ -161,13 +161,16 @@ fn linear_fields_are_reproduced_to_round_off() {
     }
 }
 
+/// An element of a hand-made mesh: its family and its nodes.
+type Cell = (Family, Vec<usize>);
+
 /// The 5×5 grid on [0, 4]² with every interior point moved off-grid (the
 /// same moves as [`patch`]), meshed as two 6-node triangles in the lower
 /// left and upper right squares (split along opposite diagonals) and 8-node
 /// quads in the other two: a mixed mesh whose triangles and quads share
 /// curved-free but distorted sides. Only the points some element uses are
 /// nodes.
-fn mixed_patch() -> (Vec<[f64; 2]>, Vec<(Family, Vec<usize>)>) {
+fn mixed_patch() -> (Vec<[f64; 2]>, Vec<Cell>) {
     let point = |i: usize, j: usize| {
         let (mut x, mut y) = (i as f64, j as f64);
         if (1..4).contains(&i) && (1..4).contains(&j) {

@@ -117,9 +117,9 @@ pub fn estimate(model: &Model, state: &State) -> Estimate {
         let g = geometry(model, e, rule);
         let s = sample::stresses(model, &state.gauss, &state.u, e, rule, &g);
         samples[e].n = g.n;
-        for ip in 0..g.n {
+        for (ip, &v) in s.iter().enumerate().take(g.n) {
             samples[e].points[ip] = g.x[ip];
-            samples[e].values[ip] = s[ip];
+            samples[e].values[ip] = v;
         }
     }
     let recovered = recovery::recover(mesh, &samples);
