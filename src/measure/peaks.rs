@@ -14,7 +14,7 @@
 use crate::linalg::backend::Comm;
 use crate::model::state::State;
 use crate::model::Model;
-use crate::physics::material::VonMises;
+use crate::physics::material::{GaussStates, VonMises};
 
 use crate::model::outputs::{PER_BODY, PER_INTERFACE};
 
@@ -27,7 +27,7 @@ pub fn bodies(model: &Model, comm: &dyn Comm, held: &[u32], state: &State) -> Ve
 /// [`bodies`] of a whole state in one process (every element's Gauss
 /// states, as a restart file holds them): what a run's record holds,
 /// whatever its ranks.
-pub fn bodies_whole(model: &Model, gauss: &[crate::physics::material::PointState]) -> Vec<f64> {
+pub fn bodies_whole(model: &Model, gauss: &GaussStates) -> Vec<f64> {
     let all: Vec<u32> = (0..model.mesh.elements.len() as u32).collect();
     body_peaks(model, &all, gauss, |_| {})
 }
@@ -37,7 +37,7 @@ pub fn bodies_whole(model: &Model, gauss: &[crate::physics::material::PointState
 fn body_peaks(
     model: &Model,
     held: &[u32],
-    gauss: &[crate::physics::material::PointState],
+    gauss: &GaussStates,
     max: impl Fn(&mut [f64]),
 ) -> Vec<f64> {
     let nb = model.mesh.bodies.len();
@@ -45,7 +45,7 @@ fn body_peaks(
     let mut best = vec![(f64::NEG_INFINITY, usize::MAX); 2 * nb];
     for (e, local) in model.held_points(held) {
         let b = model.mesh.elements[e].body;
-        for (ip, g) in gauss[local].iter().enumerate() {
+        for (ip, g) in gauss.range(local).iter().enumerate() {
             let i = model.points(e).start + ip;
             for (slot, v) in [
                 (b, VonMises::equivalent_stress(&g.stress)),

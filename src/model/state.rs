@@ -3,7 +3,7 @@
 
 use super::Model;
 use crate::physics::contact::Status;
-use crate::physics::material::PointState;
+use crate::physics::material::GaussStates;
 
 /// Evolving state: displacements, Gauss point states and interface statuses.
 #[derive(Clone, Debug)]
@@ -11,8 +11,9 @@ pub struct State {
     pub u: Vec<f64>,
     /// Gauss point states, element by element: of every element in a whole
     /// state (one process, restart files, what the writer sees), of the
-    /// elements a rank owns inside an MPI run ([`Engine::localize`]).
-    pub gauss: Vec<PointState>,
+    /// elements a rank owns inside an MPI run ([`Engine::localize`]). The
+    /// twist components are stored only in a model with twist.
+    pub gauss: GaussStates,
     pub status: Vec<Status>,
     /// Tangential state of every interface point (all interfaces, in order).
     pub contact: Vec<crate::physics::contact::PointState>,
@@ -38,7 +39,7 @@ impl State {
         let n_points: usize = model.interfaces.iter().map(|i| i.points.len()).sum();
         State {
             u: vec![0.0; model.num_dofs()],
-            gauss: vec![PointState::default(); model.n_points()],
+            gauss: GaussStates::new(model.n_points(), model.node_dofs().twist()),
             status: vec![Status::Closed; n_points],
             contact: vec![crate::physics::contact::PointState::default(); n_points],
             prescribed_reaction: 0.0,

@@ -81,8 +81,8 @@ fn ratios<'a>(
 ) -> impl Iterator<Item = (f64, usize, usize)> + 'a {
     model.held_points(held).flat_map(move |(e, local)| {
         let mat = &model.materials[model.mesh.elements[e].body];
-        let states = &state.gauss[local];
-        (0..states.len()).map(move |ip| (yield_ratio(mat, &states[ip]), e, ip))
+        let states = state.gauss.range(local);
+        (0..states.len()).map(move |ip| (yield_ratio(mat, &states.get(ip)), e, ip))
     })
 }
 

@@ -119,7 +119,7 @@ fn peeq_by_element(model: &Model, r: &RunResult) -> HashMap<Vec<u64>, f64> {
                 .iter()
                 .flat_map(|x| [x[0].to_bits(), x[1].to_bits()])
                 .collect();
-            let states = &r.final_state.gauss[e * ng..(e + 1) * ng];
+            let states = r.final_state.gauss.range(e * ng..(e + 1) * ng);
             (key, states.iter().fold(0.0f64, |m, s| m.max(s.peeq)))
         })
         .collect()

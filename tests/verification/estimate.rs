@@ -148,7 +148,10 @@ fn linear_field(model: &Model) -> (f64, f64) {
         let ue = model.element_u(e, &st.u);
         let mat = &model.materials[model.mesh.elements[e].body];
         for ip in 0..ng {
-            st.gauss[e * ng + ip] = elastic_state(mat, &PointState::default(), &g.strain(ip, &ue));
+            st.gauss.set(
+                e * ng + ip,
+                &elastic_state(mat, &PointState::default(), &g.strain(ip, &ue)),
+            );
         }
     }
     let est = estimate(model, &st);

@@ -186,13 +186,19 @@ fn first_yield_names_the_lowest_of_points_tied_within_round_off() {
     let mut state = asperity::solve::State::initial(&model);
     // uniaxial σxx = ratio · σ_Y at (element, point)
     let at = |e: usize, ip: usize| e * ng + ip;
-    state.gauss[at(a, 3)].stress[0] = 0.9 * sy;
-    state.gauss[at(b, 2)].stress[0] = 0.9 * (1.0 + 3e-15) * sy;
-    state.gauss[at(c, 0)].stress[0] = 0.9 * (1.0 - 4e-15) * sy;
+    state.gauss.update(at(a, 3), |g| g.stress[0] = 0.9 * sy);
+    state
+        .gauss
+        .update(at(b, 2), |g| g.stress[0] = 0.9 * (1.0 + 3e-15) * sy);
+    state
+        .gauss
+        .update(at(c, 0), |g| g.stress[0] = 0.9 * (1.0 - 4e-15) * sy);
     let (ratio, e, ip) = engine.max_yield_ratio(&state);
     assert!(common::rel(ratio, 0.9) < 1e-14, "{ratio}");
     assert_eq!((e, ip), (a, 3), "the lowest of three tied points");
-    state.gauss[at(b, 2)].stress[0] = 0.9 * (1.0 + 1e-9) * sy;
+    state
+        .gauss
+        .update(at(b, 2), |g| g.stress[0] = 0.9 * (1.0 + 1e-9) * sy);
     let (_, e, ip) = engine.max_yield_ratio(&state);
     assert_eq!((e, ip), (b, 2), "a point 1e-9 above the others is not tied");
 }

@@ -490,7 +490,10 @@ fn a_run_with_histories_stopped_and_restarted_takes_the_same_steps() {
                 out: Some(out.clone()),
                 quiet: true,
                 restart: restart.then(|| out.clone()),
-                stop_after,
+                hooks: asperity::app::options::Hooks {
+                    stop_after,
+                    ..Default::default()
+                },
                 ..RunOptions::default()
             };
             driver::run(&case, &opts).unwrap_or_else(|e| panic!("{tag}: {e}"));

@@ -315,7 +315,12 @@ fn assembled_tangent_is_the_derivative_of_the_residual_near_the_limit_load() {
         let (before, now) = states_near_the_limit_load(&mut engine, &model, 0.1, 0.8);
         let ng = model.rule(0).points.len();
         let plastic: Vec<usize> = (0..model.mesh.elements.len())
-            .filter(|&e| now.gauss[e * ng..(e + 1) * ng].iter().any(|g| g.yielding))
+            .filter(|&e| {
+                now.gauss
+                    .range(e * ng..(e + 1) * ng)
+                    .iter()
+                    .any(|g| g.yielding)
+            })
             .collect();
         assert!(
             plastic.len() > 50,

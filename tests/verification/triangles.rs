@@ -58,7 +58,13 @@ fn stress_error(model: &Model) -> f64 {
     let mut e2 = 0.0;
     for e in 0..model.mesh.elements.len() {
         let g = model.geometry(e);
-        for (ip, s) in r.final_state.gauss[model.points(e)].iter().enumerate() {
+        for (ip, s) in r
+            .final_state
+            .gauss
+            .range(model.points(e))
+            .iter()
+            .enumerate()
+        {
             let x = g.x[ip][0];
             let (rr, tt) = (big_a - big_b / (x * x), big_a + big_b / (x * x));
             e2 += g.dv[ip] * ((s.stress[0] - rr).powi(2) + (s.stress[3] - tt).powi(2));

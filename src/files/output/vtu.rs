@@ -60,7 +60,7 @@ pub fn nodal_fields(model: &Model, state: &State) -> NodalFields {
     let mut count = vec![0u32; nn];
     let mut vals = [[0.0f64; 8]; crate::physics::element::family::MAX_POINTS];
     for (e, el) in model.mesh.elements.iter().enumerate() {
-        let gp = &state.gauss[model.points(e)];
+        let gp = state.gauss.range(model.points(e));
         let w = &weights[el.family.index()];
         for (v, g) in vals.iter_mut().zip(gp) {
             *v = [
@@ -205,7 +205,9 @@ impl Frame {
             contact_hoop_shear: p_h,
             max_peeq: (0..ne)
                 .map(|e| {
-                    state.gauss[model.points(e)]
+                    state
+                        .gauss
+                        .range(model.points(e))
                         .iter()
                         .fold(0.0f64, |a, g| a.max(g.peeq))
                 })

@@ -317,9 +317,9 @@ pub(super) fn restore_state(ck: &mut Checkpoint, s: &Sections, model: &Model) ->
     c.u.copy_from_slice(u);
     let w = PointState::packed_len(model.node_dofs().twist());
     let gauss = s.finite("gauss", Some(w * ng))?;
-    for (i, (p, v)) in c.gauss.iter_mut().zip(gauss.chunks_exact(w)).enumerate() {
+    for (i, v) in gauss.chunks_exact(w).enumerate() {
         check_gauss_point(model, i, v)?;
-        *p = PointState::unpack(v, w);
+        c.gauss.set(i, &PointState::unpack(v, w));
     }
     match s.0.get("status") {
         Some(Data::U8(v)) if v.len() == np => {

@@ -211,7 +211,7 @@ fn decode_refuses_what_the_case_cannot_have_produced() {
     c.last_du[5] = f64::NAN;
     refused(&c, &pvd, "section last_du: value 6 is not finite");
     let mut c = ck.clone();
-    c.committed.gauss[2].peeq = -1e-3;
+    c.committed.gauss.update(2, |g| g.peeq = -1e-3);
     refused(&c, &pvd, "Gauss point 3: equivalent plastic strain -1e-3");
     let mut c = ck.clone();
     c.committed.contact[0].mu_f = f64::INFINITY;
@@ -391,11 +391,13 @@ fn decode_refuses_what_the_case_cannot_have_produced() {
     let mut c = ck.clone();
     let ep: [f64; 4] = [2e-3, -1e-3, 5e-4, -1e-3];
     let norm = (ep[0] * ep[0] + ep[1] * ep[1] + ep[3] * ep[3] + 2.0 * ep[2] * ep[2]).sqrt();
-    c.committed.gauss[5].plastic_strain = [ep[0], ep[1], ep[2], ep[3], 0.0, 0.0];
-    c.committed.gauss[5].peeq = (2.0f64 / 3.0).sqrt() * norm;
+    c.committed.gauss.update(5, |g| {
+        g.plastic_strain = [ep[0], ep[1], ep[2], ep[3], 0.0, 0.0];
+        g.peeq = (2.0f64 / 3.0).sqrt() * norm;
+    });
     honest(&model, &mut c);
     assert!(decode(&encode(&model, &c, &pvd), &model).is_ok());
-    c.committed.gauss[5].peeq *= 1.0 - 1e-6;
+    c.committed.gauss.update(5, |g| g.peeq *= 1.0 - 1e-6);
     refused(
         &c,
         &pvd,

@@ -22,20 +22,20 @@
 use crate::model::Model;
 use crate::physics::element::family::GaussRule;
 use crate::physics::element::solid::{elastic_state, ElementGeometry, MAX_POINTS};
-use crate::physics::material::{Plane, PointState};
+use crate::physics::material::{GaussStates, Plane, PointState};
 
 /// σ_h ([`PointState::stress`] order: xx, yy, xy, zz or θθ, rθ, zθ) of
 /// element `e` at the points of `rule`, whose geometry is `geom`; `gauss`
 /// holds every element's states at the model's rule.
 pub fn stresses(
     model: &Model,
-    gauss: &[PointState],
+    gauss: &GaussStates,
     u: &[f64],
     e: usize,
     rule: &GaussRule,
     geom: &ElementGeometry,
 ) -> [[f64; 6]; MAX_POINTS] {
-    let stored = &gauss[model.points(e)];
+    let stored = gauss.range(model.points(e));
     let own = model.rule(e);
     let mut out = [[0.0; 6]; MAX_POINTS];
     if rule == own {

@@ -24,12 +24,15 @@
 mod plane_stress;
 mod radial;
 mod six_components;
+mod storage;
 
 #[cfg(test)]
 mod tests;
 
 use nalgebra::{Matrix3, Matrix4, Matrix6};
 use std::fmt;
+
+pub use storage::{GaussMut, GaussRef, GaussStates};
 
 /// The plane idealization of the 2D model (the case's `[model] plane`,
 /// "stress", "strain" or "axisymmetric").
@@ -46,7 +49,9 @@ pub enum Plane {
     Axisymmetric,
 }
 
-/// State at one Gauss point, committed at the end of a converged increment.
+/// State at one Gauss point, committed at the end of a converged increment
+/// (stored in a [`GaussStates`], which keeps the twist components only in a
+/// model with twist).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PointState {
     /// σxx, σyy, σxy, σzz (σzz = 0 in plane stress; the hoop stress σ_θθ in

@@ -7,9 +7,9 @@ use crate::input::mesh::NodeDofs;
 use crate::linalg::failure::StepFailure;
 use crate::model::Model;
 use crate::physics::element::element_forces;
-use crate::physics::element::family::MAX_NODES;
+use crate::physics::element::family::{MAX_NODES, MAX_POINTS};
 use crate::physics::element::solid::{Response, Tangent};
-use crate::physics::material::PointState;
+use crate::physics::material::{GaussMut, GaussRef, PointState};
 use crate::solve::State;
 
 /// Elements per batch of the element loop ([`Engine::assemble_solids`]): the
@@ -81,8 +81,8 @@ impl Engine<'_> {
                 m,
                 &self.held_elements[b0..b1],
                 points,
-                &committed.gauss[gauss.clone()],
-                &mut trial.gauss[gauss],
+                committed.gauss.range(gauss.clone()),
+                trial.gauss.range_mut(gauss),
                 &trial.u,
                 response,
                 solid_tangent,
@@ -147,8 +147,8 @@ fn element_batch(
     m: &Model,
     ids: &[u32],
     points: &[usize],
-    committed: &[PointState],
-    trial: &mut [PointState],
+    committed: GaussRef<'_>,
+    trial: GaussMut<'_>,
     u: &[f64],
     response: Response,
     tangent: Option<Tangent>,
@@ -213,17 +213,12 @@ fn element_batch(
 
 /// One chunk of [`element_batch`]: its elements, their Gauss point offsets,
 /// and their committed and trial states.
-type Work<'a> = (
-    &'a [u32],
-    &'a [usize],
-    &'a [PointState],
-    &'a mut [PointState],
-);
+type Work<'a> = (&'a [u32], &'a [usize], GaussRef<'a>, GaussMut<'a>);
 
 /// [`element_batch`] on one thread: stops at the first failing element.
 fn element_chunk(
     m: &Model,
-    (ids, points, committed, trial): Work<'_>,
+    (ids, points, committed, mut trial): Work<'_>,
     u: &[f64],
     response: Response,
     tangent: Option<Tangent>,
@@ -233,6 +228,9 @@ fn element_chunk(
     let nd = m.node_dofs();
     let slot = nd.element(MAX_NODES);
     let mut scratch = [0.0; NodeDofs::MAX_ELEMENT * NodeDofs::MAX_ELEMENT];
+    // an element's committed and trial states, as the material computes them
+    let mut c_buf = [PointState::default(); MAX_POINTS];
+    let mut t_buf = [PointState::default(); MAX_POINTS];
     for (i, &e) in ids.iter().enumerate() {
         let e = e as usize;
         let el = &m.mesh.elements[e];
@@ -243,17 +241,23 @@ fn element_chunk(
             Some(ke) => &mut ke[..ne * ne],
             None => &mut scratch[..ne * ne],
         };
-        if let Err(msg) = element_forces(
+        let np = gs.len();
+        committed.range(gs.clone()).load(&mut c_buf[..np]);
+        let mut tg = trial.range_mut(gs);
+        tg.load(&mut t_buf[..np]);
+        let done = element_forces(
             &m.geometry(e),
             &m.materials[el.body],
             &ue[..ne],
-            &committed[gs.clone()],
-            &mut trial[gs],
+            &c_buf[..np],
+            &mut t_buf[..np],
             response,
             tangent,
             &mut fe[i * slot..][..ne],
             ke,
-        ) {
+        );
+        tg.store(&t_buf[..np]);
+        if let Err(msg) = done {
             return Some((i, msg));
         }
     }

@@ -26,7 +26,7 @@ use crate::linalg::nonlinear::{NonlinearSolver, Problem, Verdict};
 use crate::model::Model;
 use crate::physics::contact::Status;
 use crate::physics::element::solid::{Response, Tangent};
-use crate::physics::material::PointState;
+use crate::physics::material::{GaussStates, PointState};
 
 /// Points per reduction in `Engine::share_state` and `Engine::gather_gauss`.
 const SHARE_CHUNK: usize = 8192;
@@ -174,9 +174,9 @@ impl<'m> Engine<'m> {
         if self.holds_all() || state.gauss.len() != m.n_points() {
             return;
         }
-        let mut local = Vec::new();
+        let mut local = GaussStates::with_capacity(0, state.gauss.twist());
         for &e in &self.held_elements {
-            local.extend_from_slice(&state.gauss[m.points(e as usize)]);
+            local.extend_from(state.gauss.range(m.points(e as usize)));
         }
         state.gauss = local;
     }
@@ -185,7 +185,7 @@ impl<'m> Engine<'m> {
     /// `None` on the other ranks and on one process, which holds them all
     /// already). Gathered in chunks, so the only transient beyond the result
     /// is one chunk.
-    pub fn gather_gauss(&self, state: &State) -> Option<Vec<PointState>> {
+    pub fn gather_gauss(&self, state: &State) -> Option<GaussStates> {
         // decided on the rank count, the same everywhere (a rank may hold
         // every element while another holds none)
         if self.backend.ranks() == 1 {
@@ -194,12 +194,9 @@ impl<'m> Engine<'m> {
         let m = self.model;
         let ne = m.mesh.elements.len();
         let root = self.backend.rank() == 0;
-        let mut full = if root {
-            Vec::with_capacity(m.n_points())
-        } else {
-            Vec::new()
-        };
-        let w = PointState::packed_len(m.node_dofs().twist());
+        let twist = m.node_dofs().twist();
+        let mut full = GaussStates::with_capacity(if root { m.n_points() } else { 0 }, twist);
+        let w = PointState::packed_len(twist);
         let per = (SHARE_CHUNK / crate::physics::element::family::MAX_POINTS).max(1);
         let mut g = Vec::new();
         let mut held = m.held_points(&self.held_elements).peekable();
@@ -211,13 +208,15 @@ impl<'m> Engine<'m> {
             g.resize((m.points(e1 - 1).end - p0) * w, 0.0);
             while let Some((e, local)) = held.next_if(|(e, _)| *e < e1) {
                 let at = (m.points(e).start - p0) * w;
-                for (ip, s) in state.gauss[local].iter().enumerate() {
+                for (ip, s) in state.gauss.range(local).iter().enumerate() {
                     g[at + ip * w..][..w].copy_from_slice(&s.pack()[..w]);
                 }
             }
             self.backend.sum(&mut g);
             if root {
-                full.extend(g.chunks_exact(w).map(|v| PointState::unpack(v, w)));
+                for v in g.chunks_exact(w) {
+                    full.push(&PointState::unpack(v, w));
+                }
             }
             e0 = e1;
         }

@@ -105,7 +105,7 @@ fn internal_energy(engine: &Engine, state: &State) -> f64 {
     for (e, local) in m.held_points(engine.held_elements()) {
         let mat = &m.materials[m.mesh.elements[e].body];
         let geo = m.geometry(e);
-        for (ip, g) in state.gauss[local].iter().enumerate() {
+        for (ip, g) in state.gauss.range(local).iter().enumerate() {
             let s = g.stress;
             let nu = mat.poisson;
             let elastic = (s[0] * s[0] + s[1] * s[1] + s[3] * s[3]

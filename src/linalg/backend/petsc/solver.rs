@@ -150,7 +150,7 @@ impl Partition {
         }
         let mut node_owner = vec![usize::MAX; mesh.nodes.len()];
         for (e, el) in mesh.elements.iter().enumerate() {
-            for &n in &el.nodes {
+            for &n in el.nodes() {
                 node_owner[n] = node_owner[n].min(element_owner[e]);
             }
         }
