@@ -11,7 +11,7 @@
 //!   0 ── 4 ── 1
 //! ```
 
-pub use super::edge::gauss_1d;
+use super::edge::gauss_1d;
 use super::gauss::GaussRule;
 
 /// Natural coordinates of the nodes.

@@ -30,6 +30,23 @@ fn uniform_refinement_of_a_grid_is_the_doubled_grid() {
     r.mesh.validate().unwrap();
 }
 
+/// Every hanging node of `r` sits where its coarse edge's quadratic shape
+/// puts s = ∓½ (the quarter point of a straight edge).
+fn hanging_nodes_lie_on_their_edges(r: &Refined) {
+    for h in &r.hanging {
+        let w = edge_shape(h.s);
+        let x = (0..3).fold([0.0; 2], |x, i| {
+            let p = r.mesh.nodes[h.edge[i]];
+            [x[0] + w[i] * p[0], x[1] + w[i] * p[1]]
+        });
+        let q = r.mesh.nodes[h.node];
+        assert!(
+            (x[0] - q[0]).abs() < 1e-14 && (x[1] - q[1]).abs() < 1e-14,
+            "{h:?}"
+        );
+    }
+}
+
 #[test]
 fn one_refined_element_hangs_four_nodes_and_a_second_refinement_closes() {
     let mesh = grid(2, 2);
@@ -37,16 +54,7 @@ fn one_refined_element_hangs_four_nodes_and_a_second_refinement_closes() {
     assert_eq!(r.mesh.elements.len(), 7);
     assert_eq!(r.hanging.len(), 4);
     r.mesh.validate().unwrap();
-    for h in &r.hanging {
-        // on the straight coarse edge, s = ∓½ is the quarter point
-        let w = edge_shape(h.s);
-        let x = (0..3).fold([0.0; 2], |x, i| {
-            let p = r.mesh.nodes[h.edge[i]];
-            [x[0] + w[i] * p[0], x[1] + w[i] * p[1]]
-        });
-        let q = r.mesh.nodes[h.node];
-        assert!((x[0] - q[0]).abs() < 1e-14 && (x[1] - q[1]).abs() < 1e-14);
-    }
+    hanging_nodes_lie_on_their_edges(&r);
     // refining the child at the centre again forces its coarse neighbours
     let centre = (0..7)
         .find(|&e| r.state.level[e] == 1 && r.mesh.element_coords(e)[2] == [1.0, 1.0])
@@ -161,13 +169,5 @@ fn a_refined_triangle_hangs_nodes_on_its_unrefined_neighbours() {
     assert_eq!(r.mesh.elements.len(), 7 + 3);
     assert!((area(&r.mesh) - 4.0).abs() < 1e-13);
     assert_eq!(r.hanging.len(), 4, "{:?}", r.hanging);
-    for h in &r.hanging {
-        let w = edge_shape(h.s);
-        let x = (0..3).fold([0.0; 2], |x, i| {
-            let p = r.mesh.nodes[h.edge[i]];
-            [x[0] + w[i] * p[0], x[1] + w[i] * p[1]]
-        });
-        let q = r.mesh.nodes[h.node];
-        assert!((x[0] - q[0]).abs() < 1e-14 && (x[1] - q[1]).abs() < 1e-14);
-    }
+    hanging_nodes_lie_on_their_edges(&r);
 }
