@@ -32,7 +32,7 @@ use crate::error::{Error, Result};
 use crate::input::case::{Case, PretensionSpec};
 use crate::input::mesh::{Mesh, NodeDofs};
 use crate::model::constraint::Constraint;
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 
 /// The most sections a case may have.
 pub const MAX_SECTIONS: usize = 64;
@@ -497,35 +497,7 @@ pub fn constraints(
         .zip(prescribed_history)
         .map(|(&(d, v), &h)| (d, (v, h)))
         .collect();
-    // each copy's node and section, then each cut node's sections back to
-    // its mesh node (ascending)
-    let parent: HashMap<usize, (usize, usize)> = sections
-        .iter()
-        .enumerate()
-        .flat_map(|(k, s)| s.pairs.iter().map(move |&(n, c)| (c, (n, k))))
-        .collect();
-    let root = |mut c: usize| -> (usize, Vec<usize>) {
-        let mut path = Vec::new();
-        while let Some(&(n, k)) = parent.get(&c) {
-            path.push(k);
-            c = n;
-        }
-        path.sort_unstable();
-        (c, path)
-    };
-    let mut groups: std::collections::BTreeMap<usize, Vec<(usize, Vec<usize>)>> =
-        std::collections::BTreeMap::new();
-    for s in sections {
-        for &(n, c) in &s.pairs {
-            for m in [n, c] {
-                let (r, path) = root(m);
-                let g = groups.entry(r).or_default();
-                if !g.iter().any(|x| x.0 == m) {
-                    g.push((m, path));
-                }
-            }
-        }
-    }
+    let mut groups = groups_by_root(sections);
     let names = |ks: &[usize]| -> String {
         ks.iter()
             .map(|&k| format!("\"{}\"", sections[k].name))
@@ -604,6 +576,41 @@ pub fn constraints(
         }
     }
     Ok(out)
+}
+
+/// The nodes of the cuts grouped by the mesh node they copy (their root),
+/// each with the sections between it and its root (ascending): a node and
+/// its copies across every cut it lies on.
+fn groups_by_root(sections: &[Section]) -> BTreeMap<usize, Vec<(usize, Vec<usize>)>> {
+    // each copy's node and section, then each cut node's sections back to
+    // its mesh node (ascending)
+    let parent: HashMap<usize, (usize, usize)> = sections
+        .iter()
+        .enumerate()
+        .flat_map(|(k, s)| s.pairs.iter().map(move |&(n, c)| (c, (n, k))))
+        .collect();
+    let root = |mut c: usize| -> (usize, Vec<usize>) {
+        let mut path = Vec::new();
+        while let Some(&(n, k)) = parent.get(&c) {
+            path.push(k);
+            c = n;
+        }
+        path.sort_unstable();
+        (c, path)
+    };
+    let mut groups: BTreeMap<usize, Vec<(usize, Vec<usize>)>> = BTreeMap::new();
+    for s in sections {
+        for &(n, c) in &s.pairs {
+            for m in [n, c] {
+                let (r, path) = root(m);
+                let g = groups.entry(r).or_default();
+                if !g.iter().any(|x| x.0 == m) {
+                    g.push((m, path));
+                }
+            }
+        }
+    }
+    groups
 }
 
 /// The refusal of a cut node held on both sides of a cut: `through`, the
