@@ -69,9 +69,9 @@ impl fmt::Display for Error {
 }
 
 /// Most characters of one value (a name, a string, a key) quoted in a message.
-pub const MAX_QUOTE: usize = 80;
+pub(crate) const MAX_QUOTE: usize = 80;
 /// Most characters of a whole error line.
-pub const MAX_LINE: usize = 2000;
+pub(crate) const MAX_LINE: usize = 2000;
 
 /// `text` cut to [`MAX_QUOTE`] characters, with `…(N characters)` when cut.
 pub fn clip(text: &str) -> String {
@@ -85,7 +85,7 @@ pub fn clip(text: &str) -> String {
 
 /// A message with every quoted run (between `"` or between backticks) clipped
 /// to [`MAX_QUOTE`] characters, then the whole cut to [`MAX_LINE`].
-pub fn bounded(text: &str) -> String {
+pub(crate) fn bounded(text: &str) -> String {
     let mut out = String::with_capacity(text.len().min(4 * MAX_LINE));
     let mut rest = text;
     while let Some(open) = rest.find(['"', '`']) {
@@ -128,7 +128,7 @@ pub fn bounded(text: &str) -> String {
 /// it prints as one line and cannot drive a terminal; so are the characters
 /// that print as nothing or as a plain space ([`invisible`]): a byte-order
 /// mark left in front of a number shows as `\u{feff}`, not as an empty spot.
-pub fn escape_controls(text: &str) -> String {
+pub(crate) fn escape_controls(text: &str) -> String {
     let mut s = String::with_capacity(text.len());
     for c in text.chars() {
         if c.is_control() || invisible(c) {

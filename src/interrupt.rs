@@ -55,14 +55,8 @@ pub fn requested() -> usize {
 }
 
 /// The first signal received (0: none).
-pub fn first_signal() -> i32 {
+pub(crate) fn first_signal() -> i32 {
     FIRST.load(Ordering::SeqCst)
-}
-
-/// Test hook and programmatic stop: behaves like receiving `sig`.
-pub fn raise_request(sig: i32) {
-    let _ = FIRST.compare_exchange(0, sig, Ordering::SeqCst, Ordering::SeqCst);
-    COUNT.fetch_add(1, Ordering::SeqCst);
 }
 
 /// Why a run stopped before its last increment.

@@ -126,16 +126,18 @@ pub mod fd {
     /// wrong tangent: where `forward` and `backward` disagree the response
     /// is not smooth within the step and the central difference means
     /// nothing there.
+    #[cfg(test)]
     #[derive(Clone, Debug, PartialEq)]
-    pub struct Sided {
+    pub(crate) struct Sided {
         /// (f(x + h e_j) − f(x − h e_j)) / (2h)
         pub central: Jacobian,
         /// (f(x + h e_j) − f(x)) / h
-        pub forward: Jacobian,
+        pub(crate) forward: Jacobian,
         /// (f(x) − f(x − h e_j)) / h
         pub backward: Jacobian,
     }
 
+    #[cfg(test)]
     impl Sided {
         /// |forward − backward| at (i, j): about h |f″| where f is smooth.
         pub fn kink(&self, i: usize, j: usize) -> f64 {
@@ -145,7 +147,8 @@ pub mod fd {
 
     /// [`central_columns`] plus the one-sided differences; `f(0, 0.0)` is
     /// taken as the response at x.
-    pub fn sided_columns(steps: &[f64], mut f: impl FnMut(usize, f64) -> Vec<f64>) -> Sided {
+    #[cfg(test)]
+    pub(crate) fn sided_columns(steps: &[f64], mut f: impl FnMut(usize, f64) -> Vec<f64>) -> Sided {
         let at = f(0, 0.0);
         let n = at.len();
         let (mut central, mut forward, mut backward) = (

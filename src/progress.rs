@@ -85,6 +85,6 @@ impl Log {
 }
 
 /// Seconds rounded to milliseconds (JSON lines stay short).
-pub fn round3(x: f64) -> f64 {
+pub(crate) fn round3(x: f64) -> f64 {
     (x * 1000.0).round() / 1000.0
 }

@@ -9,7 +9,7 @@
 use crate::error::{Error, Result};
 
 /// Environment variable giving the thread count when `--threads` is not set.
-pub const VAR: &str = "ASPERITY_THREADS";
+pub(crate) const VAR: &str = "ASPERITY_THREADS";
 
 /// The largest count accepted: more is a typing error, not a machine.
 pub const MAX: usize = 1024;

@@ -49,15 +49,15 @@ pub struct Cycle {
     pub estimate: f64,
     pub iterations: usize,
     pub increments: usize,
-    pub wall_s: f64,
+    pub(crate) wall_s: f64,
     /// The answers of every run, whatever the quantity: the probe node's
     /// settlement (mm) and the first-yield load (kN, NaN: no yield).
     pub settlement_mm: f64,
-    pub first_yield_kn: f64,
+    pub(crate) first_yield_kn: f64,
     /// The sum of the applied nodal forces in x and in y at the end of the
     /// history (N, the model as meshed; pretension forces, internal to
     /// their bodies, apart): the same on every cycle ([`applied_force`]).
-    pub applied_n: [f64; 2],
+    pub(crate) applied_n: [f64; 2],
 }
 
 /// How an adaptive run ended.
@@ -109,8 +109,8 @@ pub fn value(q: Quantity, model: &Model, r: &RunResult, eta_relative: f64) -> f6
 
 /// The sum of the applied nodal forces of the mesh's nodes at pseudo-time
 /// t, per direction x, y (N).
-pub fn applied_force(model: &Model, t: f64) -> [f64; 2] {
-    let mut f = vec![0.0; model.n_dofs];
+pub(crate) fn applied_force(model: &Model, t: f64) -> [f64; 2] {
+    let mut f = vec![0.0; model.n_dofs()];
     model.external_force(t, &mut f);
     let nd = model.node_dofs();
     (0..model.mesh.nodes.len()).fold([0.0, 0.0], |s, n| {
@@ -136,7 +136,12 @@ fn peak_pressure(model: &Model, state: &crate::solve::State) -> f64 {
 
 /// The estimate compared with the tolerance: η/‖u‖ for the energy norm,
 /// else the relative change of the quantity since the previous cycle.
-pub fn cycle_estimate(q: Quantity, relative_eta: f64, value: f64, previous: Option<f64>) -> f64 {
+pub(crate) fn cycle_estimate(
+    q: Quantity,
+    relative_eta: f64,
+    value: f64,
+    previous: Option<f64>,
+) -> f64 {
     match (q, previous) {
         (Quantity::Energy, _) => relative_eta,
         (_, Some(p)) if value.is_finite() && p.is_finite() && value != 0.0 => {
@@ -232,7 +237,7 @@ pub fn record(dir: &Path, spec: &AdaptSpec, cycles: &[Cycle], end: Option<End>) 
 
 /// A backend's solve of one cycle: the whole history of a built model, its
 /// output folder written on the writing process.
-pub type SolveCycle<'a> = dyn FnMut(&Model, Instant) -> Result<(PathBuf, RunResult)> + 'a;
+pub(crate) type SolveCycle<'a> = dyn FnMut(&Model, Instant) -> Result<(PathBuf, RunResult)> + 'a;
 
 /// Runs an adaptive case on any backend. `solve` runs the whole history of
 /// a built model and writes its output folder on the writing process

@@ -58,7 +58,7 @@ pub fn load_model(case_path: &Path, opts: &RunOptions) -> Result<Model> {
 
 /// Reads a case and applies the command-line overrides (not yet checked:
 /// [`Model::build`] checks it).
-pub fn load_case(case_path: &Path, opts: &RunOptions) -> Result<Case> {
+pub(crate) fn load_case(case_path: &Path, opts: &RunOptions) -> Result<Case> {
     let mut case = Case::load(case_path)?;
     if let Some(file) = &case.mesh.file {
         let dir = case.source.parent().unwrap_or(Path::new(""));
@@ -218,7 +218,7 @@ pub fn serial_engine(model: &Model, method: Method, threads: usize) -> Result<En
 }
 
 /// [`serial_engine`] on a given factorization (benchmarks, tests).
-pub fn serial_engine_on(
+pub(crate) fn serial_engine_on(
     model: &Model,
     method: Method,
     threads: usize,
@@ -244,7 +244,7 @@ pub fn solve(model: &Model, observer: &mut dyn solve::Observer) -> Result<RunRes
 /// The one place an engine is made ready for a run, whatever its backend:
 /// the memory stages so far ("model" when the model was built, "setup" now,
 /// after the backend and solver objects) and the fault-injection test hook.
-pub fn prepare(engine: &mut Engine, opts: &RunOptions, at_model: f64) {
+pub(crate) fn prepare(engine: &mut Engine, opts: &RunOptions, at_model: f64) {
     engine.stats.memory_mb = vec![
         ("model", at_model),
         ("setup", crate::solve::peak_memory_mb()),
@@ -284,7 +284,7 @@ pub fn run(case_path: &Path, opts: &RunOptions) -> Result<(PathBuf, Model, RunRe
 /// Runs a built model with an engine. `write`: this process writes the output
 /// and prints progress (rank 0 under MPI). With `opts.restart` every rank reads
 /// the checkpoint and continues from it.
-pub fn run_model(
+pub(crate) fn run_model(
     model: &Model,
     engine: Engine,
     opts: &RunOptions,
@@ -298,7 +298,7 @@ pub fn run_model(
 /// cycle stopped early (SIGINT, SIGTERM, `--stop-after`) writes nothing, so
 /// the output folder keeps the previous cycle's complete run; the caller
 /// reports the stop.
-pub fn run_cycle(
+pub(crate) fn run_cycle(
     model: &Model,
     engine: Engine,
     opts: &RunOptions,

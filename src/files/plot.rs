@@ -20,14 +20,14 @@ pub struct Series {
 #[derive(Default)]
 pub struct Chart {
     pub title: String,
-    pub x_label: String,
-    pub y_label: String,
+    pub(crate) x_label: String,
+    pub(crate) y_label: String,
     pub series: Vec<Series>,
-    pub hlines: Vec<(f64, String)>,
-    pub vlines: Vec<(f64, String)>,
+    pub(crate) hlines: Vec<(f64, String)>,
+    pub(crate) vlines: Vec<(f64, String)>,
     pub marks: Vec<(f64, f64, String)>,
     /// Legend in the lower left instead of the upper left.
-    pub legend_low: bool,
+    pub(crate) legend_low: bool,
 }
 
 /// Registers a sans-serif font found on the system (once per process: later
@@ -81,7 +81,7 @@ pub fn save(chart: &Chart, stem: &Path, pictures: bool) -> Result<Vec<PathBuf>> 
 
 /// Writes `<stem>.svg` and `<stem>.png` when `pictures` (a font was found),
 /// without the CSV of [`save`] (for callers that write their own data file).
-pub fn save_pictures(chart: &Chart, stem: &Path, pictures: bool) -> Result<()> {
+pub(crate) fn save_pictures(chart: &Chart, stem: &Path, pictures: bool) -> Result<()> {
     if pictures {
         let svg = stem.with_extension("svg");
         draw(SVGBackend::new(&svg, (900, 600)).into_drawing_area(), chart)?;
@@ -265,9 +265,9 @@ fn draw_guides<DB: DrawingBackend>(
 
 /// A grid of cells (rows × columns), each green (ok) or red (failed) with a short
 /// text: the stability map.
-pub struct Grid {
+pub(crate) struct Grid {
     pub title: String,
-    pub x_label: String,
+    pub(crate) x_label: String,
     pub columns: Vec<String>,
     pub rows: Vec<String>,
     /// cells[row][column] = (ok, text); text lines separated by '\n'
@@ -277,7 +277,7 @@ pub struct Grid {
 }
 
 /// Writes `<stem>.csv` and, with a font, `<stem>.svg` and `<stem>.png`.
-pub fn save_grid(g: &Grid, stem: &Path, pictures: bool) -> Result<Vec<PathBuf>> {
+pub(crate) fn save_grid(g: &Grid, stem: &Path, pictures: bool) -> Result<Vec<PathBuf>> {
     let mut csv = String::from("row,column,ok,text\n");
     for (r, row) in g.cells.iter().enumerate() {
         for (c, (ok, t)) in row.iter().enumerate() {

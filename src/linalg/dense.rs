@@ -7,7 +7,7 @@ use faer::{Conj, MatMut, MatRef, Par};
 /// `x ← J⁻¹ x` by a dense LU with partial pivoting, on one thread (`j`
 /// overwritten; x column-major with `cols` columns); false where J is
 /// singular.
-pub fn dense_solve(j: &mut [f64], x: &mut [f64], cols: usize) -> bool {
+pub(crate) fn dense_solve(j: &mut [f64], x: &mut [f64], cols: usize) -> bool {
     let m = x.len() / cols.max(1);
     let (mut perm, mut perm_inv) = (vec![0usize; m], vec![0usize; m]);
     let req = factor::lu_in_place_scratch::<usize, f64>(m, m, Par::Seq, Default::default()).or(

@@ -47,12 +47,12 @@ impl StepFailure {
     }
 
     /// A failure that a smaller step cannot cure: the run ends with it.
-    pub fn is_fatal(&self) -> bool {
+    pub(crate) fn is_fatal(&self) -> bool {
         matches!(self, StepFailure::Linear(Error::Memory(_)))
     }
 
     /// The error that ends a run on a fatal failure.
-    pub fn into_error(self) -> Error {
+    pub(crate) fn into_error(self) -> Error {
         match self {
             StepFailure::Linear(e) => e,
             other => Error::Solver(other.to_string()),

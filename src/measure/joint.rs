@@ -89,10 +89,10 @@ pub struct JointMeasures {
 
 impl JointMeasures {
     /// Doubles per interface and increment in [`JointMeasures::pack_twist`].
-    pub const PACKED_TWIST: usize = 3;
+    pub(crate) const PACKED_TWIST: usize = 3;
 
     /// The measures of twist (restart section `joints_twist`): T, ū_θ, φ̄.
-    pub fn pack_twist(&self) -> [f64; Self::PACKED_TWIST] {
+    pub(crate) fn pack_twist(&self) -> [f64; Self::PACKED_TWIST] {
         [self.torque, self.hoop_slip, self.twist]
     }
 
@@ -118,7 +118,7 @@ impl JointMeasures {
     }
 
     /// The inverse of [`JointMeasures::pack`] (`v` holds at least `PACKED` values).
-    pub fn unpack(v: &[f64]) -> Self {
+    pub(crate) fn unpack(v: &[f64]) -> Self {
         JointMeasures {
             normal_force: v[0],
             tangential_force: v[1],
@@ -150,7 +150,7 @@ pub struct JointTotals {
 /// of the law's friction forces on their own slips
 /// ([`TangentialLaw::slip_work`], never negative; 0 without a law), W the
 /// trapezoid of the shear on u_T (see the module comment).
-pub fn point_energy(
+pub(crate) fn point_energy(
     law: Option<&TangentialLaw>,
     area: f64,
     (p0, before): (f64, &PointState),
@@ -164,7 +164,7 @@ pub fn point_energy(
 /// [`point_energy`] of a point of a twisting model: the vector law's
 /// friction work ([`TangentialLaw::slip_work2`]) and the dot product of the
 /// mean shear (p_T, p_Tθ) with the change of the slip (u_T, u_Tθ).
-pub fn point_energy_twist(
+pub(crate) fn point_energy_twist(
     law: Option<&TangentialLaw>,
     area: f64,
     (p0, before): (f64, &PointState),
@@ -205,7 +205,7 @@ fn side2(p_n: f64, s: &PointState) -> Side2<'_> {
 /// the approach is taken across) and every interface point's state, all
 /// interfaces in order.
 #[derive(Clone, Copy, Debug)]
-pub struct Snapshot<'a> {
+pub(crate) struct Snapshot<'a> {
     pub u: &'a [f64],
     pub time: f64,
     pub contact: &'a [PointState],
@@ -221,7 +221,7 @@ impl<'a> Snapshot<'a> {
 /// the running totals, one per interface. Every MPI rank holds every
 /// point's tangential state and every dof after the step, so every rank
 /// computes the same totals.
-pub fn accumulate(
+pub(crate) fn accumulate(
     interfaces: &[InterfaceModel],
     committed: Snapshot,
     trial: Snapshot,
@@ -255,7 +255,7 @@ pub fn accumulate(
 
 /// What one integration point contributes to its interface's measures.
 #[derive(Clone, Copy, Debug)]
-pub struct PointSample {
+pub(crate) struct PointSample {
     pub area: f64,
     pub p_n: f64,
     pub u_n: f64,
@@ -270,7 +270,7 @@ pub struct PointSample {
 
 /// Sums point samples into joint measures (joint convention); `per_measure`
 /// turns an area into the reported measure (1/thickness for plane models).
-pub fn aggregate(
+pub(crate) fn aggregate(
     samples: impl Iterator<Item = PointSample>,
     per_measure: f64,
     totals: JointTotals,
@@ -409,12 +409,12 @@ impl Cycle {
     /// The force amplitude F_a = (F_T,hi − F_T,lo) / 2, N (hi, lo: the
     /// loop's tips, the cycle's largest and smallest F_T); 0 when the range
     /// is round-off ([`held`]).
-    pub fn force_amplitude(&self) -> f64 {
+    pub(crate) fn force_amplitude(&self) -> f64 {
         amplitude(self.force_range, self.force_scale)
     }
 
     /// The slip amplitude u_a = (ū_T,hi − ū_T,lo) / 2 at the loop's tips, mm.
-    pub fn slip_amplitude(&self) -> f64 {
+    pub(crate) fn slip_amplitude(&self) -> f64 {
         0.5 * (self.tip_slip[1] - self.tip_slip[0])
     }
 
@@ -422,7 +422,7 @@ impl Cycle {
     /// largest elastic energy of a linear spring of the secant stiffness
     /// F_a / u_a taken to the amplitude (Ungar & Kerwin 1962, the energy
     /// that the loss factor refers to).
-    pub fn stored_energy(&self) -> f64 {
+    pub(crate) fn stored_energy(&self) -> f64 {
         let f_a = self.force_amplitude();
         if f_a == 0.0 {
             0.0
@@ -442,13 +442,13 @@ impl Cycle {
 
     /// With twist: the torque amplitude T_a = (T_hi − T_lo) / 2, N·mm; 0
     /// when the range is round-off ([`held`]).
-    pub fn torque_amplitude(&self) -> f64 {
+    pub(crate) fn torque_amplitude(&self) -> f64 {
         amplitude(self.torque_range, 0.0)
     }
 
     /// With twist: the twist amplitude φ_a = (φ̄_hi − φ̄_lo) / 2 at the
     /// torque-twist loop's tips, rad.
-    pub fn twist_amplitude(&self) -> f64 {
+    pub(crate) fn twist_amplitude(&self) -> f64 {
         0.5 * (self.tip_twist[1] - self.tip_twist[0])
     }
 
@@ -456,7 +456,7 @@ impl Cycle {
     /// ΔT Δφ̄ / 8, N·mm (T·φ is work as F·u is: the energy of a torsional
     /// spring of the secant stiffness T_a / φ_a turned to the amplitude,
     /// as [`Cycle::stored_energy`] for the force-slip loop).
-    pub fn torsional_stored_energy(&self) -> f64 {
+    pub(crate) fn torsional_stored_energy(&self) -> f64 {
         let t_a = self.torque_amplitude();
         if t_a == 0.0 {
             0.0
@@ -489,7 +489,7 @@ impl Cycle {
 /// end of the previous cycle, and the values differ at some marked
 /// increment in between. Values are equal within 1e-12 of the largest
 /// magnitude each history takes at the marked increments.
-pub fn cycle_windows(marks: &[Option<Vec<f64>>]) -> Vec<(usize, usize)> {
+pub(crate) fn cycle_windows(marks: &[Option<Vec<f64>>]) -> Vec<(usize, usize)> {
     let width = marks.iter().flatten().map(Vec::len).max().unwrap_or(0);
     let mut scale = vec![0.0f64; width];
     for v in marks.iter().flatten() {
@@ -530,7 +530,7 @@ pub fn cycle_windows(marks: &[Option<Vec<f64>>]) -> Vec<(usize, usize)> {
 /// the reference force by default), so an exact comparison would let
 /// round-off choose between two increments at the same prescribed extreme
 /// (a cycle window from tip to tip, a sliding plateau) whose slips differ.
-pub const TIP_TIE: f64 = 1e-6;
+pub(crate) const TIP_TIE: f64 = 1e-6;
 
 /// Whether a cycle's force (or torque) range [lo, hi] is round-off: within
 /// [`TIP_TIE`] of its largest magnitude or of `scale` (the cycle's
@@ -585,7 +585,7 @@ fn tips(
 
 /// The cycle of one interface over the increments `i..=j` of `rows`
 /// (pseudo-time and joint measures per committed increment, in order).
-pub fn cycle_of(rows: &[(f64, JointMeasures)], (i, j): (usize, usize)) -> Cycle {
+pub(crate) fn cycle_of(rows: &[(f64, JointMeasures)], (i, j): (usize, usize)) -> Cycle {
     let span = &rows[i..=j];
     // F_T is round-off against F_N as well (a shear held at zero)
     let force_scale = span.iter().fold(0.0f64, |a, r| {
@@ -633,7 +633,7 @@ pub fn cycle_of(rows: &[(f64, JointMeasures)], (i, j): (usize, usize)) -> Cycle 
 
 /// Whether pseudo-time `t` is one of the sorted `breakpoints` (within 1e-12
 /// of the last one's magnitude: the stepping lands on them exactly or nearly).
-pub fn at_breakpoint(t: f64, breakpoints: &[f64]) -> bool {
+pub(crate) fn at_breakpoint(t: f64, breakpoints: &[f64]) -> bool {
     let scale = breakpoints.iter().fold(1.0f64, |a, b| a.max(b.abs()));
     let k = breakpoints.partition_point(|&b| b < t - 1e-12 * scale);
     breakpoints

@@ -42,7 +42,7 @@ pub fn record(model: &Model, comm: &dyn Comm, held: &[u32], state: &State) -> Ve
 /// states fix), computed in one process from the whole state, as a restart
 /// file holds it; the reactions before them come from the residual, which
 /// the state does not keep.
-pub fn state_part(model: &Model, state: &State) -> Vec<f64> {
+pub(crate) fn state_part(model: &Model, state: &State) -> Vec<f64> {
     let plan = &model.plan;
     let mut v = Vec::with_capacity(plan.width() - plan.layout.probes.start);
     v.extend(crate::model::outputs::probes::values(
@@ -102,7 +102,7 @@ impl Measures {
 /// The joint measures of every interface in a committed state, with the
 /// energies so far `totals`: an increment's `joints` (a restart file's last
 /// row is compared with them, [`crate::files::restart`]).
-pub fn joint_measures(
+pub(crate) fn joint_measures(
     model: &Model,
     state: &State,
     totals: &[joint::JointTotals],

@@ -27,7 +27,7 @@ pub fn bodies(model: &Model, comm: &dyn Comm, held: &[u32], state: &State) -> Ve
 /// [`bodies`] of a whole state in one process (every element's Gauss
 /// states, as a restart file holds them): what a run's record holds,
 /// whatever its ranks.
-pub fn bodies_whole(model: &Model, gauss: &GaussStates) -> Vec<f64> {
+pub(crate) fn bodies_whole(model: &Model, gauss: &GaussStates) -> Vec<f64> {
     let all: Vec<u32> = (0..model.mesh.elements.len() as u32).collect();
     body_peaks(model, &all, gauss, |_| {})
 }

@@ -49,7 +49,7 @@ impl DofMap {
 /// flat: block b is `dofs[ptr[b]..ptr[b + 1]]`.
 #[derive(Clone, Debug, Default)]
 pub struct Blocks {
-    pub ptr: Vec<usize>,
+    pub(crate) ptr: Vec<usize>,
     pub dofs: Vec<u32>,
 }
 
@@ -151,7 +151,7 @@ impl Pattern {
         }
     }
 
-    pub fn nnz(&self) -> usize {
+    pub(crate) fn nnz(&self) -> usize {
         self.row_idx.len()
     }
 
@@ -164,7 +164,7 @@ impl Pattern {
 /// Value positions of each block in a CSC value array on a [`Pattern`]: the
 /// serial backend's gather-free scatter (the PETSc backend needs none).
 #[derive(Clone, Debug)]
-pub struct Assembler {
+pub(crate) struct Assembler {
     /// For block b, `positions[offsets[b]..offsets[b+1]]` holds, row-major over its
     /// local (i, j), the index into the value array (or NONE).
     positions: Vec<u32>,

@@ -16,7 +16,7 @@ use crate::physics::material::Plane;
 /// prescribed dofs (sorted by dof, as given) of an axisymmetric case; other
 /// cases are returned unchanged. A non-zero prescribed ux on the axis is an
 /// error naming the `[[boundary]]` entry.
-pub fn hold_axis(
+pub(crate) fn hold_axis(
     case: &Case,
     mesh: &Mesh,
     mut prescribed: Vec<(usize, f64)>,

@@ -42,7 +42,7 @@ pub(crate) fn tolerance(mesh: &Mesh) -> f64 {
 }
 
 /// The whole-mesh checks (see the module text). `place` names the case file.
-pub fn check_mesh(case: &Case, mesh: &Mesh, place: &str) -> Result<()> {
+pub(crate) fn check_mesh(case: &Case, mesh: &Mesh, place: &str) -> Result<()> {
     if mesh.elements.len() > MAX_ELEMENTS {
         return Err(mesh_err(
             place,
@@ -592,7 +592,7 @@ fn symmetric_half(mesh: &Mesh, place: &str) -> Result<()> {
 /// `tied` maps a pretension section's copy of a node to the node: the copy
 /// follows the node's ux through the section's tie, so it is held when the
 /// node is.
-pub fn check_symmetry_supports(
+pub(crate) fn check_symmetry_supports(
     case: &Case,
     mesh: &Mesh,
     prescribed: &[(usize, f64)],

@@ -148,7 +148,7 @@ impl Constraints {
         self.list.is_empty()
     }
 
-    pub fn is_slave(&self, d: usize) -> bool {
+    pub(crate) fn is_slave(&self, d: usize) -> bool {
         self.slave_of.get(d).is_some_and(|&k| k != NONE)
     }
 
@@ -173,7 +173,7 @@ impl Constraints {
 
     /// The residual over all dofs condensed onto the masters, r ← Tᵀ r
     /// (r_m += c r_s), the slaves' entries then zero.
-    pub fn condense(&self, r: &mut [f64]) {
+    pub(crate) fn condense(&self, r: &mut [f64]) {
         for c in &self.list {
             let rs = r[c.slave];
             for &(d, a) in &c.terms {
@@ -185,7 +185,7 @@ impl Constraints {
 
     /// The transformation of a local block whose dofs hold a slave (`None`
     /// when none does).
-    pub fn expand(&self, dofs: &[usize]) -> Option<Expansion> {
+    pub(crate) fn expand(&self, dofs: &[usize]) -> Option<Expansion> {
         if self.slave_of.is_empty() || !dofs.iter().any(|&d| self.is_slave(d)) {
             return None;
         }
@@ -223,7 +223,7 @@ impl Constraints {
 
 /// The map Tₑ (n × m, row-major) from a block's masters to its own dofs.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Expansion {
+pub(crate) struct Expansion {
     /// The masters (global dofs), the columns of T.
     pub dofs: Vec<usize>,
     pub t: Vec<f64>,

@@ -9,15 +9,15 @@
 
 /// The latest pseudo-time a history may name: a run beyond it would take
 /// more steps than any case needs.
-pub const MAX_TIME: f64 = 1.0e4;
+pub(crate) const MAX_TIME: f64 = 1.0e4;
 /// Most points of one history.
-pub const MAX_POINTS: usize = 10_000;
+pub(crate) const MAX_POINTS: usize = 10_000;
 /// Most distinct times of all histories of a case together: each is an
 /// increment of the run (a thousand load cycles of four points each take
 /// 4 000).
-pub const MAX_BREAKPOINTS: usize = 20_000;
+pub(crate) const MAX_BREAKPOINTS: usize = 20_000;
 /// The largest magnitude of a history's value (a factor on the loads).
-pub const MAX_VALUE: f64 = 1.0e6;
+pub(crate) const MAX_VALUE: f64 = 1.0e6;
 
 /// A piecewise-linear table t → factor, held at its first value before the
 /// first time and at its last value after the last time (as Abaqus

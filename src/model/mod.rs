@@ -63,7 +63,7 @@ pub struct Model {
     /// and description, as canonical JSON ([`crate::input::case::Case::key`]):
     /// what a restart file's fingerprint identifies besides the mesh
     /// ([`crate::files::restart::fingerprint`]).
-    pub case_key: String,
+    case_key: String,
     pub name: String,
     pub mesh: Mesh,
     pub plane: Plane,
@@ -99,30 +99,67 @@ pub struct Model {
     pub histories: Vec<crate::model::history::History>,
     pub dofs: DofMap,
     /// Index of the first interface block in [`Model::blocks`] (elements come first).
-    pub interface_block_base: Vec<usize>,
+    interface_block_base: Vec<usize>,
     /// The lower body's interface node nearest to the output probe.
     pub probe_node: usize,
     /// y of the probe node: depths are measured below it.
     pub surface_y: f64,
     /// Every dof: the mesh's ([`NodeDofs`] per node), then as many per
     /// pretension section (its reference node, [`crate::model::pretension`]).
-    pub n_dofs: usize,
+    n_dofs: usize,
     /// The linear constraints u_s = Σ c u_m + g(t) ([`crate::model::constraint`]).
     pub constraints: crate::model::constraint::Constraints,
     /// The transformation of every block ([`Model::blocks`]) that holds a
     /// slave dof, by block index.
-    pub expansions: std::collections::HashMap<usize, crate::model::constraint::Expansion>,
+    expansions: std::collections::HashMap<usize, crate::model::constraint::Expansion>,
     /// The pretension sections.
     pub sections: Vec<crate::model::pretension::Section>,
     /// The block of each section's reference node (after the interface
     /// points): where a held (locked) shortening gets its diagonal.
-    pub section_block_base: usize,
+    section_block_base: usize,
     /// Force scale for the residual test when nothing is loaded (an open joint
     /// under prescribed displacement): 1e-6 · E_max · model size · thickness, N.
-    pub force_floor: f64,
+    force_floor: f64,
 }
 
 impl Model {
+    /// Every dof: the mesh's, then the pretension sections' reference dofs.
+    pub fn n_dofs(&self) -> usize {
+        self.n_dofs
+    }
+
+    /// The block of interface `i`'s point `j` in [`Model::blocks`].
+    pub(crate) fn interface_block(&self, i: usize, j: usize) -> usize {
+        self.interface_block_base[i] + j
+    }
+
+    /// The blocks of every interface point, in order: after the elements',
+    /// before the sections' (empty without interfaces).
+    pub(crate) fn interface_blocks(&self) -> std::ops::Range<usize> {
+        let first = self.interface_block_base.first().copied();
+        first.unwrap_or(self.section_block_base)..self.section_block_base
+    }
+
+    /// The block of pretension section `k`'s reference node.
+    pub(crate) fn section_block(&self, k: usize) -> usize {
+        self.section_block_base + k
+    }
+
+    /// The transformation of block `b` when it holds a slave dof.
+    pub(crate) fn expansion(&self, b: usize) -> Option<&crate::model::constraint::Expansion> {
+        self.expansions.get(&b)
+    }
+
+    /// Force scale of the residual test when nothing is loaded, N.
+    pub(crate) fn force_floor(&self) -> f64 {
+        self.force_floor
+    }
+
+    /// The canonical text of the case that identifies a restart's model.
+    pub(crate) fn case_key(&self) -> &str {
+        &self.case_key
+    }
+
     /// Parses case text and builds its model, reading and writing no file (the
     /// fuzz target's entry point). `place` names the text in errors.
     pub fn parse(text: &str, place: &str) -> Result<Model> {
@@ -142,7 +179,7 @@ impl Model {
     /// The case's mesh (blocks or a Gmsh file, `refine_region` applied),
     /// checked, before the model's own changes (a pretension section's cut,
     /// twist's third dof): what an adaptive run refines ([`crate::app::adapt`]).
-    pub fn mesh_of(case: &Case) -> Result<Mesh> {
+    pub(crate) fn mesh_of(case: &Case) -> Result<Mesh> {
         let mesh = |case: &Case| {
             check_case(case)?;
             make_mesh(case, &case.source.display().to_string())
@@ -276,7 +313,7 @@ impl Model {
     /// unknown exact; one of the model's scale, E_max × the model's diagonal
     /// × its out-of-plane measure (N/mm), from [`Model::force_floor`] (no
     /// pass over the nodes in the assembly).
-    pub fn held_stiffness(&self) -> f64 {
+    pub(crate) fn held_stiffness(&self) -> f64 {
         1e6 * self.force_floor
     }
 
@@ -310,13 +347,13 @@ impl Model {
 
     /// The dofs whose value follows from the others, set from them in `u`
     /// at pseudo-time t: the constraints' slaves.
-    pub fn fill_slaves(&self, u: &mut [f64], t: f64) {
+    pub(crate) fn fill_slaves(&self, u: &mut [f64], t: f64) {
         self.constraints.fill(u, |h| self.factor(h, t));
     }
 
     /// The dofs held at pseudo-time t (a step to t): the shortening of
     /// every pretension section locked before t.
-    pub fn held_dofs(&self, t: f64) -> Vec<usize> {
+    pub(crate) fn held_dofs(&self, t: f64) -> Vec<usize> {
         self.sections
             .iter()
             .filter(|s| t > s.lock_after)
@@ -333,7 +370,8 @@ impl Model {
 
     /// The columns of [`Model::pattern`] that `keep` selects (one PETSc
     /// rank's equations), the others empty.
-    pub fn pattern_of(&self, keep: impl Fn(usize) -> bool) -> Pattern {
+    #[cfg(feature = "parallel")]
+    pub(crate) fn pattern_of(&self, keep: impl Fn(usize) -> bool) -> Pattern {
         Pattern::columns(&self.dofs, &self.blocks(), keep)
     }
 
@@ -351,7 +389,7 @@ impl Model {
     }
 
     /// The Gauss rule of a family's elements.
-    pub fn rule_of(&self, family: Family) -> &GaussRule {
+    pub(crate) fn rule_of(&self, family: Family) -> &GaussRule {
         &self.rules[family.index()]
     }
 
@@ -363,7 +401,7 @@ impl Model {
     /// The elements of `held` (ascending) with the positions of their Gauss
     /// point states in a state vector that holds theirs only, in order (one
     /// process holds every element: the positions are [`Model::points`]).
-    pub fn held_points<'a>(
+    pub(crate) fn held_points<'a>(
         &'a self,
         held: &'a [u32],
     ) -> impl Iterator<Item = (usize, std::ops::Range<usize>)> + 'a {
@@ -384,7 +422,7 @@ impl Model {
     }
 
     /// The element owning Gauss point state `i` (`i` < [`Model::n_points`]).
-    pub fn element_of_point(&self, i: usize) -> usize {
+    pub(crate) fn element_of_point(&self, i: usize) -> usize {
         self.gauss_offsets.partition_point(|&o| o <= i) - 1
     }
 
@@ -425,7 +463,7 @@ impl Model {
 
     /// Every load pattern: its history and its forces at factor 1 (all
     /// dofs); [`Model::f_ext`] first, with no history of its own.
-    pub fn patterns(&self) -> impl Iterator<Item = (Option<usize>, &[f64])> + '_ {
+    pub(crate) fn patterns(&self) -> impl Iterator<Item = (Option<usize>, &[f64])> + '_ {
         std::iter::once((None, self.f_ext.as_slice()))
             .chain(self.loads.iter().map(|p| (p.history, p.f.as_slice())))
     }
@@ -448,7 +486,7 @@ impl Model {
     /// The force applied to section `k`'s shortening at pseudo-time t (N):
     /// F h(t) for a force-controlled section, 0 for a prescribed shortening;
     /// the term of [`Model::external_force`] on its dof, summed alike.
-    pub fn section_load(&self, k: usize, t: f64) -> f64 {
+    pub(crate) fn section_load(&self, k: usize, t: f64) -> f64 {
         let d = self.sections[k].dof;
         let mut f = self.factor(None, t) * self.f_ext[d];
         for p in &self.loads {
@@ -464,7 +502,7 @@ impl Model {
     /// applied F h(t), which its equation makes the force across the cut to
     /// Newton's tolerance: a value of the case, which a restart file cannot
     /// change ([`crate::files::restart`]).
-    pub fn section_row(&self, k: usize, across: f64, u: &[f64], t: f64) -> [f64; 2] {
+    pub(crate) fn section_row(&self, k: usize, across: f64, u: &[f64], t: f64) -> [f64; 2] {
         let s = &self.sections[k];
         let force = if crate::model::pretension::free_at(s, t) {
             self.section_load(k, t)
@@ -475,7 +513,7 @@ impl Model {
     }
 
     /// The prescribed dofs and their values at pseudo-time t.
-    pub fn prescribed_at(&self, t: f64) -> impl Iterator<Item = (usize, f64)> + '_ {
+    pub(crate) fn prescribed_at(&self, t: f64) -> impl Iterator<Item = (usize, f64)> + '_ {
         self.prescribed
             .iter()
             .zip(&self.prescribed_history)
@@ -511,7 +549,7 @@ impl Model {
     /// pseudo-time t (MPa): the resultant of the external forces along the
     /// interface's normal (at its first pair) over its area; 0 without such
     /// a load.
-    pub fn applied_pressure(&self, i: usize, t: f64) -> f64 {
+    pub(crate) fn applied_pressure(&self, i: usize, t: f64) -> f64 {
         let im = &self.interfaces[i];
         let n = im.pairs.first().map_or([0.0, 1.0], |p| p.normal);
         let nd = self.mesh.node_dofs;
@@ -533,7 +571,7 @@ impl Model {
     }
 
     /// Gauss points of the whole mesh (the length of a state vector).
-    pub fn n_points(&self) -> usize {
+    pub(crate) fn n_points(&self) -> usize {
         *self.gauss_offsets.last().unwrap_or(&0)
     }
 
@@ -556,7 +594,7 @@ impl Model {
 
     /// Factor from the half model's force (N) to kN per mm of thickness of the
     /// whole body; in axisymmetry, from the force of the full revolution (N) to kN.
-    pub fn load_scale_kn(&self) -> f64 {
+    pub(crate) fn load_scale_kn(&self) -> f64 {
         if self.section.axisymmetric {
             return 1.0 / 1000.0;
         }

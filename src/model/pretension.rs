@@ -35,7 +35,7 @@ use crate::model::constraint::Constraint;
 use std::collections::{BTreeMap, HashMap};
 
 /// The most sections a case may have.
-pub const MAX_SECTIONS: usize = 64;
+pub(crate) const MAX_SECTIONS: usize = 64;
 
 /// A section of the model.
 #[derive(Clone, Debug)]
@@ -64,12 +64,12 @@ pub fn dof(nd: NodeDofs, mesh_nodes: usize, k: usize) -> usize {
 
 /// Every dof of a model with these sections: the mesh's and a node's per
 /// section.
-pub fn total_dofs(case: &Case, mesh: &Mesh) -> usize {
+pub(crate) fn total_dofs(case: &Case, mesh: &Mesh) -> usize {
     total_dofs_of(mesh, case.pretension.len())
 }
 
 /// Every dof of a mesh with `sections` pretension sections.
-pub fn total_dofs_of(mesh: &Mesh, sections: usize) -> usize {
+pub(crate) fn total_dofs_of(mesh: &Mesh, sections: usize) -> usize {
     mesh.node_dofs.count(mesh.nodes.len() + sections)
 }
 
@@ -230,7 +230,7 @@ fn check_control(spec: &PretensionSpec) -> std::result::Result<(), String> {
 /// The node each node of a cut mesh (`nodes` of them) was before the cuts:
 /// itself, or for a copy the node it copies (through every section, in
 /// order: a copy of a copy is its first original).
-pub fn origins(sections: &[Section], nodes: usize) -> Vec<usize> {
+pub(crate) fn origins(sections: &[Section], nodes: usize) -> Vec<usize> {
     let mut origin: Vec<usize> = (0..nodes).collect();
     for s in sections {
         for &(n, c) in &s.pairs {
@@ -677,6 +677,6 @@ pub fn sides(mesh: &Mesh, section: &Section) -> Option<Vec<bool>> {
 /// Whether section `s` is free at pseudo-time t (a step to t): controlled
 /// by its force and not locked yet, so its sides move apart or together
 /// with nothing but that force between them.
-pub fn free_at(s: &Section, t: f64) -> bool {
+pub(crate) fn free_at(s: &Section, t: f64) -> bool {
     s.control == "force" && t <= s.lock_after
 }

@@ -40,7 +40,7 @@ pub fn segment_steps(len: f64, per_unit: usize) -> usize {
 /// waypoint (ascending, see [`waypoints`]), each segment in
 /// [`segment_steps`] equal steps; `first` (when shorter than the first
 /// segment) is the first step, the rest of that segment split alike.
-pub fn segment_schedule(waypoints: &[f64], per_unit: usize, first: Option<f64>) -> Vec<f64> {
+pub(crate) fn segment_schedule(waypoints: &[f64], per_unit: usize, first: Option<f64>) -> Vec<f64> {
     let mut out = Vec::new();
     let mut a = 0.0;
     for (i, &b) in waypoints.iter().enumerate() {

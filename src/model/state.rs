@@ -24,7 +24,7 @@ pub struct State {
     /// condensed internal force on its shortening's equation, set when a
     /// step converges (empty before; not kept in restart files, whose
     /// increments carry it).
-    pub section_force: Vec<f64>,
+    pub(crate) section_force: Vec<f64>,
     /// The residual at every prescribed dof (in the order of
     /// [`Model::prescribed`]): the reactions of a converged state, N (empty
     /// before the first step and in a state restored from a restart file).

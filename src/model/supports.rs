@@ -102,7 +102,7 @@ pub(super) fn check_supports(
 
 /// Twist: whether each body is held about the axis by a prescribed u_θ of its
 /// own at r > 0 (without one only the friction of an interface can hold it).
-pub fn own_rotation(mesh: &Mesh, prescribed: &[(usize, f64)]) -> Vec<bool> {
+pub(crate) fn own_rotation(mesh: &Mesh, prescribed: &[(usize, f64)]) -> Vec<bool> {
     let node_body = mesh.node_bodies();
     let tol = crate::model::consistency::tolerance(mesh);
     let mut own = vec![false; mesh.bodies.len()];

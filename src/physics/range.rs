@@ -24,14 +24,14 @@ pub struct Range {
 }
 
 /// Applied pressures, start pressures, critical pressures, exponential `a`.
-pub const PRESSURE: Range = Range {
+pub(crate) const PRESSURE: Range = Range {
     quantity: "a pressure",
     unit: "MPa",
     lo: 1e-6,
     hi: 1e6,
 };
 /// Non-zero prescribed displacements and gaps.
-pub const DISPLACEMENT: Range = Range {
+pub(crate) const DISPLACEMENT: Range = Range {
     quantity: "a displacement or gap",
     unit: "mm",
     lo: 1e-9,
@@ -41,7 +41,7 @@ pub const DISPLACEMENT: Range = Range {
 impl Range {
     /// Is `v` (finite) within the range? Zero passes: the per-key checks decide
     /// whether a key may be 0.
-    pub fn admits(&self, v: f64) -> bool {
+    pub(crate) fn admits(&self, v: f64) -> bool {
         v == 0.0 || (v.abs() >= self.lo && v.abs() <= self.hi)
     }
 

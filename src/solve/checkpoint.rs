@@ -15,7 +15,7 @@ pub struct Checkpoint {
     /// Load factor of the committed state.
     pub lambda: f64,
     /// Size of the last converged step (load factor), 0 before the first.
-    pub last_step: f64,
+    pub(crate) last_step: f64,
     /// Displacement change of the last converged increment (all dofs; empty
     /// before the first): the predictor's direction ([`predict`](super::predict)).
     pub last_du: Vec<f64>,
@@ -26,9 +26,9 @@ pub struct Checkpoint {
     pub first_yield: Option<FirstYield>,
     /// Max yield ratio of the last elastic increment (for locating first yield).
     pub elastic_ratio_prev: f64,
-    pub cutbacks_total: usize,
+    pub(crate) cutbacks_total: usize,
     /// Cutbacks since the last converged increment.
-    pub cutbacks_here: usize,
+    pub(crate) cutbacks_here: usize,
     /// Newton iterations and factorizations so far (the event searches'
     /// included), and the event searches' iterations.
     pub iterations: usize,
@@ -49,7 +49,7 @@ pub struct Checkpoint {
     /// The values of one designer's record (the model's
     /// [`Plan::width`](crate::model::outputs::Plan::width)): the layout of
     /// every increment's and event's record.
-    pub record_width: usize,
+    pub(crate) record_width: usize,
 }
 
 impl Checkpoint {

@@ -41,15 +41,15 @@ use crate::physics::contact::Status;
 use crate::physics::element::solid::Response;
 
 /// Most halvings of one search (2⁻⁵⁰ of the step: round-off).
-pub const MAX_HALVINGS: usize = 50;
+pub(crate) const MAX_HALVINGS: usize = 50;
 /// Where a halving splits its bracket: the midpoint, and, when the step
 /// there does not converge, once more a little off it.
 const SPLITS: [f64; 2] = [0.5, 0.45];
 /// Most solves of one search.
-pub const MAX_SOLVES: usize = MAX_HALVINGS * SPLITS.len();
+pub(crate) const MAX_SOLVES: usize = MAX_HALVINGS * SPLITS.len();
 /// Leading values of an event's row in a restart file ([`Event::pack`]);
 /// the plan's record follows.
-pub const FIXED: usize = 16;
+pub(crate) const FIXED: usize = 16;
 
 /// What happened.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -61,7 +61,7 @@ pub enum Kind {
 }
 
 impl Kind {
-    pub const ALL: [Kind; 4] = [
+    pub(crate) const ALL: [Kind; 4] = [
         Kind::FirstYield,
         Kind::FirstOpening,
         Kind::FullSlip,
@@ -158,7 +158,7 @@ impl Event {
     /// known kinds and methods, an interface of the model for the interface
     /// events and none for first yield, each event once, an increment of
     /// the curve, finite load factors, and no infinite value.
-    pub fn unpack(
+    pub(crate) fn unpack(
         v: &[f64],
         width: usize,
         model: &Model,

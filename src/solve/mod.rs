@@ -10,13 +10,15 @@ pub mod stabilization;
 pub mod stepping;
 pub(crate) mod yield_point;
 
-pub use crate::input::case::settings::{Acceleration, Method, Stabilization, StepControl};
-pub use crate::linalg::failure::StepFailure;
-pub use crate::measure::{joint_measures, Measures};
+pub use crate::input::case::settings::{Method, StepControl};
+pub(crate) use crate::linalg::failure::StepFailure;
+pub(crate) use crate::measure::joint_measures;
+pub use crate::measure::Measures;
 pub use crate::model::state::State;
 pub use checkpoint::Checkpoint;
 use checkpoint::{write_increment, write_last_state, written_everywhere};
-pub use newton::{Engine, Stats};
+pub use newton::Engine;
+pub(crate) use newton::Stats;
 pub use yield_point::FirstYield;
 
 use crate::error::{Error, Result};
@@ -611,7 +613,7 @@ pub fn predict(committed: &State, last_du: &[f64], last_step: f64, step: f64) ->
 }
 
 /// The yield ratio σ_eq / σ_y of a Gauss point state for a material.
-pub fn yield_ratio(mat: &VonMises, g: &PointState) -> f64 {
+pub(crate) fn yield_ratio(mat: &VonMises, g: &PointState) -> f64 {
     let y = mat.current_yield(g);
     if y.is_finite() {
         VonMises::equivalent_stress(&g.stress) / y

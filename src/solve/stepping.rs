@@ -24,7 +24,7 @@
 //! schedule is the case's own, as it always was.
 
 use crate::input::case::{SolverSpec, StepControl};
-pub use crate::model::schedule::{segment_schedule, segment_steps, waypoints};
+pub use crate::model::schedule::{segment_steps, waypoints};
 
 /// Relative tolerance under which two load factors are the same waypoint.
 const SAME: f64 = 1e-12;
@@ -157,7 +157,7 @@ impl Stepper {
     /// history with nothing to do): what [`Stepper::next`] of this, the
     /// case's initial stepper, gives at λ = 0, as the run asks it
     /// ([`crate::solve::run_from`]). `asperity check` prints it.
-    pub fn first_target(&self) -> Option<f64> {
+    pub(crate) fn first_target(&self) -> Option<f64> {
         self.clone().next(0.0)
     }
 
@@ -167,7 +167,7 @@ impl Stepper {
     }
 
     /// Automatic control: the smallest and the largest step size.
-    pub fn step_bounds(&self) -> (f64, f64) {
+    pub(crate) fn step_bounds(&self) -> (f64, f64) {
         (self.min_step, self.max_step)
     }
 
@@ -176,7 +176,7 @@ impl Stepper {
     /// pieces; automatic, the path through the waypoints in steps of at
     /// least half the smallest step, plus one step onto each waypoint.
     /// Saturates at `usize::MAX`.
-    pub fn most_increments(&self) -> usize {
+    pub(crate) fn most_increments(&self) -> usize {
         match self.mode {
             StepControl::Fixed => {
                 let pieces = 1usize
@@ -211,7 +211,7 @@ impl Stepper {
     /// each step must go towards the next waypoint, not past it, and not
     /// farther than the largest step allows. `Err` names the first increment
     /// that does not fit.
-    pub fn replay(&mut self, path: &[(f64, usize)]) -> Result<(), String> {
+    pub(crate) fn replay(&mut self, path: &[(f64, usize)]) -> Result<(), String> {
         let mut lambda = 0.0;
         for (i, &(to, cutbacks)) in path.iter().enumerate() {
             let k = i + 1;
@@ -277,7 +277,7 @@ impl Stepper {
     /// Auto mode: the waypoints still ahead of `lambda` (those reached are
     /// dropped when the next step is chosen, so a stepper stopped exactly at
     /// a waypoint may or may not hold it yet).
-    pub fn waypoints_ahead(&self, lambda: f64) -> Vec<f64> {
+    pub(crate) fn waypoints_ahead(&self, lambda: f64) -> Vec<f64> {
         let mut w = self.waypoints.clone();
         drop_reached(&mut w, lambda);
         w
@@ -306,7 +306,7 @@ impl Stepper {
     /// plastic strain increment `dpeeq` is too large for an accurate path?
     /// (Automatic control only; then call [`Stepper::retry`] with
     /// [`Why::TooPlastic`].)
-    pub fn too_plastic(&self, lambda: f64, target: f64, dpeeq: f64) -> bool {
+    pub(crate) fn too_plastic(&self, lambda: f64, target: f64, dpeeq: f64) -> bool {
         self.mode == StepControl::Auto
             && dpeeq > TOO_PLASTIC * self.plastic_step
             && (target - lambda).abs() > self.min_step * 1.000001

@@ -13,7 +13,7 @@ use crate::physics::element::solid::Response;
 /// Regula-falsi steps of the search after its first solve: at most
 /// `1 + SEARCH_STEPS` elastic solves locate first yield (a restart file's
 /// counters are bounded by it, [`crate::files::restart`]).
-pub const SEARCH_STEPS: usize = 60;
+pub(crate) const SEARCH_STEPS: usize = 60;
 
 /// Where and at what load the first Gauss point reaches the yield stress.
 #[derive(Clone, Debug)]
@@ -59,7 +59,7 @@ pub fn max_yield_ratio(model: &Model, state: &State, held: &[u32]) -> (f64, usiz
 /// The lowest (element, point) of the `held` elements whose yield ratio is
 /// within [`RATIO_TIE`] of `best` (none where `best` is not positive or no
 /// point reaches it).
-pub fn lowest_tied(
+pub(crate) fn lowest_tied(
     model: &Model,
     state: &State,
     held: &[u32],

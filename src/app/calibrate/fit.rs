@@ -21,7 +21,7 @@ pub struct PowerFit {
     /// max |c_N p^m − u| / u over the fitted points.
     pub max_error: f64,
     /// root mean square of the same.
-    pub rms_error: f64,
+    pub(crate) rms_error: f64,
 }
 
 /// `n` pressures spaced evenly in log p from `a` to `b` (both included).

@@ -74,7 +74,7 @@ pub struct Gw {
 
 impl Gw {
     /// CEB's critical interference ω_c (mm); infinite for elastic summits.
-    pub fn critical_interference(&self) -> f64 {
+    pub(crate) fn critical_interference(&self) -> f64 {
         match self.asperity {
             Asperity::Elastic => f64::INFINITY,
             Asperity::Ceb { hardness, k } => {
@@ -84,7 +84,7 @@ impl Gw {
     }
 
     /// Load on one summit at interference ω ≥ 0 (N).
-    pub fn summit_load(&self, omega: f64) -> f64 {
+    pub(crate) fn summit_load(&self, omega: f64) -> f64 {
         let hertz = |w: f64| 4.0 / 3.0 * self.e_star * self.radius.sqrt() * w.powf(1.5);
         match self.asperity {
             Asperity::Elastic => hertz(omega),
@@ -109,7 +109,7 @@ impl Gw {
     /// ω summed over the summits per unit area at separation d (the load in
     /// [`Gw::pressure`], the shear stiffness in `tangential.rs`), by the
     /// substitution ω = σ u² and the panels described at the top of the module.
-    pub fn over_summits(&self, d: f64, q: &dyn Fn(f64) -> f64) -> f64 {
+    pub(crate) fn over_summits(&self, d: f64, q: &dyn Fn(f64) -> f64) -> f64 {
         let s = self.sigma;
         let h = d / s;
         let f = |u: f64| {
@@ -147,7 +147,7 @@ impl Gw {
 
     /// The fraction of the summits in contact at separation d: the share of
     /// summit heights above d, ∫_{d/σ}^∞ φ̂.
-    pub fn contact_fraction(&self, d: f64) -> f64 {
+    pub(crate) fn contact_fraction(&self, d: f64) -> f64 {
         let h = d / self.sigma;
         match self.distribution {
             Distribution::Gaussian => {
@@ -160,7 +160,7 @@ impl Gw {
 
     /// The separation at which the fraction `f` (0 < f < 1) of the summits
     /// touches (bisection on the monotone [`Gw::contact_fraction`]).
-    pub fn separation_for_fraction(&self, f: f64) -> f64 {
+    pub(crate) fn separation_for_fraction(&self, f: f64) -> f64 {
         let s = self.sigma;
         bisect(-s, s, |d| self.contact_fraction(d) > f, 1e-12 * s)
     }
@@ -168,7 +168,7 @@ impl Gw {
 
 /// Most steps of each loop of [`bisect`]: the bracket grows 3× a step, the
 /// bisection halves it.
-pub const MAX_STEPS: usize = 200;
+pub(crate) const MAX_STEPS: usize = 200;
 
 /// The d where the monotone `above(d)` (true below, false above) turns, from
 /// the bracket [lo, hi] widened until it holds the turn, bisected to `tol` or to
@@ -251,7 +251,7 @@ fn gauss16() -> &'static [(f64, f64); 16] {
 /// less than the smallest normal number: an integral that underflows into the
 /// subnormals has no relative accuracy to converge to, and doubling to 8192
 /// panels at every call made a bisection through such values take minutes.
-pub fn integrate(f: &dyn Fn(f64) -> f64, a: f64, b: f64, tol: f64) -> f64 {
+pub(crate) fn integrate(f: &dyn Fn(f64) -> f64, a: f64, b: f64, tol: f64) -> f64 {
     if b <= a {
         return 0.0;
     }

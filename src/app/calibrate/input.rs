@@ -116,7 +116,7 @@ pub struct FitSpec {
     /// default 10⁻³ × lo.
     pub reference_pressure: Option<f64>,
     /// Points of the table law (default 10, 2 to 100).
-    pub table_points: Option<usize>,
+    pub(crate) table_points: Option<usize>,
 }
 
 /// Reads and parses an input file (errors name the file, line and column).

@@ -24,14 +24,14 @@ pub struct Limit {
     pub accepted: [f64; 2],
     pub usual: [f64; 2],
     /// What the usual range spans, for the messages and the docs.
-    pub usual_is: &'static str,
+    pub(crate) usual_is: &'static str,
     /// The likely slip when a value is above / below the usual range.
     pub above: &'static str,
     pub below: &'static str,
 }
 
 /// Young's modulus: accepted as by the case file (src/input/case/ranges.rs MODULUS).
-pub const YOUNG: Limit = Limit {
+pub(crate) const YOUNG: Limit = Limit {
     quantity: "Young's modulus",
     unit: "MPa",
     accepted: [
@@ -44,7 +44,7 @@ pub const YOUNG: Limit = Limit {
     below: "a value in GPa written as MPa?",
 };
 /// Hardness of the softer body (CEB summits).
-pub const HARDNESS: Limit = Limit {
+pub(crate) const HARDNESS: Limit = Limit {
     quantity: "the hardness",
     unit: "MPa",
     accepted: [
@@ -57,7 +57,7 @@ pub const HARDNESS: Limit = Limit {
     below: "a value in GPa written as MPa?",
 };
 /// η, summits per mm².
-pub const DENSITY: Limit = Limit {
+pub(crate) const DENSITY: Limit = Limit {
     quantity: "η, the summit density",
     unit: "/mm²",
     // one summit per m² to summits 0.1 nm apart (an atomic distance)
@@ -68,7 +68,7 @@ pub const DENSITY: Limit = Limit {
     below: "a density per µm² written as per mm² (1 /µm² = 1e6 /mm²)?",
 };
 /// β, mm.
-pub const RADIUS: Limit = Limit {
+pub(crate) const RADIUS: Limit = Limit {
     quantity: "β, the summit radius",
     unit: "mm",
     accepted: [1e-7, 1e4],
@@ -78,7 +78,7 @@ pub const RADIUS: Limit = Limit {
     below: "a value in m written as mm?",
 };
 /// σ_s, mm.
-pub const SIGMA: Limit = Limit {
+pub(crate) const SIGMA: Limit = Limit {
     quantity: "σ_s, the standard deviation of summit heights",
     unit: "mm",
     // 0.1 nm (atomic) to 100 mm
@@ -89,7 +89,7 @@ pub const SIGMA: Limit = Limit {
     below: "a value in m written as mm?",
 };
 /// Δ, mm.
-pub const SAMPLING: Limit = Limit {
+pub(crate) const SAMPLING: Limit = Limit {
     quantity: "Δ, the sampling interval",
     unit: "mm",
     accepted: [1e-9, 100.0],
@@ -99,7 +99,7 @@ pub const SAMPLING: Limit = Limit {
     below: "a value in m written as mm?",
 };
 /// The fit range: accepted as the case file's pressures (src/input/case/ranges.rs PRESSURE).
-pub const PRESSURE: Limit = Limit {
+pub(crate) const PRESSURE: Limit = Limit {
     quantity: "a fit pressure",
     unit: "MPa",
     accepted: [
@@ -112,7 +112,7 @@ pub const PRESSURE: Limit = Limit {
     below: "a value in GPa written as MPa?",
 };
 /// The reference pressure (u_N = 0): small by design, so no usual range.
-pub const REFERENCE: Limit = Limit {
+pub(crate) const REFERENCE: Limit = Limit {
     quantity: "the reference pressure",
     unit: "MPa",
     accepted: [1e-12, crate::input::case::ranges::PRESSURE.hi],
@@ -123,7 +123,8 @@ pub const REFERENCE: Limit = Limit {
 };
 
 /// Every limit, in the order of the documentation's table.
-pub const ALL: [(&str, &Limit); 13] = [
+#[cfg(test)]
+pub(crate) const ALL: [(&str, &Limit); 13] = [
     ("young", &YOUNG),
     ("hardness", &HARDNESS),
     ("density", &DENSITY),
@@ -176,7 +177,7 @@ impl Limit {
 
     /// [`Limit::check`] with the warning's guess at the slip given (a value
     /// derived from a profile has other likely causes than its key's unit).
-    pub fn check_hinted(
+    pub(crate) fn check_hinted(
         &self,
         place: &str,
         key: &str,
@@ -192,7 +193,7 @@ impl Limit {
     /// [`Limit::check_hinted`], at those keys (`place: inputs`, never a name
     /// of the derived quantity), the message naming the quantity and `how`
     /// the keys made it ("derived from them, H = 0.8 assumed").
-    pub fn check_derived(
+    pub(crate) fn check_derived(
         &self,
         place: &str,
         inputs: &str,
@@ -287,7 +288,12 @@ impl Limit {
 }
 
 /// ν: accepted in (−1, 0.5) (zero included, subnormals not), usual [0, 0.5).
-pub fn check_poisson(place: &str, key: &str, v: f64, warnings: &mut Vec<Warning>) -> Result<()> {
+pub(crate) fn check_poisson(
+    place: &str,
+    key: &str,
+    v: f64,
+    warnings: &mut Vec<Warning>,
+) -> Result<()> {
     let refuse = |message: String| Err(Error::input(format!("{place}: {key}"), message));
     if !(v > -1.0 && v < 0.5) {
         return refuse(format!("must be in (−1, 0.5), got {}", num(v)));
@@ -314,7 +320,7 @@ pub fn check_poisson(place: &str, key: &str, v: f64, warnings: &mut Vec<Warning>
 /// The ranges of the roughness parameters of `[surface] model = "roughness"`
 /// ([`super::roughness`]).
 /// Ra, mm: ISO 4288 tabulates 0.006 to 80 µm.
-pub const RA: Limit = Limit {
+pub(crate) const RA: Limit = Limit {
     quantity: "Ra, the arithmetic mean height",
     unit: "mm",
     accepted: [1e-7, 1.0],
@@ -334,7 +340,7 @@ pub const RZ: Limit = Limit {
     below: "a value in m written as mm?",
 };
 /// H, the Hurst exponent of the assumed spectrum.
-pub const HURST_LIMIT: Limit = Limit {
+pub(crate) const HURST_LIMIT: Limit = Limit {
     quantity: "H, the Hurst exponent",
     unit: "",
     accepted: [0.1, 1.0],
@@ -344,7 +350,7 @@ pub const HURST_LIMIT: Limit = Limit {
     below: "a spectrum this rich in short waves is rare for machined faces",
 };
 /// λc, mm.
-pub const CUTOFF: Limit = Limit {
+pub(crate) const CUTOFF: Limit = Limit {
     quantity: "λc, the cutoff wavelength",
     unit: "mm",
     accepted: [1e-3, 100.0],
@@ -354,7 +360,7 @@ pub const CUTOFF: Limit = Limit {
     below: "a value in m written as mm?",
 };
 /// λs, mm.
-pub const SHORT_CUTOFF: Limit = Limit {
+pub(crate) const SHORT_CUTOFF: Limit = Limit {
     quantity: "λs, the short-wavelength cutoff",
     unit: "mm",
     accepted: [1e-6, 10.0],

@@ -68,39 +68,43 @@ pub struct BandEnd {
 }
 
 /// Composite modulus E* = 1/((1−ν₁²)/E₁ + (1−ν₂²)/E₂) (Johnson 1985, eq. 4.22).
-pub fn composite_modulus(a: &Body, b: &Body) -> f64 {
+pub(crate) fn composite_modulus(a: &Body, b: &Body) -> f64 {
     1.0 / ((1.0 - a.poisson * a.poisson) / a.young + (1.0 - b.poisson * b.poisson) / b.young)
 }
 
 /// Fewer summits in contact per mm² than this at the lower fit pressure (one
 /// per m² of nominal area): no asperity touches, refused.
-pub const NO_CONTACT: f64 = 1e-6;
+pub(crate) const NO_CONTACT: f64 = 1e-6;
 /// Fewer than this (one per cm²): the law rests on few summits, a warning.
-pub const FEW_CONTACTS: f64 = 1e-2;
+pub(crate) const FEW_CONTACTS: f64 = 1e-2;
 /// The approach, in σ_s, within which the surface must carry twice the upper
 /// fit pressure (the curve's end).
-pub const DEEPEST: f64 = 50.0;
+pub(crate) const DEEPEST: f64 = 50.0;
 /// Smallest separation step, in σ_s, between the reference and the lower fit
 /// pressure and between the two fit pressures: 1e5 × the bisection's 1e-14 σ.
-pub const RESOLVED: f64 = 1e-9;
+pub(crate) const RESOLVED: f64 = 1e-9;
 
 /// The input checked, the surface's GW model and the separations its pressures
 /// map to: everything [`calibrate`] needs before the expensive curve and fit.
 /// Every refusal of an input comes from [`prepare`]; the two checks after the
 /// fit in [`calibrate`] are a safety net that no known input reaches.
 #[derive(Clone, Debug)]
-pub struct Prepared {
+pub(crate) struct Prepared {
     pub gw: Gw,
     pub moments: Option<(profile::Moments, profile::Summits)>,
     pub range: [f64; 2],
     pub reference_pressure: f64,
-    pub table_points: usize,
-    /// Separations (mm) at the reference pressure (d₀), at lo and at hi.
+    pub(crate) table_points: usize,
+    /// Separations (mm) at the reference pressure (d₀), at lo and at hi
+    /// (the bracket the reach checks found; the unit tests read it).
     pub d0: f64,
-    pub d_lo: f64,
-    pub d_hi: f64,
+    #[cfg_attr(not(test), allow(dead_code))]
+    pub(crate) d_lo: f64,
+    #[cfg_attr(not(test), allow(dead_code))]
+    pub(crate) d_hi: f64,
     /// Summits in contact per mm² at lo.
-    pub contacts_lo: f64,
+    #[cfg_attr(not(test), allow(dead_code))]
+    pub(crate) contacts_lo: f64,
     pub warnings: Vec<Warning>,
     pub roughness: Option<roughness::Derived>,
     pub tangential: Option<tangential::Spec>,
@@ -268,7 +272,7 @@ fn roughness_faces(
 /// pressures too close to resolve are refused here, in milliseconds, before the
 /// curve and the fit. `base` is the folder that relative profile paths start
 /// from.
-pub fn prepare(input: &Input, place: &str, base: &Path) -> Result<Prepared> {
+pub(crate) fn prepare(input: &Input, place: &str, base: &Path) -> Result<Prepared> {
     let mut warnings = Vec::new();
     let w = &mut warnings;
     check_materials(input, place, w)?;

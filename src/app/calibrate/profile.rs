@@ -62,12 +62,12 @@ pub struct Summits {
 }
 
 /// Largest height magnitude read, mm: the case file's coordinate range (1 km).
-pub const MAX_HEIGHT: f64 = crate::input::case::ranges::COORDINATE.hi;
+pub(crate) const MAX_HEIGHT: f64 = crate::input::case::ranges::COORDINATE.hi;
 
 /// The rms height left after removing the least-squares line or plane, below
 /// which (relative to the largest height) a record is flat: the round-off of
 /// the levelling is a few 1e-16 of the heights.
-pub const FLAT: f64 = 1e-12;
+pub(crate) const FLAT: f64 = 1e-12;
 
 /// The lines of `text`, ended by LF, CRLF or a lone CR (Unix, Windows and
 /// old Mac spreadsheet exports), without their ends.
@@ -236,7 +236,7 @@ impl Heights {
 
     /// The rms height left after removing the least-squares line or plane, and
     /// the largest height magnitude of the record.
-    pub fn flatness(&self) -> (f64, f64) {
+    pub(crate) fn flatness(&self) -> (f64, f64) {
         let z = self.levelled(Detrend::Linear);
         let rms = (z.iter().map(|v| v * v).sum::<f64>() / z.len() as f64).sqrt();
         let top = self.z.iter().fold(0.0f64, |a, v| a.max(v.abs()));
@@ -248,7 +248,7 @@ impl Heights {
     /// up to round-off, [`FLAT`] of its largest height. A tilt is no roughness
     /// whatever `how` says: levelled by the mean only, it would give summits of
     /// round-off.
-    pub fn rough_moments(&self, how: Detrend, place: &str) -> Result<Moments> {
+    pub(crate) fn rough_moments(&self, how: Detrend, place: &str) -> Result<Moments> {
         let (rms, top) = self.flatness();
         if rms.is_nan() || rms <= FLAT * top {
             let shape = if self.rows > 1 { "plane" } else { "line" };

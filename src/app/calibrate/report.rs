@@ -10,7 +10,7 @@ use std::fmt::Write as _;
 
 impl Calibration {
     /// `curve.csv`.
-    pub fn curve_csv(&self) -> String {
+    pub(crate) fn curve_csv(&self) -> String {
         let mut s = String::from("approach_mm,pressure_mpa\n");
         for q in &self.curve {
             let _ = writeln!(s, "{:.12e},{:.12e}", q.approach, q.pressure);
@@ -75,7 +75,7 @@ impl Calibration {
     }
 
     /// `interface.toml`: the two snippets.
-    pub fn interface_toml(&self, source: &str) -> String {
+    pub(crate) fn interface_toml(&self, source: &str) -> String {
         let [lo, hi] = self.range;
         let f = &self.fit;
         let mut s = String::new();

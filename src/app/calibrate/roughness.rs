@@ -29,13 +29,13 @@ use std::f64::consts::PI;
 
 /// The Hurst exponent assumed when none is given, and the range over which
 /// the calibration is repeated to show what the assumption is worth.
-pub const HURST: f64 = 0.8;
-pub const HURST_BAND: [f64; 2] = [0.5, 1.0];
+pub(crate) const HURST: f64 = 0.8;
+pub(crate) const HURST_BAND: [f64; 2] = [0.5, 1.0];
 /// Euler's constant γ (Davenport's formula).
 const EULER_GAMMA: f64 = 0.577_215_664_901_532_9;
 /// Smallest λc / λs accepted: a band narrower than a decade has no summits
 /// to speak of (the ISO pairs are 30 to 300).
-pub const MIN_BAND: f64 = 10.0;
+pub(crate) const MIN_BAND: f64 = 10.0;
 
 /// Which height parameter was given.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -55,7 +55,7 @@ impl Parameter {
 
 /// λc (mm) for a face of roughness `value` (mm): ISO 4288:1996 Table 1 (Ra)
 /// and Table 2 (Rz), non-periodic profiles; the end rows beyond the tables.
-pub fn iso4288_cutoff(parameter: Parameter, value: f64) -> f64 {
+pub(crate) fn iso4288_cutoff(parameter: Parameter, value: f64) -> f64 {
     let rows: [(f64, f64); 4] = match parameter {
         Parameter::Ra => [(0.02e-3, 0.08), (0.1e-3, 0.25), (2e-3, 0.8), (10e-3, 2.5)],
         Parameter::Rz => [(0.1e-3, 0.08), (0.5e-3, 0.25), (10e-3, 0.8), (50e-3, 2.5)],
@@ -67,7 +67,7 @@ pub fn iso4288_cutoff(parameter: Parameter, value: f64) -> f64 {
 
 /// λs (mm) for the cutoff λc: ISO 3274:1996 Table 1 (λs 2.5 µm up to
 /// λc = 0.8 mm, 8 µm up to 2.5 mm, 25 µm above).
-pub fn iso3274_short_cutoff(lc: f64) -> f64 {
+pub(crate) fn iso3274_short_cutoff(lc: f64) -> f64 {
     if lc <= 0.8 * (1.0 + 1e-12) {
         2.5e-3
     } else if lc <= 2.5 * (1.0 + 1e-12) {
@@ -90,7 +90,7 @@ fn power_integral(e: f64, k1: f64, k2: f64) -> f64 {
 
 /// The moments of a profile of rms height `sigma` whose one-sided PSD is
 /// C k^{−(1+2H)} between k1 = 2π/λc and k2 = 2π/λs (zero outside).
-pub fn band_moments(sigma: f64, hurst: f64, lc: f64, ls: f64) -> Moments {
+pub(crate) fn band_moments(sigma: f64, hurst: f64, lc: f64, ls: f64) -> Moments {
     let (k1, k2) = (2.0 * PI / lc, 2.0 * PI / ls);
     let q = 1.0 + 2.0 * hurst;
     let i0 = power_integral(-q, k1, k2);
@@ -103,13 +103,13 @@ pub fn band_moments(sigma: f64, hurst: f64, lc: f64, ls: f64) -> Moments {
 }
 
 /// σ from Ra for Gaussian heights: E|z| = σ √(2/π), so σ = √(π/2) Ra.
-pub fn sigma_from_ra(ra: f64) -> f64 {
+pub(crate) fn sigma_from_ra(ra: f64) -> f64 {
     (PI / 2.0).sqrt() * ra
 }
 
 /// Rz / σ of a Gaussian profile with `moments`, sampling length `lr`
 /// (Davenport 1964 with Rice's up-crossing count N = (lr/2π)√(m2/m0)).
-pub fn rz_over_sigma(moments: &Moments, lr: f64) -> f64 {
+pub(crate) fn rz_over_sigma(moments: &Moments, lr: f64) -> f64 {
     let n = lr / (2.0 * PI) * (moments.m2 / moments.m0).sqrt();
     let l = (2.0 * n.ln()).sqrt();
     2.0 * (l + EULER_GAMMA / l)
@@ -139,7 +139,7 @@ pub struct Face {
     pub cutoff: f64,
     pub short_cutoff: f64,
     /// Rz / σ by Davenport over lr = λc (for Ra input too, as information).
-    pub rz_over_sigma: f64,
+    pub(crate) rz_over_sigma: f64,
     pub moments: Moments,
 }
 
@@ -148,7 +148,7 @@ pub struct Face {
 pub struct Derived {
     pub hurst: f64,
     /// H was given (no band is computed then).
-    pub hurst_given: bool,
+    pub(crate) hurst_given: bool,
     pub faces: Vec<Face>,
     /// The pair's moments (sum over the faces).
     pub moments: Moments,

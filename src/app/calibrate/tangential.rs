@@ -55,7 +55,7 @@ pub struct Spec {
     pub backbone: Backbone,
     pub given: Given,
     /// G*, MPa.
-    pub g_star: f64,
+    pub(crate) g_star: f64,
 }
 
 /// The optional keys of the tangential law as the input gave them.
@@ -154,7 +154,7 @@ fn kp_message(m: &str) -> String {
 
 /// G* of Mindlin's tangential stiffness: 1/G* = (2 − ν₁)/G₁ + (2 − ν₂)/G₂
 /// (Johnson 1985, §7.2).
-pub fn shear_modulus_star(a: &Body, b: &Body) -> f64 {
+pub(crate) fn shear_modulus_star(a: &Body, b: &Body) -> f64 {
     let g = |x: &Body| x.young / (2.0 * (1.0 + x.poisson));
     1.0 / ((2.0 - a.poisson) / g(a) + (2.0 - b.poisson) / g(b))
 }
@@ -162,7 +162,7 @@ pub fn shear_modulus_star(a: &Body, b: &Body) -> f64 {
 impl Gw {
     /// The contact radius (mm) of one summit at interference ω ≥ 0: Hertz
     /// √(β ω); CEB above ω_c: √(β (2ω − ω_c)) (area π β (2ω − ω_c)).
-    pub fn contact_radius(&self, omega: f64) -> f64 {
+    pub(crate) fn contact_radius(&self, omega: f64) -> f64 {
         match self.asperity {
             Asperity::Elastic => (self.radius * omega).sqrt(),
             Asperity::Ceb { .. } => {

@@ -10,8 +10,7 @@ use crate::solve::{Increment, Measures, Observer, RunResult, State};
 use std::path::{Path, PathBuf};
 
 /// What is kept of every converged increment.
-pub struct Snapshot {
-    pub load_factor: f64,
+pub(crate) struct Snapshot {
     pub measures: Measures,
     /// (x, p_n, p_t) along the interface, ordered by x.
     pub interface: Vec<(f64, f64, f64)>,
@@ -52,7 +51,6 @@ impl Observer for Capture {
             }
         }
         self.0.push(Snapshot {
-            load_factor: inc.load_factor,
             measures: inc.measures,
             interface,
             surface,
@@ -62,7 +60,7 @@ impl Observer for Capture {
 }
 
 /// Runs a case (possibly modified) and keeps every increment.
-pub fn capture(case: Case) -> Result<(RunResult, Vec<Snapshot>)> {
+pub(crate) fn capture(case: Case) -> Result<(RunResult, Vec<Snapshot>)> {
     let model = Model::build(case)?;
     let mut cap = Capture::default();
     let r = crate::app::driver::solve(&model, &mut cap)?;

@@ -41,9 +41,9 @@ pub struct Point {
     pub iterations: f64,
     pub increments: f64,
     pub cutbacks: f64,
-    pub first_yield_kn: f64,
+    pub(crate) first_yield_kn: f64,
     pub center: f64,
-    pub edge_pressure: f64,
+    pub(crate) edge_pressure: f64,
 }
 
 /// Runs `case` with extra `run` arguments; Err carries the run's error line.
@@ -52,7 +52,7 @@ pub fn run(case: &Path, args: &[String], which: Which, dir: &Path) -> Result<Poi
 }
 
 /// As [`run`], killing the run after `limit` (Err "stopped after N s").
-pub fn run_limited(
+pub(crate) fn run_limited(
     case: &Path,
     args: &[String],
     which: Which,
@@ -84,7 +84,7 @@ pub fn run_limited(
 /// adapt.csv, the wall time summed over the cycles so far (what the run
 /// paid to reach that mesh), no edge pressure (only the last cycle's
 /// interface files are kept).
-pub fn run_adaptive(
+pub(crate) fn run_adaptive(
     case: &Path,
     args: &[String],
     which: Which,

@@ -12,11 +12,11 @@ use crate::input::case::Method;
 use std::path::{Path, PathBuf};
 
 pub struct Outcome {
-    pub config: String,
+    pub(crate) config: String,
     /// Equal load steps; 0 for automatic step control.
     pub steps: usize,
     pub plain: std::result::Result<runner::Point, String>,
-    pub rescued: std::result::Result<runner::Point, String>,
+    pub(crate) rescued: std::result::Result<runner::Point, String>,
 }
 
 /// One row of the map: a method, perhaps a friction scheme, perhaps without

@@ -30,7 +30,7 @@ use std::thread::JoinHandle;
 const QUEUE: usize = 3;
 
 /// One file to write.
-pub enum Job {
+pub(crate) enum Job {
     /// Text, written as it is.
     Text { path: PathBuf, text: String },
     /// A VTU document.
@@ -88,7 +88,7 @@ impl Job {
 }
 
 /// The writer thread and its queue.
-pub struct Background {
+pub(crate) struct Background {
     queue: Option<SyncSender<Job>>,
     thread: Option<JoinHandle<()>>,
     /// The first failure of a job, until the solver's side takes it.
@@ -122,7 +122,7 @@ impl Background {
 
     /// Queues a job (waits while the queue is full); first reports an earlier
     /// failure.
-    pub fn send(&mut self, job: Job) -> Result<()> {
+    pub(crate) fn send(&mut self, job: Job) -> Result<()> {
         self.check()?;
         let sent = self.queue.as_ref().map(|q| q.send(job).is_ok());
         if sent != Some(true) {

@@ -25,16 +25,16 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 /// Force amplitudes within this fraction of the larger are the same amplitude.
-pub const SAME_AMPLITUDE: f64 = 1e-2;
+pub(crate) const SAME_AMPLITUDE: f64 = 1e-2;
 
 /// A cycle dissipates when its D exceeds this fraction of the largest D of
 /// its interface's cycles: below it, D is the round-off of the solver on an
 /// elastic cycle (a joint that has shaken down).
-pub const DISSIPATES: f64 = 1e-6;
+pub(crate) const DISSIPATES: f64 = 1e-6;
 
 /// A first reversal of F_T is a drop of |F_T| by more than this fraction of
 /// the run's largest |F_T| from one increment to the next.
-pub const REVERSAL: f64 = 1e-6;
+pub(crate) const REVERSAL: f64 = 1e-6;
 
 /// Whether two force amplitudes are the same within [`SAME_AMPLITUDE`].
 fn same(a: f64, b: f64) -> bool {
@@ -60,7 +60,7 @@ pub struct PowerFit {
 /// R² = 1 − Σ (Y − ln C − q X)² / Σ (Y − Ȳ)² (1 when every Y is the same: the
 /// line passes through every point). None with fewer than two distinct x
 /// (within [`SAME_AMPLITUDE`]) or any x or y not positive and finite.
-pub fn power_fit(points: &[(f64, f64)]) -> Option<PowerFit> {
+pub(crate) fn power_fit(points: &[(f64, f64)]) -> Option<PowerFit> {
     let ok = |v: f64| v > 0.0 && v.is_finite();
     if points.iter().any(|&(x, y)| !ok(x) || !ok(y)) {
         return None;
@@ -181,7 +181,7 @@ pub const DAMPING_HEADER: &str = "interface,cycle,block,first_in_block,last_in_b
 
 /// The columns a twisting model's `damping.csv` adds at the end of a row:
 /// the torque-twist loop's amplitudes, stored energy and loss factor.
-pub const DAMPING_TWIST_COLUMNS: &str =
+pub(crate) const DAMPING_TWIST_COLUMNS: &str =
     ",torque_amplitude_nmm,twist_amplitude_rad,torsional_stored_energy_nmm,torsional_loss_factor";
 
 /// `damping.csv`: one row per closed load cycle and interface (the header
@@ -189,7 +189,7 @@ pub const DAMPING_TWIST_COLUMNS: &str =
 /// blocks; an empty loss factor where the stored energy is not positive.
 /// A twisting model's rows end with [`DAMPING_TWIST_COLUMNS`]
 /// ([`Cycle::torsional_loss_factor`]).
-pub fn damping_csv(model: &Model, cycles: &[Vec<Cycle>], sweeps: &[Sweep]) -> String {
+pub(crate) fn damping_csv(model: &Model, cycles: &[Vec<Cycle>], sweeps: &[Sweep]) -> String {
     let twist = model.node_dofs().twist();
     let mut s = String::from(DAMPING_HEADER);
     if twist {
@@ -259,7 +259,7 @@ pub fn summary(model: &Model, sweeps: &[Sweep]) -> Value {
 }
 
 /// The sweeps of every interface.
-pub fn sweeps(cycles: &[Vec<Cycle>]) -> Vec<Sweep> {
+pub(crate) fn sweeps(cycles: &[Vec<Cycle>]) -> Vec<Sweep> {
     cycles.iter().map(|c| sweep(c)).collect()
 }
 
@@ -330,7 +330,7 @@ pub fn figure(
 /// The index of the last row of the first loading: the first k with
 /// |F_{k+1}| < |F_k| − [`REVERSAL`] · max |F| (the first reversal of the
 /// tangential force), the last row when |F| never drops.
-pub fn backbone_end(forces: &[f64]) -> usize {
+pub(crate) fn backbone_end(forces: &[f64]) -> usize {
     let top = forces.iter().fold(0.0f64, |m, f| m.max(f.abs()));
     let tol = REVERSAL * top;
     forces
@@ -345,7 +345,7 @@ pub const BACKBONE_HEADER: &str =
 /// `backbone.csv`: per interface (in order) the rows of `joints.csv` from the
 /// first increment to the first reversal of F_T ([`backbone_end`]), the
 /// same numbers in the same format; the header alone without increments.
-pub fn backbone_csv(model: &Model, r: &RunResult) -> String {
+pub(crate) fn backbone_csv(model: &Model, r: &RunResult) -> String {
     let mut s = String::from(BACKBONE_HEADER);
     for (k, im) in model.interfaces.iter().enumerate() {
         let rows: Vec<(usize, f64, JointMeasures)> = r

@@ -13,7 +13,7 @@ use serde_json::{json, Value};
 /// and its bracket), and the loads there: the applied forces' resultant,
 /// the named histories' values, the measures of curve.csv, the
 /// interface's forces and every reaction group.
-pub fn event_json(model: &Model, e: &Event) -> Value {
+pub(crate) fn event_json(model: &Model, e: &Event) -> Value {
     let plan = &model.plan;
     let t = e.load_factor;
     let mut f = vec![0.0; model.mesh.num_dofs()];

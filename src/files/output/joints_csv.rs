@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 
 /// A CSV field: as is, or quoted (quotes doubled) when it holds a comma, a
 /// quote or a line break.
-pub fn csv_field(s: &str) -> String {
+pub(crate) fn csv_field(s: &str) -> String {
     if s.contains([',', '"', '\n', '\r']) {
         format!("\"{}\"", s.replace('"', "\"\""))
     } else {
@@ -24,7 +24,7 @@ pub fn csv_field(s: &str) -> String {
 
 /// The closed load cycles of every interface of a run (empty lists without
 /// histories).
-pub fn run_cycles(model: &Model, r: &RunResult) -> Vec<Vec<Cycle>> {
+pub(crate) fn run_cycles(model: &Model, r: &RunResult) -> Vec<Vec<Cycle>> {
     let times: Vec<f64> = r.increments.iter().map(|i| i.load_factor).collect();
     let joints: Vec<&[JointMeasures]> = r.increments.iter().map(|i| i.joints.as_slice()).collect();
     joint::cycles(
@@ -151,7 +151,7 @@ pub fn cycles_csv(model: &Model, cycles: &[Vec<Cycle>]) -> String {
 }
 
 /// A CSV number (`{:.9e}`), or an empty field for None.
-pub fn opt(v: Option<f64>) -> String {
+pub(crate) fn opt(v: Option<f64>) -> String {
     v.map_or(String::new(), |v| format!("{v:.9e}"))
 }
 
@@ -324,7 +324,7 @@ fn loop_series(
 /// The torque-twist chart of a twisting run: T (kN·mm) against φ̄ (mrad)
 /// from the start of the run, one line per interface with a closed cycle.
 /// None without twist or without a cycle.
-pub fn torsion_chart(
+pub(crate) fn torsion_chart(
     model: &Model,
     r: &RunResult,
     cycles: &[Vec<Cycle>],

@@ -7,7 +7,7 @@
 //! partial output folder behind. The per-increment files are encoded and
 //! written by a thread of their own, in order ([`background`]).
 
-pub mod background;
+pub(crate) mod background;
 pub mod damping;
 pub mod events;
 pub mod joints_csv;
@@ -28,14 +28,14 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 /// Writes the per-increment files of a run and reports progress.
-pub struct Writer {
+pub(crate) struct Writer {
     final_dir: PathBuf,
     tmp_dir: PathBuf,
     pvd: Vec<(f64, String)>,
     log: Log,
     planned: usize,
     /// The load factor the history ends at (its increment always gets a VTU).
-    pub final_load_factor: f64,
+    pub(crate) final_load_factor: f64,
     /// The temporary folder was moved into place (or must not be removed).
     done: bool,
     /// Fingerprint of the model for restart.bin (computed once).
@@ -53,7 +53,7 @@ pub struct Writer {
 }
 
 /// Where a resumed run takes its earlier increments from.
-pub struct Resume<'a> {
+pub(crate) struct Resume<'a> {
     /// The output folder of the stopped run (holds restart.bin).
     pub dir: &'a Path,
     /// The files to copy from it, each with its size bound
@@ -119,7 +119,7 @@ impl Writer {
     }
 
     /// The error estimate of the last increment that got one.
-    pub fn last_estimate(&self) -> Option<&crate::measure::estimate::Estimate> {
+    pub(crate) fn last_estimate(&self) -> Option<&crate::measure::estimate::Estimate> {
         self.estimate.as_ref().map(|e| &e.2)
     }
 
@@ -186,7 +186,7 @@ impl Writer {
     }
 
     /// Removes the temporary folder (failed run).
-    pub fn abandon(self) {}
+    pub(crate) fn abandon(self) {}
 
     /// Whether increment `inc` gets a VTU file: every `vtu_every`-th, and
     /// always the first, the last of the history and every increment that
@@ -246,11 +246,6 @@ impl Writer {
         self.last_vtu = inc.increment;
         Ok(())
     }
-
-    /// The progress log.
-    pub fn log(&self) -> &Log {
-        &self.log
-    }
 }
 
 impl Drop for Writer {
@@ -268,7 +263,7 @@ impl Drop for Writer {
 /// moment either the old or the new complete folder; elsewhere the old folder
 /// is first renamed aside (a crash in between leaves it as `.NAME.old-PID`).
 #[allow(unsafe_code)] // renameat2(RENAME_EXCHANGE), see the SAFETY note
-pub fn replace_dir(from: &Path, to: &Path) -> Result<()> {
+pub(crate) fn replace_dir(from: &Path, to: &Path) -> Result<()> {
     if !to.exists() {
         return std::fs::rename(from, to).map_err(|e| Error::io(to, e));
     }

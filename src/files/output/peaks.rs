@@ -8,11 +8,11 @@ use crate::solve::RunResult;
 use serde_json::{json, Value};
 use std::fmt::Write as _;
 
-pub const BODIES_HEADER: &str = "increment,time,body,von_mises_mpa,von_mises_x_mm,von_mises_y_mm,von_mises_element,peeq,peeq_x_mm,peeq_y_mm,peeq_element\n";
+pub(crate) const BODIES_HEADER: &str = "increment,time,body,von_mises_mpa,von_mises_x_mm,von_mises_y_mm,von_mises_element,peeq,peeq_x_mm,peeq_y_mm,peeq_element\n";
 
 /// `peaks.csv`: one row per increment and body (an empty place where there
 /// is none).
-pub fn bodies_csv(model: &Model, r: &RunResult, at: impl Fn(&[f64]) -> &[f64]) -> String {
+pub(crate) fn bodies_csv(model: &Model, r: &RunResult, at: impl Fn(&[f64]) -> &[f64]) -> String {
     let mut s = String::from(BODIES_HEADER);
     for inc in &r.increments {
         let v = at(&inc.record);
@@ -37,10 +37,10 @@ pub fn bodies_csv(model: &Model, r: &RunResult, at: impl Fn(&[f64]) -> &[f64]) -
     s
 }
 
-pub const CONTACT_HEADER: &str = "increment,time,interface,max_pressure_mpa,max_pressure_x_mm,max_pressure_y_mm,max_pressure_s_mm,contact_from_s_mm,contact_to_s_mm,contact_from_x_mm,contact_from_y_mm,contact_to_x_mm,contact_to_y_mm\n";
+pub(crate) const CONTACT_HEADER: &str = "increment,time,interface,max_pressure_mpa,max_pressure_x_mm,max_pressure_y_mm,max_pressure_s_mm,contact_from_s_mm,contact_to_s_mm,contact_from_x_mm,contact_from_y_mm,contact_to_x_mm,contact_to_y_mm\n";
 
 /// `contact.csv`: one row per increment and interface.
-pub fn contact_csv(model: &Model, r: &RunResult, at: impl Fn(&[f64]) -> &[f64]) -> String {
+pub(crate) fn contact_csv(model: &Model, r: &RunResult, at: impl Fn(&[f64]) -> &[f64]) -> String {
     let mut s = String::from(CONTACT_HEADER);
     for inc in &r.increments {
         let v = at(&inc.record);

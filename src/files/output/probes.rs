@@ -8,10 +8,10 @@ use crate::solve::RunResult;
 use serde_json::{json, Value};
 use std::fmt::Write as _;
 
-pub const HEADER: &str = "increment,time,probe,ux_mm,uy_mm\n";
+pub(crate) const HEADER: &str = "increment,time,probe,ux_mm,uy_mm\n";
 
 /// The header of a model with twist: u_θ as a third column.
-pub const HEADER_TWIST: &str = "increment,time,probe,ux_mm,uy_mm,utheta_mm\n";
+pub(crate) const HEADER_TWIST: &str = "increment,time,probe,ux_mm,uy_mm,utheta_mm\n";
 
 /// `probes.csv`: one row per increment and probe (the header alone without
 /// probes), `per` values each ([`components`]).

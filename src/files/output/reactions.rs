@@ -30,7 +30,7 @@ pub fn csv(groups: &[Group], r: &RunResult, at: impl Fn(&[f64]) -> &[f64]) -> St
 }
 
 /// The groups' values as a summary array: `[{name, values}]`.
-pub fn named_values(groups: &[Group], v: &[f64]) -> Value {
+pub(crate) fn named_values(groups: &[Group], v: &[f64]) -> Value {
     let mut k = 0;
     groups
         .iter()

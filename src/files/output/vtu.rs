@@ -24,7 +24,7 @@ use std::io::Write as _;
 
 /// Nodal fields obtained by extrapolating Gauss point values to the nodes of each
 /// element and averaging over the elements that share a node.
-pub struct NodalFields {
+pub(crate) struct NodalFields {
     /// σxx, σyy, σxy, σzz (σ_rr, σ_zz, σ_rz, σ_θθ in axisymmetry)
     pub stress: Vec<[f64; 4]>,
     pub von_mises: Vec<f64>,
@@ -50,7 +50,7 @@ fn extrapolation_weights(family: Family, rule: &GaussRule) -> Vec<[f64; MAX_NODE
         .collect()
 }
 
-pub fn nodal_fields(model: &Model, state: &State) -> NodalFields {
+pub(crate) fn nodal_fields(model: &Model, state: &State) -> NodalFields {
     let nn = model.mesh.nodes.len();
     let weights = Family::ALL.map(|f| extrapolation_weights(f, model.rule_of(f)));
     // the six fields (σ components, Mises, PEEQ) at every Gauss point, then
@@ -106,7 +106,7 @@ pub fn nodal_fields(model: &Model, state: &State) -> NodalFields {
 /// What one state shows, as owned arrays (node by node, or cell by cell):
 /// the per-increment part of a VTU document.
 #[derive(Default)]
-pub struct Frame {
+pub(crate) struct Frame {
     /// u_x, u_y, 0 per node (u_r, u_z, u_θ with twist).
     displacement: Vec<f64>,
     /// Four components per node.
@@ -131,15 +131,6 @@ pub struct Frame {
 }
 
 impl Frame {
-    /// The frame of a state, with its error estimate computed here.
-    pub fn of(model: &Model, state: &State) -> Frame {
-        Frame::with(
-            model,
-            state,
-            &crate::measure::estimate::estimate(model, state),
-        )
-    }
-
     /// The frame of a state whose error estimate is `estimate`.
     pub fn with(
         model: &Model,
@@ -285,7 +276,7 @@ impl Values<'_> {
 /// Everything of a model's VTU documents that does not change between
 /// increments, encoded once: the XML before and after the per-increment
 /// arrays and the mesh's own arrays (points, cells, `body`).
-pub struct Layout {
+pub(crate) struct Layout {
     format: VtuFormat,
     hoop: bool,
     /// The model has twist: the `twist_shear` array is written.
@@ -526,16 +517,6 @@ impl Layout {
             }
         }
     }
-}
-
-/// Writes the VTU document of one state to `w` (both steps at once).
-pub fn write_vtu(
-    w: &mut dyn std::io::Write,
-    model: &Model,
-    state: &State,
-    format: VtuFormat,
-) -> std::io::Result<()> {
-    Layout::of(model, format).write(w, &Frame::of(model, state))
 }
 
 fn ascii_tag(buf: &mut Vec<u8>, name: &str, comps: usize) {

@@ -40,7 +40,8 @@ pub(super) type Decoded<T> = std::result::Result<T, String>;
 /// Decodes and checks a restart file against the model it is meant for.
 /// The checksum and the fingerprint only catch accidents (anyone can compute
 /// them): every value is also checked against what the case allows.
-pub fn decode(
+#[cfg(test)]
+pub(crate) fn decode(
     bytes: &[u8],
     model: &Model,
 ) -> std::result::Result<(Checkpoint, Vec<(f64, String)>), String> {

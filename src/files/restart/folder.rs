@@ -6,31 +6,31 @@ use super::*;
 
 /// Most sections a restart file may list (the format has 32, [`SECTIONS`]:
 /// a count beyond this is refused before any section is read).
-pub const MAX_SECTIONS: u32 = 64;
+pub(crate) const MAX_SECTIONS: u32 = 64;
 /// Longest section name (this build's longest has 19 bytes).
 pub(super) const MAX_SECTION_NAME: usize = 64;
 /// Most converged increments behind a resumed run, whatever the case allows
 /// (a run of this many increments writes as many interface CSV files).
-pub const MAX_RESUMED_INCREMENTS: usize = 1 << 24;
+pub(crate) const MAX_RESUMED_INCREMENTS: usize = 1 << 24;
 /// Longest VTU name in the `pvd_file` section: `vtu/` + 20 digits + `.vtu`.
 pub(super) const MAX_VTU_NAME: usize = 28;
 /// Largest |u| and |Δu| (`u`, `last_du`) and interface approach u_N
 /// (`table_reach`) of a restored state, mm: the displacement range of a
 /// case ([`ranges::DISPLACEMENT`], 10 m).
-pub const MAX_DISPLACEMENT: f64 = ranges::DISPLACEMENT.hi;
+pub(crate) const MAX_DISPLACEMENT: f64 = ranges::DISPLACEMENT.hi;
 /// Largest interface pressure p_N of `table_reach`, MPa: the pressure range
 /// of a case ([`ranges::PRESSURE`]).
-pub const MAX_PRESSURE: f64 = ranges::PRESSURE.hi;
+pub(crate) const MAX_PRESSURE: f64 = ranges::PRESSURE.hi;
 /// Largest |σ| component of a Gauss point, MPa: 10⁴ × the largest Young's
 /// modulus a case may give ([`ranges::MODULUS`]), 10⁶ × the largest yield
 /// stress or pressure.
-pub const MAX_STRESS: f64 = 1e4 * ranges::MODULUS.hi;
+pub(crate) const MAX_STRESS: f64 = 1e4 * ranges::MODULUS.hi;
 /// Largest plastic strain |εᵖ| (the tensor norm, √(εᵖ:εᵖ)) of a Gauss
 /// point: 1000 %, far beyond what a small-strain model means.
-pub const MAX_PLASTIC_STRAIN: f64 = 10.0;
+pub(crate) const MAX_PLASTIC_STRAIN: f64 = 10.0;
 /// Largest accumulated plastic strain ε̄ᵖ of a Gauss point (it grows under
 /// cyclic loading where εᵖ does not).
-pub const MAX_PEEQ: f64 = 1e4;
+pub(crate) const MAX_PEEQ: f64 = 1e4;
 /// Round-off allowed in the relations between the stored plastic strains
 /// (trace, ε̄ᵖ ≥ √(2/3)|εᵖ|): relative, and absolute (a strain).
 pub(super) const STRAIN_REL: f64 = 1e-9;
@@ -64,7 +64,7 @@ pub(super) fn num(x: f64) -> String {
 /// [`crate::solve::events::MAX_SOLVES`] once. Every solve takes at most the
 /// case's iteration limit (PETSc SNES: its cap, 10 more); all of it times
 /// [`COUNTER_MARGIN`].
-pub fn most_iterations(model: &Model, increments: u64, cutbacks: u64) -> u128 {
+pub(crate) fn most_iterations(model: &Model, increments: u64, cutbacks: u64) -> u128 {
     let per_step = 1 + 2 * stabilize::LEVELS as u128;
     let attempts = u128::from(increments) + u128::from(cutbacks) + 1;
     let events = 3 * model.interfaces.len() as u128 * crate::solve::events::MAX_SOLVES as u128;
@@ -76,7 +76,7 @@ pub fn most_iterations(model: &Model, increments: u64, cutbacks: u64) -> u128 {
 /// bounds every size read from the folder is checked against before
 /// anything of that size is allocated or copied.
 #[derive(Clone, Copy, Debug)]
-pub struct Bounds {
+pub(crate) struct Bounds {
     /// Converged increments: what the case's schedule (fixed) or step
     /// control (automatic) can produce ([`Stepper::most_increments`]), at
     /// most [`MAX_RESUMED_INCREMENTS`].
@@ -85,13 +85,13 @@ pub struct Bounds {
     /// points), the stepping state, and per increment its curve row, joint
     /// rows, pretension row, record and VTU entry, with room for the
     /// section table.
-    pub restart_bytes: u64,
+    pub(crate) restart_bytes: u64,
     /// Bytes of one `interface/NNNN.csv` (512 per interface pair and its name).
-    pub csv_bytes: u64,
+    pub(crate) csv_bytes: u64,
     /// Bytes of one `vtu/NNNN.vtu` (512 per node, 256 per element: at most
     /// 16 numbers of 25 characters per node in ASCII; a binary file holds 8
     /// bytes per number and a block header per array).
-    pub vtu_bytes: u64,
+    pub(crate) vtu_bytes: u64,
 }
 
 impl Bounds {
@@ -148,12 +148,12 @@ impl Bounds {
 }
 
 /// The file the writer gives increment `k`'s interface state.
-pub fn interface_name(k: usize) -> String {
+pub(crate) fn interface_name(k: usize) -> String {
     format!("interface/{k:04}.csv")
 }
 
 /// The file the writer gives increment `k`'s VTU output.
-pub fn vtu_name(k: usize) -> String {
+pub(crate) fn vtu_name(k: usize) -> String {
     format!("vtu/{k:04}.vtu")
 }
 
@@ -172,7 +172,11 @@ pub(super) fn vtu_increment(name: &str) -> Option<usize> {
 /// The files a resumed run copies from the restart folder, with the size
 /// bound of each: the interface CSV of every converged increment, the VTU
 /// series, and `restart.bin` itself (kept if no further increment converges).
-pub fn folder_files(b: &Bounds, increments: usize, pvd: &[(f64, String)]) -> Vec<(String, u64)> {
+pub(crate) fn folder_files(
+    b: &Bounds,
+    increments: usize,
+    pvd: &[(f64, String)],
+) -> Vec<(String, u64)> {
     let mut files: Vec<(String, u64)> = (1..=increments)
         .map(|k| (interface_name(k), b.csv_bytes))
         .collect();
@@ -258,7 +262,7 @@ pub(super) fn open_in(dir: &Path, rel: &str, limit: u64) -> Decoded<(std::fs::Fi
 /// temporary output folder): the source is opened as [`open_in`] opens it,
 /// the destination created new (an existing file or link there is an error,
 /// never followed or truncated).
-pub fn copy_in(dir: &Path, rel: &str, limit: u64, to: &Path) -> Result<()> {
+pub(crate) fn copy_in(dir: &Path, rel: &str, limit: u64, to: &Path) -> Result<()> {
     let place = || dir.join(FILE).display().to_string();
     let (from, _) = open_in(dir, rel, limit).map_err(|m| Error::input(place(), m))?;
     let dest = to.join(rel);

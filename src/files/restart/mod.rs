@@ -143,13 +143,13 @@ use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::Path;
 
-pub const MAGIC: &[u8; 8] = b"ASPRSTRT";
-pub const VERSION: u32 = 2;
-pub const FILE: &str = "restart.bin";
+pub(crate) const MAGIC: &[u8; 8] = b"ASPRSTRT";
+pub(crate) const VERSION: u32 = 2;
+pub(crate) const FILE: &str = "restart.bin";
 
 /// The sections of a restart file of this [`VERSION`], each exactly once
 /// (in the order they are written).
-pub const SECTIONS: [&str; 32] = [
+pub(crate) const SECTIONS: [&str; 32] = [
     "increment",
     "load_factor",
     "last_step",
@@ -251,7 +251,7 @@ impl Fnv {
 /// Fingerprint of what a run solves: the effective case (without its file
 /// location and free-text description) and the mesh.
 pub fn fingerprint(model: &Model) -> u64 {
-    let mut bytes = model.case_key.clone().into_bytes();
+    let mut bytes = model.case_key().as_bytes().to_vec();
     for n in &model.mesh.nodes {
         for v in n.iter() {
             bytes.extend_from_slice(&v.to_le_bytes());
@@ -347,7 +347,7 @@ pub fn encode(model: &Model, ck: &Checkpoint, pvd: &[(f64, String)]) -> Vec<u8> 
 }
 
 /// [`encode`] with the model's fingerprint computed once by the caller.
-pub fn encode_with(fingerprint: u64, ck: &Checkpoint, pvd: &[(f64, String)]) -> Vec<u8> {
+pub(crate) fn encode_with(fingerprint: u64, ck: &Checkpoint, pvd: &[(f64, String)]) -> Vec<u8> {
     let mut out = Vec::new();
     write_to(&mut out, fingerprint, ck, pvd).expect("writing to memory cannot fail");
     out
@@ -356,7 +356,7 @@ pub fn encode_with(fingerprint: u64, ck: &Checkpoint, pvd: &[(f64, String)]) -> 
 /// Streams the restart file to `w`: the header (its section count found by a
 /// first, counting pass that skips the payloads), the sections and the checksum, hashed on the way,
 /// so no copy of the state is built in memory (at 1M dofs it is 130 MB).
-pub fn write_to(
+pub(crate) fn write_to(
     w: &mut dyn Write,
     fingerprint: u64,
     ck: &Checkpoint,
@@ -565,12 +565,11 @@ mod folder;
 #[cfg(test)]
 mod tests;
 
-pub use decode::decode;
 use decode::*;
 use folder::*;
-pub use folder::{
+pub(crate) use folder::{
     copy_in, folder_files, interface_name, most_iterations, vtu_name, Bounds, MAX_DISPLACEMENT,
-    MAX_PEEQ, MAX_PLASTIC_STRAIN, MAX_PRESSURE, MAX_RESUMED_INCREMENTS, MAX_SECTIONS, MAX_STRESS,
+    MAX_PEEQ, MAX_PLASTIC_STRAIN, MAX_PRESSURE, MAX_SECTIONS, MAX_STRESS,
 };
 
 /// Reads `restart.bin` in `dir` for `model`: the checkpoint and the VTU

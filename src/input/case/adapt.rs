@@ -9,19 +9,19 @@ use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
 
 /// The largest number of adaptive cycles (solves) a case may ask for.
-pub const MAX_CYCLES: usize = 20;
+pub(crate) const MAX_CYCLES: usize = 20;
 /// The default number of cycles.
-pub const DEFAULT_CYCLES: usize = 8;
+pub(crate) const DEFAULT_CYCLES: usize = 8;
 /// The default share of the squared estimate the marked elements hold
 /// (Dörfler's bulk criterion, θ).
-pub const DEFAULT_FRACTION: f64 = 0.5;
+pub(crate) const DEFAULT_FRACTION: f64 = 0.5;
 /// The default cap on the dofs of an adapted mesh.
-pub const DEFAULT_MAX_DOFS: usize = 400_000;
+pub(crate) const DEFAULT_MAX_DOFS: usize = 400_000;
 /// The largest cap a case may give: about the dofs of a plane mesh of
 /// [`super::MAX_ELEMENTS`] Q8 elements (some 3 nodes an element, 2 dofs a
 /// node), the limit of every mesh, which each adapted mesh is held to as
 /// well ([`crate::app::adapt`]).
-pub const MAX_DOFS: usize = 6 * super::MAX_ELEMENTS;
+pub(crate) const MAX_DOFS: usize = 6 * super::MAX_ELEMENTS;
 
 /// `[adapt]`: an adaptive run.
 #[derive(Clone, Debug, Deserialize, Serialize)]
@@ -56,7 +56,7 @@ fn default_fraction() -> f64 {
 
 impl AdaptSpec {
     /// `--adapt TOL` without an `[adapt]` table: the energy norm, defaults.
-    pub fn with_tolerance(tolerance: f64) -> AdaptSpec {
+    pub(crate) fn with_tolerance(tolerance: f64) -> AdaptSpec {
         AdaptSpec {
             tolerance,
             quantity: Quantity::Energy,
@@ -88,7 +88,7 @@ pub enum Quantity {
 }
 
 impl Quantity {
-    pub const ALL: [(&'static str, Quantity); 7] = [
+    pub(crate) const ALL: [(&'static str, Quantity); 7] = [
         ("energy", Quantity::Energy),
         ("settlement", Quantity::Settlement),
         ("total_load", Quantity::TotalLoad),

@@ -12,18 +12,21 @@ pub mod ranges;
 pub mod twist;
 mod validate;
 
-pub use validate::{
-    backbone_keys, check_case, memory_error_key, Checked, MAX_ANDERSON_DEPTH, MAX_CUTBACKS,
-    MAX_ELEMENTS, MAX_INCREMENTS, MAX_ITERATIONS, MAX_NAME_BYTES,
+pub use validate::check_case;
+pub(crate) use validate::{
+    backbone_keys, memory_error_key, Checked, MAX_ELEMENTS, MAX_INCREMENTS, MAX_NAME_BYTES,
 };
 
 pub use crate::physics::contact::Memory;
 pub use crate::physics::material::Plane;
-pub use settings::{FrictionScheme, Weights};
+pub use settings::FrictionScheme;
+pub(crate) use settings::Weights;
 pub mod settings;
-pub use settings::{Acceleration, Method, Stabilization, StepControl};
+pub(crate) use settings::{Acceleration, Stabilization};
+pub use settings::{Method, StepControl};
 mod solver;
-pub use solver::{default_plastic_strain_step, SolverSpec, INTERFACE_LOOP_DEFAULT};
+pub(crate) use solver::default_plastic_strain_step;
+pub use solver::SolverSpec;
 #[cfg(test)]
 mod tests;
 
@@ -233,7 +236,7 @@ pub struct InterfaceLawSpec {
     pub gap: f64,
     /// Reference pressure in MPa for the secant start stiffness (eq. 2.8-2.9);
     /// default: the mean interface pressure of the applied load at the first step.
-    pub start_pressure: Option<f64>,
+    pub(crate) start_pressure: Option<f64>,
     /// Tangential compliance and friction (section 2.2, 2.4-2.6); none = frictionless.
     pub tangential: Option<TangentialSpec>,
     /// The gap at pseudo-time t is g₀ · h(t) (an interference pressed in
@@ -245,7 +248,7 @@ impl InterfaceLawSpec {
     /// The normal law's parameters as written, whichever law they belong to
     /// (the law's file, `physics/contact/normal/`, says which it takes).
     /// A new parameter key is a field above and a row here.
-    pub fn law_params(&self) -> Given<'_> {
+    pub(crate) fn law_params(&self) -> Given<'_> {
         let numbers = [
             ("c_n", self.c_n),
             ("m", self.m),
@@ -289,7 +292,7 @@ pub struct TangentialSpec {
     /// p_T^Y / (μ_m p_N): 0.625 per eq. 2.18 (eq. 2.5 says 0.5); the bilinear backbone only.
     /// In the case's key the ratio in force ([`TangentialSpec::yield_ratio`]).
     #[serde(serialize_with = "effective_yield_ratio")]
-    pub yield_ratio: Option<f64>,
+    pub(crate) yield_ratio: Option<f64>,
     /// "return-mapping" (consistent tangent) or "stiffness-modification" (the paper's 2.25-2.26).
     #[serde(default)]
     pub scheme: FrictionScheme,
@@ -316,7 +319,7 @@ pub enum BackboneKind {
 
 impl TangentialSpec {
     /// p_T^Y / (μ_m p_N), 0.625 unless given.
-    pub fn yield_ratio(&self) -> f64 {
+    pub(crate) fn yield_ratio(&self) -> f64 {
         self.yield_ratio.unwrap_or_else(default_yield_ratio)
     }
 }
@@ -404,7 +407,7 @@ pub struct LoadSpec {
     /// The factor's history; none: the load factor (or the default ramp).
     pub history: Option<HistoryRef>,
     /// A uniform circumferential shear traction τ_θ (MPa, along +θ; twist only).
-    pub hoop_shear: Option<f64>,
+    pub(crate) hoop_shear: Option<f64>,
     /// A torque about the axis (N·mm, +z right-handed; twist only), carried by
     /// τ_θ = T r / ∫ r² dA over the selected edges (∫ r τ_θ dA = T).
     pub torque: Option<f64>,
@@ -579,7 +582,7 @@ impl Case {
     }
 
     /// The case name: `name`, else the folder holding the case file, else the file stem.
-    pub fn display_name(&self) -> String {
+    pub(crate) fn display_name(&self) -> String {
         if let Some(n) = &self.name {
             return n.clone();
         }
@@ -600,16 +603,16 @@ impl Case {
 }
 
 /// Largest case file read (a case is a few kB; 100 000 `load_factors` take ~2 MB).
-pub const MAX_CASE_BYTES: u64 = 16 << 20;
+pub(crate) const MAX_CASE_BYTES: u64 = 16 << 20;
 /// Largest mesh file read: over 7 times the ASCII `.msh` of a mesh at the
 /// element cap (about 130 bytes per element and its nodes).
-pub const MAX_MESH_BYTES: u64 = 256 << 20;
+pub(crate) const MAX_MESH_BYTES: u64 = 256 << 20;
 
 /// Reads an input file of at most `limit` bytes. Anything that is not a regular
 /// file (a folder, a device such as `/dev/zero`, a FIFO) is refused before it
 /// is opened, so nothing is read without end; the bound is checked on the
 /// size and again while reading (a file that grows).
-pub fn read_input(path: &Path, limit: u64, what: &str) -> Result<Vec<u8>> {
+pub(crate) fn read_input(path: &Path, limit: u64, what: &str) -> Result<Vec<u8>> {
     use std::io::Read;
     let meta = std::fs::metadata(path).map_err(|e| Error::io(path, e))?;
     let kind = |m: &std::fs::Metadata| {

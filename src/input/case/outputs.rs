@@ -9,12 +9,12 @@ use crate::error::{clip, Error, Result};
 use serde::{Deserialize, Serialize};
 
 /// The default width of an event's bracket in load factor (pseudo-time).
-pub const DEFAULT_EVENT_TOLERANCE: f64 = 1e-3;
+pub(crate) const DEFAULT_EVENT_TOLERANCE: f64 = 1e-3;
 /// The smallest width an event's bracket may be asked for: below it the
 /// bisection would split load factors at round-off.
-pub const MIN_EVENT_TOLERANCE: f64 = 1e-12;
+pub(crate) const MIN_EVENT_TOLERANCE: f64 = 1e-12;
 /// Most `[[probe]]` entries of a case.
-pub const MAX_PROBES: usize = 1000;
+pub(crate) const MAX_PROBES: usize = 1000;
 
 /// A named displacement history: a point (snapped to the nearest node) or a
 /// node set reduced by a statistic.
@@ -32,7 +32,7 @@ pub struct ProbeSpec {
     /// A node set instead of a point.
     pub nodes: Option<String>,
     /// With `nodes`: "mean" (default), "min" or "max" of each component.
-    pub statistic: Option<Statistic>,
+    pub(crate) statistic: Option<Statistic>,
 }
 
 /// How a node set's displacements are reduced to one value per component.

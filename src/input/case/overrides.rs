@@ -17,7 +17,7 @@ pub struct Overrides {
     keys: Vec<(String, String)>,
     /// `--uniform`: the blocks as the case file grades them (to tell a
     /// refusal of the ungraded mesh from one of the case's own).
-    pub graded_blocks: Option<Vec<BlockSpec>>,
+    pub(crate) graded_blocks: Option<Vec<BlockSpec>>,
 }
 
 impl Overrides {

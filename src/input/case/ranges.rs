@@ -7,56 +7,52 @@
 //! them all, in the order of the table in `docs/case-schema.md` ("Ranges"),
 //! checked by a test below.
 
-pub use crate::physics::contact::normal::exponential::EXP_RATE;
-pub use crate::physics::contact::normal::linear::SLOPE;
-pub use crate::physics::contact::normal::power::COMPLIANCE;
-pub use crate::physics::contact::tangential::params::{
-    FRICTION, SHEAR_R, SHEAR_STIFFNESS, SLIP_RATE,
-};
-pub use crate::physics::range::{Range, DISPLACEMENT, PRESSURE};
+pub use crate::physics::contact::tangential::params::FRICTION;
+pub(crate) use crate::physics::contact::tangential::params::SHEAR_STIFFNESS;
+pub(crate) use crate::physics::range::{Range, DISPLACEMENT, PRESSURE};
 
 /// Every node coordinate, block breakpoint, probe coordinate (1 km).
-pub const COORDINATE: Range = Range {
+pub(crate) const COORDINATE: Range = Range {
     quantity: "a coordinate",
     unit: "mm",
     lo: 0.0,
     hi: 1e6,
 };
 /// The size of an element (the diagonal of its corners' bounding box).
-pub const ELEMENT_SIZE: Range = Range {
+pub(crate) const ELEMENT_SIZE: Range = Range {
     quantity: "an element size",
     unit: "mm",
     lo: 1e-6,
     hi: 1e6,
 };
-pub const THICKNESS: Range = Range {
+pub(crate) const THICKNESS: Range = Range {
     quantity: "the thickness",
     unit: "mm",
     lo: 1e-6,
     hi: 1e6,
 };
 /// Young's modulus: 100 Pa (a soft gel is ~1 kPa) to 10⁸ MPa (diamond ~1.2·10⁶).
-pub const MODULUS: Range = Range {
+pub(crate) const MODULUS: Range = Range {
     quantity: "Young's modulus",
     unit: "MPa",
     lo: 1e-4,
     hi: 1e8,
 };
-pub const YIELD_STRESS: Range = Range {
+pub(crate) const YIELD_STRESS: Range = Range {
     quantity: "a yield stress",
     unit: "MPa",
     lo: 1e-4,
     hi: 1e6,
 };
 /// Plastic modulus H (0 allowed: perfectly plastic).
-pub const HARDENING: Range = Range {
+pub(crate) const HARDENING: Range = Range {
     quantity: "a hardening modulus",
     unit: "MPa",
     lo: 1e-4,
     hi: 1e9,
 };
 /// Concentrated forces (`[[force]] fx`, `fy`): 1 µN to 1 TN.
-pub const FORCE: Range = Range {
+pub(crate) const FORCE: Range = Range {
     quantity: "a force",
     unit: "N",
     lo: 1e-6,
@@ -97,6 +93,7 @@ pub fn all() -> Vec<&'static Range> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::physics::contact::tangential::params::SHEAR_R;
 
     #[test]
     fn denormal_and_huge_values_are_refused_zero_is_left_to_the_key() {

@@ -18,7 +18,7 @@ pub struct SolverSpec {
     pub max_increment: Option<f64>,
     /// Auto: the target of the largest equivalent plastic strain increment of a step.
     #[serde(default = "default_plastic_strain_step")]
-    pub plastic_strain_step: f64,
+    pub(crate) plastic_strain_step: f64,
     /// Number of equal load steps from 0 to 1 (after the first one); default 20.
     /// Read it with [`SolverSpec::n_increments`].
     pub increments: Option<usize>,
@@ -27,7 +27,7 @@ pub struct SolverSpec {
     /// Explicit load factors instead of increments; may decrease (unloading).
     pub load_factors: Option<Vec<f64>>,
     /// Iteration limit per attempt; default 30 (full Newton) or 400 (others).
-    pub max_iterations: Option<usize>,
+    pub(crate) max_iterations: Option<usize>,
     /// ‖R‖ ≤ tol · ‖F_ref‖.
     #[serde(default = "default_residual_tol")]
     pub residual_tolerance: f64,
@@ -43,10 +43,10 @@ pub struct SolverSpec {
     pub acceleration: Acceleration,
     /// History depth of Anderson acceleration.
     #[serde(default = "default_anderson_depth")]
-    pub anderson_depth: usize,
+    pub(crate) anderson_depth: usize,
     /// Locate the load of first yield by root finding inside the increment where it occurs.
     #[serde(default = "super::yes")]
-    pub locate_first_yield: bool,
+    pub(crate) locate_first_yield: bool,
     /// Full Newton: a backtracking line search on the residual norm
     /// (`solve::newton::StepProblem`); on by default (issue 29,
     /// docs/performance.md "Contact status convergence").
@@ -69,7 +69,7 @@ pub struct SolverSpec {
 
 /// `[solver] interface_loop` where the case does not say
 /// (docs/performance.md, "The interface loop (2026-11-27)").
-pub const INTERFACE_LOOP_DEFAULT: bool = true;
+pub(crate) const INTERFACE_LOOP_DEFAULT: bool = true;
 
 impl SolverSpec {
     /// Whether the interface loop is asked for (the case's key, else
@@ -96,7 +96,7 @@ impl SolverSpec {
     }
 
     /// Equal load steps of the fixed schedule (default 20).
-    pub fn n_increments(&self) -> usize {
+    pub(crate) fn n_increments(&self) -> usize {
         self.increments.unwrap_or(20)
     }
 
@@ -115,7 +115,7 @@ impl SolverSpec {
         )
     }
 
-    pub fn iteration_limit(&self) -> usize {
+    pub(crate) fn iteration_limit(&self) -> usize {
         self.max_iterations.unwrap_or(match self.method {
             Method::FullNewton => 30,
             _ => 400,
@@ -129,7 +129,7 @@ impl Default for SolverSpec {
     }
 }
 
-pub fn default_plastic_strain_step() -> f64 {
+pub(crate) fn default_plastic_strain_step() -> f64 {
     2e-3
 }
 fn default_residual_tol() -> f64 {

@@ -21,11 +21,11 @@ use crate::physics::material::Plane;
 
 /// The largest prescribed rotation, rad: a small-strain model's twist (u_θ
 /// = φ r) beyond it is no small displacement.
-pub const MAX_ROTATION: f64 = 0.5;
+pub(crate) const MAX_ROTATION: f64 = 0.5;
 
 /// A prescribed rotation about the axis times the largest factor it is
 /// scaled by (rad).
-pub const ROTATION: ranges::Range = ranges::Range {
+pub(crate) const ROTATION: ranges::Range = ranges::Range {
     quantity: "a rotation about the axis",
     unit: "rad",
     lo: 1e-12,
@@ -33,7 +33,7 @@ pub const ROTATION: ranges::Range = ranges::Range {
 };
 
 /// A torque about the axis, N·mm (a force times a coordinate).
-pub const TORQUE: ranges::Range = ranges::Range {
+pub(crate) const TORQUE: ranges::Range = ranges::Range {
     quantity: "a torque",
     unit: "N·mm",
     lo: 1e-6,

@@ -11,20 +11,20 @@ use std::collections::BTreeMap;
 
 mod tangential;
 use tangential::tangential_law;
-pub use tangential::{backbone_keys, memory_error_key};
+pub(crate) use tangential::{backbone_keys, memory_error_key};
 
 /// Most elements a case may have (all blocks, after `refine`): far beyond any
 /// case this serial-first solver is meant for, and a bound on the memory that a
 /// case file can make the model take before anything is solved.
-pub const MAX_ELEMENTS: usize = 250_000;
+pub(crate) const MAX_ELEMENTS: usize = 250_000;
 /// Most scheduled load steps (`increments`, or entries of `load_factors`).
-pub const MAX_INCREMENTS: usize = 100_000;
+pub(crate) const MAX_INCREMENTS: usize = 100_000;
 /// Most halvings of one scheduled step (2^-50 of a step is below any tolerance).
-pub const MAX_CUTBACKS: usize = 50;
+pub(crate) const MAX_CUTBACKS: usize = 50;
 /// Most iterations per attempt.
-pub const MAX_ITERATIONS: usize = 100_000;
+pub(crate) const MAX_ITERATIONS: usize = 100_000;
 /// Deepest Anderson history.
-pub const MAX_ANDERSON_DEPTH: usize = 100;
+pub(crate) const MAX_ANDERSON_DEPTH: usize = 100;
 
 /// What validation derives from the case.
 pub struct Checked {
@@ -152,7 +152,7 @@ fn check_refine_region(
 }
 
 /// The most levels of `[mesh] refine_region` (4⁶ = 4096 children per element).
-pub const MAX_REFINE_LEVELS: usize = 6;
+pub(crate) const MAX_REFINE_LEVELS: usize = 6;
 
 /// Every block breakpoint within [`ranges::COORDINATE`].
 fn check_block_coordinates(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
@@ -367,7 +367,7 @@ fn check_curved_sides(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
 }
 
 /// Longest case name in bytes (a folder name; most file systems stop at 255).
-pub const MAX_NAME_BYTES: usize = 255;
+pub(crate) const MAX_NAME_BYTES: usize = 255;
 
 /// A name that can only mean one folder under out/.
 fn plain_folder_name(name: &str) -> bool {
@@ -491,7 +491,7 @@ impl Case {
 /// own keys needed and every other law's refused, then built and checked by
 /// its file.
 fn normal_law(s: &InterfaceLawSpec) -> std::result::Result<NormalLaw, String> {
-    normal::kind(&s.law)?.from_given(&s.law_params())
+    normal::kind(&s.law)?.law_from(&s.law_params())
 }
 
 /// Checks `[solver]` (and the `[output]` keys beside it), key by key in

@@ -17,7 +17,7 @@ use serde::{Deserialize, Serialize};
 
 mod merge;
 mod shape;
-pub use shape::{ShapeError, SideShape, MIN_RELATIVE_CURVE};
+pub(crate) use shape::SideShape;
 
 /// A rectangular block; x and y are split into segments at the breakpoints.
 /// Its bottom and top sides may be curved ([`SideShape`]); the block then
@@ -90,7 +90,7 @@ pub struct InterfaceSpec {
 }
 
 /// Corner coordinates along one axis from breakpoints, counts and ratios.
-pub fn graded_axis(
+pub(crate) fn graded_axis(
     body: &str,
     axis: &str,
     breaks: &[f64],
@@ -162,7 +162,7 @@ struct Grid {
 }
 
 /// Generates the mesh of all blocks and their interfaces.
-pub fn generate(
+pub(crate) fn generate(
     blocks: &[BlockSpec],
     interfaces: &[InterfaceSpec],
     refine: usize,

@@ -7,7 +7,7 @@ pub mod blocks;
 pub mod gmsh;
 pub mod refine;
 
-pub use crate::physics::element::dofs::NodeDofs;
+pub(crate) use crate::physics::element::dofs::NodeDofs;
 
 use crate::physics::element::edge;
 pub use crate::physics::element::family::Family;
@@ -61,7 +61,7 @@ impl Element {
     }
 
     /// The element's nodes, to renumber.
-    pub fn nodes_mut(&mut self) -> &mut [usize] {
+    pub(crate) fn nodes_mut(&mut self) -> &mut [usize] {
         let n = self.family.nodes();
         &mut self.slots[..n]
     }
@@ -144,7 +144,7 @@ impl Mesh {
     /// Every node's dofs ([`Mesh::node_dofs`] per node).
     /// The body of every node (the last element's that holds it; usize::MAX
     /// for a node of no element).
-    pub fn node_bodies(&self) -> Vec<usize> {
+    pub(crate) fn node_bodies(&self) -> Vec<usize> {
         let mut node_body = vec![usize::MAX; self.nodes.len()];
         for el in &self.elements {
             for &n in el.nodes() {
@@ -169,7 +169,7 @@ impl Mesh {
     }
 
     /// Length of a quadratic edge by 3-point Gauss.
-    pub fn edge_length(&self, edge: &[usize; 3]) -> f64 {
+    pub(crate) fn edge_length(&self, edge: &[usize; 3]) -> f64 {
         let x: [[f64; 2]; 3] = std::array::from_fn(|i| self.nodes[edge[i]]);
         edge::gauss_1d(3)
             .iter()
@@ -193,7 +193,7 @@ impl Mesh {
     }
 
     /// The mean of all of element e's nodes (where a message places it).
-    pub fn node_mean(&self, e: usize) -> [f64; 2] {
+    pub(crate) fn node_mean(&self, e: usize) -> [f64; 2] {
         let nodes = self.elements[e].nodes();
         let k = nodes.len() as f64;
         let s = nodes.iter().fold([0.0, 0.0], |s, &n| {
@@ -203,7 +203,7 @@ impl Mesh {
     }
 
     /// The mean of element e's corners.
-    pub fn centroid(&self, e: usize) -> [f64; 2] {
+    pub(crate) fn centroid(&self, e: usize) -> [f64; 2] {
         let corners = self.elements[e].corners();
         let s = corners.iter().fold([0.0, 0.0], |s, &n| {
             [s[0] + self.nodes[n][0], s[1] + self.nodes[n][1]]

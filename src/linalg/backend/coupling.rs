@@ -38,10 +38,10 @@ use crate::model::assembly::Assembler;
 
 /// Most GMRES steps on the capacitance system before the LU of the whole
 /// tangent takes over.
-pub const MAX_KRYLOV: usize = 60;
+pub(crate) const MAX_KRYLOV: usize = 60;
 
 /// Relative residual of the full system at which GMRES stops.
-pub const RTOL: f64 = 1e-12;
+pub(crate) const RTOL: f64 = 1e-12;
 
 /// The inverse of the symmetric part M, as the solve needs it.
 pub trait Inverse {
@@ -117,7 +117,7 @@ impl Couplings {
     }
 
     /// Adds every term, as a dense local block, to CSC `values`.
-    pub fn add_to(&self, asm: &Assembler, values: &mut [f64]) {
+    pub(crate) fn add_to(&self, asm: &Assembler, values: &mut [f64]) {
         for q in 0..self.len() {
             let r = self.range(q);
             let block = super::outer(1.0, &self.u[r.clone()], &self.v[r]);

@@ -22,7 +22,7 @@ use faer::sparse::SymbolicSparseColMat;
 /// A fill-reducing ordering with `last` (equations, in this order) at the
 /// end: approximate minimum degree on the graph of the other equations.
 /// Returns (forward, inverse): `forward[k]` is the equation at position k.
-pub fn ordering_with_last(
+pub(crate) fn ordering_with_last(
     pattern: &SymbolicSparseColMat<usize>,
     last: &[usize],
 ) -> Result<(Vec<usize>, Vec<usize>)> {
@@ -76,7 +76,7 @@ pub fn ordering_with_last(
 
 /// Entries and an estimate of the flops of a supernodal factor:
 /// (Σ column counts, Σ column counts²).
-pub fn factor_cost(symbolic: &SymbolicCholesky<usize>) -> (f64, f64) {
+pub(crate) fn factor_cost(symbolic: &SymbolicCholesky<usize>) -> (f64, f64) {
     let SymbolicCholeskyRaw::Supernodal(s) = symbolic.raw() else {
         return (symbolic.len_val() as f64, f64::INFINITY);
     };
@@ -97,17 +97,17 @@ pub fn factor_cost(symbolic: &SymbolicCholesky<usize>) -> (f64, f64) {
 /// solves does 4 flops per entry but streams the factor from memory, about 6
 /// times slower per flop than the blocked factorization on this machine
 /// (docs/performance.md, "The unsymmetric tangent at Cholesky cost").
-pub const SOLVE_WEIGHT: f64 = 4.0 * 6.0;
+pub(crate) const SOLVE_WEIGHT: f64 = 4.0 * 6.0;
 
 /// Whole solves per Newton iteration with the plain ordering: the two of the
 /// Woodbury solve and one per GMRES step (5-6 on the friction cases).
-pub const PLAIN_SOLVES: f64 = 8.0;
+pub(crate) const PLAIN_SOLVES: f64 = 8.0;
 
 /// Whether the interface-last factor is worth it against the plain minimum
 /// degree one, from their (entries, flops): estimated cost of one Newton
 /// iteration, factorization plus solves; the interface-last factor needs two
 /// whole solves, the plain one [`PLAIN_SOLVES`].
-pub fn prefer_interface_last(last: (f64, f64), plain: (f64, f64)) -> bool {
+pub(crate) fn prefer_interface_last(last: (f64, f64), plain: (f64, f64)) -> bool {
     let cost = |(entries, flops): (f64, f64), solves: f64| flops + SOLVE_WEIGHT * solves * entries;
     cost(last, 2.0) <= cost(plain, PLAIN_SOLVES)
 }
@@ -117,7 +117,7 @@ pub fn prefer_interface_last(last: (f64, f64), plain: (f64, f64)) -> bool {
 /// within it (the largest, punch-rounded-*, 3.3, where the run's wall time
 /// with the interface loop equals the plain run's: docs/performance.md,
 /// "Contact status convergence").
-pub const CONDENSED_COST: f64 = 4.0;
+pub(crate) const CONDENSED_COST: f64 = 4.0;
 
 /// Whether the interface-last factor is worth it for the interface loop
 /// (`solve::newton::interface_loop`) on a symmetric tangent, from both
@@ -129,7 +129,7 @@ pub const CONDENSED_COST: f64 = 4.0;
 /// where contact statuses change, hence the generous bound; a very long
 /// interface (m³ beyond the factor's flops) gets the plain factor and no
 /// loop.
-pub fn prefer_condensed(m: usize, last: (f64, f64), plain: (f64, f64)) -> bool {
+pub(crate) fn prefer_condensed(m: usize, last: (f64, f64), plain: (f64, f64)) -> bool {
     let m = m as f64;
     last.1 + m * m * m <= CONDENSED_COST * plain.1
 }
@@ -187,7 +187,7 @@ impl Trailing {
     }
 
     /// Copies the block out of a numeric factor's values.
-    pub fn extract(&mut self, values: &[f64]) {
+    pub(crate) fn extract(&mut self, values: &[f64]) {
         self.l.fill(0.0);
         for &(v, d) in &self.map {
             self.l[d] = values[v];
@@ -196,7 +196,7 @@ impl Trailing {
 
     /// `S = L_II L_IIᵀ`, the Schur complement of the factored matrix on the
     /// interface, dense column-major (both triangles): m³/3 flops.
-    pub fn schur(&self) -> Vec<f64> {
+    pub(crate) fn schur(&self) -> Vec<f64> {
         let m = self.m;
         let mut s = vec![0.0; m * m];
         let l = faer::MatRef::from_column_major_slice(&self.l, m, m);

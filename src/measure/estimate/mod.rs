@@ -59,7 +59,7 @@ impl Estimate {
     }
 
     /// Each element's share of η², η_e² / η² (0 everywhere when η = 0).
-    pub fn shares(&self) -> Vec<f64> {
+    pub(crate) fn shares(&self) -> Vec<f64> {
         let t2 = self.total * self.total;
         self.element
             .iter()

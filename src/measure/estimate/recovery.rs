@@ -41,7 +41,7 @@ pub type Stress = [f64; 6];
 
 /// σ_h of one element at its sampling points (the first `n` used).
 #[derive(Clone, Copy, Debug, Default)]
-pub struct Samples {
+pub(crate) struct Samples {
     /// The points' physical coordinates.
     pub points: [[f64; 2]; 4],
     /// σ_h there.
@@ -58,7 +58,7 @@ impl Samples {
 
 /// σ* at the nodes of every element (the first `family.nodes()` of each),
 /// from each element's sampled σ_h.
-pub fn recover(mesh: &Mesh, samples: &[Samples]) -> Vec<[Stress; MAX_NODES]> {
+pub(crate) fn recover(mesh: &Mesh, samples: &[Samples]) -> Vec<[Stress; MAX_NODES]> {
     let mut r = Recovery::new(mesh, samples);
     let mut out = vec![[[0.0; 6]; MAX_NODES]; mesh.elements.len()];
     for body in 0..mesh.bodies.len().max(1) {

@@ -1,5 +1,6 @@
 use super::*;
-use crate::physics::contact::{SlipState, TangentialLaw};
+use crate::physics::contact::tangential::SlipState;
+use crate::physics::contact::TangentialLaw;
 
 /// A spring's states along a path of u_T at constant p_N, from the real
 /// tangential law (committed state carried from step to step).

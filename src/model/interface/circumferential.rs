@@ -27,7 +27,7 @@ use super::{Coupling, InterfaceModel, Point, PointEval, PointState, Slip, Status
 
 /// The gradients of a point's approach u_N, meridional slip u_T1 and
 /// circumferential slip u_Tθ with respect to its local dofs.
-pub struct Gradients {
+pub(crate) struct Gradients {
     pub n: Vec<f64>,
     pub t: Vec<f64>,
     /// Empty without twist.
@@ -43,7 +43,7 @@ impl InterfaceModel {
     /// The nodes of a point in local order: A pairs then B pairs; on a
     /// non-matching interface the slave nodes, then the master edge's; on a
     /// mortar spring its nodes.
-    pub fn point_nodes(&self, pt: &Point) -> Vec<usize> {
+    pub(crate) fn point_nodes(&self, pt: &Point) -> Vec<usize> {
         match &pt.coupling {
             Coupling::Mortar { mortar: m, .. } => m.nodes.clone(),
             Coupling::NodeToSegment { segment: g, .. } => {
@@ -78,7 +78,7 @@ impl InterfaceModel {
     /// on a mortar spring [`super::Mortar::radius`] (the arm of its force,
     /// so that Σ A r p_Tθ is the torque on the slave nodes and a rigid twist
     /// Δφ gives u_Tθ / r = Δφ).
-    pub fn point_radii(&self) -> Vec<f64> {
+    pub(crate) fn point_radii(&self) -> Vec<f64> {
         self.points
             .iter()
             .map(|pt| match &pt.coupling {
@@ -93,13 +93,13 @@ impl InterfaceModel {
 
     /// Number of a point's local dofs: [`Point::ndofs`] without twist, 3 per
     /// node with it.
-    pub fn point_ndofs(&self, pt: &Point) -> usize {
+    pub(crate) fn point_ndofs(&self, pt: &Point) -> usize {
         pt.ndofs() / 2 * self.node_dofs.per_node()
     }
 
     /// The circumferential slip u_Tθ = u_θB − u_θA at a point, mm (0
     /// without twist).
-    pub fn point_hoop_slip(&self, pt: &Point, u: &[f64]) -> f64 {
+    pub(crate) fn point_hoop_slip(&self, pt: &Point, u: &[f64]) -> f64 {
         if !self.twist() {
             return 0.0;
         }
@@ -115,7 +115,7 @@ impl InterfaceModel {
 
     /// u_Tθ at a pair (nodal value, 0 without twist): u_θB − u_θA, or on a
     /// non-matching interface that of the pair's spring point.
-    pub fn pair_hoop_slip(&self, pair: &super::Pair, u: &[f64]) -> f64 {
+    pub(crate) fn pair_hoop_slip(&self, pair: &super::Pair, u: &[f64]) -> f64 {
         if !self.twist() {
             return 0.0;
         }
@@ -129,7 +129,7 @@ impl InterfaceModel {
     /// g_N, g_T1 (and g_θ with twist) over the point's local dofs
     /// ([`InterfaceModel::point_dofs`]); without twist exactly
     /// [`Point::gradients`].
-    pub fn point_gradients(&self, pt: &Point) -> Gradients {
+    pub(crate) fn point_gradients(&self, pt: &Point) -> Gradients {
         let (n, t) = pt.gradients();
         if !self.twist() {
             return Gradients {
@@ -226,7 +226,6 @@ impl InterfaceModel {
         PointEval {
             u_n,
             p_n,
-            k_n,
             status,
             state,
             coupling: a * d_un[0],

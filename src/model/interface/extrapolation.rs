@@ -51,7 +51,7 @@ impl Reach {
         [self.u_n, self.p_n]
     }
 
-    pub fn unpack(v: &[f64]) -> Reach {
+    pub(crate) fn unpack(v: &[f64]) -> Reach {
         Reach {
             u_n: v[0],
             p_n: v[1],
@@ -61,7 +61,7 @@ impl Reach {
 
 /// One tabulated law of an interface and the largest argument it met.
 #[derive(Clone, Debug, PartialEq)]
-pub struct TableUse {
+pub(crate) struct TableUse {
     pub interface: String,
     /// The case key: `table` (the normal law) or `tangential k_table`.
     pub key: &'static str,
@@ -70,7 +70,7 @@ pub struct TableUse {
     /// Its unit: `mm` or `MPa`.
     pub unit: &'static str,
     /// The argument of the table's last row.
-    pub last_row: f64,
+    pub(crate) last_row: f64,
     /// The largest argument met (0 when the interface never closed).
     pub largest: f64,
 }
@@ -108,7 +108,7 @@ impl TableUse {
 /// Every tabulated law of the interfaces, in order (the normal table before
 /// the k_table of one interface), with the largest argument of `reach`
 /// (one per interface).
-pub fn table_uses(interfaces: &[InterfaceModel], reach: &[Reach]) -> Vec<TableUse> {
+pub(crate) fn table_uses(interfaces: &[InterfaceModel], reach: &[Reach]) -> Vec<TableUse> {
     let mut out = Vec::new();
     for (im, r) in interfaces.iter().zip(reach) {
         let last = |t: &Monotone| t.last().0;

@@ -29,7 +29,7 @@ mod segment;
 use crate::input::case::settings::{FrictionScheme, Weights};
 use crate::input::mesh::{Interface, Mesh};
 use crate::physics::contact::{NormalLaw, PointState, Slip, Status, TangentialLaw};
-pub use circumferential::Gradients;
+pub(crate) use circumferential::Gradients;
 pub use segment::{project, OVERLAP_LIMIT};
 
 /// A node pair across the interface.
@@ -57,7 +57,7 @@ pub struct Segment {
     /// Slave nodes and their shape values (first `len_a` used).
     pub a: [usize; 3],
     pub na: [f64; 3],
-    pub len_a: usize,
+    pub(crate) len_a: usize,
     /// The master edge's nodes and its shape functions N(ξ) at the projection.
     pub b: [usize; 3],
     pub nb: [f64; 3],
@@ -86,7 +86,7 @@ pub struct Mortar {
     /// Nodes whose displacements enter u_N and u_T (slave, then master).
     pub nodes: Vec<usize>,
     /// ∂u_N/∂u_node and ∂u_T/∂u_node, (x, y) per node.
-    pub dn: Vec<[f64; 2]>,
+    pub(crate) dn: Vec<[f64; 2]>,
     pub dt: Vec<[f64; 2]>,
     /// ∂u_Tθ/∂u_θ,node (a model with twist): (1/A_i) ∫ N_i (±N_node) dA,
     /// − on the slave side, + on the master side.
@@ -149,7 +149,8 @@ impl Coupling {
     }
 
     /// The point's first pair (a spring's own row): where a partition places it.
-    pub fn first_pair(&self) -> usize {
+    #[cfg(feature = "parallel")]
+    pub(crate) fn first_pair(&self) -> usize {
         match self {
             Coupling::Coincident { pairs, .. } => pairs[0],
             Coupling::NodeToSegment { pair, .. } | Coupling::Mortar { pair, .. } => *pair,
@@ -175,7 +176,7 @@ impl Point {
 
     /// On a non-matching interface: the spring's arc length along the slave
     /// side, mm; `None` on coincident pairs.
-    pub fn slave_arc(&self) -> Option<f64> {
+    pub(crate) fn slave_arc(&self) -> Option<f64> {
         match &self.coupling {
             Coupling::Coincident { .. } => None,
             Coupling::NodeToSegment { segment, .. } => Some(segment.s),
@@ -203,7 +204,7 @@ impl Point {
     /// entries +N_j(ξ) n (slave nodes, then the master edge's three nodes).
     /// On a mortar interface the entries are the coefficients dn, dt of
     /// [`Mortar`]. The vectors have [`Point::ndofs`] entries.
-    pub fn gradients(&self) -> (Vec<f64>, Vec<f64>) {
+    pub(crate) fn gradients(&self) -> (Vec<f64>, Vec<f64>) {
         let t = [self.normal[1], -self.normal[0]];
         let zeros = || (vec![0.0f64; self.ndofs()], vec![0.0f64; self.ndofs()]);
         match &self.coupling {
@@ -258,7 +259,7 @@ pub struct InterfaceModel {
     pub pairs: Vec<Pair>,
     pub points: Vec<Point>,
     /// Secant-start reference pressure (MPa) if given in the case.
-    pub start_pressure: Option<f64>,
+    pub(crate) start_pressure: Option<f64>,
     pub tangential: Option<TangentialLaw>,
     pub scheme: FrictionScheme,
     /// The mesh's dofs per node: a point's local dofs are the in-plane
@@ -270,7 +271,6 @@ pub struct InterfaceModel {
 pub struct PointEval {
     pub u_n: f64,
     pub p_n: f64,
-    pub k_n: f64,
     pub status: Status,
     /// Trial tangential state.
     pub state: PointState,
@@ -281,7 +281,7 @@ pub struct PointEval {
     pub coupling: f64,
     /// With twist: area times ∂p_Tθ/∂u_N, the coefficient of g_θ in the
     /// point's unsymmetric term (0 without twist).
-    pub coupling_hoop: f64,
+    pub(crate) coupling_hoop: f64,
 }
 
 impl InterfaceModel {
@@ -423,7 +423,7 @@ impl InterfaceModel {
     /// no area (the pair on the axis of an axisymmetric model under lumped
     /// weights, where the measure 2π r is 0) transmits nothing, whatever its
     /// approach; the contact stabilization does not count it as support.
-    pub fn carrying_pairs(&self) -> Vec<bool> {
+    pub(crate) fn carrying_pairs(&self) -> Vec<bool> {
         let mut carries = vec![false; self.pairs.len()];
         for pt in self.points.iter().filter(|pt| pt.area > 0.0) {
             for (pair, w) in pt.coupling.pairs() {
@@ -555,7 +555,7 @@ impl InterfaceModel {
 
     /// [`InterfaceModel::eval_point`] across the given gap.
     #[allow(clippy::too_many_arguments)] // eval_point's arguments and the gap
-    pub fn eval_point_at(
+    pub(crate) fn eval_point_at(
         &self,
         pt: &Point,
         u: &[f64],
@@ -576,7 +576,7 @@ impl InterfaceModel {
     /// coefficient [`PointEval::coupling`], a rank-one term the serial solver
     /// keeps out of its Cholesky factor ([`crate::linalg::backend::serial`]).
     #[allow(clippy::too_many_arguments)] // eval_point_at's arguments and the split
-    pub fn eval_point_parts(
+    pub(crate) fn eval_point_parts(
         &self,
         pt: &Point,
         u: &[f64],
@@ -657,7 +657,6 @@ impl InterfaceModel {
         PointEval {
             u_n,
             p_n,
-            k_n,
             status,
             state,
             coupling: pt.area * d_un,

@@ -35,7 +35,7 @@ pub struct Loads {
     /// (loads, boundaries, forces, gaps, in the order of the case).
     pub histories: Vec<History>,
     /// Pattern 0 first (no history of its own), then one per history used.
-    pub patterns: Vec<LoadPattern>,
+    pub(crate) patterns: Vec<LoadPattern>,
     /// Prescribed dofs, their values at factor 1 and their histories.
     pub prescribed: Vec<(usize, f64)>,
     pub prescribed_history: Vec<Option<usize>>,
@@ -45,7 +45,7 @@ pub struct Loads {
     /// [`check_acting`] once the prescribed dofs are known.
     pub acting: Vec<Acting>,
     /// The history of each `[[pretension]]` section's force or shortening.
-    pub pretension_history: Vec<Option<usize>>,
+    pub(crate) pretension_history: Vec<Option<usize>>,
 }
 
 /// One `[[load]]` or `[[force]]`: where it is written and the dofs it loads
@@ -417,7 +417,7 @@ fn add(f: &mut [f64], terms: &[(usize, f64)]) {
 /// included, where u_r = 0 holds) goes straight into the reaction, and an
 /// edge traction all of whose dofs are prescribed never acts; both are
 /// refused, naming the load and the node.
-pub fn check_acting(
+pub(crate) fn check_acting(
     acting: &[Acting],
     mesh: &Mesh,
     prescribed: &[(usize, f64)],

@@ -12,9 +12,6 @@
 //! file, and written out at the end of the run (`reactions.csv`,
 //! `probes.csv`, `peaks.csv`, `contact.csv`, summary.json).
 
-pub use probes::Probe;
-pub use reactions::Group;
-
 pub mod probes;
 pub mod reactions;
 use crate::error::Result;
@@ -25,10 +22,10 @@ use std::ops::Range;
 
 /// Values per body in a record: von Mises (MPa, x, y, element), then
 /// PEEQ (value, x, y, element).
-pub const PER_BODY: usize = 8;
+pub(crate) const PER_BODY: usize = 8;
 /// Values per interface in a record: the largest pressure (MPa, x, y, s),
 /// then the extent (from s, to s, from x, from y, to x, to y).
-pub const PER_INTERFACE: usize = 10;
+pub(crate) const PER_INTERFACE: usize = 10;
 
 /// The designer's outputs of a model.
 #[derive(Clone, Debug, Default)]
@@ -41,7 +38,7 @@ pub struct Plan {
     pub event_tolerance: f64,
     /// The names of the case's named histories (the first histories of the
     /// model, in name order).
-    pub history_names: Vec<String>,
+    pub(crate) history_names: Vec<String>,
     pub layout: Layout,
 }
 

@@ -68,7 +68,7 @@ impl Probe {
 impl Probe {
     /// What it reads, for `asperity check`: the snapped node and its
     /// coordinates, or the set and its statistic.
-    pub fn describe(&self, mesh: &Mesh) -> String {
+    pub(crate) fn describe(&self, mesh: &Mesh) -> String {
         match &self.target {
             Target::Point { at, body, node } => {
                 let x = mesh.nodes[*node];

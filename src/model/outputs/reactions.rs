@@ -26,7 +26,7 @@ pub struct Component {
     /// Each term's lever arm, when the component is a moment (`torque_nmm`:
     /// the radius r of each prescribed u_θ, T = Σ r R_θ); empty: a force,
     /// the plain sum.
-    pub arms: Vec<f64>,
+    pub(crate) arms: Vec<f64>,
 }
 
 /// A named reduction of reaction forces.

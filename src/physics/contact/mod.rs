@@ -8,6 +8,7 @@ pub mod state;
 pub mod table;
 pub mod tangential;
 
-pub use normal::NormalLaw;
+pub(crate) use normal::NormalLaw;
 pub use state::{PointState, Status};
-pub use tangential::{Backbone, Memory, Slip, SlipState, Stretch, TangentialLaw, MEMORY_POINTS};
+pub(crate) use tangential::{Backbone, Stretch, MEMORY_POINTS};
+pub use tangential::{Memory, Slip, TangentialLaw};

@@ -32,7 +32,7 @@ impl Status {
     /// Inverse of `status as u8`, for codes this process made (the sums of
     /// the reductions over ranks): any other code is taken as open. Codes
     /// read from a file go through [`Status::checked`].
-    pub fn from_code(c: u8) -> Status {
+    pub(crate) fn from_code(c: u8) -> Status {
         Status::checked(c).unwrap_or_default()
     }
 
@@ -57,7 +57,7 @@ impl Status {
     }
 
     /// Tangential status: "none", "stick", "micro-slip", "macro-slip" ("free" when open).
-    pub fn tangential_name(self) -> &'static str {
+    pub(crate) fn tangential_name(self) -> &'static str {
         match self {
             Status::Open => "free",
             Status::Closed => "none",
@@ -75,22 +75,22 @@ pub struct PointState {
     /// Shear traction and tangential displacement (for the secant scheme and output).
     pub p_t: f64,
     pub u_t: f64,
-    pub mu_f: f64,
+    pub(crate) mu_f: f64,
     /// With twist: the circumferential shear p_Tθ (MPa) and slip
     /// u_Tθ = u_θB − u_θA (mm, r Δφ) in the internal convention, and the
     /// vector law's history (0 and default without twist).
-    pub p_h: f64,
+    pub(crate) p_h: f64,
     pub u_h: f64,
-    pub slip2: SlipState2,
+    pub(crate) slip2: SlipState2,
 }
 
 impl PointState {
     /// Doubles per state in [`PointState::pack_twist`] (a model with twist).
-    pub const PACKED_TWIST: usize = 5 + SlipState2::PACKED;
+    pub(crate) const PACKED_TWIST: usize = 5 + SlipState2::PACKED;
 
     /// Doubles per state in the model's layout: [`PointState::PACKED`]
     /// without twist, [`PointState::PACKED_TWIST`] with it.
-    pub fn packed_len(twist: bool) -> usize {
+    pub(crate) fn packed_len(twist: bool) -> usize {
         if twist {
             Self::PACKED_TWIST
         } else {
@@ -100,7 +100,7 @@ impl PointState {
 
     /// The state in the model's layout ([`PointState::pack`] or
     /// [`PointState::pack_twist`]), `packed_len(twist)` values.
-    pub fn pack_as(&self, twist: bool) -> Vec<f64> {
+    pub(crate) fn pack_as(&self, twist: bool) -> Vec<f64> {
         if twist {
             self.pack_twist().to_vec()
         } else {
@@ -110,7 +110,7 @@ impl PointState {
 
     /// The inverse of [`PointState::pack_as`] (`v` holds at least
     /// `packed_len(twist)` values).
-    pub fn unpack_as(v: &[f64], twist: bool) -> Self {
+    pub(crate) fn unpack_as(v: &[f64], twist: bool) -> Self {
         if twist {
             Self::unpack_twist(v)
         } else {
@@ -120,7 +120,7 @@ impl PointState {
 
     /// A point of a model with twist: p_T, u_T, μ_F, p_Tθ, u_Tθ, then the
     /// vector law's state ([`SlipState2::pack`]).
-    pub fn pack_twist(&self) -> [f64; Self::PACKED_TWIST] {
+    pub(crate) fn pack_twist(&self) -> [f64; Self::PACKED_TWIST] {
         let mut v = [0.0; Self::PACKED_TWIST];
         v[..5].copy_from_slice(&[self.p_t, self.u_t, self.mu_f, self.p_h, self.u_h]);
         v[5..].copy_from_slice(&self.slip2.pack());
@@ -129,7 +129,7 @@ impl PointState {
 
     /// The inverse of [`PointState::pack_twist`] (`v` holds at least
     /// `PACKED_TWIST` values).
-    pub fn unpack_twist(v: &[f64]) -> Self {
+    pub(crate) fn unpack_twist(v: &[f64]) -> Self {
         PointState {
             slip: SlipState::default(),
             p_t: v[0],
@@ -163,7 +163,7 @@ impl PointState {
     }
 
     /// The inverse of [`PointState::pack`] (`v` holds at least `PACKED` values).
-    pub fn unpack(v: &[f64]) -> Self {
+    pub(crate) fn unpack(v: &[f64]) -> Self {
         let mut mem = Stretch::default();
         mem.eta.copy_from_slice(&v[5..5 + MEMORY_POINTS]);
         mem.e

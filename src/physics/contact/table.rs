@@ -40,13 +40,13 @@
 /// works with: at δ = 1e-9 to 2.2e-7, six significant digits; one ulp apart
 /// it is round-off alone. No measurement resolves 9 significant digits, and
 /// 1e-9 is the model's geometric tolerance too.
-pub const MIN_RELATIVE_STEP: f64 = 1e-9;
+pub(crate) const MIN_RELATIVE_STEP: f64 = 1e-9;
 
 /// How far beyond its data a table may be evaluated before the run and
 /// `asperity check` warn: the law's argument (u_N for `table`, p_N for
 /// `k_table`) above this multiple of the last row's, i.e. the linear tail
 /// carrying over as far again as the whole measured range.
-pub const EXTRAPOLATION_LIMIT: f64 = 2.0;
+pub(crate) const EXTRAPOLATION_LIMIT: f64 = 2.0;
 
 /// A monotone (non-decreasing, or strictly increasing) interpolant of
 /// measured points with a continuous first derivative.
@@ -79,7 +79,7 @@ impl Monotone {
 
     /// [`Monotone::new`] with the rows numbered from `first` in the messages
     /// (2 when the table's written first row, the origin, was dropped).
-    pub fn numbered(
+    pub(crate) fn numbered(
         points: &[(f64, f64)],
         strict: bool,
         q_range: (f64, f64),
@@ -100,7 +100,7 @@ impl Monotone {
 
     /// The interpolated (y, dy/dx) at x; (0, 0) at x ≤ 0 unless the law below
     /// the first point is constant (q = 0): then (y₁, 0).
-    pub fn eval(&self, x: f64) -> (f64, f64) {
+    pub(crate) fn eval(&self, x: f64) -> (f64, f64) {
         let (x1, y1) = (self.x[0], self.y[0]);
         if x <= x1 {
             if x <= 0.0 {
@@ -196,7 +196,8 @@ impl Monotone {
     }
 
     /// Exponent q of the power law below the first point.
-    pub fn exponent_below(&self) -> f64 {
+    #[cfg(test)]
+    pub(crate) fn exponent_below(&self) -> f64 {
         self.q
     }
 
@@ -392,10 +393,10 @@ fn segment_area(y: &[f64], d: &[f64], k: usize, h: f64) -> f64 {
 }
 
 /// Most rows of a `table` or `k_table` (a bound on what a case file can make the model hold).
-pub const MAX_TABLE_ROWS: usize = 10_000;
+pub(crate) const MAX_TABLE_ROWS: usize = 10_000;
 
 /// The rows of a two-column table as pairs; the message names the row (1-based).
-pub fn rows_of_two(rows: &[Vec<f64>], a: &str, b: &str) -> Result<Vec<(f64, f64)>, String> {
+pub(crate) fn rows_of_two(rows: &[Vec<f64>], a: &str, b: &str) -> Result<Vec<(f64, f64)>, String> {
     if rows.len() > MAX_TABLE_ROWS {
         return Err(format!(
             "{} rows, more than {MAX_TABLE_ROWS} (the limit)",

@@ -27,13 +27,13 @@ impl Default for NodeDofs {
 
 impl NodeDofs {
     /// u_x, u_y (u_r, u_z in axisymmetry).
-    pub const PLANE: NodeDofs = NodeDofs(2);
+    pub(crate) const PLANE: NodeDofs = NodeDofs(2);
     /// u_r, u_z, u_θ: an axisymmetric model with twist.
-    pub const TWIST: NodeDofs = NodeDofs(3);
+    pub(crate) const TWIST: NodeDofs = NodeDofs(3);
     /// The most dofs a node can have.
     pub const MAX: usize = 3;
     /// The most dofs an element of any family can have (8 nodes × 3).
-    pub const MAX_ELEMENT: usize = crate::physics::element::family::MAX_NODES * Self::MAX;
+    pub(crate) const MAX_ELEMENT: usize = crate::physics::element::family::MAX_NODES * Self::MAX;
 
     /// Dofs per node, k.
     pub fn per_node(self) -> usize {

@@ -14,10 +14,10 @@ use super::{q8, t6};
 use nalgebra::{DMatrix, DVector};
 
 /// Most nodes of an element of any family (the 8-node quad).
-pub const MAX_NODES: usize = 8;
+pub(crate) const MAX_NODES: usize = 8;
 
 /// Most Gauss points of a rule of any family (3×3).
-pub const MAX_POINTS: usize = 9;
+pub(crate) const MAX_POINTS: usize = 9;
 
 /// An element family.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -30,7 +30,7 @@ pub enum Family {
 
 impl Family {
     /// Both families, in the order of their index.
-    pub const ALL: [Family; 2] = [Family::Q8, Family::T6];
+    pub(crate) const ALL: [Family; 2] = [Family::Q8, Family::T6];
 
     /// 0 for Q8, 1 for T6 (a slot in per-family tables).
     pub const fn index(self) -> usize {
@@ -62,7 +62,7 @@ impl Family {
     }
 
     /// Natural coordinates of the nodes.
-    pub fn node_xi(self) -> &'static [[f64; 2]] {
+    pub(crate) fn node_xi(self) -> &'static [[f64; 2]] {
         match self {
             Family::Q8 => &q8::NODE_XI,
             Family::T6 => &t6::NODE_XI,
@@ -70,7 +70,7 @@ impl Family {
     }
 
     /// The natural coordinates of the element's centre.
-    pub const fn centre_xi(self) -> [f64; 2] {
+    pub(crate) const fn centre_xi(self) -> [f64; 2] {
         match self {
             Family::Q8 => [0.0, 0.0],
             Family::T6 => [1.0 / 3.0, 1.0 / 3.0],
@@ -88,7 +88,7 @@ impl Family {
 
     /// The VTK cell type: VTK_QUADRATIC_QUAD (23) or VTK_QUADRATIC_TRIANGLE
     /// (22); both number the nodes as this code does.
-    pub const fn vtk_cell(self) -> u8 {
+    pub(crate) const fn vtk_cell(self) -> u8 {
         match self {
             Family::Q8 => 23,
             Family::T6 => 22,
@@ -116,7 +116,7 @@ impl Family {
 
     /// Where a message places the element: the middle of its first
     /// diagonal (a quad), the mean of its corners (a triangle).
-    pub fn label_point(self, c: &[[f64; 2]]) -> [f64; 2] {
+    pub(crate) fn label_point(self, c: &[[f64; 2]]) -> [f64; 2] {
         match self {
             Family::Q8 => [(c[0][0] + c[2][0]) / 2.0, (c[0][1] + c[2][1]) / 2.0],
             Family::T6 => [
@@ -137,7 +137,7 @@ impl Family {
     }
 
     /// Shape function derivatives (∂N/∂ξ, ∂N/∂η) at ξ.
-    pub fn shape_derivs(self, [xi, eta]: [f64; 2]) -> [[f64; 2]; MAX_NODES] {
+    pub(crate) fn shape_derivs(self, [xi, eta]: [f64; 2]) -> [[f64; 2]; MAX_NODES] {
         let mut d = [[0.0; 2]; MAX_NODES];
         match self {
             Family::Q8 => d = q8::shape_derivs(xi, eta),
@@ -163,13 +163,13 @@ impl Family {
     /// The points where the stresses of the element are most accurate
     /// (superconvergent), sampled by the recovery of the error estimate:
     /// 2×2 for the quad, the 3-point rule for the triangle.
-    pub fn sampling_rule(self) -> GaussRule {
+    pub(crate) fn sampling_rule(self) -> GaussRule {
         self.rule(false)
     }
 
     /// The points where a valid element has det J > 0: the full rule's points
     /// and the nodes.
-    pub fn check_points(self) -> Vec<[f64; 2]> {
+    pub(crate) fn check_points(self) -> Vec<[f64; 2]> {
         let rule = self.rule(true);
         let mut pts: Vec<[f64; 2]> = rule.points.into_iter().map(|p| p.0).collect();
         pts.extend_from_slice(self.node_xi());
@@ -180,7 +180,7 @@ impl Family {
     /// nodes at `coords` (the family's count). Errs when det J ≤ 1e-12 ×
     /// (element size)², naming the value: the element is inverted or
     /// degenerate.
-    pub fn physical_derivs(
+    pub(crate) fn physical_derivs(
         self,
         coords: &[[f64; 2]],
         xi: [f64; 2],
@@ -229,7 +229,7 @@ impl Family {
     /// quad's 2×2 or 3×3 rule (bilinear, biquadratic), the complete linear
     /// (3 points) or quadratic (6 points) polynomial in (ξ, η) of the
     /// triangle's.
-    pub fn interpolation_weights(self, rule: &GaussRule, xi: [f64; 2]) -> [f64; MAX_POINTS] {
+    pub(crate) fn interpolation_weights(self, rule: &GaussRule, xi: [f64; 2]) -> [f64; MAX_POINTS] {
         let n = rule.points.len();
         let mut w = [0.0; MAX_POINTS];
         match self {
@@ -260,7 +260,7 @@ impl Family {
 
     /// Values at the nodes from values at the points of `rule`
     /// ([`Family::interpolation_weights`] at each node).
-    pub fn extrapolate_to_nodes(self, rule: &GaussRule, values: &[f64]) -> [f64; MAX_NODES] {
+    pub(crate) fn extrapolate_to_nodes(self, rule: &GaussRule, values: &[f64]) -> [f64; MAX_NODES] {
         let mut out = [0.0; MAX_NODES];
         if self == Family::Q8 {
             return q8::extrapolate_to_nodes(rule, values);

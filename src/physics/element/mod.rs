@@ -2,7 +2,7 @@
 //! the 6-node triangle, [`family::Family`]) and the solid element built on
 //! them.
 
-pub mod axisymmetric_twist;
+pub(crate) mod axisymmetric_twist;
 pub mod dofs;
 pub mod edge;
 pub mod family;

@@ -15,7 +15,7 @@ use super::edge::gauss_1d;
 use super::gauss::GaussRule;
 
 /// Natural coordinates of the nodes.
-pub const NODE_XI: [[f64; 2]; 8] = [
+pub(crate) const NODE_XI: [[f64; 2]; 8] = [
     [-1.0, -1.0],
     [1.0, -1.0],
     [1.0, 1.0],
@@ -42,7 +42,7 @@ pub fn shape(xi: f64, eta: f64) -> [f64; 8] {
 }
 
 /// Derivatives (∂N/∂ξ, ∂N/∂η) at (ξ, η).
-pub fn shape_derivs(xi: f64, eta: f64) -> [[f64; 2]; 8] {
+pub(crate) fn shape_derivs(xi: f64, eta: f64) -> [[f64; 2]; 8] {
     let mut d = [[0.0; 2]; 8];
     for (a, &[xa, ya]) in NODE_XI.iter().enumerate() {
         d[a] = if a < 4 {
@@ -83,7 +83,7 @@ pub fn gauss_3x3() -> GaussRule {
 /// Values at the 8 nodes from values at the Gauss points of a 2×2 or 3×3 rule:
 /// the bilinear (2×2) or biquadratic-Lagrange (3×3) interpolant through the Gauss
 /// points, evaluated at the nodes.
-pub fn extrapolate_to_nodes(rule: &GaussRule, values: &[f64]) -> [f64; 8] {
+pub(crate) fn extrapolate_to_nodes(rule: &GaussRule, values: &[f64]) -> [f64; 8] {
     let mut out = [0.0; 8];
     for (a, &x) in NODE_XI.iter().enumerate() {
         out[a] = interpolate(rule, values, x);
@@ -93,7 +93,7 @@ pub fn extrapolate_to_nodes(rule: &GaussRule, values: &[f64]) -> [f64; 8] {
 
 /// The value at (ξ, η) of the tensor Lagrange interpolant through the points
 /// of a 2×2 or 3×3 rule (bilinear or biquadratic).
-pub fn interpolate(rule: &GaussRule, values: &[f64], [xa, ya]: [f64; 2]) -> f64 {
+pub(crate) fn interpolate(rule: &GaussRule, values: &[f64], [xa, ya]: [f64; 2]) -> f64 {
     let n = (rule.points.len() as f64).sqrt().round() as usize;
     let g: Vec<f64> = gauss_1d(n).iter().map(|p| p.0).collect();
     let lagrange = |x: f64, i: usize| -> f64 {

@@ -31,7 +31,7 @@ use crate::physics::element::Section;
 use crate::physics::material::{Plane, PointState, VonMises};
 use nalgebra::{Matrix3, Matrix4};
 
-pub use crate::physics::element::family::MAX_POINTS;
+pub(crate) use crate::physics::element::family::MAX_POINTS;
 
 /// Per-element Gauss point geometry, on the stack.
 #[derive(Clone, Debug)]
@@ -41,7 +41,7 @@ pub struct ElementGeometry {
     /// Number of nodes (the family's: 8 or 6).
     pub nodes: usize,
     /// dN_a/dx, dN_a/dy for each Gauss point.
-    pub dndx: [[[f64; 2]; MAX_NODES]; MAX_POINTS],
+    pub(crate) dndx: [[[f64; 2]; MAX_NODES]; MAX_POINTS],
     /// det J · weight · thickness (or · 2π r, [`Section::measure`]) for each
     /// Gauss point.
     pub dv: [f64; MAX_POINTS],
@@ -152,11 +152,7 @@ pub enum Response {
 
 /// An element's displacements or forces, node-major, [`NodeDofs::element`]
 /// entries used (16, or 24 with twist).
-pub type ElementVector = [f64; NodeDofs::MAX_ELEMENT];
-
-/// An element's tangent, row-major n × n at the front (n = 16, or 24 with
-/// twist).
-pub type ElementMatrix = [f64; NodeDofs::MAX_ELEMENT * NodeDofs::MAX_ELEMENT];
+pub(crate) type ElementVector = [f64; NodeDofs::MAX_ELEMENT];
 
 /// Internal force and (optionally) tangent of one element of a plane or
 /// axisymmetric model with two dofs per node ([`super::element_forces`]
@@ -278,7 +274,7 @@ fn add_btcb(d: &[[f64; 2]; MAX_NODES], nn: usize, c: &Matrix3<f64>, dv: f64, ke:
 /// dv = det J · w · 2π r from `geom` (built with an axisymmetric [`Section`]).
 /// Errors name the Gauss point.
 #[allow(clippy::too_many_arguments)]
-pub fn axisymmetric_forces(
+pub(crate) fn axisymmetric_forces(
     geom: &ElementGeometry,
     mat: &VonMises,
     ue: &[f64],

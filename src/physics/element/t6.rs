@@ -19,7 +19,7 @@
 use super::gauss::GaussRule;
 
 /// Natural coordinates (ξ, η) of the nodes.
-pub const NODE_XI: [[f64; 2]; 6] = [
+pub(crate) const NODE_XI: [[f64; 2]; 6] = [
     [0.0, 0.0],
     [1.0, 0.0],
     [0.0, 1.0],
@@ -43,7 +43,7 @@ pub fn shape(xi: f64, eta: f64) -> [f64; 6] {
 
 /// Derivatives (∂N/∂ξ, ∂N/∂η) at (ξ, η), with ∂L₁ = (−1, −1), ∂L₂ = (1, 0),
 /// ∂L₃ = (0, 1).
-pub fn shape_derivs(xi: f64, eta: f64) -> [[f64; 2]; 6] {
+pub(crate) fn shape_derivs(xi: f64, eta: f64) -> [[f64; 2]; 6] {
     let l1 = 1.0 - xi - eta;
     [
         [1.0 - 4.0 * l1, 1.0 - 4.0 * l1],
@@ -57,7 +57,7 @@ pub fn shape_derivs(xi: f64, eta: f64) -> [[f64; 2]; 6] {
 
 /// The 3-point rule, exact for polynomials of degree 2: the points at area
 /// coordinates (⅔, ⅙, ⅙) and permutations, weight ⅙ each.
-pub fn gauss_3() -> GaussRule {
+pub(crate) fn gauss_3() -> GaussRule {
     let (a, b) = (1.0 / 6.0, 2.0 / 3.0);
     GaussRule {
         points: vec![
@@ -70,7 +70,7 @@ pub fn gauss_3() -> GaussRule {
 
 /// The 6-point rule, exact for polynomials of degree 4 (Dunavant's degree-4
 /// rule): two orbits (a, a, 1 − 2a) with weights (on area ½) w/2.
-pub fn gauss_6() -> GaussRule {
+pub(crate) fn gauss_6() -> GaussRule {
     let orbits = [
         (0.445_948_490_915_965, 0.223_381_589_678_011),
         (0.091_576_213_509_771, 0.109_951_743_655_322),

@@ -32,7 +32,7 @@ mod tests;
 use nalgebra::{Matrix3, Matrix4, Matrix6};
 use std::fmt;
 
-pub use storage::{GaussMut, GaussRef, GaussStates};
+pub(crate) use storage::{GaussMut, GaussRef, GaussStates};
 
 /// The plane idealization of the 2D model (the case's `[model] plane`,
 /// "stress", "strain" or "axisymmetric").
@@ -60,7 +60,7 @@ pub struct PointState {
     pub stress: [f64; 6],
     /// εᵖxx, εᵖyy, εᵖxy (tensor component), εᵖzz, then εᵖ_rθ, εᵖ_zθ (tensor
     /// components; 0 without twist).
-    pub plastic_strain: [f64; 6],
+    pub(crate) plastic_strain: [f64; 6],
     /// Accumulated equivalent plastic strain ε̄ᵖ.
     pub peeq: f64,
     /// The update that produced this state was plastic (Δγ > 0).
@@ -72,10 +72,10 @@ impl PointState {
     pub const PACKED: usize = 10;
     /// Doubles per state with twist: the shear stresses and plastic strains
     /// of u_θ follow.
-    pub const PACKED_TWIST: usize = 14;
+    pub(crate) const PACKED_TWIST: usize = 14;
 
     /// Doubles per state in a model with (or without) twist.
-    pub fn packed_len(twist: bool) -> usize {
+    pub(crate) fn packed_len(twist: bool) -> usize {
         if twist {
             Self::PACKED_TWIST
         } else {
@@ -100,7 +100,7 @@ impl PointState {
 
     /// The inverse of [`PointState::pack`] for `width` values
     /// ([`PointState::packed_len`]; `v` holds at least that many).
-    pub fn unpack(v: &[f64], width: usize) -> Self {
+    pub(crate) fn unpack(v: &[f64], width: usize) -> Self {
         let (t, p) = if width >= Self::PACKED_TWIST {
             ([v[10], v[11]], [v[12], v[13]])
         } else {
@@ -179,11 +179,11 @@ impl VonMises {
         })
     }
 
-    pub fn shear_modulus(&self) -> f64 {
+    pub(crate) fn shear_modulus(&self) -> f64 {
         self.young / (2.0 * (1.0 + self.poisson))
     }
 
-    pub fn bulk_modulus(&self) -> f64 {
+    pub(crate) fn bulk_modulus(&self) -> f64 {
         self.young / (3.0 * (1.0 - 2.0 * self.poisson))
     }
 
@@ -224,13 +224,13 @@ impl VonMises {
     }
 
     /// σ_Y + H ε̄ᵖ.
-    pub fn current_yield(&self, state: &PointState) -> f64 {
+    pub(crate) fn current_yield(&self, state: &PointState) -> f64 {
         self.yield_stress + self.hardening * state.peeq
     }
 
     /// √(3 J₂) of [σxx, σyy, σxy, σzz, σ_rθ, σ_zθ] (the last two 0 without
     /// twist, which leaves the value unchanged to the bit).
-    pub fn equivalent_stress(s: &[f64; 6]) -> f64 {
+    pub(crate) fn equivalent_stress(s: &[f64; 6]) -> f64 {
         let (xx, yy, xy, zz) = (s[0], s[1], s[2], s[3]);
         let twist = 3.0 * (s[4] * s[4] + s[5] * s[5]);
         (0.5 * ((xx - yy).powi(2) + (yy - zz).powi(2) + (zz - xx).powi(2)) + 3.0 * xy * xy + twist)
@@ -261,7 +261,7 @@ impl VonMises {
     /// (stress [σ_rr, σ_zz, σ_rz, σ_θθ]) and the algorithmic tangent dσ/dε, 4×4
     /// in that order. Used by every plane setting alike (the hoop strain is
     /// given, whatever `plane` says); the axisymmetric element's.
-    pub fn update_axisymmetric(
+    pub(crate) fn update_axisymmetric(
         &self,
         committed: &PointState,
         strain: &[f64; 4],
@@ -278,7 +278,7 @@ impl VonMises {
     /// Stress from the elastic law alone, keeping the committed plastic strain,
     /// for the axisymmetric strain [ε_rr, ε_zz, γ_rz, ε_θθ] (no return mapping:
     /// first-yield location).
-    pub fn elastic_state_axisymmetric(
+    pub(crate) fn elastic_state_axisymmetric(
         &self,
         committed: &PointState,
         strain: &[f64; 4],
@@ -290,7 +290,7 @@ impl VonMises {
     /// the same radial return on all six components) from `committed` for
     /// the total strain [ε_rr, ε_zz, γ_rz, ε_θθ, γ_rθ, γ_zθ]: the new state and
     /// the algorithmic tangent dσ/dε, 6×6 in that order.
-    pub fn update_twist(
+    pub(crate) fn update_twist(
         &self,
         committed: &PointState,
         strain: &[f64; 6],
@@ -300,20 +300,24 @@ impl VonMises {
 
     /// The 3D isotropic elastic matrix in the order (rr, zz, rz, θθ, rθ, zθ),
     /// engineering shear.
-    pub fn elastic_matrix_6(&self) -> Matrix6<f64> {
+    pub(crate) fn elastic_matrix_6(&self) -> Matrix6<f64> {
         six_components::elastic_matrix(self.shear_modulus(), self.bulk_modulus())
     }
 
     /// Stress from the elastic law alone for the strain with twist, keeping
     /// the committed plastic strain (first-yield location).
-    pub fn elastic_state_twist(&self, committed: &PointState, strain: &[f64; 6]) -> PointState {
+    pub(crate) fn elastic_state_twist(
+        &self,
+        committed: &PointState,
+        strain: &[f64; 6],
+    ) -> PointState {
         six_components::elastic(self, committed, strain)
     }
 
     /// Continuum tangent C_ep (3.13) at a committed state with twist, 6×6
     /// in the order (rr, zz, rz, θθ, rθ, zθ): C_ep if the state was
     /// yielding, else D.
-    pub fn continuum_tangent_6(&self, state: &PointState) -> Matrix6<f64> {
+    pub(crate) fn continuum_tangent_6(&self, state: &PointState) -> Matrix6<f64> {
         if !state.yielding {
             return self.elastic_matrix_6();
         }
@@ -322,7 +326,7 @@ impl VonMises {
 
     /// Continuum tangent C_ep (3.13) at a committed state, 4×4 in the order
     /// (rr, zz, rz, θθ): C_ep if the state was yielding, else D.
-    pub fn continuum_tangent_4(&self, state: &PointState) -> Matrix4<f64> {
+    pub(crate) fn continuum_tangent_4(&self, state: &PointState) -> Matrix4<f64> {
         if !state.yielding {
             return self.elastic_matrix_4();
         }
@@ -331,7 +335,7 @@ impl VonMises {
 
     /// Continuum tangent at a committed state: C_ep (3.13) if the state was
     /// yielding, else D. In plane stress, the 3D C_ep condensed to σzz = 0.
-    pub fn continuum_tangent(&self, state: &PointState) -> Matrix3<f64> {
+    pub(crate) fn continuum_tangent(&self, state: &PointState) -> Matrix3<f64> {
         if !state.yielding {
             return self.elastic_matrix();
         }

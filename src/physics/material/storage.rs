@@ -72,7 +72,7 @@ impl GaussStates {
     }
 
     /// No states yet, room for `n`.
-    pub fn with_capacity(n: usize, twist: bool) -> Self {
+    pub(crate) fn with_capacity(n: usize, twist: bool) -> Self {
         GaussStates {
             base: Vec::with_capacity(n),
             twist: Vec::with_capacity(if twist { n } else { 0 }),
@@ -81,7 +81,8 @@ impl GaussStates {
     }
 
     /// The states of a model with (or without) twist, in order.
-    pub fn from_states(states: impl IntoIterator<Item = PointState>, twist: bool) -> Self {
+    #[cfg(test)]
+    pub(crate) fn from_states(states: impl IntoIterator<Item = PointState>, twist: bool) -> Self {
         let mut g = Self::with_capacity(0, twist);
         for s in states {
             g.push(&s);
@@ -131,7 +132,7 @@ impl GaussStates {
     }
 
     /// Appends the states of `from`.
-    pub fn extend_from(&mut self, from: GaussRef<'_>) {
+    pub(crate) fn extend_from(&mut self, from: GaussRef<'_>) {
         self.base.extend_from_slice(from.base);
         if self.has_twist {
             self.twist.extend_from_slice(from.twist);
@@ -160,7 +161,7 @@ impl GaussStates {
     }
 
     /// States `r`, to be written.
-    pub fn range_mut(&mut self, r: Range<usize>) -> GaussMut<'_> {
+    pub(crate) fn range_mut(&mut self, r: Range<usize>) -> GaussMut<'_> {
         GaussMut {
             base: &mut self.base[r.clone()],
             twist: if self.has_twist {
@@ -208,7 +209,7 @@ impl<'a> GaussRef<'a> {
     }
 
     /// The first `n` states and the rest.
-    pub fn split_at(&self, n: usize) -> (GaussRef<'a>, GaussRef<'a>) {
+    pub(crate) fn split_at(&self, n: usize) -> (GaussRef<'a>, GaussRef<'a>) {
         let (b0, b1) = self.base.split_at(n);
         let (t0, t1) = self.twist.split_at(n.min(self.twist.len()));
         (
@@ -277,21 +278,13 @@ impl ExactSizeIterator for Iter<'_> {}
 
 /// A run of stored states, to be written.
 #[derive(Debug, Default)]
-pub struct GaussMut<'a> {
+pub(crate) struct GaussMut<'a> {
     base: &'a mut [Stored],
     /// Empty without twist.
     twist: &'a mut [Twist],
 }
 
 impl<'a> GaussMut<'a> {
-    pub fn len(&self) -> usize {
-        self.base.len()
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.base.is_empty()
-    }
-
     /// A copy of state `i` of the run.
     pub fn get(&self, i: usize) -> PointState {
         join(&self.base[i], self.twist.get(i))
@@ -309,7 +302,7 @@ impl<'a> GaussMut<'a> {
     }
 
     /// The first `n` states and the rest.
-    pub fn split_at_mut(self, n: usize) -> (GaussMut<'a>, GaussMut<'a>) {
+    pub(crate) fn split_at_mut(self, n: usize) -> (GaussMut<'a>, GaussMut<'a>) {
         let (b0, b1) = self.base.split_at_mut(n);
         let k = n.min(self.twist.len());
         let (t0, t1) = self.twist.split_at_mut(k);
@@ -326,7 +319,7 @@ impl<'a> GaussMut<'a> {
     }
 
     /// States `r` of the run.
-    pub fn range_mut(&mut self, r: Range<usize>) -> GaussMut<'_> {
+    pub(crate) fn range_mut(&mut self, r: Range<usize>) -> GaussMut<'_> {
         GaussMut {
             base: &mut self.base[r.clone()],
             twist: if self.twist.is_empty() {

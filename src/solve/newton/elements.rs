@@ -104,7 +104,7 @@ impl Engine<'_> {
                 if solid_tangent.is_some() {
                     let b = self.held_elements[b0 + i] as usize;
                     let ke = &self.ke_batch[i * ne * ne..][..own * own];
-                    match m.expansions.get(&b) {
+                    match m.expansion(b) {
                         None => be.add_solid(b, &dofs[..own], ke),
                         Some(x) => be.add_solid(b, &x.dofs, &held_out(x, &self.held, ke)),
                     }

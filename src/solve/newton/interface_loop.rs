@@ -48,13 +48,13 @@ use crate::physics::contact::PointState;
 use crate::solve::State;
 
 /// Most iterations of the interface loop in one Newton iteration.
-pub const MAX_INNER: usize = 20;
+pub(crate) const MAX_INNER: usize = 20;
 /// Most evaluations of F in the line search of the loop's start
 /// ([`Condensed::start`]).
 const START_EVALUATIONS: usize = 40;
 /// The loop stops when ‖F‖ ≤ this fraction of the Newton residual tolerance
 /// (times the step's reference force).
-pub const INNER_TOLERANCE: f64 = 0.1;
+pub(crate) const INNER_TOLERANCE: f64 = 0.1;
 /// Approach (mm) above which a pair counts as "at zero approach or beyond" for
 /// the secant start of eq. 2.8-2.9 in the first iteration of a step.
 pub(super) const ZERO_APPROACH: f64 = 1e-12;

@@ -42,7 +42,7 @@ pub struct Stats {
     pub factorizations: usize,
     /// Steps whose predicted start failed and that were solved again from
     /// the committed state (see [`super::predict`]).
-    pub predictor_restarts: usize,
+    pub(crate) predictor_restarts: usize,
     pub assembly_seconds: f64,
     pub solve_seconds: f64,
     /// The interface loop's counters ([`interface_loop`]).
@@ -50,7 +50,7 @@ pub struct Stats {
     /// Peak memory of this process when each stage was reached, MB: "model",
     /// "setup" (backend and solver objects), "first_assembly",
     /// "first_increment" (solved and written); summed over ranks in the result.
-    pub memory_mb: Vec<(&'static str, f64)>,
+    pub(crate) memory_mb: Vec<(&'static str, f64)>,
 }
 
 pub struct Engine<'m> {
@@ -79,7 +79,7 @@ pub struct Engine<'m> {
     /// vector (and, last, their count; [`Model::held_points`]).
     held_offsets: Vec<usize>,
     /// Contact stabilization of floating bodies ([`super::stabilize`]).
-    pub stabilizer: Option<Stabilizer>,
+    pub(crate) stabilizer: Option<Stabilizer>,
     /// Threads of the element loop ([`Engine::set_threads`]).
     threads: usize,
     /// One batch's element forces and tangents ([`ELEMENT_BATCH`](elements::ELEMENT_BATCH)), element
@@ -141,7 +141,7 @@ impl<'m> Engine<'m> {
 
     /// Runs the element loop on `threads` threads (at least 1; 1 when
     /// made). The result does not depend on it: see [`Engine::assemble_solids`].
-    pub fn set_threads(&mut self, threads: usize) {
+    pub(crate) fn set_threads(&mut self, threads: usize) {
         self.threads = threads.max(1);
     }
 
@@ -157,7 +157,7 @@ impl<'m> Engine<'m> {
         crate::measure::record(self.model, &*self.backend, &self.held_elements, state)
     }
 
-    pub fn held_elements(&self) -> &[u32] {
+    pub(crate) fn held_elements(&self) -> &[u32] {
         &self.held_elements
     }
 
@@ -169,7 +169,7 @@ impl<'m> Engine<'m> {
     /// Drops from a whole state (every element's Gauss points, as built by
     /// [`State::initial`] or read from a restart file) the Gauss states of
     /// the elements this process does not hold; unchanged on one process.
-    pub fn localize(&self, state: &mut State) {
+    pub(crate) fn localize(&self, state: &mut State) {
         let m = self.model;
         if self.holds_all() || state.gauss.len() != m.n_points() {
             return;
@@ -185,7 +185,7 @@ impl<'m> Engine<'m> {
     /// `None` on the other ranks and on one process, which holds them all
     /// already). Gathered in chunks, so the only transient beyond the result
     /// is one chunk.
-    pub fn gather_gauss(&self, state: &State) -> Option<GaussStates> {
+    pub(crate) fn gather_gauss(&self, state: &State) -> Option<GaussStates> {
         // decided on the rank count, the same everywhere (a rank may hold
         // every element while another holds none)
         if self.backend.ranks() == 1 {
@@ -252,14 +252,14 @@ impl<'m> Engine<'m> {
 
     /// Largest of `values` (one per held Gauss point) over every rank, 0 when
     /// none is positive.
-    pub fn max_over_points(&self, values: impl Iterator<Item = f64>) -> f64 {
+    pub(crate) fn max_over_points(&self, values: impl Iterator<Item = f64>) -> f64 {
         let mut m = [values.fold(0.0f64, f64::max)];
         self.backend.max(&mut m);
         m[0]
     }
 
     /// The external force at pseudo-time t (all dofs), computed once per t.
-    pub fn load_at(&mut self, t: f64) -> &[f64] {
+    pub(crate) fn load_at(&mut self, t: f64) -> &[f64] {
         if self.load_time.to_bits() != t.to_bits() {
             self.model.external_force(t, &mut self.load);
             self.load_time = t;
@@ -276,7 +276,7 @@ impl<'m> Engine<'m> {
 
     /// The dofs held in a step to pseudo-time t ([`Model::held_dofs`]); a
     /// change (a section locked) makes a cached solid matrix stale.
-    pub fn hold_for(&mut self, t: f64) {
+    pub(crate) fn hold_for(&mut self, t: f64) {
         let held = self.model.held_dofs(t);
         if held != self.held {
             self.held = held;
@@ -285,7 +285,7 @@ impl<'m> Engine<'m> {
     }
 
     /// Whether dof d is held in the current step.
-    pub fn is_held(&self, d: usize) -> bool {
+    pub(crate) fn is_held(&self, d: usize) -> bool {
         self.held.contains(&d)
     }
 
@@ -516,8 +516,8 @@ impl<'m> Engine<'m> {
                 for (k, &d) in pdofs.iter().enumerate() {
                     self.r[d] += rl[k];
                 }
-                let block = m.interface_block_base[i] + j;
-                let x = m.expansions.get(&block);
+                let block = m.interface_block(i, j);
+                let x = m.expansion(block);
                 match x {
                     None => be.add_contact(block, &pdofs, &kl[..nd * nd]),
                     Some(x) => {
@@ -551,7 +551,7 @@ fn add_held_sections(m: &Model, be: &mut dyn Backend, held: &[usize]) -> crate::
             if held.contains(&s.dof) {
                 let kh = m.held_stiffness();
                 be.add_contact(
-                    m.section_block_base + k,
+                    m.section_block(k),
                     &[s.dof, s.dof + 1],
                     &[kh, 0.0, 0.0, 0.0],
                 )?;

@@ -397,7 +397,7 @@ impl Problem for StepProblem<'_, '_> {
                 react2 += r * r;
             }
         }
-        self.reference = f2.sqrt().max(react2.sqrt()).max(m.force_floor);
+        self.reference = f2.sqrt().max(react2.sqrt()).max(m.force_floor());
         self.r_norm = r2.sqrt();
         for (k, &d) in self.free.iter().enumerate() {
             // a held equation is an identity row: no residual, no correction

@@ -88,7 +88,7 @@ pub struct Report {
 
 /// The stabilization of one engine.
 #[derive(Clone, Debug)]
-pub struct Stabilizer {
+pub(crate) struct Stabilizer {
     bodies: Vec<Body>,
     /// The force-controlled pretension sections that cut their bodies in two.
     cuts: Vec<Cut>,
@@ -485,7 +485,7 @@ impl Stabilizer {
 /// `r` and matrix `k` (the layout of [`InterfaceModel::eval_point`]): stiffness
 /// `ks` per area on the change of the relative displacement since `committed`.
 /// Abaqus-style contact stabilization (see the module documentation).
-pub fn add_point(
+pub(crate) fn add_point(
     im: &InterfaceModel,
     pt: &Point,
     ks: f64,

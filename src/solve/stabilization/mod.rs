@@ -67,7 +67,7 @@ use crate::physics::element::solid::Response;
 use crate::solve::newton::Engine;
 use crate::solve::{State, StepFailure};
 use mechanism::increment;
-pub use mechanism::Report;
+pub(crate) use mechanism::Report;
 
 /// Stabilized solves before giving up: k₀, k₀/10², k₀/10⁴, k₀/10⁶ (each
 /// followed by at most one release; a restart file's counters are bounded
@@ -139,7 +139,7 @@ fn internal_energy(engine: &Engine, state: &State) -> f64 {
 /// The account of a run for summary.json, with the internal energy of the
 /// final state taken into the reference (collective); `None` when no step
 /// used the stabilization.
-pub fn final_report(engine: &Engine, last: &State) -> Option<Report> {
+pub(crate) fn final_report(engine: &Engine, last: &State) -> Option<Report> {
     let st = engine.stabilizer.as_ref().filter(|s| s.used > 0)?;
     let mut report = st.report.clone();
     report.internal = report.internal.max(internal_energy(engine, last));

@@ -78,7 +78,7 @@ pub(super) fn tangential_law(
 }
 
 /// The key a refusal of [`TangentialLaw::with_memory`] is about.
-pub fn memory_error_key(message: &str) -> &'static str {
+pub(crate) fn memory_error_key(message: &str) -> &'static str {
     ["chi", "spike", "beta"]
         .into_iter()
         .find(|k| message.starts_with(k))
@@ -90,7 +90,7 @@ pub fn memory_error_key(message: &str) -> &'static str {
 /// with the other; `given` holds kp_ratio, yield_ratio, chi and spike as
 /// written, `at` places a key. Returns k_T^p / k_T^e (1 for an Iwan
 /// density: unused). `asperity calibrate` checks its `[tangential]` by it.
-pub fn backbone_keys(
+pub(crate) fn backbone_keys(
     backbone: BackboneKind,
     given: [Option<f64>; 4],
     at: &dyn Fn(&str) -> String,

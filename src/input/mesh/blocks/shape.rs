@@ -27,7 +27,7 @@ pub struct SideShape {
     /// left side r above (bottom) or below (top) the corner. x₀ + r must be a
     /// breakpoint of `x`; nodes on the rounding are spaced evenly in angle.
     #[serde(default)]
-    pub round_left: Option<f64>,
+    pub(crate) round_left: Option<f64>,
     /// The same rounding at the side's right end (x₁ − r a breakpoint).
     #[serde(default)]
     pub round_right: Option<f64>,
@@ -39,7 +39,7 @@ pub struct SideShape {
 /// points count as one and a side cannot be told from straight. A radius
 /// above the bound is a flat side to round-off (R = 1e300 made every
 /// coordinate NaN), a rounding below it a sharp corner.
-pub const MIN_RELATIVE_CURVE: f64 = 1e-9;
+pub(crate) const MIN_RELATIVE_CURVE: f64 = 1e-9;
 
 /// A broken rule of a curved side: the key it concerns (`radius`, `center`,
 /// `round_left`, `round_right`) and the reason, without the place.

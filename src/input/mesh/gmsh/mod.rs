@@ -23,7 +23,7 @@ mod build;
 mod parse;
 
 pub use build::build_mesh;
-pub use parse::{parse_msh, ElementBlock, MshFile};
+pub use parse::parse_msh;
 
 use super::Mesh;
 use crate::error::Result;

@@ -7,15 +7,15 @@ use std::collections::{BTreeMap, HashMap};
 /// One block of elements of one type on one geometric entity.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ElementBlock {
-    pub dim: i32,
+    pub(crate) dim: i32,
     pub entity: i32,
-    pub etype: i32,
+    pub(crate) etype: i32,
     /// Where the block header is (for errors).
     pub at: String,
     /// Element tags.
-    pub tags: Vec<u64>,
+    pub(crate) tags: Vec<u64>,
     /// Node indices into [`MshFile::nodes`], `nodes_per_element` per element.
-    pub conn: Vec<usize>,
+    pub(crate) conn: Vec<usize>,
 }
 
 /// The contents of a `.msh` file that asperity uses.
@@ -25,11 +25,11 @@ pub struct MshFile {
     pub name: String,
     pub binary: bool,
     /// (dimension, physical tag) → name.
-    pub physical_names: BTreeMap<(i32, i32), String>,
+    pub(crate) physical_names: BTreeMap<(i32, i32), String>,
     /// (dimension, entity tag) → physical tags of that entity.
-    pub entities: BTreeMap<(i32, i32), Vec<i32>>,
+    pub(crate) entities: BTreeMap<(i32, i32), Vec<i32>>,
     /// Node tags in file order.
-    pub node_tags: Vec<u64>,
+    pub(crate) node_tags: Vec<u64>,
     /// Node coordinates (x, y) in file order.
     pub nodes: Vec<[f64; 2]>,
     pub blocks: Vec<ElementBlock>,

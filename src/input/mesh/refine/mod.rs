@@ -53,7 +53,7 @@ use crate::physics::element::family::MAX_NODES;
 use std::collections::{BTreeSet, HashMap};
 
 /// The deepest level an element may reach (4⁸ children of one element).
-pub const MAX_LEVEL: u8 = 8;
+pub(crate) const MAX_LEVEL: u8 = 8;
 
 /// The quadratic edge shape functions at s ∈ [−1, 1] along [a, m, b].
 pub fn edge_shape(s: f64) -> [f64; 3] {
@@ -116,7 +116,7 @@ impl Refined {
     /// (each pair's two elements face each other across an edge the
     /// refinement must keep matched, e.g. a pretension cut:
     /// [`crate::model::pretension::facing`]).
-    pub fn refine_tied(
+    pub(crate) fn refine_tied(
         &self,
         marked: &[usize],
         tied: &[(usize, usize)],
@@ -331,7 +331,7 @@ impl Quarters {
 
 /// [`refine`] of a mesh whose elements carry `state` (levels, origins);
 /// the two elements of a `tied` pair are split together ([`closure`]).
-pub fn refine_with(
+pub(crate) fn refine_with(
     mesh: &Mesh,
     state: &RefineState,
     marked: &[usize],

@@ -59,7 +59,7 @@ pub struct Petsc<'u> {
 
 impl<'u> Petsc<'u> {
     /// `args` are PETSc options (e.g. "-ksp_type", "cg"); the program name is added.
-    pub fn init(universe: &'u mpi::environment::Universe, args: &[String]) -> Result<Self> {
+    pub(crate) fn init(universe: &'u mpi::environment::Universe, args: &[String]) -> Result<Self> {
         use mpi::traits::AsRaw;
         let mut argv: Vec<CString> = std::iter::once("asperity".to_string())
             .chain(args.iter().cloned())
@@ -92,7 +92,7 @@ impl<'u> Petsc<'u> {
         })
     }
 
-    pub fn comm(&self) -> ffi::MPI_Comm {
+    pub(crate) fn comm(&self) -> ffi::MPI_Comm {
         self.comm
     }
 }
@@ -107,7 +107,7 @@ impl Drop for Petsc<'_> {
 }
 
 /// A distributed vector.
-pub struct PVec<'p> {
+pub(crate) struct PVec<'p> {
     raw: ffi::Vec,
     _p: PhantomData<&'p Petsc<'p>>,
 }
@@ -136,7 +136,7 @@ impl<'p> PVec<'p> {
     /// Writes the owned entries of `src` (equation order) into this vector:
     /// `owned` pairs each local position with its equation; the other local
     /// entries (prescribed dofs) become zero.
-    pub fn write_owned(&mut self, owned: &[(usize, usize)], src: &[f64]) -> Result<()> {
+    pub(crate) fn write_owned(&mut self, owned: &[(usize, usize)], src: &[f64]) -> Result<()> {
         write_owned(self.raw, owned, src)
     }
 }
@@ -170,7 +170,7 @@ impl Drop for PVec<'_> {
 }
 
 /// Gathers a distributed vector onto every rank (VecScatterCreateToAll).
-pub struct ToAll<'p> {
+pub(crate) struct ToAll<'p> {
     scatter: ffi::VecScatter,
     all: ffi::Vec,
     _p: PhantomData<&'p Petsc<'p>>,
@@ -192,7 +192,7 @@ impl<'p> ToAll<'p> {
     }
 
     /// Copies the whole of `v` (in PETSc order) into `out`.
-    pub fn gather(&mut self, v: &PVec<'p>, out: &mut [f64]) -> Result<()> {
+    pub(crate) fn gather(&mut self, v: &PVec<'p>, out: &mut [f64]) -> Result<()> {
         self.gather_raw(v.raw, out)
     }
 
@@ -244,7 +244,7 @@ impl Drop for ToAll<'_> {
 }
 
 /// A distributed AIJ matrix with exact preallocation; a new nonzero is an error.
-pub struct PMat<'p> {
+pub(crate) struct PMat<'p> {
     pub raw: ffi::Mat,
     _p: PhantomData<&'p Petsc<'p>>,
 }
@@ -253,7 +253,7 @@ impl<'p> PMat<'p> {
     /// `local` of `global` rows on this rank, block size `bs` (dofs per node,
     /// for multigrid), `d_nnz`/`o_nnz` nonzeros per owned row in the diagonal
     /// and off-diagonal blocks.
-    pub fn aij(
+    pub(crate) fn aij(
         petsc: &'p Petsc,
         local: usize,
         global: usize,
@@ -299,7 +299,7 @@ impl<'p> PMat<'p> {
 
     /// Declares the matrix symmetric for good (every assembly keeps it so):
     /// MUMPS's Cholesky then reads one triangle, GAMG and CG may rely on it.
-    pub fn set_symmetric(&mut self) -> Result<()> {
+    pub(crate) fn set_symmetric(&mut self) -> Result<()> {
         for option in [
             ffi::MatOption_MAT_SYMMETRIC,
             ffi::MatOption_MAT_SYMMETRY_ETERNAL,
@@ -316,7 +316,11 @@ impl<'p> PMat<'p> {
     /// Attaches a near-null space (e.g. rigid-body modes) for algebraic multigrid:
     /// `local[k]` is this rank's owned part of vector k, which must be orthonormal
     /// over all ranks. The matrix keeps its own reference; ours are released.
-    pub fn set_near_null_space(&mut self, petsc: &'p Petsc, local: &[Vec<f64>]) -> Result<()> {
+    pub(crate) fn set_near_null_space(
+        &mut self,
+        petsc: &'p Petsc,
+        local: &[Vec<f64>],
+    ) -> Result<()> {
         let n_local = local.first().map_or(0, |v| v.len());
         let mut vecs = Vec::with_capacity(local.len());
         for part in local {
@@ -399,7 +403,7 @@ impl<'p> PMat<'p> {
     }
 
     /// Inserts one row (global indices).
-    pub fn set_row(
+    pub(crate) fn set_row(
         &mut self,
         row: ffi::PetscInt,
         cols: &[ffi::PetscInt],
@@ -437,7 +441,7 @@ impl<'p> PMat<'p> {
     }
 
     /// self ← other (same nonzero pattern).
-    pub fn copy_from(&mut self, other: &PMat<'p>) -> Result<()> {
+    pub(crate) fn copy_from(&mut self, other: &PMat<'p>) -> Result<()> {
         // SAFETY: both valid, same layout and pattern.
         chk(
             unsafe { ffi::MatCopy(other.raw, self.raw, ffi::MatStructure_SAME_NONZERO_PATTERN) },
@@ -467,7 +471,7 @@ impl Drop for PMat<'_> {
 }
 
 /// A Krylov solver configured from the options database.
-pub struct Ksp<'p> {
+pub(crate) struct Ksp<'p> {
     raw: ffi::KSP,
     _p: PhantomData<&'p Petsc<'p>>,
 }
@@ -481,7 +485,7 @@ pub struct Ksp<'p> {
 /// two ranks (fast GAMG) this took CG from 134 to 86-121 iterations per solve
 /// and the operator complexity from 1.44 (per-body modes, threshold 0) to
 /// 1.15 (docs/performance.md, "GAMG settings").
-pub const GAMG_THRESHOLD: f64 = 0.01;
+pub(crate) const GAMG_THRESHOLD: f64 = 0.01;
 
 /// The linear solver a KSP starts from, before the options database (any
 /// `-ksp_*`/`-pc_*` option on the command line overrides it).
@@ -733,7 +737,7 @@ impl<'p> Ksp<'p> {
     }
 
     /// The configured solver, e.g. "preonly + lu (mumps)".
-    pub fn describe(&self) -> String {
+    pub(crate) fn describe(&self) -> String {
         // SAFETY: valid KSP.
         unsafe { describe(self.raw) }
     }

@@ -242,7 +242,7 @@ unsafe extern "C" fn postcheck_cb(
 type Slot = std::cell::Cell<*mut c_void>;
 
 /// A SNES bound to the backend's system matrix.
-pub struct SnesSolver<'p> {
+pub(crate) struct SnesSolver<'p> {
     raw: ffi::SNES,
     slot: Box<Slot>,
     x: PVec<'p>,
@@ -258,7 +258,7 @@ pub struct SnesSolver<'p> {
 /// PETSc's Newton iterations per preconditioner build within one load step
 /// under [`lean_multigrid`] (SNES rebuilds at the first Jacobian of every
 /// solve, and the lag does not persist across solves).
-pub const MULTIGRID_LAG: ffi::PetscInt = 1000;
+pub(crate) const MULTIGRID_LAG: ffi::PetscInt = 1000;
 
 /// The Chebyshev smoothers' eigenvalue interval under [`lean_multigrid`]
 /// (`-mg_levels_ksp_chebyshev_esteig a,b,c,d`: [b λ, d λ] for the estimate λ):
@@ -269,7 +269,7 @@ pub const MULTIGRID_LAG: ffi::PetscInt = 1000;
 /// 1.25) CG met an indefinite preconditioner in the plastic steps of
 /// `cases/punch-plane-stress-fine` at refine 4 and gave up at 99% of the load
 /// at refine 8; with 1.5 the iterates follow MUMPS's.
-pub const LEAN_ESTEIG: &std::ffi::CStr = c"0,0.1,0,1.5";
+pub(crate) const LEAN_ESTEIG: &std::ffi::CStr = c"0,0.1,0,1.5";
 
 /// `--memory lean` with GAMG as the preconditioner: three settings, each of
 /// which the options database can override (docs/performance.md, "GAMG,

@@ -16,7 +16,7 @@ pub struct Partition {
     pub element_owner: Vec<usize>,
     pub point_owner: Vec<usize>,
     /// Free equation → PETSc global index (rank-contiguous).
-    pub petsc_index: Vec<ffi::PetscInt>,
+    pub(crate) petsc_index: Vec<ffi::PetscInt>,
     /// Mesh dof → PETSc global index. PETSc numbers every dof, prescribed ones
     /// too (as identity rows), [`crate::input::mesh::NodeDofs`] per node (2, or 3
     /// with twist) in node order within each rank, so the matrix has that
@@ -29,7 +29,7 @@ pub struct Partition {
 impl Partition {
     /// (position in this rank's local array, equation) of every equation that
     /// `rank` owns, in equation order.
-    pub fn owned(&self, rank: usize) -> Vec<(usize, usize)> {
+    pub(crate) fn owned(&self, rank: usize) -> Vec<(usize, usize)> {
         let (lo, hi) = (self.offsets[rank], self.offsets[rank + 1]);
         self.petsc_index
             .iter()
@@ -40,18 +40,18 @@ impl Partition {
     }
 
     /// Rows (PETSc indices) `rank` owns.
-    pub fn local_len(&self, rank: usize) -> usize {
+    pub(crate) fn local_len(&self, rank: usize) -> usize {
         self.offsets[rank + 1] - self.offsets[rank]
     }
 
     /// Rows of the PETSc system: every dof of the mesh.
-    pub fn global_len(&self) -> usize {
+    pub(crate) fn global_len(&self) -> usize {
         self.dof_index.len()
     }
 
     /// PETSc rows of the prescribed dofs `rank` owns: identity rows of the
     /// system, zero in every right-hand side and solution.
-    pub fn prescribed_rows(&self, model: &Model, rank: usize) -> Vec<ffi::PetscInt> {
+    pub(crate) fn prescribed_rows(&self, model: &Model, rank: usize) -> Vec<ffi::PetscInt> {
         let (lo, hi) = (self.offsets[rank], self.offsets[rank + 1]);
         (0..self.dof_index.len())
             .filter(|&d| model.dofs.equation(d).is_none())
@@ -202,7 +202,7 @@ impl Partition {
     /// The columns of the tangent's pattern whose equations `rank` owns (by
     /// symmetry, the couplings of its rows): built for preallocation and
     /// dropped, so no rank holds the whole pattern.
-    pub fn owned_pattern(&self, model: &Model, rank: usize) -> Pattern {
+    pub(crate) fn owned_pattern(&self, model: &Model, rank: usize) -> Pattern {
         let (lo, hi) = (self.offsets[rank], self.offsets[rank + 1]);
         model.pattern_of(|c| (lo..hi).contains(&(self.petsc_index[c] as usize)))
     }
@@ -210,7 +210,7 @@ impl Partition {
     /// Exact diagonal / off-diagonal nonzeros per owned row of `rank`, from
     /// its [`Partition::owned_pattern`] (a column's rows are the row's columns);
     /// `prescribed`: this rank's [`Partition::prescribed_rows`], one entry each.
-    pub fn preallocation(
+    pub(crate) fn preallocation(
         &self,
         pattern: &Pattern,
         rank: usize,
@@ -239,7 +239,7 @@ impl Partition {
     }
 }
 
-pub struct PetscBackend<'p> {
+pub(crate) struct PetscBackend<'p> {
     pub(super) world: SimpleCommunicator,
     pub(super) rank: usize,
     ranks: usize,
@@ -394,7 +394,7 @@ impl<'p> PetscBackend<'p> {
     /// The interface loop uses the factor of `ksp` (SNES's, which solves the
     /// Newton systems when SNES drives the steps) instead of the backend's
     /// own; the backend holds a reference to it.
-    pub fn factor_of(&mut self, ksp: ffi::KSP) -> Result<()> {
+    pub(crate) fn factor_of(&mut self, ksp: ffi::KSP) -> Result<()> {
         // SAFETY: a valid KSP (the caller's SNES's); the reference is
         // released by `HeldKsp`'s drop.
         chk(
@@ -419,7 +419,7 @@ impl<'p> PetscBackend<'p> {
     }
 
     /// The system matrix (solid + contact), for a SNES that solves with it.
-    pub fn system_matrix(&self) -> ffi::Mat {
+    pub(crate) fn system_matrix(&self) -> ffi::Mat {
         self.mat.raw
     }
 

@@ -237,13 +237,8 @@ fn interface_equations(
     blocks: &crate::model::assembly::Blocks,
     n: usize,
 ) -> Vec<usize> {
-    let first = model
-        .interface_block_base
-        .first()
-        .copied()
-        .unwrap_or(model.section_block_base);
     let mut on = vec![false; n];
-    for b in first..model.section_block_base {
+    for b in model.interface_blocks() {
         for &d in blocks.get(b) {
             if let Some(e) = model.dofs.equation(d as usize) {
                 on[e] = true;
@@ -259,7 +254,8 @@ fn interface_equations(
 /// [`SerialDirect::plans_trailing`]), from the symbolic analyses alone; else
 /// none. The PETSc backend runs the loop on exactly these models, so that
 /// both take the same iterates.
-pub fn interface_loop_equations(model: &Model) -> Result<Vec<usize>> {
+#[cfg(feature = "parallel")]
+pub(crate) fn interface_loop_equations(model: &Model) -> Result<Vec<usize>> {
     if !wants_interface_loop(model) {
         return Ok(Vec::new());
     }
@@ -279,14 +275,10 @@ pub fn interface_loop_equations(model: &Model) -> Result<Vec<usize>> {
 /// Whether `[solver] interface_loop` applies to a model: asked for, full
 /// Newton, interface points, none of them on a constrained dof (an
 /// interface point's block expanded over masters, [`crate::model::constraint`]).
-pub fn wants_interface_loop(model: &Model) -> bool {
-    let first = model
-        .interface_block_base
-        .first()
-        .copied()
-        .unwrap_or(model.section_block_base);
+pub(crate) fn wants_interface_loop(model: &Model) -> bool {
+    let blocks = model.interface_blocks();
     model.solver.interface_loop()
         && model.solver.method == crate::input::case::Method::FullNewton
-        && first < model.section_block_base
-        && !(first..model.section_block_base).any(|b| model.expansions.contains_key(&b))
+        && !blocks.is_empty()
+        && !blocks.into_iter().any(|b| model.expansion(b).is_some())
 }

@@ -160,7 +160,7 @@ fn oom(what: &str) -> Error {
 
 /// Environment variable that caps the memory a serial run may plan for, MB
 /// (default: the machine's available memory, `MemAvailable` of /proc/meminfo).
-pub const MEMORY_LIMIT_VAR: &str = "ASPERITY_MEMORY_LIMIT_MB";
+pub(crate) const MEMORY_LIMIT_VAR: &str = "ASPERITY_MEMORY_LIMIT_MB";
 
 /// The memory a run may plan for, bytes: [`MEMORY_LIMIT_VAR`] if set, else
 /// the available memory (Linux), else unbounded.
@@ -291,7 +291,7 @@ impl SerialDirect {
     /// [`Factorization::SymmetricPart`], or for the interface loop,
     /// `for_loop`): they are ordered last where the symbolic analysis finds
     /// that pays ([`interface_last_pays`]).
-    pub fn with_interface(
+    pub(crate) fn with_interface(
         pattern: &Pattern,
         kind: Factorization,
         interface: Vec<usize>,
@@ -359,7 +359,8 @@ impl SerialDirect {
     /// interface last with its trailing block, from the symbolic analyses
     /// alone (no numeric storage): the PETSc backend asks it so that both
     /// backends run the interface loop on the same models.
-    pub fn plans_trailing(
+    #[cfg(feature = "parallel")]
+    pub(crate) fn plans_trailing(
         pattern: &Pattern,
         kind: Factorization,
         interface: &[usize],
@@ -412,7 +413,7 @@ impl SerialDirect {
     }
 
     /// Size of the Cholesky factor's values (0 on the LU path), MB.
-    pub fn factor_mb(&self) -> f64 {
+    pub(crate) fn factor_mb(&self) -> f64 {
         self.cholesky
             .as_ref()
             .map_or(0.0, |c| c.values.len() as f64 * 8.0 / 1e6)
@@ -432,7 +433,7 @@ impl SerialDirect {
     /// The Cholesky factorization of the matrix's lower triangle, where this
     /// solver has a Cholesky path: whether it succeeded (false: not positive
     /// definite, counted as a fallback, or no Cholesky path).
-    pub fn factor_cholesky(&mut self, values: &[f64]) -> Result<bool> {
+    pub(crate) fn factor_cholesky(&mut self, values: &[f64]) -> Result<bool> {
         check_finite(values)?;
         self.held = Held::None;
         let Some(c) = self.cholesky.as_mut() else {
@@ -461,7 +462,7 @@ impl SerialDirect {
     }
 
     /// The LU factorization of the matrix (analysed when first needed).
-    pub fn factor_lu(&mut self, values: &[f64]) -> Result<()> {
+    pub(crate) fn factor_lu(&mut self, values: &[f64]) -> Result<()> {
         check_finite(values)?;
         self.held = Held::None;
         let mat = SparseColMatRef::new(self.symbolic_mat.as_ref(), values);
@@ -622,7 +623,9 @@ fn check_solution(x: &[f64]) -> Result<()> {
 }
 
 mod backend;
-pub use backend::{interface_loop_equations, SerialBackend};
+#[cfg(feature = "parallel")]
+pub(crate) use backend::interface_loop_equations;
+pub use backend::SerialBackend;
 
 #[cfg(test)]
 mod tests;

@@ -4,14 +4,14 @@ use super::law::{Given, Holds, Kind, Law, NormalLaw, Param};
 use crate::physics::range::{Range, PRESSURE};
 
 /// b of the exponential law: 150 /mm in the docs.
-pub const EXP_RATE: Range = Range {
+pub(crate) const EXP_RATE: Range = Range {
     quantity: "an exponential rate b",
     unit: "1/mm",
     lo: 1e-3,
     hi: 1e9,
 };
 
-pub const KIND: Kind = Kind {
+pub(crate) const KIND: Kind = Kind {
     name: "exponential",
     params: &[
         Param {

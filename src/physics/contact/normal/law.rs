@@ -11,7 +11,7 @@ use std::sync::Arc;
 pub struct Kind {
     pub name: &'static str,
     /// Its keys in `[interface.<name>]`, in the order their ranges are checked.
-    pub params: &'static [Param],
+    pub(crate) params: &'static [Param],
     /// The law from its parameters (every one given, checked by the law:
     /// the message names the key).
     pub build: fn(&Given) -> Result<NormalLaw, String>,
@@ -132,7 +132,7 @@ impl NormalLaw {
     }
 
     /// The law as `asperity check` prints it.
-    pub fn describe(&self) -> String {
+    pub(crate) fn describe(&self) -> String {
         self.0.describe()
     }
 

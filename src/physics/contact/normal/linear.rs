@@ -6,14 +6,14 @@ use super::power::{check_c_m, Power, C_N, M};
 use crate::physics::range::{Range, PRESSURE};
 
 /// Slope A of the linear law's upper branch.
-pub const SLOPE: Range = Range {
+pub(crate) const SLOPE: Range = Range {
     quantity: "a compliance slope A",
     unit: "mm/MPa",
     lo: 1e-15,
     hi: 1e3,
 };
 
-pub const KIND: Kind = Kind {
+pub(crate) const KIND: Kind = Kind {
     name: "linear",
     params: &[
         C_N,

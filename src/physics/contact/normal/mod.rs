@@ -31,11 +31,12 @@ pub mod linear;
 pub mod power;
 pub mod table;
 
-pub use law::{Given, Holds, Kind, Law, NormalLaw, Param, Value};
+pub(crate) use law::{Given, Holds, NormalLaw, Param};
+pub use law::{Kind, Value};
 
 /// Every normal law, in the order the case's refusals list them
 /// (`law = "…" is not a known law (power, exponential, linear, table)`).
-pub const KINDS: &[&Kind] = &[
+pub(crate) const KINDS: &[&Kind] = &[
     &power::KIND,
     &exponential::KIND,
     &linear::KIND,
@@ -45,7 +46,7 @@ pub const KINDS: &[&Kind] = &[
 /// Every parameter of every law once, the tables first, then the numbers in
 /// the order of [`KINDS`]: the order in which a case's law keys are checked
 /// (and the first refusal named).
-pub fn all_params() -> Vec<&'static Param> {
+pub(crate) fn all_params() -> Vec<&'static Param> {
     let mut out: Vec<&'static Param> = Vec::new();
     let rows = |p: &&Param| matches!(p.holds, Holds::Rows(_));
     for tables in [true, false] {
@@ -74,7 +75,7 @@ impl Kind {
     /// The law from the parameters a case gives: each of its own needed,
     /// every other law's refused (in the order of [`all_params`]), then
     /// built and checked.
-    pub fn from_given(&self, given: &Given) -> Result<NormalLaw, String> {
+    pub(crate) fn law_from(&self, given: &Given) -> Result<NormalLaw, String> {
         let law = self.name;
         for p in all_params() {
             let own = self.params.iter().any(|q| q.key == p.key);

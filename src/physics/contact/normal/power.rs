@@ -4,7 +4,7 @@ use super::law::{Given, Holds, Kind, Law, NormalLaw, Param};
 use crate::physics::range::Range;
 
 /// c_N of the power and linear laws (mm/MPa^m): 0.001 in the paper.
-pub const COMPLIANCE: Range = Range {
+pub(crate) const COMPLIANCE: Range = Range {
     quantity: "an interface compliance c_N",
     unit: "mm/MPa^m",
     lo: 1e-12,
@@ -22,7 +22,7 @@ pub const M: Param = Param {
     holds: Holds::Number(None),
 };
 
-pub const KIND: Kind = Kind {
+pub(crate) const KIND: Kind = Kind {
     name: "power",
     params: &[C_N, M],
     build: |g: &Given| new(g.number("c_n"), g.number("m")),
@@ -30,7 +30,7 @@ pub const KIND: Kind = Kind {
 
 /// u = c p^m.
 #[derive(Clone, Copy, Debug)]
-pub struct Power {
+pub(crate) struct Power {
     pub c: f64,
     pub m: f64,
 }
@@ -42,7 +42,7 @@ pub fn new(c: f64, m: f64) -> Result<NormalLaw, String> {
 }
 
 /// c_N > 0 and m ∈ (0, 1] (the power and linear laws).
-pub fn check_c_m(c: f64, m: f64) -> Result<(), String> {
+pub(crate) fn check_c_m(c: f64, m: f64) -> Result<(), String> {
     if !(c.is_finite() && c > 0.0) {
         return Err(format!("c_n = {c} must be a positive number (mm/MPa^m)"));
     }

@@ -8,7 +8,7 @@ use crate::physics::contact::table::{rows_of_two, Monotone};
 use crate::physics::range::{DISPLACEMENT, PRESSURE};
 use std::sync::Arc;
 
-pub const KIND: Kind = Kind {
+pub(crate) const KIND: Kind = Kind {
     name: "table",
     params: &[Param {
         key: "table",

@@ -41,11 +41,11 @@
 use super::{Backbone, Density, TangentialLaw};
 
 /// Jenkins elements a point of the vector law keeps.
-pub const JENKINS: usize = 24;
+pub(crate) const JENKINS: usize = 24;
 
 /// The first cut bⱼ of the Iwan density's continuous part: below λ φ the
 /// discrete set dissipates less than the density (nothing below η₁ φ).
-pub const IWAN_LOWEST: f64 = 0.01;
+pub(crate) const IWAN_LOWEST: f64 = 0.01;
 
 /// The vector stretches eᵢ of a point's Jenkins elements, mm (slots beyond
 /// the law's element count, and every slot under the isotropic memory, 0).
@@ -58,10 +58,10 @@ pub struct Stretch2 {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Elements {
     pub eta: [f64; JENKINS],
-    pub mass: [f64; JENKINS],
+    pub(crate) mass: [f64; JENKINS],
     pub len: usize,
     /// C of φ = μ p_N C / k_T^e (the density's).
-    pub big_c: f64,
+    pub(crate) big_c: f64,
 }
 
 /// One update of a point's stretches and what the tangent needs.
@@ -71,9 +71,9 @@ pub struct Update2 {
     /// Σ mᵢ eᵢ, mm (p_T / k_T^e).
     pub sum: [f64; 2],
     /// Σ mᵢ ∂eᵢ/∂u_T: mᵢ I sticking, mᵢ rᵢ/|eᵢ^tr| (I − nᵢ nᵢᵀ) sliding.
-    pub d_sum: [[f64; 2]; 2],
+    pub(crate) d_sum: [[f64; 2]; 2],
     /// Σ over sliding elements of mᵢ ηᵢ nᵢ (∂Σ mᵢ eᵢ/∂φ).
-    pub slipping_moment: [f64; 2],
+    pub(crate) slipping_moment: [f64; 2],
     /// Σ mᵢ over the elements that stick.
     pub sticking: f64,
     /// Whether any element slides.
@@ -186,7 +186,14 @@ impl Elements {
     /// sᵢ = eᵢ⁰ + du − eᵢ¹ (what its projection removed) and its mean force
     /// Fᵢ = ½ (k₀ eᵢ⁰ + k₁ eᵢ¹) (k₀, k₁: k_T^e at the step's start and end,
     /// MPa/mm), eᵢ⁰ from `from`, eᵢ¹ from `to`. MPa·mm.
-    pub fn slip_work(&self, from: &Stretch2, k0: f64, du: [f64; 2], to: &Stretch2, k1: f64) -> f64 {
+    pub(crate) fn slip_work(
+        &self,
+        from: &Stretch2,
+        k0: f64,
+        du: [f64; 2],
+        to: &Stretch2,
+        k1: f64,
+    ) -> f64 {
         (0..self.len)
             .map(|i| {
                 let (e0, e1) = (from.e[i], to.e[i]);

@@ -34,7 +34,7 @@
 //! ρ + (1 − ρ) k_T^e / k_T^p (a single element at η = 1 with C = ρ when k_T^p = 0).
 
 /// Breakpoints of the stretch function e(η) a point keeps.
-pub const MEMORY_POINTS: usize = 10;
+pub(crate) const MEMORY_POINTS: usize = 10;
 
 /// Working room: every segment of a stored function split at most in three.
 const ROOM: usize = 3 * (MEMORY_POINTS + 1) + 2;
@@ -158,7 +158,7 @@ impl Stretch {
     /// Whether the slots hold a function as stored (restart files are
     /// untrusted): all zero, or η strictly increasing in (0, 1] up to
     /// η = 1 and zeros after it.
-    pub fn is_valid(&self) -> bool {
+    pub(crate) fn is_valid(&self) -> bool {
         if self.eta[0] == 0.0 {
             return self.eta.iter().chain(&self.e).all(|&x| x == 0.0);
         }
@@ -186,7 +186,7 @@ impl Stretch {
 
     /// The largest |e(η)| / η over the breakpoints: the slip range φ the
     /// stretches fit in, mm.
-    pub fn largest_ratio(&self) -> f64 {
+    pub(crate) fn largest_ratio(&self) -> f64 {
         self.eta
             .iter()
             .zip(&self.e)
@@ -203,9 +203,9 @@ pub struct Density {
     pub c: f64,
     pub chi: f64,
     /// Point masses (ηⱼ, mⱼ).
-    pub masses: [(f64, f64); 2],
+    pub(crate) masses: [(f64, f64); 2],
     /// C of φ = μ p_N C / k_T^e.
-    pub big_c: f64,
+    pub(crate) big_c: f64,
 }
 
 /// One update of a point's stretches: the new function and what the
@@ -218,7 +218,7 @@ pub struct Update {
     /// ∫ w dη over the elements that stick (dp_T/du_T / k_T^e).
     pub sticking: f64,
     /// ∫ w sign(e) η dη over the elements that slip (∂∫w e/∂φ).
-    pub slipping_moment: f64,
+    pub(crate) slipping_moment: f64,
     /// Whether any element slips.
     pub slips: bool,
 }
@@ -353,7 +353,7 @@ impl Density {
     /// the piecewise-linear stretches: both functions are cut at each
     /// other's breakpoints and at the zeros of F and s, and the weight's
     /// moments integrate the quadratic F s on each piece. MPa·mm.
-    pub fn slip_work(&self, from: &Stretch, k0: f64, du: f64, to: &Stretch, k1: f64) -> f64 {
+    pub(crate) fn slip_work(&self, from: &Stretch, k0: f64, du: f64, to: &Stretch, k1: f64) -> f64 {
         let (p0, p1) = (from.points(), to.points());
         let force = |eta: f64| 0.5 * (k0 * p0.at(eta) + k1 * p1.at(eta));
         let slip = |eta: f64| p0.at(eta) + du - p1.at(eta);

@@ -29,13 +29,13 @@ use std::sync::Arc;
 
 mod jenkins;
 mod kinematic;
-pub mod params;
+pub(crate) mod params;
 mod vector;
 mod work;
-pub use jenkins::{Elements, Stretch2, IWAN_LOWEST, JENKINS};
-pub use kinematic::{Density, Stretch, MEMORY_POINTS};
-pub use vector::{SlipState2, VectorEval};
-pub use work::{Side, Side2};
+pub use jenkins::Elements;
+pub(crate) use kinematic::{Density, Stretch, MEMORY_POINTS};
+pub(crate) use vector::SlipState2;
+pub(crate) use work::{Side, Side2};
 
 /// How the law remembers its slip history.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize, serde::Serialize)]
@@ -54,7 +54,7 @@ pub enum Memory {
 
 /// The smallest Iwan exponent χ: at −0.99 the slip range φ is already 100
 /// times the elastic slip μ p_N / k_T^e.
-pub const CHI_MIN: f64 = -0.99;
+pub(crate) const CHI_MIN: f64 = -0.99;
 
 /// The first-loading curve p_T(u_T) at constant p_N.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -86,7 +86,7 @@ pub struct TangentialLaw {
     /// Slip-hardening rate n, 1/mm.
     pub n: f64,
     /// ρ = p_T^Y / (μ_m p_N).
-    pub yield_ratio: f64,
+    pub(crate) yield_ratio: f64,
     pub memory: Memory,
     pub backbone: Backbone,
 }
@@ -112,26 +112,26 @@ pub enum Slip {
 
 /// Result of one evaluation.
 #[derive(Clone, Copy, Debug)]
-pub struct TangentialEval {
+pub(crate) struct TangentialEval {
     pub p_t: f64,
     /// ∂p_T/∂u_T
-    pub d_ut: f64,
+    pub(crate) d_ut: f64,
     /// ∂p_T/∂u_N
-    pub d_un: f64,
+    pub(crate) d_un: f64,
     pub state: SlipState,
     pub slip: Slip,
-    pub mu_f: f64,
+    pub(crate) mu_f: f64,
 }
 
 /// A return mapping that slipped: Δκ, κ = κ_n + Δκ, the limit Y(κ) with
 /// ∂Y/∂κ and ∂Y/∂p_N, and whether the friction cap is the active branch.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Return {
-    pub dkappa: f64,
+    pub(crate) dkappa: f64,
     pub kappa: f64,
     pub y: f64,
-    pub yk: f64,
-    pub yp: f64,
+    pub(crate) yk: f64,
+    pub(crate) yp: f64,
     pub macro_slip: bool,
 }
 
@@ -188,7 +188,11 @@ impl TangentialLaw {
     /// [−0.99, 1] and spike in [0, 1); slip-hardening friction (β < 1) only
     /// with the isotropic memory and the bilinear backbone, the case it
     /// was measured for (eq. 2.21).
-    pub fn with_memory(mut self, memory: Memory, backbone: Backbone) -> Result<Self, String> {
+    pub(crate) fn with_memory(
+        mut self,
+        memory: Memory,
+        backbone: Backbone,
+    ) -> Result<Self, String> {
         if let Backbone::Iwan { chi, spike } = backbone {
             // χ → −1 puts every threshold at zero: F(1) = (1+χ)/(2+χ) → 0 and
             // the slip range φ = μ p_N / (k F(1)) grows without bound
@@ -444,7 +448,7 @@ impl TangentialLaw {
     /// Return mapping from `committed` at pressure p (stiffness k_n = dp/du_N) and
     /// total tangential displacement u_t. An open spring (p ≤ 0) carries no shear
     /// and slides freely: its plastic slip follows u_t.
-    pub fn eval(&self, p: f64, k_n: f64, u_t: f64, committed: &SlipState) -> TangentialEval {
+    pub(crate) fn eval(&self, p: f64, k_n: f64, u_t: f64, committed: &SlipState) -> TangentialEval {
         if p <= 0.0 {
             return TangentialEval {
                 p_t: 0.0,

@@ -8,7 +8,7 @@ use super::{Backbone, Memory, TangentialLaw};
 use crate::physics::range::{Range, PRESSURE};
 
 /// R of the tangential law (k_T^e = p_N^S / R, MPa/µm).
-pub const SHEAR_R: Range = Range {
+pub(crate) const SHEAR_R: Range = Range {
     quantity: "the shear compliance R",
     unit: "µm·MPa^(S-1)",
     lo: 1e-6,
@@ -16,7 +16,7 @@ pub const SHEAR_R: Range = Range {
 };
 /// The elastic shear stiffness k_T^e (MPa/µm) of a `k_table`: the values
 /// p^S/R takes over the ranges of a pressure and of R with S in [0, 1].
-pub const SHEAR_STIFFNESS: Range = Range {
+pub(crate) const SHEAR_STIFFNESS: Range = Range {
     quantity: "a shear stiffness k_T^e",
     unit: "MPa/µm",
     lo: 1e-12,
@@ -29,7 +29,7 @@ pub const FRICTION: Range = Range {
     hi: 100.0,
 };
 /// Slip-hardening rate n (0 allowed).
-pub const SLIP_RATE: Range = Range {
+pub(crate) const SLIP_RATE: Range = Range {
     quantity: "a slip-hardening rate",
     unit: "1/mm",
     lo: 1e-6,
@@ -38,19 +38,21 @@ pub const SLIP_RATE: Range = Range {
 
 /// The numbers whose magnitude is checked against a range, by key, in the
 /// order they are checked (after the law is built).
-pub const NUMBERS: [(&str, &Range); 3] = [("r", &SHEAR_R), ("mu", &FRICTION), ("n", &SLIP_RATE)];
+pub(crate) const NUMBERS: [(&str, &Range); 3] =
+    [("r", &SHEAR_R), ("mu", &FRICTION), ("n", &SLIP_RATE)];
 
 /// The columns of a `k_table` row, each within its range (checked before the
 /// table is interpolated).
-pub const K_TABLE_COLUMNS: [(&str, &Range); 2] = [("p_N", &PRESSURE), ("k_T", &SHEAR_STIFFNESS)];
+pub(crate) const K_TABLE_COLUMNS: [(&str, &Range); 2] =
+    [("p_N", &PRESSURE), ("k_T", &SHEAR_STIFFNESS)];
 
 /// Every range the tangential law's keys take (the documentation's table).
-pub const RANGES: [&Range; 4] = [&SHEAR_R, &SHEAR_STIFFNESS, &FRICTION, &SLIP_RATE];
+pub(crate) const RANGES: [&Range; 4] = [&SHEAR_R, &SHEAR_STIFFNESS, &FRICTION, &SLIP_RATE];
 
 impl TangentialLaw {
     /// The law as `asperity check` prints it: μ, stiffness, backbone, memory
     /// (the scheme, a solver setting, follows).
-    pub fn describe(&self) -> String {
+    pub(crate) fn describe(&self) -> String {
         let stiffness = match &self.k_table {
             Some(t) => format!("k_T^e from a k_table of {} rows", t.points().count()),
             None => format!("k_T^e = p^S/R (R = {}, S = {})", self.r, self.s),

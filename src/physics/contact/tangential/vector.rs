@@ -49,7 +49,7 @@ use super::{Memory, Slip, TangentialLaw};
 /// p_T / k_T^e does not explain), slip length κ (mm), and under the
 /// kinematic memory the stretches of its Jenkins elements.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct SlipState2 {
+pub(crate) struct SlipState2 {
     pub u_p: [f64; 2],
     pub kappa: f64,
     pub mem: Stretch2,
@@ -57,15 +57,15 @@ pub struct SlipState2 {
 
 /// Result of one evaluation of the vector law.
 #[derive(Clone, Copy, Debug)]
-pub struct VectorEval {
+pub(crate) struct VectorEval {
     pub p_t: [f64; 2],
     /// ∂p_T/∂u_T: `d_ut[i][j]` = ∂p_i/∂u_j.
-    pub d_ut: [[f64; 2]; 2],
+    pub(crate) d_ut: [[f64; 2]; 2],
     /// ∂p_T/∂u_N.
-    pub d_un: [f64; 2],
+    pub(crate) d_un: [f64; 2],
     pub state: SlipState2,
     pub slip: Slip,
-    pub mu_f: f64,
+    pub(crate) mu_f: f64,
 }
 
 impl SlipState2 {
@@ -84,7 +84,7 @@ impl SlipState2 {
     }
 
     /// The inverse of [`SlipState2::pack`] (`v` holds at least `PACKED` values).
-    pub fn unpack(v: &[f64]) -> Self {
+    pub(crate) fn unpack(v: &[f64]) -> Self {
         let mut s = SlipState2 {
             u_p: [v[0], v[1]],
             kappa: v[2],
@@ -128,7 +128,7 @@ impl TangentialLaw {
     /// The law in two directions from `committed` at pressure p (stiffness
     /// k_n = dp/du_N) and total tangential displacement u_t (see the module
     /// comment). With u_t along one axis it is [`TangentialLaw::eval`].
-    pub fn eval_vector(
+    pub(crate) fn eval_vector(
         &self,
         p: f64,
         k_n: f64,

@@ -4,6 +4,7 @@
 //! Jenkins element; the Iwan density's discretization against the loop
 //! areas of the exact 1-D law.
 
+use super::jenkins::{Stretch2, IWAN_LOWEST, JENKINS};
 use super::vector_tests::{all_laws, approach, drive2, paths, pressure, reach, Lcg};
 use super::*;
 

@@ -3,6 +3,8 @@
 //! packing and check. Closed-form 2-D paths and the Iwan discretization's
 //! error: `vector_paths_tests`.
 
+use super::jenkins::Stretch2;
+use super::vector::VectorEval;
 use super::*;
 use crate::numbers::fd;
 

@@ -48,7 +48,7 @@ use super::{Memory, SlipState, SlipState2, TangentialLaw};
 /// One end of a step of a scalar point: the normal pressure p_N (MPa), u_T
 /// (mm), p_T (MPa) and the law's history there.
 #[derive(Clone, Copy, Debug)]
-pub struct Side<'a> {
+pub(crate) struct Side<'a> {
     pub p_n: f64,
     pub u_t: f64,
     pub p_t: f64,
@@ -58,7 +58,7 @@ pub struct Side<'a> {
 /// One end of a step of a point of the vector law: p_N (MPa), u_T (mm) and
 /// p_T (MPa) as vectors, the history there.
 #[derive(Clone, Copy, Debug)]
-pub struct Side2<'a> {
+pub(crate) struct Side2<'a> {
     pub p_n: f64,
     pub u_t: [f64; 2],
     pub p_t: [f64; 2],
@@ -78,7 +78,7 @@ impl TangentialLaw {
     /// The energy dissipated per unit area from `before` to `after`, the
     /// committed and the new state of one step (see the module comment),
     /// MPa·mm = N·mm/mm²; never negative.
-    pub fn slip_work(&self, before: &Side, after: &Side) -> f64 {
+    pub(crate) fn slip_work(&self, before: &Side, after: &Side) -> f64 {
         if self.memory == Memory::Isotropic {
             let slip = after.slip.u_p - before.slip.u_p;
             return (0.5 * (before.p_t + after.p_t) * slip).max(0.0);
@@ -93,7 +93,7 @@ impl TangentialLaw {
 
     /// [`TangentialLaw::slip_work`] of the vector law (dot products of
     /// force and slip).
-    pub fn slip_work2(&self, before: &Side2, after: &Side2) -> f64 {
+    pub(crate) fn slip_work2(&self, before: &Side2, after: &Side2) -> f64 {
         if self.memory == Memory::Isotropic {
             let (a, b) = (before.slip.u_p, after.slip.u_p);
             let w = (0..2)

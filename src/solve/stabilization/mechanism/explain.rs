@@ -84,7 +84,7 @@ impl Stabilizer {
     /// loaded by a torque beyond it, a body whose position nothing fixes at
     /// zero load, or a free section whose force is all that holds the sides
     /// of its cut together while other loads act.
-    pub fn explain(&self, model: &Model, committed: &State, lambda: f64) -> Option<String> {
+    pub(crate) fn explain(&self, model: &Model, committed: &State, lambda: f64) -> Option<String> {
         if let Some(why) = self.beyond_friction(model, &committed.u, lambda) {
             return Some(why);
         }
