@@ -381,106 +381,127 @@ pub(super) fn check_gauss_point(model: &Model, i: usize, v: &[f64]) -> Decoded<(
         ));
     }
     let body = model.mesh.elements[model.element_of_point(i)].body;
-    let mat = &model.materials[body];
-    let at = || {
-        format!(
-            "section gauss: Gauss point {} (body {:?})",
-            i + 1,
-            model.mesh.bodies[body]
-        )
-    };
-    let (sig, ep, peeq) = (&v[0..4], &v[4..8], v[8]);
+    let at = format!(
+        "section gauss: Gauss point {} (body {:?})",
+        i + 1,
+        model.mesh.bodies[body]
+    );
     // with twist: σ_rθ, σ_zθ and εᵖ_rθ, εᵖ_zθ follow (0 without it)
     let (ts, te) = if v.len() >= PointState::PACKED_TWIST {
         ([v[10], v[11]], [v[12], v[13]])
     } else {
         ([0.0; 2], [0.0; 2])
     };
+    let stress = [v[0], v[1], v[2], v[3], ts[0], ts[1]];
+    check_stress(&at, &stress, model.plane)?;
+    let plastic = Plastic {
+        strain: [v[4], v[5], v[6], v[7]],
+        twist: te,
+        peeq: v[8],
+        yielding: v[9],
+    };
+    plastic.check(&at, &model.materials[body], &stress)
+}
+
+/// A stored stress within [`MAX_STRESS`], and σzz = 0 in plane stress.
+fn check_stress(at: &str, all: &[f64; 6], plane: crate::physics::material::Plane) -> Decoded<()> {
     const STRESS: [&str; 6] = ["σxx", "σyy", "σxy", "σzz", "σ_rθ", "σ_zθ"];
-    let all = [sig[0], sig[1], sig[2], sig[3], ts[0], ts[1]];
     if let Some(k) = all.iter().position(|x| x.abs() > MAX_STRESS) {
         return Err(format!(
-            "{}: stress {} = {} MPa, beyond ±{} MPa (10⁴ × the largest Young's modulus of a case)",
-            at(),
+            "{at}: stress {} = {} MPa, beyond ±{} MPa (10⁴ × the largest Young's modulus of a case)",
             STRESS[k],
             num(all[k]),
             num(MAX_STRESS)
         ));
     }
-    if model.plane == crate::physics::material::Plane::Stress && sig[3] != 0.0 {
+    if plane == crate::physics::material::Plane::Stress && all[3] != 0.0 {
         return Err(format!(
-            "{}: σzz = {} MPa in plane stress (0 exactly)",
-            at(),
-            num(sig[3])
-        ));
-    }
-    let strain = || {
-        format!(
-            "[{}]",
-            ep.iter().map(|&x| num(x)).collect::<Vec<_>>().join(", ")
-        )
-    };
-    if !mat.yield_stress.is_finite() {
-        if ep.iter().chain(&te).any(|&x| x != 0.0) || peeq != 0.0 || v[9] != 0.0 {
-            return Err(format!(
-                "{}: plastic strain {} (εᵖxx εᵖyy εᵖxy εᵖzz), equivalent plastic strain {} and yielding flag {} in an elastic body (no yield_stress: all 0)",
-                at(),
-                strain(),
-                num(peeq),
-                num(v[9])
-            ));
-        }
-        return Ok(());
-    }
-    let twist = 2.0 * (te[0] * te[0] + te[1] * te[1]);
-    let norm = (ep[0] * ep[0] + ep[1] * ep[1] + ep[3] * ep[3] + 2.0 * ep[2] * ep[2] + twist).sqrt();
-    if norm > MAX_PLASTIC_STRAIN {
-        return Err(format!(
-            "{}: plastic strain {} (εᵖxx εᵖyy εᵖxy εᵖzz) of magnitude {}, beyond {}",
-            at(),
-            strain(),
-            num(norm),
-            num(MAX_PLASTIC_STRAIN)
-        ));
-    }
-    if peeq > MAX_PEEQ {
-        return Err(format!(
-            "{}: equivalent plastic strain {}, beyond {}",
-            at(),
-            num(peeq),
-            num(MAX_PEEQ)
-        ));
-    }
-    let trace = ep[0] + ep[1] + ep[3];
-    if trace.abs() > STRAIN_REL * peeq.max(norm) + STRAIN_ABS {
-        return Err(format!(
-            "{}: plastic strain {} (εᵖxx εᵖyy εᵖxy εᵖzz) of trace {} (plastic flow is deviatoric: trace 0)",
-            at(),
-            strain(),
-            num(trace)
-        ));
-    }
-    let least = (2.0f64 / 3.0).sqrt() * norm;
-    if peeq < least * (1.0 - STRAIN_REL) - STRAIN_ABS {
-        return Err(format!(
-            "{}: equivalent plastic strain {} below √(2/3)|εᵖ| = {} of the plastic strain {} (εᵖxx εᵖyy εᵖxy εᵖzz): it accumulates √(2/3)|Δεᵖ| of every increment",
-            at(),
-            num(peeq),
-            num(least),
-            strain()
-        ));
-    }
-    let q = VonMises::equivalent_stress(&all);
-    let y = mat.yield_stress + mat.hardening * peeq;
-    if q > y * (1.0 + YIELD_REL) {
-        return Err(format!(
-            "{}: equivalent stress {} MPa above the yield stress σ_Y + H ε̄ᵖ = {} MPa (a return mapping leaves it on or inside the yield surface)",
-            at(),
-            num(q),
-            num(y)
+            "{at}: σzz = {} MPa in plane stress (0 exactly)",
+            num(all[3])
         ));
     }
     Ok(())
+}
+
+/// The plastic part of a stored Gauss point state, as read.
+struct Plastic {
+    /// εᵖxx εᵖyy εᵖxy εᵖzz
+    strain: [f64; 4],
+    /// εᵖ_rθ, εᵖ_zθ (0 without twist)
+    twist: [f64; 2],
+    peeq: f64,
+    yielding: f64,
+}
+
+impl Plastic {
+    fn strain_text(&self) -> String {
+        let parts: Vec<String> = self.strain.iter().map(|&x| num(x)).collect();
+        format!("[{}]", parts.join(", "))
+    }
+
+    /// The rules of [`check_gauss_point`] for the plastic state, each with
+    /// its own message: none at all in an elastic body; else bounded,
+    /// deviatoric, ε̄ᵖ ≥ √(2/3)|εᵖ|, and the stress on or inside the yield
+    /// surface.
+    fn check(&self, at: &str, mat: &VonMises, stress: &[f64; 6]) -> Decoded<()> {
+        let (ep, te, peeq) = (&self.strain, &self.twist, self.peeq);
+        if !mat.yield_stress.is_finite() {
+            if ep.iter().chain(te).any(|&x| x != 0.0) || peeq != 0.0 || self.yielding != 0.0 {
+                return Err(format!(
+                    "{at}: plastic strain {} (εᵖxx εᵖyy εᵖxy εᵖzz), equivalent plastic strain {} and yielding flag {} in an elastic body (no yield_stress: all 0)",
+                    self.strain_text(),
+                    num(peeq),
+                    num(self.yielding)
+                ));
+            }
+            return Ok(());
+        }
+        let twist = 2.0 * (te[0] * te[0] + te[1] * te[1]);
+        let norm =
+            (ep[0] * ep[0] + ep[1] * ep[1] + ep[3] * ep[3] + 2.0 * ep[2] * ep[2] + twist).sqrt();
+        if norm > MAX_PLASTIC_STRAIN {
+            return Err(format!(
+                "{at}: plastic strain {} (εᵖxx εᵖyy εᵖxy εᵖzz) of magnitude {}, beyond {}",
+                self.strain_text(),
+                num(norm),
+                num(MAX_PLASTIC_STRAIN)
+            ));
+        }
+        if peeq > MAX_PEEQ {
+            return Err(format!(
+                "{at}: equivalent plastic strain {}, beyond {}",
+                num(peeq),
+                num(MAX_PEEQ)
+            ));
+        }
+        let trace = ep[0] + ep[1] + ep[3];
+        if trace.abs() > STRAIN_REL * peeq.max(norm) + STRAIN_ABS {
+            return Err(format!(
+                "{at}: plastic strain {} (εᵖxx εᵖyy εᵖxy εᵖzz) of trace {} (plastic flow is deviatoric: trace 0)",
+                self.strain_text(),
+                num(trace)
+            ));
+        }
+        let least = (2.0f64 / 3.0).sqrt() * norm;
+        if peeq < least * (1.0 - STRAIN_REL) - STRAIN_ABS {
+            return Err(format!(
+                "{at}: equivalent plastic strain {} below √(2/3)|εᵖ| = {} of the plastic strain {} (εᵖxx εᵖyy εᵖxy εᵖzz): it accumulates √(2/3)|Δεᵖ| of every increment",
+                num(peeq),
+                num(least),
+                self.strain_text()
+            ));
+        }
+        let q = VonMises::equivalent_stress(stress);
+        let y = mat.yield_stress + mat.hardening * peeq;
+        if q > y * (1.0 + YIELD_REL) {
+            return Err(format!(
+                "{at}: equivalent stress {} MPa above the yield stress σ_Y + H ε̄ᵖ = {} MPa (a return mapping leaves it on or inside the yield surface)",
+                num(q),
+                num(y)
+            ));
+        }
+        Ok(())
+    }
 }
 
 /// The designer's outputs: each increment's record and the events located
