@@ -313,9 +313,8 @@ mod tests {
         let x = unit_cube();
         let mut seen = [0; 20];
         for [a, m, b] in EDGES {
-            for k in 0..3 {
-                assert_eq!(x[m][k], 0.5 * (x[a][k] + x[b][k]), "edge {a}-{m}-{b}");
-            }
+            let mid: [f64; 3] = std::array::from_fn(|k| 0.5 * (x[a][k] + x[b][k]));
+            assert_eq!(x[m], mid, "edge {a}-{m}-{b}");
             // the ends differ in one coordinate only
             assert_eq!((0..3).filter(|&k| x[a][k] != x[b][k]).count(), 1);
             seen[m] += 1;

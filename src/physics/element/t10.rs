@@ -315,9 +315,8 @@ mod tests {
     fn edge_mid_nodes_are_at_the_midpoints() {
         let mut seen = [0; 10];
         for [a, m, b] in EDGES {
-            for k in 0..3 {
-                assert_eq!(NODE_XI[m][k], 0.5 * (NODE_XI[a][k] + NODE_XI[b][k]));
-            }
+            let mid: [f64; 3] = std::array::from_fn(|k| 0.5 * (NODE_XI[a][k] + NODE_XI[b][k]));
+            assert_eq!(NODE_XI[m], mid, "edge {a}-{m}-{b}");
             seen[m] += 1;
             seen[a] += 1;
             seen[b] += 1;
