@@ -7,8 +7,11 @@ pub mod dofs;
 pub mod edge;
 pub mod family;
 pub mod gauss;
+pub(crate) mod gauss3;
+pub(crate) mod h20;
 pub mod q8;
 pub mod solid;
+pub(crate) mod t10;
 pub mod t6;
 
 /// What turns an integral over the mesh plane into one over the body: the
