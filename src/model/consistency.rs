@@ -54,6 +54,7 @@ pub(crate) fn check_mesh(case: &Case, mesh: &Mesh, place: &str) -> Result<()> {
     }
     names(mesh, place)?;
     magnitudes(case, mesh, place)?;
+    gaps_within_bodies(case, mesh)?;
     match &case.mesh.file {
         None => blocks_overlap(case, place)?,
         Some(_) => elements_overlap(mesh, place)?,
@@ -275,6 +276,70 @@ fn magnitudes(case: &Case, mesh: &Mesh, place: &str) -> Result<()> {
                     mesh.nodes[el.nodes()[0]][0],
                     mesh.nodes[el.nodes()[0]][1],
                     ranges::ELEMENT_SIZE.refusal(size)
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The largest interference a small-strain model of a body can close, as a
+/// share of the body's size (the diagonal of its bounding box): 10 %, a
+/// strain far beyond any metal's yield and near the end of small strain
+/// for a polymer (fits are 0.1-0.2 %).
+const MAX_INTERFERENCE_SHARE: f64 = 0.1;
+
+/// Each interface's `gap` against the sizes of the bodies it joins: an
+/// interference above [`MAX_INTERFERENCE_SHARE`] of the smaller body, or a
+/// clearance larger than the smaller body itself, is refused. Either is what
+/// a mesh in metres under a case in millimetres gives (the gap then
+/// matches or dwarfs the part), and the run would answer without a hint.
+fn gaps_within_bodies(case: &Case, mesh: &Mesh) -> Result<()> {
+    let mut lo = vec![[f64::INFINITY; 2]; mesh.bodies.len()];
+    let mut hi = vec![[f64::NEG_INFINITY; 2]; mesh.bodies.len()];
+    for el in &mesh.elements {
+        for &n in el.corners() {
+            for k in 0..2 {
+                lo[el.body][k] = lo[el.body][k].min(mesh.nodes[n][k]);
+                hi[el.body][k] = hi[el.body][k].max(mesh.nodes[n][k]);
+            }
+        }
+    }
+    let size = |b: usize| (hi[b][0] - lo[b][0]).hypot(hi[b][1] - lo[b][1]);
+    for iface in &mesh.interfaces {
+        let Some(law) = case.interface.get(&iface.name) else {
+            continue;
+        };
+        let (a, b) = (iface.body_a, iface.body_b);
+        let (smaller, body) = if size(a) <= size(b) {
+            (size(a), a)
+        } else {
+            (size(b), b)
+        };
+        let (limit, what, beyond) = if law.gap < 0.0 {
+            let beyond = format!(
+                "more than the {} % small strain can close",
+                100.0 * MAX_INTERFERENCE_SHARE
+            );
+            (MAX_INTERFERENCE_SHARE * smaller, "an interference", beyond)
+        } else {
+            (
+                smaller,
+                "a clearance",
+                "larger than the body itself".to_string(),
+            )
+        };
+        if law.gap.abs() > limit {
+            return Err(Error::input(
+                case.at(&format!("[interface.{}] gap", clip(&iface.name))),
+                format!(
+                    "gap = {} mm is {what} of {} % of body \"{}\" ({} mm across), {beyond}: \
+                     are the case and the mesh in the same unit (mm; a mesh in metres is 1000 \
+                     times too small)?",
+                    law.gap,
+                    crate::numbers::sig(100.0 * law.gap.abs() / smaller, 3),
+                    clip(&mesh.bodies[body]),
+                    crate::numbers::sig(smaller, 4),
                 ),
             ));
         }
