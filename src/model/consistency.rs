@@ -271,7 +271,8 @@ fn magnitudes(case: &Case, mesh: &Mesh, place: &str) -> Result<()> {
             return Err(Error::input(
                 sized_by(case, el.body, mesh, centre, place),
                 format!(
-                    "element {e} of body \"{}\" near ({}, {}): {}",
+                    "{} of body \"{}\" near ({}, {}): {}",
+                    mesh.element_label(e),
                     clip(&mesh.bodies[el.body]),
                     mesh.nodes[el.nodes()[0]][0],
                     mesh.nodes[el.nodes()[0]][1],
@@ -604,12 +605,14 @@ fn elements_overlap(mesh: &Mesh, place: &str) -> Result<()> {
                     return Err(mesh_err(
                         place,
                         format!(
-                            "bodies \"{}\" and \"{}\" overlap: element {a} of \"{}\" near ({:.4}, {:.4}) and element {b} of \"{}\" share area (two bodies cannot fill the same area){}",
+                            "bodies \"{}\" and \"{}\" overlap: {} of \"{}\" near ({:.4}, {:.4}) and {} of \"{}\" share area (two bodies cannot fill the same area){}",
                             clip(&mesh.bodies[ea.body]),
                             clip(&mesh.bodies[eb.body]),
+                            mesh.element_label(a),
                             clip(&mesh.bodies[ea.body]),
                             m[0],
                             m[1],
+                            mesh.element_label(b),
                             clip(&mesh.bodies[eb.body]),
                             if apart.contains(&key) {
                                 format!("; bodies joined by a non-matching interface may overlap by {} of an element (two meshes of one curve), no more: an interference is a negative `gap` on meshes that touch", crate::model::interface::OVERLAP_LIMIT)

@@ -745,7 +745,11 @@ fn check_elements(
         ElementGeometry::with_section(el.family, &coords, rule, section).map_err(|m| {
             Error::Mesh {
                 place: place.to_string(),
-                message: format!("element {e} of body \"{}\": {m}", mesh.bodies[el.body]),
+                message: format!(
+                    "{} of body \"{}\": {m}",
+                    mesh.element_label(e),
+                    mesh.bodies[el.body]
+                ),
             }
         })?;
     }

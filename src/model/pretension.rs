@@ -356,8 +356,10 @@ fn sides_of_line(
             return Err(Error::input(
                 at,
                 format!(
-                    "the cut {line} runs through element {e} of body \"{name}\" near ({:.4}, {:.4}): a cut follows element edges (a block breakpoint at {line}, or a mesh line there in a Gmsh mesh)",
-                    c[0], c[1]
+                    "the cut {line} runs through {} of body \"{name}\" near ({:.4}, {:.4}): a cut follows element edges (a block breakpoint at {line}, or a mesh line there in a Gmsh mesh)",
+                    mesh.element_label(e),
+                    c[0],
+                    c[1]
                 ),
             ));
         }

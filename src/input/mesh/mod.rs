@@ -126,6 +126,18 @@ pub struct Mesh {
     /// Dofs per node and their numbering ([`NodeDofs`]): set by the model
     /// (3 with twist), 2 otherwise.
     pub node_dofs: NodeDofs,
+    /// A mesh read from a file: the file's name and each element's tag in it,
+    /// for messages ([`Mesh::element_label`]); none for a generated or
+    /// refined mesh.
+    pub(crate) source: Option<ElementSource>,
+}
+
+/// Where the elements of a mesh read from a file come from.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub(crate) struct ElementSource {
+    pub(crate) file: String,
+    /// The file's tag of each element, in the mesh's order.
+    pub(crate) tags: Vec<u64>,
 }
 
 /// A broken mesh or mesh specification; the text names what and where.
@@ -152,6 +164,19 @@ impl Mesh {
             }
         }
         node_body
+    }
+
+    /// How messages name element `e`: by its tag in the file it was read
+    /// from (what Gmsh shows), else by its index.
+    pub(crate) fn element_label(&self, e: usize) -> String {
+        match self
+            .source
+            .as_ref()
+            .and_then(|s| Some((s.tags.get(e)?, &s.file)))
+        {
+            Some((tag, file)) => format!("{file} element {tag}"),
+            None => format!("element {e}"),
+        }
     }
 
     pub fn num_dofs(&self) -> usize {
@@ -245,8 +270,11 @@ impl Mesh {
                 if let Err(m) = el.family.physical_derivs(&coords, xi) {
                     let c = self.centroid(e);
                     return err(format!(
-                        "element {e} of body \"{}\" near ({:.4}, {:.4}): {m}",
-                        self.bodies[el.body], c[0], c[1]
+                        "{} of body \"{}\" near ({:.4}, {:.4}): {m}",
+                        self.element_label(e),
+                        self.bodies[el.body],
+                        c[0],
+                        c[1]
                     ));
                 }
             }

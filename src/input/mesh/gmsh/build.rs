@@ -6,7 +6,9 @@
 use super::parse::MshFile;
 use crate::error::{Error, Result};
 use crate::input::mesh::blocks::InterfaceSpec;
-use crate::input::mesh::{ContactEdge, Element, Family, Interface, Mesh, NonMatching};
+use crate::input::mesh::{
+    ContactEdge, Element, ElementSource, Family, Interface, Mesh, NonMatching,
+};
 use std::collections::{BTreeMap, HashMap, HashSet};
 
 fn mesh_err<T>(place: &str, message: impl Into<String>) -> Result<T> {
@@ -126,9 +128,17 @@ fn add_body_nodes(
 /// The body elements (8-node quadrangles, Gmsh type 16, and 6-node
 /// triangles, type 9), counter-clockwise.
 fn add_elements(msh: &MshFile, block_body: &[Option<usize>], new_id: &[usize], mesh: &mut Mesh) {
+    let mut source = ElementSource {
+        // the file's own name: the message's place names its folder
+        file: std::path::Path::new(&msh.name)
+            .file_name()
+            .map_or(msh.name.clone(), |f| f.to_string_lossy().into_owned()),
+        tags: Vec::new(),
+    };
     for (k, b) in msh.blocks.iter().enumerate() {
         let Some(body) = block_body[k] else { continue };
         let family = if b.etype == 9 { Family::T6 } else { Family::Q8 };
+        source.tags.extend(&b.tags);
         for conn in b.conn.chunks_exact(family.nodes()) {
             let n: Vec<usize> = conn.iter().map(|&c| new_id[c]).collect();
             let corners = family.corners();
@@ -147,6 +157,7 @@ fn add_elements(msh: &MshFile, block_body: &[Option<usize>], new_id: &[usize], m
             mesh.elements.push(Element::new(family, &n, body));
         }
     }
+    mesh.source = Some(source);
 }
 
 /// Refuses a node shared by two bodies (bodies in contact need their own nodes).

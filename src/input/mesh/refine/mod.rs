@@ -352,6 +352,7 @@ pub(crate) fn refine_with(
     }
     let mut out = mesh.clone();
     out.elements.clear();
+    out.source = None;
     let mut next = RefineState::default();
     // the existing hanging nodes are the quarter points of their coarse edge
     let mut quarters = Quarters {
