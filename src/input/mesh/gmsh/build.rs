@@ -245,7 +245,7 @@ fn add_curve_sets(
                     return mesh_err(
                         &b.at,
                         format!(
-                            "line element {} of physical curve \"{name}\": node {} is on no body element",
+                            "line element {} of physical curve \"{name}\": node {} is on no body element (is its surface in a physical surface?)",
                             b.tags[k], msh.node_tags[conn[a]]
                         ),
                     );
@@ -580,7 +580,7 @@ fn coincident_edges(
     let unpaired = |n: usize, on: &str, other: &str| -> Result<Vec<ContactEdge>> {
         let x = mesh.nodes[n];
         Err(Error::input(at, format!(
-            "node {} at ({}, {}) of curve \"{on}\" in {} has no partner on curve \"{other}\" within {tol:.1e} mm (the two sides must have coincident nodes)",
+            "node {} at ({}, {}) of curve \"{on}\" in {} has no partner on curve \"{other}\" within {tol:.1e} mm (the two sides must have coincident nodes; an interference is the law's negative `gap`, not an overlap in the mesh, and sides meshed apart take `matching = false`)",
             tag_of[n], x[0], x[1], msh.name
         )))
     };
