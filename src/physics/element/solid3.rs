@@ -998,6 +998,7 @@ mod tests {
                 }
             }
             let mut its = 0;
+            let mut history = Vec::new();
             let trial = loop {
                 let (fe, ke, trial) = eval(
                     &g,
@@ -1008,6 +1009,7 @@ mod tests {
                     Some(Tangent::Consistent),
                 );
                 let r = DVector::from_iterator(free.len(), free.iter().map(|&p| fe[p]));
+                history.push(r.amax());
                 if r.amax() < 1e-12 * SY {
                     break trial;
                 }
@@ -1020,6 +1022,17 @@ mod tests {
                 }
             };
             committed = trial;
+            // quadratic convergence near the solution (the consistent
+            // tangent): ρ_{k+1} ≤ 100 ρ_k², ρ = |r| / |r_0|, above round-off
+            let rho: Vec<f64> = history.iter().map(|r| r / history[0]).collect();
+            for k in 0..rho.len() - 1 {
+                if rho[k] < 1e-2 && rho[k + 1] > 1e-13 {
+                    assert!(
+                        rho[k + 1] <= 100.0 * rho[k] * rho[k],
+                        "e = {e}: |r| {history:?}"
+                    );
+                }
+            }
             let sigma = if E * e <= SY {
                 E * e
             } else {
@@ -1048,8 +1061,10 @@ mod tests {
             }
             crossed |= committed[0].yielding;
             eprintln!(
-                "uniaxial e = {e}: σ = {:.6} (closed form {sigma:.6}), ε̄ᵖ = {:.3e}, {its} Newton iterations",
-                committed[0].stress[0], committed[0].peeq
+                "uniaxial e = {e}: σ = {:.6} (closed form {sigma:.6}), ε̄ᵖ = {:.3e}, {its} Newton iterations, |r| {:?}",
+                committed[0].stress[0],
+                committed[0].peeq,
+                history.iter().map(|r| format!("{r:.1e}")).collect::<Vec<_>>()
             );
         }
         assert!(crossed);
