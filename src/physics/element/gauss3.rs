@@ -1,7 +1,6 @@
 //! A Gauss rule in three dimensions: the points and weights the solid
 //! element families integrate with ([`super::h20`] on [−1, 1]³,
 //! [`super::t10`] on the reference tetrahedron of volume ⅙).
-#![allow(dead_code)] // used by the 3D solid element (issue 44), not yet wired
 
 /// Natural coordinates (ξ, η, ζ) and weights (on [−1, 1]³ for the hexahedron,
 /// on the reference tetrahedron (0,0,0), (1,0,0), (0,1,0), (0,0,1) of volume ⅙

@@ -11,6 +11,7 @@ pub(crate) mod gauss3;
 pub(crate) mod h20;
 pub mod q8;
 pub mod solid;
+pub(crate) mod solid3;
 pub(crate) mod t10;
 pub mod t6;
 
