@@ -55,7 +55,7 @@ pub(super) fn constraints(
         }
     }
     let nd = mesh.node_dofs;
-    let at = |n: usize| mesh.nodes[n];
+    let at = |n: usize| mesh.xy(n);
     let mut out = Vec::new();
     for h in hanging {
         // the coarse edge as its element holds it after the cuts

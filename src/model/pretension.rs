@@ -488,7 +488,7 @@ pub fn finish(
 /// one master, never a dof tied twice.
 pub fn constraints(
     nd: NodeDofs,
-    nodes: &[[f64; 2]],
+    nodes: &[[f64; 3]],
     sections: &[Section],
     prescribed: &[(usize, f64)],
     prescribed_history: &[Option<usize>],
@@ -620,7 +620,7 @@ fn groups_by_root(sections: &[Section]) -> BTreeMap<usize, Vec<(usize, Vec<usize
 /// values where no section enters), `sections_at` all sections through it.
 #[allow(clippy::too_many_arguments)]
 fn held_twice(
-    nodes: &[[f64; 2]],
+    nodes: &[[f64; 3]],
     node: usize,
     comp: usize,
     sections_at: &[usize],
@@ -629,7 +629,7 @@ fn held_twice(
     names: &dyn Fn(&[usize]) -> String,
 ) -> Error {
     let x = ["ux", "uy"][comp];
-    let [px, py] = nodes[node];
+    let [px, py, _] = nodes[node];
     let at = format!("node {node} at ({px}, {py})");
     let where_ = if sections_at.len() > 1 {
         format!(

@@ -71,7 +71,7 @@ fn ascii_and_binary_files_give_identical_models() {
 /// Every node of the Gmsh mesh has a node of the generated mesh within 1e-6 mm
 /// and vice versa; returns the largest distance.
 fn node_distance(g: &asperity::input::mesh::Mesh, p: &asperity::input::mesh::Mesh) -> f64 {
-    let nearest = |x: [f64; 2], m: &asperity::input::mesh::Mesh| {
+    let nearest = |x: [f64; 3], m: &asperity::input::mesh::Mesh| {
         m.nodes
             .iter()
             .map(|y| (x[0] - y[0]).hypot(x[1] - y[1]))

@@ -591,7 +591,7 @@ fn the_probe_of_a_mortar_interface_is_the_master_node_under_it() {
         std::fs::read_to_string(common::root().join("tests/data/hertz-sphere/case.toml")).unwrap();
     assert!(text.contains("weights = \"mortar\""));
     let model = common::model(&text);
-    let x = model.mesh.nodes[model.probe_node];
+    let x = model.mesh.xy(model.probe_node);
     assert_eq!(x, [0.0, 0.0], "probe node {} at {x:?}", model.probe_node);
     let flat = model.mesh.bodies.iter().position(|b| b == "flat").unwrap();
     let owner = model

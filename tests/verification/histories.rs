@@ -211,7 +211,7 @@ fn a_shear_traction_has_its_resultant_and_the_simple_shear_displacement() {
     assert!(react[1].abs() < 1e-9 * tau * w, "{react:?}");
     let g = E / (2.0 * (1.0 + NU));
     let mid = (0..model.mesh.nodes.len())
-        .find(|&n| model.mesh.nodes[n] == [w / 2.0, h])
+        .find(|&n| model.mesh.xy(n) == [w / 2.0, h])
         .expect("a node at the middle of the top");
     let (ux, uy) = (r.final_state.u[2 * mid], r.final_state.u[2 * mid + 1]);
     let exact = tau * h / g;

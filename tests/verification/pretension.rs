@@ -272,7 +272,7 @@ fn a_hanging_node_passes_the_patch_test() {
             .collect(),
     );
     let mesh = &mut model.mesh;
-    mesh.nodes = nodes.clone();
+    mesh.nodes = nodes.iter().map(|&[x, y]| [x, y, 0.0]).collect();
     mesh.node_sets.clear();
     mesh.edge_sets.clear();
     model.sections.clear();

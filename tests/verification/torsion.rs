@@ -40,7 +40,7 @@ fn reaction_torque(model: &Model, state: &State, select: impl Fn([f64; 2]) -> bo
         .zip(&state.reactions)
         .filter_map(|(&(d, _), &r)| {
             let (n, c) = nd.node_of(d);
-            let x = model.mesh.nodes[n];
+            let x = model.mesh.xy(n);
             (c == 2 && select(x)).then_some(x[0] * r)
         })
         .sum()

@@ -21,7 +21,7 @@ fn in_triangles(mesh: &Mesh) -> Mesh {
         let centre = (0..8).fold([0.0, 0.0], |p, a| {
             [p[0] + n[a] * c[a][0], p[1] + n[a] * c[a][1]]
         });
-        out.nodes.push(centre);
+        out.nodes.push([centre[0], centre[1], 0.0]);
         let d = out.nodes.len() - 1;
         let q = el.nodes();
         out.elements

@@ -253,9 +253,9 @@ fn add_block(mesh: &mut Mesh, body: usize, xs: Vec<f64>, ys: Vec<f64>, spec: &Bl
                 let (b, t) = ends(i);
                 let f = (y - y0) / (y1 - y0);
                 mesh.nodes
-                    .push([b[0] + f * (t[0] - b[0]), b[1] + f * (t[1] - b[1])]);
+                    .push([b[0] + f * (t[0] - b[0]), b[1] + f * (t[1] - b[1]), 0.0]);
             } else {
-                mesh.nodes.push([x, y]);
+                mesh.nodes.push([x, y, 0.0]);
             }
         }
     }

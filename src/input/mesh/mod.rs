@@ -115,7 +115,9 @@ pub struct NonMatching {
 
 #[derive(Clone, Debug, Default)]
 pub struct Mesh {
-    pub nodes: Vec<[f64; 2]>,
+    /// Node coordinates (x, y, z), mm; z = 0 in a plane or axisymmetric
+    /// model ([`Mesh::xy`] reads its plane).
+    pub nodes: Vec<[f64; 3]>,
     pub elements: Vec<Element>,
     pub bodies: Vec<String>,
     /// Sorted, unique node ids.
@@ -179,6 +181,12 @@ impl Mesh {
         }
     }
 
+    /// Node `n` in the plane of a 2D model (x, y; x = r in axisymmetry).
+    pub fn xy(&self, n: usize) -> [f64; 2] {
+        let [x, y, _] = self.nodes[n];
+        [x, y]
+    }
+
     pub fn num_dofs(&self) -> usize {
         self.node_dofs.count(self.nodes.len())
     }
@@ -188,14 +196,14 @@ impl Mesh {
     pub fn element_coords(&self, e: usize) -> [[f64; 2]; MAX_NODES] {
         let mut x = [[0.0; 2]; MAX_NODES];
         for (a, &n) in self.elements[e].nodes().iter().enumerate() {
-            x[a] = self.nodes[n];
+            x[a] = self.xy(n);
         }
         x
     }
 
     /// Length of a quadratic edge by 3-point Gauss.
     pub(crate) fn edge_length(&self, edge: &[usize; 3]) -> f64 {
-        let x: [[f64; 2]; 3] = std::array::from_fn(|i| self.nodes[edge[i]]);
+        let x: [[f64; 2]; 3] = std::array::from_fn(|i| self.xy(edge[i]));
         edge::gauss_1d(3)
             .iter()
             .map(|&(s, w)| {
@@ -213,7 +221,7 @@ impl Mesh {
     pub fn outline(&self, e: usize) -> Vec<[f64; 2]> {
         self.elements[e]
             .edges()
-            .flat_map(|[a, m, _]| [self.nodes[a], self.nodes[m]])
+            .flat_map(|[a, m, _]| [self.xy(a), self.xy(m)])
             .collect()
     }
 
@@ -243,7 +251,8 @@ impl Mesh {
     /// nodes, and interface pairs that are not coincident or not on their bodies.
     pub fn validate(&self) -> Result<(), MeshError> {
         let err = |s: String| Err(MeshError(s));
-        for (n, x) in self.nodes.iter().enumerate() {
+        for n in 0..self.nodes.len() {
+            let x = self.xy(n);
             if !(x[0].is_finite() && x[1].is_finite()) {
                 return err(format!("node {n} has a non-finite coordinate {x:?}"));
             }
@@ -282,7 +291,7 @@ impl Mesh {
         if let Some(n) = used.iter().position(|u| !u) {
             return err(format!(
                 "node {n} at {:?} belongs to no element",
-                self.nodes[n]
+                self.xy(n)
             ));
         }
         let node_body = self.node_bodies();
@@ -312,7 +321,9 @@ impl Mesh {
                     if let Some(&n) = edges.iter().flatten().find(|&&n| node_body[n] != body) {
                         return err(format!(
                             "interface \"{}\": node {n} at {:?} is not on body \"{}\"",
-                            iface.name, self.nodes[n], self.bodies[body]
+                            iface.name,
+                            self.xy(n),
+                            self.bodies[body]
                         ));
                     }
                 }

@@ -183,14 +183,14 @@ impl<'a> Recovery<'a> {
                 continue;
             }
             let pe = self.patch(v, body);
-            let Some(fit) = Fit::new(mesh.nodes[v], &pe, self.samples) else {
+            let Some(fit) = Fit::new(mesh.xy(v), &pe, self.samples) else {
                 continue;
             };
             for &e in &pe {
                 let el = &mesh.elements[e];
                 for &n in el.nodes() {
                     if n == v || self.boundary[n] || on_edge_through(el, n, v) {
-                        self.add(n, fit.at(mesh.nodes[n]));
+                        self.add(n, fit.at(mesh.xy(n)));
                     }
                 }
             }
@@ -207,13 +207,13 @@ impl<'a> Recovery<'a> {
             .filter(|&&v| self.boundary[v] && self.count[v] == 0)
         {
             let pe = self.patch(v, body);
-            if let Some(fit) = Fit::new(mesh.nodes[v], &pe, self.samples) {
-                second.push((v, fit.at(mesh.nodes[v])));
+            if let Some(fit) = Fit::new(mesh.xy(v), &pe, self.samples) {
+                second.push((v, fit.at(mesh.xy(v))));
                 for &e in &pe {
                     let el = &mesh.elements[e];
                     for [_, m, _] in el.edges() {
                         if self.count[m] == 0 && on_edge_through(el, m, v) {
-                            second.push((m, fit.at(mesh.nodes[m])));
+                            second.push((m, fit.at(mesh.xy(m))));
                         }
                     }
                 }

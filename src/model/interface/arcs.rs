@@ -87,7 +87,7 @@ pub fn arc_lengths(mesh: &Mesh, iface: &Interface, im: &InterfaceModel) -> Vec<f
         while !done[k] {
             done[k] = true;
             let e = &iface.edges[k];
-            let x: [[f64; 2]; 3] = std::array::from_fn(|i| mesh.nodes[e.b[i]]);
+            let x: [[f64; 2]; 3] = std::array::from_fn(|i| mesh.xy(e.b[i]));
             if let Some(p) = last {
                 at += (x[0][0] - p[0]).hypot(x[0][1] - p[1]);
             }

@@ -347,7 +347,7 @@ impl InterfaceModel {
                     pairs.push(Pair {
                         a: edge.a[i],
                         b: edge.b[i],
-                        x: mesh.nodes[edge.b[i]],
+                        x: mesh.xy(edge.b[i]),
                         normal: [0.0; 2],
                         area: 0.0,
                         spring: None,
@@ -359,11 +359,7 @@ impl InterfaceModel {
         }
         let mut points = Vec::new();
         for (edge, ids) in iface.edges.iter().zip(&edge_pairs) {
-            let xb = [
-                mesh.nodes[edge.b[0]],
-                mesh.nodes[edge.b[1]],
-                mesh.nodes[edge.b[2]],
-            ];
+            let xb = [mesh.xy(edge.b[0]), mesh.xy(edge.b[1]), mesh.xy(edge.b[2])];
             // lumped weights and averaged nodal normals
             for (i, &s) in [-1.0, 0.0, 1.0].iter().enumerate() {
                 let (n, ds) = edge_normal(&xb, s);

@@ -21,7 +21,7 @@ pub(super) fn node_to_segment(
     weights: Weights,
     section: crate::physics::element::Section,
 ) -> Result<(Vec<Pair>, Vec<Point>), String> {
-    let coords = |e: &[usize; 3]| -> [[f64; 2]; 3] { std::array::from_fn(|i| mesh.nodes[e[i]]) };
+    let coords = |e: &[usize; 3]| -> [[f64; 2]; 3] { std::array::from_fn(|i| mesh.xy(e[i])) };
     // slave quadrature points
     struct SlavePoint {
         a: [usize; 3],
@@ -165,7 +165,7 @@ pub(super) fn mortar(
     section: crate::physics::element::Section,
 ) -> Result<(Vec<Pair>, Vec<Point>), String> {
     use std::collections::{BTreeMap, HashMap};
-    let coords = |e: &[usize; 3]| -> [[f64; 2]; 3] { std::array::from_fn(|i| mesh.nodes[e[i]]) };
+    let coords = |e: &[usize; 3]| -> [[f64; 2]; 3] { std::array::from_fn(|i| mesh.xy(e[i])) };
     let masters: Vec<[[f64; 2]; 3]> = nm.master.iter().map(coords).collect();
     let ends = ends(&nm.master, &masters);
     let corners: Vec<[f64; 2]> = masters.iter().flat_map(|xe| [xe[0], xe[2]]).collect();
@@ -616,12 +616,12 @@ mod tests {
         };
         let mesh = Mesh {
             nodes: vec![
-                [xs[0], ys],
-                [xs[1], ys],
-                [xs[2], ys],
-                [-1.0, 0.0],
-                [1.0, 0.0],
-                [3.0, 0.0],
+                [xs[0], ys, 0.0],
+                [xs[1], ys, 0.0],
+                [xs[2], ys, 0.0],
+                [-1.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [3.0, 0.0, 0.0],
             ],
             ..Default::default()
         };
@@ -670,15 +670,15 @@ mod tests {
     fn rounded(slave_end: f64) -> Result<(Vec<Pair>, Vec<Point>), String> {
         let arc = |deg: f64| {
             let t = deg.to_radians();
-            [18.0 + 2.0 * t.cos(), -2.0 + 2.0 * t.sin()]
+            [18.0 + 2.0 * t.cos(), -2.0 + 2.0 * t.sin(), 0.0]
         };
         let mesh = Mesh {
             nodes: vec![
-                [18.5, 0.0],
-                [0.5 * (18.5 + slave_end), 0.0],
-                [slave_end, 0.0],
-                [16.0, 0.0],
-                [17.0, 0.0],
+                [18.5, 0.0, 0.0],
+                [0.5 * (18.5 + slave_end), 0.0, 0.0],
+                [slave_end, 0.0, 0.0],
+                [16.0, 0.0, 0.0],
+                [17.0, 0.0, 0.0],
                 arc(90.0),
                 arc(67.5),
                 arc(45.0),

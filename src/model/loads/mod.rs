@@ -523,7 +523,7 @@ fn edge_traction(
     let mut acc = Traction::default();
     let (mut count, mut on_axis) = (0, 0);
     for edge in edges {
-        let x: Vec<[f64; 2]> = edge.iter().map(|&n| mesh.nodes[n]).collect();
+        let x: Vec<[f64; 2]> = edge.iter().map(|&n| mesh.xy(n)).collect();
         if !(in_range(x[1][0], &ld.x_range) && in_range(x[1][1], &ld.y_range)) {
             continue;
         }
@@ -794,7 +794,7 @@ fn boundary_conditions(
         }
         let mut count = 0;
         for &n in nodes {
-            let x = mesh.nodes[n];
+            let x = mesh.xy(n);
             if !(in_range(x[0], &bc.x_range) && in_range(x[1], &bc.y_range)) {
                 continue;
             }

@@ -238,10 +238,10 @@ fn hold_by_supports(model: &Model, body_of: &[usize], cuts: &[Cut], bodies: &mut
             _ if n >= mesh.nodes.len() => {}
             0 | 1 => {
                 let e = if c == 0 { [1.0, 0.0] } else { [0.0, 1.0] };
-                let r = bodies[b].row(cuts, model, n, mesh.nodes[n], e);
+                let r = bodies[b].row(cuts, model, n, mesh.xy(n), e);
                 bodies[b].bc.add(&r);
             }
-            _ => bodies[b].turn += bodies[b].turn_row(mesh.nodes[n]),
+            _ => bodies[b].turn += bodies[b].turn_row(mesh.xy(n)),
         }
         if v != 0.0 && !bodies[b].driven.contains(&h) {
             bodies[b].driven.push(h);

@@ -297,7 +297,7 @@ fn curved_sides_put_every_side_node_on_the_curve() {
     let m = generate(&[cyl, punch], &[], 1).unwrap();
     m.validate().unwrap();
     for &n in &m.node_sets["cyl.bottom"] {
-        let [x, y] = m.nodes[n];
+        let [x, y, _] = m.nodes[n];
         assert!(
             (x * x + (y - 50.0).powi(2) - 2500.0).abs() < 1e-9,
             "{x} {y}"
@@ -306,7 +306,7 @@ fn curved_sides_put_every_side_node_on_the_curve() {
     let bottom = &m.node_sets["punch.bottom"];
     let mut on_round = 0;
     for &n in bottom {
-        let [x, y] = m.nodes[n];
+        let [x, y, _] = m.nodes[n];
         if x > 19.0 + 1e-12 {
             on_round += 1;
             assert!(((x - 19.0).powi(2) + (y - 31.0).powi(2) - 1.0).abs() < 1e-12);
@@ -324,7 +324,7 @@ fn curved_sides_put_every_side_node_on_the_curve() {
     assert!((end[0] - 20.0).abs() < 1e-12 && (end[1] - 31.0).abs() < 1e-12);
     // the crowned top: highest at the middle (x = 10), 100 mm radius
     for &n in &m.node_sets["punch.top"] {
-        let [x, y] = m.nodes[n];
+        let [x, y, _] = m.nodes[n];
         assert!(((x - 10.0).powi(2) + (y - (50.0 - 100.0)).powi(2) - 1e4).abs() < 1e-8);
     }
 }

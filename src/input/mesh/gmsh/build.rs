@@ -118,7 +118,8 @@ fn add_body_nodes(
     for (i, id) in new_id.iter_mut().enumerate() {
         if *id == 0 {
             *id = mesh.nodes.len();
-            mesh.nodes.push(msh.nodes[i]);
+            let [x, y] = msh.nodes[i];
+            mesh.nodes.push([x, y, 0.0]);
             tag_of.push(msh.node_tags[i]);
         }
     }
@@ -588,7 +589,7 @@ fn coincident_edges(
     for e in a_edges {
         let mut b = [0; 3];
         for i in 0..3 {
-            match near(mesh.nodes[e[i]], b_nodes) {
+            match near(mesh.xy(e[i]), b_nodes) {
                 Some(m) => b[i] = m,
                 None => return unpaired(e[i], upper, lower),
             }
@@ -607,7 +608,7 @@ fn coincident_edges(
         },
     );
     for &n in b_nodes {
-        let x = mesh.nodes[n];
+        let x = mesh.xy(n);
         let inside = (0..2).all(|k| x[k] >= lo[k] - tol && x[k] <= hi[k] + tol);
         if inside && near(x, a_nodes).is_none() {
             return unpaired(n, lower, upper);

@@ -421,8 +421,8 @@ fn split(
     }
     let point =
         |i: usize, j: usize| map_point(Family::Q8, c, [i as f64 / 2.0 - 1.0, j as f64 / 2.0 - 1.0]);
-    let add = |out: &mut Mesh, x: [f64; 2]| {
-        out.nodes.push(x);
+    let add = |out: &mut Mesh, [x, y]: [f64; 2]| {
+        out.nodes.push([x, y, 0.0]);
         out.nodes.len() - 1
     };
     // the edge quarter points, [near the edge's start, near its end]
@@ -485,8 +485,8 @@ fn split_t6(
     c: &[[f64; 2]; MAX_NODES],
 ) -> ([Element; 4], Vec<usize>) {
     let point = |xi: [f64; 2]| map_point(Family::T6, c, xi);
-    let add = |out: &mut Mesh, x: [f64; 2]| {
-        out.nodes.push(x);
+    let add = |out: &mut Mesh, [x, y]: [f64; 2]| {
+        out.nodes.push([x, y, 0.0]);
         out.nodes.len() - 1
     };
     // each edge's quarter points in walk order (near its start, near its end)

@@ -111,7 +111,8 @@ fn triangles(nx: usize, ny: usize) -> Mesh {
         }
         let q = el.nodes().to_vec();
         let (a, c) = (mesh.nodes[q[0]], mesh.nodes[q[2]]);
-        mesh.nodes.push([(a[0] + c[0]) / 2.0, (a[1] + c[1]) / 2.0]);
+        mesh.nodes
+            .push([(a[0] + c[0]) / 2.0, (a[1] + c[1]) / 2.0, 0.0]);
         let d = mesh.nodes.len() - 1;
         mesh.elements
             .push(Element::t6([q[0], q[1], q[2], q[4], q[5], d], el.body));

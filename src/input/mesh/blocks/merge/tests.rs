@@ -43,7 +43,7 @@ fn bolt() -> Vec<BlockSpec> {
 
 /// The node ids of a set whose coordinates satisfy `f`, sorted.
 fn nodes_where(m: &Mesh, f: impl Fn([f64; 2]) -> bool) -> Vec<usize> {
-    (0..m.nodes.len()).filter(|&n| f(m.nodes[n])).collect()
+    (0..m.nodes.len()).filter(|&n| f(m.xy(n))).collect()
 }
 
 #[test]
@@ -105,7 +105,7 @@ fn a_rectangle_of_two_blocks_is_the_rectangle_of_one() {
         assert_eq!(own(&blocks[0]) + own(&blocks[1]) - shared, m.nodes.len());
         assert_eq!(m.nodes.len(), one.nodes.len());
         // the same points, and the same elements by their points
-        let key = |x: [f64; 2]| (x[0].to_bits(), x[1].to_bits());
+        let key = |x: [f64; 3]| (x[0].to_bits(), x[1].to_bits());
         let mut a: Vec<_> = m.nodes.iter().map(|&x| key(x)).collect();
         let mut b: Vec<_> = one.nodes.iter().map(|&x| key(x)).collect();
         a.sort_unstable();
@@ -113,7 +113,7 @@ fn a_rectangle_of_two_blocks_is_the_rectangle_of_one() {
         assert_eq!(a, b);
         let els = |m: &Mesh| {
             let mut v: Vec<_> = (0..m.elements.len())
-                .map(|e| m.element_coords(e).map(key))
+                .map(|e| m.element_coords(e).map(|[x, y]| key([x, y, 0.0])))
                 .collect();
             v.sort_unstable();
             v

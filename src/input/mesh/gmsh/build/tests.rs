@@ -73,7 +73,7 @@ fn file_sides_are_oriented_by_their_quadrangles_and_the_slave_side_is_chained() 
         for w in nm.slave.windows(2) {
             assert_eq!(w[0][2], w[1][0], "{what}: slave edges chained");
         }
-        let x = |n: usize| m.nodes[n];
+        let x = |n: usize| m.xy(n);
         assert_eq!(
             x(nm.slave[0][0]),
             [0.0, 0.0],
@@ -127,7 +127,7 @@ fn swapped_curves_are_refused_when_the_bodies_are_named_and_consistent_otherwise
     assert_eq!(m.bodies[iface.body_a], "lower");
     let nm = iface.nonmatching.as_ref().unwrap();
     assert_eq!((nm.slave.len(), nm.master.len()), (4, 8));
-    assert_eq!(m.nodes[nm.slave[0][0]], [10.0, 0.0]);
+    assert_eq!(m.xy(nm.slave[0][0]), [10.0, 0.0]);
     for e in &nm.master {
         assert!(m.nodes[e[2]][0] < m.nodes[e[0]][0]);
     }
@@ -180,7 +180,9 @@ fn a_slave_curve_in_two_pieces_and_an_empty_curve_are_refused() {
 /// Nodes 0..n on the x axis, edges [2k, 2k+1, 2k+2]: a straight chain.
 fn polyline(n_edges: usize) -> (Mesh, Vec<u64>, Vec<[usize; 3]>) {
     let mesh = Mesh {
-        nodes: (0..=2 * n_edges).map(|i| [i as f64 * 0.5, 0.0]).collect(),
+        nodes: (0..=2 * n_edges)
+            .map(|i| [i as f64 * 0.5, 0.0, 0.0])
+            .collect(),
         ..Mesh::default()
     };
     let tags = (0..=2 * n_edges as u64).map(|i| 100 + i).collect();
@@ -197,7 +199,7 @@ fn the_chain_follows_the_edges_whatever_their_order() {
     assert_eq!(chain(&m, &tags, "c", "t.msh", &shuffled).unwrap(), edges);
     // a closed loop is one chain too, from the first edge given
     let mut m = m;
-    m.nodes.push([1.0, 1.0]);
+    m.nodes.push([1.0, 1.0, 0.0]);
     let back = [10, 11, 0];
     let loop_edges = [edges[2], back, edges[0], edges[4], edges[1], edges[3]];
     let c = chain(&m, &tags, "c", "t.msh", &loop_edges).unwrap();
@@ -227,7 +229,7 @@ fn a_broken_or_branching_chain_is_refused_with_the_node() {
         "{e}"
     );
     // an open chain and a closed loop
-    m.nodes.push([9.0, 9.0]);
+    m.nodes.push([9.0, 9.0, 0.0]);
     let e = chain(
         &m,
         &tags,
@@ -269,7 +271,7 @@ fn a_curve_between_two_quadrangles_of_its_body_is_refused() {
         [1.5, 1.0],
     ];
     let m = Mesh {
-        nodes,
+        nodes: nodes.iter().map(|&[x, y]| [x, y, 0.0]).collect(),
         elements: vec![
             Element::q8([0, 1, 4, 5, 6, 7, 8, 9], 0),
             Element::q8([1, 2, 3, 4, 10, 11, 12, 7], 0),
