@@ -4,6 +4,7 @@
 //! ([`NonMatching`]).
 
 pub mod blocks;
+pub(crate) mod box3;
 pub mod gmsh;
 pub mod refine;
 
