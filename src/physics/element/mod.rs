@@ -5,6 +5,7 @@
 pub(crate) mod axisymmetric_twist;
 pub mod dofs;
 pub mod edge;
+pub(crate) mod face;
 pub mod family;
 pub mod gauss;
 pub(crate) mod gauss3;
