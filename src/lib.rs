@@ -7,18 +7,18 @@
 //!
 //! | paper | module |
 //! |---|---|
-//! | 3.2, 3.32: 8-node serendipity quad | [`fem`] |
-//! | 3.8-3.14: von Mises, linear isotropic hardening | [`material`] |
-//! | 2.1-2.11, 3.29-3.31: interface laws and spring pairs | [`interface`] |
+//! | 3.2, 3.32: 8-node serendipity quad (and the 6-node triangle) | [`physics::element`] |
+//! | 3.8-3.14: von Mises, linear isotropic hardening | [`physics::material`] |
+//! | 2.1-2.11, 3.29-3.31: interface laws and spring pairs | [`physics::contact`], [`model`] |
 //! | 4.1-4.8: increments, Newton variants, status loop | [`solve`] |
-//! | eq. 2.1 from the surface (Greenwood-Williamson, McCool) | [`calibrate`] |
+//! | eq. 2.1 from the surface (Greenwood-Williamson, McCool) | [`app`] (`calibrate`) |
 //!
 //! Units: mm, N, MPa everywhere.
 //!
 //! `unsafe` is denied in the whole crate except the PETSc layer
-//! ([`backend`]`::petsc`, feature `parallel`) and two documented system calls:
+//! ([`linalg`]`::backend::petsc`, feature `parallel`) and two documented system calls:
 //! the signal handler's registration ([`interrupt::install`]) and the atomic
-//! swap of the output folder (`renameat2`, [`output`]).
+//! swap of the output folder (`renameat2`, [`files`]).
 
 #![deny(unsafe_code)]
 
