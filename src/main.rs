@@ -88,6 +88,11 @@ struct Overrides {
     /// iterations and plastic strain; see docs/case-schema.md).
     #[arg(long, value_parser = parse_step_control)]
     step_control: Option<asperity::input::case::StepControl>,
+    /// Override: the interface loop of full Newton, `on` or `off` (`[solver]
+    /// interface_loop`; unset, on for the serial backend and off on PETSc:
+    /// docs/parallel.md).
+    #[arg(long, value_name = "on|off", value_parser = parse_on_off)]
+    interface_loop: Option<bool>,
     /// Override: friction scheme (return-mapping | stiffness-modification).
     #[arg(long, value_parser = parse_scheme)]
     friction_scheme: Option<asperity::input::case::settings::FrictionScheme>,
@@ -110,6 +115,7 @@ impl Overrides {
             plain: self.plain,
             step_control: self.step_control,
             friction_scheme: self.friction_scheme,
+            interface_loop: self.interface_loop,
             ..RunOptions::default()
         })
     }
@@ -273,6 +279,14 @@ fn parse_step_control(s: &str) -> Result<asperity::input::case::StepControl, Str
         "fixed" => Ok(asperity::input::case::StepControl::Fixed),
         "auto" => Ok(asperity::input::case::StepControl::Auto),
         _ => Err("expected fixed or auto".into()),
+    }
+}
+
+fn parse_on_off(s: &str) -> Result<bool, String> {
+    match s {
+        "on" => Ok(true),
+        "off" => Ok(false),
+        _ => Err("expected on or off".into()),
     }
 }
 

@@ -169,12 +169,19 @@ fn override_steps(case: &mut Case, opts: &RunOptions) -> Result<()> {
     Ok(())
 }
 
-/// `--plain`, `--friction-scheme` and `--uniform` (the generated blocks
+/// `--plain`, `--interface-loop`, `--friction-scheme` and `--uniform` (the generated blocks
 /// without their grading).
 fn override_scheme_and_grading(case: &mut Case, opts: &RunOptions) -> Result<()> {
     if opts.plain {
         case.solver.acceleration = crate::input::case::Acceleration::None;
         case.overrides.set("[solver] acceleration", "--plain");
+    }
+    if let Some(on) = opts.interface_loop {
+        case.solver.interface_loop = Some(on);
+        case.overrides.set(
+            "[solver] interface_loop",
+            format!("--interface-loop {}", on_off(on)),
+        );
     }
     if let Some(fs) = opts.friction_scheme {
         let option = format!("--friction-scheme {}", scheme_name(fs));
@@ -492,7 +499,19 @@ fn override_args(o: &RunOptions) -> String {
     if let Some(fs) = o.friction_scheme {
         a += &format!(" --friction-scheme {}", scheme_name(fs));
     }
+    if let Some(on) = o.interface_loop {
+        a += &format!(" --interface-loop {}", on_off(on));
+    }
     a
+}
+
+/// `--interface-loop`'s value.
+fn on_off(on: bool) -> &'static str {
+    if on {
+        "on"
+    } else {
+        "off"
+    }
 }
 
 /// `--step-control`'s value for a step control.

@@ -20,6 +20,8 @@ pub struct RunOptions {
     pub plain: bool,
     /// Override: fixed or automatic load steps.
     pub step_control: Option<crate::input::case::StepControl>,
+    /// Override: `[solver] interface_loop` (`--interface-loop on|off`).
+    pub interface_loop: Option<bool>,
     /// Override: friction scheme of every tangential law.
     pub friction_scheme: Option<crate::input::case::settings::FrictionScheme>,
     /// Continue from the `restart.bin` in this output folder.

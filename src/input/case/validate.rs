@@ -525,15 +525,22 @@ fn check_counts_and_method(case: &Case, at: &dyn Fn(&str) -> String) -> Result<(
         return Err(match case.option("[solver] method") {
             Some(o) => Error::input(
                 o,
-                format!(
-                    "{} sets [solver] interface_loop = true, which needs full-newton ({why})",
-                    case.source.display()
-                ),
+                match case.option("[solver] interface_loop") {
+                    Some(l) => format!("{l} needs full-newton ({why})"),
+                    None => format!(
+                        "{} sets [solver] interface_loop = true, which needs full-newton ({why})",
+                        case.source.display()
+                    ),
+                },
             ),
             None => Error::input(
                 at("[solver] interface_loop"),
                 format!(
-                    "true needs method = \"full-newton\" ({why}), not \"{}\"",
+                    "{} needs method = \"full-newton\" ({why}), not \"{}\"",
+                    match case.option("[solver] interface_loop") {
+                        Some(_) => "the interface loop",
+                        None => "true",
+                    },
                     s.method.name()
                 ),
             ),

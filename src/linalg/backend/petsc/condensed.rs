@@ -26,12 +26,32 @@
 //! [`super::LinearDefault::MULTIGRID_FROM`] rows, or chosen on the command
 //! line) the loop does not run and the plain Newton correction stands.
 //!
-//! Which models run the loop is the serial backend's rule
-//! ([`crate::linalg::backend::serial::interface_loop_equations`]), so that a model runs it
-//! on both backends or on neither: then serial and PETSc runs take the same
+//! **Only where the case asks for it by name** ([`runs_loop`]:
+//! `[solver] interface_loop = true` or `--interface-loop on`; unset, the
+//! serial backend runs it and PETSc does not). Z costs m pruned solves
+//! with the factor, as much as a whole Newton iteration or more: on
+//! punch-plane-stress-fine (93,508 dofs, m = 514) 1.4-2.4 s per Newton
+//! iteration against a 1.0-1.3 s factorization with Debian's reference
+//! BLAS (0.2-0.4 s against 0.4 s with OpenBLAS), at 23,716 dofs 0.19 s
+//! against a 0.25 s iteration. It pays where it saves most of the
+//! iterations (the elastic Hertz sphere: 48 → 13, 2.4× faster on one
+//! rank), not where it saves a quarter (the plastic punches: 31 → 22 and
+//! 34 → 26, 1.2-2.6× slower): which, no rule read off the model tells
+//! before the run (docs/performance.md, "The interface loop").
+//! Where it runs, the equations are the serial backend's
+//! ([`crate::linalg::backend::serial::interface_loop_equations`]), so that
+//! serial and PETSc runs of a case that asks for the loop take the same
 //! iterates to round-off.
 
 use super::owned::{InversePattern, Owned};
+use crate::model::Model;
+
+/// Whether the PETSc backend runs the interface loop on `model`: where
+/// `[solver] interface_loop` is set to true (by the case or
+/// `--interface-loop on`), not by default (the module's documentation).
+pub(super) fn runs_loop(model: &Model) -> bool {
+    model.solver.interface_loop == Some(true)
+}
 use super::solver::PetscBackend;
 use super::{chk, ffi, type_is};
 use crate::error::Result;

@@ -265,8 +265,8 @@ pub(crate) struct PetscBackend<'p> {
     pub ksp_iterations: usize,
     keep_solid: bool,
     /// The interface equations where the interface loop runs on this model
-    /// (the serial backend's rule), increasing; else empty
-    /// ([`super::condensed`]).
+    /// (asked for by name, [`super::condensed::runs_loop`], and the serial
+    /// backend's rule), increasing; else empty ([`super::condensed`]).
     pub(super) loop_equations: Vec<usize>,
     /// The KSP whose factor the interface loop uses when SNES solves the
     /// Newton systems ([`PetscBackend::factor_of`]); else the backend's own.
@@ -381,10 +381,10 @@ impl<'p> PetscBackend<'p> {
             ksp_iterations: 0,
             keep_solid: false,
             loop_equations: match linear {
-                LinearDefault::Direct { .. } => {
+                LinearDefault::Direct { .. } if super::condensed::runs_loop(model) => {
                     crate::linalg::backend::serial::interface_loop_equations(model)?
                 }
-                LinearDefault::Multigrid { .. } => Vec::new(),
+                _ => Vec::new(),
             },
             factor_ksp: None,
             inverse_pattern: None,
