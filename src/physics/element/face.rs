@@ -13,17 +13,20 @@
 
 #![allow(dead_code)] // reached by the 3D model's loads (issue 44), not yet wired
 
-use super::q8;
+use super::family::{Family, MAX_NODES};
 
-/// Nodal forces (N) of a uniform pressure `p` (MPa) on the face with node
-/// coordinates `x` (mm), by the 3 × 3 Gauss rule (exact for a flat face
-/// with straight sides, and to the rule's order on a curved one).
-pub(crate) fn pressure_forces(x: &[[f64; 3]; 8], p: f64) -> [[f64; 3]; 8] {
-    let mut f = [[0.0; 3]; 8];
-    for &([xi, eta], w) in &q8::gauss_3x3().points {
-        let (n, d) = (q8::shape(xi, eta), q8::shape_derivs(xi, eta));
+/// Nodal forces (N) of a uniform pressure `p` (MPa) on a face of the plane
+/// `family` (the 8-node quadrilateral of a hexahedron, the 6-node triangle
+/// of a tetrahedron) with node coordinates `x` (mm), by the family's full
+/// Gauss rule (exact for a flat face with straight sides, and to the rule's
+/// order on a curved one). The first `family.nodes()` entries are used.
+pub(crate) fn pressure_forces(family: Family, x: &[[f64; 3]], p: f64) -> [[f64; 3]; MAX_NODES] {
+    let nn = family.nodes();
+    let mut f = [[0.0; 3]; MAX_NODES];
+    for &(xi, w) in &family.rule(true).points {
+        let (n, d) = (family.shape(xi), family.shape_derivs(xi));
         let mut t = [[0.0; 3]; 2];
-        for a in 0..8 {
+        for a in 0..nn {
             for (k, tk) in t.iter_mut().enumerate() {
                 for c in 0..3 {
                     tk[c] += d[a][k] * x[a][c];
@@ -35,7 +38,7 @@ pub(crate) fn pressure_forces(x: &[[f64; 3]; 8], p: f64) -> [[f64; 3]; 8] {
             t[0][2] * t[1][0] - t[0][0] * t[1][2],
             t[0][0] * t[1][1] - t[0][1] * t[1][0],
         ];
-        for a in 0..8 {
+        for a in 0..nn {
             for c in 0..3 {
                 f[a][c] -= p * n[a] * normal[c] * w;
             }
@@ -67,12 +70,12 @@ mod tests {
         ];
         let origin = [1.0, -2.0, 0.5];
         let x: [[f64; 3]; 8] = std::array::from_fn(|k| {
-            let [xi, eta] = q8::NODE_XI[k];
+            let [xi, eta] = crate::physics::element::q8::NODE_XI[k];
             std::array::from_fn(|c| origin[c] + 0.5 * a * xi * u[c] + 0.5 * b * eta * v[c])
         });
-        let f = pressure_forces(&x, p);
+        let f = pressure_forces(Family::Q8, &x, p);
         let total = p * a * b;
-        for (k, fk) in f.iter().enumerate() {
+        for (k, fk) in f.iter().enumerate().take(8) {
             let share = if k < 4 { -1.0 / 12.0 } else { 1.0 / 3.0 };
             for c in 0..3 {
                 let want = -share * total * n[c];
