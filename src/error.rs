@@ -61,8 +61,8 @@ impl Error {
 impl fmt::Display for Error {
     /// One line: control characters (from file names, keys and values that came
     /// from the user) are written as escapes such as `\n` or `\u{1b}`; a quoted
-    /// value longer than [`MAX_QUOTE`] characters is cut to that, and the whole
-    /// line to [`MAX_LINE`] (a 10 MB string in a case file is not echoed).
+    /// value longer than `MAX_QUOTE` characters is cut to that, and the whole
+    /// line to `MAX_LINE` (a 10 MB string in a case file is not echoed).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(&bounded(&escape_controls(&self.raw())))
     }
@@ -73,7 +73,7 @@ pub(crate) const MAX_QUOTE: usize = 80;
 /// Most characters of a whole error line.
 pub(crate) const MAX_LINE: usize = 2000;
 
-/// `text` cut to [`MAX_QUOTE`] characters, with `…(N characters)` when cut.
+/// `text` cut to `MAX_QUOTE` characters, with `…(N characters)` when cut.
 pub fn clip(text: &str) -> String {
     let n = text.chars().count();
     if n <= MAX_QUOTE {

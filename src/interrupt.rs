@@ -10,7 +10,7 @@
 //! * 3rd signal: the process exits at once with 128 + signal (the output folder
 //!   is left untouched; the hidden `.NAME.partial-PID` folder may remain).
 //!
-//! Under MPI every rank polls through [`crate::linalg::backend::Backend::max`], so a
+//! Under MPI every rank polls through `crate::linalg::backend::Backend::max`, so a
 //! signal seen by any rank stops all of them at the same point.
 
 use std::sync::atomic::{AtomicI32, AtomicUsize, Ordering};

@@ -1,9 +1,9 @@
 //! How many threads one process computes with: the element loop
-//! ([`crate::solve::Engine::set_threads`]). The serial factorization stays on
+//! (`crate::solve::Engine::set_threads`). The serial factorization stays on
 //! one ([`crate::linalg::backend::serial::FACTOR_THREADS`]).
 //!
 //! Chosen by `asperity run --threads N`, else by the environment variable
-//! [`VAR`], else all the cores this process may run on on one process and one
+//! `VAR`, else all the cores this process may run on on one process and one
 //! thread per rank under MPI (the ranks already share the cores).
 
 use crate::error::{Error, Result};
@@ -15,7 +15,7 @@ pub(crate) const VAR: &str = "ASPERITY_THREADS";
 pub const MAX: usize = 1024;
 
 /// A thread count as written by the user, from 1 to [`MAX`]; `option` names
-/// where it was written (`--threads`, [`VAR`]).
+/// where it was written (`--threads`, `VAR`).
 pub fn parse(option: &str, text: &str) -> Result<usize> {
     let bad = || {
         Error::input(
@@ -30,7 +30,7 @@ pub fn parse(option: &str, text: &str) -> Result<usize> {
     Ok(n)
 }
 
-/// The count asked for: the command line's `--threads` value, else [`VAR`]
+/// The count asked for: the command line's `--threads` value, else `VAR`
 /// when set (both validated), else `None` (the default of the backend).
 pub fn requested(option: Option<&str>) -> Result<Option<usize>> {
     if let Some(text) = option {

@@ -70,7 +70,7 @@ pub enum End {
     /// The next mesh would exceed `max_dofs`.
     Dofs,
     /// The next mesh would exceed the element limit of every mesh
-    /// ([`crate::input::case::MAX_ELEMENTS`]).
+    /// (`crate::input::case::MAX_ELEMENTS`).
     Elements,
     /// Nothing left to refine (no element marked).
     Nothing,

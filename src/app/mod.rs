@@ -1,6 +1,6 @@
 //! The jobs behind the command line: `run` and `check` ([`driver`]),
 //! adaptive runs ([`adapt`]), studies ([`study`]), `calibrate`
-//! ([`calibrate`]) and the MPI entry ([`parallel`]).
+//! ([`calibrate`]) and the MPI entry (`parallel`).
 
 pub mod adapt;
 pub mod calibrate;

@@ -33,7 +33,7 @@ pub enum StepFailure {
     /// The nonlinear solver (PETSc SNES) stopped on its own, with its reason.
     Solver(String),
     /// A body held only through the interface could not be held (the contact
-    /// stabilization, [`super::stabilize`]): the cause in physical terms.
+    /// stabilization, `super::stabilize`): the cause in physical terms.
     Unheld(String),
 }
 

@@ -1,4 +1,4 @@
-//! Linear algebra: the dof map and sparse pattern ([`assembly`]) and the
+//! Linear algebra: the dof map and sparse pattern (`assembly`) and the
 //! backends that factor and solve (the serial faer one, PETSc under MPI;
 //! [`backend`]).
 

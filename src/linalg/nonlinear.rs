@@ -7,7 +7,7 @@
 //! paper's rules (residual, correction, unchanged contact statuses), and may
 //! modify a Newton correction (Anderson mixing of the fixed-matrix methods).
 //!
-//! Two solvers drive it: the built-in loop in [`super::newton`] (serial faer and
+//! Two solvers drive it: the built-in loop in `super::newton` (serial faer and
 //! PETSc), and PETSc's SNES (`--nonlinear snes`, the default on the PETSc
 //! backend), whose callbacks call the same three methods. Both therefore take the
 //! same iterates, statuses and decisions.

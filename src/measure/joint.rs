@@ -14,7 +14,7 @@
 //!     n = +y (from B into A), t = +x       n = −x, t = +y
 //! ```
 //!
-//! Internal convention (the per-pair interface CSVs, [`super::PointState`]):
+//! Internal convention (the per-pair interface CSVs, `super::PointState`):
 //! u_T = (u_B − u_A)·t and p_T is the shear B's springs carry along t, so
 //! moving A in +t relative to B gives u_T < 0 and p_T < 0.
 //!
@@ -31,7 +31,7 @@
 //!   the law's friction forces f on their own slips s (the point's one
 //!   slider under the isotropic memory: ½ (p_T,n + p_T,n+1)(u_p,n+1 −
 //!   u_p,n); its Jenkins elements under the kinematic one;
-//!   [`crate::physics::contact::tangential::Side`] and the module `work` there):
+//!   `crate::physics::contact::tangential::Side` and the module `work` there):
 //!   it never decreases;
 //! * work W = Σ A ½ (p_T,n + p_T,n+1)(u_T,n+1 − u_T,n), the tangential work
 //!   done on the interface. With k_T^e constant, W − D is the change of the
@@ -358,7 +358,7 @@ pub fn measures(
     out
 }
 
-/// A closed load cycle of one interface (see [`cycle_windows`]).
+/// A closed load cycle of one interface (see `cycle_windows`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Cycle {
     /// Increment numbers (1-based, as in the output) where it starts and ends.
@@ -371,7 +371,7 @@ pub struct Cycle {
     /// W at the end minus W at the start, N·mm.
     pub work: f64,
     /// ΔF_T / Δū_T between the increments of the cycle's largest and
-    /// smallest F_T (of those, equal within [`TIP_TIE`], the largest and
+    /// smallest F_T (of those, equal within `TIP_TIE`, the largest and
     /// the smallest ū_T: the loop's tips when it slides at the extreme
     /// forces), N/mm; None when they have the same ū_T, or when the force
     /// range is round-off ([`held`]: a force held constant has no loop).
@@ -467,7 +467,7 @@ impl Cycle {
 
     /// With twist: the torsional loss factor η_θ = D / (2π U_θ) (Ungar &
     /// Kerwin 1962, with the torque-twist loop's stored energy
-    /// [`Cycle::torsional_stored_energy`]). D is the whole dissipation of the
+    /// `Cycle::torsional_stored_energy`). D is the whole dissipation of the
     /// cycle, the slip in both directions: for a loop driven by a torque (an
     /// axial force held or absent) it is the torsional loop's. None as
     /// [`Cycle::loss_factor`]: no loop, or round-off energies.
@@ -533,7 +533,7 @@ pub(crate) fn cycle_windows(marks: &[Option<Vec<f64>>]) -> Vec<(usize, usize)> {
 pub(crate) const TIP_TIE: f64 = 1e-6;
 
 /// Whether a cycle's force (or torque) range [lo, hi] is round-off: within
-/// [`TIP_TIE`] of its largest magnitude or of `scale` (the cycle's
+/// `TIP_TIE` of its largest magnitude or of `scale` (the cycle's
 /// [`Cycle::force_scale`]: a force held at zero has a range and a magnitude
 /// of noise alike), as the two tips of a loop whose force is held constant
 /// (an axial preload under a cycled torque: the extremes differ by 1e-12 of

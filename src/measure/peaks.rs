@@ -18,7 +18,7 @@ use crate::physics::material::{GaussStates, VonMises};
 
 use crate::model::outputs::{PER_BODY, PER_INTERFACE};
 
-/// The body peaks of a state (collective under MPI): [`PER_BODY`] values
+/// The body peaks of a state (collective under MPI): `PER_BODY` values
 /// per body. A body without plastic strain has PEEQ 0 and no place (NaN).
 pub fn bodies(model: &Model, comm: &dyn Comm, held: &[u32], state: &State) -> Vec<f64> {
     body_peaks(model, held, &state.gauss, |v| comm.max(v))
@@ -100,7 +100,7 @@ fn body_peaks(
 }
 
 /// The interface peaks of displacements `u` at pseudo-time `time`:
-/// [`PER_INTERFACE`] values per interface (`arcs`: each pair's arc length,
+/// `PER_INTERFACE` values per interface (`arcs`: each pair's arc length,
 /// [`crate::model::interface::arcs::arc_lengths`]). An interface without
 /// contact has pressure 0 and no place or extent (NaN).
 pub fn interfaces(model: &Model, arcs: &[Vec<f64>], u: &[f64], time: f64) -> Vec<f64> {

@@ -9,7 +9,7 @@
 //! backend builds it whole, each PETSc rank only the columns it owns.
 //!
 //! For the serial backend each local block (element or interface point) gets a
-//! precomputed list of positions into the value array ([`Assembler`]), so
+//! precomputed list of positions into the value array (`Assembler`), so
 //! assembly is a gather-free scatter. The PETSc backend hands blocks to
 //! MatSetValues and needs only the pattern, for exact preallocation.
 

@@ -2,7 +2,7 @@
 //!
 //! A node on the axis x = r = 0 belongs to every meridian plane at once, so its
 //! radial displacement must be zero (otherwise the body would tear open along
-//! the axis). [`hold_axis`] prescribes u_r = 0 there after the case's own
+//! the axis). `hold_axis` prescribes u_r = 0 there after the case's own
 //! `[[boundary]]` entries are known; a case may give ux = 0 on the axis itself,
 //! but not another value. With twist the circumferential u_θ is held there
 //! too (a prescribed rotation gives φ · 0 = 0 on the axis anyway).

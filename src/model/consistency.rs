@@ -4,8 +4,8 @@
 //! over the same node pairs (every spring twice), an empty body name, two
 //! bodies covering the same area, a "symmetric half" that is not the half
 //! x ≥ 0, coordinates and element sizes far outside any engineering use.
-//! [`check_mesh`] runs on the mesh before anything is derived from it and
-//! [`check_symmetry_supports`] once the prescribed dofs are known; both from
+//! `check_mesh` runs on the mesh before anything is derived from it and
+//! `check_symmetry_supports` once the prescribed dofs are known; both from
 //! [`crate::model::Model::build`], which `asperity check`, `asperity run` and
 //! every MPI rank go through alike.
 

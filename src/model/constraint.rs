@@ -1,7 +1,7 @@
 //! Linear multi-point constraints of the model, u_s = Σ_i c_i u_i + g h(t):
 //! one mechanism for every dof whose value follows from others — the two
 //! sides of a pretension section ([`crate::model::pretension`]) and the
-//! hanging nodes of a refined mesh ([`crate::model::hanging`]).
+//! hanging nodes of a refined mesh (`crate::model::hanging`).
 //!
 //! The constraints are **eliminated**: a slave dof s has no equation; with
 //! T the map from the remaining (master, free or prescribed) dofs to all
@@ -15,8 +15,8 @@
 //! Element Analysis*, 4th ed., section 9.2, "transformation equations").
 //! Nothing below the model sees a slave: every local block (element or
 //! interface point) that holds one is handed to the backends as the block
-//! Tₑᵀ kₑ Tₑ over its masters ([`Expansion`]), and the assembled residual is
-//! condensed, r_m += c r_s ([`Constraints::condense`]); so the serial and the
+//! Tₑᵀ kₑ Tₑ over its masters (`Expansion`), and the assembled residual is
+//! condensed, r_m += c r_s (`Constraints::condense`); so the serial and the
 //! PETSc backends, their patterns and partitions need nothing new. A master
 //! is never a slave: chains are substituted when the constraints are made.
 //!

@@ -81,7 +81,7 @@ pub struct Model {
     pub materials: Vec<VonMises>,
     pub interfaces: Vec<InterfaceModel>,
     /// Prescribed dofs and their values at factor 1 (the value at
-    /// pseudo-time t: [`Model::prescribed_at`]).
+    /// pseudo-time t: `Model::prescribed_at`).
     pub prescribed: Vec<(usize, f64)>,
     /// The history of each prescribed dof (`None`: the load factor, or the
     /// default ramp); parallel to [`Model::prescribed`].
@@ -92,7 +92,7 @@ pub struct Model {
     /// [`Model::external_force`]).
     pub f_ext: Vec<f64>,
     /// External nodal forces at factor 1 of the loads with histories, one
-    /// vector per history ([`Model::patterns`]).
+    /// vector per history (`Model::patterns`).
     pub loads: Vec<crate::model::loads::LoadPattern>,
     /// Every history of the case: the named ones in name order, then those
     /// given in place (empty: the case has none, and t is the load factor).
@@ -188,7 +188,7 @@ impl Model {
     }
 
     /// [`Model::build`] on a given mesh (`None`: the case's), one that an
-    /// adaptive run refined from [`Model::mesh_of`]; a given mesh is checked
+    /// adaptive run refined from `Model::mesh_of`; a given mesh is checked
     /// like the case's own.
     pub fn build_on(case: Case, given: Option<Adapted>) -> Result<Model> {
         // a refusal of the case's own mesh may be `--uniform`'s

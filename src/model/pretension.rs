@@ -17,7 +17,7 @@
 //! so s > 0 shortens the body across the cut, rigidly over the whole cut.
 //! The virtual work of the cut is N δs with N the force the body transmits
 //! across the cut (tension positive): the force on s's equation is the
-//! section force, and it is what is reported ([`crate::solve::State::section_force`]).
+//! section force, and it is what is reported (`crate::solve::State::section_force`).
 //! Three ways to load it, each over a history:
 //! * `force = F`: a force F h(t) on s's equation, then, by default
 //!   (`lock = true`), **locked** after the history's last time: s keeps the
@@ -243,7 +243,7 @@ pub(crate) fn origins(sections: &[Section], nodes: usize) -> Vec<usize> {
 /// The pairs of elements that face each other across a section's line in
 /// the uncut `mesh` (an element edge of the body on the line, one element
 /// on each side): an adaptive run splits both together
-/// ([`crate::input::mesh::refine::Refined::refine_tied`]), so that no hanging node
+/// (`crate::input::mesh::refine::Refined::refine_tied`), so that no hanging node
 /// lies on a cut, where it would hang across the cut from the nodes of the
 /// other side. A section the cut would refuse (an unknown body, no line)
 /// gives none.

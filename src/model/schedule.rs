@@ -58,7 +58,7 @@ pub(crate) fn segment_schedule(waypoints: &[f64], per_unit: usize, first: Option
 }
 
 /// The fixed schedule: the case's own without histories, else
-/// [`segment_schedule`] through the breakpoints.
+/// `segment_schedule` through the breakpoints.
 pub fn schedule(spec: &SolverSpec, breakpoints: &[f64]) -> Vec<f64> {
     let ways = waypoints(breakpoints);
     if ways.is_empty() {

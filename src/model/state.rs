@@ -11,7 +11,7 @@ pub struct State {
     pub u: Vec<f64>,
     /// Gauss point states, element by element: of every element in a whole
     /// state (one process, restart files, what the writer sees), of the
-    /// elements a rank owns inside an MPI run ([`Engine::localize`]). The
+    /// elements a rank owns inside an MPI run (`Engine::localize`). The
     /// twist components are stored only in a model with twist.
     pub gauss: GaussStates,
     pub status: Vec<Status>,

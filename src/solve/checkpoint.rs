@@ -44,7 +44,7 @@ pub struct Checkpoint {
     /// The events located so far ([`events`]).
     pub events: Vec<events::Event>,
     /// The model has twist: its Gauss states carry six stress components
-    /// (the width of their restart layout, [`PointState::packed_len`](crate::physics::material::PointState::packed_len)).
+    /// (the width of their restart layout, `PointState::packed_len`).
     pub twist: bool,
     /// The values of one designer's record (the model's
     /// [`Plan::width`](crate::model::outputs::Plan::width)): the layout of

@@ -1,5 +1,5 @@
 //! Events of a run, each located inside the increment where it happens:
-//! first yield (the root of the yield ratio, [`super::yield_point`]), and per
+//! first yield (the root of the yield ratio, `super::yield_point`), and per
 //! interface its first opening, its first full slip and its full
 //! separation.
 //!
@@ -16,14 +16,14 @@
 //! - **full separation**: the largest approach over the pairs; it happens
 //!   when no pair is in contact any more.
 //!
-//! Only the pairs that can carry force count ([`InterfaceModel::carrying_pairs`]:
+//! Only the pairs that can carry force count (`InterfaceModel::carrying_pairs`:
 //! not the pair on the axis of an axisymmetric model, whose area is 0).
 //!
 //! Each is bracketed by bisection on the load factor: a step from the
 //! committed state to the midpoint (the step the increment itself took,
 //! shortened), the half in which the scalar changes sign kept, until the
 //! bracket is at most `[output] event_tolerance` wide (at most
-//! [`MAX_HALVINGS`] halvings). The steps of the search are not committed:
+//! `MAX_HALVINGS` halvings). The steps of the search are not committed:
 //! the run goes on from the accepted step as before, and the contact
 //! stabilization's account is left as the step left it. A step of the search
 //! that does not converge is tried once more a little off the midpoint
@@ -132,7 +132,7 @@ pub struct Event {
 }
 
 impl Event {
-    /// Its row in a restart file: [`FIXED`] values, then the record.
+    /// Its row in a restart file: `FIXED` values, then the record.
     pub fn pack(&self) -> Vec<f64> {
         let mut v = vec![
             Kind::ALL.iter().position(|&k| k == self.kind).unwrap_or(0) as f64,

@@ -134,8 +134,8 @@ pub fn run_with(engine: Engine, observer: &mut dyn Observer) -> Result<RunResult
 /// second signal abandons the increment in progress.
 ///
 /// Each pass of the loop: the collective stop decision, one attempt at the
-/// next load factor ([`attempt`]), then either its acceptance ([`accept`]:
-/// first yield, commit, output) or a cutback ([`cut_back`]). The stepper is
+/// next load factor (`attempt`), then either its acceptance (`accept`:
+/// first yield, commit, output) or a cutback (`cut_back`). The stepper is
 /// only changed once the step's fate is known, so an interrupted step leaves
 /// it (and the checkpoint) as it was.
 pub fn run_from(

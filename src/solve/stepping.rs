@@ -19,7 +19,7 @@
 //! With load histories the march variable is the pseudo-time t and every
 //! history breakpoint is a waypoint that no step crosses, in both modes: the
 //! fixed schedule splits each segment between consecutive breakpoints into
-//! ceil(length × `increments`) equal steps ([`segment_schedule`]); automatic
+//! ceil(length × `increments`) equal steps (`segment_schedule`); automatic
 //! control takes each breakpoint as a waypoint. Without histories the
 //! schedule is the case's own, as it always was.
 

@@ -139,7 +139,7 @@ impl Gw {
 
     /// The separation d at which the pressure is `p` (bisection on the
     /// monotone p(d), to 1e-14 σ or to adjacent floating-point numbers; the
-    /// bracket grows at most [`MAX_STEPS`] times, to 3^MAX_STEPS σ).
+    /// bracket grows at most `MAX_STEPS` times, to 3^MAX_STEPS σ).
     pub fn separation(&self, p: f64) -> f64 {
         let s = self.sigma;
         bisect(-s, s, |d| self.pressure(d) > p, 1e-14 * s)

@@ -737,7 +737,7 @@ fn check_resolved(place: &str, gw: &Gw, fit: &FitNumbers, d_lo: f64) -> Result<(
     Ok((d0, d_hi))
 }
 
-/// Checks the input ([`prepare`]) and computes the curve, the fit and the
+/// Checks the input (`prepare`) and computes the curve, the fit and the
 /// table; `base` is the folder that relative profile paths start from.
 pub fn calibrate(input: &Input, place: &str, base: &Path) -> Result<Calibration> {
     let Prepared {

@@ -96,7 +96,7 @@ fn lines(text: &str) -> impl Iterator<Item = &str> {
 /// export). A line profile takes
 /// every number in order; an areal map takes one grid row per non-empty line
 /// (all rows equally long). Heights must be finite, not subnormal and at most
-/// [`MAX_HEIGHT`] in magnitude.
+/// `MAX_HEIGHT` in magnitude.
 pub fn parse(text: &str, place: &str, areal: bool, sampling: f64) -> Result<Heights> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut z = Vec::new();

@@ -69,8 +69,8 @@ pub struct Given {
 
 /// Checks `[tangential]`: μ given, positive and within the case file's range
 /// of a friction coefficient; kp_ratio in [0, 1]; memory and backbone known,
-/// their keys by the case file's rules ([`crate::input::case::backbone_keys`]) and
-/// their values by [`TangentialLaw::with_memory`].
+/// their keys by the case file's rules (`crate::input::case::backbone_keys`) and
+/// their values by `TangentialLaw::with_memory`.
 pub fn spec(t: &Input, a: &Body, b: &Body, place: &str) -> Result<Spec> {
     let at = |k: &str| format!("{place}: tangential.{k}");
     let mu = t.mu.ok_or_else(|| {

@@ -6,9 +6,9 @@
 //! in `backbone.csv`.
 //!
 //! Which cycles enter the fit: consecutive cycles whose force amplitudes agree
-//! within [`SAME_AMPLITUDE`] form a block (a constant-amplitude block of a
+//! within `SAME_AMPLITUDE` form a block (a constant-amplitude block of a
 //! load program); the last cycle of each block is its steady value, and only
-//! those that dissipate ([`DISSIPATES`]) are fitted. A first cycle also
+//! those that dissipate (`DISSIPATES`) are fitted. A first cycle also
 //! carries the loading from the state before it (from the virgin joint: more
 //! slip, more dissipation than the repeats): a block of two or more cycles
 //! keeps it out of the fit. A single cycle per amplitude is its own block and
@@ -109,7 +109,7 @@ pub struct Sweep {
     pub fit: Option<PowerFit>,
 }
 
-/// Per cycle of `cycles`, whether it dissipates ([`DISSIPATES`]) with
+/// Per cycle of `cycles`, whether it dissipates (`DISSIPATES`) with
 /// F_a > 0 and a force-slip loop (stored energy above round-off,
 /// [`Cycle::floor`]): the cycles a logarithmic plot and the fit can take. A
 /// loop driven by a torque with the axial force held (a twisting model)
@@ -139,8 +139,8 @@ fn block_amplitude(c: &Cycle) -> f64 {
 }
 
 /// The amplitude sweep of one interface's cycles: the blocks (a cycle joins
-/// the block of the one before when its amplitude ([`block_amplitude`]) is
-/// the same as the block's first within [`SAME_AMPLITUDE`]) and the [`power_fit`] of D against F_a over the
+/// the block of the one before when its amplitude (`block_amplitude`) is
+/// the same as the block's first within `SAME_AMPLITUDE`) and the `power_fit` of D against F_a over the
 /// last cycle of each block that dissipates ([`dissipating`]).
 pub fn sweep(cycles: &[Cycle]) -> Sweep {
     let mut rows: Vec<SweepRow> = Vec::with_capacity(cycles.len());

@@ -354,7 +354,7 @@ pub(crate) fn torsion_chart(
 }
 
 /// The torque-twist figure `torsion.svg` / `.png` (with the points in
-/// `torsion.csv`) in `dir`: [`torsion_chart`]. Nothing without twist or
+/// `torsion.csv`) in `dir`: `torsion_chart`. Nothing without twist or
 /// without a closed cycle; the CSV alone when no font is found.
 pub fn torsion(
     model: &Model,

@@ -1,11 +1,11 @@
 //! Results on disk: `summary.json`, `curve.csv`, `interface/<increment>.csv`,
 //! the joint outputs (`joints.csv`, `cycles.csv`, the hysteresis figure:
-//! [`joints`]; `damping.csv`, `backbone.csv`, the damping figure: [`damping`]), the designer's outputs (`reactions.csv`, `probes.csv`,
-//! `peaks.csv`, `contact.csv` and the events: [`plan`], [`events`]) and a
+//! `joints`; `damping.csv`, `backbone.csv`, the damping figure: [`damping`]), the designer's outputs (`reactions.csv`, `probes.csv`,
+//! `peaks.csv`, `contact.csv` and the events: `plan`, [`events`]) and a
 //! VTU/PVD series. Everything is written into a hidden sibling folder that is
 //! renamed into place only when the run succeeds, so a failed run leaves no
 //! partial output folder behind. The per-increment files are encoded and
-//! written by a thread of their own, in order ([`background`]).
+//! written by a thread of their own, in order (`background`).
 
 pub(crate) mod background;
 pub mod damping;
@@ -489,7 +489,7 @@ pub fn curve(result: &RunResult) -> String {
 }
 
 /// The run's warnings, one line each (without `warning: `): every tabulated
-/// law evaluated beyond [`crate::physics::contact::table::EXTRAPOLATION_LIMIT`]
+/// law evaluated beyond `crate::physics::contact::table::EXTRAPOLATION_LIMIT`
 /// times its last row ([`crate::model::interface::extrapolation`]). The driver
 /// prints them on stderr; summary.json holds them as `warnings`.
 pub fn warnings(model: &Model, r: &RunResult) -> Vec<String> {
@@ -549,7 +549,7 @@ fn coarse_cycles(model: &Model, r: &RunResult, place: &str) -> Vec<String> {
         .collect()
 }
 
-/// summary.json: the run's numbers ([`run_summary`]), then its joints,
+/// summary.json: the run's numbers (`run_summary`), then its joints,
 /// damping, pretension, events, tables, warnings and stabilization.
 pub fn summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
     let mut s = run_summary(model, r, wall);

@@ -14,7 +14,7 @@ pub(crate) const HEADER: &str = "increment,time,probe,ux_mm,uy_mm\n";
 pub(crate) const HEADER_TWIST: &str = "increment,time,probe,ux_mm,uy_mm,utheta_mm\n";
 
 /// `probes.csv`: one row per increment and probe (the header alone without
-/// probes), `per` values each ([`components`]).
+/// probes), `per` values each (`components`).
 pub fn csv(probes: &[Probe], per: usize, r: &RunResult, at: impl Fn(&[f64]) -> &[f64]) -> String {
     let mut s = String::from(if per == 3 { HEADER_TWIST } else { HEADER });
     for inc in &r.increments {

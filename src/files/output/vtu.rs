@@ -1,16 +1,16 @@
 //! VTK XML unstructured grid (.vtu) per increment and a .pvd series that
 //! ParaView opens. Cells are VTK_QUADRATIC_QUAD (type 23) and
-//! VTK_QUADRATIC_TRIANGLE (type 22) ([`Family::vtk_cell`]), whose node order
+//! VTK_QUADRATIC_TRIANGLE (type 22) (`Family::vtk_cell`), whose node order
 //! is ours: corners counter-clockwise, then the midsides of edges 0-1, 1-2,
 //! 2-3, 3-0 (2-0 for the triangle).
 //!
 //! Writing is split in two so that the expensive part can run beside the
-//! solver: [`Frame::of`] takes what one state shows (nodal averages, contact
-//! values) into owned arrays, quickly, on the solver's thread; [`Layout`]
+//! solver: `Frame::of` takes what one state shows (nodal averages, contact
+//! values) into owned arrays, quickly, on the solver's thread; `Layout`
 //! (made once per model: the mesh, and everything of the document that does
-//! not change between increments, already encoded) and [`Layout::write`] turn
+//! not change between increments, already encoded) and `Layout::write` turn
 //! a frame into the document, on the writer's thread
-//! ([`super::background`]). Two encodings ([`VtuFormat`]): `binary`, raw
+//! (`super::background`). Two encodings ([`VtuFormat`]): `binary`, raw
 //! appended data (the arrays' little-endian bytes after the XML, each block
 //! preceded by its byte count as a UInt64), and `ascii`, every number as text.
 

@@ -23,7 +23,7 @@
 //! A file of another version is refused before anything else of it is
 //! read (its version and this build's named: run the case again from the
 //! start); there are no compatibility branches for earlier layouts. A
-//! version-2 file holds exactly the sections of [`SECTIONS`], each once, in
+//! version-2 file holds exactly the sections of `SECTIONS`, each once, in
 //! any order: a missing section and one of another name are refused by
 //! name. They are `increment`, `load_factor`, `last_step`, `last_du` (the
 //! last increment's displacement change, the predictor's direction; empty
@@ -38,7 +38,7 @@
 //! `status` (interface status codes), `contact` (25 per interface point, as
 //! [`crate::physics::contact::PointState::pack`] lays them out:
 //! plastic slip, max shear memory κ, p_T, u_T, μ_F, the kinematic memory;
-//! with twist 56, [`crate::physics::contact::PointState::pack_twist`]: p_T, u_T,
+//! with twist 56, `crate::physics::contact::PointState::pack_twist`: p_T, u_T,
 //! μ_F, p_Tθ, u_Tθ and the vector law's state), `prescribed_reaction`,
 //! `curve` (10 per increment: number, load factor, iterations, cutbacks, normal
 //! force, mean pressure, load kN, centre displacement, max ε̄ᵖ, prescribed
@@ -50,7 +50,7 @@
 //! [`crate::measure::joint::JointMeasures::pack`] lays them out),
 //! `joints_twist` (with twist 3 per interface and increment: torque,
 //! circumferential slip, twist,
-//! [`crate::measure::joint::JointMeasures::pack_twist`]; empty without),
+//! `crate::measure::joint::JointMeasures::pack_twist`; empty without),
 //! `pretension` (2 per pretension section and increment: force,
 //! shortening), `table_reach` (2 per interface: the largest approach u_N
 //! and pressure p_N over the converged states so far, see
@@ -69,14 +69,14 @@
 //! every float of the file it quotes in its shortest form, `num`: `1e300`,
 //! never 301 digits):
 //!
-//! - sizes: the file's size from its metadata against [`Bounds`] (what the
+//! - sizes: the file's size from its metadata against `Bounds` (what the
 //!   model's dofs, Gauss points, interface points and the case's most
-//!   increments need) before it is read; at most [`MAX_SECTIONS`] sections
+//!   increments need) before it is read; at most `MAX_SECTIONS` sections
 //!   of distinct names, each count within the bytes that remain before its
-//!   data is copied; at most [`Bounds::increments`] increments;
+//!   data is copied; at most `Bounds::increments` increments;
 //! - the load history: the `curve` rows are numbered 1, 2, … with finite
 //!   values and whole counts, and are replayed from the case's own stepper
-//!   ([`Stepper::replay`]: the fixed schedule with each row's cutbacks, bit
+//!   (`Stepper::replay`: the fixed schedule with each row's cutbacks, bit
 //!   for bit; automatic steps towards the case's waypoints, never past one,
 //!   never longer than the largest step); `load_factor` and `last_step` are
 //!   the last row's, `pending_*` (fixed) or `auto_waypoints` (automatic)
@@ -87,23 +87,23 @@
 //! - the counters: Newton iterations (the event searches' share, at most
 //!   all of them, set apart) and factorizations at most what a run
 //!   of the case can count after the curve's increments and cutbacks
-//!   ([`most_iterations`]: per attempt a predicted and a plain solve, each
+//!   (`most_iterations`: per attempt a predicted and a plain solve, each
 //!   with the stabilization's levels and releases, plus one first-yield
 //!   search, at the case's iteration limit, × 2);
 //! - the state: `u`, `last_du`, `gauss`, `contact`, `joint_totals`,
 //!   `prescribed_reaction`, `table_reach` finite; `u` and `last_du` within
-//!   ±[`MAX_DISPLACEMENT`] (the displacement range of a case, 10⁴ mm); every
+//!   ±`MAX_DISPLACEMENT` (the displacement range of a case, 10⁴ mm); every
 //!   Gauss point a state its body's return mapping can leave
 //!   (`check_gauss_point`): ε̄ᵖ ≥ 0, the yielding flag 0 or 1, |σ| ≤
-//!   [`MAX_STRESS`], σzz = 0 in plane stress; in an elastic body (no
+//!   `MAX_STRESS`, σzz = 0 in plane stress; in an elastic body (no
 //!   `yield_stress`) εᵖ, ε̄ᵖ and the flag all 0; otherwise |εᵖ| ≤
-//!   [`MAX_PLASTIC_STRAIN`], ε̄ᵖ ≤ [`MAX_PEEQ`], εᵖ deviatoric (trace 0),
+//!   `MAX_PLASTIC_STRAIN`, ε̄ᵖ ≤ `MAX_PEEQ`, εᵖ deviatoric (trace 0),
 //!   ε̄ᵖ ≥ √(2/3)|εᵖ| and σ_eq ≤ σ_Y + H ε̄ᵖ (round-off allowed); every
 //!   status code a status ([`Status::checked`]); `joints` rows finite;
 //!   `first_yield` finite, within the curve's load factors, at an element of
 //!   the mesh whose body `first_yield_body` names; every interface's
-//!   `table_reach` (u_N, p_N) within [0, [`MAX_DISPLACEMENT`]] ×
-//!   [0, [`MAX_PRESSURE`]], p_N the normal law's pressure at u_N, and at
+//!   `table_reach` (u_N, p_N) within [0, `MAX_DISPLACEMENT`] ×
+//!   [0, `MAX_PRESSURE`], p_N the normal law's pressure at u_N, and at
 //!   least the restored state's own reach ([`Reach::of`]);
 //! - the records beside the state (`decode/records.rs`): every `curve`
 //!   row's normal force within [0, the pressure range × the first
@@ -111,21 +111,21 @@
 //!   and in kN, exactly, its displacement and PEEQ within the state's
 //!   ranges; the last increment's `curve` row, `joints` / `joints_twist` rows and `records`
 //!   from the probes on exactly what the restored state gives
-//!   ([`Measures::of`], [`crate::solve::joint_measures`],
-//!   [`crate::model::outputs::Plan::state_part`]); every joint row's normal
+//!   ([`Measures::of`], `crate::solve::joint_measures`,
+//!   `crate::model::outputs::Plan::state_part`); every joint row's normal
 //!   force within [0, the pressure range × its area], its status measures
 //!   ≥ 0 and adding up to the interface's, its tangential force and torque
 //!   within μ F_N and μ r_max F_N; every probe value within
-//!   ±[`MAX_DISPLACEMENT`]; `pretension` rows: a free section's force
+//!   ±`MAX_DISPLACEMENT`; `pretension` rows: a free section's force
 //!   (force control before its lock) and a prescribed shortening
-//!   recomputed from the case ([`Model::section_row`]), a locked section's
+//!   recomputed from the case (`Model::section_row`), a locked section's
 //!   shortening the one at its lock in every later row and in `u`;
 //! - names: every `pvd_file` name is `vtu/NNNN.vtu` exactly as the writer
-//!   names an increment ([`vtu_name`]), for increasing converged increments,
+//!   names an increment (`vtu_name`), for increasing converged increments,
 //!   with that increment's load factor; every file a resumed run copies
-//!   ([`folder_files`]: `restart.bin`, `interface/NNNN.csv`, the VTU series)
+//!   (`folder_files`: `restart.bin`, `interface/NNNN.csv`, the VTU series)
 //!   is a regular file inside the folder, neither it nor its folder a
-//!   symbolic link, within its size bound; the copy ([`copy_in`]) opens it
+//!   symbolic link, within its size bound; the copy (`copy_in`) opens it
 //!   again without following links and creates each file new in the
 //!   temporary output folder.
 
@@ -574,9 +574,9 @@ pub(crate) use folder::{
 
 /// Reads `restart.bin` in `dir` for `model`: the checkpoint and the VTU
 /// series. Everything read from the folder is checked against the model
-/// before it is used: the file's size (against [`Bounds`], before it is
-/// read), every section ([`decode`]), and every file a resumed run copies
-/// ([`folder_files`]: regular files inside the folder, no links, bounded
+/// before it is used: the file's size (against `Bounds`, before it is
+/// read), every section (`decode`), and every file a resumed run copies
+/// (`folder_files`: regular files inside the folder, no links, bounded
 /// sizes). Any mismatch is an input error naming the restart file.
 pub fn read(dir: &Path, model: &Model) -> Result<(Checkpoint, Vec<(f64, String)>)> {
     let place = dir.join(FILE).display().to_string();

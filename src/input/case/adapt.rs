@@ -33,7 +33,7 @@ pub struct AdaptSpec {
     /// What the tolerance applies to (default `energy`).
     #[serde(default)]
     pub quantity: Quantity,
-    /// The most solves (the start mesh's included), 1..=[`MAX_CYCLES`].
+    /// The most solves (the start mesh's included), 1..=`MAX_CYCLES`.
     #[serde(default = "default_cycles")]
     pub max_cycles: usize,
     /// No mesh with more dofs is solved: the run ends on the last mesh below.
@@ -115,7 +115,7 @@ impl Serialize for Quantity {
 }
 
 impl<'de> Deserialize<'de> for Quantity {
-    /// One of the names of [`Quantity::ALL`]; anything else is refused with
+    /// One of the names of `Quantity::ALL`; anything else is refused with
     /// every choice.
     fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
         struct Choice;

@@ -468,7 +468,7 @@ pub struct OutputSpec {
     #[serde(default)]
     pub vtu_format: VtuFormat,
     /// Width of an event's bracket in load factor (pseudo-time), in
-    /// [1e-12, 1); default 1e-3 ([`outputs::DEFAULT_EVENT_TOLERANCE`]).
+    /// [1e-12, 1); default 1e-3 (`outputs::DEFAULT_EVENT_TOLERANCE`).
     pub event_tolerance: Option<f64>,
 }
 

@@ -83,7 +83,7 @@ impl<'de> Deserialize<'de> for Statistic {
     }
 }
 
-/// The case's event tolerance: as given, else [`DEFAULT_EVENT_TOLERANCE`].
+/// The case's event tolerance: as given, else `DEFAULT_EVENT_TOLERANCE`.
 pub fn event_tolerance(case: &Case) -> f64 {
     case.output
         .event_tolerance
@@ -92,7 +92,7 @@ pub fn event_tolerance(case: &Case) -> f64 {
 
 /// What the case alone says about its probes and its event tolerance: the
 /// tolerance in [1e-12, 1); each probe named (not blank, unique, at most
-/// [`crate::input::case::MAX_NAME_BYTES`] bytes), a point or a node set (not both),
+/// `crate::input::case::MAX_NAME_BYTES` bytes), a point or a node set (not both),
 /// `body` only with a point, `statistic` only with a set, the point's
 /// coordinates finite and within the coordinate range.
 pub fn check(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {

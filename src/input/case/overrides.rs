@@ -1,6 +1,6 @@
 //! The settings a run took from the command line instead of the case file
 //! (`asperity run` and `asperity check` overrides, applied by
-//! [`crate::app::driver::load_case`]). A refusal of such a setting names the
+//! `crate::app::driver::load_case`). A refusal of such a setting names the
 //! option as given (`--increments 60000: …`), not a key the file may not
 //! hold: every check places its key with [`Case::at`], which knows what the
 //! command line replaced.

@@ -60,7 +60,7 @@ pub(crate) const FORCE: Range = Range {
 };
 
 /// Every range: the case's quantities, then the normal laws' (in the order
-/// of [`crate::physics::contact::normal::KINDS`], each quantity once), then
+/// of `crate::physics::contact::normal::KINDS`, each quantity once), then
 /// the tangential law's. A new law's ranges join by its parameters.
 pub fn all() -> Vec<&'static Range> {
     let mut out: Vec<&'static Range> = vec![

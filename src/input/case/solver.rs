@@ -20,7 +20,7 @@ pub struct SolverSpec {
     #[serde(default = "default_plastic_strain_step")]
     pub(crate) plastic_strain_step: f64,
     /// Number of equal load steps from 0 to 1 (after the first one); default 20.
-    /// Read it with [`SolverSpec::n_increments`].
+    /// Read it with `SolverSpec::n_increments`.
     pub increments: Option<usize>,
     /// Size of the first load step (the paper uses about 5%); default 1/increments.
     pub first_increment: Option<f64>,
@@ -73,7 +73,7 @@ pub(crate) const INTERFACE_LOOP_DEFAULT: bool = true;
 
 impl SolverSpec {
     /// Whether the interface loop is asked for (the case's key, else
-    /// [`INTERFACE_LOOP_DEFAULT`]).
+    /// `INTERFACE_LOOP_DEFAULT`).
     pub fn interface_loop(&self) -> bool {
         self.interface_loop.unwrap_or(INTERFACE_LOOP_DEFAULT)
     }

@@ -2,8 +2,8 @@
 //! displacement u_θ as a third dof (`[model] twist = true`), loaded by torques
 //! and prescribed rotations about its axis (docs/case-schema.md, "Twist").
 //!
-//! The element is [`crate::physics::element::axisymmetric_twist`], the material the six-component
-//! return of [`crate::physics::material::VonMises::update_twist`]; the dofs per node
+//! The element is `crate::physics::element::axisymmetric_twist`, the material the six-component
+//! return of `crate::physics::material::VonMises::update_twist`; the dofs per node
 //! are the mesh's [`crate::input::mesh::NodeDofs`], so everything else (assembly,
 //! backends, restart, output) is the model with two dofs per node. This
 //! module holds the case's twist keys' checks (key by key, before the mesh

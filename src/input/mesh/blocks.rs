@@ -2,7 +2,7 @@
 //! contact interfaces between the bottom of one block and the top of another
 //! (horizontal) or between the right side of one block and the left side of
 //! another (vertical), nodes paired, not merged. Blocks that name the same
-//! body are one body: they share sides, whose nodes are merged ([`merge`]).
+//! body are one body: they share sides, whose nodes are merged (`merge`).
 //!
 //! Each block gets the node sets and edge sets `<block>.bottom`, `.right`,
 //! `.top`, `.left` (edges walked with the body on the left; the sides' parts
@@ -20,7 +20,7 @@ mod shape;
 pub(crate) use shape::SideShape;
 
 /// A rectangular block; x and y are split into segments at the breakpoints.
-/// Its bottom and top sides may be curved ([`SideShape`]); the block then
+/// Its bottom and top sides may be curved (`SideShape`); the block then
 /// lies inside its rectangle.
 #[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]

@@ -30,7 +30,7 @@
 //! the Newton correction is that of the exact tangent to round-off, and the
 //! Newton iterates with it (test `the_split_tangent_takes_the_lu_iterates`).
 //! In exact arithmetic GMRES ends in at most r steps; it is given at most
-//! [`MAX_KRYLOV`], after which (or if M is not positive definite) the solver
+//! `MAX_KRYLOV`, after which (or if M is not positive definite) the solver
 //! factors the whole K by LU instead. Measurements: docs/performance.md,
 //! "The unsymmetric tangent at Cholesky cost".
 
@@ -165,7 +165,7 @@ impl Couplings {
 pub enum Outcome {
     /// Converged in this many GMRES steps (0 without coupling terms).
     Converged(usize),
-    /// No convergence within [`MAX_KRYLOV`] steps (or a breakdown without
+    /// No convergence within `MAX_KRYLOV` steps (or a breakdown without
     /// convergence): the caller solves by LU.
     Stalled,
 }

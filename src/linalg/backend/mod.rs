@@ -6,9 +6,9 @@
 //!
 //! Every rank holds the whole (replicated) displacement vector and model, and
 //! the Gauss states of its own elements only; each assembles only the elements
-//! and interface points it owns, and [`Backend::sum`] adds the partial
+//! and interface points it owns, and `Backend::sum` adds the partial
 //! residuals. Decisions that change control flow go through
-//! [`Backend::agree`], so all ranks always take the same branch.
+//! `Backend::agree`, so all ranks always take the same branch.
 
 pub mod coupling;
 #[cfg(feature = "parallel")]

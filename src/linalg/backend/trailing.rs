@@ -9,7 +9,7 @@
 //! instead of a solve with the whole factor ([`super::coupling::Inverse`]).
 //! The interface separates the bodies, so ordering it last costs little
 //! fill; the symbolic analysis of both orderings decides
-//! ([`prefer_interface_last`]): a very long interface makes the dense block
+//! (`prefer_interface_last`): a very long interface makes the dense block
 //! too costly.
 
 use crate::error::{Error, Result};

@@ -9,7 +9,7 @@
 //!   effectivity θ = η / ‖u − u_h‖_E   (→ 1 on smooth problems, part 2)
 //! ```
 //! σ* is the stress recovered by SPR ([`recovery`]) and interpolated with
-//! the Q8 shape functions, σ_h the element's own ([`sample`]); both are
+//! the Q8 shape functions, σ_h the element's own (`sample`); both are
 //! integrated by 3×3 Gauss with the model's volume element (thickness, or
 //! 2π r in axisymmetry). C⁻¹ is the isotropic 3D compliance on all six
 //! components (xx, yy, xy, zz or θθ, rθ, zθ),

@@ -4,8 +4,8 @@
 //! extrapolated linearly ([`crate::physics::contact::table`]): a fallback, not a
 //! measurement. A run records the largest approach and pressure of every
 //! interface over its converged states ([`Reach`], kept in the checkpoint and
-//! the restart file); [`table_uses`] sets them against the tables' last rows,
-//! and a law evaluated beyond [`EXTRAPOLATION_LIMIT`] times its last row's
+//! the restart file); `table_uses` sets them against the tables' last rows,
+//! and a law evaluated beyond `EXTRAPOLATION_LIMIT` times its last row's
 //! argument is reported: a `warning:` line on stderr after the run, the
 //! `tables` and `warnings` fields of summary.json, and, where the applied load
 //! alone predicts it, a warning of `asperity check`.

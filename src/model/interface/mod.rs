@@ -276,7 +276,7 @@ pub struct PointEval {
     pub state: PointState,
     /// Area times ∂p_T/∂u_N: the coefficient of the point's unsymmetric
     /// tangent term `coupling · g_T g_Nᵀ` (0 without it; see
-    /// [`InterfaceModel::eval_point_parts`]). With twist the coefficient of
+    /// `InterfaceModel::eval_point_parts`). With twist the coefficient of
     /// g_T1 in the vector form `(coupling g_T1 + coupling_hoop g_θ) g_Nᵀ`.
     pub coupling: f64,
     /// With twist: area times ∂p_Tθ/∂u_N, the coefficient of g_θ in the
@@ -518,7 +518,7 @@ impl InterfaceModel {
 
     /// The dofs of a point in local order: A pairs (x, y) then B pairs (x, y);
     /// on a non-matching interface the slave nodes, then the master edge's
-    /// ([`InterfaceModel::point_nodes`]). With twist each node's (r, z, θ).
+    /// (`InterfaceModel::point_nodes`). With twist each node's (r, z, θ).
     pub fn point_dofs(&self, pt: &Point) -> Vec<usize> {
         let nd = self.node_dofs;
         let nodes = self.point_nodes(pt);
@@ -536,7 +536,7 @@ impl InterfaceModel {
     /// and, if given, the local tangent `k` (row-major (4·len)²). `k_floor`
     /// replaces the normal stiffness of a point at or below zero approach (the
     /// secant start of eq. 2.8-2.9). Across the initial gap g₀; the solver
-    /// calls [`InterfaceModel::eval_point_at`] with the gap at its pseudo-time.
+    /// calls `InterfaceModel::eval_point_at` with the gap at its pseudo-time.
     pub fn eval_point(
         &self,
         pt: &Point,

@@ -42,7 +42,7 @@ pub struct Loads {
     /// The gap history of each `[interface.<name>]` that has one.
     pub gap_history: BTreeMap<String, usize>,
     /// Every `[[load]]` and `[[force]]` with the dofs it loads, for
-    /// [`check_acting`] once the prescribed dofs are known.
+    /// `check_acting` once the prescribed dofs are known.
     pub acting: Vec<Acting>,
     /// The history of each `[[pretension]]` section's force or shortening.
     pub(crate) pretension_history: Vec<Option<usize>>,

@@ -6,8 +6,8 @@
 //! Each converged increment gets one flat record of numbers
 //! ([`crate::solve::Increment::record`]), laid out by [`Layout`]: the
 //! reactions (per group and component), the probes (u_x, u_y each), the
-//! body peaks ([`PER_BODY`] each) and the interface peaks
-//! ([`PER_INTERFACE`] each). The record is computed on every rank
+//! body peaks (`PER_BODY` each) and the interface peaks
+//! (`PER_INTERFACE` each). The record is computed on every rank
 //! (its reductions are collective), kept in the checkpoint and the restart
 //! file, and written out at the end of the run (`reactions.csv`,
 //! `probes.csv`, `peaks.csv`, `contact.csv`, summary.json).

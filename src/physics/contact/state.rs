@@ -5,7 +5,7 @@
 //! Without twist a point carries the scalar law's [`SlipState`] and its last
 //! p_T, u_T, μ_F. In a model with twist ([`crate::input::mesh::NodeDofs::twist`])
 //! the slip and shear are 2-vectors (along the meridian t and around the
-//! axis θ) and the point carries the vector law's [`SlipState2`] instead;
+//! axis θ) and the point carries the vector law's `SlipState2` instead;
 //! the scalar `slip` then stays at its default.
 //!
 //! ```text

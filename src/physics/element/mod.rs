@@ -44,9 +44,9 @@ impl Section {
 /// updated Gauss point states. Errors name the Gauss point.
 ///
 /// The element's dofs are `ue.len()` (= `fe.len()`, `ke.len()` = its square):
-/// two per node ([`NodeDofs::PLANE`]: 16 for the quad, 12 for the triangle),
-/// or three in an axisymmetric model with twist ([`NodeDofs::TWIST`],
-/// [`crate::physics::element::axisymmetric_twist`]).
+/// two per node (`NodeDofs::PLANE`: 16 for the quad, 12 for the triangle),
+/// or three in an axisymmetric model with twist (`NodeDofs::TWIST`,
+/// `crate::physics::element::axisymmetric_twist`).
 #[allow(clippy::too_many_arguments)]
 pub fn element_forces(
     geom: &solid::ElementGeometry,

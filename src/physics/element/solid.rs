@@ -8,7 +8,7 @@
 //!       ⎣∂N/∂y  ∂N/∂x⎦
 //! ```
 //!
-//! Axisymmetric (x = r, y = z; [`axisymmetric_forces`]): the strain gains the
+//! Axisymmetric (x = r, y = z; `axisymmetric_forces`): the strain gains the
 //! hoop component ε_θθ = u_r/r, B a fourth row, C is 4×4 and the volume element
 //! is that of the full revolution:
 //! ```text

@@ -13,7 +13,7 @@
 //!   (Simo & Hughes, eqs 3.8-3.11) in the 4 components (xx, yy, zz, xy), closed
 //!   form for linear hardening, with its algorithmic tangent (module `radial`).
 //!   The out-of-plane strain is given: 0 in plane strain, the hoop strain
-//!   ε_θθ = u_r/r in axisymmetry ([`VonMises::update_axisymmetric`], 4×4 tangents).
+//!   ε_θθ = u_r/r in axisymmetry (`VonMises::update_axisymmetric`, 4×4 tangents).
 //! * Plane stress (σ_zz = 0): the projected return of Simo & Taylor in the
 //!   plane-stress subspace, a scalar Newton iteration for Δγ, and its consistent
 //!   tangent; not a 3D return with σ_zz forced afterwards.
@@ -50,7 +50,7 @@ pub enum Plane {
 }
 
 /// State at one Gauss point, committed at the end of a converged increment
-/// (stored in a [`GaussStates`], which keeps the twist components only in a
+/// (stored in a `GaussStates`, which keeps the twist components only in a
 /// model with twist).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PointState {

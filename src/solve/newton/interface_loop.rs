@@ -30,7 +30,7 @@
 //! rows of M and K are the same, and `(M⁻¹ [0; e])_I = S⁻¹ e`). The global
 //! iteration then checks the true residual as before: the loop changes the
 //! path to a step's solution, never its convergence test. Where it does not
-//! converge within [`MAX_INNER`] iterations, or its matrix turns singular (a
+//! converge within `MAX_INNER` iterations, or its matrix turns singular (a
 //! body held only by points the loop opened), the iterate of the smallest
 //! ‖F‖ is taken if that is below ‖F(Δ⁰_I)‖, else the plain correction stands:
 //! any correction is a valid start for the next global iteration, which

@@ -225,7 +225,7 @@ impl<'m> Engine<'m> {
 
     /// Max yield ratio over every Gauss point of the model (all ranks) and the
     /// (element, point) where it occurs: the lowest such index among the
-    /// points tied with it ([`super::yield_point::RATIO_TIE`]), as one
+    /// points tied with it (`super::yield_point::RATIO_TIE`), as one
     /// process finds it.
     pub fn max_yield_ratio(&self, state: &State) -> (f64, usize, usize) {
         use super::yield_point::{lowest_tied, max_yield_ratio};
@@ -267,7 +267,7 @@ impl<'m> Engine<'m> {
         &self.load
     }
 
-    /// [`Measures::of`] with the largest plastic strain taken over all ranks.
+    /// `Measures::of` with the largest plastic strain taken over all ranks.
     pub fn measures(&self, state: &State) -> super::Measures {
         let mut m = super::Measures::of(self.model, state);
         m.max_peeq = self.max_over_points(state.gauss.iter().map(|g| g.peeq));

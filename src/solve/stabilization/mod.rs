@@ -168,13 +168,13 @@ fn base_springs(engine: &Engine, committed: &State, lambda: f64) -> Vec<f64> {
 }
 
 /// The steps of an engine, defined here, above the Newton iteration: the
-/// engine itself knows only its plain step ([`Engine::plain_step`]).
+/// engine itself knows only its plain step (`Engine::plain_step`).
 impl Engine<'_> {
     /// Solves the step from `committed` to load factor `lambda`. Returns the
     /// converged trial state and the number of iterations, or a reason. Every
     /// branch is taken on all ranks alike. The iterations are the built-in loop
-    /// below, or the engine's [`NonlinearSolver`] (PETSc SNES) when it has one;
-    /// both call the same [`StepProblem`].
+    /// below, or the engine's `NonlinearSolver` (PETSc SNES) when it has one;
+    /// both call the same `StepProblem`.
     ///
     /// A step that would leave a body floating goes through the contact
     /// stabilization (this module); every other step is the plain one.

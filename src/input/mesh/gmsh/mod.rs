@@ -15,8 +15,8 @@
 //! error is one line naming the file and the line (ASCII) or byte offset
 //! (binary data) where the problem is.
 //!
-//! [`parse`] reads the file into a [`MshFile`] (sections, counts, binary or
-//! ASCII numbers); [`build`] turns that into the solver's [`Mesh`] (bodies,
+//! `parse` reads the file into a `MshFile` (sections, counts, binary or
+//! ASCII numbers); `build` turns that into the solver's [`Mesh`] (bodies,
 //! node and edge sets, paired interface curves).
 
 mod build;

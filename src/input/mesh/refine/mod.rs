@@ -21,7 +21,7 @@
 //! A marked triangle is split into four T6 children by its midsides (the
 //! three corner triangles and the inverted centre one); its 9 new nodes (the
 //! 6 edge quarter points and 3 interior midsides) are placed by its own map
-//! ([`split_t6`]). Both families split each edge at its midside, so a quad
+//! (`split_t6`). Both families split each edge at its midside, so a quad
 //! and a triangle side by side refine alike.
 //!
 //! Where a refined element meets an unrefined one, the coarse edge [a, m, b]
@@ -33,7 +33,7 @@
 //!   N_a = s(s−1)/2, N_m = 1−s², N_b = s(s+1)/2:  (3/8, 3/4, −1/8) at s = −½
 //! ```
 //!
-//! per dof component ([`HangingNode::constraints`], the model's linear
+//! per dof component (`HangingNode::constraints`, the model's linear
 //! constraints [`crate::model::constraint`]). The mesh stays **1-irregular**: at
 //! most one level of difference across an edge ([`closure`] refines the
 //! coarser neighbour of a marked element's half edge), so a hanging node's

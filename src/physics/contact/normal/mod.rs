@@ -17,9 +17,9 @@
 //!
 //! Each law is one file of this folder: its parameters (keys, engineering
 //! ranges), how it is built from them and checked, how `asperity check`
-//! describes it, and its evaluation ([`Law`]); [`KINDS`] lists them. The
+//! describes it, and its evaluation (`Law`); `KINDS` lists them. The
 //! case's checks, the documentation's table of ranges and `check` go through
-//! [`KINDS`] and [`Law`], never through a list of their own.
+//! `KINDS` and `Law`, never through a list of their own.
 //!
 //! For u_N ≤ 0 the pair is open: p = 0, k = 0 (loss of contact, section 2.3).
 //! The power law has k = 0 at u = 0 when m < 1, so the first iteration of a

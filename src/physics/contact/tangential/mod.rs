@@ -48,7 +48,7 @@ pub enum Memory {
     Isotropic,
     /// Masing: the elastic range moves with the load, a reversal starts the
     /// first-loading curve scaled by two, nested loops close
-    /// ([`kinematic`]).
+    /// (`kinematic`).
     Kinematic,
 }
 
@@ -65,7 +65,7 @@ pub enum Backbone {
     /// An Iwan density of slip thresholds (Segalman 2005): (1 − spike) (1 + χ) η^χ
     /// on η ∈ [0, 1] plus a point mass `spike` at η = 1. The stiffness falls
     /// from k_T^e at once, the dissipation per cycle grows as the slip
-    /// amplitude to the power 3 + χ from zero on ([`kinematic`]; against the
+    /// amplitude to the power 3 + χ from zero on (`kinematic`; against the
     /// force amplitude faster, docs/theory.md).
     Iwan { chi: f64, spike: f64 },
 }
