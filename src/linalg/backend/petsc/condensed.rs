@@ -26,7 +26,8 @@
 //! [`super::LinearDefault::MULTIGRID_FROM`] rows, or chosen on the command
 //! line) the loop does not run and the plain Newton correction stands.
 //!
-//! **Only where the case asks for it by name** ([`runs_loop`]:
+//! **Only where the case asks for it by name** (the backend's construction,
+//! [`super::solver`]:
 //! `[solver] interface_loop = true` or `--interface-loop on`; unset, the
 //! serial backend runs it and PETSc does not). Z costs m pruned solves
 //! with the factor, as much as a whole Newton iteration or more: on
@@ -44,14 +45,7 @@
 //! iterates to round-off.
 
 use super::owned::{InversePattern, Owned};
-use crate::model::Model;
 
-/// Whether the PETSc backend runs the interface loop on `model`: where
-/// `[solver] interface_loop` is set to true (by the case or
-/// `--interface-loop on`), not by default (the module's documentation).
-pub(super) fn runs_loop(model: &Model) -> bool {
-    model.solver.interface_loop == Some(true)
-}
 use super::solver::PetscBackend;
 use super::{chk, ffi, type_is};
 use crate::error::Result;
@@ -109,7 +103,7 @@ impl PetscBackend<'_> {
 
     /// The pattern I × I of [`InversePattern`] (the interface equations'
     /// PETSc indices, every row on rank 0).
-    fn inverse_pattern(&self) -> Result<InversePattern> {
+    fn build_inverse_pattern(&self) -> Result<InversePattern> {
         let global = self.part.global_len();
         let rows = if self.rank == 0 { global } else { 0 };
         let mut idx: Vec<ffi::PetscInt> = self
@@ -175,7 +169,7 @@ impl PetscBackend<'_> {
     /// Z = (M⁻¹)_II by MUMPS's selected entries of the inverse, on every rank.
     fn inverse_entries(&mut self, f: ffi::Mat) -> Result<Vec<f64>> {
         if self.inverse_pattern.is_none() {
-            self.inverse_pattern = Some(self.inverse_pattern()?);
+            self.inverse_pattern = Some(self.build_inverse_pattern()?);
         }
         let m = self.loop_equations.len();
         let mut z = vec![0.0; m * m];

@@ -265,7 +265,7 @@ pub(crate) struct PetscBackend<'p> {
     pub ksp_iterations: usize,
     keep_solid: bool,
     /// The interface equations where the interface loop runs on this model
-    /// (asked for by name, [`super::condensed::runs_loop`], and the serial
+    /// (asked for by name, `[solver] interface_loop = true`, and the serial
     /// backend's rule), increasing; else empty ([`super::condensed`]).
     pub(super) loop_equations: Vec<usize>,
     /// The KSP whose factor the interface loop uses when SNES solves the
@@ -381,7 +381,9 @@ impl<'p> PetscBackend<'p> {
             ksp_iterations: 0,
             keep_solid: false,
             loop_equations: match linear {
-                LinearDefault::Direct { .. } if super::condensed::runs_loop(model) => {
+                // only where the case (or `--interface-loop on`) asks for it by
+                // name: on PETSc it seldom pays ([`super::condensed`])
+                LinearDefault::Direct { .. } if model.solver.interface_loop == Some(true) => {
                     crate::linalg::backend::serial::interface_loop_equations(model)?
                 }
                 _ => Vec::new(),
