@@ -38,36 +38,13 @@ pub(crate) struct BoxMesh {
 /// [`super::blocks::graded_axis`] gives them), its face sets named
 /// `<name>.<face>`.
 pub(crate) fn box_mesh(name: &str, axes: [&[f64]; 3]) -> BoxMesh {
-    let n = axes.map(|a| a.len() - 1);
-    let dims = n.map(|k| 2 * k + 1);
-    // lattice coordinate along one axis: corners at even, midsides at odd indices
-    let at = |axis: usize, i: usize| {
-        let a = axes[axis];
-        if i % 2 == 0 {
-            a[i / 2]
-        } else {
-            0.5 * (a[i / 2] + a[i / 2 + 1])
-        }
-    };
-    let mut id = vec![usize::MAX; dims[0] * dims[1] * dims[2]];
-    let index = |i: usize, j: usize, k: usize| (k * dims[1] + j) * dims[0] + i;
-    let mut nodes = Vec::new();
-    for k in 0..dims[2] {
-        for j in 0..dims[1] {
-            for i in 0..dims[0] {
-                if (i % 2) + (j % 2) + (k % 2) >= 2 {
-                    continue;
-                }
-                id[index(i, j, k)] = nodes.len();
-                nodes.push([at(0, i), at(1, j), at(2, k)]);
-            }
-        }
-    }
+    let lattice = Lattice::new(axes);
+    let n = lattice.cells;
+    // no face or body centres: at most one odd index
+    let (nodes, id) = lattice.points(|p| p.iter().map(|i| i % 2).sum::<usize>() < 2);
+    let index = |i: usize, j: usize, k: usize| lattice.index([i, j, k]);
     let mut elements = Vec::with_capacity(n[0] * n[1] * n[2]);
-    let mut faces: BTreeMap<String, Vec<[usize; 8]>> = FACE_NAMES
-        .iter()
-        .map(|f| (format!("{name}.{f}"), Vec::new()))
-        .collect();
+    let mut faces = empty_faces(name);
     for k in 0..n[2] {
         for j in 0..n[1] {
             for i in 0..n[0] {
@@ -106,6 +83,70 @@ pub(crate) fn box_mesh(name: &str, axes: [&[f64]; 3]) -> BoxMesh {
 
 /// The faces of a sector, in the order of [`FACE_NAMES`] (x → r, y → θ).
 pub(crate) const SECTOR_FACE_NAMES: [&str; 6] = ["zmin", "zmax", "tmin", "rmax", "tmax", "rmin"];
+
+/// The (2n+1) points per axis of a graded box: its corners at even indices,
+/// the midpoints between them at odd ones.
+struct Lattice<'a> {
+    axes: [&'a [f64]; 3],
+    /// Cells per axis.
+    cells: [usize; 3],
+    /// Points per axis, 2 cells + 1.
+    dims: [usize; 3],
+}
+
+impl<'a> Lattice<'a> {
+    fn new(axes: [&'a [f64]; 3]) -> Self {
+        let cells = axes.map(|a| a.len() - 1);
+        Lattice {
+            axes,
+            cells,
+            dims: cells.map(|k| 2 * k + 1),
+        }
+    }
+
+    fn index(&self, [i, j, k]: [usize; 3]) -> usize {
+        (k * self.dims[1] + j) * self.dims[0] + i
+    }
+
+    fn coordinate(&self, axis: usize, i: usize) -> f64 {
+        let a = self.axes[axis];
+        if i % 2 == 0 {
+            a[i / 2]
+        } else {
+            0.5 * (a[i / 2] + a[i / 2 + 1])
+        }
+    }
+
+    /// The points that `keep`, in index order, and each lattice index's
+    /// node (usize::MAX where not kept).
+    fn points(&self, keep: impl Fn([usize; 3]) -> bool) -> (Vec<[f64; 3]>, Vec<usize>) {
+        let mut id = vec![usize::MAX; self.dims.iter().product()];
+        let mut nodes = Vec::new();
+        for k in 0..self.dims[2] {
+            for j in 0..self.dims[1] {
+                for i in 0..self.dims[0] {
+                    if keep([i, j, k]) {
+                        id[self.index([i, j, k])] = nodes.len();
+                        nodes.push([
+                            self.coordinate(0, i),
+                            self.coordinate(1, j),
+                            self.coordinate(2, k),
+                        ]);
+                    }
+                }
+            }
+        }
+        (nodes, id)
+    }
+}
+
+/// The six face sets of a box, empty.
+fn empty_faces<F>(name: &str) -> BTreeMap<String, Vec<F>> {
+    FACE_NAMES
+        .iter()
+        .map(|f| (format!("{name}.{f}"), Vec::new()))
+        .collect()
+}
 
 /// A sector of a thick-walled cylinder about the z axis: the box on the
 /// axes [r, θ (degrees), z] mapped to x = r cos θ, y = r sin θ, so that the
@@ -170,25 +211,11 @@ pub(crate) struct TetMesh {
 /// The tetrahedral box on the corner coordinates `axes` ([`box_mesh`]).
 pub(crate) fn tet_box_mesh(name: &str, axes: [&[f64]; 3]) -> TetMesh {
     use crate::physics::element::t10;
-    let n = axes.map(|a| a.len() - 1);
-    let dims = n.map(|k| 2 * k + 1);
-    let at = |axis: usize, i: usize| {
-        let a = axes[axis];
-        if i % 2 == 0 {
-            a[i / 2]
-        } else {
-            0.5 * (a[i / 2] + a[i / 2 + 1])
-        }
-    };
-    let index = |p: [usize; 3]| (p[2] * dims[1] + p[1]) * dims[0] + p[0];
-    let mut nodes = Vec::with_capacity(dims[0] * dims[1] * dims[2]);
-    for k in 0..dims[2] {
-        for j in 0..dims[1] {
-            for i in 0..dims[0] {
-                nodes.push([at(0, i), at(1, j), at(2, k)]);
-            }
-        }
-    }
+    let lattice = Lattice::new(axes);
+    let n = lattice.cells;
+    // every lattice point is a node: its index is its number
+    let (nodes, _) = lattice.points(|_| true);
+    let index = |p: [usize; 3]| lattice.index(p);
     const PATHS: [[usize; 3]; 6] = [
         [0, 1, 2],
         [1, 2, 0],
@@ -198,10 +225,7 @@ pub(crate) fn tet_box_mesh(name: &str, axes: [&[f64]; 3]) -> TetMesh {
         [1, 0, 2],
     ];
     let mut elements = Vec::with_capacity(6 * n[0] * n[1] * n[2]);
-    let mut faces: BTreeMap<String, Vec<[usize; 6]>> = FACE_NAMES
-        .iter()
-        .map(|f| (format!("{name}.{f}"), Vec::new()))
-        .collect();
+    let mut faces = empty_faces(name);
     for k in 0..n[2] {
         for j in 0..n[1] {
             for i in 0..n[0] {
