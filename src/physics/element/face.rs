@@ -33,11 +33,7 @@ pub(crate) fn pressure_forces(family: Family, x: &[[f64; 3]], p: f64) -> [[f64; 
                 }
             }
         }
-        let normal = [
-            t[0][1] * t[1][2] - t[0][2] * t[1][1],
-            t[0][2] * t[1][0] - t[0][0] * t[1][2],
-            t[0][0] * t[1][1] - t[0][1] * t[1][0],
-        ];
+        let normal = crate::numbers::vec3::cross(t[0], t[1]);
         for a in 0..nn {
             for c in 0..3 {
                 f[a][c] -= p * n[a] * normal[c] * w;

@@ -61,6 +61,7 @@
 use super::gauss3::GaussRule3;
 use super::solid::{Response, Tangent};
 use super::{h20, t10};
+use crate::numbers::vec3::{cross, dot};
 use crate::physics::material::{PointState, VonMises};
 use nalgebra::Matrix6;
 
@@ -200,18 +201,6 @@ impl Family3 {
         }
         Ok((det, out))
     }
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// Per-element Gauss point geometry of a 3D element, on the stack (about
