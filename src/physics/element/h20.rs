@@ -187,7 +187,6 @@ pub(crate) fn gauss_8() -> GaussRule3 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::numbers::fd;
 
     const POINTS: [[f64; 3]; 4] = [
         [0.31, -0.47, 0.13],
@@ -202,35 +201,16 @@ mod tests {
     }
 
     use crate::numbers::vec3::{cross, dot, sub};
+    use crate::physics::element::shape_checks;
 
     #[test]
     fn partition_of_unity_kronecker_and_derivatives_sum_to_zero() {
-        for &p in &POINTS {
-            assert!((shape(p).iter().sum::<f64>() - 1.0).abs() < 1e-14, "{p:?}");
-            let d = shape_derivs(p);
-            for k in 0..3 {
-                let s: f64 = d.iter().map(|v| v[k]).sum();
-                assert!(s.abs() < 1e-14, "Σ ∂N/∂ξ_{k} = {s} at {p:?}");
-            }
-        }
-        for (a, &x) in NODE_XI.iter().enumerate() {
-            for (b, v) in shape(x).iter().enumerate() {
-                assert!(
-                    (v - f64::from(u8::from(a == b))).abs() < 1e-14,
-                    "N_{b} at node {a}"
-                );
-            }
-        }
+        shape_checks::partition_and_kronecker(&POINTS, &NODE_XI, shape, shape_derivs);
     }
 
     #[test]
     fn derivatives_match_finite_differences() {
-        for &p in &POINTS {
-            let d = shape_derivs(p);
-            let jac = fd::central_jacobian(|x| shape([x[0], x[1], x[2]]).to_vec(), &p, 1e-5);
-            let worst = fd::worst(&jac, |a, k| d[a][k], fd::Scale::Absolute);
-            assert!(worst.diff < 1e-8, "∂N_a/∂ξ_k at {p:?}, {worst}");
-        }
+        shape_checks::derivatives_by_differences(&POINTS, shape, shape_derivs);
     }
 
     /// u = any quadratic in (ξ, η, ζ), plus ξηζ and ξ²η, is reproduced by

@@ -11,6 +11,8 @@ pub mod gauss;
 pub(crate) mod gauss3;
 pub(crate) mod h20;
 pub mod q8;
+#[cfg(test)]
+mod shape_checks;
 pub mod solid;
 pub(crate) mod solid3;
 pub(crate) mod t10;
