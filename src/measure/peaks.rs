@@ -72,15 +72,14 @@ fn body_peaks(
         })
         .collect();
     max(&mut key);
-    let place = |slot: usize| -> [f64; 3] {
+    let place = |slot: usize| -> [f64; 4] {
         if key[slot] == f64::NEG_INFINITY {
-            return [f64::NAN; 3];
+            return [f64::NAN; 4];
         }
         let i = (-key[slot]) as usize;
         let e = model.element_of_point(i);
-        let ip = i - model.points(e).start;
-        let x = model.geometry(e).x[ip];
-        [x[0], x[1], e as f64]
+        let x = model.point_x(e, i - model.points(e).start);
+        [x[0], x[1], x[2], e as f64]
     };
     let mut out = Vec::with_capacity(PER_BODY * nb);
     for b in 0..nb {
@@ -93,7 +92,7 @@ fn body_peaks(
         out.extend(if pe > 0.0 {
             place(nb + b)
         } else {
-            [f64::NAN; 3]
+            [f64::NAN; 4]
         });
     }
     out

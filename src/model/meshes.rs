@@ -14,11 +14,21 @@ pub(super) fn make_mesh(case: &Case, place: &str) -> Result<Mesh> {
             let dir = case.source.parent().unwrap_or(std::path::Path::new(""));
             gmsh::read(&dir.join(file), &case.mesh.interface, place)?
         }
-        None => blocks::generate(&case.mesh.block, &case.mesh.interface, case.mesh.refine)
-            .map_err(|e| Error::Mesh {
+        None => {
+            let layout = blocks::generate(&case.mesh.block, &case.mesh.interface, case.mesh.refine);
+            let mesh = match &case.mesh.extrude {
+                None => layout,
+                Some(e) => layout.and_then(|plane| {
+                    let zs =
+                        blocks::graded_axis("extrude", "z", &e.z, &e.nz, &e.rz, case.mesh.refine)?;
+                    crate::input::mesh::extrude::extrude(&plane, &zs)
+                }),
+            };
+            mesh.map_err(|e| Error::Mesh {
                 place: format!("{place} [mesh]"),
                 message: e.to_string(),
-            })?,
+            })?
+        }
     };
     // a region refines a valid mesh; the refined one is checked below
     let Some(r) = &case.mesh.refine_region else {

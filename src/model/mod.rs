@@ -9,8 +9,10 @@ use crate::input::mesh::{Mesh, NodeDofs};
 use crate::model::assembly::{Blocks, DofMap, Pattern};
 use crate::model::interface::InterfaceModel;
 use crate::physics::element::family::{Family, GaussRule};
+use crate::physics::element::gauss3::GaussRule3;
 use crate::physics::element::solid::ElementGeometry;
 use crate::physics::element::solid::ElementVector;
+use crate::physics::element::solid3::{ElementGeometry3, Family3};
 use crate::physics::material::{Plane, VonMises};
 
 pub mod assembly;
@@ -71,9 +73,11 @@ pub struct Model {
     /// Thickness or revolution: the out-of-plane measure of every integral.
     pub section: crate::physics::element::Section,
     pub symmetric_half: bool,
-    /// Each family's Gauss rule at the case's integration, in
+    /// Each plane family's Gauss rule at the case's integration, in
     /// [`Family::index`] order.
     rules: [GaussRule; 2],
+    /// Each solid family's rule (H20, T10), likewise.
+    rules3: [GaussRule3; 2],
     /// Element e's Gauss point states are `gauss_offsets[e]..gauss_offsets[e
     /// + 1]` of every state vector ([`Model::points`]).
     gauss_offsets: Vec<usize>,
@@ -215,6 +219,7 @@ impl Model {
         };
         let full = case.model.integration == Integration::Full;
         let rules = Family::ALL.map(|f| f.rule(full));
+        let rules3 = [Family3::H20, Family3::T10].map(|f| f.rule(full));
         // the start mesh's nodes (and their copies across the cuts): where
         // a [[force]] acts and the probe is read on every adaptive cycle
         let start: Vec<bool> = crate::model::pretension::origins(&sections, mesh.nodes.len())
@@ -222,7 +227,7 @@ impl Model {
             .map(|o| o < start_nodes)
             .collect();
         let materials = materials(&case, &mesh, &place)?;
-        check_elements(&mesh, &rules, &section, &place)?;
+        check_elements(&mesh, (&rules, &rules3), &section, &place)?;
         let mut interfaces = interface_models(&case, &checked, &mesh, section, &place)?;
         let mut loads = crate::model::loads::build(&case, &mesh, &start, section, &place)?;
         let f_ext = loads.patterns.remove(0).f;
@@ -261,8 +266,9 @@ impl Model {
             thickness,
             section,
             symmetric_half: case.model.symmetric_half,
-            gauss_offsets: gauss_offsets(&mesh, &rules),
+            gauss_offsets: gauss_offsets(&mesh, (&rules, &rules3)),
             rules,
+            rules3,
             materials,
             interfaces,
             prescribed,
@@ -383,7 +389,59 @@ impl Model {
             .expect("element geometry was checked when the model was built")
     }
 
-    /// Element e's Gauss rule.
+    /// Where Gauss point `ip` of element e is, in space (z = 0 in a plane
+    /// model).
+    pub(crate) fn point_x(&self, e: usize, ip: usize) -> [f64; 3] {
+        match self.mesh.elements[e].family.dim() {
+            3 => self.geometry3(e).x[ip],
+            _ => {
+                let [x, y] = self.geometry(e).x[ip];
+                [x, y, 0.0]
+            }
+        }
+    }
+
+    /// The volume each Gauss point of element e stands for (det J · weight,
+    /// times the out-of-plane measure in a plane model), mm³.
+    pub(crate) fn point_volumes(&self, e: usize) -> Vec<f64> {
+        match self.mesh.elements[e].family.dim() {
+            3 => {
+                let g = self.geometry3(e);
+                g.dv[..g.n].to_vec()
+            }
+            _ => {
+                let g = self.geometry(e);
+                g.dv[..g.n].to_vec()
+            }
+        }
+    }
+
+    /// Gauss point geometry of element e of a 3D mesh (checked valid when
+    /// the model was built).
+    pub(crate) fn geometry3(&self, e: usize) -> ElementGeometry3 {
+        let family = self.mesh.elements[e].family;
+        let solid = family.solid().expect("a 3D model's element");
+        let coords = self.mesh.element_coords3(e);
+        ElementGeometry3::new(solid, &coords[..family.nodes()], self.rule3(solid))
+            .expect("element geometry was checked when the model was built")
+    }
+
+    /// The Gauss rule of a solid family's elements.
+    pub(crate) fn rule3(&self, family: Family3) -> &GaussRule3 {
+        &self.rules3[family.family().index() - 2]
+    }
+
+    /// The dofs of the model's largest element (a slot of the element loop's
+    /// buffers).
+    pub(crate) fn max_element_dofs(&self) -> usize {
+        let nodes = match self.mesh.dim() {
+            3 => crate::physics::element::family::MAX_ELEMENT_NODES,
+            _ => crate::physics::element::family::MAX_NODES,
+        };
+        self.node_dofs().element(nodes)
+    }
+
+    /// Element e's Gauss rule (a plane element).
     pub fn rule(&self, e: usize) -> &GaussRule {
         self.rule_of(self.mesh.elements[e].family)
     }
@@ -418,7 +476,7 @@ impl Model {
     /// (a model posed by hand, in tests: the layout follows the elements).
     pub fn set_elements(&mut self, elements: Vec<crate::input::mesh::Element>) {
         self.mesh.elements = elements;
-        self.gauss_offsets = gauss_offsets(&self.mesh, &self.rules);
+        self.gauss_offsets = gauss_offsets(&self.mesh, (&self.rules, &self.rules3));
     }
 
     /// The element owning Gauss point state `i` (`i` < [`Model::n_points`]).
@@ -735,22 +793,30 @@ fn materials(case: &Case, mesh: &Mesh, place: &str) -> Result<Vec<VonMises>> {
 /// recomputed when needed ([`Model::geometry`]).
 fn check_elements(
     mesh: &Mesh,
-    rules: &[GaussRule; 2],
+    (rules, rules3): (&[GaussRule; 2], &[GaussRule3; 2]),
     section: &crate::physics::element::Section,
     place: &str,
 ) -> Result<()> {
     for (e, el) in mesh.elements.iter().enumerate() {
-        let rule = &rules[el.family.index()];
-        let coords = mesh.element_coords(e);
-        ElementGeometry::with_section(el.family, &coords, rule, section).map_err(|m| {
-            Error::Mesh {
-                place: place.to_string(),
-                message: format!(
-                    "{} of body \"{}\": {m}",
-                    mesh.element_label(e),
-                    mesh.bodies[el.body]
-                ),
+        let checked = match el.family.solid() {
+            None => {
+                let rule = &rules[el.family.index()];
+                let coords = mesh.element_coords(e);
+                ElementGeometry::with_section(el.family, &coords, rule, section).map(drop)
             }
+            Some(solid) => {
+                let rule = &rules3[el.family.index() - 2];
+                let coords = mesh.element_coords3(e);
+                ElementGeometry3::new(solid, &coords[..el.family.nodes()], rule).map(drop)
+            }
+        };
+        checked.map_err(|m| Error::Mesh {
+            place: place.to_string(),
+            message: format!(
+                "{} of body \"{}\": {m}",
+                mesh.element_label(e),
+                mesh.bodies[el.body]
+            ),
         })?;
     }
     Ok(())
@@ -758,12 +824,15 @@ fn check_elements(
 
 /// Where each element's Gauss point states start in a state vector (and,
 /// last, their total): elements in order, each its family's rule.
-fn gauss_offsets(mesh: &Mesh, rules: &[GaussRule; 2]) -> Vec<usize> {
+fn gauss_offsets(mesh: &Mesh, (rules, rules3): (&[GaussRule; 2], &[GaussRule3; 2])) -> Vec<usize> {
     let mut offsets = Vec::with_capacity(mesh.elements.len() + 1);
     let mut at = 0;
     offsets.push(at);
     for el in &mesh.elements {
-        at += rules[el.family.index()].points.len();
+        at += match el.family.dim() {
+            3 => rules3[el.family.index() - 2].points.len(),
+            _ => rules[el.family.index()].points.len(),
+        };
         offsets.push(at);
     }
     offsets
@@ -829,6 +898,9 @@ fn start_mesh(case: &Case, given: Option<Adapted>, place: &str) -> Result<(Mesh,
     };
     if case.model.twist {
         mesh.node_dofs = NodeDofs::TWIST;
+    }
+    if mesh.dim() == 3 {
+        mesh.node_dofs = NodeDofs::SOLID;
     }
     // an adaptive run builds its start mesh here too (given, as every
     // cycle's); it never refines past the cap, so only that one can fail

@@ -39,7 +39,7 @@ impl State {
         let n_points: usize = model.interfaces.iter().map(|i| i.points.len()).sum();
         State {
             u: vec![0.0; model.num_dofs()],
-            gauss: GaussStates::new(model.n_points(), model.node_dofs().twist()),
+            gauss: GaussStates::new(model.n_points(), model.node_dofs().six_components()),
             status: vec![Status::Closed; n_points],
             contact: vec![crate::physics::contact::PointState::default(); n_points],
             prescribed_reaction: 0.0,

@@ -17,6 +17,9 @@ pub(super) fn check_supports(
     axisymmetric: bool,
     place: &str,
 ) -> Result<()> {
+    if mesh.dim() == 3 {
+        return check_solid_supports(mesh, prescribed, place);
+    }
     // a body of revolution cannot move rigidly in r: u_r = c strains it by c/r
     // in the hoop direction (and nodes on the axis are held by u_r = 0)
     let mut held = vec![[axisymmetric, false]; mesh.bodies.len()];
@@ -98,6 +101,98 @@ pub(super) fn check_supports(
         }
     }
     Ok(())
+}
+
+/// A 3D body is held when its prescribed dofs stop all six rigid motions:
+/// with x̄ its nodes' centroid and L its size, the rows
+/// ```text
+///   r(n, c) = [e_c, (e_c × (x_n − x̄)) / L]     (u_c of the motion u = a + ω × (x − x̄))
+/// ```
+/// of its prescribed dofs span R⁶ (RᵀR, 6 × 6, has no eigenvalue below
+/// 1e-10 of the largest); an eigenvector of a smaller one is a motion they
+/// leave free, and is named: a translation, a rotation about an axis
+/// through the centroid, or both.
+fn check_solid_supports(mesh: &Mesh, prescribed: &[(usize, f64)], place: &str) -> Result<()> {
+    let node_body = mesh.node_bodies();
+    let nb = mesh.bodies.len();
+    let mut centre = vec![[0.0; 3]; nb];
+    let mut count = vec![0usize; nb];
+    let mut lo = vec![[f64::INFINITY; 3]; nb];
+    let mut hi = vec![[f64::NEG_INFINITY; 3]; nb];
+    for (n, x) in mesh.nodes.iter().enumerate() {
+        let b = node_body[n];
+        for c in 0..3 {
+            centre[b][c] += x[c];
+            lo[b][c] = lo[b][c].min(x[c]);
+            hi[b][c] = hi[b][c].max(x[c]);
+        }
+        count[b] += 1;
+    }
+    let mut rtr = vec![nalgebra::Matrix6::<f64>::zeros(); nb];
+    for &(d, _) in prescribed.iter().filter(|p| p.0 < mesh.num_dofs()) {
+        let (n, c) = mesh.node_dofs.node_of(d);
+        let b = node_body[n];
+        let size = (0..3)
+            .map(|k| (hi[b][k] - lo[b][k]).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        let r: [f64; 3] =
+            std::array::from_fn(|k| (mesh.nodes[n][k] - centre[b][k] / count[b] as f64) / size);
+        let mut e = [0.0; 3];
+        e[c] = 1.0;
+        let w = crate::numbers::vec3::cross(r, e);
+        let row = nalgebra::Vector6::new(e[0], e[1], e[2], w[0], w[1], w[2]);
+        rtr[b] += row * row.transpose();
+    }
+    for (b, m) in rtr.iter().enumerate() {
+        let eig = m.symmetric_eigen();
+        let largest = eig.eigenvalues.max().max(1.0);
+        let Some(k) = (0..6).find(|&k| eig.eigenvalues[k] < 1e-10 * largest) else {
+            continue;
+        };
+        let v = eig.eigenvectors.column(k);
+        let c: [f64; 3] = std::array::from_fn(|k| centre[b][k] / count[b] as f64);
+        return Err(Error::input(
+            place,
+            format!(
+                "body \"{}\" is held by nothing against {} (a rigid-body motion: a 3D body needs its six held by [[boundary]] ux, uy, uz); hold it, e.g. fix a corner, or give symmetry planes",
+                mesh.bodies[b],
+                motion([v[0], v[1], v[2]], [v[3], v[4], v[5]], c)
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// A free rigid motion in words: a translation along t, a rotation about
+/// the axis along ω through the centroid `c`, or both.
+fn motion(t: [f64; 3], w: [f64; 3], c: [f64; 3]) -> String {
+    let norm = |v: [f64; 3]| crate::numbers::vec3::dot(v, v).sqrt();
+    let dir = |v: [f64; 3]| {
+        let n = norm(v);
+        let r = v.map(|x| {
+            let y = x / n;
+            if y.abs() < 1e-6 {
+                0.0
+            } else {
+                (y * 1e3).round() / 1e3
+            }
+        });
+        format!("({}, {}, {})", r[0], r[1], r[2])
+    };
+    let centre = format!("({:.4}, {:.4}, {:.4})", c[0], c[1], c[2]);
+    match (norm(t) > 1e-3, norm(w) > 1e-3) {
+        (true, false) => format!("a translation along {}", dir(t)),
+        (false, _) => format!(
+            "a rotation about the axis along {} through {centre}",
+            dir(w)
+        ),
+        (true, true) => format!(
+            "a translation along {} with a rotation about the axis along {} through {centre}",
+            dir(t),
+            dir(w)
+        ),
+    }
 }
 
 /// Twist: whether each body is held about the axis by a prescribed u_θ of its

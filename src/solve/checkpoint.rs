@@ -43,8 +43,9 @@ pub struct Checkpoint {
     pub table_reach: Vec<crate::model::interface::extrapolation::Reach>,
     /// The events located so far ([`events`]).
     pub events: Vec<events::Event>,
-    /// The model has twist: its Gauss states carry six stress components
-    /// (the width of their restart layout, `PointState::packed_len`).
+    /// The model has twist or is 3D: its Gauss states carry six stress
+    /// components (the width of their restart layout,
+    /// `PointState::packed_len`; with twist also its interfaces' layout).
     pub twist: bool,
     /// The values of one designer's record (the model's
     /// [`Plan::width`](crate::model::outputs::Plan::width)): the layout of
@@ -73,7 +74,7 @@ impl Checkpoint {
             joint_totals: vec![JointTotals::default(); model.interfaces.len()],
             table_reach: vec![Default::default(); model.interfaces.len()],
             events: Vec::new(),
-            twist: model.node_dofs().twist(),
+            twist: model.node_dofs().six_components(),
             record_width: model.plan.width(),
         }
     }

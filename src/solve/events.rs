@@ -287,7 +287,7 @@ pub(super) fn first_yield(
         ),
         None => {
             let (_, e, ip) = engine.max_yield_ratio(state);
-            let x = model.geometry(e).x[ip];
+            let x = model.point_x(e, ip);
             (
                 Method::Increment,
                 bracket[1],

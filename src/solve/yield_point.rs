@@ -148,7 +148,7 @@ pub(super) fn locate(
     }
     let (_, e, ip) = engine.max_yield_ratio(&sb);
     let m = engine.measures(&sb);
-    let x = model.geometry(e).x[ip];
+    let x = model.point_x(e, ip);
     let first_yield = FirstYield {
         load_factor: b,
         mean_pressure: m.mean_pressure,

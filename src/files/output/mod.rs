@@ -164,12 +164,9 @@ impl Writer {
         )?;
         self.write(
             "probes.csv",
-            &probes::csv(
-                &plan.probes,
-                crate::model::outputs::probes::components(model.node_dofs()),
-                result,
-                |v| plan.part(v, &l.probes),
-            ),
+            &probes::csv(&plan.probes, &model.mesh, result, |v| {
+                plan.part(v, &l.probes)
+            }),
         )?;
         self.write(
             "peaks.csv",
@@ -206,7 +203,8 @@ impl Writer {
 
     /// The error estimate of increment `inc` (computed once per increment).
     fn estimate_of(&mut self, model: &Model, state: &State, inc: &Increment) {
-        if self.estimate.as_ref().is_none_or(|e| e.0 != inc.increment) {
+        // (a 3D model has no estimate yet)
+        if model.mesh.dim() == 2 && self.estimate.as_ref().is_none_or(|e| e.0 != inc.increment) {
             let est = crate::measure::estimate::estimate(model, state);
             self.estimate = Some((inc.increment, inc.load_factor, est));
         }
@@ -230,7 +228,7 @@ impl Writer {
     /// estimate) and queues its VTU file.
     fn queue_vtu(&mut self, model: &Model, state: &State, inc: &Increment) -> Result<()> {
         self.estimate_of(model, state, inc);
-        let est = &self.estimate.as_ref().expect("estimated just above").2;
+        let est = self.estimate.as_ref().map(|e| &e.2);
         let frame = Box::new(vtu::Frame::with(model, state, est));
         let layout = self
             .layout

@@ -10,28 +10,37 @@ use std::fmt::Write as _;
 
 pub(crate) const BODIES_HEADER: &str = "increment,time,body,von_mises_mpa,von_mises_x_mm,von_mises_y_mm,von_mises_element,peeq,peeq_x_mm,peeq_y_mm,peeq_element\n";
 
+/// The header of a 3D model: z beside x and y.
+pub(crate) const BODIES_HEADER_SOLID: &str = "increment,time,body,von_mises_mpa,von_mises_x_mm,von_mises_y_mm,von_mises_z_mm,von_mises_element,peeq,peeq_x_mm,peeq_y_mm,peeq_z_mm,peeq_element\n";
+
 /// `peaks.csv`: one row per increment and body (an empty place where there
 /// is none).
 pub(crate) fn bodies_csv(model: &Model, r: &RunResult, at: impl Fn(&[f64]) -> &[f64]) -> String {
-    let mut s = String::from(BODIES_HEADER);
+    let solid = model.mesh.dim() == 3;
+    let mut s = String::from(if solid {
+        BODIES_HEADER_SOLID
+    } else {
+        BODIES_HEADER
+    });
     for inc in &r.increments {
         let v = at(&inc.record);
         for (name, b) in model.mesh.bodies.iter().zip(v.chunks_exact(PER_BODY)) {
-            let _ = writeln!(
+            let _ = write!(
                 s,
-                "{},{:.9},{},{},{},{},{},{},{},{},{}",
+                "{},{:.9},{}",
                 inc.increment,
                 inc.load_factor,
-                csv_field(name),
-                real(b[0]),
-                real(b[1]),
-                real(b[2]),
-                whole(b[3]),
-                real(b[4]),
-                real(b[5]),
-                real(b[6]),
-                whole(b[7])
+                csv_field(name)
             );
+            // value, x, y, (z,) element: twice
+            for half in b.chunks_exact(PER_BODY / 2) {
+                let _ = write!(s, ",{},{},{}", real(half[0]), real(half[1]), real(half[2]));
+                if solid {
+                    let _ = write!(s, ",{}", real(half[3]));
+                }
+                let _ = write!(s, ",{}", whole(half[4]));
+            }
+            s.push('\n');
         }
     }
     s
@@ -93,8 +102,16 @@ fn argmax(rows: &[&[f64]], col: usize) -> Option<usize> {
     best
 }
 
-/// One peak over the run: value, place and when, or null.
-fn peak(r: &RunResult, rows: &[(usize, &[f64])], at: usize, unit: &str, body: bool) -> Value {
+/// One peak over the run: value, place and when, or null. `body`: a body's
+/// peak (value, x, y, z, element; `Some(true)` in a 3D model, which names
+/// z), else an interface's (value, x, y, s).
+fn peak(
+    r: &RunResult,
+    rows: &[(usize, &[f64])],
+    at: usize,
+    unit: &str,
+    body: Option<bool>,
+) -> Value {
     let only: Vec<&[f64]> = rows.iter().map(|x| x.1).collect();
     let Some(k) = argmax(&only, at) else {
         return Value::Null;
@@ -112,10 +129,14 @@ fn peak(r: &RunResult, rows: &[(usize, &[f64])], at: usize, unit: &str, body: bo
         "increment": inc.increment,
         "time": inc.load_factor,
     });
-    if body {
-        o["element"] = json!(v[at + 3] as i64);
-    } else {
-        o["s_mm"] = json!(v[at + 3]);
+    match body {
+        Some(solid) => {
+            if solid {
+                o["z_mm"] = json!(v[at + 3]);
+            }
+            o["element"] = json!(v[at + 4] as i64);
+        }
+        None => o["s_mm"] = json!(v[at + 3]),
     }
     o
 }
@@ -130,6 +151,7 @@ pub fn summary(
     body_at: usize,
     iface_at: usize,
 ) -> (Value, Value) {
+    let solid = model.mesh.dim() == 3;
     let bodies = model
         .mesh
         .bodies
@@ -139,8 +161,8 @@ pub fn summary(
             let o = body_at + PER_BODY * b;
             json!({
                 "body": name,
-                "max_von_mises": peak(r, rows, o, "value_mpa", true),
-                "max_peeq": peak(r, rows, o + 4, "value", true),
+                "max_von_mises": peak(r, rows, o, "value_mpa", Some(solid)),
+                "max_peeq": peak(r, rows, o + PER_BODY / 2, "value", Some(solid)),
             })
         })
         .collect();
@@ -165,7 +187,7 @@ pub fn summary(
             });
             json!({
                 "interface": im.name,
-                "max_pressure": peak(r, rows, o, "value_mpa", false),
+                "max_pressure": peak(r, rows, o, "value_mpa", None),
                 "final_extent": extent,
             })
         })

@@ -13,10 +13,28 @@ pub(crate) const HEADER: &str = "increment,time,probe,ux_mm,uy_mm\n";
 /// The header of a model with twist: u_θ as a third column.
 pub(crate) const HEADER_TWIST: &str = "increment,time,probe,ux_mm,uy_mm,utheta_mm\n";
 
+/// The header of a 3D model: u_z as a third column.
+pub(crate) const HEADER_SOLID: &str = "increment,time,probe,ux_mm,uy_mm,uz_mm\n";
+
+/// The name of a probe's third component: twist's u_θ or a 3D model's u_z.
+fn third(mesh: &Mesh) -> &'static str {
+    if mesh.node_dofs.twist() {
+        "utheta_mm"
+    } else {
+        "uz_mm"
+    }
+}
+
 /// `probes.csv`: one row per increment and probe (the header alone without
-/// probes), `per` values each (`components`).
-pub fn csv(probes: &[Probe], per: usize, r: &RunResult, at: impl Fn(&[f64]) -> &[f64]) -> String {
-    let mut s = String::from(if per == 3 { HEADER_TWIST } else { HEADER });
+/// probes), the mesh's components each.
+pub fn csv(probes: &[Probe], mesh: &Mesh, r: &RunResult, at: impl Fn(&[f64]) -> &[f64]) -> String {
+    let per = crate::model::outputs::probes::components(mesh.node_dofs);
+    let header = match (per, third(mesh)) {
+        (2, _) => HEADER,
+        (_, "utheta_mm") => HEADER_TWIST,
+        _ => HEADER_SOLID,
+    };
+    let mut s = String::from(header);
     for inc in &r.increments {
         let v = at(&inc.record);
         for (p, u) in probes.iter().zip(v.chunks_exact(per)) {
@@ -55,7 +73,7 @@ pub fn summary(probes: &[Probe], mesh: &Mesh, rows: &[&[f64]]) -> Value {
                 .collect();
             let mut fin = json!({"ux_mm": super::json::number(last[0]), "uy_mm": super::json::number(last[1])});
             if per == 3 {
-                fin["utheta_mm"] = super::json::number(last[2]);
+                fin[third(mesh)] = super::json::number(last[2]);
             }
             let mut o = json!({
                 "name": p.name,

@@ -29,7 +29,7 @@ pub(crate) struct NodalFields {
     pub stress: Vec<[f64; 4]>,
     pub von_mises: Vec<f64>,
     pub peeq: Vec<f64>,
-    /// σ_rθ, σ_zθ (a model with twist; empty without).
+    /// σ_rθ, σ_zθ (a model with twist), σ_xz, σ_yz (3D); empty otherwise.
     pub twist_shear: Vec<[f64; 2]>,
 }
 
@@ -50,15 +50,38 @@ fn extrapolation_weights(family: Family, rule: &GaussRule) -> Vec<[f64; MAX_NODE
         .collect()
 }
 
+/// Each family's extrapolation weights at the model's rules, in
+/// [`Family::index`] order (row k: each node's share of point k).
+fn all_weights(model: &Model) -> Vec<Vec<Vec<f64>>> {
+    let rows = |w: Vec<&[f64]>| w.into_iter().map(<[f64]>::to_vec).collect::<Vec<_>>();
+    let mut out: Vec<Vec<Vec<f64>>> = Family::ALL
+        .iter()
+        .map(|&f| {
+            let w = extrapolation_weights(f, model.rule_of(f));
+            rows(w.iter().map(|r| &r[..]).collect())
+        })
+        .collect();
+    for f in Family::SOLID {
+        let solid = f.solid().expect("a solid family");
+        let w = solid.extrapolation(model.rule3(solid));
+        out.push(rows(w.iter().map(|r| &r[..]).collect()));
+    }
+    out
+}
+
 pub(crate) fn nodal_fields(model: &Model, state: &State) -> NodalFields {
     let nn = model.mesh.nodes.len();
-    let weights = Family::ALL.map(|f| extrapolation_weights(f, model.rule_of(f)));
+    let weights = all_weights(model);
     // the six fields (σ components, Mises, PEEQ) at every Gauss point, then
-    // with twist σ_rθ and σ_zθ
-    let fields = if model.node_dofs().twist() { 8 } else { 6 };
+    // with twist σ_rθ and σ_zθ, in 3D σ_xz and σ_yz
+    let fields = if model.node_dofs().six_components() {
+        8
+    } else {
+        6
+    };
     let mut acc = vec![[0.0f64; 8]; nn];
     let mut count = vec![0u32; nn];
-    let mut vals = [[0.0f64; 8]; crate::physics::element::family::MAX_POINTS];
+    let mut vals = [[0.0f64; 8]; crate::physics::element::solid3::MAX_POINTS3];
     for (e, el) in model.mesh.elements.iter().enumerate() {
         let gp = state.gauss.range(model.points(e));
         let w = &weights[el.family.index()];
@@ -107,9 +130,10 @@ pub(crate) fn nodal_fields(model: &Model, state: &State) -> NodalFields {
 /// the per-increment part of a VTU document.
 #[derive(Default)]
 pub(crate) struct Frame {
-    /// u_x, u_y, 0 per node (u_r, u_z, u_θ with twist).
+    /// u_x, u_y, 0 per node (u_r, u_z, u_θ with twist; u_x, u_y, u_z in 3D).
     displacement: Vec<f64>,
-    /// Four components per node.
+    /// Four components per node; in 3D six, in ParaView's order of a
+    /// symmetric tensor: xx, yy, zz, xy, yz, xz.
     stress: Vec<f64>,
     /// σ_rθ, σ_zθ per node (twist only; empty without).
     twist_shear: Vec<f64>,
@@ -135,7 +159,7 @@ impl Frame {
     pub fn with(
         model: &Model,
         state: &State,
-        estimate: &crate::measure::estimate::Estimate,
+        estimate: Option<&crate::measure::estimate::Estimate>,
     ) -> Frame {
         let mesh = &model.mesh;
         let nn = mesh.nodes.len();
@@ -145,6 +169,7 @@ impl Frame {
         let mut p_n = vec![0.0; nn];
         let mut p_t = vec![0.0; nn];
         let twist = model.node_dofs().twist();
+        let solid = mesh.dim() == 3;
         let mut p_h = if twist { vec![0.0; nn] } else { Vec::new() };
         let mut status = vec![-1.0; nn];
         let mut base = 0;
@@ -174,20 +199,31 @@ impl Frame {
             displacement: (0..nn)
                 .flat_map(|i| {
                     let nd = model.node_dofs();
-                    let u_theta = if nd.twist() {
+                    let third = if nd.per_node() == 3 {
                         state.u[nd.dof(i, 2)]
                     } else {
                         0.0
                     };
-                    [state.u[nd.dof(i, 0)], state.u[nd.dof(i, 1)], u_theta]
+                    [state.u[nd.dof(i, 0)], state.u[nd.dof(i, 1)], third]
                 })
                 .collect(),
-            stress: nf.stress.iter().flat_map(|v| v.iter().copied()).collect(),
-            twist_shear: nf
-                .twist_shear
-                .iter()
-                .flat_map(|v| v.iter().copied())
-                .collect(),
+            stress: if solid {
+                nf.stress
+                    .iter()
+                    .zip(&nf.twist_shear)
+                    .flat_map(|(s, t)| [s[0], s[1], s[3], s[2], t[1], t[0]])
+                    .collect()
+            } else {
+                nf.stress.iter().flat_map(|v| v.iter().copied()).collect()
+            },
+            twist_shear: if twist {
+                nf.twist_shear
+                    .iter()
+                    .flat_map(|v| v.iter().copied())
+                    .collect()
+            } else {
+                Vec::new()
+            },
             von_mises: nf.von_mises,
             peeq: nf.peeq,
             contact_pressure: p_n,
@@ -203,28 +239,39 @@ impl Frame {
                         .fold(0.0f64, |a, g| a.max(g.peeq))
                 })
                 .collect(),
-            error_estimate: estimate.element.clone(),
-            error_share: estimate.shares(),
+            error_estimate: estimate.map_or(Vec::new(), |e| e.element.clone()),
+            error_share: estimate.map_or(Vec::new(), |e| e.shares()),
         }
     }
 
-    /// The cell arrays after `body`, in document order.
-    fn cell_arrays(&self) -> [(&'static str, Values<'_>); 3] {
-        [
-            ("max_peeq", Values::All(&self.max_peeq)),
-            ("error_estimate", Values::All(&self.error_estimate)),
-            ("error_share", Values::All(&self.error_share)),
-        ]
+    /// The cell arrays after `body`, in document order (a 3D model has no
+    /// error estimate yet).
+    fn cell_arrays(&self, solid: bool) -> Vec<(&'static str, Values<'_>)> {
+        let mut v = vec![("max_peeq", Values::All(&self.max_peeq))];
+        if !solid {
+            v.push(("error_estimate", Values::All(&self.error_estimate)));
+            v.push(("error_share", Values::All(&self.error_share)));
+        }
+        v
     }
 
     /// The point arrays in document order: name, components, values. The
     /// hoop stress (axisymmetry) is the fourth stress component again.
     /// With twist, `twist_shear` (σ_rθ, σ_zθ) follows, and
     /// `contact_hoop_shear` (p_Tθ) ends the list.
-    fn point_arrays(&self, hoop: bool, twist: bool) -> Vec<(&'static str, usize, Values<'_>)> {
+    fn point_arrays(
+        &self,
+        hoop: bool,
+        twist: bool,
+        solid: bool,
+    ) -> Vec<(&'static str, usize, Values<'_>)> {
         let mut v = vec![
             ("displacement", 3, Values::All(&self.displacement)),
-            ("stress", 4, Values::All(&self.stress)),
+            (
+                "stress",
+                if solid { 6 } else { 4 },
+                Values::All(&self.stress),
+            ),
         ];
         if hoop {
             v.push(("hoop_stress", 1, Values::Every4th(&self.stress)));
@@ -281,6 +328,8 @@ pub(crate) struct Layout {
     hoop: bool,
     /// The model has twist: the `twist_shear` array is written.
     twist: bool,
+    /// A 3D model: six stress components, no error estimate.
+    solid: bool,
     /// From the XML declaration to where the first per-increment array goes.
     head: Vec<u8>,
     /// ascii: `</PointData>` and the `body` array;
@@ -300,8 +349,10 @@ struct MeshArrays<'m> {
     ends: Vec<usize>,
     /// The connectivity's length.
     connectivity: usize,
-    /// x, y, 0 per node.
+    /// x, y, z per node.
     points: Vec<f64>,
+    /// A 3D model.
+    solid: bool,
     /// The body of each cell.
     body: Vec<f64>,
     /// The point arrays with their components (the values are each frame's).
@@ -313,6 +364,7 @@ impl Layout {
         let mesh = &model.mesh;
         let hoop = model.section.axisymmetric;
         let twist = model.node_dofs().twist();
+        let solid = mesh.dim() == 3;
         let ends: Vec<usize> = mesh
             .elements
             .iter()
@@ -327,10 +379,11 @@ impl Layout {
             ne: mesh.elements.len(),
             connectivity: ends.last().copied().unwrap_or(0),
             ends,
-            points: mesh.nodes.iter().flat_map(|x| [x[0], x[1], 0.0]).collect(),
+            points: mesh.nodes.iter().flat_map(|x| *x).collect(),
+            solid,
             body: mesh.elements.iter().map(|e| e.body as f64).collect(),
             names: Frame::default()
-                .point_arrays(hoop, twist)
+                .point_arrays(hoop, twist, solid)
                 .iter()
                 .map(|&(n, c, _)| (n, c))
                 .collect(),
@@ -343,6 +396,7 @@ impl Layout {
             format,
             hoop,
             twist,
+            solid,
             head,
             middle,
             body,
@@ -358,6 +412,7 @@ impl Layout {
             ne,
             ends,
             body,
+            solid,
             ..
         } = m;
         let (nn, ne) = (*nn, *ne);
@@ -370,7 +425,11 @@ impl Layout {
             b"<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n",
         );
         for x in &mesh.nodes {
-            let _ = writeln!(h, "{:e} {:e} 0", x[0], x[1]);
+            if *solid {
+                let _ = writeln!(h, "{:e} {:e} {:e}", x[0], x[1], x[2]);
+            } else {
+                let _ = writeln!(h, "{:e} {:e} 0", x[0], x[1]);
+            }
         }
         h.extend_from_slice(b"</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
         for el in &mesh.elements {
@@ -407,6 +466,7 @@ impl Layout {
             points,
             body,
             names,
+            solid,
         } = m;
         let (nn, ne, connectivity) = (*nn, *ne, *connectivity);
         let empty = Frame::default();
@@ -453,7 +513,8 @@ impl Layout {
         );
         }
         h.extend_from_slice(b"</PointData>\n<CellData>\n");
-        let cells = std::iter::once("body").chain(empty.cell_arrays().map(|a| a.0));
+        let cells =
+            std::iter::once("body").chain(empty.cell_arrays(*solid).into_iter().map(|a| a.0));
         for name in cells {
             let _ = writeln!(
             h,
@@ -490,25 +551,25 @@ impl Layout {
         w.write_all(&self.head)?;
         match self.format {
             VtuFormat::Ascii => {
-                for (name, comps, vals) in frame.point_arrays(self.hoop, self.twist) {
+                for (name, comps, vals) in frame.point_arrays(self.hoop, self.twist, self.solid) {
                     ascii_tag(&mut buf, name, comps);
                     ascii_values(w, &mut buf, comps, vals)?;
                 }
                 w.write_all(&self.middle)?;
-                for (name, vals) in frame.cell_arrays() {
+                for (name, vals) in frame.cell_arrays(self.solid) {
                     ascii_tag(&mut buf, name, 1);
                     ascii_values(w, &mut buf, 1, vals)?;
                 }
                 w.write_all(b"</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n")
             }
             VtuFormat::Binary => {
-                for (_, _, vals) in frame.point_arrays(self.hoop, self.twist) {
+                for (_, _, vals) in frame.point_arrays(self.hoop, self.twist, self.solid) {
                     raw_f64(&mut buf, vals);
                     w.write_all(&buf)?;
                     buf.clear();
                 }
                 w.write_all(&self.body)?;
-                for (_, vals) in frame.cell_arrays() {
+                for (_, vals) in frame.cell_arrays(self.solid) {
                     raw_f64(&mut buf, vals);
                     w.write_all(&buf)?;
                     buf.clear();

@@ -316,7 +316,7 @@ pub(super) fn restore_state(ck: &mut Checkpoint, s: &Sections, model: &Model) ->
         "the displacement range of a case",
     )?;
     c.u.copy_from_slice(u);
-    let w = PointState::packed_len(model.node_dofs().twist());
+    let w = PointState::packed_len(model.node_dofs().six_components());
     let gauss = s.finite("gauss", Some(w * ng))?;
     for (i, v) in gauss.chunks_exact(w).enumerate() {
         check_gauss_point(model, i, v)?;

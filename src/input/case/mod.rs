@@ -9,6 +9,7 @@ pub mod adapt;
 pub mod outputs;
 pub mod overrides;
 pub mod ranges;
+pub mod solid;
 pub mod twist;
 mod validate;
 
@@ -176,6 +177,20 @@ pub struct MeshSpec {
     /// Local refinement: the elements whose centroid lies in a box split
     /// into four, `levels` times ([`crate::input::mesh::refine`]).
     pub refine_region: Option<RefineRegion>,
+    /// A 3D model's mesh: the block layout swept along z
+    /// ([`crate::input::mesh::extrude`]).
+    pub extrude: Option<Extrude>,
+}
+
+/// `[mesh] extrude = { z = [z₀, …], nz = [n, …], rz = [r, …] }`: the layers
+/// along z, graded as a block's x and y.
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Extrude {
+    pub z: Vec<f64>,
+    pub nz: Vec<usize>,
+    #[serde(default)]
+    pub rz: Vec<f64>,
 }
 
 /// `[mesh] refine_region = { x = [x₀, x₁], y = [y₀, y₁], levels = N }`.
@@ -375,11 +390,16 @@ pub struct BoundarySpec {
     pub set: String,
     pub ux: Option<f64>,
     pub uy: Option<f64>,
+    /// u_z (3D models).
+    pub uz: Option<f64>,
     /// Only nodes with x in [lo, hi] (mm).
     #[serde(default, deserialize_with = "two_numbers_opt")]
     pub x_range: Option<[f64; 2]>,
     #[serde(default, deserialize_with = "two_numbers_opt")]
     pub y_range: Option<[f64; 2]>,
+    /// Only nodes with z in [lo, hi] (mm; 3D models).
+    #[serde(default, deserialize_with = "two_numbers_opt")]
+    pub z_range: Option<[f64; 2]>,
     /// The factor's history; none: the load factor (or the default ramp).
     pub history: Option<HistoryRef>,
     /// A prescribed rotation φ about the axis (rad, twist only): u_θ = φ r.
@@ -391,15 +411,22 @@ pub struct BoundarySpec {
 #[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct LoadSpec {
-    /// Edge set name, e.g. "punch.top".
+    /// Edge set name, e.g. "punch.top" (plane models).
+    #[serde(default)]
     pub edges: String,
+    /// Face set name (3D models), e.g. "punch.top".
+    pub faces: Option<String>,
     #[serde(default)]
     pub pressure: f64,
-    /// Only edges whose midpoint has x in [lo, hi] (mm).
+    /// A traction vector (t_x, t_y, t_z), MPa (3D models).
+    pub traction: Option<Vec<f64>>,
+    /// Only edges (faces) whose midpoint (centre) has x in [lo, hi] (mm).
     #[serde(default, deserialize_with = "two_numbers_opt")]
     pub x_range: Option<[f64; 2]>,
     #[serde(default, deserialize_with = "two_numbers_opt")]
     pub y_range: Option<[f64; 2]>,
+    #[serde(default, deserialize_with = "two_numbers_opt")]
+    pub z_range: Option<[f64; 2]>,
     /// Shear traction along t = (n_y, −n_x), the outward normal turned
     /// clockwise (+x on a top edge).
     #[serde(default)]
@@ -424,11 +451,16 @@ pub struct ForceSpec {
     pub fx: f64,
     #[serde(default)]
     pub fy: f64,
+    /// N (3D models).
+    #[serde(default)]
+    pub fz: f64,
     /// Only nodes with x in [lo, hi] (mm).
     #[serde(default, deserialize_with = "two_numbers_opt")]
     pub x_range: Option<[f64; 2]>,
     #[serde(default, deserialize_with = "two_numbers_opt")]
     pub y_range: Option<[f64; 2]>,
+    #[serde(default, deserialize_with = "two_numbers_opt")]
+    pub z_range: Option<[f64; 2]>,
     /// The factor's history; none: the load factor (or the default ramp).
     pub history: Option<HistoryRef>,
 }

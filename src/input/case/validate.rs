@@ -58,6 +58,7 @@ pub fn check_case(case: &Case) -> Result<Checked> {
     // a key the command line set is named by its option (`Case::at`)
     let at = |key: &str| case.at(key);
     check_model_and_mesh(case, &at)?;
+    crate::input::case::solid::check_case(case, &at)?;
     crate::input::case::twist::check_case(case, &at)?;
     check_element_count(case, &at)?;
     check_names(case, &at)?;
@@ -459,6 +460,23 @@ fn check_element_count(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
                     key,
                     format!(
                         "the element count overflows: more than {MAX_ELEMENTS} elements (the limit)"
+                    ),
+                ))
+            }
+        }
+    }
+    if let Some(e) = &case.mesh.extrude {
+        // the layout's count times the layers
+        let layers = e.nz.iter().try_fold(0usize, |acc, &n| {
+            acc.checked_add(n.checked_mul(case.mesh.refine)?)
+        });
+        match layers.and_then(|l| total.checked_mul(l)) {
+            Some(n) if n <= MAX_ELEMENTS => {}
+            _ => {
+                return Err(Error::input(
+                    at("[mesh] extrude nz"),
+                    format!(
+                        "the blocks swept through the layers make more than {MAX_ELEMENTS} elements (the limit)"
                     ),
                 ))
             }

@@ -1,10 +1,12 @@
-//! Meshes of 8-node quads and 6-node triangles (mixed as a mesh likes):
-//! bodies, named node and edge sets, and contact interfaces made of paired
-//! (coincident, distinct) nodes, or of two sides meshed apart
-//! ([`NonMatching`]).
+//! Meshes of 8-node quads and 6-node triangles (mixed as a mesh likes), or
+//! of 20-node hexahedra and 10-node tetrahedra (a 3D mesh, mixed likewise):
+//! bodies, named node, edge and face sets, and (plane meshes) contact
+//! interfaces made of paired (coincident, distinct) nodes, or of two sides
+//! meshed apart ([`NonMatching`]).
 
 pub mod blocks;
 pub(crate) mod box3;
+pub(crate) mod extrude;
 pub mod gmsh;
 pub mod refine;
 
@@ -12,18 +14,19 @@ pub(crate) use crate::physics::element::dofs::NodeDofs;
 
 use crate::physics::element::edge;
 pub use crate::physics::element::family::Family;
-use crate::physics::element::family::MAX_NODES;
+use crate::physics::element::family::{MAX_ELEMENT_NODES, MAX_NODES};
 use std::collections::BTreeMap;
 use std::fmt;
 
 /// One element: its family, its nodes (corners counter-clockwise, then
-/// midsides; [`crate::physics::element::q8`], [`crate::physics::element::t6`])
-/// and its body.
+/// midsides; [`crate::physics::element::q8`], [`crate::physics::element::t6`];
+/// in 3D VTK's order, [`crate::physics::element::h20`],
+/// [`crate::physics::element::t10`]) and its body.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Element {
     pub family: Family,
     /// The first `family.nodes()` are the element's, the rest usize::MAX.
-    slots: [usize; MAX_NODES],
+    slots: [usize; MAX_ELEMENT_NODES],
     pub body: usize,
 }
 
@@ -37,7 +40,7 @@ impl Element {
             family.name(),
             family.nodes()
         );
-        let mut slots = [usize::MAX; MAX_NODES];
+        let mut slots = [usize::MAX; MAX_ELEMENT_NODES];
         slots[..nodes.len()].copy_from_slice(nodes);
         Element {
             family,
@@ -75,6 +78,30 @@ impl Element {
     /// The sides [end, mid, end] in global node numbers, counter-clockwise.
     pub fn edges(&self) -> impl Iterator<Item = [usize; 3]> + '_ {
         self.family.edges().iter().map(|e| e.map(|a| self.slots[a]))
+    }
+}
+
+/// A boundary face of a 3D mesh: an 8-node quad or a 6-node triangle
+/// (corners, then midsides, in [`Family::Q8`] or [`Family::T6`] order),
+/// walked counter-clockwise seen from outside the body.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Face {
+    pub family: Family,
+    slots: [usize; MAX_NODES],
+}
+
+impl Face {
+    /// A face of `family` (Q8 or T6) with `nodes` (the family's count).
+    pub fn new(family: Family, nodes: &[usize]) -> Face {
+        assert!(family.dim() == 2 && nodes.len() == family.nodes());
+        let mut slots = [usize::MAX; MAX_NODES];
+        slots[..nodes.len()].copy_from_slice(nodes);
+        Face { family, slots }
+    }
+
+    /// The face's nodes: corners, then midsides.
+    pub fn nodes(&self) -> &[usize] {
+        &self.slots[..self.family.nodes()]
     }
 }
 
@@ -123,8 +150,12 @@ pub struct Mesh {
     pub bodies: Vec<String>,
     /// Sorted, unique node ids.
     pub node_sets: BTreeMap<String, Vec<usize>>,
-    /// Boundary edges [end, mid, end], walked with the body on the left.
+    /// Boundary edges [end, mid, end], walked with the body on the left
+    /// (plane meshes).
     pub edge_sets: BTreeMap<String, Vec<[usize; 3]>>,
+    /// Boundary faces, each walked counter-clockwise seen from outside (3D
+    /// meshes).
+    pub face_sets: BTreeMap<String, Vec<Face>>,
     pub interfaces: Vec<Interface>,
     /// Dofs per node and their numbering ([`NodeDofs`]): set by the model
     /// (3 with twist), 2 otherwise.
@@ -182,6 +213,21 @@ impl Mesh {
         }
     }
 
+    /// 3 for a mesh of solid elements, else 2.
+    pub fn dim(&self) -> usize {
+        self.elements.first().map_or(2, |el| el.family.dim())
+    }
+
+    /// The coordinates of element e's nodes in space (3D meshes; the first
+    /// `family.nodes()` used, the rest zero).
+    pub(crate) fn element_coords3(&self, e: usize) -> [[f64; 3]; MAX_ELEMENT_NODES] {
+        let mut x = [[0.0; 3]; MAX_ELEMENT_NODES];
+        for (a, &n) in self.elements[e].nodes().iter().enumerate() {
+            x[a] = self.nodes[n];
+        }
+        x
+    }
+
     /// Node `n` in the plane of a 2D model (x, y; x = r in axisymmetry).
     pub fn xy(&self, n: usize) -> [f64; 2] {
         let [x, y, _] = self.nodes[n];
@@ -236,14 +282,35 @@ impl Mesh {
         [s[0] / k, s[1] / k]
     }
 
-    /// The mean of element e's corners.
-    pub(crate) fn centroid(&self, e: usize) -> [f64; 2] {
+    /// det J > 0 at element e's check points (its full rule's points and its
+    /// nodes), else the message naming where it is not.
+    fn check_jacobian(&self, e: usize) -> Result<(), String> {
+        let family = self.elements[e].family;
+        match family.solid() {
+            None => {
+                let coords = self.element_coords(e);
+                for xi in family.check_points() {
+                    family.physical_derivs(&coords, xi)?;
+                }
+            }
+            Some(solid) => {
+                let coords = self.element_coords3(e);
+                for xi in solid.check_points() {
+                    solid.physical_derivs(&coords, xi)?;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The mean of element e's corners in space.
+    pub(crate) fn corner_mean(&self, e: usize) -> [f64; 3] {
         let corners = self.elements[e].corners();
-        let s = corners.iter().fold([0.0, 0.0], |s, &n| {
-            [s[0] + self.nodes[n][0], s[1] + self.nodes[n][1]]
+        let s = corners.iter().fold([0.0; 3], |s, &n| {
+            let x = self.nodes[n];
+            [s[0] + x[0], s[1] + x[1], s[2] + x[2]]
         });
-        let k = corners.len() as f64;
-        [s[0] / k, s[1] / k]
+        s.map(|v| v / corners.len() as f64)
     }
 
     /// Checks the mesh for everything that would make the model meaningless:
@@ -252,11 +319,17 @@ impl Mesh {
     /// nodes, and interface pairs that are not coincident or not on their bodies.
     pub fn validate(&self) -> Result<(), MeshError> {
         let err = |s: String| Err(MeshError(s));
-        for n in 0..self.nodes.len() {
-            let x = self.xy(n);
-            if !(x[0].is_finite() && x[1].is_finite()) {
+        for (n, x) in self.nodes.iter().enumerate() {
+            if !x.iter().all(|v| v.is_finite()) {
                 return err(format!("node {n} has a non-finite coordinate {x:?}"));
             }
+        }
+        let dim = self.dim();
+        if let Some(el) = self.elements.iter().find(|el| el.family.dim() != dim) {
+            return err(format!(
+                "a mesh of {dim}D elements also holds a {}: plane and solid elements do not mix",
+                el.family.name()
+            ));
         }
         let mut used = vec![false; self.nodes.len()];
         for (e, el) in self.elements.iter().enumerate() {
@@ -275,18 +348,15 @@ impl Mesh {
                 }
                 used[n] = true;
             }
-            let coords = self.element_coords(e);
-            for xi in el.family.check_points() {
-                if let Err(m) = el.family.physical_derivs(&coords, xi) {
-                    let c = self.centroid(e);
-                    return err(format!(
-                        "{} of body \"{}\" near ({:.4}, {:.4}): {m}",
-                        self.element_label(e),
-                        self.bodies[el.body],
-                        c[0],
-                        c[1]
-                    ));
-                }
+            if let Err(m) = self.check_jacobian(e) {
+                let c = self.corner_mean(e);
+                let at: Vec<String> = c[..dim].iter().map(|v| format!("{v:.4}")).collect();
+                let at = at.join(", ");
+                return err(format!(
+                    "{} of body \"{}\" near ({at}): {m}",
+                    self.element_label(e),
+                    self.bodies[el.body],
+                ));
             }
         }
         if let Some(n) = used.iter().position(|u| !u) {

@@ -19,6 +19,7 @@ use crate::physics::element::Section;
 use std::collections::BTreeMap;
 
 mod adaptive;
+mod faces;
 
 /// One force vector (all dofs, at factor 1) and its history (`None`: the
 /// load factor, or the default ramp).
@@ -209,13 +210,22 @@ impl Gathered {
         res: &mut Resolver<'_>,
     ) -> Result<()> {
         for (i, ld) in case.load.iter().enumerate() {
-            let at = format!("{place}: load[{i}] (edges \"{}\")", ld.edges);
+            let at = match &ld.faces {
+                Some(f) => format!("{place}: load[{i}] (faces \"{}\")", clip(f)),
+                None => format!("{place}: load[{i}] (edges \"{}\")", clip(&ld.edges)),
+            };
             let h = res.resolve(ld.history.as_ref(), &format!("{at} history"))?;
-            let terms = edge_traction(case, ld, mesh, section, &at)?;
+            let terms = match mesh.dim() {
+                3 => faces::face_traction(ld, mesh, &at)?,
+                _ => edge_traction(case, ld, mesh, section, &at)?,
+            };
             add(pattern(&mut self.patterns, h, self.nd), &terms);
             let scaled = &mut self.scaled;
             scaled.push((format!("{at} pressure"), ld.pressure, &ranges::PRESSURE, h));
             scaled.push((format!("{at} shear"), ld.shear, &ranges::PRESSURE, h));
+            for &v in ld.traction.iter().flatten() {
+                scaled.push((format!("{at} traction"), v, &ranges::PRESSURE, h));
+            }
             // twist's loads about the axis, alike
             if let Some(v) = ld.hoop_shear {
                 scaled.push((format!("{at} hoop_shear"), v, &ranges::PRESSURE, h));
@@ -257,6 +267,8 @@ impl Gathered {
                 .push((format!("{at} fx"), fs.fx, &ranges::FORCE, h));
             self.scaled
                 .push((format!("{at} fy"), fs.fy, &ranges::FORCE, h));
+            self.scaled
+                .push((format!("{at} fz"), fs.fz, &ranges::FORCE, h));
             self.acting.push(Acting {
                 at,
                 dofs: terms.iter().filter(|t| t.1 != 0.0).map(|t| t.0).collect(),
@@ -439,13 +451,15 @@ pub(crate) fn check_acting(
                     )
                 } else {
                     format!(
-                        "acts on node {n} at ({}, {}), whose u{} is prescribed by a [[boundary]] (or the symmetry plane): a force on a prescribed displacement goes into the reaction and never acts; remove the force or the support there (x_range / y_range select nodes)",
-                        x[0],
-                        x[1],
-                        ["x", "y"][c]
+                        "acts on node {n} at {}, whose u{} is prescribed by a [[boundary]] (or the symmetry plane): a force on a prescribed displacement goes into the reaction and never acts; remove the force or the support there (x_range / y_range select nodes)",
+                        point(x, mesh.dim() == 3),
+                        ["x", "y", "z"][c]
                     )
                 };
-                return Err(Error::input(format!("{} f{}", a.at, ["x", "y"][c]), what));
+                return Err(Error::input(
+                    format!("{} f{}", a.at, ["x", "y", "z"][c]),
+                    what,
+                ));
             }
         } else if !a.dofs.is_empty() && a.dofs.iter().all(|d| held.contains(d)) {
             return Err(Error::input(
@@ -694,7 +708,7 @@ fn concentrated_force(
             ),
         )
     })?;
-    for (key, v) in [("fx", fs.fx), ("fy", fs.fy)] {
+    for (key, v) in [("fx", fs.fx), ("fy", fs.fy), ("fz", fs.fz)] {
         if !v.is_finite() {
             return Err(Error::input(
                 format!("{at} {key}"),
@@ -702,18 +716,27 @@ fn concentrated_force(
             ));
         }
     }
-    if fs.fx == 0.0 && fs.fy == 0.0 {
+    let solid = mesh.dim() == 3;
+    if fs.fx == 0.0 && fs.fy == 0.0 && fs.fz == 0.0 {
         return Err(Error::input(
             at,
-            "fx and fy are both 0: give a non-zero force (N)",
+            if solid {
+                "fx, fy and fz are all 0: give a non-zero force (N)"
+            } else {
+                "fx and fy are both 0: give a non-zero force (N)"
+            },
         ));
     }
     let mut terms = Vec::new();
+    let ranges = [&fs.x_range, &fs.y_range, &fs.z_range];
     for &n in nodes.iter().filter(|&&n| start[n]) {
         let x = mesh.nodes[n];
-        if in_range(x[0], &fs.x_range) && in_range(x[1], &fs.y_range) {
+        if (0..3).all(|c| in_range(x[c], ranges[c])) {
             let nd = mesh.node_dofs;
             terms.extend([(nd.dof(n, 0), fs.fx), (nd.dof(n, 1), fs.fy)]);
+            if solid {
+                terms.push((nd.dof(n, 2), fs.fz));
+            }
         }
     }
     if terms.is_empty() {
@@ -754,11 +777,13 @@ fn boundary_conditions(
                 ),
             )
         })?;
-        if bc.ux.is_none() && bc.uy.is_none() && bc.rotation.is_none() {
+        if bc.ux.is_none() && bc.uy.is_none() && bc.uz.is_none() && bc.rotation.is_none() {
             return Err(Error::input(
                 &at,
                 if case.model.twist {
                     "give ux, uy and/or rotation"
+                } else if mesh.dim() == 3 {
+                    "give ux, uy and/or uz"
                 } else {
                     "give ux and/or uy"
                 },
@@ -769,7 +794,7 @@ fn boundary_conditions(
         }
         let h = res.resolve(bc.history.as_ref(), &format!("{at} history"))?;
         if h.is_some()
-            && [bc.ux, bc.uy, bc.rotation]
+            && [bc.ux, bc.uy, bc.uz, bc.rotation]
                 .iter()
                 .flatten()
                 .all(|&v| v == 0.0)
@@ -779,7 +804,7 @@ fn boundary_conditions(
                 "is given, but every displacement of this boundary is 0: a history scales the prescribed value and scales nothing here (a support stays fixed without one); remove it, or give the history to the load it belongs to",
             ));
         }
-        for (k, v) in [("ux", bc.ux), ("uy", bc.uy)] {
+        for (k, v) in [("ux", bc.ux), ("uy", bc.uy), ("uz", bc.uz)] {
             if let Some(v) = v.filter(|v| v.is_finite()) {
                 scaled.push((format!("{at} {k}"), v, &ranges::DISPLACEMENT, h));
             }
@@ -793,15 +818,17 @@ fn boundary_conditions(
             ));
         }
         let mut count = 0;
+        let ranges = [&bc.x_range, &bc.y_range, &bc.z_range];
         for &n in nodes {
-            let x = mesh.xy(n);
-            if !(in_range(x[0], &bc.x_range) && in_range(x[1], &bc.y_range)) {
+            let x = mesh.nodes[n];
+            if !(0..3).all(|c| in_range(x[c], ranges[c])) {
                 continue;
             }
             count += 1;
-            // a prescribed rotation φ about the axis is u_θ = φ r
-            let u_theta = bc.rotation.map(|phi| phi * x[0]);
-            for (c, v) in [bc.ux, bc.uy, u_theta].iter().enumerate() {
+            // a prescribed rotation φ about the axis is u_θ = φ r (twist);
+            // the third dof is u_z in 3D
+            let third = bc.rotation.map(|phi| phi * x[0]).or(bc.uz);
+            for (c, v) in [bc.ux, bc.uy, third].iter().enumerate() {
                 let Some(v) = *v else { continue };
                 if !v.is_finite() {
                     return Err(Error::input(&at, format!("displacement {v} is not finite")));
@@ -809,7 +836,8 @@ fn boundary_conditions(
                 let (first, fh, j) = *out.entry(mesh.node_dofs.dof(n, c)).or_insert((v, h, i));
                 if first != v || fh != h {
                     let set = clip(&case.boundary[j].set);
-                    return Err(twice_prescribed(&at, n, x, c, (v, first), j, &set));
+                    let solid = mesh.dim() == 3;
+                    return Err(twice_prescribed(&at, n, x, c, (v, first), j, &set, solid));
                 }
             }
         }
@@ -823,18 +851,24 @@ fn boundary_conditions(
 /// The refusal of a node and direction prescribed twice: by `at` with v,
 /// and before by boundary[j] (set `set`) with `first` (another value, or
 /// the same with another history).
+#[allow(clippy::too_many_arguments)]
 fn twice_prescribed(
     at: &str,
     n: usize,
-    x: [f64; 2],
+    x: [f64; 3],
     c: usize,
     (v, first): (f64, f64),
     j: usize,
     set: &str,
+    solid: bool,
 ) -> Error {
-    let axis = ["x", "y", "θ"][c];
+    let axis = if solid {
+        ["x", "y", "z"][c]
+    } else {
+        ["x", "y", "θ"][c]
+    };
     // the key of u_θ is the rotation (u_θ = φ r)
-    let key = if c == 2 {
+    let key = if c == 2 && !solid {
         "rotation".to_string()
     } else {
         format!("u{axis}")
@@ -847,10 +881,19 @@ fn twice_prescribed(
     Error::input(
         format!("{at} {key}"),
         format!(
-            "gives node {n} at ({}, {}) {what}: one prescribed value per node and direction",
-            x[0], x[1]
+            "gives node {n} at {} {what}: one prescribed value per node and direction",
+            point(x, solid)
         ),
     )
+}
+
+/// A node's position in a message: (x, y), or (x, y, z) in 3D.
+pub(crate) fn point(x: [f64; 3], solid: bool) -> String {
+    if solid {
+        format!("({}, {}, {})", x[0], x[1], x[2])
+    } else {
+        format!("({}, {})", x[0], x[1])
+    }
 }
 
 /// Why a load or support selects nothing: its filters, or a set that is

@@ -20,9 +20,9 @@ use crate::input::mesh::Mesh;
 use crate::model::interface::InterfaceModel;
 use std::ops::Range;
 
-/// Values per body in a record: von Mises (MPa, x, y, element), then
-/// PEEQ (value, x, y, element).
-pub(crate) const PER_BODY: usize = 8;
+/// Values per body in a record: von Mises (MPa, x, y, z, element), then
+/// PEEQ (value, x, y, z, element); z = 0 in a plane model.
+pub(crate) const PER_BODY: usize = 10;
 /// Values per interface in a record: the largest pressure (MPa, x, y, s),
 /// then the extent (from s, to s, from x, from y, to x, to y).
 pub(crate) const PER_INTERFACE: usize = 10;

@@ -82,10 +82,15 @@ pub fn groups(case: &Case, mesh: &Mesh, prescribed: &[(usize, f64)]) -> Vec<Grou
             .get(&bc.set)
             .map_or(&[][..], |v| v.as_slice());
         let mut components = Vec::new();
+        let twist = mesh.node_dofs.twist();
         let given = [
             (bc.ux, "fx_n"),
             (bc.uy, "fy_n"),
-            (bc.rotation, "torque_nmm"),
+            if twist {
+                (bc.rotation, "torque_nmm")
+            } else {
+                (bc.uz, "fz_n")
+            },
         ];
         for (c, (given, label)) in given.into_iter().enumerate() {
             if given.is_none() {
@@ -94,16 +99,15 @@ pub fn groups(case: &Case, mesh: &Mesh, prescribed: &[(usize, f64)]) -> Vec<Grou
             let (mut terms, mut arms) = (Vec::new(), Vec::new());
             for &n in nodes {
                 let x = mesh.nodes[n];
-                if !(crate::model::loads::in_range(x[0], &bc.x_range)
-                    && crate::model::loads::in_range(x[1], &bc.y_range))
-                {
+                let ranges = [&bc.x_range, &bc.y_range, &bc.z_range];
+                if !(0..3).all(|k| crate::model::loads::in_range(x[k], ranges[k])) {
                     continue;
                 }
                 if let Some(&k) = index.get(&mesh.node_dofs.dof(n, c)) {
                     if !owned[k] {
                         owned[k] = true;
                         terms.push(k);
-                        if c == 2 {
+                        if c == 2 && twist {
                             arms.push(x[0]);
                         }
                     }

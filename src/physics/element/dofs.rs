@@ -1,8 +1,8 @@
 //! Dofs per node, one value of the model, and their numbering.
 //!
 //! Every node carries the same number k of displacement components: k = 2
-//! (u_x, u_y; u_r, u_z in axisymmetry) or k = 3 in an axisymmetric model with
-//! twist (u_r, u_z, u_θ). Node n's component c is the global dof k·n + c, and
+//! (u_x, u_y; u_r, u_z in axisymmetry), k = 3 in an axisymmetric model with
+//! twist (u_r, u_z, u_θ) or in a 3D model (u_x, u_y, u_z). Node n's component c is the global dof k·n + c, and
 //! the extra nodes after the mesh's (a pretension section's reference node)
 //! are numbered the same way. Everything that indexes a global vector by node
 //! (assembly, loads, supports, both backends, restart, output) goes through
@@ -14,10 +14,10 @@
 
 use std::ops::Range;
 
-/// The number of dofs per node (2, or 3 with twist) and the numbering
-/// dof(n, c) = k·n + c.
+/// The number of dofs per node (2, or 3 with twist or in 3D), whether the
+/// third is twist's u_θ, and the numbering dof(n, c) = k·n + c.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct NodeDofs(usize);
+pub struct NodeDofs(usize, bool);
 
 impl Default for NodeDofs {
     fn default() -> Self {
@@ -27,13 +27,16 @@ impl Default for NodeDofs {
 
 impl NodeDofs {
     /// u_x, u_y (u_r, u_z in axisymmetry).
-    pub(crate) const PLANE: NodeDofs = NodeDofs(2);
+    pub(crate) const PLANE: NodeDofs = NodeDofs(2, false);
     /// u_r, u_z, u_θ: an axisymmetric model with twist.
-    pub(crate) const TWIST: NodeDofs = NodeDofs(3);
+    pub(crate) const TWIST: NodeDofs = NodeDofs(3, true);
+    /// u_x, u_y, u_z: a 3D model.
+    pub(crate) const SOLID: NodeDofs = NodeDofs(3, false);
     /// The most dofs a node can have.
     pub const MAX: usize = 3;
-    /// The most dofs an element of any family can have (8 nodes × 3).
-    pub(crate) const MAX_ELEMENT: usize = crate::physics::element::family::MAX_NODES * Self::MAX;
+    /// The most dofs an element of any family can have (20 nodes × 3).
+    pub(crate) const MAX_ELEMENT: usize =
+        crate::physics::element::family::MAX_ELEMENT_NODES * Self::MAX;
 
     /// Dofs per node, k.
     pub fn per_node(self) -> usize {
@@ -63,13 +66,18 @@ impl NodeDofs {
     }
 
     /// Dofs of one element of `nodes` nodes (16 or 24 for the quad, 12 or
-    /// 18 for the triangle).
+    /// 18 for the triangle, 60 for the hexahedron, 30 for the tetrahedron).
     pub fn element(self, nodes: usize) -> usize {
         nodes * self.0
     }
 
     /// Whether the nodes carry the circumferential displacement u_θ.
     pub fn twist(self) -> bool {
+        self.1
+    }
+
+    /// Whether a Gauss point carries all six stress components (twist, 3D).
+    pub(crate) fn six_components(self) -> bool {
         self.0 == 3
     }
 }
@@ -80,7 +88,7 @@ mod tests {
 
     #[test]
     fn numbering_round_trips() {
-        for nd in [NodeDofs::PLANE, NodeDofs::TWIST] {
+        for nd in [NodeDofs::PLANE, NodeDofs::TWIST, NodeDofs::SOLID] {
             let k = nd.per_node();
             for n in 0..5 {
                 for c in 0..k {
@@ -94,6 +102,7 @@ mod tests {
             assert!(nd.element(8) <= NodeDofs::MAX_ELEMENT);
         }
         assert_eq!(NodeDofs::default(), NodeDofs::PLANE);
-        assert!(NodeDofs::TWIST.twist() && !NodeDofs::PLANE.twist());
+        assert!(NodeDofs::TWIST.twist() && !NodeDofs::PLANE.twist() && !NodeDofs::SOLID.twist());
+        assert!(NodeDofs::SOLID.six_components() && !NodeDofs::PLANE.six_components());
     }
 }

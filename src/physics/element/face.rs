@@ -1,17 +1,17 @@
-//! The 8-node quadrilateral face of a 20-node hexahedron in space: the
-//! consistent nodal forces of a pressure on it.
+//! The 8-node quadrilateral face of a 20-node hexahedron (or the 6-node
+//! triangle of a tetrahedron) in space: the consistent nodal forces of a
+//! pressure and of a traction vector on it.
 //!
 //! ```text
-//!   fₐ = −∫ p Nₐ n dA = −Σ_g p Nₐ(ξ_g) (∂x/∂ξ × ∂x/∂η)(ξ_g) w_g
+//!   fₐ = ∫ Nₐ (t − p n) dA = Σ_g Nₐ(ξ_g) (t |g_ξ × g_η| − p g_ξ × g_η)(ξ_g) w_g
 //! ```
+//! (g_ξ = ∂x/∂ξ, g_η = ∂x/∂η, so g_ξ × g_η = n dA / dξ dη)
 //! with the face's serendipity shape functions ([`super::q8`], ZTZ 7th ed.
 //! sec. 6.2) and its nodes numbered as [`super::h20::FACES`]: corners
 //! counter-clockwise seen from outside, so ∂x/∂ξ × ∂x/∂η is the outward
 //! normal times the area element and a positive p pushes into the body
 //! (Zienkiewicz, Taylor & Zhu, 7th ed., sec. 6.5 on boundary loads:
 //! the surface integral of Nᵀ t).
-
-#![allow(dead_code)] // reached by the 3D model's loads (issue 44), not yet wired
 
 use super::family::{Family, MAX_NODES};
 
@@ -20,23 +20,37 @@ use super::family::{Family, MAX_NODES};
 /// of a tetrahedron) with node coordinates `x` (mm), by the family's full
 /// Gauss rule (exact for a flat face with straight sides, and to the rule's
 /// order on a curved one). The first `family.nodes()` entries are used.
+#[cfg(test)]
 pub(crate) fn pressure_forces(family: Family, x: &[[f64; 3]], p: f64) -> [[f64; 3]; MAX_NODES] {
+    face_forces(family, x, p, [0.0; 3])
+}
+
+/// Nodal forces (N) of a uniform pressure `p` (MPa, pushing in) and a
+/// uniform traction vector `t` (MPa, a force per area of the face in
+/// global axes) on a face, as [`pressure_forces`].
+pub(crate) fn face_forces(
+    family: Family,
+    x: &[[f64; 3]],
+    p: f64,
+    t: [f64; 3],
+) -> [[f64; 3]; MAX_NODES] {
     let nn = family.nodes();
     let mut f = [[0.0; 3]; MAX_NODES];
     for &(xi, w) in &family.rule(true).points {
         let (n, d) = (family.shape(xi), family.shape_derivs(xi));
-        let mut t = [[0.0; 3]; 2];
+        let mut g = [[0.0; 3]; 2];
         for a in 0..nn {
-            for (k, tk) in t.iter_mut().enumerate() {
+            for (k, tk) in g.iter_mut().enumerate() {
                 for c in 0..3 {
                     tk[c] += d[a][k] * x[a][c];
                 }
             }
         }
-        let normal = crate::numbers::vec3::cross(t[0], t[1]);
+        let normal = crate::numbers::vec3::cross(g[0], g[1]);
+        let da = crate::numbers::vec3::dot(normal, normal).sqrt();
         for a in 0..nn {
             for c in 0..3 {
-                f[a][c] -= p * n[a] * normal[c] * w;
+                f[a][c] += n[a] * (t[c] * da - p * normal[c]) * w;
             }
         }
     }
@@ -87,5 +101,16 @@ mod tests {
             moment[2] += r[0] * fk[1] - r[1] * fk[0];
         }
         assert!(moment.iter().all(|m| m.abs() < 1e-12 * total), "{moment:?}");
+        // a traction vector takes the same shares of t a b, whatever its
+        // direction against the face
+        let t = [2.0, -1.0, 0.5];
+        let f = face_forces(Family::Q8, &x, 0.0, t);
+        for (k, fk) in f.iter().enumerate().take(8) {
+            let share = if k < 4 { -1.0 / 12.0 } else { 1.0 / 3.0 };
+            for c in 0..3 {
+                let want = share * a * b * t[c];
+                assert!((fk[c] - want).abs() < 1e-12 * total, "node {k}: {fk:?}");
+            }
+        }
     }
 }

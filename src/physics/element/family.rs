@@ -1,6 +1,11 @@
-//! The element families a plane or axisymmetric mesh may mix: the 8-node
-//! serendipity quadrilateral ([`super::q8`]) and the 6-node quadratic
-//! triangle ([`super::t6`]). A family answers everything the rest of the
+//! The element families: those a plane or axisymmetric mesh may mix, the
+//! 8-node serendipity quadrilateral ([`super::q8`]) and the 6-node quadratic
+//! triangle ([`super::t6`]), and those of a 3D mesh, the 20-node hexahedron
+//! and the 10-node tetrahedron, whose shape lives in [`Family3`]
+//! ([`super::solid3`]). Methods that take plane natural coordinates are the
+//! plane families' alone: a 3D model never reaches them (its model refuses
+//! every feature still plane only, [`Family::solid`] hands out the solid
+//! shape). A family answers everything the rest of the
 //! code asks of an element's shape: its nodes and their natural coordinates,
 //! shape functions and derivatives, the Jacobian, the Gauss rules, the
 //! interpolation of Gauss point values (to the nodes, or to other points),
@@ -10,14 +15,18 @@
 //! side whichever element it bounds.
 
 pub use super::gauss::GaussRule;
+use super::solid3::Family3;
 use super::{q8, t6};
 use nalgebra::{DMatrix, DVector};
 
-/// Most nodes of an element of any family (the 8-node quad).
+/// Most nodes of an element of a plane family (the 8-node quad).
 pub(crate) const MAX_NODES: usize = 8;
 
-/// Most Gauss points of a rule of any family (3×3).
+/// Most Gauss points of a rule of a plane family (3×3).
 pub(crate) const MAX_POINTS: usize = 9;
+
+/// Most nodes of an element of any family (the 20-node hexahedron).
+pub(crate) const MAX_ELEMENT_NODES: usize = 20;
 
 /// An element family.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -26,13 +35,45 @@ pub enum Family {
     Q8,
     /// The 6-node quadratic triangle.
     T6,
+    /// The 20-node serendipity hexahedron (3D).
+    H20,
+    /// The 10-node quadratic tetrahedron (3D).
+    T10,
+}
+
+/// A plane family's method called on a solid one: a 3D model refuses every
+/// feature that would (the model's checks), so this is a bug.
+#[cold]
+fn plane_only(f: Family) -> ! {
+    unreachable!("the {} has no plane natural coordinates", f.name())
 }
 
 impl Family {
-    /// Both families, in the order of their index.
+    /// The plane families, in the order of their index.
     pub(crate) const ALL: [Family; 2] = [Family::Q8, Family::T6];
 
-    /// 0 for Q8, 1 for T6 (a slot in per-family tables).
+    /// The solid families, in the order of their index.
+    pub(crate) const SOLID: [Family; 2] = [Family::H20, Family::T10];
+
+    /// The dimension of its elements: 2 (plane) or 3 (solid).
+    pub const fn dim(self) -> usize {
+        match self {
+            Family::Q8 | Family::T6 => 2,
+            Family::H20 | Family::T10 => 3,
+        }
+    }
+
+    /// The shape of a solid family (None for a plane one).
+    pub(crate) const fn solid(self) -> Option<Family3> {
+        match self {
+            Family::Q8 | Family::T6 => None,
+            Family::H20 => Some(Family3::H20),
+            Family::T10 => Some(Family3::T10),
+        }
+    }
+
+    /// 0 for Q8, 1 for T6, 2 for H20, 3 for T10 (a slot in per-family
+    /// tables).
     pub const fn index(self) -> usize {
         self as usize
     }
@@ -42,14 +83,19 @@ impl Family {
         match self {
             Family::Q8 => 8,
             Family::T6 => 6,
+            Family::H20 => 20,
+            Family::T10 => 10,
         }
     }
 
-    /// Corner nodes (numbered first, counter-clockwise; the midsides follow).
+    /// Corner nodes (numbered first, counter-clockwise in a plane family;
+    /// the midsides follow).
     pub const fn corners(self) -> usize {
         match self {
             Family::Q8 => 4,
             Family::T6 => 3,
+            Family::H20 => 8,
+            Family::T10 => 4,
         }
     }
 
@@ -58,6 +104,8 @@ impl Family {
         match self {
             Family::Q8 => "8-node quadrilateral",
             Family::T6 => "6-node triangle",
+            Family::H20 => "20-node hexahedron",
+            Family::T10 => "10-node tetrahedron",
         }
     }
 
@@ -66,14 +114,16 @@ impl Family {
         match self {
             Family::Q8 => &q8::NODE_XI,
             Family::T6 => &t6::NODE_XI,
+            Family::H20 | Family::T10 => plane_only(self),
         }
     }
 
     /// The natural coordinates of the element's centre.
-    pub(crate) const fn centre_xi(self) -> [f64; 2] {
+    pub(crate) fn centre_xi(self) -> [f64; 2] {
         match self {
             Family::Q8 => [0.0, 0.0],
             Family::T6 => [1.0 / 3.0, 1.0 / 3.0],
+            Family::H20 | Family::T10 => plane_only(self),
         }
     }
 
@@ -83,15 +133,19 @@ impl Family {
         match self {
             Family::Q8 => &[[0, 4, 1], [1, 5, 2], [2, 6, 3], [3, 7, 0]],
             Family::T6 => &[[0, 3, 1], [1, 4, 2], [2, 5, 0]],
+            Family::H20 | Family::T10 => plane_only(self),
         }
     }
 
-    /// The VTK cell type: VTK_QUADRATIC_QUAD (23) or VTK_QUADRATIC_TRIANGLE
-    /// (22); both number the nodes as this code does.
+    /// The VTK cell type: VTK_QUADRATIC_QUAD (23), VTK_QUADRATIC_TRIANGLE
+    /// (22), VTK_QUADRATIC_HEXAHEDRON (25), VTK_QUADRATIC_TETRA (24); each
+    /// numbers the nodes as this code does.
     pub(crate) const fn vtk_cell(self) -> u8 {
         match self {
             Family::Q8 => 23,
             Family::T6 => 22,
+            Family::H20 => 25,
+            Family::T10 => 24,
         }
     }
 
@@ -101,6 +155,7 @@ impl Family {
         match self {
             Family::Q8 => &[0, 3, 2, 1, 7, 6, 5, 4],
             Family::T6 => &[0, 2, 1, 5, 4, 3],
+            Family::H20 | Family::T10 => plane_only(self),
         }
     }
 
@@ -111,6 +166,7 @@ impl Family {
         match self {
             Family::Q8 => d(0, 2).max(d(1, 3)),
             Family::T6 => d(0, 1).max(d(1, 2)).max(d(2, 0)),
+            Family::H20 | Family::T10 => plane_only(self),
         }
     }
 
@@ -123,6 +179,7 @@ impl Family {
                 (c[0][0] + c[1][0] + c[2][0]) / 3.0,
                 (c[0][1] + c[1][1] + c[2][1]) / 3.0,
             ],
+            Family::H20 | Family::T10 => plane_only(self),
         }
     }
 
@@ -132,6 +189,7 @@ impl Family {
         match self {
             Family::Q8 => n = q8::shape(xi, eta),
             Family::T6 => n[..6].copy_from_slice(&t6::shape(xi, eta)),
+            Family::H20 | Family::T10 => plane_only(self),
         }
         n
     }
@@ -142,6 +200,7 @@ impl Family {
         match self {
             Family::Q8 => d = q8::shape_derivs(xi, eta),
             Family::T6 => d[..6].copy_from_slice(&t6::shape_derivs(xi, eta)),
+            Family::H20 | Family::T10 => plane_only(self),
         }
         d
     }
@@ -157,6 +216,7 @@ impl Family {
             (Family::Q8, false) => q8::gauss_2x2(),
             (Family::T6, true) => t6::gauss_6(),
             (Family::T6, false) => t6::gauss_3(),
+            (Family::H20 | Family::T10, _) => plane_only(self),
         }
     }
 
@@ -202,6 +262,7 @@ impl Family {
         let size2 = match self {
             Family::Q8 => dist2(0, 2),
             Family::T6 => dist2(0, 1).max(dist2(1, 2)).max(dist2(2, 0)),
+            Family::H20 | Family::T10 => plane_only(self),
         };
         #[allow(clippy::neg_cmp_op_on_partial_ord)] // !(x > tol) is meant to be true for NaN
         if !(det > 1e-12 * size2) {
@@ -254,6 +315,7 @@ impl Family {
                     .expect("a triangle rule's points are unisolvent");
                 w[..n].copy_from_slice(solved.as_slice());
             }
+            Family::H20 | Family::T10 => plane_only(self),
         }
         w
     }

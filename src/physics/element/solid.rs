@@ -215,6 +215,9 @@ pub fn elastic_state(mat: &VonMises, committed: &PointState, eps: &[f64; 3]) -> 
     let mut s = d * nalgebra::Vector3::new(ee[0], ee[1], ee[2]);
     let szz = match mat.plane {
         crate::physics::material::Plane::Stress => 0.0,
+        crate::physics::material::Plane::Solid => {
+            unreachable!("a plane element's state in a 3D model")
+        }
         crate::physics::material::Plane::Axisymmetric => {
             // the plane strains with zero hoop strain
             return mat.elastic_state_axisymmetric(committed, &[eps[0], eps[1], eps[2], 0.0]);

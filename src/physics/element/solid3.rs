@@ -144,6 +144,72 @@ impl Family3 {
         }
     }
 
+    /// The points where a valid element has det J > 0: the full rule's
+    /// points and the nodes.
+    pub(crate) fn check_points(self) -> Vec<[f64; 3]> {
+        let mut pts: Vec<[f64; 3]> = self.rule(true).points.iter().map(|p| p.0).collect();
+        pts.extend_from_slice(self.node_xi());
+        pts
+    }
+
+    /// Node values from values at the points of `rule`, as weights: row k
+    /// is each node's value for point k at 1 and the others at 0. The
+    /// polynomial fitted through the points by least squares (interpolated
+    /// where the counts agree) is read at the nodes: for the hexahedron the
+    /// tensor polynomials of degree 2 (27 points) or 1 (8) in each
+    /// coordinate, for the tetrahedron the complete ones of degree 2 (14
+    /// points, a fit) or 1 (4).
+    pub(crate) fn extrapolation(self, rule: &GaussRule3) -> Vec<[f64; MAX_NODES3]> {
+        let np = rule.points.len();
+        let basis = |[x, y, z]: [f64; 3]| -> Vec<f64> {
+            match self {
+                Family3::H20 => {
+                    let d = if np >= 27 { 2 } else { 1 };
+                    let mut v = Vec::new();
+                    for i in 0..=d {
+                        for j in 0..=d {
+                            for k in 0..=d {
+                                v.push(x.powi(i) * y.powi(j) * z.powi(k));
+                            }
+                        }
+                    }
+                    v
+                }
+                Family3::T10 if np >= 10 => {
+                    vec![1.0, x, y, z, x * x, y * y, z * z, x * y, y * z, z * x]
+                }
+                Family3::T10 => vec![1.0, x, y, z],
+            }
+        };
+        let nb = basis([0.0; 3]).len();
+        let v = nalgebra::DMatrix::from_fn(np, nb, |p, b| basis(rule.points[p].0)[b]);
+        // coefficients c = (VᵀV)⁻¹ Vᵀ values; node a's value N_a c
+        let fit = (v.transpose() * &v)
+            .try_inverse()
+            .expect("a rule's points are unisolvent for its basis")
+            * v.transpose();
+        let nodes =
+            nalgebra::DMatrix::from_fn(self.nodes(), nb, |a, b| basis(self.node_xi()[a])[b]);
+        let w = nodes * fit;
+        (0..np)
+            .map(|k| {
+                let mut row = [0.0; MAX_NODES3];
+                for (a, r) in row.iter_mut().enumerate().take(self.nodes()) {
+                    *r = w[(a, k)];
+                }
+                row
+            })
+            .collect()
+    }
+
+    /// The family of the element's mesh ([`super::family::Family`]).
+    pub(crate) const fn family(self) -> super::family::Family {
+        match self {
+            Family3::H20 => super::family::Family::H20,
+            Family3::T10 => super::family::Family::T10,
+        }
+    }
+
     /// The element's diameter from its node coordinates: the longest body
     /// diagonal (hexahedron) or edge between corners (tetrahedron).
     pub(crate) fn diameter(self, c: &[[f64; 3]]) -> f64 {
@@ -401,6 +467,39 @@ fn add_btcb3(d: &[[f64; 3]; MAX_NODES3], nn: usize, c: &Matrix6<f64>, dv: f64, k
                 ke[(3 * a) * ne + 3 * b + j] += dv * kx;
                 ke[(3 * a + 1) * ne + 3 * b + j] += dv * ky;
                 ke[(3 * a + 2) * ne + 3 * b + j] += dv * kz;
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod extrapolation_tests {
+    use super::*;
+
+    /// Each rule's extrapolation reproduces, at the nodes, the polynomials
+    /// its fit spans: exactly where they are those of the element's shape.
+    #[test]
+    fn extrapolation_reproduces_the_fitted_polynomials() {
+        let linear = |[x, y, z]: [f64; 3]| 1.0 + 2.0 * x - 0.5 * y + 0.25 * z;
+        let quadratic =
+            |p: [f64; 3]| linear(p) + p[0] * p[0] - 3.0 * p[1] * p[2] + 0.7 * p[2] * p[2];
+        for (family, full, f) in [
+            (Family3::H20, false, &linear as &dyn Fn([f64; 3]) -> f64),
+            (Family3::H20, true, &quadratic),
+            (Family3::T10, false, &linear),
+            (Family3::T10, true, &quadratic),
+        ] {
+            let rule = family.rule(full);
+            let w = family.extrapolation(&rule);
+            for (a, &x) in family.node_xi().iter().enumerate() {
+                let at: f64 = (0..rule.points.len())
+                    .map(|k| w[k][a] * f(rule.points[k].0))
+                    .sum();
+                assert!(
+                    (at - f(x)).abs() < 1e-11,
+                    "{family:?} {full} node {a}: {at} vs {}",
+                    f(x)
+                );
             }
         }
     }

@@ -34,8 +34,8 @@ use std::fmt;
 
 pub(crate) use storage::{GaussMut, GaussRef, GaussStates};
 
-/// The plane idealization of the 2D model (the case's `[model] plane`,
-/// "stress", "strain" or "axisymmetric").
+/// The idealization of the model (the case's `[model] plane`: "stress",
+/// "strain", "axisymmetric" or "3d").
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize, serde::Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Plane {
@@ -47,6 +47,10 @@ pub enum Plane {
     /// the fourth strain and stress component is the hoop one (θθ), and every
     /// integral is over the full revolution.
     Axisymmetric,
+    /// Three-dimensional solids: six strain and stress components, the
+    /// general return ([`VonMises::update_twist`], which consults no plane).
+    #[serde(rename = "3d")]
+    Solid,
 }
 
 /// State at one Gauss point, committed at the end of a converged increment
@@ -206,7 +210,7 @@ impl VonMises {
                     c * (1.0 - nu) / 2.0,
                 )
             }
-            Plane::Strain | Plane::Axisymmetric => {
+            Plane::Strain | Plane::Axisymmetric | Plane::Solid => {
                 let c = e / ((1.0 + nu) * (1.0 - 2.0 * nu));
                 Matrix3::new(
                     c * (1.0 - nu),
@@ -247,7 +251,7 @@ impl VonMises {
         match self.plane {
             Plane::Stress => plane_stress::update(self, committed, strain),
             // ε_zz = 0 (in axisymmetry: the in-plane strains with zero hoop strain)
-            Plane::Strain | Plane::Axisymmetric => {
+            Plane::Strain | Plane::Axisymmetric | Plane::Solid => {
                 let e4 = [strain[0], strain[1], strain[2], 0.0];
                 let (state, c) = radial::update(self, committed, &e4);
                 Ok((state, c.fixed_view::<3, 3>(0, 0).into_owned()))
@@ -343,7 +347,9 @@ impl VonMises {
         // Voigt order of c: xx, yy, zz, xy
         let idx = [0usize, 1, 3];
         match self.plane {
-            Plane::Strain | Plane::Axisymmetric => Matrix3::from_fn(|i, j| c[(idx[i], idx[j])]),
+            Plane::Strain | Plane::Axisymmetric | Plane::Solid => {
+                Matrix3::from_fn(|i, j| c[(idx[i], idx[j])])
+            }
             Plane::Stress => {
                 let czz = c[(2, 2)];
                 Matrix3::from_fn(|i, j| c[(idx[i], idx[j])] - c[(idx[i], 2)] * c[(2, idx[j])] / czz)

@@ -7,8 +7,8 @@ use crate::input::mesh::NodeDofs;
 use crate::linalg::failure::StepFailure;
 use crate::model::Model;
 use crate::physics::element::element_forces;
-use crate::physics::element::family::{MAX_NODES, MAX_POINTS};
 use crate::physics::element::solid::{Response, Tangent};
+use crate::physics::element::solid3::{forces3, MAX_POINTS3};
 use crate::physics::material::{GaussMut, GaussRef, PointState};
 use crate::solve::State;
 
@@ -56,7 +56,7 @@ impl Engine<'_> {
         let batch = n.min(ELEMENT_BATCH);
         let nd = m.node_dofs();
         // one slot per element, as large as the largest element's
-        let (k, ne) = (nd.per_node(), nd.element(MAX_NODES));
+        let (k, ne) = (nd.per_node(), m.max_element_dofs());
         if self.fe_batch.len() < batch * ne {
             self.fe_batch.resize(batch * ne, 0.0);
         }
@@ -157,7 +157,7 @@ fn element_batch(
     threads: usize,
 ) -> Option<(usize, String)> {
     let len = ids.len();
-    let ne = m.node_dofs().element(MAX_NODES);
+    let ne = m.max_element_dofs();
     let t = threads.min(len.div_ceil(MIN_ELEMENTS_PER_THREAD)).max(1);
     if t == 1 {
         let work = (ids, points, committed, trial);
@@ -226,11 +226,11 @@ fn element_chunk(
     ke: &mut [f64],
 ) -> Option<(usize, String)> {
     let nd = m.node_dofs();
-    let slot = nd.element(MAX_NODES);
-    let mut scratch = [0.0; NodeDofs::MAX_ELEMENT * NodeDofs::MAX_ELEMENT];
+    let slot = m.max_element_dofs();
+    let mut scratch = vec![0.0; slot * slot];
     // an element's committed and trial states, as the material computes them
-    let mut c_buf = [PointState::default(); MAX_POINTS];
-    let mut t_buf = [PointState::default(); MAX_POINTS];
+    let mut c_buf = [PointState::default(); MAX_POINTS3];
+    let mut t_buf = [PointState::default(); MAX_POINTS3];
     for (i, &e) in ids.iter().enumerate() {
         let e = e as usize;
         let el = &m.mesh.elements[e];
@@ -245,17 +245,32 @@ fn element_chunk(
         committed.range(gs.clone()).load(&mut c_buf[..np]);
         let mut tg = trial.range_mut(gs);
         tg.load(&mut t_buf[..np]);
-        let done = element_forces(
-            &m.geometry(e),
-            &m.materials[el.body],
-            &ue[..ne],
-            &c_buf[..np],
-            &mut t_buf[..np],
-            response,
-            tangent,
-            &mut fe[i * slot..][..ne],
-            ke,
-        );
+        let (mat, fe) = (&m.materials[el.body], &mut fe[i * slot..][..ne]);
+        let (committed, trial) = (&c_buf[..np], &mut t_buf[..np]);
+        let done = match el.family.dim() {
+            3 => forces3(
+                &m.geometry3(e),
+                mat,
+                &ue[..ne],
+                committed,
+                trial,
+                response,
+                tangent,
+                fe,
+                ke,
+            ),
+            _ => element_forces(
+                &m.geometry(e),
+                mat,
+                &ue[..ne],
+                committed,
+                trial,
+                response,
+                tangent,
+                fe,
+                ke,
+            ),
+        };
         tg.store(&t_buf[..np]);
         if let Err(msg) = done {
             return Some((i, msg));

@@ -194,7 +194,7 @@ impl<'m> Engine<'m> {
         let m = self.model;
         let ne = m.mesh.elements.len();
         let root = self.backend.rank() == 0;
-        let twist = m.node_dofs().twist();
+        let twist = m.node_dofs().six_components();
         let mut full = GaussStates::with_capacity(if root { m.n_points() } else { 0 }, twist);
         let w = PointState::packed_len(twist);
         let per = (SHARE_CHUNK / crate::physics::element::family::MAX_POINTS).max(1);

@@ -212,8 +212,12 @@ impl EdgeMap {
 
 /// The hanging nodes of a mesh, recognised from its topology: an element
 /// edge [a, m, b] whose halves [a, ·, m] and [m, ·, b] are edges of other
-/// elements (its midside m a corner of theirs).
+/// elements (its midside m a corner of theirs). A 3D mesh has none (it is
+/// never refined locally).
 pub fn hanging_nodes(mesh: &Mesh) -> Vec<HangingNode> {
+    if mesh.dim() == 3 {
+        return Vec::new();
+    }
     let map = EdgeMap::new(mesh);
     let mut out = Vec::new();
     for (e, el) in mesh.elements.iter().enumerate() {
@@ -344,6 +348,12 @@ pub(crate) fn refine_with(
             state.level.len()
         )));
     }
+    if let Some(el) = mesh.elements.iter().find(|el| el.family.dim() == 3) {
+        return Err(MeshError(format!(
+            "local refinement of a 3D mesh ({}) is not available: refine it uniformly (--refine)",
+            el.family.name()
+        )));
+    }
     let on = closure(mesh, marked, tied)?;
     if let Some(e) = (0..n).find(|&e| on[e] && state.level[e] >= MAX_LEVEL) {
         return Err(MeshError(format!(
@@ -377,6 +387,7 @@ pub(crate) fn refine_with(
         let (children, inner) = match el.family {
             Family::Q8 => split(&mut out, &mut quarters, el, &c),
             Family::T6 => split_t6(&mut out, &mut quarters, el, &c),
+            Family::H20 | Family::T10 => unreachable!("refused above"),
         };
         interior[e] = inner;
         for c in children {

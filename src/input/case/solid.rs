@@ -1,0 +1,215 @@
+//! A 3D model (`[model] plane = "3d"`): its keys checked one by one and
+//! together, before the mesh exists.
+//!
+//! Keys: `[mesh] extrude` (the block layout swept along z,
+//! [`crate::input::mesh::extrude`]), `[[load]] faces` with `pressure` and
+//! `traction = [t_x, t_y, t_z]`, `uz` of `[[boundary]]`, `fz` of
+//! `[[force]]`, and `z_range` of all three. A 3D key in a plane model, a
+//! plane-only key in a 3D one, and every feature not yet built in 3D
+//! (interfaces, pretension sections, twist, a half model, local and
+//! adaptive refinement) are refused here, each naming its key.
+
+use crate::error::{clip, Error, Result};
+use crate::input::case::{ranges, Case};
+use crate::physics::material::Plane;
+
+/// The case's 3D keys, whichever the model's dimension.
+pub fn check_case(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
+    if case.model.plane == Plane::Solid {
+        check_solid(case, at)
+    } else {
+        refuse_solid_keys(case, at)
+    }
+}
+
+/// A plane model with a key only a 3D model has.
+fn refuse_solid_keys(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
+    let need = |key: String| {
+        Err(Error::input(
+            key,
+            "is a key of a 3D model (plane = \"3d\"); a plane or axisymmetric model has no z",
+        ))
+    };
+    if case.mesh.extrude.is_some() {
+        return need(at("[mesh] extrude"));
+    }
+    for (i, bc) in case.boundary.iter().enumerate() {
+        for (k, given) in [("uz", bc.uz.is_some()), ("z_range", bc.z_range.is_some())] {
+            if given {
+                return need(at(&format!("boundary[{i}] {k}")));
+            }
+        }
+    }
+    for (i, ld) in case.load.iter().enumerate() {
+        for (k, given) in [
+            ("faces", ld.faces.is_some()),
+            ("traction", ld.traction.is_some()),
+            ("z_range", ld.z_range.is_some()),
+        ] {
+            if given {
+                return need(at(&format!("load[{i}] {k}")));
+            }
+        }
+        if ld.edges.is_empty() {
+            return Err(Error::input(
+                at(&format!("load[{i}] edges")),
+                "is missing: name the edge set the traction acts on",
+            ));
+        }
+    }
+    for (i, f) in case.force.iter().enumerate() {
+        for (k, given) in [("fz", f.fz != 0.0), ("z_range", f.z_range.is_some())] {
+            if given {
+                return need(at(&format!("force[{i}] {k}")));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// A 3D model: its mesh given as a sweep (or a file), its loads on faces,
+/// and nothing that is plane only or not yet built in 3D.
+fn check_solid(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
+    let not_yet = |key: String, what: &str| {
+        Err(Error::input(
+            key,
+            format!("{what} is not yet available in a 3D model (plane = \"3d\"); remove it"),
+        ))
+    };
+    let m = &case.model;
+    if let Some(t) = m.thickness.0 {
+        return Err(Error::input(
+            at("[model] thickness"),
+            format!(
+                "thickness = {t} in a 3D model: the mesh has its own depth (z); remove the key"
+            ),
+        ));
+    }
+    if m.symmetric_half {
+        return Err(Error::input(
+            at("[model] symmetric_half"),
+            "is true in a 3D model: model the part and its symmetry planes with [[boundary]] (u normal to the plane = 0); remove the key",
+        ));
+    }
+    if m.twist {
+        return not_yet(at("[model] twist"), "twist");
+    }
+    if case.mesh.file.is_none() && case.mesh.extrude.is_none() {
+        return Err(Error::input(
+            at("[mesh]"),
+            "a 3D model needs its mesh in space: sweep the blocks along z with extrude = { z = [...], nz = [...] }",
+        ));
+    }
+    if case.mesh.file.is_some() {
+        return not_yet(at("[mesh] file"), "a Gmsh mesh");
+    }
+    if case.mesh.refine_region.is_some() {
+        return not_yet(at("[mesh] refine_region"), "local refinement");
+    }
+    if let Some(i) = case.mesh.interface.first() {
+        return not_yet(
+            at(&format!("[[mesh.interface]] \"{}\"", clip(&i.name))),
+            "a contact interface",
+        );
+    }
+    if let Some(name) = case.interface.keys().next() {
+        return not_yet(
+            at(&format!("[interface.{}]", clip(name))),
+            "a contact interface",
+        );
+    }
+    if let Some(p) = case.pretension.first() {
+        return not_yet(
+            at(&format!("[[pretension]] \"{}\"", clip(&p.name))),
+            "a pretension section",
+        );
+    }
+    if case.adapt.is_some() {
+        return not_yet(at("[adapt]"), "an adaptive run");
+    }
+    for (i, b) in case.mesh.block.iter().enumerate() {
+        for (k, given) in [("bottom", b.bottom.is_some()), ("top", b.top.is_some())] {
+            if given {
+                let key = at(&format!("[[mesh.block]] \"{}\" {k}", clip(b.name())));
+                return not_yet(key, &format!("a curved side (block {i})"));
+            }
+        }
+    }
+    if let Some(e) = &case.mesh.extrude {
+        crate::input::mesh::blocks::graded_axis(
+            "extrude",
+            "z",
+            &e.z,
+            &e.nz,
+            &e.rz,
+            case.mesh.refine,
+        )
+        .map_err(|m| Error::input(at("[mesh] extrude"), m.0))?;
+        for &z in &e.z {
+            ranges::COORDINATE.check(at("[mesh] extrude z"), z)?;
+        }
+    }
+    check_solid_loads(case, at)
+}
+
+/// Loads of a 3D model: on faces, pressure and traction only.
+fn check_solid_loads(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
+    for (i, ld) in case.load.iter().enumerate() {
+        let key = |k: &str| at(&format!("load[{i}] {k}"));
+        if !ld.edges.is_empty() {
+            return Err(Error::input(
+                key("edges"),
+                "a 3D model loads faces: name the face set with faces = \"...\"",
+            ));
+        }
+        if ld.faces.is_none() {
+            return Err(Error::input(
+                key("faces"),
+                "is missing: name the face set the traction acts on",
+            ));
+        }
+        for (k, given) in [
+            ("shear", ld.shear != 0.0),
+            ("hoop_shear", ld.hoop_shear.is_some()),
+            ("torque", ld.torque.is_some()),
+        ] {
+            if given {
+                return Err(Error::input(
+                    key(k),
+                    "is a plane model's key; in 3D give the traction vector, traction = [t_x, t_y, t_z] (MPa)",
+                ));
+            }
+        }
+        if let Some(t) = &ld.traction {
+            if t.len() != 3 {
+                return Err(Error::input(
+                    key("traction"),
+                    format!(
+                        "expected exactly 3 numbers [t_x, t_y, t_z] (MPa), found {}",
+                        t.len()
+                    ),
+                ));
+            }
+            for &v in t {
+                ranges::PRESSURE.check(key("traction"), v)?;
+            }
+        }
+        let traction = ld
+            .traction
+            .as_ref()
+            .is_some_and(|t| t.iter().any(|&v| v != 0.0));
+        if ld.pressure == 0.0 && !traction {
+            return Err(Error::input(
+                key("pressure"),
+                "and traction are both 0 or absent: the load does nothing",
+            ));
+        }
+    }
+    for (i, bc) in case.boundary.iter().enumerate() {
+        ranges::DISPLACEMENT.check(at(&format!("boundary[{i}] uz")), bc.uz.unwrap_or(0.0))?;
+    }
+    for (i, f) in case.force.iter().enumerate() {
+        ranges::FORCE.check(at(&format!("force[{i}] fz")), f.fz)?;
+    }
+    Ok(())
+}
