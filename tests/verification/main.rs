@@ -36,6 +36,7 @@ mod punch;
 mod punch_rounded;
 mod roughness;
 mod shrink_fit;
+mod solid;
 mod status_convergence;
 mod stepping;
 mod tables;

@@ -605,7 +605,7 @@ fn a_file_holds_exactly_the_sections_of_its_format() {
         let e = decode(&file_of(&head, &without), &model).unwrap_err();
         assert_eq!(
             e,
-            format!("section {name} missing: every restart file of format 2 holds it")
+            format!("section {name} missing: every restart file of format 3 holds it")
         );
     }
     let mut more = sections.clone();
@@ -616,7 +616,7 @@ fn a_file_holds_exactly_the_sections_of_its_format() {
     extra.extend_from_slice(&7u64.to_le_bytes());
     more.push(("extra".into(), extra));
     let e = decode(&file_of(&head, &more), &model).unwrap_err();
-    assert_eq!(e, "section \"extra\" is no section of restart format 2");
+    assert_eq!(e, "section \"extra\" is no section of restart format 3");
     // a body of a first yield the file does not have
     let mut body = sections.clone();
     let k = names.iter().position(|n| *n == "first_yield_body").unwrap();

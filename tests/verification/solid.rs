@@ -1,0 +1,157 @@
+//! 3D solids (20-node hexahedra swept from the block layout): against the
+//! plane-strain model of the same in-plane mesh, and against closed forms.
+
+use crate::common;
+use asperity::model::Model;
+use asperity::solve::State;
+use common::Quiet;
+
+fn solve(text: &str) -> (Model, State) {
+    let model = common::model(text);
+    let r = asperity::app::driver::solve(&model, &mut Quiet).unwrap();
+    (model, r.final_state)
+}
+
+/// A graded elastic-plastic block, pressed on part of its top (a plastic
+/// zone under the loaded strip): the plane-strain case of thickness 2, or
+/// (`solid`) the same layout swept through z in [0, 2] with u_z = 0 at
+/// every node.
+fn slab(solid: bool) -> String {
+    let (model, mesh, hold_z, load) = if solid {
+        (
+            "plane = \"3d\"",
+            "extrude = { z = [0.0, 2.0], nz = [1] }",
+            "[[boundary]]\nset = \"part.all\"\nuz = 0.0\n",
+            "faces = \"part.top\"",
+        )
+    } else {
+        ("plane = \"strain\"\nthickness = 2.0", "", "", "edges = \"part.top\"")
+    };
+    format!(
+        r#"
+[model]
+{model}
+[mesh]
+{mesh}
+[[mesh.block]]
+body = "part"
+x = [0.0, 8.0, 20.0]
+nx = [4, 3]
+rx = [1.0, 2.0]
+y = [0.0, 10.0]
+ny = [4]
+ry = [0.5]
+[materials.part]
+young = 200000.0
+poisson = 0.3
+yield_stress = 250.0
+hardening = 2000.0
+[[boundary]]
+set = "part.bottom"
+uy = 0.0
+[[boundary]]
+set = "part.left"
+ux = 0.0
+{hold_z}
+[[load]]
+{load}
+pressure = 420.0
+x_range = [0.0, 8.0]
+[solver]
+increments = 4
+residual_tolerance = 1e-12
+displacement_tolerance = 1e-13
+[output]
+vtu = false
+"#
+    )
+}
+
+#[test]
+fn a_slab_held_in_z_is_the_plane_strain_model_of_its_section() {
+    let (m2, s2) = solve(&slab(false));
+    let (m3, s3) = solve(&slab(true));
+    assert!(s2.gauss.iter().any(|g| g.peeq > 1e-3), "the case must yield");
+    let at: std::collections::HashMap<[u64; 2], usize> = m2
+        .mesh
+        .nodes
+        .iter()
+        .enumerate()
+        .map(|(n, x)| ([x[0].to_bits(), x[1].to_bits()], n))
+        .collect();
+    let scale = s2.u.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    let mut worst: f64 = 0.0;
+    let mut compared = 0;
+    for (n, x) in m3.mesh.nodes.iter().enumerate() {
+        assert!(s3.u[3 * n + 2] == 0.0);
+        let k = at[&[x[0].to_bits(), x[1].to_bits()]];
+        for c in 0..2 {
+            worst = worst.max((s3.u[3 * n + c] - s2.u[2 * k + c]).abs());
+        }
+        compared += 1;
+    }
+    // both faces z = 0 and z = 2 whole, and the corners on the midplane
+    assert!(compared > 2 * m2.mesh.nodes.len());
+    println!("3D slab vs plane strain: largest difference {:.3e} of {scale:.3e} mm", worst);
+    assert!(worst < 1e-8 * scale, "{worst:e} vs {scale:e}");
+    // the Gauss states agree point for point (27 = 9 × 3 points): the
+    // plastic strain, and σ_zz of ε_zz = 0
+    let peeq2: f64 = s2.gauss.iter().map(|g| g.peeq).sum();
+    let peeq3: f64 = s3.gauss.iter().map(|g| g.peeq).sum();
+    assert!((peeq3 - 3.0 * peeq2).abs() < 1e-8 * peeq3, "{peeq3} vs 3 × {peeq2}");
+}
+
+/// The block in uniform uniaxial compression beyond yield: σ = p, ε̄ᵖ =
+/// (p − σ_Y)/H at every point, the reaction p A, in one increment.
+#[test]
+fn a_block_in_uniaxial_compression_yields_as_the_closed_form() {
+    let text = r#"
+[model]
+plane = "3d"
+[mesh]
+extrude = { z = [0.0, 6.0], nz = [3], rz = [2.0] }
+[[mesh.block]]
+body = "b"
+x = [0.0, 10.0]
+nx = [2]
+rx = [3.0]
+y = [0.0, 20.0]
+ny = [3]
+[materials.b]
+young = 200000.0
+poisson = 0.3
+yield_stress = 250.0
+hardening = 1000.0
+[[boundary]]
+set = "b.bottom"
+uy = 0.0
+[[boundary]]
+set = "b.left"
+ux = 0.0
+[[boundary]]
+set = "b.zmin"
+uz = 0.0
+[[load]]
+faces = "b.top"
+pressure = 300.0
+[solver]
+increments = 1
+residual_tolerance = 1e-12
+[output]
+vtu = false
+"#;
+    let (m, s) = solve(text);
+    for g in s.gauss.iter() {
+        assert!((g.peeq - 0.05).abs() < 1e-9, "{}", g.peeq);
+        assert!((g.stress[1] + 300.0).abs() < 1e-7, "{:?}", g.stress);
+        for c in [0, 2, 3, 4, 5] {
+            assert!(g.stress[c].abs() < 1e-7, "{:?}", g.stress);
+        }
+    }
+    // the top moves down by the elastic and the plastic strain over 20 mm
+    let top = &m.mesh.node_sets["b.top"];
+    let want = -20.0 * (300.0 / 200000.0 + 0.05);
+    for &n in top {
+        assert!((s.u[3 * n + 1] - want).abs() < 1e-9, "{} vs {want}", s.u[3 * n + 1]);
+    }
+}
