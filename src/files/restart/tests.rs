@@ -594,7 +594,7 @@ fn a_file_holds_exactly_the_sections_of_its_format() {
     let model = model();
     let (ck, pvd) = checkpoint(&model, 2);
     let bytes = encode(&model, &ck, &pvd);
-    assert_eq!(&bytes[8..12], &2u32.to_le_bytes());
+    assert_eq!(&bytes[8..12], &VERSION.to_le_bytes());
     let (head, sections) = sections_of(&bytes);
     let names: Vec<&str> = sections.iter().map(|s| s.0.as_str()).collect();
     assert_eq!(names, SECTIONS);
@@ -640,16 +640,16 @@ fn a_file_holds_exactly_the_sections_of_its_format() {
     // other versions: refused by the header alone (no checksum, no
     // fingerprint, no section read)
     for (version, words) in [
-        (1u32, "an earlier asperity (restart format 1)"),
+        (2u32, "an earlier asperity (restart format 2)"),
         (0, "an earlier asperity (restart format 0)"),
-        (3, "a later asperity (restart format 3)"),
+        (4, "a later asperity (restart format 4)"),
     ] {
         let mut other = bytes.clone();
         other[8..12].copy_from_slice(&version.to_le_bytes());
         let e = decode(&other, &model).unwrap_err();
         assert!(
             e.starts_with(&format!(
-                "restart.bin was written by {words}; this build reads format 2 only: "
+                "restart.bin was written by {words}; this build reads format 3 only: "
             )),
             "{e}"
         );
