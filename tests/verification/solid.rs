@@ -25,7 +25,12 @@ fn slab(solid: bool) -> String {
             "faces = \"part.top\"",
         )
     } else {
-        ("plane = \"strain\"\nthickness = 2.0", "", "", "edges = \"part.top\"")
+        (
+            "plane = \"strain\"\nthickness = 2.0",
+            "",
+            "",
+            "edges = \"part.top\"",
+        )
     };
     format!(
         r#"
@@ -71,7 +76,10 @@ vtu = false
 fn a_slab_held_in_z_is_the_plane_strain_model_of_its_section() {
     let (m2, s2) = solve(&slab(false));
     let (m3, s3) = solve(&slab(true));
-    assert!(s2.gauss.iter().any(|g| g.peeq > 1e-3), "the case must yield");
+    assert!(
+        s2.gauss.iter().any(|g| g.peeq > 1e-3),
+        "the case must yield"
+    );
     let at: std::collections::HashMap<[u64; 2], usize> = m2
         .mesh
         .nodes
@@ -92,13 +100,19 @@ fn a_slab_held_in_z_is_the_plane_strain_model_of_its_section() {
     }
     // both faces z = 0 and z = 2 whole, and the corners on the midplane
     assert!(compared > 2 * m2.mesh.nodes.len());
-    println!("3D slab vs plane strain: largest difference {:.3e} of {scale:.3e} mm", worst);
+    println!(
+        "3D slab vs plane strain: largest difference {:.3e} of {scale:.3e} mm",
+        worst
+    );
     assert!(worst < 1e-8 * scale, "{worst:e} vs {scale:e}");
     // the Gauss states agree point for point (27 = 9 × 3 points): the
     // plastic strain, and σ_zz of ε_zz = 0
     let peeq2: f64 = s2.gauss.iter().map(|g| g.peeq).sum();
     let peeq3: f64 = s3.gauss.iter().map(|g| g.peeq).sum();
-    assert!((peeq3 - 3.0 * peeq2).abs() < 1e-8 * peeq3, "{peeq3} vs 3 × {peeq2}");
+    assert!(
+        (peeq3 - 3.0 * peeq2).abs() < 1e-8 * peeq3,
+        "{peeq3} vs 3 × {peeq2}"
+    );
 }
 
 /// The block in uniform uniaxial compression beyond yield: σ = p, ε̄ᵖ =
@@ -152,6 +166,10 @@ vtu = false
     let top = &m.mesh.node_sets["b.top"];
     let want = -20.0 * (300.0 / 200000.0 + 0.05);
     for &n in top {
-        assert!((s.u[3 * n + 1] - want).abs() < 1e-9, "{} vs {want}", s.u[3 * n + 1]);
+        assert!(
+            (s.u[3 * n + 1] - want).abs() < 1e-9,
+            "{} vs {want}",
+            s.u[3 * n + 1]
+        );
     }
 }

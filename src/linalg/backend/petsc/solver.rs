@@ -62,7 +62,8 @@ impl Partition {
 
     /// The three in-plane rigid-body modes of the assembly (x and y
     /// translation, rotation about the centroid of the nodes), and with twist
-    /// the rotation about the axis (u_θ = r), over every dof in
+    /// the rotation about the axis (u_θ = r), in 3D the six (translations
+    /// and rotations about the centroid along x, y, z), over every dof in
     /// PETSc order, orthonormalized (modified Gram-Schmidt on the replicated
     /// vectors, so every rank gets the same), as this rank's owned parts: the
     /// near-null space for algebraic multigrid (`-pc_type gamg`).
@@ -80,21 +81,37 @@ impl Partition {
         let nodes = &model.mesh.nodes;
         let n = self.global_len();
         let m = nodes.len().max(1) as f64;
-        let c = nodes
-            .iter()
-            .fold([0.0f64; 2], |c, p| [c[0] + p[0] / m, c[1] + p[1] / m]);
+        let c = nodes.iter().fold([0.0f64; 3], |c, p| {
+            [c[0] + p[0] / m, c[1] + p[1] / m, c[2] + p[2] / m]
+        });
         let nd = model.node_dofs();
-        let mut modes = vec![vec![0.0; n]; if nd.twist() { 4 } else { 3 }];
+        let solid = model.mesh.dim() == 3;
+        let count = match (nd.twist(), solid) {
+            (true, _) => 4,
+            (false, true) => 6,
+            (false, false) => 3,
+        };
+        let mut modes = vec![vec![0.0; n]; count];
         for (i, p) in nodes.iter().enumerate() {
             let at = |c: usize| self.dof_index[nd.dof(i, c)] as usize;
             let (ix, iy) = (at(0), at(1));
+            let r = [p[0] - c[0], p[1] - c[1], p[2] - c[2]];
             modes[0][ix] = 1.0;
             modes[1][iy] = 1.0;
-            modes[2][ix] = -(p[1] - c[1]);
-            modes[2][iy] = p[0] - c[0];
+            // the rotation about z
+            modes[2][ix] = -r[1];
+            modes[2][iy] = r[0];
             if nd.twist() {
                 // the rotation about the axis: u_θ = r
                 modes[3][at(2)] = p[0];
+            } else if solid {
+                // u_z, then the rotations about x and y (ω × r)
+                let iz = at(2);
+                modes[3][iz] = 1.0;
+                modes[4][iy] = -r[2];
+                modes[4][iz] = r[1];
+                modes[5][ix] = r[2];
+                modes[5][iz] = -r[0];
             }
         }
         // an empty mesh gives zero vectors: drop them
