@@ -709,3 +709,50 @@ fn serial_petsc1_and_petsc2_agree_on_an_adaptive_run() {
         }
     }
 }
+
+/// A 3D case (cases/block-3d: 20-node hexahedra, plasticity, the six
+/// rigid modes as GAMG's near-null space): serial, PETSc on 1 and on 2
+/// ranks give the same first yield, peaks and reactions to round-off.
+#[test]
+fn serial_petsc1_and_petsc2_agree_on_a_3d_block() {
+    let root = common::scratch("parallel-block-3d");
+    let case = common::root().join("cases").join("block-3d");
+    let out = |n: &str| root.join(n);
+    let (c, e) = serial(&[
+        "run",
+        case.to_str().unwrap(),
+        "--quiet",
+        "--backend",
+        "serial",
+        "--out",
+        out("serial").to_str().unwrap(),
+    ]);
+    assert_eq!(c, 0, "{e}");
+    let s = json(&out("serial"));
+    for n in [1, 2] {
+        let name = format!("petsc{n}");
+        run_on(n, &case, &out(&name), &[]);
+        let p = json(&out(&name));
+        assert_eq!(p["ranks"].as_u64().unwrap(), n as u64);
+        let close = |what: &str, a: f64, b: f64| {
+            assert!(
+                (a - b).abs() <= 1e-9 * a.abs().max(b.abs()),
+                "{name} {what}: {a} vs {b}"
+            );
+        };
+        let f = |v: &serde_json::Value, path: &[&str]| {
+            path.iter().fold(v, |v, k| &v[*k]).as_f64().unwrap()
+        };
+        close(
+            "first yield",
+            f(&s, &["first_yield", "load_factor"]),
+            f(&p, &["first_yield", "load_factor"]),
+        );
+        for key in [["max_von_mises", "value_mpa"], ["max_peeq", "value"]] {
+            close(key[0], f(&s["peaks"][0], &key), f(&p["peaks"][0], &key));
+        }
+        let reaction = |v: &serde_json::Value| v["reactions"][0]["final"][0].as_f64().unwrap();
+        close("reaction", reaction(&s), reaction(&p));
+        assert_eq!(s["newton_iterations"], p["newton_iterations"], "{name}");
+    }
+}
