@@ -428,7 +428,7 @@ impl Model {
 
     /// The Gauss rule of a solid family's elements.
     pub(crate) fn rule3(&self, family: Family3) -> &GaussRule3 {
-        &self.rules3[family.family().index() - 2]
+        &self.rules3[Family::from(family).index() - 2]
     }
 
     /// The dofs of the model's largest element (a slot of the element loop's

@@ -14,8 +14,8 @@
 //! three nodes, so interfaces, edge loads and pretension cuts see one kind of
 //! side whichever element it bounds.
 
+use super::family3::Family3;
 pub use super::gauss::GaussRule;
-use super::solid3::Family3;
 use super::{q8, t6};
 use nalgebra::{DMatrix, DVector};
 
@@ -39,6 +39,15 @@ pub enum Family {
     H20,
     /// The 10-node quadratic tetrahedron (3D).
     T10,
+}
+
+impl From<Family3> for Family {
+    fn from(f: Family3) -> Family {
+        match f {
+            Family3::H20 => Family::H20,
+            Family3::T10 => Family::T10,
+        }
+    }
 }
 
 /// A plane family's method called on a solid one: a 3D model refuses every

@@ -7,6 +7,7 @@ pub mod dofs;
 pub mod edge;
 pub(crate) mod face;
 pub mod family;
+pub(crate) mod family3;
 pub mod gauss;
 pub(crate) mod gauss3;
 pub(crate) mod h20;
