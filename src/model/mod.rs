@@ -389,31 +389,19 @@ impl Model {
             .expect("element geometry was checked when the model was built")
     }
 
-    /// Where Gauss point `ip` of element e is, in space (z = 0 in a plane
-    /// model).
-    pub(crate) fn point_x(&self, e: usize, ip: usize) -> [f64; 3] {
+    /// The Gauss point geometry of element e, plane or solid.
+    pub(crate) fn element_geometry(&self, e: usize) -> crate::physics::element::Geometry {
+        use crate::physics::element::Geometry;
         match self.mesh.elements[e].family.dim() {
-            3 => self.geometry3(e).x[ip],
-            _ => {
-                let [x, y] = self.geometry(e).x[ip];
-                [x, y, 0.0]
-            }
+            3 => Geometry::Solid(self.geometry3(e)),
+            _ => Geometry::Plane(self.geometry(e)),
         }
     }
 
-    /// The volume each Gauss point of element e stands for (det J · weight,
-    /// times the out-of-plane measure in a plane model), mm³.
-    pub(crate) fn point_volumes(&self, e: usize) -> Vec<f64> {
-        match self.mesh.elements[e].family.dim() {
-            3 => {
-                let g = self.geometry3(e);
-                g.dv[..g.n].to_vec()
-            }
-            _ => {
-                let g = self.geometry(e);
-                g.dv[..g.n].to_vec()
-            }
-        }
+    /// Where Gauss point `ip` of element e is, in space (z = 0 in a plane
+    /// model).
+    pub(crate) fn point_x(&self, e: usize, ip: usize) -> [f64; 3] {
+        self.element_geometry(e).x(ip)
     }
 
     /// Gauss point geometry of element e of a 3D mesh (checked valid when

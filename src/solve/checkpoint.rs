@@ -43,9 +43,9 @@ pub struct Checkpoint {
     pub table_reach: Vec<crate::model::interface::extrapolation::Reach>,
     /// The events located so far ([`events`]).
     pub events: Vec<events::Event>,
-    /// The model has twist or is 3D: its Gauss states carry six stress
-    /// components (the width of their restart layout,
-    /// `PointState::packed_len`; with twist also its interfaces' layout).
+    /// The model has twist: its interface points carry the vector law's
+    /// state (their restart layout, `ContactState::packed_len`; the Gauss
+    /// states' width is their own, `GaussStates::twist`).
     pub twist: bool,
     /// The values of one designer's record (the model's
     /// [`Plan::width`](crate::model::outputs::Plan::width)): the layout of
@@ -74,7 +74,7 @@ impl Checkpoint {
             joint_totals: vec![JointTotals::default(); model.interfaces.len()],
             table_reach: vec![Default::default(); model.interfaces.len()],
             events: Vec::new(),
-            twist: model.node_dofs().six_components(),
+            twist: model.node_dofs().twist(),
             record_width: model.plan.width(),
         }
     }

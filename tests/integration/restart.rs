@@ -731,7 +731,12 @@ fn a_forged_table_reach_is_refused() {
 #[test]
 fn a_run_stopped_at_a_breakpoint_resumes() {
     let dir = common::scratch("restart-at-breakpoint");
-    for (case, stop) in [("slideway-cycles", "11"), ("shrink-fit", "20")] {
+    // (block-3d: a 3D model's six-component Gauss states and its peaks' z)
+    for (case, stop) in [
+        ("slideway-cycles", "11"),
+        ("shrink-fit", "20"),
+        ("block-3d", "3"),
+    ] {
         let c = common::root().join("cases").join(case);
         let c = c.to_str().unwrap();
         let out = |n: &str| dir.join(format!("{case}-{n}"));
@@ -765,6 +770,7 @@ fn a_run_stopped_at_a_breakpoint_resumes() {
             "reactions.csv",
             "peaks.csv",
             "contact.csv",
+            "probes.csv",
         ] {
             assert!(
                 std::fs::read(r.join(f)).unwrap() == std::fs::read(full.join(f)).unwrap(),

@@ -24,18 +24,7 @@ fn compare_on(case: &str, refine: &str, ranks: &[usize]) {
         false => common::root().join("cases").join(case),
     };
     let out = |n: &str| root.join(n);
-    let (c, e) = serial(&[
-        "run",
-        case.to_str().unwrap(),
-        "--refine",
-        refine,
-        "--quiet",
-        "--backend",
-        "serial",
-        "--out",
-        out("serial").to_str().unwrap(),
-    ]);
-    assert_eq!(c, 0, "{e}");
+    run_serial(&case, &out("serial"), &["--refine", refine]);
     let runs: Vec<(usize, String)> = ranks.iter().map(|&n| (n, format!("petsc{n}"))).collect();
     // the interface loop asked for by name: PETSc runs it only then
     // (docs/parallel.md), the serial backend by default
@@ -718,16 +707,7 @@ fn serial_petsc1_and_petsc2_agree_on_a_3d_block() {
     let root = common::scratch("parallel-block-3d");
     let case = common::root().join("cases").join("block-3d");
     let out = |n: &str| root.join(n);
-    let (c, e) = serial(&[
-        "run",
-        case.to_str().unwrap(),
-        "--quiet",
-        "--backend",
-        "serial",
-        "--out",
-        out("serial").to_str().unwrap(),
-    ]);
-    assert_eq!(c, 0, "{e}");
+    run_serial(&case, &out("serial"), &[]);
     let s = json(&out("serial"));
     for n in [1, 2] {
         let name = format!("petsc{n}");

@@ -14,16 +14,7 @@ use crate::support::*;
 fn serial_petsc1_and_petsc2_agree_with_the_interface_loop_on_the_hertz_sphere() {
     let root = common::scratch("parallel-loop-sphere");
     let case = common::root().join("tests/data/hertz-sphere");
-    let (c, e) = serial(&[
-        "run",
-        case.to_str().unwrap(),
-        "--quiet",
-        "--backend",
-        "serial",
-        "--out",
-        root.join("serial").to_str().unwrap(),
-    ]);
-    assert_eq!(c, 0, "{e}");
+    run_serial(&case, &root.join("serial"), &[]);
     let s = json(&root.join("serial"));
     assert!(s["interface_loops"].as_u64().unwrap() > 0, "the loop ran");
     assert!(

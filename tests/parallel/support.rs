@@ -132,6 +132,23 @@ pub fn run_on(n: usize, case: &Path, dir: &Path, extra: &[&str]) -> std::process
     out
 }
 
+/// `case` on the serial backend into `dir`, with `extra` arguments; panics
+/// on failure.
+pub fn run_serial(case: &Path, dir: &Path, extra: &[&str]) {
+    let mut args = vec![
+        "run",
+        case.to_str().unwrap(),
+        "--quiet",
+        "--backend",
+        "serial",
+        "--out",
+        dir.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    let (c, e) = serial(&args);
+    assert_eq!(c, 0, "{} on the serial backend: {e}", case.display());
+}
+
 /// punch-plane-stress on 2 ranks into `dir`, with PETSc options; panics on failure.
 pub fn punch_on_two_ranks(dir: &Path, petsc: &[&str]) -> std::process::Output {
     let case = common::root().join("cases/punch-plane-stress");

@@ -442,7 +442,8 @@ fn stepper_sections(e: &mut Encoder, ck: &Checkpoint) -> std::io::Result<()> {
 fn state_sections(e: &mut Encoder, ck: &Checkpoint) -> std::io::Result<()> {
     let s = &ck.committed;
     e.f64s("u", &s.u)?;
-    let w = PointState::packed_len(ck.twist);
+    // six stress components with twist and in 3D
+    let w = PointState::packed_len(s.gauss.twist());
     e.f64_iter(
         "gauss",
         w * s.gauss.len(),

@@ -141,12 +141,13 @@ fn add_end_sets(plane: &Mesh, copy: &[Vec<usize>], mesh: &mut Mesh) {
                     let q = el.nodes();
                     // seen from outside: the top as the quad is, the bottom
                     // walked the other way round
-                    let order: [usize; 8] = if turn {
-                        [0, 3, 2, 1, 7, 6, 5, 4]
+                    let order: Vec<usize> = if turn {
+                        Family::Q8.reversed().iter().map(|&a| q[a]).collect()
                     } else {
-                        [0, 1, 2, 3, 4, 5, 6, 7]
+                        q.to_vec()
                     };
-                    Face::new(Family::Q8, &order.map(|a| copy[q[a]][k]))
+                    let nodes: Vec<usize> = order.iter().map(|&n| copy[n][k]).collect();
+                    Face::new(Family::Q8, &nodes)
                 })
                 .collect();
             let mut nodes: Vec<usize> = faces.iter().flat_map(|f| f.nodes().to_vec()).collect();

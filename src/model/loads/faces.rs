@@ -44,11 +44,7 @@ pub(super) fn face_traction(ld: &LoadSpec, mesh: &Mesh, at: &str) -> Result<Vec<
     if terms.is_empty() {
         return Err(Error::input(
             at,
-            if faces.is_empty() {
-                "selects no face: the set is empty".to_string()
-            } else {
-                "selects no face (check x_range / y_range / z_range)".to_string()
-            },
+            super::selects_none("face", faces.is_empty(), true),
         ));
     }
     Ok(terms)

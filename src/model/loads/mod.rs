@@ -567,7 +567,10 @@ fn edge_traction(
         moment,
     } = acc;
     if count == 0 {
-        return Err(Error::input(at, selects_none("edge", edges.is_empty())));
+        return Err(Error::input(
+            at,
+            selects_none("edge", edges.is_empty(), false),
+        ));
     }
     if on_axis == count {
         return Err(Error::input(
@@ -740,7 +743,10 @@ fn concentrated_force(
         }
     }
     if terms.is_empty() {
-        return Err(Error::input(at, selects_none("node", nodes.is_empty())));
+        return Err(Error::input(
+            at,
+            selects_none("node", nodes.is_empty(), mesh.dim() == 3),
+        ));
     }
     Ok(terms)
 }
@@ -842,7 +848,10 @@ fn boundary_conditions(
             }
         }
         if count == 0 {
-            return Err(Error::input(&at, selects_none("node", nodes.is_empty())));
+            return Err(Error::input(
+                &at,
+                selects_none("node", nodes.is_empty(), mesh.dim() == 3),
+            ));
         }
     }
     Ok(out.into_iter().map(|(d, (v, h, _))| ((d, v), h)).collect())
@@ -899,11 +908,14 @@ pub(crate) fn point(x: [f64; 3], solid: bool) -> String {
 /// Why a load or support selects nothing: its filters, or a set that is
 /// empty (a side of a block wholly shared with another block of its body,
 /// [`crate::input::mesh::blocks`]).
-fn selects_none(what: &str, empty_set: bool) -> String {
+fn selects_none(what: &str, empty_set: bool, solid: bool) -> String {
     if empty_set {
         format!("selects no {what}: the set is empty (a side that another block of its body shares all along is inside the body)")
     } else {
-        format!("selects no {what} (check x_range / y_range)")
+        format!(
+            "selects no {what} (check x_range / y_range{})",
+            if solid { " / z_range" } else { "" }
+        )
     }
 }
 

@@ -72,3 +72,56 @@ pub fn element_forces(
     }
     solid::forces(geom, mat, ue, committed, trial, response, tangent, fe, ke)
 }
+
+/// The Gauss point geometry of one element, plane or solid: what the
+/// element loop and the measures ask of an element whatever its dimension.
+/// Built on the stack and used once per element (a boxed solid variant
+/// would allocate per element in the assembly).
+#[allow(clippy::large_enum_variant)]
+pub(crate) enum Geometry {
+    Plane(solid::ElementGeometry),
+    Solid(solid3::ElementGeometry3),
+}
+
+impl Geometry {
+    /// Where Gauss point `ip` is, in space (z = 0 for a plane element).
+    pub(crate) fn x(&self, ip: usize) -> [f64; 3] {
+        match self {
+            Geometry::Plane(g) => [g.x[ip][0], g.x[ip][1], 0.0],
+            Geometry::Solid(g) => g.x[ip],
+        }
+    }
+
+    /// The volume each Gauss point stands for, mm³ (a plane element's with
+    /// its out-of-plane measure).
+    pub(crate) fn dv(&self) -> &[f64] {
+        match self {
+            Geometry::Plane(g) => &g.dv[..g.n],
+            Geometry::Solid(g) => &g.dv[..g.n],
+        }
+    }
+
+    /// Internal force and (optionally) tangent of the element
+    /// ([`element_forces`] for a plane one, [`solid3::forces3`] for a solid).
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn forces(
+        &self,
+        mat: &crate::physics::material::VonMises,
+        ue: &[f64],
+        committed: &[crate::physics::material::PointState],
+        trial: &mut [crate::physics::material::PointState],
+        response: solid::Response,
+        tangent: Option<solid::Tangent>,
+        fe: &mut [f64],
+        ke: &mut [f64],
+    ) -> Result<(), String> {
+        match self {
+            Geometry::Plane(g) => {
+                element_forces(g, mat, ue, committed, trial, response, tangent, fe, ke)
+            }
+            Geometry::Solid(g) => {
+                solid3::forces3(g, mat, ue, committed, trial, response, tangent, fe, ke)
+            }
+        }
+    }
+}

@@ -6,9 +6,8 @@ use super::{held_out, Engine};
 use crate::input::mesh::NodeDofs;
 use crate::linalg::failure::StepFailure;
 use crate::model::Model;
-use crate::physics::element::element_forces;
 use crate::physics::element::solid::{Response, Tangent};
-use crate::physics::element::solid3::{forces3, MAX_POINTS3};
+use crate::physics::element::solid3::MAX_POINTS3;
 use crate::physics::material::{GaussMut, GaussRef, PointState};
 use crate::solve::State;
 
@@ -245,32 +244,16 @@ fn element_chunk(
         committed.range(gs.clone()).load(&mut c_buf[..np]);
         let mut tg = trial.range_mut(gs);
         tg.load(&mut t_buf[..np]);
-        let (mat, fe) = (&m.materials[el.body], &mut fe[i * slot..][..ne]);
-        let (committed, trial) = (&c_buf[..np], &mut t_buf[..np]);
-        let done = match el.family.dim() {
-            3 => forces3(
-                &m.geometry3(e),
-                mat,
-                &ue[..ne],
-                committed,
-                trial,
-                response,
-                tangent,
-                fe,
-                ke,
-            ),
-            _ => element_forces(
-                &m.geometry(e),
-                mat,
-                &ue[..ne],
-                committed,
-                trial,
-                response,
-                tangent,
-                fe,
-                ke,
-            ),
-        };
+        let done = m.element_geometry(e).forces(
+            &m.materials[el.body],
+            &ue[..ne],
+            &c_buf[..np],
+            &mut t_buf[..np],
+            response,
+            tangent,
+            &mut fe[i * slot..][..ne],
+            ke,
+        );
         tg.store(&t_buf[..np]);
         if let Err(msg) = done {
             return Some((i, msg));

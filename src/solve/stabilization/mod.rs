@@ -104,7 +104,8 @@ fn internal_energy(engine: &Engine, state: &State) -> f64 {
     let mut w = 0.0;
     for (e, local) in m.held_points(engine.held_elements()) {
         let mat = &m.materials[m.mesh.elements[e].body];
-        let dv = m.point_volumes(e);
+        let geo = m.element_geometry(e);
+        let dv = geo.dv();
         for (ip, g) in state.gauss.range(local).iter().enumerate() {
             let s = g.stress;
             let nu = mat.poisson;

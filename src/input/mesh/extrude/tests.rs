@@ -87,7 +87,7 @@ fn face_sets_are_the_swept_sides_and_the_ends_walked_outward() {
 }
 
 #[test]
-fn only_quads_without_interfaces_are_swept() {
+fn a_layout_with_a_triangle_is_refused() {
     let mut plane = layout();
     plane.elements[0] = Element::t6([0, 1, 2, 3, 4, 5], 0);
     let e = extrude(&plane, &[0.0, 1.0]).unwrap_err();
