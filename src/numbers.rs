@@ -33,13 +33,8 @@ pub fn sig(v: f64, digits: usize) -> String {
     exact(rounded)
 }
 
-/// Finite differences for checking analytic derivatives and tangents: one
-/// helper shared by every tangent test (unit tests in `src/` and the test
-/// crates in `tests/`).
-///
 /// Vectors in space, [x, y, z].
 pub(crate) mod vec3 {
-    #[cfg(test)] // the 3D tests' edges and normals; no production caller yet
     pub(crate) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
         [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
     }
@@ -57,6 +52,10 @@ pub(crate) mod vec3 {
     }
 }
 
+/// Finite differences for checking analytic derivatives and tangents: one
+/// helper shared by every tangent test (unit tests in `src/` and the test
+/// crates in `tests/`).
+///
 /// Every difference here is the central one, ∂f_i/∂x_j ≈
 /// (f_i(x + h e_j) − f_i(x − h e_j)) / (2h), whose truncation error is O(h²)
 /// (h² f‴/6); round-off adds about ε|f|/h, so h is chosen per test. The inputs

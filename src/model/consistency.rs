@@ -57,6 +57,7 @@ pub(crate) fn check_mesh(case: &Case, mesh: &Mesh, place: &str) -> Result<()> {
     gaps_within_bodies(case, mesh)?;
     match &case.mesh.file {
         None => blocks_overlap(case, place)?,
+        Some(_) if mesh.dim() == 3 => crate::model::solid_overlap::check(mesh, place)?,
         Some(_) => elements_overlap(mesh, place)?,
     }
     if case.model.symmetric_half {

@@ -12,7 +12,22 @@ pub(super) fn make_mesh(case: &Case, place: &str) -> Result<Mesh> {
     let mesh = match &case.mesh.file {
         Some(file) => {
             let dir = case.source.parent().unwrap_or(std::path::Path::new(""));
-            gmsh::read(&dir.join(file), &case.mesh.interface, place)?
+            let mesh = gmsh::read(&dir.join(file), &case.mesh.interface, place)?;
+            let solid = case.model.plane == crate::physics::material::Plane::Solid;
+            if solid != (mesh.dim() == 3) {
+                return Err(Error::input(
+                    case.at("[mesh] file"),
+                    if solid {
+                        format!("{} holds no volume elements (20-node hexahedra, 10-node tetrahedra), but plane = \"3d\": mesh the volumes, or pose a plane model", file.display())
+                    } else {
+                        format!(
+                            "{} holds volume elements: a 3D mesh needs plane = \"3d\"",
+                            file.display()
+                        )
+                    },
+                ));
+            }
+            mesh
         }
         None => {
             let layout = blocks::generate(&case.mesh.block, &case.mesh.interface, case.mesh.refine);

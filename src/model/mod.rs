@@ -29,6 +29,7 @@ mod meshes;
 pub mod outputs;
 pub mod pretension;
 pub mod schedule;
+pub(crate) mod solid_overlap;
 pub mod state;
 use meshes::{check_mesh, make_mesh};
 pub mod supports;

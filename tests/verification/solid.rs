@@ -173,3 +173,47 @@ vtu = false
         );
     }
 }
+
+/// A shipped case, solved: its model and its result.
+fn shipped(name: &str) -> (Model, asperity::solve::RunResult) {
+    let path = common::root().join("cases").join(name).join("case.toml");
+    let case = asperity::input::case::Case::load(&path).unwrap();
+    let model = Model::build(case).unwrap();
+    let r = asperity::app::driver::solve(&model, &mut Quiet).unwrap();
+    (model, r)
+}
+
+/// The largest von Mises stress of a run's last increment (its first
+/// body's peak, as peaks.csv and summary.json report it).
+fn largest_von_mises(m: &Model, r: &asperity::solve::RunResult) -> f64 {
+    r.increments.last().unwrap().record[m.plan.layout.bodies.start]
+}
+
+/// The stepped bar of cases/shaft-fillet meshed as a quarter in 3D
+/// (cases/shaft-fillet-3d: Gmsh tetrahedra, symmetry planes) against the
+/// axisymmetric model: the same largest von Mises stress at the fillet
+/// within 1 %, the load carried by the support (equilibrium to 1e-9), and
+/// the load the π d²/16 × 100 MPa of a quarter within the curved faces'
+/// chord error (1e-4).
+#[test]
+fn the_3d_stepped_bar_concentrates_stress_as_the_axisymmetric_one() {
+    let (m2, r2) = shipped("shaft-fillet");
+    let (m3, r3) = shipped("shaft-fillet-3d");
+    let (vm2, vm3) = (largest_von_mises(&m2, &r2), largest_von_mises(&m3, &r3));
+    println!("stepped bar: largest von Mises 3D {vm3:.3} MPa, axisymmetric {vm2:.3} MPa");
+    assert!((vm3 - vm2).abs() < 0.01 * vm2, "{vm3} vs {vm2}");
+    let applied: f64 = (0..m3.mesh.nodes.len()).map(|n| m3.f_ext[3 * n + 1]).sum();
+    // the first reaction group is the support's (boundary[0], shaft.top, f_y)
+    let last = r3.increments.last().unwrap();
+    let support = last.record[m3.plan.layout.reactions.start];
+    assert!(
+        (support + applied).abs() < 1e-9 * applied.abs(),
+        "{support} vs {applied}"
+    );
+    let quarter = std::f64::consts::PI * 100.0 / 16.0 * 100.0;
+    println!("stepped bar: applied {applied:.6} N, a quarter of π d²/4 × 100 MPa {quarter:.6} N");
+    assert!(
+        (-applied - quarter).abs() < 1e-4 * quarter,
+        "{applied} vs {quarter}"
+    );
+}

@@ -7,7 +7,9 @@
 //! `[[force]]`, and `z_range` of all three. A 3D key in a plane model, a
 //! plane-only key in a 3D one, and every feature not yet built in 3D
 //! (interfaces, pretension sections, twist, a half model, local and
-//! adaptive refinement) are refused here, each naming its key.
+//! adaptive refinement) are refused here, each naming its key. Whether a
+//! Gmsh file holds volumes is checked when it is read
+//! ([`crate::model::Model::build`]).
 
 use crate::error::{clip, Error, Result};
 use crate::input::case::{ranges, Case};
@@ -97,11 +99,14 @@ fn check_solid(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
     if case.mesh.file.is_none() && case.mesh.extrude.is_none() {
         return Err(Error::input(
             at("[mesh]"),
-            "a 3D model needs its mesh in space: sweep the blocks along z with extrude = { z = [...], nz = [...] }",
+            "a 3D model needs its mesh in space: sweep the blocks along z with extrude = { z = [...], nz = [...] }, or read a Gmsh mesh of volumes (file = \"...\")",
         ));
     }
-    if case.mesh.file.is_some() {
-        return not_yet(at("[mesh] file"), "a Gmsh mesh");
+    if case.mesh.file.is_some() && case.mesh.extrude.is_some() {
+        return Err(Error::input(
+            at("[mesh] extrude"),
+            "sweeps the blocks; a mesh read from a file ([mesh] file) is already in space: give one or the other",
+        ));
     }
     if case.mesh.refine_region.is_some() {
         return not_yet(at("[mesh] refine_region"), "local refinement");

@@ -50,6 +50,25 @@ impl Family3 {
         }
     }
 
+    /// The faces, each its local nodes walked counter-clockwise seen from
+    /// outside, as the 8-node quadrangle (hexahedron) or the 6-node
+    /// triangle (tetrahedron) numbers them ([`h20::FACES`], [`t10::FACES`]).
+    pub(crate) fn faces(self) -> Vec<&'static [usize]> {
+        match self {
+            Family3::H20 => h20::FACES.iter().map(|f| &f[..]).collect(),
+            Family3::T10 => t10::FACES.iter().map(|f| &f[..]).collect(),
+        }
+    }
+
+    /// Gmsh's node g of an element of this family is local node
+    /// `gmsh_to_local()[g]` (Gmsh types 17 and 11).
+    pub(crate) fn gmsh_to_local(self) -> &'static [usize] {
+        match self {
+            Family3::H20 => &h20::GMSH_TO_LOCAL,
+            Family3::T10 => &t10::GMSH_TO_LOCAL,
+        }
+    }
+
     /// Shape functions at ξ, the first [`Family3::nodes`] used.
     pub(crate) fn shape(self, xi: [f64; 3]) -> [f64; MAX_NODES3] {
         match self {

@@ -4,6 +4,8 @@
 //! non-matching interface.
 
 use super::parse::MshFile;
+
+mod solid;
 use crate::error::{Error, Result};
 use crate::input::mesh::blocks::InterfaceSpec;
 use crate::input::mesh::{
@@ -11,7 +13,7 @@ use crate::input::mesh::{
 };
 use std::collections::{BTreeMap, HashMap, HashSet};
 
-fn mesh_err<T>(place: &str, message: impl Into<String>) -> Result<T> {
+pub(super) fn mesh_err<T>(place: &str, message: impl Into<String>) -> Result<T> {
     Err(Error::Mesh {
         place: place.to_string(),
         message: message.into(),
@@ -20,8 +22,17 @@ fn mesh_err<T>(place: &str, message: impl Into<String>) -> Result<T> {
 
 /// Builds the mesh from a parsed file.
 pub fn build_mesh(msh: &MshFile, interfaces: &[InterfaceSpec], place: &str) -> Result<Mesh> {
+    if msh.blocks.iter().any(|b| b.dim == 3) {
+        return solid::build_solid_mesh(msh, interfaces, place);
+    }
+    if let Some((at, tag, z)) = &msh.off_plane {
+        return mesh_err(
+            at,
+            format!("node {tag} has z = {z}: a plane mesh (no volume elements) must lie in the plane z = 0"),
+        );
+    }
     let file = msh.name.as_str();
-    let (block_body, body_tags) = assign_bodies(msh, file)?;
+    let (block_body, body_tags) = assign_bodies(msh, 2, file)?;
     let mut mesh = Mesh {
         bodies: body_tags
             .iter()
@@ -41,33 +52,39 @@ pub fn build_mesh(msh: &MshFile, interfaces: &[InterfaceSpec], place: &str) -> R
     Ok(mesh)
 }
 
-/// Physical surfaces → bodies, in order of their tags: per element block its
-/// body index (none for blocks outside the bodies), and the bodies' tags.
-fn assign_bodies(msh: &MshFile, file: &str) -> Result<(Vec<Option<usize>>, Vec<i32>)> {
+/// Physical surfaces (`dim` 2, or physical volumes, `dim` 3) → bodies, in
+/// order of their tags: per element block its body index (none for blocks
+/// outside the bodies), and the bodies' tags.
+pub(super) fn assign_bodies(
+    msh: &MshFile,
+    dim: i32,
+    file: &str,
+) -> Result<(Vec<Option<usize>>, Vec<i32>)> {
+    let what = if dim == 3 { "volume" } else { "surface" };
     let mut block_body: Vec<Option<usize>> = vec![None; msh.blocks.len()];
     let mut body_tags: Vec<i32> = Vec::new();
     for (k, b) in msh.blocks.iter().enumerate() {
-        if b.dim != 2 || b.tags.is_empty() {
+        if b.dim != dim || b.tags.is_empty() {
             continue;
         }
-        let Some(phys) = msh.entities.get(&(2, b.entity)) else {
+        let Some(phys) = msh.entities.get(&(dim, b.entity)) else {
             return mesh_err(
                 &b.at,
-                format!("surface entity {} is not listed in $Entities", b.entity),
+                format!("{what} entity {} is not listed in $Entities", b.entity),
             );
         };
         match phys.as_slice() {
             [] => {
                 return mesh_err(
                     &b.at,
-                    format!("surface entity {} has elements but is in no physical surface (every body must be a named physical surface)", b.entity),
+                    format!("{what} entity {} has elements but is in no physical {what} (every body must be a named physical {what})", b.entity),
                 )
             }
             [t] => {
-                if !msh.physical_names.contains_key(&(2, *t)) {
+                if !msh.physical_names.contains_key(&(dim, *t)) {
                     return mesh_err(
                         file,
-                        format!("physical surface {t} has no name in $PhysicalNames (bodies are named by their physical names)"),
+                        format!("physical {what} {t} has no name in $PhysicalNames (bodies are named by their physical names)"),
                     );
                 }
                 if !body_tags.contains(t) {
@@ -78,7 +95,7 @@ fn assign_bodies(msh: &MshFile, file: &str) -> Result<(Vec<Option<usize>>, Vec<i
             more => {
                 return mesh_err(
                     &b.at,
-                    format!("surface entity {} is in physical surfaces {more:?}; it must belong to exactly one (one body)", b.entity),
+                    format!("{what} entity {} is in physical {what}s {more:?}; it must belong to exactly one (one body)", b.entity),
                 )
             }
         }
@@ -101,7 +118,7 @@ fn assign_bodies(msh: &MshFile, file: &str) -> Result<(Vec<Option<usize>>, Vec<i
 
 /// The nodes used by body elements, numbered in file order: per file node
 /// its new number (`usize::MAX` if unused), and per new node its file tag.
-fn add_body_nodes(
+pub(super) fn add_body_nodes(
     msh: &MshFile,
     block_body: &[Option<usize>],
     mesh: &mut Mesh,
@@ -118,8 +135,7 @@ fn add_body_nodes(
     for (i, id) in new_id.iter_mut().enumerate() {
         if *id == 0 {
             *id = mesh.nodes.len();
-            let [x, y] = msh.nodes[i];
-            mesh.nodes.push([x, y, 0.0]);
+            mesh.nodes.push(msh.nodes[i]);
             tag_of.push(msh.node_tags[i]);
         }
     }
@@ -128,7 +144,12 @@ fn add_body_nodes(
 
 /// The body elements (8-node quadrangles, Gmsh type 16, and 6-node
 /// triangles, type 9), counter-clockwise.
-fn add_elements(msh: &MshFile, block_body: &[Option<usize>], new_id: &[usize], mesh: &mut Mesh) {
+pub(super) fn add_elements(
+    msh: &MshFile,
+    block_body: &[Option<usize>],
+    new_id: &[usize],
+    mesh: &mut Mesh,
+) {
     let mut source = ElementSource {
         // the file's own name: the message's place names its folder
         file: std::path::Path::new(&msh.name)
@@ -138,6 +159,11 @@ fn add_elements(msh: &MshFile, block_body: &[Option<usize>], new_id: &[usize], m
     };
     for (k, b) in msh.blocks.iter().enumerate() {
         let Some(body) = block_body[k] else { continue };
+        if b.dim == 3 {
+            source.tags.extend(&b.tags);
+            solid::add_elements_of(b, body, new_id, mesh);
+            continue;
+        }
         let family = if b.etype == 9 { Family::T6 } else { Family::Q8 };
         source.tags.extend(&b.tags);
         for conn in b.conn.chunks_exact(family.nodes()) {
@@ -162,7 +188,7 @@ fn add_elements(msh: &MshFile, block_body: &[Option<usize>], new_id: &[usize], m
 }
 
 /// Refuses a node shared by two bodies (bodies in contact need their own nodes).
-fn check_bodies_apart(mesh: &Mesh, tag_of: &[u64], file: &str) -> Result<()> {
+pub(super) fn check_bodies_apart(mesh: &Mesh, tag_of: &[u64], file: &str) -> Result<()> {
     let mut node_body = vec![usize::MAX; mesh.nodes.len()];
     for el in &mesh.elements {
         for &n in el.nodes() {
@@ -182,7 +208,7 @@ fn check_bodies_apart(mesh: &Mesh, tag_of: &[u64], file: &str) -> Result<()> {
 }
 
 /// Each body's own node set, `<body>.all`.
-fn add_body_node_sets(mesh: &mut Mesh) {
+pub(super) fn add_body_node_sets(mesh: &mut Mesh) {
     for (b, name) in mesh.bodies.iter().enumerate() {
         let mut set: Vec<usize> = mesh
             .elements

@@ -1,7 +1,9 @@
 //! Meshes read from Gmsh `.msh` files, format version 4.1, ASCII or binary.
 //!
 //! Physical surfaces become bodies (named by their physical names), physical
-//! curves become node sets and edge sets of the same name, and each
+//! curves become node sets and edge sets of the same name (a mesh of volumes:
+//! physical volumes are the bodies and physical surfaces face sets,
+//! `build/solid.rs`), and each
 //! `[[mesh.interface]]` pairs the nodes of an upper body's curve with the
 //! coincident nodes of a lower body's curve (or, with `matching = false`,
 //! takes the two curves as the slave and master sides of node-to-segment

@@ -30,8 +30,11 @@ pub struct MshFile {
     pub(crate) entities: BTreeMap<(i32, i32), Vec<i32>>,
     /// Node tags in file order.
     pub(crate) node_tags: Vec<u64>,
-    /// Node coordinates (x, y) in file order.
-    pub nodes: Vec<[f64; 2]>,
+    /// Node coordinates (x, y, z) in file order.
+    pub nodes: Vec<[f64; 3]>,
+    /// The first node off the plane z = 0: where it is, its tag and z (a
+    /// plane mesh refuses it, [`super::build`]).
+    pub(crate) off_plane: Option<(String, u64, f64)>,
     pub blocks: Vec<ElementBlock>,
 }
 
@@ -42,6 +45,8 @@ fn element_type(t: i32) -> Option<(usize, i32, &'static str)> {
         8 => Some((3, 1, "3-node line")),
         16 => Some((8, 2, "8-node quadrangle")),
         9 => Some((6, 2, "6-node triangle")),
+        17 => Some((20, 3, "20-node hexahedron")),
+        11 => Some((10, 3, "10-node tetrahedron")),
         _ => None,
     }
 }
@@ -58,6 +63,7 @@ fn element_type_name(t: i32) -> &'static str {
         9 => "6-node triangle",
         10 => "9-node quadrangle",
         11 => "10-node tetrahedron",
+        12 => "27-node hexahedron",
         17 => "20-node hexahedron",
         _ => "unknown type",
     }
@@ -559,19 +565,14 @@ fn nodes(c: &mut Cursor, msh: &mut MshFile, tag_index: &mut HashMap<u64, usize>)
                 }
                 *xi = v;
             }
-            if x[2].abs() > 1e-12 * x[0].abs().max(x[1].abs()).max(1.0) {
-                return c.err(
-                    at_x,
-                    format!(
-                        "node {tag} has z = {}: asperity is 2D, the mesh must lie in the plane z = 0",
-                        x[2]
-                    ),
-                );
+            let off = x[2].abs() > 1e-12 * x[0].abs().max(x[1].abs()).max(1.0);
+            if off && msh.off_plane.is_none() {
+                msh.off_plane = Some((c.place(at_x), tag, x[2]));
             }
             for _ in 0..extra {
                 c.real("a parametric node coordinate")?;
             }
-            msh.nodes.push([x[0], x[1]]);
+            msh.nodes.push(x);
         }
     }
     if read != total {
@@ -597,14 +598,15 @@ fn elements(c: &mut Cursor, msh: &mut MshFile, tag_index: &HashMap<u64, usize>) 
         let (at, etype) = c.int("an element type")?;
         let Some((nn, tdim, _)) = element_type(etype) else {
             let hint = match etype {
-                1..=3 => ": the mesh is first order; set Mesh.ElementOrder = 2 and Mesh.SecondOrderIncomplete = 1",
+                1..=5 => ": the mesh is first order; set Mesh.ElementOrder = 2 and Mesh.SecondOrderIncomplete = 1",
                 10 => ": set Mesh.SecondOrderIncomplete = 1 for 8-node quadrangles",
+                12 => ": set Mesh.SecondOrderIncomplete = 1 for 20-node hexahedra",
                 _ => "",
             };
             return c.err(
                 at,
                 format!(
-                    "element type {etype} ({}) not supported: asperity reads 8-node quadrangles (16), 6-node triangles (9) and 3-node lines (8){hint}",
+                    "element type {etype} ({}) not supported: asperity reads 8-node quadrangles (16), 6-node triangles (9) and 3-node lines (8), and in 3D 20-node hexahedra (17) and 10-node tetrahedra (11){hint}",
                     element_type_name(etype)
                 ),
             );
