@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Mesh-refinement series of cases/punch-plane-stress-fine for the serial faer
-# backend and PETSc (MUMPS LU by default) on 1 and 2 MPI ranks. Prints a
+# Mesh-refinement series of cases/punch-plane-stress-fine (or CASE=cases/x)
+# for the serial faer backend and PETSc (its default solver by size) on 1 and
+# 2 MPI ranks. Prints a
 # Markdown table and the fitted growth exponent of time per Newton iteration.
 # Needs the parallel build: cargo build --release --features parallel
 # Usage: benches/scaling.sh "2 4 8 12" [max refine for serial] [-- asperity run options]
@@ -11,6 +12,7 @@
 # of summary.json, so start-up and output writing do not count.
 # PETSC_OPTS="-ksp_type gmres -pc_type gamg" passes options to PETSc;
 # BIN=path runs another build of asperity; OUT=dir keeps runs apart;
+# CASE=cases/block-3d runs another case (the 3D series);
 # REPEAT=n runs every point n times (one row each; the repeats alternate
 # between 1 and 2 ranks) and fits the median time of each point; the 2-rank
 # speed-up is the median of the n adjacent pairs (single runs on a shared
@@ -24,6 +26,7 @@ shift $(( $# < 2 ? $# : 2 ))
 extra=("$@")
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 bin=${BIN:-./target/release/asperity}
+case=${CASE:-cases/punch-plane-stress-fine}
 out=${OUT:-target/scaling}
 mkdir -p "$out"
 field() { python3 -c "import json,sys; d=json.load(open('$1')); v=d; [v:=v[k] for k in '$2'.split('.')]; print(v)"; }
@@ -43,10 +46,10 @@ for r in $levels; do
             dir="$out/r$r-$1-$2"
             [ "${REPEAT:-1}" -gt 1 ] && dir="$dir-$rep"
             if [ "$1" = serial ]; then
-                $bin run cases/punch-plane-stress-fine --refine "$r" --backend serial --quiet --out "$dir" "${extra[@]}" >/dev/null || [ $? -eq 3 ]
+                $bin run "$case" --refine "$r" --backend serial --quiet --out "$dir" "${extra[@]}" >/dev/null || [ $? -eq 3 ]
             else
                 # shellcheck disable=SC2086
-                mpirun -n "$2" $bin run cases/punch-plane-stress-fine --refine "$r" --quiet --out "$dir" "${extra[@]}" -- ${PETSC_OPTS:-} >/dev/null 2>&1 || [ $? -eq 3 ]
+                mpirun -n "$2" $bin run "$case" --refine "$r" --quiet --out "$dir" "${extra[@]}" -- ${PETSC_OPTS:-} >/dev/null 2>&1 || [ $? -eq 3 ]
             fi
             s="$dir/summary.json"
             python3 - "$s" "$r" "$1" "$2" <<'PY'

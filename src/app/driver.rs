@@ -434,6 +434,16 @@ impl RunStart<'_> {
                     from.display()
                 );
             }
+            let dofs = model.mesh.num_dofs();
+            if model.mesh.dim() == 3
+                && engine.backend.ranks() == 1
+                && engine.backend.name().starts_with("serial")
+                && dofs > crate::linalg::backend::DIRECT_3D_UP_TO
+            {
+                line += &format!(
+                    "\nnote: a 3D model of {dofs} dofs on the serial direct solver: its factor grows fast in 3D (89,364 dofs: 2.0 GB, 38 s an iteration); `mpirun -n 2 asperity run …` solves it with CG + GAMG, 6 times faster there (docs/performance.md, \"3D: choosing the solver\")"
+                );
+            }
             line
         },
     );
@@ -666,17 +676,15 @@ pub fn check(case_path: &Path, opts: &RunOptions) -> Result<String> {
 fn points_per_element(model: &Model) -> String {
     let present: Vec<Family> = Family::ALL
         .into_iter()
+        .chain(Family::SOLID)
         .filter(|&f| model.mesh.elements.iter().any(|el| el.family == f))
         .collect();
     match present.as_slice() {
-        [f] => format!(
-            "{} Gauss points per element",
-            model.rule_of(*f).points.len()
-        ),
+        [f] => format!("{} Gauss points per element", model.points_of(*f)),
         _ => {
             let each: Vec<String> = present
                 .iter()
-                .map(|&f| format!("{} per {}", model.rule_of(f).points.len(), f.name()))
+                .map(|&f| format!("{} per {}", model.points_of(f), f.name()))
                 .collect();
             format!("Gauss points: {}", each.join(", "))
         }
@@ -693,6 +701,12 @@ fn plane_text(model: &Model) -> String {
             } else {
                 ""
             },
+            model.integration,
+            points_per_element(model)
+        );
+    } else if model.mesh.dim() == 3 {
+        s += &format!(
+            "  3D solids (u_x, u_y, u_z), {:?} integration ({})\n",
             model.integration,
             points_per_element(model)
         );

@@ -435,6 +435,14 @@ impl Model {
         self.rule_of(self.mesh.elements[e].family)
     }
 
+    /// Gauss points per element of a family, plane or solid.
+    pub(crate) fn points_of(&self, family: Family) -> usize {
+        match family.solid() {
+            Some(solid) => self.rule3(solid).points.len(),
+            None => self.rule_of(family).points.len(),
+        }
+    }
+
     /// The Gauss rule of a family's elements.
     pub(crate) fn rule_of(&self, family: Family) -> &GaussRule {
         &self.rules[family.index()]

@@ -11,6 +11,14 @@
 //! `Backend::agree`, so all ranks always take the same branch.
 
 pub mod coupling;
+
+/// From this many dofs a 3D model is solved faster iteratively (CG with
+/// algebraic multigrid, PETSc) than by a sparse direct factorization: the
+/// fill of a 3D factor grows as N^(4/3) and its work as N² (nested
+/// dissection). PETSc's default switches to GAMG here for a 3D model, and a
+/// serial run of a larger 3D model is told so (docs/performance.md, "3D:
+/// choosing the solver").
+pub const DIRECT_3D_UP_TO: usize = 20_000;
 #[cfg(feature = "parallel")]
 #[allow(unsafe_code)] // the FFI layer: every call carries its SAFETY note
 pub mod petsc;

@@ -505,14 +505,23 @@ pub enum LinearDefault {
 }
 
 impl LinearDefault {
-    /// Systems of at least this many rows (all dofs) get multigrid: below it
-    /// MUMPS is faster on this machine, above it GAMG is faster and needs
-    /// less than half the memory (docs/performance.md, "MUMPS LU").
+    /// Plane and axisymmetric systems of at least this many rows (all dofs)
+    /// get multigrid: below it MUMPS is faster on this machine, above it GAMG
+    /// is faster and needs less than half the memory (docs/performance.md,
+    /// "MUMPS LU").
     pub const MULTIGRID_FROM: usize = 400_000;
+
+    /// 3D systems of at least this many rows get multigrid
+    /// ([`super::DIRECT_3D_UP_TO`]).
+    pub const MULTIGRID_FROM_3D: usize = super::DIRECT_3D_UP_TO;
 
     pub fn for_model(model: &crate::model::Model) -> Self {
         let symmetric = model.symmetric_tangent();
-        if model.mesh.num_dofs() >= Self::MULTIGRID_FROM {
+        let from = match model.mesh.dim() {
+            3 => Self::MULTIGRID_FROM_3D,
+            _ => Self::MULTIGRID_FROM,
+        };
+        if model.mesh.num_dofs() >= from {
             LinearDefault::Multigrid { symmetric }
         } else {
             LinearDefault::Direct { symmetric }
