@@ -32,18 +32,7 @@ pub fn build_mesh(msh: &MshFile, interfaces: &[InterfaceSpec], place: &str) -> R
         );
     }
     let file = msh.name.as_str();
-    let (block_body, body_tags) = assign_bodies(msh, 2, file)?;
-    let mut mesh = Mesh {
-        bodies: body_tags
-            .iter()
-            .map(|t| msh.physical_names[&(2, *t)].clone())
-            .collect(),
-        ..Mesh::default()
-    };
-    let (new_id, tag_of) = add_body_nodes(msh, &block_body, &mut mesh);
-    add_elements(msh, &block_body, &new_id, &mut mesh);
-    check_bodies_apart(&mesh, &tag_of, file)?;
-    add_body_node_sets(&mut mesh);
+    let (mut mesh, new_id, tag_of) = bodies(msh, 2)?;
     let curve_body = add_curve_sets(msh, &new_id, &mut mesh, file)?;
     for spec in interfaces {
         let iface = pair_curves(msh, &mesh, &curve_body, &tag_of, spec, place)?;
@@ -52,14 +41,30 @@ pub fn build_mesh(msh: &MshFile, interfaces: &[InterfaceSpec], place: &str) -> R
     Ok(mesh)
 }
 
+/// The bodies of a mesh (physical surfaces, `dim` 2, or physical volumes,
+/// `dim` 3) with their elements, nodes and `<body>.all` sets: the mesh, each
+/// file node's new number (`usize::MAX` if unused) and each new node's tag.
+pub(super) fn bodies(msh: &MshFile, dim: i32) -> Result<(Mesh, Vec<usize>, Vec<u64>)> {
+    let file = msh.name.as_str();
+    let (block_body, body_tags) = assign_bodies(msh, dim, file)?;
+    let mut mesh = Mesh {
+        bodies: body_tags
+            .iter()
+            .map(|t| msh.physical_names[&(dim, *t)].clone())
+            .collect(),
+        ..Mesh::default()
+    };
+    let (new_id, tag_of) = add_body_nodes(msh, &block_body, &mut mesh);
+    add_elements(msh, &block_body, &new_id, &mut mesh);
+    check_bodies_apart(&mesh, &tag_of, file)?;
+    add_body_node_sets(&mut mesh);
+    Ok((mesh, new_id, tag_of))
+}
+
 /// Physical surfaces (`dim` 2, or physical volumes, `dim` 3) → bodies, in
 /// order of their tags: per element block its body index (none for blocks
 /// outside the bodies), and the bodies' tags.
-pub(super) fn assign_bodies(
-    msh: &MshFile,
-    dim: i32,
-    file: &str,
-) -> Result<(Vec<Option<usize>>, Vec<i32>)> {
+fn assign_bodies(msh: &MshFile, dim: i32, file: &str) -> Result<(Vec<Option<usize>>, Vec<i32>)> {
     let what = if dim == 3 { "volume" } else { "surface" };
     let mut block_body: Vec<Option<usize>> = vec![None; msh.blocks.len()];
     let mut body_tags: Vec<i32> = Vec::new();
@@ -118,7 +123,7 @@ pub(super) fn assign_bodies(
 
 /// The nodes used by body elements, numbered in file order: per file node
 /// its new number (`usize::MAX` if unused), and per new node its file tag.
-pub(super) fn add_body_nodes(
+fn add_body_nodes(
     msh: &MshFile,
     block_body: &[Option<usize>],
     mesh: &mut Mesh,
@@ -188,7 +193,7 @@ pub(super) fn add_elements(
 }
 
 /// Refuses a node shared by two bodies (bodies in contact need their own nodes).
-pub(super) fn check_bodies_apart(mesh: &Mesh, tag_of: &[u64], file: &str) -> Result<()> {
+fn check_bodies_apart(mesh: &Mesh, tag_of: &[u64], file: &str) -> Result<()> {
     let mut node_body = vec![usize::MAX; mesh.nodes.len()];
     for el in &mesh.elements {
         for &n in el.nodes() {
@@ -208,7 +213,7 @@ pub(super) fn check_bodies_apart(mesh: &Mesh, tag_of: &[u64], file: &str) -> Res
 }
 
 /// Each body's own node set, `<body>.all`.
-pub(super) fn add_body_node_sets(mesh: &mut Mesh) {
+fn add_body_node_sets(mesh: &mut Mesh) {
     for (b, name) in mesh.bodies.iter().enumerate() {
         let mut set: Vec<usize> = mesh
             .elements

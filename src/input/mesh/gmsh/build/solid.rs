@@ -6,7 +6,6 @@
 
 use super::super::parse::{ElementBlock, MshFile};
 use super::mesh_err;
-use super::{add_body_node_sets, add_body_nodes, add_elements, assign_bodies, check_bodies_apart};
 use crate::error::Result;
 use crate::input::mesh::blocks::InterfaceSpec;
 use crate::input::mesh::{Element, Face, Family, Mesh};
@@ -28,29 +27,7 @@ pub(super) fn build_solid_mesh(
             ),
         );
     }
-    let (block_body, body_tags) = assign_bodies(msh, 3, file)?;
-    if let Some(b) = msh
-        .blocks
-        .iter()
-        .zip(&block_body)
-        .find(|(b, body)| b.dim == 2 && body.is_some())
-    {
-        return mesh_err(
-            &b.0.at,
-            "a physical surface of a mesh of volumes is a face set, not a body",
-        );
-    }
-    let mut mesh = Mesh {
-        bodies: body_tags
-            .iter()
-            .map(|t| msh.physical_names[&(3, *t)].clone())
-            .collect(),
-        ..Mesh::default()
-    };
-    let (new_id, tag_of) = add_body_nodes(msh, &block_body, &mut mesh);
-    add_elements(msh, &block_body, &new_id, &mut mesh);
-    check_bodies_apart(&mesh, &tag_of, file)?;
-    add_body_node_sets(&mut mesh);
+    let (mut mesh, new_id, _) = super::bodies(msh, 3)?;
     add_boundary_sets(msh, &new_id, &mut mesh, file)?;
     Ok(mesh)
 }
