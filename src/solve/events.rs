@@ -121,8 +121,9 @@ pub struct Event {
     pub converged: bool,
     /// A step of the search did not converge: the bracket reached.
     pub solve_failed: bool,
-    /// Where: x, y (mm), the arc length s of the pair (interface events)
-    /// and the element (first yield); NaN where it does not apply.
+    /// Where: x, y (mm), the arc length s of the pair (interface events;
+    /// z of a first yield in 3D) and the element (first yield); NaN where it
+    /// does not apply.
     pub place: [f64; 4],
     /// total_load_kn, mean_pressure_mpa ([`super::Measures`]), and the
     /// interface's F_N and F_T (joint convention; NaN for first yield).
@@ -281,7 +282,11 @@ pub(super) fn first_yield(
             [
                 fy.x,
                 model.surface_y - fy.depth,
-                f64::NAN,
+                if model.mesh.dim() == 3 {
+                    fy.z
+                } else {
+                    f64::NAN
+                },
                 fy.element as f64,
             ],
         ),
@@ -291,7 +296,16 @@ pub(super) fn first_yield(
             (
                 Method::Increment,
                 bracket[1],
-                [x[0], x[1], f64::NAN, e as f64],
+                [
+                    x[0],
+                    x[1],
+                    if model.mesh.dim() == 3 {
+                        x[2]
+                    } else {
+                        f64::NAN
+                    },
+                    e as f64,
+                ],
             )
         }
     };

@@ -24,6 +24,8 @@ pub struct FirstYield {
     pub x: f64,
     /// Depth below the probe node (the foundation surface), mm.
     pub depth: f64,
+    /// z of the point, mm (0 in a plane model).
+    pub z: f64,
     pub body: String,
     pub element: usize,
 }
@@ -155,6 +157,7 @@ pub(super) fn locate(
         total_load_kn: m.total_load_kn,
         x: x[0],
         depth: model.surface_y - x[1],
+        z: x[2],
         body: model.mesh.bodies[model.mesh.elements[e].body].clone(),
         element: e,
     };

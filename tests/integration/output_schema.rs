@@ -219,6 +219,9 @@ fn summary_json_matches_the_documented_schema() {
     // twist with a [[probe]]: u_θ as its third value
     let face = summary_of("face", &cases.join("face-coupling-torque"), &[]);
     assert_eq!(face["probes"][0]["max_mm"].as_array().unwrap().len(), 3);
+    // 3D: z beside x and y (first yield, events, peaks), u_z of a probe
+    let solid = summary_of("solid", &cases.join("block-3d"), &[]);
+    assert!(solid["first_yield"]["z_mm"].as_f64().is_some(), "{solid}");
     assert!(torque["joints"][0]["final"]["torque_nmm"].as_f64().unwrap() > 0.0);
     assert!(
         with["joints"][0]["final"].get("torque_nmm").is_none(),
@@ -234,6 +237,7 @@ fn summary_json_matches_the_documented_schema() {
         &bolt,
         &torque,
         &face,
+        &solid,
     ] {
         let mut l = Vec::new();
         leaves("", s, &mut l);

@@ -594,6 +594,14 @@ fn run_summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
             "element": f.element,
         })
     });
+    // a 3D model's first yield: its place in space
+    let fy = fy.map(|mut o| {
+        if let (3, Some(f)) = (model.mesh.dim(), &r.first_yield) {
+            o["y_mm"] = json!(model.surface_y - f.depth);
+            o["z_mm"] = json!(f.z);
+        }
+        o
+    });
     json!({
         "schema": 1,
         "asperity_version": env!("CARGO_PKG_VERSION"),

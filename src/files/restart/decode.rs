@@ -599,7 +599,7 @@ pub(super) fn restore_first_yield(
         }
         return Ok(None);
     }
-    let v = s.finite("first_yield", Some(6))?;
+    let v = s.finite("first_yield", Some(7))?;
     let (lo, hi) = incs.iter().fold((0.0f64, 0.0f64), |(l, h), i| {
         (l.min(i.load_factor), h.max(i.load_factor))
     });
@@ -633,6 +633,7 @@ pub(super) fn restore_first_yield(
         total_load_kn: v[2],
         x: v[3],
         depth: v[4],
+        z: v[6],
         element,
         body: body.to_string(),
     }))

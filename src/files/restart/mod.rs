@@ -43,7 +43,7 @@
 //! `curve` (10 per increment: number, load factor, iterations, cutbacks, normal
 //! force, mean pressure, load kN, centre displacement, max ε̄ᵖ, prescribed
 //! reaction), `first_yield` (load factor, mean pressure, load kN, x, depth,
-//! element; empty before the first yield) with `first_yield_body` (empty
+//! element, z; empty before the first yield) with `first_yield_body` (empty
 //! then), the VTU series `pvd_load_factor`, `pvd_file` (names separated by
 //! newlines), `joint_totals` (2 per interface: frictional dissipation and
 //! tangential work so far), `joints` (11 per interface and increment, as
@@ -497,6 +497,7 @@ fn record_sections(e: &mut Encoder, ck: &Checkpoint) -> std::io::Result<()> {
                 fy.x,
                 fy.depth,
                 fy.element as f64,
+                fy.z,
             ]
         }),
     )?;

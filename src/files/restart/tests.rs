@@ -420,6 +420,7 @@ fn decode_refuses_what_the_case_cannot_have_produced() {
         total_load_kn: 1.0,
         x: 0.0,
         depth: 0.0,
+        z: 0.0,
         body: model.mesh.bodies[model.mesh.elements[7].body].clone(),
         element: 7,
     };
