@@ -178,7 +178,7 @@ pub struct MeshSpec {
     /// into four, `levels` times ([`crate::input::mesh::refine`]).
     pub refine_region: Option<RefineRegion>,
     /// A 3D model's mesh: the block layout swept along z
-    /// ([`crate::input::mesh::extrude`]).
+    /// (`input::mesh::extrude`).
     pub extrude: Option<Extrude>,
 }
 

@@ -2,7 +2,7 @@
 //! together, before the mesh exists.
 //!
 //! Keys: `[mesh] extrude` (the block layout swept along z,
-//! [`crate::input::mesh::extrude`]), `[[load]] faces` with `pressure` and
+//! `input::mesh::extrude`), `[[load]] faces` with `pressure` and
 //! `traction = [t_x, t_y, t_z]`, `uz` of `[[boundary]]`, `fz` of
 //! `[[force]]`, and `z_range` of all three. A 3D key in a plane model, a
 //! plane-only key in a 3D one, and every feature not yet built in 3D

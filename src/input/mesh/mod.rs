@@ -20,8 +20,8 @@ use std::fmt;
 
 /// One element: its family, its nodes (corners counter-clockwise, then
 /// midsides; [`crate::physics::element::q8`], [`crate::physics::element::t6`];
-/// in 3D VTK's order, [`crate::physics::element::h20`],
-/// [`crate::physics::element::t10`]) and its body.
+/// in 3D VTK's order, `physics::element::h20`,
+/// `physics::element::t10`) and its body.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Element {
     pub family: Family,

@@ -1,10 +1,10 @@
 //! The element families: those a plane or axisymmetric mesh may mix, the
 //! 8-node serendipity quadrilateral ([`super::q8`]) and the 6-node quadratic
 //! triangle ([`super::t6`]), and those of a 3D mesh, the 20-node hexahedron
-//! and the 10-node tetrahedron, whose shape lives in [`Family3`]
-//! ([`super::solid3`]). Methods that take plane natural coordinates are the
+//! and the 10-node tetrahedron, whose shape lives in `Family3`
+//! (`family3.rs`). Methods that take plane natural coordinates are the
 //! plane families' alone: a 3D model never reaches them (its model refuses
-//! every feature still plane only, [`Family::solid`] hands out the solid
+//! every feature still plane only, `Family::solid` hands out the solid
 //! shape). A family answers everything the rest of the
 //! code asks of an element's shape: its nodes and their natural coordinates,
 //! shape functions and derivatives, the Jacobian, the Gauss rules, the

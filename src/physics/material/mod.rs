@@ -48,7 +48,7 @@ pub enum Plane {
     /// integral is over the full revolution.
     Axisymmetric,
     /// Three-dimensional solids: six strain and stress components, the
-    /// general return ([`VonMises::update_twist`], which consults no plane).
+    /// general return (`VonMises::update_twist`, which consults no plane).
     #[serde(rename = "3d")]
     Solid,
 }
