@@ -597,21 +597,43 @@ fn report_end(log: &Log, model: &Model, dir: &Path, r: &RunResult, wall: f64, ov
         }),
         || {
             let mut s = String::new();
-            if let Some(fy) = fy {
-                s += &format!(
-                    "first yield: {:.4} kN ({:.2} MPa mean pressure) in {} at x = {:.3} mm, depth {:.3} mm\n",
-                    fy.total_load_kn, fy.mean_pressure, fy.body, fy.x, fy.depth
-                );
+            let contact = !model.interfaces.is_empty();
+            match fy {
+                Some(fy) if contact => {
+                    s += &format!(
+                        "first yield: {:.4} kN ({:.2} MPa mean pressure) in {} at x = {:.3} mm, depth {:.3} mm\n",
+                        fy.total_load_kn, fy.mean_pressure, fy.body, fy.x, fy.depth
+                    );
+                }
+                // no interface force to name: the load factor and the place
+                Some(fy) => {
+                    let y = model.surface_y - fy.depth;
+                    let at = if model.mesh.dim() == 3 {
+                        format!("(x, y, z) = ({:.3}, {y:.3}, {:.3}) mm", fy.x, fy.z)
+                    } else {
+                        format!("(x, y) = ({:.3}, {y:.3}) mm", fy.x)
+                    };
+                    s += &format!(
+                        "first yield: λ = {:.4} in {} at {at}\n",
+                        fy.load_factor, fy.body
+                    );
+                }
+                None => {}
             }
             for e in r.events.iter().filter(|e| e.interface.is_some()) {
                 s += &crate::files::output::events::line(model, e);
                 s.push('\n');
             }
+            if contact {
+                s += &format!(
+                    "final: {:.4} kN, mean pressure {:.2} MPa, center displacement {:.5} mm; ",
+                    m.total_load_kn, m.mean_pressure, m.center_displacement,
+                );
+            } else {
+                s += &format!("final: λ = {lambda:.4}; ");
+            }
             s += &format!(
-                "final: {:.4} kN, mean pressure {:.2} MPa, center displacement {:.5} mm; {} increments, {} iterations",
-                m.total_load_kn,
-                m.mean_pressure,
-                m.center_displacement,
+                "{} increments, {} iterations",
                 r.increments.len(),
                 r.stats.iterations
             );

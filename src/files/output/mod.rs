@@ -203,8 +203,7 @@ impl Writer {
 
     /// The error estimate of increment `inc` (computed once per increment).
     fn estimate_of(&mut self, model: &Model, state: &State, inc: &Increment) {
-        // (a 3D model has no estimate yet)
-        if model.mesh.dim() == 2 && self.estimate.as_ref().is_none_or(|e| e.0 != inc.increment) {
+        if self.estimate.as_ref().is_none_or(|e| e.0 != inc.increment) {
             let est = crate::measure::estimate::estimate(model, state);
             self.estimate = Some((inc.increment, inc.load_factor, est));
         }
@@ -337,13 +336,20 @@ impl Observer for Writer {
                 "eta_s": eta.map(crate::progress::round3),
             }),
             || {
+                // the interface's force and mean pressure, where there is one
+                let contact = if model.interfaces.is_empty() {
+                    String::new()
+                } else {
+                    format!(
+                        "  load {:8.3} kN  p_mean {:7.2} MPa",
+                        inc.measures.total_load_kn, inc.measures.mean_pressure
+                    )
+                };
                 format!(
-                    "  increment {:>3}/{}  λ = {:.4}  load {:8.3} kN  p_mean {:7.2} MPa  iterations {:>3}  peeq {:.2e}  {:6.2} s (≈{} left)",
+                    "  increment {:>3}/{}  λ = {:.4}{contact}  iterations {:>3}  peeq {:.2e}  {:6.2} s (≈{} left)",
                     inc.increment,
                     planned.map_or("auto".to_string(), |p| p.to_string()),
                     inc.load_factor,
-                    inc.measures.total_load_kn,
-                    inc.measures.mean_pressure,
                     inc.iterations,
                     inc.measures.max_peeq,
                     el,
@@ -612,7 +618,8 @@ fn run_summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
         "case": model.name,
         "complete": r.stopped.is_none(),
         "stopped_by": r.stopped.map(|s| s.name()),
-        "plane": format!("{:?}", model.plane).to_lowercase(),
+        // what the case calls it (serde's name: `3d`, not `solid`)
+        "plane": serde_json::to_value(model.plane).unwrap_or_default(),
         "method": model.solver.method.name(),
         "backend": r.backend,
         "ranks": r.ranks,

@@ -72,8 +72,8 @@ fn all_weights(model: &Model) -> Vec<Vec<Vec<f64>>> {
 pub(crate) fn nodal_fields(model: &Model, state: &State) -> NodalFields {
     let nn = model.mesh.nodes.len();
     let weights = all_weights(model);
-    // the six fields (σ components, Mises, PEEQ) at every Gauss point, then
-    // with twist σ_rθ and σ_zθ, in 3D σ_xz and σ_yz
+    // the fields at every Gauss point (σ components, a slot not extrapolated,
+    // PEEQ), then with twist σ_rθ and σ_zθ, in 3D σ_xz and σ_yz
     let fields = if model.node_dofs().six_components() {
         8
     } else {
@@ -91,7 +91,7 @@ pub(crate) fn nodal_fields(model: &Model, state: &State) -> NodalFields {
                 g.stress[1],
                 g.stress[2],
                 g.stress[3],
-                VonMises::equivalent_stress(&g.stress),
+                0.0,
                 g.peeq,
                 g.stress[4],
                 g.stress[5],
@@ -116,11 +116,18 @@ pub(crate) fn nodal_fields(model: &Model, state: &State) -> NodalFields {
     };
     for (a, &c) in acc.iter().zip(&count) {
         let c = f64::from(c.max(1));
-        f.stress.push([a[0] / c, a[1] / c, a[2] / c, a[3] / c]);
-        f.von_mises.push(a[4] / c);
-        f.peeq.push((a[5] / c).max(0.0));
+        let s = a.map(|v| v / c);
+        f.stress.push([s[0], s[1], s[2], s[3]]);
+        // of the nodal stress itself: never negative, and what its components
+        // say (the extrapolated Gauss values of √(3 J₂) overshoot below zero
+        // beside a load's edge)
+        let shear = if fields == 8 { [s[6], s[7]] } else { [0.0; 2] };
+        f.von_mises.push(VonMises::equivalent_stress(&[
+            s[0], s[1], s[2], s[3], shear[0], shear[1],
+        ]));
+        f.peeq.push(s[5].max(0.0));
         if fields == 8 {
-            f.twist_shear.push([a[6] / c, a[7] / c]);
+            f.twist_shear.push(shear);
         }
     }
     f
@@ -244,15 +251,13 @@ impl Frame {
         }
     }
 
-    /// The cell arrays after `body`, in document order (a 3D model has no
-    /// error estimate yet).
-    fn cell_arrays(&self, solid: bool) -> Vec<(&'static str, Values<'_>)> {
-        let mut v = vec![("max_peeq", Values::All(&self.max_peeq))];
-        if !solid {
-            v.push(("error_estimate", Values::All(&self.error_estimate)));
-            v.push(("error_share", Values::All(&self.error_share)));
-        }
-        v
+    /// The cell arrays after `body`, in document order.
+    fn cell_arrays(&self) -> Vec<(&'static str, Values<'_>)> {
+        vec![
+            ("max_peeq", Values::All(&self.max_peeq)),
+            ("error_estimate", Values::All(&self.error_estimate)),
+            ("error_share", Values::All(&self.error_share)),
+        ]
     }
 
     /// The point arrays in document order: name, components, values. The
@@ -328,7 +333,7 @@ pub(crate) struct Layout {
     hoop: bool,
     /// The model has twist: the `twist_shear` array is written.
     twist: bool,
-    /// A 3D model: six stress components, no error estimate.
+    /// A 3D model: six stress components.
     solid: bool,
     /// From the XML declaration to where the first per-increment array goes.
     head: Vec<u8>,
@@ -466,7 +471,7 @@ impl Layout {
             points,
             body,
             names,
-            solid,
+            ..
         } = m;
         let (nn, ne, connectivity) = (*nn, *ne, *connectivity);
         let empty = Frame::default();
@@ -513,8 +518,7 @@ impl Layout {
         );
         }
         h.extend_from_slice(b"</PointData>\n<CellData>\n");
-        let cells =
-            std::iter::once("body").chain(empty.cell_arrays(*solid).into_iter().map(|a| a.0));
+        let cells = std::iter::once("body").chain(empty.cell_arrays().into_iter().map(|a| a.0));
         for name in cells {
             let _ = writeln!(
             h,
@@ -556,7 +560,7 @@ impl Layout {
                     ascii_values(w, &mut buf, comps, vals)?;
                 }
                 w.write_all(&self.middle)?;
-                for (name, vals) in frame.cell_arrays(self.solid) {
+                for (name, vals) in frame.cell_arrays() {
                     ascii_tag(&mut buf, name, 1);
                     ascii_values(w, &mut buf, 1, vals)?;
                 }
@@ -569,7 +573,7 @@ impl Layout {
                     buf.clear();
                 }
                 w.write_all(&self.body)?;
-                for (_, vals) in frame.cell_arrays(self.solid) {
+                for (_, vals) in frame.cell_arrays() {
                     raw_f64(&mut buf, vals);
                     w.write_all(&buf)?;
                     buf.clear();

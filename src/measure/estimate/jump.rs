@@ -22,7 +22,7 @@
 //! ∫ N_i N_k dA / A_i); each side's ∫ |r_K|² dA goes to the elements of
 //! that side holding the nodes, by the same weights.
 
-use super::recovery::Stress;
+use super::recovery::{Recovered, Stress};
 use crate::model::interface::{Coupling, InterfaceModel, Point};
 use crate::model::state::State;
 use crate::model::Model;
@@ -30,7 +30,7 @@ use std::collections::{HashMap, HashSet};
 
 /// Adds each interface's jump term to `out` (per element, N·mm), from the
 /// recovered nodal stress of every element.
-pub fn add(model: &Model, state: &State, recovered: &[[Stress; 8]], out: &mut [f64]) {
+pub fn add(model: &Model, state: &State, recovered: &Recovered, out: &mut [f64]) {
     let mesh = &model.mesh;
     let twist = model.node_dofs().twist();
     let mut base = 0;
@@ -131,11 +131,11 @@ fn sides(im: &InterfaceModel, pt: &Point) -> [Vec<(usize, f64)>; 2] {
 }
 
 /// The mean of the recovered stress at (element, local node) entries.
-fn mean(at: &[(usize, usize)], recovered: &[[Stress; 8]]) -> Stress {
+fn mean(at: &[(usize, usize)], recovered: &Recovered) -> Stress {
     let mut s = [0.0; 6];
     for &(e, a) in at {
         for c in 0..6 {
-            s[c] += recovered[e][a][c] / at.len() as f64;
+            s[c] += recovered.element(e)[a][c] / at.len() as f64;
         }
     }
     s

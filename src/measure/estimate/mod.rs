@@ -30,8 +30,9 @@ mod sample;
 
 use crate::model::state::State;
 use crate::model::Model;
-use crate::physics::element::family::{Family, GaussRule};
+use crate::physics::element::family::GaussRule;
 use crate::physics::element::solid::ElementGeometry;
+use crate::physics::element::solid3::ElementGeometry3;
 use crate::physics::material::VonMises;
 use serde_json::json;
 
@@ -80,14 +81,18 @@ impl Estimate {
             .map(|&e| {
                 let el = &model.mesh.elements[e];
                 let c = centroid(model, e);
-                json!({
+                let mut v = json!({
                     "element": e,
                     "body": model.mesh.bodies.get(el.body).cloned().unwrap_or_default(),
                     "x_mm": c[0],
                     "y_mm": c[1],
                     "eta_sq_nmm": self.element[e],
                     "share": if t2 > 0.0 { self.element[e] / t2 } else { 0.0 },
-                })
+                });
+                if model.mesh.dim() == 3 {
+                    v["z_mm"] = json!(c[2]);
+                }
+                v
             })
             .collect();
         json!({
@@ -107,36 +112,28 @@ impl Estimate {
 pub fn estimate(model: &Model, state: &State) -> Estimate {
     let mesh = &model.mesh;
     let ne = mesh.elements.len();
-    // each family's sampling (reduced) and full rule
-    let sampling = Family::ALL.map(|f| f.sampling_rule());
-    let full = Family::ALL.map(|f| f.rule(true));
     // σ_h at the sampling points of every element: what is recovered
     let mut samples = vec![recovery::Samples::default(); ne];
-    for (e, el) in mesh.elements.iter().enumerate() {
-        let rule = &sampling[el.family.index()];
-        let g = geometry(model, e, rule);
-        let s = sample::stresses(model, &state.gauss, &state.u, e, rule, &g);
-        samples[e].n = g.n;
-        samples[e].points[..g.n].copy_from_slice(&g.x[..g.n]);
-        samples[e].values[..g.n].copy_from_slice(&s[..g.n]);
+    for (e, s) in samples.iter_mut().enumerate() {
+        let p = Points::of(model, state, e, false);
+        s.n = p.dv.len();
+        s.points[..s.n].copy_from_slice(&p.x);
+        s.values[..s.n].copy_from_slice(&p.stress);
     }
     let recovered = recovery::recover(mesh, &samples);
     let mut element = vec![0.0; ne];
     let mut norm2 = 0.0;
     for (e, el) in mesh.elements.iter().enumerate() {
         let mat = &model.materials[el.body];
-        let rule = &full[el.family.index()];
-        let g = geometry(model, e, rule);
-        let s = sample::stresses(model, &state.gauss, &state.u, e, rule, &g);
-        for (ip, sh) in s.iter().enumerate().take(g.n) {
+        let p = Points::of(model, state, e, true);
+        let star = recovered.element(e);
+        for (ip, sh) in p.stress.iter().enumerate() {
             let d: [f64; 6] = std::array::from_fn(|c| {
-                let star: f64 = (0..g.nodes)
-                    .map(|a| g.shape[ip][a] * recovered[e][a][c])
-                    .sum();
-                star - sh[c]
+                let at: f64 = star.iter().zip(&p.shape[ip]).map(|(s, n)| n * s[c]).sum();
+                at - sh[c]
             });
-            element[e] += g.dv[ip] * compliance(mat, &d);
-            norm2 += g.dv[ip] * compliance(mat, sh);
+            element[e] += p.dv[ip] * compliance(mat, &d);
+            norm2 += p.dv[ip] * compliance(mat, sh);
         }
     }
     let mut interface = vec![0.0; ne];
@@ -150,6 +147,51 @@ pub fn estimate(model: &Model, state: &State) -> Estimate {
         interface,
         total,
         norm: norm2.sqrt(),
+    }
+}
+
+/// What the estimate asks of an element at the points of one of its rules,
+/// plane or solid: their places (z = 0 in a plane model), volumes, shape
+/// functions and σ_h ([`sample`]).
+struct Points {
+    x: Vec<[f64; 3]>,
+    dv: Vec<f64>,
+    shape: Vec<Vec<f64>>,
+    stress: Vec<[f64; 6]>,
+}
+
+impl Points {
+    /// Element e's points of its full rule (`full`) or its sampling rule:
+    /// 2×2 of the 8-node quadrilateral, the 6-node triangle's 3 points, 2×2×2
+    /// of the 20-node hexahedron, the 10-node tetrahedron's 4 points.
+    fn of(model: &Model, state: &State, e: usize, full: bool) -> Points {
+        let family = model.mesh.elements[e].family;
+        let (gauss, u) = (&state.gauss, &state.u[..]);
+        if let Some(solid) = family.solid() {
+            let rule = solid.rule(full);
+            let coords = model.mesh.element_coords3(e);
+            let g = ElementGeometry3::new(solid, &coords[..family.nodes()], &rule)
+                .expect("element geometry was checked when the model was built");
+            return Points {
+                x: g.x[..g.n].to_vec(),
+                dv: g.dv[..g.n].to_vec(),
+                shape: (0..g.n).map(|ip| g.shape[ip][..g.nodes].to_vec()).collect(),
+                stress: sample::stresses3(model, gauss, u, e, &rule, &g),
+            };
+        }
+        let rule = if full {
+            family.rule(true)
+        } else {
+            family.sampling_rule()
+        };
+        let g = geometry(model, e, &rule);
+        let s = sample::stresses(model, gauss, u, e, &rule, &g);
+        Points {
+            x: (0..g.n).map(|ip| [g.x[ip][0], g.x[ip][1], 0.0]).collect(),
+            dv: g.dv[..g.n].to_vec(),
+            shape: (0..g.n).map(|ip| g.shape[ip][..g.nodes].to_vec()).collect(),
+            stress: s[..g.n].to_vec(),
+        }
     }
 }
 
@@ -196,14 +238,15 @@ fn geometry(model: &Model, e: usize, rule: &GaussRule) -> ElementGeometry {
         .expect("element geometry was checked when the model was built")
 }
 
-/// The mean of an element's node coordinates (mm).
-fn centroid(model: &Model, e: usize) -> [f64; 2] {
+/// The mean of an element's node coordinates (mm; z = 0 in a plane model).
+fn centroid(model: &Model, e: usize) -> [f64; 3] {
     let nodes = model.mesh.elements[e].nodes();
     let k = nodes.len() as f64;
-    let mut c = [0.0; 2];
+    let mut c = [0.0; 3];
     for &n in nodes {
-        c[0] += model.mesh.nodes[n][0] / k;
-        c[1] += model.mesh.nodes[n][1] / k;
+        for (ci, x) in c.iter_mut().zip(model.mesh.nodes[n]) {
+            *ci += x / k;
+        }
     }
     c
 }

@@ -8,20 +8,26 @@
 //! (w_k the weights of the polynomial through the stored points,
 //! [`crate::physics::element::family::Family::interpolation_weights`]:
 //! bilinear from 2×2, biquadratic from 3×3, linear from the triangle's 3
-//! points, quadratic from its 6). In an element that never yielded εᵖ = 0
+//! points, quadratic from its 6; in a solid εᵖ is read at the nodes from
+//! the stored points, [`crate::physics::element::family3::Family3::extrapolation`],
+//! and interpolated with the shape functions). In an element that never yielded εᵖ = 0
 //! and σ_h is exact at any point; the stored stress of a converged state is
 //! D (ε − εᵖ) as well, so both rules see one field.
 //!
 //! The recovery samples σ_h at the reduced rule's points (the
 //! superconvergent points: 2×2 of the 8-node quadrilateral, Zienkiewicz &
 //! Zhu 1992 part 1; the 3 midpoints-of-medians points of the 6-node
-//! triangle) and the error integrals use the full rule's points, where σ_h
+//! triangle; the 2×2×2 points of the 20-node hexahedron and the 4-point
+//! rule's of the 10-node tetrahedron) and the error integrals use the full
+//! rule's points, where σ_h
 //! is not superconvergent (an integral at the sampling points would hide the
 //! error it measures).
 
 use crate::model::Model;
 use crate::physics::element::family::GaussRule;
+use crate::physics::element::gauss3::GaussRule3;
 use crate::physics::element::solid::{elastic_state, ElementGeometry, MAX_POINTS};
+use crate::physics::element::solid3::ElementGeometry3;
 use crate::physics::material::{GaussStates, Plane, PointState};
 
 /// σ_h ([`PointState::stress`] order: xx, yy, xy, zz or θθ, rθ, zθ) of
@@ -67,4 +73,49 @@ pub fn stresses(
         out[ip] = s.stress;
     }
     out
+}
+
+/// σ_h of solid element `e` at the points of `rule` (the module text),
+/// whose geometry is `geom`: the stored stress at the model's own rule, else
+/// the elastic law from the strain of u_h and the plastic strain read at the
+/// nodes from the stored points and interpolated.
+pub(crate) fn stresses3(
+    model: &Model,
+    gauss: &GaussStates,
+    u: &[f64],
+    e: usize,
+    rule: &GaussRule3,
+    geom: &ElementGeometry3,
+) -> Vec<[f64; 6]> {
+    let stored = gauss.range(model.points(e));
+    let el = &model.mesh.elements[e];
+    let solid = el.family.solid().expect("a solid element");
+    let own = model.rule3(solid);
+    if rule == own {
+        return stored.iter().map(|g| g.stress).collect();
+    }
+    let mat = &model.materials[el.body];
+    let ue = model.element_u(e, u);
+    // εᵖ at the nodes: Σ_k W_ka εᵖ_k
+    let w = solid.extrapolation(own);
+    let mut nodal = vec![[0.0; 6]; geom.nodes];
+    for (k, g) in stored.iter().enumerate() {
+        for (a, n) in nodal.iter_mut().enumerate() {
+            for (c, v) in n.iter_mut().enumerate() {
+                *v += w[k][a] * g.plastic_strain[c];
+            }
+        }
+    }
+    (0..geom.n)
+        .map(|ip| {
+            let mut committed = PointState::default();
+            for (a, n) in nodal.iter().enumerate() {
+                for (c, v) in committed.plastic_strain.iter_mut().enumerate() {
+                    *v += geom.shape[ip][a] * n[c];
+                }
+            }
+            mat.elastic_state_twist(&committed, &geom.strain(ip, &ue))
+                .stress
+        })
+        .collect()
 }

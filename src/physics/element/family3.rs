@@ -60,6 +60,15 @@ impl Family3 {
         }
     }
 
+    /// The edges, each [end, mid, end] in local node numbers
+    /// ([`h20::EDGES`], [`t10::EDGES`]).
+    pub(crate) fn edges(self) -> &'static [[usize; 3]] {
+        match self {
+            Family3::H20 => &h20::EDGES,
+            Family3::T10 => &t10::EDGES,
+        }
+    }
+
     /// Gmsh's node g of an element of this family is local node
     /// `gmsh_to_local()[g]` (Gmsh types 17 and 11).
     pub(crate) fn gmsh_to_local(self) -> &'static [usize] {
