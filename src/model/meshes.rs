@@ -31,13 +31,18 @@ pub(super) fn make_mesh(case: &Case, place: &str) -> Result<Mesh> {
         }
         None => {
             let layout = blocks::generate(&case.mesh.block, &case.mesh.interface, case.mesh.refine);
-            let mesh = match &case.mesh.extrude {
-                None => layout,
-                Some(e) => layout.and_then(|plane| {
+            let sweep = crate::input::mesh::extrude::extrude;
+            let mesh = match (&case.mesh.extrude, &case.mesh.revolve) {
+                (Some(e), _) => layout.and_then(|plane| {
                     let zs =
                         blocks::graded_axis("extrude", "z", &e.z, &e.nz, &e.rz, case.mesh.refine)?;
-                    crate::input::mesh::extrude::extrude(&plane, &zs)
+                    sweep(&plane, &zs)
                 }),
+                (None, Some(r)) => layout.and_then(|plane| {
+                    let n = r.n * case.mesh.refine;
+                    crate::input::mesh::extrude::revolve(&plane, r.angle.to_radians(), n)
+                }),
+                (None, None) => layout,
             };
             mesh.map_err(|e| Error::Mesh {
                 place: format!("{place} [mesh]"),

@@ -180,6 +180,19 @@ pub struct MeshSpec {
     /// A 3D model's mesh: the block layout swept along z
     /// (`input::mesh::extrude`).
     pub extrude: Option<Extrude>,
+    /// A 3D model's mesh: the block layout revolved about the y axis
+    /// (`input::mesh::extrude::revolve`).
+    pub revolve: Option<Revolve>,
+}
+
+/// `[mesh] revolve = { angle = 90.0, n = 12 }`: the block layout (x the
+/// radius) revolved about the y axis from the plane z = 0 through `angle`
+/// degrees in `n` equal layers.
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Revolve {
+    pub angle: f64,
+    pub n: usize,
 }
 
 /// `[mesh] extrude = { z = [z₀, …], nz = [n, …], rz = [r, …] }`: the layers

@@ -35,6 +35,9 @@ fn refuse_solid_keys(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
     if case.mesh.extrude.is_some() {
         return need(at("[mesh] extrude"));
     }
+    if case.mesh.revolve.is_some() {
+        return need(at("[mesh] revolve"));
+    }
     for (i, bc) in case.boundary.iter().enumerate() {
         for (k, given) in [("uz", bc.uz.is_some()), ("z_range", bc.z_range.is_some())] {
             if given {
@@ -96,17 +99,28 @@ fn check_solid(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
     if m.twist {
         return not_yet(at("[model] twist"), "twist");
     }
-    if case.mesh.file.is_none() && case.mesh.extrude.is_none() {
-        return Err(Error::input(
-            at("[mesh]"),
-            "a 3D model needs its mesh in space: sweep the blocks along z with extrude = { z = [...], nz = [...] }, or read a Gmsh mesh of volumes (file = \"...\")",
-        ));
-    }
-    if case.mesh.file.is_some() && case.mesh.extrude.is_some() {
-        return Err(Error::input(
-            at("[mesh] extrude"),
-            "sweeps the blocks; a mesh read from a file ([mesh] file) is already in space: give one or the other",
-        ));
+    let given: Vec<&str> = [
+        ("file", case.mesh.file.is_some()),
+        ("extrude", case.mesh.extrude.is_some()),
+        ("revolve", case.mesh.revolve.is_some()),
+    ]
+    .into_iter()
+    .filter_map(|(k, g)| g.then_some(k))
+    .collect();
+    match given[..] {
+        [] => {
+            return Err(Error::input(
+                at("[mesh]"),
+                "a 3D model needs its mesh in space: sweep the blocks along z with extrude = { z = [...], nz = [...] }, revolve them about the y axis with revolve = { angle = ..., n = ... }, or read a Gmsh mesh of volumes (file = \"...\")",
+            ));
+        }
+        [_] => {}
+        [a, b, ..] => {
+            return Err(Error::input(
+                at(&format!("[mesh] {b}")),
+                format!("and {a} each make the 3D mesh: give one of file, extrude and revolve"),
+            ));
+        }
     }
     if case.mesh.refine_region.is_some() {
         return not_yet(at("[mesh] refine_region"), "local refinement");
@@ -145,6 +159,9 @@ fn check_solid(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
                 return not_yet(key, &format!("a curved side (block {i})"));
             }
         }
+    }
+    if let Some(r) = &case.mesh.revolve {
+        check_revolve(r, case.mesh.refine, &at)?;
     }
     if let Some(e) = &case.mesh.extrude {
         crate::input::mesh::blocks::graded_axis(
@@ -221,6 +238,37 @@ fn check_solid_loads(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
     }
     for (i, f) in case.force.iter().enumerate() {
         ranges::FORCE.check(at(&format!("force[{i}] fz")), f.fz)?;
+    }
+    Ok(())
+}
+
+/// `[mesh] revolve`: an angle of a sector, 0 < angle < 360 degrees (a whole
+/// ring would need its seam joined: not built), and at least one layer.
+fn check_revolve(
+    r: &crate::input::case::Revolve,
+    refine: usize,
+    at: &dyn Fn(&str) -> String,
+) -> Result<()> {
+    if !(r.angle > 0.0 && r.angle < 360.0) {
+        return Err(Error::input(
+            at("[mesh] revolve angle"),
+            format!(
+                "{} must lie between 0 and 360 degrees (a sector; a whole ring is not yet built: model a half or a quarter with symmetry planes)",
+                r.angle
+            ),
+        ));
+    }
+    if r.n == 0 {
+        return Err(Error::input(
+            at("[mesh] revolve n"),
+            "must be at least 1 (the element layers around the axis)",
+        ));
+    }
+    if r.n.checked_mul(refine).is_none_or(|n| n > 100_000) {
+        return Err(Error::input(
+            at("[mesh] revolve n"),
+            format!("{} layers (× refine {refine}) is more than 100,000 around the axis", r.n),
+        ));
     }
     Ok(())
 }

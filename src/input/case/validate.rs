@@ -465,16 +465,23 @@ fn check_element_count(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
             }
         }
     }
-    if let Some(e) = &case.mesh.extrude {
+    let swept = match (&case.mesh.extrude, &case.mesh.revolve) {
+        (Some(e), _) => Some((
+            "[mesh] extrude nz",
+            e.nz.iter().try_fold(0usize, |acc, &n| {
+                acc.checked_add(n.checked_mul(case.mesh.refine)?)
+            }),
+        )),
+        (None, Some(r)) => Some(("[mesh] revolve n", r.n.checked_mul(case.mesh.refine))),
+        (None, None) => None,
+    };
+    if let Some((key, layers)) = swept {
         // the layout's count times the layers
-        let layers = e.nz.iter().try_fold(0usize, |acc, &n| {
-            acc.checked_add(n.checked_mul(case.mesh.refine)?)
-        });
         match layers.and_then(|l| total.checked_mul(l)) {
             Some(n) if n <= MAX_ELEMENTS => {}
             _ => {
                 return Err(Error::input(
-                    at("[mesh] extrude nz"),
+                    at(key),
                     format!(
                         "the blocks swept through the layers make more than {MAX_ELEMENTS} elements (the limit)"
                     ),

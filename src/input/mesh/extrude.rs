@@ -19,6 +19,17 @@
 //! left, then up: (b − a) × e_z points out); and every set `<name>.all`
 //! (a block or a body) gives `<name>.zmin` and `<name>.zmax`, the nodes and
 //! faces of its elements on the first and the last level.
+//!
+//! A revolution ([`revolve`]) is the same sweep with z read as the angle θ
+//! about the y axis, each node then placed at
+//! ```text
+//!   (x, y, θ) ↦ (x cos θ, y, x sin θ)      det ∂(x', y', z')/∂(x, y, θ) = x
+//! ```
+//! so a layout with x > 0 everywhere keeps every element right-handed and
+//! every face set outward; the midside nodes of the circumferential edges sit
+//! on their arcs (at the mid angle), the element edges in the layout's plane
+//! stay as they were. Its end sets are `<name>.theta0` (the plane z = 0) and
+//! `<name>.theta1` (θ = the angle).
 
 use super::{Element, Face, Family, Mesh, MeshError};
 use std::collections::BTreeMap;
@@ -26,15 +37,46 @@ use std::collections::BTreeMap;
 /// The layout `plane` swept through the z levels `zs` (the layer planes,
 /// strictly increasing, at least two).
 pub(crate) fn extrude(plane: &Mesh, zs: &[f64]) -> Result<Mesh, MeshError> {
+    sweep(plane, zs, ["zmin", "zmax"])
+}
+
+/// The layout `plane` (x the radius, y the axis) revolved about the y axis
+/// from θ = 0 (the plane z = 0) through `angle` radians in `n` equal
+/// layers (module text); refused where the layout reaches the axis, whose
+/// elements would collapse into a line.
+pub(crate) fn revolve(plane: &Mesh, angle: f64, n: usize) -> Result<Mesh, MeshError> {
+    let size = plane
+        .nodes
+        .iter()
+        .fold(0.0f64, |m, x| m.max(x[0].abs()).max(x[1].abs()));
+    if let Some(x) = plane.nodes.iter().find(|x| x[0] <= 1e-9 * size) {
+        return Err(MeshError(format!(
+            "revolve: the layout reaches the axis at (x, y) = ({}, {}): an element there would \
+             collapse into a line; revolve a layout with x > 0 (a hollow part), or read a Gmsh mesh",
+            x[0], x[1]
+        )));
+    }
+    let thetas: Vec<f64> = (0..=n).map(|k| angle * k as f64 / n as f64).collect();
+    let mut mesh = sweep(plane, &thetas, ["theta0", "theta1"])?;
+    for x in &mut mesh.nodes {
+        let [r, y, theta] = *x;
+        *x = [r * theta.cos(), y, r * theta.sin()];
+    }
+    Ok(mesh)
+}
+
+/// The sweep of both: `plane` through the levels `zs`, the ends' sets named
+/// `<name>.<ends[0]>` and `<name>.<ends[1]>`.
+fn sweep(plane: &Mesh, zs: &[f64], ends: [&str; 2]) -> Result<Mesh, MeshError> {
     if let Some(el) = plane.elements.iter().find(|el| el.family != Family::Q8) {
         return Err(MeshError(format!(
-            "extrude sweeps 8-node quads; the layout has a {}",
+            "a sweep (extrude, revolve) takes 8-node quads; the layout has a {}",
             el.family.name()
         )));
     }
     if !plane.interfaces.is_empty() {
         return Err(MeshError(
-            "extrude: a 3D model has no interfaces yet ([[mesh.interface]])".into(),
+            "a sweep (extrude, revolve): a 3D model has no interfaces yet ([[mesh.interface]])".into(),
         ));
     }
     let layers = zs.len() - 1;
@@ -113,15 +155,16 @@ pub(crate) fn extrude(plane: &Mesh, zs: &[f64]) -> Result<Mesh, MeshError> {
             .collect();
         mesh.face_sets.insert(name.clone(), faces);
     }
-    add_end_sets(plane, &copy, &mut mesh);
+    add_end_sets(plane, &copy, ends, &mut mesh);
     Ok(mesh)
 }
 
-/// `<name>.zmin` and `<name>.zmax` of every set `<name>.all` of the
-/// layout: its elements' ends on the first and the last level (an element
-/// of the layout belongs to `<name>` when all its nodes are in the set: a
-/// block's neighbour shares at most one side with it).
-fn add_end_sets(plane: &Mesh, copy: &[Vec<usize>], mesh: &mut Mesh) {
+/// `<name>.<ends[0]>` and `<name>.<ends[1]>` (`zmin`, `zmax` of a sweep
+/// along z) of every set `<name>.all` of the layout: its elements' ends on
+/// the first and the last level (an element of the layout belongs to
+/// `<name>` when all its nodes are in the set: a block's neighbour shares at
+/// most one side with it).
+fn add_end_sets(plane: &Mesh, copy: &[Vec<usize>], ends: [&str; 2], mesh: &mut Mesh) {
     let last = copy.first().map_or(0, |c| c.len() - 1);
     let mut sets = BTreeMap::new();
     for (name, all) in &plane.node_sets {
@@ -134,7 +177,7 @@ fn add_end_sets(plane: &Mesh, copy: &[Vec<usize>], mesh: &mut Mesh) {
             .iter()
             .filter(|el| el.nodes().iter().all(inside))
             .collect();
-        for (end, k, turn) in [("zmin", 0, true), ("zmax", last, false)] {
+        for (end, k, turn) in [(ends[0], 0, true), (ends[1], last, false)] {
             let faces: Vec<Face> = elements
                 .iter()
                 .map(|el| {
