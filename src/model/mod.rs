@@ -401,7 +401,7 @@ impl Model {
 
     /// Where Gauss point `ip` of element e is, in space (z = 0 in a plane
     /// model).
-    pub(crate) fn point_x(&self, e: usize, ip: usize) -> [f64; 3] {
+    pub fn point_x(&self, e: usize, ip: usize) -> [f64; 3] {
         self.element_geometry(e).x(ip)
     }
 

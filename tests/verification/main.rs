@@ -37,6 +37,7 @@ mod punch_rounded;
 mod roughness;
 mod shrink_fit;
 mod solid;
+mod solid_patch;
 mod status_convergence;
 mod stepping;
 mod tables;
