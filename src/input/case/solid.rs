@@ -118,7 +118,7 @@ fn check_solid(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
         [a, b, ..] => {
             return Err(Error::input(
                 at(&format!("[mesh] {b}")),
-                format!("and {a} each make the 3D mesh: give one of file, extrude and revolve"),
+                format!("is given with {a}, and each makes the 3D mesh alone: give one of file, extrude and revolve"),
             ));
         }
     }
@@ -267,7 +267,10 @@ fn check_revolve(
     if r.n.checked_mul(refine).is_none_or(|n| n > 100_000) {
         return Err(Error::input(
             at("[mesh] revolve n"),
-            format!("{} layers (× refine {refine}) is more than 100,000 around the axis", r.n),
+            format!(
+                "{} layers (× refine {refine}) is more than 100,000 around the axis",
+                r.n
+            ),
         ));
     }
     Ok(())

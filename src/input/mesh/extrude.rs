@@ -76,7 +76,8 @@ fn sweep(plane: &Mesh, zs: &[f64], ends: [&str; 2]) -> Result<Mesh, MeshError> {
     }
     if !plane.interfaces.is_empty() {
         return Err(MeshError(
-            "a sweep (extrude, revolve): a 3D model has no interfaces yet ([[mesh.interface]])".into(),
+            "a sweep (extrude, revolve): a 3D model has no interfaces yet ([[mesh.interface]])"
+                .into(),
         ));
     }
     let layers = zs.len() - 1;

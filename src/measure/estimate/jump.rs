@@ -134,8 +134,8 @@ fn sides(im: &InterfaceModel, pt: &Point) -> [Vec<(usize, f64)>; 2] {
 fn mean(at: &[(usize, usize)], recovered: &Recovered) -> Stress {
     let mut s = [0.0; 6];
     for &(e, a) in at {
-        for c in 0..6 {
-            s[c] += recovered.element(e)[a][c] / at.len() as f64;
+        for (t, v) in s.iter_mut().zip(recovered.element(e)[a]) {
+            *t += v / at.len() as f64;
         }
     }
     s

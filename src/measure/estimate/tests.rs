@@ -151,7 +151,9 @@ fn solve_quiet(model: &crate::model::Model) -> crate::model::state::State {
             Ok(())
         }
     }
-    crate::app::driver::solve(model, &mut Quiet).unwrap().final_state
+    crate::app::driver::solve(model, &mut Quiet)
+        .unwrap()
+        .final_state
 }
 
 /// Effectivity in space (Zienkiewicz & Zhu 1992, part 2): on a quarter of
@@ -166,7 +168,11 @@ fn effectivity_on_a_tube_sector_in_space_is_near_one() {
     let dir = std::env::temp_dir().join(format!("asperity-eff3d-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-    std::fs::copy(root.join("tests/data/tube-sector/mesh.msh"), dir.join("mesh.msh")).unwrap();
+    std::fs::copy(
+        root.join("tests/data/tube-sector/mesh.msh"),
+        dir.join("mesh.msh"),
+    )
+    .unwrap();
     let text = format!(
         "[model]\nplane = \"3d\"\n[mesh]\nfile = \"mesh.msh\"\n[materials.tube]\nyoung = {e}\npoisson = {nu}\n\
          [[boundary]]\nset = \"tube.bottom\"\nuy = 0.0\n[[boundary]]\nset = \"tube.top\"\nuy = 0.0\n\
@@ -188,7 +194,14 @@ fn effectivity_on_a_tube_sector_in_space_is_near_one() {
         let (c, s) = (x / r2.sqrt(), z / r2.sqrt());
         let (rr, tt) = (big_a - big_b / r2, big_a + big_b / r2);
         // xx, yy, xy, zz, xz, yz
-        [rr * c * c + tt * s * s, 2.0 * nu * big_a, 0.0, rr * s * s + tt * c * c, (rr - tt) * s * c, 0.0]
+        [
+            rr * c * c + tt * s * s,
+            2.0 * nu * big_a,
+            0.0,
+            rr * s * s + tt * c * c,
+            (rr - tt) * s * c,
+            0.0,
+        ]
     };
     let mut err2 = 0.0;
     for el in 0..model.mesh.elements.len() {

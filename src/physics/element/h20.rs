@@ -23,7 +23,6 @@
 //! The shape functions span the complete quadratic polynomials in (ξ, η, ζ)
 //! plus ξηζ and the cubics ξ²η, ξ²ζ, … that are linear in two of the
 //! coordinates (the 20-dimensional serendipity space).
-#![allow(dead_code)] // used by the 3D solid element (issue 44), not yet wired
 
 use super::edge::gauss_1d;
 use super::gauss3::GaussRule3;

@@ -21,12 +21,12 @@
 //!
 //! Rules on the reference tetrahedron (volume ⅙, the weights sum to ⅙), all
 //! with positive weights: [`gauss_4`] (degree 2) and [`gauss_14`] (degree 5).
-//! The T10 stiffness defaults to [`gauss_4`]: for a straight-sided T10 the
-//! Jacobian is constant and Bᵀ D B is of degree 2, so 4 points integrate it
-//! exactly; a curved (isoparametric) T10 makes the integrand rational, and
-//! [`gauss_14`] is the better choice there. The 5-point degree-3 rule is not
+//! The model's `integration = "full"` (the default) takes [`gauss_14`],
+//! `"reduced"` [`gauss_4`]: for a straight-sided T10 the Jacobian is
+//! constant and Bᵀ D B is of degree 2, so 4 points integrate it exactly; a
+//! curved (isoparametric) T10 makes the integrand rational, and [`gauss_14`]
+//! is the better choice there. The 5-point degree-3 rule is not
 //! offered: its centre weight is negative.
-#![allow(dead_code)] // used by the 3D solid element (issue 44), not yet wired
 
 use super::gauss3::GaussRule3;
 

@@ -93,3 +93,74 @@ fn a_layout_with_a_triangle_is_refused() {
     let e = extrude(&plane, &[0.0, 1.0]).unwrap_err();
     assert!(e.0.contains("6-node triangle"), "{e}");
 }
+
+/// [`layout`] moved off the axis: x in [5, 21] (radii), y in [0, 4].
+fn hollow() -> Mesh {
+    let mut plane = layout();
+    for x in &mut plane.nodes {
+        x[0] += 5.0;
+    }
+    plane
+}
+
+/// The volume of a 3D mesh by 3×3×3 Gauss.
+fn volume(mesh: &Mesh) -> f64 {
+    let rule = Family3::H20.rule(true);
+    (0..mesh.elements.len())
+        .map(|e| {
+            let c = mesh.element_coords3(e);
+            ElementGeometry3::new(Family3::H20, &c[..20], &rule)
+                .unwrap()
+                .volume()
+        })
+        .sum()
+}
+
+#[test]
+fn a_revolved_layout_is_a_valid_sector_whose_volume_converges_at_order_four() {
+    let exact = std::f64::consts::FRAC_PI_4 * (21.0f64.powi(2) - 5.0f64.powi(2)) * 4.0;
+    let mut errors = Vec::new();
+    for n in [3, 6, 12] {
+        let mesh = revolve(&hollow(), std::f64::consts::FRAC_PI_2, n).unwrap();
+        mesh.validate().unwrap();
+        assert_eq!(mesh.elements.len(), n * layout().elements.len());
+        // every node on its circle: the radius of its layout node
+        for x in &mesh.nodes {
+            let r = x[0].hypot(x[2]);
+            assert!((5.0 - 1e-12..=21.0 + 1e-12).contains(&r), "{x:?}");
+            assert!(x[0] >= -1e-12 && x[2] >= -1e-12, "{x:?}");
+        }
+        errors.push((volume(&mesh) - exact).abs() / exact);
+    }
+    // the quadratic arcs cut the circle: the volume's error falls as Δθ⁴
+    let order = (errors[1] / errors[2]).log2();
+    println!("revolved volume: relative errors {errors:?}, order {order:.2}");
+    assert!(errors[2] < 1e-5, "{errors:?}");
+    assert!((3.5..4.5).contains(&order), "{errors:?}");
+}
+
+#[test]
+fn a_revolved_layouts_face_sets_are_walked_outward() {
+    let mesh = revolve(&hollow(), std::f64::consts::FRAC_PI_2, 12).unwrap();
+    let close = |a: [f64; 3], b: [f64; 3]| (0..3).all(|c| (a[c] - b[c]).abs() < 1e-3 * 64.0);
+    // the bore r = 5 (outward −r̂): a unit pressure pushes it out, ∫ r̂ dA = (a h, 0, a h)
+    let bore = pushed(&mesh, "a.left");
+    assert!(close(bore, [20.0, 0.0, 20.0]), "{bore:?}");
+    // the outside r = 21, the same inward
+    assert!(close(pushed(&mesh, "b.right"), [-84.0, 0.0, -84.0]));
+    // the ends: θ = 0 is the plane z = 0 (outward −z), θ = 90° the plane x = 0
+    // (the sector lies at x ≥ 0: outward −x)
+    let start = pushed(&mesh, "part.theta0");
+    assert!(close(start, [0.0, 0.0, 64.0]), "{start:?}");
+    let end = pushed(&mesh, "part.theta1");
+    assert!(close(end, [64.0, 0.0, 0.0]), "{end:?}");
+    assert!(!mesh.node_sets.contains_key("part.zmin"));
+    let end = &mesh.node_sets["part.theta1"];
+    assert!(end.iter().all(|&n| mesh.nodes[n][0].abs() < 1e-12));
+}
+
+#[test]
+fn a_layout_on_the_axis_is_refused_by_the_revolution() {
+    let e = revolve(&layout(), std::f64::consts::FRAC_PI_2, 4).unwrap_err();
+    assert!(e.0.contains("reaches the axis at (x, y) = (0,"), "{e}");
+}
