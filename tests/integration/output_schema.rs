@@ -222,6 +222,33 @@ fn summary_json_matches_the_documented_schema() {
     // 3D: z beside x and y (first yield, events, peaks), u_z of a probe
     let solid = summary_of("solid", &cases.join("block-3d"), &[]);
     assert!(solid["first_yield"]["z_mm"].as_f64().is_some(), "{solid}");
+    // no interface: no interface force at first yield, the applied force in space
+    assert!(solid["first_yield"]["total_load_kn"].is_null(), "{solid}");
+    let fy_event = solid["events"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|e| e["event"] == "first_yield")
+        .unwrap();
+    let applied = fy_event["applied_force_n"].as_array().unwrap();
+    assert_eq!(applied.len(), 3);
+    // the pressed square's 600 MPa × 8 × 8 mm, downwards, times the load factor
+    let lambda = fy_event["load_factor"].as_f64().unwrap();
+    let fy_n = applied[1].as_f64().unwrap();
+    assert!((fy_n + 38_400.0 * lambda).abs() < 1e-6 * 38_400.0, "{fy_n}");
+    // curve.csv's load_ratio without an interface: λ over the first yield's λ
+    let curve = std::fs::read_to_string(
+        std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+            .join("schema-solid")
+            .join("out")
+            .join("curve.csv"),
+    )
+    .unwrap();
+    let fy_lambda = solid["first_yield"]["load_factor"].as_f64().unwrap();
+    for row in curve.lines().skip(1) {
+        let v: Vec<f64> = row.split(',').map(|x| x.parse().unwrap()).collect();
+        assert!((v[4] - v[1] / fy_lambda).abs() < 1e-8, "{row}");
+    }
     assert!(torque["joints"][0]["final"]["torque_nmm"].as_f64().unwrap() > 0.0);
     assert!(
         with["joints"][0]["final"].get("torque_nmm").is_none(),

@@ -19,10 +19,10 @@ pub(crate) fn event_json(model: &Model, e: &Event) -> Value {
     let mut f = vec![0.0; model.mesh.num_dofs()];
     model.external_force(t, &mut f);
     let k = model.node_dofs().per_node();
-    let applied = [
-        f.iter().step_by(k).sum::<f64>(),
-        f.iter().skip(1).step_by(k).sum::<f64>(),
-    ];
+    // F_x, F_y (and F_z in 3D)
+    let applied: Vec<f64> = (0..model.mesh.dim())
+        .map(|c| f.iter().skip(c).step_by(k).sum::<f64>())
+        .collect();
     let values = model.history_values(t);
     let histories: Vec<Value> = plan
         .history_names
@@ -35,6 +35,14 @@ pub(crate) fn event_json(model: &Model, e: &Event) -> Value {
         plan.part(&e.record, &plan.layout.reactions),
     );
     let (lo, hi) = (e.before.min(e.after), e.before.max(e.after));
+    // the interface's force and pressure: none without an interface
+    let contact = |v: f64| {
+        if model.interfaces.is_empty() {
+            Value::Null
+        } else {
+            number(v)
+        }
+    };
     let mut o = json!({
         "event": e.kind.name(),
         "interface": e.interface.map(|i| model.interfaces[i].name.clone()),
@@ -49,8 +57,8 @@ pub(crate) fn event_json(model: &Model, e: &Event) -> Value {
         "x_mm": number(e.place[0]),
         "y_mm": number(e.place[1]),
         "s_mm": number(e.place[2]),
-        "total_load_kn": number(e.values[0]),
-        "mean_pressure_mpa": number(e.values[1]),
+        "total_load_kn": contact(e.values[0]),
+        "mean_pressure_mpa": contact(e.values[1]),
         "normal_force_n": number(e.values[2]),
         "tangential_force_n": number(e.values[3]),
         "applied_force_n": numbers(&applied),

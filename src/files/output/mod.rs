@@ -468,14 +468,22 @@ pub fn interface_csv(model: &Model, state: &State) -> String {
 }
 
 pub fn curve(result: &RunResult) -> String {
-    let fy = result.first_yield.as_ref().map(|f| f.total_load_kn);
+    let fy = result.first_yield.as_ref();
     let mut s = String::from(
         "increment,load_factor,total_load_kn,mean_pressure_mpa,load_ratio,center_displacement_mm,max_peeq,iterations\n",
     );
     for inc in &result.increments {
         let m = &inc.measures;
-        // docs/output.md: 0 when the run never yields (no first-yield load)
-        let ratio = fy.map_or(0.0, |f| m.total_load_kn / f);
+        // docs/output.md: 0 when the run never yields (no first-yield load);
+        // without an interface force (0 at first yield) the load factors'
+        // ratio
+        let ratio = fy.map_or(0.0, |f| {
+            if f.total_load_kn != 0.0 {
+                m.total_load_kn / f.total_load_kn
+            } else {
+                inc.load_factor / f.load_factor
+            }
+        });
         let _ = writeln!(
             s,
             "{},{:.9},{:.9e},{:.9e},{:.9},{:.9e},{:.9e},{}",
@@ -589,11 +597,19 @@ pub fn summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
 /// counts, time, memory), first yield and the final state.
 fn run_summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
     let last = r.increments.last().map(|i| i.measures).unwrap_or_default();
+    // the interface's force and pressure: none without an interface
+    let contact = |v: f64| {
+        if model.interfaces.is_empty() {
+            json!(null)
+        } else {
+            json!(v)
+        }
+    };
     let fy = r.first_yield.as_ref().map(|f| {
         json!({
             "load_factor": f.load_factor,
-            "mean_pressure_mpa": f.mean_pressure,
-            "total_load_kn": f.total_load_kn,
+            "mean_pressure_mpa": contact(f.mean_pressure),
+            "total_load_kn": contact(f.total_load_kn),
             "x_mm": f.x,
             "depth_mm": f.depth,
             "body": f.body,

@@ -99,29 +99,7 @@ fn check_solid(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
     if m.twist {
         return not_yet(at("[model] twist"), "twist");
     }
-    let given: Vec<&str> = [
-        ("file", case.mesh.file.is_some()),
-        ("extrude", case.mesh.extrude.is_some()),
-        ("revolve", case.mesh.revolve.is_some()),
-    ]
-    .into_iter()
-    .filter_map(|(k, g)| g.then_some(k))
-    .collect();
-    match given[..] {
-        [] => {
-            return Err(Error::input(
-                at("[mesh]"),
-                "a 3D model needs its mesh in space: sweep the blocks along z with extrude = { z = [...], nz = [...] }, revolve them about the y axis with revolve = { angle = ..., n = ... }, or read a Gmsh mesh of volumes (file = \"...\")",
-            ));
-        }
-        [_] => {}
-        [a, b, ..] => {
-            return Err(Error::input(
-                at(&format!("[mesh] {b}")),
-                format!("is given with {a}, and each makes the 3D mesh alone: give one of file, extrude and revolve"),
-            ));
-        }
-    }
+    check_mesh_source(case, at)?;
     if case.mesh.refine_region.is_some() {
         return not_yet(at("[mesh] refine_region"), "local refinement");
     }
@@ -274,4 +252,32 @@ fn check_revolve(
         ));
     }
     Ok(())
+}
+
+/// A 3D model's mesh is made one way: a Gmsh file, a sweep along z or a
+/// revolution.
+fn check_mesh_source(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
+    let given: Vec<&str> = [
+        ("file", case.mesh.file.is_some()),
+        ("extrude", case.mesh.extrude.is_some()),
+        ("revolve", case.mesh.revolve.is_some()),
+    ]
+    .into_iter()
+    .filter_map(|(k, g)| g.then_some(k))
+    .collect();
+    match given[..] {
+        [] => {
+            Err(Error::input(
+                at("[mesh]"),
+                "a 3D model needs its mesh in space: sweep the blocks along z with extrude = { z = [...], nz = [...] }, revolve them about the y axis with revolve = { angle = ..., n = ... }, or read a Gmsh mesh of volumes (file = \"...\")",
+            ))
+        }
+        [_] => Ok(()),
+        [a, b, ..] => {
+            Err(Error::input(
+                at(&format!("[mesh] {b}")),
+                format!("is given with {a}, and each makes the 3D mesh alone: give one of file, extrude and revolve"),
+            ))
+        }
+    }
 }
