@@ -89,6 +89,9 @@ pub fn summary(probes: &[Probe], mesh: &Mesh, rows: &[&[f64]]) -> Value {
                     o["node"] = json!(node);
                     o["x_mm"] = json!(mesh.nodes[*node][0]);
                     o["y_mm"] = json!(mesh.nodes[*node][1]);
+                    if mesh.dim() == 3 {
+                        o["z_mm"] = json!(mesh.nodes[*node][2]);
+                    }
                 }
                 Target::Nodes {
                     set,

@@ -490,6 +490,20 @@ fn two_numbers<'de, D: serde::Deserializer<'de>>(d: D) -> std::result::Result<[f
     })
 }
 
+/// A point: [x, y], or [x, y, z] in a 3D model (the count is checked
+/// against the model with the case).
+pub(crate) fn point_opt<'de, D: serde::Deserializer<'de>>(
+    d: D,
+) -> std::result::Result<Option<Vec<f64>>, D::Error> {
+    let v: Vec<f64> = Vec::deserialize(d)?;
+    match v.len() {
+        2 | 3 => Ok(Some(v)),
+        n => Err(serde::de::Error::custom(format!(
+            "expected a point, [x, y] or in a 3D model [x, y, z], found {n} numbers"
+        ))),
+    }
+}
+
 pub(crate) fn two_numbers_opt<'de, D: serde::Deserializer<'de>>(
     d: D,
 ) -> std::result::Result<Option<[f64; 2]>, D::Error> {

@@ -4,7 +4,7 @@
 //! the model is built ([`crate::model::outputs`]); here, what the case alone
 //! decides: names, coordinates, the tolerance.
 
-use super::{two_numbers_opt, Case};
+use super::Case;
 use crate::error::{clip, Error, Result};
 use serde::{Deserialize, Serialize};
 
@@ -23,9 +23,10 @@ pub(crate) const MAX_PROBES: usize = 1000;
 pub struct ProbeSpec {
     /// Unique among the probes; a column of `probes.csv`.
     pub name: String,
-    /// A point [x, y] (mm) inside the model: the nearest node is taken.
-    #[serde(default, deserialize_with = "two_numbers_opt")]
-    pub at: Option<[f64; 2]>,
+    /// A point [x, y] (mm; [x, y, z] in a 3D model) inside the model: the
+    /// nearest node is taken.
+    #[serde(default, deserialize_with = "super::point_opt")]
+    pub at: Option<Vec<f64>>,
     /// With `at`: only this body's nodes are candidates (at an interface two
     /// coincident nodes belong to two bodies).
     pub body: Option<String>,
@@ -164,11 +165,25 @@ pub fn check(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
                         "applies to a node set (nodes = \"<set>\"); a point probe is one node",
                     ));
                 }
+                let dim = if case.model.plane == crate::physics::material::Plane::Solid {
+                    3
+                } else {
+                    2
+                };
+                if x.len() != dim {
+                    return Err(Error::input(
+                        key("at"),
+                        match dim {
+                            3 => format!("{x:?} is a point in the plane; a 3D model's point has three coordinates, at = [x, y, z]"),
+                            _ => format!("{x:?} has three coordinates; a plane or axisymmetric model's point is at = [x, y]"),
+                        },
+                    ));
+                }
                 for v in x {
                     if !v.is_finite() {
                         return Err(Error::input(
                             key("at"),
-                            format!("{x:?} must be two finite numbers (mm)"),
+                            format!("{x:?} must be finite numbers (mm)"),
                         ));
                     }
                     super::ranges::COORDINATE.check(key("at"), *v)?;

@@ -124,12 +124,6 @@ fn check_solid(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
     if case.adapt.is_some() {
         return not_yet(at("[adapt]"), "an adaptive run");
     }
-    if let Some(p) = case.probe.iter().find(|p| p.at.is_some()) {
-        return Err(Error::input(
-            at(&format!("[[probe]] \"{}\" at", clip(&p.name))),
-            "is a point in the plane; in a 3D model name a node set instead (nodes = \"...\")",
-        ));
-    }
     for (i, b) in case.mesh.block.iter().enumerate() {
         for (k, given) in [("bottom", b.bottom.is_some()), ("top", b.top.is_some())] {
             if given {

@@ -18,7 +18,8 @@ const OUTLINE_TOLERANCE: f64 = 0.02;
 pub enum Target {
     /// The node nearest to the point asked for.
     Point {
-        at: [f64; 2],
+        /// [x, y] or, in a 3D model, [x, y, z].
+        at: Vec<f64>,
         body: Option<String>,
         node: usize,
     },
@@ -71,15 +72,19 @@ impl Probe {
     pub(crate) fn describe(&self, mesh: &Mesh) -> String {
         match &self.target {
             Target::Point { at, body, node } => {
-                let x = mesh.nodes[*node];
+                let x = &mesh.nodes[*node][..at.len()];
+                let list = |v: &[f64]| {
+                    v.iter()
+                        .map(|c| c.to_string())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                };
                 format!(
-                    "node {node} at ({}, {}), the nearest{} to ({}, {})",
-                    x[0],
-                    x[1],
+                    "node {node} at ({}), the nearest{} to ({})",
+                    list(x),
                     body.as_ref()
                         .map_or(String::new(), |b| format!(" of body \"{b}\"")),
-                    at[0],
-                    at[1]
+                    list(at)
                 )
             }
             Target::Nodes {
@@ -122,23 +127,30 @@ fn probe(i: usize, p: &ProbeSpec, mesh: &Mesh, place: &str) -> Result<Probe> {
                 })?),
                 None => None,
             };
-            if !inside(mesh, *at, body) {
+            // the case checks gave the model's count of coordinates
+            let x = [at[0], at[1], at.get(2).copied().unwrap_or(0.0)];
+            let held = match mesh.dim() {
+                3 => inside_solid(mesh, x, body),
+                _ => inside(mesh, [x[0], x[1]], body),
+            };
+            if !held {
                 let within = match &p.body {
                     Some(b) => format!("body \"{}\"", clip(b)),
                     None => "the model".to_string(),
                 };
+                let point: Vec<String> = at.iter().map(|v| v.to_string()).collect();
                 return Err(Error::input(
                     key("at"),
                     format!(
-                        "the point ({}, {}) is outside {within}: no element holds it (a probe reads the node nearest to a point inside the mesh)",
-                        at[0], at[1]
+                        "the point ({}) is outside {within}: no element holds it (a probe reads the node nearest to a point inside the mesh)",
+                        point.join(", ")
                     ),
                 ));
             }
             Target::Point {
-                at: *at,
+                at: at.clone(),
                 body: p.body.clone(),
-                node: nearest(mesh, *at, body),
+                node: nearest(mesh, x, body),
             }
         }
         (None, Some(set)) => {
@@ -231,8 +243,37 @@ fn near_outline(p: [f64; 2], poly: &[[f64; 2]], tol: f64) -> bool {
     })
 }
 
-/// The node nearest to `p` (of body `body`); the lowest number on a tie.
-fn nearest(mesh: &Mesh, p: [f64; 2], body: Option<usize>) -> usize {
+/// Is `p` inside (or on) some solid element of the mesh (of body `body`)?
+/// Its natural coordinates in an element whose box holds it lie in the
+/// reference element within [`OUTLINE_TOLERANCE`].
+fn inside_solid(mesh: &Mesh, p: [f64; 3], body: Option<usize>) -> bool {
+    (0..mesh.elements.len())
+        .filter(|&e| body.is_none_or(|b| mesh.elements[e].body == b))
+        .any(|e| {
+            let el = &mesh.elements[e];
+            let Some(solid) = el.family.solid() else {
+                return false;
+            };
+            let coords: Vec<[f64; 3]> = el.nodes().iter().map(|&n| mesh.nodes[n]).collect();
+            let tol = OUTLINE_TOLERANCE * solid.diameter(&coords);
+            let boxed = (0..3).all(|i| {
+                let (lo, hi) = coords
+                    .iter()
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), c| {
+                        (lo.min(c[i]), hi.max(c[i]))
+                    });
+                p[i] >= lo - tol && p[i] <= hi + tol
+            });
+            boxed
+                && solid
+                    .natural_coords(&coords, p)
+                    .is_some_and(|xi| solid.contains(xi, OUTLINE_TOLERANCE))
+        })
+}
+
+/// The node nearest to `p` (of body `body`; z = 0 in a plane model); the
+/// lowest number on a tie.
+fn nearest(mesh: &Mesh, p: [f64; 3], body: Option<usize>) -> usize {
     let mut of_body = vec![body.is_none(); mesh.nodes.len()];
     if let Some(b) = body {
         for el in mesh.elements.iter().filter(|el| el.body == b) {
@@ -241,7 +282,10 @@ fn nearest(mesh: &Mesh, p: [f64; 2], body: Option<usize>) -> usize {
             }
         }
     }
-    let dist = |n: usize| (mesh.nodes[n][0] - p[0]).hypot(mesh.nodes[n][1] - p[1]);
+    let dist = |n: usize| {
+        let x = mesh.nodes[n];
+        (x[0] - p[0]).hypot(x[1] - p[1]).hypot(x[2] - p[2])
+    };
     (0..mesh.nodes.len())
         .filter(|&n| of_body[n])
         .min_by(|&a, &b| dist(a).total_cmp(&dist(b)))

@@ -174,6 +174,53 @@ impl Family3 {
             .collect()
     }
 
+    /// The natural coordinates ξ of the point `x` in an element with nodes at
+    /// `coords`: Newton on x(ξ) = Σ N_a(ξ) x_a from the element's centre,
+    /// J_ij = Σ_a x_a,i ∂N_a/∂ξ_j; `None` when it does not reach
+    /// |x(ξ) − x| ≤ 1e-10 × diameter in 30 steps (a point far outside a
+    /// curved element may have no preimage).
+    pub(crate) fn natural_coords(self, coords: &[[f64; 3]], x: [f64; 3]) -> Option<[f64; 3]> {
+        let mut xi = match self {
+            Family3::H20 => [0.0; 3],
+            Family3::T10 => [0.25; 3],
+        };
+        let tol = 1e-10 * self.diameter(coords);
+        for _ in 0..30 {
+            let n = self.shape(xi);
+            let d = self.shape_derivs(xi);
+            let mut r = [-x[0], -x[1], -x[2]];
+            let mut j = nalgebra::Matrix3::zeros();
+            for (a, c) in coords.iter().enumerate().take(self.nodes()) {
+                for i in 0..3 {
+                    r[i] += n[a] * c[i];
+                    for k in 0..3 {
+                        j[(i, k)] += c[i] * d[a][k];
+                    }
+                }
+            }
+            if (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt() <= tol {
+                return Some(xi);
+            }
+            let step = j.try_inverse()? * nalgebra::Vector3::from(r);
+            for k in 0..3 {
+                xi[k] -= step[k];
+            }
+            if xi.iter().any(|v| !v.is_finite() || v.abs() > 10.0) {
+                return None;
+            }
+        }
+        None
+    }
+
+    /// Whether ξ lies in the reference element, or within `tol` of it: the
+    /// cube [−1, 1]³ (hexahedron), the tetrahedron ξ, η, ζ ≥ 0, ξ + η + ζ ≤ 1.
+    pub(crate) fn contains(self, xi: [f64; 3], tol: f64) -> bool {
+        match self {
+            Family3::H20 => xi.iter().all(|v| v.abs() <= 1.0 + tol),
+            Family3::T10 => xi.iter().all(|&v| v >= -tol) && xi.iter().sum::<f64>() <= 1.0 + tol,
+        }
+    }
+
     /// The element's diameter from its node coordinates: the longest body
     /// diagonal (hexahedron) or edge between corners (tetrahedron).
     pub(crate) fn diameter(self, c: &[[f64; 3]]) -> f64 {

@@ -1004,4 +1004,46 @@ mod tests {
         assert!(e.starts_with("Gauss point 0:"), "{e}");
         assert!(ElementGeometry3::new(Family3::T10, &t[..9], &t10::gauss_4()).is_err());
     }
+
+    /// The inverse map of a curved, distorted element: every ξ mapped to x
+    /// comes back from x to 1e-10, inside the reference element; a point
+    /// pushed beyond a face comes back outside it.
+    #[test]
+    fn natural_coordinates_invert_the_map_of_a_distorted_element() {
+        let inside = [
+            [0.3, -0.6, 0.9],
+            [-0.95, 0.1, -0.2],
+            [0.0, 0.0, 0.0],
+            [1.0, 1.0, -1.0],
+        ];
+        let inside_tet = [
+            [0.1, 0.2, 0.3],
+            [0.7, 0.1, 0.1],
+            [0.25, 0.25, 0.25],
+            [0.0, 0.0, 1.0],
+        ];
+        for (f, c, pts) in [
+            (Family3::H20, hex(), inside),
+            (Family3::T10, tet(), inside_tet),
+        ] {
+            let map = |xi: [f64; 3]| -> [f64; 3] {
+                let n = f.shape(xi);
+                std::array::from_fn(|i| (0..f.nodes()).map(|a| n[a] * c[a][i]).sum())
+            };
+            for xi in pts {
+                let back = f.natural_coords(&c, map(xi)).unwrap();
+                for k in 0..3 {
+                    assert!((back[k] - xi[k]).abs() < 1e-10, "{f:?} {xi:?} → {back:?}");
+                }
+                assert!(f.contains(back, 1e-9), "{f:?} {xi:?}");
+            }
+            // beyond the face ξ = 1 (hexahedron) or ξ + η + ζ = 1 (tetrahedron)
+            let out = match f {
+                Family3::H20 => [1.15, 0.2, 0.1],
+                Family3::T10 => [0.5, 0.4, 0.25],
+            };
+            let back = f.natural_coords(&c, map(out)).unwrap();
+            assert!(!f.contains(back, 0.02), "{f:?} {back:?}");
+        }
+    }
 }
