@@ -40,7 +40,7 @@ pub(super) fn make_mesh(case: &Case, place: &str) -> Result<Mesh> {
                 }),
                 (None, Some(r)) => layout.and_then(|plane| {
                     let n = r.n * case.mesh.refine;
-                    crate::input::mesh::extrude::revolve(&plane, r.angle.to_radians(), n)
+                    crate::input::mesh::revolve::revolve(&plane, r.angle.to_radians(), n)
                 }),
                 (None, None) => layout,
             };

@@ -181,7 +181,7 @@ pub struct MeshSpec {
     /// (`input::mesh::extrude`).
     pub extrude: Option<Extrude>,
     /// A 3D model's mesh: the block layout revolved about the y axis
-    /// (`input::mesh::extrude::revolve`).
+    /// (`input::mesh::revolve`).
     pub revolve: Option<Revolve>,
 }
 

@@ -165,29 +165,7 @@ pub fn check(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
                         "applies to a node set (nodes = \"<set>\"); a point probe is one node",
                     ));
                 }
-                let dim = if case.model.plane == crate::physics::material::Plane::Solid {
-                    3
-                } else {
-                    2
-                };
-                if x.len() != dim {
-                    return Err(Error::input(
-                        key("at"),
-                        match dim {
-                            3 => format!("{x:?} is a point in the plane; a 3D model's point has three coordinates, at = [x, y, z]"),
-                            _ => format!("{x:?} has three coordinates; a plane or axisymmetric model's point is at = [x, y]"),
-                        },
-                    ));
-                }
-                for v in x {
-                    if !v.is_finite() {
-                        return Err(Error::input(
-                            key("at"),
-                            format!("{x:?} must be finite numbers (mm)"),
-                        ));
-                    }
-                    super::ranges::COORDINATE.check(key("at"), *v)?;
-                }
+                check_point(case, x, &|| key("at"))?;
             }
             (None, Some(_)) => {
                 if p.body.is_some() {
@@ -198,6 +176,35 @@ pub fn check(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
                 }
             }
         }
+    }
+    Ok(())
+}
+
+/// A probe's point: the model's count of coordinates ([x, y], or [x, y, z]
+/// in 3D), each finite and within the coordinate range.
+fn check_point(case: &Case, x: &[f64], key: &dyn Fn() -> String) -> Result<()> {
+    let dim = if case.model.plane == crate::physics::material::Plane::Solid {
+        3
+    } else {
+        2
+    };
+    if x.len() != dim {
+        return Err(Error::input(
+            key(),
+            match dim {
+                3 => format!("{x:?} is a point in the plane; a 3D model's point has three coordinates, at = [x, y, z]"),
+                _ => format!("{x:?} has three coordinates; a plane or axisymmetric model's point is at = [x, y]"),
+            },
+        ));
+    }
+    for v in x {
+        if !v.is_finite() {
+            return Err(Error::input(
+                key(),
+                format!("{x:?} must be finite numbers (mm)"),
+            ));
+        }
+        super::ranges::COORDINATE.check(key(), *v)?;
     }
     Ok(())
 }

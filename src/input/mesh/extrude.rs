@@ -20,16 +20,8 @@
 //! (a block or a body) gives `<name>.zmin` and `<name>.zmax`, the nodes and
 //! faces of its elements on the first and the last level.
 //!
-//! A revolution ([`revolve`]) is the same sweep with z read as the angle θ
-//! about the y axis, each node then placed at
-//! ```text
-//!   (x, y, θ) ↦ (x cos θ, y, x sin θ)      det ∂(x', y', z')/∂(x, y, θ) = x
-//! ```
-//! so a layout with x > 0 everywhere keeps every element right-handed and
-//! every face set outward; the midside nodes of the circumferential edges sit
-//! on their arcs (at the mid angle), the element edges in the layout's plane
-//! stay as they were. Its end sets are `<name>.theta0` (the plane z = 0) and
-//! `<name>.theta1` (θ = the angle).
+//! A revolution about the y axis is the same sweep with z read as the angle
+//! ([`super::revolve`]).
 
 use super::{Element, Face, Family, Mesh, MeshError};
 use std::collections::BTreeMap;
@@ -40,34 +32,9 @@ pub(crate) fn extrude(plane: &Mesh, zs: &[f64]) -> Result<Mesh, MeshError> {
     sweep(plane, zs, ["zmin", "zmax"])
 }
 
-/// The layout `plane` (x the radius, y the axis) revolved about the y axis
-/// from θ = 0 (the plane z = 0) through `angle` radians in `n` equal
-/// layers (module text); refused where the layout reaches the axis, whose
-/// elements would collapse into a line.
-pub(crate) fn revolve(plane: &Mesh, angle: f64, n: usize) -> Result<Mesh, MeshError> {
-    let size = plane
-        .nodes
-        .iter()
-        .fold(0.0f64, |m, x| m.max(x[0].abs()).max(x[1].abs()));
-    if let Some(x) = plane.nodes.iter().find(|x| x[0] <= 1e-9 * size) {
-        return Err(MeshError(format!(
-            "revolve: the layout reaches the axis at (x, y) = ({}, {}): an element there would \
-             collapse into a line; revolve a layout with x > 0 (a hollow part), or read a Gmsh mesh",
-            x[0], x[1]
-        )));
-    }
-    let thetas: Vec<f64> = (0..=n).map(|k| angle * k as f64 / n as f64).collect();
-    let mut mesh = sweep(plane, &thetas, ["theta0", "theta1"])?;
-    for x in &mut mesh.nodes {
-        let [r, y, theta] = *x;
-        *x = [r * theta.cos(), y, r * theta.sin()];
-    }
-    Ok(mesh)
-}
-
 /// The sweep of both: `plane` through the levels `zs`, the ends' sets named
 /// `<name>.<ends[0]>` and `<name>.<ends[1]>`.
-fn sweep(plane: &Mesh, zs: &[f64], ends: [&str; 2]) -> Result<Mesh, MeshError> {
+pub(super) fn sweep(plane: &Mesh, zs: &[f64], ends: [&str; 2]) -> Result<Mesh, MeshError> {
     if let Some(el) = plane.elements.iter().find(|el| el.family != Family::Q8) {
         return Err(MeshError(format!(
             "a sweep (extrude, revolve) takes 8-node quads; the layout has a {}",

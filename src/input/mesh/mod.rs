@@ -9,6 +9,7 @@ pub(crate) mod box3;
 pub(crate) mod extrude;
 pub mod gmsh;
 pub mod refine;
+pub(crate) mod revolve;
 
 pub(crate) use crate::physics::element::dofs::NodeDofs;
 
