@@ -174,4 +174,4 @@ fn add_end_sets(plane: &Mesh, copy: &[Vec<usize>], ends: [&str; 2], mesh: &mut M
 }
 
 #[cfg(test)]
-mod tests;
+pub(super) mod tests;

@@ -5,7 +5,7 @@ use crate::physics::element::solid3::{ElementGeometry3, Family3};
 
 /// Two blocks of one body side by side (x in [0, 10] and [10, 16]),
 /// y in [0, 4], graded.
-fn layout() -> Mesh {
+pub(crate) fn layout() -> Mesh {
     let block = |name: &str, x: [f64; 2], nx: usize| {
         let toml = format!(
             "body = \"part\"\nname = \"{name}\"\nx = [{}, {}]\nnx = [{nx}]\nrx = [1.5]\ny = [0.0, 4.0]\nny = [3]\n",
@@ -51,7 +51,7 @@ fn a_swept_layout_is_a_valid_mesh_of_the_right_volume() {
 
 /// The resultant of a unit pressure on a face set: −(outward normal) ×
 /// its area.
-fn pushed(mesh: &Mesh, set: &str) -> [f64; 3] {
+pub(crate) fn pushed(mesh: &Mesh, set: &str) -> [f64; 3] {
     let mut total = [0.0; 3];
     for face in &mesh.face_sets[set] {
         let x: Vec<[f64; 3]> = face.nodes().iter().map(|&n| mesh.nodes[n]).collect();

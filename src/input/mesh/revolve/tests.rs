@@ -1,41 +1,7 @@
 use super::*;
-use crate::input::mesh::blocks::{self, BlockSpec};
-use crate::physics::element::face::face_forces;
+// the layout and the face-set resultant of the sweep's tests
+use crate::input::mesh::extrude::tests::{layout, pushed};
 use crate::physics::element::solid3::{ElementGeometry3, Family3};
-
-/// Two blocks of one body side by side (x in [0, 10] and [10, 16]),
-/// y in [0, 4], graded.
-fn layout() -> Mesh {
-    let block = |name: &str, x: [f64; 2], nx: usize| {
-        let toml = format!(
-            "body = \"part\"\nname = \"{name}\"\nx = [{}, {}]\nnx = [{nx}]\nrx = [1.5]\ny = [0.0, 4.0]\nny = [3]\n",
-            x[0], x[1]
-        );
-        toml::from_str::<BlockSpec>(&toml).unwrap()
-    };
-    blocks::generate(
-        &[block("a", [0.0, 10.0], 4), block("b", [10.0, 16.0], 2)],
-        &[],
-        1,
-    )
-    .unwrap()
-}
-
-/// The resultant of a unit pressure on a face set: −(outward normal) ×
-/// its area.
-fn pushed(mesh: &Mesh, set: &str) -> [f64; 3] {
-    let mut total = [0.0; 3];
-    for face in &mesh.face_sets[set] {
-        let x: Vec<[f64; 3]> = face.nodes().iter().map(|&n| mesh.nodes[n]).collect();
-        let f = face_forces(face.family, &x, 1.0, [0.0; 3]);
-        for fa in f.iter().take(face.nodes().len()) {
-            for c in 0..3 {
-                total[c] += fa[c];
-            }
-        }
-    }
-    total
-}
 
 /// [`layout`] moved off the axis: x in [5, 21] (radii), y in [0, 4].
 fn hollow() -> Mesh {
