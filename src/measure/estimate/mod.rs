@@ -30,7 +30,8 @@ mod sample;
 
 use crate::model::state::State;
 use crate::model::Model;
-use crate::physics::element::family::GaussRule;
+use crate::physics::element::family::{Family, GaussRule};
+use crate::physics::element::family3::MAX_NODES3;
 use crate::physics::element::solid::ElementGeometry;
 use crate::physics::element::solid3::ElementGeometry3;
 use crate::physics::material::VonMises;
@@ -112,10 +113,12 @@ impl Estimate {
 pub fn estimate(model: &Model, state: &State) -> Estimate {
     let mesh = &model.mesh;
     let ne = mesh.elements.len();
+    let own = own_weights(model);
+    let of = |e: usize, full: bool| Points::of(model, state, e, full, &own);
     // σ_h at the sampling points of every element: what is recovered
     let mut samples = vec![recovery::Samples::default(); ne];
     for (e, s) in samples.iter_mut().enumerate() {
-        let p = Points::of(model, state, e, false);
+        let p = of(e, false);
         s.n = p.dv.len();
         s.points[..s.n].copy_from_slice(&p.x);
         s.values[..s.n].copy_from_slice(&p.stress);
@@ -125,7 +128,7 @@ pub fn estimate(model: &Model, state: &State) -> Estimate {
     let mut norm2 = 0.0;
     for (e, el) in mesh.elements.iter().enumerate() {
         let mat = &model.materials[el.body];
-        let p = Points::of(model, state, e, true);
+        let p = of(e, true);
         let star = recovered.element(e);
         for (ip, sh) in p.stress.iter().enumerate() {
             let d: [f64; 6] = std::array::from_fn(|c| {
@@ -150,6 +153,15 @@ pub fn estimate(model: &Model, state: &State) -> Estimate {
     }
 }
 
+/// Each solid family's extrapolation of the model's rule ([`Family::SOLID`]
+/// order), made once per estimate.
+fn own_weights(model: &Model) -> [Vec<[f64; MAX_NODES3]>; 2] {
+    Family::SOLID.map(|f| {
+        let solid = f.solid().expect("a solid family");
+        solid.extrapolation(model.rule3(solid))
+    })
+}
+
 /// What the estimate asks of an element at the points of one of its rules,
 /// plane or solid: their places (z = 0 in a plane model), volumes, shape
 /// functions and σ_h ([`sample`]).
@@ -164,7 +176,15 @@ impl Points {
     /// Element e's points of its full rule (`full`) or its sampling rule:
     /// 2×2 of the 8-node quadrilateral, the 6-node triangle's 3 points, 2×2×2
     /// of the 20-node hexahedron, the 10-node tetrahedron's 4 points.
-    fn of(model: &Model, state: &State, e: usize, full: bool) -> Points {
+    /// `own`: each solid family's extrapolation of the model's rule
+    /// ([`Family::SOLID`] order).
+    fn of(
+        model: &Model,
+        state: &State,
+        e: usize,
+        full: bool,
+        own: &[Vec<[f64; MAX_NODES3]>],
+    ) -> Points {
         let family = model.mesh.elements[e].family;
         let (gauss, u) = (&state.gauss, &state.u[..]);
         if let Some(solid) = family.solid() {
@@ -176,7 +196,10 @@ impl Points {
                 x: g.x[..g.n].to_vec(),
                 dv: g.dv[..g.n].to_vec(),
                 shape: (0..g.n).map(|ip| g.shape[ip][..g.nodes].to_vec()).collect(),
-                stress: sample::stresses3(model, gauss, u, e, &rule, &g),
+                stress: {
+                    let k = Family::SOLID.iter().position(|&f| f == family).unwrap_or(0);
+                    sample::stresses3(model, gauss, u, e, &rule, &g, &own[k])
+                },
             };
         }
         let rule = if full {

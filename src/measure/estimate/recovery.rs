@@ -38,6 +38,8 @@
 //! or a change of material.
 
 use crate::input::mesh::{Element, Mesh};
+use crate::physics::element::family::Family;
+use crate::physics::element::family3::MAX_NODES3;
 use nalgebra::{DMatrix, DVector, SymmetricEigen};
 use std::collections::HashMap;
 
@@ -111,6 +113,9 @@ struct Recovery<'a> {
     count: Vec<u32>,
     /// 2 or 3: the fit's polynomial ([`basis`]).
     dim: usize,
+    /// Each solid family's extrapolation from its sampling points
+    /// ([`crate::physics::element::family::Family::SOLID`] order), made once.
+    solid_weights: Vec<Vec<[f64; MAX_NODES3]>>,
 }
 
 impl<'a> Recovery<'a> {
@@ -142,6 +147,13 @@ impl<'a> Recovery<'a> {
             sum: vec![[0.0f64; 6]; nn],
             count: vec![0u32; nn],
             dim: mesh.dim(),
+            solid_weights: Family::SOLID
+                .iter()
+                .map(|f| {
+                    let solid = f.solid().expect("a solid family");
+                    solid.extrapolation(&solid.rule(false))
+                })
+                .collect(),
         }
     }
 
@@ -271,7 +283,7 @@ impl<'a> Recovery<'a> {
             if en.iter().all(|&n| self.count[n] > 0) {
                 continue;
             }
-            let ex = extrapolate(el, &self.samples[e]);
+            let ex = self.extrapolate(el, &self.samples[e]);
             for (a, &n) in en.iter().enumerate() {
                 if self.count[n] == 0 {
                     third.push((n, ex[a]));
@@ -282,30 +294,36 @@ impl<'a> Recovery<'a> {
     }
 }
 
-/// An element's own extrapolation of its sampled values to its nodes (the
-/// polynomial through the sampling points read at the nodes).
-fn extrapolate(el: &Element, samples: &Samples) -> Vec<Stress> {
-    let mut ex = vec![[0.0; 6]; el.nodes().len()];
-    if let Some(solid) = el.family.solid() {
-        let w = solid.extrapolation(&solid.rule(false));
-        for (k, (_, s)) in samples.each().enumerate() {
-            for (a, x) in ex.iter_mut().enumerate() {
-                for c in 0..6 {
-                    x[c] += w[k][a] * s[c];
+impl Recovery<'_> {
+    /// An element's own extrapolation of its sampled values to its nodes
+    /// (the polynomial through the sampling points read at the nodes).
+    fn extrapolate(&self, el: &Element, samples: &Samples) -> Vec<Stress> {
+        let mut ex = vec![[0.0; 6]; el.nodes().len()];
+        if el.family.solid().is_some() {
+            let k = Family::SOLID
+                .iter()
+                .position(|&f| f == el.family)
+                .unwrap_or(0);
+            let w = &self.solid_weights[k];
+            for (k, (_, s)) in samples.each().enumerate() {
+                for (a, x) in ex.iter_mut().enumerate() {
+                    for c in 0..6 {
+                        x[c] += w[k][a] * s[c];
+                    }
                 }
             }
+            return ex;
         }
-        return ex;
-    }
-    let rule = el.family.sampling_rule();
-    for c in 0..6 {
-        let v: Vec<f64> = samples.each().map(|(_, s)| s[c]).collect();
-        let x = el.family.extrapolate_to_nodes(&rule, &v);
-        for (a, e) in ex.iter_mut().enumerate() {
-            e[c] = x[a];
+        let rule = el.family.sampling_rule();
+        for c in 0..6 {
+            let v: Vec<f64> = samples.each().map(|(_, s)| s[c]).collect();
+            let x = el.family.extrapolate_to_nodes(&rule, &v);
+            for (a, e) in ex.iter_mut().enumerate() {
+                e[c] = x[a];
+            }
         }
+        ex
     }
-    ex
 }
 
 /// The element's edges [end, mid, end] in global node numbers (a plane

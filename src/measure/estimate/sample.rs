@@ -78,7 +78,9 @@ pub fn stresses(
 /// σ_h of solid element `e` at the points of `rule` (the module text),
 /// whose geometry is `geom`: the stored stress at the model's own rule, else
 /// the elastic law from the strain of u_h and the plastic strain read at the
-/// nodes from the stored points and interpolated.
+/// nodes from the stored points (by `w`, the element family's
+/// [`crate::physics::element::family3::Family3::extrapolation`] of the
+/// model's rule, made once per family by the caller) and interpolated.
 pub(crate) fn stresses3(
     model: &Model,
     gauss: &GaussStates,
@@ -86,6 +88,7 @@ pub(crate) fn stresses3(
     e: usize,
     rule: &GaussRule3,
     geom: &ElementGeometry3,
+    w: &[[f64; crate::physics::element::family3::MAX_NODES3]],
 ) -> Vec<[f64; 6]> {
     let stored = gauss.range(model.points(e));
     let el = &model.mesh.elements[e];
@@ -97,7 +100,6 @@ pub(crate) fn stresses3(
     let mat = &model.materials[el.body];
     let ue = model.element_u(e, u);
     // εᵖ at the nodes: Σ_k W_ka εᵖ_k
-    let w = solid.extrapolation(own);
     let mut nodal = vec![[0.0; 6]; geom.nodes];
     for (k, g) in stored.iter().enumerate() {
         for (a, n) in nodal.iter_mut().enumerate() {

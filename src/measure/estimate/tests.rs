@@ -204,8 +204,9 @@ fn effectivity_on_a_tube_sector_in_space_is_near_one() {
         ]
     };
     let mut err2 = 0.0;
+    let own = super::own_weights(&model);
     for el in 0..model.mesh.elements.len() {
-        let pts = super::Points::of(&model, &state, el, true);
+        let pts = super::Points::of(&model, &state, el, true, &own);
         let mat = &model.materials[model.mesh.elements[el].body];
         for ((x, sh), dv) in pts.x.iter().zip(&pts.stress).zip(&pts.dv) {
             let ex = exact(*x);
