@@ -102,6 +102,10 @@ pub struct Model {
     /// Every history of the case: the named ones in name order, then those
     /// given in place (empty: the case has none, and t is the load factor).
     pub histories: Vec<crate::model::history::History>,
+    /// Every `[[load]]` and `[[force]]` as a whole (its resultant at factor
+    /// 1; [`Model::applied_at`]) and the components of the resultants.
+    pub applied: Vec<crate::model::loads::Applied>,
+    pub applied_components: crate::model::loads::resultant::Components,
     pub dofs: DofMap,
     /// Index of the first interface block in [`Model::blocks`] (elements come first).
     interface_block_base: Vec<usize>,
@@ -277,6 +281,11 @@ impl Model {
             f_ext,
             loads: loads.patterns,
             histories: loads.histories,
+            applied: loads.applied,
+            applied_components: crate::model::loads::resultant::Components::of(
+                &mesh,
+                section.axisymmetric,
+            ),
             dofs,
             interface_block_base,
             n_dofs,
@@ -514,6 +523,14 @@ impl Model {
             None if self.histories.is_empty() => t,
             None => t.clamp(0.0, 1.0),
         }
+    }
+
+    /// Load `k` of [`Model::applied`] at pseudo-time t: its resultant force
+    /// (N) and moment (N·mm) components.
+    pub fn applied_at(&self, k: usize, t: f64) -> Vec<f64> {
+        let a = &self.applied[k];
+        let f = self.factor(a.history, t);
+        a.resultant.iter().map(|r| f * r + 0.0).collect()
     }
 
     /// Every load pattern: its history and its forces at factor 1 (all

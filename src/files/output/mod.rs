@@ -7,7 +7,8 @@
 //! partial output folder behind. The per-increment files are encoded and
 //! written by a thread of their own, in order (`background`).
 
-pub(crate) mod background;
+mod applied;
+mod background;
 pub mod damping;
 pub mod events;
 pub mod joints_csv;
@@ -176,6 +177,7 @@ impl Writer {
             "contact.csv",
             &peaks::contact_csv(model, result, |v| plan.part(v, &l.interfaces)),
         )?;
+        self.write("loads.csv", &applied::csv(model, result))?;
         self.write("results.pvd", &vtu::pvd(&self.pvd))?;
         replace_dir(&self.tmp_dir, &self.final_dir)?;
         self.done = true;
@@ -576,6 +578,9 @@ pub fn summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
     if !model.sections.is_empty() {
         s["pretension"] = pretension_summary(model, r);
     }
+    let plan = &model.plan;
+    s["applied_loads"] =
+        applied::summary(model, r, |v| plan.part(v, &plan.layout.reactions).to_vec());
     events::summary(model, r, &mut s);
     // only cases with a tabulated law (the others write what they always did)
     let uses = table_uses(&model.interfaces, &r.table_reach);

@@ -15,11 +15,13 @@ use crate::input::case::ranges::{self, Range};
 use crate::input::case::{Case, HistoryRef};
 use crate::input::mesh::Mesh;
 use crate::model::history::History;
+use resultant::what;
 use crate::physics::element::Section;
 use std::collections::BTreeMap;
 
 mod adaptive;
 mod faces;
+pub mod resultant;
 
 /// One force vector (all dofs, at factor 1) and its history (`None`: the
 /// load factor, or the default ramp).
@@ -47,6 +49,24 @@ pub struct Loads {
     pub acting: Vec<Acting>,
     /// The history of each `[[pretension]]` section's force or shortening.
     pub(crate) pretension_history: Vec<Option<usize>>,
+    /// Every `[[load]]` and `[[force]]` as a whole: its resultant at factor 1.
+    pub applied: Vec<Applied>,
+}
+
+/// One `[[load]]` or `[[force]]` as a designer names it, with its resultant
+/// at factor 1 ([`resultant::resultant`]); at pseudo-time t it applies
+/// `factor(history, t)` times that.
+#[derive(Clone, Debug)]
+pub struct Applied {
+    /// `load[0]`, `force[1]`: where it is in the case.
+    pub name: String,
+    /// What it applies, in words: "pressure -170.5 MPa", "force (0, 100) N".
+    pub kind: String,
+    /// Where it acts, in words: "edges top_plate.top, x in [8.5, 12.5]".
+    pub selection: String,
+    pub history: Option<usize>,
+    /// Force (N) and moment (N·mm) components at factor 1.
+    pub resultant: Vec<f64>,
 }
 
 /// One `[[load]]` or `[[force]]`: where it is written and the dofs it loads
@@ -148,6 +168,8 @@ pub fn build(
         nd,
         acting: Vec::new(),
         scaled: Vec::new(),
+        applied: Vec::new(),
+        components: resultant::Components::of(mesh, section.axisymmetric),
     };
     g.edge_loads(case, mesh, section, place, &mut res)?;
     let mut prescribed = boundary_conditions(case, mesh, place, &mut res, &mut g.scaled)?;
@@ -185,6 +207,7 @@ pub fn build(
         gap_history,
         acting: g.acting,
         pretension_history,
+        applied: g.applied,
     })
 }
 
@@ -197,6 +220,8 @@ struct Gathered {
     nd: usize,
     acting: Vec<Acting>,
     scaled: Vec<Scaled>,
+    applied: Vec<Applied>,
+    components: resultant::Components,
 }
 
 impl Gathered {
@@ -220,6 +245,13 @@ impl Gathered {
                 _ => edge_traction(case, ld, mesh, section, &at)?,
             };
             add(pattern(&mut self.patterns, h, self.nd), &terms);
+            self.applied.push(Applied {
+                name: format!("load[{i}]"),
+                kind: what::load(ld),
+                selection: what::selection(ld.faces.as_ref().unwrap_or(&ld.edges), ld.faces.is_some(), [&ld.x_range, &ld.y_range, &ld.z_range]),
+                history: h,
+                resultant: resultant::resultant(&terms, mesh, self.components),
+            });
             let scaled = &mut self.scaled;
             scaled.push((format!("{at} pressure"), ld.pressure, &ranges::PRESSURE, h));
             scaled.push((format!("{at} shear"), ld.shear, &ranges::PRESSURE, h));
@@ -263,6 +295,13 @@ impl Gathered {
             let h = res.resolve(fs.history.as_ref(), &format!("{at} history"))?;
             let terms = concentrated_force(fs, mesh, start, &at)?;
             add(pattern(&mut self.patterns, h, self.nd), &terms);
+            self.applied.push(Applied {
+                name: format!("force[{i}]"),
+                kind: what::force(fs, mesh.dim() == 3),
+                selection: format!("nodes {}{}", fs.nodes, what::ranges([&fs.x_range, &fs.y_range, &fs.z_range])),
+                history: h,
+                resultant: resultant::resultant(&terms, mesh, self.components),
+            });
             self.scaled
                 .push((format!("{at} fx"), fs.fx, &ranges::FORCE, h));
             self.scaled
