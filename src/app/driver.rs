@@ -624,6 +624,7 @@ fn report_end(log: &Log, model: &Model, dir: &Path, r: &RunResult, wall: f64, ov
                 s += &crate::files::output::events::line(model, e);
                 s.push('\n');
             }
+            s += &crate::app::applied::end_text(model, lambda);
             if contact {
                 s += &format!(
                     "final: {:.4} kN, mean pressure {:.2} MPa, center displacement {:.5} mm; ",
@@ -684,6 +685,7 @@ pub fn check(case_path: &Path, opts: &RunOptions) -> Result<String> {
     s += &plane_text(&model);
     s += &bodies_text(&model);
     s += &interfaces_text(&model);
+    s += &crate::app::applied::check_text(&model);
     s += &outputs_text(&model);
     s += &steps_text(&model);
     if let Some(a) = &adapt {

@@ -3,6 +3,7 @@
 //! ([`calibrate`]) and the MPI entry (`parallel`).
 
 pub mod adapt;
+pub mod applied;
 pub mod calibrate;
 pub mod driver;
 pub mod options;

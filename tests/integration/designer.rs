@@ -292,3 +292,115 @@ fn a_resumed_run_keeps_its_records_and_events() {
         assert_eq!(summary(&resumed)["events"], events, "stopped at {stop}");
     }
 }
+
+/// The shipped bolted joint's service load F_A is two pressures of
+/// −170.52 MPa on the annuli r ∈ [8.5, 12.5] of the outer plate faces
+/// (π (12.5² − 8.5²) = 263.89 mm²): each load's own resultant is
+/// ±p A h(t) = ±45.0 kN at the end in `loads.csv` and in summary.json's
+/// `applied_loads` (N), although the two sum to zero; the pretension
+/// section's force is there too, equal to pretension.csv's.
+#[test]
+fn each_applied_load_reports_its_own_resultant() {
+    let text =
+        std::fs::read_to_string(common::root().join("cases/bolted-joint/case.toml")).unwrap();
+    let (dir, model, r) = run_text("applied-bolt", &text, RunOptions::default());
+    let area = std::f64::consts::PI * (12.5f64.powi(2) - 8.5f64.powi(2));
+    let csv = std::fs::read_to_string(dir.join("loads.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    assert_eq!(
+        header,
+        [
+            "increment",
+            "time",
+            "load[0]:fx_n",
+            "load[0]:fy_n",
+            "load[1]:fx_n",
+            "load[1]:fy_n"
+        ]
+    );
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), r.increments.len());
+    for row in &rows {
+        let t = row[1];
+        let service = (t - 1.0).clamp(0.0, 1.0);
+        let want = 170.52 * area * service;
+        assert!(
+            (row[3] - want).abs() <= 1e-9 * 45e3,
+            "t = {t}: {} against {want}",
+            row[3]
+        );
+        assert!(
+            (row[5] + want).abs() <= 1e-9 * 45e3,
+            "t = {t}: {} against {}",
+            row[5],
+            -want
+        );
+        assert!(
+            row[2].abs() <= 1e-9 * 45e3 && row[4].abs() <= 1e-9 * 45e3,
+            "{row:?}"
+        );
+    }
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    let applied = summary["applied_loads"].as_array().unwrap();
+    assert_eq!(
+        applied.len(),
+        3,
+        "two loads and the pretension section: {applied:?}"
+    );
+    let last = rows.last().unwrap();
+    // the CSV keeps ten significant digits
+    let near = |a: &serde_json::Value, b: f64| (a.as_f64().unwrap() - b).abs() <= 1e-9 * b.abs();
+    assert!(near(&applied[0]["final"][1], last[3]), "{applied:?}");
+    assert!(near(&applied[1]["min"][1], last[5]), "{applied:?}");
+    assert_eq!(
+        applied[0]["selection"],
+        "edges top_plate.top, x in [8.5, 12.5]"
+    );
+    let bolt = r.increments.last().unwrap().sections[0][0];
+    assert_eq!(applied[2]["final"][0].as_f64().unwrap(), bolt);
+    assert_eq!(applied[2]["name"], "pretension bolt");
+    assert_eq!(model.applied.len(), 2);
+}
+
+/// A prescribed motion reports the force its support applies: the twisted
+/// shrink fit's drive turns the shaft's end, and its torque (N·m) in
+/// `applied_loads` is the reaction group's `torque_nmm` / 1000.
+#[test]
+fn a_prescribed_motion_reports_its_support_force() {
+    let text =
+        std::fs::read_to_string(common::root().join("cases/shrink-fit-torque/case.toml")).unwrap();
+    let text = text.replace("max_increment = 0.05", "max_increment = 0.25");
+    let (dir, _model, _r) = run_text("applied-motion", &text, RunOptions::default());
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    let applied = summary["applied_loads"].as_array().unwrap();
+    let drive = applied
+        .iter()
+        .find(|a| a["source"] == "boundary[1]")
+        .expect("the drive");
+    assert_eq!(
+        drive["components"],
+        serde_json::json!(["fy_n", "torque_nm"])
+    );
+    let group = summary["reactions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|g| g["source"] == "boundary[1]")
+        .unwrap();
+    let torque_nmm = group["final"][1].as_f64().unwrap();
+    assert!(
+        torque_nmm.abs() > 1e5,
+        "the fit holds a torque: {torque_nmm}"
+    );
+    assert_eq!(drive["final"][1].as_f64().unwrap(), torque_nmm * 1e-3);
+    // the support that holds the hub still moves nothing: not an applied load
+    assert!(
+        applied.iter().all(|a| a["source"] != "boundary[0]"),
+        "{applied:?}"
+    );
+}

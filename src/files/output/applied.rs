@@ -157,13 +157,19 @@ fn motions<'a>(
                 source: g.source.clone(),
                 kind: "prescribed motion (the support's force on the bodies)".into(),
                 selection: format!("nodes {}", g.set.as_deref().unwrap_or("on the axis")),
-                components: g.components.iter().map(|c| designer_label(c.label)).collect(),
+                components: g
+                    .components
+                    .iter()
+                    .map(|c| designer_label(c.label))
+                    .collect(),
                 rows: r
                     .increments
                     .iter()
                     .map(|i| {
                         let v = reactions(&i.record);
-                        (0..n).map(|j| v.get(offset + j).copied().unwrap_or(f64::NAN) * m[j]).collect()
+                        (0..n)
+                            .map(|j| v.get(offset + j).copied().unwrap_or(f64::NAN) * m[j])
+                            .collect()
                     })
                     .collect(),
             });

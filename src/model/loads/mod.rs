@@ -15,8 +15,8 @@ use crate::input::case::ranges::{self, Range};
 use crate::input::case::{Case, HistoryRef};
 use crate::input::mesh::Mesh;
 use crate::model::history::History;
-use resultant::what;
 use crate::physics::element::Section;
+use resultant::what;
 use std::collections::BTreeMap;
 
 mod adaptive;
@@ -248,7 +248,11 @@ impl Gathered {
             self.applied.push(Applied {
                 name: format!("load[{i}]"),
                 kind: what::load(ld),
-                selection: what::selection(ld.faces.as_ref().unwrap_or(&ld.edges), ld.faces.is_some(), [&ld.x_range, &ld.y_range, &ld.z_range]),
+                selection: what::selection(
+                    ld.faces.as_ref().unwrap_or(&ld.edges),
+                    ld.faces.is_some(),
+                    [&ld.x_range, &ld.y_range, &ld.z_range],
+                ),
                 history: h,
                 resultant: resultant::resultant(&terms, mesh, self.components),
             });
@@ -298,7 +302,11 @@ impl Gathered {
             self.applied.push(Applied {
                 name: format!("force[{i}]"),
                 kind: what::force(fs, mesh.dim() == 3),
-                selection: format!("nodes {}{}", fs.nodes, what::ranges([&fs.x_range, &fs.y_range, &fs.z_range])),
+                selection: format!(
+                    "nodes {}{}",
+                    fs.nodes,
+                    what::ranges([&fs.x_range, &fs.y_range, &fs.z_range])
+                ),
                 history: h,
                 resultant: resultant::resultant(&terms, mesh, self.components),
             });
@@ -1050,6 +1058,101 @@ rotation = 0.0
                     "{key} by a {by}: {e}"
                 );
             }
+        }
+    }
+
+    /// Each load's resultant is its closed form: an axial pressure on the
+    /// annulus r ∈ [1, 10] is p π (10² − 1²) along z, a torque load its
+    /// torque, a hoop shear τ 2π ∫ r² dr, a radial force per node n f; with
+    /// a history the resultant at t is h(t) times it (`Model::applied_at`).
+    #[test]
+    fn resultants_of_axisymmetric_loads_are_their_closed_forms() {
+        let pi = std::f64::consts::PI;
+        let cases: [(&str, [f64; 3]); 4] = [
+            (
+                "[[load]]\nedges = \"shaft.top\"\npressure = 2.0",
+                [0.0, -2.0 * pi * 99.0, 0.0],
+            ),
+            (
+                "[[load]]\nedges = \"shaft.top\"\ntorque = 5e5",
+                [0.0, 0.0, 5e5],
+            ),
+            (
+                "[[load]]\nedges = \"shaft.top\"\nhoop_shear = 3.0",
+                [0.0, 0.0, 3.0 * 2.0 * pi * (1000.0 - 1.0) / 3.0],
+            ),
+            (
+                "[[force]]\nnodes = \"shaft.top\"\nfy = 7.0",
+                [0.0, 7.0 * 5.0, 0.0],
+            ),
+        ];
+        for (load, want) in cases {
+            let text = format!("{load}\nhistory = [[0.0, 0.0], [2.0, 1.0]]");
+            let m =
+                shaft(&text, "step_control = \"auto\"").unwrap_or_else(|e| panic!("{load}: {e}"));
+            assert_eq!(m.applied.len(), 1);
+            let r = &m.applied[0].resultant;
+            for c in 0..3 {
+                let scale = want.iter().fold(1.0f64, |a, w| a.max(w.abs()));
+                assert!(
+                    (r[c] - want[c]).abs() <= 1e-12 * scale,
+                    "{load}: {r:?} against {want:?}"
+                );
+            }
+            let half = m.applied_at(0, 1.0);
+            assert!(
+                (half[1] - 0.5 * r[1]).abs() <= 1e-15 * r[1].abs() + 1e-300,
+                "{load}: {half:?}"
+            );
+        }
+    }
+
+    /// In 3D a uniform traction t on a face of area A is F = t A and its
+    /// moment about the origin x_c × F (the face's centre x_c).
+    #[test]
+    fn a_traction_on_a_face_in_space_has_force_and_moment() {
+        let text = r#"
+[model]
+plane = "3d"
+
+[[mesh.block]]
+body = "b"
+x = [1.0, 3.0]
+nx = [2]
+y = [0.0, 4.0]
+ny = [2]
+
+[mesh.extrude]
+z = [0.0, 5.0]
+nz = [2]
+
+[materials.b]
+young = 206000.0
+poisson = 0.3
+
+[[boundary]]
+set = "b.bottom"
+ux = 0.0
+uy = 0.0
+uz = 0.0
+
+[[load]]
+faces = "b.top"
+traction = [1.0, 0.0, 2.0]
+"#;
+        let m = Model::parse(text, "case.toml").unwrap();
+        let r = &m.applied[0].resultant;
+        // the top face y = 4: x in [1, 3], z in [0, 5], area 10, centre (2, 4, 2.5)
+        let f = [10.0, 0.0, 20.0];
+        let c = [2.0, 4.0, 2.5];
+        let moment = [
+            c[1] * f[2] - c[2] * f[1],
+            c[2] * f[0] - c[0] * f[2],
+            c[0] * f[1] - c[1] * f[0],
+        ];
+        let want = [f[0], f[1], f[2], moment[0], moment[1], moment[2]];
+        for k in 0..6 {
+            assert!((r[k] - want[k]).abs() < 1e-10, "{r:?} against {want:?}");
         }
     }
 }

@@ -125,7 +125,12 @@ pub(super) mod what {
     pub fn force(fs: &ForceSpec, solid: bool) -> String {
         let s = crate::numbers::num;
         match solid {
-            true => format!("force ({}, {}, {}) N at each node", s(fs.fx), s(fs.fy), s(fs.fz)),
+            true => format!(
+                "force ({}, {}, {}) N at each node",
+                s(fs.fx),
+                s(fs.fy),
+                s(fs.fz)
+            ),
             false => format!("force ({}, {}) N at each node", s(fs.fx), s(fs.fy)),
         }
     }
