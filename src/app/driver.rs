@@ -323,6 +323,7 @@ fn run_model_as(
     started: Instant,
     cycle: bool,
 ) -> Result<(PathBuf, RunResult)> {
+    crate::verdict::prepare(model)?;
     let dir = opts
         .out
         .clone()
@@ -625,6 +626,7 @@ fn report_end(log: &Log, model: &Model, dir: &Path, r: &RunResult, wall: f64, ov
                 s.push('\n');
             }
             s += &crate::app::applied::end_text(model, lambda);
+            s += &crate::app::ratings::end_text(model, r);
             if contact {
                 s += &format!(
                     "final: {:.4} kN, mean pressure {:.2} MPa, center displacement {:.5} mm; ",
@@ -663,6 +665,7 @@ pub fn check(case_path: &Path, opts: &RunOptions) -> Result<String> {
     let case = load_case(case_path, opts)?;
     let adapt = case.adapt.clone();
     let model = Model::build(case)?;
+    crate::verdict::prepare(&model)?;
     // a table the applied load alone takes far beyond its data
     let place = model.source.display().to_string();
     for t in predicted(&model) {

@@ -7,6 +7,7 @@ pub mod applied;
 pub mod calibrate;
 pub mod driver;
 pub mod options;
+pub mod ratings;
 #[cfg(feature = "parallel")]
 pub mod parallel;
 pub mod study;

@@ -106,6 +106,8 @@ pub struct Model {
     /// 1; [`Model::applied_at`]) and the components of the resultants.
     pub applied: Vec<crate::model::loads::Applied>,
     pub applied_components: crate::model::loads::resultant::Components,
+    /// The joints rated to a design standard (`[[rating]]`, [`crate::verdict`]).
+    pub ratings: Vec<crate::input::case::rating::RatingSpec>,
     pub dofs: DofMap,
     /// Index of the first interface block in [`Model::blocks`] (elements come first).
     interface_block_base: Vec<usize>,
@@ -282,6 +284,7 @@ impl Model {
             loads: loads.patterns,
             histories: loads.histories,
             applied: loads.applied,
+            ratings: case.rating.clone(),
             applied_components: crate::model::loads::resultant::Components::of(
                 &mesh,
                 section.axisymmetric,

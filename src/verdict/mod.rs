@@ -1,6 +1,49 @@
 //! What a designer concludes from a run: the ratings of the standards a joint is designed to
 //! (DIN 7190-1:2017 for interference fits, VDI 2230-1:2015 for bolted joints), the handbook's side
 //! computed from the standard's own formulas ([`handbook`]) and set beside the numbers the run
-//! measured.
+//! measured ([`rating::Rating`]).
 
+pub mod fit;
 pub mod handbook;
+pub mod rating;
+
+use crate::error::Result;
+use crate::input::case::rating::RatingSpec;
+use crate::model::Model;
+use crate::solve::RunResult;
+
+/// Checks that every `[[rating]]` can be rated on this model (the names it
+/// gives exist, the model is of the kind the standard rates), before the
+/// run.
+pub fn prepare(model: &Model) -> Result<()> {
+    for (i, spec) in model.ratings.iter().enumerate() {
+        let at = at(model, i, spec);
+        match spec {
+            RatingSpec::Fit(f) => {
+                fit::pose(model, f, &at)?;
+            }
+            RatingSpec::Bolt(_) => {}
+        }
+    }
+    Ok(())
+}
+
+/// The ratings of a finished run, in the case's order.
+pub fn rate(model: &Model, r: &RunResult) -> Result<Vec<rating::Rating>> {
+    let mut out = Vec::new();
+    for (i, spec) in model.ratings.iter().enumerate() {
+        let at = at(model, i, spec);
+        match spec {
+            RatingSpec::Fit(f) => {
+                let posed = fit::pose(model, f, &at)?;
+                out.push(fit::rate(model, r, f, posed));
+            }
+            RatingSpec::Bolt(_) => {}
+        }
+    }
+    Ok(out)
+}
+
+fn at(model: &Model, i: usize, spec: &RatingSpec) -> String {
+    format!("{}: rating[{i}] ({})", model.source.display(), spec.standard())
+}

@@ -582,6 +582,12 @@ pub fn summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
     s["applied_loads"] =
         applied::summary(model, r, |v| plan.part(v, &plan.layout.reactions).to_vec());
     events::summary(model, r, &mut s);
+    if !model.ratings.is_empty() {
+        s["ratings"] = match crate::verdict::rate(model, r) {
+            Ok(ratings) => serde_json::to_value(ratings).unwrap_or_default(),
+            Err(e) => json!([{"error": e.to_string()}]),
+        };
+    }
     // only cases with a tabulated law (the others write what they always did)
     let uses = table_uses(&model.interfaces, &r.table_reach);
     if !uses.is_empty() {

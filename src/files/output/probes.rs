@@ -103,6 +103,17 @@ pub fn summary(probes: &[Probe], mesh: &Mesh, rows: &[&[f64]]) -> Value {
                     o["statistic"] = json!(statistic.name());
                     o["node_count"] = json!(nodes.len());
                 }
+                Target::Surface {
+                    interface,
+                    body,
+                    nodes,
+                    ..
+                } => {
+                    o["kind"] = json!("surface");
+                    o["set"] = json!(format!("{interface} ({body}'s side)"));
+                    o["statistic"] = json!("area mean");
+                    o["node_count"] = json!(nodes.len());
+                }
             }
             o
         })

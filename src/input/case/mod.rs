@@ -9,6 +9,7 @@ pub mod adapt;
 pub mod outputs;
 pub mod overrides;
 pub mod ranges;
+pub mod rating;
 pub mod solid;
 pub mod twist;
 mod validate;
@@ -82,6 +83,9 @@ pub struct Case {
     pub probe: Vec<outputs::ProbeSpec>,
     /// An adaptive run (`[adapt]`, [`crate::app::adapt`]).
     pub adapt: Option<adapt::AdaptSpec>,
+    /// Joints rated to a design standard ([`crate::verdict`]).
+    #[serde(default)]
+    pub rating: Vec<rating::RatingSpec>,
 }
 
 /// A pretension section (`[[pretension]]`, after Abaqus *PRE-TENSION SECTION):

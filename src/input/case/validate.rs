@@ -69,6 +69,7 @@ pub fn check_case(case: &Case) -> Result<Checked> {
     let (laws, tangential) = interface_laws(case, &at)?;
     check_solver(case, &at)?;
     super::outputs::check(case, &at)?;
+    super::rating::check(&case.rating, &at)?;
     super::adapt::check(case, &at)?;
     Ok(Checked { laws, tangential })
 }

@@ -12,6 +12,7 @@
 //! file, and written out at the end of the run (`reactions.csv`,
 //! `probes.csv`, `peaks.csv`, `contact.csv`, summary.json).
 
+pub mod bearings;
 pub mod probes;
 pub mod reactions;
 use crate::error::Result;
@@ -69,7 +70,8 @@ impl Plan {
         place: &str,
     ) -> Result<Plan> {
         let reactions = reactions::groups(case, mesh, prescribed);
-        let probes = probes::build(case, mesh, place)?;
+        let mut probes = probes::build(case, mesh, place)?;
+        probes.extend(bearings::build(case, mesh, interfaces, place)?);
         let arcs = interfaces
             .iter()
             .zip(&mesh.interfaces)

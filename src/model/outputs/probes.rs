@@ -7,6 +7,7 @@ use crate::error::{clip, Error, Result};
 use crate::input::case::outputs::{ProbeSpec, Statistic};
 use crate::input::case::Case;
 use crate::input::mesh::{Mesh, NodeDofs};
+use crate::model::interface::InterfaceModel;
 
 /// A point within this fraction of an element's size of the element's
 /// outline (its 8 nodes joined by straight lines) counts as inside it: a
@@ -28,6 +29,16 @@ pub enum Target {
         set: String,
         nodes: Vec<usize>,
         statistic: Statistic,
+    },
+    /// One side of an interface, its nodes' displacements averaged with the
+    /// area each stands for (a rating's bearing surface, [`surface`]).
+    Surface {
+        interface: String,
+        /// The body whose side it is.
+        body: String,
+        nodes: Vec<usize>,
+        /// The area each node stands for, mm² (Σ = the side's area).
+        weights: Vec<f64>,
     },
 }
 
@@ -58,6 +69,10 @@ impl Probe {
                         Statistic::Min => vals.fold(f64::INFINITY, f64::min),
                         Statistic::Max => vals.fold(f64::NEG_INFINITY, f64::max),
                     }
+                }
+                Target::Surface { nodes, weights, .. } => {
+                    let sum = nodes.iter().zip(weights).map(|(&n, w)| w * u[nd.dof(n, c)]);
+                    sum.sum::<f64>() / weights.iter().sum::<f64>()
                 }
             }
         };
@@ -96,7 +111,36 @@ impl Probe {
                 statistic.name(),
                 nodes.len()
             ),
+            Target::Surface {
+                interface,
+                body,
+                nodes,
+                ..
+            } => format!(
+                "area mean over {body}'s side of interface \"{interface}\" ({} nodes)",
+                nodes.len()
+            ),
         }
+    }
+}
+
+/// The probe of body `body`'s side of interface `iface` (the area mean of
+/// its nodes' displacements, each node weighted by the tributary areas of
+/// the interface's pairs it holds), named `name`.
+pub fn surface(name: String, iface: &InterfaceModel, body: usize, mesh: &Mesh) -> Probe {
+    let mut weight: std::collections::BTreeMap<usize, f64> = Default::default();
+    for p in &iface.pairs {
+        let node = if iface.body_a == body { p.a } else { p.b };
+        *weight.entry(node).or_insert(0.0) += p.area;
+    }
+    Probe {
+        name,
+        target: Target::Surface {
+            interface: iface.name.clone(),
+            body: mesh.bodies[body].clone(),
+            nodes: weight.keys().copied().collect(),
+            weights: weight.values().copied().collect(),
+        },
     }
 }
 

@@ -1,0 +1,219 @@
+//! DIN 7190-1:2017 for an interference fit of an axisymmetric model: the
+//! standard's side from [`handbook::din7190`] with the geometry read off the
+//! mesh, beside what the run measured on the fit's interface.
+//!
+//! The FE's numbers: the fit pressure as the interface's normal force over
+//! π D_F l_F (mean) and its largest pair pressure (peak, at the joint's
+//! edges); the torque and axial force the fit held as the largest the
+//! interface carried over the run (its holding plateau, when the run turns or
+//! pushes the fit to gross slip), else the friction capacity p π D_F l_F ν of
+//! the FE's mean pressure; each part's largest von Mises stress against its
+//! yield stress.
+
+use super::handbook::din7190::{Fit, SMOOTHING_2017};
+use super::rating::{joint_series, max_pressure, max_von_mises, Check, Input, Rating};
+use crate::error::{clip, Error, Result};
+use crate::input::case::rating::FitSpec;
+use crate::model::interface::InterfaceModel;
+use crate::model::Model;
+use crate::solve::RunResult;
+use std::f64::consts::PI;
+
+/// The fit as the mesh and the case give it: which interface, which body
+/// is the hub, and the standard's inputs.
+pub struct Posed {
+    pub interface: usize,
+    pub hub: usize,
+    pub shaft: usize,
+    pub fit: Fit,
+    pub inputs: Vec<Input>,
+}
+
+/// Reads the fit off the model; refuses what DIN 7190 cannot rate.
+pub fn pose(model: &Model, spec: &FitSpec, at: &str) -> Result<Posed> {
+    let fail = |m: String| Error::input(format!("{at} interface"), m);
+    if !model.section.axisymmetric || model.mesh.dim() != 2 {
+        return Err(Error::input(at, "DIN 7190 rates a cylindrical fit: give it an axisymmetric model (plane = \"axisymmetric\")"));
+    }
+    let i = model
+        .interfaces
+        .iter()
+        .position(|m| m.name == spec.interface)
+        .ok_or_else(|| fail(format!("names no interface \"{}\"", clip(&spec.interface))))?;
+    let im = &model.interfaces[i];
+    if im.gap >= 0.0 {
+        return Err(fail(format!(
+            "\"{}\" has no interference (gap = {} mm): DIN 7190 rates a fit whose gap is negative",
+            clip(&spec.interface),
+            crate::numbers::num(im.gap)
+        )));
+    }
+    let (r_f, l_f) = joint_extent(im);
+    let (hub, shaft) = hub_and_shaft(model, im, r_f);
+    let (lo, hi) = radii(model, hub);
+    let (bore, _) = radii(model, shaft);
+    if (hi - r_f).abs() < 1e-9 * r_f || (lo - r_f).abs() > 1e-6 * r_f.max(1.0) || l_f <= 0.0 {
+        return Err(fail(format!(
+            "\"{}\" is not a cylinder between a shaft and a hub round it (radius {} mm, length {} mm)",
+            clip(&spec.interface),
+            crate::numbers::num(r_f),
+            crate::numbers::num(l_f)
+        )));
+    }
+    let adhesion = match (spec.adhesion, &im.tangential) {
+        (Some(v), _) => (v, "case"),
+        (None, Some(t)) => (t.mu, "interface"),
+        (None, None) => return Err(Error::input(format!("{at} adhesion"), "is needed: the interface has no friction (`[interface.NAME.tangential] mu`) to take it from")),
+    };
+    let (mh, ms) = (&model.materials[hub], &model.materials[shaft]);
+    let d_ii = if bore < 1e-6 * r_f { 0.0 } else { 2.0 * bore };
+    let fit = Fit {
+        d_f: 2.0 * r_f,
+        l_f,
+        d_aa: 2.0 * hi,
+        d_ii,
+        e_hub: mh.young,
+        poisson_hub: mh.poisson,
+        e_shaft: ms.young,
+        poisson_shaft: ms.poisson,
+        interference: -2.0 * im.gap,
+        rz_hub: spec.rz_hub.unwrap_or(0.0),
+        rz_shaft: spec.rz_shaft.unwrap_or(0.0),
+        smoothing: spec.smoothing.unwrap_or(SMOOTHING_2017),
+        yield_hub: mh.yield_stress,
+        yield_shaft: ms.yield_stress,
+        adhesion_torque: adhesion.0,
+        adhesion_axial: adhesion.0,
+    };
+    let inputs = inputs(&fit, spec, adhesion.1);
+    Ok(Posed { interface: i, hub, shaft, fit, inputs })
+}
+
+/// The interface's radius (area mean of its pairs' x) and its axial length.
+fn joint_extent(im: &InterfaceModel) -> (f64, f64) {
+    let area: f64 = im.pairs.iter().map(|p| p.area).sum();
+    let r = im.pairs.iter().map(|p| p.area * p.x[0]).sum::<f64>() / area.max(f64::MIN_POSITIVE);
+    let (lo, hi) = im
+        .pairs
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| (a.min(p.x[1]), b.max(p.x[1])));
+    (r, hi - lo)
+}
+
+/// (hub, shaft): the body of the two that reaches beyond the interface.
+fn hub_and_shaft(model: &Model, im: &InterfaceModel, r_f: f64) -> (usize, usize) {
+    let (_, hi_a) = radii(model, im.body_a);
+    if hi_a > r_f * (1.0 + 1e-9) {
+        (im.body_a, im.body_b)
+    } else {
+        (im.body_b, im.body_a)
+    }
+}
+
+/// The smallest and largest radius of body b's nodes.
+fn radii(model: &Model, b: usize) -> (f64, f64) {
+    let mesh = &model.mesh;
+    mesh.elements
+        .iter()
+        .filter(|e| e.body == b)
+        .flat_map(|e| e.nodes().iter())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &n| {
+            let x = mesh.nodes[n][0];
+            (lo.min(x), hi.max(x))
+        })
+}
+
+fn inputs(fit: &Fit, spec: &FitSpec, adhesion_from: &'static str) -> Vec<Input> {
+    let from = |given: bool| if given { "case" } else { "default" };
+    vec![
+        Input { name: "joint diameter", symbol: "D_F", value: fit.d_f, unit: "mm", from: "mesh" },
+        Input { name: "joint length", symbol: "l_F", value: fit.l_f, unit: "mm", from: "mesh" },
+        Input { name: "hub outer diameter", symbol: "D_aA", value: fit.d_aa, unit: "mm", from: "mesh" },
+        Input { name: "shaft bore", symbol: "D_iI", value: fit.d_ii, unit: "mm", from: "mesh" },
+        Input { name: "interference (diametral)", symbol: "U", value: fit.interference * 1e3, unit: "µm", from: "interface" },
+        Input { name: "hub bore roughness", symbol: "Rz_A", value: fit.rz_hub, unit: "µm", from: from(spec.rz_hub.is_some()) },
+        Input { name: "shaft roughness", symbol: "Rz_I", value: fit.rz_shaft, unit: "µm", from: from(spec.rz_shaft.is_some()) },
+        Input { name: "smoothing factor", symbol: "k", value: fit.smoothing, unit: "", from: from(spec.smoothing.is_some()) },
+        Input { name: "adhesion coefficient", symbol: "ν_r", value: fit.adhesion_torque, unit: "", from: adhesion_from },
+        Input { name: "hub yield stress", symbol: "R_eL,A", value: fit.yield_hub, unit: "MPa", from: "material" },
+        Input { name: "shaft yield stress", symbol: "R_eL,I", value: fit.yield_shaft, unit: "MPa", from: "material" },
+        Input { name: "application factor", symbol: "K_A", value: spec.application_factor.unwrap_or(1.0), unit: "", from: from(spec.application_factor.is_some()) },
+    ]
+}
+
+/// The rating of a finished run.
+pub fn rate(model: &Model, r: &RunResult, spec: &FitSpec, posed: Posed) -> Rating {
+    let Posed { interface: i, hub, shaft, fit, inputs } = posed;
+    let area = PI * fit.d_f * fit.l_f;
+    let last = r.increments.last().and_then(|inc| inc.joints.get(i));
+    let p_fe = last.map(|j| j.normal_force / area);
+    let p_hb = fit.pressure();
+    let k_a = spec.application_factor.unwrap_or(1.0);
+    let slip = spec.slip_safety.unwrap_or(1.5);
+    let yield_s = spec.yield_safety.unwrap_or(1.1);
+    let torque_demand = spec.torque.map(|t| k_a * t);
+    let axial_demand = spec.axial_force.map(|f| k_a * f);
+    let held_torque = joint_series(r, i).map(|(_, j)| j.torque.abs()).fold(0.0, f64::max);
+    let held_axial = joint_series(r, i).map(|(_, j)| j.tangential_force.abs()).fold(0.0, f64::max);
+    let turned = slipped(r, i) && held_torque > 0.0;
+    let fe_torque = if turned { Some(held_torque) } else { p_fe.and_then(|p| fit.transmissible_torque(p)) };
+    let pushed = slipped(r, i) && held_axial > held_torque / fit.d_f;
+    let fe_axial = if pushed { Some(held_axial) } else { p_fe.and_then(|p| fit.transmissible_axial_force(p)) };
+    let mut checks = vec![
+        Check::both("fit pressure, mean", "p", "MPa", p_fe, p_hb)
+            .note("FE: the interface's normal force / (π D_F l_F) at the end; handbook: plane-stress Lamé with the smoothing k (Rz_A + Rz_I)"),
+        Check::both("fit pressure, peak", "p_max", "MPa", max_pressure(model, r, i), p_hb)
+            .note("FE: the largest pair pressure over the run, at the joint's edges where the hub ends; the handbook's is uniform"),
+        Check::both("transmissible torque", "M_t", "N·m", fe_torque.map(|t| t * 1e-3), p_hb.and_then(|p| fit.transmissible_torque(p)).map(|t| t * 1e-3))
+            .against(torque_demand, slip)
+            .note(if turned { "FE: the largest torque the fit held (its plateau as it slips); handbook: p π D_F² l_F ν/2" } else { "FE: p π D_F² l_F ν/2 with the FE's mean pressure (the run does not turn the fit); handbook: with Lamé's" }),
+        Check::both("transmissible axial force", "F_ax", "N", fe_axial, p_hb.and_then(|p| fit.transmissible_axial_force(p)))
+            .against(axial_demand, slip)
+            .note(if pushed { "FE: the largest axial force the fit held as it slipped; handbook: p π D_F l_F ν" } else { "FE: p π D_F l_F ν with the FE's mean pressure; handbook: with Lamé's" }),
+    ];
+    if torque_demand.is_some() || axial_demand.is_some() {
+        let (t, f) = (spec.torque.unwrap_or(0.0) * 1e3, spec.axial_force.unwrap_or(0.0));
+        let mut c = Check::both("combined slip safety", "S_r", "", p_fe.and_then(|p| fit.slip_safety(p, t, f, k_a)), p_hb.and_then(|p| fit.slip_safety(p, t, f, k_a)));
+        c.required_safety = Some(slip);
+        c.safety = c.fe.or(c.handbook);
+        c.pass = c.safety.map(|s| s >= slip);
+        checks.push(c.note("torque and axial force together: S_r = p π D_F l_F ν / (K_A √(F_ax² + (2 M_t/D_F)²))"));
+    }
+    checks.extend(yield_checks(model, r, &fit, (hub, shaft), p_hb, yield_s));
+    let names = &model.mesh.bodies;
+    Rating {
+        standard: "DIN 7190-1:2017",
+        name: spec.name.clone().unwrap_or_else(|| spec.interface.clone()),
+        subject: format!("interference fit \"{}\": shaft {} in hub {}", spec.interface, names[shaft], names[hub]),
+        inputs,
+        checks,
+    }
+}
+
+/// Whether the fit slipped as a whole at some increment (all its closed
+/// measure in macro-slip).
+fn slipped(r: &RunResult, i: usize) -> bool {
+    joint_series(r, i).any(|(_, j)| j.closed > 0.0 && j.macro_slip >= 0.999 * j.closed)
+}
+
+/// Hub and shaft against yield: the FE's largest von Mises stress and the
+/// handbook's at the bore, each against R_eL; and the standard's pressure
+/// limits (elastic p_F, the hub's fully plastic limit) against the pressure.
+fn yield_checks(model: &Model, r: &RunResult, fit: &Fit, (hub, shaft): (usize, usize), p: Option<f64>, s_f: f64) -> Vec<Check> {
+    let hub_hb = p.and_then(|p| fit.hub_stresses(p)).map(|s| s.von_mises);
+    let shaft_hb = p.and_then(|p| fit.shaft_stresses(p)).map(|s| s.von_mises);
+    vec![
+        Check::both("hub von Mises stress", "σ_v,A", "MPa", max_von_mises(model, r, hub), hub_hb)
+            .below(Some(fit.yield_hub), s_f)
+            .note("FE: the hub's largest von Mises stress over the run (edge peaks included); handbook: plane-stress Lamé at the bore"),
+        Check::both("shaft von Mises stress", "σ_v,I", "MPa", max_von_mises(model, r, shaft), shaft_hb)
+            .below(Some(fit.yield_shaft), s_f)
+            .note("FE: the shaft's largest von Mises stress over the run; handbook: plane-stress Lamé at its bore (solid: uniform)"),
+        Check::both("hub elastic limit pressure", "p_FA", "MPa", None, fit.yield_pressure_hub())
+            .against(p, s_f)
+            .note("the pressure at which the hub's bore starts to yield, (1 − Q_A²) R_eL,A/√3, against the Lamé pressure"),
+        Check::both("hub fully plastic limit pressure", "p_A,max", "MPa", None, fit.plastic_limit_hub())
+            .against(p, 1.0)
+            .note("the pressure a fully plastic hub holds, −(2/√3) R_eL,A ln Q_A: the absolute limit"),
+    ]
+}

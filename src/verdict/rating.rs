@@ -1,0 +1,141 @@
+//! A rating as the outputs hold it: the standard's inputs, then each check
+//! with the FE's number beside the handbook's, the demand, the safety and
+//! the verdict (summary.json's `ratings`, docs/output.md).
+
+use crate::model::Model;
+use crate::solve::RunResult;
+use serde::Serialize;
+
+/// One input of a rating and where its value came from.
+#[derive(Clone, Debug, Serialize)]
+pub struct Input {
+    pub name: &'static str,
+    pub symbol: &'static str,
+    pub value: f64,
+    pub unit: &'static str,
+    /// "case" (the rating's key), "mesh", "material", "interface", "default".
+    pub from: &'static str,
+}
+
+/// One check: the FE's number, the handbook's, and against what.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct Check {
+    pub quantity: &'static str,
+    pub symbol: &'static str,
+    pub unit: &'static str,
+    pub fe: Option<f64>,
+    pub handbook: Option<f64>,
+    /// fe / handbook − 1.
+    pub difference: Option<f64>,
+    /// The demand or the limit the value is held against.
+    pub required: Option<f64>,
+    /// The safety against `required` (the FE's where it has one).
+    pub safety: Option<f64>,
+    pub required_safety: Option<f64>,
+    pub pass: Option<bool>,
+    pub note: String,
+}
+
+impl Check {
+    /// A quantity the FE and the handbook both give.
+    pub fn both(q: &'static str, symbol: &'static str, unit: &'static str, fe: Option<f64>, hb: Option<f64>) -> Check {
+        let fe = fe.filter(|v| v.is_finite());
+        let handbook = hb.filter(|v| v.is_finite());
+        let difference = match (fe, handbook) {
+            (Some(a), Some(b)) if b != 0.0 => Some(a / b - 1.0),
+            _ => None,
+        };
+        Check {
+            quantity: q,
+            symbol,
+            unit,
+            fe,
+            handbook,
+            difference,
+            ..Check::default()
+        }
+    }
+
+    /// Held against a demand: safety = capacity / demand, which must reach
+    /// `required_safety` (the FE's capacity, else the handbook's).
+    pub fn against(mut self, demand: Option<f64>, required_safety: f64) -> Check {
+        self.required = demand;
+        self.required_safety = Some(required_safety);
+        let capacity = self.fe.or(self.handbook);
+        if let (Some(c), Some(d)) = (capacity, demand) {
+            if d > 0.0 {
+                let s = c / d;
+                self.safety = Some(s);
+                self.pass = Some(s >= required_safety);
+            }
+        }
+        self
+    }
+
+    /// Held below a limit: safety = limit / value, which must reach
+    /// `required_safety`.
+    pub fn below(mut self, limit: Option<f64>, required_safety: f64) -> Check {
+        self.required = limit;
+        self.required_safety = Some(required_safety);
+        let value = self.fe.or(self.handbook);
+        if let (Some(v), Some(l)) = (value, limit) {
+            if v > 0.0 {
+                let s = l / v;
+                self.safety = Some(s);
+                self.pass = Some(s >= required_safety);
+            }
+        }
+        self
+    }
+
+    pub fn note(mut self, note: impl Into<String>) -> Check {
+        self.note = note.into();
+        self
+    }
+}
+
+/// One `[[rating]]`'s result.
+#[derive(Clone, Debug, Serialize)]
+pub struct Rating {
+    pub standard: &'static str,
+    pub name: String,
+    /// What is rated, in words.
+    pub subject: String,
+    pub inputs: Vec<Input>,
+    pub checks: Vec<Check>,
+}
+
+impl Rating {
+    /// Whether every check with a verdict passes (None: no check has one).
+    pub fn passes(&self) -> Option<bool> {
+        let verdicts: Vec<bool> = self.checks.iter().filter_map(|c| c.pass).collect();
+        (!verdicts.is_empty()).then(|| verdicts.iter().all(|&p| p))
+    }
+}
+
+/// The increments' values of interface `i`'s joint measures.
+pub(crate) fn joint_series<'a>(r: &'a RunResult, i: usize) -> impl Iterator<Item = (f64, &'a crate::measure::joint::JointMeasures)> + 'a {
+    r.increments.iter().filter_map(move |inc| inc.joints.get(i).map(|j| (inc.load_factor, j)))
+}
+
+/// The largest von Mises stress (MPa) of body `b` at any increment.
+pub(crate) fn max_von_mises(model: &Model, r: &RunResult, b: usize) -> Option<f64> {
+    let plan = &model.plan;
+    let k = crate::model::outputs::PER_BODY * b;
+    r.increments
+        .iter()
+        .map(|inc| plan.part(&inc.record, &plan.layout.bodies).get(k).copied().unwrap_or(f64::NAN))
+        .filter(|v| v.is_finite())
+        .reduce(f64::max)
+}
+
+/// The largest contact pressure (MPa) of interface `i` at any increment.
+pub(crate) fn max_pressure(model: &Model, r: &RunResult, i: usize) -> Option<f64> {
+    let plan = &model.plan;
+    let k = crate::model::outputs::PER_INTERFACE * i;
+    r.increments
+        .iter()
+        .map(|inc| plan.part(&inc.record, &plan.layout.interfaces).get(k).copied().unwrap_or(f64::NAN))
+        .filter(|v| v.is_finite())
+        .reduce(f64::max)
+}
