@@ -293,6 +293,7 @@ fn the_report_of_a_bolted_joint_is_one_self_contained_file_with_its_numbers() {
     assert!(row(&rows, "assembly preload").contains("| +2.006 % |"));
     assert!(row(&rows, "equivalent bolt stress").contains("| 0.9918 (required ≥ 1) |"));
     assert!(row(&rows, "thread friction").contains("| 0.12 | default |"));
+    assert!(html.contains("Rating fit lists no inputs."));
     // applied loads, singular points, events with their meaning, warnings
     assert!(rows.iter().any(|r| r.starts_with(
         "load[0] | pressure | top_plate.top, x in [8.5, 12.5] | F_y | 45 kN | 45 kN | 0 kN |"

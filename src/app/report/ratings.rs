@@ -83,7 +83,11 @@ fn check_row(c: &Value) -> Vec<Cell> {
 
 /// The inputs of a rating: name, symbol, value with unit, where it came from.
 fn inputs(page: &mut Page, r: &Value, name: &str) {
-    let Some(list) = r.get("inputs").and_then(Value::as_array) else {
+    let Some(list) = r
+        .get("inputs")
+        .and_then(Value::as_array)
+        .filter(|l| !l.is_empty())
+    else {
         page.absent(&format!("Rating {name} lists no inputs."));
         return;
     };
