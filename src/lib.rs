@@ -50,8 +50,8 @@ pub mod measure;
 // the increment loop: stepping, Newton, stabilization, events
 pub mod solve;
 
-/// What a designer concludes from a run: the handbook's ratings (DIN 7190-1, VDI 2230-1) beside
-/// the FE's numbers, and the warnings that qualify them.
+// what a designer concludes from a run: the handbook's ratings (DIN 7190-1, VDI 2230-1) beside
+// the FE's numbers, and the warnings that qualify them
 pub mod verdict;
 
 // the files a run writes and reads back

@@ -44,6 +44,21 @@ enum Command {
         #[arg(long)]
         out: PathBuf,
     },
+    /// The calculation report of a finished run: one self-contained HTML file
+    /// (OUT/report.html) with the model, the mesh, the key curves, each
+    /// interface, the ratings, the results and the warnings (docs/output.md,
+    /// "The calculation report").
+    Report {
+        /// Output folder of a finished run (what `asperity run CASE --out OUT` wrote).
+        out: PathBuf,
+        /// Write the HTML here instead of OUT/report.html (replaced if it exists).
+        #[arg(long, value_name = "FILE")]
+        output: Option<PathBuf>,
+        /// Also print it to PDF beside the HTML (report.pdf) with a headless
+        /// Chromium (chromium, chromium-browser or google-chrome on PATH).
+        #[arg(long)]
+        pdf: bool,
+    },
     /// Validate a case and print what it would solve (dofs, increments, the
     /// first step), without solving; with `run`'s overrides, what that run
     /// would solve.
@@ -426,6 +441,18 @@ fn main() -> ExitCode {
             out,
         }) => study_stability(&case, &steps, methods, schemes, time_limit, &out),
         Command::Figures { cases, out } => figures(&cases, &out),
+        Command::Report { out, output, pdf } => {
+            asperity::app::report::report(&asperity::app::report::Request {
+                dir: out,
+                output,
+                pdf,
+            })
+            .map(|files| {
+                for f in files {
+                    println!("{}", f.display());
+                }
+            })
+        }
         Command::Calibrate { input, out } => asperity::app::calibrate::run(&input, &out).map(|w| {
             for warning in &w.warnings {
                 eprintln!("warning: {warning}");

@@ -1,6 +1,7 @@
 //! The jobs behind the command line: `run` and `check` ([`driver`]),
 //! adaptive runs ([`adapt`]), studies ([`study`]), `calibrate`
-//! ([`calibrate`]) and the MPI entry (`parallel`).
+//! ([`calibrate`]), the calculation report of a finished output folder
+//! ([`report`]) and the MPI entry (`parallel`).
 
 pub mod adapt;
 pub mod applied;
@@ -10,4 +11,5 @@ pub mod options;
 pub mod ratings;
 #[cfg(feature = "parallel")]
 pub mod parallel;
+pub mod report;
 pub mod study;

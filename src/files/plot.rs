@@ -94,6 +94,18 @@ pub(crate) fn save_pictures(chart: &Chart, stem: &Path, pictures: bool) -> Resul
     Ok(())
 }
 
+/// The chart as an SVG document of `size` pixels, in memory (for a page
+/// that holds its pictures inline). Needs a font ([`load_font`]) to lay out
+/// its text; the text itself is written as SVG `<text>` in `sans-serif`.
+pub fn svg(chart: &Chart, size: (u32, u32)) -> Result<String> {
+    let mut out = String::new();
+    draw(
+        SVGBackend::with_string(&mut out, size).into_drawing_area(),
+        chart,
+    )?;
+    Ok(out)
+}
+
 /// The chart's data extent (series, marks and guide lines) and a 4 % pad.
 struct Extent {
     x: (f64, f64),

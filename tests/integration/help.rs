@@ -56,6 +56,7 @@ fn every_option_of_every_subcommand_is_explained() {
         vec!["run"],
         vec!["check"],
         vec!["figures"],
+        vec!["report"],
         vec!["study"],
         vec!["study", "refine"],
         vec!["study", "stability"],

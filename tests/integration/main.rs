@@ -1,7 +1,8 @@
 //! Integration tests: the program as a user meets it. The command line and its
 //! errors, `--help`, the bad-input corpus, the output files and their schema,
 //! interrupts and restarts, Gmsh meshes, `asperity figures`, the VTU output read
-//! by a real reader, and the documentation's links. One test binary (it links
+//! by a real reader, `asperity report` (in a headless browser too), and the
+//! documentation's links. One test binary (it links
 //! the crate once); one module per concern. Run with
 //! `cargo test --release --test integration`.
 
@@ -29,6 +30,8 @@ mod output_writer;
 mod overrides;
 mod pretension;
 mod refine;
+mod report;
+mod report_browser;
 mod restart;
 mod robust;
 mod tables;

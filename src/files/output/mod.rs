@@ -398,6 +398,15 @@ impl Observer for Writer {
     }
 }
 
+/// The columns of `interface/NNNN.csv` (without the line's end).
+pub const INTERFACE_HEADER: &str = "x_mm,p_n_mpa,u_n_mm,status,p_t_mpa,u_t_mm,u_t_plastic_mm,mu_f,tangential_status,y_mm,s_mm,interface";
+
+/// The columns a twisting model's `interface/NNNN.csv` adds, and the line's end.
+pub const INTERFACE_TWIST_COLUMNS: &str = ",p_t_theta_mpa,u_t_theta_mm,u_t_theta_plastic_mm\n";
+
+/// The header of `curve.csv`.
+pub const CURVE_HEADER: &str = "increment,load_factor,total_load_kn,mean_pressure_mpa,load_ratio,center_displacement_mm,max_peeq,iterations\n";
+
 /// One row per interface pair, interface by interface, each ordered along
 /// the interface by its arc length s (from its first pair, in the walk
 /// direction: increasing x on a horizontal interface, increasing y on a
@@ -408,14 +417,8 @@ impl Observer for Writer {
 /// its u_t_plastic_mm is the meridional component of the vector plastic slip.
 pub fn interface_csv(model: &Model, state: &State) -> String {
     let twist = model.node_dofs().twist();
-    let mut s = String::from(
-        "x_mm,p_n_mpa,u_n_mm,status,p_t_mpa,u_t_mm,u_t_plastic_mm,mu_f,tangential_status,y_mm,s_mm,interface",
-    );
-    s += if twist {
-        ",p_t_theta_mpa,u_t_theta_mm,u_t_theta_plastic_mm\n"
-    } else {
-        "\n"
-    };
+    let mut s = String::from(INTERFACE_HEADER);
+    s += if twist { INTERFACE_TWIST_COLUMNS } else { "\n" };
     let mut base = 0;
     for (im, iface) in model.interfaces.iter().zip(&model.mesh.interfaces) {
         let lumped = im.points.len() == im.pairs.len();
@@ -471,9 +474,7 @@ pub fn interface_csv(model: &Model, state: &State) -> String {
 
 pub fn curve(result: &RunResult) -> String {
     let fy = result.first_yield.as_ref();
-    let mut s = String::from(
-        "increment,load_factor,total_load_kn,mean_pressure_mpa,load_ratio,center_displacement_mm,max_peeq,iterations\n",
-    );
+    let mut s = String::from(CURVE_HEADER);
     for inc in &result.increments {
         let m = &inc.measures;
         // docs/output.md: 0 when the run never yields (no first-yield load);

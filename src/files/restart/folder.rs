@@ -160,7 +160,7 @@ pub(crate) fn vtu_name(k: usize) -> String {
 /// The increment of a VTU name of exactly the writer's form
 /// ([`vtu_name`]); `None` for any other name (`..`, absolute, another
 /// folder, leading zeros beyond four digits, …).
-pub(super) fn vtu_increment(name: &str) -> Option<usize> {
+pub(crate) fn vtu_increment(name: &str) -> Option<usize> {
     let digits = name.strip_prefix("vtu/")?.strip_suffix(".vtu")?;
     if digits.is_empty() || digits.len() > 20 || !digits.bytes().all(|b| b.is_ascii_digit()) {
         return None;
@@ -185,76 +185,22 @@ pub(crate) fn folder_files(
     files
 }
 
-/// Opens the file `rel` of the restart folder `dir` for reading. `rel` must
-/// be a plain relative name (no `..`, not absolute); neither the file nor a
-/// folder on the way may be a symbolic link (checked on each component, and
-/// the file opened with `O_NOFOLLOW`); the file must be a regular file (not a
-/// FIFO or a device: opened non-blocking, checked again on the open file) of
-/// at most `limit` bytes. Returns the file and its size; the error is a
-/// message for the restart file's line.
+/// Opens the file `rel` of the restart folder `dir` for reading, as
+/// [`crate::files::inside::open_inside`] opens a file of a folder not ours
+/// (a plain relative name, no link on the way, a regular file of at most
+/// `limit` bytes). Returns the file and its size; the error is a message for
+/// the restart file's line.
 pub(super) fn open_in(dir: &Path, rel: &str, limit: u64) -> Decoded<(std::fs::File, u64)> {
     let what = if rel == FILE {
         "the restart file".to_string()
     } else {
         rel.to_string()
     };
-    let parts: Vec<&str> = rel.split('/').collect();
-    let plain = |c: &str| !c.is_empty() && c != "." && c != ".." && !c.contains(['\\', '\0']);
-    if !parts.iter().all(|c| plain(c)) {
-        return Err(format!(
-            "{what}: not a plain name inside the restart folder"
-        ));
-    }
-    let mut p = dir.to_path_buf();
-    for (i, c) in parts.iter().enumerate() {
-        p.push(c);
-        let m = std::fs::symlink_metadata(&p).map_err(|e| format!("{what}: {e}"))?;
-        let t = m.file_type();
-        if t.is_symlink() {
-            let link = if i + 1 < parts.len() {
-                format!("{what}: its folder {} is", parts[..=i].join("/"))
-            } else {
-                format!("{what} is")
-            };
-            return Err(format!(
-                "{link} a symbolic link: every file of a restart folder must be a regular file inside it"
-            ));
-        }
-        if i + 1 < parts.len() && !t.is_dir() {
-            return Err(format!("{what}: {c} is not a folder"));
-        }
-    }
-    let kind = |m: &std::fs::Metadata| {
-        if m.is_dir() {
-            "a folder"
-        } else {
-            "a device, FIFO or socket"
-        }
+    let rules = crate::files::inside::Folder {
+        kind: "restart folder",
+        bound: "this case can need",
     };
-    let check = |m: &std::fs::Metadata| -> Decoded<u64> {
-        if !m.is_file() {
-            return Err(format!("{what} is {}, not a regular file", kind(m)));
-        }
-        if m.len() > limit {
-            return Err(format!(
-                "{what} has {} bytes, more than the {limit} bytes this case can need",
-                m.len()
-            ));
-        }
-        Ok(m.len())
-    };
-    check(&std::fs::symlink_metadata(&p).map_err(|e| format!("{what}: {e}"))?)?;
-    let mut opts = std::fs::OpenOptions::new();
-    opts.read(true);
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::OpenOptionsExt;
-        opts.custom_flags(libc::O_NOFOLLOW | libc::O_NONBLOCK);
-    }
-    let f = opts.open(&p).map_err(|e| format!("{what}: {e}"))?;
-    // the file opened is the one checked (not one swapped in since)
-    let len = check(&f.metadata().map_err(|e| format!("{what}: {e}"))?)?;
-    Ok((f, len))
+    crate::files::inside::open_inside(dir, rel, &what, &rules, limit)
 }
 
 /// Copies the restart folder's file `rel` (a name from [`folder_files`],

@@ -570,8 +570,8 @@ mod tests;
 use decode::*;
 use folder::*;
 pub(crate) use folder::{
-    copy_in, folder_files, interface_name, most_iterations, vtu_name, Bounds, MAX_DISPLACEMENT,
-    MAX_PEEQ, MAX_PLASTIC_STRAIN, MAX_PRESSURE, MAX_SECTIONS, MAX_STRESS,
+    copy_in, folder_files, interface_name, most_iterations, vtu_increment, vtu_name, Bounds,
+    MAX_DISPLACEMENT, MAX_PEEQ, MAX_PLASTIC_STRAIN, MAX_PRESSURE, MAX_SECTIONS, MAX_STRESS,
 };
 
 /// Reads `restart.bin` in `dir` for `model`: the checkpoint and the VTU
