@@ -8,8 +8,8 @@ pub mod applied;
 pub mod calibrate;
 pub mod driver;
 pub mod options;
-pub mod ratings;
 #[cfg(feature = "parallel")]
 pub mod parallel;
+pub mod ratings;
 pub mod report;
 pub mod study;

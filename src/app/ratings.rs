@@ -21,7 +21,10 @@ fn rating_text(rating: &Rating) -> String {
         Some(false) => "FAIL",
         None => "no verdict (no demand given)",
     };
-    let mut s = format!("{} {} ({}): {verdict}\n", rating.standard, rating.name, rating.subject);
+    let mut s = format!(
+        "{} {} ({}): {verdict}\n",
+        rating.standard, rating.name, rating.subject
+    );
     for c in &rating.checks {
         s += &format!("  {}\n", check_text(c));
     }
@@ -31,19 +34,30 @@ fn rating_text(rating: &Rating) -> String {
 /// "transmissible torque M_t: FE 565 N·m, handbook 540.2 N·m (+4.6 %); demand 96 N·m, safety 5.89 ≥ 1.5: pass".
 pub fn check_text(c: &Check) -> String {
     let n = |v: f64| crate::numbers::sig(v, 4);
-    let unit = if c.unit.is_empty() { String::new() } else { format!(" {}", c.unit) };
+    let unit = if c.unit.is_empty() {
+        String::new()
+    } else {
+        format!(" {}", c.unit)
+    };
     let mut parts = Vec::new();
     if let Some(v) = c.fe {
         parts.push(format!("FE {}{unit}", n(v)));
     }
     if let Some(v) = c.handbook {
-        let diff = c.difference.map_or(String::new(), |d| format!(" ({:+.1} %)", 100.0 * d));
+        let diff = c
+            .difference
+            .map_or(String::new(), |d| format!(" ({:+.1} %)", 100.0 * d));
         parts.push(format!("handbook {}{unit}{diff}", n(v)));
     }
     let mut s = format!("{} {}: {}", c.quantity, c.symbol, parts.join(", "));
     if let (Some(req), Some(safety), Some(want)) = (c.required, c.safety, c.required_safety) {
         let verdict = if c.pass == Some(true) { "pass" } else { "FAIL" };
-        s += &format!("; against {}{unit}, safety {} (≥ {}): {verdict}", n(req), n(safety), n(want));
+        s += &format!(
+            "; against {}{unit}, safety {} (≥ {}): {verdict}",
+            n(req),
+            n(safety),
+            n(want)
+        );
     } else if let (Some(safety), Some(want)) = (c.safety, c.required_safety) {
         let verdict = if c.pass == Some(true) { "pass" } else { "FAIL" };
         s += &format!("; safety {} (≥ {}): {verdict}", n(safety), n(want));

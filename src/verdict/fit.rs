@@ -86,7 +86,13 @@ pub fn pose(model: &Model, spec: &FitSpec, at: &str) -> Result<Posed> {
         adhesion_axial: adhesion.0,
     };
     let inputs = inputs(&fit, spec, adhesion.1);
-    Ok(Posed { interface: i, hub, shaft, fit, inputs })
+    Ok(Posed {
+        interface: i,
+        hub,
+        shaft,
+        fit,
+        inputs,
+    })
 }
 
 /// The interface's radius (area mean of its pairs' x) and its axial length.
@@ -96,7 +102,9 @@ fn joint_extent(im: &InterfaceModel) -> (f64, f64) {
     let (lo, hi) = im
         .pairs
         .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| (a.min(p.x[1]), b.max(p.x[1])));
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+            (a.min(p.x[1]), b.max(p.x[1]))
+        });
     (r, hi - lo)
 }
 
@@ -126,24 +134,102 @@ fn radii(model: &Model, b: usize) -> (f64, f64) {
 fn inputs(fit: &Fit, spec: &FitSpec, adhesion_from: &'static str) -> Vec<Input> {
     let from = |given: bool| if given { "case" } else { "default" };
     vec![
-        Input { name: "joint diameter", symbol: "D_F", value: fit.d_f, unit: "mm", from: "mesh" },
-        Input { name: "joint length", symbol: "l_F", value: fit.l_f, unit: "mm", from: "mesh" },
-        Input { name: "hub outer diameter", symbol: "D_aA", value: fit.d_aa, unit: "mm", from: "mesh" },
-        Input { name: "shaft bore", symbol: "D_iI", value: fit.d_ii, unit: "mm", from: "mesh" },
-        Input { name: "interference (diametral)", symbol: "U", value: fit.interference * 1e3, unit: "µm", from: "interface" },
-        Input { name: "hub bore roughness", symbol: "Rz_A", value: fit.rz_hub, unit: "µm", from: from(spec.rz_hub.is_some()) },
-        Input { name: "shaft roughness", symbol: "Rz_I", value: fit.rz_shaft, unit: "µm", from: from(spec.rz_shaft.is_some()) },
-        Input { name: "smoothing factor", symbol: "k", value: fit.smoothing, unit: "", from: from(spec.smoothing.is_some()) },
-        Input { name: "adhesion coefficient", symbol: "ν_r", value: fit.adhesion_torque, unit: "", from: adhesion_from },
-        Input { name: "hub yield stress", symbol: "R_eL,A", value: fit.yield_hub, unit: "MPa", from: "material" },
-        Input { name: "shaft yield stress", symbol: "R_eL,I", value: fit.yield_shaft, unit: "MPa", from: "material" },
-        Input { name: "application factor", symbol: "K_A", value: spec.application_factor.unwrap_or(1.0), unit: "", from: from(spec.application_factor.is_some()) },
+        Input {
+            name: "joint diameter",
+            symbol: "D_F",
+            value: fit.d_f,
+            unit: "mm",
+            from: "mesh",
+        },
+        Input {
+            name: "joint length",
+            symbol: "l_F",
+            value: fit.l_f,
+            unit: "mm",
+            from: "mesh",
+        },
+        Input {
+            name: "hub outer diameter",
+            symbol: "D_aA",
+            value: fit.d_aa,
+            unit: "mm",
+            from: "mesh",
+        },
+        Input {
+            name: "shaft bore",
+            symbol: "D_iI",
+            value: fit.d_ii,
+            unit: "mm",
+            from: "mesh",
+        },
+        Input {
+            name: "interference (diametral)",
+            symbol: "U",
+            value: fit.interference * 1e3,
+            unit: "µm",
+            from: "interface",
+        },
+        Input {
+            name: "hub bore roughness",
+            symbol: "Rz_A",
+            value: fit.rz_hub,
+            unit: "µm",
+            from: from(spec.rz_hub.is_some()),
+        },
+        Input {
+            name: "shaft roughness",
+            symbol: "Rz_I",
+            value: fit.rz_shaft,
+            unit: "µm",
+            from: from(spec.rz_shaft.is_some()),
+        },
+        Input {
+            name: "smoothing factor",
+            symbol: "k",
+            value: fit.smoothing,
+            unit: "",
+            from: from(spec.smoothing.is_some()),
+        },
+        Input {
+            name: "adhesion coefficient",
+            symbol: "ν_r",
+            value: fit.adhesion_torque,
+            unit: "",
+            from: adhesion_from,
+        },
+        Input {
+            name: "hub yield stress",
+            symbol: "R_eL,A",
+            value: fit.yield_hub,
+            unit: "MPa",
+            from: "material",
+        },
+        Input {
+            name: "shaft yield stress",
+            symbol: "R_eL,I",
+            value: fit.yield_shaft,
+            unit: "MPa",
+            from: "material",
+        },
+        Input {
+            name: "application factor",
+            symbol: "K_A",
+            value: spec.application_factor.unwrap_or(1.0),
+            unit: "",
+            from: from(spec.application_factor.is_some()),
+        },
     ]
 }
 
 /// The rating of a finished run.
 pub fn rate(model: &Model, r: &RunResult, spec: &FitSpec, posed: Posed) -> Rating {
-    let Posed { interface: i, hub, shaft, fit, inputs } = posed;
+    let Posed {
+        interface: i,
+        hub,
+        shaft,
+        fit,
+        inputs,
+    } = posed;
     let area = PI * fit.d_f * fit.l_f;
     let last = r.increments.last().and_then(|inc| inc.joints.get(i));
     let p_fe = last.map(|j| j.normal_force / area);
@@ -153,12 +239,24 @@ pub fn rate(model: &Model, r: &RunResult, spec: &FitSpec, posed: Posed) -> Ratin
     let yield_s = spec.yield_safety.unwrap_or(1.1);
     let torque_demand = spec.torque.map(|t| k_a * t);
     let axial_demand = spec.axial_force.map(|f| k_a * f);
-    let held_torque = joint_series(r, i).map(|(_, j)| j.torque.abs()).fold(0.0, f64::max);
-    let held_axial = joint_series(r, i).map(|(_, j)| j.tangential_force.abs()).fold(0.0, f64::max);
+    let held_torque = joint_series(r, i)
+        .map(|(_, j)| j.torque.abs())
+        .fold(0.0, f64::max);
+    let held_axial = joint_series(r, i)
+        .map(|(_, j)| j.tangential_force.abs())
+        .fold(0.0, f64::max);
     let turned = slipped(r, i) && held_torque > 0.0;
-    let fe_torque = if turned { Some(held_torque) } else { p_fe.and_then(|p| fit.transmissible_torque(p)) };
+    let fe_torque = if turned {
+        Some(held_torque)
+    } else {
+        p_fe.and_then(|p| fit.transmissible_torque(p))
+    };
     let pushed = slipped(r, i) && held_axial > held_torque / fit.d_f;
-    let fe_axial = if pushed { Some(held_axial) } else { p_fe.and_then(|p| fit.transmissible_axial_force(p)) };
+    let fe_axial = if pushed {
+        Some(held_axial)
+    } else {
+        p_fe.and_then(|p| fit.transmissible_axial_force(p))
+    };
     let mut checks = vec![
         Check::both("fit pressure, mean", "p", "MPa", p_fe, p_hb)
             .note("FE: the interface's normal force / (π D_F l_F) at the end; handbook: plane-stress Lamé with the smoothing k (Rz_A + Rz_I)"),
@@ -172,19 +270,33 @@ pub fn rate(model: &Model, r: &RunResult, spec: &FitSpec, posed: Posed) -> Ratin
             .note(if pushed { "FE: the largest axial force the fit held as it slipped; handbook: p π D_F l_F ν" } else { "FE: p π D_F l_F ν with the FE's mean pressure; handbook: with Lamé's" }),
     ];
     if torque_demand.is_some() || axial_demand.is_some() {
-        let (t, f) = (spec.torque.unwrap_or(0.0) * 1e3, spec.axial_force.unwrap_or(0.0));
-        let mut c = Check::both("combined slip safety", "S_r", "", p_fe.and_then(|p| fit.slip_safety(p, t, f, k_a)), p_hb.and_then(|p| fit.slip_safety(p, t, f, k_a)));
+        let (t, f) = (
+            spec.torque.unwrap_or(0.0) * 1e3,
+            spec.axial_force.unwrap_or(0.0),
+        );
+        let mut c = Check::both(
+            "combined slip safety",
+            "S_r",
+            "",
+            p_fe.and_then(|p| fit.slip_safety(p, t, f, k_a)),
+            p_hb.and_then(|p| fit.slip_safety(p, t, f, k_a)),
+        );
         c.required_safety = Some(slip);
         c.safety = c.fe.or(c.handbook);
         c.pass = c.safety.map(|s| s >= slip);
-        checks.push(c.note("torque and axial force together: S_r = p π D_F l_F ν / (K_A √(F_ax² + (2 M_t/D_F)²))"));
+        checks.push(c.note(
+            "torque and axial force together: S_r = p π D_F l_F ν / (K_A √(F_ax² + (2 M_t/D_F)²))",
+        ));
     }
     checks.extend(yield_checks(model, r, &fit, (hub, shaft), p_hb, yield_s));
     let names = &model.mesh.bodies;
     Rating {
         standard: "DIN 7190-1:2017",
         name: spec.name.clone().unwrap_or_else(|| spec.interface.clone()),
-        subject: format!("interference fit \"{}\": shaft {} in hub {}", spec.interface, names[shaft], names[hub]),
+        subject: format!(
+            "interference fit \"{}\": shaft {} in hub {}",
+            spec.interface, names[shaft], names[hub]
+        ),
         inputs,
         checks,
     }
@@ -199,7 +311,14 @@ fn slipped(r: &RunResult, i: usize) -> bool {
 /// Hub and shaft against yield: the FE's largest von Mises stress and the
 /// handbook's at the bore, each against R_eL; and the standard's pressure
 /// limits (elastic p_F, the hub's fully plastic limit) against the pressure.
-fn yield_checks(model: &Model, r: &RunResult, fit: &Fit, (hub, shaft): (usize, usize), p: Option<f64>, s_f: f64) -> Vec<Check> {
+fn yield_checks(
+    model: &Model,
+    r: &RunResult,
+    fit: &Fit,
+    (hub, shaft): (usize, usize),
+    p: Option<f64>,
+    s_f: f64,
+) -> Vec<Check> {
     let hub_hb = p.and_then(|p| fit.hub_stresses(p)).map(|s| s.von_mises);
     let shaft_hb = p.and_then(|p| fit.shaft_stresses(p)).map(|s| s.von_mises);
     vec![

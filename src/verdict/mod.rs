@@ -45,5 +45,9 @@ pub fn rate(model: &Model, r: &RunResult) -> Result<Vec<rating::Rating>> {
 }
 
 fn at(model: &Model, i: usize, spec: &RatingSpec) -> String {
-    format!("{}: rating[{i}] ({})", model.source.display(), spec.standard())
+    format!(
+        "{}: rating[{i}] ({})",
+        model.source.display(),
+        spec.standard()
+    )
 }

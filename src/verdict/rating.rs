@@ -38,7 +38,13 @@ pub struct Check {
 
 impl Check {
     /// A quantity the FE and the handbook both give.
-    pub fn both(q: &'static str, symbol: &'static str, unit: &'static str, fe: Option<f64>, hb: Option<f64>) -> Check {
+    pub fn both(
+        q: &'static str,
+        symbol: &'static str,
+        unit: &'static str,
+        fe: Option<f64>,
+        hb: Option<f64>,
+    ) -> Check {
         let fe = fe.filter(|v| v.is_finite());
         let handbook = hb.filter(|v| v.is_finite());
         let difference = match (fe, handbook) {
@@ -114,8 +120,13 @@ impl Rating {
 }
 
 /// The increments' values of interface `i`'s joint measures.
-pub(crate) fn joint_series<'a>(r: &'a RunResult, i: usize) -> impl Iterator<Item = (f64, &'a crate::measure::joint::JointMeasures)> + 'a {
-    r.increments.iter().filter_map(move |inc| inc.joints.get(i).map(|j| (inc.load_factor, j)))
+pub(crate) fn joint_series<'a>(
+    r: &'a RunResult,
+    i: usize,
+) -> impl Iterator<Item = (f64, &'a crate::measure::joint::JointMeasures)> + 'a {
+    r.increments
+        .iter()
+        .filter_map(move |inc| inc.joints.get(i).map(|j| (inc.load_factor, j)))
 }
 
 /// The largest von Mises stress (MPa) of body `b` at any increment.
@@ -124,7 +135,12 @@ pub(crate) fn max_von_mises(model: &Model, r: &RunResult, b: usize) -> Option<f6
     let k = crate::model::outputs::PER_BODY * b;
     r.increments
         .iter()
-        .map(|inc| plan.part(&inc.record, &plan.layout.bodies).get(k).copied().unwrap_or(f64::NAN))
+        .map(|inc| {
+            plan.part(&inc.record, &plan.layout.bodies)
+                .get(k)
+                .copied()
+                .unwrap_or(f64::NAN)
+        })
         .filter(|v| v.is_finite())
         .reduce(f64::max)
 }
@@ -135,7 +151,12 @@ pub(crate) fn max_pressure(model: &Model, r: &RunResult, i: usize) -> Option<f64
     let k = crate::model::outputs::PER_INTERFACE * i;
     r.increments
         .iter()
-        .map(|inc| plan.part(&inc.record, &plan.layout.interfaces).get(k).copied().unwrap_or(f64::NAN))
+        .map(|inc| {
+            plan.part(&inc.record, &plan.layout.interfaces)
+                .get(k)
+                .copied()
+                .unwrap_or(f64::NAN)
+        })
         .filter(|v| v.is_finite())
         .reduce(f64::max)
 }

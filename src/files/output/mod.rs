@@ -644,6 +644,8 @@ fn run_summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
             crate::input::case::StepControl::Auto => "auto",
         },
         "case": model.name,
+        "description": model.description.as_deref().map(str::trim),
+        "case_fingerprint": format!("fnv1a64:{:016x}", crate::files::restart::fnv1a(model.case_key().as_bytes())),
         "complete": r.stopped.is_none(),
         "stopped_by": r.stopped.map(|s| s.name()),
         // what the case calls it (serde's name: `3d`, not `solid`)

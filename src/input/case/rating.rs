@@ -121,7 +121,10 @@ pub(crate) fn check(ratings: &[RatingSpec], place: &dyn Fn(&str) -> String) -> R
         if !names.insert(r.name().to_string()) {
             return Err(Error::input(
                 at,
-                format!("is named \"{}\" like an earlier rating: give each a `name` of its own", clip(r.name())),
+                format!(
+                    "is named \"{}\" like an earlier rating: give each a `name` of its own",
+                    clip(r.name())
+                ),
             ));
         }
         for (key, v, lo, hi) in numbers(r) {
@@ -129,7 +132,10 @@ pub(crate) fn check(ratings: &[RatingSpec], place: &dyn Fn(&str) -> String) -> R
                 if !(v.is_finite() && v >= lo && v <= hi) {
                     return Err(Error::input(
                         format!("{at} {key}"),
-                        format!("= {} is outside [{lo}, {hi}], the range any design of this kind uses", crate::numbers::num(v)),
+                        format!(
+                            "= {} is outside [{lo}, {hi}], the range any design of this kind uses",
+                            crate::numbers::num(v)
+                        ),
                     ));
                 }
             }
@@ -170,7 +176,12 @@ fn numbers(r: &RatingSpec) -> Vec<Ranged> {
             ("tightening_factor", Some(b.tightening_factor), 1.0, 5.0),
             ("clamp_load", b.clamp_load, 0.0, 1e8),
             ("embedding", b.embedding, 0.0, 200.0),
-            ("surface_pressure_limit", b.surface_pressure_limit, 10.0, 5000.0),
+            (
+                "surface_pressure_limit",
+                b.surface_pressure_limit,
+                10.0,
+                5000.0,
+            ),
             ("load_introduction", b.load_introduction, 0.0, 1.0),
             ("free_thread_length", b.free_thread_length, 0.0, 1e4),
         ],

@@ -13,28 +13,55 @@ use crate::model::interface::InterfaceModel;
 
 /// The probe names of rating `name`: head bearing, nut bearing.
 pub fn names(name: &str) -> [String; 2] {
-    [format!("{name}: head bearing"), format!("{name}: nut bearing")]
+    [
+        format!("{name}: head bearing"),
+        format!("{name}: nut bearing"),
+    ]
 }
 
 /// Two probes per bolt rating; refuses a section or an interface the case
 /// does not have, and a bearing interface the bolt's body is not on.
-pub fn build(case: &Case, mesh: &Mesh, interfaces: &[InterfaceModel], place: &str) -> Result<Vec<Probe>> {
+pub fn build(
+    case: &Case,
+    mesh: &Mesh,
+    interfaces: &[InterfaceModel],
+    place: &str,
+) -> Result<Vec<Probe>> {
     let mut out = Vec::new();
     for (i, r) in case.rating.iter().enumerate() {
         let RatingSpec::Bolt(b) = r else { continue };
         let at = |key: &str| format!("{place}: rating[{i}] (VDI 2230-1:2015) {key}");
-        let section = case.pretension.iter().find(|p| p.name == b.pretension).ok_or_else(|| {
-            let known: Vec<&str> = case.pretension.iter().map(|p| p.name.as_str()).collect();
-            Error::input(
-                at("pretension"),
-                format!("names no [[pretension]] section \"{}\" (sections: {})", clip(&b.pretension), list(&known)),
-            )
-        })?;
-        let body = mesh.bodies.iter().position(|x| *x == section.body).unwrap_or(usize::MAX);
+        let section = case
+            .pretension
+            .iter()
+            .find(|p| p.name == b.pretension)
+            .ok_or_else(|| {
+                let known: Vec<&str> = case.pretension.iter().map(|p| p.name.as_str()).collect();
+                Error::input(
+                    at("pretension"),
+                    format!(
+                        "names no [[pretension]] section \"{}\" (sections: {})",
+                        clip(&b.pretension),
+                        list(&known)
+                    ),
+                )
+            })?;
+        let body = mesh
+            .bodies
+            .iter()
+            .position(|x| *x == section.body)
+            .unwrap_or(usize::MAX);
         for (key, iface, probe) in [("head", &b.head, 0), ("nut", &b.nut, 1)] {
             let im = find(interfaces, iface).ok_or_else(|| {
                 let known: Vec<&str> = interfaces.iter().map(|m| m.name.as_str()).collect();
-                Error::input(at(key), format!("names no interface \"{}\" (interfaces: {})", clip(iface), list(&known)))
+                Error::input(
+                    at(key),
+                    format!(
+                        "names no interface \"{}\" (interfaces: {})",
+                        clip(iface),
+                        list(&known)
+                    ),
+                )
             })?;
             if im.body_a != body && im.body_b != body {
                 return Err(Error::input(
@@ -52,7 +79,10 @@ pub fn build(case: &Case, mesh: &Mesh, interfaces: &[InterfaceModel], place: &st
             if case.probe.iter().any(|p| p.name == name) {
                 return Err(Error::input(
                     at(key),
-                    format!("adds the probe \"{}\", a name a [[probe]] has: rename that probe", clip(&name)),
+                    format!(
+                        "adds the probe \"{}\", a name a [[probe]] has: rename that probe",
+                        clip(&name)
+                    ),
                 ));
             }
             out.push(surface(name, im, body, mesh));
