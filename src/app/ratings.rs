@@ -33,7 +33,7 @@ fn rating_text(rating: &Rating) -> String {
 
 /// "transmissible torque M_t: FE 565 N·m, handbook 540.2 N·m (+4.6 %); demand 96 N·m, safety 5.89 ≥ 1.5: pass".
 pub fn check_text(c: &Check) -> String {
-    let n = |v: f64| crate::numbers::sig(v, 4);
+    let n = number;
     let unit = if c.unit.is_empty() {
         String::new()
     } else {
@@ -63,4 +63,14 @@ pub fn check_text(c: &Check) -> String {
         s += &format!("; safety {} (≥ {}): {verdict}", n(safety), n(want));
     }
     s
+}
+
+/// Four significant digits, plain between 0.001 and 10⁶ (30000 N, not 3e4).
+fn number(v: f64) -> String {
+    let a = v.abs();
+    if a == 0.0 || !(1e-3..1e6).contains(&a) {
+        return crate::numbers::sig(v, 4);
+    }
+    let decimals = (3 - a.log10().floor() as i32).max(0) as usize;
+    format!("{v:.decimals$}")
 }

@@ -245,13 +245,12 @@ pub fn rate(model: &Model, r: &RunResult, spec: &FitSpec, posed: Posed) -> Ratin
     let held_axial = joint_series(r, i)
         .map(|(_, j)| j.tangential_force.abs())
         .fold(0.0, f64::max);
-    let turned = slipped(r, i) && held_torque > 0.0;
+    let (turned, pushed) = slipped(r, i, fit.d_f);
     let fe_torque = if turned {
         Some(held_torque)
     } else {
         p_fe.and_then(|p| fit.transmissible_torque(p))
     };
-    let pushed = slipped(r, i) && held_axial > held_torque / fit.d_f;
     let fe_axial = if pushed {
         Some(held_axial)
     } else {
@@ -302,10 +301,18 @@ pub fn rate(model: &Model, r: &RunResult, spec: &FitSpec, posed: Posed) -> Ratin
     }
 }
 
-/// Whether the fit slipped as a whole at some increment (all its closed
-/// measure in macro-slip).
-fn slipped(r: &RunResult, i: usize) -> bool {
-    joint_series(r, i).any(|(_, j)| j.closed > 0.0 && j.macro_slip >= 0.999 * j.closed)
+/// Whether the fit slipped as a whole (all of it in contact in macro-slip)
+/// at some increment turning (the circumferential friction force 2T/D_F
+/// the larger) and at some pushed (the axial one the larger).
+fn slipped(r: &RunResult, i: usize, d_f: f64) -> (bool, bool) {
+    let slips = joint_series(r, i).filter(|(_, j)| {
+        let touching = j.closed + j.stick + j.micro_slip + j.macro_slip;
+        j.macro_slip > 0.0 && j.macro_slip >= 0.999 * touching
+    });
+    slips.fold((false, false), |(t, p), (_, j)| {
+        let turning = 2.0 * j.torque.abs() / d_f > j.tangential_force.abs();
+        (t || turning, p || !turning)
+    })
 }
 
 /// Hub and shaft against yield: the FE's largest von Mises stress and the

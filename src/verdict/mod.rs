@@ -3,6 +3,7 @@
 //! computed from the standard's own formulas ([`handbook`]) and set beside the numbers the run
 //! measured ([`rating::Rating`]).
 
+pub mod bolt;
 pub mod fit;
 pub mod handbook;
 pub mod rating;
@@ -22,7 +23,9 @@ pub fn prepare(model: &Model) -> Result<()> {
             RatingSpec::Fit(f) => {
                 fit::pose(model, f, &at)?;
             }
-            RatingSpec::Bolt(_) => {}
+            RatingSpec::Bolt(b) => {
+                bolt::pose(model, b, &at)?;
+            }
         }
     }
     Ok(())
@@ -38,7 +41,10 @@ pub fn rate(model: &Model, r: &RunResult) -> Result<Vec<rating::Rating>> {
                 let posed = fit::pose(model, f, &at)?;
                 out.push(fit::rate(model, r, f, posed));
             }
-            RatingSpec::Bolt(_) => {}
+            RatingSpec::Bolt(b) => {
+                let posed = bolt::pose(model, b, &at)?;
+                out.push(bolt::rate(model, r, b, posed));
+            }
         }
     }
     Ok(out)

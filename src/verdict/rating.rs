@@ -70,7 +70,8 @@ impl Check {
         let capacity = self.fe.or(self.handbook);
         if let (Some(c), Some(d)) = (capacity, demand) {
             if d > 0.0 {
-                let s = c / d;
+                // a capacity below zero (a clamp load lost) is no safety at all
+                let s = (c / d).max(0.0);
                 self.safety = Some(s);
                 self.pass = Some(s >= required_safety);
             }

@@ -34,6 +34,7 @@ mod patch;
 mod pretension;
 mod punch;
 mod punch_rounded;
+mod ratings;
 mod roughness;
 mod shrink_fit;
 mod solid;

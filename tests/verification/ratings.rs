@@ -1,0 +1,156 @@
+//! The ratings of the shipped fit and bolt (docs/joints.md, "Ratings"): the
+//! handbook's side against the standard's formulas typed here with the
+//! cases' dimensions, the FE's side against the run's own files.
+
+use crate::common;
+use serde_json::Value;
+use std::f64::consts::PI;
+use std::path::PathBuf;
+
+fn shipped(case: &str) -> (PathBuf, Value) {
+    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join("ratings")
+        .join(case);
+    let (code, err) = common::run_case(&common::root().join("cases").join(case), &out, &[]);
+    assert_eq!(code, 0, "{case}: {err}");
+    let summary = serde_json::from_str(&common::read_out(&out, "summary.json")).unwrap();
+    (out, summary)
+}
+
+/// The check with symbol `s`.
+fn check<'a>(rating: &'a Value, s: &str) -> &'a Value {
+    rating["checks"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|c| c["symbol"] == s)
+        .unwrap_or_else(|| panic!("no check {s}"))
+}
+
+fn num(v: &Value) -> f64 {
+    v.as_f64().unwrap_or_else(|| panic!("{v} is no number"))
+}
+
+fn csv(text: &str) -> (Vec<String>, Vec<Vec<f64>>) {
+    let mut lines = text.lines();
+    let head = lines.next().unwrap().split(',').map(String::from).collect();
+    let rows = lines
+        .map(|l| {
+            l.split(',')
+                .map(|x| x.parse().unwrap_or(f64::NAN))
+                .collect()
+        })
+        .collect();
+    (head, rows)
+}
+
+fn near(a: f64, b: f64, rel: f64) -> bool {
+    (a - b).abs() <= rel * a.abs().max(b.abs())
+}
+
+/// The twisted shrink fit (D_F = 40, l_F = 30, D_aA = 80 mm, U = 40 µm,
+/// E = 206 GPa, ν_r = 0.15): Lamé's plane-stress pressure of equal parts on
+/// a solid shaft is p = (U/D_F) E (1 − Q_A²)/2 = 77.25 MPa, M_t = p π D_F²
+/// l_F ν/2; the FE's torque is the plateau of joints.csv's torque, its
+/// pressure the last normal force over π D_F l_F, and the slip safety the
+/// plateau over K_A M = 1.25 · 300 N·m.
+#[test]
+fn the_fit_rating_sets_the_run_beside_lame() {
+    let (out, s) = shipped("shrink-fit-torque");
+    let r = &s["ratings"][0];
+    assert_eq!(r["standard"], "DIN 7190-1:2017");
+    let p = 0.04 / 40.0 * 206000.0 * (1.0 - 0.25) / 2.0;
+    assert!(
+        near(num(&check(r, "p")["handbook"]), p, 1e-12),
+        "{}",
+        check(r, "p")
+    );
+    let m_t = p * PI * 1600.0 * 30.0 * 0.15 / 2.0 * 1e-3;
+    assert!(near(num(&check(r, "M_t")["handbook"]), m_t, 1e-12));
+    let (head, rows) = csv(&common::read_out(&out, "joints.csv"));
+    let col = |name: &str| head.iter().position(|h| h == name).unwrap();
+    let (t, n) = (col("torque_nmm"), col("normal_force_n"));
+    let plateau = rows.iter().map(|r| r[t].abs()).fold(0.0, f64::max) * 1e-3;
+    let fe = num(&check(r, "M_t")["fe"]);
+    assert!(
+        near(fe, plateau, 1e-8),
+        "FE torque {fe} against joints.csv's {plateau}"
+    );
+    let p_fe = rows.last().unwrap()[n] / (PI * 40.0 * 30.0);
+    assert!(near(num(&check(r, "p")["fe"]), p_fe, 1e-8));
+    let safety = num(&check(r, "M_t")["safety"]);
+    assert!(near(safety, plateau / 375.0, 1e-8) && check(r, "M_t")["pass"] == (safety >= 1.5));
+    // the hub's elastic limit: (1 − Q_A²) R_eL/√3
+    let p_fa = 0.75 * 350.0 / 3f64.sqrt();
+    assert!(near(num(&check(r, "p_FA")["handbook"]), p_fa, 1e-12));
+}
+
+/// The bolted joint: the run's δ_S + δ_P is the section's shortening over
+/// its force at the lock, δ_P the approach of the bearing probes there
+/// (probes.csv), Φ_n the bolt's force increase over F_A at the first
+/// service increment (pretension.csv, loads.csv), the separation load F_A
+/// at the joint's full separation; the handbook's δ_S and δ_P are the
+/// README's hand check (VDI 2230 with d = 12, P = 1.75, l_K = 24,
+/// d_W = 17, d_h = 13, D_A = 50 mm) typed here.
+#[test]
+fn the_bolt_rating_splits_the_run_resiliences() {
+    let (out, s) = shipped("bolted-joint");
+    let r = &s["ratings"][0];
+    assert_eq!(r["standard"], "VDI 2230-1:2015");
+    let pre = &s["pretension"][0];
+    let f_v = num(&pre["force_at_lock_n"]);
+    let total = num(&pre["shortening_at_lock_mm"]) / f_v;
+    let (ds, dp) = (num(&check(r, "δ_S")["fe"]), num(&check(r, "δ_P")["fe"]));
+    assert!(near(ds + dp, total, 1e-12), "{ds} + {dp} against {total}");
+    // the probes at the lock (t = 1)
+    let probes = common::read_out(&out, "probes.csv");
+    let uy = |name: &str| -> f64 {
+        // increment, time, probe, ux_mm, uy_mm: the last row at or before the lock t = 1
+        let rows = probes
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').collect::<Vec<_>>());
+        let at_lock = rows
+            .filter(|c| c[2] == name && c[1].parse::<f64>().unwrap() <= 1.0 + 1e-12)
+            .last();
+        at_lock.unwrap_or_else(|| panic!("no {name}"))[4]
+            .parse()
+            .unwrap()
+    };
+    let approach = uy("bolt: nut bearing") - uy("bolt: head bearing");
+    let (_, curve) = csv(&common::read_out(&out, "curve.csv"));
+    let lock = curve.iter().rposition(|r| r[1] <= 1.0 + 1e-12).unwrap();
+    assert!(
+        near(dp, approach / f_v, 1e-8),
+        "{dp} against {}",
+        approach / f_v
+    );
+    // Φ_n at the first service increment
+    let (_, bolt) = csv(&common::read_out(&out, "pretension.csv"));
+    let (_, loads) = csv(&common::read_out(&out, "loads.csv"));
+    let k = lock + 1;
+    let phi = (bolt[k][2] - f_v) / loads[k][3];
+    assert!(near(num(&check(r, "Φ_n")["fe"]), phi, 1e-8), "{phi}");
+    // the separation load at the event
+    let event = s["events"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|e| e["event"] == "full_separation")
+        .unwrap();
+    let area = PI * (12.5f64.powi(2) - 8.5f64.powi(2));
+    let f_sep = 170.52 * area * (num(&event["load_factor"]) - 1.0);
+    assert!(near(num(&check(r, "F_A,ab")["fe"]), f_sep, 1e-9));
+    // the handbook's resiliences (E = 206 GPa)
+    let e = 206000.0;
+    let a_n = PI * 36.0;
+    let d3: f64 = 12.0 - 1.22687 * 1.75;
+    let a_d3 = PI * d3 * d3 / 4.0;
+    let delta_s = (0.5 * 12.0 + 24.0 + 0.4 * 12.0) / (e * a_n) + 0.5 * 12.0 / (e * a_d3);
+    assert!(near(num(&check(r, "δ_S")["handbook"]), delta_s, 1e-9));
+    assert!(
+        near(num(&check(r, "δ_P")["handbook"]), 0.490e-6, 2e-3),
+        "{}",
+        check(r, "δ_P")
+    );
+}
