@@ -64,6 +64,8 @@ pub(crate) fn event_json(model: &Model, e: &Event) -> Value {
         "applied_force_n": numbers(&applied),
         "histories": histories,
         "reactions": reactions,
+        "phase": phase(model, t),
+        "meaning": meaning(model, e),
     });
     if e.kind == Kind::FirstYield {
         // a first yield has no arc length; in 3D its third place is z
@@ -89,14 +91,50 @@ pub(crate) fn event_json(model: &Model, e: &Event) -> Value {
     o
 }
 
+/// `preload` while a pretension section is still being tightened (before
+/// its lock), `service` after every lock; null without sections.
+fn phase(model: &Model, t: f64) -> Value {
+    let locks = model
+        .sections
+        .iter()
+        .map(|s| s.lock_after)
+        .filter(|l| l.is_finite());
+    match locks.fold(None, |a: Option<f64>, l| Some(a.map_or(l, |a| a.max(l)))) {
+        Some(last) if t <= last => json!("preload"),
+        Some(_) => json!("service"),
+        None => Value::Null,
+    }
+}
+
+/// What the event says about the joint or the part, in a sentence.
+pub(crate) fn meaning(model: &Model, e: &Event) -> String {
+    let preload = phase(model, e.load_factor) == json!("preload");
+    let mut m = match e.kind {
+        Kind::FirstYield => "the first Gauss point reached the yield stress; at a sharp corner or a contact's edge the stress is singular and this load falls as the mesh is refined: read a nominal stress there, or round the corner".to_string(),
+        Kind::FirstOpening if preload => "part of the interface opened while the preload was brought in (the clamped parts dish under the bolt): a state of assembly, not a failure of the joint".into(),
+        Kind::FirstOpening => "part of the interface first opened: its contact is no longer whole, though it still clamps".into(),
+        Kind::FullSlip => "the whole interface first in macro-slip (its first gross slip); where friction was locked in by an earlier step (a fit pressed, then turned) this comes before the load the joint finally holds, its plateau (joints.csv; a rating's M_t)".into(),
+        Kind::FullSeparation => "the interface carries no normal force any more: the joint has separated".into(),
+    };
+    if !e.converged {
+        m += "; the search did not narrow the bracket to the tolerance: the event lies within the bracket, no closer";
+    }
+    m
+}
+
 /// An interface event as one line of the run's end: what, where and when.
 pub fn line(model: &Model, e: &Event) -> String {
     let (lo, hi) = (e.before.min(e.after), e.before.max(e.after));
     let iface = e.interface.map_or(String::new(), |i| {
         format!(" of {}", model.interfaces[i].name)
     });
+    let during = if phase(model, e.load_factor) == json!("preload") {
+        " during the preload"
+    } else {
+        ""
+    };
     format!(
-        "{}{iface}: λ = {:.6} (bracket {:.6} … {:.6}{}), F_N {:.4e} N, F_T {:.4e} N",
+        "{}{iface}{during}: λ = {:.6} (bracket {:.6} … {:.6}{}), F_N {:.4e} N, F_T {:.4e} N",
         e.kind.name().replace('_', " "),
         e.load_factor,
         lo,
