@@ -305,6 +305,7 @@ fn the_key_is_canonical_json() {
             "output",
             "pretension",
             "probe",
+            "rating",
             "solver"
         ]
     );
