@@ -285,10 +285,7 @@ impl Model {
             histories: loads.histories,
             applied: loads.applied,
             ratings: case.rating.clone(),
-            applied_components: crate::model::loads::resultant::Components::of(
-                &mesh,
-                section.axisymmetric,
-            ),
+            applied_components: loads.components,
             dofs,
             interface_block_base,
             n_dofs,

@@ -15,7 +15,7 @@
 
 use super::handbook::thread::{PropertyClass, Thread};
 use super::handbook::vdi2230::{self as vdi, Bolt, Clamp, Head, Joint, ShankSection};
-use super::rating::{max_pressure, Check, Input, Rating};
+use super::rating::{max_pressure, radii, Check, Input, Rating};
 use crate::error::{clip, Error, Result};
 use crate::input::case::rating::BoltSpec;
 use crate::model::Model;
@@ -84,18 +84,7 @@ pub fn pose(model: &Model, spec: &BoltSpec, at: &str) -> Result<Posed> {
             ),
         )
     })?;
-    let r_p02 = match &spec.property_class {
-        Some(c) => PropertyClass::of(c, thread.d)
-            .ok_or_else(|| Error::input(format!("{at} property_class"), format!("\"{}\" is no ISO 898-1 class for d = {} mm (4.6, 5.6, 8.8, 9.8 up to M16, 10.9, 12.9)", clip(c), thread.d)))?
-            .r_p02,
-        None => model.materials[sec.body].yield_stress,
-    };
-    if !r_p02.is_finite() {
-        return Err(Error::input(
-            format!("{at} property_class"),
-            "is needed: the bolt's material has no yield stress to take R_p0.2 from",
-        ));
-    }
+    let r_p02 = yield_strength(model, spec, &thread, sec.body, at)?;
     let service = service_loads(model, spec, at)?;
     let names =
         crate::model::outputs::bearings::names(spec.name.as_deref().unwrap_or(&spec.pretension));
@@ -107,11 +96,63 @@ pub fn pose(model: &Model, spec: &BoltSpec, at: &str) -> Result<Posed> {
             .position(|p| &p.name == n)
             .unwrap_or(0)
     };
+    let (clamp, bolt, orientation) = geometry(model, spec, thread, sec.body, [head, nut]);
+    let inputs = inputs(spec, &thread, r_p02, &clamp);
+    Ok(Posed {
+        section,
+        joint,
+        head,
+        probes: [probe(&names[0]), probe(&names[1])],
+        orientation,
+        thread,
+        r_p02,
+        clamp,
+        bolt,
+        service,
+        inputs,
+    })
+}
+
+/// R_p0.2 of the bolt: its property class's, else its material's yield stress.
+fn yield_strength(
+    model: &Model,
+    spec: &BoltSpec,
+    thread: &Thread,
+    body: usize,
+    at: &str,
+) -> Result<f64> {
+    let r_p02 = match &spec.property_class {
+        Some(c) => PropertyClass::of(c, thread.d)
+            .ok_or_else(|| Error::input(format!("{at} property_class"), format!("\"{}\" is no ISO 898-1 class for d = {} mm (4.6, 5.6, 8.8, 9.8 up to M16, 10.9, 12.9)", clip(c), thread.d)))?
+            .r_p02,
+        None => model.materials[body].yield_stress,
+    };
+    if !r_p02.is_finite() {
+        return Err(Error::input(
+            format!("{at} property_class"),
+            "is needed: the bolt's material has no yield stress to take R_p0.2 from",
+        ));
+    }
+    Ok(r_p02)
+}
+
+/// The clamp and the bolt as VDI 2230 models them, from the mesh: l_K
+/// between the bearing interfaces, d_W the head interface's outer diameter,
+/// d_h and D_A the plate's smallest and largest; a shank of the nominal
+/// diameter over l_K less the free thread. And +1 when the head bears above
+/// the nut.
+fn geometry(
+    model: &Model,
+    spec: &BoltSpec,
+    thread: Thread,
+    body: usize,
+    [head, nut]: [usize; 2],
+) -> (Clamp, Bolt, f64) {
     let (yh, xh) = bearing(model, head);
     let (yn, _) = bearing(model, nut);
     let other = |i: usize| {
         let im = &model.interfaces[i];
-        if im.body_a == sec.body {
+        if im.body_a == body {
             im.body_b
         } else {
             im.body_a
@@ -128,7 +169,7 @@ pub fn pose(model: &Model, spec: &BoltSpec, at: &str) -> Result<Posed> {
         e_plate: model.materials[plate].young,
     };
     let free = spec.free_thread_length.unwrap_or(0.0);
-    let e_bolt = model.materials[sec.body].young;
+    let e_bolt = model.materials[body].young;
     let bolt = Bolt {
         thread,
         head: Head::Hexagon,
@@ -140,20 +181,7 @@ pub fn pose(model: &Model, spec: &BoltSpec, at: &str) -> Result<Posed> {
         e_bolt,
         e_nut: e_bolt,
     };
-    let inputs = inputs(spec, &thread, r_p02, &clamp);
-    Ok(Posed {
-        section,
-        joint,
-        head,
-        probes: [probe(&names[0]), probe(&names[1])],
-        orientation: if yh > yn { 1.0 } else { -1.0 },
-        thread,
-        r_p02,
-        clamp,
-        bolt,
-        service,
-        inputs,
-    })
+    (clamp, bolt, if yh > yn { 1.0 } else { -1.0 })
 }
 
 fn thread(name: &str) -> Option<Thread> {
@@ -202,17 +230,6 @@ fn bearing(model: &Model, i: usize) -> (f64, f64) {
     let y = pairs.iter().map(|p| p.x[1]).sum::<f64>() / pairs.len().max(1) as f64;
     let x = pairs.iter().fold(0.0f64, |a, p| a.max(p.x[0]));
     (y, x)
-}
-
-fn radii(model: &Model, b: usize) -> (f64, f64) {
-    let mesh = &model.mesh;
-    mesh.elements
-        .iter()
-        .filter(|e| e.body == b)
-        .flat_map(|e| e.nodes().iter())
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &n| {
-            (lo.min(mesh.nodes[n][0]), hi.max(mesh.nodes[n][0]))
-        })
 }
 
 fn inputs(spec: &BoltSpec, t: &Thread, r_p02: f64, c: &Clamp) -> Vec<Input> {

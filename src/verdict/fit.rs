@@ -11,7 +11,7 @@
 //! yield stress.
 
 use super::handbook::din7190::{Fit, SMOOTHING_2017};
-use super::rating::{joint_series, max_pressure, max_von_mises, Check, Input, Rating};
+use super::rating::{joint_series, max_pressure, max_von_mises, radii, Check, Input, Rating};
 use crate::error::{clip, Error, Result};
 use crate::input::case::rating::FitSpec;
 use crate::model::interface::InterfaceModel;
@@ -116,19 +116,6 @@ fn hub_and_shaft(model: &Model, im: &InterfaceModel, r_f: f64) -> (usize, usize)
     } else {
         (im.body_b, im.body_a)
     }
-}
-
-/// The smallest and largest radius of body b's nodes.
-fn radii(model: &Model, b: usize) -> (f64, f64) {
-    let mesh = &model.mesh;
-    mesh.elements
-        .iter()
-        .filter(|e| e.body == b)
-        .flat_map(|e| e.nodes().iter())
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &n| {
-            let x = mesh.nodes[n][0];
-            (lo.min(x), hi.max(x))
-        })
 }
 
 fn inputs(fit: &Fit, spec: &FitSpec, adhesion_from: &'static str) -> Vec<Input> {

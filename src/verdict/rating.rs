@@ -161,3 +161,16 @@ pub(crate) fn max_pressure(model: &Model, r: &RunResult, i: usize) -> Option<f64
         .filter(|v| v.is_finite())
         .reduce(f64::max)
 }
+
+/// The smallest and largest radius (x) of body b's nodes.
+pub(crate) fn radii(model: &Model, b: usize) -> (f64, f64) {
+    let mesh = &model.mesh;
+    mesh.elements
+        .iter()
+        .filter(|e| e.body == b)
+        .flat_map(|e| e.nodes().iter())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &n| {
+            let x = mesh.nodes[n][0];
+            (lo.min(x), hi.max(x))
+        })
+}

@@ -49,8 +49,10 @@ pub struct Loads {
     pub acting: Vec<Acting>,
     /// The history of each `[[pretension]]` section's force or shortening.
     pub(crate) pretension_history: Vec<Option<usize>>,
-    /// Every `[[load]]` and `[[force]]` as a whole: its resultant at factor 1.
+    /// Every `[[load]]` and `[[force]]` as a whole: its resultant at factor 1,
+    /// in these components.
     pub applied: Vec<Applied>,
+    pub components: resultant::Components,
 }
 
 /// One `[[load]]` or `[[force]]` as a designer names it, with its resultant
@@ -208,6 +210,7 @@ pub fn build(
         acting: g.acting,
         pretension_history,
         applied: g.applied,
+        components: g.components,
     })
 }
 
