@@ -13,6 +13,7 @@ use crate::common;
 use asperity::app::report::figure;
 use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
+use std::os::unix::fs::FileTypeExt as _;
 use std::sync::OnceLock;
 
 /// The output folder of one run of `case`, made once per test binary.
@@ -301,7 +302,9 @@ fn the_report_of_a_bolted_joint_is_one_self_contained_file_with_its_numbers() {
     assert!(row(&rows, "max_von_mises").contains("re-entrant corner (270°)"));
     for ev in s["events"].as_array().unwrap() {
         let name = ev["event"].as_str().unwrap();
-        assert!(row(&rows, name).contains(&format!("the meaning of {name}")));
+        // an event during the preload is named with its phase: `first_opening (preload)`
+        let r = rows.iter().find(|r| r.starts_with(&format!("{name} "))).unwrap_or_else(|| panic!("no row {name}"));
+        assert!(r.contains(&format!("the meaning of {name}")), "{r}");
     }
     let warnings = &html[html.find("id=\"warnings\"").unwrap()..];
     assert!(warnings.contains("2 closed cycles of fewer than 4 increments (fixture)"));
@@ -497,4 +500,44 @@ fn an_ascii_vtu_draws_the_same_mesh_as_a_binary_one() {
         "the interface is drawn"
     );
     assert_eq!(figures[0], figures[1]);
+}
+
+/// `--output` never replaces what is not a report: a file of the run's own
+/// folder (summary.json), a folder, a named pipe; a missing folder is named
+/// as such; with `--pdf` an HTML name ending in .pdf is refused (the PDF
+/// would print over it). Each exits 2 and leaves everything as it was.
+#[test]
+fn the_report_refuses_to_replace_what_is_not_a_report() {
+    let dir = bolted();
+    let scratch = common::scratch("report-output-targets");
+    let fifo = scratch.join("pipe");
+    let _ = std::fs::remove_file(&fifo);
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status().is_ok_and(|s| s.success());
+    let summary = std::fs::read(dir.join("summary.json")).unwrap();
+    let mut cases = vec![
+        (dir.join("summary.json"), false, "is inside the output folder"),
+        (scratch.clone(), false, "is not a regular file"),
+        (scratch.join("missing").join("r.html"), false, "in a folder that does not exist"),
+        (scratch.join("r.pdf"), true, "ends in .pdf"),
+    ];
+    if made {
+        cases.push((fifo.clone(), false, "is not a regular file"));
+    }
+    for (target, pdf, want) in cases {
+        let t = target.display().to_string();
+        let mut args = vec![dir.to_str().unwrap(), "--output", &t];
+        if pdf {
+            args.push("--pdf");
+        }
+        let (code, e, _) = report(&args);
+        if pdf && e.contains("chromium") && !e.contains(".pdf") {
+            continue; // no browser here: refused before the target is looked at
+        }
+        assert_eq!(code, 2, "{t}: {e}");
+        assert!(e.contains(want) && e.lines().count() == 1, "{t}: {e}");
+    }
+    assert_eq!(std::fs::read(dir.join("summary.json")).unwrap(), summary);
+    if made {
+        assert!(std::fs::symlink_metadata(&fifo).unwrap().file_type().is_fifo(), "the pipe stays a pipe");
+    }
 }

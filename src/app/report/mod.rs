@@ -57,6 +57,7 @@ pub fn report(r: &Request) -> Result<Vec<PathBuf>> {
         .output
         .clone()
         .unwrap_or_else(|| r.dir.join("report.html"));
+    check_target(&target, &r.dir, r.pdf)?;
     write_atomic(&target, html.as_bytes())?;
     let mut written = vec![target.clone()];
     if let Some(b) = browser {
@@ -99,6 +100,35 @@ fn page(f: &read::Folder) -> Result<String> {
         html::esc(&folder)
     );
     Ok(page.finish(&overview::title(s), &lead))
+}
+
+/// Where the report may go: a new file or an existing regular file (or a
+/// link to one is replaced, never followed) in a folder that exists; inside
+/// the output folder only `report.html` (the run's own files stay as they
+/// are); with `--pdf` not a name the PDF would overwrite (`.pdf`).
+fn check_target(target: &Path, dir: &Path, pdf: bool) -> Result<()> {
+    let refuse = |m: &str| Err(Error::input(format!("--output {}", target.display()), m));
+    if let Ok(meta) = std::fs::symlink_metadata(target) {
+        if !meta.is_file() && !meta.file_type().is_symlink() {
+            return refuse("exists and is not a regular file (a folder, a device, a pipe): name a new file or a report of your own");
+        }
+    }
+    let parent = match target.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    if !parent.is_dir() {
+        return refuse("is in a folder that does not exist: make the folder first");
+    }
+    let same_folder = parent.canonicalize().ok() == dir.canonicalize().ok();
+    let name = target.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    if same_folder && name != "report.html" {
+        return refuse("is inside the output folder: the run's files there are not the report's to replace; name report.html or a file elsewhere");
+    }
+    if pdf && target.extension().is_some_and(|e| e.eq_ignore_ascii_case("pdf")) {
+        return refuse("ends in .pdf, where --pdf prints the PDF beside the HTML: give the HTML an .html name");
+    }
+    Ok(())
 }
 
 /// The temporary name beside `target`: `.NAME.partial-PID`.
