@@ -665,7 +665,7 @@ pub fn check(case_path: &Path, opts: &RunOptions) -> Result<String> {
     let case = load_case(case_path, opts)?;
     let adapt = case.adapt.clone();
     let model = Model::build(case)?;
-    crate::verdict::prepare(&model)?;
+    let ratings = crate::verdict::prepare(&model)?;
     // a table the applied load alone takes far beyond its data
     let place = model.source.display().to_string();
     for t in predicted(&model) {
@@ -689,6 +689,9 @@ pub fn check(case_path: &Path, opts: &RunOptions) -> Result<String> {
     s += &bodies_text(&model);
     s += &interfaces_text(&model);
     s += &crate::app::applied::check_text(&model);
+    for line in ratings {
+        s += &format!("  {line}\n");
+    }
     s += &outputs_text(&model);
     s += &steps_text(&model);
     if let Some(a) = &adapt {

@@ -16,10 +16,11 @@ pub fn end_text(model: &Model, r: &RunResult) -> String {
 }
 
 fn rating_text(rating: &Rating) -> String {
-    let verdict = match rating.passes() {
-        Some(true) => "PASS",
-        Some(false) => "FAIL",
-        None => "no verdict (no demand given)",
+    let verdict = match (rating.passes(), &rating.incomplete) {
+        (_, Some(why)) => format!("NOT RATED: {why}"),
+        (Some(true), None) => "PASS".into(),
+        (Some(false), None) => "FAIL".into(),
+        (None, None) => "no verdict (no demand given)".into(),
     };
     let mut s = format!(
         "{} {} ({}): {verdict}\n",
@@ -49,6 +50,9 @@ pub fn check_text(c: &Check) -> String {
             .map_or(String::new(), |d| format!(" ({:+.1} %)", 100.0 * d));
         parts.push(format!("handbook {}{unit}{diff}", n(v)));
     }
+    if parts.is_empty() {
+        return format!("{} {}: not rated ({})", c.quantity, c.symbol, c.note);
+    }
     let mut s = format!("{} {}: {}", c.quantity, c.symbol, parts.join(", "));
     if let (Some(req), Some(safety), Some(want)) = (c.required, c.safety, c.required_safety) {
         let verdict = if c.pass == Some(true) { "pass" } else { "FAIL" };
@@ -67,6 +71,7 @@ pub fn check_text(c: &Check) -> String {
 
 /// Four significant digits, plain between 0.001 and 10⁶ (30000 N, not 3e4).
 fn number(v: f64) -> String {
+    let v = v + 0.0;
     let a = v.abs();
     if a == 0.0 || !(1e-3..1e6).contains(&a) {
         return crate::numbers::sig(v, 4);

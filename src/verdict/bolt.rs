@@ -36,7 +36,7 @@ pub struct Posed {
     clamp: Clamp,
     bolt: Bolt,
     service: Vec<usize>,
-    inputs: Vec<Input>,
+    pub inputs: Vec<Input>,
 }
 
 /// Reads the joint off the model; refuses what VDI 2230 cannot rate.
@@ -75,6 +75,7 @@ pub fn pose(model: &Model, spec: &BoltSpec, at: &str) -> Result<Posed> {
         find("head", &spec.head)?,
         find("nut", &spec.nut)?,
     );
+    distinct(model, spec, sec.body, [joint, head, nut], at)?;
     let thread = thread(&spec.thread).ok_or_else(|| {
         Error::input(
             format!("{at} thread"),
@@ -85,7 +86,9 @@ pub fn pose(model: &Model, spec: &BoltSpec, at: &str) -> Result<Posed> {
         )
     })?;
     let r_p02 = yield_strength(model, spec, &thread, sec.body, at)?;
+    fits_the_shank(model, sec, &thread, at)?;
     let service = service_loads(model, spec, at)?;
+    service_after_lock(model, &service, sec.lock_after, at)?;
     let names =
         crate::model::outputs::bearings::names(spec.name.as_deref().unwrap_or(&spec.pretension));
     let probe = |n: &String| {
@@ -97,6 +100,15 @@ pub fn pose(model: &Model, spec: &BoltSpec, at: &str) -> Result<Posed> {
             .unwrap_or(0)
     };
     let (clamp, bolt, orientation) = geometry(model, spec, thread, sec.body, [head, nut]);
+    if spec.free_thread_length.unwrap_or(0.0) >= clamp.l_k {
+        return Err(Error::input(
+            format!("{at} free_thread_length"),
+            format!(
+                "is not shorter than the clamp length l_K = {} mm",
+                crate::numbers::num(clamp.l_k)
+            ),
+        ));
+    }
     let inputs = inputs(spec, &thread, r_p02, &clamp);
     Ok(Posed {
         section,
@@ -193,11 +205,102 @@ fn thread(name: &str) -> Option<Thread> {
     Thread::fine(d.trim().parse().ok()?, p.trim().parse().ok()?)
 }
 
+/// The joint between the plates, the head's and the nut's bearing: three
+/// interfaces, the first not on the bolt.
+fn distinct(
+    model: &Model,
+    spec: &BoltSpec,
+    bolt: usize,
+    [joint, head, nut]: [usize; 3],
+    at: &str,
+) -> Result<()> {
+    if joint == head || joint == nut || head == nut {
+        return Err(Error::input(format!("{at} joint"), "joint, head and nut name one interface twice: the plates' joint, the head's bearing and the nut's are three"));
+    }
+    let j = &model.interfaces[joint];
+    if j.body_a == bolt || j.body_b == bolt {
+        return Err(Error::input(
+            format!("{at} joint"),
+            format!(
+                "\"{}\" is on the bolt's body: name the interface between the clamped plates",
+                clip(&spec.joint)
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The thread must be the shank's the section cuts (its diameter within a
+/// quarter), its pitch one a thread of that size can have.
+fn fits_the_shank(
+    model: &Model,
+    sec: &crate::model::pretension::Section,
+    t: &Thread,
+    at: &str,
+) -> Result<()> {
+    let r = sec
+        .pairs
+        .iter()
+        .map(|&(n, _)| model.mesh.nodes[n][0].abs())
+        .fold(0.0f64, f64::max);
+    if (t.d - 2.0 * r).abs() > 0.25 * t.d {
+        return Err(Error::input(format!("{at} thread"), format!("M{} does not fit the shank the section cuts ({} mm across): give the bolt's thread", t.d, crate::numbers::num(2.0 * r))));
+    }
+    if !(0.2..=(t.d / 4.0).min(6.0)).contains(&t.pitch) {
+        return Err(Error::input(
+            format!("{at} thread"),
+            format!(
+                "pitch {} mm is no pitch of an M{} thread (ISO 261: 0.2 mm to d/4, at most 6 mm)",
+                crate::numbers::num(t.pitch),
+                t.d
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Every service load acts only after the lock: the preload is the
+/// section's alone.
+fn service_after_lock(model: &Model, service: &[usize], lock: f64, at: &str) -> Result<()> {
+    for &k in service {
+        let a = &model.applied[k];
+        if model.factor(a.history, lock) != 0.0 {
+            return Err(Error::input(format!("{at} service_load"), format!("{} acts before the section is locked (t = {}): give it a history that starts at the lock", a.name, crate::numbers::num(lock))));
+        }
+    }
+    if service
+        .iter()
+        .all(|&k| model.applied[k].resultant[1] == 0.0)
+    {
+        return Err(Error::input(
+            format!("{at} service_load"),
+            "has no force along the bolt's axis: F_A is the axial service load",
+        ));
+    }
+    Ok(())
+}
+
 /// The service loads' indices in [`Model::applied`].
 fn service_loads(model: &Model, spec: &BoltSpec, at: &str) -> Result<Vec<usize>> {
     let Some(names) = &spec.service_load else {
         return Ok((0..model.applied.len()).collect());
     };
+    if names.is_empty() {
+        return Err(Error::input(
+            format!("{at} service_load"),
+            "is empty: name the loads that are F_A, or leave the key out (every load)",
+        ));
+    }
+    if let Some(d) = names
+        .iter()
+        .enumerate()
+        .find(|(i, n)| names[..*i].contains(n))
+    {
+        return Err(Error::input(
+            format!("{at} service_load"),
+            format!("names {} twice", clip(d.1)),
+        ));
+    }
     names
         .iter()
         .map(|n| {
@@ -431,14 +534,22 @@ pub fn rate(model: &Model, r: &RunResult, spec: &BoltSpec, p: Posed) -> Rating {
         subject,
         inputs: p.inputs.clone(),
         checks: Vec::new(),
+        incomplete: None,
     };
     let Some(m) = measure(model, r, &p) else {
-        rating.checks.push(
-            Check::default().note("the run ended before the section was locked: nothing to rate"),
-        );
+        rating.incomplete =
+            Some("the run ended before the section was locked: nothing to rate".into());
         return rating;
     };
     rating.checks = checks(model, r, spec, &p, &m);
+    rating.incomplete = match m.phi_n {
+        _ if m.f_a_max <= 0.0 => Some("no service load acted after the lock: nothing to rate".into()),
+        Some(f) if f > 0.0 || spec.load_introduction.is_some() => None,
+        f => Some(format!(
+            "the bolt's force did not rise with the service load (Φ_n = {}): the joint is not loaded in tension as VDI 2230 rates it; give load_introduction for the handbook's side",
+            f.map_or("-".into(), |v| crate::numbers::sig(v, 4))
+        )),
+    };
     rating
 }
 

@@ -243,6 +243,7 @@ pub fn rate(model: &Model, r: &RunResult, spec: &FitSpec, posed: Posed) -> Ratin
     } else {
         p_fe.and_then(|p| fit.transmissible_axial_force(p))
     };
+    let loose = fit.effective_interference() <= 0.0;
     let mut checks = vec![
         Check::both("fit pressure, mean", "p", "MPa", p_fe, p_hb)
             .note("FE: the interface's normal force / (π D_F l_F) at the end; handbook: plane-stress Lamé with the smoothing k (Rz_A + Rz_I)"),
@@ -274,6 +275,17 @@ pub fn rate(model: &Model, r: &RunResult, spec: &FitSpec, posed: Posed) -> Ratin
             "torque and axial force together: S_r = p π D_F l_F ν / (K_A √(F_ax² + (2 M_t/D_F)²))",
         ));
     }
+    if loose {
+        let mut c = Check::both(
+            "effective interference",
+            "U_w",
+            "µm",
+            None,
+            Some(fit.effective_interference() * 1e3),
+        );
+        c.pass = Some(false);
+        checks.insert(0, c.note("U − k (Rz_A + Rz_I): by the standard's smoothing the fit is loose and holds nothing"));
+    }
     checks.extend(yield_checks(model, r, &fit, (hub, shaft), p_hb, yield_s));
     let names = &model.mesh.bodies;
     Rating {
@@ -285,6 +297,7 @@ pub fn rate(model: &Model, r: &RunResult, spec: &FitSpec, posed: Posed) -> Ratin
         ),
         inputs,
         checks,
+        incomplete: None,
     }
 }
 

@@ -15,20 +15,37 @@ use crate::solve::RunResult;
 
 /// Checks that every `[[rating]]` can be rated on this model (the names it
 /// gives exist, the model is of the kind the standard rates), before the
-/// run.
-pub fn prepare(model: &Model) -> Result<()> {
+/// run; returns a line per rating for `check`: the standard, its name and
+/// its inputs.
+pub fn prepare(model: &Model) -> Result<Vec<String>> {
+    let mut lines = Vec::new();
     for (i, spec) in model.ratings.iter().enumerate() {
         let at = at(model, i, spec);
-        match spec {
-            RatingSpec::Fit(f) => {
-                fit::pose(model, f, &at)?;
-            }
-            RatingSpec::Bolt(b) => {
-                bolt::pose(model, b, &at)?;
-            }
-        }
+        let inputs = match spec {
+            RatingSpec::Fit(f) => fit::pose(model, f, &at)?.inputs,
+            RatingSpec::Bolt(b) => bolt::pose(model, b, &at)?.inputs,
+        };
+        let words: Vec<String> = inputs
+            .iter()
+            .map(|x| {
+                format!(
+                    "{} {} {}",
+                    x.symbol,
+                    crate::numbers::sig(x.value, 5),
+                    x.unit
+                )
+                .trim_end()
+                .to_string()
+            })
+            .collect();
+        lines.push(format!(
+            "rating \"{}\" ({}): {}",
+            spec.name(),
+            spec.standard(),
+            words.join(", ")
+        ));
     }
-    Ok(())
+    Ok(lines)
 }
 
 /// The ratings of a finished run, in the case's order.
@@ -45,6 +62,16 @@ pub fn rate(model: &Model, r: &RunResult) -> Result<Vec<rating::Rating>> {
                 let posed = bolt::pose(model, b, &at)?;
                 out.push(bolt::rate(model, r, b, posed));
             }
+        }
+    }
+    if let Some(stop) = &r.stopped {
+        let t = r.increments.last().map_or(0.0, |i| i.load_factor);
+        for rating in &mut out {
+            rating.incomplete = Some(format!(
+                "the run stopped early ({}, λ = {}): these are the checks of a partial run, no verdict",
+                stop.name(),
+                crate::numbers::sig(t, 6)
+            ));
         }
     }
     Ok(out)

@@ -110,11 +110,18 @@ pub struct Rating {
     pub subject: String,
     pub inputs: Vec<Input>,
     pub checks: Vec<Check>,
+    /// Why the rating gives no verdict (a run stopped early, a joint the
+    /// standard does not rate as posed); null when it does.
+    pub incomplete: Option<String>,
 }
 
 impl Rating {
-    /// Whether every check with a verdict passes (None: no check has one).
+    /// Whether every check with a verdict passes (None: no check has one,
+    /// or the rating is incomplete).
     pub fn passes(&self) -> Option<bool> {
+        if self.incomplete.is_some() {
+            return None;
+        }
         let verdicts: Vec<bool> = self.checks.iter().filter_map(|c| c.pass).collect();
         (!verdicts.is_empty()).then(|| verdicts.iter().all(|&p| p))
     }

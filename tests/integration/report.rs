@@ -12,8 +12,8 @@
 use crate::common;
 use asperity::app::report::figure;
 use serde_json::{json, Value};
-use std::path::{Path, PathBuf};
 use std::os::unix::fs::FileTypeExt as _;
+use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
 /// The output folder of one run of `case`, made once per test binary.
@@ -303,7 +303,10 @@ fn the_report_of_a_bolted_joint_is_one_self_contained_file_with_its_numbers() {
     for ev in s["events"].as_array().unwrap() {
         let name = ev["event"].as_str().unwrap();
         // an event during the preload is named with its phase: `first_opening (preload)`
-        let r = rows.iter().find(|r| r.starts_with(&format!("{name} "))).unwrap_or_else(|| panic!("no row {name}"));
+        let r = rows
+            .iter()
+            .find(|r| r.starts_with(&format!("{name} ")))
+            .unwrap_or_else(|| panic!("no row {name}"));
         assert!(r.contains(&format!("the meaning of {name}")), "{r}");
     }
     let warnings = &html[html.find("id=\"warnings\"").unwrap()..];
@@ -512,12 +515,23 @@ fn the_report_refuses_to_replace_what_is_not_a_report() {
     let scratch = common::scratch("report-output-targets");
     let fifo = scratch.join("pipe");
     let _ = std::fs::remove_file(&fifo);
-    let made = std::process::Command::new("mkfifo").arg(&fifo).status().is_ok_and(|s| s.success());
+    let made = std::process::Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .is_ok_and(|s| s.success());
     let summary = std::fs::read(dir.join("summary.json")).unwrap();
     let mut cases = vec![
-        (dir.join("summary.json"), false, "is inside the output folder"),
+        (
+            dir.join("summary.json"),
+            false,
+            "is inside the output folder",
+        ),
         (scratch.clone(), false, "is not a regular file"),
-        (scratch.join("missing").join("r.html"), false, "in a folder that does not exist"),
+        (
+            scratch.join("missing").join("r.html"),
+            false,
+            "in a folder that does not exist",
+        ),
         (scratch.join("r.pdf"), true, "ends in .pdf"),
     ];
     if made {
@@ -538,6 +552,12 @@ fn the_report_refuses_to_replace_what_is_not_a_report() {
     }
     assert_eq!(std::fs::read(dir.join("summary.json")).unwrap(), summary);
     if made {
-        assert!(std::fs::symlink_metadata(&fifo).unwrap().file_type().is_fifo(), "the pipe stays a pipe");
+        assert!(
+            std::fs::symlink_metadata(&fifo)
+                .unwrap()
+                .file_type()
+                .is_fifo(),
+            "the pipe stays a pipe"
+        );
     }
 }

@@ -121,12 +121,21 @@ fn check_target(target: &Path, dir: &Path, pdf: bool) -> Result<()> {
         return refuse("is in a folder that does not exist: make the folder first");
     }
     let same_folder = parent.canonicalize().ok() == dir.canonicalize().ok();
-    let name = target.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let name = target
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
     if same_folder && name != "report.html" {
         return refuse("is inside the output folder: the run's files there are not the report's to replace; name report.html or a file elsewhere");
     }
-    if pdf && target.extension().is_some_and(|e| e.eq_ignore_ascii_case("pdf")) {
-        return refuse("ends in .pdf, where --pdf prints the PDF beside the HTML: give the HTML an .html name");
+    if pdf
+        && target
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("pdf"))
+    {
+        return refuse(
+            "ends in .pdf, where --pdf prints the PDF beside the HTML: give the HTML an .html name",
+        );
     }
     Ok(())
 }

@@ -118,6 +118,16 @@ pub(crate) fn check(ratings: &[RatingSpec], place: &dyn Fn(&str) -> String) -> R
     let mut names = std::collections::BTreeSet::new();
     for (i, r) in ratings.iter().enumerate() {
         let at = place(&format!("rating[{i}] ({})", r.standard()));
+        let n = r.name();
+        let bad = n.is_empty()
+            || n.trim() != n
+            || n.chars().any(|c| c == ',' || c == '"' || c.is_control());
+        if bad {
+            return Err(Error::input(
+                format!("{at} name"),
+                format!("\"{}\" cannot name a rating: it heads probes' rows and report lines, so no blanks around it, no comma, quote or control character, not empty", clip(n)),
+            ));
+        }
         if !names.insert(r.name().to_string()) {
             return Err(Error::input(
                 at,
@@ -165,7 +175,7 @@ fn numbers(r: &RatingSpec) -> Vec<Ranged> {
             ("application_factor", f.application_factor, 1.0, 5.0),
             ("slip_safety", f.slip_safety, 1.0, 10.0),
             ("yield_safety", f.yield_safety, 1.0, 10.0),
-            ("adhesion", f.adhesion, 0.01, 1.0),
+            ("adhesion", f.adhesion, 0.01, 0.6),
             ("rz_hub", f.rz_hub, 0.0, 200.0),
             ("rz_shaft", f.rz_shaft, 0.0, 200.0),
             ("smoothing", f.smoothing, 0.0, 1.0),
