@@ -1,5 +1,5 @@
 //! VDI 2230-1:2015 for a concentric through-bolted joint of an axisymmetric
-//! model: the guideline's side from [`handbook::vdi2230`] with the geometry
+//! model: the guideline's side from [`handbook::vdi2230`](crate::verdict::handbook::vdi2230) with the geometry
 //! read off the mesh, beside what the run measured.
 //!
 //! How the run's resiliences are split: at the lock the section carries

@@ -1,5 +1,5 @@
 //! DIN 7190-1:2017 for an interference fit of an axisymmetric model: the
-//! standard's side from [`handbook::din7190`] with the geometry read off the
+//! standard's side from [`handbook::din7190`](crate::verdict::handbook::din7190) with the geometry read off the
 //! mesh, beside what the run measured on the fit's interface.
 //!
 //! The FE's numbers: the fit pressure as the interface's normal force over
