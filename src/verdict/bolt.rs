@@ -56,7 +56,7 @@ pub fn pose(model: &Model, spec: &BoltSpec, at: &str) -> Result<Posed> {
         )
     })?;
     if !sec.lock_after.is_finite() {
-        return Err(Error::input(format!("{at} pretension"), "is never locked: VDI 2230 rates a preloaded bolt, give the section a force with a history (locked after it)"));
+        return Err(Error::input(format!("{at} pretension"), "is not a locked force-controlled section (a `shortening`, or `lock = false`): VDI 2230 rates a bolt tightened to a preload F_V and then locked; give the section a `force` with a history"));
     }
     let find = |key: &str, name: &str| {
         model
