@@ -9,11 +9,6 @@ use super::*;
 /// master edge ([`project`]). One pair per point, for the per-point outputs.
 /// An error names the interface, the point and the master side's extent if a
 /// point projects outside every master edge.
-///
-/// Longer than a screen, on purpose: the lumped and the consistent weights
-/// make their points in two branches that read alike side by side, and the
-/// projection's refusal names what both gathered (the point, its edge, the
-/// master side's extent).
 pub(super) fn node_to_segment(
     mesh: &Mesh,
     name: &str,
@@ -22,19 +17,83 @@ pub(super) fn node_to_segment(
     section: crate::physics::element::Section,
 ) -> Result<(Vec<Pair>, Vec<Point>), String> {
     let coords = |e: &[usize; 3]| -> [[f64; 2]; 3] { std::array::from_fn(|i| mesh.xy(e[i])) };
-    // slave quadrature points
-    struct SlavePoint {
-        a: [usize; 3],
-        na: [f64; 3],
-        len_a: usize,
-        x: [f64; 2],
-        area: f64,
-        s: f64,
-        /// A's outward normal at the point (A lies left of the slave walk).
-        out: [f64; 2],
-        /// Length of the slave edge the point lies on, mm.
-        h: f64,
+    let slave = slave_points(nm, weights, section, &coords);
+    let masters: Vec<[[f64; 2]; 3]> = nm.master.iter().map(coords).collect();
+    let ends = ends(&nm.master, &masters);
+    let mut pairs = Vec::with_capacity(slave.len());
+    let mut points = Vec::with_capacity(slave.len());
+    for SlavePoint {
+        a,
+        na,
+        len_a,
+        x,
+        area,
+        s,
+        out,
+        h,
+    } in slave
+    {
+        let Foot { k, xi, n, gap } = foot(name, &masters, &ends, x, out, h)?;
+        let nb = crate::physics::element::edge::shape(xi);
+        let b = nm.master[k];
+        let near = |nodes: &[usize], vals: &[f64]| {
+            let i = (0..vals.len())
+                .max_by(|&i, &j| vals[i].abs().total_cmp(&vals[j].abs()))
+                .unwrap_or(0);
+            nodes[i]
+        };
+        pairs.push(Pair {
+            a: near(&a[..len_a], &na[..len_a]),
+            b: near(&b, &nb),
+            x,
+            normal: n,
+            area,
+            spring: Some(points.len()),
+        });
+        points.push(Point {
+            area,
+            normal: n,
+            coupling: Coupling::NodeToSegment {
+                pair: pairs.len() - 1,
+                segment: Segment {
+                    a,
+                    na,
+                    len_a,
+                    b,
+                    nb,
+                    gap,
+                    s,
+                },
+            },
+        });
     }
+    Ok((pairs, points))
+}
+
+/// A spring point of the slave side: where it sits, the slave nodes it
+/// interpolates, the area it stands for, its arc length and outward normal.
+struct SlavePoint {
+    a: [usize; 3],
+    na: [f64; 3],
+    len_a: usize,
+    x: [f64; 2],
+    area: f64,
+    s: f64,
+    /// A's outward normal at the point (A lies left of the slave walk).
+    out: [f64; 2],
+    /// Length of the slave edge the point lies on, mm.
+    h: f64,
+}
+
+/// The slave side's spring points: at each slave node with Simpson's
+/// weights (lumped: a node on two edges gathers from both), or at 4 Gauss
+/// points per edge (consistent).
+fn slave_points(
+    nm: &crate::input::mesh::NonMatching,
+    weights: Weights,
+    section: crate::physics::element::Section,
+    coords: &dyn Fn(&[usize; 3]) -> [[f64; 2]; 3],
+) -> Vec<SlavePoint> {
     let mut slave: Vec<SlavePoint> = Vec::new();
     let mut s0 = 0.0;
     let mut node_point = std::collections::HashMap::new();
@@ -88,56 +147,7 @@ pub(super) fn node_to_segment(
         }
         s0 += half[1];
     }
-    let masters: Vec<[[f64; 2]; 3]> = nm.master.iter().map(coords).collect();
-    let ends = ends(&nm.master, &masters);
-    let mut pairs = Vec::with_capacity(slave.len());
-    let mut points = Vec::with_capacity(slave.len());
-    for SlavePoint {
-        a,
-        na,
-        len_a,
-        x,
-        area,
-        s,
-        out,
-        h,
-    } in slave
-    {
-        let Foot { k, xi, n, gap } = foot(name, &masters, &ends, x, out, h)?;
-        let nb = crate::physics::element::edge::shape(xi);
-        let b = nm.master[k];
-        let near = |nodes: &[usize], vals: &[f64]| {
-            let i = (0..vals.len())
-                .max_by(|&i, &j| vals[i].abs().total_cmp(&vals[j].abs()))
-                .unwrap_or(0);
-            nodes[i]
-        };
-        pairs.push(Pair {
-            a: near(&a[..len_a], &na[..len_a]),
-            b: near(&b, &nb),
-            x,
-            normal: n,
-            area,
-            spring: Some(points.len()),
-        });
-        points.push(Point {
-            area,
-            normal: n,
-            coupling: Coupling::NodeToSegment {
-                pair: pairs.len() - 1,
-                segment: Segment {
-                    a,
-                    na,
-                    len_a,
-                    b,
-                    nb,
-                    gap,
-                    s,
-                },
-            },
-        });
-    }
-    Ok((pairs, points))
+    slave
 }
 
 /// The springs of a mortar non-matching interface (`weights = "mortar"`,
@@ -152,38 +162,18 @@ pub(super) fn node_to_segment(
 /// hands its weight function to the edge's other nodes in proportion to
 /// their areas (the weights still sum to 1, so the patch test holds) and
 /// carries no spring.
-///
-/// Longer than a screen, on purpose: it is one pass — cut the slave edges
-/// at the master corners, integrate each piece, hand the axis nodes' weight
-/// on, make the springs — over one set of shared tables (the master ends,
-/// the pieces' feet, the weight integrals per slave node); split, each part
-/// would take and return most of them.
 pub(super) fn mortar(
     mesh: &Mesh,
     name: &str,
     nm: &crate::input::mesh::NonMatching,
     section: crate::physics::element::Section,
 ) -> Result<(Vec<Pair>, Vec<Point>), String> {
-    use std::collections::{BTreeMap, HashMap};
     let coords = |e: &[usize; 3]| -> [[f64; 2]; 3] { std::array::from_fn(|i| mesh.xy(e[i])) };
     let masters: Vec<[[f64; 2]; 3]> = nm.master.iter().map(coords).collect();
     let ends = ends(&nm.master, &masters);
     let corners: Vec<[f64; 2]> = masters.iter().flat_map(|xe| [xe[0], xe[2]]).collect();
-    #[derive(Default)]
-    struct Acc {
-        node: usize,
-        x: [f64; 2],
-        s: f64,
-        area: f64,
-        /// ∫ N_i r dA: the moment arm of the spring's force, times its area
-        moment: f64,
-        gap: f64,
-        normal: [f64; 2],
-        /// node → (∂u_N/∂u, ∂u_T/∂u), before the division by the area
-        coef: BTreeMap<usize, ([f64; 2], [f64; 2], f64)>,
-    }
-    let mut acc: Vec<Acc> = Vec::new();
-    let mut index: HashMap<usize, usize> = HashMap::new();
+    let mut acc: Vec<MortarSum> = Vec::new();
+    let mut index: std::collections::HashMap<usize, usize> = Default::default();
     let mut s0 = 0.0;
     for e in &nm.slave {
         let xs = coords(e);
@@ -191,63 +181,23 @@ pub(super) fn mortar(
             super::arcs::piece_length(&xs, -1.0, 0.0),
             super::arcs::piece_length(&xs, -1.0, 1.0),
         ];
-        let mut ids = [0usize; 3];
-        for i in 0..3 {
-            ids[i] = *index.entry(e[i]).or_insert_with(|| {
-                acc.push(Acc {
+        let ids: [usize; 3] = std::array::from_fn(|i| {
+            *index.entry(e[i]).or_insert_with(|| {
+                acc.push(MortarSum {
                     node: e[i],
                     x: xs[i],
                     s: s0 + [0.0, half[0], half[1]][i],
                     ..Default::default()
                 });
                 acc.len() - 1
-            });
-        }
-        // the weight functions: the nodes' N_k, but a node on the axis in
-        // axisymmetry hands its N to the others in proportion to theirs:
-        // still Σ = 1, so the patch test holds, and no spring divides by
-        // its area. That area, ∫ N_k 2π r ds, is 0 only on a straight edge
-        // with its midside node in the middle; on a curved one (a sphere's
-        // meridian) ds/dξ varies and it is O((h/R)²) of the edge's area, of
-        // either sign (−6.7e-8 of it on an R = 50 mm sphere with 0.1 mm
-        // edges): not round-off, so the node is recognised by its position
-        // (r within 1e-9 of the edge's length), not by the sign of its area
-        let mut own = [0.0f64; 3];
-        for (xi, wg) in gauss4() {
-            let sh = crate::physics::element::edge::shape(xi);
-            let wq = wg * edge_normal(&xs, xi).1 * section.measure(point_on(&xs, xi));
-            for k in 0..3 {
-                own[k] += wq * sh[k];
-            }
-        }
-        let void: Vec<usize> = (0..3).filter(|&k| on_axis(section, &xs, k)).collect();
-        if void.len() == 3 {
-            // an edge along the axis has no area: nothing to average over
-            s0 += half[1];
-            continue;
-        }
-        let live: f64 = (0..3).filter(|k| !void.contains(k)).map(|k| own[k]).sum();
-        let weights = |sh: &[f64; 3]| -> [f64; 3] {
-            let handed: f64 = void.iter().map(|&k| sh[k]).sum();
-            std::array::from_fn(|k| {
-                if void.contains(&k) {
-                    0.0
-                } else {
-                    sh[k] + handed * own[k] / live
-                }
             })
+        });
+        s0 += half[1];
+        // an edge along the axis has no area: nothing to average over
+        let Some(handed) = AxisWeights::of(section, &xs) else {
+            continue;
         };
-        // the pieces: cut where a master corner projects inside the edge
-        let mut cuts = vec![-1.0, 1.0];
-        cuts.extend(
-            corners
-                .iter()
-                .filter_map(|&c| project(&xs, c))
-                .filter(|xi| xi.abs() < 1.0 - 1e-9),
-        );
-        cuts.sort_by(f64::total_cmp);
-        cuts.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
-        for w in cuts.windows(2) {
+        for w in pieces(&xs, &corners).windows(2) {
             let (lo, hi) = (w[0], w[1]);
             for (g, wg) in gauss4() {
                 let xi = 0.5 * (lo + hi) + 0.5 * (hi - lo) * g;
@@ -256,32 +206,20 @@ pub(super) fn mortar(
                 let x = point_on(&xs, xi);
                 let wq = 0.5 * (hi - lo) * wg * ds * section.measure(x);
                 let f = foot(name, &masters, &ends, x, [-nl[0], -nl[1]], half[1])?;
-                let nb = crate::physics::element::edge::shape(f.xi);
-                let (n, t) = (f.n, [f.n[1], -f.n[0]]);
-                let b = nm.master[f.k];
-                let weight = weights(&shape);
+                let weight = handed.apply(&shape);
+                let sides = [
+                    (*e, shape, -1.0),
+                    (
+                        nm.master[f.k],
+                        crate::physics::element::edge::shape(f.xi),
+                        1.0,
+                    ),
+                ];
                 for i in 0..3 {
-                    let wi = wq * weight[i];
-                    let a = &mut acc[ids[i]];
-                    a.area += wi;
-                    a.moment += wi * x[0];
-                    a.gap += wi * f.gap;
-                    let wn = wq * weight[i].abs();
-                    a.normal = [a.normal[0] + wn * n[0], a.normal[1] + wn * n[1]];
-                    let sides = [(&e[..], &shape, -1.0), (&b[..], &nb, 1.0)];
-                    for (nodes, vals, sign) in sides {
-                        for j in 0..3 {
-                            let c = sign * wi * vals[j];
-                            let d = a.coef.entry(nodes[j]).or_default();
-                            d.0 = [d.0[0] + c * n[0], d.0[1] + c * n[1]];
-                            d.1 = [d.1[0] + c * t[0], d.1[1] + c * t[1]];
-                            d.2 += c;
-                        }
-                    }
+                    acc[ids[i]].add(wq, weight[i], x, &f, &sides);
                 }
             }
         }
-        s0 += half[1];
     }
     let slave_nodes: std::collections::HashSet<usize> = index.keys().copied().collect();
     let mut pairs = Vec::with_capacity(acc.len());
@@ -299,45 +237,163 @@ pub(super) fn mortar(
                 a.x[0], a.x[1], a.area
             ));
         }
-        let l = a.normal[0].hypot(a.normal[1]);
-        let normal = [a.normal[0] / l, a.normal[1] / l];
-        let inv = 1.0 / a.area;
-        let nodes: Vec<usize> = a.coef.keys().copied().collect();
-        let dn: Vec<[f64; 2]> = a.coef.values().map(|c| c.0.map(|v| v * inv)).collect();
-        let dt: Vec<[f64; 2]> = a.coef.values().map(|c| c.1.map(|v| v * inv)).collect();
-        let dh: Vec<f64> = a.coef.values().map(|c| c.2 * inv).collect();
+        let (pair, point) = a.spring(&slave_nodes, points.len());
+        pairs.push(pair);
+        points.push(point);
+    }
+    Ok((pairs, points))
+}
+
+/// What a mortar spring gathers over the slave edges its node is on.
+#[derive(Default)]
+struct MortarSum {
+    node: usize,
+    x: [f64; 2],
+    s: f64,
+    area: f64,
+    /// ∫ N_i r dA: the moment arm of the spring's force, times its area
+    moment: f64,
+    gap: f64,
+    normal: [f64; 2],
+    /// node → (∂u_N/∂u, ∂u_T/∂u, ∂h/∂u), before the division by the area
+    coef: std::collections::BTreeMap<usize, ([f64; 2], [f64; 2], f64)>,
+}
+
+impl MortarSum {
+    /// One Gauss point of weight `wq` and this node's weight function
+    /// `weight` there, at x with its foot `f` on the master side; `sides`:
+    /// the slave edge's and the master edge's nodes and shape values, −1
+    /// and +1.
+    fn add(
+        &mut self,
+        wq: f64,
+        weight: f64,
+        x: [f64; 2],
+        f: &Foot,
+        sides: &[([usize; 3], [f64; 3], f64); 2],
+    ) {
+        let (n, t) = (f.n, [f.n[1], -f.n[0]]);
+        let wi = wq * weight;
+        self.area += wi;
+        self.moment += wi * x[0];
+        self.gap += wi * f.gap;
+        let wn = wq * weight.abs();
+        self.normal = [self.normal[0] + wn * n[0], self.normal[1] + wn * n[1]];
+        for (nodes, vals, sign) in sides {
+            for j in 0..3 {
+                let c = sign * wi * vals[j];
+                let d = self.coef.entry(nodes[j]).or_default();
+                d.0 = [d.0[0] + c * n[0], d.0[1] + c * n[1]];
+                d.1 = [d.1[0] + c * t[0], d.1[1] + c * t[1]];
+                d.2 += c;
+            }
+        }
+    }
+
+    /// Its spring (point `index`) and the pair that stands for it: the slave
+    /// node and the master node (not one of `slave_nodes`) that weighs most
+    /// in its approach.
+    fn spring(self, slave_nodes: &std::collections::HashSet<usize>, index: usize) -> (Pair, Point) {
+        let l = self.normal[0].hypot(self.normal[1]);
+        let normal = [self.normal[0] / l, self.normal[1] / l];
+        let inv = 1.0 / self.area;
+        let nodes: Vec<usize> = self.coef.keys().copied().collect();
+        let dn: Vec<[f64; 2]> = self.coef.values().map(|c| c.0.map(|v| v * inv)).collect();
+        let dt: Vec<[f64; 2]> = self.coef.values().map(|c| c.1.map(|v| v * inv)).collect();
+        let dh: Vec<f64> = self.coef.values().map(|c| c.2 * inv).collect();
         let b = nodes
             .iter()
             .zip(&dn)
             .filter(|(k, _)| !slave_nodes.contains(k))
             .max_by(|p, q| p.1[0].hypot(p.1[1]).total_cmp(&q.1[0].hypot(q.1[1])))
-            .map_or(a.node, |(&k, _)| k);
-        pairs.push(Pair {
-            a: a.node,
+            .map_or(self.node, |(&k, _)| k);
+        let pair = Pair {
+            a: self.node,
             b,
-            x: a.x,
+            x: self.x,
             normal,
-            area: a.area,
-            spring: Some(points.len()),
-        });
-        points.push(Point {
-            area: a.area,
+            area: self.area,
+            spring: Some(index),
+        };
+        let mortar = Mortar {
+            nodes,
+            dn,
+            dt,
+            dh,
+            gap: self.gap / self.area,
+            s: self.s,
+            radius: self.moment / self.area,
+        };
+        let point = Point {
+            area: self.area,
             normal,
             coupling: Coupling::Mortar {
-                pair: pairs.len() - 1,
-                mortar: std::sync::Arc::new(Mortar {
-                    nodes,
-                    dn,
-                    dt,
-                    dh,
-                    gap: a.gap / a.area,
-                    s: a.s,
-                    radius: a.moment / a.area,
-                }),
+                pair: index,
+                mortar: std::sync::Arc::new(mortar),
             },
-        });
+        };
+        (pair, point)
     }
-    Ok((pairs, points))
+}
+
+/// The weight functions of a slave edge's nodes: their shape functions N_k,
+/// but a node on the axis in axisymmetry hands its N to the others in
+/// proportion to their areas ∫ N_k 2π r ds: still Σ = 1, so the patch test
+/// holds, and no spring divides by its area. That area is 0 only on a
+/// straight edge with its midside node in the middle; on a curved one (a
+/// sphere's meridian) ds/dξ varies and it is O((h/R)²) of the edge's area,
+/// of either sign (−6.7e-8 of it on an R = 50 mm sphere with 0.1 mm edges):
+/// not round-off, so the node is recognised by its position ([`on_axis`]),
+/// not by the sign of its area.
+struct AxisWeights {
+    own: [f64; 3],
+    void: Vec<usize>,
+    live: f64,
+}
+
+impl AxisWeights {
+    /// None for an edge whose three nodes are on the axis.
+    fn of(section: crate::physics::element::Section, xs: &[[f64; 2]; 3]) -> Option<AxisWeights> {
+        let mut own = [0.0f64; 3];
+        for (xi, wg) in gauss4() {
+            let sh = crate::physics::element::edge::shape(xi);
+            let wq = wg * edge_normal(xs, xi).1 * section.measure(point_on(xs, xi));
+            for k in 0..3 {
+                own[k] += wq * sh[k];
+            }
+        }
+        let void: Vec<usize> = (0..3).filter(|&k| on_axis(section, xs, k)).collect();
+        if void.len() == 3 {
+            return None;
+        }
+        let live: f64 = (0..3).filter(|k| !void.contains(k)).map(|k| own[k]).sum();
+        Some(AxisWeights { own, void, live })
+    }
+
+    fn apply(&self, sh: &[f64; 3]) -> [f64; 3] {
+        let handed: f64 = self.void.iter().map(|&k| sh[k]).sum();
+        std::array::from_fn(|k| {
+            if self.void.contains(&k) {
+                0.0
+            } else {
+                sh[k] + handed * self.own[k] / self.live
+            }
+        })
+    }
+}
+
+/// The pieces of a slave edge: cut where a master corner projects inside it.
+fn pieces(xs: &[[f64; 2]; 3], corners: &[[f64; 2]]) -> Vec<f64> {
+    let mut cuts = vec![-1.0, 1.0];
+    cuts.extend(
+        corners
+            .iter()
+            .filter_map(|&c| project(xs, c))
+            .filter(|xi| xi.abs() < 1.0 - 1e-9),
+    );
+    cuts.sort_by(f64::total_cmp);
+    cuts.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
+    cuts
 }
 
 /// Is node `k` of the slave edge `xs` on the axis of an axisymmetric model
