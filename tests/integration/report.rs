@@ -21,13 +21,7 @@ fn run_once(case: &'static str, cell: &'static OnceLock<PathBuf>) -> &'static Pa
     cell.get_or_init(|| {
         let out = common::scratch(&format!("report-run-{case}")).join("out");
         let case = common::root().join("cases").join(case);
-        let (code, e) = common::run_asperity(&[
-            "run",
-            &case.display().to_string(),
-            "--out",
-            &out.display().to_string(),
-            "--quiet",
-        ]);
+        let (code, e) = common::run_case(&case, &out, &[]);
         assert_eq!(code, 0, "{e}");
         out
     })
@@ -483,13 +477,7 @@ fn an_ascii_vtu_draws_the_same_mesh_as_a_binary_one() {
             &format!("{text}\n[output]\nvtu_format = \"{format}\"\n"),
         );
         let out = common::scratch(&format!("report-vtu-{format}")).join("out");
-        let (code, e) = common::run_asperity(&[
-            "run",
-            &case.display().to_string(),
-            "--out",
-            &out.display().to_string(),
-            "--quiet",
-        ]);
+        let (code, e) = common::run_case(&case, &out, &[]);
         assert_eq!(code, 0, "{e}");
         let (code, e, _) = report(&[&out.display().to_string()]);
         assert_eq!(code, 0, "{e}");
