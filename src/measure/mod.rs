@@ -9,6 +9,7 @@
 //! ([`Comm`]: sum, max, agree, rank), never through the solver.
 
 pub mod estimate;
+pub mod gross_slip;
 pub mod joint;
 pub mod peaks;
 

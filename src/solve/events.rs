@@ -35,6 +35,7 @@
 
 use super::{Checkpoint, Engine, State, StepFailure};
 use crate::error::Result;
+pub use crate::measure::gross_slip::Motion;
 use crate::model::interface::InterfaceModel;
 use crate::model::Model;
 use crate::physics::contact::Status;
@@ -49,7 +50,7 @@ const SPLITS: [f64; 2] = [0.5, 0.45];
 pub(crate) const MAX_SOLVES: usize = MAX_HALVINGS * SPLITS.len();
 /// Leading values of an event's row in a restart file ([`Event::pack`]);
 /// the plan's record follows.
-pub(crate) const FIXED: usize = 16;
+pub(crate) const FIXED: usize = 17;
 
 /// What happened.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -58,9 +59,14 @@ pub enum Kind {
     FirstOpening,
     FullSlip,
     FullSeparation,
+    /// The load a joint in full slip holds as it slides on, in the way it
+    /// moved ([`plateaus`]): read off the increments at the run's end,
+    /// never searched nor stored in a restart file.
+    HoldingPlateau(Motion),
 }
 
 impl Kind {
+    /// The kinds searched during the run (and stored in restart files).
     pub(crate) const ALL: [Kind; 4] = [
         Kind::FirstYield,
         Kind::FirstOpening,
@@ -74,6 +80,7 @@ impl Kind {
             Kind::FirstOpening => "first_opening",
             Kind::FullSlip => "full_slip",
             Kind::FullSeparation => "full_separation",
+            Kind::HoldingPlateau(_) => "holding_plateau",
         }
     }
 }
@@ -126,8 +133,9 @@ pub struct Event {
     /// does not apply.
     pub place: [f64; 4],
     /// total_load_kn, mean_pressure_mpa ([`super::Measures`]), and the
-    /// interface's F_N and F_T (joint convention; NaN for first yield).
-    pub values: [f64; 4],
+    /// interface's F_N, F_T and torque T (N, N, N·mm; joint convention; T
+    /// is 0 without twist; NaN for first yield).
+    pub values: [f64; 5],
     /// The plan's record of the state at `load_factor`.
     pub record: Vec<f64>,
 }
@@ -247,7 +255,7 @@ impl Event {
                 converged: flags & 1 == 1,
                 solve_failed: flags & 2 == 2,
                 place: [r[8], r[9], r[10], r[11]],
-                values: [r[12], r[13], r[14], r[15]],
+                values: [r[12], r[13], r[14], r[15], r[16]],
                 record: r[FIXED..].to_vec(),
             });
         }
@@ -320,7 +328,13 @@ pub(super) fn first_yield(
         converged: root || (bracket[1] - bracket[0]).abs() <= model.plan.event_tolerance,
         solve_failed: false,
         place,
-        values: [m.total_load_kn, m.mean_pressure, f64::NAN, f64::NAN],
+        values: [
+            m.total_load_kn,
+            m.mean_pressure,
+            f64::NAN,
+            f64::NAN,
+            f64::NAN,
+        ],
         record: engine.record(state),
     }
 }
@@ -372,7 +386,7 @@ impl Monitor {
             Kind::FirstOpening => closed > 0 && closed == carried,
             Kind::FullSeparation => closed > 0,
             Kind::FullSlip => im.tangential.is_some() && !m.happened(model, committed),
-            Kind::FirstYield => false,
+            Kind::FirstYield | Kind::HoldingPlateau(_) => false,
         };
         ready.then_some(m)
     }
@@ -395,7 +409,7 @@ impl Monitor {
                         .iter()
                         .all(|&s| s == Status::Open || s == Status::MacroSlip)
             }
-            Kind::FirstYield => false,
+            Kind::FirstYield | Kind::HoldingPlateau(_) => false,
         }
     }
 
@@ -581,7 +595,90 @@ fn bisect(
             meas.mean_pressure,
             j.normal_force,
             j.tangential_force,
+            j.torque,
         ],
         record: engine.record(&sb),
     }))
+}
+
+/// Within this share of its largest value a joint's held load is on its
+/// plateau: the Newton tolerance leaves a sliding joint's force steady to
+/// about 1e-8 of the loads, a plateau of a rate-independent law is flat to
+/// that; 1e-3 also takes in a plateau that still creeps as a pressure
+/// settles (a pressed fit's edges).
+pub const PLATEAU: f64 = 1e-3;
+
+/// The holding plateaus of a finished run's interfaces: for each way a
+/// joint moved while it slipped as a whole ([`crate::measure::gross_slip`]:
+/// turned, or pushed along its tangent), the largest load it held in that
+/// motion (|T| turning, |F_T| pushed), located at the first such increment
+/// within [`PLATEAU`] of it, when a later increment of the same motion is
+/// within it too: the joint held that load as it slid on. A joint that
+/// first slips as a whole and then takes more (the axial friction a
+/// pressing locked in sliding out under the torque) reaches its plateau
+/// after its full slip; a load still rising at its last slipping increment
+/// is no plateau and gives none. Located to the increment (method
+/// `increment`: its bracket is the increment); read at the run's end from
+/// the increments, so a resumed run finds them alike.
+pub fn plateaus(model: &Model, increments: &[super::Increment]) -> Vec<Event> {
+    let mut out = Vec::new();
+    for (i, im) in model.interfaces.iter().enumerate() {
+        if im.tangential.is_none() {
+            continue;
+        }
+        let series: Vec<_> = increments
+            .iter()
+            .filter_map(|inc| inc.joints.get(i))
+            .collect();
+        let moves = crate::measure::gross_slip::motions(&series);
+        for motion in [Motion::Turning, Motion::Pushing] {
+            let held: Vec<(usize, f64)> = moves
+                .iter()
+                .filter(|(_, m)| *m == motion)
+                .map(|&(k, m)| (k, m.held(series[k])))
+                .collect();
+            let top = held.iter().map(|h| h.1).fold(0.0, f64::max);
+            let on: Vec<usize> = held
+                .iter()
+                .filter(|h| top > 0.0 && h.1 >= (1.0 - PLATEAU) * top)
+                .map(|h| h.0)
+                .collect();
+            if on.len() < 2 {
+                continue;
+            }
+            out.push(plateau(i, motion, on[0], increments));
+        }
+    }
+    out
+}
+
+/// The plateau event of interface `i` at increment `k` (0-based).
+fn plateau(i: usize, motion: Motion, k: usize, increments: &[super::Increment]) -> Event {
+    let inc = &increments[k];
+    let j = &inc.joints[i];
+    let before = if k == 0 {
+        0.0
+    } else {
+        increments[k - 1].load_factor
+    };
+    Event {
+        kind: Kind::HoldingPlateau(motion),
+        interface: Some(i),
+        load_factor: inc.load_factor,
+        before,
+        after: inc.load_factor,
+        increment: inc.increment,
+        method: Method::Increment,
+        converged: true,
+        solve_failed: false,
+        place: [f64::NAN; 4],
+        values: [
+            inc.measures.total_load_kn,
+            inc.measures.mean_pressure,
+            j.normal_force,
+            j.tangential_force,
+            j.torque,
+        ],
+        record: inc.record.clone(),
+    }
 }

@@ -556,6 +556,11 @@ fn finish(
             .map_or("builtin", |s| s.name())
             .to_string(),
         backend_stats: backend_stats(&engine),
+        events: {
+            let mut events = ck.events;
+            events.extend(events::plateaus(engine.model, &ck.increments));
+            events
+        },
         increments: ck.increments,
         first_yield: ck.first_yield,
         stats: engine.stats.clone(),
@@ -565,7 +570,6 @@ fn finish(
         resumed_from,
         stabilization,
         table_reach: ck.table_reach,
-        events: ck.events,
         estimate: None,
     }
 }

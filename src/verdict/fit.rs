@@ -5,8 +5,9 @@
 //! The FE's numbers: the fit pressure as the interface's normal force over
 //! π D_F l_F (mean) and its largest pair pressure (peak, at the joint's
 //! edges); the torque and axial force the fit held as the largest the
-//! interface carried over the run (its holding plateau, when the run turns or
-//! pushes the fit to gross slip), else the friction capacity p π D_F l_F ν of
+//! interface carried while it slid as a whole, turned or pushed by the
+//! direction it moved (its holding plateau, when the run turns or pushes
+//! the fit to gross slip), else the friction capacity p π D_F l_F ν of
 //! the FE's mean pressure; each part's largest von Mises stress against its
 //! yield stress.
 
@@ -14,6 +15,7 @@ use super::handbook::din7190::{Fit, SMOOTHING_2017};
 use super::rating::{joint_series, max_pressure, max_von_mises, radii, Check, Input, Rating};
 use crate::error::{clip, Error, Result};
 use crate::input::case::rating::FitSpec;
+use crate::measure::gross_slip::Motion;
 use crate::model::interface::InterfaceModel;
 use crate::model::Model;
 use crate::solve::RunResult;
@@ -226,23 +228,11 @@ pub fn rate(model: &Model, r: &RunResult, spec: &FitSpec, posed: Posed) -> Ratin
     let yield_s = spec.yield_safety.unwrap_or(1.1);
     let torque_demand = spec.torque.map(|t| k_a * t);
     let axial_demand = spec.axial_force.map(|f| k_a * f);
-    let held_torque = joint_series(r, i)
-        .map(|(_, j)| j.torque.abs())
-        .fold(0.0, f64::max);
-    let held_axial = joint_series(r, i)
-        .map(|(_, j)| j.tangential_force.abs())
-        .fold(0.0, f64::max);
-    let (turned, pushed) = slipped(r, i, fit.d_f);
-    let fe_torque = if turned {
-        Some(held_torque)
-    } else {
-        p_fe.and_then(|p| fit.transmissible_torque(p))
-    };
-    let fe_axial = if pushed {
-        Some(held_axial)
-    } else {
-        p_fe.and_then(|p| fit.transmissible_axial_force(p))
-    };
+    let held_torque = held(r, i, Motion::Turning);
+    let held_axial = held(r, i, Motion::Pushing);
+    let (turned, pushed) = (held_torque.is_some(), held_axial.is_some());
+    let fe_torque = held_torque.or_else(|| p_fe.and_then(|p| fit.transmissible_torque(p)));
+    let fe_axial = held_axial.or_else(|| p_fe.and_then(|p| fit.transmissible_axial_force(p)));
     let loose = fit.effective_interference() <= 0.0;
     let mut checks = vec![
         Check::both("fit pressure, mean", "p", "MPa", p_fe, p_hb)
@@ -301,18 +291,18 @@ pub fn rate(model: &Model, r: &RunResult, spec: &FitSpec, posed: Posed) -> Ratin
     }
 }
 
-/// Whether the fit slipped as a whole (all of it in contact in macro-slip)
-/// at some increment turning (the circumferential friction force 2T/D_F
-/// the larger) and at some pushed (the axial one the larger).
-fn slipped(r: &RunResult, i: usize, d_f: f64) -> (bool, bool) {
-    let slips = joint_series(r, i).filter(|(_, j)| {
-        let touching = j.closed + j.stick + j.micro_slip + j.macro_slip;
-        j.macro_slip > 0.0 && j.macro_slip >= 0.999 * touching
-    });
-    slips.fold((false, false), |(t, p), (_, j)| {
-        let turning = 2.0 * j.torque.abs() / d_f > j.tangential_force.abs();
-        (t || turning, p || !turning)
-    })
+/// The largest load the fit held while it slid as a whole in `motion`
+/// (|T| turned, N·mm; |F_T| pushed, N), by the direction each increment
+/// moved ([`crate::measure::gross_slip`]): its holding plateau when the run
+/// reaches one; none when it never slid so.
+fn held(r: &RunResult, i: usize, motion: Motion) -> Option<f64> {
+    let series: Vec<_> = joint_series(r, i).map(|(_, j)| j).collect();
+    let moves = crate::measure::gross_slip::motions(&series);
+    moves
+        .iter()
+        .filter(|(_, m)| *m == motion)
+        .map(|&(k, m)| m.held(series[k]))
+        .reduce(f64::max)
 }
 
 /// Hub and shaft against yield: the FE's largest von Mises stress and the

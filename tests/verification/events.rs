@@ -266,3 +266,85 @@ fn a_pressed_then_turned_fit_brackets_its_full_slip_and_counts_the_search_apart(
         assert!((l - 1.1516).abs() <= 3e-3, "{found:?}");
     }
 }
+
+/// A joint's holding plateau is read apart from its first gross slip, by
+/// the way it moved. The block pushed across a Coulomb interface holds
+/// μ F_N = 60 N as it slides on (`tangential force`, 1e-9); the shipped fit
+/// pressed and then turned first slides whole at a torque below what it
+/// holds (the axial friction the pressing locked in slides out first): its
+/// plateau is the largest torque of the run and comes after the full slip,
+/// it has no pushed plateau (it was never pushed), and its DIN 7190 rating
+/// reads M_t off that plateau and F_ax off the fit's friction capacity, not
+/// off the locked-in axial force it carried while turning.
+#[test]
+fn the_holding_plateau_is_named_apart_from_the_first_gross_slip() {
+    use asperity::solve::events::Motion;
+    let (_, events) = events_of("block-slip", 1e-3);
+    let slip = one(&events, Kind::FullSlip).clone();
+    let held = one(&events, Kind::HoldingPlateau(Motion::Pushing));
+    assert!(common::rel(held.values[3], 0.3 * 200.0) < 1e-9, "{held:?}");
+    assert!(held.load_factor >= slip.load_factor, "{held:?} {slip:?}");
+    assert!(events
+        .iter()
+        .all(|e| e.kind != Kind::HoldingPlateau(Motion::Turning)));
+
+    let case = common::root().join("cases/shrink-fit-torque");
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("events-plateau-fit");
+    let opts = RunOptions {
+        out: Some(out.clone()),
+        quiet: true,
+        ..Default::default()
+    };
+    let (_, _, r) = run(&case, &opts).unwrap();
+    let slip = one(&r.events, Kind::FullSlip);
+    let held = one(&r.events, Kind::HoldingPlateau(Motion::Turning));
+    assert!(r
+        .events
+        .iter()
+        .all(|e| e.kind != Kind::HoldingPlateau(Motion::Pushing)));
+    let top = r
+        .increments
+        .iter()
+        .map(|i| i.joints[0].torque.abs())
+        .fold(0.0, f64::max);
+    assert!(
+        held.values[4].abs() >= (1.0 - 1e-3) * top,
+        "{held:?} vs {top}"
+    );
+    assert!(held.load_factor > slip.load_factor);
+    assert!(slip.values[4].abs() < 0.9 * top, "{slip:?} vs {top}");
+    // the locked-in axial friction at the full slip, several kN
+    assert!(slip.values[3].abs() > 5e3, "{slip:?}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let check = |q: &str| {
+        summary["ratings"][0]["checks"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|c| c["symbol"] == q)
+            .unwrap_or_else(|| panic!("{q}"))["fe"]
+            .as_f64()
+            .unwrap()
+    };
+    let (m_t, f_ax) = (check("M_t"), check("F_ax"));
+    assert!(common::rel(m_t, top * 1e-3) < 1e-12, "{m_t} vs {top}");
+    // F_ax = p π D l ν with the FE's mean pressure: 2 M_t / D_F of the same p
+    // when M_t is the formula's; here M_t is the plateau, T = μ F_N D/2 to
+    // the plateau's own creep, so F_ax = μ F_N within it
+    let f_n = r.increments.last().unwrap().joints[0].normal_force;
+    assert!(
+        common::rel(f_ax, 0.15 * f_n) < 1e-9,
+        "{f_ax} vs μ F_N {}",
+        0.15 * f_n
+    );
+    assert!(common::rel(f_ax, slip.values[3].abs()) > 0.5);
+    let event = summary["events"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|e| e["event"] == "holding_plateau")
+        .unwrap();
+    assert_eq!(event["quantity"], "torque");
+    assert!(common::rel(event["torque_nm"].as_f64().unwrap(), held.values[4] * 1e-3) < 1e-15);
+}

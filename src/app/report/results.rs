@@ -248,6 +248,8 @@ pub(super) fn events(page: &mut Page, s: &Value) {
         page.absent("No event was located (summary.json events is empty or absent).");
         return;
     };
+    // a model with twist reports each interface event's torque
+    let twist = list.iter().any(|e| num(e, "torque_nm").is_some());
     let rows = list
         .iter()
         .map(|e| {
@@ -257,27 +259,39 @@ pub(super) fn events(page: &mut Page, s: &Value) {
             let phase = text(e, "phase")
                 .map(|p| format!(" ({p})"))
                 .unwrap_or_default();
-            vec![
-                Cell::from(format!("{}{phase}", text(e, "event").unwrap_or_default())),
+            let quantity = text(e, "quantity")
+                .map(|q| format!(" of {q}"))
+                .unwrap_or_default();
+            let mut row = vec![
+                Cell::from(format!(
+                    "{}{quantity}{phase}",
+                    text(e, "event").unwrap_or_default()
+                )),
                 Cell::from(at),
                 value(e, "load_factor", ""),
                 value(e, "total_load_kn", "kN"),
                 Cell::n(num(e, "normal_force_n").map_or("—".into(), kn)),
                 Cell::n(num(e, "tangential_force_n").map_or("—".into(), kn)),
-                Cell::n(place(e)),
-                Cell::from(text(e, "meaning").unwrap_or_else(|| "—".into())),
-            ]
+            ];
+            if twist {
+                row.push(value(e, "torque_nm", "N·m"));
+            }
+            row.push(Cell::n(place(e)));
+            row.push(Cell::from(text(e, "meaning").unwrap_or_else(|| "—".into())));
+            row
         })
         .collect();
-    let head = [
+    let mut head = vec![
         "event",
         "interface or body",
         "load factor",
         "total load",
         "F_N",
         "F_T",
-        "where (mm)",
-        "meaning",
     ];
+    if twist {
+        head.push("T");
+    }
+    head.extend(["where (mm)", "meaning"]);
     page.table("Events located (summary.json events)", &head, rows);
 }

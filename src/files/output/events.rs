@@ -61,6 +61,11 @@ pub(crate) fn event_json(model: &Model, e: &Event) -> Value {
         "mean_pressure_mpa": contact(e.values[1]),
         "normal_force_n": number(e.values[2]),
         "tangential_force_n": number(e.values[3]),
+        "torque_nm": torque(model, e).map_or(Value::Null, number),
+        "quantity": match e.kind {
+            Kind::HoldingPlateau(m) => json!(m.quantity()),
+            _ => Value::Null,
+        },
         "applied_force_n": numbers(&applied),
         "histories": histories,
         "reactions": reactions,
@@ -91,6 +96,12 @@ pub(crate) fn event_json(model: &Model, e: &Event) -> Value {
     o
 }
 
+/// The interface's torque at the event, N·m: an interface event of a model
+/// with twist.
+fn torque(model: &Model, e: &Event) -> Option<f64> {
+    (e.interface.is_some() && model.node_dofs().twist()).then(|| e.values[4] * 1e-3)
+}
+
 /// `preload` while a pretension section is still being tightened (before
 /// its lock), `service` after every lock; null without sections.
 fn phase(model: &Model, t: f64) -> Value {
@@ -113,7 +124,8 @@ pub(crate) fn meaning(model: &Model, e: &Event) -> String {
         Kind::FirstYield => "the first Gauss point reached the yield stress; at a sharp corner or a contact's edge the stress is singular and this load falls as the mesh is refined: read a nominal stress there, or round the corner".to_string(),
         Kind::FirstOpening if preload => "part of the interface opened while the preload was brought in (the clamped parts dish under the bolt): a state of assembly, not a failure of the joint".into(),
         Kind::FirstOpening => "part of the interface first opened: its contact is no longer whole, though it still clamps".into(),
-        Kind::FullSlip => "the whole interface first in macro-slip (its first gross slip); where friction was locked in by an earlier step (a fit pressed, then turned) this comes before the load the joint finally holds, its plateau (joints.csv; a rating's M_t)".into(),
+        Kind::FullSlip => "the whole interface first in macro-slip: its first gross slip, not the load it holds; where friction was locked in by an earlier step (a fit pressed, then turned) the joint takes more after it, up to its holding plateau".into(),
+        Kind::HoldingPlateau(m) => format!("the {} the joint holds as it slides on as a whole (its plateau, within 0.1 %): its capacity in this motion, a rating's transmissible {}", m.quantity(), if m == crate::solve::events::Motion::Turning { "torque" } else { "force" }),
         Kind::FullSeparation => "the interface carries no normal force any more: the joint has separated".into(),
     };
     if !e.converged {
@@ -133,9 +145,13 @@ pub fn line(model: &Model, e: &Event) -> String {
     } else {
         ""
     };
+    let what = match e.kind {
+        Kind::HoldingPlateau(m) => format!("holding plateau ({})", m.quantity()),
+        k => k.name().replace('_', " "),
+    };
+    let torque = torque(model, e).map_or(String::new(), |t| format!(", T {t:.4e} N·m"));
     format!(
-        "{}{iface}{during}: λ = {:.6} (bracket {:.6} … {:.6}{}), F_N {:.4e} N, F_T {:.4e} N",
-        e.kind.name().replace('_', " "),
+        "{what}{iface}{during}: λ = {:.6} (bracket {:.6} … {:.6}{}), F_N {:.4e} N, F_T {:.4e} N{torque}",
         e.load_factor,
         lo,
         hi,

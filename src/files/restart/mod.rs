@@ -144,7 +144,7 @@ use std::io::Write;
 use std::path::Path;
 
 pub(crate) const MAGIC: &[u8; 8] = b"ASPRSTRT";
-pub(crate) const VERSION: u32 = 3;
+pub(crate) const VERSION: u32 = 4;
 pub(crate) const FILE: &str = "restart.bin";
 
 /// The sections of a restart file of this [`VERSION`], each exactly once

@@ -134,7 +134,7 @@ fn decode_refuses_what_the_case_cannot_have_produced() {
         converged: true,
         solve_failed: false,
         place: [1.0, 0.0, 1.0, f64::NAN],
-        values: [1.0, 2.0, 3.0, 4.0],
+        values: [1.0, 2.0, 3.0, 4.0, 5.0],
         record: vec![0.25; model.plan.width()],
     };
     c.events.push(event.clone());
@@ -606,7 +606,7 @@ fn a_file_holds_exactly_the_sections_of_its_format() {
         let e = decode(&file_of(&head, &without), &model).unwrap_err();
         assert_eq!(
             e,
-            format!("section {name} missing: every restart file of format 3 holds it")
+            format!("section {name} missing: every restart file of format 4 holds it")
         );
     }
     let mut more = sections.clone();
@@ -617,7 +617,7 @@ fn a_file_holds_exactly_the_sections_of_its_format() {
     extra.extend_from_slice(&7u64.to_le_bytes());
     more.push(("extra".into(), extra));
     let e = decode(&file_of(&head, &more), &model).unwrap_err();
-    assert_eq!(e, "section \"extra\" is no section of restart format 3");
+    assert_eq!(e, "section \"extra\" is no section of restart format 4");
     // a body of a first yield the file does not have
     let mut body = sections.clone();
     let k = names.iter().position(|n| *n == "first_yield_body").unwrap();
@@ -643,14 +643,15 @@ fn a_file_holds_exactly_the_sections_of_its_format() {
     for (version, words) in [
         (2u32, "an earlier asperity (restart format 2)"),
         (0, "an earlier asperity (restart format 0)"),
-        (4, "a later asperity (restart format 4)"),
+        (3, "an earlier asperity (restart format 3)"),
+        (5, "a later asperity (restart format 5)"),
     ] {
         let mut other = bytes.clone();
         other[8..12].copy_from_slice(&version.to_le_bytes());
         let e = decode(&other, &model).unwrap_err();
         assert!(
             e.starts_with(&format!(
-                "restart.bin was written by {words}; this build reads format 3 only: "
+                "restart.bin was written by {words}; this build reads format 4 only: "
             )),
             "{e}"
         );
