@@ -404,6 +404,31 @@ fn a_folder_that_is_not_a_finished_output_folder_is_refused_naming_the_file() {
     refused(&dir, "summary.json", "truncated JSON");
     std::fs::write(dir.join("summary.json"), "[1, 2]").unwrap();
     refused(&dir, "summary.json", "JSON that is no summary");
+    // a member of another type than the program writes: refused, named
+    // (before: drawn as a blank, a page that read like a run with less)
+    for (path, forged) in [
+        ("events", json!({"event": "full_slip"})),
+        ("ratings", json!([{"checks": [{"pass": "yes"}]}])),
+        ("first_yield", json!(12.5)),
+    ] {
+        let mut s: Value = serde_json::from_str(&text).unwrap();
+        s[path] = forged;
+        std::fs::write(dir.join("summary.json"), s.to_string()).unwrap();
+        refused(&dir, "summary.json", &format!("{path} of another type"));
+        let (_, e, _) = report(&[&dir.display().to_string()]);
+        assert!(
+            e.contains(&format!("{path}")) && e.contains("where the report reads"),
+            "{e}"
+        );
+    }
+    let mut s: Value = serde_json::from_str(&text).unwrap();
+    s["events"][0]["load_factor"] = json!("0.5");
+    std::fs::write(dir.join("summary.json"), s.to_string()).unwrap();
+    refused(
+        &dir,
+        "events[0].load_factor is a string",
+        "a string for a number",
+    );
 
     let dir = bolted_copy("report-bad-header");
     let curve = std::fs::read_to_string(dir.join("curve.csv")).unwrap();

@@ -27,6 +27,7 @@ mod pdf;
 mod ratings;
 mod read;
 mod results;
+mod shape;
 mod vtu;
 mod warnings;
 

@@ -96,6 +96,7 @@ fn summary(dir: &Path) -> Result<Value> {
             "not the summary of a run: no \"case\" name in a JSON object",
         ));
     }
+    super::shape::check(&v, &place)?;
     Ok(v)
 }
 
