@@ -246,13 +246,15 @@ fn fits_the_shank(
     if (t.d - 2.0 * r).abs() > 0.25 * t.d {
         return Err(Error::input(format!("{at} thread"), format!("M{} does not fit the shank the section cuts ({} mm across): give the bolt's thread", t.d, crate::numbers::num(2.0 * r))));
     }
-    if !(0.2..=(t.d / 4.0).min(6.0)).contains(&t.pitch) {
+    if !t.iso_pitch() {
+        let coarsest = Thread::coarse_of(t.d).map_or(t.d / 4.0, |c| c.pitch);
         return Err(Error::input(
             format!("{at} thread"),
             format!(
-                "pitch {} mm is no pitch of an M{} thread (ISO 261: 0.2 mm to d/4, at most 6 mm)",
+                "pitch {} mm is no pitch of an M{} thread (ISO 261: one of its series 0.2, 0.25, … 6 mm, at most the coarse pitch {} mm)",
                 crate::numbers::num(t.pitch),
-                t.d
+                t.d,
+                crate::numbers::num(coarsest)
             ),
         ));
     }

@@ -912,3 +912,22 @@ fn property_classes_of_iso_898_1() {
     }
     assert_eq!(at("8.8", 48.0), None);
 }
+
+/// ISO 261's pitches: the series, at most the coarse pitch of the size.
+#[test]
+fn a_thread_pitch_is_one_of_iso_261s_and_at_most_the_coarse_one() {
+    for (d, p, ok) in [
+        (12.0, 1.75, true),
+        (12.0, 1.5, true),
+        (12.0, 1.25, true),
+        (12.0, 1.37, false), // not in the series
+        (12.0, 2.0, false),  // coarser than M12's 1.75
+        (16.0, 1.5, true),
+        (64.0, 6.0, true),
+        (11.0, 1.0, true), // a size outside the coarse table: at most d/4
+        (11.0, 3.0, false),
+    ] {
+        let t = Thread::fine(d, p).unwrap();
+        assert_eq!(t.iso_pitch(), ok, "M{d}x{p}");
+    }
+}

@@ -43,6 +43,12 @@ const COARSE: [(f64, f64); 26] = [
     (64.0, 6.0),
 ];
 
+/// The pitches of ISO 261 (coarse and fine), mm.
+pub const PITCHES: [f64; 24] = [
+    0.2, 0.25, 0.3, 0.35, 0.4, 0.45, 0.5, 0.6, 0.7, 0.75, 0.8, 1.0, 1.25, 1.5, 1.75, 2.0, 2.5, 3.0,
+    3.5, 4.0, 4.5, 5.0, 5.5, 6.0,
+];
+
 /// A metric ISO thread: nominal diameter and pitch. Build it with [`Thread::coarse`],
 /// [`Thread::coarse_of`] or [`Thread::fine`], which check the numbers; a thread written field by
 /// field is taken as given (the rating functions still refuse a non-positive d3).
@@ -72,6 +78,14 @@ impl Thread {
             .iter()
             .find(|&&(dn, _)| (dn - d).abs() < 1e-9)
             .map(|&(d, pitch)| Thread { d, pitch })
+    }
+
+    /// Whether the pitch is one of ISO 261's series ([`PITCHES`]) and at most
+    /// the coarse pitch of its size (a fine thread is finer than the coarse
+    /// one; a size outside the coarse table: at most d/4).
+    pub fn iso_pitch(&self) -> bool {
+        let coarsest = Thread::coarse_of(self.d).map_or(self.d / 4.0, |c| c.pitch);
+        PITCHES.iter().any(|&p| (p - self.pitch).abs() < 1e-9) && self.pitch <= coarsest + 1e-9
     }
 
     /// Any thread of the ISO profile, for fine pitches (ISO 262) or sizes outside the table:
