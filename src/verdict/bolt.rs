@@ -126,6 +126,11 @@ pub fn pose(model: &Model, spec: &BoltSpec, at: &str) -> Result<Posed> {
 }
 
 /// R_p0.2 of the bolt: its property class's, else its material's yield stress.
+/// How far the bolt material's yield stress may lie from its property
+/// class's R_p0.2 (a measured yield stress above the class's minimum, a
+/// class's two diameter ranges).
+const CLASS_SLACK: f64 = 0.1;
+
 fn yield_strength(
     model: &Model,
     spec: &BoltSpec,
@@ -143,6 +148,19 @@ fn yield_strength(
         return Err(Error::input(
             format!("{at} property_class"),
             "is needed: the bolt's material has no yield stress to take R_p0.2 from",
+        ));
+    }
+    let fe = model.materials[body].yield_stress;
+    if fe.is_finite() && (fe - r_p02).abs() > CLASS_SLACK * r_p02 {
+        return Err(Error::input(
+            format!("{at} property_class"),
+            format!(
+                "\"{}\" has R_p0.2 = {} MPa, but the bolt's material \"{}\" yields at {} MPa: the run and the rating would yield the bolt at different stresses; give the material the class's yield stress (within 10 %) or leave property_class out",
+                clip(spec.property_class.as_deref().unwrap_or("")),
+                crate::numbers::num(r_p02),
+                clip(&model.mesh.bodies[body]),
+                crate::numbers::num(fe)
+            ),
         ));
     }
     Ok(r_p02)
@@ -651,6 +669,12 @@ fn strength(
         Check::both("residual clamp load, smallest", "F_KR,min", "N", None, f_kr_min)
             .against(spec.clamp_load, 1.0)
             .note("handbook: F_V/α_A − F_Z − (1 − Φ_n) F_A, the tightening scatter and the embedding loss taken off the run's preload"),
+        Check::both("separation load at the smallest preload", "F_A,ab,min", "N", None, phi_n.zip(f_z).and_then(|(f, z)| vdi::separation_load(f_m_min - z, f)))
+            .against(Some(m.f_a_max), 1.0)
+            .note("handbook: (F_V/α_A − F_Z) / (1 − Φ_n): the joint tightened to the low end of the scatter and settled; held against the largest F_A"),
+        Check::both("surface pressure at the permissible preload", "p_M,max", "MPa", None, a_p.zip(f_m_zul).and_then(|(a, f)| vdi::surface_pressure(f, a)))
+            .below(spec.surface_pressure_limit, 1.0)
+            .note("handbook: F_M,zul / A_p, the assembly state of a bolt tightened to its limit"),
         Check::both("stress amplitude", "σ_a", "MPa", sigma_a_fe, sigma_a_hb)
             .below(sigma_as, 1.2)
             .note("FE: (largest − smallest bolt force in service) / (2 A_S); handbook: Φ_n F_A / (2 A_S); against the endurance σ_ASV (σ_ASG rolled after heat treatment), S_D ≥ 1.2"),
