@@ -210,8 +210,7 @@ fn summary_json_matches_the_documented_schema() {
         torsional_stiffness: None,
         tip_twist: [0.0; 2],
     };
-    let sweep =
-        asperity::files::output::damping::sweep(&[sweep_of(10.0, 0.1), sweep_of(20.0, 0.6)]);
+    let sweep = asperity::measure::sweep::sweep(&[sweep_of(10.0, 0.1), sweep_of(20.0, 0.6)]);
     assert!(sweep.fit.is_some());
     with_cycle["damping"][0] = asperity::files::output::damping::fit_json("contact", &sweep);
     // twist: the torque, circumferential slip and twist of a joint
