@@ -61,7 +61,7 @@ pub fn pose(model: &Model, spec: &CyclesSpec, at: &str) -> Result<Posed> {
         return Err(Error::input(at, "rates the joint as meshed, and with `symmetric_half` the mesh is half of it: whether the other half's joint mirrors this one's loop is not the rating's to guess; mesh the whole joint"));
     }
     if !closes_a_cycle(model) {
-        return Err(Error::input(at, "has no load cycle to rate: no breakpoint of the histories returns every history to its values at an earlier one (docs/joints.md, \"Load cycles\")"));
+        return Err(Error::input(at, "has no load cycle to rate: no breakpoint of the histories returns every history to its values at an earlier one (docs/joints.md, \"Reading a joint\")"));
     }
     let count = f64::from(spec.count.unwrap_or(1));
     let (width, scale) = if plane {
