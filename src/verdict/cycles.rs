@@ -287,7 +287,7 @@ fn uniform_joint(model: &Model, r: &RunResult, i: usize, c: &Cycle) -> Option<Un
     let area: f64 = im.points.iter().map(|p| p.area).sum();
     let end = r.increments.get(c.end_increment.checked_sub(1)?)?;
     let p = end.joints.get(i)?.normal_force / area;
-    if !(p > 0.0) {
+    if !(p.is_finite() && p > 0.0) {
         return None;
     }
     let k = law.elastic_stiffness(p).0;
