@@ -120,6 +120,26 @@ pub struct RunResult {
     pub estimate: Option<crate::measure::estimate::Estimate>,
 }
 
+impl RunResult {
+    /// The closed load cycles of every interface ([`joint::cycles`]: one
+    /// list per interface, empty without histories that return).
+    pub fn cycles(&self, model: &Model) -> Vec<Vec<joint::Cycle>> {
+        let times: Vec<f64> = self.increments.iter().map(|i| i.load_factor).collect();
+        let joints: Vec<&[JointMeasures]> = self
+            .increments
+            .iter()
+            .map(|i| i.joints.as_slice())
+            .collect();
+        joint::cycles(
+            &times,
+            &joints,
+            &model.breakpoints(),
+            |t| model.history_values(t),
+            model.interfaces.len(),
+        )
+    }
+}
+
 /// Runs the whole load history with a given engine (any backend). Under MPI
 /// every rank calls this; only rank 0's observer writes, and its outcome is
 /// shared so that a failed write stops every rank.

@@ -1,9 +1,11 @@
 //! What a designer concludes from a run: the ratings of the standards a joint is designed to
-//! (DIN 7190-1:2017 for interference fits, VDI 2230-1:2015 for bolted joints), the handbook's side
-//! computed from the standard's own formulas ([`handbook`]) and set beside the numbers the run
-//! measured ([`rating::Rating`]).
+//! (DIN 7190-1:2017 for interference fits, VDI 2230-1:2015 for bolted joints) and of a joint
+//! under load cycles (its steady loops for the part, [`cycles`]), the handbook's side
+//! computed from the standard's own formulas or a closed form ([`handbook`]) and set beside the
+//! numbers the run measured ([`rating::Rating`]).
 
 pub mod bolt;
+pub mod cycles;
 pub mod fit;
 pub mod handbook;
 pub mod rating;
@@ -24,6 +26,7 @@ pub fn prepare(model: &Model) -> Result<Vec<String>> {
         let inputs = match spec {
             RatingSpec::Fit(f) => fit::pose(model, f, &at)?.inputs,
             RatingSpec::Bolt(b) => bolt::pose(model, b, &at)?.inputs,
+            RatingSpec::Cycles(c) => cycles::pose(model, c, &at)?.inputs,
         };
         let words: Vec<String> = inputs
             .iter()
@@ -61,6 +64,10 @@ pub fn rate(model: &Model, r: &RunResult) -> Result<Vec<rating::Rating>> {
             RatingSpec::Bolt(b) => {
                 let posed = bolt::pose(model, b, &at)?;
                 out.push(bolt::rate(model, r, b, posed));
+            }
+            RatingSpec::Cycles(c) => {
+                let posed = cycles::pose(model, c, &at)?;
+                out.push(cycles::rate(model, r, c, posed));
             }
         }
     }

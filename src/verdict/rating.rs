@@ -5,6 +5,7 @@
 use crate::model::Model;
 use crate::solve::RunResult;
 use serde::Serialize;
+use std::borrow::Cow;
 
 /// One input of a rating and where its value came from.
 #[derive(Clone, Debug, Serialize)]
@@ -20,7 +21,7 @@ pub struct Input {
 /// One check: the FE's number, the handbook's, and against what.
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct Check {
-    pub quantity: &'static str,
+    pub quantity: Cow<'static, str>,
     pub symbol: &'static str,
     pub unit: &'static str,
     pub fe: Option<f64>,
@@ -34,12 +35,16 @@ pub struct Check {
     pub required_safety: Option<f64>,
     pub pass: Option<bool>,
     pub note: String,
+    /// A joint-cycles rating's: the cycle it reads (summary.json
+    /// `joints[].cycles[].cycle`); absent from the outputs elsewhere.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cycle: Option<usize>,
 }
 
 impl Check {
     /// A quantity the FE and the handbook both give.
     pub fn both(
-        q: &'static str,
+        q: impl Into<Cow<'static, str>>,
         symbol: &'static str,
         unit: &'static str,
         fe: Option<f64>,
@@ -52,7 +57,7 @@ impl Check {
             _ => None,
         };
         Check {
-            quantity: q,
+            quantity: q.into(),
             symbol,
             unit,
             fe,

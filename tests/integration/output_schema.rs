@@ -210,8 +210,7 @@ fn summary_json_matches_the_documented_schema() {
         torsional_stiffness: None,
         tip_twist: [0.0; 2],
     };
-    let sweep =
-        asperity::files::output::damping::sweep(&[sweep_of(10.0, 0.1), sweep_of(20.0, 0.6)]);
+    let sweep = asperity::measure::sweep::sweep(&[sweep_of(10.0, 0.1), sweep_of(20.0, 0.6)]);
     assert!(sweep.fit.is_some());
     with_cycle["damping"][0] = asperity::files::output::damping::fit_json("contact", &sweep);
     // twist: the torque, circumferential slip and twist of a joint
@@ -219,6 +218,9 @@ fn summary_json_matches_the_documented_schema() {
     // twist with a [[probe]]: u_θ as its third value
     let face = summary_of("face", &cases.join("face-coupling-torque"), &[]);
     assert_eq!(face["probes"][0]["max_mm"].as_array().unwrap().len(), 3);
+    // a joint-cycles rating: each check names its cycle
+    let slide = summary_of("slide", &cases.join("slideway-cycles"), &[]);
+    assert_eq!(slide["ratings"][0]["checks"][0]["cycle"], 1, "{slide}");
     // 3D: z beside x and y (first yield, events, peaks), u_z of a probe
     let solid = summary_of("solid", &cases.join("block-3d"), &[]);
     assert!(solid["first_yield"]["z_mm"].as_f64().is_some(), "{solid}");
@@ -265,6 +267,7 @@ fn summary_json_matches_the_documented_schema() {
         &torque,
         &face,
         &solid,
+        &slide,
     ] {
         let mut l = Vec::new();
         leaves("", s, &mut l);

@@ -86,6 +86,7 @@ pub fn add_verdict(dir: &Path) -> Value {
         },
         {
             "standard": "DIN 7190-1:2017", "name": "fit", "subject": "no fit in this joint",
+            "incomplete": "the run stopped early (fixture)",
             "inputs": [],
             "checks": [
                 {"quantity": "transmissible torque", "symbol": "M_t", "unit": "N·m", "fe": 182.3, "handbook": 178.0,
@@ -285,6 +286,8 @@ fn the_report_of_a_bolted_joint_is_one_self_contained_file_with_its_numbers() {
         html.contains("<td class=\"pass\">PASS</td>")
             && html.contains("<td class=\"fail\">FAIL</td>")
     );
+    // a rating without a verdict says why (summary.json `incomplete`)
+    assert!(html.contains("NOT RATED: the run stopped early (fixture)."));
     assert!(row(&rows, "assembly preload").contains("| +2.006 % |"));
     assert!(row(&rows, "equivalent bolt stress").contains("| 0.9918 (required ≥ 1) |"));
     assert!(row(&rows, "thread friction").contains("| 0.12 | default |"));

@@ -25,6 +25,9 @@ pub(super) fn ratings(page: &mut Page, s: &Value) {
             .map(|t| format!(": {t}"))
             .unwrap_or_default();
         page.text(&format!("Rating {name} after {standard}{subject}."));
+        if let Some(why) = text(r, "incomplete") {
+            page.text(&format!("NOT RATED: {why}."));
+        }
         let checks = r
             .get("checks")
             .and_then(Value::as_array)

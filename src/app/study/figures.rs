@@ -247,7 +247,7 @@ fn fig8(cases: &Path, out: &Path, pictures: bool) -> Result<Vec<PathBuf>> {
 fn torque_twist(cases: &Path, out: &Path, pictures: bool) -> Result<Vec<PathBuf>> {
     let model = Model::build(load(cases, "shrink-fit-combined")?)?;
     let r = crate::app::driver::solve(&model, &mut Capture::default())?;
-    let cycles = crate::files::output::joints_csv::run_cycles(&model, &r);
+    let cycles = r.cycles(&model);
     let chart = crate::files::output::joints_csv::torsion_chart(&model, &r, &cycles)
         .ok_or_else(|| Error::Study("shrink-fit-combined: no torque-twist cycle".into()))?;
     save(&chart, &out.join("torque-twist-loop"), pictures)

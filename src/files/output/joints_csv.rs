@@ -5,7 +5,7 @@
 //! twist, the torque-twist figure.
 
 use crate::error::Result;
-use crate::measure::joint::{self, Cycle, JointMeasures};
+use crate::measure::joint::{Cycle, JointMeasures};
 use crate::model::Model;
 use crate::solve::RunResult;
 use serde_json::{json, Value};
@@ -20,20 +20,6 @@ pub(crate) fn csv_field(s: &str) -> String {
     } else {
         s.to_string()
     }
-}
-
-/// The closed load cycles of every interface of a run (empty lists without
-/// histories).
-pub(crate) fn run_cycles(model: &Model, r: &RunResult) -> Vec<Vec<Cycle>> {
-    let times: Vec<f64> = r.increments.iter().map(|i| i.load_factor).collect();
-    let joints: Vec<&[JointMeasures]> = r.increments.iter().map(|i| i.joints.as_slice()).collect();
-    joint::cycles(
-        &times,
-        &joints,
-        &model.breakpoints(),
-        |t| model.history_values(t),
-        model.interfaces.len(),
-    )
 }
 
 /// `mm` for plane models (lengths of interface), `mm2` in axisymmetry (areas).

@@ -142,12 +142,12 @@ impl Writer {
             &(serde_json::to_string_pretty(&summary).unwrap_or_default() + "\n"),
         )?;
         self.write("curve.csv", &curve(result))?;
-        let cycles = joints_csv::run_cycles(model, result);
+        let cycles = result.cycles(model);
         self.write("joints.csv", &joints_csv::joints_csv(model, result))?;
         self.write("cycles.csv", &joints_csv::cycles_csv(model, &cycles))?;
         joints_csv::hysteresis(model, result, &cycles, &self.tmp_dir)?;
         joints_csv::torsion(model, result, &cycles, &self.tmp_dir)?;
-        let sweeps = damping::sweeps(&cycles);
+        let sweeps = crate::measure::sweep::sweeps(&cycles);
         self.write(
             "damping.csv",
             &damping::damping_csv(model, &cycles, &sweeps),
@@ -526,7 +526,7 @@ const CYCLE_INCREMENTS: usize = 4;
 /// One warning per interface with a closed cycle of fewer than
 /// [`CYCLE_INCREMENTS`] increments.
 fn coarse_cycles(model: &Model, r: &RunResult, place: &str) -> Vec<String> {
-    let cycles = joints_csv::run_cycles(model, r);
+    let cycles = r.cycles(model);
     model
         .interfaces
         .iter()
@@ -573,9 +573,9 @@ pub fn summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
             "full revolution: forces, areas and kN are for the whole body of revolution (2π r)"
         );
     }
-    let cycles = joints_csv::run_cycles(model, r);
+    let cycles = r.cycles(model);
     s["joints"] = joints_csv::summary(model, r, &cycles);
-    s["damping"] = damping::summary(model, &damping::sweeps(&cycles));
+    s["damping"] = damping::summary(model, &crate::measure::sweep::sweeps(&cycles));
     if !model.sections.is_empty() {
         s["pretension"] = pretension_summary(model, r);
     }

@@ -17,6 +17,11 @@ pub enum RatingSpec {
     /// VDI 2230-1:2015, a concentric through-bolted joint.
     #[serde(rename = "VDI 2230-1:2015", alias = "VDI 2230")]
     Bolt(BoltSpec),
+    /// A joint under load cycles: the steady cycles of one interface for the
+    /// part a designer names (no standard: the closed form of a uniform
+    /// Masing joint beside the run).
+    #[serde(rename = "joint cycles")]
+    Cycles(CyclesSpec),
 }
 
 /// DIN 7190-1:2017: the fit along `interface` (an axisymmetric model: the
@@ -94,12 +99,38 @@ pub struct BoltSpec {
     pub free_thread_length: Option<f64>,
 }
 
+/// A joint under load cycles: the last (steady) cycle of each amplitude
+/// block of `interface`, for the part the model stands for: a plane model's
+/// `width` (its results are for the model's thickness), an axisymmetric
+/// model's whole ring, times `count` repeated joints.
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct CyclesSpec {
+    /// The rating's name in the outputs; default: the interface's.
+    pub name: Option<String>,
+    pub interface: String,
+    /// The part's width across the plane, mm (plane models only); default
+    /// the model's thickness.
+    pub width: Option<f64>,
+    /// How many such joints the part holds (the ways of a slide, the bolts
+    /// of a flange); default 1.
+    pub count: Option<u32>,
+    /// The least loss factor η each steady cycle must reach.
+    pub min_loss_factor: Option<f64>,
+    /// The least and the largest secant stiffness of the part, N/µm.
+    pub min_stiffness: Option<f64>,
+    pub max_stiffness: Option<f64>,
+    /// The largest slip amplitude, µm.
+    pub max_slip: Option<f64>,
+}
+
 impl RatingSpec {
     /// Its name in the outputs.
     pub fn name(&self) -> &str {
         match self {
             RatingSpec::Fit(f) => f.name.as_deref().unwrap_or(&f.interface),
             RatingSpec::Bolt(b) => b.name.as_deref().unwrap_or(&b.pretension),
+            RatingSpec::Cycles(c) => c.name.as_deref().unwrap_or(&c.interface),
         }
     }
 
@@ -108,6 +139,7 @@ impl RatingSpec {
         match self {
             RatingSpec::Fit(_) => "DIN 7190-1:2017",
             RatingSpec::Bolt(_) => "VDI 2230-1:2015",
+            RatingSpec::Cycles(_) => "joint cycles",
         }
     }
 }
@@ -145,6 +177,20 @@ pub(crate) fn check(ratings: &[RatingSpec], place: &dyn Fn(&str) -> String) -> R
                         format!(
                             "= {} is outside [{lo}, {hi}], the range any design of this kind uses",
                             crate::numbers::num(v)
+                        ),
+                    ));
+                }
+            }
+        }
+        if let RatingSpec::Cycles(c) = r {
+            if let (Some(lo), Some(hi)) = (c.min_stiffness, c.max_stiffness) {
+                if lo > hi {
+                    return Err(Error::input(
+                        format!("{at} min_stiffness"),
+                        format!(
+                            "= {} N/µm is above max_stiffness = {} N/µm: no stiffness meets both",
+                            crate::numbers::num(lo),
+                            crate::numbers::num(hi)
                         ),
                     ));
                 }
@@ -194,6 +240,14 @@ fn numbers(r: &RatingSpec) -> Vec<Ranged> {
             ),
             ("load_introduction", b.load_introduction, 0.0, 1.0),
             ("free_thread_length", b.free_thread_length, 0.0, 1e4),
+        ],
+        RatingSpec::Cycles(c) => vec![
+            ("width", c.width, 1e-3, 1e5),
+            ("count", c.count.map(f64::from), 1.0, 1e4),
+            ("min_loss_factor", c.min_loss_factor, 1e-6, 1.5),
+            ("min_stiffness", c.min_stiffness, 1e-6, 1e9),
+            ("max_stiffness", c.max_stiffness, 1e-6, 1e9),
+            ("max_slip", c.max_slip, 1e-6, 1e4),
         ],
     }
 }

@@ -8,6 +8,8 @@
 //! * [`vdi2230`]: VDI 2230-1:2015, concentric single-bolt joints (through-bolted and tapped):
 //!   resiliences, load factor, embedding, preloads, tightening torque, working stress, fatigue,
 //!   surface pressure (requirements R3 to R10 and R13).
+//! * [`masing`]: a uniform joint of Jenkins elements under Masing's rules (Iwan 1966, Segalman
+//!   2005): the force amplitude, dissipation and loss factor of a cycle at a slip amplitude.
 //! * [`thread`]: ISO metric threads (ISO 261/262/724) and bolt property classes (ISO 898-1).
 //!
 //! Every function states its formula and where it comes from. Invalid inputs (non-positive
@@ -15,6 +17,7 @@
 //! report them.
 
 pub mod din7190;
+pub mod masing;
 pub mod thread;
 pub mod vdi2230;
 

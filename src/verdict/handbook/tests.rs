@@ -4,6 +4,7 @@
 //! continuity of the cone cases, and values of ISO 724 and of the VDI tables typed here.
 
 use super::din7190::*;
+use super::masing::UniformJoint;
 use super::thread::{PropertyClass, Thread};
 use super::vdi2230::*;
 use super::*;
@@ -929,5 +930,76 @@ fn a_thread_pitch_is_one_of_iso_261s_and_at_most_the_coarse_one() {
     ] {
         let t = Thread::fine(d, p).unwrap();
         assert_eq!(t.iso_pitch(), ok, "M{d}x{p}");
+
+/// One Jenkins element (no density, the whole mass at η = 1): the
+/// elastic-perfectly-plastic loop, F_a = A k min(a, φ) and
+/// D = 4 A k φ (a − φ)₊ (the parallelogram of yield force kφ A).
+#[test]
+fn a_single_jenkins_element_gives_the_elastic_plastic_parallelogram() {
+    let j = UniformJoint {
+        stiffness: 5000.0,
+        slip_range: 2e-3,
+        c: 0.0,
+        chi: 0.0,
+        masses: vec![(1.0, 1.0)],
+        area: 60.0,
+    };
+    let f_y = 60.0 * 5000.0 * 2e-3;
+    assert_rel(j.force_amplitude(1e-3).unwrap(), f_y / 2.0, 1e-14);
+    assert_eq!(j.dissipation(1e-3), Some(0.0));
+    assert_rel(j.force_amplitude(5e-3).unwrap(), f_y, 1e-14);
+    assert_rel(j.dissipation(5e-3).unwrap(), 4.0 * f_y * 3e-3, 1e-14);
+    assert_rel(j.secant_stiffness(5e-3).unwrap(), f_y / 5e-3, 1e-14);
+    assert_rel(
+        j.loss_factor(5e-3).unwrap(),
+        4.0 * f_y * 3e-3 / (PI * f_y * 5e-3),
+        1e-14,
+    );
+    assert_eq!(j.force_amplitude(0.0), None);
+    assert_eq!(j.force_amplitude(-1e-3), None);
+}
+
+/// Masing's rule: a loop from −a to a of a backbone f has the area
+/// D = 4 (2 ∫₀ᵃ f du − a f(a)); the Iwan density with a spike, below and
+/// beyond the slip range, against that integral by Simpson's rule.
+#[test]
+fn the_iwan_loop_is_masing_s_rule_on_its_backbone() {
+    for chi in [-0.5, 0.0, 0.7] {
+        let j = UniformJoint {
+            stiffness: 4969.0,
+            slip_range: 1.8e-3,
+            c: 0.8,
+            chi,
+            masses: vec![(1.0, 0.2), (1.0, 0.0)],
+            area: 60.0,
+        };
+        for x in [0.05, 0.4, 1.0, 2.5] {
+            let a = x * j.slip_range;
+            let n = 20000;
+            let h = a / n as f64;
+            let f = |u: f64| {
+                if u == 0.0 {
+                    0.0
+                } else {
+                    j.force_amplitude(u).unwrap()
+                }
+            };
+            let simpson: f64 = (0..=n)
+                .map(|k| {
+                    let w = if k == 0 || k == n {
+                        1.0
+                    } else if k % 2 == 1 {
+                        4.0
+                    } else {
+                        2.0
+                    };
+                    w * f(k as f64 * h)
+                })
+                .sum::<f64>()
+                * h
+                / 3.0;
+            let masing = 4.0 * (2.0 * simpson - a * f(a));
+            assert_rel(j.dissipation(a).unwrap(), masing, 1e-7);
+        }
     }
 }
