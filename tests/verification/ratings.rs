@@ -153,6 +153,19 @@ fn the_bolt_rating_splits_the_run_resiliences() {
         "{}",
         check(r, "δ_P")
     );
+    // the low end of the scatter: F_KR,min = F_V/α_A − F_Z − (1 − Φ_n) F_A, so
+    // the separation load at F_V/α_A − F_Z is (F_KR,min + (1 − Φ_n) F_A)/(1 − Φ_n);
+    // F_V = 30 kN (pretension.csv), α_A = 1.6 (the case): below F_V's own
+    let phi_n = num(&check(r, "Φ_n")["handbook"]);
+    let f_a = num(&check(r, "F_A")["fe"]);
+    let f_kr_min = num(&check(r, "F_KR,min")["handbook"]);
+    let sep_min = num(&check(r, "F_A,ab,min")["handbook"]);
+    assert!(near(sep_min, f_kr_min / (1.0 - phi_n) + f_a, 1e-12), "{sep_min}");
+    assert!(sep_min < f_v / 1.6 / (1.0 - phi_n), "{sep_min}: F_Z taken off");
+    // the surface pressure of a bolt tightened to F_M,zul over A_p = π/4 (d_W² − d_h²)
+    let f_m_zul = num(&check(r, "F_M")["required"]);
+    let a_p = PI / 4.0 * (17.0f64.powi(2) - 13.0f64.powi(2));
+    assert!(near(num(&check(r, "p_M,max")["handbook"]), f_m_zul / a_p, 1e-12));
 }
 
 /// The checks of a joint-cycles rating that read cycle `n`.
