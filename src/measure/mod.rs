@@ -11,6 +11,7 @@
 pub mod estimate;
 pub mod joint;
 pub mod peaks;
+pub mod singular;
 
 use crate::linalg::backend::Comm;
 use crate::model::state::State;
