@@ -271,3 +271,23 @@ fn the_axis_is_no_corner_and_a_cut_is_no_outline() {
     // in a plane model it is
     assert_eq!(find(&b.mesh, &origin, false, &s).len(), 2);
 }
+
+#[test]
+fn hanging_nodes_leave_the_outline_as_it_was() {
+    // the L with its corner square split in four: the split edges (a coarse
+    // side beside two fine ones) are inside, the corner still found alone
+    let mut b = Build::new(&["l"]);
+    for (x, y) in [(0.0, 0.0), (0.5, 0.0), (0.0, 0.5), (0.5, 0.5)] {
+        b.quad(
+            0,
+            [[x, y], [x + 0.5, y], [x + 0.5, y + 0.5], [x, y + 0.5]],
+            &|p| p,
+        );
+    }
+    b.square(0, 1.0, 0.0);
+    b.square(0, 0.0, 1.0);
+    let found = find(&b.mesh, &identity(&b.mesh), false, &[]);
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert_eq!(found[0].x, [1.0, 1.0, 0.0]);
+    assert_eq!(found[0].corner, "re-entrant corner (270°)");
+}
