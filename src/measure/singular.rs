@@ -91,3 +91,139 @@ pub fn flag(model: &Model, places: &[Place], estimate: Option<&Estimate>) -> Vec
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::{flag, point_at, share, Place};
+    use crate::measure::estimate::Estimate;
+    use crate::model::Model;
+
+    /// An L of three unit squares (body "l", plane strain) on rollers along
+    /// its whole bottom and left side, and
+    /// a square beside it (body "block"), apart.
+    fn l_model() -> Model {
+        let text = r#"
+[model]
+plane = "strain"
+
+[[mesh.block]]
+name = "foot"
+body = "l"
+x = [0.0, 1.0, 2.0]
+nx = [1, 1]
+y = [0.0, 1.0]
+ny = [1]
+
+[[mesh.block]]
+name = "arm"
+body = "l"
+x = [0.0, 1.0]
+nx = [1]
+y = [1.0, 2.0]
+ny = [1]
+
+[[mesh.block]]
+body = "block"
+x = [5.0, 6.0]
+nx = [1]
+y = [0.0, 1.0]
+ny = [1]
+
+[materials.l]
+young = 206000.0
+poisson = 0.3
+
+[materials.block]
+young = 206000.0
+poisson = 0.3
+
+[[boundary]]
+set = "foot.bottom"
+uy = 0.0
+
+[[boundary]]
+set = "foot.left"
+ux = 0.0
+
+[[boundary]]
+set = "arm.left"
+ux = 0.0
+
+[[boundary]]
+set = "block.bottom"
+uy = 0.0
+
+[[boundary]]
+set = "block.left"
+ux = 0.0
+
+[[load]]
+edges = "arm.top"
+pressure = 10.0
+
+[[load]]
+edges = "block.top"
+pressure = 10.0
+"#;
+        Model::parse(text, "l.toml").unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    #[test]
+    fn a_place_is_flagged_within_one_element_of_its_bodys_corner() {
+        let model = l_model();
+        assert_eq!(model.singular.len(), 1, "{:?}", model.singular);
+        let corner = &model.singular[0];
+        assert_eq!(corner.x, [1.0, 1.0, 0.0]);
+        let l = model.mesh.bodies.iter().position(|b| b == "l").unwrap();
+        let block = 1 - l;
+        let place = |body, x: f64, y: f64, element| Place {
+            what: "max_von_mises",
+            body,
+            x: [x, y, 0.0],
+            element,
+        };
+        // a Gauss point of an element at the corner
+        assert_eq!(point_at(&model, &place(l, 1.11, 1.11, Some(0))), Some(0));
+        // one diagonal (√2) away: still within; beyond it: not
+        assert_eq!(point_at(&model, &place(l, 1.0, 2.4, None)), Some(0));
+        assert_eq!(point_at(&model, &place(l, 1.0, 2.5, None)), None);
+        // the same place in another body: not its corner
+        assert_eq!(point_at(&model, &place(block, 1.11, 1.11, None)), None);
+    }
+
+    #[test]
+    fn the_share_is_the_corners_elements_part_of_the_estimate() {
+        let model = l_model();
+        let corner = &model.singular[0];
+        // the three squares of the L touch the corner, the block does not
+        assert_eq!(corner.elements.len(), 3);
+        let n = model.mesh.elements.len();
+        let mut element = vec![0.0; n];
+        for (e, v) in element.iter_mut().enumerate() {
+            *v = (e + 1) as f64;
+        }
+        let total: f64 = element.iter().sum();
+        let at: f64 = corner.elements.iter().map(|&e| element[e]).sum();
+        let est = Estimate {
+            element,
+            interface: vec![0.0; n],
+            total: total.sqrt(),
+            norm: 1.0,
+        };
+        let s = share(corner, Some(&est)).unwrap();
+        assert!((s - at / total).abs() < 1e-15, "{s}");
+        assert!(s < 1.0);
+        assert_eq!(share(corner, None), None);
+        let l = model.mesh.bodies.iter().position(|b| b == "l").unwrap();
+        let p = Place {
+            what: "first_yield",
+            body: l,
+            x: corner.x,
+            element: None,
+        };
+        let flags = flag(&model, &[p.clone()], Some(&est));
+        assert_eq!(flags.len(), 1);
+        assert_eq!((flags[0].point, flags[0].share), (0, Some(s)));
+        assert_eq!(flags[0].place, p);
+    }
+}
