@@ -221,7 +221,7 @@ pressure = 10.0
             x: corner.x,
             element: None,
         };
-        let flags = flag(&model, &[p.clone()], Some(&est));
+        let flags = flag(&model, std::slice::from_ref(&p), Some(&est));
         assert_eq!(flags.len(), 1);
         assert_eq!((flags[0].point, flags[0].share), (0, Some(s)));
         assert_eq!(flags[0].place, p);
