@@ -471,7 +471,12 @@ impl RunStart<'_> {
             again += &format!(" --out {}", dir.display());
         }
         report_end(log, model, &dir, &result, wall, &again);
-        for w in crate::files::output::warnings(model, &result) {
+        let singular = crate::files::output::singular::run_flags(model, &result);
+        let singular = crate::files::output::singular::lines(model, &singular);
+        for w in crate::files::output::warnings(model, &result)
+            .into_iter()
+            .chain(singular)
+        {
             log.always("warning", json!({ "message": w }), || {
                 format!("warning: {w}")
             });

@@ -12,6 +12,7 @@ pub mod estimate;
 pub mod gross_slip;
 pub mod joint;
 pub mod peaks;
+pub mod singular;
 pub mod sweep;
 
 use crate::linalg::backend::Comm;

@@ -29,6 +29,7 @@ mod meshes;
 pub mod outputs;
 pub mod pretension;
 pub mod schedule;
+pub mod singular;
 pub(crate) mod solid_overlap;
 pub mod state;
 use meshes::{check_mesh, make_mesh};
@@ -125,6 +126,10 @@ pub struct Model {
     expansions: std::collections::HashMap<usize, crate::model::constraint::Expansion>,
     /// The pretension sections.
     pub sections: Vec<crate::model::pretension::Section>,
+    /// The mesh's singular points: re-entrant corners, the ends of contact
+    /// sides at a body's corner, the ends of supports (2D;
+    /// [`crate::model::singular`]).
+    pub singular: Vec<crate::model::singular::SingularPoint>,
     /// The block of each section's reference node (after the interface
     /// points): where a held (locked) shortening gets its diagonal.
     section_block_base: usize,
@@ -267,6 +272,8 @@ impl Model {
         let plan =
             crate::model::outputs::Plan::build(&case, &mesh, &interfaces, &prescribed, &place)?;
         let force_floor = force_floor(&mesh, &materials, section);
+        let origin = crate::model::pretension::origins(&sections, mesh.nodes.len());
+        let singular = singular::of_case(&case, &mesh, &origin);
         let model = Model {
             name: case.display_name(),
             plane,
@@ -292,6 +299,7 @@ impl Model {
             constraints,
             expansions,
             sections,
+            singular,
             section_block_base,
             probe_node,
             surface_y,

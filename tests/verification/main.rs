@@ -37,6 +37,7 @@ mod punch_rounded;
 mod ratings;
 mod roughness;
 mod shrink_fit;
+mod singular;
 mod solid;
 mod solid_patch;
 mod status_convergence;

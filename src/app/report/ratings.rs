@@ -172,7 +172,7 @@ pub(super) fn applied_loads(page: &mut Page, s: &Value) {
 pub(super) fn singular(page: &mut Page, s: &Value) {
     page.heading("Singular points");
     let Some(list) = s.get("singular").and_then(Value::as_array) else {
-        page.absent("summary.json has no singular list (the run predates it).");
+        page.absent("summary.json has no singular list: a 3D run, whose corners are not searched, or one that predates it.");
         return;
     };
     if list.is_empty() {

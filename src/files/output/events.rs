@@ -121,7 +121,10 @@ fn phase(model: &Model, t: f64) -> Value {
 pub(crate) fn meaning(model: &Model, e: &Event) -> String {
     let preload = phase(model, e.load_factor) == json!("preload");
     let mut m = match e.kind {
-        Kind::FirstYield => "the first Gauss point reached the yield stress; at a sharp corner or a contact's edge the stress is singular and this load falls as the mesh is refined: read a nominal stress there, or round the corner".to_string(),
+        Kind::FirstYield => match super::singular::first_yield_point(model, e) {
+            Some(p) => format!("the first Gauss point reached the yield stress at a singular point of the mesh, {} (summary.json singular): the elastic stress there is unbounded and this load falls as the mesh is refined; read a nominal stress there, or round the corner", p.corner),
+            None => "the first Gauss point reached the yield stress; at a sharp corner or a contact's edge the stress is singular and this load falls as the mesh is refined: read a nominal stress there, or round the corner".to_string(),
+        },
         Kind::FirstOpening if preload => "part of the interface opened while the preload was brought in (the clamped parts dish under the bolt): a state of assembly, not a failure of the joint".into(),
         Kind::FirstOpening => "part of the interface first opened: its contact is no longer whole, though it still clamps".into(),
         Kind::FullSlip => "the whole interface first in macro-slip: its first gross slip, not the load it holds; where friction was locked in by an earlier step (a fit pressed, then turned) the joint takes more after it, up to its holding plateau".into(),

@@ -16,6 +16,7 @@ pub mod json;
 pub mod peaks;
 pub mod probes;
 pub mod reactions;
+pub mod singular;
 pub mod vtu;
 
 use crate::error::{Error, Result};
@@ -565,7 +566,8 @@ fn coarse_cycles(model: &Model, r: &RunResult, place: &str) -> Vec<String> {
 }
 
 /// summary.json: the run's numbers (`run_summary`), then its joints,
-/// damping, pretension, events, tables, warnings and stabilization.
+/// damping, pretension, events, the places at singular points
+/// (`singular`), tables, warnings and stabilization.
 pub fn summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
     let mut s = run_summary(model, r, wall);
     if model.section.axisymmetric {
@@ -583,6 +585,10 @@ pub fn summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
     s["applied_loads"] =
         applied::summary(model, r, |v| plan.part(v, &plan.layout.reactions).to_vec());
     events::summary(model, r, &mut s);
+    let flags = singular::flags(model, r, &s["peaks"]);
+    if let Some(v) = singular::summary(model, &flags) {
+        s["singular"] = v;
+    }
     if !model.ratings.is_empty() {
         s["ratings"] = match crate::verdict::rate(model, r) {
             Ok(ratings) => serde_json::to_value(ratings).unwrap_or_default(),
