@@ -124,20 +124,22 @@ impl RunResult {
     /// The closed load cycles of every interface ([`joint::cycles`]: one
     /// list per interface, empty without histories that return).
     pub fn cycles(&self, model: &Model) -> Vec<Vec<joint::Cycle>> {
-        let times: Vec<f64> = self.increments.iter().map(|i| i.load_factor).collect();
-        let joints: Vec<&[JointMeasures]> = self
-            .increments
-            .iter()
-            .map(|i| i.joints.as_slice())
-            .collect();
-        joint::cycles(
-            &times,
-            &joints,
-            &model.breakpoints(),
-            |t| model.history_values(t),
-            model.interfaces.len(),
-        )
+        cycles(model, &self.increments)
     }
+}
+
+/// The closed load cycles of every interface over `increments`, in order
+/// ([`joint::cycles`]).
+pub fn cycles(model: &Model, increments: &[Increment]) -> Vec<Vec<joint::Cycle>> {
+    let times: Vec<f64> = increments.iter().map(|i| i.load_factor).collect();
+    let joints: Vec<&[JointMeasures]> = increments.iter().map(|i| i.joints.as_slice()).collect();
+    joint::cycles(
+        &times,
+        &joints,
+        &model.breakpoints(),
+        |t| model.history_values(t),
+        model.interfaces.len(),
+    )
 }
 
 /// Runs the whole load history with a given engine (any backend). Under MPI

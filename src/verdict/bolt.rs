@@ -16,11 +16,11 @@
 use super::handbook::thread::{PropertyClass, Thread};
 use super::handbook::vdi2230::{self as vdi, Bolt, Clamp, Head, Joint, ShankSection};
 use super::rating::{max_pressure, radii, Check, Input, Rating};
+use super::Run;
 use crate::error::{clip, Error, Result};
 use crate::input::case::rating::BoltSpec;
 use crate::model::Model;
 use crate::solve::events::Kind;
-use crate::solve::RunResult;
 
 /// The joint as the mesh and the case give it.
 pub struct Posed {
@@ -482,7 +482,7 @@ struct Measured {
     head_force: f64,
 }
 
-fn measure(model: &Model, r: &RunResult, p: &Posed) -> Option<Measured> {
+fn measure(model: &Model, r: &Run, p: &Posed) -> Option<Measured> {
     let sec = &model.sections[p.section];
     let lock = r
         .increments
@@ -542,7 +542,7 @@ fn measure(model: &Model, r: &RunResult, p: &Posed) -> Option<Measured> {
 }
 
 /// The rating of a finished run.
-pub fn rate(model: &Model, r: &RunResult, spec: &BoltSpec, p: Posed) -> Rating {
+pub fn rate(model: &Model, r: &Run, spec: &BoltSpec, p: Posed) -> Rating {
     let name = spec.name.clone().unwrap_or_else(|| spec.pretension.clone());
     let subject = format!(
         "bolted joint \"{}\": {} M{}×{} clamping {} mm at \"{}\"",
@@ -573,7 +573,7 @@ pub fn rate(model: &Model, r: &RunResult, spec: &BoltSpec, p: Posed) -> Rating {
     rating
 }
 
-fn checks(model: &Model, r: &RunResult, spec: &BoltSpec, p: &Posed, m: &Measured) -> Vec<Check> {
+fn checks(model: &Model, r: &Run, spec: &BoltSpec, p: &Posed, m: &Measured) -> Vec<Check> {
     let delta_s_hb = vdi::bolt_resilience(&p.bolt, Joint::Through).map(|b| b.total);
     let delta_p_hb = vdi::plate_resilience(&p.clamp, Joint::Through).map(|c| c.delta_p);
     let phi_k_fe = vdi::load_factor(m.delta_s, m.delta_p);
@@ -619,7 +619,7 @@ fn checks(model: &Model, r: &RunResult, spec: &BoltSpec, p: &Posed, m: &Measured
 #[allow(clippy::too_many_arguments)]
 fn strength(
     model: &Model,
-    r: &RunResult,
+    r: &Run,
     spec: &BoltSpec,
     p: &Posed,
     m: &Measured,

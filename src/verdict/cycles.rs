@@ -14,12 +14,12 @@
 
 use super::handbook::masing::UniformJoint;
 use super::rating::{Check, Input, Rating};
+use super::Run;
 use crate::error::{clip, Error, Result};
 use crate::input::case::rating::CyclesSpec;
 use crate::measure::joint::{cycle_windows, Cycle};
 use crate::model::Model;
 use crate::physics::contact::tangential::Memory;
-use crate::solve::RunResult;
 
 /// The rating as the model poses it: which interface and the factor from
 /// the model's forces to the part's.
@@ -126,13 +126,13 @@ fn inputs(model: &Model, spec: &CyclesSpec, width: Option<f64>, count: f64) -> V
 }
 
 /// The rating of a finished run.
-pub fn rate(model: &Model, r: &RunResult, spec: &CyclesSpec, posed: Posed) -> Rating {
+pub fn rate(model: &Model, r: &Run, spec: &CyclesSpec, posed: Posed) -> Rating {
     let Posed {
         interface: i,
         scale,
         inputs,
     } = posed;
-    let cycles = r.cycles(model).swap_remove(i);
+    let cycles = crate::solve::cycles(model, r.increments).swap_remove(i);
     let sweep = crate::measure::sweep::sweep(&cycles);
     let steady: Vec<(usize, &Cycle)> = cycles
         .iter()
@@ -278,7 +278,7 @@ fn cycle_checks(
 /// The uniform Masing joint of interface `i` over cycle `c`: its whole area
 /// at the mean pressure F_N / A at the cycle's end; None without a
 /// kinematic memory (the isotropic one shakes down: no steady loop).
-fn uniform_joint(model: &Model, r: &RunResult, i: usize, c: &Cycle) -> Option<UniformJoint> {
+fn uniform_joint(model: &Model, r: &Run, i: usize, c: &Cycle) -> Option<UniformJoint> {
     let im = &model.interfaces[i];
     let law = im.tangential.as_ref()?;
     if law.memory != Memory::Kinematic {

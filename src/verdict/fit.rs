@@ -13,12 +13,12 @@
 
 use super::handbook::din7190::{Fit, SMOOTHING_2017};
 use super::rating::{joint_series, max_pressure, max_von_mises, radii, Check, Input, Rating};
+use super::Run;
 use crate::error::{clip, Error, Result};
 use crate::input::case::rating::FitSpec;
 use crate::measure::gross_slip::Motion;
 use crate::model::interface::InterfaceModel;
 use crate::model::Model;
-use crate::solve::RunResult;
 use std::f64::consts::PI;
 
 /// The fit as the mesh and the case give it: which interface, which body
@@ -211,7 +211,7 @@ fn inputs(fit: &Fit, spec: &FitSpec, adhesion_from: &'static str) -> Vec<Input> 
 }
 
 /// The rating of a finished run.
-pub fn rate(model: &Model, r: &RunResult, spec: &FitSpec, posed: Posed) -> Rating {
+pub fn rate(model: &Model, r: &Run, spec: &FitSpec, posed: Posed) -> Rating {
     let Posed {
         interface: i,
         hub,
@@ -295,7 +295,7 @@ pub fn rate(model: &Model, r: &RunResult, spec: &FitSpec, posed: Posed) -> Ratin
 /// (|T| turned, N·mm; |F_T| pushed, N), by the direction each increment
 /// moved ([`crate::measure::gross_slip`]): its holding plateau when the run
 /// reaches one; none when it never slid so.
-fn held(r: &RunResult, i: usize, motion: Motion) -> Option<f64> {
+fn held(r: &Run, i: usize, motion: Motion) -> Option<f64> {
     let series: Vec<_> = joint_series(r, i).map(|(_, j)| j).collect();
     let moves = crate::measure::gross_slip::motions(&series);
     moves
@@ -310,7 +310,7 @@ fn held(r: &RunResult, i: usize, motion: Motion) -> Option<f64> {
 /// limits (elastic p_F, the hub's fully plastic limit) against the pressure.
 fn yield_checks(
     model: &Model,
-    r: &RunResult,
+    r: &Run,
     fit: &Fit,
     (hub, shaft): (usize, usize),
     p: Option<f64>,

@@ -12,8 +12,10 @@ pub mod rating;
 
 use crate::error::Result;
 use crate::input::case::rating::RatingSpec;
+use crate::interrupt::Stop;
 use crate::model::Model;
-use crate::solve::RunResult;
+use crate::solve::events::Event;
+use crate::solve::{Increment, RunResult};
 
 /// Checks that every `[[rating]]` can be rated on this model (the names it
 /// gives exist, the model is of the kind the standard rates), before the
@@ -51,8 +53,62 @@ pub fn prepare(model: &Model) -> Result<Vec<String>> {
     Ok(lines)
 }
 
+/// What a rating reads of a run: its increments, the events located in
+/// them, and why it stopped early (if it did).
+#[derive(Clone, Copy)]
+pub struct Run<'a> {
+    pub increments: &'a [Increment],
+    pub events: &'a [Event],
+    pub stopped: Option<&'a Stop>,
+}
+
+impl<'a> Run<'a> {
+    /// A finished run.
+    pub fn of(r: &'a RunResult) -> Self {
+        Run {
+            increments: &r.increments,
+            events: &r.events,
+            stopped: r.stopped.as_ref(),
+        }
+    }
+
+    /// Its first `k` increments, as a run that ended there (the events of
+    /// those increments; not stopped: the history goes on).
+    fn until(&self, k: usize, events: &'a [Event]) -> Self {
+        Run {
+            increments: &self.increments[..k],
+            events,
+            stopped: None,
+        }
+    }
+}
+
 /// The ratings of a finished run, in the case's order.
 pub fn rate(model: &Model, r: &RunResult) -> Result<Vec<rating::Rating>> {
+    rate_run(model, &Run::of(r))
+}
+
+/// The ratings as they stood at each increment of the run: (increment,
+/// load factor, the ratings of the run up to it), each on the increments
+/// and events reached by then, so a check reads what it would have read had
+/// the run ended there (a bolt before its lock: nothing to rate yet).
+pub fn history(model: &Model, r: &RunResult) -> Result<Vec<(usize, f64, Vec<rating::Rating>)>> {
+    let all = Run::of(r);
+    let mut out = Vec::new();
+    for (k, inc) in r.increments.iter().enumerate() {
+        let events: Vec<Event> = r
+            .events
+            .iter()
+            .filter(|e| e.increment <= inc.increment)
+            .cloned()
+            .collect();
+        let ratings = rate_run(model, &all.until(k + 1, &events))?;
+        out.push((inc.increment, inc.load_factor, ratings));
+    }
+    Ok(out)
+}
+
+fn rate_run(model: &Model, r: &Run) -> Result<Vec<rating::Rating>> {
     let mut out = Vec::new();
     for (i, spec) in model.ratings.iter().enumerate() {
         let at = at(model, i, spec);
@@ -71,7 +127,7 @@ pub fn rate(model: &Model, r: &RunResult) -> Result<Vec<rating::Rating>> {
             }
         }
     }
-    if let Some(stop) = &r.stopped {
+    if let Some(stop) = r.stopped {
         let t = r.increments.last().map_or(0.0, |i| i.load_factor);
         for rating in &mut out {
             rating.incomplete = Some(format!(

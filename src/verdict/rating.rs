@@ -2,8 +2,8 @@
 //! with the FE's number beside the handbook's, the demand, the safety and
 //! the verdict (summary.json's `ratings`, docs/output.md).
 
+use super::Run;
 use crate::model::Model;
-use crate::solve::RunResult;
 use serde::Serialize;
 use std::borrow::Cow;
 
@@ -134,7 +134,7 @@ impl Rating {
 
 /// The increments' values of interface `i`'s joint measures.
 pub(crate) fn joint_series<'a>(
-    r: &'a RunResult,
+    r: &Run<'a>,
     i: usize,
 ) -> impl Iterator<Item = (f64, &'a crate::measure::joint::JointMeasures)> + 'a {
     r.increments
@@ -143,7 +143,7 @@ pub(crate) fn joint_series<'a>(
 }
 
 /// The largest von Mises stress (MPa) of body `b` at any increment.
-pub(crate) fn max_von_mises(model: &Model, r: &RunResult, b: usize) -> Option<f64> {
+pub(crate) fn max_von_mises(model: &Model, r: &Run, b: usize) -> Option<f64> {
     let plan = &model.plan;
     let k = crate::model::outputs::PER_BODY * b;
     r.increments
@@ -159,7 +159,7 @@ pub(crate) fn max_von_mises(model: &Model, r: &RunResult, b: usize) -> Option<f6
 }
 
 /// The largest contact pressure (MPa) of interface `i` at any increment.
-pub(crate) fn max_pressure(model: &Model, r: &RunResult, i: usize) -> Option<f64> {
+pub(crate) fn max_pressure(model: &Model, r: &Run, i: usize) -> Option<f64> {
     let plan = &model.plan;
     let k = crate::model::outputs::PER_INTERFACE * i;
     r.increments

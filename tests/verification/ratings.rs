@@ -160,12 +160,22 @@ fn the_bolt_rating_splits_the_run_resiliences() {
     let f_a = num(&check(r, "F_A")["fe"]);
     let f_kr_min = num(&check(r, "F_KR,min")["handbook"]);
     let sep_min = num(&check(r, "F_A,ab,min")["handbook"]);
-    assert!(near(sep_min, f_kr_min / (1.0 - phi_n) + f_a, 1e-12), "{sep_min}");
-    assert!(sep_min < f_v / 1.6 / (1.0 - phi_n), "{sep_min}: F_Z taken off");
+    assert!(
+        near(sep_min, f_kr_min / (1.0 - phi_n) + f_a, 1e-12),
+        "{sep_min}"
+    );
+    assert!(
+        sep_min < f_v / 1.6 / (1.0 - phi_n),
+        "{sep_min}: F_Z taken off"
+    );
     // the surface pressure of a bolt tightened to F_M,zul over A_p = π/4 (d_W² − d_h²)
     let f_m_zul = num(&check(r, "F_M")["required"]);
     let a_p = PI / 4.0 * (17.0f64.powi(2) - 13.0f64.powi(2));
-    assert!(near(num(&check(r, "p_M,max")["handbook"]), f_m_zul / a_p, 1e-12));
+    assert!(near(
+        num(&check(r, "p_M,max")["handbook"]),
+        f_m_zul / a_p,
+        1e-12
+    ));
 }
 
 /// The checks of a joint-cycles rating that read cycle `n`.
@@ -320,4 +330,71 @@ fn a_cycles_rating_without_a_force_slip_loop_is_incomplete() {
     let why = r["incomplete"].as_str().unwrap_or_else(|| panic!("{r}"));
     assert!(why.contains("force-slip loop"), "{why}");
     assert!(r["checks"].as_array().unwrap().is_empty());
+}
+
+/// `ratings.csv` follows each check over the run: a row where one of its
+/// numbers changed, none before the rating can be rated (the bolt before
+/// its lock at t = 1), and its last row is the summary's check, to the
+/// CSV's ten digits. The fit's M_t rises with the pressure while it is
+/// pressed and its safety passes the demand only once turned to its
+/// plateau: the increment it first passes is the first row with pass = 1.
+#[test]
+fn ratings_csv_follows_each_check_over_the_run() {
+    for case in ["bolted-joint", "shrink-fit-torque", "slideway-damping"] {
+        let (out, s) = shipped(case);
+        let text = common::read_out(&out, "ratings.csv");
+        let mut lines = text.lines();
+        assert_eq!(
+            lines.next().unwrap(),
+            "increment,time,rating,symbol,cycle,fe,handbook,required,safety,pass"
+        );
+        // split on commas outside quotes
+        let rows: Vec<Vec<String>> = lines
+            .map(|l| {
+                let mut cells = vec![String::new()];
+                let mut quoted = false;
+                for ch in l.chars() {
+                    match ch {
+                        '"' => quoted = !quoted,
+                        ',' if !quoted => cells.push(String::new()),
+                        c => cells.last_mut().unwrap().push(c),
+                    }
+                }
+                cells
+            })
+            .collect();
+        let rating = &s["ratings"][0];
+        let mut seen = std::collections::BTreeMap::new();
+        for r in &rows {
+            let key = (r[3].clone(), r[4].clone());
+            assert_ne!(
+                seen.get(&key),
+                Some(&r[5..].to_vec()),
+                "{case}: {r:?} repeats"
+            );
+            seen.insert(key, r[5..].to_vec());
+        }
+        let field = |v: &Value| v.as_f64().map_or(String::new(), |x| format!("{x:.9e}"));
+        for c in rating["checks"].as_array().unwrap() {
+            let cycle = c["cycle"].as_u64().map_or(String::new(), |n| n.to_string());
+            let key = (c["symbol"].as_str().unwrap().to_string(), cycle);
+            let Some(last) = seen.get(&key) else {
+                continue;
+            };
+            assert_eq!(last[0], field(&c["fe"]), "{case}: {key:?} fe");
+            assert_eq!(last[3], field(&c["safety"]), "{case}: {key:?} safety");
+        }
+        if case == "bolted-joint" {
+            let first: f64 = rows[0][1].parse().unwrap();
+            assert!(first > 1.0, "the bolt rated before its lock: {first}");
+        }
+        if case == "shrink-fit-torque" {
+            let m_t: Vec<&Vec<String>> = rows.iter().filter(|r| r[3] == "M_t").collect();
+            let fe: Vec<f64> = m_t.iter().map(|r| r[5].parse().unwrap()).collect();
+            assert!(fe.windows(2).take(15).all(|w| w[1] > w[0]), "{fe:?}");
+            let pass = m_t.iter().position(|r| r[9] == "1").unwrap();
+            let safety: f64 = m_t[pass][8].parse().unwrap();
+            assert!(safety >= 1.5 && m_t[..pass].iter().all(|r| r[9] == "0"));
+        }
+    }
 }

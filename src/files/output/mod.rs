@@ -15,6 +15,7 @@ pub mod joints_csv;
 pub mod json;
 pub mod peaks;
 pub mod probes;
+pub mod ratings_csv;
 pub mod reactions;
 pub mod singular;
 pub mod vtu;
@@ -179,6 +180,9 @@ impl Writer {
             &peaks::contact_csv(model, result, |v| plan.part(v, &l.interfaces)),
         )?;
         self.write("loads.csv", &applied::csv(model, result))?;
+        if !model.ratings.is_empty() {
+            self.write("ratings.csv", &ratings_csv::csv(model, result)?)?;
+        }
         self.write("results.pvd", &vtu::pvd(&self.pvd))?;
         replace_dir(&self.tmp_dir, &self.final_dir)?;
         self.done = true;

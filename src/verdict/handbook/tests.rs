@@ -930,6 +930,8 @@ fn a_thread_pitch_is_one_of_iso_261s_and_at_most_the_coarse_one() {
     ] {
         let t = Thread::fine(d, p).unwrap();
         assert_eq!(t.iso_pitch(), ok, "M{d}x{p}");
+    }
+}
 
 /// One Jenkins element (no density, the whole mass at η = 1): the
 /// elastic-perfectly-plastic loop, F_a = A k min(a, φ) and
