@@ -362,7 +362,7 @@ fn inputs(spec: &BoltSpec, t: &Thread, r_p02: f64, c: &Clamp) -> Vec<Input> {
     } else {
         "material"
     };
-    vec![
+    let mut list = vec![
         Input {
             name: "thread diameter",
             symbol: "d",
@@ -447,7 +447,46 @@ fn inputs(spec: &BoltSpec, t: &Thread, r_p02: f64, c: &Clamp) -> Vec<Input> {
             unit: "N",
             from: from(spec.clamp_load.is_some()),
         },
-    ]
+    ];
+    // the embedding and the limits where the case or the standard gives them
+    let guide = spec.embedding.or_else(|| vdi::embedding_guide(5.0, 2, 1));
+    let more = [
+        ("embedding", "f_Z", guide, "µm", spec.embedding.is_some()),
+        (
+            "limiting surface pressure",
+            "p_G",
+            spec.surface_pressure_limit,
+            "MPa",
+            true,
+        ),
+        (
+            "load introduction factor",
+            "n",
+            spec.load_introduction,
+            "",
+            true,
+        ),
+        (
+            "free loaded thread",
+            "l_Gew",
+            spec.free_thread_length,
+            "mm",
+            true,
+        ),
+    ];
+    list.extend(
+        more.into_iter()
+            .filter_map(|(name, symbol, v, unit, given)| {
+                v.map(|value| Input {
+                    name,
+                    symbol,
+                    value,
+                    unit,
+                    from: from(given),
+                })
+            }),
+    );
+    list
 }
 
 /// The service load F_A at pseudo-time t: the axial resultant of the

@@ -122,7 +122,7 @@ fn hub_and_shaft(model: &Model, im: &InterfaceModel, r_f: f64) -> (usize, usize)
 
 fn inputs(fit: &Fit, spec: &FitSpec, adhesion_from: &'static str) -> Vec<Input> {
     let from = |given: bool| if given { "case" } else { "default" };
-    vec![
+    let mut list = vec![
         Input {
             name: "joint diameter",
             symbol: "D_F",
@@ -207,7 +207,37 @@ fn inputs(fit: &Fit, spec: &FitSpec, adhesion_from: &'static str) -> Vec<Input> 
             unit: "",
             from: from(spec.application_factor.is_some()),
         },
-    ]
+        Input {
+            name: "slip safety required",
+            symbol: "S_r",
+            value: spec.slip_safety.unwrap_or(1.5),
+            unit: "",
+            from: from(spec.slip_safety.is_some()),
+        },
+        Input {
+            name: "yield safety required",
+            symbol: "S_F",
+            value: spec.yield_safety.unwrap_or(1.1),
+            unit: "",
+            from: from(spec.yield_safety.is_some()),
+        },
+    ];
+    // the demands the case gives (N·m and N, before K_A)
+    for (name, symbol, v, unit) in [
+        ("torque to transmit", "M_t,erf", spec.torque, "N·m"),
+        ("axial force to transmit", "F_ax,erf", spec.axial_force, "N"),
+    ] {
+        if let Some(value) = v {
+            list.push(Input {
+                name,
+                symbol,
+                value,
+                unit,
+                from: "case",
+            });
+        }
+    }
+    list
 }
 
 /// The rating of a finished run.
