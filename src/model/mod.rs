@@ -232,12 +232,11 @@ impl Model {
         let full = case.model.integration == Integration::Full;
         let rules = Family::ALL.map(|f| f.rule(full));
         let rules3 = [Family3::H20, Family3::T10].map(|f| f.rule(full));
-        // the start mesh's nodes (and their copies across the cuts): where
-        // a [[force]] acts and the probe is read on every adaptive cycle
-        let start: Vec<bool> = crate::model::pretension::origins(&sections, mesh.nodes.len())
-            .into_iter()
-            .map(|o| o < start_nodes)
-            .collect();
+        // each node's original across the cuts; the start mesh's nodes (and
+        // their copies): where a [[force]] acts and the probe is read on
+        // every adaptive cycle
+        let origin = crate::model::pretension::origins(&sections, mesh.nodes.len());
+        let start: Vec<bool> = origin.iter().map(|&o| o < start_nodes).collect();
         let materials = materials(&case, &mesh, &place)?;
         check_elements(&mesh, (&rules, &rules3), &section, &place)?;
         let mut interfaces = interface_models(&case, &checked, &mesh, section, &place)?;
@@ -272,7 +271,6 @@ impl Model {
         let plan =
             crate::model::outputs::Plan::build(&case, &mesh, &interfaces, &prescribed, &place)?;
         let force_floor = force_floor(&mesh, &materials, section);
-        let origin = crate::model::pretension::origins(&sections, mesh.nodes.len());
         let singular = singular::of_case(&case, &mesh, &origin);
         let model = Model {
             name: case.display_name(),

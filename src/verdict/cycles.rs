@@ -92,36 +92,36 @@ fn closes_a_cycle(model: &Model) -> bool {
 fn inputs(model: &Model, spec: &CyclesSpec, width: Option<f64>, count: f64) -> Vec<Input> {
     let mut v = Vec::new();
     if let Some(w) = width {
-        v.push(Input {
-            name: "model thickness",
-            symbol: "t",
-            value: model.thickness,
-            unit: "mm",
-            from: "mesh",
-        });
-        v.push(Input {
-            name: "width of the part",
-            symbol: "b",
-            value: w,
-            unit: "mm",
-            from: if spec.width.is_some() {
+        v.push(Input::new(
+            "model thickness",
+            "t",
+            model.thickness,
+            "mm",
+            "mesh",
+        ));
+        v.push(Input::new(
+            "width of the part",
+            "b",
+            w,
+            "mm",
+            if spec.width.is_some() {
                 "case"
             } else {
                 "default"
             },
-        });
+        ));
     }
-    v.push(Input {
-        name: "joints in the part",
-        symbol: "n",
-        value: count,
-        unit: "",
-        from: if spec.count.is_some() {
+    v.push(Input::new(
+        "joints in the part",
+        "n",
+        count,
+        "",
+        if spec.count.is_some() {
             "case"
         } else {
             "default"
         },
-    });
+    ));
     v
 }
 

@@ -18,6 +18,24 @@ pub struct Input {
     pub from: &'static str,
 }
 
+impl Input {
+    pub fn new(
+        name: &'static str,
+        symbol: &'static str,
+        value: f64,
+        unit: &'static str,
+        from: &'static str,
+    ) -> Input {
+        Input {
+            name,
+            symbol,
+            value,
+            unit,
+            from,
+        }
+    }
+}
+
 /// One check: the FE's number, the handbook's, and against what.
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct Check {
