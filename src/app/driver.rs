@@ -470,13 +470,16 @@ impl RunStart<'_> {
         if opts.out.is_some() {
             again += &format!(" --out {}", dir.display());
         }
-        report_end(log, model, &dir, &result, wall, &again);
+        // the peaks at singular points qualify the numbers the end prints:
+        // said before them, not as warnings (summary.json `singular`)
         let singular = crate::files::output::singular::run_flags(model, &result);
-        let singular = crate::files::output::singular::lines(model, &singular);
-        for w in crate::files::output::warnings(model, &result)
-            .into_iter()
-            .chain(singular)
-        {
+        for w in crate::files::output::singular::lines(model, &singular) {
+            log.progress("singular", json!({ "message": w }), || {
+                format!("singular: {w}")
+            });
+        }
+        report_end(log, model, &dir, &result, wall, &again);
+        for w in crate::files::output::warnings(model, &result) {
             log.always("warning", json!({ "message": w }), || {
                 format!("warning: {w}")
             });

@@ -288,7 +288,7 @@ pub fn rate(model: &Model, r: &Run, spec: &FitSpec, posed: Posed) -> Rating {
         standard: "DIN 7190-1:2017",
         name: spec.name.clone().unwrap_or_else(|| spec.interface.clone()),
         subject: format!(
-            "interference fit \"{}\": shaft {} in hub {}",
+            "interference fit \"{}\": the shaft is body \"{}\", the hub body \"{}\"",
             spec.interface, names[shaft], names[hub]
         ),
         inputs,

@@ -577,3 +577,57 @@ fn the_report_refuses_to_replace_what_is_not_a_report() {
         );
     }
 }
+
+/// The shipped fit and slideway (besides the bolt above) write their report
+/// as they come, their ratings in it: every check's row holds its symbol,
+/// its FE number as the report prints it and the verdict in words; the
+/// holding plateau is among the events with its torque.
+#[test]
+fn the_shipped_fit_and_slideway_reports_show_their_ratings() {
+    static FIT: OnceLock<PathBuf> = OnceLock::new();
+    static SLIDE: OnceLock<PathBuf> = OnceLock::new();
+    for (case, dir) in [
+        ("shrink-fit-torque", run_once("shrink-fit-torque", &FIT)),
+        ("slideway-damping", run_once("slideway-damping", &SLIDE)),
+    ] {
+        let target = common::scratch(&format!("report-shipped-{case}")).join("page.html");
+        let t = target.display().to_string();
+        let (code, e, _) = report(&[&dir.display().to_string(), "--output", &t]);
+        assert_eq!(code, 0, "{case}: {e}");
+        let html = std::fs::read_to_string(&target).unwrap();
+        assert_self_contained(&html);
+        let rows = rows(&html);
+        let s = summary(dir);
+        let rating = &s["ratings"][0];
+        for c in rating["checks"].as_array().unwrap() {
+            let symbol = c["symbol"].as_str().unwrap();
+            let quantity = c["quantity"].as_str().unwrap();
+            let r = row(&rows, quantity);
+            assert!(r.contains(&format!("| {symbol} |")), "{case}: {r}");
+            if let Some(fe) = c["fe"].as_f64() {
+                assert!(r.contains(&figure(fe)), "{case}: {r} lacks {}", figure(fe));
+            }
+            let words = match c["pass"].as_bool() {
+                Some(true) => "PASS",
+                Some(false) => "FAIL",
+                None => "not rated",
+            };
+            assert!(r.contains(words), "{case}: {r}");
+        }
+        if case == "shrink-fit-torque" {
+            let plateau = rows
+                .iter()
+                .find(|r| r.starts_with("holding_plateau of torque"))
+                .expect("the plateau among the events");
+            let t = s["events"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .find(|e| e["event"] == "holding_plateau")
+                .unwrap()["torque_nm"]
+                .as_f64()
+                .unwrap();
+            assert!(plateau.contains(&format!("{} N·m", figure(t))), "{plateau}");
+        }
+    }
+}

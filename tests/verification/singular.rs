@@ -76,10 +76,24 @@ fn sharp_corners_are_flagged_and_the_fillet_is_not() {
     // the plates' peaks sit at the bore's edge under the head and the nut
     let plate = flagged(&s, "max_von_mises", "top_plate").unwrap();
     assert_eq!(plate["corner"], "end of contact interface under_head");
-    // one warning line per entry
+    // one line per entry, before the run's end block, no warning (a run
+    // without --quiet; with it, none)
+    assert!(!err.contains("singular:"), "{err}");
+    let out = common::scratch("singular-bolt-lines");
+    let case = common::root().join("cases/bolted-joint");
+    let (code, err, _) = common::run_asperity_out(&[
+        "run",
+        &case.display().to_string(),
+        "--out",
+        &out.display().to_string(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let end = err.find("\nfirst yield:").expect("the end block");
+    assert!(err.rfind("singular:").is_some_and(|k| k < end), "{err}");
     let lines = err
         .lines()
-        .filter(|l| l.starts_with("warning:") && l.contains("lies at a singular point"));
+        .filter(|l| l.starts_with("singular:") && l.contains("lies at a singular point"));
+    assert!(!err.contains("warning:"), "{err}");
     assert_eq!(
         lines.count(),
         s["singular"].as_array().unwrap().len(),

@@ -1,4 +1,4 @@
-//! summary.json's `singular` and the run's end's warnings of it: the peaks
+//! summary.json's `singular` and the lines the run prints of it before its end: the peaks
 //! (per body, the largest von Mises stress and PEEQ over the run, as
 //! summary.json's `peaks` places them) and the first yield that lie at a
 //! singular point of the mesh ([`crate::measure::singular`] decides,
@@ -148,7 +148,7 @@ fn words(what: &str) -> &str {
     }
 }
 
-/// One warning per flagged place (without `warning: `).
+/// One line per flagged place (without `singular: `).
 pub fn lines(model: &Model, flags: &[Flag]) -> Vec<String> {
     let source = model.source.display();
     flags
