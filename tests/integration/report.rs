@@ -420,7 +420,7 @@ fn a_folder_that_is_not_a_finished_output_folder_is_refused_naming_the_file() {
         refused(&dir, "summary.json", &format!("{path} of another type"));
         let (_, e, _) = report(&[&dir.display().to_string()]);
         assert!(
-            e.contains(&format!("{path}")) && e.contains("where the report reads"),
+            e.contains(path) && e.contains("where the report reads"),
             "{e}"
         );
     }

@@ -10,6 +10,11 @@ use crate::solve::RunResult;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
+/// A check of a rating: the rating's index, the check's symbol and cycle.
+type Key<'a> = (usize, &'a str, Option<usize>);
+/// A check's numbers as bits (fe, handbook, required, safety) and its pass.
+type Numbers = [Option<u64>; 5];
+
 /// The columns of `ratings.csv`.
 pub const RATINGS_HEADER: &str =
     "increment,time,rating,symbol,cycle,fe,handbook,required,safety,pass";
@@ -22,7 +27,7 @@ pub const RATINGS_HEADER: &str =
 pub fn csv(model: &Model, r: &RunResult) -> Result<String> {
     let mut s = String::from(RATINGS_HEADER);
     s.push('\n');
-    let mut last: BTreeMap<(usize, &str, Option<usize>), [Option<u64>; 5]> = BTreeMap::new();
+    let mut last: BTreeMap<Key, Numbers> = BTreeMap::new();
     for (increment, time, ratings) in crate::verdict::history(model, r)? {
         for (k, rating) in ratings.iter().enumerate() {
             if rating.incomplete.is_some() {
