@@ -1,7 +1,9 @@
 //! Regression gold values: every shipped case (each folder of `cases/`) is run
 //! by the built program as a user runs it (`asperity run cases/NAME --out DIR
 //! --quiet`) and the `summary.json` it writes is compared with the values the
-//! program gave before, kept in the case folder as `expected.json`.
+//! program gave before, kept in the case folder as `expected.json`; and
+//! `asperity report` makes its calculation report (exit 0, a page with its
+//! ratings section).
 //!
 //! **What is compared lives in each case's expected.json**, not here; this file
 //! only reads and compares, so a new case needs no edit of it:
@@ -223,6 +225,19 @@ fn run(g: &Gold) -> Result<(Value, String), String> {
     }
     let text = std::fs::read_to_string(out.join("summary.json")).map_err(|e| e.to_string())?;
     let summary: Value = serde_json::from_str(&text).map_err(|e| e.to_string())?;
+    // and its calculation report, as a user would hand it on
+    let page = Command::new(env!("CARGO_BIN_EXE_asperity"))
+        .args(["report", &out.display().to_string()])
+        .output()
+        .unwrap();
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap_or_default();
+    if page.status.code() != Some(0) || !html.contains("id=\"ratings\"") {
+        return Err(format!(
+            "asperity report: exit code {:?}: {}",
+            page.status.code(),
+            String::from_utf8_lossy(&page.stderr)
+        ));
+    }
     let mut shown = format!("asperity run cases/{} --out DIR --quiet", g.case);
     for a in &g.args {
         shown.push(' ');
