@@ -779,6 +779,19 @@ fn bodies_text(model: &Model) -> String {
             "  body {name}: E = {} MPa, ν = {}, σ_Y = {} MPa, H = {} MPa\n",
             m.young, m.poisson, m.yield_stress, m.hardening
         );
+        if let Some(t) = model.temperatures.iter().find(|t| t.body == b) {
+            let from = t
+                .reference
+                .map_or(String::new(), |r| format!(" from {r} °C"));
+            let by = match t.history {
+                Some(_) => "its history",
+                None => "the load factor",
+            };
+            s += &format!(
+                "    temperature: ΔT = {} K{from} (× {by}), free thermal strain α ΔT = {:e}\n",
+                t.change, t.strain
+            );
+        }
         if model.node_dofs().twist() && !own[b] {
             let by: Vec<&str> = (model.interfaces.iter())
                 .filter(|im| im.tangential.is_some() && (im.body_a == b || im.body_b == b))

@@ -95,6 +95,14 @@ impl History {
         self.points.iter().fold(0.0, |a, p| a.max(p.1.abs()))
     }
 
+    /// The lowest and the highest value: with linear segments held at the
+    /// ends, the extremes over all pseudo-time.
+    pub fn extremes(&self) -> (f64, f64) {
+        self.points.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(p.1), hi.max(p.1))
+        })
+    }
+
     /// The factor at pseudo-time t: linear between the points, held outside.
     pub fn value(&self, t: f64) -> f64 {
         let p = &self.points;

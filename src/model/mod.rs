@@ -85,6 +85,9 @@ pub struct Model {
     gauss_offsets: Vec<usize>,
     /// Material per body.
     pub materials: Vec<VonMises>,
+    /// The bodies' uniform temperature changes (`[[temperature]]`; a body
+    /// without one keeps its assembly temperature): [`Model::thermal_strains`].
+    pub temperatures: Vec<crate::model::loads::thermal::BodyTemperature>,
     pub interfaces: Vec<InterfaceModel>,
     /// Prescribed dofs and their values at factor 1 (the value at
     /// pseudo-time t: `Model::prescribed_at`).
@@ -288,6 +291,7 @@ impl Model {
             f_ext,
             loads: loads.patterns,
             histories: loads.histories,
+            temperatures: loads.temperatures,
             applied: loads.applied,
             ratings: case.rating.clone(),
             applied_components: loads.components,
@@ -518,6 +522,22 @@ impl Model {
     /// values have the same applied loads.
     pub fn history_values(&self, t: f64) -> Vec<f64> {
         self.histories.iter().map(|h| h.value(t)).collect()
+    }
+
+    /// The free thermal strain α ΔT h(t) of every body at pseudo-time t, in
+    /// body order (0 for a body without a temperature).
+    pub fn thermal_strains(&self, t: f64) -> Vec<f64> {
+        (0..self.materials.len())
+            .map(|b| self.thermal_strain(b, t))
+            .collect()
+    }
+
+    /// The free thermal strain α ΔT h(t) of body `body` at pseudo-time t.
+    pub fn thermal_strain(&self, body: usize, t: f64) -> f64 {
+        self.temperatures
+            .iter()
+            .find(|bt| bt.body == body)
+            .map_or(0.0, |bt| bt.strain * self.factor(bt.history, t))
     }
 
     /// The factor of a load with history `h` at pseudo-time t: the history's
@@ -1076,10 +1096,11 @@ fn check_loaded(
         && loads.patterns.iter().all(|p| p.f.iter().all(|&f| f == 0.0))
         && prescribed.iter().all(|&(_, v)| v == 0.0)
         && !interference
+        && loads.temperatures.iter().all(|t| t.strain == 0.0)
     {
         return Err(Error::input(
             place,
-            "nothing loads the model: no [[load]], no [[force]], no non-zero prescribed displacement in [[boundary]] and no interference (negative gap) or gap_history",
+            "nothing loads the model: no [[load]], no [[force]], no non-zero prescribed displacement in [[boundary]], no interference (negative gap) or gap_history and no [[temperature]]",
         ));
     }
     Ok(())

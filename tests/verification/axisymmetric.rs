@@ -50,6 +50,7 @@ fn assemble(
         element_forces(
             &geom,
             mat,
+            0.0,
             &ue,
             &zero,
             &mut st,

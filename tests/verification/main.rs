@@ -44,6 +44,7 @@ mod status_convergence;
 mod stepping;
 mod tables;
 mod tangents;
+mod thermal;
 mod threads;
 mod torque_fit;
 mod torsion;

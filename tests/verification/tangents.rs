@@ -45,7 +45,21 @@ fn check_element(plane: Plane, scale: f64, hardening: f64) {
     check_element_geometry(plane, &geom, scale, hardening);
 }
 
+/// With no thermal strain and with one of the strains' size (a heated body:
+/// the eigenstrain moves the return's point, not the tangent's form).
 fn check_element_geometry(plane: Plane, geom: &ElementGeometry, scale: f64, hardening: f64) {
+    for thermal in [0.0, 0.4 * scale] {
+        check_element_thermal(plane, geom, scale, hardening, thermal);
+    }
+}
+
+fn check_element_thermal(
+    plane: Plane,
+    geom: &ElementGeometry,
+    scale: f64,
+    hardening: f64,
+    thermal: f64,
+) {
     let geom = geom.clone();
     let mat = VonMises::new(200000.0, 0.3, 250.0, hardening, plane).unwrap();
     let mut ue = [0.0; 16];
@@ -60,6 +74,7 @@ fn check_element_geometry(plane: Plane, geom: &ElementGeometry, scale: f64, hard
     element_forces(
         &geom,
         &mat,
+        thermal,
         &half,
         &committed0,
         &mut committed,
@@ -73,6 +88,7 @@ fn check_element_geometry(plane: Plane, geom: &ElementGeometry, scale: f64, hard
     element_forces(
         &geom,
         &mat,
+        thermal,
         &ue,
         &committed,
         &mut trial,
@@ -91,6 +107,7 @@ fn check_element_geometry(plane: Plane, geom: &ElementGeometry, scale: f64, hard
             element_forces(
                 &geom,
                 &mat,
+                thermal,
                 u,
                 &committed,
                 &mut trial.clone(),
@@ -108,7 +125,7 @@ fn check_element_geometry(plane: Plane, geom: &ElementGeometry, scale: f64, hard
     let worst = fd::worst(&jac, |i, j| ke[i * 16 + j], fd::Scale::Of(kmax));
     assert!(
         worst.ratio < 1e-6,
-        "{plane:?} scale {scale} H {hardening}: {plastic} plastic points, FD error {worst}"
+        "{plane:?} scale {scale} H {hardening} α ΔT {thermal}: {plastic} plastic points, FD error {worst}"
     );
 }
 

@@ -86,6 +86,9 @@ pub struct Case {
     /// Joints rated to a design standard ([`crate::verdict`]).
     #[serde(default)]
     pub rating: Vec<rating::RatingSpec>,
+    /// Uniform temperature changes of bodies (thermal strain).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub temperature: Vec<TemperatureSpec>,
 }
 
 /// A pretension section (`[[pretension]]`, after Abaqus *PRE-TENSION SECTION):
@@ -231,6 +234,27 @@ pub struct MaterialSpec {
     /// Plastic modulus H, MPa: σ_y = σ_Y + H ε̄ᵖ (0 = perfectly plastic).
     #[serde(default)]
     pub hardening: f64,
+    /// Linear thermal expansion coefficient α, 1/K (≥ 0); needed by a
+    /// `[[temperature]]` on the body.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub expansion: Option<f64>,
+}
+
+/// A uniform temperature change of one body (`[[temperature]]`): the free
+/// thermal strain α ΔT h(t) on every normal strain component of its
+/// elements ([`crate::model::loads::thermal`]).
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct TemperatureSpec {
+    /// The body heated or cooled.
+    pub body: String,
+    /// ΔT at factor 1, K, relative to the stress-free (assembly) state.
+    pub change: f64,
+    /// The temperature of the stress-free state, °C (optional): the body's
+    /// temperature may then not fall below absolute zero.
+    pub reference: Option<f64>,
+    /// The factor's history; none: the load factor (or the default ramp).
+    pub history: Option<HistoryRef>,
 }
 
 /// Normal (and later tangential) law of one interface. The parameters that a law

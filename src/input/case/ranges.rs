@@ -51,6 +51,23 @@ pub(crate) const HARDENING: Range = Range {
     lo: 1e-4,
     hi: 1e9,
 };
+/// Thermal expansion coefficients α (`[materials.<body>] expansion`; 0
+/// allowed: a body that does not expand). Metals 1e-5 … 3e-5, plastics up
+/// to 2e-4, Invar 1e-6.
+pub(crate) const EXPANSION: Range = Range {
+    quantity: "a thermal expansion coefficient",
+    unit: "1/K",
+    lo: 1e-9,
+    hi: 1e-3,
+};
+/// A body's temperature change ΔT (`[[temperature]] change` times the
+/// largest value of its history).
+pub(crate) const TEMPERATURE_CHANGE: Range = Range {
+    quantity: "a temperature change",
+    unit: "K",
+    lo: 1e-6,
+    hi: 1e3,
+};
 /// Concentrated forces (`[[force]] fx`, `fy`): 1 µN to 1 TN.
 pub(crate) const FORCE: Range = Range {
     quantity: "a force",
@@ -70,6 +87,8 @@ pub fn all() -> Vec<&'static Range> {
         &MODULUS,
         &YIELD_STRESS,
         &HARDENING,
+        &EXPANSION,
+        &TEMPERATURE_CHANGE,
         &PRESSURE,
         &FORCE,
         &DISPLACEMENT,

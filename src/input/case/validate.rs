@@ -231,6 +231,15 @@ fn check_materials(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
         ] {
             range.check(at(&format!("{key} {name}")), v)?;
         }
+        if let Some(a) = m.expansion {
+            if !(a.is_finite() && a >= 0.0) {
+                return Err(Error::input(
+                    at(&format!("{key} expansion")),
+                    format!("{a} must be a non-negative number (1/K)"),
+                ));
+            }
+            ranges::EXPANSION.check(at(&format!("{key} expansion")), a)?;
+        }
     }
     Ok(())
 }

@@ -355,6 +355,7 @@ mod tests {
                 forces3(
                     &g,
                     mat,
+                    0.0,
                     &ue,
                     &committed,
                     &mut trial,

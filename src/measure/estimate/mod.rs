@@ -198,7 +198,8 @@ impl Points {
                 shape: (0..g.n).map(|ip| g.shape[ip][..g.nodes].to_vec()).collect(),
                 stress: {
                     let k = Family::SOLID.iter().position(|&f| f == family).unwrap_or(0);
-                    sample::stresses3(model, gauss, u, e, &rule, &g, &own[k])
+                    let thermal = model.thermal_strain(model.mesh.elements[e].body, state.time);
+                    sample::stresses3(model, gauss, u, e, &rule, &g, &own[k], thermal)
                 },
             };
         }
@@ -208,7 +209,8 @@ impl Points {
             family.sampling_rule()
         };
         let g = geometry(model, e, &rule);
-        let s = sample::stresses(model, gauss, u, e, &rule, &g);
+        let thermal = model.thermal_strain(model.mesh.elements[e].body, state.time);
+        let s = sample::stresses(model, gauss, u, e, &rule, &g, thermal);
         Points {
             x: (0..g.n).map(|ip| [g.x[ip][0], g.x[ip][1], 0.0]).collect(),
             dv: g.dv[..g.n].to_vec(),

@@ -26,13 +26,16 @@
 use crate::model::Model;
 use crate::physics::element::family::GaussRule;
 use crate::physics::element::gauss3::GaussRule3;
-use crate::physics::element::solid::{elastic_state, ElementGeometry, MAX_POINTS};
+use crate::physics::element::solid::{
+    elastic_state_thermal, less_thermal, ElementGeometry, MAX_POINTS,
+};
 use crate::physics::element::solid3::ElementGeometry3;
 use crate::physics::material::{GaussStates, Plane, PointState};
 
 /// σ_h ([`PointState::stress`] order: xx, yy, xy, zz or θθ, rθ, zθ) of
 /// element `e` at the points of `rule`, whose geometry is `geom`; `gauss`
-/// holds every element's states at the model's rule.
+/// holds every element's states at the model's rule; `thermal` is the
+/// body's free thermal strain α ΔT, taken off the normal strains.
 pub fn stresses(
     model: &Model,
     gauss: &GaussStates,
@@ -40,6 +43,7 @@ pub fn stresses(
     e: usize,
     rule: &GaussRule,
     geom: &ElementGeometry,
+    thermal: f64,
 ) -> [[f64; 6]; MAX_POINTS] {
     let stored = gauss.range(model.points(e));
     let own = model.rule(e);
@@ -64,11 +68,12 @@ pub fn stresses(
         }
         let s = if twist {
             let eps = crate::physics::element::axisymmetric_twist::strain(geom, ip, &ue);
-            mat.elastic_state_twist(&committed, &eps)
+            mat.elastic_state_twist(&committed, &less_thermal(eps, thermal))
         } else if model.plane == Plane::Axisymmetric {
-            mat.elastic_state_axisymmetric(&committed, &geom.strain_axisymmetric(ip, &ue))
+            let eps = less_thermal(geom.strain_axisymmetric(ip, &ue), thermal);
+            mat.elastic_state_axisymmetric(&committed, &eps)
         } else {
-            elastic_state(mat, &committed, &geom.strain(ip, &ue))
+            elastic_state_thermal(mat, &committed, &geom.strain(ip, &ue), thermal)
         };
         out[ip] = s.stress;
     }
@@ -89,6 +94,7 @@ pub(crate) fn stresses3(
     rule: &GaussRule3,
     geom: &ElementGeometry3,
     w: &[[f64; crate::physics::element::family3::MAX_NODES3]],
+    thermal: f64,
 ) -> Vec<[f64; 6]> {
     let stored = gauss.range(model.points(e));
     let el = &model.mesh.elements[e];
@@ -116,8 +122,8 @@ pub(crate) fn stresses3(
                     *v += geom.shape[ip][a] * n[c];
                 }
             }
-            mat.elastic_state_twist(&committed, &geom.strain(ip, &ue))
-                .stress
+            let eps = less_thermal(geom.strain(ip, &ue), thermal);
+            mat.elastic_state_twist(&committed, &eps).stress
         })
         .collect()
 }

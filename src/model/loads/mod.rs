@@ -22,6 +22,7 @@ use std::collections::BTreeMap;
 mod adaptive;
 mod faces;
 pub mod resultant;
+pub mod thermal;
 
 /// One force vector (all dofs, at factor 1) and its history (`None`: the
 /// load factor, or the default ramp).
@@ -53,6 +54,8 @@ pub struct Loads {
     /// in these components.
     pub applied: Vec<Applied>,
     pub components: resultant::Components,
+    /// Every `[[temperature]]`: a body's uniform temperature change.
+    pub temperatures: Vec<thermal::BodyTemperature>,
 }
 
 /// One `[[load]]` or `[[force]]` as a designer names it, with its resultant
@@ -178,10 +181,11 @@ pub fn build(
     g.forces(case, mesh, start, place, &mut res)?;
     let pretension_history = g.pretension(case, mesh, place, &mut res, &mut prescribed)?;
     let gap_history = g.gap_histories(case, place, &mut res)?;
+    let temperatures = thermal::read(case, mesh, place, &mut res, &mut g.scaled)?;
     if let Some(k) = res.used.iter().position(|&u| !u) {
         return Err(Error::input(
             format!("{place}: [history] {}", clip(res.named[k])),
-            "is never used: no load, boundary, force or gap_history names it (a misspelt name?); use it or remove it",
+            "is never used: no load, boundary, force, temperature or gap_history names it (a misspelt name?); use it or remove it",
         ));
     }
     let histories = res.histories;
@@ -198,6 +202,8 @@ pub fn build(
         };
         check_scaled(range, &at, v, peak, h.is_some())?;
     }
+    let largest = largest_factor(case, &histories);
+    thermal::check_absolute(&temperatures, &histories, largest, place, &mesh.bodies)?;
     let breakpoints = crate::model::history::breakpoints(&histories);
     check_step_count(case, &breakpoints, place)?;
     let (prescribed, prescribed_history) = prescribed.into_iter().unzip();
@@ -211,6 +217,7 @@ pub fn build(
         pretension_history,
         applied: g.applied,
         components: g.components,
+        temperatures,
     })
 }
 

@@ -44,7 +44,9 @@ impl Section {
 }
 
 /// Internal force and (optionally) tangent of one element. `trial` receives the
-/// updated Gauss point states. Errors name the Gauss point.
+/// updated Gauss point states. `thermal` is the free thermal strain α ΔT of
+/// the element's body, subtracted from the normal strains before the
+/// material's update (0: none). Errors name the Gauss point.
 ///
 /// The element's dofs are `ue.len()` (= `fe.len()`, `ke.len()` = its square):
 /// two per node (`NodeDofs::PLANE`: 16 for the quad, 12 for the triangle),
@@ -54,6 +56,7 @@ impl Section {
 pub fn element_forces(
     geom: &solid::ElementGeometry,
     mat: &crate::physics::material::VonMises,
+    thermal: f64,
     ue: &[f64],
     committed: &[crate::physics::material::PointState],
     trial: &mut [crate::physics::material::PointState],
@@ -67,10 +70,12 @@ pub fn element_forces(
             return Err("three dofs per node need an axisymmetric model (twist)".into());
         }
         return axisymmetric_twist::forces(
-            geom, mat, ue, committed, trial, response, tangent, fe, ke,
+            geom, mat, thermal, ue, committed, trial, response, tangent, fe, ke,
         );
     }
-    solid::forces(geom, mat, ue, committed, trial, response, tangent, fe, ke)
+    solid::forces(
+        geom, mat, thermal, ue, committed, trial, response, tangent, fe, ke,
+    )
 }
 
 /// The Gauss point geometry of one element, plane or solid: what the
@@ -101,12 +106,13 @@ impl Geometry {
         }
     }
 
-    /// Internal force and (optionally) tangent of the element
-    /// ([`element_forces`] for a plane one, [`solid3::forces3`] for a solid).
+    /// Internal force and (optionally) tangent of the element, `thermal` the
+    /// free thermal strain α ΔT of its body ([`element_forces`] for a plane one, [`solid3::forces3`] for a solid).
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn forces(
         &self,
         mat: &crate::physics::material::VonMises,
+        thermal: f64,
         ue: &[f64],
         committed: &[crate::physics::material::PointState],
         trial: &mut [crate::physics::material::PointState],
@@ -117,10 +123,10 @@ impl Geometry {
     ) -> Result<(), String> {
         match self {
             Geometry::Plane(g) => {
-                element_forces(g, mat, ue, committed, trial, response, tangent, fe, ke)
+                element_forces(g, mat, thermal, ue, committed, trial, response, tangent, fe, ke)
             }
             Geometry::Solid(g) => {
-                solid3::forces3(g, mat, ue, committed, trial, response, tangent, fe, ke)
+                solid3::forces3(g, mat, thermal, ue, committed, trial, response, tangent, fe, ke)
             }
         }
     }

@@ -161,6 +161,7 @@ pub(crate) type ElementVector = [f64; NodeDofs::MAX_ELEMENT];
 pub fn forces(
     geom: &ElementGeometry,
     mat: &VonMises,
+    thermal: f64,
     ue: &[f64],
     committed: &[PointState],
     trial: &mut [PointState],
@@ -170,7 +171,9 @@ pub fn forces(
     ke: &mut [f64],
 ) -> Result<(), String> {
     if mat.plane == Plane::Axisymmetric {
-        return axisymmetric_forces(geom, mat, ue, committed, trial, response, tangent, fe, ke);
+        return axisymmetric_forces(
+            geom, mat, thermal, ue, committed, trial, response, tangent, fe, ke,
+        );
     }
     fe.fill(0.0);
     if tangent.is_some() {
@@ -180,10 +183,10 @@ pub fn forces(
         let eps = geom.strain(ip, ue);
         let (state, c_alg) = match response {
             Response::Plastic => mat
-                .update(&committed[ip], &eps)
+                .update_thermal(&committed[ip], &eps, thermal)
                 .map_err(|e| format!("Gauss point {ip}: {e}"))?,
             Response::ElasticOnly => (
-                elastic_state(mat, &committed[ip], &eps),
+                elastic_state_thermal(mat, &committed[ip], &eps, thermal),
                 mat.elastic_matrix(),
             ),
         };
@@ -209,8 +212,23 @@ pub fn forces(
 
 /// Stress from the elastic law only, keeping the committed plastic strain.
 pub fn elastic_state(mat: &VonMises, committed: &PointState, eps: &[f64; 3]) -> PointState {
+    elastic_state_thermal(mat, committed, eps, 0.0)
+}
+
+/// [`elastic_state`] less the free thermal strain `thermal` = α ΔT on the
+/// normal components ([`VonMises::update_thermal`]).
+pub fn elastic_state_thermal(
+    mat: &VonMises,
+    committed: &PointState,
+    eps: &[f64; 3],
+    thermal: f64,
+) -> PointState {
     let ep = &committed.plastic_strain;
-    let ee = [eps[0] - ep[0], eps[1] - ep[1], eps[2] - 2.0 * ep[2]];
+    let ee = [
+        eps[0] - thermal - ep[0],
+        eps[1] - thermal - ep[1],
+        eps[2] - 2.0 * ep[2],
+    ];
     let d = mat.elastic_matrix();
     let mut s = d * nalgebra::Vector3::new(ee[0], ee[1], ee[2]);
     let szz = match mat.plane {
@@ -220,16 +238,19 @@ pub fn elastic_state(mat: &VonMises, committed: &PointState, eps: &[f64; 3]) -> 
         }
         crate::physics::material::Plane::Axisymmetric => {
             // the plane strains with zero hoop strain
-            return mat.elastic_state_axisymmetric(committed, &[eps[0], eps[1], eps[2], 0.0]);
+            let e4 = [eps[0] - thermal, eps[1] - thermal, eps[2], 0.0 - thermal];
+            return mat.elastic_state_axisymmetric(committed, &e4);
         }
         crate::physics::material::Plane::Strain => {
-            // ε_zz = 0, so the elastic ε_zz is −εᵖzz; it adds λ·εᵉzz to every normal stress
+            // ε_zz = 0, so the elastic ε_zz is −α ΔT − εᵖzz; it adds λ·εᵉzz
+            // to every normal stress
             let lambda =
                 mat.young * mat.poisson / ((1.0 + mat.poisson) * (1.0 - 2.0 * mat.poisson));
             let g2 = mat.young / (1.0 + mat.poisson);
-            s[0] -= lambda * ep[3];
-            s[1] -= lambda * ep[3];
-            lambda * (ee[0] + ee[1] - ep[3]) - g2 * ep[3]
+            let ezz = -thermal - ep[3];
+            s[0] += lambda * ezz;
+            s[1] += lambda * ezz;
+            lambda * (ee[0] + ee[1] + ezz) + g2 * ezz
         }
     };
     PointState {
@@ -280,6 +301,7 @@ fn add_btcb(d: &[[f64; 2]; MAX_NODES], nn: usize, c: &Matrix3<f64>, dv: f64, ke:
 pub(crate) fn axisymmetric_forces(
     geom: &ElementGeometry,
     mat: &VonMises,
+    thermal: f64,
     ue: &[f64],
     committed: &[PointState],
     trial: &mut [PointState],
@@ -300,7 +322,7 @@ pub(crate) fn axisymmetric_forces(
                 "Gauss point {ip} at r = {r}: an axisymmetric element must lie at r ≥ 0"
             ));
         }
-        let eps = geom.strain_axisymmetric(ip, ue);
+        let eps = less_thermal(geom.strain_axisymmetric(ip, ue), thermal);
         let (state, c_alg) = match response {
             Response::Plastic => mat.update_axisymmetric(&committed[ip], &eps),
             Response::ElasticOnly => (
@@ -324,6 +346,16 @@ pub(crate) fn axisymmetric_forces(
         }
     }
     Ok(())
+}
+
+/// The mechanical strain: `eps` less the free thermal strain α ΔT on its
+/// normal components, 0, 1 and 3 in every order of four or six components
+/// the elements use ([rr, zz, rz, θθ, …] and [xx, yy, xy, zz, xz, yz]).
+pub(crate) fn less_thermal<const N: usize>(mut eps: [f64; N], thermal: f64) -> [f64; N] {
+    for i in [0, 1, 3] {
+        eps[i] -= thermal;
+    }
+    eps
 }
 
 /// The 4×16 axisymmetric B at Gauss point `ip` (rows rr, zz, rz, θθ).

@@ -248,11 +248,27 @@ impl VonMises {
         committed: &PointState,
         strain: &[f64; 3],
     ) -> Result<(PointState, Matrix3<f64>), ReturnMapError> {
+        self.update_thermal(committed, strain, 0.0)
+    }
+
+    /// [`VonMises::update`] with the free thermal strain `thermal` = α ΔT
+    /// (an eigenstrain on every normal component, docs/theory.md "Thermal
+    /// strain"): the return sees the mechanical strain ε − α ΔT. In plane
+    /// stress the in-plane normals lose α ΔT and the thickness is free; in
+    /// plane strain the total ε_zz is 0, so its mechanical part is −α ΔT.
+    /// The tangent is that of the mechanical strain (α ΔT is prescribed).
+    pub fn update_thermal(
+        &self,
+        committed: &PointState,
+        strain: &[f64; 3],
+        thermal: f64,
+    ) -> Result<(PointState, Matrix3<f64>), ReturnMapError> {
+        let e = [strain[0] - thermal, strain[1] - thermal, strain[2]];
         match self.plane {
-            Plane::Stress => plane_stress::update(self, committed, strain),
-            // ε_zz = 0 (in axisymmetry: the in-plane strains with zero hoop strain)
+            Plane::Stress => plane_stress::update(self, committed, &e),
+            // ε_zz = 0 total (in axisymmetry: the in-plane strains with zero hoop strain)
             Plane::Strain | Plane::Axisymmetric | Plane::Solid => {
-                let e4 = [strain[0], strain[1], strain[2], 0.0];
+                let e4 = [e[0], e[1], e[2], 0.0 - thermal];
                 let (state, c) = radial::update(self, committed, &e4);
                 Ok((state, c.fixed_view::<3, 3>(0, 0).into_owned()))
             }

@@ -42,10 +42,13 @@ impl Engine<'_> {
         &mut self,
         committed: &State,
         trial: &mut State,
+        lambda: f64,
         response: Response,
         solid_tangent: Option<Tangent>,
     ) -> Result<Option<String>, StepFailure> {
         let m = self.model;
+        // each body's free thermal strain α ΔT at this pseudo-time
+        let thermal = m.thermal_strains(lambda);
         let be = &mut self.backend;
         let err = StepFailure::Linear;
         if solid_tangent.is_some() {
@@ -83,6 +86,7 @@ impl Engine<'_> {
                 committed.gauss.range(gauss.clone()),
                 trial.gauss.range_mut(gauss),
                 &trial.u,
+                &thermal,
                 response,
                 solid_tangent,
                 fe,
@@ -149,6 +153,7 @@ fn element_batch(
     committed: GaussRef<'_>,
     trial: GaussMut<'_>,
     u: &[f64],
+    thermal: &[f64],
     response: Response,
     tangent: Option<Tangent>,
     fe: &mut [f64],
@@ -160,7 +165,7 @@ fn element_batch(
     let t = threads.min(len.div_ceil(MIN_ELEMENTS_PER_THREAD)).max(1);
     if t == 1 {
         let work = (ids, points, committed, trial);
-        return element_chunk(m, work, u, response, tangent, fe, ke);
+        return element_chunk(m, work, u, thermal, response, tangent, fe, ke);
     }
     let per = len.div_ceil(t);
     // ke is empty without a tangent: every chunk then gets an empty slice
@@ -194,12 +199,12 @@ fn element_batch(
         let others: Vec<_> = chunks
             .map(|(at, work, fe, ke)| {
                 s.spawn(move || {
-                    element_chunk(m, work, u, response, tangent, fe, ke)
+                    element_chunk(m, work, u, thermal, response, tangent, fe, ke)
                         .map(|(i, msg)| (at + i, msg))
                 })
             })
             .collect();
-        let first = element_chunk(m, work0, u, response, tangent, fe0, ke0);
+        let first = element_chunk(m, work0, u, thermal, response, tangent, fe0, ke0);
         // every thread is joined; the earliest chunk that failed holds the
         // first failing element
         let rest: Vec<_> = others
@@ -219,6 +224,7 @@ fn element_chunk(
     m: &Model,
     (ids, points, committed, mut trial): Work<'_>,
     u: &[f64],
+    thermal: &[f64],
     response: Response,
     tangent: Option<Tangent>,
     fe: &mut [f64],
@@ -246,6 +252,7 @@ fn element_chunk(
         tg.load(&mut t_buf[..np]);
         let done = m.element_geometry(e).forces(
             &m.materials[el.body],
+            thermal[el.body],
             &ue[..ne],
             &c_buf[..np],
             &mut t_buf[..np],

@@ -436,7 +436,7 @@ impl<'m> Engine<'m> {
         // backends keep the solid matrix apart only for the fixed-matrix methods
         // (Backend::reuse_solid): full Newton reassembles it every time
         debug_assert!(solid_tangent.is_some() || self.method != Method::FullNewton);
-        let failure = self.assemble_solids(committed, trial, response, solid_tangent)?;
+        let failure = self.assemble_solids(committed, trial, lambda, response, solid_tangent)?;
         self.assemblies += 1;
         // a local failure (return mapping) fails the step on every rank, with its message
         if let Some(msg) = self.backend.share_message(failure) {

@@ -1,0 +1,187 @@
+//! Uniform body temperatures (`[[temperature]]`, docs/theory.md "Thermal
+//! strain") against closed forms.
+//!
+//! * A body free to expand (plane stress, axisymmetric with and without
+//!   twist): a uniform ΔT strains it by α ΔT in every direction with no
+//!   stress; u = α ΔT x, exactly for any mesh (a linear field).
+//! * The note's item 4a (issue 46), a plane-strain block free in its plane
+//!   and held along z by ε_zz = 0 (the out-of-plane direction is the
+//!   restrained one: held in x in its plane instead, the stress would be
+//!   biaxial, −E α ΔT/(1 − ν) in x and z, and yield at (1 − ν) ΔT_y):
+//!   σ_zz = −E α ΔT, first yield at ΔT_y = σ_Y/(E α) = 103.52 K, at 200 K
+//!   −σ_Y perfectly plastic (ε^p_zz = −(α ΔT − σ_Y/E)) and −252.33 MPa with
+//!   linear hardening (E_t = 2100 MPa, H = E E_t/(E − E_t)); cooled back, the
+//!   residual stress E α ΔT − |σ| = +233.00 and +230.67 MPa (elastic
+//!   unloading, 200 K < 2 ΔT_y). Uniform, so exact to the solver's
+//!   tolerance.
+
+use crate::common;
+use asperity::model::Model;
+use asperity::physics::material::PointState;
+use asperity::solve::{Increment, Observer, RunResult, State};
+
+const E: f64 = 210_000.0;
+const NU: f64 = 0.3;
+const ALPHA: f64 = 11.5e-6;
+const SY: f64 = 250.0;
+
+/// Every converged increment's pseudo-time, displacements and Gauss states.
+#[derive(Default)]
+struct Capture(Vec<(f64, Vec<f64>, Vec<PointState>)>);
+impl Observer for Capture {
+    fn increment(&mut self, _: &Model, s: &State, inc: &Increment) -> asperity::error::Result<()> {
+        self.0
+            .push((inc.load_factor, s.u.clone(), s.gauss.iter().collect()));
+        Ok(())
+    }
+}
+
+fn solve(text: &str) -> (Model, RunResult, Capture) {
+    let model = common::model(text);
+    let mut c = Capture::default();
+    let r = asperity::app::driver::solve(&model, &mut c).unwrap_or_else(|e| panic!("{e}"));
+    (model, r, c)
+}
+
+/// Largest |u − α ΔT x| over every node and in-plane component, and the
+/// largest |σ| of every Gauss point.
+fn free_error(model: &Model, u: &[f64], gauss: &[PointState], strain: f64) -> (f64, f64) {
+    let k = model.node_dofs().per_node();
+    let mut du = 0.0f64;
+    for (n, x) in model.mesh.nodes.iter().enumerate() {
+        for c in 0..2 {
+            du = du.max((u[k * n + c] - strain * x[c]).abs());
+        }
+        if k == 3 {
+            du = du.max(u[k * n + 2].abs());
+        }
+    }
+    let ds = gauss
+        .iter()
+        .flat_map(|g| g.stress)
+        .fold(0.0f64, |a, s| a.max(s.abs()));
+    (du, ds)
+}
+
+fn free_case(plane: &str, twist: bool) -> String {
+    let mut c = common::case().plane(plane);
+    if twist {
+        c = c.with("twist", true);
+    }
+    c = c
+        .block("bar", [0.0, 10.0, 30.0], [2, 3], [0.0, 4.0, 8.0], [1, 2])
+        .rx([1.0, 1.5])
+        .material("bar", E, NU)
+        .plastic(SY, 0.0)
+        .with("expansion", ALPHA)
+        .ux("bar.left", 0.0)
+        .uy("bar.bottom", 0.0);
+    if twist {
+        c = c.with("rotation", 0.0);
+    }
+    c.raw("[[temperature]]")
+        .with("body", "bar")
+        .with("change", 80.0)
+        .with("reference", 20.0)
+        .solver("")
+        .tolerances(1e-12, 1e-12)
+        .no_vtu()
+        .build()
+}
+
+/// Free expansion: no stress, u = α ΔT x (to 1e-10 of α ΔT L), in every
+/// plane setting that leaves a body free (plane strain holds ε_zz: item 4a).
+#[test]
+fn a_body_free_to_expand_is_unstressed() {
+    for (plane, twist) in [
+        ("stress", false),
+        ("axisymmetric", false),
+        ("axisymmetric", true),
+    ] {
+        let (model, r, _) = solve(&free_case(plane, twist));
+        let g: Vec<PointState> = r.final_state.gauss.iter().collect();
+        let strain = ALPHA * 80.0;
+        let (du, ds) = free_error(&model, &r.final_state.u, &g, strain);
+        assert!(
+            du < 1e-10 * strain * 30.0,
+            "{plane} twist {twist}: |u − α ΔT x| = {du:e}"
+        );
+        // stress against E α ΔT (193 MPa)
+        assert!(ds < 1e-8 * E * strain, "{plane} twist {twist}: |σ| = {ds:e}");
+        assert!(r.first_yield.is_none());
+    }
+}
+
+/// Item 4a: the plane-strain block heated by 200 K and cooled back.
+fn held_block(hardening: f64) -> (Model, RunResult, Capture) {
+    let text = common::case()
+        .plane("strain")
+        .block("bar", [0.0, 20.0], [2], [0.0, 6.0], [1])
+        .material("bar", E, NU)
+        .plastic(SY, hardening)
+        .with("expansion", ALPHA)
+        .ux("bar.left", 0.0)
+        .uy("bar.bottom", 0.0)
+        .raw("[[temperature]]")
+        .with("body", "bar")
+        .with("change", 200.0)
+        .with("history", [[0.0, 0.0], [1.0, 1.0], [2.0, 0.0]])
+        .solver("")
+        .tolerances(1e-12, 1e-12)
+        .no_vtu()
+        .build();
+    solve(&text)
+}
+
+/// The state of every Gauss point at pseudo-time t (one of the increments).
+fn at(c: &Capture, t: f64) -> &[PointState] {
+    &c.0.iter()
+        .find(|s| s.0 == t)
+        .unwrap_or_else(|| panic!("no increment at t = {t}"))
+        .2
+}
+
+/// Every Gauss point's component i within rel of `want`.
+fn all_near(g: &[PointState], i: usize, want: f64, rel: f64, what: &str) {
+    for (k, p) in g.iter().enumerate() {
+        let s = p.stress[i];
+        assert!(
+            (s - want).abs() <= rel * want.abs(),
+            "{what}: point {k} σ[{i}] = {s}, closed form {want}"
+        );
+        for j in [0, 1, 2] {
+            assert!(p.stress[j].abs() < 1e-8 * SY, "{what}: σ[{j}] = {}", p.stress[j]);
+        }
+    }
+}
+
+#[test]
+fn held_block_yields_at_the_closed_form_and_keeps_its_residual_stress() {
+    let dty = SY / (E * ALPHA);
+    assert!((dty - 103.52).abs() < 0.005);
+    let dt = 200.0;
+    for (hardening, hot, cold) in [(0.0, -250.0, 233.00), (E * 2100.0 / (E - 2100.0), -252.33, 230.67)]
+    {
+        let (_, r, c) = held_block(hardening);
+        let fy = r.first_yield.as_ref().expect("the block yields");
+        let dt_y = fy.load_factor * dt;
+        assert!(
+            (dt_y - dty).abs() < 1e-6 * dty,
+            "H {hardening}: first yield at ΔT = {dt_y} K, closed form {dty}"
+        );
+        // the closed forms exactly (the note's numbers are rounded to 0.01)
+        let top = (E * hardening * ALPHA * dt + E * SY) / (E + hardening);
+        assert!((top + hot).abs() < 0.005, "{top} vs {hot}");
+        let res = E * ALPHA * dt - top;
+        assert!((res - cold).abs() < 0.005, "{res} vs {cold}");
+        all_near(at(&c, 1.0), 3, -top, 1e-6, "heated");
+        all_near(at(&c, 2.0), 3, res, 1e-6, "cooled back");
+        // plastic strain: ε^p_zz = −(α ΔT − |σ|/E), the in-plane ones half of it
+        let ep = -(ALPHA * dt - top / E);
+        for p in at(&c, 2.0) {
+            // εᵖ_zz in the packed layout (restart files' order)
+            let pzz = p.pack()[7];
+            assert!((pzz - ep).abs() < 1e-6 * ep.abs(), "ε^p_zz = {pzz}, closed form {ep}");
+        }
+    }
+}
