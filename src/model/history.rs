@@ -98,9 +98,11 @@ impl History {
     /// The lowest and the highest value: with linear segments held at the
     /// ends, the extremes over all pseudo-time.
     pub fn extremes(&self) -> (f64, f64) {
-        self.points.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
-            (lo.min(p.1), hi.max(p.1))
-        })
+        self.points
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(p.1), hi.max(p.1))
+            })
     }
 
     /// The factor at pseudo-time t: linear between the points, held outside.

@@ -107,7 +107,10 @@ fn a_body_free_to_expand_is_unstressed() {
             "{plane} twist {twist}: |u − α ΔT x| = {du:e}"
         );
         // stress against E α ΔT (193 MPa)
-        assert!(ds < 1e-8 * E * strain, "{plane} twist {twist}: |σ| = {ds:e}");
+        assert!(
+            ds < 1e-8 * E * strain,
+            "{plane} twist {twist}: |σ| = {ds:e}"
+        );
         assert!(r.first_yield.is_none());
     }
 }
@@ -150,7 +153,11 @@ fn all_near(g: &[PointState], i: usize, want: f64, rel: f64, what: &str) {
             "{what}: point {k} σ[{i}] = {s}, closed form {want}"
         );
         for j in [0, 1, 2] {
-            assert!(p.stress[j].abs() < 1e-8 * SY, "{what}: σ[{j}] = {}", p.stress[j]);
+            assert!(
+                p.stress[j].abs() < 1e-8 * SY,
+                "{what}: σ[{j}] = {}",
+                p.stress[j]
+            );
         }
     }
 }
@@ -160,8 +167,10 @@ fn held_block_yields_at_the_closed_form_and_keeps_its_residual_stress() {
     let dty = SY / (E * ALPHA);
     assert!((dty - 103.52).abs() < 0.005);
     let dt = 200.0;
-    for (hardening, hot, cold) in [(0.0, -250.0, 233.00), (E * 2100.0 / (E - 2100.0), -252.33, 230.67)]
-    {
+    for (hardening, hot, cold) in [
+        (0.0, -250.0, 233.00),
+        (E * 2100.0 / (E - 2100.0), -252.33, 230.67),
+    ] {
         let (_, r, c) = held_block(hardening);
         let fy = r.first_yield.as_ref().expect("the block yields");
         let dt_y = fy.load_factor * dt;
@@ -181,7 +190,10 @@ fn held_block_yields_at_the_closed_form_and_keeps_its_residual_stress() {
         for p in at(&c, 2.0) {
             // εᵖ_zz in the packed layout (restart files' order)
             let pzz = p.pack()[7];
-            assert!((pzz - ep).abs() < 1e-6 * ep.abs(), "ε^p_zz = {pzz}, closed form {ep}");
+            assert!(
+                (pzz - ep).abs() < 1e-6 * ep.abs(),
+                "ε^p_zz = {pzz}, closed form {ep}"
+            );
         }
     }
 }

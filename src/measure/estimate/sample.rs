@@ -86,6 +86,7 @@ pub fn stresses(
 /// nodes from the stored points (by `w`, the element family's
 /// [`crate::physics::element::family3::Family3::extrapolation`] of the
 /// model's rule, made once per family by the caller) and interpolated.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn stresses3(
     model: &Model,
     gauss: &GaussStates,

@@ -45,7 +45,11 @@ pub(super) fn read(
         let Some(body) = mesh.bodies.iter().position(|b| *b == t.body) else {
             return Err(Error::input(
                 at,
-                format!("no body named \"{}\" (bodies: {})", clip(&t.body), mesh.bodies.join(", ")),
+                format!(
+                    "no body named \"{}\" (bodies: {})",
+                    clip(&t.body),
+                    mesh.bodies.join(", ")
+                ),
             ));
         };
         if let Some(k) = out.iter().position(|o| o.body == body) {

@@ -122,12 +122,12 @@ impl Geometry {
         ke: &mut [f64],
     ) -> Result<(), String> {
         match self {
-            Geometry::Plane(g) => {
-                element_forces(g, mat, thermal, ue, committed, trial, response, tangent, fe, ke)
-            }
-            Geometry::Solid(g) => {
-                solid3::forces3(g, mat, thermal, ue, committed, trial, response, tangent, fe, ke)
-            }
+            Geometry::Plane(g) => element_forces(
+                g, mat, thermal, ue, committed, trial, response, tangent, fe, ke,
+            ),
+            Geometry::Solid(g) => solid3::forces3(
+                g, mat, thermal, ue, committed, trial, response, tangent, fe, ke,
+            ),
         }
     }
 }

@@ -220,6 +220,7 @@ fn element_batch(
 type Work<'a> = (&'a [u32], &'a [usize], GaussRef<'a>, GaussMut<'a>);
 
 /// [`element_batch`] on one thread: stops at the first failing element.
+#[allow(clippy::too_many_arguments)]
 fn element_chunk(
     m: &Model,
     (ids, points, committed, mut trial): Work<'_>,
