@@ -245,12 +245,7 @@ impl Model {
         let mut interfaces = interface_models(&case, &checked, &mesh, section, &place)?;
         let mut loads = crate::model::loads::build(&case, &mesh, &start, section, &place)?;
         let f_ext = loads.patterns.remove(0).f;
-        for im in interfaces.iter_mut() {
-            im.gap_history = loads
-                .gap_history
-                .get(&im.name)
-                .map(|&h| loads.histories[h].clone());
-        }
+        gap_histories(&mut interfaces, &loads);
         let prescribed = supports(&case, &mesh, &mut loads, &place)?;
         finish_sections(&case, &mut sections, &mesh, &loads);
         let n_dofs = crate::model::pretension::total_dofs(&case, &mesh);
@@ -967,6 +962,16 @@ fn start_mesh(case: &Case, given: Option<Adapted>, place: &str) -> Result<(Mesh,
 
 /// Gives each pretension section its dof and the end of its locking (the end
 /// of its history, or of the run's).
+/// Each interface's gap history (`gap_history`), from the loads' histories.
+fn gap_histories(interfaces: &mut [InterfaceModel], loads: &crate::model::loads::Loads) {
+    for im in interfaces.iter_mut() {
+        im.gap_history = loads
+            .gap_history
+            .get(&im.name)
+            .map(|&h| loads.histories[h].clone());
+    }
+}
+
 fn finish_sections(
     case: &Case,
     sections: &mut [crate::model::pretension::Section],
