@@ -76,6 +76,16 @@ pub fn motions(series: &[&JointMeasures]) -> Vec<(usize, Motion)> {
     out
 }
 
+/// The load the joint held (|T| or |F_T|, [`Motion::held`]) at each
+/// increment of `series` at which it slid as a whole in `motion`.
+pub fn held(series: &[&JointMeasures], motion: Motion) -> Vec<(usize, f64)> {
+    motions(series)
+        .into_iter()
+        .filter(|&(_, m)| m == motion)
+        .map(|(k, m)| (k, m.held(series[k])))
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

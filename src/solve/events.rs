@@ -630,13 +630,8 @@ pub fn plateaus(model: &Model, increments: &[super::Increment]) -> Vec<Event> {
             .iter()
             .filter_map(|inc| inc.joints.get(i))
             .collect();
-        let moves = crate::measure::gross_slip::motions(&series);
         for motion in [Motion::Turning, Motion::Pushing] {
-            let held: Vec<(usize, f64)> = moves
-                .iter()
-                .filter(|(_, m)| *m == motion)
-                .map(|&(k, m)| (k, m.held(series[k])))
-                .collect();
+            let held = crate::measure::gross_slip::held(&series, motion);
             let top = held.iter().map(|h| h.1).fold(0.0, f64::max);
             let on: Vec<usize> = held
                 .iter()

@@ -303,11 +303,9 @@ pub fn rate(model: &Model, r: &Run, spec: &FitSpec, posed: Posed) -> Rating {
 /// reaches one; none when it never slid so.
 fn held(r: &Run, i: usize, motion: Motion) -> Option<f64> {
     let series: Vec<_> = joint_series(r, i).map(|(_, j)| j).collect();
-    let moves = crate::measure::gross_slip::motions(&series);
-    moves
-        .iter()
-        .filter(|(_, m)| *m == motion)
-        .map(|&(k, m)| m.held(series[k]))
+    crate::measure::gross_slip::held(&series, motion)
+        .into_iter()
+        .map(|(_, h)| h)
         .reduce(f64::max)
 }
 
