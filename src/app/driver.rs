@@ -792,6 +792,9 @@ fn bodies_text(model: &Model) -> String {
                 t.change, t.strain
             );
         }
+        if let Some(sp) = &model.speed {
+            s += &speed_text(model, sp, b);
+        }
         if model.node_dofs().twist() && !own[b] {
             let by: Vec<&str> = (model.interfaces.iter())
                 .filter(|im| im.tangential.is_some() && (im.body_a == b || im.body_b == b))
@@ -804,6 +807,29 @@ fn bodies_text(model: &Model) -> String {
         }
     }
     s
+}
+
+/// `check`'s line of a spinning body: its density, the speed, and the scale
+/// ρ ω² r² of its hoop stress at its largest radius.
+fn speed_text(model: &Model, sp: &crate::model::loads::speed::Speed, b: usize) -> String {
+    let dim = model.mesh.dim();
+    let axi = model.section.axisymmetric;
+    let r = (model.mesh.elements.iter())
+        .filter(|e| e.body == b)
+        .flat_map(|e| e.nodes().iter())
+        .map(|&n| crate::model::loads::speed::radius(model.mesh.nodes[n], dim, axi))
+        .fold(0.0f64, f64::max);
+    let by = match sp.history {
+        Some(_) => "its history",
+        None => "the load factor",
+    };
+    format!(
+        "    spinning: ρ = {} kg/m³ at n = {} rpm (ω = {:.6e} rad/s, × {by}); out to r = {r} mm, ρ ω² r² = {:.4e} MPa\n",
+        sp.density[b],
+        sp.rpm,
+        sp.omega(),
+        sp.hoop_scale(b, r)
+    )
 }
 
 /// `check`'s lines of each interface: its size, laws and joint direction,

@@ -36,6 +36,15 @@ use meshes::{check_mesh, make_mesh};
 pub mod supports;
 use supports::check_supports;
 
+/// How a load pattern scales with pseudo-time: by its history's factor
+/// (the load factor without one), or by its square (a speed's centrifugal
+/// force, ∝ ω²).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Scale {
+    Factor(Option<usize>),
+    Squared(Option<usize>),
+}
+
 /// A mesh an adaptive run refined from the case's ([`crate::app::adapt`]), and
 /// how many of its nodes are the start mesh's: a refinement keeps every
 /// node and numbers its new ones after them, so nodes `0..start_nodes` are
@@ -88,6 +97,9 @@ pub struct Model {
     /// The bodies' uniform temperature changes (`[[temperature]]`; a body
     /// without one keeps its assembly temperature): [`Model::thermal_strains`].
     pub temperatures: Vec<crate::model::loads::thermal::BodyTemperature>,
+    /// The speed the bodies spin at (`[speed]`), with its centrifugal
+    /// forces: [`Model::external_force`], [`Model::rpm`].
+    pub speed: Option<crate::model::loads::speed::Speed>,
     pub interfaces: Vec<InterfaceModel>,
     /// Prescribed dofs and their values at factor 1 (the value at
     /// pseudo-time t: `Model::prescribed_at`).
@@ -287,6 +299,7 @@ impl Model {
             loads: loads.patterns,
             histories: loads.histories,
             temperatures: loads.temperatures,
+            speed: loads.speed,
             applied: loads.applied,
             ratings: case.rating.clone(),
             applied_components: loads.components,
@@ -554,24 +567,36 @@ impl Model {
         a.resultant.iter().map(|r| f * r + 0.0).collect()
     }
 
-    /// Every load pattern: its history and its forces at factor 1 (all
-    /// dofs); [`Model::f_ext`] first, with no history of its own.
-    pub(crate) fn patterns(&self) -> impl Iterator<Item = (Option<usize>, &[f64])> + '_ {
-        std::iter::once((None, self.f_ext.as_slice()))
-            .chain(self.loads.iter().map(|p| (p.history, p.f.as_slice())))
+    /// Every load pattern: how it scales and its forces at factor 1 (all
+    /// dofs); [`Model::f_ext`] first, with no history of its own, the
+    /// speed's centrifugal forces last.
+    pub(crate) fn patterns(&self) -> impl Iterator<Item = (Scale, &[f64])> + '_ {
+        std::iter::once((Scale::Factor(None), self.f_ext.as_slice()))
+            .chain((self.loads.iter()).map(|p| (Scale::Factor(p.history), p.f.as_slice())))
+            .chain((self.speed.iter()).map(|s| (Scale::Squared(s.history), s.f.as_slice())))
+    }
+
+    /// A pattern's factor at pseudo-time t.
+    pub(crate) fn scale(&self, s: Scale, t: f64) -> f64 {
+        match s {
+            Scale::Factor(h) => self.factor(h, t),
+            Scale::Squared(h) => self.factor(h, t).powi(2),
+        }
+    }
+
+    /// The speed at pseudo-time t, rpm (`None`: the model does not spin).
+    pub fn rpm(&self, t: f64) -> Option<f64> {
+        (self.speed.as_ref()).map(|s| s.rpm * self.factor(s.history, t))
     }
 
     /// The external nodal forces at pseudo-time t (all dofs) into `out`:
-    /// Σ_p h_p(t) f_p, exactly t · f_ext in a case without histories.
+    /// Σ_p h_p(t) f_p (the speed's h(t)² f), exactly t · f_ext in a case
+    /// without histories.
     pub fn external_force(&self, t: f64, out: &mut [f64]) {
-        let a = self.factor(None, t);
-        for (o, f) in out.iter_mut().zip(&self.f_ext) {
-            *o = a * f;
-        }
-        for p in &self.loads {
-            let a = self.factor(p.history, t);
-            for (o, f) in out.iter_mut().zip(&p.f) {
-                *o += a * f;
+        for (k, (s, f)) in self.patterns().enumerate() {
+            let a = self.scale(s, t);
+            for (o, f) in out.iter_mut().zip(f) {
+                *o = if k == 0 { a * f } else { *o + a * f };
             }
         }
     }
@@ -585,6 +610,7 @@ impl Model {
         for p in &self.loads {
             f += self.factor(p.history, t) * p.f[d];
         }
+        // a speed sets no force on a section's shortening: f[d] = 0
         f
     }
 
@@ -655,9 +681,10 @@ impl Model {
             // the load factor times the pattern's normal resultant, as always
             t * normal(&self.f_ext).abs() / im.area()
         } else {
-            let f: f64 = self
-                .patterns()
-                .map(|(h, f)| self.factor(h, t) * normal(f))
+            // the loads' (a speed's body force is no applied pressure)
+            let f: f64 = (self.patterns())
+                .filter(|(s, _)| matches!(s, Scale::Factor(_)))
+                .map(|(s, f)| self.scale(s, t) * normal(f))
                 .sum();
             f.abs() / im.area()
         }
@@ -1102,10 +1129,11 @@ fn check_loaded(
         && prescribed.iter().all(|&(_, v)| v == 0.0)
         && !interference
         && loads.temperatures.iter().all(|t| t.strain == 0.0)
+        && loads.speed.is_none()
     {
         return Err(Error::input(
             place,
-            "nothing loads the model: no [[load]], no [[force]], no non-zero prescribed displacement in [[boundary]], no interference (negative gap) or gap_history and no [[temperature]]",
+            "nothing loads the model: no [[load]], no [[force]], no non-zero prescribed displacement in [[boundary]], no interference (negative gap) or gap_history, no [[temperature]] and no [speed]",
         ));
     }
     Ok(())

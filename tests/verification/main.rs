@@ -36,6 +36,7 @@ mod punch;
 mod punch_rounded;
 mod ratings;
 mod roughness;
+mod service;
 mod shrink_fit;
 mod singular;
 mod solid;

@@ -67,6 +67,7 @@ pub(crate) fn event_json(model: &Model, e: &Event) -> Value {
             _ => Value::Null,
         },
         "applied_force_n": numbers(&applied),
+        "speed_rpm": model.rpm(t).map_or(Value::Null, number),
         "histories": histories,
         "reactions": reactions,
         "phase": phase(model, t),
@@ -153,8 +154,9 @@ pub fn line(model: &Model, e: &Event) -> String {
         k => k.name().replace('_', " "),
     };
     let torque = torque(model, e).map_or(String::new(), |t| format!(", T {t:.4e} N·m"));
+    let speed = (model.rpm(e.load_factor)).map_or(String::new(), |n| format!(" at {n:.6e} rpm"));
     format!(
-        "{what}{iface}{during}: λ = {:.6} (bracket {:.6} … {:.6}{}), F_N {:.4e} N, F_T {:.4e} N{torque}",
+        "{what}{iface}{during}: λ = {:.6}{speed} (bracket {:.6} … {:.6}{}), F_N {:.4e} N, F_T {:.4e} N{torque}",
         e.load_factor,
         lo,
         hi,

@@ -89,6 +89,9 @@ pub struct Case {
     /// Uniform temperature changes of bodies (thermal strain).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub temperature: Vec<TemperatureSpec>,
+    /// A rotational speed about the model's axis (centrifugal body force).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub speed: Option<SpeedSpec>,
 }
 
 /// A pretension section (`[[pretension]]`, after Abaqus *PRE-TENSION SECTION):
@@ -238,6 +241,22 @@ pub struct MaterialSpec {
     /// `[[temperature]]` on the body.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub expansion: Option<f64>,
+    /// Density ρ, kg/m³; needed by a `[speed]` (the body force ρ ω² r).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub density: Option<f64>,
+}
+
+/// The model's rotational speed (`[speed]`): every body spins about the
+/// model's axis and carries the body force ρ ω² r
+/// ([`crate::model::loads::speed`]).
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpeedSpec {
+    /// The speed n at factor 1, revolutions per minute: ω = 2π n / 60.
+    pub rpm: f64,
+    /// The speed's history (ω(t) = ω h(t), the force ∝ h(t)²); none: the
+    /// load factor (or the default ramp).
+    pub history: Option<HistoryRef>,
 }
 
 /// A uniform temperature change of one body (`[[temperature]]`): the free

@@ -68,6 +68,22 @@ pub(crate) const TEMPERATURE_CHANGE: Range = Range {
     lo: 1e-6,
     hi: 1e3,
 };
+/// Densities ρ (`[materials.<body>] density`): 10 kg/m³ (a rigid foam is
+/// 30) to 30 000 kg/m³ (osmium 22 590).
+pub(crate) const DENSITY: Range = Range {
+    quantity: "a density",
+    unit: "kg/m³",
+    lo: 10.0,
+    hi: 3e4,
+};
+/// A rotational speed (`[speed] rpm` times the largest value of its
+/// history): up to 10⁶ rpm (an ultracentrifuge's rotor runs at 1.5·10⁵).
+pub(crate) const SPEED: Range = Range {
+    quantity: "a rotational speed",
+    unit: "rpm",
+    lo: 1e-3,
+    hi: 1e6,
+};
 /// Concentrated forces (`[[force]] fx`, `fy`): 1 µN to 1 TN.
 pub(crate) const FORCE: Range = Range {
     quantity: "a force",
@@ -89,6 +105,8 @@ pub fn all() -> Vec<&'static Range> {
         &HARDENING,
         &EXPANSION,
         &TEMPERATURE_CHANGE,
+        &DENSITY,
+        &SPEED,
         &PRESSURE,
         &FORCE,
         &DISPLACEMENT,

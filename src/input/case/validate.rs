@@ -240,6 +240,15 @@ fn check_materials(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
             }
             ranges::EXPANSION.check(at(&format!("{key} expansion")), a)?;
         }
+        if let Some(rho) = m.density {
+            if !(rho.is_finite() && rho > 0.0) {
+                return Err(Error::input(
+                    at(&format!("{key} density")),
+                    format!("{rho} must be a positive number (kg/m³)"),
+                ));
+            }
+            ranges::DENSITY.check(at(&format!("{key} density")), rho)?;
+        }
     }
     Ok(())
 }

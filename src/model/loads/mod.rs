@@ -22,6 +22,7 @@ use std::collections::BTreeMap;
 mod adaptive;
 mod faces;
 pub mod resultant;
+pub mod speed;
 pub mod thermal;
 
 /// One force vector (all dofs, at factor 1) and its history (`None`: the
@@ -56,6 +57,8 @@ pub struct Loads {
     pub components: resultant::Components,
     /// Every `[[temperature]]`: a body's uniform temperature change.
     pub temperatures: Vec<thermal::BodyTemperature>,
+    /// The `[speed]`, with its centrifugal nodal forces.
+    pub speed: Option<speed::Speed>,
 }
 
 /// One `[[load]]` or `[[force]]` as a designer names it, with its resultant
@@ -182,10 +185,11 @@ pub fn build(
     let pretension_history = g.pretension(case, mesh, place, &mut res, &mut prescribed)?;
     let gap_history = g.gap_histories(case, place, &mut res)?;
     let temperatures = thermal::read(case, mesh, place, &mut res, &mut g.scaled)?;
+    let speed = speed::read(case, mesh, (section, nd), place, &mut res, &mut g.scaled)?;
     if let Some(k) = res.used.iter().position(|&u| !u) {
         return Err(Error::input(
             format!("{place}: [history] {}", clip(res.named[k])),
-            "is never used: no load, boundary, force, temperature or gap_history names it (a misspelt name?); use it or remove it",
+            "is never used: no load, boundary, force, temperature, speed or gap_history names it (a misspelt name?); use it or remove it",
         ));
     }
     let histories = res.histories;
@@ -218,6 +222,7 @@ pub fn build(
         applied: g.applied,
         components: g.components,
         temperatures,
+        speed,
     })
 }
 

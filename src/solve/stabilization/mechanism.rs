@@ -459,7 +459,8 @@ impl Stabilizer {
     fn carries_load(&self, model: &Model, b: usize, lambda: f64) -> bool {
         let body = &self.bodies[b];
         let on = |h: Option<usize>| model.factor(h, lambda) != 0.0;
-        (body.load.iter().zip(model.patterns())).any(|(&l, (h, _))| l != 0.0 && on(h))
+        (body.load.iter().zip(model.patterns()))
+            .any(|(&l, (s, _))| l != 0.0 && model.scale(s, lambda) != 0.0)
             || body.driven.iter().any(|&h| on(h))
             || (model.interfaces.iter())
                 .any(|im| (im.body_a == b || im.body_b == b) && im.gap_at(lambda) < 0.0)

@@ -40,7 +40,7 @@ impl Stabilizer {
                 return None;
             }
             let applied: f64 = (body.torque.iter().zip(model.patterns()))
-                .map(|(&t, (h, _))| t * model.factor(h, lambda))
+                .map(|(&t, (s, _))| t * model.scale(s, lambda))
                 .sum();
             let mut names = Vec::new();
             let mut hold = 0.0;
@@ -217,8 +217,8 @@ impl Stabilizer {
     fn free_section(&self, model: &Model, lambda: f64) -> Option<String> {
         let on = |h: Option<usize>| model.factor(h, lambda) != 0.0;
         let section_dofs: Vec<usize> = model.sections.iter().map(|s| s.dof).collect();
-        let others = model.patterns().any(|(h, f)| {
-            on(h)
+        let others = model.patterns().any(|(s, f)| {
+            model.scale(s, lambda) != 0.0
                 && f.iter()
                     .enumerate()
                     .any(|(d, &v)| v != 0.0 && !section_dofs.contains(&d))
@@ -230,7 +230,7 @@ impl Stabilizer {
         model.sections.iter().find_map(|s| {
             let force: f64 = model
                 .patterns()
-                .map(|(h, f)| f[s.dof] * model.factor(h, lambda))
+                .map(|(sc, f)| f[s.dof] * model.scale(sc, lambda))
                 .sum();
             (free_at(s, lambda) && force != 0.0).then(|| {
                 format!(

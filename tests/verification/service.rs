@@ -1,0 +1,413 @@
+//! The joint in service: a speed's body force and a fit's temperatures
+//! against the closed forms of spinning and heated disks (docs/theory.md,
+//! "Body force of a speed"; Timoshenko & Goodier, Theory of Elasticity,
+//! §§ 32, 150: the rotating disk and the thermal stresses of a disk).
+//!
+//! Every body here is a disk or a ring b ≤ r ≤ c, axisymmetric, uniform in z,
+//! at a uniform temperature change ΔT and spinning at ω. Its radial
+//! displacement solves D (u'' + u'/r − u/r²) = −ρ ω² r:
+//!
+//! ```text
+//!   u   = C₁ r + C₂ / r − K r³ / 8,                    K = ρ ω² / D
+//!   σ_r = D [(1 + ν*) C₁ − (1 − ν*) C₂ / r² − (3 + ν*) K r² / 8 − θ]
+//!   σ_θ = D [(1 + ν*) C₁ + (1 − ν*) C₂ / r² − (1 + 3ν*) K r² / 8 − θ]
+//! ```
+//!
+//! plane stress (free faces): D = E / (1 − ν²), ν* = ν, θ = (1 + ν) α ΔT;
+//! plane strain (ε_z = 0, both faces held axially): D = E (1 − ν) / ((1 +
+//! ν)(1 − 2ν)), ν* = ν / (1 − ν), θ = (1 + ν*)(1 + ν) α ΔT, σ_z = ν (σ_r +
+//! σ_θ) − E α ΔT. Plane strain is the exact state of a slice held between
+//! two frictionless planes whatever ω; plane stress is exact for a heated
+//! disk loaded by a pressure (σ_r + σ_θ uniform, ε_z uniform) but not for a
+//! spinning one (ε_z then varies with r), so the spinning cases are plane
+//! strain and the heated fit plane stress.
+//!
+//! A fit (shaft 0 ≤ r ≤ b in a hub b ≤ r ≤ c, radial interference δ,
+//! frictionless interface of the linear law u_N = c_N p, the power law with
+//! m = 1) is four linear equations in C₁ of the shaft, C₁ and C₂ of the hub
+//! and p: σ_r,hub(c) = 0, σ_r,hub(b) = σ_r,shaft(b) = −p,
+//! u_hub(b) − u_shaft(b) + c_N p = δ. p is linear in ω² and in ΔT: the fit
+//! opens where it reaches 0.
+
+use crate::common;
+use asperity::model::Model;
+use asperity::physics::material::PointState;
+use asperity::solve::{Increment, Observer, RunResult, State};
+
+const B: f64 = 20.0;
+const C: f64 = 50.0;
+const DELTA: f64 = 0.02;
+const C_N: f64 = 2e-5;
+const STEEL: Solid = Solid {
+    e: 210_000.0,
+    nu: 0.3,
+    alpha: 11.5e-6,
+    rho: 7850.0,
+};
+const ALUMINIUM: Solid = Solid {
+    e: 70_000.0,
+    nu: 0.33,
+    alpha: 23.5e-6,
+    rho: 2700.0,
+};
+
+#[derive(Clone, Copy)]
+struct Solid {
+    e: f64,
+    nu: f64,
+    alpha: f64,
+    /// kg/m³
+    rho: f64,
+}
+
+/// One body of the closed form at ω (rad/s) and ΔT (K).
+struct Disk {
+    d: f64,
+    nus: f64,
+    theta: f64,
+    k: f64,
+    m: Solid,
+    dt: f64,
+    strain: bool,
+}
+
+impl Disk {
+    fn new(m: Solid, omega: f64, dt: f64, strain: bool) -> Disk {
+        let (d, nus, a) = if strain {
+            let d = m.e * (1.0 - m.nu) / ((1.0 + m.nu) * (1.0 - 2.0 * m.nu));
+            (d, m.nu / (1.0 - m.nu), (1.0 + m.nu) * m.alpha)
+        } else {
+            (m.e / (1.0 - m.nu * m.nu), m.nu, m.alpha)
+        };
+        let k = m.rho * 1e-12 * omega * omega / d;
+        Disk {
+            d,
+            nus,
+            theta: (1.0 + nus) * a * dt,
+            k,
+            m,
+            dt,
+            strain,
+        }
+    }
+
+    /// σ_r's coefficients of C₁ and C₂ at r, and its constant part.
+    fn sr(&self, r: f64) -> ([f64; 2], f64) {
+        let d = self.d;
+        (
+            [d * (1.0 + self.nus), -d * (1.0 - self.nus) / (r * r)],
+            -d * ((3.0 + self.nus) * self.k * r * r / 8.0 + self.theta),
+        )
+    }
+
+    /// σ_r, σ_θ, σ_z at r for the constants c.
+    fn stress(&self, c: [f64; 2], r: f64) -> [f64; 3] {
+        let (d, n) = (self.d, self.nus);
+        let sr = d
+            * ((1.0 + n) * c[0]
+                - (1.0 - n) * c[1] / (r * r)
+                - (3.0 + n) * self.k * r * r / 8.0
+                - self.theta);
+        let st = d
+            * ((1.0 + n) * c[0] + (1.0 - n) * c[1] / (r * r)
+                - (1.0 + 3.0 * n) * self.k * r * r / 8.0
+                - self.theta);
+        let sz = if self.strain {
+            self.m.nu * (sr + st) - self.m.e * self.m.alpha * self.dt
+        } else {
+            0.0
+        };
+        [sr, st, sz]
+    }
+}
+
+/// Solves the 4×4 system a x = y by Gaussian elimination with pivoting.
+fn solve4(mut a: [[f64; 4]; 4], mut y: [f64; 4]) -> [f64; 4] {
+    for i in 0..4 {
+        let p = (i..4)
+            .max_by(|&j, &k| a[j][i].abs().total_cmp(&a[k][i].abs()))
+            .unwrap();
+        a.swap(i, p);
+        y.swap(i, p);
+        for j in i + 1..4 {
+            let f = a[j][i] / a[i][i];
+            for k in i..4 {
+                a[j][k] -= f * a[i][k];
+            }
+            y[j] -= f * y[i];
+        }
+    }
+    let mut x = [0.0; 4];
+    for i in (0..4).rev() {
+        let s: f64 = (i + 1..4).map(|k| a[i][k] * x[k]).sum();
+        x[i] = (y[i] - s) / a[i][i];
+    }
+    x
+}
+
+/// The fit's closed form: the shaft's and the hub's constants and p
+/// (negative: the fit would need a tension to stay closed, it is open).
+fn fit(shaft: &Disk, hub: &Disk) -> ([f64; 2], [f64; 2], f64) {
+    let (hc, hc0) = hub.sr(C);
+    let (hb, hb0) = hub.sr(B);
+    let (sb, sb0) = shaft.sr(B);
+    // unknowns: C₁ shaft, C₁ hub, C₂ hub, p
+    let a = [
+        [0.0, hc[0], hc[1], 0.0],
+        [0.0, hb[0], hb[1], 1.0],
+        [sb[0], 0.0, 0.0, 1.0],
+        [-B, B, 1.0 / B, C_N],
+    ];
+    let y = [
+        -hc0,
+        -hb0,
+        -sb0,
+        DELTA + (hub.k - shaft.k) * B.powi(3) / 8.0,
+    ];
+    let x = solve4(a, y);
+    ([x[0], 0.0], [x[1], x[2]], x[3])
+}
+
+/// Every converged increment's pseudo-time and Gauss states.
+#[derive(Default)]
+struct Capture(Vec<(f64, Vec<PointState>)>);
+impl Observer for Capture {
+    fn increment(&mut self, _: &Model, s: &State, inc: &Increment) -> asperity::error::Result<()> {
+        self.0.push((inc.load_factor, s.gauss.iter().collect()));
+        Ok(())
+    }
+}
+
+fn solve(text: &str) -> (Model, RunResult, Capture) {
+    let model = common::model(text);
+    let mut c = Capture::default();
+    let r = asperity::app::driver::solve(&model, &mut c).unwrap_or_else(|e| panic!("{e}"));
+    (model, r, c)
+}
+
+/// The largest difference of the Gauss points' σ_r, σ_z, σ_θ of `body`
+/// from the closed form's, and the largest closed-form stress for scale.
+fn stress_error(
+    model: &Model,
+    gauss: &[PointState],
+    body: usize,
+    disk: &Disk,
+    c: [f64; 2],
+) -> (f64, f64) {
+    let (mut err, mut scale) = (0.0f64, 0.0f64);
+    for (e, el) in model.mesh.elements.iter().enumerate() {
+        if el.body != body {
+            continue;
+        }
+        for (ip, g) in model.points(e).enumerate() {
+            let r = model.point_x(e, ip)[0];
+            let [sr, st, sz] = disk.stress(c, r);
+            let s = gauss[g].stress;
+            for (fe, cf) in [(s[0], sr), (s[3], st), (s[1], sz)] {
+                err = err.max((fe - cf).abs());
+                scale = scale.max(cf.abs());
+            }
+            err = err.max(s[2].abs());
+        }
+    }
+    (err, scale)
+}
+
+const RPM: f64 = 12_000.0;
+
+fn omega(rpm: f64) -> f64 {
+    rpm * std::f64::consts::PI / 30.0
+}
+
+/// A solid steel disk of radius C spinning at 12 000 rpm, a slice held
+/// between two frictionless planes (plane strain): every Gauss point's
+/// stresses within 1e-4 of the largest, the radial displacement of the rim
+/// within 1e-6 of the closed form's, in two increments (ω ∝ t, the force
+/// ∝ t²: the half-speed state carries a quarter of the stress).
+#[test]
+fn a_spinning_disk_matches_the_closed_form() {
+    let text = common::case()
+        .plane("axisymmetric")
+        .block("disk", [0.0, C], [48], [0.0, 4.0], [1])
+        .material("disk", STEEL.e, STEEL.nu)
+        .with("density", STEEL.rho)
+        .uy("disk.bottom", 0.0)
+        .uy("disk.top", 0.0)
+        .raw("[speed]")
+        .with("rpm", RPM)
+        .solver("increments = 2\nstep_control = \"fixed\"")
+        .tolerances(1e-12, 1e-12)
+        .no_vtu()
+        .build();
+    let (model, _, cap) = solve(&text);
+    assert_eq!(model.rpm(0.5), Some(RPM / 2.0));
+    for (t, gauss) in &cap.0 {
+        let disk = Disk::new(STEEL, omega(RPM * t), 0.0, true);
+        // the rim is free: σ_r(C) = 0
+        let c1 = (3.0 + disk.nus) * disk.k * C * C / 8.0 / (1.0 + disk.nus);
+        let (err, scale) = stress_error(&model, gauss, 0, &disk, [c1, 0.0]);
+        eprintln!(
+            "t = {t}: stress error {:.2e} of {scale:.3} MPa (σ_r(0) = {:.4} MPa)",
+            err / scale,
+            disk.stress([c1, 0.0], 1e-9)[0]
+        );
+        assert!(err < 1e-4 * scale, "t = {t}: {err} of {scale}");
+    }
+}
+
+/// [`stress_error`] of the shaft (body 0) and the hub (body 1) together:
+/// the largest difference and the largest closed-form stress of the pair.
+fn pair_error(model: &Model, gauss: &[PointState], bodies: [(&Disk, [f64; 2]); 2]) -> (f64, f64) {
+    let [a, b] = [0, 1].map(|k| stress_error(model, gauss, k, bodies[k].0, bodies[k].1));
+    (a.0.max(b.0), a.1.max(b.1))
+}
+
+/// The fit's mean pressure (the joint's F_N over its area) at each
+/// increment.
+fn mean_pressures(model: &Model, r: &RunResult) -> Vec<(f64, f64)> {
+    let area = model.interfaces[0].area();
+    (r.increments.iter())
+        .map(|i| (i.load_factor, i.joints[0].normal_force / area))
+        .collect()
+}
+
+fn fit_case(plane_strain: bool) -> common::CaseText {
+    let mut c = common::case()
+        .plane("axisymmetric")
+        .block("shaft", [0.0, B], [24], [0.0, 4.0], [1])
+        .block("hub", [B, C], [56], [0.0, 4.0], [1])
+        .rx([6.0])
+        .vertical_interface("fit", "shaft", "hub")
+        .material("shaft", STEEL.e, STEEL.nu)
+        .with("density", STEEL.rho)
+        .with("expansion", STEEL.alpha)
+        .material("hub", ALUMINIUM.e, ALUMINIUM.nu)
+        .with("density", ALUMINIUM.rho)
+        .with("expansion", ALUMINIUM.alpha)
+        .law("fit", "power", C_N, 1.0)
+        .gap(-DELTA)
+        .uy("shaft.bottom", 0.0)
+        .uy("hub.bottom", 0.0);
+    if plane_strain {
+        c = c.uy("shaft.top", 0.0).uy("hub.top", 0.0);
+    }
+    c
+}
+
+/// An aluminium hub on a steel shaft spun up to 1.3 times the speed at
+/// which it opens (plane strain):
+/// the pressure at each increment within 1e-4 of the closed form's, and
+/// the fit's first opening (an event) at the closed form's speed within
+/// 1e-4 (the hub, lighter but softer and larger, grows away from the
+/// shaft).
+#[test]
+fn a_spinning_fit_loses_its_pressure_and_opens_at_the_closed_form_speed() {
+    let w = |rpm: f64| {
+        let s = Disk::new(STEEL, omega(rpm), 0.0, true);
+        let h = Disk::new(ALUMINIUM, omega(rpm), 0.0, true);
+        fit(&s, &h)
+    };
+    // p = p₀ − k ω²: the speed where it reaches 0
+    let (p0, p1) = (w(0.0).2, w(1000.0).2);
+    let open_rpm = 1000.0 * (p0 / (p0 - p1)).sqrt();
+    let top = 1.3 * open_rpm;
+    eprintln!("closed form: p(0) = {p0:.5} MPa, opens at {open_rpm:.3} rpm");
+    let text = fit_case(true)
+        .raw("[speed]")
+        .with("rpm", top)
+        .solver("increments = 10\nstep_control = \"fixed\"")
+        .tolerances(1e-12, 1e-12)
+        .raw("[output]")
+        .with("event_tolerance", 1e-7)
+        .with("vtu", false)
+        .build();
+    let (model, r, cap) = solve(&text);
+    for (t, p) in mean_pressures(&model, &r) {
+        let rpm = top * t;
+        let (cs, ch, pc) = w(rpm);
+        if pc <= 0.0 {
+            assert!(p.abs() < 1e-9 * p0, "open at {rpm} rpm: p = {p}");
+            continue;
+        }
+        eprintln!(
+            "{rpm:9.2} rpm: FE {p:.6} MPa, closed form {pc:.6} ({:.1e})",
+            (p - pc) / p0
+        );
+        assert!((p - pc).abs() < 1e-4 * p0, "{rpm} rpm: FE {p} vs {pc}");
+        // the stresses of both bodies too
+        let gauss = &cap.0.iter().find(|c| c.0 == t).unwrap().1;
+        let s = Disk::new(STEEL, omega(rpm), 0.0, true);
+        let h = Disk::new(ALUMINIUM, omega(rpm), 0.0, true);
+        let (err, scale) = pair_error(&model, gauss, [(&s, cs), (&h, ch)]);
+        assert!(err < 1e-4 * scale, "{rpm} rpm: {err} of {scale}");
+    }
+    let open = (r.events.iter())
+        .find(|e| e.kind == asperity::solve::events::Kind::FirstOpening)
+        .expect("the fit opens");
+    let at = model.rpm(open.load_factor).unwrap();
+    eprintln!(
+        "first opening at {at:.3} rpm ({:.1e})",
+        common::rel(at, open_rpm)
+    );
+    assert!(common::rel(at, open_rpm) < 1e-4, "{at} vs {open_rpm}");
+}
+
+/// The same pair heated as a whole (both bodies ΔT, plane stress: free
+/// faces): the aluminium hub expands more than the steel shaft and the fit
+/// loses its pressure, to 0 at the closed form's temperature; the pressure
+/// at each increment within 1e-4, the opening within 1e-4.
+#[test]
+fn a_heated_aluminium_hub_on_a_steel_shaft_opens_at_the_closed_form_temperature() {
+    let w = |dt: f64| {
+        let s = Disk::new(STEEL, 0.0, dt, false);
+        let h = Disk::new(ALUMINIUM, 0.0, dt, false);
+        fit(&s, &h)
+    };
+    let (p0, p1) = (w(0.0).2, w(1.0).2);
+    let open_dt = p0 / (p0 - p1);
+    let top = 1.3 * open_dt;
+    eprintln!("closed form: p(20 °C) = {p0:.5} MPa, opens at ΔT = {open_dt:.4} K");
+    let mut c = fit_case(false);
+    for body in ["shaft", "hub"] {
+        c = c
+            .raw("[[temperature]]")
+            .with("body", body)
+            .with("change", top)
+            .with("reference", 20.0);
+    }
+    let text = c
+        .solver("increments = 10\nstep_control = \"fixed\"")
+        .tolerances(1e-10, 1e-10)
+        .raw("[output]")
+        .with("event_tolerance", 1e-7)
+        .with("vtu", false)
+        .build();
+    let (model, r, cap) = solve(&text);
+    for (t, p) in mean_pressures(&model, &r) {
+        let dt = top * t;
+        let (cs, ch, pc) = w(dt);
+        if pc <= 0.0 {
+            assert!(p.abs() < 1e-9 * p0, "open at ΔT {dt}: p = {p}");
+            continue;
+        }
+        eprintln!(
+            "ΔT {dt:8.3} K: FE {p:.6} MPa, closed form {pc:.6} ({:.1e})",
+            (p - pc) / p0
+        );
+        assert!((p - pc).abs() < 1e-4 * p0, "ΔT {dt}: FE {p} vs {pc}");
+        let gauss = &cap.0.iter().find(|c| c.0 == t).unwrap().1;
+        let s = Disk::new(STEEL, 0.0, dt, false);
+        let h = Disk::new(ALUMINIUM, 0.0, dt, false);
+        let (err, scale) = pair_error(&model, gauss, [(&s, cs), (&h, ch)]);
+        assert!(err < 1e-4 * scale, "ΔT {dt}: {err} of {scale}");
+    }
+    let open = (r.events.iter())
+        .find(|e| e.kind == asperity::solve::events::Kind::FirstOpening)
+        .expect("the fit opens");
+    let at = top * open.load_factor;
+    eprintln!(
+        "first opening at ΔT = {at:.4} K ({:.1e})",
+        common::rel(at, open_dt)
+    );
+    assert!(common::rel(at, open_dt) < 1e-4, "{at} vs {open_dt}");
+}
