@@ -271,9 +271,12 @@ fn mean_pressures(model: &Model, r: &RunResult) -> Vec<(f64, f64)> {
         .collect()
 }
 
-fn fit_case(plane_strain: bool) -> common::CaseText {
-    let mut c = common::case()
-        .plane("axisymmetric")
+fn fit_case(plane_strain: bool, twist: bool) -> common::CaseText {
+    let mut c = common::case().plane("axisymmetric");
+    if twist {
+        c = c.with("twist", true);
+    }
+    c = c
         .block("shaft", [0.0, B], [24], [0.0, 4.0], [1])
         .block("hub", [B, C], [56], [0.0, 4.0], [1])
         .rx([6.0])
@@ -312,7 +315,7 @@ fn a_spinning_fit_loses_its_pressure_and_opens_at_the_closed_form_speed() {
     let open_rpm = 1000.0 * (p0 / (p0 - p1)).sqrt();
     let top = 1.3 * open_rpm;
     eprintln!("closed form: p(0) = {p0:.5} MPa, opens at {open_rpm:.3} rpm");
-    let text = fit_case(true)
+    let text = fit_case(true, false)
         .raw("[speed]")
         .with("rpm", top)
         .solver("increments = 10\nstep_control = \"fixed\"")
@@ -367,7 +370,7 @@ fn a_heated_aluminium_hub_on_a_steel_shaft_opens_at_the_closed_form_temperature(
     let open_dt = p0 / (p0 - p1);
     let top = 1.3 * open_dt;
     eprintln!("closed form: p(20 °C) = {p0:.5} MPa, opens at ΔT = {open_dt:.4} K");
-    let mut c = fit_case(false);
+    let mut c = fit_case(false, false);
     for body in ["shaft", "hub"] {
         c = c
             .raw("[[temperature]]")
@@ -410,4 +413,97 @@ fn a_heated_aluminium_hub_on_a_steel_shaft_opens_at_the_closed_form_temperature(
         common::rel(at, open_dt)
     );
     assert!(common::rel(at, open_dt) < 1e-4, "{at} vs {open_dt}");
+}
+
+/// The fit of [`a_spinning_fit_loses_its_pressure_and_opens_at_the_closed_form_speed`]
+/// with friction (μ = 0.15), twisting: a torque T on the hub, then the speed
+/// raised under it. The hub is held about the axis by friction alone, so at
+/// the speed where μ p(ω) 2π b² L falls to T it can no longer hold its
+/// torque: the run ends there, its error naming the speed, within 1e-4 of
+/// the closed form's (p linear in ω², as above).
+#[test]
+fn a_spinning_fit_under_a_torque_lets_go_at_the_closed_form_speed() {
+    const MU: f64 = 0.15;
+    const T: f64 = 3.0e4;
+    const L: f64 = 4.0;
+    let w = |rpm: f64| {
+        let s = Disk::new(STEEL, omega(rpm), 0.0, true);
+        let h = Disk::new(ALUMINIUM, omega(rpm), 0.0, true);
+        fit(&s, &h).2
+    };
+    let (p0, p1) = (w(0.0), w(1000.0));
+    let hold = T / (MU * 2.0 * std::f64::consts::PI * B * B * L);
+    let slip_rpm = 1000.0 * ((p0 - hold) / (p0 - p1)).sqrt();
+    let top = 1.3 * slip_rpm;
+    eprintln!("closed form: p = {hold:.5} MPa holds T at {slip_rpm:.3} rpm");
+    let text = fit_case(true, true)
+        .tangential("fit", 0.9, 0.5, 0.05, MU)
+        .raw("[history]\ntorque = [[0, 0], [1, 1], [2, 1]]\nspin = [[0, 0], [1, 0], [2, 1]]")
+        .raw("[[boundary]]\nset = \"shaft.bottom\"\nrotation = 0.0")
+        .raw("[[load]]\nedges = \"hub.right\"")
+        .with("torque", T)
+        .history("torque")
+        .raw("[speed]")
+        .with("rpm", top)
+        .history("spin")
+        .solver("increments = 20\nstep_control = \"fixed\"\nmax_cutbacks = 12")
+        .no_vtu()
+        .build();
+    let model = common::model(&text);
+    let e = asperity::app::driver::solve(&model, &mut common::Quiet)
+        .err()
+        .expect("past the slip speed the hub has no equilibrium")
+        .to_string();
+    let at: f64 = e
+        .split(" rpm)")
+        .next()
+        .and_then(|s| s.rsplit('(').next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("no speed in {e}"));
+    eprintln!("lets go at {at:.3} rpm ({:.1e})", common::rel(at, slip_rpm));
+    assert!(e.contains("can hold about the axis"), "{e}");
+    assert!(common::rel(at, slip_rpm) < 1e-4, "{at} vs {slip_rpm}: {e}");
+}
+
+/// The fit assembled by heating the hub (shrink fit proper): the hub, ΔT =
+/// 150 K hotter at the start, has a clearance δ_c = α_hub ΔT b − δ; as it
+/// cools (ΔT(t) = 150 (1 − t)) the bore closes on the shaft where its free
+/// growth equals the interference, ΔT = δ / ((1 + ν) α_hub b) (plane strain:
+/// held along z, the bore grows by (1 + ν) α ΔT b), and the fit ends at
+/// the pressure of the closed form (and of the same fit pressed in, to
+/// round-off: elastic, frictionless). No increment before the closing
+/// carries a force, every one after it does.
+#[test]
+fn a_hub_heated_for_assembly_grips_as_it_cools_to_the_closed_form_pressure() {
+    const HOT: f64 = 150.0;
+    let close_dt = DELTA / ((1.0 + ALUMINIUM.nu) * ALUMINIUM.alpha * B);
+    let t_close = 1.0 - close_dt / HOT;
+    let p = fit(
+        &Disk::new(STEEL, 0.0, 0.0, true),
+        &Disk::new(ALUMINIUM, 0.0, 0.0, true),
+    )
+    .2;
+    eprintln!("closes at ΔT = {close_dt:.4} K (t = {t_close:.4}), ends at p = {p:.6} MPa");
+    let text = fit_case(true, false)
+        .raw("[history]\ncool = [[0, 1], [1, 0]]")
+        .raw("[[temperature]]\nbody = \"hub\"")
+        .with("change", HOT)
+        .with("reference", 20.0)
+        .history("cool")
+        .solver("increments = 20\nstep_control = \"fixed\"")
+        .tolerances(1e-12, 1e-12)
+        .no_vtu()
+        .build();
+    let (model, r, _) = solve(&text);
+    let pressures = mean_pressures(&model, &r);
+    for &(t, pm) in &pressures {
+        if t < t_close - 1e-12 {
+            assert_eq!(pm, 0.0, "t = {t}: the hub is still clear of the shaft");
+        } else {
+            assert!(pm > 0.0, "t = {t}: the hub grips");
+        }
+    }
+    let end = pressures.last().unwrap().1;
+    eprintln!("FE ends at {end:.6} MPa ({:.1e})", common::rel(end, p));
+    assert!(common::rel(end, p) < 1e-4, "{end} vs {p}");
 }

@@ -59,6 +59,10 @@ impl Stabilizer {
                 }
             }
             (applied != 0.0 && applied.abs() >= NEAR_SLIP * hold && !names.is_empty()).then(|| {
+                // spinning, the speed takes pressure off a fit: this is
+                // the speed at which it can no longer hold its torque
+                let speed = (model.rpm(lambda))
+                    .map_or(String::new(), |n| format!(" ({n:.6e} rpm)"));
                 let lambda = format!("{lambda:.6}")
                     .trim_end_matches('0')
                     .trim_end_matches('.')
@@ -69,7 +73,7 @@ impl Stabilizer {
                     format!("{:.2} % of what", 100.0 * applied.abs() / hold)
                 };
                 format!(
-                    "the torque on body \"{}\" at λ = {lambda}, {:.6e} N·mm, is {how} the friction of interface \"{}\" can hold about the axis at the present contact pressures, Σ μ p_N r dA = {hold:.6e} N·mm, and nothing else holds the body about the axis: a torque at or past the slip torque has no equilibrium (prescribe a [[boundary]] rotation instead to turn the joint past slip)",
+                    "the torque on body \"{}\" at λ = {lambda}{speed}, {:.6e} N·mm, is {how} the friction of interface \"{}\" can hold about the axis at the present contact pressures, Σ μ p_N r dA = {hold:.6e} N·mm, and nothing else holds the body about the axis: a torque at or past the slip torque has no equilibrium (prescribe a [[boundary]] rotation instead to turn the joint past slip)",
                     model.mesh.bodies[b],
                     applied.abs(),
                     names.join("\", \"")
