@@ -148,6 +148,11 @@ fn solve4(mut a: [[f64; 4]; 4], mut y: [f64; 4]) -> [f64; 4] {
 /// The fit's closed form: the shaft's and the hub's constants and p
 /// (negative: the fit would need a tension to stay closed, it is open).
 fn fit(shaft: &Disk, hub: &Disk) -> ([f64; 2], [f64; 2], f64) {
+    fit_with(shaft, hub, DELTA)
+}
+
+/// [`fit`] with the radial interference `delta`.
+fn fit_with(shaft: &Disk, hub: &Disk, delta: f64) -> ([f64; 2], [f64; 2], f64) {
     let (hc, hc0) = hub.sr(C);
     let (hb, hb0) = hub.sr(B);
     let (sb, sb0) = shaft.sr(B);
@@ -162,7 +167,7 @@ fn fit(shaft: &Disk, hub: &Disk) -> ([f64; 2], [f64; 2], f64) {
         -hc0,
         -hb0,
         -sb0,
-        DELTA + (hub.k - shaft.k) * B.powi(3) / 8.0,
+        delta + (hub.k - shaft.k) * B.powi(3) / 8.0,
     ];
     let x = solve4(a, y);
     ([x[0], 0.0], [x[1], x[2]], x[3])
@@ -506,4 +511,52 @@ fn a_hub_heated_for_assembly_grips_as_it_cools_to_the_closed_form_pressure() {
     let end = pressures.last().unwrap().1;
     eprintln!("FE ends at {end:.6} MPa ({:.1e})", common::rel(end, p));
     assert!(common::rel(end, p) < 1e-4, "{end} vs {p}");
+}
+
+/// The shipped case `cases/hub-in-service` against its README's hand check
+/// (the closed form above with the case's numbers: δ = 0.03 mm, a 7075
+/// hub): no force while the hot hub is clear of the shaft (ΔT_hub above
+/// δ/((1 + ν) α b) = 47.99 K, t < 0.680), then the pressure at 20 °C
+/// (t = 1), at 80 °C (t = 2) and at 80 °C and 6000 rpm (t = 3), and the
+/// torque the fit holds as it slides there (its holding plateau) against
+/// μ p 2π b² L, each within 1e-4.
+#[test]
+fn the_shipped_hub_in_service_follows_its_hand_check() {
+    const DELTA_CASE: f64 = 0.03;
+    const L: f64 = 20.0;
+    const MU: f64 = 0.15;
+    let al = Solid {
+        e: 71_000.0,
+        rho: 2810.0,
+        ..ALUMINIUM
+    };
+    let p = |dt: f64, rpm: f64| {
+        let s = Disk::new(STEEL, omega(rpm), dt, true);
+        let h = Disk::new(al, omega(rpm), dt, true);
+        fit_with(&s, &h, DELTA_CASE).2
+    };
+    let path = common::root().join("cases/hub-in-service/case.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let (model, r, _) = solve(&text);
+    let pressures = mean_pressures(&model, &r);
+    let t_close = 1.0 - DELTA_CASE / ((1.0 + al.nu) * al.alpha * B) / 150.0;
+    for &(t, pm) in &pressures {
+        if t < t_close - 1e-9 {
+            assert_eq!(pm, 0.0, "t = {t}: the hub is still clear");
+        }
+    }
+    for (t, dt, rpm) in [(1.0, 0.0, 0.0), (2.0, 60.0, 0.0), (3.0, 60.0, 6000.0)] {
+        let fe = pressures.iter().find(|x| x.0 == t).unwrap().1;
+        let hand = p(dt, rpm);
+        eprintln!("t = {t}: FE {fe:.4} MPa, hand {hand:.4} MPa ({:.1e})", common::rel(fe, hand));
+        assert!(common::rel(fe, hand) < 1e-4, "t = {t}: {fe} vs {hand}");
+    }
+    let plateau = (r.events.iter())
+        .find(|e| matches!(e.kind, asperity::solve::events::Kind::HoldingPlateau(_)))
+        .expect("the fit slides at speed");
+    let held = plateau.values[4].abs() * 1e-3;
+    let hand = MU * p(60.0, 6000.0) * 2.0 * std::f64::consts::PI * B * B * L * 1e-3;
+    eprintln!("holds {held:.3} N·m at 6000 rpm, hand {hand:.3} N·m");
+    assert_eq!(model.rpm(plateau.load_factor), Some(6000.0));
+    assert!(common::rel(held, hand) < 1e-4, "{held} vs {hand}");
 }
