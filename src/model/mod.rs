@@ -36,6 +36,14 @@ use meshes::{check_mesh, make_mesh};
 pub mod supports;
 use supports::check_supports;
 
+/// Every body's free thermal strain and material at one pseudo-time, in
+/// body order ([`Model::conditions`]).
+#[derive(Clone, Debug)]
+pub struct Conditions {
+    pub thermal: Vec<f64>,
+    pub materials: Vec<VonMises>,
+}
+
 /// How a load pattern scales with pseudo-time: by its history's factor
 /// (the load factor without one), or by its square (a speed's centrifugal
 /// force, ∝ ω²).
@@ -538,6 +546,27 @@ impl Model {
         (0..self.materials.len())
             .map(|b| self.thermal_strain(b, t))
             .collect()
+    }
+
+    /// Body `b`'s material at pseudo-time t: its Young's modulus and yield
+    /// stress at its temperature there when its material has tables of them
+    /// (`young_table`, `yield_table`), else the case's.
+    pub fn material_at(&self, b: usize, t: f64) -> VonMises {
+        match self.temperatures.iter().find(|bt| bt.body == b) {
+            Some(bt) => bt.material(&self.materials[b], self.factor(bt.history, t)),
+            None => self.materials[b].clone(),
+        }
+    }
+
+    /// What every body is at pseudo-time t: its free thermal strain and its
+    /// material ([`Model::thermal_strain`], [`Model::material_at`]).
+    pub fn conditions(&self, t: f64) -> Conditions {
+        Conditions {
+            thermal: self.thermal_strains(t),
+            materials: (0..self.materials.len())
+                .map(|b| self.material_at(b, t))
+                .collect(),
+        }
     }
 
     /// The free thermal strain α ΔT h(t) of body `body` at pseudo-time t.

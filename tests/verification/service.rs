@@ -548,7 +548,10 @@ fn the_shipped_hub_in_service_follows_its_hand_check() {
     for (t, dt, rpm) in [(1.0, 0.0, 0.0), (2.0, 60.0, 0.0), (3.0, 60.0, 6000.0)] {
         let fe = pressures.iter().find(|x| x.0 == t).unwrap().1;
         let hand = p(dt, rpm);
-        eprintln!("t = {t}: FE {fe:.4} MPa, hand {hand:.4} MPa ({:.1e})", common::rel(fe, hand));
+        eprintln!(
+            "t = {t}: FE {fe:.4} MPa, hand {hand:.4} MPa ({:.1e})",
+            common::rel(fe, hand)
+        );
         assert!(common::rel(fe, hand) < 1e-4, "t = {t}: {fe} vs {hand}");
     }
     let plateau = (r.events.iter())

@@ -197,3 +197,69 @@ fn held_block_yields_at_the_closed_form_and_keeps_its_residual_stress() {
         }
     }
 }
+
+/// The held block of [`held_block`] with a Young's modulus and a yield stress
+/// that fall with temperature (`young_table`, `yield_table`: E(T) = E (1 −
+/// 5e-4 (T − 20)), σ_Y(T) = σ_Y (1 − 1e-3 (T − 20)), linear between rows at
+/// 0 and 300 °C), heated from 20 °C by 160 K and cooled back. Uniaxial along
+/// z, σ_zz = E(T) (−α ΔT − εᵖ_zz) (the total form: the stress of a held
+/// body falls with its modulus), so
+/// - first yield where E(T) α ΔT = σ_Y(T): the smaller root of
+///   −E α a ΔT² + (E α + σ_Y b) ΔT − σ_Y = 0 (a = 5e-4, b = 1e-3), 98.18 K;
+/// - hot (perfectly plastic), σ_zz = −σ_Y(180 °C) = −210 MPa, εᵖ_zz = −(α ΔT −
+///   σ_Y(T)/E(T));
+/// - cooled back elastically, the residual E (α ΔT − σ_Y(T)/E(T)) = 158.14 MPa.
+#[test]
+fn held_block_with_temperature_dependent_modulus_and_yield_stress() {
+    let (a, b) = (5e-4, 1e-3);
+    let e_at = |t: f64| E * (1.0 - a * (t - 20.0));
+    let s_at = |t: f64| SY * (1.0 - b * (t - 20.0));
+    let dt = 160.0;
+    let text = common::case()
+        .plane("strain")
+        .block("bar", [0.0, 20.0], [2], [0.0, 6.0], [1])
+        .material("bar", E, NU)
+        .plastic(SY, 0.0)
+        .with("expansion", ALPHA)
+        .with("young_table", [[0.0, e_at(0.0)], [300.0, e_at(300.0)]])
+        .with("yield_table", [[0.0, s_at(0.0)], [300.0, s_at(300.0)]])
+        .ux("bar.left", 0.0)
+        .uy("bar.bottom", 0.0)
+        .raw("[[temperature]]")
+        .with("body", "bar")
+        .with("change", dt)
+        .with("reference", 20.0)
+        .with("history", [[0.0, 0.0], [1.0, 1.0], [2.0, 0.0]])
+        .solver("")
+        .tolerances(1e-12, 1e-12)
+        .no_vtu()
+        .build();
+    let (model, r, c) = solve(&text);
+    // the material at 180 °C
+    let hot = model.material_at(0, 1.0);
+    assert!((hot.young - e_at(180.0)).abs() < 1e-9 * E);
+    assert!((hot.yield_stress - s_at(180.0)).abs() < 1e-12 * SY);
+    let ea = E * ALPHA;
+    let q = ea + SY * b;
+    let dty = (q - (q * q - 4.0 * ea * a * SY).sqrt()) / (2.0 * ea * a);
+    let fy = r.first_yield.as_ref().expect("the block yields");
+    eprintln!(
+        "first yield at ΔT = {:.6} K, closed form {dty:.6} K",
+        fy.load_factor * dt
+    );
+    assert!((fy.load_factor * dt - dty).abs() < 1e-6 * dty);
+    let top = s_at(20.0 + dt);
+    all_near(at(&c, 1.0), 3, -top, 1e-6, "heated");
+    let ep = -(ALPHA * dt - top / e_at(20.0 + dt));
+    let res = -E * ep;
+    eprintln!("hot {:.4} MPa, residual {res:.4} MPa", -top);
+    all_near(at(&c, 2.0), 3, res, 1e-6, "cooled back");
+    // on the way down: elastic, σ_zz = E(T) (−α ΔT − εᵖ_zz)
+    for (t, _, g) in &c.0 {
+        if *t > 1.0 && *t < 2.0 {
+            let d = dt * (2.0 - t);
+            let want = e_at(20.0 + d) * (-ALPHA * d - ep);
+            all_near(g, 3, want, 1e-6, "cooling");
+        }
+    }
+}

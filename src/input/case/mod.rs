@@ -244,6 +244,13 @@ pub struct MaterialSpec {
     /// Density ρ, kg/m³; needed by a `[speed]` (the body force ρ ω² r).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub density: Option<f64>,
+    /// Young's modulus against temperature: rows [T °C, E MPa], T rising;
+    /// `young` is its value at the body's reference temperature.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub young_table: Option<Vec<Vec<f64>>>,
+    /// The initial yield stress against temperature: rows [T °C, σ_Y MPa].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub yield_table: Option<Vec<Vec<f64>>>,
 }
 
 /// The model's rotational speed (`[speed]`): every body spins about the

@@ -68,6 +68,8 @@ pub(crate) const TEMPERATURE_CHANGE: Range = Range {
     lo: 1e-6,
     hi: 1e3,
 };
+/// Absolute zero, °C: no temperature of a body below it.
+pub(crate) const ABSOLUTE_ZERO: f64 = -273.15;
 /// Densities ρ (`[materials.<body>] density`): 10 kg/m³ (a rigid foam is
 /// 30) to 30 000 kg/m³ (osmium 22 590).
 pub(crate) const DENSITY: Range = Range {

@@ -249,6 +249,67 @@ fn check_materials(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
             }
             ranges::DENSITY.check(at(&format!("{key} density")), rho)?;
         }
+        for (name, table, range) in [
+            ("young_table", &m.young_table, &ranges::MODULUS),
+            ("yield_table", &m.yield_table, &ranges::YIELD_STRESS),
+        ] {
+            if let Some(rows) = table {
+                property_table(&at(&format!("{key} {name}")), rows, range)?;
+            }
+        }
+        if m.yield_table.is_some() && m.yield_stress.is_none() {
+            return Err(Error::input(
+                at(&format!("{key} yield_table")),
+                "belongs to a body that yields: give yield_stress (its value at the reference temperature) too",
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// A material property against temperature: at least two rows [T °C, value],
+/// T finite, above absolute zero, at most 10⁴ °C and strictly rising, every
+/// value positive and within its range.
+fn property_table(at: &str, rows: &[Vec<f64>], range: &ranges::Range) -> Result<()> {
+    if let Some(i) = rows.iter().position(|r| r.len() != 2) {
+        return Err(Error::input(
+            at,
+            format!(
+                "row {i} has {} number(s): each row is [T °C, value]",
+                rows[i].len()
+            ),
+        ));
+    }
+    let rows: Vec<[f64; 2]> = rows.iter().map(|r| [r[0], r[1]]).collect();
+    if rows.len() < 2 {
+        return Err(Error::input(
+            at,
+            format!(
+                "has {} row(s): give at least two [T °C, value] rows",
+                rows.len()
+            ),
+        ));
+    }
+    for (i, &[t, v]) in rows.iter().enumerate() {
+        if !(t.is_finite() && (ranges::ABSOLUTE_ZERO..=1e4).contains(&t)) {
+            return Err(Error::input(
+                at,
+                format!("row {i}: {t} °C is no temperature of a solid (in [-273.15, 1e4] °C)"),
+            ));
+        }
+        if i > 0 && t <= rows[i - 1][0] {
+            return Err(Error::input(
+                at,
+                format!("row {i}: {t} °C does not rise from row {}'s {} °C: give the rows in rising temperature, each once", i - 1, rows[i - 1][0]),
+            ));
+        }
+        if !(v.is_finite() && v > 0.0) {
+            return Err(Error::input(
+                at,
+                format!("row {i}: {v} must be a positive number ({})", range.unit),
+            ));
+        }
+        range.check(format!("{at} row {i}"), v)?;
     }
     Ok(())
 }

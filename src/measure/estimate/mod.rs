@@ -127,7 +127,7 @@ pub fn estimate(model: &Model, state: &State) -> Estimate {
     let mut element = vec![0.0; ne];
     let mut norm2 = 0.0;
     for (e, el) in mesh.elements.iter().enumerate() {
-        let mat = &model.materials[el.body];
+        let mat = &model.material_at(el.body, state.time);
         let p = of(e, true);
         let star = recovered.element(e);
         for (ip, sh) in p.stress.iter().enumerate() {
@@ -198,8 +198,7 @@ impl Points {
                 shape: (0..g.n).map(|ip| g.shape[ip][..g.nodes].to_vec()).collect(),
                 stress: {
                     let k = Family::SOLID.iter().position(|&f| f == family).unwrap_or(0);
-                    let thermal = model.thermal_strain(model.mesh.elements[e].body, state.time);
-                    sample::stresses3(model, gauss, u, e, &rule, &g, &own[k], thermal)
+                    sample::stresses3(model, gauss, u, e, &rule, &g, &own[k], state.time)
                 },
             };
         }
@@ -209,8 +208,7 @@ impl Points {
             family.sampling_rule()
         };
         let g = geometry(model, e, &rule);
-        let thermal = model.thermal_strain(model.mesh.elements[e].body, state.time);
-        let s = sample::stresses(model, gauss, u, e, &rule, &g, thermal);
+        let s = sample::stresses(model, gauss, u, e, &rule, &g, state.time);
         Points {
             x: (0..g.n).map(|ip| [g.x[ip][0], g.x[ip][1], 0.0]).collect(),
             dv: g.dv[..g.n].to_vec(),

@@ -34,8 +34,9 @@ use crate::physics::material::{GaussStates, Plane, PointState};
 
 /// σ_h ([`PointState::stress`] order: xx, yy, xy, zz or θθ, rθ, zθ) of
 /// element `e` at the points of `rule`, whose geometry is `geom`; `gauss`
-/// holds every element's states at the model's rule; `thermal` is the
-/// body's free thermal strain α ΔT, taken off the normal strains.
+/// holds every element's states at the model's rule; `time` the state's
+/// pseudo-time, at which the body's free thermal strain α ΔT is taken off
+/// the normal strains and its material read ([`Model::material_at`]).
 pub fn stresses(
     model: &Model,
     gauss: &GaussStates,
@@ -43,7 +44,7 @@ pub fn stresses(
     e: usize,
     rule: &GaussRule,
     geom: &ElementGeometry,
-    thermal: f64,
+    time: f64,
 ) -> [[f64; 6]; MAX_POINTS] {
     let stored = gauss.range(model.points(e));
     let own = model.rule(e);
@@ -55,7 +56,8 @@ pub fn stresses(
         return out;
     }
     let el = &model.mesh.elements[e];
-    let mat = &model.materials[el.body];
+    let mat = &model.material_at(el.body, time);
+    let thermal = model.thermal_strain(el.body, time);
     let ue = model.element_u(e, u);
     let twist = model.node_dofs().twist();
     for (ip, &(xi, _)) in rule.points.iter().enumerate() {
@@ -95,7 +97,7 @@ pub(crate) fn stresses3(
     rule: &GaussRule3,
     geom: &ElementGeometry3,
     w: &[[f64; crate::physics::element::family3::MAX_NODES3]],
-    thermal: f64,
+    time: f64,
 ) -> Vec<[f64; 6]> {
     let stored = gauss.range(model.points(e));
     let el = &model.mesh.elements[e];
@@ -104,7 +106,8 @@ pub(crate) fn stresses3(
     if rule == own {
         return stored.iter().map(|g| g.stress).collect();
     }
-    let mat = &model.materials[el.body];
+    let mat = &model.material_at(el.body, time);
+    let thermal = model.thermal_strain(el.body, time);
     let ue = model.element_u(e, u);
     // εᵖ at the nodes: Σ_k W_ka εᵖ_k
     let mut nodal = vec![[0.0; 6]; geom.nodes];

@@ -208,6 +208,7 @@ pub fn build(
     }
     let largest = largest_factor(case, &histories);
     thermal::check_absolute(&temperatures, &histories, largest, place, &mesh.bodies)?;
+    thermal::check_tables(&temperatures, &histories, largest, place, &mesh.bodies)?;
     let breakpoints = crate::model::history::breakpoints(&histories);
     check_step_count(case, &breakpoints, place)?;
     let (prescribed, prescribed_history) = prescribed.into_iter().unzip();

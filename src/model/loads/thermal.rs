@@ -10,9 +10,9 @@ use crate::input::case::ranges;
 use crate::input::case::Case;
 use crate::input::mesh::Mesh;
 use crate::model::history::History;
+use crate::physics::material::VonMises;
 
-/// Absolute zero, °C.
-pub(crate) const ABSOLUTE_ZERO: f64 = -273.15;
+pub(crate) use crate::input::case::ranges::ABSOLUTE_ZERO;
 
 /// One body's uniform temperature change.
 #[derive(Clone, Debug, PartialEq)]
@@ -27,6 +27,48 @@ pub struct BodyTemperature {
     pub reference: Option<f64>,
     /// Its history (`None`: the load factor, or the default ramp).
     pub history: Option<usize>,
+    /// Young's modulus and the initial yield stress against the body's
+    /// temperature (rows [T °C, value], T rising), when its material has them.
+    pub young: Option<Vec<[f64; 2]>>,
+    pub yield_stress: Option<Vec<[f64; 2]>>,
+}
+
+impl BodyTemperature {
+    /// The body's material at the load factor `factor` of its history: E and
+    /// σ_Y read off their tables at the temperature reference + ΔT · factor
+    /// (linear between rows); `base` as it is without tables.
+    pub fn material(&self, base: &VonMises, factor: f64) -> VonMises {
+        let mut m = base.clone();
+        if let Some(reference) = self.reference {
+            let t = reference + self.change * factor;
+            if let Some(rows) = &self.young {
+                m.young = interpolate(rows, t);
+            }
+            if let Some(rows) = &self.yield_stress {
+                m.yield_stress = interpolate(rows, t);
+            }
+        }
+        m
+    }
+}
+
+/// A table's rows (two numbers each: checked with the case) as pairs.
+fn pairs(rows: &[Vec<f64>]) -> Vec<[f64; 2]> {
+    rows.iter().map(|r| [r[0], r[1]]).collect()
+}
+
+/// The table's value at t, linear between its rows (t within them: checked
+/// when the model is built; held at the ends otherwise).
+pub(crate) fn interpolate(rows: &[[f64; 2]], t: f64) -> f64 {
+    let k = rows.partition_point(|r| r[0] <= t);
+    match k {
+        0 => rows[0][1],
+        k if k == rows.len() => rows[k - 1][1],
+        k => {
+            let ([t0, v0], [t1, v1]) = (rows[k - 1], rows[k]);
+            v0 + (v1 - v0) * (t - t0) / (t1 - t0)
+        }
+    }
 }
 
 /// Every `[[temperature]]`: its body known, named once, its material with an
@@ -89,15 +131,120 @@ pub(super) fn read(
             &ranges::TEMPERATURE_CHANGE,
             history,
         ));
+        let m = &case.materials[&t.body];
         out.push(BodyTemperature {
             body,
             change: t.change,
             strain: alpha * t.change,
             reference: t.reference,
             history,
+            young: m.young_table.as_deref().map(pairs),
+            yield_stress: m.yield_table.as_deref().map(pairs),
         });
     }
+    tables_need_a_temperature(case, mesh, &out, place)?;
     Ok(out)
+}
+
+/// A material with a property table needs its body's `[[temperature]]`
+/// with a `reference` (the table is in °C), and its plain value (`young`,
+/// `yield_stress`) must be the table's at that reference.
+fn tables_need_a_temperature(
+    case: &Case,
+    mesh: &Mesh,
+    temperatures: &[BodyTemperature],
+    place: &str,
+) -> Result<()> {
+    for (b, name) in mesh.bodies.iter().enumerate() {
+        let Some(m) = case.materials.get(name) else {
+            continue;
+        };
+        let plain = [
+            ("young_table", &m.young_table, "young", m.young),
+            (
+                "yield_table",
+                &m.yield_table,
+                "yield_stress",
+                m.yield_stress.unwrap_or(f64::NAN),
+            ),
+        ];
+        for (key, table, plain_key, value) in plain {
+            let Some(rows) = table.as_deref().map(pairs) else {
+                continue;
+            };
+            let at = format!("{place}: [materials.{}] {key}", clip(name));
+            let reference = temperatures
+                .iter()
+                .find(|t| t.body == b)
+                .and_then(|t| t.reference);
+            let Some(reference) = reference else {
+                return Err(Error::input(
+                    at,
+                    format!("is read at the body's temperature: give \"{}\" a [[temperature]] with a `reference` (°C)", clip(name)),
+                ));
+            };
+            let (lo, hi) = (rows[0][0], rows[rows.len() - 1][0]);
+            if !(lo..=hi).contains(&reference) {
+                return Err(Error::input(
+                    at,
+                    format!(
+                        "spans {lo} … {hi} °C, not the body's reference temperature {reference} °C"
+                    ),
+                ));
+            }
+            let v = interpolate(&rows, reference);
+            if (v - value).abs() > 1e-9 * v.abs() {
+                return Err(Error::input(
+                    at,
+                    format!("gives {v} at the reference temperature {reference} °C, but {plain_key} = {value}: {plain_key} is the value at the reference; make the two agree"),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Every body temperature along the history (reference + ΔT × the lowest
+/// and the highest factor) within its material's tables: a table is not
+/// extrapolated.
+pub(super) fn check_tables(
+    temperatures: &[BodyTemperature],
+    histories: &[History],
+    largest: f64,
+    place: &str,
+    bodies: &[String],
+) -> Result<()> {
+    for t in temperatures {
+        let Some(reference) = t.reference else {
+            continue;
+        };
+        let (lo, hi) = factor_range(t, histories, largest);
+        let (a, b) = (t.change * lo, t.change * hi);
+        let (cold, hot) = (reference + a.min(b), reference + a.max(b));
+        for (key, rows) in [("young_table", &t.young), ("yield_table", &t.yield_stress)] {
+            let Some(rows) = rows else {
+                continue;
+            };
+            let (t0, t1) = (rows[0][0], rows[rows.len() - 1][0]);
+            if cold < t0 - 1e-9 || hot > t1 + 1e-9 {
+                return Err(Error::input(
+                    format!("{place}: [materials.{}] {key}", clip(&bodies[t.body])),
+                    format!("spans {t0} … {t1} °C, but the body's temperature runs {cold} … {hot} °C over the history: give rows that cover it (a table is not extrapolated)"),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The lowest and the highest factor of a temperature's history (or of the
+/// load factor from 0 to `largest`).
+fn factor_range(t: &BodyTemperature, histories: &[History], largest: f64) -> (f64, f64) {
+    match t.history {
+        Some(h) => histories[h].extremes(),
+        None if histories.is_empty() => (0.0, largest),
+        None => (0.0, 1.0),
+    }
 }
 
 /// With a reference given, the body's lowest temperature over the run
@@ -114,11 +261,7 @@ pub(super) fn check_absolute(
         let Some(reference) = t.reference else {
             continue;
         };
-        let (lo, hi) = match t.history {
-            Some(h) => histories[h].extremes(),
-            None if histories.is_empty() => (0.0, largest),
-            None => (0.0, 1.0),
-        };
+        let (lo, hi) = factor_range(t, histories, largest);
         let lowest = reference + (t.change * lo).min(t.change * hi);
         if lowest < ABSOLUTE_ZERO {
             return Err(Error::input(

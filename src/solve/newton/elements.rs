@@ -47,8 +47,9 @@ impl Engine<'_> {
         solid_tangent: Option<Tangent>,
     ) -> Result<Option<String>, StepFailure> {
         let m = self.model;
-        // each body's free thermal strain α ΔT at this pseudo-time
-        let thermal = m.thermal_strains(lambda);
+        // each body's free thermal strain α ΔT and material at this
+        // pseudo-time
+        let thermal = m.conditions(lambda);
         let be = &mut self.backend;
         let err = StepFailure::Linear;
         if solid_tangent.is_some() {
@@ -153,7 +154,7 @@ fn element_batch(
     committed: GaussRef<'_>,
     trial: GaussMut<'_>,
     u: &[f64],
-    thermal: &[f64],
+    thermal: &crate::model::Conditions,
     response: Response,
     tangent: Option<Tangent>,
     fe: &mut [f64],
@@ -225,7 +226,7 @@ fn element_chunk(
     m: &Model,
     (ids, points, committed, mut trial): Work<'_>,
     u: &[f64],
-    thermal: &[f64],
+    thermal: &crate::model::Conditions,
     response: Response,
     tangent: Option<Tangent>,
     fe: &mut [f64],
@@ -252,8 +253,8 @@ fn element_chunk(
         let mut tg = trial.range_mut(gs);
         tg.load(&mut t_buf[..np]);
         let done = m.element_geometry(e).forces(
-            &m.materials[el.body],
-            thermal[el.body],
+            &thermal.materials[el.body],
+            thermal.thermal[el.body],
             &ue[..ne],
             &c_buf[..np],
             &mut t_buf[..np],

@@ -103,7 +103,7 @@ fn internal_energy(engine: &Engine, state: &State) -> f64 {
     let m = engine.model;
     let mut w = 0.0;
     for (e, local) in m.held_points(engine.held_elements()) {
-        let mat = &m.materials[m.mesh.elements[e].body];
+        let mat = &m.material_at(m.mesh.elements[e].body, state.time);
         let geo = m.element_geometry(e);
         let dv = geo.dv();
         for (ip, g) in state.gauss.range(local).iter().enumerate() {
