@@ -8,7 +8,10 @@
 //!
 //! The estimate of a cycle is, for `quantity = "energy"`, the recovery
 //! estimate relative to the energy norm, η / ‖u_h‖_E; for a named answer Q
-//! (the settlement, a load, a pressure), the relative change between two
+//! (the settlement, a load, a pressure, a stress away from the singular
+//! points), read at the end of the history or as its value farthest from 0
+//! over every converged increment (`over`, [`history`]: the run's records,
+//! no solve more), the relative change between two
 //! successive meshes, |Q_k − Q_(k−1)| / |Q_k| — a difference estimate, which
 //! needs two cycles and which, on a mesh sequence converging at a rate
 //! r < 1 per cycle, overestimates the remaining error by 1/(1 − r) − 1 … it is
@@ -21,12 +24,13 @@
 
 use crate::app::options::RunOptions;
 use crate::error::{Error, Result};
-use crate::input::case::adapt::{AdaptSpec, Quantity};
+use crate::input::case::adapt::{AdaptSpec, Over, Quantity};
 use crate::input::case::Case;
 use crate::input::mesh::refine::Refined;
+use crate::model::outputs::{PER_BODY, PER_INTERFACE};
 use crate::model::Model;
 use crate::progress::Log;
-use crate::solve::RunResult;
+use crate::solve::{Increment, RunResult};
 use serde_json::json;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -58,6 +62,12 @@ pub struct Cycle {
     /// history (N, the model as meshed; pretension forces, internal to
     /// their bodies, apart): the same on every cycle ([`applied_force`]).
     pub(crate) applied_n: [f64; 2],
+    /// With `max_von_mises`: the largest von Mises stress of every Gauss
+    /// point, the excluded ones included, read `over` the history as the
+    /// quantity is ([`von_mises_everywhere`]), and how many Gauss points the
+    /// discs hold on this cycle's mesh; NaN and 0 with another quantity.
+    pub von_mises_all: f64,
+    pub excluded_points: usize,
 }
 
 /// How an adaptive run ended.
@@ -88,23 +98,93 @@ impl End {
     }
 }
 
-/// The value of the quantity of a finished run (NaN when the run has none:
-/// no increment, or no yield for `first_yield`).
-pub fn value(q: Quantity, model: &Model, r: &RunResult, eta_relative: f64) -> f64 {
-    let last = r.increments.last().map(|i| i.measures);
+/// The value of the quantity `q` of a finished run read `over` the history
+/// (NaN when the run has none: no increment, no yield for `first_yield`, no
+/// Gauss point left in for `max_von_mises`).
+pub fn value(q: Quantity, over: Over, model: &Model, r: &RunResult, eta_relative: f64) -> f64 {
     match q {
         Quantity::Energy => eta_relative,
-        Quantity::Settlement => last.map_or(f64::NAN, |m| m.center_displacement),
-        Quantity::TotalLoad => last.map_or(f64::NAN, |m| m.total_load_kn),
-        Quantity::MeanPressure => last.map_or(f64::NAN, |m| m.mean_pressure),
-        Quantity::PeakPressure => peak_pressure(model, &r.final_state),
         Quantity::FirstYield => r.first_yield.as_ref().map_or(f64::NAN, |f| f.total_load_kn),
-        Quantity::Torque => r
-            .increments
-            .last()
-            .and_then(|i| i.joints.first())
-            .map_or(f64::NAN, |j| j.torque),
+        _ => read(over, &history(q, model, &r.increments)),
     }
+}
+
+/// A quantity's values at every increment read `over` the history: the
+/// last, or the one farthest from 0.
+fn read(over: Over, values: &[f64]) -> f64 {
+    match over {
+        Over::End => values.last().copied().unwrap_or(f64::NAN),
+        Over::History => farthest_from_zero(values),
+    }
+}
+
+/// The quantity `q` at every converged increment, in order: what the run's
+/// outputs hold per increment (curve.csv's `center_displacement_mm`,
+/// `total_load_kn`, `mean_pressure_mpa`; joints.csv's first interface's
+/// torque; contact.csv's `max_pressure_mpa`, the largest over the
+/// interfaces; the increment's stress away from the singular points). NaN
+/// for the quantities that have no value per increment (`energy`,
+/// `first_yield`).
+pub fn history(q: Quantity, model: &Model, increments: &[Increment]) -> Vec<f64> {
+    let layout = &model.plan.layout;
+    increments
+        .iter()
+        .map(|inc| {
+            let m = &inc.measures;
+            match q {
+                Quantity::Settlement => m.center_displacement,
+                Quantity::TotalLoad => m.total_load_kn,
+                Quantity::MeanPressure => m.mean_pressure,
+                Quantity::PeakPressure => {
+                    largest(&inc.record, layout.interfaces.clone(), PER_INTERFACE)
+                }
+                Quantity::Torque => inc.joints.first().map_or(f64::NAN, |j| j.torque),
+                Quantity::MaxVonMises => inc.von_mises_away,
+                Quantity::Energy | Quantity::FirstYield => f64::NAN,
+            }
+        })
+        .collect()
+}
+
+/// The largest von Mises stress of every body, the singular points'
+/// Gauss points included (peaks.csv's `von_mises_mpa`), at every converged
+/// increment: what `max_von_mises` would chase without its exclusion.
+pub fn von_mises_everywhere(model: &Model, increments: &[Increment]) -> Vec<f64> {
+    let bodies = model.plan.layout.bodies.clone();
+    increments
+        .iter()
+        .map(|inc| largest(&inc.record, bodies.clone(), PER_BODY))
+        .collect()
+}
+
+/// The largest of the first value of every `per`-wide entry of `record`'s
+/// part `part` (each body's von Mises, each interface's peak pressure); NaN
+/// without an entry (or a record not of the model's width).
+fn largest(record: &[f64], part: std::ops::Range<usize>, per: usize) -> f64 {
+    record.get(part).map_or(f64::NAN, |v| {
+        v.chunks_exact(per)
+            .map(|c| c[0])
+            .fold(f64::NAN, |a, x| if a.is_nan() || x > a { x } else { a })
+    })
+}
+
+/// The value farthest from 0 of `values`, its sign kept: the largest over
+/// a history of a quantity that may be negative (a settlement is) or change
+/// sign (a torque under a reversed twist), the largest for one that is not
+/// (a pressure, a stress). NaN values are skipped; of two equally far the
+/// first is kept; NaN when none is left.
+pub fn farthest_from_zero(values: &[f64]) -> f64 {
+    values
+        .iter()
+        .copied()
+        .filter(|v| !v.is_nan())
+        .fold(f64::NAN, |a, v| {
+            if a.is_nan() || v.abs() > a.abs() {
+                v
+            } else {
+                a
+            }
+        })
 }
 
 /// The sum of the applied nodal forces of the mesh's nodes at pseudo-time
@@ -116,22 +196,6 @@ pub(crate) fn applied_force(model: &Model, t: f64) -> [f64; 2] {
     (0..model.mesh.nodes.len()).fold([0.0, 0.0], |s, n| {
         [s[0] + f[nd.dof(n, 0)], s[1] + f[nd.dof(n, 1)]]
     })
-}
-
-/// The largest contact pressure of a state over every interface's points.
-fn peak_pressure(model: &Model, state: &crate::solve::State) -> f64 {
-    let mut peak = f64::NAN;
-    for im in &model.interfaces {
-        let gap = im.gap_at(state.time);
-        for pt in &im.points {
-            let p = im
-                .law
-                .pressure(im.point_kinematics_at(pt, &state.u, gap).0)
-                .0;
-            peak = if peak.is_nan() { p } else { peak.max(p) };
-        }
-    }
-    peak
 }
 
 /// The estimate compared with the tolerance: η/‖u‖ for the energy norm,
@@ -152,14 +216,17 @@ pub(crate) fn cycle_estimate(
     }
 }
 
-/// `adapt.csv`: one row per cycle.
+/// `adapt.csv`: one row per cycle (with `max_von_mises`, two columns more:
+/// the stress everywhere and the excluded Gauss points).
 pub fn csv(spec: &AdaptSpec, cycles: &[Cycle]) -> String {
+    let stress = spec.quantity == Quantity::MaxVonMises;
     let mut s = format!(
-        "cycle,elements,nodes,dofs,hanging_nodes,eta,relative_eta,{},estimate,tolerance,increments,newton_iterations,wall_s,settlement_mm,first_yield_kn,applied_fx_n,applied_fy_n\n",
-        spec.quantity.name()
+        "cycle,elements,nodes,dofs,hanging_nodes,eta,relative_eta,{},estimate,tolerance,increments,newton_iterations,wall_s,settlement_mm,first_yield_kn,applied_fx_n,applied_fy_n{}\n",
+        spec.quantity.name(),
+        if stress { ",max_von_mises_all_mpa,excluded_points" } else { "" }
     );
     for c in cycles {
-        let _ = writeln!(
+        let _ = write!(
             s,
             "{},{},{},{},{},{:.9e},{:.9e},{:.9e},{:.9e},{:e},{},{},{:.3},{:.9e},{:.9e},{:.9e},{:.9e}",
             c.cycle,
@@ -180,43 +247,88 @@ pub fn csv(spec: &AdaptSpec, cycles: &[Cycle]) -> String {
             c.applied_n[0],
             c.applied_n[1]
         );
+        if stress {
+            let _ = write!(s, ",{:.9e},{}", c.von_mises_all, c.excluded_points);
+        }
+        s.push('\n');
     }
     s.replace("NaN", "")
 }
 
 /// summary.json's `adapt` entry (the wall times and Newton iterations are in
 /// adapt.csv only: the gold values compare the entry whole, and a solver
-/// speed-up changes those without changing an answer).
-pub fn summary(spec: &AdaptSpec, cycles: &[Cycle], end: Option<End>) -> serde_json::Value {
+/// speed-up changes those without changing an answer). With
+/// `max_von_mises`, `excluded` lists the discs left out (`model`'s, the
+/// same on every cycle) and each cycle its stress everywhere and excluded
+/// points.
+pub fn summary(
+    spec: &AdaptSpec,
+    model: &Model,
+    cycles: &[Cycle],
+    end: Option<End>,
+) -> serde_json::Value {
     let num = |x: f64| if x.is_finite() { json!(x) } else { json!(null) };
-    json!({
+    let mut s = json!({
         "tolerance": spec.tolerance,
         "quantity": spec.quantity.name(),
+        "over": spec.over.name(),
         "fraction": spec.fraction,
         "max_cycles": spec.max_cycles,
         "max_dofs": spec.max_dofs,
         "end": end.map(End::name),
         "reached": end == Some(End::Reached),
-        "cycles": cycles.iter().map(|c| json!({
-            "cycle": c.cycle,
-            "elements": c.elements,
-            "nodes": c.nodes,
-            "dofs": c.dofs,
-            "hanging_nodes": c.hanging_nodes,
-            "eta": num(c.eta),
-            "relative_eta": num(c.relative_eta),
-            "value": num(c.value),
-            "estimate": num(c.estimate),
-            "increments": c.increments,
-            "settlement_mm": num(c.settlement_mm),
-            "first_yield_kn": num(c.first_yield_kn),
-        })).collect::<Vec<_>>(),
-    })
+        "cycles": cycles.iter().map(|c| {
+            let mut o = json!({
+                "cycle": c.cycle,
+                "elements": c.elements,
+                "nodes": c.nodes,
+                "dofs": c.dofs,
+                "hanging_nodes": c.hanging_nodes,
+                "eta": num(c.eta),
+                "relative_eta": num(c.relative_eta),
+                "value": num(c.value),
+                "estimate": num(c.estimate),
+                "increments": c.increments,
+                "settlement_mm": num(c.settlement_mm),
+                "first_yield_kn": num(c.first_yield_kn),
+            });
+            if spec.quantity == Quantity::MaxVonMises {
+                o["max_von_mises_all_mpa"] = num(c.von_mises_all);
+                o["excluded_points"] = json!(c.excluded_points);
+            }
+            o
+        }).collect::<Vec<_>>(),
+    });
+    if let Some(x) = model.excluded.as_ref() {
+        s["excluded"] = discs_json(model, &x.discs);
+    }
+    s
+}
+
+/// The discs `max_von_mises` leaves out, as summary.json lists them.
+fn discs_json(model: &Model, discs: &[crate::model::excluded::Disc]) -> serde_json::Value {
+    json!(discs
+        .iter()
+        .map(|d| json!({
+            "corner": d.corner,
+            "x_mm": d.x[0],
+            "y_mm": d.x[1],
+            "radius_mm": d.radius,
+            "bodies": d.bodies.iter().map(|&b| &model.mesh.bodies[b]).collect::<Vec<_>>(),
+        }))
+        .collect::<Vec<_>>())
 }
 
 /// Adds `adapt.csv` and summary.json's `adapt` entry to a finished cycle's
-/// output folder (each file written beside and renamed into place).
-pub fn record(dir: &Path, spec: &AdaptSpec, cycles: &[Cycle], end: Option<End>) -> Result<()> {
+/// output folder (each file written beside and renamed into place); `model`
+/// is the cycle's.
+pub fn record(
+    dir: &Path,
+    spec: &AdaptSpec,
+    model: &Model,
+    cycles: &[Cycle],
+    end: Option<End>,
+) -> Result<()> {
     let put = |name: &str, text: String| -> Result<()> {
         let tmp = dir.join(format!(".{name}.partial"));
         std::fs::write(&tmp, text).map_err(|e| Error::io(&tmp, e))?;
@@ -228,7 +340,7 @@ pub fn record(dir: &Path, spec: &AdaptSpec, cycles: &[Cycle], end: Option<End>) 
     let text = std::fs::read_to_string(&path).map_err(|e| Error::io(&path, e))?;
     let mut s: serde_json::Value = serde_json::from_str(&text)
         .map_err(|e| Error::io(&path, std::io::Error::other(e.to_string())))?;
-    s["adapt"] = summary(spec, cycles, end);
+    s["adapt"] = summary(spec, model, cycles, end);
     put(
         "summary.json",
         serde_json::to_string_pretty(&s).unwrap_or_default() + "\n",
@@ -265,6 +377,8 @@ pub fn run(
         root,
     };
     let mut cycles: Vec<Cycle> = Vec::new();
+    // the start mesh's discs that max_von_mises leaves out, on every cycle
+    let mut discs = None;
     loop {
         let started = Instant::now();
         // the first cycle on the case's own mesh: its checks as a plain run's
@@ -272,8 +386,12 @@ pub fn run(
         let given = (!cycles.is_empty()).then(|| crate::model::Adapted {
             mesh: mesh.mesh.clone(),
             start_nodes,
+            excluded: discs.clone(),
         });
         let model = Model::build_on(case.clone(), given)?;
+        if cycles.is_empty() {
+            discs = model.excluded.as_ref().map(|x| x.discs.clone());
+        }
         let (dir, result) = solve(&model, started)?;
         if let Some(stop) = result.stopped {
             // the cycle wrote nothing (driver::run_cycle): the folder holds
@@ -284,34 +402,18 @@ pub fn run(
             return Ok((dir, model, result));
         }
         let numbers = run.shared_numbers(&model, &result, share)?;
-        let (eta, norm, q) = (numbers[0], numbers[1], numbers[2]);
-        let relative_eta = if norm > 0.0 { eta / norm } else { 0.0 };
-        let estimate = cycle_estimate(
-            spec.quantity,
-            relative_eta,
-            q,
-            cycles.last().map(|c| c.value),
+        let c = run.cycle(
+            &model,
+            &result,
+            &numbers,
+            &cycles,
+            mesh.hanging.len(),
+            started,
         );
-        cycles.push(Cycle {
-            cycle: cycles.len() + 1,
-            elements: model.mesh.elements.len(),
-            nodes: model.mesh.nodes.len(),
-            dofs: model.mesh.num_dofs(),
-            hanging_nodes: mesh.hanging.len(),
-            eta,
-            relative_eta,
-            value: q,
-            estimate,
-            iterations: result.stats.run_iterations(),
-            increments: result.increments.len(),
-            wall_s: started.elapsed().as_secs_f64(),
-            settlement_mm: value(Quantity::Settlement, &model, &result, 0.0),
-            first_yield_kn: value(Quantity::FirstYield, &model, &result, 0.0),
-            applied_n: applied_force(&model, result.final_state.time),
-        });
-        let end = run.next(&mut mesh, &cycles, &numbers[3..], per_node, &dir)?;
+        cycles.push(c);
+        let end = run.next(&model, &mut mesh, &cycles, &numbers[3..], per_node, &dir)?;
         if root {
-            run.report(&dir, &cycles, end)?;
+            run.report(&dir, &model, &cycles, end)?;
         }
         if end.is_some() {
             return Ok((dir, model, result));
@@ -331,6 +433,54 @@ struct Adaptive<'a> {
 }
 
 impl Adaptive<'_> {
+    /// The record of a cycle solved on `model` after `cycles`: its mesh,
+    /// `numbers` (shared: [η, ‖u‖, Q, …]), the estimate from the previous
+    /// cycle's value, and the answers of every run.
+    fn cycle(
+        &self,
+        model: &Model,
+        result: &RunResult,
+        numbers: &[f64],
+        cycles: &[Cycle],
+        hanging_nodes: usize,
+        started: Instant,
+    ) -> Cycle {
+        let spec = self.spec;
+        let (eta, norm, q) = (numbers[0], numbers[1], numbers[2]);
+        let relative_eta = if norm > 0.0 { eta / norm } else { 0.0 };
+        let estimate = cycle_estimate(
+            spec.quantity,
+            relative_eta,
+            q,
+            cycles.last().map(|c| c.value),
+        );
+        let stress = spec.quantity == Quantity::MaxVonMises;
+        let at_end = |q| value(q, Over::End, model, result, 0.0);
+        Cycle {
+            cycle: cycles.len() + 1,
+            elements: model.mesh.elements.len(),
+            nodes: model.mesh.nodes.len(),
+            dofs: model.mesh.num_dofs(),
+            hanging_nodes,
+            eta,
+            relative_eta,
+            value: q,
+            estimate,
+            iterations: result.stats.run_iterations(),
+            increments: result.increments.len(),
+            wall_s: started.elapsed().as_secs_f64(),
+            settlement_mm: at_end(Quantity::Settlement),
+            first_yield_kn: at_end(Quantity::FirstYield),
+            applied_n: applied_force(model, result.final_state.time),
+            von_mises_all: if stress {
+                read(spec.over, &von_mises_everywhere(model, &result.increments))
+            } else {
+                f64::NAN
+            },
+            excluded_points: model.excluded.as_ref().map_or(0, |x| x.count()),
+        }
+    }
+
     /// Rank 0's estimate and answer, on every rank: [η, ‖u‖, Q, η_e²…]
     /// (the last, per element); refuses a run that made no estimate.
     fn shared_numbers(
@@ -344,7 +494,8 @@ impl Adaptive<'_> {
         if let Some(est) = result.estimate.as_ref().filter(|_| self.root) {
             numbers[0] = est.total;
             numbers[1] = est.norm;
-            numbers[2] = value(self.spec.quantity, model, result, est.relative());
+            let spec = self.spec;
+            numbers[2] = value(spec.quantity, spec.over, model, result, est.relative());
             numbers[3..].copy_from_slice(&est.element);
         } else if self.root {
             return Err(Error::input(
@@ -362,6 +513,7 @@ impl Adaptive<'_> {
     /// that cannot be refined is an error, `dir`'s record written first.
     fn next(
         &self,
+        model: &Model,
         mesh: &mut Refined,
         cycles: &[Cycle],
         eta_sq: &[f64],
@@ -385,7 +537,7 @@ impl Adaptive<'_> {
                 Err(e) => {
                     // the folder holds this cycle's run: its record too
                     if self.root {
-                        record(dir, spec, cycles, None)?;
+                        record(dir, spec, model, cycles, None)?;
                     }
                     return Err(Error::Mesh {
                         place: format!("{}: [adapt]", self.place),
@@ -399,10 +551,10 @@ impl Adaptive<'_> {
     /// The writing process's record of the last cycle: `adapt.csv` and
     /// summary.json in `dir`, the `adapt` event and, when the run ends short
     /// of the tolerance, a warning.
-    fn report(&self, dir: &Path, cycles: &[Cycle], end: Option<End>) -> Result<()> {
+    fn report(&self, dir: &Path, model: &Model, cycles: &[Cycle], end: Option<End>) -> Result<()> {
         let (spec, log) = (self.spec, self.log);
         let c = cycles.last().expect("pushed above");
-        record(dir, spec, cycles, end)?;
+        record(dir, spec, model, cycles, end)?;
         log.progress(
             "adapt",
             json!({
@@ -412,6 +564,7 @@ impl Adaptive<'_> {
                 "hanging_nodes": c.hanging_nodes,
                 "relative_eta": c.relative_eta,
                 "quantity": spec.quantity.name(),
+                "over": spec.over.name(),
                 "value": if c.value.is_finite() { json!(c.value) } else { json!(null) },
                 "estimate": if c.estimate.is_finite() { json!(c.estimate) } else { json!(null) },
                 "tolerance": spec.tolerance,
@@ -425,7 +578,7 @@ impl Adaptive<'_> {
                     c.elements,
                     c.hanging_nodes,
                     c.relative_eta,
-                    spec.quantity.name(),
+                    label(spec),
                     c.value,
                     if c.estimate.is_finite() { format!("{:.3e}", c.estimate) } else { "not yet known".into() },
                     spec.tolerance,
@@ -444,6 +597,15 @@ impl Adaptive<'_> {
             );
         }
         Ok(())
+    }
+}
+
+/// The quantity as the progress line names it: `peak_pressure`, or
+/// `peak_pressure (largest over the history)`.
+fn label(spec: &AdaptSpec) -> String {
+    match spec.over {
+        Over::End => spec.quantity.name().to_string(),
+        Over::History => format!("{} (largest over the history)", spec.quantity.name()),
     }
 }
 
@@ -628,7 +790,149 @@ uy = 0.0
         let given = crate::model::Adapted {
             start_nodes: mesh.mesh.nodes.len(),
             mesh: next.mesh,
+            excluded: None,
         };
         Model::build_on(case, Some(given)).unwrap();
+    }
+
+    /// Three blocks stacked, two interfaces (`a` above, `b` below).
+    const STACK: &str = r#"
+[model]
+plane = "strain"
+[[mesh.block]]
+body = "upper"
+x = [0.0, 2.0]
+nx = [1]
+y = [1.0, 2.0]
+ny = [1]
+[[mesh.block]]
+body = "middle"
+x = [0.0, 2.0]
+nx = [1]
+y = [0.0, 1.0]
+ny = [1]
+[[mesh.block]]
+body = "lower"
+x = [0.0, 2.0]
+nx = [1]
+y = [-1.0, 0.0]
+ny = [1]
+[[mesh.interface]]
+name = "a"
+upper = "upper"
+lower = "middle"
+[[mesh.interface]]
+name = "b"
+upper = "middle"
+lower = "lower"
+[materials.upper]
+young = 200000.0
+poisson = 0.3
+[materials.middle]
+young = 200000.0
+poisson = 0.3
+[materials.lower]
+young = 200000.0
+poisson = 0.3
+[interface.a]
+law = "power"
+c_n = 0.001
+m = 0.5
+[interface.b]
+law = "power"
+c_n = 0.001
+m = 0.5
+[[boundary]]
+set = "upper.top"
+ux = 0.0
+uy = -0.001
+[[boundary]]
+set = "middle.left"
+ux = 0.0
+[[boundary]]
+set = "lower.bottom"
+ux = 0.0
+uy = 0.0
+"#;
+
+    #[test]
+    fn the_farthest_from_zero_keeps_its_sign_skips_nan_and_the_first_of_a_tie() {
+        assert_eq!(farthest_from_zero(&[1.0, -3.0, 2.0]), -3.0);
+        assert_eq!(farthest_from_zero(&[0.5, 4.0, -2.0]), 4.0);
+        assert_eq!(farthest_from_zero(&[f64::NAN, 2.0, -2.0, f64::NAN]), 2.0);
+        assert_eq!(farthest_from_zero(&[-2.0, 2.0]), -2.0);
+        assert!(farthest_from_zero(&[]).is_nan());
+        assert!(farthest_from_zero(&[f64::NAN]).is_nan());
+        assert_eq!(read(Over::End, &[1.0, 5.0, 2.0]), 2.0);
+        assert_eq!(read(Over::History, &[1.0, 5.0, 2.0]), 5.0);
+        assert!(read(Over::End, &[]).is_nan());
+    }
+
+    /// Every quantity's value per increment is read from the increment's
+    /// rows (curve's measures, the first joint, the record's peaks), and
+    /// `over` takes the last or the one farthest from 0: four increments
+    /// whose largest values lie inside the history, not at its end.
+    #[test]
+    fn each_quantity_is_folded_over_the_increments_records() {
+        let model = Model::parse(STACK, "stack").unwrap_or_else(|e| panic!("{e}"));
+        let layout = model.plan.layout.clone();
+        assert_eq!(layout.interfaces.len(), 2 * PER_INTERFACE);
+        assert_eq!(layout.bodies.len(), 3 * PER_BODY);
+        let (pa, pb) = ([1.0, 5.0, 2.0, 3.0], [2.0, 1.0, 7.0, 0.5]);
+        let vm = [
+            [10.0, 20.0, 5.0],
+            [12.0, 8.0, 30.0],
+            [9.0, 9.0, 9.0],
+            [1.0, 2.0, 3.0],
+        ];
+        let settle = [-0.1, -0.4, 0.3, -0.2];
+        let load = [1.0, 4.0, 3.0, 2.5];
+        let torque = [1.0, -5.0, 4.0, 2.0];
+        let away = [f64::NAN, 3.0, 2.0, 1.0];
+        let increments: Vec<Increment> = (0..4)
+            .map(|k| {
+                let mut record = vec![f64::NAN; model.plan.width()];
+                record[layout.interfaces.start] = pa[k];
+                record[layout.interfaces.start + PER_INTERFACE] = pb[k];
+                for (b, v) in vm[k].iter().enumerate() {
+                    record[layout.bodies.start + b * PER_BODY] = *v;
+                }
+                let joint = crate::measure::joint::JointMeasures {
+                    torque: torque[k],
+                    ..Default::default()
+                };
+                Increment {
+                    increment: k + 1,
+                    load_factor: (k + 1) as f64 / 4.0,
+                    iterations: 1,
+                    cutbacks: 0,
+                    measures: crate::measure::Measures {
+                        center_displacement: settle[k],
+                        total_load_kn: load[k],
+                        mean_pressure: 10.0 * load[k],
+                        ..Default::default()
+                    },
+                    joints: vec![joint, Default::default()],
+                    sections: Vec::new(),
+                    record,
+                    von_mises_away: away[k],
+                }
+            })
+            .collect();
+        let both = |q: Quantity| {
+            let h = history(q, &model, &increments);
+            (read(Over::End, &h), read(Over::History, &h))
+        };
+        assert_eq!(both(Quantity::PeakPressure), (3.0, 7.0));
+        assert_eq!(both(Quantity::Settlement), (-0.2, -0.4));
+        assert_eq!(both(Quantity::TotalLoad), (2.5, 4.0));
+        assert_eq!(both(Quantity::MeanPressure), (25.0, 40.0));
+        assert_eq!(both(Quantity::Torque), (2.0, -5.0));
+        assert_eq!(both(Quantity::MaxVonMises), (1.0, 3.0));
+        let all = von_mises_everywhere(&model, &increments);
+        assert_eq!(all, vec![20.0, 30.0, 9.0, 3.0]);
+        for q in [Quantity::Energy, Quantity::FirstYield] {
+            assert!(history(q, &model, &increments).iter().all(|v| v.is_nan()));
+        }
     }
 }

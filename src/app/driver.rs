@@ -703,7 +703,7 @@ pub fn check(case_path: &Path, opts: &RunOptions) -> Result<String> {
     s += &outputs_text(&model);
     s += &steps_text(&model);
     if let Some(a) = &adapt {
-        s += &adapt_text(a);
+        s += &adapt_text(a, &model);
     }
     Ok(s)
 }
@@ -918,19 +918,51 @@ fn outputs_text(model: &Model) -> String {
     s
 }
 
-/// `check`'s line of the adaptive run.
-fn adapt_text(a: &crate::input::case::adapt::AdaptSpec) -> String {
-    format!(
-        "  adaptive: the whole history solved again on each refined mesh until the estimate of {} is at most {:e} (at most {} solves and {} dofs, refining the elements that hold {} of η²); the mesh above is the first\n",
-        match a.quantity {
-            crate::input::case::adapt::Quantity::Energy => "η/‖u_h‖_E".to_string(),
-            q => format!("the change of {} between two meshes", q.name()),
-        },
+/// `check`'s line of the adaptive run (and, with `max_von_mises`, the
+/// line of the discs it leaves out).
+fn adapt_text(a: &crate::input::case::adapt::AdaptSpec, model: &Model) -> String {
+    use crate::input::case::adapt::{Over, Quantity};
+    let what = match (a.quantity, a.over) {
+        (Quantity::Energy, _) => "η/‖u_h‖_E".to_string(),
+        (q, Over::End) => format!("the change of {} between two meshes", q.name()),
+        (q, Over::History) => format!(
+            "the change of {} (its largest over the history) between two meshes",
+            q.name()
+        ),
+    };
+    let mut s = format!(
+        "  adaptive: the whole history solved again on each refined mesh until the estimate of {what} is at most {:e} (at most {} solves and {} dofs, refining the elements that hold {} of η²); the mesh above is the first\n",
         a.tolerance,
         a.max_cycles,
         a.max_dofs,
         a.fraction
-    )
+    );
+    if let Some(x) = &model.excluded {
+        let discs: Vec<String> = x
+            .discs
+            .iter()
+            .map(|d| {
+                format!(
+                    "{} at ({}, {}) within {:.4} mm",
+                    d.corner,
+                    crate::numbers::exact(d.x[0]),
+                    crate::numbers::exact(d.x[1]),
+                    d.radius
+                )
+            })
+            .collect();
+        s += &if discs.is_empty() {
+            "  max_von_mises: no singular point, no Gauss point left out\n".to_string()
+        } else {
+            format!(
+                "  max_von_mises leaves out {} of {} Gauss points, those of: {}\n",
+                x.count(),
+                x.points.len(),
+                discs.join("; ")
+            )
+        };
+    }
+    s
 }
 
 /// The load steps as `check` prints them: the first increment's target as

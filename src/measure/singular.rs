@@ -13,9 +13,12 @@
 //! (squared energy norm, the interface's jump term included) sits at the
 //! corner. None without an estimate.
 
+use crate::linalg::backend::Comm;
 use crate::measure::estimate::Estimate;
+use crate::model::excluded::Excluded;
 use crate::model::singular::{diameter, SingularPoint};
 use crate::model::Model;
+use crate::physics::material::{GaussStates, VonMises};
 
 /// A place the run reports: what (`first_yield`, `max_von_mises`,
 /// `max_peeq`), in which body, where, and the element holding it.
@@ -92,9 +95,37 @@ pub fn flag(model: &Model, places: &[Place], estimate: Option<&Estimate>) -> Vec
         .collect()
 }
 
+/// The largest von Mises stress over the Gauss points of the elements
+/// `held` (their states `gauss`, in that order) that `excluded` leaves in,
+/// over every rank (collective under MPI: one max reduction); NaN when it
+/// leaves none in. `[adapt] quantity = "max_von_mises"` at one increment.
+pub fn von_mises_away(
+    model: &Model,
+    comm: &dyn Comm,
+    held: &[u32],
+    gauss: &GaussStates,
+    excluded: &Excluded,
+) -> f64 {
+    let mut top = [f64::NEG_INFINITY];
+    for (e, local) in model.held_points(held) {
+        let first = model.points(e).start;
+        for (ip, g) in gauss.range(local).iter().enumerate() {
+            if !excluded.points[first + ip] {
+                top[0] = top[0].max(VonMises::equivalent_stress(&g.stress));
+            }
+        }
+    }
+    comm.max(&mut top);
+    if top[0] == f64::NEG_INFINITY {
+        f64::NAN
+    } else {
+        top[0]
+    }
+}
+
 #[cfg(test)]
 mod tests {
-    use super::{flag, point_at, share, Place};
+    use super::{flag, point_at, share, von_mises_away, Place};
     use crate::measure::estimate::Estimate;
     use crate::model::Model;
 
@@ -102,9 +133,18 @@ mod tests {
     /// its whole bottom and left side, and
     /// a square beside it (body "block"), apart.
     fn l_model() -> Model {
-        let text = r#"
+        l_model_with("")
+    }
+
+    /// [`l_model`] with `mesh` (keys of `[mesh]`) before its blocks.
+    fn l_model_with(mesh: &str) -> Model {
+        let text = format!(
+            r#"
 [model]
 plane = "strain"
+
+[mesh]
+{mesh}
 
 [[mesh.block]]
 name = "foot"
@@ -164,8 +204,9 @@ pressure = 10.0
 [[load]]
 edges = "block.top"
 pressure = 10.0
-"#;
-        Model::parse(text, "l.toml").unwrap_or_else(|e| panic!("{e}"))
+"#
+        );
+        Model::parse(&text, "l.toml").unwrap_or_else(|e| panic!("{e}"))
     }
 
     #[test]
@@ -225,5 +266,108 @@ pressure = 10.0
         assert_eq!(flags.len(), 1);
         assert_eq!((flags[0].point, flags[0].share), (0, Some(s)));
         assert_eq!(flags[0].place, p);
+    }
+
+    /// One process: every reduction is the identity.
+    struct One;
+    impl crate::linalg::backend::Comm for One {}
+
+    /// The L with its unit squares split in four (elements of 0.5 mm): the
+    /// re-entrant corner's disc (radius the diagonal of an element at it,
+    /// √0.5) holds the Gauss points of the L within it, those of the four
+    /// elements at the corner and some of their neighbours', exactly the
+    /// points [`point_at`] flags at the corner (on a uniform mesh the
+    /// element's own diameter is the corner's size), and none of the block.
+    #[test]
+    fn the_excluded_points_are_those_flagged_at_the_corner() {
+        use crate::model::excluded::{Disc, Excluded};
+        let model = l_model_with("refine = 2");
+        assert_eq!(model.singular.len(), 1, "{:?}", model.singular);
+        let corner = &model.singular[0];
+        assert!(
+            (corner.size - 0.5f64.hypot(0.5)).abs() < 1e-12,
+            "{}",
+            corner.size
+        );
+        let x = Excluded::on(&model, vec![Disc::about(corner)]);
+        assert_eq!(x.points.len(), model.n_points());
+        let l = model.mesh.bodies.iter().position(|b| b == "l").unwrap();
+        let (mut at_corner, mut beyond) = (0, 0);
+        for e in 0..model.mesh.elements.len() {
+            let body = model.mesh.elements[e].body;
+            for (ip, i) in model.points(e).enumerate() {
+                let place = Place {
+                    what: "max_von_mises",
+                    body,
+                    x: model.point_x(e, ip),
+                    element: Some(e),
+                };
+                assert_eq!(
+                    x.points[i],
+                    point_at(&model, &place) == Some(0),
+                    "{place:?}"
+                );
+                if corner.elements.contains(&e) {
+                    // every Gauss point of an element at the corner
+                    assert!(x.points[i], "{place:?}");
+                    at_corner += 1;
+                } else if x.points[i] {
+                    assert_eq!(body, l);
+                    beyond += 1;
+                }
+            }
+        }
+        assert_eq!(corner.elements.len(), 3);
+        assert_eq!(x.count(), at_corner + beyond);
+        // the disc reaches past the corner's elements into their neighbours
+        assert!(beyond > 0 && at_corner > 0, "{at_corner} {beyond}");
+    }
+
+    /// The largest von Mises stress left in: each Gauss point given its own
+    /// uniaxial stress (point i: i + 1 MPa), the largest of the points the
+    /// discs leave in; the same from two halves of the elements (two ranks'
+    /// shares); NaN when everything is left out; every point without discs.
+    #[test]
+    fn the_stress_away_is_the_largest_of_the_points_left_in() {
+        use crate::model::excluded::{Disc, Excluded};
+        use crate::physics::material::{GaussStates, PointState, VonMises};
+        let model = l_model_with("refine = 2");
+        let n = model.n_points();
+        let mut gauss = GaussStates::new(n, false);
+        for i in 0..n {
+            let mut s = PointState::default();
+            s.stress[1] = (i + 1) as f64;
+            gauss.set(i, &s);
+        }
+        let all: Vec<u32> = (0..model.mesh.elements.len() as u32).collect();
+        let x = Excluded::on(&model, vec![Disc::about(&model.singular[0])]);
+        let vm = |i: usize| VonMises::equivalent_stress(&gauss.get(i).stress);
+        assert!((vm(n - 1) - n as f64).abs() < 1e-12 * n as f64);
+        let want = (0..n)
+            .filter(|&i| !x.points[i])
+            .map(vm)
+            .fold(f64::NAN, f64::max);
+        assert!(x.count() > 0 && want.is_finite());
+        assert_eq!(von_mises_away(&model, &One, &all, &gauss, &x), want);
+        // two ranks: each its elements' states, the larger of the two
+        let (a, b) = all.split_at(all.len() / 2);
+        let part = |held: &[u32]| {
+            let mut g = GaussStates::new(0, false);
+            for &e in held {
+                for i in model.points(e as usize) {
+                    g.push(&gauss.get(i));
+                }
+            }
+            von_mises_away(&model, &One, held, &g, &x)
+        };
+        assert_eq!(part(a).max(part(b)), want);
+        let none = Excluded::on(&model, Vec::new());
+        assert_eq!(none.count(), 0);
+        assert_eq!(von_mises_away(&model, &One, &all, &gauss, &none), vm(n - 1));
+        let every = Excluded {
+            discs: Vec::new(),
+            points: vec![true; n],
+        };
+        assert!(von_mises_away(&model, &One, &all, &gauss, &every).is_nan());
     }
 }

@@ -16,7 +16,10 @@
 //!   force is no resultant: the hoop stress balances it);
 //! - `torque` through a first interface without a tangential law (it
 //!   carries none), or where one of its bodies is held about the axis by
-//!   that interface alone (it carries the torque applied to that body).
+//!   that interface alone (it carries the torque applied to that body);
+//! - `max_von_mises` where the discs about the start mesh's singular
+//!   points ([`crate::model::excluded`]) hold every Gauss point: nothing is
+//!   left to measure, on this mesh or any refined one.
 
 use crate::error::{Error, Result};
 use crate::input::case::adapt::{AdaptSpec, Quantity};
@@ -83,6 +86,20 @@ pub(super) fn check(m: &super::Model, spec: &AdaptSpec, place: &str) -> Result<(
                 None => Ok(()),
             }
         }
+        Quantity::MaxVonMises => match &m.excluded {
+            Some(x) if x.count() == x.points.len() => Err(Error::input(
+                at,
+                format!(
+                    "\"max_von_mises\" leaves out the Gauss points within one element size of the mesh's singular points ({}), and these hold every Gauss point of the start mesh: nothing is left to measure on any refined mesh; make the case's mesh finer about them ([mesh] refine, more block divisions), or adapt on \"energy\"",
+                    x.discs
+                        .iter()
+                        .map(|d| format!("{} at ({}, {})", d.corner, d.x[0], d.x[1]))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            )),
+            _ => Ok(()),
+        },
         _ => Ok(()),
     }
 }

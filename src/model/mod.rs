@@ -20,6 +20,7 @@ pub mod axis;
 pub mod consistency;
 use consistency as whole;
 pub mod constraint;
+pub mod excluded;
 mod hanging;
 pub mod history;
 pub mod interface;
@@ -60,6 +61,10 @@ pub(crate) enum Scale {
 pub struct Adapted {
     pub mesh: Mesh,
     pub start_nodes: usize,
+    /// The start mesh's discs about its singular points, which
+    /// `[adapt] quantity = "max_von_mises"` leaves out on every cycle
+    /// ([`excluded`]; None: the quantity is another).
+    pub excluded: Option<Vec<excluded::Disc>>,
 }
 
 pub struct Model {
@@ -153,6 +158,9 @@ pub struct Model {
     /// sides at a body's corner, the ends of supports (2D;
     /// [`crate::model::singular`]).
     pub singular: Vec<crate::model::singular::SingularPoint>,
+    /// The Gauss points `[adapt] quantity = "max_von_mises"` leaves out
+    /// ([`excluded`]); None: the run does not measure that quantity.
+    pub excluded: Option<excluded::Excluded>,
     /// The block of each section's reference node (after the interface
     /// points): where a held (locked) shortening gets its diagonal.
     section_block_base: usize,
@@ -243,6 +251,7 @@ impl Model {
     fn assemble(case: Case, given: Option<Adapted>) -> Result<Model> {
         let place = case.source.display().to_string();
         let checked = check_case(&case)?;
+        let discs = given.as_ref().and_then(|g| g.excluded.clone());
         let (mut mesh, start_nodes) = start_mesh(&case, given, &place)?;
         let hanging_nodes = crate::input::mesh::refine::hanging_nodes(&mesh);
         let mut sections = crate::model::pretension::cut(&case, &mut mesh, &place)?;
@@ -290,7 +299,7 @@ impl Model {
             crate::model::outputs::Plan::build(&case, &mesh, &interfaces, &prescribed, &place)?;
         let force_floor = force_floor(&mesh, &materials, section);
         let singular = singular::of_case(&case, &mesh, &origin);
-        let model = Model {
+        let mut model = Model {
             name: case.display_name(),
             plane,
             thickness,
@@ -318,6 +327,7 @@ impl Model {
             expansions,
             sections,
             singular,
+            excluded: None,
             section_block_base,
             probe_node,
             surface_y,
@@ -333,6 +343,7 @@ impl Model {
             case_key: case.key(),
         };
         if let Some(a) = &case.adapt {
+            model.excluded = excluded_points(&model, a, discs);
             measurable::check(&model, a, &place)?;
         }
         Ok(model)
@@ -973,6 +984,22 @@ fn interface_models(
         }
     }
     Ok(interfaces)
+}
+
+/// The Gauss points an adaptive run on `max_von_mises` leaves out: in the
+/// discs an adapted mesh carries from the start mesh (`discs`), or, on the
+/// start mesh, about its own singular points ([`excluded`]); None for
+/// another quantity.
+fn excluded_points(
+    model: &Model,
+    spec: &crate::input::case::adapt::AdaptSpec,
+    discs: Option<Vec<excluded::Disc>>,
+) -> Option<excluded::Excluded> {
+    (spec.quantity == crate::input::case::adapt::Quantity::MaxVonMises).then(|| {
+        let discs =
+            discs.unwrap_or_else(|| model.singular.iter().map(excluded::Disc::about).collect());
+        excluded::Excluded::on(model, discs)
+    })
 }
 
 /// The mesh a model is built on, and the number of nodes of the run's start

@@ -46,6 +46,12 @@ pub struct Increment {
     /// The designer's outputs of the state ([`crate::model::outputs`]), the
     /// model's record width.
     pub record: Vec<f64>,
+    /// The largest von Mises stress away from the start mesh's singular
+    /// points (MPa, [`crate::model::excluded`]), where the model measures it
+    /// (`[adapt] quantity = "max_von_mises"`); NaN otherwise, and in the
+    /// increments a restart file gives back (an adaptive run is never
+    /// resumed).
+    pub von_mises_away: f64,
 }
 
 /// Callbacks of a run (progress, output).
@@ -516,6 +522,7 @@ fn increment_row(engine: &Engine, ck: &Checkpoint, iterations: usize) -> Increme
             })
             .collect(),
         record: engine.record(&ck.committed),
+        von_mises_away: engine.von_mises_away(&ck.committed),
     }
 }
 

@@ -9,6 +9,7 @@
 mod common;
 
 mod adapt;
+mod adapt_over;
 mod axisymmetric;
 mod blocks;
 mod calibration;

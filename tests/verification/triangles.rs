@@ -86,7 +86,15 @@ fn lames_cylinder_on_triangles_converges_at_the_order_of_quads() {
         let case = Case::parse(&text, "tube.toml").unwrap();
         let mesh = in_triangles(&quads.mesh);
         let start_nodes = mesh.nodes.len();
-        let tris = Model::build_on(case, Some(Adapted { mesh, start_nodes })).unwrap();
+        let tris = Model::build_on(
+            case,
+            Some(Adapted {
+                mesh,
+                start_nodes,
+                excluded: None,
+            }),
+        )
+        .unwrap();
         assert!(tris.mesh.elements.iter().all(|el| el.family == Family::T6));
         errors[0].push(stress_error(&quads));
         errors[1].push(stress_error(&tris));

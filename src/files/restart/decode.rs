@@ -294,6 +294,7 @@ pub(super) fn restore_curve(s: &Sections, increments: usize) -> Decoded<Vec<Incr
                 joints: Vec::new(),
                 sections: Vec::new(),
                 record: Vec::new(),
+                von_mises_away: f64::NAN,
             })
         })
         .collect()

@@ -53,6 +53,7 @@ fn checkpoint(model: &Model, n: usize) -> (Checkpoint, Vec<(f64, String)>) {
             joints: Vec::new(),
             sections: Vec::new(),
             record: (0..model.plan.width()).map(|i| (k * i) as f64).collect(),
+            von_mises_away: f64::NAN,
         });
         honest(model, &mut ck);
         pvd.push((t, vtu_name(k)));

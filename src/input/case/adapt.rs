@@ -33,6 +33,10 @@ pub struct AdaptSpec {
     /// What the tolerance applies to (default `energy`).
     #[serde(default)]
     pub quantity: Quantity,
+    /// When the named quantity is read: at the end of the history (default)
+    /// or its largest over every converged increment.
+    #[serde(default)]
+    pub over: Over,
     /// The most solves (the start mesh's included), 1..=`MAX_CYCLES`.
     #[serde(default = "default_cycles")]
     pub max_cycles: usize,
@@ -60,6 +64,7 @@ impl AdaptSpec {
         AdaptSpec {
             tolerance,
             quantity: Quantity::Energy,
+            over: Over::End,
             max_cycles: DEFAULT_CYCLES,
             max_dofs: DEFAULT_MAX_DOFS,
             fraction: DEFAULT_FRACTION,
@@ -85,10 +90,14 @@ pub enum Quantity {
     FirstYield,
     /// The torque the first interface transmits at the end (N·mm; twist).
     Torque,
+    /// The largest von Mises stress over every body's Gauss points but
+    /// those within one element size of a singular point of the start mesh
+    /// ([`crate::model::excluded`]), MPa.
+    MaxVonMises,
 }
 
 impl Quantity {
-    pub(crate) const ALL: [(&'static str, Quantity); 7] = [
+    pub(crate) const ALL: [(&'static str, Quantity); 8] = [
         ("energy", Quantity::Energy),
         ("settlement", Quantity::Settlement),
         ("total_load", Quantity::TotalLoad),
@@ -96,6 +105,7 @@ impl Quantity {
         ("peak_pressure", Quantity::PeakPressure),
         ("first_yield", Quantity::FirstYield),
         ("torque", Quantity::Torque),
+        ("max_von_mises", Quantity::MaxVonMises),
     ];
 
     pub fn name(self) -> &'static str {
@@ -104,6 +114,55 @@ impl Quantity {
             .find(|(_, q)| *q == self)
             .map(|(n, _)| *n)
             .expect("every quantity is named")
+    }
+}
+
+/// When an adaptive run reads its named quantity (`[adapt] over`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Over {
+    /// At the last converged increment, the end of the history.
+    #[default]
+    End,
+    /// The value farthest from 0 over every converged increment (the rows
+    /// of curve.csv), its sign kept ([`crate::app::adapt::farthest_from_zero`]).
+    History,
+}
+
+impl Over {
+    pub fn name(self) -> &'static str {
+        match self {
+            Over::End => "end",
+            Over::History => "history",
+        }
+    }
+}
+
+/// The name [`Over::name`] gives, as the case spells it.
+impl Serialize for Over {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        s.serialize_str(self.name())
+    }
+}
+
+impl<'de> Deserialize<'de> for Over {
+    /// A string, `end` or `history`; anything else (another string, a
+    /// number) is refused naming both.
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        struct Choice;
+        impl serde::de::Visitor<'_> for Choice {
+            type Value = Over;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("over \"end\" or \"history\"")
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> std::result::Result<Over, E> {
+                match v {
+                    "end" => Ok(Over::End),
+                    "history" => Ok(Over::History),
+                    _ => Err(E::invalid_value(serde::de::Unexpected::Str(v), &self)),
+                }
+            }
+        }
+        d.deserialize_any(Choice)
     }
 }
 
@@ -198,6 +257,9 @@ pub fn check(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
             "\"first_yield\" in a case whose materials never yield (no yield_stress)",
         ));
     }
+    if a.over == Over::History {
+        check_history(a.quantity, at)?;
+    }
     if a.quantity == Quantity::Torque && !case.model.twist {
         return Err(Error::input(
             at("[adapt] quantity"),
@@ -218,18 +280,35 @@ pub fn check(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
             "\"torque\" in a model driven by a torque (no [[boundary]] rotation other than 0): the interface transmits the applied torque by equilibrium on every mesh, so it measures no error; adapt on \"energy\", or prescribe the rotation",
         ));
     }
-    // every named answer is read at the interfaces (curve.csv's first
-    // interface, the probe node of body B): without one it is 0 on every
-    // mesh, and the run would stop at once, "reached"
-    if a.quantity != Quantity::Energy && case.mesh.interface.is_empty() && case.interface.is_empty()
+    // every named answer but the bodies' stress is read at the interfaces
+    // (curve.csv's first interface, the probe node of body B): without one
+    // it is 0 on every mesh, and the run would stop at once, "reached"
+    if !matches!(a.quantity, Quantity::Energy | Quantity::MaxVonMises)
+        && case.mesh.interface.is_empty()
+        && case.interface.is_empty()
     {
         return Err(Error::input(
             at("[adapt] quantity"),
             format!(
-                "\"{}\" in a case without an interface: it is measured at the interface (curve.csv), 0 on every mesh here; adapt on \"energy\"",
+                "\"{}\" in a case without an interface: it is measured at the interface (curve.csv), 0 on every mesh here; adapt on \"energy\" or \"max_von_mises\"",
                 a.quantity.name()
             ),
         ));
     }
     Ok(())
+}
+
+/// `over = "history"` for a quantity that has no largest over the history:
+/// the energy estimate (made of the last state alone) and the first-yield
+/// load (one moment of the history, not a value at every increment).
+fn check_history(q: Quantity, at: &dyn Fn(&str) -> String) -> Result<()> {
+    let why = match q {
+        Quantity::Energy => "the energy estimate η/‖u_h‖_E is made of the last state alone, not at every increment; name a quantity (\"peak_pressure\", \"max_von_mises\", ...) to adapt on its largest over the history, or leave `over` out",
+        Quantity::FirstYield => "the first-yield load is one moment of the history (the load at which the first Gauss point yields), not a value at every increment: it has no largest over the history; leave `over` out, or adapt on \"max_von_mises\" over the history",
+        _ => return Ok(()),
+    };
+    Err(Error::input(
+        at("[adapt] over"),
+        format!("\"history\" with quantity \"{}\": {why}", q.name()),
+    ))
 }

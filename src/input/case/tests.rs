@@ -154,6 +154,7 @@ event_tolerance = 1e-4
 [adapt]
 tolerance = 0.01
 quantity = "total_load"
+over = "history"
 max_cycles = 3
 max_dofs = 1000
 fraction = 0.4
@@ -519,6 +520,7 @@ fn every_key_of_the_schema_changes_the_key() {
         ("event_tolerance = 1e-4", "event_tolerance = 1e-5"),
         ("tolerance = 0.01", "tolerance = 0.02"),
         ("quantity = \"total_load\"", "quantity = \"energy\""),
+        ("over = \"history\"", "over = \"end\""),
         ("max_cycles = 3", "max_cycles = 4"),
         ("max_dofs = 1000", "max_dofs = 1001"),
         ("fraction = 0.4", "fraction = 0.5"),

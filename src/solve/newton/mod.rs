@@ -157,6 +157,21 @@ impl<'m> Engine<'m> {
         crate::measure::record(self.model, &*self.backend, &self.held_elements, state)
     }
 
+    /// The largest von Mises stress of a converged state away from the
+    /// model's excluded points ([`crate::measure::singular::von_mises_away`];
+    /// collective under MPI where the model measures it, NaN elsewhere).
+    pub fn von_mises_away(&self, state: &State) -> f64 {
+        self.model.excluded.as_ref().map_or(f64::NAN, |x| {
+            crate::measure::singular::von_mises_away(
+                self.model,
+                &*self.backend,
+                &self.held_elements,
+                &state.gauss,
+                x,
+            )
+        })
+    }
+
     pub(crate) fn held_elements(&self) -> &[u32] {
         &self.held_elements
     }
