@@ -19,6 +19,7 @@ mod dissipation;
 mod estimate;
 mod events;
 mod face_coupling;
+mod fillet;
 mod factorization;
 mod friction;
 mod gap;
