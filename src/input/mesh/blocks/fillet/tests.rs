@@ -416,3 +416,32 @@ fn broken_fillets_are_refused_by_name() {
     b[1].right = Some(SideFillets::default());
     refused(&b, None, "right.fillet_top: missing");
 }
+
+/// A fillet is made in the layout, so a sweep takes it as it takes any
+/// node: the bolt revolved through 90° (its shank on the axis: the O-grid
+/// core) is a valid mesh whose volume is a quarter of the filleted bolt's
+/// volume of revolution, to the sweep's and the arcs' chord error.
+#[test]
+fn a_revolved_filleted_bolt_has_the_volume_of_revolution() {
+    use crate::physics::element::solid3::{ElementGeometry3, Family3};
+    let r = 0.6;
+    let plane = generate(&bolt(r, 2), &[], 2).unwrap();
+    let (_, volume2d, _) = measures(&plane);
+    let rule = Family3::H20.rule(true);
+    let mut errors = Vec::new();
+    for n in [12, 24] {
+        let mesh = crate::input::mesh::revolve::revolve(&plane, FRAC_PI_2, n).unwrap();
+        mesh.validate().unwrap();
+        let v: f64 = (0..mesh.elements.len())
+            .map(|e| {
+                let c = mesh.element_coords3(e);
+                ElementGeometry3::new(Family3::H20, &c[..20], &rule)
+                    .unwrap()
+                    .volume()
+            })
+            .sum();
+        errors.push((4.0 * v - volume2d).abs() / volume2d);
+    }
+    println!("revolved filleted bolt: relative volume errors {errors:?} (12, 24 layers)");
+    assert!(errors[1] < 1e-6 && errors[1] < errors[0] / 8.0, "{errors:?}");
+}
