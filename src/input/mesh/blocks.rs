@@ -52,7 +52,7 @@ pub struct BlockSpec {
     #[serde(default)]
     pub top: Option<SideShape>,
     /// Concave fillets at the ends of the left side (`fillet_bottom`,
-    /// `fillet_top`; [`fillet`]).
+    /// `fillet_top`; docs/case-schema.md, "Fillets and chamfers").
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub left: Option<SideFillets>,
     /// Concave fillets at the ends of the right side.

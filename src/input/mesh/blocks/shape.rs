@@ -56,10 +56,18 @@ pub struct SideShape {
 /// The two legs of a chamfer (mm): `along` the side it cuts (x) and
 /// `across` it (y, along the block's left or right side). A case gives one
 /// length (a 45° chamfer, both legs equal) or two, `[along, across]`.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Chamfer {
     pub along: f64,
     pub across: f64,
+}
+
+/// As `[along, across]`, which reads back as the same chamfer (the case's
+/// key, [`crate::input::case::Case::key`], is read back in tests).
+impl Serialize for Chamfer {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        [self.along, self.across].serialize(s)
+    }
 }
 
 impl<'de> Deserialize<'de> for Chamfer {
@@ -289,8 +297,38 @@ impl SideShape {
         least: f64,
         on_axis: Option<&str>,
     ) -> Result<(), ShapeError> {
-        let (x0, x1) = (xs[0], xs[xs.len() - 1]);
+        self.one_shape_per_end()?;
+        self.check_legs(height, least)?;
         let err = |key: &'static str, message: String| Err(ShapeError { key, message });
+        let (x0, x1) = (xs[0], xs[xs.len() - 1]);
+        if let (Some(on), Some(key)) = (on_axis, self.left_cut_key()) {
+            return err(
+                key,
+                format!(
+                    "the block's left side lies on {on}: there is no corner to round or cut, and a rounding or chamfer meeting it is a cusp or a cone's tip of the whole body; leave {key} out (a round end there is an arc: radius with center = {x0})"
+                ),
+            );
+        }
+        let l = self.cut(true);
+        let r = self.cut(false);
+        if x0 + l > x1 - r + 1e-12 * (x1 - x0) {
+            let key = self
+                .right_cut_key()
+                .or(self.left_cut_key())
+                .unwrap_or("round_left");
+            return err(
+                key,
+                format!(
+                    "the shaped ends ({l} + {r} mm) are wider than the block ({} mm)",
+                    x1 - x0
+                ),
+            );
+        }
+        self.check_breakpoints(xs)
+    }
+
+    /// At most one of `round_*`, `chamfer_*` and `fillet_*` at each end.
+    fn one_shape_per_end(&self) -> Result<(), ShapeError> {
         let ends = [
             (
                 "left",
@@ -310,103 +348,94 @@ impl SideShape {
             ),
         ];
         for (end, keys) in ends {
-            let given: Vec<&str> = keys.iter().filter(|k| k.1).map(|k| k.0).collect();
+            let given: Vec<&'static str> = keys.iter().filter(|k| k.1).map(|k| k.0).collect();
             if let [first, second, ..] = given[..] {
-                return err(
-                    second,
-                    format!("{first} and {second} both shape the {end} end of the side; give one"),
-                );
+                return Err(ShapeError {
+                    key: second,
+                    message: format!(
+                        "{first} and {second} both shape the {end} end of the side; give one"
+                    ),
+                });
             }
         }
-        let rounds = [
+        Ok(())
+    }
+
+    /// Each rounding's radius and chamfer's legs: positive lengths, not a
+    /// sharp corner to round-off, and across the side less than half the
+    /// block's height (a bottom's and a top's shapes of one end keep apart).
+    fn check_legs(&self, height: f64, least: f64) -> Result<(), ShapeError> {
+        let half = |key: &'static str, what: &str, v: f64| {
+            if v >= 0.5 * height {
+                let v = if what.is_empty() {
+                    format!("{v} mm")
+                } else {
+                    format!("{what}, {v} mm,")
+                };
+                return Err(ShapeError {
+                    key,
+                    message: format!("{v} must be less than half the block's height ({height} mm)"),
+                });
+            }
+            Ok(())
+        };
+        for (key, v) in [
             ("round_left", self.round_left),
             ("round_right", self.round_right),
-        ];
-        for (key, v) in rounds {
+        ] {
             let Some(v) = v else { continue };
             check_leg(key, "", v, least)?;
-            if v >= 0.5 * height {
-                return err(
-                    key,
-                    format!("{v} mm must be less than half the block's height ({height} mm)"),
-                );
-            }
+            half(key, "", v)?;
         }
-        let chamfers = [
+        for (key, c) in [
             ("chamfer_left", self.chamfer_left),
             ("chamfer_right", self.chamfer_right),
-        ];
-        for (key, c) in chamfers {
+        ] {
             let Some(c) = c else { continue };
             check_leg(key, " (along the side)", c.along, least)?;
             check_leg(key, " (across the side)", c.across, least)?;
-            if c.across >= 0.5 * height {
-                return err(
-                    key,
-                    format!(
-                        "the leg across the side, {} mm, must be less than half the block's height ({height} mm)",
-                        c.across
-                    ),
-                );
-            }
+            half(key, "the leg across the side", c.across)?;
         }
-        if let (Some(on), Some(key)) = (
-            on_axis,
-            [
-                ("round_left", self.round_left.is_some()),
-                ("chamfer_left", self.chamfer_left.is_some()),
-            ]
-            .iter()
-            .find(|k| k.1)
-            .map(|k| k.0),
-        ) {
-            return err(
-                key,
-                format!(
-                    "the block's left side lies on {on}: there is no corner to round or cut, and a rounding or chamfer meeting it is a cusp or a cone's tip of the whole body; leave {key} out (a round end there is an arc: radius with center = {x0})"
-                ),
-            );
-        }
-        let l = self.cut(true);
-        let r = self.cut(false);
-        if x0 + l > x1 - r + 1e-12 * (x1 - x0) {
-            let key = self
-                .end_keys()
-                .filter(|k| !k.starts_with("fillet"))
-                .last()
-                .unwrap_or("round_left");
-            return err(
-                key,
-                format!(
-                    "the shaped ends ({l} + {r} mm) are wider than the block ({} mm)",
-                    x1 - x0
-                ),
-            );
-        }
-        // a breakpoint where the rounding or chamfer meets the straight
-        // part, other than the shaped end itself (a length below the
-        // tolerance of `near` would otherwise find its own corner)
+        Ok(())
+    }
+
+    /// A breakpoint of `x` where each rounding or chamfer meets the
+    /// straight part, other than the shaped end itself (a length below the
+    /// tolerance of `near` would otherwise find its own corner).
+    fn check_breakpoints(&self, xs: &[f64]) -> Result<(), ShapeError> {
+        let (x0, x1) = (xs[0], xs[xs.len() - 1]);
         let near = |v: f64, skip: usize| {
             xs.iter()
                 .enumerate()
                 .any(|(i, &b)| i != skip && (b - v).abs() <= 1e-9 * (x1 - x0))
         };
         for (left, key, at, skip) in [
-            (true, self.left_cut_key(), x0 + l, 0),
-            (false, self.right_cut_key(), x1 - r, xs.len() - 1),
+            (true, self.left_cut_key(), x0 + self.cut(true), 0),
+            (
+                false,
+                self.right_cut_key(),
+                x1 - self.cut(false),
+                xs.len() - 1,
+            ),
         ] {
             let Some(key) = key else { continue };
             if !near(at, skip) {
-                let (what, how) = match (key.starts_with("round"), left) {
-                    (true, true) => ("left rounding", "ends"),
-                    (true, false) => ("right rounding", "starts"),
-                    (false, true) => ("left chamfer", "ends"),
-                    (false, false) => ("right chamfer", "starts"),
+                let what = if key.starts_with("round") {
+                    "rounding"
+                } else {
+                    "chamfer"
                 };
-                return err(
+                let (end, how) = if left {
+                    ("left", "ends")
+                } else {
+                    ("right", "starts")
+                };
+                return Err(ShapeError {
                     key,
-                    format!("x must have a breakpoint where the {what} {how}, x = {at}"),
-                );
+                    message: format!(
+                        "x must have a breakpoint where the {end} {what} {how}, x = {at}"
+                    ),
+                });
             }
         }
         Ok(())

@@ -540,6 +540,13 @@ fn a_chamfer_cuts_the_corner_straight() {
         let e = toml::from_str::<SideShape>(bad).unwrap_err().to_string();
         assert!(e.contains("a leg length in mm"), "{bad}: {e}");
     }
+}
+
+/// A chamfer's rules, each named by its key: one shape per end, the leg
+/// across less than half the block's height, a breakpoint where it starts,
+/// positive legs, none on the axis, the shaped ends no wider than the block.
+#[test]
+fn a_chamfer_outside_its_rules_is_refused_by_key() {
     let xs = [0.0, 2.0, 18.0, 20.0];
     let c = |along, across| Some(Chamfer { along, across });
     let rule = |s: SideShape, on_axis: Option<&str>| {

@@ -306,14 +306,17 @@ fn a_fillet_may_be_named_at_each_of_the_eight_corner_ends() {
     }
 }
 
-/// Each rule of the module text, refused naming the block, side and key.
+/// `check` refuses `blocks` with a message that contains `want`.
+fn refused(blocks: &[BlockSpec], axis: Option<&str>, want: &str) {
+    let e = check(blocks, axis).expect_err(want);
+    let text = format!("block {} {}.{}: {}", e.block, e.side, e.key, e.message);
+    assert!(text.contains(want), "{text:?} lacks {want:?}");
+}
+
+/// Each rule of the module text, refused naming the block, side and key:
+/// the radius, the axis, the blocks around the corner.
 #[test]
 fn broken_fillets_are_refused_by_name() {
-    let refused = |blocks: &[BlockSpec], axis: Option<&str>, want: &str| {
-        let e = check(blocks, axis).expect_err(want);
-        let text = format!("block {} {}.{}: {}", e.block, e.side, e.key, e.message);
-        assert!(text.contains(want), "{text:?} lacks {want:?}");
-    };
     assert!(check(&bolt(0.6, 2), Some("the axis r = 0")).is_ok());
     for r in [0.0, -0.5, f64::NAN, f64::INFINITY] {
         let mut b = bolt(0.6, 2);
@@ -350,6 +353,13 @@ fn broken_fillets_are_refused_by_name() {
     let mut b = bolt(0.6, 2);
     b[1].y = vec![0., 39., 40.];
     refused(&b, None, "y = 39.4 on the right side of block \"shank\"");
+}
+
+/// The rules of the module text that concern other blocks than the
+/// corner's: a block in the empty quadrant, shaped sides and other fillets
+/// within r, an empty side table.
+#[test]
+fn fillets_among_other_blocks_are_refused_by_name() {
     // a block in the empty quadrant: the body's own, or another body's
     let mut b = bolt(0.6, 2);
     b.push(block(
@@ -443,5 +453,8 @@ fn a_revolved_filleted_bolt_has_the_volume_of_revolution() {
         errors.push((4.0 * v - volume2d).abs() / volume2d);
     }
     println!("revolved filleted bolt: relative volume errors {errors:?} (12, 24 layers)");
-    assert!(errors[1] < 1e-6 && errors[1] < errors[0] / 8.0, "{errors:?}");
+    assert!(
+        errors[1] < 1e-6 && errors[1] < errors[0] / 8.0,
+        "{errors:?}"
+    );
 }
