@@ -713,6 +713,8 @@ mod tests {
             ry: vec![],
             bottom: None,
             top: None,
+            left: None,
+            right: None,
         }
     }
 

@@ -21,6 +21,7 @@ mod estimate;
 mod events;
 mod face_coupling;
 mod factorization;
+mod fillet;
 mod friction;
 mod gap;
 mod gold;

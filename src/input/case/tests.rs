@@ -31,6 +31,8 @@ y = [0.0, 1.0]
 ny = [2]
 ry = [0.5]
 top = { radius = 10.0, center = 0.5 }
+left = { fillet_bottom = 0.35 }
+right = { fillet_bottom = 0.45, fillet_top = 0.55 }
 
 [[mesh.block]]
 body = "b"
@@ -38,7 +40,7 @@ x = [0.0, 1.0]
 nx = [3]
 y = [-1.0, 0.0]
 ny = [4]
-bottom = { round_left = 0.1, round_right = 0.2 }
+bottom = { round_left = 0.1, round_right = 0.2, chamfer_left = [0.3, 0.31], chamfer_right = 0.4, fillet_left = 0.6, fillet_right = 0.7 }
 
 [[mesh.interface]]
 name = "c"
@@ -393,6 +395,14 @@ fn every_key_of_the_schema_changes_the_key() {
         ("center = 0.5", "center = 0.6"),
         ("round_left = 0.1", "round_left = 0.15"),
         ("round_right = 0.2", "round_right = 0.25"),
+        ("chamfer_left = [0.3, 0.31]", "chamfer_left = [0.3, 0.32]"),
+        ("chamfer_left = [0.3, 0.31]", "chamfer_left = [0.29, 0.31]"),
+        ("chamfer_right = 0.4", "chamfer_right = 0.41"),
+        ("fillet_left = 0.6", "fillet_left = 0.61"),
+        ("fillet_right = 0.7", "fillet_right = 0.71"),
+        ("fillet_bottom = 0.35", "fillet_bottom = 0.36"),
+        ("fillet_bottom = 0.45", "fillet_bottom = 0.46"),
+        ("fillet_top = 0.55", "fillet_top = 0.56"),
         ("body = \"b\"\nx", "body = \"a\"\nx"),
         ("name = \"c\"", "name = \"d\""),
         ("upper = \"a1\"", "upper = \"b\""),

@@ -394,10 +394,13 @@ fn interface_laws(
     Ok((laws, tangential))
 }
 
-/// The curved bottom and top sides of the blocks ([`SideShape::check`]), each
-/// refusal naming `mesh.block[i].<side>.<key>`: the rules of the shape against
-/// its block, and, in a model of revolution or a symmetric half, no rounding
-/// at a left side that lies on the axis or the symmetry plane. Blocks whose
+/// The curved bottom and top sides of the blocks ([`SideShape::check`]) and
+/// their concave fillets ([`crate::input::mesh::blocks::check_fillets`]),
+/// each refusal naming `mesh.block[i].<side>.<key>`: the rules of the shape
+/// against its block (of a fillet: against the blocks of its body), and, in
+/// a model of revolution or a symmetric half, no rounding or chamfer at a
+/// left side that lies on the axis or the symmetry plane, no fillet across
+/// it. Blocks whose
 /// breakpoints are themselves broken are left to the mesh generator's
 /// messages.
 fn check_curved_sides(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
@@ -444,6 +447,17 @@ fn check_curved_sides(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
                 })?;
         }
     }
+    // the concave fillets, which need the other blocks of their body
+    crate::input::mesh::blocks::check_fillets(&case.mesh.block, axis).map_err(|e| {
+        Error::input(
+            at(&format!("mesh.block[{}].{}.{}", e.block, e.side, e.key)),
+            format!(
+                "block \"{}\": {}",
+                clip(case.mesh.block[e.block].name()),
+                e.message
+            ),
+        )
+    })?;
     Ok(())
 }
 

@@ -15,8 +15,10 @@ use super::{ContactEdge, Element, Interface, Mesh, MeshError, NonMatching};
 use crate::error::clip;
 use serde::{Deserialize, Serialize};
 
+mod fillet;
 mod merge;
 mod shape;
+pub(crate) use fillet::{check as check_fillets, SideFillets};
 pub(crate) use shape::SideShape;
 
 /// A rectangular block; x and y are split into segments at the breakpoints.
@@ -49,6 +51,13 @@ pub struct BlockSpec {
     /// A curved top side (default straight).
     #[serde(default)]
     pub top: Option<SideShape>,
+    /// Concave fillets at the ends of the left side (`fillet_bottom`,
+    /// `fillet_top`; docs/case-schema.md, "Fillets and chamfers").
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub left: Option<SideFillets>,
+    /// Concave fillets at the ends of the right side.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub right: Option<SideFillets>,
 }
 
 impl BlockSpec {
@@ -206,6 +215,17 @@ pub(crate) fn generate(
         }
         grids.push(add_block(&mut mesh, body, xs, ys, spec));
     }
+    // the concave fillets' rules that need no model (the axis is checked
+    // with the case, [`crate::input::case::validate`])
+    let fillets = fillet::check(blocks, None).map_err(|e| {
+        MeshError(format!(
+            "block \"{}\" {}.{}: {}",
+            clip(blocks[e.block].name()),
+            e.side,
+            e.key,
+            e.message
+        ))
+    })?;
     // the shared sides first (the body as a whole), then the interfaces on
     // the blocks' own node ids, then the merge renumbers them all
     let plan = merge::plan(&mesh, &grids)?;
@@ -214,6 +234,7 @@ pub(crate) fn generate(
         mesh.interfaces.push(iface);
     }
     merge::apply(&mut mesh, &plan);
+    fillet::apply(&mut mesh, &fillets, blocks);
     Ok(mesh)
 }
 
@@ -240,7 +261,8 @@ fn add_block(mesh: &mut Mesh, body: usize, xs: Vec<f64>, ys: Vec<f64>, spec: &Bl
         let t = spec.top.as_ref().map_or((x, 0.0), |s| s.point(x, x0, x1));
         ([b.0, y0 + b.1], [t.0, y1 - t.1])
     };
-    let curved = spec.bottom.is_some() || spec.top.is_some();
+    let cuts = |s: &Option<SideShape>| s.as_ref().is_some_and(SideShape::cuts);
+    let curved = cuts(&spec.bottom) || cuts(&spec.top);
     let mut ids = vec![vec![usize::MAX; ni]; nj];
     for (j, row) in ids.iter_mut().enumerate() {
         for (i, id) in row.iter_mut().enumerate() {
@@ -306,7 +328,7 @@ fn add_block(mesh: &mut Mesh, body: usize, xs: Vec<f64>, ys: Vec<f64>, spec: &Bl
         ids,
         xs,
         ys,
-        curved: [spec.bottom.is_some(), spec.top.is_some()],
+        curved: [cuts(&spec.bottom), cuts(&spec.top)],
     }
 }
 

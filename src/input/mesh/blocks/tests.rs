@@ -1,5 +1,6 @@
 //! Tests of the block generator: counts, grading, interfaces, curved sides.
 
+use super::shape::Chamfer;
 use super::*;
 
 pub(super) fn punch() -> (Vec<BlockSpec>, Vec<InterfaceSpec>) {
@@ -14,6 +15,8 @@ pub(super) fn punch() -> (Vec<BlockSpec>, Vec<InterfaceSpec>) {
         ry,
         bottom: None,
         top: None,
+        left: None,
+        right: None,
     };
     (
         vec![
@@ -118,6 +121,8 @@ pub(super) fn block(
         ry: Vec::new(),
         bottom: None,
         top: None,
+        left: None,
+        right: None,
     }
 }
 
@@ -273,6 +278,7 @@ fn curved_sides_put_every_side_node_on_the_curve() {
         center: Some(0.0),
         round_left: None,
         round_right: None,
+        ..Default::default()
     });
     // a punch with a 1 mm rounding at its right end, and a crowned top
     let mut punch = block(
@@ -287,12 +293,14 @@ fn curved_sides_put_every_side_node_on_the_curve() {
         center: None,
         round_left: None,
         round_right: Some(1.0),
+        ..Default::default()
     });
     punch.top = Some(SideShape {
         radius: Some(100.0),
         center: None,
         round_left: None,
         round_right: None,
+        ..Default::default()
     });
     let m = generate(&[cyl, punch], &[], 1).unwrap();
     m.validate().unwrap();
@@ -336,6 +344,7 @@ fn curved_side_errors_are_named() {
         center: None,
         round_left: None,
         round_right,
+        ..Default::default()
     };
     let check = |b: BlockSpec, ifs: &[InterfaceSpec], want: &str| {
         let e = generate(&[b], ifs, 1).unwrap_err().0;
@@ -394,6 +403,7 @@ fn curved_side_rules_hold_at_their_limits() {
         center,
         round_left: None,
         round_right: None,
+        ..Default::default()
     };
     let key = |s: &SideShape, on_axis| s.check(&xs, ys, on_axis).map_err(|e| (e.key, e.message));
     // the apex on the side, its ends included; off it refused, on either side
@@ -433,6 +443,7 @@ fn curved_side_rules_hold_at_their_limits() {
         center: None,
         round_left: l,
         round_right: r,
+        ..Default::default()
     };
     let xr = [0.0, 1e-9, 2.0, 15.0];
     let e = round(Some(1e-9), None).check(&xr, ys, None).unwrap_err();
@@ -460,10 +471,130 @@ fn a_large_radius_keeps_its_depth() {
         center: Some(0.0),
         round_left: None,
         round_right: None,
+        ..Default::default()
     };
     let (_, depth) = s.point(10.0, 0.0, 10.0);
     let exact = 100.0 / (2e9) * (1.0 + 100.0 / (4e18));
     assert!((depth - exact).abs() <= 1e-15 * exact, "{depth} vs {exact}");
     let naive = 1e9 - (1e18f64 - 100.0).sqrt();
     assert!((naive - exact).abs() > 1e-3 * exact, "{naive}");
+}
+
+/// A chamfer (convex, a straight cut of the corner): the nodes of the cut
+/// on its line, evenly spaced along it, the right side starting `across`
+/// above the corner; 45° from one number; its rules named by key.
+#[test]
+fn a_chamfer_cuts_the_corner_straight() {
+    let mut p = block("p", vec![0., 18., 20.], vec![4, 4], vec![0., 10.], vec![2]);
+    p.bottom = Some(SideShape {
+        chamfer_right: Some(Chamfer {
+            along: 2.0,
+            across: 1.0,
+        }),
+        ..Default::default()
+    });
+    let m = generate(&[p.clone()], &[], 1).unwrap();
+    m.validate().unwrap();
+    let mut cut: Vec<[f64; 3]> = m.node_sets["p.bottom"]
+        .iter()
+        .map(|&n| m.nodes[n])
+        .filter(|x| x[0] >= 18.0)
+        .collect();
+    cut.sort_by(|a, b| a[0].total_cmp(&b[0]));
+    assert_eq!(cut.len(), 9);
+    for (k, x) in cut.iter().enumerate() {
+        // (18, 0) to (20, 1) in 8 equal steps
+        let u = k as f64 / 8.0;
+        assert!(
+            (x[0] - 18.0 - 2.0 * u).abs() < 1e-12 && (x[1] - u).abs() < 1e-12,
+            "{x:?}"
+        );
+    }
+    let low = m.node_sets["p.right"]
+        .iter()
+        .map(|&n| m.nodes[n][1])
+        .fold(f64::INFINITY, f64::min);
+    assert_eq!(low, 1.0);
+    // one number is a 45° chamfer, from a case file
+    let s: SideShape = toml::from_str("chamfer_left = 1.5").unwrap();
+    assert_eq!(
+        s.chamfer_left,
+        Some(Chamfer {
+            along: 1.5,
+            across: 1.5
+        })
+    );
+    let s: SideShape = toml::from_str("chamfer_left = [2, 0.5]").unwrap();
+    assert_eq!(
+        s.chamfer_left,
+        Some(Chamfer {
+            along: 2.0,
+            across: 0.5
+        })
+    );
+    for bad in [
+        "chamfer_left = [1.0]",
+        "chamfer_left = [1.0, 2.0, 3.0]",
+        "chamfer_left = \"a\"",
+    ] {
+        let e = toml::from_str::<SideShape>(bad).unwrap_err().to_string();
+        assert!(e.contains("a leg length in mm"), "{bad}: {e}");
+    }
+}
+
+/// A chamfer's rules, each named by its key: one shape per end, the leg
+/// across less than half the block's height, a breakpoint where it starts,
+/// positive legs, none on the axis, the shaped ends no wider than the block.
+#[test]
+fn a_chamfer_outside_its_rules_is_refused_by_key() {
+    let xs = [0.0, 2.0, 18.0, 20.0];
+    let c = |along, across| Some(Chamfer { along, across });
+    let rule = |s: SideShape, on_axis: Option<&str>| {
+        let e = s.check(&xs, [0.0, 10.0], on_axis).unwrap_err();
+        format!("{}: {}", e.key, e.message)
+    };
+    let both = SideShape {
+        round_right: Some(2.0),
+        chamfer_right: c(2.0, 2.0),
+        ..Default::default()
+    };
+    assert!(rule(both, None)
+        .contains("chamfer_right: round_right and chamfer_right both shape the right end"));
+    let both = SideShape {
+        chamfer_left: c(2.0, 2.0),
+        fillet_left: Some(1.0),
+        ..Default::default()
+    };
+    assert!(rule(both, None).contains("fillet_left: chamfer_left and fillet_left both"));
+    let deep = SideShape {
+        chamfer_right: c(2.0, 5.0),
+        ..Default::default()
+    };
+    assert!(rule(deep, None)
+        .contains("chamfer_right: the leg across the side, 5 mm, must be less than half"));
+    let off = SideShape {
+        chamfer_right: c(3.0, 1.0),
+        ..Default::default()
+    };
+    assert!(rule(off, None).contains("breakpoint where the right chamfer starts, x = 17"));
+    let nan = SideShape {
+        chamfer_left: c(2.0, f64::NAN),
+        ..Default::default()
+    };
+    assert!(
+        rule(nan, None).contains("chamfer_left: NaN (across the side) must be a positive length")
+    );
+    let axis = SideShape {
+        chamfer_left: c(2.0, 1.0),
+        ..Default::default()
+    };
+    assert!(rule(axis.clone(), Some("the axis r = 0"))
+        .contains("chamfer_left: the block's left side lies on the axis r = 0"));
+    assert!(axis.check(&xs, [0.0, 10.0], None).is_ok());
+    let wide = SideShape {
+        chamfer_left: c(2.0, 1.0),
+        chamfer_right: c(18.5, 1.0),
+        ..Default::default()
+    };
+    assert!(rule(wide, None).contains("wider than the block"));
 }

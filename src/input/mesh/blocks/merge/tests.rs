@@ -430,6 +430,7 @@ fn blocks_of_one_body_that_do_not_fit_together_are_refused_by_name() {
         center: Some(0.),
         round_left: None,
         round_right: None,
+        ..Default::default()
     });
     refused(
         &b,
