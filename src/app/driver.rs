@@ -791,6 +791,19 @@ fn bodies_text(model: &Model) -> String {
                 "    temperature: ΔT = {} K{from} (× {by}), free thermal strain α ΔT = {:e}\n",
                 t.change, t.strain
             );
+            if let Some(p) = &t.profile {
+                let rows: Vec<String> = (p.rows.iter())
+                    .map(|r| format!("{} at {}", r[1], r[0]))
+                    .collect();
+                s += &format!(
+                    "    temperature field: ΔT × the factor along {} (mm): {}\n",
+                    ["x", "y", "z"][p.axis],
+                    rows.join(", ")
+                );
+            }
+            if t.young.is_some() || t.yield_stress.is_some() {
+                s += "    E and σ_Y read off their tables at the body's temperature\n";
+            }
         }
         if let Some(sp) = &model.speed {
             s += &speed_text(model, sp, b);

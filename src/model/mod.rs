@@ -41,8 +41,34 @@ use supports::check_supports;
 /// body order ([`Model::conditions`]).
 #[derive(Clone, Debug)]
 pub struct Conditions {
+    /// α ΔT h(t): the free thermal strain, or its scale where a profile
+    /// varies it in space.
     pub thermal: Vec<f64>,
     pub materials: Vec<VonMises>,
+    /// The temperature field of each body that has one.
+    pub profiles: Vec<Option<crate::model::loads::thermal::Profile>>,
+}
+
+impl Conditions {
+    /// The free thermal strain of body `b` at each Gauss point of `geo`.
+    pub(crate) fn point_thermal(
+        &self,
+        b: usize,
+        geo: &crate::physics::element::Geometry,
+    ) -> [f64; crate::physics::element::family3::MAX_POINTS3] {
+        let mut out = [self.thermal[b]; crate::physics::element::family3::MAX_POINTS3];
+        if let Some(p) = &self.profiles[b] {
+            for (ip, o) in out.iter_mut().enumerate().take(geo.dv().len()) {
+                *o *= p.factor(geo.x(ip));
+            }
+        }
+        out
+    }
+
+    /// The free thermal strain of body `b` at point x.
+    pub fn thermal_at(&self, b: usize, x: [f64; 3]) -> f64 {
+        self.thermal[b] * self.profiles[b].as_ref().map_or(1.0, |p| p.factor(x))
+    }
 }
 
 /// How a load pattern scales with pseudo-time: by its history's factor
@@ -577,10 +603,27 @@ impl Model {
             materials: (0..self.materials.len())
                 .map(|b| self.material_at(b, t))
                 .collect(),
+            profiles: (0..self.materials.len())
+                .map(|b| {
+                    let bt = self.temperatures.iter().find(|bt| bt.body == b);
+                    bt.and_then(|bt| bt.profile.clone())
+                })
+                .collect(),
         }
     }
 
-    /// The free thermal strain α ΔT h(t) of body `body` at pseudo-time t.
+    /// The free thermal strain of body `body` at pseudo-time t and point x:
+    /// α ΔT h(t), times its temperature field's factor at x where it has one.
+    pub fn thermal_at(&self, body: usize, t: f64, x: [f64; 3]) -> f64 {
+        let bt = self.temperatures.iter().find(|bt| bt.body == body);
+        let f = bt
+            .and_then(|bt| bt.profile.as_ref())
+            .map_or(1.0, |p| p.factor(x));
+        self.thermal_strain(body, t) * f
+    }
+
+    /// The free thermal strain α ΔT h(t) of body `body` at pseudo-time t
+    /// (the scale of its field where it has one: [`Model::thermal_at`]).
     pub fn thermal_strain(&self, body: usize, t: f64) -> f64 {
         self.temperatures
             .iter()

@@ -50,7 +50,7 @@ fn assemble(
         element_forces(
             &geom,
             mat,
-            0.0,
+            &[0.0; 9],
             &ue,
             &zero,
             &mut st,

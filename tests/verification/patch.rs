@@ -172,7 +172,7 @@ fn check_patch(nodes: &[[f64; 2]], els: &[Mixed], stress_tol: f64) {
                 element_forces(
                     &geoms[e],
                     &mat,
-                    0.0,
+                    &[0.0; 9],
                     ue,
                     &zero,
                     &mut st,

@@ -263,3 +263,90 @@ fn held_block_with_temperature_dependent_modulus_and_yield_stress() {
         }
     }
 }
+
+/// A temperature field (`along`, `profile`): a solid cylinder 0 ≤ r ≤ b held
+/// between two frictionless planes (ε_z = 0) with ΔT(r) = T₀ + T₁ r/b, T₀ =
+/// 100 K, T₁ = −80 K (the profile [[0, 1], [b, 0.2]] times 100 K). Timoshenko
+/// & Goodier § 151 (plane strain, ε_z = 0): with k = α E/(1 − ν),
+/// σ_r = k T₁ (1 − r/b)/3, σ_θ = k T₁ (1/3 − 2r/(3b)),
+/// σ_z = k (ν (T₀ + 2T₁/3) − T₀ − T₁ r/b). u(r) is quadratic in r, which the
+/// element holds: every Gauss point to 1e-9 of the largest stress.
+#[test]
+fn a_cylinder_with_a_radial_temperature_field_matches_the_closed_form() {
+    let b = 30.0;
+    let (t0, t1) = (100.0, -80.0);
+    let text = common::case()
+        .plane("axisymmetric")
+        .block("bar", [0.0, b], [6], [0.0, 5.0], [1])
+        .material("bar", E, NU)
+        .with("expansion", ALPHA)
+        .uy("bar.bottom", 0.0)
+        .uy("bar.top", 0.0)
+        .raw("[[temperature]]")
+        .with("body", "bar")
+        .with("change", t0)
+        .with("along", "x")
+        .with("profile", [[0.0, 1.0], [b, 0.2]])
+        .solver("increments = 1\nstep_control = \"fixed\"")
+        .tolerances(1e-12, 1e-12)
+        .no_vtu()
+        .build();
+    let (model, r, _) = solve(&text);
+    let k = ALPHA * E / (1.0 - NU);
+    let (mut err, mut scale) = (0.0f64, 0.0f64);
+    for e in 0..model.mesh.elements.len() {
+        for (ip, g) in model.points(e).enumerate() {
+            let r_ip = model.point_x(e, ip)[0];
+            let s = r.final_state.gauss.get(g).stress;
+            let want = [
+                k * t1 * (1.0 - r_ip / b) / 3.0,
+                k * (NU * (t0 + 2.0 * t1 / 3.0) - t0 - t1 * r_ip / b),
+                0.0,
+                k * t1 * (1.0 / 3.0 - 2.0 * r_ip / (3.0 * b)),
+            ];
+            for c in 0..4 {
+                err = err.max((s[c] - want[c]).abs());
+                scale = scale.max(want[c].abs());
+            }
+        }
+    }
+    eprintln!("radial field: error {:.2e} of {scale:.3} MPa", err / scale);
+    assert!(err < 1e-9 * scale, "{err} of {scale}");
+}
+
+/// A free 3D block (held against rigid motion only) with a temperature that
+/// rises linearly along x (profile [[0, 0.5], [20, 1.5]] times 60 K): a
+/// linear field's thermal strain is compatible, so the body bends and
+/// stretches unstressed, for any mesh.
+#[test]
+fn a_free_solid_with_a_linear_temperature_field_is_unstressed() {
+    let text = common::case()
+        .plane("3d")
+        .raw("[mesh]\nextrude = { z = [0.0, 6.0], nz = [2] }")
+        .block("bar", [0.0, 20.0], [3], [0.0, 8.0], [2])
+        .material("bar", E, NU)
+        .with("expansion", ALPHA)
+        // six constraints, the rigid motions: a corner held, the far corner
+        // along x held in y and z, the corner along y in z
+        .raw("[[boundary]]\nset = \"bar.left\"\nux = 0.0\ny_range = [0.0, 0.0]\nz_range = [0.0, 0.0]\nuy = 0.0\nuz = 0.0")
+        .raw("[[boundary]]\nset = \"bar.right\"\ny_range = [0.0, 0.0]\nz_range = [0.0, 0.0]\nuy = 0.0\nuz = 0.0")
+        .raw("[[boundary]]\nset = \"bar.left\"\ny_range = [8.0, 8.0]\nz_range = [0.0, 0.0]\nuz = 0.0")
+        .raw("[[temperature]]")
+        .with("body", "bar")
+        .with("change", 60.0)
+        .with("along", "x")
+        .with("profile", [[0.0, 0.5], [20.0, 1.5]])
+        .solver("increments = 1\nstep_control = \"fixed\"")
+        .tolerances(1e-10, 1e-10)
+        .no_vtu()
+        .build();
+    let (_, r, _) = solve(&text);
+    let worst = (r.final_state.gauss.iter())
+        .flat_map(|g| g.stress)
+        .fold(0.0f64, |a, s| a.max(s.abs()));
+    eprintln!(
+        "3D linear field: largest |σ| {worst:.3e} MPa (E α ΔT = {:.1} MPa)",
+        E * ALPHA * 90.0
+    );
+    assert!(worst < 1e-8 * E * ALPHA * 90.0, "{worst}");
+}

@@ -281,6 +281,12 @@ pub struct TemperatureSpec {
     pub reference: Option<f64>,
     /// The factor's history; none: the load factor (or the default ramp).
     pub history: Option<HistoryRef>,
+    /// A temperature field: ΔT(x) = change × the profile's factor at the
+    /// coordinate `along` ("x", "y", "z"), rows [coordinate mm, factor].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub along: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub profile: Option<Vec<Vec<f64>>>,
 }
 
 /// Normal (and later tangential) law of one interface. The parameters that a law

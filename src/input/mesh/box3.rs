@@ -355,7 +355,7 @@ mod tests {
                 forces3(
                     &g,
                     mat,
-                    0.0,
+                    &[0.0; crate::physics::element::family3::MAX_POINTS3],
                     &ue,
                     &committed,
                     &mut trial,

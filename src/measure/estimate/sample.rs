@@ -57,7 +57,6 @@ pub fn stresses(
     }
     let el = &model.mesh.elements[e];
     let mat = &model.material_at(el.body, time);
-    let thermal = model.thermal_strain(el.body, time);
     let ue = model.element_u(e, u);
     let twist = model.node_dofs().twist();
     for (ip, &(xi, _)) in rule.points.iter().enumerate() {
@@ -68,6 +67,7 @@ pub fn stresses(
                 *v += w[k] * g.plastic_strain[c];
             }
         }
+        let thermal = model.thermal_at(el.body, time, [geom.x[ip][0], geom.x[ip][1], 0.0]);
         let s = if twist {
             let eps = crate::physics::element::axisymmetric_twist::strain(geom, ip, &ue);
             mat.elastic_state_twist(&committed, &less_thermal(eps, thermal))
@@ -107,7 +107,6 @@ pub(crate) fn stresses3(
         return stored.iter().map(|g| g.stress).collect();
     }
     let mat = &model.material_at(el.body, time);
-    let thermal = model.thermal_strain(el.body, time);
     let ue = model.element_u(e, u);
     // εᵖ at the nodes: Σ_k W_ka εᵖ_k
     let mut nodal = vec![[0.0; 6]; geom.nodes];
@@ -126,6 +125,7 @@ pub(crate) fn stresses3(
                     *v += geom.shape[ip][a] * n[c];
                 }
             }
+            let thermal = model.thermal_at(el.body, time, geom.x[ip]);
             let eps = less_thermal(geom.strain(ip, &ue), thermal);
             mat.elastic_state_twist(&committed, &eps).stress
         })

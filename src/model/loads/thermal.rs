@@ -31,6 +31,128 @@ pub struct BodyTemperature {
     /// temperature (rows [T °C, value], T rising), when its material has them.
     pub young: Option<Vec<[f64; 2]>>,
     pub yield_stress: Option<Vec<[f64; 2]>>,
+    /// A temperature field: ΔT(x) = change × this profile's factor.
+    pub profile: Option<Profile>,
+}
+
+/// A temperature field along one coordinate (`along`, `profile`): the factor
+/// of ΔT at x[axis], linear between rows [coordinate mm, factor].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Profile {
+    /// 0, 1, 2: x (r in axisymmetry), y, z.
+    pub axis: usize,
+    pub rows: Vec<[f64; 2]>,
+}
+
+impl Profile {
+    /// The factor at point x.
+    pub fn factor(&self, x: [f64; 3]) -> f64 {
+        interpolate(&self.rows, x[self.axis])
+    }
+
+    /// The largest |factor|.
+    fn largest(&self) -> f64 {
+        self.rows.iter().fold(0.0, |a, r| a.max(r[1].abs()))
+    }
+
+    /// The lowest and the highest factor.
+    fn extremes(&self) -> (f64, f64) {
+        (self.rows.iter()).fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), r| {
+            (lo.min(r[1]), hi.max(r[1]))
+        })
+    }
+}
+
+/// A `[[temperature]]`'s field, checked: `along` and `profile` together,
+/// `along` a coordinate of the model, at least two rows [coordinate,
+/// factor] of finite numbers with rising coordinates that span the body.
+fn profile(
+    t: &crate::input::case::TemperatureSpec,
+    mesh: &Mesh,
+    body: usize,
+    at: &str,
+) -> Result<Option<Profile>> {
+    let (along, rows) = match (&t.along, &t.profile) {
+        (None, None) => return Ok(None),
+        (Some(a), Some(r)) => (a, r),
+        (Some(_), None) => {
+            return Err(Error::input(
+                format!("{at} along"),
+                "needs `profile` (rows [coordinate mm, factor of change]): the field it runs along",
+            ))
+        }
+        (None, Some(_)) => return Err(Error::input(
+            format!("{at} profile"),
+            "needs `along` (\"x\", \"y\" or, in 3D, \"z\"): the coordinate its rows are given at",
+        )),
+    };
+    let axes: &[&str] = if mesh.dim() == 3 {
+        &["x", "y", "z"]
+    } else {
+        &["x", "y"]
+    };
+    let Some(axis) = axes.iter().position(|a| a == along) else {
+        return Err(Error::input(
+            format!("{at} along"),
+            format!(
+                "\"{}\" is no coordinate of this model (one of {})",
+                clip(along),
+                axes.join(", ")
+            ),
+        ));
+    };
+    let key = format!("{at} profile");
+    if let Some(i) = rows.iter().position(|r| r.len() != 2) {
+        return Err(Error::input(
+            key,
+            format!(
+                "row {i} has {} number(s): each row is [coordinate mm, factor]",
+                rows[i].len()
+            ),
+        ));
+    }
+    if rows.len() < 2 {
+        return Err(Error::input(
+            key,
+            format!("has {} row(s): give at least two", rows.len()),
+        ));
+    }
+    let rows = pairs(rows);
+    for (i, &[x, f]) in rows.iter().enumerate() {
+        if !(x.is_finite() && f.is_finite()) {
+            return Err(Error::input(
+                key,
+                format!("row {i}: [{x}, {f}] is not two finite numbers"),
+            ));
+        }
+        if i > 0 && x <= rows[i - 1][0] {
+            return Err(Error::input(
+                key,
+                format!(
+                    "row {i}: {x} mm does not rise from row {}'s {} mm",
+                    i - 1,
+                    rows[i - 1][0]
+                ),
+            ));
+        }
+    }
+    // the body's extent along the axis, within the rows (not extrapolated)
+    let tol = crate::model::consistency::tolerance(mesh);
+    let (lo, hi) = (mesh.elements.iter())
+        .filter(|e| e.body == body)
+        .flat_map(|e| e.nodes().iter())
+        .map(|&n| mesh.nodes[n][axis])
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+            (a.min(v), b.max(v))
+        });
+    let (r0, r1) = (rows[0][0], rows[rows.len() - 1][0]);
+    if lo < r0 - tol || hi > r1 + tol {
+        return Err(Error::input(
+            key,
+            format!("spans {along} = {r0} … {r1} mm, but the body reaches {lo} … {hi} mm: give rows that cover it (a profile is not extrapolated)"),
+        ));
+    }
+    Ok(Some(Profile { axis, rows }))
 }
 
 impl BodyTemperature {
@@ -125,13 +247,20 @@ pub(super) fn read(
             }
         }
         let history = res.resolve(t.history.as_ref(), &format!("{at} history"))?;
-        scaled.push((
-            format!("{at} change"),
-            t.change,
-            &ranges::TEMPERATURE_CHANGE,
-            history,
-        ));
         let m = &case.materials[&t.body];
+        let profile = profile(t, mesh, body, &at)?;
+        if profile.is_some() && (m.young_table.is_some() || m.yield_table.is_some()) {
+            return Err(Error::input(
+                format!("{at} profile"),
+                format!("with [materials.{}] young_table or yield_table: the material would change within an element, which is not built; give the body a uniform temperature, or drop the tables", clip(&t.body)),
+            ));
+        }
+        let peak = profile.as_ref().map_or(1.0, |p| p.largest());
+        let label = match &profile {
+            Some(_) => format!("{at} change (× its profile's largest factor, {peak})"),
+            None => format!("{at} change"),
+        };
+        scaled.push((label, t.change * peak, &ranges::TEMPERATURE_CHANGE, history));
         out.push(BodyTemperature {
             body,
             change: t.change,
@@ -140,6 +269,7 @@ pub(super) fn read(
             history,
             young: m.young_table.as_deref().map(pairs),
             yield_stress: m.yield_table.as_deref().map(pairs),
+            profile,
         });
     }
     tables_need_a_temperature(case, mesh, &out, place)?;
@@ -262,6 +392,12 @@ pub(super) fn check_absolute(
             continue;
         };
         let (lo, hi) = factor_range(t, histories, largest);
+        // with a field, the factors of its profile too
+        let (plo, phi) = t.profile.as_ref().map_or((1.0, 1.0), |p| p.extremes());
+        let (lo, hi) = (
+            (lo * plo).min(lo * phi).min(hi * plo).min(hi * phi),
+            (lo * plo).max(lo * phi).max(hi * plo).max(hi * phi),
+        );
         let lowest = reference + (t.change * lo).min(t.change * hi);
         if lowest < ABSOLUTE_ZERO {
             return Err(Error::input(

@@ -66,7 +66,7 @@ fn b_matrix(geom: &ElementGeometry, ip: usize) -> [[f64; NE]; 6] {
 pub fn forces(
     geom: &ElementGeometry,
     mat: &VonMises,
-    thermal: f64,
+    thermal: &[f64],
     ue: &[f64],
     committed: &[PointState],
     trial: &mut [PointState],
@@ -90,7 +90,7 @@ pub fn forces(
         }
         let b = b_matrix(geom, ip);
         let eps: [f64; 6] = std::array::from_fn(|i| (0..ne).map(|j| b[i][j] * ue[j]).sum());
-        let eps = super::solid::less_thermal(eps, thermal);
+        let eps = super::solid::less_thermal(eps, thermal[ip]);
         let (state, c_alg) = match response {
             Response::Plastic => mat.update_twist(&committed[ip], &eps),
             Response::ElasticOnly => (
@@ -173,7 +173,7 @@ mod tests {
         forces(
             geom,
             m,
-            0.0,
+            &[0.0; 9],
             ue,
             committed,
             &mut trial,
@@ -255,7 +255,7 @@ mod tests {
         crate::physics::element::solid::axisymmetric_forces(
             &geom,
             &m,
-            0.0,
+            &[0.0; 9],
             &[0.0; 16],
             &[PointState::default(); 9],
             &mut trial,

@@ -56,7 +56,7 @@ impl Section {
 pub fn element_forces(
     geom: &solid::ElementGeometry,
     mat: &crate::physics::material::VonMises,
-    thermal: f64,
+    thermal: &[f64],
     ue: &[f64],
     committed: &[crate::physics::material::PointState],
     trial: &mut [crate::physics::material::PointState],
@@ -112,7 +112,7 @@ impl Geometry {
     pub(crate) fn forces(
         &self,
         mat: &crate::physics::material::VonMises,
-        thermal: f64,
+        thermal: &[f64],
         ue: &[f64],
         committed: &[crate::physics::material::PointState],
         trial: &mut [crate::physics::material::PointState],

@@ -161,7 +161,7 @@ pub(crate) type ElementVector = [f64; NodeDofs::MAX_ELEMENT];
 pub fn forces(
     geom: &ElementGeometry,
     mat: &VonMises,
-    thermal: f64,
+    thermal: &[f64],
     ue: &[f64],
     committed: &[PointState],
     trial: &mut [PointState],
@@ -183,10 +183,10 @@ pub fn forces(
         let eps = geom.strain(ip, ue);
         let (state, c_alg) = match response {
             Response::Plastic => mat
-                .update_thermal(&committed[ip], &eps, thermal)
+                .update_thermal(&committed[ip], &eps, thermal[ip])
                 .map_err(|e| format!("Gauss point {ip}: {e}"))?,
             Response::ElasticOnly => (
-                elastic_state_thermal(mat, &committed[ip], &eps, thermal),
+                elastic_state_thermal(mat, &committed[ip], &eps, thermal[ip]),
                 mat.elastic_matrix(),
             ),
         };
@@ -301,7 +301,7 @@ fn add_btcb(d: &[[f64; 2]; MAX_NODES], nn: usize, c: &Matrix3<f64>, dv: f64, ke:
 pub(crate) fn axisymmetric_forces(
     geom: &ElementGeometry,
     mat: &VonMises,
-    thermal: f64,
+    thermal: &[f64],
     ue: &[f64],
     committed: &[PointState],
     trial: &mut [PointState],
@@ -322,7 +322,7 @@ pub(crate) fn axisymmetric_forces(
                 "Gauss point {ip} at r = {r}: an axisymmetric element must lie at r ≥ 0"
             ));
         }
-        let eps = less_thermal(geom.strain_axisymmetric(ip, ue), thermal);
+        let eps = less_thermal(geom.strain_axisymmetric(ip, ue), thermal[ip]);
         let (state, c_alg) = match response {
             Response::Plastic => mat.update_axisymmetric(&committed[ip], &eps),
             Response::ElasticOnly => (

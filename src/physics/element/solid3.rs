@@ -179,7 +179,7 @@ impl ElementGeometry3 {
 pub(crate) fn forces3(
     geom: &ElementGeometry3,
     mat: &VonMises,
-    thermal: f64,
+    thermal: &[f64],
     ue: &[f64],
     committed: &[PointState],
     trial: &mut [PointState],
@@ -212,7 +212,7 @@ pub(crate) fn forces3(
         ke[..ne * ne].fill(0.0);
     }
     for ip in 0..geom.n {
-        let eps = super::solid::less_thermal(geom.strain(ip, ue), thermal);
+        let eps = super::solid::less_thermal(geom.strain(ip, ue), thermal[ip]);
         let (state, c_alg) = match response {
             Response::Plastic => mat.update_twist(&committed[ip], &eps),
             Response::ElasticOnly => (
@@ -398,7 +398,16 @@ mod tests {
         let (mut fe, mut ke) = ([0.0; MAX_DOFS3], [0.0; MAX_DOFS3 * MAX_DOFS3]);
         let mut trial = vec![PointState::default(); g.n];
         forces3(
-            g, m, 0.0, ue, committed, &mut trial, response, tangent, &mut fe, &mut ke,
+            g,
+            m,
+            &[0.0; MAX_POINTS3],
+            ue,
+            committed,
+            &mut trial,
+            response,
+            tangent,
+            &mut fe,
+            &mut ke,
         )
         .unwrap();
         (fe[..ne].to_vec(), ke[..ne * ne].to_vec(), trial)

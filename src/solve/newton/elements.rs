@@ -252,9 +252,11 @@ fn element_chunk(
         committed.range(gs.clone()).load(&mut c_buf[..np]);
         let mut tg = trial.range_mut(gs);
         tg.load(&mut t_buf[..np]);
-        let done = m.element_geometry(e).forces(
+        let geo = m.element_geometry(e);
+        let th = thermal.point_thermal(el.body, &geo);
+        let done = geo.forces(
             &thermal.materials[el.body],
-            thermal.thermal[el.body],
+            &th,
             &ue[..ne],
             &c_buf[..np],
             &mut t_buf[..np],
