@@ -11,6 +11,7 @@ mod common;
 mod adapt;
 mod axisymmetric;
 mod blocks;
+mod bolted_hub;
 mod calibration;
 mod column;
 mod cycles;
