@@ -226,7 +226,10 @@ fn serial_petsc1_and_petsc2_agree_on_a_bolted_hub_under_torque() {
             assert_eq!(p.len(), s.len(), "{run}: {file}");
             for (a, b) in s.iter().zip(&p) {
                 for (c, (x, y)) in a.iter().zip(b).enumerate() {
-                    assert!(close(*x, *y, scale[c]), "{run}: {file}: column {c}: {a:?} vs {b:?}");
+                    assert!(
+                        close(*x, *y, scale[c]),
+                        "{run}: {file}: column {c}: {a:?} vs {b:?}"
+                    );
                 }
             }
         }

@@ -294,7 +294,11 @@ vtu_every = 1000
             let gp = &last.gauss.get(g);
             let r = geo.x[ip][0];
             // twist stress order: rr, zz, rz, θθ, rθ, zθ
-            assert!(common::rel(gp.stress[1], f / a) < 1e-9, "σ_zz {}", gp.stress[1]);
+            assert!(
+                common::rel(gp.stress[1], f / a) < 1e-9,
+                "σ_zz {}",
+                gp.stress[1]
+            );
             assert!(
                 (gp.stress[5] - t * r / j).abs() < 1e-9 * t * r0 / j,
                 "τ_zθ {} vs {}",
