@@ -23,9 +23,11 @@ fn rows() -> Vec<[String; 4]> {
         .skip(1)
         .take_while(|l| l.starts_with('|'))
         .map(|l| {
+            // no cell holds a '|' of its own
             let cells: Vec<String> = l
+                .trim()
                 .trim_matches('|')
-                .split(" | ")
+                .split('|')
                 .map(|c| c.trim().to_string())
                 .collect();
             assert_eq!(cells.len(), 5, "a row of five cells: {l}");
