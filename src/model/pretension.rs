@@ -6,15 +6,22 @@
 //! (y = h, or x = c in plane models) that elements on both sides share is
 //! doubled, the elements beyond the line (on the side the normal n = +y or
 //! +x points to) take the copy. One more unknown, the shortening s, lives on
-//! a reference node of its own after the mesh's nodes (dofs 2N + 2k, and
-//! 2N + 2k + 1, always 0), and the copies follow the originals through the
-//! model's linear constraints ([`crate::model::constraint`]):
+//! a reference node of its own after the mesh's N nodes (section k's first
+//! dof, K (N + k) with K dofs per node; its other dofs always 0), and the
+//! copies follow the originals through the model's linear constraints
+//! ([`crate::model::constraint`]):
 //!
 //! ```text
-//!   u_n(copy) = u_n(node) − s,   u_t(copy) = u_t(node)
+//!   u_n(copy) = u_n(node) − s,   u_t(copy) = u_t(node),   u_θ(copy) = u_θ(node) (twist)
 //! ```
 //!
 //! so s > 0 shortens the body across the cut, rigidly over the whole cut.
+//! With twist (an axisymmetric model with u_θ, [`crate::input::case::twist`])
+//! the circumferential displacement is continuous across the cut: the cut is
+//! a device of the model in a shank that is whole, and carries its torque
+//! (the friction torque under a bolt's head goes down the shank to its
+//! thread) as the uncut shank would; no section's normal is θ, so no
+//! shortening enters u_θ.
 //! The virtual work of the cut is N δs with N the force the body transmits
 //! across the cut (tension positive): the force on s's equation is the
 //! section force, and it is what is reported (`crate::solve::State::section_force`).
@@ -510,7 +517,9 @@ pub fn constraints(
     let mut made: HashMap<usize, Constraint> = HashMap::new();
     for (&r, members) in &mut groups {
         members.sort_unstable_by_key(|m| m.0);
-        for comp in 0..2 {
+        // u_θ too with twist: no section's normal is θ, so the copy turns
+        // with its node and the cut carries the torque
+        for comp in 0..nd.per_node() {
             // the sections whose shortening enters this component of member m
             let enter = |path: &[usize]| -> Vec<usize> {
                 path.iter()
@@ -568,7 +577,7 @@ pub fn constraints(
     let mut out = Vec::with_capacity(made.len());
     for s in sections {
         for &(n, c) in &s.pairs {
-            for comp in 0..2 {
+            for comp in 0..nd.per_node() {
                 for m in [c, n] {
                     if let Some(k) = made.remove(&nd.dof(m, comp)) {
                         out.push(k);
@@ -628,7 +637,7 @@ fn held_twice(
     place: &str,
     names: &dyn Fn(&[usize]) -> String,
 ) -> Error {
-    let x = ["ux", "uy"][comp];
+    let x = ["ux", "uy", "u_θ (a rotation about the axis)"][comp];
     let [px, py, _] = nodes[node];
     let at = format!("node {node} at ({px}, {py})");
     let where_ = if sections_at.len() > 1 {

@@ -44,6 +44,12 @@ pub fn pose(model: &Model, spec: &BoltSpec, at: &str) -> Result<Posed> {
     if !model.section.axisymmetric || model.mesh.dim() != 2 {
         return Err(Error::input(at, "VDI 2230 rates a concentric bolt: give it an axisymmetric model about the bolt's axis (plane = \"axisymmetric\")"));
     }
+    if model.node_dofs().twist() {
+        // not built: the guideline's torque terms (the clamp load a torque
+        // M_Y needs against slip, F_KQerf = M_Y / (q_M r_a μ_T,min), R2/R10)
+        // and the bolt's torsion in service are not in the rating
+        return Err(Error::input(at, "VDI 2230 is rated on the axial joint: in a model with twist ([model] twist = true) its torque terms (the clamp load against slip under a torque M_Y, the bolt's torsion in service) are not rated yet; rate the bolt on the model without twist, and read the joint's torque in joints.csv"));
+    }
     let section = model
         .sections
         .iter()

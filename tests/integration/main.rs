@@ -20,6 +20,7 @@ mod cli;
 mod damping;
 mod designer;
 mod doc_paths;
+mod features_together;
 mod figures;
 mod gmsh;
 mod help;

@@ -57,6 +57,34 @@ fn a_stopped_twisted_fit_resumes_to_the_same_torque() {
     );
 }
 
+/// Twist with pretension (issue 46): `cases/bolted-hub-torque` stopped in its
+/// turn (after the lock, its seat sliding around the axis, its end plate
+/// still sticking), resumed: the section's locked shortening and force, the
+/// faces' torques and the supports' (the nut's is the torque through the
+/// cut) as the uninterrupted run's, to the byte.
+#[test]
+fn a_stopped_bolted_hub_resumes_to_the_same_torques_and_bolt_force() {
+    let case = common::root().join("cases/bolted-hub-torque");
+    resume(
+        "twist-pretension-restart",
+        &case,
+        "25",
+        |f| {
+            // force and shortening of one section per increment
+            let p = f.f64s("pretension");
+            assert_eq!(p.len(), 2 * 25);
+            assert!(p[2 * 24] < 50_000.0 && p[2 * 24 + 1] == p[2 * 19 + 1]);
+        },
+        &[
+            "pretension.csv",
+            "joints.csv",
+            "reactions.csv",
+            "curve.csv",
+            "interface/0040.csv",
+        ],
+    );
+}
+
 /// The scalar layout the earlier builds wrote for a twisting model without
 /// a tangential law (u_p, κ, p_T, u_T, μ_F and 20 memory values a point) is
 /// refused by its size: exit 2, one line naming restart.bin, no output.

@@ -190,3 +190,48 @@ fn twisted_joints_agree(case: &str, min_torque: f64) {
         }
     }
 }
+
+/// Twist with pretension (issue 46), `cases/bolted-hub-torque`: the section's
+/// reference node (three dofs, two held) on rank 0, its copies tied to their
+/// nodes in u_θ too on whichever rank owns them; a hub turned past gross
+/// slip of both its faces. The joint rows (the torque of each face, the end
+/// plate's going down the bolt across the cut), the bolt's force and
+/// shortening of every increment and the supports' torques as the serial
+/// run's, to round-off.
+#[test]
+fn serial_petsc1_and_petsc2_agree_on_a_bolted_hub_under_torque() {
+    twisted_joints_agree("bolted-hub-torque", 2e5);
+    let root = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join("parallel-bolted-hub-torque-1-2");
+    let rows = |run: &str, file: &str| -> Vec<Vec<f64>> {
+        std::fs::read_to_string(root.join(run).join(file))
+            .unwrap()
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+            .collect()
+    };
+    for file in ["pretension.csv", "reactions.csv"] {
+        let s = rows("serial", file);
+        assert!(s.len() > 20, "{file}: {} rows", s.len());
+        // each column to 1e-6 of its largest value over the run, at least
+        // 1e-6 of the file's (the shoulder's axial reaction under a clamp
+        // that is in equilibrium by itself is a column of round-off, 1e-11 N)
+        let top = (s.iter().flatten()).fold(1e-30f64, |m, v| m.max(v.abs()));
+        let scale: Vec<f64> = (0..s[0].len())
+            .map(|c| s.iter().fold(1e-6 * top, |m, r| m.max(r[c].abs())))
+            .collect();
+        for run in ["petsc1", "petsc2"] {
+            let p = rows(run, file);
+            assert_eq!(p.len(), s.len(), "{run}: {file}");
+            for (a, b) in s.iter().zip(&p) {
+                for (c, (x, y)) in a.iter().zip(b).enumerate() {
+                    assert!(
+                        close(*x, *y, scale[c]),
+                        "{run}: {file}: column {c}: {a:?} vs {b:?}"
+                    );
+                }
+            }
+        }
+    }
+}

@@ -193,6 +193,28 @@ fn a_disk_twisted_before_its_face_closes_is_held_by_the_stabilization_then_relea
     );
 }
 
+/// The shipped case with its face matching (the disk's and the base's nodes
+/// coincide) and consistent weights (issue 46: a tangential law on a
+/// matching interface with consistent weights, 4 Gauss points per edge, each
+/// with its own slip history): the same closed form while the face sticks
+/// (the 4-point rule integrates r p_Tθ dA, of degree 4 in r, exactly), then
+/// micro-slip from the rim.
+#[test]
+fn a_matching_face_with_consistent_weights_twists_as_the_closed_form_while_it_sticks() {
+    let text = case_text().replace(
+        "matching = false      # spring points at 4 Gauss points per edge: each with its own slip\n",
+        "",
+    );
+    assert!(!text.contains("matching") && text.contains("weights = \"consistent\""));
+    let torque = |t: f64| T * (t - 1.0).clamp(0.0, 1.0);
+    let clamp = |t: f64| P * t.clamp(0.0, 1.0);
+    let (stick, slip) = check(&text, torque, clamp, &[("disk", 1.0)]);
+    assert!(
+        stick > 20 && slip > 5,
+        "{stick} sticking and {slip} slipping increments"
+    );
+}
+
 /// A stack: a second disk (`top`, 10 ≤ z ≤ 20) on the disk, through a second
 /// rough face of the same law; neither disk has a boundary condition, the
 /// top one is held about the axis by friction to a disk that is itself held

@@ -12,6 +12,7 @@ mod adapt;
 mod adapt_over;
 mod axisymmetric;
 mod blocks;
+mod bolted_hub;
 mod calibration;
 mod column;
 mod cycles;

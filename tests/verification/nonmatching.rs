@@ -103,6 +103,80 @@ fn a_matching_mesh_declared_non_matching_reproduces_the_matching_run() {
     }
 }
 
+/// A tangential law on a matching interface with consistent weights (issue
+/// 46; refused before, as "one slip history per pair"): every Gauss point of
+/// an edge keeps its own slip history, as a non-matching interface's spring
+/// does. cases/punch-friction-b (micro-slip) with consistent weights, matching and
+/// declared non-matching (the same 4 Gauss points per edge on the same
+/// nodes): the same settlement, normal and tangential force and slip
+/// measures every increment, and the same shear at every point, to 1e-9.
+#[test]
+fn friction_with_consistent_weights_on_a_matching_mesh_is_the_non_matching_run() {
+    let base = include_str!("../../cases/punch-friction-b/case.toml").replace(
+        "law = \"power\"",
+        "weights = \"consistent\"\nlaw = \"power\"",
+    );
+    let nm = base.replace(PAIRED, &format!("{PAIRED}matching = false\n"));
+    assert!(nm.contains("matching = false") && base.contains("[interface.contact.tangential]"));
+    let (m0, r0) = run("nm-friction-consistent-matching", &base);
+    let (_, r1) = run("nm-friction-consistent-nonmatching", &nm);
+    assert_eq!(
+        m0.interfaces[0].points.len(),
+        4 * 8,
+        "4 Gauss points on each of 8 edges"
+    );
+    assert_eq!(r0.increments.len(), r1.increments.len());
+    let f_max = r0
+        .increments
+        .iter()
+        .fold(0.0f64, |a, i| a.max(i.joints[0].normal_force));
+    let mut worst = 0.0f64;
+    for (a, b) in r0.increments.iter().zip(&r1.increments) {
+        let (ja, jb) = (a.joints[0], b.joints[0]);
+        for (what, x, y, scale) in [
+            (
+                "settlement",
+                a.measures.center_displacement,
+                b.measures.center_displacement,
+                a.measures.center_displacement.abs(),
+            ),
+            ("normal force", ja.normal_force, jb.normal_force, f_max),
+            (
+                "tangential force",
+                ja.tangential_force,
+                jb.tangential_force,
+                f_max,
+            ),
+            ("micro-slip measure", ja.micro_slip, jb.micro_slip, 20.0),
+            ("macro-slip measure", ja.macro_slip, jb.macro_slip, 20.0),
+        ] {
+            worst = worst.max((x - y).abs() / scale);
+            assert!(
+                (x - y).abs() <= 1e-9 * scale,
+                "t = {}: {what}: matching {x}, non-matching {y}",
+                a.load_factor
+            );
+        }
+    }
+    let (s0, s1) = (&r0.final_state, &r1.final_state);
+    let t_max = s0.contact.iter().fold(0.0f64, |a, c| a.max(c.p_t.abs()));
+    assert!(t_max > 1.0, "no shear: {t_max}");
+    for (k, (a, b)) in s0.contact.iter().zip(&s1.contact).enumerate() {
+        assert!(
+            (a.p_t - b.p_t).abs() <= 1e-9 * t_max,
+            "point {k}: p_T {} vs {}",
+            a.p_t,
+            b.p_t
+        );
+    }
+    let j = r0.increments.last().unwrap().joints[0];
+    assert!(j.micro_slip + j.macro_slip > 0.0, "nothing slips: {j:?}");
+    eprintln!(
+        "friction, consistent weights: matching = non-matching to {worst:.1e}; F_T {:.3} N of F_N {:.3} N, {:.3} mm micro-slipping",
+        j.tangential_force, j.normal_force, j.micro_slip
+    );
+}
+
 /// Two elastic blocks through a non-matching interface, loaded by a uniform
 /// pressure `q` = 100 MPa; `vertical`: side by side, else one on the other.
 /// `slave` and `master` are the mesh keys along the interface (breakpoints,

@@ -219,6 +219,96 @@ vtu_every = 1000
     }
 }
 
+/// The rod above with twist (issue 46), turned by a torque T on its top end
+/// (τ_θ = T r / J) and held about the axis at its bottom: the cut carries
+/// u_θ, so the rod twists as an uncut shaft, u_θ = T r z / (G J) at every
+/// node, the copies beyond the cut included, and τ_zθ = T r / J (Timoshenko
+/// & Goodier §104; linear in r and z, in the Q8 space: exact), while the
+/// section's force, shortening and σ_zz are the untwisted rod's (the twist
+/// does not enter the meridian problem of an elastic body of revolution).
+#[test]
+fn a_twisted_rod_of_revolution_cut_across_its_axis_twists_as_the_uncut_rod() {
+    let (r0, l0, f, t) = (6.0, 20.0, 30_000.0, 2.0e5);
+    let text = format!(
+        r#"
+[model]
+plane = "axisymmetric"
+twist = true
+[[mesh.block]]
+body = "rod"
+x = [0.0, {r0}]
+nx = [3]
+y = [0.0, {l0}, {}]
+ny = [4, 4]
+[materials.rod]
+young = {E}
+poisson = 0.3
+[[boundary]]
+set = "rod.bottom"
+uy = 0.0
+rotation = 0.0
+[[boundary]]
+set = "rod.top"
+uy = 0.0
+[[load]]
+edges = "rod.top"
+torque = {t}
+[[pretension]]
+name = "shank"
+body = "rod"
+y = {l0}
+force = {f}
+[output]
+vtu_every = 1000
+"#,
+        2.0 * l0
+    );
+    let model = common::model(&text);
+    let (r, states) = solve(&model);
+    let [force, s] = r.increments.last().unwrap().sections[0];
+    let a = std::f64::consts::PI * r0 * r0;
+    let j = std::f64::consts::PI * r0.powi(4) / 2.0;
+    let g = E / 2.6;
+    assert!(common::rel(force, f) < 1e-10, "force {force}");
+    assert!(
+        common::rel(s, f * 2.0 * l0 / (E * a)) < 1e-9,
+        "shortening {s}"
+    );
+    let last = states.last().unwrap();
+    let nd = model.node_dofs();
+    let scale = t * r0 * 2.0 * l0 / (g * j);
+    let mut copies = 0;
+    for (n, x) in model.mesh.nodes.iter().enumerate() {
+        let want = t * x[0] * x[1] / (g * j);
+        let got = last.u[nd.dof(n, 2)];
+        assert!(
+            (got - want).abs() < 1e-9 * scale,
+            "node {n} at {x:?}: u_θ {got} vs {want}"
+        );
+        copies += usize::from(model.sections[0].pairs.iter().any(|p| p.1 == n));
+    }
+    assert_eq!(copies, model.sections[0].pairs.len());
+    for e in 0..model.mesh.elements.len() {
+        let geo = model.geometry(e);
+        for (ip, g) in model.points(e).enumerate() {
+            let gp = &last.gauss.get(g);
+            let r = geo.x[ip][0];
+            // twist stress order: rr, zz, rz, θθ, rθ, zθ
+            assert!(
+                common::rel(gp.stress[1], f / a) < 1e-9,
+                "σ_zz {}",
+                gp.stress[1]
+            );
+            assert!(
+                (gp.stress[5] - t * r / j).abs() < 1e-9 * t * r0 / j,
+                "τ_zθ {} vs {}",
+                gp.stress[5],
+                t * r / j
+            );
+        }
+    }
+}
+
 /// A patch test through the constraint mechanism: a coarse element
 /// [0, 2]² beside two fine ones [2, 3] × [0, 1] and [2, 3] × [1, 2], whose
 /// left edges' midside nodes (2, 0.5) and (2, 1.5) hang inside the coarse

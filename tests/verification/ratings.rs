@@ -332,6 +332,38 @@ fn a_cycles_rating_without_a_force_slip_loop_is_incomplete() {
     assert!(r["checks"].as_array().unwrap().is_empty());
 }
 
+/// A joint-cycles rating of a twisting model (issue 46,
+/// docs/features-together.md): cases/shrink-fit-combined, its axial push
+/// held and its shaft turned back and forth (cut to its first cycle),
+/// closes a torque-twist loop but no force-slip loop; the rating reads the
+/// force-slip loop only (a torsional rating is not built) and says so,
+/// with no verdict rather than a pass on nothing.
+#[test]
+fn a_cycles_rating_of_a_fit_cycled_only_in_torque_is_incomplete() {
+    let turn = "turn  = [[2.0, 0.0], [3.0, 1.0], [5.0, -1.0], [7.0, 1.0], [9.0, -1.0], [11.0, 1.0], [13.0, -1.0], [15.0, 1.0]]";
+    let text = std::fs::read_to_string(common::root().join("cases/shrink-fit-combined/case.toml"))
+        .unwrap();
+    assert!(text.contains(turn) && text.contains("max_increment = 0.1"));
+    let text = text
+        .replacen(
+            turn,
+            "turn = [[2.0, 0.0], [3.0, 1.0], [5.0, -1.0], [7.0, 1.0]]",
+            1,
+        )
+        .replacen("max_increment = 0.1", "max_increment = 0.2", 1)
+        + "\n[[rating]]\nstandard = \"joint cycles\"\ninterface = \"fit\"\n";
+    let dir = common::case_dir("cycles-torque-only", &text);
+    let out = common::scratch("cycles-torque-only-out");
+    let (code, err) = common::run_case(&dir, &out, &[]);
+    assert_eq!(code, 0, "{err}");
+    let s: Value = serde_json::from_str(&common::read_out(&out, "summary.json")).unwrap();
+    let cycles = s["joints"][0]["cycles"].as_array().unwrap();
+    assert!(!cycles.is_empty(), "no closed cycle");
+    let r = &s["ratings"][0];
+    let why = r["incomplete"].as_str().unwrap_or_else(|| panic!("{r}"));
+    assert!(why.contains("force-slip loop"), "{why}");
+}
+
 /// `ratings.csv` follows each check over the run: a row where one of its
 /// numbers changed, none before the rating can be rated (the bolt before
 /// its lock at t = 1), and its last row is the summary's check, to the

@@ -310,6 +310,51 @@ fn a_twisted_fit_meshed_apart_holds_two_pi_mu_p_b2_l() {
     }
 }
 
+/// The twisted fit on its matching interface with consistent weights (issue
+/// 46: a tangential law with consistent weights, one spring and one slip
+/// history per Gauss point, 4 per edge, as a non-matching interface has):
+/// once the fit slides every point carries μ p_N around the axis at r = b,
+/// T = μ b F_N = 2π μ p b² L with the run's p; before the turn the fit holds
+/// no torque and slides nowhere around the axis.
+#[test]
+fn a_twisted_fit_with_consistent_weights_holds_two_pi_mu_p_b2_l() {
+    let text = case(true, Some(2.5e-3), None).replacen(
+        "gap_history = \"press\"",
+        "gap_history = \"press\"\nweights = \"consistent\"",
+        1,
+    );
+    assert!(text.contains("weights = \"consistent\"") && !text.contains("matching"));
+    let (model, r) = run(&text);
+    let im = &model.interfaces[0];
+    assert_eq!(im.points.len(), 4 * 3, "4 Gauss points on each of 3 edges");
+    let area = 2.0 * std::f64::consts::PI * B * L;
+    let mut sliding = 0;
+    for inc in &r.increments {
+        let j = inc.joints[0];
+        if inc.load_factor <= 1.0 {
+            assert!(j.torque.abs() < 1e-9 * B * j.normal_force, "{j:?}");
+            continue;
+        }
+        if common::rel(j.macro_slip, area) < 1e-12 {
+            sliding += 1;
+            let hand = 2.0 * std::f64::consts::PI * MU * (j.normal_force / area) * B * B * L;
+            assert!(
+                common::rel(j.torque, hand) < 1e-9,
+                "t = {}: T {} vs 2π μ p b² L {hand}",
+                inc.load_factor,
+                j.torque
+            );
+        }
+    }
+    let end = r.increments.last().unwrap().joints[0];
+    eprintln!(
+        "consistent weights, matching: T {:.6} N·mm at p = {:.4} MPa, sliding over {sliding} steps",
+        end.torque,
+        end.normal_force / area
+    );
+    assert!(sliding >= 3, "{sliding} sliding increments");
+}
+
 /// cases/shrink-fit-torque (pressed over 0 ≤ t ≤ 1, then its shaft's end
 /// turned over 1 ≤ t ≤ 2) with its `[solver]` table replaced by `solver`,
 /// run through the library.

@@ -357,7 +357,9 @@ impl InterfaceLawSpec {
 }
 
 /// `[interface.<name>.tangential]`: elastic-plastic shear compliance with
-/// slip-hardening friction. Requires lumped weights (one spring, one history, per pair).
+/// slip-hardening friction, one slip history per integration point (a pair
+/// with lumped weights, a Gauss point with consistent ones, a slave node
+/// with mortar).
 #[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct TangentialSpec {

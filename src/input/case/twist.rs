@@ -42,8 +42,9 @@ pub(crate) const TORQUE: ranges::Range = ranges::Range {
 
 /// The case's twist keys one by one, and together: twist only in an
 /// axisymmetric model, its loads and supports only with twist, no torque and
-/// prescribed rotation on one set, and (until the interfaces carry u_θ) no
-/// tangential law or pretension section in a twisting model.
+/// prescribed rotation on one set, and no stiffness modification (a secant
+/// of a scalar slip) in a twisting model. A pretension section goes with
+/// twist: its cut carries u_θ ([`crate::model::pretension`]).
 pub fn check_case(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
     let twist = case.model.twist;
     if twist && case.model.plane != Plane::Axisymmetric {
@@ -129,12 +130,6 @@ pub fn check_case(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
                 ),
             });
         }
-    }
-    if let Some(p) = case.pretension.first() {
-        return Err(Error::input(
-            at(&format!("[[pretension]] \"{}\"", clip(&p.name))),
-            "a pretension section in a model with twist is not yet supported; remove [model] twist or the section",
-        ));
     }
     Ok(())
 }

@@ -387,7 +387,7 @@ fn interface_laws(
         }
         laws.insert(name.clone(), law);
         if let Some(t) = &spec.tangential {
-            let law = tangential_law(case, name, spec, t, at)?;
+            let law = tangential_law(name, t, at)?;
             tangential.insert(name.clone(), (law, t.scheme));
         }
     }

@@ -78,7 +78,7 @@ impl InterfaceModel {
     /// on a mortar spring [`super::Mortar::radius`] (the arm of its force,
     /// so that Σ A r p_Tθ is the torque on the slave nodes and a rigid twist
     /// Δφ gives u_Tθ / r = Δφ).
-    pub(crate) fn point_radii(&self) -> Vec<f64> {
+    pub fn point_radii(&self) -> Vec<f64> {
         self.points
             .iter()
             .map(|pt| match &pt.coupling {

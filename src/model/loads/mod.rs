@@ -366,8 +366,11 @@ impl Gathered {
                 let range = &ranges::DISPLACEMENT;
                 self.scaled.push((format!("{at} shortening"), v, range, h));
             }
-            // the reference node's second dof is no unknown
-            prescribed.push(((d + 1, 0.0), None));
+            // the reference node's other dofs (its second, and with twist
+            // its third) are no unknowns
+            for c in 1..mesh.node_dofs.per_node() {
+                prescribed.push(((d + c, 0.0), None));
+            }
             histories.push(h);
         }
         Ok(histories)

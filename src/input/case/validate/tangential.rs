@@ -6,26 +6,17 @@
 use super::*;
 use crate::physics::contact::tangential::params;
 
-/// The tangential law of interface `name`: r and s, or a k_table, with
-/// lumped springs or a non-matching interface.
+/// The tangential law of interface `name`: r and s, or a k_table; any
+/// weights (each integration point keeps its own slip history).
 pub(super) fn tangential_law(
-    case: &Case,
     name: &str,
-    spec: &InterfaceLawSpec,
     t: &TangentialSpec,
     at: &dyn Fn(&str) -> String,
 ) -> Result<TangentialLaw> {
     let key = format!("[interface.{name}] tangential");
-    // a non-matching interface has one spring, one pair and one slip
-    // history per quadrature point, with either weights
-    let nonmatching = case
-        .mesh
-        .interface
-        .iter()
-        .any(|i| i.name == name && i.matching == Some(false));
-    if spec.weights != Weights::Lumped && !nonmatching {
-        return Err(Error::input(at(&key), "a tangential law needs weights = \"lumped\" (one spring and one slip history per pair), or an interface with matching = false (one spring per quadrature point)"));
-    }
+    // every integration point of the interface keeps its own slip history,
+    // whatever the weights: a pair (lumped), a Gauss point of an edge
+    // (consistent, matching or not), a slave node (mortar)
     let kp_ratio = backbone_keys(
         t.backbone,
         [t.kp_ratio, t.yield_ratio, t.chi, t.spike],
