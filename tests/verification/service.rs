@@ -563,3 +563,87 @@ fn the_shipped_hub_in_service_follows_its_hand_check() {
     assert_eq!(model.rpm(plateau.load_factor), Some(6000.0));
     assert!(common::rel(held, hand) < 1e-4, "{held} vs {hand}");
 }
+
+/// The speed's nodal forces sum to the body force's resultant, exactly
+/// (Σ_a N_a = 1), in each kind of model: a plane block 10 ≤ x ≤ 30,
+/// 0 ≤ y ≤ 5, 2 mm thick, spinning about z (Σ f = ρ ω² t (h (b² − a²)/2,
+/// (b − a) h²/2)); a ring of the same section about the axis (Σ f_r =
+/// ρ ω² 2π h (b³ − a³)/3, per the whole revolution); the block extruded
+/// 0 ≤ z ≤ 4 and spinning about y (Σ f = ρ ω² (h L (b² − a²)/2, 0,
+/// (b − a) h L²/2)).
+#[test]
+fn the_centrifugal_forces_sum_to_the_body_force_resultant_in_every_model() {
+    let (a, b, h, t, l) = (10.0, 30.0, 5.0, 2.0, 4.0);
+    let w2 = STEEL.rho * 1e-12 * omega(RPM).powi(2);
+    let sums = |text: String| {
+        let model = common::model(&text);
+        let mut f = vec![0.0; model.mesh.num_dofs()];
+        model.external_force(1.0, &mut f);
+        let k = model.node_dofs().per_node();
+        (0..model.mesh.dim())
+            .map(|c| f.iter().skip(c).step_by(k).sum::<f64>())
+            .collect::<Vec<f64>>()
+    };
+    let spin = |c: common::CaseText, dim3: bool| {
+        let c = c
+            .material("block", STEEL.e, STEEL.nu)
+            .with("density", STEEL.rho)
+            .fixed("block.left");
+        let c = if dim3 { c.with("uz", 0.0) } else { c };
+        c.raw("[speed]").with("rpm", RPM).no_vtu().build()
+    };
+    let plane = sums(spin(
+        common::case()
+            .plane("stress")
+            .thickness(t)
+            .block("block", [a, b], [5], [0.0, h], [2]),
+        false,
+    ));
+    let want = [
+        w2 * t * h * (b * b - a * a) / 2.0,
+        w2 * t * (b - a) * h * h / 2.0,
+    ];
+    for c in 0..2 {
+        assert!(
+            common::rel(plane[c], want[c]) < 1e-12,
+            "plane {c}: {} vs {}",
+            plane[c],
+            want[c]
+        );
+    }
+    let ring = sums(spin(
+        common::case()
+            .plane("axisymmetric")
+            .block("block", [a, b], [5], [0.0, h], [2]),
+        false,
+    ));
+    let want = w2 * 2.0 * std::f64::consts::PI * h * (b.powi(3) - a.powi(3)) / 3.0;
+    assert!(
+        common::rel(ring[0], want) < 1e-12,
+        "ring: {} vs {want}",
+        ring[0]
+    );
+    assert_eq!(ring[1], 0.0);
+    let solid = sums(spin(
+        common::case()
+            .plane("3d")
+            .raw("[mesh]\nextrude = { z = [0.0, 4.0], nz = [2] }")
+            .block("block", [a, b], [5], [0.0, h], [2]),
+        true,
+    ));
+    let want = [
+        w2 * h * l * (b * b - a * a) / 2.0,
+        0.0,
+        w2 * (b - a) * h * l * l / 2.0,
+    ];
+    eprintln!("plane {plane:?}, ring {ring:?}, 3D {solid:?}");
+    for c in [0, 2] {
+        assert!(
+            common::rel(solid[c], want[c]) < 1e-12,
+            "3D {c}: {} vs {}",
+            solid[c],
+            want[c]
+        );
+    }
+    assert_eq!(solid[1], 0.0);
+}
