@@ -325,6 +325,14 @@ fn serial_petsc1_and_petsc2_agree_on_the_slideway_cycles() {
     compare("slideway-cycles", "1");
 }
 
+/// The joint in service (issue 46): a hub heat-assembled on its shaft
+/// (temperatures with histories), warmed, spun up (the speed's body force)
+/// and turned to slip (twist): every answer agrees on both backends.
+#[test]
+fn serial_petsc1_and_petsc2_agree_on_the_hub_in_service() {
+    compare("hub-in-service", "1");
+}
+
 /// The slideway with a kinematic memory and an Iwan backbone (issue 28):
 /// every point's stretch function travels between ranks; the cycles, loss
 /// factors and the sweep's fit agree on both backends.
