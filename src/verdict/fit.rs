@@ -284,17 +284,65 @@ pub fn rate(model: &Model, r: &Run, spec: &FitSpec, posed: Posed) -> Rating {
     }
     checks.extend(yield_checks(model, r, &fit, (hub, shaft), p_hb, yield_s));
     let names = &model.mesh.bodies;
+    let mut inputs = inputs;
+    inputs.extend(joining(model, &fit, hub));
     Rating {
         standard: "DIN 7190-1:2017",
         name: spec.name.clone().unwrap_or_else(|| spec.interface.clone()),
         subject: format!(
-            "interference fit \"{}\": the shaft is body \"{}\", the hub body \"{}\"",
-            spec.interface, names[shaft], names[hub]
+            "interference fit \"{}\": the shaft is body \"{}\", the hub body \"{}\"{}",
+            spec.interface,
+            names[shaft],
+            names[hub],
+            in_service(model, r, (hub, shaft))
         ),
         inputs,
         checks,
         incomplete: None,
     }
+}
+
+/// What a run in service adds to the rating's subject: the FE side is the
+/// run's last state (its temperatures and speed there), the handbook side
+/// the fit at assembly (room temperature, standing still), so a difference
+/// between them is the service's, not the method's. Empty for a run with
+/// neither.
+fn in_service(model: &Model, r: &Run, (hub, shaft): (usize, usize)) -> String {
+    let t = r.increments.last().map_or(0.0, |inc| inc.load_factor);
+    let mut state = Vec::new();
+    for (b, what) in [(hub, "hub"), (shaft, "shaft")] {
+        if let Some(bt) = model.temperatures.iter().find(|bt| bt.body == b) {
+            let dt = bt.change * model.factor(bt.history, t);
+            state.push(format!("{what} ΔT = {dt} K"));
+        }
+    }
+    if let Some(n) = model.rpm(t) {
+        state.push(format!("{n} rpm"));
+    }
+    if state.is_empty() {
+        return String::new();
+    }
+    format!(
+        "; in service: the FE side is the run's end ({}), the handbook side the fit at assembly (room temperature, standing still): their difference is the service's, not the method's",
+        state.join(", ")
+    )
+}
+
+/// DIN 7190's joining temperature of the hub heated for assembly (clearance
+/// 0.001 D_F, the room at the hub's reference temperature), when the hub has
+/// a temperature (its α from α ΔT / ΔT) with a reference.
+fn joining(model: &Model, fit: &Fit, hub: usize) -> Option<Input> {
+    let bt = model.temperatures.iter().find(|bt| bt.body == hub)?;
+    let room = bt.reference?;
+    let alpha = (bt.change != 0.0).then(|| bt.strain / bt.change)?;
+    let t = fit.joining_temperature(room, 1e-3 * fit.d_f, alpha)?;
+    Some(Input::new(
+        "joining temperature of the hub (clearance 0.001 D_F)",
+        "ϑ_A",
+        t,
+        "°C",
+        "material",
+    ))
 }
 
 /// The largest load the fit held while it slid as a whole in `motion`

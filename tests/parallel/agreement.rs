@@ -325,12 +325,22 @@ fn serial_petsc1_and_petsc2_agree_on_the_slideway_cycles() {
     compare("slideway-cycles", "1");
 }
 
-/// The joint in service (issue 46): a hub heat-assembled on its shaft
-/// (temperatures with histories), warmed, spun up (the speed's body force)
-/// and turned to slip (twist): every answer agrees on both backends.
+/// The joint in service (issue 46): cases/hub-in-service, a hub
+/// heat-assembled on its shaft (temperatures with histories), warmed, spun
+/// up (the speed's body force) and turned to slip (twist), with its top
+/// ends free (the shipped case holds them: a state uniform along z, whose
+/// elements tie for the largest stress to round-off, which each backend
+/// breaks its own way): every answer agrees on both backends.
 #[test]
 fn serial_petsc1_and_petsc2_agree_on_the_hub_in_service() {
-    compare("hub-in-service", "1");
+    let text =
+        std::fs::read_to_string(common::root().join("cases/hub-in-service/case.toml")).unwrap();
+    let free = text
+        .replace("[[boundary]]\nset = \"shaft.top\"\nuy = 0.0\n", "")
+        .replace("[[boundary]]\nset = \"hub.top\"\nuy = 0.0\n", "");
+    assert_eq!(free.matches("uy = 0.0").count(), 2, "{free}");
+    let case = common::case_dir("parallel-hub-in-service", &free);
+    compare_on(case.to_str().unwrap(), "1", &[1, 2]);
 }
 
 /// The slideway with a kinematic memory and an Iwan backbone (issue 28):

@@ -647,3 +647,41 @@ fn the_centrifugal_forces_sum_to_the_body_force_resultant_in_every_model() {
     }
     assert_eq!(solid[1], 0.0);
 }
+
+/// A DIN 7190 rating of the shipped hub in service says so: its subject
+/// names the run's end state (the hub 60 K warm, 6000 rpm) and that the
+/// handbook side is the fit at assembly; its inputs give DIN 7190's joining
+/// temperature ϑ_A = 20 + (U + 0.001 D_F)/(α_A D_F) = 126.38 °C
+/// (U = 0.06 mm, D_F = 40 mm, α_A = 23.5e-6/K).
+#[test]
+fn a_fit_rating_in_service_names_its_state_and_the_joining_temperature() {
+    let path = common::root().join("cases/hub-in-service/case.toml");
+    let text = std::fs::read_to_string(&path).unwrap()
+        + "\n[[rating]]\nstandard = \"DIN 7190\"\ninterface = \"fit\"\ntorque = 100.0\n";
+    let dir = common::case_dir("service-rating", &text);
+    let out = common::scratch("service-rating-out").join("out");
+    let (code, err) = common::run_asperity(&[
+        "run",
+        dir.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let rating = &s["ratings"][0];
+    let subject = rating["subject"].as_str().unwrap();
+    assert!(
+        subject.contains(
+            "in service: the FE side is the run's end (hub ΔT = 60 K, shaft ΔT = 60 K, 6000 rpm)"
+        ),
+        "{subject}"
+    );
+    let joining = (rating["inputs"].as_array().unwrap().iter())
+        .find(|i| i["symbol"] == "ϑ_A")
+        .expect("the joining temperature");
+    let want = 20.0 + (0.06 + 0.04) / (23.5e-6 * 40.0);
+    let got = joining["value"].as_f64().unwrap();
+    assert!(common::rel(got, want) < 1e-9, "{got} vs {want}");
+}
