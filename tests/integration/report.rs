@@ -631,3 +631,36 @@ fn the_shipped_fit_and_slideway_reports_show_their_ratings() {
         }
     }
 }
+
+/// A spinning model's events carry their speed (summary.json
+/// `events[].speed_rpm`) into the report's events table, in a column `n`
+/// only such a run has: cases/hub-in-service slips at 6000 rpm.
+#[test]
+fn the_events_of_a_spinning_run_show_their_speed() {
+    static RUN: OnceLock<PathBuf> = OnceLock::new();
+    let out = run_once("hub-in-service", &RUN);
+    let page = out.parent().unwrap().join("page.html");
+    let (code, e, _) = report(&[out.to_str().unwrap(), "--output", page.to_str().unwrap()]);
+    assert_eq!(code, 0, "{e}");
+    let html = std::fs::read_to_string(&page).unwrap();
+    let rows = rows(&html);
+    let head = rows
+        .iter()
+        .find(|r| r.contains("event | interface or body | "))
+        .expect("the events' head");
+    assert!(head.contains(" | T | n | "), "{head}");
+    let slip = row(&rows, "full_slip");
+    assert!(slip.contains("6000 rpm"), "{slip}");
+    // a run standing still has no such column
+    let (code, e, _) = report(&[
+        bolted().to_str().unwrap(),
+        "--output",
+        out.parent().unwrap().join("b.html").to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{e}");
+    let b = std::fs::read_to_string(out.parent().unwrap().join("b.html")).unwrap();
+    assert!(
+        !b.contains(" rpm<"),
+        "a bolt that does not spin shows no speed"
+    );
+}

@@ -250,6 +250,8 @@ pub(super) fn events(page: &mut Page, s: &Value) {
     };
     // a model with twist reports each interface event's torque
     let twist = list.iter().any(|e| num(e, "torque_nm").is_some());
+    // a spinning model reports each event's speed
+    let spinning = list.iter().any(|e| num(e, "speed_rpm").is_some());
     let rows = list
         .iter()
         .map(|e| {
@@ -276,6 +278,9 @@ pub(super) fn events(page: &mut Page, s: &Value) {
             if twist {
                 row.push(value(e, "torque_nm", "N·m"));
             }
+            if spinning {
+                row.push(value(e, "speed_rpm", "rpm"));
+            }
             row.push(Cell::n(place(e)));
             row.push(Cell::from(text(e, "meaning").unwrap_or_else(|| "—".into())));
             row
@@ -291,6 +296,9 @@ pub(super) fn events(page: &mut Page, s: &Value) {
     ];
     if twist {
         head.push("T");
+    }
+    if spinning {
+        head.push("n");
     }
     head.extend(["where (mm)", "meaning"]);
     page.table("Events located (summary.json events)", &head, rows);

@@ -128,6 +128,7 @@ const MEMBERS: &[(&str, Type)] = &[
     ("events[].normal_force_n", Number),
     ("events[].tangential_force_n", Number),
     ("events[].torque_nm", Number),
+    ("events[].speed_rpm", Number),
     ("events[].x_mm", Number),
     ("events[].y_mm", Number),
     ("events[].z_mm", Number),
