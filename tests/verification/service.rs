@@ -267,6 +267,41 @@ fn pair_error(model: &Model, gauss: &[PointState], bodies: [(&Disk, [f64; 2]); 2
     (a.0.max(b.0), a.1.max(b.1))
 }
 
+/// Every increment of a fit's run against the closed form of `pair(x)` at
+/// x = `top` · t (a speed, rpm, or a ΔT, K): the mean pressure within 1e-4
+/// of p₀, 0 where the closed form is open, and both bodies' stresses within
+/// 1e-4 of the pair's largest. Returns the load factor of the fit's first
+/// opening.
+fn follows_the_closed_form(
+    (model, r, cap): (&Model, &RunResult, &Capture),
+    top: f64,
+    p0: f64,
+    pair: impl Fn(f64) -> (Disk, Disk),
+    unit: &str,
+) -> f64 {
+    for (t, p) in mean_pressures(model, r) {
+        let x = top * t;
+        let (s, h) = pair(x);
+        let (cs, ch, pc) = fit(&s, &h);
+        if pc <= 0.0 {
+            assert!(p.abs() < 1e-9 * p0, "open at {x} {unit}: p = {p}");
+            continue;
+        }
+        eprintln!(
+            "{x:9.3} {unit}: FE {p:.6} MPa, closed form {pc:.6} ({:.1e})",
+            (p - pc) / p0
+        );
+        assert!((p - pc).abs() < 1e-4 * p0, "{x} {unit}: FE {p} vs {pc}");
+        let gauss = &cap.0.iter().find(|c| c.0 == t).unwrap().1;
+        let (err, scale) = pair_error(model, gauss, [(&s, cs), (&h, ch)]);
+        assert!(err < 1e-4 * scale, "{x} {unit}: {err} of {scale}");
+    }
+    (r.events.iter())
+        .find(|e| e.kind == asperity::solve::events::Kind::FirstOpening)
+        .expect("the fit opens")
+        .load_factor
+}
+
 /// The fit's mean pressure (the joint's F_N over its area) at each
 /// increment.
 fn mean_pressures(model: &Model, r: &RunResult) -> Vec<(f64, f64)> {
@@ -330,29 +365,15 @@ fn a_spinning_fit_loses_its_pressure_and_opens_at_the_closed_form_speed() {
         .with("vtu", false)
         .build();
     let (model, r, cap) = solve(&text);
-    for (t, p) in mean_pressures(&model, &r) {
-        let rpm = top * t;
-        let (cs, ch, pc) = w(rpm);
-        if pc <= 0.0 {
-            assert!(p.abs() < 1e-9 * p0, "open at {rpm} rpm: p = {p}");
-            continue;
-        }
-        eprintln!(
-            "{rpm:9.2} rpm: FE {p:.6} MPa, closed form {pc:.6} ({:.1e})",
-            (p - pc) / p0
-        );
-        assert!((p - pc).abs() < 1e-4 * p0, "{rpm} rpm: FE {p} vs {pc}");
-        // the stresses of both bodies too
-        let gauss = &cap.0.iter().find(|c| c.0 == t).unwrap().1;
-        let s = Disk::new(STEEL, omega(rpm), 0.0, true);
-        let h = Disk::new(ALUMINIUM, omega(rpm), 0.0, true);
-        let (err, scale) = pair_error(&model, gauss, [(&s, cs), (&h, ch)]);
-        assert!(err < 1e-4 * scale, "{rpm} rpm: {err} of {scale}");
-    }
-    let open = (r.events.iter())
-        .find(|e| e.kind == asperity::solve::events::Kind::FirstOpening)
-        .expect("the fit opens");
-    let at = model.rpm(open.load_factor).unwrap();
+    let pair = |rpm: f64| {
+        let w = omega(rpm);
+        (
+            Disk::new(STEEL, w, 0.0, true),
+            Disk::new(ALUMINIUM, w, 0.0, true),
+        )
+    };
+    let open = follows_the_closed_form((&model, &r, &cap), top, p0, pair, "rpm");
+    let at = model.rpm(open).unwrap();
     eprintln!(
         "first opening at {at:.3} rpm ({:.1e})",
         common::rel(at, open_rpm)
@@ -391,28 +412,14 @@ fn a_heated_aluminium_hub_on_a_steel_shaft_opens_at_the_closed_form_temperature(
         .with("vtu", false)
         .build();
     let (model, r, cap) = solve(&text);
-    for (t, p) in mean_pressures(&model, &r) {
-        let dt = top * t;
-        let (cs, ch, pc) = w(dt);
-        if pc <= 0.0 {
-            assert!(p.abs() < 1e-9 * p0, "open at ΔT {dt}: p = {p}");
-            continue;
-        }
-        eprintln!(
-            "ΔT {dt:8.3} K: FE {p:.6} MPa, closed form {pc:.6} ({:.1e})",
-            (p - pc) / p0
-        );
-        assert!((p - pc).abs() < 1e-4 * p0, "ΔT {dt}: FE {p} vs {pc}");
-        let gauss = &cap.0.iter().find(|c| c.0 == t).unwrap().1;
-        let s = Disk::new(STEEL, 0.0, dt, false);
-        let h = Disk::new(ALUMINIUM, 0.0, dt, false);
-        let (err, scale) = pair_error(&model, gauss, [(&s, cs), (&h, ch)]);
-        assert!(err < 1e-4 * scale, "ΔT {dt}: {err} of {scale}");
-    }
-    let open = (r.events.iter())
-        .find(|e| e.kind == asperity::solve::events::Kind::FirstOpening)
-        .expect("the fit opens");
-    let at = top * open.load_factor;
+    let pair = |dt: f64| {
+        (
+            Disk::new(STEEL, 0.0, dt, false),
+            Disk::new(ALUMINIUM, 0.0, dt, false),
+        )
+    };
+    let open = follows_the_closed_form((&model, &r, &cap), top, p0, pair, "K");
+    let at = top * open;
     eprintln!(
         "first opening at ΔT = {at:.4} K ({:.1e})",
         common::rel(at, open_dt)
