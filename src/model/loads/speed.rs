@@ -10,7 +10,7 @@
 //! (the axis is z through the origin: a disk spinning in its plane) and
 //! (x, 0, z) in 3D (the axis is y, as `revolve` sweeps). The speed follows
 //! a history: ω(t) = ω h(t), so the force at t is h(t)² f (the pattern's
-//! [`crate::model::Scale::Squared`]). Small strain: r is the undeformed
+//! `model::Scale::Squared`). Small strain: r is the undeformed
 //! position, as the closed forms of a spinning disk take it.
 
 use super::{clip, Resolver, Scaled};

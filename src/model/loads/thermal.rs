@@ -36,7 +36,8 @@ pub struct BodyTemperature {
 }
 
 /// A temperature field along one coordinate (`along`, `profile`): the factor
-/// of ΔT at x[axis], linear between rows [coordinate mm, factor].
+/// of ΔT at the point's coordinate `axis`, linear between rows
+/// (coordinate mm, factor).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Profile {
     /// 0, 1, 2: x (r in axisymmetry), y, z.
