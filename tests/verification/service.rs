@@ -485,7 +485,9 @@ fn a_spinning_fit_under_a_torque_lets_go_at_the_closed_form_speed() {
 /// held along z, the bore grows by (1 + ν) α ΔT b), and the fit ends at
 /// the pressure of the closed form (and of the same fit pressed in, to
 /// round-off: elastic, frictionless). No increment before the closing
-/// carries a force, every one after it does.
+/// carries a force, every one after it does; no event is reported at the
+/// start (the drawn interference is no contact of a hub not yet expanded),
+/// and heated again the fit opens where it gripped.
 #[test]
 fn a_hub_heated_for_assembly_grips_as_it_cools_to_the_closed_form_pressure() {
     const HOT: f64 = 150.0;
@@ -498,27 +500,49 @@ fn a_hub_heated_for_assembly_grips_as_it_cools_to_the_closed_form_pressure() {
     .2;
     eprintln!("closes at ΔT = {close_dt:.4} K (t = {t_close:.4}), ends at p = {p:.6} MPa");
     let text = fit_case(true, false)
-        .raw("[history]\ncool = [[0, 1], [1, 0]]")
+        .raw("[history]\ncool = [[0, 1], [1, 0], [2, 1]]")
         .raw("[[temperature]]\nbody = \"hub\"")
         .with("change", HOT)
         .with("reference", 20.0)
         .history("cool")
         .solver("increments = 20\nstep_control = \"fixed\"")
         .tolerances(1e-12, 1e-12)
-        .no_vtu()
+        .raw("[output]")
+        .with("event_tolerance", 1e-7)
+        .with("vtu", false)
         .build();
     let (model, r, _) = solve(&text);
     let pressures = mean_pressures(&model, &r);
-    for &(t, pm) in &pressures {
+    for &(t, pm) in pressures.iter().filter(|x| x.0 <= 1.0) {
         if t < t_close - 1e-12 {
             assert_eq!(pm, 0.0, "t = {t}: the hub is still clear of the shaft");
         } else {
             assert!(pm > 0.0, "t = {t}: the hub grips");
         }
     }
-    let end = pressures.last().unwrap().1;
-    eprintln!("FE ends at {end:.6} MPa ({:.1e})", common::rel(end, p));
+    let end = pressures.iter().find(|x| x.0 == 1.0).unwrap().1;
+    eprintln!("FE at 20 °C: {end:.6} MPa ({:.1e})", common::rel(end, p));
     assert!(common::rel(end, p) < 1e-4, "{end} vs {p}");
+    // the run starts from a hub not yet expanded: no event at λ ≈ 0; heated
+    // again (t > 1), the fit opens where it gripped (elastic, frictionless)
+    let open = (r.events.iter())
+        .find(|e| e.kind == asperity::solve::events::Kind::FirstOpening)
+        .expect("the fit opens when the hub is heated again");
+    let reopen = 1.0 + close_dt / HOT;
+    eprintln!(
+        "opens again at t = {:.7} (closed form {reopen:.7})",
+        open.load_factor
+    );
+    assert!(
+        (open.load_factor - reopen).abs() < 1e-6,
+        "{} vs {reopen}",
+        open.load_factor
+    );
+    assert!(
+        r.events.iter().all(|e| e.load_factor > 1.0),
+        "{:?}",
+        r.events
+    );
 }
 
 /// The shipped case `cases/hub-in-service` against its README's hand check
