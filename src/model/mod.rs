@@ -64,11 +64,6 @@ impl Conditions {
         }
         out
     }
-
-    /// The free thermal strain of body `b` at point x.
-    pub fn thermal_at(&self, b: usize, x: [f64; 3]) -> f64 {
-        self.thermal[b] * self.profiles[b].as_ref().map_or(1.0, |p| p.factor(x))
-    }
 }
 
 /// How a load pattern scales with pseudo-time: by its history's factor

@@ -17,7 +17,6 @@ use super::{clip, Resolver, Scaled};
 use crate::error::{Error, Result};
 use crate::input::case::{ranges, Case};
 use crate::input::mesh::Mesh;
-use crate::physics::element::family3::Family3;
 use crate::physics::element::solid::ElementGeometry;
 use crate::physics::element::solid3::ElementGeometry3;
 use crate::physics::element::Section;
@@ -130,7 +129,7 @@ fn nodal_forces(
         let mut add = |a: usize, c: usize, v: f64| f[dofs.dof(el.nodes()[a], c)] += v;
         if let Some(solid) = el.family.solid() {
             let coords = mesh.element_coords3(e);
-            let g = ElementGeometry3::new(solid, &coords[..el.family.nodes()], &rule3(solid))
+            let g = ElementGeometry3::new(solid, &coords[..el.family.nodes()], &solid.rule(true))
                 .map_err(|m| format!("element {e}: {m}"))?;
             for ip in 0..g.n {
                 let [x, _, z] = g.x[ip];
@@ -158,8 +157,4 @@ fn nodal_forces(
         }
     }
     Ok(f)
-}
-
-fn rule3(family: Family3) -> crate::physics::element::gauss3::GaussRule3 {
-    family.rule(true)
 }
