@@ -66,24 +66,37 @@ pub enum Stop {
     Signal(i32),
     /// The hidden `--stop-after N` test option.
     StopAfter(usize),
+    /// A body held about the axis only by friction could no longer hold
+    /// the torque on it (the `torque_limit` event): the load history has no
+    /// equilibrium past it, so a resumed run would stop there again.
+    TorqueLimit,
 }
 
 impl Stop {
-    /// "SIGINT", "SIGTERM" or "stop-after".
+    /// "SIGINT", "SIGTERM", "stop-after" or "torque_limit".
     pub fn name(self) -> String {
         match self {
             Stop::Signal(SIGINT) => "SIGINT".into(),
             Stop::Signal(SIGTERM) => "SIGTERM".into(),
             Stop::Signal(s) => format!("signal {s}"),
             Stop::StopAfter(_) => "stop-after".into(),
+            Stop::TorqueLimit => "torque_limit".into(),
         }
     }
 
-    /// Exit status of the process: 128 + signal, or 3 for `--stop-after`.
+    /// Exit status of the process: 128 + signal, 3 for `--stop-after`, 4
+    /// at a torque limit.
     pub fn exit_code(self) -> u8 {
         match self {
             Stop::Signal(s) => (128 + s).clamp(0, 255) as u8,
             Stop::StopAfter(_) => 3,
+            Stop::TorqueLimit => 4,
         }
+    }
+
+    /// Whether the run may be resumed past where it stopped: not past a
+    /// physical end of its load history.
+    pub fn resumable(self) -> bool {
+        self != Stop::TorqueLimit
     }
 }

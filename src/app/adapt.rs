@@ -395,7 +395,8 @@ pub fn run(
         let (dir, result) = solve(&model, started)?;
         if let Some(stop) = result.stopped {
             // the cycle wrote nothing (driver::run_cycle): the folder holds
-            // the previous cycle's complete run, or nothing
+            // the previous cycle's complete run, or nothing; at a torque
+            // limit it holds this cycle's run
             if root {
                 stopped(&log, stop, cycles.len() + 1, &result, &dir);
             }
@@ -644,6 +645,15 @@ fn next_mesh(
 /// The stop line of an adaptive run interrupted in cycle `cycle` (its
 /// partial run was not written).
 fn stopped(log: &Log, stop: crate::interrupt::Stop, cycle: usize, r: &RunResult, dir: &Path) {
+    if !stop.resumable() {
+        // written whole by the driver, its own stop line said so
+        log.always(
+            "adapt_end",
+            json!({ "stopped_by": stop.name(), "adapt_cycle": cycle, "output": dir.display().to_string() }),
+            || format!("[adapt] ends with cycle {cycle}: its run ended at its torque limit, past which the load history has no equilibrium to refine; {} holds that cycle's run (no adapt.csv: the cycles' estimates are not of the same load)", dir.display()),
+        );
+        return;
+    }
     let kept = if cycle > 1 {
         format!(
             "{} holds cycle {}'s complete run and adapt.csv",

@@ -365,7 +365,7 @@ fn run_model_as(
     let mut writer = Writer::new(&dir, log.clone(), planned, resume)?;
     writer.final_load_factor = lambda_end;
     match solve::run_from(engine, &mut writer, start, control) {
-        Ok(result) if cycle && result.stopped.is_some() => {
+        Ok(result) if cycle && result.stopped.is_some_and(|s| s.resumable()) => {
             // not a result of the history: no partial folder replaces the
             // previous cycle's complete one (and none could be resumed)
             writer.abandon();
@@ -559,7 +559,7 @@ fn report_end(log: &Log, model: &Model, dir: &Path, r: &RunResult, wall: f64, ov
     let lambda = last.map_or(0.0, |i| i.load_factor);
     let planned = solve::stepping::Stepper::planned(&model.solver, &model.breakpoints());
     let fy = r.first_yield.as_ref();
-    if let Some(stop) = r.stopped {
+    if let Some(stop) = r.stopped.filter(|s| s.resumable()) {
         let case = model.source.display().to_string();
         log.always(
             "stop",
@@ -649,6 +649,41 @@ fn report_end(log: &Log, model: &Model, dir: &Path, r: &RunResult, wall: f64, ov
                 r.stats.iterations
             );
             s
+        },
+    );
+    if let Some(stop) = r.stopped {
+        limit_end(log, model, dir, r, stop);
+    }
+}
+
+/// The `stop` event of a run that ended at its torque limit (not to be
+/// resumed: the history has no equilibrium past it).
+fn limit_end(log: &Log, model: &Model, dir: &Path, r: &RunResult, stop: crate::interrupt::Stop) {
+    let Some(e) = (r.events.iter()).find(|e| e.kind == solve::events::Kind::TorqueLimit) else {
+        return;
+    };
+    let body = model.mesh.bodies.get(e.place[3] as usize).cloned().unwrap_or_default();
+    let lambda = r.increments.last().map_or(0.0, |i| i.load_factor);
+    let speed = model.rpm(e.load_factor).map_or(String::new(), |n| format!(" at {n:.6e} rpm"));
+    log.always(
+        "stop",
+        json!({
+            "stopped_by": stop.name(),
+            "body": body,
+            "event_load_factor": e.load_factor,
+            "speed_rpm": model.rpm(e.load_factor),
+            "increments": r.increments.len(),
+            "load_factor": lambda,
+            "output": dir.display().to_string(),
+            "exit_code": stop.exit_code(),
+        }),
+        || {
+            format!(
+                "ended at the torque limit: body \"{body}\" can no longer hold the torque on it past λ = {:.6}{speed} (event torque_limit): the load history has no equilibrium beyond; results up to increment {} (λ = {lambda:.6}) in {}",
+                e.load_factor,
+                r.increments.len(),
+                dir.display()
+            )
         },
     );
 }

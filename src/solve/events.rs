@@ -63,6 +63,10 @@ pub enum Kind {
     /// moved ([`plateaus`]): read off the increments at the run's end,
     /// never searched nor stored in a restart file.
     HoldingPlateau(Motion),
+    /// Where a body held about the axis only by friction can no longer hold
+    /// the torque on it ([`super::limit`]): the run ends there; never
+    /// stored in a restart file (a resumed run finds it again).
+    TorqueLimit,
 }
 
 impl Kind {
@@ -81,6 +85,7 @@ impl Kind {
             Kind::FullSlip => "full_slip",
             Kind::FullSeparation => "full_separation",
             Kind::HoldingPlateau(_) => "holding_plateau",
+            Kind::TorqueLimit => "torque_limit",
         }
     }
 }
@@ -129,8 +134,8 @@ pub struct Event {
     /// A step of the search did not converge: the bracket reached.
     pub solve_failed: bool,
     /// Where: x, y (mm), the arc length s of the pair (interface events;
-    /// z of a first yield in 3D) and the element (first yield); NaN where it
-    /// does not apply.
+    /// z of a first yield in 3D) and the element (first yield) or the body
+    /// (torque limit); NaN where it does not apply.
     pub place: [f64; 4],
     /// total_load_kn, mean_pressure_mpa ([`super::Measures`]), and the
     /// interface's F_N, F_T and torque T (N, N, N·mm; joint convention; T
@@ -386,7 +391,7 @@ impl Monitor {
             Kind::FirstOpening => closed > 0 && closed == carried,
             Kind::FullSeparation => closed > 0,
             Kind::FullSlip => im.tangential.is_some() && !m.happened(model, committed),
-            Kind::FirstYield | Kind::HoldingPlateau(_) => false,
+            Kind::FirstYield | Kind::HoldingPlateau(_) | Kind::TorqueLimit => false,
         };
         ready.then_some(m)
     }
@@ -409,7 +414,7 @@ impl Monitor {
                         .iter()
                         .all(|&s| s == Status::Open || s == Status::MacroSlip)
             }
-            Kind::FirstYield | Kind::HoldingPlateau(_) => false,
+            Kind::FirstYield | Kind::HoldingPlateau(_) | Kind::TorqueLimit => false,
         }
     }
 

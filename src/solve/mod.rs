@@ -9,6 +9,7 @@ pub mod newton;
 pub mod stabilization;
 pub mod stepping;
 pub(crate) mod yield_point;
+mod limit;
 
 pub use crate::input::case::settings::{Method, StepControl};
 pub(crate) use crate::linalg::failure::StepFailure;
@@ -180,6 +181,7 @@ pub fn run_from(
     engine.stats.event_iterations = ck.event_iterations;
     engine.stats.interface = ck.interface.clone();
     let mut stopped = None;
+    let mut limit_event = None;
     while let Some(target) = ck.stepper.next(ck.lambda) {
         if ck.increments.len() >= crate::input::case::MAX_INCREMENTS {
             // the automatic step control kept its steps tiny: a bound on
@@ -222,7 +224,24 @@ pub fn run_from(
             }
             Err(failure) => (stepping::Why::Failed, failure.to_string()),
         };
-        cut_back(&mut ck, observer, target, why)?;
+        if let Err(e) = cut_back(&mut ck, observer, target, why) {
+            // steps that fail however short: at a torque limit the run ends
+            // (none before the first increment: there is nothing to write)
+            let located = if ck.increments.is_empty() {
+                None
+            } else {
+                limit::locate(&mut engine, &ck, target)?
+            };
+            match located {
+                Some(limit::Limited::At(event)) => {
+                    limit_event = Some(event);
+                    stopped = Some(Stop::TorqueLimit);
+                }
+                Some(limit::Limited::Interrupted(signal)) => stopped = Some(Stop::Signal(signal)),
+                None => return Err(e),
+            }
+            break;
+        }
     }
     if stopped.is_some() && ck.increments.len() > resumed_from {
         write_last_state(&engine, observer, &mut ck)?;
@@ -244,7 +263,7 @@ pub fn run_from(
             .err()
             .unwrap_or_else(|| Error::Output("writing the output failed on rank 0".into())));
     }
-    Ok(finish(engine, ck, stopped, resumed_from))
+    Ok(finish(engine, ck, (stopped, limit_event), resumed_from))
 }
 
 /// The stop decision at an increment boundary, collective: `--stop-after`
@@ -557,7 +576,7 @@ fn cut_back(
 fn finish(
     mut engine: Engine,
     ck: Checkpoint,
-    stopped: Option<Stop>,
+    (stopped, limit): (Option<Stop>, Option<events::Event>),
     resumed_from: usize,
 ) -> RunResult {
     let stabilization = stabilization::final_report(&engine, &ck.committed);
@@ -588,6 +607,7 @@ fn finish(
         events: {
             let mut events = ck.events;
             events.extend(events::plateaus(engine.model, &ck.increments));
+            events.extend(limit);
             events
         },
         increments: ck.increments,

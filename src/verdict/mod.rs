@@ -130,11 +130,18 @@ fn rate_run(model: &Model, r: &Run) -> Result<Vec<rating::Rating>> {
     if let Some(stop) = r.stopped {
         let t = r.increments.last().map_or(0.0, |i| i.load_factor);
         for rating in &mut out {
-            rating.incomplete = Some(format!(
-                "the run stopped early ({}, λ = {}): these are the checks of a partial run, no verdict",
-                stop.name(),
-                crate::numbers::sig(t, 6)
-            ));
+            rating.incomplete = Some(if *stop == crate::interrupt::Stop::TorqueLimit {
+                format!(
+                    "the run ended at its torque limit (λ = {}): a body held by friction could not hold the torque on it beyond, so the load history was not carried to its end; these are the checks of the state that last held, no verdict",
+                    crate::numbers::sig(t, 6)
+                )
+            } else {
+                format!(
+                    "the run stopped early ({}, λ = {}): these are the checks of a partial run, no verdict",
+                    stop.name(),
+                    crate::numbers::sig(t, 6)
+                )
+            });
         }
     }
     Ok(out)

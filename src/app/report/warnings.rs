@@ -17,7 +17,11 @@ pub(super) fn collect(s: &Value) -> Vec<String> {
         .collect();
     if s.get("complete").and_then(Value::as_bool) == Some(false) {
         let by = text(s, "stopped_by").unwrap_or_else(|| "an unrecorded reason".into());
-        out.push(format!("the run was stopped early by {by}: the results end at its last converged increment, not at the end of the load history"));
+        out.push(if by == "torque_limit" {
+            "the run ended at its torque limit (event torque_limit): a body held about the axis by friction alone could not hold the torque on it beyond, so the results end at the last state that held, not at the end of the load history".to_string()
+        } else {
+            format!("the run was stopped early by {by}: the results end at its last converged increment, not at the end of the load history")
+        });
     }
     for t in list(s, "tables")
         .iter()

@@ -92,7 +92,13 @@ pub(crate) fn event_json(model: &Model, e: &Event) -> Value {
         };
     } else {
         o["element"] = Value::Null;
-        o["body"] = Value::Null;
+        // the body that can no longer hold its torque
+        o["body"] = match (e.kind, e.place[3]) {
+            (Kind::TorqueLimit, b) if b >= 0.0 && (b as usize) < model.mesh.bodies.len() => {
+                json!(model.mesh.bodies[b as usize])
+            }
+            _ => Value::Null,
+        };
     }
     o
 }
@@ -131,6 +137,7 @@ pub(crate) fn meaning(model: &Model, e: &Event) -> String {
         Kind::FullSlip => "the whole interface first in macro-slip: its first gross slip, not the load it holds; where friction was locked in by an earlier step (a fit pressed, then turned) the joint takes more after it, up to its holding plateau".into(),
         Kind::HoldingPlateau(m) => format!("the {} the joint holds as it slides on as a whole (its plateau, within 0.1 %): its capacity in this motion, a rating's transmissible {}", m.quantity(), if m == crate::solve::events::Motion::Turning { "torque" } else { "force" }),
         Kind::FullSeparation => "the interface carries no normal force any more: the joint has separated".into(),
+        Kind::TorqueLimit => "the torque on the body reached what the friction of its interfaces holds about the axis, Σ μ p r dA, and nothing else holds it: past this load the fit slips through and a prescribed torque has no equilibrium, so the run ends here; the forces are those of the last state that held, the load factor the first where none did".into(),
     };
     if !e.converged {
         m += "; the search did not narrow the bracket to the tolerance: the event lies within the bracket, no closer";

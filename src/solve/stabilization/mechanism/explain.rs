@@ -24,62 +24,90 @@ fn control(s: &Section) -> String {
     }
 }
 
+/// A body held about the axis only by friction, under a torque near or past
+/// what that friction holds ([`Stabilizer::friction_limit`]).
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct FrictionLimit {
+    pub body: usize,
+    /// The interfaces with a tangential law that hold it, in model order.
+    pub interfaces: Vec<usize>,
+    /// |T| applied at the load factor asked (N·mm).
+    pub applied: f64,
+    /// Σ μ p_N r dA at the pressures of the displacements given (N·mm).
+    pub hold: f64,
+}
+
 impl Stabilizer {
     /// A body held about the axis only by friction (twist: no prescribed
-    /// rotation of its own) whose applied torque at `lambda` exceeds the most
-    /// its interfaces' friction can hold at the pressures of `u`,
-    /// Σ μ_m p_N r A (μ_m the friction cap, eq. 2.21): a torque-controlled
-    /// twist past the slip torque, which has no equilibrium.
-    fn beyond_friction(&self, model: &Model, u: &[f64], lambda: f64) -> Option<String> {
+    /// rotation of its own) whose applied torque at `lambda` is at least
+    /// [`NEAR_SLIP`] of the most its interfaces' friction can hold at the
+    /// pressures of `u`, Σ μ_m p_N r A (μ_m the friction cap, eq. 2.21): a
+    /// torque-controlled twist at or past the slip torque, which has no
+    /// equilibrium past it.
+    pub(crate) fn friction_limit(
+        &self,
+        model: &Model,
+        u: &[f64],
+        lambda: f64,
+    ) -> Option<FrictionLimit> {
         if !model.node_dofs().twist() {
             return None;
         }
         (0..self.bodies.len()).find_map(|b| {
-            let body = &self.bodies[b];
-            if body.turn > 0.0 {
+            if self.bodies[b].turn > 0.0 {
                 return None;
             }
-            let applied: f64 = (body.torque.iter().zip(model.patterns()))
+            let applied: f64 = (self.bodies[b].torque.iter().zip(model.patterns()))
                 .map(|(&t, (s, _))| t * model.scale(s, lambda))
                 .sum();
-            let mut names = Vec::new();
+            let mut interfaces = Vec::new();
             let mut hold = 0.0;
-            for im in &model.interfaces {
+            for (i, im) in model.interfaces.iter().enumerate() {
                 let Some(law) = im.tangential.as_ref() else {
                     continue;
                 };
                 if im.body_a != b && im.body_b != b {
                     continue;
                 }
-                names.push(im.name.as_str());
+                interfaces.push(i);
                 let gap = im.gap_at(lambda);
                 for (pt, r) in im.points.iter().zip(im.point_radii()) {
                     let un = im.point_kinematics_at(pt, u, gap).0;
                     hold += pt.area * law.mu * im.law.pressure(un).0 * r;
                 }
             }
-            (applied != 0.0 && applied.abs() >= NEAR_SLIP * hold && !names.is_empty()).then(|| {
-                // spinning, the speed takes pressure off a fit: this is
-                // the speed at which it can no longer hold its torque
-                let speed = (model.rpm(lambda))
-                    .map_or(String::new(), |n| format!(" ({n:.6e} rpm)"));
-                let lambda = format!("{lambda:.6}")
-                    .trim_end_matches('0')
-                    .trim_end_matches('.')
-                    .to_string();
-                let how = if applied.abs() > hold {
-                    "more than".to_string()
-                } else {
-                    format!("{:.2} % of what", 100.0 * applied.abs() / hold)
-                };
-                format!(
-                    "the torque on body \"{}\" at λ = {lambda}{speed}, {:.6e} N·mm, is {how} the friction of interface \"{}\" can hold about the axis at the present contact pressures, Σ μ p_N r dA = {hold:.6e} N·mm, and nothing else holds the body about the axis: a torque at or past the slip torque has no equilibrium (prescribe a [[boundary]] rotation instead to turn the joint past slip)",
-                    model.mesh.bodies[b],
-                    applied.abs(),
-                    names.join("\", \"")
-                )
+            let near = applied != 0.0 && applied.abs() >= NEAR_SLIP * hold;
+            (near && !interfaces.is_empty()).then(|| FrictionLimit {
+                body: b,
+                interfaces,
+                applied: applied.abs(),
+                hold,
             })
         })
+    }
+
+    /// [`Stabilizer::friction_limit`] as a failure's reason.
+    fn beyond_friction(&self, model: &Model, u: &[f64], lambda: f64) -> Option<String> {
+        let limit = self.friction_limit(model, u, lambda)?;
+        // spinning, the speed takes pressure off a fit: this is the speed
+        // at which it can no longer hold its torque
+        let speed = (model.rpm(lambda)).map_or(String::new(), |n| format!(" ({n:.6e} rpm)"));
+        let how = if limit.applied > limit.hold {
+            "more than".to_string()
+        } else {
+            format!("{:.2} % of what", 100.0 * limit.applied / limit.hold)
+        };
+        let names: Vec<&str> = (limit.interfaces.iter())
+            .map(|&i| model.interfaces[i].name.as_str())
+            .collect();
+        Some(format!(
+            "the torque on body \"{}\" at λ = {}{speed}, {:.6e} N·mm, is {how} the friction of interface \"{}\" can hold about the axis at the present contact pressures, Σ μ p_N r dA = {:.6e} N·mm, and nothing else holds the body about the axis: a torque at or past the slip torque has no equilibrium (prescribe a [[boundary]] rotation instead to turn the joint past slip)",
+            model.mesh.bodies[limit.body],
+            short(lambda),
+            limit.applied,
+            names.join("\", \""),
+            limit.hold,
+        ))
     }
 
     /// The physical reason a step from `committed` to `lambda` may have no
