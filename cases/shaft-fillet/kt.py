@@ -7,8 +7,8 @@ Reads OUT/summary.json (the support's reaction, the peak von Mises stress) and
 OUT/vtu/0001.vtu (ASCII: the case sets vtu_format = "ascii"; nodal stresses rr, zz,
 rz, θθ, averaged from the elements' Gauss points). Prints the nominal stress from
 the reaction and across the shank, the largest principal stress on the fillet's
-surface, the FE K_t and Peterson's K_t from the fitted chart formula. Standard
-library only.
+surface, the FE K_t, the published K_t of Tipton, Sorem & Rolovic's finite-element
+fit and Peterson's from his chart's fitted formula. Standard library only.
 """
 import json
 import math
@@ -34,6 +34,16 @@ def peterson_kt(d, big_d, r):
              2.198 - 0.486 * s + 0.165 * q, -0.593 - 0.028 * s - 0.106 * q)
     x = 2 * t / big_d
     return c[0] + c[1] * x + c[2] * x**2 + c[3] * x**3
+
+
+def tipton_kt(d, big_d, r):
+    """Stepped round bar in tension, shoulder fillet: Tipton, Sorem & Rolovic's fit of
+    their finite-element K_t (ASME J. Mech. Des. 118, 1996, 321-327; constants as
+    listed by Tipton, Sorem & Schmidt, Machine Design, 8 Jan. 2009), the largest
+    principal stress over 4P/(pi d^2); the same as tests/verification/fillet.rs."""
+    k, rho = big_d / d, r / d
+    ratio = (3.43 - 3.41 * k**2 - 0.0232 * k**4) / (1 - 8.85 * k**2 - 0.078 * k**4)
+    return 0.493 + 0.48 * k**-2.43 + rho**-0.48 * math.sqrt(ratio)
 
 
 def arrays(path):
@@ -75,13 +85,15 @@ def main(out):
     angle = math.degrees(math.atan2(z - CENTRE[1], CENTRE[0] - r))  # 0 at the shank's tangent point
     kt_fe = s1 / sigma_nom
     kt_p = peterson_kt(D_SMALL, D_LARGE, R_FILLET)
+    kt_t = tipton_kt(D_SMALL, D_LARGE, R_FILLET)
     vm = summary["peaks"][0]["max_von_mises"]
     print(f"largest principal stress on the fillet (nodal): {s1:.3f} MPa at r = {r:.4f}, z = {z:.4f} mm, "
           f"{angle:.1f} deg up the arc from the shank")
     print(f"largest von Mises stress (Gauss point, summary.json): {vm['value_mpa']:.3f} MPa "
           f"at r = {vm['x_mm']:.4f}, z = {vm['y_mm']:.4f} mm")
-    print(f"K_t FE = {kt_fe:.4f}; Peterson (r/d = {R_FILLET / D_SMALL:g}, D/d = {D_LARGE / D_SMALL:g}) "
-          f"= {kt_p:.4f}; FE/Peterson - 1 = {kt_fe / kt_p - 1:+.1%}")
+    print(f"K_t FE = {kt_fe:.4f}; r/d = {R_FILLET / D_SMALL:g}, D/d = {D_LARGE / D_SMALL:g}: "
+          f"Tipton et al. {kt_t:.4f} (FE/Tipton - 1 = {kt_fe / kt_t - 1:+.2%}), "
+          f"Peterson chart 3.4 {kt_p:.4f} (FE/Peterson - 1 = {kt_fe / kt_p - 1:+.1%})")
 
 
 if __name__ == "__main__":

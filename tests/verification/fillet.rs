@@ -2,10 +2,13 @@
 //! docs/case-schema.md "Fillets and chamfers"): stepped bars in tension
 //! posed with blocks and a fillet under the shoulder, their stress
 //! concentration K_t = σ_max / σ_nom converging with `--refine` (the
-//! sequence printed) and set beside Peterson's charts and beside the Gmsh
-//! mesh of cases/shaft-fillet; the fillet's geometry itself (nodes on the
-//! circle, Jacobians, area and volume at order 4) is checked beside the
-//! mesher (`src/input/mesh/blocks/fillet/tests.rs`).
+//! sequence printed) and set beside published factors: the flat bar beside
+//! Peterson's chart 3.1, the round bar beside the finite-element fits of
+//! Tipton, Sorem & Rolovic (Peterson's round-bar chart 3.4 printed with
+//! them, and why it lies below) and beside the Gmsh mesh of
+//! cases/shaft-fillet; the fillet's geometry itself (nodes on the circle,
+//! Jacobians, area and volume at order 4) is checked beside the mesher
+//! (`src/input/mesh/blocks/fillet/tests.rs`).
 
 use crate::common;
 use std::path::Path;
@@ -88,13 +91,15 @@ fn nodal_stress(vtu: &Path) -> Vec<([f64; 2], [f64; 4])> {
         .collect()
 }
 
-/// K_t of a run's output `out` (the first increment's VTU): the largest
-/// principal stress among the nodes on the fillet's arc (centre `c`,
-/// radius `r`; the in-plane principal stress or the hoop stress, whichever
-/// is larger) over the nominal 100 MPa, and the node's angle up the arc
-/// from the shank (degrees).
-fn kt(out: &Path, c: [f64; 2], r: f64) -> (f64, f64) {
+/// The stress factors of a run's output `out` (the first increment's VTU)
+/// among the nodes on the fillet's arc (centre `c`, radius `r`), over the
+/// nominal 100 MPa: K_t of the largest principal stress (the in-plane
+/// principal stress or the hoop stress, whichever is larger) and the
+/// node's angle up the arc from the shank (degrees), and K_q of the largest
+/// von Mises stress (hoop stress included).
+fn kt(out: &Path, c: [f64; 2], r: f64) -> (f64, f64, f64) {
     let mut best = (f64::NEG_INFINITY, 0.0);
+    let mut mises = f64::NEG_INFINITY;
     for (p, s) in nodal_stress(&out.join("vtu").join("0001.vtu")) {
         let on = ((p[0] - c[0]).hypot(p[1] - c[1]) - r).abs() < 1e-9;
         if on && p[0] <= c[0] + 1e-9 && p[1] >= c[1] - 1e-9 {
@@ -102,16 +107,23 @@ fn kt(out: &Path, c: [f64; 2], r: f64) -> (f64, f64) {
             if s1 > best.0 {
                 best = (s1, (p[1] - c[1]).atan2(c[0] - p[0]).to_degrees());
             }
+            let d = [s[0] - s[1], s[1] - s[3], s[3] - s[0]];
+            let q = (0.5 * (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) + 3.0 * s[2] * s[2]).sqrt();
+            mises = mises.max(q);
         }
     }
-    (best.0 / 100.0, best.1)
+    (best.0 / 100.0, best.1, mises / 100.0)
 }
 
 /// Peterson's fitted formula K_t = C₁ + C₂ x + C₃ x² + C₄ x³, x = 2t/D,
 /// t = (D − d)/2, for 2 ≤ t/r ≤ 20 (Pilkey & Pilkey, Peterson's Stress
 /// Concentration Factors, 3rd ed. 2008): `round` chart 3.4 (stepped round
 /// bar in tension), else chart 3.1 (stepped flat bar in tension), each
-/// Cᵢ = a + b √(t/r) + c t/r.
+/// Cᵢ = a + b √(t/r) + c t/r. Chart 3.1 rests on photoelastic tests of flat
+/// bars; chart 3.4 is no measurement on round bars but Peterson's (1953)
+/// estimate, the flat bar's fillet factor scaled by the ratio of a round
+/// bar's groove factor to a flat bar's, which finite elements find low
+/// (`tipton`; Tipton, Sorem & Schmidt 2009: by up to 24 %).
 fn peterson(d: f64, big_d: f64, r: f64, round: bool) -> f64 {
     let t = 0.5 * (big_d - d);
     let q = t / r;
@@ -138,19 +150,50 @@ fn peterson(d: f64, big_d: f64, r: f64, round: bool) -> f64 {
         .sum()
 }
 
+/// The round stepped bar's factors by the fits of Tipton, Sorem & Rolovic
+/// to their axisymmetric finite-element results ("Updated stress
+/// concentration factors for filleted shafts in bending and tension",
+/// ASME J. Mech. Des. 118 (1996) 321–327), with δ = D/d, ρ = r/d,
+/// σ_nom = 4P/(π d²): the largest principal stress's
+/// K_t = 0.493 + 0.48 δ^−2.43 + ρ^−0.48 √((3.43 − 3.41 δ² − 0.0232 δ⁴)
+/// / (1 − 8.85 δ² − 0.078 δ⁴)) and the von Mises stress's
+/// K_q = 0.496 + 0.472 δ^−2.85 + ρ^−0.48 √((2.921 − 2.945 δ² − 0.0217 δ⁴)
+/// / (1 − 9.59 δ² − 0.053 δ⁴)), both as listed by Tipton, Sorem & Schmidt
+/// ("Shoulder-fillet stresses finesse", Machine Design, 8 January 2009,
+/// 55–60). The coefficients are as reproduced in public design code; the
+/// papers' equation numbers were not read. At δ = 1 (no shoulder) K_t is
+/// 0.97 + 0.02 ρ^−0.48, about 1, as it must be.
+fn tipton(d: f64, big_d: f64, r: f64) -> (f64, f64) {
+    let (delta, rho) = (big_d / d, r / d);
+    let fit = |c: [f64; 9]| {
+        let (d2, d4) = (delta.powi(2), delta.powi(4));
+        c[0] + c[1] * delta.powf(c[2])
+            + rho.powf(c[3])
+                * ((c[4] + c[5] * d2 + c[6] * d4) / (1.0 + c[7] * d2 + c[8] * d4)).sqrt()
+    };
+    (
+        fit([
+            0.493, 0.48, -2.43, -0.48, 3.43, -3.41, -0.0232, -8.85, -0.078,
+        ]),
+        fit([
+            0.496, 0.472, -2.85, -0.48, 2.921, -2.945, -0.0217, -9.59, -0.053,
+        ]),
+    )
+}
+
 /// K_t of the stepped bar at `--refine` 1, 2, 4, 8 (`test` names the
-/// scratch folders of the test that asks).
-fn sequence(test: &str, big_d: f64, r: f64, round: bool) -> Vec<f64> {
+/// scratch folders of the test that asks), and K_q on the finest mesh.
+fn sequence(test: &str, big_d: f64, r: f64, round: bool) -> (Vec<f64>, f64) {
     let tag = format!("fillet-{test}-{big_d}-{r}-{round}");
     let case = common::case_dir(&tag, &stepped_bar(big_d, r, round));
-    let mut out = Vec::new();
+    let (mut out, mut mises) = (Vec::new(), 0.0);
     for refine in [1, 2, 4, 8] {
         let dir = common::scratch(&format!("{tag}-out{refine}"));
         let (code, err) = common::run_case(&case, &dir, &["--refine", &refine.to_string()]);
         assert_eq!(code, 0, "{err}");
-        let (k, at) = kt(&dir, [5.0 + r, 20.0 - r], r);
+        let (k, at, q) = kt(&dir, [5.0 + r, 20.0 - r], r);
         println!(
-            "stepped {} bar D/d = {}, r/d = {}: refine {refine}: K_t = {k:.4} at {at:.1}° up the arc",
+            "stepped {} bar D/d = {}, r/d = {}: refine {refine}: K_t = {k:.4} at {at:.1}° up the arc, K_q = {q:.4}",
             if round { "round" } else { "flat" },
             big_d / 10.0,
             r / 10.0
@@ -173,6 +216,7 @@ fn sequence(test: &str, big_d: f64, r: f64, round: bool) -> Vec<f64> {
                 5.0
             };
             assert!((held - 100.0 * area).abs() < 1e-9 * 100.0 * area, "{held}");
+            mises = q;
         }
         let _ = std::fs::remove_dir_all(&dir);
         out.push(k);
@@ -184,19 +228,17 @@ fn sequence(test: &str, big_d: f64, r: f64, round: bool) -> Vec<f64> {
         "{out:?}"
     );
     assert!(steps[2] < 0.005 * out[3], "{out:?}");
-    out
+    (out, mises)
 }
 
 /// The flat stepped bar (plane stress) against Peterson's chart 3.1, for
 /// D/d = 1.6, r/d = 0.1 and D/d = 1.5, r/d = 0.05: within 5 % on the
-/// refined mesh. The round bar of the same ratios lies below the flat one,
-/// as Peterson's charts have it.
+/// refined mesh.
 #[test]
 fn a_flat_stepped_bar_with_a_block_fillet_has_petersons_kt() {
     for (big_d, r) in [(16.0, 1.0), (15.0, 0.5)] {
-        let flat = sequence("flat", big_d, r, false);
+        let k = sequence("flat", big_d, r, false).0[3];
         let chart = peterson(10.0, big_d, r, false);
-        let k = flat[3];
         println!(
             "flat D/d = {}, r/d = {}: K_t = {k:.4}, Peterson chart 3.1 {chart:.4} ({:+.1} %)",
             big_d / 10.0,
@@ -204,32 +246,46 @@ fn a_flat_stepped_bar_with_a_block_fillet_has_petersons_kt() {
             100.0 * (k / chart - 1.0)
         );
         assert!((k - chart).abs() < 0.05 * chart, "{k} vs {chart}");
-        let round = sequence("flat", big_d, r, true);
-        assert!(round[3] < k, "{round:?} vs {flat:?}");
     }
 }
 
-/// The round stepped bar (axisymmetric) of cases/shaft-fillet (D/d = 1.6,
-/// r/d = 0.1) posed with blocks and a fillet: K_t converges to the value of
-/// the case's Gmsh mesh (triangles around the fillet, an independent mesh
-/// of the same geometry) within 0.5 %. Peterson's chart 3.4, through its
-/// fitted formula, lies 12 % below both (printed; cases/shaft-fillet's
-/// README and docs/verification.md discuss it).
+/// The round stepped bar (axisymmetric) against the finite-element fits of
+/// Tipton, Sorem & Rolovic (`tipton`), for D/d = 1.6, r/d = 0.1 (the bar of
+/// cases/shaft-fillet) and D/d = 1.5, r/d = 0.05: K_t and K_q within 5 % on
+/// the refined mesh, K_t below the flat bar's (Peterson's chart 3.1), as a
+/// round bar's lies below a flat one's. Peterson's chart 3.4 is printed
+/// beside them: 12 to 16 % lower, the estimate it is (`peterson`). The
+/// first bar's K_t is also that of the case's Gmsh mesh (triangles around
+/// the fillet, an independent mesh of the same geometry) within 0.5 %.
 #[test]
-fn a_round_stepped_bar_with_a_block_fillet_has_the_kt_of_the_gmsh_mesh() {
-    let seq = sequence("round", 16.0, 1.0, true);
-    let dir = common::scratch("fillet-shaft-gmsh");
-    let (code, err) = common::run_case(&common::root().join("cases/shaft-fillet"), &dir, &[]);
-    assert_eq!(code, 0, "{err}");
-    let (gmsh, at) = kt(&dir, [6.0, 19.0], 1.0);
-    let _ = std::fs::remove_dir_all(&dir);
-    let chart = peterson(10.0, 16.0, 1.0, true);
-    println!(
-        "round D/d = 1.6, r/d = 0.1: blocks K_t = {:.4}, Gmsh mesh {gmsh:.4} at {at:.1}°, Peterson chart 3.4 {chart:.4} (blocks {:+.1} %)",
-        seq[3],
-        100.0 * (seq[3] / chart - 1.0)
-    );
-    assert!((seq[3] - gmsh).abs() < 0.005 * gmsh, "{seq:?} vs {gmsh}");
+fn a_round_stepped_bar_with_a_block_fillet_has_the_published_kt() {
+    for (big_d, r, gmsh_case) in [(16.0, 1.0, true), (15.0, 0.5, false)] {
+        let (seq, q) = sequence("round", big_d, r, true);
+        let k = seq[3];
+        let (kt_fe, kq_fe) = tipton(10.0, big_d, r);
+        let chart = peterson(10.0, big_d, r, true);
+        println!(
+            "round D/d = {}, r/d = {}: K_t = {k:.4}, Tipton et al. {kt_fe:.4} ({:+.1} %), Peterson chart 3.4 {chart:.4} ({:+.1} %); K_q = {q:.4}, Tipton et al. {kq_fe:.4} ({:+.1} %)",
+            big_d / 10.0,
+            r / 10.0,
+            100.0 * (k / kt_fe - 1.0),
+            100.0 * (k / chart - 1.0),
+            100.0 * (q / kq_fe - 1.0)
+        );
+        assert!((k - kt_fe).abs() < 0.05 * kt_fe, "{k} vs {kt_fe}");
+        assert!((q - kq_fe).abs() < 0.05 * kq_fe, "{q} vs {kq_fe}");
+        assert!(k < peterson(10.0, big_d, r, false), "{k}");
+        if gmsh_case {
+            let dir = common::scratch("fillet-shaft-gmsh");
+            let case = common::root().join("cases/shaft-fillet");
+            let (code, err) = common::run_case(&case, &dir, &[]);
+            assert_eq!(code, 0, "{err}");
+            let (gmsh, at, _) = kt(&dir, [6.0, 19.0], 1.0);
+            let _ = std::fs::remove_dir_all(&dir);
+            println!("round D/d = 1.6, r/d = 0.1: Gmsh mesh K_t = {gmsh:.4} at {at:.1}°");
+            assert!((k - gmsh).abs() < 0.005 * gmsh, "{seq:?} vs {gmsh}");
+        }
+    }
 }
 
 /// First yield of a run: (total load kN, x, y), and whether summary.json
