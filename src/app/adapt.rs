@@ -647,11 +647,10 @@ fn next_mesh(
 fn stopped(log: &Log, stop: crate::interrupt::Stop, cycle: usize, r: &RunResult, dir: &Path) {
     if !stop.resumable() {
         // written whole by the driver, its own stop line said so
-        log.always(
-            "adapt_end",
-            json!({ "stopped_by": stop.name(), "adapt_cycle": cycle, "output": dir.display().to_string() }),
-            || format!("[adapt] ends with cycle {cycle}: its run ended at its torque limit, past which the load history has no equilibrium to refine; {} holds that cycle's run (no adapt.csv: the cycles' estimates are not of the same load)", dir.display()),
-        );
+        let w = format!("[adapt] ends with cycle {cycle}: its run ended at its torque limit ({}), past which the load history has no equilibrium to refine; {} holds that cycle's run", stop.name(), dir.display());
+        log.always("warning", json!({ "message": w }), || {
+            format!("warning: {w}")
+        });
         return;
     }
     let kept = if cycle > 1 {

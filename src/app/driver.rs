@@ -662,9 +662,16 @@ fn limit_end(log: &Log, model: &Model, dir: &Path, r: &RunResult, stop: crate::i
     let Some(e) = (r.events.iter()).find(|e| e.kind == solve::events::Kind::TorqueLimit) else {
         return;
     };
-    let body = model.mesh.bodies.get(e.place[3] as usize).cloned().unwrap_or_default();
+    let body = model
+        .mesh
+        .bodies
+        .get(e.place[3] as usize)
+        .cloned()
+        .unwrap_or_default();
     let lambda = r.increments.last().map_or(0.0, |i| i.load_factor);
-    let speed = model.rpm(e.load_factor).map_or(String::new(), |n| format!(" at {n:.6e} rpm"));
+    let speed = model
+        .rpm(e.load_factor)
+        .map_or(String::new(), |n| format!(" at {n:.6e} rpm"));
     log.always(
         "stop",
         json!({

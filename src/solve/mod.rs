@@ -5,11 +5,11 @@
 mod accelerate;
 mod checkpoint;
 pub mod events;
+mod limit;
 pub mod newton;
 pub mod stabilization;
 pub mod stepping;
 pub(crate) mod yield_point;
-mod limit;
 
 pub use crate::input::case::settings::{Method, StepControl};
 pub(crate) use crate::linalg::failure::StepFailure;

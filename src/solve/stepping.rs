@@ -346,14 +346,17 @@ impl Stepper {
         }
     }
 
-    /// The step to `target` from `lambda` failed (or was rejected): where to go next.
+    /// The step to `target` from `lambda` failed (or was rejected): where to
+    /// go next. Giving up leaves the stepper as it was (a run that ends
+    /// there at its torque limit writes it to restart.bin).
     pub fn retry(&mut self, lambda: f64, target: f64, why: Why) -> Retry {
         match self.mode {
             StepControl::Fixed => {
-                let (t, depth) = self.pending.pop().unwrap_or((target, 0));
+                let (t, depth) = self.pending.last().copied().unwrap_or((target, 0));
                 if depth >= self.max_cutbacks {
                     return Retry::GiveUp;
                 }
+                self.pending.pop();
                 let mid = 0.5 * (lambda + t);
                 self.pending.push((t, depth + 1));
                 self.pending.push((mid, depth + 1));
@@ -366,14 +369,12 @@ impl Stepper {
                         self.step = (taken * self.plastic_step / dpeeq).max(self.min_step);
                     }
                     Why::Failed => {
-                        if self.failures >= self.max_cutbacks {
+                        let step = 0.5 * (target - lambda).abs();
+                        if self.failures >= self.max_cutbacks || step < self.min_step * 0.999999 {
                             return Retry::GiveUp;
                         }
                         self.failures += 1;
-                        self.step = 0.5 * (target - lambda).abs();
-                        if self.step < self.min_step * 0.999999 {
-                            return Retry::GiveUp;
-                        }
+                        self.step = step;
                     }
                 }
                 match self.next(lambda) {

@@ -36,5 +36,6 @@ mod report_browser;
 mod restart;
 mod robust;
 mod tables;
+mod torque_limit;
 mod twist_restart;
 mod vtu_reader;

@@ -529,7 +529,10 @@ fn a_torque_past_what_friction_holds_ends_the_run_at_the_slip_torque() {
         e.before,
         e.after
     );
-    assert!(held <= slip * (1.0 + 1e-9) && held > (1.0 - 1e-6) * slip, "{held} vs {slip}");
+    assert!(
+        held <= slip * (1.0 + 1e-9) && held > (1.0 - 1e-6) * slip,
+        "{held} vs {slip}"
+    );
     // the torque then is the history's: T(λ) = slip (λ − 1) 1.3
     assert!(common::rel(held, slip * 1.3 * (e.before - 1.0)) < 1e-9);
 }
