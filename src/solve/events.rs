@@ -14,7 +14,10 @@
 //!   closed point is in macro-slip (the holding force: F_T is then μ F_N
 //!   at most);
 //! - **full separation**: the largest approach over the pairs; it happens
-//!   when no pair is in contact any more.
+//!   when no pair is in contact any more;
+//! - **first contact** of an interface open from the start (every pair
+//!   with a gap, u_N < 0, and no force carried at any increment): the
+//!   largest approach; it happens when one pair closes (u_N > 0).
 //!
 //! Only the pairs that can carry force count (`InterfaceModel::carrying_pairs`:
 //! not the pair on the axis of an axisymmetric model, whose area is 0).
@@ -59,6 +62,10 @@ pub enum Kind {
     FirstOpening,
     FullSlip,
     FullSeparation,
+    /// An interface open from the start (every pair with a gap, none ever
+    /// in contact) first closes: a gap closed, a hub heated for assembly
+    /// gripping its shaft as it cools.
+    FirstContact,
     /// The load a joint in full slip holds as it slides on, in the way it
     /// moved ([`plateaus`]): read off the increments at the run's end,
     /// never searched nor stored in a restart file.
@@ -71,11 +78,12 @@ pub enum Kind {
 
 impl Kind {
     /// The kinds searched during the run (and stored in restart files).
-    pub(crate) const ALL: [Kind; 4] = [
+    pub(crate) const ALL: [Kind; 5] = [
         Kind::FirstYield,
         Kind::FirstOpening,
         Kind::FullSlip,
         Kind::FullSeparation,
+        Kind::FirstContact,
     ];
 
     pub fn name(self) -> &'static str {
@@ -84,6 +92,7 @@ impl Kind {
             Kind::FirstOpening => "first_opening",
             Kind::FullSlip => "full_slip",
             Kind::FullSeparation => "full_separation",
+            Kind::FirstContact => "first_contact",
             Kind::HoldingPlateau(_) => "holding_plateau",
             Kind::TorqueLimit => "torque_limit",
         }
@@ -374,8 +383,14 @@ struct Monitor {
 impl Monitor {
     /// The monitor of `kind` on interface `i`, if it can happen from the
     /// committed state (something in contact to open or separate, a
-    /// tangential law not yet fully slipping).
-    fn armed(model: &Model, kind: Kind, i: usize, base: usize, committed: &State) -> Option<Self> {
+    /// tangential law not yet fully slipping, every pair open with a gap on
+    /// an interface that never carried a force, `touched` false).
+    fn armed(
+        model: &Model,
+        (kind, i, base): (Kind, usize, usize),
+        committed: &State,
+        touched: bool,
+    ) -> Option<Self> {
         let im = &model.interfaces[i];
         let carrying = im.carrying_pairs();
         let a = approaches(im, &carrying, committed);
@@ -390,6 +405,9 @@ impl Monitor {
         let ready = match kind {
             Kind::FirstOpening => closed > 0 && closed == carried,
             Kind::FullSeparation => closed > 0,
+            Kind::FirstContact => {
+                !touched && carried > 0 && a.iter().all(|&x| x.is_nan() || x < 0.0)
+            }
             Kind::FullSlip => im.tangential.is_some() && !m.happened(model, committed),
             Kind::FirstYield | Kind::HoldingPlateau(_) | Kind::TorqueLimit => false,
         };
@@ -404,6 +422,9 @@ impl Monitor {
                 .iter()
                 .any(|&a| a <= 0.0),
             Kind::FullSeparation => !approaches(im, &self.carrying, state)
+                .iter()
+                .any(|&a| a > 0.0),
+            Kind::FirstContact => approaches(im, &self.carrying, state)
                 .iter()
                 .any(|&a| a > 0.0),
             Kind::FullSlip => {
@@ -442,6 +463,15 @@ impl Monitor {
                     (0..a.len())
                         .filter(|&k| !a[k].is_nan())
                         .min_by(|&x, &y| a[x].total_cmp(&a[y])),
+                )
+            }
+            // the pair first in contact: the largest approach after
+            Kind::FirstContact => {
+                let a = approaches(im, &self.carrying, after);
+                pick(
+                    (0..a.len())
+                        .filter(|&k| !a[k].is_nan())
+                        .max_by(|&x, &y| a[x].total_cmp(&a[y]).then(y.cmp(&x))),
                 )
             }
             Kind::FullSeparation => {
@@ -497,11 +527,20 @@ pub(super) fn search(
         return Ok(Found::Events(Vec::new()));
     }
     for (i, im) in model.interfaces.iter().enumerate() {
-        for kind in [Kind::FirstOpening, Kind::FullSlip, Kind::FullSeparation] {
+        // an interface that carried a force at some increment has been in
+        // contact: its closing again is no first contact
+        let touched = (ck.increments.iter())
+            .any(|inc| inc.joints.get(i).is_some_and(|j| j.normal_force != 0.0));
+        for kind in [
+            Kind::FirstContact,
+            Kind::FirstOpening,
+            Kind::FullSlip,
+            Kind::FullSeparation,
+        ] {
             if found(&ck.events, kind, Some(i)) {
                 continue;
             }
-            if let Some(m) = Monitor::armed(model, kind, i, base, &ck.committed) {
+            if let Some(m) = Monitor::armed(model, (kind, i, base), &ck.committed, touched) {
                 if m.happened(model, trial) {
                     monitors.push(m);
                 }

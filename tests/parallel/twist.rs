@@ -235,3 +235,62 @@ fn serial_petsc1_and_petsc2_agree_on_a_bolted_hub_under_torque() {
         }
     }
 }
+
+/// The torque limit (issue 46), `cases/fit-speed-limit`: a hub held about
+/// the axis by its fit's friction alone, spun up under 350 N·m until it lets
+/// go. The search for the limit is collective (every rank takes each
+/// bisection step and its verdict alike): on two ranks the run ends as the
+/// serial one, exit code 4 and one stop line (rank 0's), the same increments
+/// and the event within its tolerance, the torque held there to 1e-6.
+#[test]
+fn serial_and_petsc2_end_a_spinning_fit_at_the_same_torque_limit() {
+    let case = common::root().join("cases/fit-speed-limit");
+    let root = common::scratch("parallel-torque-limit");
+    let (s_dir, p_dir) = (root.join("serial"), root.join("petsc2"));
+    let args = |dir: &std::path::Path, backend: &'static str| {
+        vec![
+            "run".to_string(),
+            case.display().to_string(),
+            "--quiet".into(),
+            "--backend".into(),
+            backend.into(),
+            "--out".into(),
+            dir.display().to_string(),
+        ]
+    };
+    let s_args = args(&s_dir, "serial");
+    let (code, err) = serial(&s_args.iter().map(String::as_str).collect::<Vec<_>>());
+    assert_eq!(code, 4, "serial: {err}");
+    let p_args = args(&p_dir, "petsc");
+    let (code, err) = mpirun(2, &p_args.iter().map(String::as_str).collect::<Vec<_>>());
+    assert_eq!(code, 4, "two ranks: {err}");
+    let stops = err
+        .lines()
+        .filter(|l| l.starts_with("ended at the torque limit"))
+        .count();
+    assert_eq!(stops, 1, "{err}");
+    let (s, p) = (json(&s_dir), json(&p_dir));
+    assert_eq!(p["ranks"], 2);
+    assert_eq!(p["stopped_by"], "torque_limit");
+    assert_eq!(p["increments"], s["increments"]);
+    let event = |v: &serde_json::Value| {
+        (v["events"].as_array().unwrap().iter())
+            .find(|e| e["event"] == "torque_limit")
+            .cloned()
+            .expect("a torque_limit event")
+    };
+    let (es, ep) = (event(&s), event(&p));
+    // each bisection step's verdict is the same on one rank or two but for
+    // a midpoint within round-off of the limit: the brackets overlap
+    let (ls, lp) = (
+        es["load_factor"].as_f64().unwrap(),
+        ep["load_factor"].as_f64().unwrap(),
+    );
+    let tol = es["tolerance"].as_f64().unwrap();
+    assert!((ls - lp).abs() <= 2.0 * tol, "{ep} vs {es}");
+    let (ts, tp) = (
+        es["torque_nm"].as_f64().unwrap(),
+        ep["torque_nm"].as_f64().unwrap(),
+    );
+    assert!((ts - tp).abs() <= 1e-6 * ts.abs(), "{ts} vs {tp}");
+}

@@ -544,9 +544,10 @@ fn a_torque_past_what_friction_holds_ends_the_run_at_the_slip_torque() {
 /// held along z, the bore grows by (1 + ν) α ΔT b), and the fit ends at
 /// the pressure of the closed form (and of the same fit pressed in, to
 /// round-off: elastic, frictionless). No increment before the closing
-/// carries a force, every one after it does; no event is reported at the
-/// start (the drawn interference is no contact of a hub not yet expanded),
-/// and heated again the fit opens where it gripped.
+/// carries a force, every one after it does; the event `first_contact` is
+/// there (1e-6 of the pseudo-time), none at the start (the drawn
+/// interference is no contact of a hub not yet expanded), and heated again
+/// the fit opens where it gripped.
 #[test]
 fn a_hub_heated_for_assembly_grips_as_it_cools_to_the_closed_form_pressure() {
     const HOT: f64 = 150.0;
@@ -597,8 +598,22 @@ fn a_hub_heated_for_assembly_grips_as_it_cools_to_the_closed_form_pressure() {
         "{} vs {reopen}",
         open.load_factor
     );
+    // it grips as it cools: its first contact where the bore's free growth
+    // is the interference, the only event before t = 1
+    let grip = (r.events.iter())
+        .find(|e| e.kind == Kind::FirstContact)
+        .expect("the hub grips the shaft as it cools");
+    eprintln!(
+        "grips at t = {:.7} (closed form {t_close:.7})",
+        grip.load_factor
+    );
     assert!(
-        r.events.iter().all(|e| e.load_factor > 1.0),
+        (grip.load_factor - t_close).abs() < 1e-6,
+        "{} vs {t_close}",
+        grip.load_factor
+    );
+    assert!(
+        (r.events.iter()).all(|e| e.load_factor > 1.0 || e.kind == Kind::FirstContact),
         "{:?}",
         r.events
     );
@@ -607,7 +622,7 @@ fn a_hub_heated_for_assembly_grips_as_it_cools_to_the_closed_form_pressure() {
 /// The shipped case `cases/hub-in-service` against its README's hand check
 /// (the closed form above with the case's numbers: δ = 0.03 mm, a 7075
 /// hub): no force while the hot hub is clear of the shaft (ΔT_hub above
-/// δ/((1 + ν) α b) = 47.99 K, t < 0.680), then the pressure at 20 °C
+/// δ/((1 + ν) α b) = 47.99 K, t < 0.680), its first contact there, then the pressure at 20 °C
 /// (t = 1), at 80 °C (t = 2) and at 80 °C and 6000 rpm (t = 3), and the
 /// torque the fit holds as it slides there (its holding plateau) against
 /// μ p 2π b² L, each within 1e-4.
@@ -636,6 +651,16 @@ fn the_shipped_hub_in_service_follows_its_hand_check() {
             assert_eq!(pm, 0.0, "t = {t}: the hub is still clear");
         }
     }
+    // the event says where it grips (event_tolerance 1e-6)
+    let grip = (r.events.iter())
+        .find(|e| e.kind == Kind::FirstContact)
+        .expect("the hub grips as it cools");
+    eprintln!(
+        "grips at t = {:.6} (hand {t_close:.6}): ΔT_hub = {:.3} K",
+        grip.load_factor,
+        150.0 * (1.0 - grip.load_factor)
+    );
+    assert!((grip.load_factor - t_close).abs() < 2e-6);
     for (t, dt, rpm) in [(1.0, 0.0, 0.0), (2.0, 60.0, 0.0), (3.0, 60.0, 6000.0)] {
         let fe = pressures.iter().find(|x| x.0 == t).unwrap().1;
         let hand = p(dt, rpm);

@@ -137,6 +137,8 @@ pub(crate) fn meaning(model: &Model, e: &Event) -> String {
         Kind::FullSlip => "the whole interface first in macro-slip: its first gross slip, not the load it holds; where friction was locked in by an earlier step (a fit pressed, then turned) the joint takes more after it, up to its holding plateau".into(),
         Kind::HoldingPlateau(m) => format!("the {} the joint holds as it slides on as a whole (its plateau, within 0.1 %): its capacity in this motion, a rating's transmissible {}", m.quantity(), if m == crate::solve::events::Motion::Turning { "torque" } else { "force" }),
         Kind::FullSeparation => "the interface carries no normal force any more: the joint has separated".into(),
+        Kind::FirstContact if model.temperatures.is_empty() => "the interface, open from the start, first came into contact: its gap closed".into(),
+        Kind::FirstContact => "the interface, open from the start, first came into contact: its gap closed (a hub heated for assembly grips its shaft here as it cools: the temperatures at this pseudo-time are its gripping temperatures)".into(),
         Kind::TorqueLimit => "the torque on the body reached what the friction of its interfaces holds about the axis, Σ μ p r dA, and nothing else holds it: past this load the fit slips through and a prescribed torque has no equilibrium, so the run ends here; the forces are those of the last state that held, the load factor the first where none did".into(),
     };
     if !e.converged {
