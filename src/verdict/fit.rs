@@ -13,7 +13,7 @@
 //!
 //! In service (a run with temperatures or a speed) the handbook's pressure,
 //! torque, axial force and slip safety are the fit's at the run's end, as
-//! the FE's are ([`service`]); its yield checks rate the larger of its
+//! the FE's are (`fit/service.rs`); its yield checks rate the larger of its
 //! pressures at assembly and at the run's end.
 
 use super::handbook::din7190::{Fit, SMOOTHING_2017};
