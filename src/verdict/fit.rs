@@ -10,6 +10,11 @@
 //! the fit to gross slip), else the friction capacity p π D_F l_F ν of
 //! the FE's mean pressure; each part's largest von Mises stress against its
 //! yield stress.
+//!
+//! In service (a run with temperatures or a speed) the handbook's pressure,
+//! torque, axial force and slip safety are the fit's at the run's end, as
+//! the FE's are (`fit/service.rs`); its yield checks rate the larger of its
+//! pressures at assembly and at the run's end.
 
 use super::handbook::din7190::{Fit, SMOOTHING_2017};
 use super::rating::{joint_series, max_pressure, max_von_mises, radii, Check, Input, Rating};
@@ -20,6 +25,8 @@ use crate::measure::gross_slip::Motion;
 use crate::model::interface::InterfaceModel;
 use crate::model::Model;
 use std::f64::consts::PI;
+
+mod service;
 
 /// The fit as the mesh and the case give it: which interface, which body
 /// is the hub, and the standard's inputs.
@@ -87,7 +94,8 @@ pub fn pose(model: &Model, spec: &FitSpec, at: &str) -> Result<Posed> {
         adhesion_torque: adhesion.0,
         adhesion_axial: adhesion.0,
     };
-    let inputs = inputs(&fit, spec, adhesion.1);
+    let mut inputs = inputs(&fit, spec, adhesion.1);
+    inputs.extend(service::posed_inputs(model, &fit, (hub, shaft)));
     Ok(Posed {
         interface: i,
         hub,
@@ -225,13 +233,89 @@ pub fn rate(model: &Model, r: &Run, spec: &FitSpec, posed: Posed) -> Rating {
         fit,
         inputs,
     } = posed;
+    let t = r.increments.last().map_or(0.0, |inc| inc.load_factor);
+    let end = service::end(model, t, &fit, (hub, shaft));
+    let service = end.service();
+    let p_assembly = fit.pressure();
+    // the handbook's pressure at the run's end, and the largest it knows
+    let (p_hb, p_top) = match service {
+        Some(s) => {
+            let p = s.pressure();
+            (p, p_assembly.zip(p).map(|(a, b)| a.max(b)))
+        }
+        None => (p_assembly, p_assembly),
+    };
+    let suffix = match service {
+        Some(_) => " (the handbook's pressure at the run's end)",
+        None => "",
+    };
+    let mut checks = slip_checks(model, r, spec, (i, &fit), (p_hb, p_top), suffix);
+    if let Some(s) = service {
+        checks.insert(0, left_in_service(s));
+    }
+    if fit.effective_interference() <= 0.0 {
+        let mut c = Check::both(
+            "effective interference",
+            "U_w",
+            "µm",
+            None,
+            Some(fit.effective_interference() * 1e3),
+        );
+        c.pass = Some(false);
+        checks.insert(0, c.note("U − k (Rz_A + Rz_I): by the standard's smoothing the fit is loose and holds nothing"));
+    }
+    let state = match service {
+        None => "",
+        Some(_) if p_top == p_assembly => "; handbook at assembly (room temperature, standing still), where its pressure is the larger",
+        Some(_) => "; handbook at the run's end, where the service raises its pressure above the assembly's (the spinning parts' own stresses left out)",
+    };
+    let yield_s = spec.yield_safety.unwrap_or(1.1);
+    checks.extend(yield_checks(
+        model,
+        r,
+        &fit,
+        (hub, shaft),
+        p_top,
+        yield_s,
+        state,
+    ));
+    let names = &model.mesh.bodies;
+    let mut inputs = inputs;
+    inputs.extend(joining(model, &fit, hub));
+    inputs.extend(service.map(|s| s.inputs()).unwrap_or_default());
+    Rating {
+        standard: "DIN 7190-1:2017",
+        name: spec.name.clone().unwrap_or_else(|| spec.interface.clone()),
+        subject: format!(
+            "interference fit \"{}\": the shaft is body \"{}\", the hub body \"{}\"{}",
+            spec.interface,
+            names[shaft],
+            names[hub],
+            in_service(&end)
+        ),
+        inputs,
+        checks,
+        incomplete: None,
+    }
+}
+
+/// The pressure, the transmissible torque and axial force, and the slip
+/// safety: the FE's at the run's end (or its holding plateau) beside the
+/// handbook's at `p_hb`; the peak beside the handbook's largest, `p_top`.
+/// `suffix` ends the notes of a run in service.
+fn slip_checks(
+    model: &Model,
+    r: &Run,
+    spec: &FitSpec,
+    (i, fit): (usize, &Fit),
+    (p_hb, p_top): (Option<f64>, Option<f64>),
+    suffix: &str,
+) -> Vec<Check> {
     let area = PI * fit.d_f * fit.l_f;
     let last = r.increments.last().and_then(|inc| inc.joints.get(i));
     let p_fe = last.map(|j| j.normal_force / area);
-    let p_hb = fit.pressure();
     let k_a = spec.application_factor.unwrap_or(1.0);
     let slip = spec.slip_safety.unwrap_or(1.5);
-    let yield_s = spec.yield_safety.unwrap_or(1.1);
     let torque_demand = spec.torque.map(|t| k_a * t);
     let axial_demand = spec.axial_force.map(|f| k_a * f);
     let held_torque = held(r, i, Motion::Turning);
@@ -239,18 +323,18 @@ pub fn rate(model: &Model, r: &Run, spec: &FitSpec, posed: Posed) -> Rating {
     let (turned, pushed) = (held_torque.is_some(), held_axial.is_some());
     let fe_torque = held_torque.or_else(|| p_fe.and_then(|p| fit.transmissible_torque(p)));
     let fe_axial = held_axial.or_else(|| p_fe.and_then(|p| fit.transmissible_axial_force(p)));
-    let loose = fit.effective_interference() <= 0.0;
+    let in_service = !suffix.is_empty();
     let mut checks = vec![
         Check::both("fit pressure, mean", "p", "MPa", p_fe, p_hb)
-            .note("FE: the interface's normal force / (π D_F l_F) at the end; handbook: plane-stress Lamé with the smoothing k (Rz_A + Rz_I)"),
-        Check::both("fit pressure, peak", "p_max", "MPa", max_pressure(model, r, i), p_hb)
-            .note("FE: the largest pair pressure over the run, at the joint's edges where the hub ends; the handbook's is uniform"),
+            .note(if in_service { "FE: the interface's normal force / (π D_F l_F) at the run's end; handbook: plane-stress Lamé at the run's end, (U_w − ΔU_ϑ − ΔU_ω)/(D_F K), U_w with the smoothing k (Rz_A + Rz_I)" } else { "FE: the interface's normal force / (π D_F l_F) at the end; handbook: plane-stress Lamé with the smoothing k (Rz_A + Rz_I)" }),
+        Check::both("fit pressure, peak", "p_max", "MPa", max_pressure(model, r, i), p_top)
+            .note(if in_service { "FE: the largest pair pressure over the run, at the joint's edges where the hub ends; the handbook's is uniform, the larger of its pressures at assembly and at the run's end" } else { "FE: the largest pair pressure over the run, at the joint's edges where the hub ends; the handbook's is uniform" }),
         Check::both("transmissible torque", "M_t", "N·m", fe_torque.map(|t| t * 1e-3), p_hb.and_then(|p| fit.transmissible_torque(p)).map(|t| t * 1e-3))
             .against(torque_demand, slip)
-            .note(if turned { "FE: the largest torque the fit held (its plateau as it slips); handbook: p π D_F² l_F ν/2" } else { "FE: p π D_F² l_F ν/2 with the FE's mean pressure (the run does not turn the fit); handbook: with Lamé's" }),
+            .note(format!("{}{suffix}", if turned { "FE: the largest torque the fit held (its plateau as it slips); handbook: p π D_F² l_F ν/2" } else { "FE: p π D_F² l_F ν/2 with the FE's mean pressure (the run does not turn the fit); handbook: with Lamé's" })),
         Check::both("transmissible axial force", "F_ax", "N", fe_axial, p_hb.and_then(|p| fit.transmissible_axial_force(p)))
             .against(axial_demand, slip)
-            .note(if pushed { "FE: the largest axial force the fit held as it slipped; handbook: p π D_F l_F ν" } else { "FE: p π D_F l_F ν with the FE's mean pressure; handbook: with Lamé's" }),
+            .note(format!("{}{suffix}", if pushed { "FE: the largest axial force the fit held as it slipped; handbook: p π D_F l_F ν" } else { "FE: p π D_F l_F ν with the FE's mean pressure; handbook: with Lamé's" })),
     ];
     if torque_demand.is_some() || axial_demand.is_some() {
         let (t, f) = (
@@ -267,65 +351,48 @@ pub fn rate(model: &Model, r: &Run, spec: &FitSpec, posed: Posed) -> Rating {
         c.required_safety = Some(slip);
         c.safety = c.fe.or(c.handbook);
         c.pass = c.safety.map(|s| s >= slip);
-        checks.push(c.note(
-            "torque and axial force together: S_r = p π D_F l_F ν / (K_A √(F_ax² + (2 M_t/D_F)²))",
-        ));
+        checks.push(c.note(format!(
+            "torque and axial force together: S_r = p π D_F l_F ν / (K_A √(F_ax² + (2 M_t/D_F)²)){suffix}"
+        )));
     }
-    if loose {
-        let mut c = Check::both(
-            "effective interference",
-            "U_w",
-            "µm",
-            None,
-            Some(fit.effective_interference() * 1e3),
-        );
-        c.pass = Some(false);
-        checks.insert(0, c.note("U − k (Rz_A + Rz_I): by the standard's smoothing the fit is loose and holds nothing"));
-    }
-    checks.extend(yield_checks(model, r, &fit, (hub, shaft), p_hb, yield_s));
-    let names = &model.mesh.bodies;
-    let mut inputs = inputs;
-    inputs.extend(joining(model, &fit, hub));
-    Rating {
-        standard: "DIN 7190-1:2017",
-        name: spec.name.clone().unwrap_or_else(|| spec.interface.clone()),
-        subject: format!(
-            "interference fit \"{}\": the shaft is body \"{}\", the hub body \"{}\"{}",
-            spec.interface,
-            names[shaft],
-            names[hub],
-            in_service(model, r, (hub, shaft))
-        ),
-        inputs,
-        checks,
-        incomplete: None,
-    }
+    checks
 }
 
-/// What a run in service adds to the rating's subject: the FE side is the
-/// run's last state (its temperatures and speed there), the handbook side
-/// the fit at assembly (room temperature, standing still), so a difference
-/// between them is the service's, not the method's. Empty for a run with
-/// neither.
-fn in_service(model: &Model, r: &Run, (hub, shaft): (usize, usize)) -> String {
-    let t = r.increments.last().map_or(0.0, |inc| inc.load_factor);
-    let mut state = Vec::new();
-    for (b, what) in [(hub, "hub"), (shaft, "shaft")] {
-        if let Some(bt) = model.temperatures.iter().find(|bt| bt.body == b) {
-            let dt = bt.change * model.factor(bt.history, t);
-            state.push(format!("{what} ΔT = {dt} K"));
-        }
+/// The interference the service leaves, U_w − ΔU_ϑ − ΔU_ω (handbook only):
+/// failed where the service opens a fit that holds at rest.
+fn left_in_service(s: &service::Service) -> Check {
+    let left = s.left();
+    let mut c = Check::both(
+        "interference left in service",
+        "U_w,s",
+        "µm",
+        None,
+        Some(left * 1e3),
+    );
+    if left <= 0.0 && s.fit.effective_interference() > 0.0 {
+        c.pass = Some(false);
     }
-    if let Some(n) = model.rpm(t) {
-        state.push(format!("{n} rpm"));
+    c.note("U_w − ΔU_ϑ − ΔU_ω at the run's end: the effective interference less what the temperatures and the speed take off; at 0 or below the fit is open and holds nothing")
+}
+
+/// What a run in service adds to the rating's subject: what each side is.
+/// In service both sides are the run's end (its temperatures and speed):
+/// the FE's as measured, the handbook's with the interference the service
+/// leaves. A part at a temperature field there has no uniform ΔT for the
+/// standard, so the handbook side stays the fit at assembly (room
+/// temperature, standing still), and a difference between the sides is
+/// then the service's, not the method's. Empty for a run with neither.
+fn in_service(end: &service::End) -> String {
+    let state = end.words.join(", ");
+    match end.side {
+        service::Side::Assembly => String::new(),
+        service::Side::Service(_) => format!(
+            "; in service, both sides are the run's end ({state}): the FE side as the run measured it, the handbook side DIN 7190's fit with the interference less what the temperatures and the speed take off, p = (U_w − ΔU_ϑ − ΔU_ω)/(D_F K); its yield checks at the larger of its pressures at assembly and at the run's end"
+        ),
+        service::Side::Field(what) => format!(
+            "; in service: the FE side is the run's end ({state}), the handbook side the fit at assembly (room temperature, standing still): the {what} has a temperature field there, no uniform ΔT for DIN 7190's ΔU_ϑ, so their difference is the service's, not the method's"
+        ),
     }
-    if state.is_empty() {
-        return String::new();
-    }
-    format!(
-        "; in service: the FE side is the run's end ({}), the handbook side the fit at assembly (room temperature, standing still): their difference is the service's, not the method's",
-        state.join(", ")
-    )
 }
 
 /// DIN 7190's joining temperature of the hub heated for assembly (clearance
@@ -334,8 +401,7 @@ fn in_service(model: &Model, r: &Run, (hub, shaft): (usize, usize)) -> String {
 fn joining(model: &Model, fit: &Fit, hub: usize) -> Option<Input> {
     let bt = model.temperatures.iter().find(|bt| bt.body == hub)?;
     let room = bt.reference?;
-    let alpha = (bt.change != 0.0).then(|| bt.strain / bt.change)?;
-    let t = fit.joining_temperature(room, 1e-3 * fit.d_f, alpha)?;
+    let t = fit.joining_temperature(room, 1e-3 * fit.d_f, bt.alpha)?;
     Some(Input::new(
         "joining temperature of the hub (clearance 0.001 D_F)",
         "ϑ_A",
@@ -360,6 +426,7 @@ fn held(r: &Run, i: usize, motion: Motion) -> Option<f64> {
 /// Hub and shaft against yield: the FE's largest von Mises stress and the
 /// handbook's at the bore, each against R_eL; and the standard's pressure
 /// limits (elastic p_F, the hub's fully plastic limit) against the pressure.
+/// `state` ends each note in service: which state the handbook rates.
 fn yield_checks(
     model: &Model,
     r: &Run,
@@ -367,21 +434,22 @@ fn yield_checks(
     (hub, shaft): (usize, usize),
     p: Option<f64>,
     s_f: f64,
+    state: &str,
 ) -> Vec<Check> {
     let hub_hb = p.and_then(|p| fit.hub_stresses(p)).map(|s| s.von_mises);
     let shaft_hb = p.and_then(|p| fit.shaft_stresses(p)).map(|s| s.von_mises);
     vec![
         Check::both("hub von Mises stress", "σ_v,A", "MPa", max_von_mises(model, r, hub), hub_hb)
             .below(Some(fit.yield_hub), s_f)
-            .note("FE: the hub's largest von Mises stress over the run (edge peaks included); handbook: plane-stress Lamé at the bore"),
+            .note(format!("FE: the hub's largest von Mises stress over the run (edge peaks included); handbook: plane-stress Lamé at the bore{state}")),
         Check::both("shaft von Mises stress", "σ_v,I", "MPa", max_von_mises(model, r, shaft), shaft_hb)
             .below(Some(fit.yield_shaft), s_f)
-            .note("FE: the shaft's largest von Mises stress over the run; handbook: plane-stress Lamé at its bore (solid: uniform)"),
+            .note(format!("FE: the shaft's largest von Mises stress over the run; handbook: plane-stress Lamé at its bore (solid: uniform){state}")),
         Check::both("hub elastic limit pressure", "p_FA", "MPa", None, fit.yield_pressure_hub())
             .against(p, s_f)
-            .note("the pressure at which the hub's bore starts to yield, (1 − Q_A²) R_eL,A/√3, against the Lamé pressure"),
+            .note(format!("the pressure at which the hub's bore starts to yield, (1 − Q_A²) R_eL,A/√3, against the Lamé pressure{state}")),
         Check::both("hub fully plastic limit pressure", "p_A,max", "MPa", None, fit.plastic_limit_hub())
             .against(p, 1.0)
-            .note("the pressure a fully plastic hub holds, −(2/√3) R_eL,A ln Q_A: the absolute limit"),
+            .note(format!("the pressure a fully plastic hub holds, −(2/√3) R_eL,A ln Q_A: the absolute limit{state}")),
     ]
 }

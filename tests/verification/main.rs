@@ -40,6 +40,7 @@ mod punch_rounded;
 mod ratings;
 mod roughness;
 mod service;
+mod service_rating;
 mod shrink_fit;
 mod singular;
 mod solid;

@@ -23,6 +23,8 @@ pub struct BodyTemperature {
     pub change: f64,
     /// α ΔT at factor 1: the free thermal strain.
     pub strain: f64,
+    /// α, the material's expansion coefficient, 1/K.
+    pub alpha: f64,
     /// The temperature of the stress-free state, °C, when given.
     pub reference: Option<f64>,
     /// Its history (`None`: the load factor, or the default ramp).
@@ -266,6 +268,7 @@ pub(super) fn read(
             body,
             change: t.change,
             strain: alpha * t.change,
+            alpha,
             reference: t.reference,
             history,
             young: m.young_table.as_deref().map(pairs),

@@ -170,8 +170,81 @@ impl Fit {
     /// tells by how much). With the same E for both parts it reduces to
     /// p = ξ_w E (1 − Q_A²)(1 − Q_I²)/(2 (1 − Q_A² Q_I²)).
     pub fn pressure(&self) -> Option<f64> {
+        self.pressure_in_service(0.0, 0.0)
+    }
+
+    /// Diametral interference lost to the operating temperatures, ΔU_ϑ (mm):
+    ///
+    /// ```text
+    ///   ΔU_ϑ = D_F (α_A ΔT_A − α_I ΔT_I)
+    /// ```
+    ///
+    /// with ΔT_A, ΔT_I the uniform temperature changes of hub and shaft from the assembly
+    /// state and α_A, α_I (1/K) their expansion coefficients: the interference lost (gained
+    /// when negative) by their different thermal expansions, DIN 7190-1:2017's change of the
+    /// interference at operating temperature. Derivation (the standard's equation was not at
+    /// hand to cite by number): a free disk or ring at a uniform ΔT grows without stress,
+    /// u = α ΔT r (plane stress, and exactly in three dimensions); the fit is elastic and
+    /// linear, so this free growth superposes on the joined state, the hub's bore and the
+    /// shaft's surface at r = D_F/2 moving apart by (α_A ΔT_A − α_I ΔT_I) D_F/2, while the
+    /// compliance K of the pressure is unchanged (a uniform ΔT sets no stress in a free
+    /// part). Same material, warmed alike: 0. `None` for an invalid fit or a non-finite
+    /// input.
+    pub fn thermal_loss(
+        &self,
+        (alpha_hub, dt_hub): (f64, f64),
+        (alpha_shaft, dt_shaft): (f64, f64),
+    ) -> Option<f64> {
+        self.ratios()?;
+        let loss = self.d_f * (alpha_hub * dt_hub - alpha_shaft * dt_shaft);
+        loss.is_finite().then_some(loss)
+    }
+
+    /// Joint pressure in service (MPa): the interference less the smoothing and the losses of
+    /// the operating temperatures and of the speed,
+    ///
+    /// ```text
+    ///   p = (U_w − ΔU_ϑ − ΔU_ω)/(D_F K)
+    /// ```
+    ///
+    /// with ΔU_ϑ from [`Fit::thermal_loss`] (`thermal`, mm) and ΔU_ω from
+    /// [`Fit::centrifugal_loss`] (`centrifugal`, mm): the elastic pressure of the fit
+    /// (DIN 7190-1:2017, elastic joint pressure, [`Fit::compliance`]) with the interference the
+    /// service leaves, the losses superposed on the joined state (each derived in its
+    /// function). Zero once the fit has opened (U_w ≤ ΔU_ϑ + ΔU_ω). With both losses 0 it is
+    /// [`Fit::pressure`], bit for bit. `None` for an invalid fit or a non-finite loss.
+    pub fn pressure_in_service(&self, thermal: f64, centrifugal: f64) -> Option<f64> {
         let k = self.compliance()?;
-        Some((self.effective_interference() / self.d_f / k).max(0.0))
+        if !thermal.is_finite() || !centrifugal.is_finite() {
+            return None;
+        }
+        let left = self.effective_interference() - thermal - centrifugal;
+        Some((left / self.d_f / k).max(0.0))
+    }
+
+    /// The temperature change ΔT (K) of hub and shaft heated alike, standing still, at which
+    /// the fit opens: ΔU_ϑ = U_w with ΔT_A = ΔT_I = ΔT ([`Fit::thermal_loss`]),
+    ///
+    /// ```text
+    ///   ΔT_ab = U_w / (D_F (α_A − α_I))
+    /// ```
+    ///
+    /// Pass `alpha_shaft` = 0 for the hub heated alone (the shaft at its assembly temperature)
+    /// and `alpha_hub` = 0 for the shaft alone. Negative where the fit opens on cooling (the
+    /// shaft expands more); 0 when U_w ≤ 0 (loose at rest). `None` for an invalid fit, a
+    /// non-finite α, or α_A = α_I (the fit keeps its interference at every temperature).
+    pub fn opening_temperature_change(&self, alpha_hub: f64, alpha_shaft: f64) -> Option<f64> {
+        self.ratios()?;
+        let differ = alpha_hub - alpha_shaft;
+        if !differ.is_finite() || differ == 0.0 {
+            return None;
+        }
+        let u_w = self.effective_interference();
+        Some(if u_w <= 0.0 {
+            0.0
+        } else {
+            u_w / (self.d_f * differ)
+        })
     }
 
     /// Stresses in the hub at the pressure `p` (MPa), see [`HubStresses`] (plane-stress Lamé,
@@ -371,8 +444,7 @@ impl Fit {
         density_shaft: f64,
     ) -> Option<f64> {
         let loss = self.centrifugal_loss(omega, density_hub, density_shaft)?;
-        let k = self.compliance()?;
-        Some(((self.effective_interference() - loss) / (self.d_f * k)).max(0.0))
+        self.pressure_in_service(0.0, loss)
     }
 
     /// Angular speed at which the fit opens (rad/s), where ΔU_ω = U_w:
@@ -381,8 +453,26 @@ impl Fit {
     /// n_ab = 60 ω_ab/(2π). Zero when U_w ≤ 0; infinite when the hub grows no more than the
     /// shaft (c ≤ 0). `None` as for [`Fit::centrifugal_loss`].
     pub fn opening_speed(&self, density_hub: f64, density_shaft: f64) -> Option<f64> {
+        self.opening_speed_in_service(0.0, density_hub, density_shaft)
+    }
+
+    /// Angular speed at which the fit opens at its operating temperatures (rad/s), where
+    /// ΔU_ω = U_w − ΔU_ϑ: ω_ab = √((U_w − ΔU_ϑ)/c), `thermal` = ΔU_ϑ (mm) from
+    /// [`Fit::thermal_loss`], c as in [`Fit::opening_speed`] (which this is for ΔU_ϑ = 0); the
+    /// speed at which [`Fit::pressure_in_service`] reaches 0. Zero when the temperatures alone
+    /// open the fit (U_w ≤ ΔU_ϑ); infinite when the hub grows no more than the shaft. `None` as
+    /// for [`Fit::centrifugal_loss`], or for a non-finite `thermal`.
+    pub fn opening_speed_in_service(
+        &self,
+        thermal: f64,
+        density_hub: f64,
+        density_shaft: f64,
+    ) -> Option<f64> {
         let c = self.centrifugal_coefficient(density_hub, density_shaft)?;
-        let u_w = self.effective_interference();
+        if !thermal.is_finite() {
+            return None;
+        }
+        let u_w = self.effective_interference() - thermal;
         Some(if u_w <= 0.0 {
             0.0
         } else if c <= 0.0 {

@@ -4,7 +4,8 @@
 //!
 //! * [`din7190`]: DIN 7190-1:2017, cylindrical interference fits (elastic, with the partly and
 //!   the fully plastic hub): pressure, stresses, limit pressures, transmissible loads, slip and
-//!   yield safeties, joining temperature, centrifugal loosening.
+//!   yield safeties, joining temperature, the interference lost in service (operating
+//!   temperatures, speed) and the pressure, opening speed and opening temperature there.
 //! * [`vdi2230`]: VDI 2230-1:2015, concentric single-bolt joints (through-bolted and tapped):
 //!   resiliences, load factor, embedding, preloads, tightening torque, working stress, fatigue,
 //!   surface pressure (requirements R3 to R10 and R13).

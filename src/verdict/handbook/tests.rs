@@ -59,29 +59,43 @@ const STEEL_DENSITY: f64 = 7.85e-9;
 /// [A_hub, B_hub, A_shaft, B_shaft, p]; free outer hub face, σ_r = −p on both sides of the
 /// joint, free bore (or B = 0 for a solid shaft), u_hub − u_shaft = U_w/2 at the joint.
 fn compatibility_pressure(fit: &Fit, omega: f64, rho_hub: f64, rho_shaft: f64) -> f64 {
+    compatibility_pressure_hot(fit, omega, (rho_hub, rho_shaft), (0.0, 0.0))
+}
+
+/// [`compatibility_pressure`] with each part at a uniform free thermal strain ε = α ΔT (hub,
+/// shaft), taken off the strains in Hooke's law: σ_r = c ((1 + ν) A − (1 − ν) B/r² − (1 + ν) ε)
+/// − (3 + ν) ρ ω² r²/8, c = E/(1 − ν²); the parts stay joined at the same U_w (the drawn
+/// interference), so the thermal strains enter through the stresses alone, not through a
+/// shortened interference.
+fn compatibility_pressure_hot(
+    fit: &Fit,
+    omega: f64,
+    (rho_hub, rho_shaft): (f64, f64),
+    (eps_hub, eps_shaft): (f64, f64),
+) -> f64 {
     let (r_i, r_f, r_o) = (fit.d_ii / 2.0, fit.d_f / 2.0, fit.d_aa / 2.0);
     let w2 = omega * omega;
-    // σ_r = c (1 + ν) A − c (1 − ν) B/r² − (3 + ν) ρ ω² r²/8, c = E/(1 − ν²)
-    let radial = |e: f64, nu: f64, rho: f64, r: f64| {
+    // σ_r = c (1 + ν) A − c (1 − ν) B/r² − c (1 + ν) ε − (3 + ν) ρ ω² r²/8, c = E/(1 − ν²)
+    let radial = |e: f64, nu: f64, rho: f64, eps: f64, r: f64| {
         let c = e / (1.0 - nu * nu);
         (
             c * (1.0 + nu),
             -c * (1.0 - nu) / (r * r),
-            (3.0 + nu) * rho * w2 * r * r / 8.0,
+            (3.0 + nu) * rho * w2 * r * r / 8.0 + c * (1.0 + nu) * eps,
         )
     };
     let cubic = |e: f64, nu: f64, rho: f64| -(1.0 - nu * nu) * rho * w2 / (8.0 * e);
     let (eh, nh, es, ns) = (fit.e_hub, fit.poisson_hub, fit.e_shaft, fit.poisson_shaft);
     let mut m = Matrix5::zeros();
     let mut b = Vector5::zeros();
-    let (a, bb, body) = radial(eh, nh, rho_hub, r_o);
+    let (a, bb, body) = radial(eh, nh, rho_hub, eps_hub, r_o);
     (m[(0, 0)], m[(0, 1)], b[0]) = (a, bb, body);
-    let (a, bb, body) = radial(eh, nh, rho_hub, r_f);
+    let (a, bb, body) = radial(eh, nh, rho_hub, eps_hub, r_f);
     (m[(1, 0)], m[(1, 1)], m[(1, 4)], b[1]) = (a, bb, 1.0, body);
-    let (a, bb, body) = radial(es, ns, rho_shaft, r_f);
+    let (a, bb, body) = radial(es, ns, rho_shaft, eps_shaft, r_f);
     (m[(2, 2)], m[(2, 3)], m[(2, 4)], b[2]) = (a, bb, 1.0, body);
     if r_i > 0.0 {
-        let (a, bb, body) = radial(es, ns, rho_shaft, r_i);
+        let (a, bb, body) = radial(es, ns, rho_shaft, eps_shaft, r_i);
         (m[(3, 2)], m[(3, 3)], b[3]) = (a, bb, body);
     } else {
         m[(3, 3)] = 1.0;
@@ -307,6 +321,128 @@ fn din_rotating_pressure_matches_the_direct_solve_and_vanishes_at_the_opening_sp
         ..example_fit()
     };
     assert_eq!(heavy_shaft.opening_speed(1e-9, 20e-9), Some(f64::INFINITY));
+}
+
+/// The parts' expansion coefficients (1/K) for [`varied_fits`]: steel in steel, an aluminium
+/// shaft in steel, steel in grey iron, steel in bronze.
+const ALPHAS: [(f64, f64); 4] = [
+    (11.5e-6, 11.5e-6),
+    (11.5e-6, 23.5e-6),
+    (10.0e-6, 11.5e-6),
+    (18.0e-6, 11.5e-6),
+];
+
+#[test]
+fn din_same_expansion_warmed_alike_keeps_its_pressure() {
+    for fit in varied_fits() {
+        // free growth alike: no interference lost, whatever the moduli
+        for dt in [-40.0, 60.0, 150.0] {
+            let loss = fit.thermal_loss((11.5e-6, dt), (11.5e-6, dt)).unwrap();
+            assert_eq!(loss, 0.0);
+            let eps = 11.5e-6 * dt;
+            let direct = compatibility_pressure_hot(&fit, 0.0, (1e-9, 1e-9), (eps, eps));
+            assert_rel(direct, fit.pressure().unwrap(), 1e-10);
+        }
+        // both losses 0: the pressure at assembly, bit for bit
+        assert_eq!(fit.pressure_in_service(0.0, 0.0), fit.pressure());
+    }
+}
+
+#[test]
+fn din_pressure_in_service_matches_the_direct_solve_hot_and_spinning() {
+    let densities = [
+        (7.85e-9, 7.85e-9),
+        (7.85e-9, 2.7e-9),
+        (7.2e-9, 7.85e-9),
+        (8.8e-9, 7.85e-9),
+    ];
+    for ((fit, (rho_a, rho_i)), (a_a, a_i)) in varied_fits().into_iter().zip(densities).zip(ALPHAS)
+    {
+        for (dt_a, dt_i, omega) in [(30.0, 10.0, 0.0), (50.0, 50.0, 400.0), (-20.0, 40.0, 900.0)] {
+            let thermal = fit.thermal_loss((a_a, dt_a), (a_i, dt_i)).unwrap();
+            assert_rel(thermal, fit.d_f * (a_a * dt_a - a_i * dt_i), 1e-14);
+            let spin = fit.centrifugal_loss(omega, rho_a, rho_i).unwrap();
+            let direct =
+                compatibility_pressure_hot(&fit, omega, (rho_a, rho_i), (a_a * dt_a, a_i * dt_i));
+            let p = fit.pressure_in_service(thermal, spin).unwrap();
+            if direct > 0.0 {
+                assert_rel(p, direct, 1e-10);
+            } else {
+                assert_eq!(p, 0.0, "open: the direct solve needs a tension {direct}");
+            }
+        }
+    }
+}
+
+#[test]
+fn din_opening_temperature_is_where_the_direct_solve_reaches_zero() {
+    for (fit, (a_a, a_i)) in varied_fits().into_iter().zip(ALPHAS) {
+        let p0 = fit.pressure().unwrap();
+        let rho = (1e-9, 1e-9);
+        for (a_hub, a_shaft) in [(a_a, a_i), (a_a, 0.0), (0.0, a_i)] {
+            let Some(dt) = fit.opening_temperature_change(a_hub, a_shaft) else {
+                assert_eq!(a_hub, a_shaft, "only equal coefficients never open");
+                continue;
+            };
+            assert_rel(
+                dt,
+                fit.effective_interference() / (fit.d_f * (a_hub - a_shaft)),
+                1e-14,
+            );
+            let at = |x: f64| compatibility_pressure_hot(&fit, 0.0, rho, (a_hub * x, a_shaft * x));
+            assert!(at(dt).abs() < 1e-9 * p0, "{}", at(dt));
+            // linear in ΔT: half-way, half the pressure
+            assert_rel(at(0.5 * dt), 0.5 * p0, 1e-10);
+            let thermal = fit.thermal_loss((a_hub, 1.01 * dt), (a_shaft, 1.01 * dt));
+            assert_eq!(fit.pressure_in_service(thermal.unwrap(), 0.0), Some(0.0));
+        }
+    }
+    // the shaft expanding more opens the fit on cooling
+    let al_shaft = varied_fits()[1];
+    assert!(
+        al_shaft
+            .opening_temperature_change(11.5e-6, 23.5e-6)
+            .unwrap()
+            < 0.0
+    );
+    assert_eq!(al_shaft.opening_temperature_change(11.5e-6, 11.5e-6), None);
+}
+
+#[test]
+fn din_pressure_in_service_is_quadratic_in_the_speed_to_its_opening() {
+    for (fit, (a_a, a_i)) in varied_fits().into_iter().zip(ALPHAS) {
+        let (rho_a, rho_i) = (7.85e-9, 2.7e-9);
+        let thermal = fit.thermal_loss((a_a, 20.0), (a_i, 15.0)).unwrap();
+        let omega_ab = fit.opening_speed_in_service(thermal, rho_a, rho_i).unwrap();
+        assert!(omega_ab.is_finite() && omega_ab > 0.0, "{omega_ab}");
+        let p = |w: f64| {
+            let spin = fit.centrifugal_loss(w, rho_a, rho_i).unwrap();
+            fit.pressure_in_service(thermal, spin).unwrap()
+        };
+        // p(ω) = p(0) (1 − (ω/ω_ab)²)
+        for x in [0.25, 0.5, 0.9] {
+            assert_rel(p(x * omega_ab), p(0.0) * (1.0 - x * x), 1e-10);
+        }
+        let eps = (a_a * 20.0, a_i * 15.0);
+        let at_opening = compatibility_pressure_hot(&fit, omega_ab, (rho_a, rho_i), eps);
+        assert!(at_opening.abs() < 1e-9 * p(0.0), "{at_opening}");
+        assert_eq!(p(1.1 * omega_ab), 0.0);
+        // without the temperatures, the opening speed at rest
+        assert_eq!(
+            fit.opening_speed_in_service(0.0, rho_a, rho_i),
+            fit.opening_speed(rho_a, rho_i)
+        );
+        // the temperatures alone open it: no speed left
+        let hot = fit.effective_interference() * 1.01;
+        assert_eq!(fit.opening_speed_in_service(hot, rho_a, rho_i), Some(0.0));
+    }
+    let ex = example_fit();
+    assert_eq!(ex.thermal_loss((f64::NAN, 1.0), (1e-5, 1.0)), None);
+    assert_eq!(ex.pressure_in_service(f64::INFINITY, 0.0), None);
+    assert_eq!(
+        ex.opening_speed_in_service(f64::NAN, 7.85e-9, 7.85e-9),
+        None
+    );
 }
 
 #[test]
