@@ -14,8 +14,9 @@
 //! midpoint that converges held, one that does not did not, until the
 //! bracket is at most `[output] event_tolerance` wide. The run ends there
 //! with the event `torque_limit`: its load factor the first where nothing
-//! held, its values those of the last state that held (the torque the
-//! interface carried, its normal force, the pressures). The event is where
+//! held, its values those of the last state that held: the torque on the
+//! body (what its interfaces' friction held between them), the sum of
+//! their normal forces, the pressures; its interface the first of them. The event is where
 //! the steps stop converging: close to the limit the sticking core left
 //! carries the whole torque, and Newton could stop short of it (the search
 //! starts only when the torque is within 2 % of the friction's hold); a
@@ -73,23 +74,31 @@ pub(super) fn locate(engine: &mut Engine, ck: &Checkpoint, target: f64) -> Resul
     }
     engine.stabilizer = saved;
     engine.stats.event_iterations += engine.stats.iterations - before;
-    let i = limit.interfaces[0];
-    let base: usize = model.interfaces[..i].iter().map(|im| im.points.len()).sum();
-    let n = model.interfaces[i].points.len();
+    // the body's clamp: the normal forces of all its interfaces with
+    // friction; the torque on it, which they hold between them
+    let mut normal = 0.0;
+    for &i in &limit.interfaces {
+        let base: usize = model.interfaces[..i].iter().map(|im| im.points.len()).sum();
+        let n = model.interfaces[i].points.len();
+        let joint = crate::measure::joint::measures(
+            &model.interfaces[i..=i],
+            model.section,
+            held.time,
+            &held.u,
+            &held.status[base..base + n],
+            &held.contact[base..base + n],
+            &[],
+        );
+        normal += joint.first().map_or(0.0, |j| j.normal_force);
+    }
+    let torque = engine
+        .stabilizer
+        .as_ref()
+        .map_or(f64::NAN, |st| st.applied_torque(model, limit.body, a));
     let meas = engine.measures(&held);
-    let joint = crate::measure::joint::measures(
-        &model.interfaces[i..=i],
-        model.section,
-        held.time,
-        &held.u,
-        &held.status[base..base + n],
-        &held.contact[base..base + n],
-        &[],
-    );
-    let j = joint.first().copied().unwrap_or_default();
     Ok(Some(Limited::At(Event {
         kind: Kind::TorqueLimit,
-        interface: Some(i),
+        interface: Some(limit.interfaces[0]),
         load_factor: b,
         before: a,
         after: b,
@@ -103,9 +112,9 @@ pub(super) fn locate(engine: &mut Engine, ck: &Checkpoint, target: f64) -> Resul
         values: [
             meas.total_load_kn,
             meas.mean_pressure,
-            j.normal_force,
-            j.tangential_force,
-            j.torque,
+            normal,
+            f64::NAN,
+            torque,
         ],
         record: engine.record(&held),
     })))

@@ -100,3 +100,88 @@ fn an_adaptive_run_ends_its_adaptation_at_the_torque_limit() {
     assert_eq!(s["stopped_by"], "torque_limit");
     limit(&s);
 }
+
+/// A torque past what friction holds, in the four ways the program met it
+/// before it located the limit (then each a run error naming the torque
+/// and the friction's hold; tests/data/torque-limits, patches of the bad
+/// inputs' bases): each now ends at the `torque_limit` event of the body
+/// held only by friction, exit code 4, the failing steps' cutback lines
+/// naming the torque and what the friction holds, and the torque held at
+/// the last state that held within 3 % of the hand value its patch names
+/// (the face coupling's (2/3) μ F R = 15.7 N·m for a uniform pressure; the
+/// shrink fit's μ N R = 566 N·m at the pressures reached; the bolted hub's
+/// two faces, 457 N·m) or, the clamp unloaded under 12 N·m, where the slip
+/// torque falls to it, at 76 % of the clamp (t = 2.24).
+#[test]
+fn every_torque_past_what_friction_holds_ends_at_its_limit() {
+    let data = common::root().join("tests/data/torque-limits");
+    let base = common::root().join("tests/bad_inputs/base");
+    // (patch, body, the torque held at the limit (N·m) or the load factor)
+    let cases: [(&str, &str, Option<f64>, Option<f64>); 4] = [
+        (
+            "twist-torque-past-the-slip-torque",
+            "disk",
+            Some(15.7),
+            None,
+        ),
+        (
+            "twist-clamp-unloaded-under-a-held-torque",
+            "disk",
+            Some(12.0),
+            Some(2.24),
+        ),
+        (
+            "twist-shrink-fit-torque-at-the-slip-torque",
+            "shaft",
+            Some(566.0),
+            None,
+        ),
+        (
+            "twist-pretension-torque-past-the-faces",
+            "hub",
+            Some(457.0),
+            None,
+        ),
+    ];
+    for (name, body, torque, at) in cases {
+        let patch = std::fs::read_to_string(data.join(format!("{name}.patch"))).unwrap();
+        let (_, text) = common::corpus::apply_patch(&patch, &base).unwrap();
+        let dir = common::scratch(&format!("torque-limit-{name}"));
+        std::fs::write(dir.join("case.toml"), &text).unwrap();
+        // the base's mesh files beside it
+        for f in std::fs::read_dir(&base).unwrap().flatten() {
+            if f.path().extension().is_some_and(|e| e == "msh") {
+                std::fs::copy(f.path(), dir.join(f.file_name())).unwrap();
+            }
+        }
+        let out = dir.join("out");
+        let (code, err) = common::run_asperity(&[
+            "run",
+            &dir.display().to_string(),
+            "--out",
+            &out.display().to_string(),
+        ]);
+        assert_eq!(code, 4, "{name}: {err}");
+        assert!(
+            err.contains("the friction of interface") && err.contains("can hold about the axis"),
+            "{name}: no cutback names the friction's hold: {err}"
+        );
+        let s = summary(&out);
+        let (e, t) = limit(&s);
+        let held = e["torque_nm"].as_f64().unwrap().abs();
+        println!(
+            "{name}: body {} lets go at λ = {t:.6}, holding {held:.4} N·m",
+            e["body"]
+        );
+        assert_eq!(e["body"], body, "{name}");
+        if let Some(hand) = torque {
+            assert!(
+                (held - hand).abs() < 0.03 * hand,
+                "{name}: {held} vs {hand}"
+            );
+        }
+        if let Some(hand) = at {
+            assert!((t - hand).abs() < 0.01, "{name}: λ = {t} vs {hand}");
+        }
+    }
+}

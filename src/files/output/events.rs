@@ -164,6 +164,18 @@ pub fn line(model: &Model, e: &Event) -> String {
     };
     let torque = torque(model, e).map_or(String::new(), |t| format!(", T {t:.4e} N·m"));
     let speed = (model.rpm(e.load_factor)).map_or(String::new(), |n| format!(" at {n:.6e} rpm"));
+    if e.kind == Kind::TorqueLimit {
+        let body = (model.mesh.bodies.get(e.place[3] as usize)).map_or("", String::as_str);
+        return format!(
+            "torque limit of body {body} (held by {}): λ = {:.6}{speed} (bracket {:.6} … {:.6}{}); at the last state that held: ΣF_N {:.4e} N{torque}",
+            iface.trim_start_matches(" of "),
+            e.load_factor,
+            lo,
+            hi,
+            if e.converged { "" } else { ", not converged" },
+            e.values[2]
+        );
+    }
     format!(
         "{what}{iface}{during}: λ = {:.6}{speed} (bracket {:.6} … {:.6}{}), F_N {:.4e} N, F_T {:.4e} N{torque}",
         e.load_factor,

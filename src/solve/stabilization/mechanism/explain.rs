@@ -38,6 +38,14 @@ pub(crate) struct FrictionLimit {
 }
 
 impl Stabilizer {
+    /// The torque applied to body `b` about the axis at `lambda` (N·mm,
+    /// signed as its load).
+    pub(crate) fn applied_torque(&self, model: &Model, b: usize, lambda: f64) -> f64 {
+        (self.bodies[b].torque.iter().zip(model.patterns()))
+            .map(|(&t, (s, _))| t * model.scale(s, lambda))
+            .sum()
+    }
+
     /// A body held about the axis only by friction (twist: no prescribed
     /// rotation of its own) whose applied torque at `lambda` is at least
     /// [`NEAR_SLIP`] of the most its interfaces' friction can hold at the
@@ -57,9 +65,7 @@ impl Stabilizer {
             if self.bodies[b].turn > 0.0 {
                 return None;
             }
-            let applied: f64 = (self.bodies[b].torque.iter().zip(model.patterns()))
-                .map(|(&t, (s, _))| t * model.scale(s, lambda))
-                .sum();
+            let applied = self.applied_torque(model, b, lambda);
             let mut interfaces = Vec::new();
             let mut hold = 0.0;
             for (i, im) in model.interfaces.iter().enumerate() {
