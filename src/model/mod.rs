@@ -46,7 +46,7 @@ pub struct Conditions {
     pub thermal: Vec<f64>,
     pub materials: Vec<VonMises>,
     /// The temperature field of each body that has one.
-    pub profiles: Vec<Option<crate::model::loads::thermal::Profile>>,
+    pub fields: Vec<Option<crate::model::loads::thermal::Field>>,
 }
 
 impl Conditions {
@@ -57,9 +57,9 @@ impl Conditions {
         geo: &crate::physics::element::Geometry,
     ) -> [f64; crate::physics::element::family3::MAX_POINTS3] {
         let mut out = [self.thermal[b]; crate::physics::element::family3::MAX_POINTS3];
-        if let Some(p) = &self.profiles[b] {
+        if let Some(f) = &self.fields[b] {
             for (ip, o) in out.iter_mut().enumerate().take(geo.dv().len()) {
-                *o *= p.factor(geo.x(ip));
+                *o *= f.factor(geo.x(ip));
             }
         }
         out
@@ -598,10 +598,10 @@ impl Model {
             materials: (0..self.materials.len())
                 .map(|b| self.material_at(b, t))
                 .collect(),
-            profiles: (0..self.materials.len())
+            fields: (0..self.materials.len())
                 .map(|b| {
                     let bt = self.temperatures.iter().find(|bt| bt.body == b);
-                    bt.and_then(|bt| bt.profile.clone())
+                    bt.and_then(|bt| bt.field.clone())
                 })
                 .collect(),
         }
@@ -612,8 +612,8 @@ impl Model {
     pub fn thermal_at(&self, body: usize, t: f64, x: [f64; 3]) -> f64 {
         let bt = self.temperatures.iter().find(|bt| bt.body == body);
         let f = bt
-            .and_then(|bt| bt.profile.as_ref())
-            .map_or(1.0, |p| p.factor(x));
+            .and_then(|bt| bt.field.as_ref())
+            .map_or(1.0, |f| f.factor(x));
         self.thermal_strain(body, t) * f
     }
 

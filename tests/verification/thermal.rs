@@ -264,63 +264,79 @@ fn held_block_with_temperature_dependent_modulus_and_yield_stress() {
     }
 }
 
-/// A temperature field (`along`, `profile`): a solid cylinder 0 ≤ r ≤ b held
-/// between two frictionless planes (ε_z = 0) with ΔT(r) = T₀ + T₁ r/b, T₀ =
-/// 100 K, T₁ = −80 K (the profile [[0, 1], [b, 0.2]] times 100 K). Timoshenko
-/// & Goodier § 151 (plane strain, ε_z = 0): with k = α E/(1 − ν),
-/// σ_r = k T₁ (1 − r/b)/3, σ_θ = k T₁ (1/3 − 2r/(3b)),
+/// A temperature field: a solid cylinder 0 ≤ r ≤ b held between two
+/// frictionless planes (ε_z = 0) with ΔT(r) = T₀ + T₁ r/b, T₀ = 100 K, T₁ =
+/// −80 K, given three ways: the table along x (r in axisymmetry) [[0, 1], [b,
+/// 0.2]] times 100 K, the same table along r, and the expression
+/// `field = "1 - 0.8*r/30"`. Timoshenko & Goodier § 151 (plane strain, ε_z = 0): with
+/// k = α E/(1 − ν), σ_r = k T₁ (1 − r/b)/3, σ_θ = k T₁ (1/3 − 2r/(3b)),
 /// σ_z = k (ν (T₀ + 2T₁/3) − T₀ − T₁ r/b). u(r) is quadratic in r, which the
-/// element holds: every Gauss point to 1e-9 of the largest stress.
+/// element holds: every Gauss point to 1e-9 of the largest stress, each way.
 #[test]
 fn a_cylinder_with_a_radial_temperature_field_matches_the_closed_form() {
     let b = 30.0;
     let (t0, t1) = (100.0, -80.0);
-    let text = common::case()
-        .plane("axisymmetric")
-        .block("bar", [0.0, b], [6], [0.0, 5.0], [1])
-        .material("bar", E, NU)
-        .with("expansion", ALPHA)
-        .uy("bar.bottom", 0.0)
-        .uy("bar.top", 0.0)
-        .raw("[[temperature]]")
-        .with("body", "bar")
-        .with("change", t0)
-        .with("along", "x")
-        .with("profile", [[0.0, 1.0], [b, 0.2]])
-        .solver("increments = 1\nstep_control = \"fixed\"")
-        .tolerances(1e-12, 1e-12)
-        .no_vtu()
-        .build();
-    let (model, r, _) = solve(&text);
-    let k = ALPHA * E / (1.0 - NU);
-    let (mut err, mut scale) = (0.0f64, 0.0f64);
-    for e in 0..model.mesh.elements.len() {
-        for (ip, g) in model.points(e).enumerate() {
-            let r_ip = model.point_x(e, ip)[0];
-            let s = r.final_state.gauss.get(g).stress;
-            let want = [
-                k * t1 * (1.0 - r_ip / b) / 3.0,
-                k * (NU * (t0 + 2.0 * t1 / 3.0) - t0 - t1 * r_ip / b),
-                0.0,
-                k * t1 * (1.0 / 3.0 - 2.0 * r_ip / (3.0 * b)),
-            ];
-            for c in 0..4 {
-                err = err.max((s[c] - want[c]).abs());
-                scale = scale.max(want[c].abs());
+    let ways: [(&str, &[(&str, &str)]); 3] = [
+        (
+            "table along x",
+            &[("along", "\"x\""), ("profile", "[[0.0, 1.0], [30.0, 0.2]]")],
+        ),
+        (
+            "table along r",
+            &[("along", "\"r\""), ("profile", "[[0.0, 1.0], [30.0, 0.2]]")],
+        ),
+        ("expression", &[("field", "\"1 - 0.8*r/30\"")]),
+    ];
+    for (way, keys) in ways {
+        let mut c = common::case()
+            .plane("axisymmetric")
+            .block("bar", [0.0, b], [6], [0.0, 5.0], [1])
+            .material("bar", E, NU)
+            .with("expansion", ALPHA)
+            .uy("bar.bottom", 0.0)
+            .uy("bar.top", 0.0)
+            .raw("[[temperature]]")
+            .with("body", "bar")
+            .with("change", t0);
+        for (k, v) in keys {
+            c = c.raw(&format!("{k} = {v}"));
+        }
+        let text = c
+            .solver("increments = 1\nstep_control = \"fixed\"")
+            .tolerances(1e-12, 1e-12)
+            .no_vtu()
+            .build();
+        let (model, r, _) = solve(&text);
+        let k = ALPHA * E / (1.0 - NU);
+        let (mut err, mut scale) = (0.0f64, 0.0f64);
+        for e in 0..model.mesh.elements.len() {
+            for (ip, g) in model.points(e).enumerate() {
+                let r_ip = model.point_x(e, ip)[0];
+                let s = r.final_state.gauss.get(g).stress;
+                let want = [
+                    k * t1 * (1.0 - r_ip / b) / 3.0,
+                    k * (NU * (t0 + 2.0 * t1 / 3.0) - t0 - t1 * r_ip / b),
+                    0.0,
+                    k * t1 * (1.0 / 3.0 - 2.0 * r_ip / (3.0 * b)),
+                ];
+                for c in 0..4 {
+                    err = err.max((s[c] - want[c]).abs());
+                    scale = scale.max(want[c].abs());
+                }
             }
         }
+        eprintln!(
+            "radial field ({way}): error {:.2e} of {scale:.3} MPa",
+            err / scale
+        );
+        assert!(err < 1e-9 * scale, "{way}: {err} of {scale}");
     }
-    eprintln!("radial field: error {:.2e} of {scale:.3} MPa", err / scale);
-    assert!(err < 1e-9 * scale, "{err} of {scale}");
 }
 
-/// A free 3D block (held against rigid motion only) with a temperature that
-/// rises linearly along x (profile [[0, 0.5], [20, 1.5]] times 60 K): a
-/// linear field's thermal strain is compatible, so the body bends and
-/// stretches unstressed, for any mesh.
-#[test]
-fn a_free_solid_with_a_linear_temperature_field_is_unstressed() {
-    let text = common::case()
+/// A free 3D block (held against rigid motion only) heated by 60 K times
+/// the field `keys` give: its displacements and the largest |σ|.
+fn free_solid(keys: &[(&str, &str)]) -> (Vec<f64>, f64) {
+    let mut c = common::case()
         .plane("3d")
         .raw("[mesh]\nextrude = { z = [0.0, 6.0], nz = [2] }")
         .block("bar", [0.0, 20.0], [3], [0.0, 8.0], [2])
@@ -333,9 +349,11 @@ fn a_free_solid_with_a_linear_temperature_field_is_unstressed() {
         .raw("[[boundary]]\nset = \"bar.left\"\ny_range = [8.0, 8.0]\nz_range = [0.0, 0.0]\nuz = 0.0")
         .raw("[[temperature]]")
         .with("body", "bar")
-        .with("change", 60.0)
-        .with("along", "x")
-        .with("profile", [[0.0, 0.5], [20.0, 1.5]])
+        .with("change", 60.0);
+    for (k, v) in keys {
+        c = c.raw(&format!("{k} = {v}"));
+    }
+    let text = c
         .solver("increments = 1\nstep_control = \"fixed\"")
         .tolerances(1e-10, 1e-10)
         .no_vtu()
@@ -344,9 +362,84 @@ fn a_free_solid_with_a_linear_temperature_field_is_unstressed() {
     let worst = (r.final_state.gauss.iter())
         .flat_map(|g| g.stress)
         .fold(0.0f64, |a, s| a.max(s.abs()));
+    (r.final_state.u.clone(), worst)
+}
+
+/// The free 3D block of [`free_solid`] with a temperature that rises
+/// linearly along x, given as an expression (`field = "0.5 + x/20"`) and as
+/// the table along x [[0, 0.5], [20, 1.5]] (times 60 K): the two are one
+/// field, so one solution to round-off (1e-12 of the largest displacement),
+/// and unstressed ([`a_free_solid_with_a_linear_temperature_field_is_unstressed`]).
+#[test]
+fn a_field_given_as_an_expression_equals_the_same_field_as_a_table() {
+    let (table, _) = free_solid(&[("along", "\"x\""), ("profile", "[[0.0, 0.5], [20.0, 1.5]]")]);
+    let (expr, worst) = free_solid(&[("field", "\"0.5 + x/20\"")]);
+    let scale = table.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    let diff = (table.iter().zip(&expr)).fold(0.0f64, |a, (p, q)| a.max((p - q).abs()));
+    eprintln!("expression vs table: |Δu| {diff:.2e} of {scale:.3e} mm, |σ| {worst:.2e} MPa");
+    assert!(scale > 1e-3, "{scale}");
+    assert!(diff < 1e-12 * scale, "{diff} of {scale}");
+    assert!(worst < 1e-8 * E * ALPHA * 90.0, "{worst}");
+}
+
+/// A free 3D block (held against rigid motion only) with a temperature that
+/// rises linearly along x (profile [[0, 0.5], [20, 1.5]] times 60 K): a
+/// linear field's thermal strain is compatible, so the body bends and
+/// stretches unstressed, for any mesh.
+#[test]
+fn a_free_solid_with_a_linear_temperature_field_is_unstressed() {
+    let (_, worst) = free_solid(&[("along", "\"x\""), ("profile", "[[0.0, 0.5], [20.0, 1.5]]")]);
     eprintln!(
         "3D linear field: largest |σ| {worst:.3e} MPa (E α ΔT = {:.1} MPa)",
         E * ALPHA * 90.0
     );
     assert!(worst < 1e-8 * E * ALPHA * 90.0, "{worst}");
+}
+
+/// r in `field` (and in `along = "r"`) is the distance from the model's
+/// axis, as a speed's: |x| in axisymmetry, √(x² + y²) in a plane model (about
+/// z), √(x² + z²) in 3D (about y). The free thermal strain at a point is α ΔT
+/// times the field's value there, the expression's and the table's alike.
+#[test]
+fn r_is_the_distance_from_the_model_axis() {
+    let field = |keys: &[(&str, &str)], plane: &str| {
+        let mut c = common::case().plane(plane);
+        if plane == "3d" {
+            c = c
+                .raw("[mesh]\nextrude = { z = [0.0, 10.0], nz = [1] }")
+                .raw("[[boundary]]\nset = \"bar.left\"\nuz = 0.0");
+        }
+        c = c
+            .block("bar", [0.0, 10.0], [1], [0.0, 10.0], [1])
+            .material("bar", E, NU)
+            .with("expansion", ALPHA)
+            .ux("bar.left", 0.0)
+            .uy("bar.bottom", 0.0)
+            .raw("[[temperature]]")
+            .with("body", "bar")
+            .with("change", 50.0);
+        for (k, v) in keys {
+            c = c.raw(&format!("{k} = {v}"));
+        }
+        common::model(&c.solver("").build())
+    };
+    let x = [3.0, 4.0, 5.0];
+    for (plane, r) in [
+        ("axisymmetric", 3.0),
+        ("stress", 5.0),
+        ("3d", 34.0f64.sqrt()),
+    ] {
+        let want = ALPHA * 50.0 * (1.0 - 0.02 * r);
+        for keys in [
+            &[("field", "\"1 - 0.02*r\"")][..],
+            &[("along", "\"r\""), ("profile", "[[0.0, 1.0], [20.0, 0.6]]")][..],
+        ] {
+            let m = field(keys, plane);
+            let got = m.thermal_at(0, 1.0, x);
+            assert!(
+                (got - want).abs() < 1e-14 * want,
+                "{plane} {keys:?}: α ΔT {got}, want {want} (r = {r})"
+            );
+        }
+    }
 }

@@ -255,7 +255,7 @@ fn element_chunk(
         let geo = m.element_geometry(e);
         let th = thermal.point_thermal(el.body, &geo);
         let done = geo.forces(
-            &thermal.materials[el.body],
+            crate::physics::material::PointMaterials::Uniform(&thermal.materials[el.body]),
             &th,
             &ue[..ne],
             &c_buf[..np],
