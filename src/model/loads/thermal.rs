@@ -41,6 +41,8 @@ impl BodyTemperature {
     /// The body's material at the load factor `factor` of its history: E and
     /// σ_Y read off their tables at the temperature reference + ΔT · factor
     /// (linear between rows); `base` as it is without tables.
+    /// (Where the body has a field, `factor` is its history's factor times
+    /// the field's at the point: [`BodyTemperature::field_factor`].)
     pub fn material(&self, base: &VonMises, factor: f64) -> VonMises {
         let mut m = base.clone();
         if let Some(reference) = self.reference {
@@ -53,6 +55,18 @@ impl BodyTemperature {
             }
         }
         m
+    }
+
+    /// Whether its material varies from point to point: a temperature field
+    /// with a table of E or σ_Y (each Gauss point's material is then read
+    /// at its own temperature).
+    pub fn varies(&self) -> bool {
+        self.field.is_some() && (self.young.is_some() || self.yield_stress.is_some())
+    }
+
+    /// Its field's factor at x (1 without a field).
+    pub fn field_factor(&self, x: [f64; 3]) -> f64 {
+        self.field.as_ref().map_or(1.0, |f| f.factor(x))
     }
 }
 
@@ -131,17 +145,6 @@ pub(super) fn read(
         let history = res.resolve(t.history.as_ref(), &format!("{at} history"))?;
         let m = &case.materials[&t.body];
         let field = super::field::read(t, mesh, (body, section), &at)?;
-        if field.is_some() && (m.young_table.is_some() || m.yield_table.is_some()) {
-            let key = if t.field.is_some() {
-                "field"
-            } else {
-                "profile"
-            };
-            return Err(Error::input(
-                format!("{at} {key}"),
-                format!("with [materials.{}] young_table or yield_table: the material would change within an element, which is not built; give the body a uniform temperature, or drop the tables", clip(&t.body)),
-            ));
-        }
         let peak = field.as_ref().map_or(1.0, |f| f.largest());
         let label = match &field {
             Some(Field::Profile(_)) => {
@@ -227,7 +230,8 @@ fn tables_need_a_temperature(
 }
 
 /// Every body temperature along the history (reference + ΔT × the lowest
-/// and the highest factor) within its material's tables: a table is not
+/// and the highest factor, with a field times its lowest and highest
+/// factor: [`span`]) within its material's tables: a table is not
 /// extrapolated.
 pub(super) fn check_tables(
     temperatures: &[BodyTemperature],
@@ -240,18 +244,22 @@ pub(super) fn check_tables(
         let Some(reference) = t.reference else {
             continue;
         };
-        let (lo, hi) = factor_range(t, histories, largest);
-        let (a, b) = (t.change * lo, t.change * hi);
-        let (cold, hot) = (reference + a.min(b), reference + a.max(b));
+        let (a, b) = span(t, histories, largest);
+        let (cold, hot) = (reference + a, reference + b);
         for (key, rows) in [("young_table", &t.young), ("yield_table", &t.yield_stress)] {
             let Some(rows) = rows else {
                 continue;
             };
             let (t0, t1) = (rows[0][0], rows[rows.len() - 1][0]);
             if cold < t0 - 1e-9 || hot > t1 + 1e-9 {
+                let over = if t.field.is_some() {
+                    "over the history and its field"
+                } else {
+                    "over the history"
+                };
                 return Err(Error::input(
                     format!("{place}: [materials.{}] {key}", clip(&bodies[t.body])),
-                    format!("spans {t0} … {t1} °C, but the body's temperature runs {cold} … {hot} °C over the history: give rows that cover it (a table is not extrapolated)"),
+                    format!("spans {t0} … {t1} °C, but the body's temperature runs {cold} … {hot} °C {over}: give rows that cover it (a table is not extrapolated)"),
                 ));
             }
         }
@@ -269,6 +277,18 @@ fn factor_range(t: &BodyTemperature, histories: &[History], largest: f64) -> (f6
     }
 }
 
+/// The lowest and the highest ΔT of a body over the run: ΔT times its
+/// history's lowest and highest factor, and with a field times the field's
+/// lowest and highest factor too.
+fn span(t: &BodyTemperature, histories: &[History], largest: f64) -> (f64, f64) {
+    let (lo, hi) = factor_range(t, histories, largest);
+    let (flo, fhi) = t.field.as_ref().map_or((1.0, 1.0), |f| f.extremes());
+    let products = [lo * flo, lo * fhi, hi * flo, hi * fhi].map(|f| t.change * f);
+    let low = products.iter().copied().fold(f64::INFINITY, f64::min);
+    let high = products.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    (low, high)
+}
+
 /// With a reference given, the body's lowest temperature over the run
 /// (ΔT times the lowest and the highest factor of its history, or of the
 /// load factor from 0 to `largest`) must not fall below absolute zero.
@@ -283,14 +303,7 @@ pub(super) fn check_absolute(
         let Some(reference) = t.reference else {
             continue;
         };
-        let (lo, hi) = factor_range(t, histories, largest);
-        // with a field, its factors too
-        let (plo, phi) = t.field.as_ref().map_or((1.0, 1.0), |f| f.extremes());
-        let (lo, hi) = (
-            (lo * plo).min(lo * phi).min(hi * plo).min(hi * phi),
-            (lo * plo).max(lo * phi).max(hi * plo).max(hi * phi),
-        );
-        let lowest = reference + (t.change * lo).min(t.change * hi);
+        let lowest = reference + span(t, histories, largest).0;
         if lowest < ABSOLUTE_ZERO {
             return Err(Error::input(
                 format!(
