@@ -792,7 +792,9 @@ fn bodies_text(model: &Model) -> String {
                 t.change, t.strain
             );
             s += &field_text(t.field.as_ref());
-            if t.young.is_some() || t.yield_stress.is_some() {
+            if t.varies() {
+                s += "    E and σ_Y read off their tables at each Gauss point's temperature (its field)\n";
+            } else if t.young.is_some() || t.yield_stress.is_some() {
                 s += "    E and σ_Y read off their tables at the body's temperature\n";
             }
         }

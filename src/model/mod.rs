@@ -45,7 +45,7 @@ pub struct Conditions<'m> {
     /// varies it in space.
     pub thermal: Vec<f64>,
     /// The material of each body at its temperature (where a field varies
-    /// it, at the field's factor 1: [`Conditions::point_materials`] reads
+    /// it, at the field's factor 1: `Conditions::point_materials` reads
     /// each point's).
     pub materials: Vec<VonMises>,
     /// The temperature field of each body that has one.
@@ -705,7 +705,7 @@ impl Model {
     /// What every body is at pseudo-time t: its free thermal strain and its
     /// material ([`Model::thermal_strain`], [`Model::material_at`]), and
     /// where a field varies the material, what each point's is read from
-    /// ([`Conditions::point_materials`]).
+    /// (`Conditions::point_materials`).
     pub fn conditions(&self, t: f64) -> Conditions<'_> {
         let n = self.materials.len();
         let temperature = |b: usize| self.temperatures.iter().find(|bt| bt.body == b);
