@@ -833,17 +833,10 @@ fn bodies_text(model: &Model) -> String {
                 "    temperature: ΔT = {} K{from} (× {by}), free thermal strain α ΔT = {:e}\n",
                 t.change, t.strain
             );
-            if let Some(p) = &t.profile {
-                let rows: Vec<String> = (p.rows.iter())
-                    .map(|r| format!("{} at {}", r[1], r[0]))
-                    .collect();
-                s += &format!(
-                    "    temperature field: ΔT × the factor along {} (mm): {}\n",
-                    ["x", "y", "z"][p.axis],
-                    rows.join(", ")
-                );
-            }
-            if t.young.is_some() || t.yield_stress.is_some() {
+            s += &field_text(t.field.as_ref());
+            if t.varies() {
+                s += "    E and σ_Y read off their tables at each Gauss point's temperature (its field)\n";
+            } else if t.young.is_some() || t.yield_stress.is_some() {
                 s += "    E and σ_Y read off their tables at the body's temperature\n";
             }
         }
@@ -862,6 +855,28 @@ fn bodies_text(model: &Model) -> String {
         }
     }
     s
+}
+
+/// `check`'s line of a body's temperature field, if it has one.
+fn field_text(field: Option<&crate::model::loads::thermal::Field>) -> String {
+    use crate::model::loads::thermal::Field;
+    match field {
+        None => String::new(),
+        Some(Field::Profile(p)) => {
+            let rows: Vec<String> = (p.rows.iter())
+                .map(|r| format!("{} at {}", r[1], r[0]))
+                .collect();
+            format!(
+                "    temperature field: ΔT × the factor along {} (mm): {}\n",
+                p.along.name(),
+                rows.join(", ")
+            )
+        }
+        Some(f @ Field::Formula(_)) => {
+            let (lo, hi) = f.extremes();
+            format!("    temperature field: ΔT × the factor given by `field`, {lo} … {hi} over the body\n")
+        }
+    }
 }
 
 /// `check`'s line of a spinning body: its density, the speed, and the scale

@@ -40,16 +40,32 @@ use supports::check_supports;
 /// Every body's free thermal strain and material at one pseudo-time, in
 /// body order ([`Model::conditions`]).
 #[derive(Clone, Debug)]
-pub struct Conditions {
-    /// α ΔT h(t): the free thermal strain, or its scale where a profile
+pub struct Conditions<'m> {
+    /// α ΔT h(t): the free thermal strain, or its scale where a field
     /// varies it in space.
     pub thermal: Vec<f64>,
+    /// The material of each body at its temperature (where a field varies
+    /// it, at the field's factor 1: `Conditions::point_materials` reads
+    /// each point's).
     pub materials: Vec<VonMises>,
     /// The temperature field of each body that has one.
-    pub profiles: Vec<Option<crate::model::loads::thermal::Profile>>,
+    pub fields: Vec<Option<&'m crate::model::loads::thermal::Field>>,
+    /// Each body whose material varies from point to point (a field with a
+    /// property table): its temperature, its history's factor at this
+    /// pseudo-time, and its material as the case gives it.
+    varying: Vec<Option<Varying<'m>>>,
 }
 
-impl Conditions {
+/// A body whose material follows its temperature field, at one
+/// pseudo-time.
+#[derive(Clone, Copy, Debug)]
+struct Varying<'m> {
+    temperature: &'m crate::model::loads::thermal::BodyTemperature,
+    factor: f64,
+    base: &'m VonMises,
+}
+
+impl Conditions<'_> {
     /// The free thermal strain of body `b` at each Gauss point of `geo`.
     pub(crate) fn point_thermal(
         &self,
@@ -57,12 +73,52 @@ impl Conditions {
         geo: &crate::physics::element::Geometry,
     ) -> [f64; crate::physics::element::family3::MAX_POINTS3] {
         let mut out = [self.thermal[b]; crate::physics::element::family3::MAX_POINTS3];
-        if let Some(p) = &self.profiles[b] {
+        if let Some(f) = self.fields[b] {
             for (ip, o) in out.iter_mut().enumerate().take(geo.dv().len()) {
-                *o *= p.factor(geo.x(ip));
+                *o *= f.factor(geo.x(ip));
             }
         }
         out
+    }
+
+    /// The material of body `b` at each Gauss point of `geo`: the body's
+    /// one where it is uniform; where its field varies it, each point's at
+    /// its own temperature T_ref + ΔT h(t) f(x_ip), written into `buf` (one
+    /// slot per point, its capacity kept from element to element).
+    pub(crate) fn point_materials<'a>(
+        &'a self,
+        b: usize,
+        geo: &crate::physics::element::Geometry,
+        buf: &'a mut Vec<VonMises>,
+    ) -> crate::physics::material::PointMaterials<'a> {
+        use crate::physics::material::PointMaterials;
+        let Some(v) = &self.varying[b] else {
+            return PointMaterials::Uniform(&self.materials[b]);
+        };
+        buf.clear();
+        buf.extend((0..geo.dv().len()).map(|ip| {
+            let f = v.temperature.field_factor(geo.x(ip));
+            v.temperature.material(v.base, v.factor * f)
+        }));
+        PointMaterials::PerPoint(buf)
+    }
+}
+
+/// The materials of one element's points ([`Model::element_materials`],
+/// [`Model::point_materials`]): one for all, or one per point.
+#[derive(Clone, Debug)]
+pub enum ElementMaterials {
+    Uniform(VonMises),
+    PerPoint(Vec<VonMises>),
+}
+
+impl ElementMaterials {
+    /// Point `ip`'s material.
+    pub fn at(&self, ip: usize) -> &VonMises {
+        match self {
+            ElementMaterials::Uniform(m) => m,
+            ElementMaterials::PerPoint(m) => &m[ip],
+        }
     }
 }
 
@@ -582,7 +638,9 @@ impl Model {
 
     /// Body `b`'s material at pseudo-time t: its Young's modulus and yield
     /// stress at its temperature there when its material has tables of them
-    /// (`young_table`, `yield_table`), else the case's.
+    /// (`young_table`, `yield_table`), else the case's. Where a temperature
+    /// field varies the material, this is its material at the field's
+    /// factor 1; a point's is [`Model::material_point`].
     pub fn material_at(&self, b: usize, t: f64) -> VonMises {
         match self.temperatures.iter().find(|bt| bt.body == b) {
             Some(bt) => bt.material(&self.materials[b], self.factor(bt.history, t)),
@@ -590,18 +648,80 @@ impl Model {
         }
     }
 
+    /// Body `b`'s temperature load where its material varies from point to
+    /// point (a field with a property table), else `None`.
+    fn varying(&self, b: usize) -> Option<&crate::model::loads::thermal::BodyTemperature> {
+        (self.temperatures.iter()).find(|bt| bt.body == b && bt.varies())
+    }
+
+    /// Body `b`'s material at pseudo-time t and point x: at the point's own
+    /// temperature T_ref + ΔT h(t) f(x) where a temperature field varies it,
+    /// else [`Model::material_at`].
+    pub fn material_point(&self, b: usize, t: f64, x: [f64; 3]) -> VonMises {
+        match self.varying(b) {
+            Some(bt) => {
+                let f = self.factor(bt.history, t) * bt.field_factor(x);
+                bt.material(&self.materials[b], f)
+            }
+            None => self.material_at(b, t),
+        }
+    }
+
+    /// The materials of body `b` at pseudo-time t at the points `x`: one for
+    /// all where the body's material is uniform, else one per point
+    /// ([`Model::material_point`]).
+    pub fn point_materials(&self, b: usize, t: f64, x: &[[f64; 3]]) -> ElementMaterials {
+        match self.varying(b) {
+            Some(_) => ElementMaterials::PerPoint(
+                x.iter().map(|&x| self.material_point(b, t, x)).collect(),
+            ),
+            None => ElementMaterials::Uniform(self.material_at(b, t)),
+        }
+    }
+
+    /// The material of the model's Gauss point `i` (in [`Model::points`]
+    /// numbering) at pseudo-time t ([`Model::material_point`]).
+    pub fn gauss_material(&self, i: usize, t: f64) -> VonMises {
+        let e = self.element_of_point(i);
+        let b = self.mesh.elements[e].body;
+        match self.varying(b) {
+            Some(_) => self.material_point(b, t, self.point_x(e, i - self.gauss_offsets[e])),
+            None => self.material_at(b, t),
+        }
+    }
+
+    /// The materials of element e's Gauss points at pseudo-time t
+    /// ([`Model::point_materials`] at the points of the model's rule).
+    pub fn element_materials(&self, e: usize, t: f64) -> ElementMaterials {
+        let b = self.mesh.elements[e].body;
+        if self.varying(b).is_none() {
+            return ElementMaterials::Uniform(self.material_at(b, t));
+        }
+        let geo = self.element_geometry(e);
+        let x: Vec<[f64; 3]> = (0..geo.dv().len()).map(|ip| geo.x(ip)).collect();
+        self.point_materials(b, t, &x)
+    }
+
     /// What every body is at pseudo-time t: its free thermal strain and its
-    /// material ([`Model::thermal_strain`], [`Model::material_at`]).
-    pub fn conditions(&self, t: f64) -> Conditions {
+    /// material ([`Model::thermal_strain`], [`Model::material_at`]), and
+    /// where a field varies the material, what each point's is read from
+    /// (`Conditions::point_materials`).
+    pub fn conditions(&self, t: f64) -> Conditions<'_> {
+        let n = self.materials.len();
+        let temperature = |b: usize| self.temperatures.iter().find(|bt| bt.body == b);
         Conditions {
             thermal: self.thermal_strains(t),
-            materials: (0..self.materials.len())
-                .map(|b| self.material_at(b, t))
+            materials: (0..n).map(|b| self.material_at(b, t)).collect(),
+            fields: (0..n)
+                .map(|b| temperature(b).and_then(|bt| bt.field.as_ref()))
                 .collect(),
-            profiles: (0..self.materials.len())
+            varying: (0..n)
                 .map(|b| {
-                    let bt = self.temperatures.iter().find(|bt| bt.body == b);
-                    bt.and_then(|bt| bt.profile.clone())
+                    self.varying(b).map(|bt| Varying {
+                        temperature: bt,
+                        factor: self.factor(bt.history, t),
+                        base: &self.materials[b],
+                    })
                 })
                 .collect(),
         }
@@ -612,8 +732,8 @@ impl Model {
     pub fn thermal_at(&self, body: usize, t: f64, x: [f64; 3]) -> f64 {
         let bt = self.temperatures.iter().find(|bt| bt.body == body);
         let f = bt
-            .and_then(|bt| bt.profile.as_ref())
-            .map_or(1.0, |p| p.factor(x));
+            .and_then(|bt| bt.field.as_ref())
+            .map_or(1.0, |f| f.factor(x));
         self.thermal_strain(body, t) * f
     }
 

@@ -82,9 +82,9 @@ fn ratios<'a>(
     held: &'a [u32],
 ) -> impl Iterator<Item = (f64, usize, usize)> + 'a {
     model.held_points(held).flat_map(move |(e, local)| {
-        let mat = model.material_at(model.mesh.elements[e].body, state.time);
+        let mats = model.element_materials(e, state.time);
         let states = state.gauss.range(local);
-        (0..states.len()).map(move |ip| (yield_ratio(&mat, &states.get(ip)), e, ip))
+        (0..states.len()).map(move |ip| (yield_ratio(mats.at(ip), &states.get(ip)), e, ip))
     })
 }
 

@@ -852,3 +852,51 @@ fn a_restart_file_of_format_1_is_refused() {
         refused_case(&corpus, &dir, &old, &out, &[], needle, "format 1");
     }
 }
+
+/// A restart of a body whose σ_Y follows a temperature field
+/// (`yield_table`, `field`): each stored Gauss state is checked against the
+/// yield stress of its own point at the committed pseudo-time, not the
+/// case's `yield_stress`. A block held everywhere and cooled by up to 100 K
+/// (ΔT = −100 K × x/20) is stressed in tension E α |ΔT|/(1 − ν): 260.4 MPa
+/// at its coldest Gauss point when stopped (8 of 10 increments), above
+/// σ_Y = 250 MPa at the 20 °C reference (checked against that, the restart
+/// was refused) and below σ_Y(T) = 250 + (20 − T) MPa there (325.5 MPa).
+/// The resumed run is the uninterrupted one, bit for bit.
+#[test]
+fn a_run_with_a_yield_stress_following_a_temperature_field_resumes() {
+    let text = common::case()
+        .plane("stress")
+        .block("bar", [0.0, 20.0], [2], [0.0, 6.0], [1])
+        .material("bar", 210000.0, 0.3)
+        .plastic(250.0, 0.0)
+        .with("expansion", 11.5e-6)
+        .with(
+            "yield_table",
+            [[-100.0, 370.0], [20.0, 250.0], [100.0, 170.0]],
+        )
+        .ux("bar.all", 0.0)
+        .uy("bar.all", 0.0)
+        .raw("[[temperature]]")
+        .with("body", "bar")
+        .with("change", -100.0)
+        .with("reference", 20.0)
+        .raw("field = \"x/20\"")
+        .solver("")
+        .no_vtu()
+        .build();
+    let case = common::case_dir("restart-field-tables", &text);
+    let dir = case.parent().unwrap().to_path_buf();
+    let (s, r, full) = (dir.join("stopped"), dir.join("resumed"), dir.join("full"));
+    let (code, err) = run_case(&case, &s, &["--stop-after", "8"]);
+    assert_eq!(code, 3, "{err}");
+    let (code, err) = run_case(&case, &r, &["--restart", s.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    let (code, err) = run_case(&case, &full, &[]);
+    assert_eq!(code, 0, "{err}");
+    for f in ["curve.csv", "restart.bin", "peaks.csv"] {
+        assert!(
+            std::fs::read(r.join(f)).unwrap() == std::fs::read(full.join(f)).unwrap(),
+            "{f} of the resumed run differs"
+        );
+    }
+}

@@ -8,7 +8,7 @@ use asperity::numbers::fd;
 use asperity::physics::element::element_forces;
 use asperity::physics::element::q8;
 use asperity::physics::element::solid::{ElementGeometry, Response, Tangent};
-use asperity::physics::material::{Plane, PointState, VonMises};
+use asperity::physics::material::{Plane, PointMaterials, PointState, VonMises};
 use asperity::solve::State;
 
 fn distorted() -> [[f64; 2]; 8] {
@@ -46,22 +46,40 @@ fn check_element(plane: Plane, scale: f64, hardening: f64) {
 }
 
 /// With no thermal strain and with one of the strains' size (a heated body:
-/// the eigenstrain moves the return's point, not the tangent's form).
+/// the eigenstrain moves the return's point, not the tangent's form), with
+/// one material for the element and with one per Gauss point (a body whose
+/// E and σ_Y follow a temperature field: each point's tangent is its own
+/// material's, ΔT prescribed adds no term).
 fn check_element_geometry(plane: Plane, geom: &ElementGeometry, scale: f64, hardening: f64) {
     for thermal in [0.0, 0.4 * scale] {
-        check_element_thermal(plane, geom, scale, hardening, thermal);
+        for per_point in [false, true] {
+            check_element_thermal(plane, geom, (scale, hardening), thermal, per_point);
+        }
     }
 }
 
 fn check_element_thermal(
     plane: Plane,
     geom: &ElementGeometry,
-    scale: f64,
-    hardening: f64,
+    (scale, hardening): (f64, f64),
     thermal: f64,
+    per_point: bool,
 ) {
     let geom = geom.clone();
-    let mat = VonMises::new(200000.0, 0.3, 250.0, hardening, plane).unwrap();
+    let one = VonMises::new(200000.0, 0.3, 250.0, hardening, plane).unwrap();
+    // per point: E and σ_Y falling from point to point (a hotter point is
+    // softer and yields sooner), so some points yield and others do not
+    let each: Vec<VonMises> = (0..9)
+        .map(|ip| {
+            let k = 1.0 - 0.06 * ip as f64;
+            VonMises::new(200000.0 * k, 0.3, 250.0 * k * k, hardening, plane).unwrap()
+        })
+        .collect();
+    let mat = if per_point {
+        PointMaterials::PerPoint(&each)
+    } else {
+        PointMaterials::Uniform(&one)
+    };
     // a thermal strain that varies from point to point (a temperature field)
     let thermal: [f64; 9] = std::array::from_fn(|ip| thermal * (1.0 + 0.1 * ip as f64));
     let thermal = &thermal;
@@ -76,7 +94,7 @@ fn check_element_thermal(
     let half: [f64; 16] = std::array::from_fn(|i| 0.6 * ue[i]);
     element_forces(
         &geom,
-        &mat,
+        mat,
         thermal,
         &half,
         &committed0,
@@ -90,7 +108,7 @@ fn check_element_thermal(
     let mut trial = committed.clone();
     element_forces(
         &geom,
-        &mat,
+        mat,
         thermal,
         &ue,
         &committed,
@@ -102,6 +120,9 @@ fn check_element_thermal(
     )
     .unwrap();
     let plastic = trial.iter().filter(|g| g.yielding).count();
+    if per_point {
+        eprintln!("{plane:?} scale {scale} H {hardening}: {plastic} of 9 points plastic, materials per point");
+    }
     let h = 1e-7 * scale;
     let kmax = ke.iter().fold(0.0f64, |a, v| a.max(v.abs()));
     let jac = fd::central_jacobian(
@@ -109,7 +130,7 @@ fn check_element_thermal(
             let mut f = [0.0; 16];
             element_forces(
                 &geom,
-                &mat,
+                mat,
                 thermal,
                 u,
                 &committed,
@@ -128,7 +149,7 @@ fn check_element_thermal(
     let worst = fd::worst(&jac, |i, j| ke[i * 16 + j], fd::Scale::Of(kmax));
     assert!(
         worst.ratio < 1e-6,
-        "{plane:?} scale {scale} H {hardening} α ΔT {:?}: {plastic} plastic points, FD error {worst}",
+        "{plane:?} scale {scale} H {hardening} α ΔT {:?} per point {per_point}: {plastic} plastic points, FD error {worst}",
         thermal[0]
     );
 }

@@ -264,63 +264,79 @@ fn held_block_with_temperature_dependent_modulus_and_yield_stress() {
     }
 }
 
-/// A temperature field (`along`, `profile`): a solid cylinder 0 ≤ r ≤ b held
-/// between two frictionless planes (ε_z = 0) with ΔT(r) = T₀ + T₁ r/b, T₀ =
-/// 100 K, T₁ = −80 K (the profile [[0, 1], [b, 0.2]] times 100 K). Timoshenko
-/// & Goodier § 151 (plane strain, ε_z = 0): with k = α E/(1 − ν),
-/// σ_r = k T₁ (1 − r/b)/3, σ_θ = k T₁ (1/3 − 2r/(3b)),
+/// A temperature field: a solid cylinder 0 ≤ r ≤ b held between two
+/// frictionless planes (ε_z = 0) with ΔT(r) = T₀ + T₁ r/b, T₀ = 100 K, T₁ =
+/// −80 K, given three ways: the table along x (r in axisymmetry) [[0, 1], [b,
+/// 0.2]] times 100 K, the same table along r, and the expression
+/// `field = "1 - 0.8*r/30"`. Timoshenko & Goodier § 151 (plane strain, ε_z = 0): with
+/// k = α E/(1 − ν), σ_r = k T₁ (1 − r/b)/3, σ_θ = k T₁ (1/3 − 2r/(3b)),
 /// σ_z = k (ν (T₀ + 2T₁/3) − T₀ − T₁ r/b). u(r) is quadratic in r, which the
-/// element holds: every Gauss point to 1e-9 of the largest stress.
+/// element holds: every Gauss point to 1e-9 of the largest stress, each way.
 #[test]
 fn a_cylinder_with_a_radial_temperature_field_matches_the_closed_form() {
     let b = 30.0;
     let (t0, t1) = (100.0, -80.0);
-    let text = common::case()
-        .plane("axisymmetric")
-        .block("bar", [0.0, b], [6], [0.0, 5.0], [1])
-        .material("bar", E, NU)
-        .with("expansion", ALPHA)
-        .uy("bar.bottom", 0.0)
-        .uy("bar.top", 0.0)
-        .raw("[[temperature]]")
-        .with("body", "bar")
-        .with("change", t0)
-        .with("along", "x")
-        .with("profile", [[0.0, 1.0], [b, 0.2]])
-        .solver("increments = 1\nstep_control = \"fixed\"")
-        .tolerances(1e-12, 1e-12)
-        .no_vtu()
-        .build();
-    let (model, r, _) = solve(&text);
-    let k = ALPHA * E / (1.0 - NU);
-    let (mut err, mut scale) = (0.0f64, 0.0f64);
-    for e in 0..model.mesh.elements.len() {
-        for (ip, g) in model.points(e).enumerate() {
-            let r_ip = model.point_x(e, ip)[0];
-            let s = r.final_state.gauss.get(g).stress;
-            let want = [
-                k * t1 * (1.0 - r_ip / b) / 3.0,
-                k * (NU * (t0 + 2.0 * t1 / 3.0) - t0 - t1 * r_ip / b),
-                0.0,
-                k * t1 * (1.0 / 3.0 - 2.0 * r_ip / (3.0 * b)),
-            ];
-            for c in 0..4 {
-                err = err.max((s[c] - want[c]).abs());
-                scale = scale.max(want[c].abs());
+    let ways: [(&str, &[(&str, &str)]); 3] = [
+        (
+            "table along x",
+            &[("along", "\"x\""), ("profile", "[[0.0, 1.0], [30.0, 0.2]]")],
+        ),
+        (
+            "table along r",
+            &[("along", "\"r\""), ("profile", "[[0.0, 1.0], [30.0, 0.2]]")],
+        ),
+        ("expression", &[("field", "\"1 - 0.8*r/30\"")]),
+    ];
+    for (way, keys) in ways {
+        let mut c = common::case()
+            .plane("axisymmetric")
+            .block("bar", [0.0, b], [6], [0.0, 5.0], [1])
+            .material("bar", E, NU)
+            .with("expansion", ALPHA)
+            .uy("bar.bottom", 0.0)
+            .uy("bar.top", 0.0)
+            .raw("[[temperature]]")
+            .with("body", "bar")
+            .with("change", t0);
+        for (k, v) in keys {
+            c = c.raw(&format!("{k} = {v}"));
+        }
+        let text = c
+            .solver("increments = 1\nstep_control = \"fixed\"")
+            .tolerances(1e-12, 1e-12)
+            .no_vtu()
+            .build();
+        let (model, r, _) = solve(&text);
+        let k = ALPHA * E / (1.0 - NU);
+        let (mut err, mut scale) = (0.0f64, 0.0f64);
+        for e in 0..model.mesh.elements.len() {
+            for (ip, g) in model.points(e).enumerate() {
+                let r_ip = model.point_x(e, ip)[0];
+                let s = r.final_state.gauss.get(g).stress;
+                let want = [
+                    k * t1 * (1.0 - r_ip / b) / 3.0,
+                    k * (NU * (t0 + 2.0 * t1 / 3.0) - t0 - t1 * r_ip / b),
+                    0.0,
+                    k * t1 * (1.0 / 3.0 - 2.0 * r_ip / (3.0 * b)),
+                ];
+                for c in 0..4 {
+                    err = err.max((s[c] - want[c]).abs());
+                    scale = scale.max(want[c].abs());
+                }
             }
         }
+        eprintln!(
+            "radial field ({way}): error {:.2e} of {scale:.3} MPa",
+            err / scale
+        );
+        assert!(err < 1e-9 * scale, "{way}: {err} of {scale}");
     }
-    eprintln!("radial field: error {:.2e} of {scale:.3} MPa", err / scale);
-    assert!(err < 1e-9 * scale, "{err} of {scale}");
 }
 
-/// A free 3D block (held against rigid motion only) with a temperature that
-/// rises linearly along x (profile [[0, 0.5], [20, 1.5]] times 60 K): a
-/// linear field's thermal strain is compatible, so the body bends and
-/// stretches unstressed, for any mesh.
-#[test]
-fn a_free_solid_with_a_linear_temperature_field_is_unstressed() {
-    let text = common::case()
+/// A free 3D block (held against rigid motion only) heated by 60 K times
+/// the field `keys` give: its displacements and the largest |σ|.
+fn free_solid(keys: &[(&str, &str)]) -> (Vec<f64>, f64) {
+    let mut c = common::case()
         .plane("3d")
         .raw("[mesh]\nextrude = { z = [0.0, 6.0], nz = [2] }")
         .block("bar", [0.0, 20.0], [3], [0.0, 8.0], [2])
@@ -333,9 +349,11 @@ fn a_free_solid_with_a_linear_temperature_field_is_unstressed() {
         .raw("[[boundary]]\nset = \"bar.left\"\ny_range = [8.0, 8.0]\nz_range = [0.0, 0.0]\nuz = 0.0")
         .raw("[[temperature]]")
         .with("body", "bar")
-        .with("change", 60.0)
-        .with("along", "x")
-        .with("profile", [[0.0, 0.5], [20.0, 1.5]])
+        .with("change", 60.0);
+    for (k, v) in keys {
+        c = c.raw(&format!("{k} = {v}"));
+    }
+    let text = c
         .solver("increments = 1\nstep_control = \"fixed\"")
         .tolerances(1e-10, 1e-10)
         .no_vtu()
@@ -344,9 +362,218 @@ fn a_free_solid_with_a_linear_temperature_field_is_unstressed() {
     let worst = (r.final_state.gauss.iter())
         .flat_map(|g| g.stress)
         .fold(0.0f64, |a, s| a.max(s.abs()));
+    (r.final_state.u.clone(), worst)
+}
+
+/// The free 3D block of [`free_solid`] with a temperature that rises
+/// linearly along x, given as an expression (`field = "0.5 + x/20"`) and as
+/// the table along x [[0, 0.5], [20, 1.5]] (times 60 K): the two are one
+/// field, so one solution to round-off (1e-12 of the largest displacement),
+/// and unstressed ([`a_free_solid_with_a_linear_temperature_field_is_unstressed`]).
+#[test]
+fn a_field_given_as_an_expression_equals_the_same_field_as_a_table() {
+    let (table, _) = free_solid(&[("along", "\"x\""), ("profile", "[[0.0, 0.5], [20.0, 1.5]]")]);
+    let (expr, worst) = free_solid(&[("field", "\"0.5 + x/20\"")]);
+    let scale = table.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    let diff = (table.iter().zip(&expr)).fold(0.0f64, |a, (p, q)| a.max((p - q).abs()));
+    eprintln!("expression vs table: |Δu| {diff:.2e} of {scale:.3e} mm, |σ| {worst:.2e} MPa");
+    assert!(scale > 1e-3, "{scale}");
+    assert!(diff < 1e-12 * scale, "{diff} of {scale}");
+    assert!(worst < 1e-8 * E * ALPHA * 90.0, "{worst}");
+}
+
+/// A free 3D block (held against rigid motion only) with a temperature that
+/// rises linearly along x (profile [[0, 0.5], [20, 1.5]] times 60 K): a
+/// linear field's thermal strain is compatible, so the body bends and
+/// stretches unstressed, for any mesh.
+#[test]
+fn a_free_solid_with_a_linear_temperature_field_is_unstressed() {
+    let (_, worst) = free_solid(&[("along", "\"x\""), ("profile", "[[0.0, 0.5], [20.0, 1.5]]")]);
     eprintln!(
         "3D linear field: largest |σ| {worst:.3e} MPa (E α ΔT = {:.1} MPa)",
         E * ALPHA * 90.0
     );
     assert!(worst < 1e-8 * E * ALPHA * 90.0, "{worst}");
+}
+
+/// r in `field` (and in `along = "r"`) is the distance from the model's
+/// axis, as a speed's: |x| in axisymmetry, √(x² + y²) in a plane model (about
+/// z), √(x² + z²) in 3D (about y). The free thermal strain at a point is α ΔT
+/// times the field's value there, the expression's and the table's alike.
+#[test]
+fn r_is_the_distance_from_the_model_axis() {
+    let field = |keys: &[(&str, &str)], plane: &str| {
+        let mut c = common::case().plane(plane);
+        if plane == "3d" {
+            c = c
+                .raw("[mesh]\nextrude = { z = [0.0, 10.0], nz = [1] }")
+                .raw("[[boundary]]\nset = \"bar.left\"\nuz = 0.0");
+        }
+        c = c
+            .block("bar", [0.0, 10.0], [1], [0.0, 10.0], [1])
+            .material("bar", E, NU)
+            .with("expansion", ALPHA)
+            .ux("bar.left", 0.0)
+            .uy("bar.bottom", 0.0)
+            .raw("[[temperature]]")
+            .with("body", "bar")
+            .with("change", 50.0);
+        for (k, v) in keys {
+            c = c.raw(&format!("{k} = {v}"));
+        }
+        common::model(&c.solver("").build())
+    };
+    let x = [3.0, 4.0, 5.0];
+    for (plane, r) in [
+        ("axisymmetric", 3.0),
+        ("stress", 5.0),
+        ("3d", 34.0f64.sqrt()),
+    ] {
+        let want = ALPHA * 50.0 * (1.0 - 0.02 * r);
+        for keys in [
+            &[("field", "\"1 - 0.02*r\"")][..],
+            &[("along", "\"r\""), ("profile", "[[0.0, 1.0], [20.0, 0.6]]")][..],
+        ] {
+            let m = field(keys, plane);
+            let got = m.thermal_at(0, 1.0, x);
+            assert!(
+                (got - want).abs() < 1e-14 * want,
+                "{plane} {keys:?}: α ΔT {got}, want {want} (r = {r})"
+            );
+        }
+    }
+}
+
+/// A bar 0 ≤ x ≤ L held at both ends (u_x = 0 there; u_y = 0 everywhere, so
+/// ε_yy = 0 and the state is one-dimensional), heated by ΔT(x) = ΔT₀ x/L
+/// (`field = "x/100"`, ΔT₀ = 100 K) from 20 °C, with a modulus that falls
+/// with temperature (`young_table`: E(T) = E (1 − 0.003 (T − 20)), so
+/// E(x) = E (1 − k x), k = 0.3/L). Each Gauss point reads its own E. Plane
+/// stress with ε_yy = 0: σ_xx = E(x)/(1 − ν²) (ε_xx − (1 + ν) α ΔT(x));
+/// equilibrium makes σ_xx = σ₀ uniform, and the held ends ∫ ε_xx dx = 0:
+///
+/// σ₀ = −α ∫ ΔT dx / ((1 − ν) ∫ dx/E(x)) = −α ΔT₀ L/2 · k E / ((1 − ν)(−ln(1 − kL)))
+///
+/// (−145.09 MPa; with E uniform it would be −E α ΔT₀/(2(1 − ν)) = −172.5).
+/// u_x is not a polynomial, so the elements approach it: every Gauss point
+/// within 1e-4 of σ₀ on 20 elements, and the error falls with the mesh.
+#[test]
+fn a_bar_held_at_its_ends_with_a_modulus_falling_along_its_field_matches_equilibrium() {
+    let l = 100.0;
+    let (dt0, k) = (100.0, 0.3 / l);
+    let e_at = |t: f64| E * (1.0 - 0.003 * (t - 20.0));
+    let sigma0 = -ALPHA * dt0 * l / 2.0 * k * E / ((1.0 - NU) * (-(1.0 - k * l).ln()));
+    eprintln!("held bar: closed form σ₀ = {sigma0:.4} MPa");
+    let mut errors = Vec::new();
+    for n in [5, 20] {
+        let text = common::case()
+            .plane("stress")
+            .block("bar", [0.0, l], [n], [0.0, 5.0], [1])
+            .material("bar", E, NU)
+            .with("expansion", ALPHA)
+            .with("young_table", [[20.0, E], [120.0, e_at(120.0)]])
+            .ux("bar.left", 0.0)
+            .ux("bar.right", 0.0)
+            .uy("bar.all", 0.0)
+            .raw("[[temperature]]")
+            .with("body", "bar")
+            .with("change", dt0)
+            .with("reference", 20.0)
+            .raw("field = \"x/100\"")
+            .solver("increments = 1\nstep_control = \"fixed\"")
+            .tolerances(1e-12, 1e-12)
+            .no_vtu()
+            .build();
+        let (model, r, _) = solve(&text);
+        // the material at a point: E at its own temperature
+        let mid = model.material_point(0, 1.0, [50.0, 2.0, 0.0]);
+        assert!((mid.young - e_at(70.0)).abs() < 1e-9 * E, "{}", mid.young);
+        let err = (0..model.mesh.elements.len())
+            .flat_map(|e| model.points(e))
+            .map(|g| (r.final_state.gauss.get(g).stress[0] - sigma0).abs())
+            .fold(0.0f64, f64::max);
+        eprintln!(
+            "held bar, {n} elements: largest |σ_xx − σ₀| / |σ₀| = {:.2e}",
+            err / sigma0.abs()
+        );
+        errors.push(err / sigma0.abs());
+    }
+    assert!(errors[1] < 1e-4, "{errors:?}");
+    assert!(errors[1] < errors[0] / 4.0, "{errors:?}");
+}
+
+/// A block held everywhere (u = 0: ε = 0 at every point, so each Gauss point
+/// is its own closed form) heated by ΔT(x) = ΔT₀ x/20 (`field`, ΔT₀ =
+/// 120 K) from 20 °C and cooled back, its E and σ_Y falling with temperature
+/// as in [`held_block_with_temperature_dependent_modulus_and_yield_stress`],
+/// perfectly plastic, plane stress. The mechanical strain −α ΔT(x) h(t) is
+/// equibiaxial, so is the stress: σ_xx = σ_yy = s,
+/// - heating: s = −min(E(T) α ΔT/(1 − ν), σ_Y(T)), T = 20 + ΔT₀ h f(x) (a
+///   point yields where E(T) α ΔT/(1 − ν) reaches σ_Y(T), the return taking
+///   σ_Y at the point's current temperature), with εᵖ = −α ΔT + σ_Y(T)(1 −
+///   ν)/E(T) in xx and yy at the peak;
+/// - cooling back (elastic): s = E(T)/(1 − ν) (−α ΔT − εᵖ).
+///
+/// Points near x = 0 stay elastic, the hot end yields: every Gauss point at
+/// every increment to 1e-9 of σ_Y.
+#[test]
+fn a_held_block_yields_point_by_point_at_the_temperature_of_its_field() {
+    let (a, b) = (5e-4, 1e-3);
+    let e_at = |t: f64| E * (1.0 - a * (t - 20.0));
+    let s_at = |t: f64| SY * (1.0 - b * (t - 20.0));
+    let dt0 = 120.0;
+    let text = common::case()
+        .plane("stress")
+        .block("bar", [0.0, 20.0], [4], [0.0, 6.0], [1])
+        .material("bar", E, NU)
+        .plastic(SY, 0.0)
+        .with("expansion", ALPHA)
+        .with("young_table", [[0.0, e_at(0.0)], [300.0, e_at(300.0)]])
+        .with("yield_table", [[0.0, s_at(0.0)], [300.0, s_at(300.0)]])
+        .ux("bar.all", 0.0)
+        .uy("bar.all", 0.0)
+        .raw("[[temperature]]")
+        .with("body", "bar")
+        .with("change", dt0)
+        .with("reference", 20.0)
+        .with("history", [[0.0, 0.0], [1.0, 1.0], [2.0, 0.0]])
+        .raw("field = \"x/20\"")
+        .solver("")
+        .tolerances(1e-12, 1e-12)
+        .no_vtu()
+        .build();
+    let (model, _, c) = solve(&text);
+    let elastic = |t: f64, dt: f64| e_at(t) * ALPHA * dt / (1.0 - NU);
+    let (mut yielded, mut worst) = (0, 0.0f64);
+    for (t, _, g) in &c.0 {
+        let h = if *t <= 1.0 { *t } else { 2.0 - t };
+        for e in 0..model.mesh.elements.len() {
+            for (ip, k) in model.points(e).enumerate() {
+                let f = model.point_x(e, ip)[0] / 20.0;
+                let (dt, dt_peak) = (dt0 * h * f, dt0 * f);
+                let want = if *t <= 1.0 {
+                    -elastic(20.0 + dt, dt).min(s_at(20.0 + dt))
+                } else {
+                    let tp = 20.0 + dt_peak;
+                    let ep = if elastic(tp, dt_peak) > s_at(tp) {
+                        -ALPHA * dt_peak + s_at(tp) * (1.0 - NU) / e_at(tp)
+                    } else {
+                        0.0
+                    };
+                    e_at(20.0 + dt) / (1.0 - NU) * (-ALPHA * dt - ep)
+                };
+                let s = g[k].stress;
+                worst = worst.max((s[0] - want).abs()).max((s[1] - want).abs());
+                if *t == 1.0 && g[k].yielding {
+                    yielded += 1;
+                }
+            }
+        }
+    }
+    let n = model.mesh.elements.len() * model.points(0).len();
+    eprintln!(
+        "held block, field and tables: {yielded} of {n} points yielded at the peak, largest error {worst:.2e} MPa"
+    );
+    assert!(yielded > 0 && yielded < n, "{yielded} of {n}");
+    assert!(worst < 1e-9 * SY, "{worst}");
 }

@@ -320,7 +320,7 @@ pub(super) fn restore_state(ck: &mut Checkpoint, s: &Sections, model: &Model) ->
     let w = PointState::packed_len(model.node_dofs().six_components());
     let gauss = s.finite("gauss", Some(w * ng))?;
     for (i, v) in gauss.chunks_exact(w).enumerate() {
-        check_gauss_point(model, i, v)?;
+        check_gauss_point(model, i, v, ck.lambda)?;
         c.gauss.set(i, &PointState::unpack(v, w));
     }
     match s.0.get("status") {
@@ -358,7 +358,9 @@ pub(super) fn all_within(name: &str, v: &[f64], bound: f64, unit: &str, what: &s
 /// A Gauss point's state `v` (`i`-th of the model, laid out as
 /// [`PointState::pack`]: σxx σyy σxy σzz, εᵖxx εᵖyy εᵖxy εᵖzz (tensor
 /// shear), ε̄ᵖ, yielding) against what the return mapping of its body's
-/// material can leave ([`crate::physics::material`]):
+/// material at the committed pseudo-time `time` can leave (its σ_Y read at
+/// the point's temperature: [`Model::gauss_material`];
+/// [`crate::physics::material`]):
 ///
 /// - ε̄ᵖ ≥ 0 and the yielding flag 0 or 1;
 /// - every stress component within ±[`MAX_STRESS`]; σzz = 0 in plane stress;
@@ -372,7 +374,7 @@ pub(super) fn all_within(name: &str, v: &[f64], bound: f64, unit: &str, what: &s
 ///   ε̄ᵖ, and |Σ Δεᵖ| ≤ Σ |Δεᵖ|); the equivalent stress on or inside the
 ///   yield surface, σ_eq ≤ σ_Y + H ε̄ᵖ. Round-off is allowed for
 ///   ([`STRAIN_REL`], [`STRAIN_ABS`], [`YIELD_REL`]).
-pub(super) fn check_gauss_point(model: &Model, i: usize, v: &[f64]) -> Decoded<()> {
+pub(super) fn check_gauss_point(model: &Model, i: usize, v: &[f64], time: f64) -> Decoded<()> {
     if v[8] < 0.0 || (v[9] != 0.0 && v[9] != 1.0) {
         return Err(format!(
             "section gauss: Gauss point {}: equivalent plastic strain {} and yielding flag {} (≥ 0, and 0 or 1 expected)",
@@ -401,7 +403,7 @@ pub(super) fn check_gauss_point(model: &Model, i: usize, v: &[f64]) -> Decoded<(
         peeq: v[8],
         yielding: v[9],
     };
-    plastic.check(&at, &model.materials[body], &stress)
+    plastic.check(&at, &model.gauss_material(i, time), &stress)
 }
 
 /// A stored stress within [`MAX_STRESS`], and σzz = 0 in plane stress.

@@ -6,6 +6,7 @@
 //! carries the same text.
 
 pub mod adapt;
+pub mod expression;
 pub mod outputs;
 pub mod overrides;
 pub mod ranges;
@@ -282,11 +283,17 @@ pub struct TemperatureSpec {
     /// The factor's history; none: the load factor (or the default ramp).
     pub history: Option<HistoryRef>,
     /// A temperature field: ΔT(x) = change × the profile's factor at the
-    /// coordinate `along` ("x", "y", "z"), rows [coordinate mm, factor].
+    /// coordinate `along` ("x", "y", "z", or "r": the distance from the
+    /// model's axis), rows [coordinate mm, factor].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub along: Option<String>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub profile: Option<Vec<Vec<f64>>>,
+    /// A temperature field as a function of position: ΔT(x) = change × the
+    /// expression's value at x, y, z and r (the distance from the model's
+    /// axis; [`expression`]). Not with `along` and `profile`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub field: Option<String>,
 }
 
 /// Normal (and later tangential) law of one interface. The parameters that a law

@@ -127,16 +127,16 @@ pub fn estimate(model: &Model, state: &State) -> Estimate {
     let mut element = vec![0.0; ne];
     let mut norm2 = 0.0;
     for (e, el) in mesh.elements.iter().enumerate() {
-        let mat = &model.material_at(el.body, state.time);
         let p = of(e, true);
+        let mats = model.point_materials(el.body, state.time, &p.x);
         let star = recovered.element(e);
         for (ip, sh) in p.stress.iter().enumerate() {
             let d: [f64; 6] = std::array::from_fn(|c| {
                 let at: f64 = star.iter().zip(&p.shape[ip]).map(|(s, n)| n * s[c]).sum();
                 at - sh[c]
             });
-            element[e] += p.dv[ip] * compliance(mat, &d);
-            norm2 += p.dv[ip] * compliance(mat, sh);
+            element[e] += p.dv[ip] * compliance(mats.at(ip), &d);
+            norm2 += p.dv[ip] * compliance(mats.at(ip), sh);
         }
     }
     let mut interface = vec![0.0; ne];

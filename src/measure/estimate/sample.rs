@@ -36,7 +36,7 @@ use crate::physics::material::{GaussStates, Plane, PointState};
 /// element `e` at the points of `rule`, whose geometry is `geom`; `gauss`
 /// holds every element's states at the model's rule; `time` the state's
 /// pseudo-time, at which the body's free thermal strain α ΔT is taken off
-/// the normal strains and its material read ([`Model::material_at`]).
+/// the normal strains and its material read ([`Model::material_point`]).
 pub fn stresses(
     model: &Model,
     gauss: &GaussStates,
@@ -56,7 +56,10 @@ pub fn stresses(
         return out;
     }
     let el = &model.mesh.elements[e];
-    let mat = &model.material_at(el.body, time);
+    let xs: Vec<[f64; 3]> = (0..geom.n)
+        .map(|ip| [geom.x[ip][0], geom.x[ip][1], 0.0])
+        .collect();
+    let mats = model.point_materials(el.body, time, &xs);
     let ue = model.element_u(e, u);
     let twist = model.node_dofs().twist();
     for (ip, &(xi, _)) in rule.points.iter().enumerate() {
@@ -67,7 +70,8 @@ pub fn stresses(
                 *v += w[k] * g.plastic_strain[c];
             }
         }
-        let thermal = model.thermal_at(el.body, time, [geom.x[ip][0], geom.x[ip][1], 0.0]);
+        let thermal = model.thermal_at(el.body, time, xs[ip]);
+        let mat = mats.at(ip);
         let s = if twist {
             let eps = crate::physics::element::axisymmetric_twist::strain(geom, ip, &ue);
             mat.elastic_state_twist(&committed, &less_thermal(eps, thermal))
@@ -106,7 +110,7 @@ pub(crate) fn stresses3(
     if rule == own {
         return stored.iter().map(|g| g.stress).collect();
     }
-    let mat = &model.material_at(el.body, time);
+    let mats = model.point_materials(el.body, time, &geom.x[..geom.n]);
     let ue = model.element_u(e, u);
     // εᵖ at the nodes: Σ_k W_ka εᵖ_k
     let mut nodal = vec![[0.0; 6]; geom.nodes];
@@ -127,7 +131,7 @@ pub(crate) fn stresses3(
             }
             let thermal = model.thermal_at(el.body, time, geom.x[ip]);
             let eps = less_thermal(geom.strain(ip, &ue), thermal);
-            mat.elastic_state_twist(&committed, &eps).stress
+            mats.at(ip).elastic_state_twist(&committed, &eps).stress
         })
         .collect()
 }

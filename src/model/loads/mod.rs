@@ -21,6 +21,7 @@ use std::collections::BTreeMap;
 
 mod adaptive;
 mod faces;
+pub mod field;
 pub mod resultant;
 pub mod speed;
 pub mod thermal;
@@ -184,7 +185,7 @@ pub fn build(
     g.forces(case, mesh, start, place, &mut res)?;
     let pretension_history = g.pretension(case, mesh, place, &mut res, &mut prescribed)?;
     let gap_history = g.gap_histories(case, place, &mut res)?;
-    let temperatures = thermal::read(case, mesh, place, &mut res, &mut g.scaled)?;
+    let temperatures = thermal::read(case, (mesh, &section), place, &mut res, &mut g.scaled)?;
     let speed = speed::read(case, mesh, (section, nd), place, &mut res, &mut g.scaled)?;
     if let Some(k) = res.used.iter().position(|&u| !u) {
         return Err(Error::input(

@@ -4,12 +4,14 @@
 //! thermal strain α ΔT h(t) that its elements subtract from their normal
 //! strains (docs/theory.md, "Thermal strain").
 
+pub use super::field::{Coordinate, Field, Formula, Profile};
 use super::{clip, Resolver, Scaled};
 use crate::error::{Error, Result};
 use crate::input::case::ranges;
 use crate::input::case::Case;
 use crate::input::mesh::Mesh;
 use crate::model::history::History;
+use crate::physics::element::Section;
 use crate::physics::material::VonMises;
 
 pub(crate) use crate::input::case::ranges::ABSOLUTE_ZERO;
@@ -33,135 +35,16 @@ pub struct BodyTemperature {
     /// temperature (rows [T °C, value], T rising), when its material has them.
     pub young: Option<Vec<[f64; 2]>>,
     pub yield_stress: Option<Vec<[f64; 2]>>,
-    /// A temperature field: ΔT(x) = change × this profile's factor.
-    pub profile: Option<Profile>,
-}
-
-/// A temperature field along one coordinate (`along`, `profile`): the factor
-/// of ΔT at the point's coordinate `axis`, linear between rows
-/// (coordinate mm, factor).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Profile {
-    /// 0, 1, 2: x (r in axisymmetry), y, z.
-    pub axis: usize,
-    pub rows: Vec<[f64; 2]>,
-}
-
-impl Profile {
-    /// The factor at point x.
-    pub fn factor(&self, x: [f64; 3]) -> f64 {
-        interpolate(&self.rows, x[self.axis])
-    }
-
-    /// The largest |factor|.
-    fn largest(&self) -> f64 {
-        self.rows.iter().fold(0.0, |a, r| a.max(r[1].abs()))
-    }
-
-    /// The lowest and the highest factor.
-    fn extremes(&self) -> (f64, f64) {
-        (self.rows.iter()).fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), r| {
-            (lo.min(r[1]), hi.max(r[1]))
-        })
-    }
-}
-
-/// A `[[temperature]]`'s field, checked: `along` and `profile` together,
-/// `along` a coordinate of the model, at least two rows [coordinate,
-/// factor] of finite numbers with rising coordinates that span the body.
-fn profile(
-    t: &crate::input::case::TemperatureSpec,
-    mesh: &Mesh,
-    body: usize,
-    at: &str,
-) -> Result<Option<Profile>> {
-    let (along, rows) = match (&t.along, &t.profile) {
-        (None, None) => return Ok(None),
-        (Some(a), Some(r)) => (a, r),
-        (Some(_), None) => {
-            return Err(Error::input(
-                format!("{at} along"),
-                "needs `profile` (rows [coordinate mm, factor of change]): the field it runs along",
-            ))
-        }
-        (None, Some(_)) => return Err(Error::input(
-            format!("{at} profile"),
-            "needs `along` (\"x\", \"y\" or, in 3D, \"z\"): the coordinate its rows are given at",
-        )),
-    };
-    let axes: &[&str] = if mesh.dim() == 3 {
-        &["x", "y", "z"]
-    } else {
-        &["x", "y"]
-    };
-    let Some(axis) = axes.iter().position(|a| a == along) else {
-        return Err(Error::input(
-            format!("{at} along"),
-            format!(
-                "\"{}\" is no coordinate of this model (one of {})",
-                clip(along),
-                axes.join(", ")
-            ),
-        ));
-    };
-    let key = format!("{at} profile");
-    if let Some(i) = rows.iter().position(|r| r.len() != 2) {
-        return Err(Error::input(
-            key,
-            format!(
-                "row {i} has {} number(s): each row is [coordinate mm, factor]",
-                rows[i].len()
-            ),
-        ));
-    }
-    if rows.len() < 2 {
-        return Err(Error::input(
-            key,
-            format!("has {} row(s): give at least two", rows.len()),
-        ));
-    }
-    let rows = pairs(rows);
-    for (i, &[x, f]) in rows.iter().enumerate() {
-        if !(x.is_finite() && f.is_finite()) {
-            return Err(Error::input(
-                key,
-                format!("row {i}: [{x}, {f}] is not two finite numbers"),
-            ));
-        }
-        if i > 0 && x <= rows[i - 1][0] {
-            return Err(Error::input(
-                key,
-                format!(
-                    "row {i}: {x} mm does not rise from row {}'s {} mm",
-                    i - 1,
-                    rows[i - 1][0]
-                ),
-            ));
-        }
-    }
-    // the body's extent along the axis, within the rows (not extrapolated)
-    let tol = crate::model::consistency::tolerance(mesh);
-    let (lo, hi) = (mesh.elements.iter())
-        .filter(|e| e.body == body)
-        .flat_map(|e| e.nodes().iter())
-        .map(|&n| mesh.nodes[n][axis])
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
-            (a.min(v), b.max(v))
-        });
-    let (r0, r1) = (rows[0][0], rows[rows.len() - 1][0]);
-    if lo < r0 - tol || hi > r1 + tol {
-        return Err(Error::input(
-            key,
-            format!("spans {along} = {r0} … {r1} mm, but the body reaches {lo} … {hi} mm: give rows that cover it (a profile is not extrapolated)"),
-        ));
-    }
-    Ok(Some(Profile { axis, rows }))
+    /// A temperature field: ΔT(x) = change × its factor at x.
+    pub field: Option<Field>,
 }
 
 impl BodyTemperature {
     /// The body's material at the load factor `factor` of its history: E and
     /// σ_Y read off their tables at the temperature reference + ΔT · factor
     /// (linear between rows); `base` as it is without tables.
+    /// (Where the body has a field, `factor` is its history's factor times
+    /// the field's at the point: [`BodyTemperature::field_factor`].)
     pub fn material(&self, base: &VonMises, factor: f64) -> VonMises {
         let mut m = base.clone();
         if let Some(reference) = self.reference {
@@ -174,6 +57,18 @@ impl BodyTemperature {
             }
         }
         m
+    }
+
+    /// Whether its material varies from point to point: a temperature field
+    /// with a table of E or σ_Y (each Gauss point's material is then read
+    /// at its own temperature).
+    pub fn varies(&self) -> bool {
+        self.field.is_some() && (self.young.is_some() || self.yield_stress.is_some())
+    }
+
+    /// Its field's factor at x (1 without a field).
+    pub fn field_factor(&self, x: [f64; 3]) -> f64 {
+        self.field.as_ref().map_or(1.0, |f| f.factor(x))
     }
 }
 
@@ -201,7 +96,7 @@ pub(crate) fn interpolate(rows: &[[f64; 2]], t: f64) -> f64 {
 /// times its history's peak is checked with the loads').
 pub(super) fn read(
     case: &Case,
-    mesh: &Mesh,
+    (mesh, section): (&Mesh, &Section),
     place: &str,
     res: &mut Resolver<'_>,
     scaled: &mut Vec<Scaled>,
@@ -251,16 +146,15 @@ pub(super) fn read(
         }
         let history = res.resolve(t.history.as_ref(), &format!("{at} history"))?;
         let m = &case.materials[&t.body];
-        let profile = profile(t, mesh, body, &at)?;
-        if profile.is_some() && (m.young_table.is_some() || m.yield_table.is_some()) {
-            return Err(Error::input(
-                format!("{at} profile"),
-                format!("with [materials.{}] young_table or yield_table: the material would change within an element, which is not built; give the body a uniform temperature, or drop the tables", clip(&t.body)),
-            ));
-        }
-        let peak = profile.as_ref().map_or(1.0, |p| p.largest());
-        let label = match &profile {
-            Some(_) => format!("{at} change (× its profile's largest factor, {peak})"),
+        let field = super::field::read(t, mesh, (body, section), &at)?;
+        let peak = field.as_ref().map_or(1.0, |f| f.largest());
+        let label = match &field {
+            Some(Field::Profile(_)) => {
+                format!("{at} change (× its profile's largest factor, {peak})")
+            }
+            Some(Field::Formula(_)) => {
+                format!("{at} change (× its field's largest |value| over the body, {peak})")
+            }
             None => format!("{at} change"),
         };
         scaled.push((label, t.change * peak, &ranges::TEMPERATURE_CHANGE, history));
@@ -273,7 +167,7 @@ pub(super) fn read(
             history,
             young: m.young_table.as_deref().map(pairs),
             yield_stress: m.yield_table.as_deref().map(pairs),
-            profile,
+            field,
         });
     }
     tables_need_a_temperature(case, mesh, &out, place)?;
@@ -339,7 +233,8 @@ fn tables_need_a_temperature(
 }
 
 /// Every body temperature along the history (reference + ΔT × the lowest
-/// and the highest factor) within its material's tables: a table is not
+/// and the highest factor, with a field times its lowest and highest
+/// factor: [`span`]) within its material's tables: a table is not
 /// extrapolated.
 pub(super) fn check_tables(
     temperatures: &[BodyTemperature],
@@ -352,18 +247,22 @@ pub(super) fn check_tables(
         let Some(reference) = t.reference else {
             continue;
         };
-        let (lo, hi) = factor_range(t, histories, largest);
-        let (a, b) = (t.change * lo, t.change * hi);
-        let (cold, hot) = (reference + a.min(b), reference + a.max(b));
+        let (a, b) = span(t, histories, largest);
+        let (cold, hot) = (reference + a, reference + b);
         for (key, rows) in [("young_table", &t.young), ("yield_table", &t.yield_stress)] {
             let Some(rows) = rows else {
                 continue;
             };
             let (t0, t1) = (rows[0][0], rows[rows.len() - 1][0]);
             if cold < t0 - 1e-9 || hot > t1 + 1e-9 {
+                let over = if t.field.is_some() {
+                    "over the history and its field"
+                } else {
+                    "over the history"
+                };
                 return Err(Error::input(
                     format!("{place}: [materials.{}] {key}", clip(&bodies[t.body])),
-                    format!("spans {t0} … {t1} °C, but the body's temperature runs {cold} … {hot} °C over the history: give rows that cover it (a table is not extrapolated)"),
+                    format!("spans {t0} … {t1} °C, but the body's temperature runs {cold} … {hot} °C {over}: give rows that cover it (a table is not extrapolated)"),
                 ));
             }
         }
@@ -381,6 +280,18 @@ fn factor_range(t: &BodyTemperature, histories: &[History], largest: f64) -> (f6
     }
 }
 
+/// The lowest and the highest ΔT of a body over the run: ΔT times its
+/// history's lowest and highest factor, and with a field times the field's
+/// lowest and highest factor too.
+fn span(t: &BodyTemperature, histories: &[History], largest: f64) -> (f64, f64) {
+    let (lo, hi) = factor_range(t, histories, largest);
+    let (flo, fhi) = t.field.as_ref().map_or((1.0, 1.0), |f| f.extremes());
+    let products = [lo * flo, lo * fhi, hi * flo, hi * fhi].map(|f| t.change * f);
+    let low = products.iter().copied().fold(f64::INFINITY, f64::min);
+    let high = products.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    (low, high)
+}
+
 /// With a reference given, the body's lowest temperature over the run
 /// (ΔT times the lowest and the highest factor of its history, or of the
 /// load factor from 0 to `largest`) must not fall below absolute zero.
@@ -395,14 +306,7 @@ pub(super) fn check_absolute(
         let Some(reference) = t.reference else {
             continue;
         };
-        let (lo, hi) = factor_range(t, histories, largest);
-        // with a field, the factors of its profile too
-        let (plo, phi) = t.profile.as_ref().map_or((1.0, 1.0), |p| p.extremes());
-        let (lo, hi) = (
-            (lo * plo).min(lo * phi).min(hi * plo).min(hi * phi),
-            (lo * plo).max(lo * phi).max(hi * plo).max(hi * phi),
-        );
-        let lowest = reference + (t.change * lo).min(t.change * hi);
+        let lowest = reference + span(t, histories, largest).0;
         if lowest < ABSOLUTE_ZERO {
             return Err(Error::input(
                 format!(

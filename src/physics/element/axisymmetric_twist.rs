@@ -21,12 +21,12 @@
 //! ```
 //! and fᵉ = Σ Bᵀ σ dv, Kᵉ = Σ Bᵀ C B dv with dv = det J · w · 2π r and C the
 //! 6 × 6 algorithmic tangent of the six-component radial return
-//! ([`VonMises::update_twist`]). A rigid rotation about the axis, u_θ = ω r,
+//! ([`VonMises::update_twist`](crate::physics::material::VonMises::update_twist)). A rigid rotation about the axis, u_θ = ω r,
 //! strains nothing (γ_rθ = ω − ω = 0). The first four rows are those of the
 //! axisymmetric element without twist ([`crate::physics::element::solid`]).
 
 use crate::physics::element::solid::{ElementGeometry, Response, Tangent};
-use crate::physics::material::{PointState, VonMises};
+use crate::physics::material::{PointMaterials, PointState};
 use nalgebra::Matrix6;
 
 /// Most element dofs with twist (8 nodes × 3); an element uses 3 ×
@@ -60,12 +60,12 @@ fn b_matrix(geom: &ElementGeometry, ip: usize) -> [[f64; NE]; 6] {
 /// Internal force and (optionally) tangent of one element with twist (24
 /// dofs; `ke` row-major 24 × 24): the module's fᵉ and Kᵉ with the
 /// algorithmic tangent, the continuum C_ep at the committed state
-/// ([`VonMises::continuum_tangent_6`]) or the elastic D. Errors name the
+/// ([`VonMises::continuum_tangent_6`](crate::physics::material::VonMises::continuum_tangent_6)) or the elastic D. Errors name the
 /// Gauss point.
 #[allow(clippy::too_many_arguments)]
 pub fn forces(
     geom: &ElementGeometry,
-    mat: &VonMises,
+    mats: PointMaterials<'_>,
     thermal: &[f64],
     ue: &[f64],
     committed: &[PointState],
@@ -88,6 +88,7 @@ pub fn forces(
                 "Gauss point {ip} at r = {r}: an axisymmetric element must lie at r ≥ 0"
             ));
         }
+        let mat = mats.at(ip);
         let b = b_matrix(geom, ip);
         let eps: [f64; 6] = std::array::from_fn(|i| (0..ne).map(|j| b[i][j] * ue[j]).sum());
         let eps = super::solid::less_thermal(eps, thermal[ip]);
@@ -138,6 +139,7 @@ mod tests {
     use crate::physics::element::q8;
     use crate::physics::element::Section;
     use crate::physics::material::Plane;
+    use crate::physics::material::VonMises;
 
     /// A distorted element away from the axis, curved edges included: its
     /// node coordinates and geometry.
@@ -172,7 +174,7 @@ mod tests {
         let mut trial = committed.to_vec();
         forces(
             geom,
-            m,
+            m.into(),
             &[0.0; 9],
             ue,
             committed,
@@ -254,7 +256,7 @@ mod tests {
         let mut trial = vec![PointState::default(); 9];
         crate::physics::element::solid::axisymmetric_forces(
             &geom,
-            &m,
+            (&m).into(),
             &[0.0; 9],
             &[0.0; 16],
             &[PointState::default(); 9],

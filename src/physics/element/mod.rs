@@ -53,9 +53,9 @@ impl Section {
 /// or three in an axisymmetric model with twist (`NodeDofs::TWIST`,
 /// `crate::physics::element::axisymmetric_twist`).
 #[allow(clippy::too_many_arguments)]
-pub fn element_forces(
+pub fn element_forces<'m>(
     geom: &solid::ElementGeometry,
-    mat: &crate::physics::material::VonMises,
+    mat: impl Into<crate::physics::material::PointMaterials<'m>>,
     thermal: &[f64],
     ue: &[f64],
     committed: &[crate::physics::material::PointState],
@@ -65,8 +65,9 @@ pub fn element_forces(
     fe: &mut [f64],
     ke: &mut [f64],
 ) -> Result<(), String> {
+    let mat = mat.into();
     if ue.len() == dofs::NodeDofs::TWIST.per_node() * geom.nodes {
-        if mat.plane != crate::physics::material::Plane::Axisymmetric {
+        if mat.plane() != crate::physics::material::Plane::Axisymmetric {
             return Err("three dofs per node need an axisymmetric model (twist)".into());
         }
         return axisymmetric_twist::forces(
@@ -111,7 +112,7 @@ impl Geometry {
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn forces(
         &self,
-        mat: &crate::physics::material::VonMises,
+        mat: crate::physics::material::PointMaterials<'_>,
         thermal: &[f64],
         ue: &[f64],
         committed: &[crate::physics::material::PointState],

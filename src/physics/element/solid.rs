@@ -28,7 +28,7 @@
 use super::dofs::NodeDofs;
 use crate::physics::element::family::{Family, GaussRule, MAX_NODES};
 use crate::physics::element::Section;
-use crate::physics::material::{Plane, PointState, VonMises};
+use crate::physics::material::{Plane, PointMaterials, PointState, VonMises};
 use nalgebra::{Matrix3, Matrix4};
 
 pub(crate) use crate::physics::element::family::MAX_POINTS;
@@ -160,7 +160,7 @@ pub(crate) type ElementVector = [f64; NodeDofs::MAX_ELEMENT];
 #[allow(clippy::too_many_arguments)]
 pub fn forces(
     geom: &ElementGeometry,
-    mat: &VonMises,
+    mats: PointMaterials<'_>,
     thermal: &[f64],
     ue: &[f64],
     committed: &[PointState],
@@ -170,9 +170,9 @@ pub fn forces(
     fe: &mut [f64],
     ke: &mut [f64],
 ) -> Result<(), String> {
-    if mat.plane == Plane::Axisymmetric {
+    if mats.plane() == Plane::Axisymmetric {
         return axisymmetric_forces(
-            geom, mat, thermal, ue, committed, trial, response, tangent, fe, ke,
+            geom, mats, thermal, ue, committed, trial, response, tangent, fe, ke,
         );
     }
     fe.fill(0.0);
@@ -180,6 +180,7 @@ pub fn forces(
         ke.fill(0.0);
     }
     for ip in 0..geom.n {
+        let mat = mats.at(ip);
         let eps = geom.strain(ip, ue);
         let (state, c_alg) = match response {
             Response::Plastic => mat
@@ -300,7 +301,7 @@ fn add_btcb(d: &[[f64; 2]; MAX_NODES], nn: usize, c: &Matrix3<f64>, dv: f64, ke:
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn axisymmetric_forces(
     geom: &ElementGeometry,
-    mat: &VonMises,
+    mats: PointMaterials<'_>,
     thermal: &[f64],
     ue: &[f64],
     committed: &[PointState],
@@ -322,6 +323,7 @@ pub(crate) fn axisymmetric_forces(
                 "Gauss point {ip} at r = {r}: an axisymmetric element must lie at r ≥ 0"
             ));
         }
+        let mat = mats.at(ip);
         let eps = less_thermal(geom.strain_axisymmetric(ip, ue), thermal[ip]);
         let (state, c_alg) = match response {
             Response::Plastic => mat.update_axisymmetric(&committed[ip], &eps),

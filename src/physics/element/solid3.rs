@@ -13,7 +13,7 @@
 //! ```
 //! This is, slot for slot, the order (rr, zz, rz, θθ, rθ, zθ) of the
 //! six-component return mapping of the axisymmetric model with twist
-//! ([`VonMises::update_twist`]) under the relabelling x → r, y → z, z → θ,
+//! ([`VonMises::update_twist`](crate::physics::material::VonMises::update_twist)) under the relabelling x → r, y → z, z → θ,
 //! so that return is called unchanged, with no permutation. It is a general
 //! 3D J2 return: it takes the six strains (engineering shear) and returns
 //! the six stresses and tensor plastic strains, works on the strain tensor
@@ -24,7 +24,7 @@
 //! (x, y, z)) changes nothing; the tests check that a rotated strain gives
 //! the rotated stress, plastic strain and tangent, and that the elastic law
 //! is σ = λ tr ε 1 + 2G ε with γ = 2ε_ij. The same order makes a 3D state
-//! the twist model's [`PointState`] (packing, [`VonMises::equivalent_stress`]).
+//! the twist model's [`PointState`] (packing, [`VonMises::equivalent_stress`](crate::physics::material::VonMises::equivalent_stress)).
 //!
 //! # Element
 //!
@@ -60,7 +60,7 @@
 
 use super::gauss3::GaussRule3;
 use super::solid::{Response, Tangent};
-use crate::physics::material::{PointState, VonMises};
+use crate::physics::material::{PointMaterials, PointState};
 use nalgebra::Matrix6;
 
 pub(crate) use super::family3::{Family3, MAX_NODES3, MAX_POINTS3};
@@ -169,16 +169,16 @@ impl ElementGeometry3 {
 /// `ue`, `fe` hold 3 · nodes dofs (node-major, u_x, u_y, u_z), `ke` is
 /// row-major (3 · nodes)² (only that prefix of each slice is used), and
 /// `trial` receives the updated Gauss point states. [`Response::Plastic`]
-/// is the radial return ([`VonMises::update_twist`], Simo & Hughes box
+/// is the radial return ([`VonMises::update_twist`](crate::physics::material::VonMises::update_twist), Simo & Hughes box
 /// 3.2), [`Response::ElasticOnly`] the elastic law from the committed
 /// plastic strain; C is the algorithmic tangent of that update
 /// ([`Tangent::Consistent`]), the continuum C_ep at the committed state
 /// ([`Tangent::Continuum`], eq. 3.13) or D ([`Tangent::Elastic`]). Errors
 /// name a wrong slice length.
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn forces3(
+pub(crate) fn forces3<'m>(
     geom: &ElementGeometry3,
-    mat: &VonMises,
+    mats: impl Into<PointMaterials<'m>>,
     thermal: &[f64],
     ue: &[f64],
     committed: &[PointState],
@@ -207,11 +207,13 @@ pub(crate) fn forces3(
             trial.len()
         ));
     }
+    let mats = mats.into();
     fe[..ne].fill(0.0);
     if tangent.is_some() {
         ke[..ne * ne].fill(0.0);
     }
     for ip in 0..geom.n {
+        let mat = mats.at(ip);
         let eps = super::solid::less_thermal(geom.strain(ip, ue), thermal[ip]);
         let (state, c_alg) = match response {
             Response::Plastic => mat.update_twist(&committed[ip], &eps),
@@ -309,6 +311,7 @@ mod tests {
     use super::*;
     use crate::numbers::fd;
     use crate::physics::material::Plane;
+    use crate::physics::material::VonMises;
     use nalgebra::{DMatrix, DVector, Matrix3, SymmetricEigen, Vector6};
 
     const E: f64 = 200000.0;

@@ -128,6 +128,38 @@ pub struct VonMises {
     pub plane: Plane,
 }
 
+/// The material of each Gauss point of an element: one for all of them (a
+/// body at one temperature, or without tables of its properties), or one
+/// per point (a body whose E or σ_Y follow a temperature field:
+/// docs/theory.md, "Thermal strain"). A per-point slice holds a material
+/// for every point of the element.
+#[derive(Clone, Copy, Debug)]
+pub enum PointMaterials<'a> {
+    Uniform(&'a VonMises),
+    PerPoint(&'a [VonMises]),
+}
+
+impl<'a> PointMaterials<'a> {
+    /// Gauss point `ip`'s material.
+    pub fn at(self, ip: usize) -> &'a VonMises {
+        match self {
+            PointMaterials::Uniform(m) => m,
+            PointMaterials::PerPoint(m) => &m[ip],
+        }
+    }
+
+    /// The plane setting, one for every point.
+    pub fn plane(self) -> Plane {
+        self.at(0).plane
+    }
+}
+
+impl<'a> From<&'a VonMises> for PointMaterials<'a> {
+    fn from(m: &'a VonMises) -> Self {
+        PointMaterials::Uniform(m)
+    }
+}
+
 /// A return mapping that failed to converge.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ReturnMapError {

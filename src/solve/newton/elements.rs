@@ -154,7 +154,7 @@ fn element_batch(
     committed: GaussRef<'_>,
     trial: GaussMut<'_>,
     u: &[f64],
-    thermal: &crate::model::Conditions,
+    thermal: &crate::model::Conditions<'_>,
     response: Response,
     tangent: Option<Tangent>,
     fe: &mut [f64],
@@ -226,7 +226,7 @@ fn element_chunk(
     m: &Model,
     (ids, points, committed, mut trial): Work<'_>,
     u: &[f64],
-    thermal: &crate::model::Conditions,
+    thermal: &crate::model::Conditions<'_>,
     response: Response,
     tangent: Option<Tangent>,
     fe: &mut [f64],
@@ -238,6 +238,9 @@ fn element_chunk(
     // an element's committed and trial states, as the material computes them
     let mut c_buf = [PointState::default(); MAX_POINTS3];
     let mut t_buf = [PointState::default(); MAX_POINTS3];
+    // each point's material, where a temperature field varies it (filled
+    // only there: the uniform path takes the body's)
+    let mut m_buf = Vec::new();
     for (i, &e) in ids.iter().enumerate() {
         let e = e as usize;
         let el = &m.mesh.elements[e];
@@ -255,7 +258,7 @@ fn element_chunk(
         let geo = m.element_geometry(e);
         let th = thermal.point_thermal(el.body, &geo);
         let done = geo.forces(
-            &thermal.materials[el.body],
+            thermal.point_materials(el.body, &geo, &mut m_buf),
             &th,
             &ue[..ne],
             &c_buf[..np],

@@ -103,10 +103,11 @@ fn internal_energy(engine: &Engine, state: &State) -> f64 {
     let m = engine.model;
     let mut w = 0.0;
     for (e, local) in m.held_points(engine.held_elements()) {
-        let mat = &m.material_at(m.mesh.elements[e].body, state.time);
+        let mats = m.element_materials(e, state.time);
         let geo = m.element_geometry(e);
         let dv = geo.dv();
         for (ip, g) in state.gauss.range(local).iter().enumerate() {
+            let mat = mats.at(ip);
             let s = g.stress;
             let nu = mat.poisson;
             let elastic = (s[0] * s[0] + s[1] * s[1] + s[3] * s[3]
