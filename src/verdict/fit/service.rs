@@ -129,9 +129,9 @@ pub(crate) fn end(model: &Model, t: f64, fit: &Fit, (hub, shaft): (usize, usize)
             continue;
         };
         let change = bt.change * model.factor(bt.history, t);
-        if bt.profile.is_some() && change != 0.0 {
+        if bt.field.is_some() && change != 0.0 {
             words.push(format!(
-                "{what}: a temperature field, ΔT = {change} K × its profile"
+                "{what}: a temperature field, ΔT = {change} K × its field's factor"
             ));
             field = field.or(Some(what));
         } else {
