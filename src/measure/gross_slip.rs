@@ -9,6 +9,7 @@
 //! it first slips as a whole under the torque.
 
 use super::joint::JointMeasures;
+use crate::model::Model;
 
 /// The share of a joint's touching measure in macro-slip from which it
 /// slips as a whole (the rest is round-off of the status boundary).
@@ -39,6 +40,37 @@ impl Motion {
             Motion::Pushing => j.tangential_force.abs(),
         }
     }
+}
+
+/// Whether what interface `i` holds as it slides in `motion` is its
+/// capacity: the motion was imposed, some prescribed rotation about the
+/// axis (turning) or translation (pushing) of the model not zero, and,
+/// turning, no torque load acts on either of its bodies. A joint turned by
+/// a torque load holds that load as it creeps (its plateau would be the
+/// load, not what it can hold: the run ends at its `torque_limit`); one
+/// that slides with nothing imposing the motion (the hub of a heat
+/// assembly contracting along the shaft as it cools) holds the friction of
+/// that moment, not a capacity in service.
+pub fn imposed(model: &Model, i: usize, motion: Motion) -> bool {
+    let dofs = model.node_dofs();
+    let k = dofs.per_node();
+    let twist = |dof: usize| dofs.twist() && dof % k == 2;
+    let moved = (model.prescribed.iter())
+        .any(|&(d, v)| v != 0.0 && twist(d) == (motion == Motion::Turning));
+    if !moved {
+        return false;
+    }
+    if motion == Motion::Pushing {
+        return true;
+    }
+    let im = &model.interfaces[i];
+    let body_of = model.mesh.node_bodies();
+    let torqued = |b: usize| {
+        model.patterns().any(|(_, f)| {
+            (body_of.iter().enumerate()).any(|(n, &nb)| nb == b && f[n * k + 2] != 0.0)
+        })
+    };
+    !torqued(im.body_a) && !torqued(im.body_b)
 }
 
 /// Whether every point of the joint in contact is in macro-slip (to

@@ -695,6 +695,9 @@ pub fn plateaus(model: &Model, increments: &[super::Increment]) -> Vec<Event> {
             .filter_map(|inc| inc.joints.get(i))
             .collect();
         for motion in [Motion::Turning, Motion::Pushing] {
+            if !crate::measure::gross_slip::imposed(model, i, motion) {
+                continue;
+            }
             let held = crate::measure::gross_slip::held(&series, motion);
             let top = held.iter().map(|h| h.1).fold(0.0, f64::max);
             let on: Vec<usize> = held

@@ -318,8 +318,8 @@ fn slip_checks(
     let slip = spec.slip_safety.unwrap_or(1.5);
     let torque_demand = spec.torque.map(|t| k_a * t);
     let axial_demand = spec.axial_force.map(|f| k_a * f);
-    let held_torque = held(r, i, Motion::Turning);
-    let held_axial = held(r, i, Motion::Pushing);
+    let held_torque = held(model, r, i, Motion::Turning);
+    let held_axial = held(model, r, i, Motion::Pushing);
     let (turned, pushed) = (held_torque.is_some(), held_axial.is_some());
     let fe_torque = held_torque.or_else(|| p_fe.and_then(|p| fit.transmissible_torque(p)));
     let fe_axial = held_axial.or_else(|| p_fe.and_then(|p| fit.transmissible_axial_force(p)));
@@ -414,8 +414,13 @@ fn joining(model: &Model, fit: &Fit, hub: usize) -> Option<Input> {
 /// The largest load the fit held while it slid as a whole in `motion`
 /// (|T| turned, N·mm; |F_T| pushed, N), by the direction each increment
 /// moved ([`crate::measure::gross_slip`]): its holding plateau when the run
-/// reaches one; none when it never slid so.
-fn held(r: &Run, i: usize, motion: Motion) -> Option<f64> {
+/// reaches one; none when it never slid so, or slid without that motion
+/// imposed ([`crate::measure::gross_slip::imposed`]: a torque load, a
+/// thermal contraction: what it held then is no capacity).
+fn held(model: &Model, r: &Run, i: usize, motion: Motion) -> Option<f64> {
+    if !crate::measure::gross_slip::imposed(model, i, motion) {
+        return None;
+    }
     let series: Vec<_> = joint_series(r, i).map(|(_, j)| j).collect();
     crate::measure::gross_slip::held(&series, motion)
         .into_iter()
