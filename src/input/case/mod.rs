@@ -714,8 +714,9 @@ impl Case {
         if let Some(n) = &self.name {
             return n.clone();
         }
-        let folder = self
-            .source
+        // `asperity run .`: the folder's own name, not "."
+        let source = std::fs::canonicalize(&self.source).unwrap_or_else(|_| self.source.clone());
+        let folder = source
             .parent()
             .and_then(|p| p.file_name())
             .map(|s| s.to_string_lossy().into_owned());

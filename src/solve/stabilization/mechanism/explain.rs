@@ -107,7 +107,7 @@ impl Stabilizer {
             .map(|&i| model.interfaces[i].name.as_str())
             .collect();
         Some(format!(
-            "the torque on body \"{}\" at λ = {}{speed}, {:.6e} N·mm, is {how} the friction of interface \"{}\" can hold about the axis at the present contact pressures, Σ μ p_N r dA = {:.6e} N·mm, and nothing else holds the body about the axis: a torque at or past the slip torque has no equilibrium (prescribe a [[boundary]] rotation instead to turn the joint past slip)",
+            "the torque on body \"{}\" at λ = {}{speed}, {:.6e} N·mm, is {how} the friction of interface \"{}\" can hold about the axis at the present contact pressures, Σ μ p_N r dA = {:.6e} N·mm, and nothing else holds the body about the axis: past the slip torque there is no equilibrium, and within 2 % of it the last sticking points may not converge (prescribe a [[boundary]] rotation instead to turn the joint past slip)",
             model.mesh.bodies[limit.body],
             short(lambda),
             limit.applied,
