@@ -557,37 +557,9 @@ fn report_end(log: &Log, model: &Model, dir: &Path, r: &RunResult, wall: f64, ov
     let last = r.increments.last();
     let m = last.map(|i| i.measures).unwrap_or_default();
     let lambda = last.map_or(0.0, |i| i.load_factor);
-    let planned = solve::stepping::Stepper::planned(&model.solver, &model.breakpoints());
     let fy = r.first_yield.as_ref();
     if let Some(stop) = r.stopped.filter(|s| s.resumable()) {
-        let case = model.source.display().to_string();
-        log.always(
-            "stop",
-            json!({
-                "stopped_by": stop.name(),
-                "increments": r.increments.len(),
-                "planned": planned,
-                "load_factor": lambda,
-                "total_load_kn": m.total_load_kn,
-                "output": dir.display().to_string(),
-                "restart": dir.join(crate::files::restart::FILE).display().to_string(),
-                "exit_code": stop.exit_code(),
-            }),
-            || {
-                format!(
-                    "stopped by {} after increment {}/{} (λ = {:.4}, {:.3} kN): partial results in {}; continue with `asperity run {}{} --restart {}`",
-                    stop.name(),
-                    r.increments.len(),
-                    planned.map_or("auto".into(), |p| p.max(r.increments.len()).to_string()),
-                    lambda,
-                    m.total_load_kn,
-                    dir.display(),
-                    case,
-                    overrides,
-                    dir.display()
-                )
-            },
-        );
+        stop_end(log, model, dir, r, (stop, overrides));
         return;
     }
     log.progress(
@@ -654,6 +626,49 @@ fn report_end(log: &Log, model: &Model, dir: &Path, r: &RunResult, wall: f64, ov
     if let Some(stop) = r.stopped {
         limit_end(log, model, dir, r, stop);
     }
+}
+
+/// The `stop` event of a run stopped where it may be resumed (a signal,
+/// `--stop-after`): where its partial results are and how to continue.
+fn stop_end(
+    log: &Log,
+    model: &Model,
+    dir: &Path,
+    r: &RunResult,
+    (stop, overrides): (crate::interrupt::Stop, &str),
+) {
+    let last = r.increments.last();
+    let m = last.map(|i| i.measures).unwrap_or_default();
+    let lambda = last.map_or(0.0, |i| i.load_factor);
+    let planned = solve::stepping::Stepper::planned(&model.solver, &model.breakpoints());
+    let case = model.source.display().to_string();
+    log.always(
+        "stop",
+        json!({
+            "stopped_by": stop.name(),
+            "increments": r.increments.len(),
+            "planned": planned,
+            "load_factor": lambda,
+            "total_load_kn": m.total_load_kn,
+            "output": dir.display().to_string(),
+            "restart": dir.join(crate::files::restart::FILE).display().to_string(),
+            "exit_code": stop.exit_code(),
+        }),
+        || {
+            format!(
+                "stopped by {} after increment {}/{} (λ = {:.4}, {:.3} kN): partial results in {}; continue with `asperity run {}{} --restart {}`",
+                stop.name(),
+                r.increments.len(),
+                planned.map_or("auto".into(), |p| p.max(r.increments.len()).to_string()),
+                lambda,
+                m.total_load_kn,
+                dir.display(),
+                case,
+                overrides,
+                dir.display()
+            )
+        },
+    );
 }
 
 /// The `stop` event of a run that ended at its torque limit (not to be

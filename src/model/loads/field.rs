@@ -8,7 +8,6 @@
 
 use super::clip;
 use super::speed::radius;
-use super::thermal::interpolate;
 use crate::error::{Error, Result};
 use crate::input::case::expression::{Expression, Variable};
 use crate::input::case::TemperatureSpec;
@@ -381,4 +380,19 @@ fn checked_rows(rows: &[Vec<f64>], key: &str) -> Result<Vec<[f64; 2]>> {
         }
     }
     Ok(rows)
+}
+
+/// A table's value at t, linear between its rows (t within them: checked
+/// when the model is built; held at the ends otherwise): a profile along
+/// its coordinate, a property table at a temperature.
+pub(crate) fn interpolate(rows: &[[f64; 2]], t: f64) -> f64 {
+    let k = rows.partition_point(|r| r[0] <= t);
+    match k {
+        0 => rows[0][1],
+        k if k == rows.len() => rows[k - 1][1],
+        k => {
+            let ([t0, v0], [t1, v1]) = (rows[k - 1], rows[k]);
+            v0 + (v1 - v0) * (t - t0) / (t1 - t0)
+        }
+    }
 }

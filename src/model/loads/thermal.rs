@@ -4,6 +4,7 @@
 //! thermal strain α ΔT h(t) that its elements subtract from their normal
 //! strains (docs/theory.md, "Thermal strain").
 
+use super::field::interpolate;
 pub use super::field::{Coordinate, Field, Formula, Profile};
 use super::{clip, Resolver, Scaled};
 use crate::error::{Error, Result};
@@ -75,20 +76,6 @@ impl BodyTemperature {
 /// A table's rows (two numbers each: checked with the case) as pairs.
 fn pairs(rows: &[Vec<f64>]) -> Vec<[f64; 2]> {
     rows.iter().map(|r| [r[0], r[1]]).collect()
-}
-
-/// The table's value at t, linear between its rows (t within them: checked
-/// when the model is built; held at the ends otherwise).
-pub(crate) fn interpolate(rows: &[[f64; 2]], t: f64) -> f64 {
-    let k = rows.partition_point(|r| r[0] <= t);
-    match k {
-        0 => rows[0][1],
-        k if k == rows.len() => rows[k - 1][1],
-        k => {
-            let ([t0, v0], [t1, v1]) = (rows[k - 1], rows[k]);
-            v0 + (v1 - v0) * (t - t0) / (t1 - t0)
-        }
-    }
 }
 
 /// Every `[[temperature]]`: its body known, named once, its material with an
