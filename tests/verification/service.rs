@@ -32,7 +32,7 @@
 use crate::common;
 use asperity::model::Model;
 use asperity::physics::material::PointState;
-use asperity::solve::events::Kind;
+use asperity::solve::events::{Event, Kind};
 use asperity::solve::{Increment, Observer, RunResult, State};
 
 const B: f64 = 20.0;
@@ -429,6 +429,39 @@ fn a_heated_aluminium_hub_on_a_steel_shaft_opens_at_the_closed_form_temperature(
     assert!(common::rel(at, open_dt) < 1e-4, "{at} vs {open_dt}");
 }
 
+/// The fit of [`fit_case`] (plane strain, twisting) with friction
+/// μ = 0.15, its hub turned by a torque load `t` on its rim (the history
+/// `torque` among `histories`), the shaft held about the axis at its foot,
+/// and spun at `rpm` (the history `spin`) if given, run until it lets go:
+/// the model, the run and its `torque_limit` event (event tolerance 1e-7).
+fn torque_limit_run(t: f64, histories: &str, rpm: Option<f64>) -> (Model, RunResult, Event) {
+    let mut c = fit_case(true, true)
+        .tangential("fit", 0.9, 0.5, 0.05, 0.15)
+        .raw(&format!("[history]\n{histories}"))
+        .raw("[[boundary]]\nset = \"shaft.bottom\"\nrotation = 0.0")
+        .raw("[[load]]\nedges = \"hub.right\"")
+        .with("torque", t)
+        .history("torque");
+    if let Some(n) = rpm {
+        c = c.raw("[speed]").with("rpm", n).history("spin");
+    }
+    let text = c
+        .solver("increments = 20\nstep_control = \"fixed\"")
+        .raw("[output]")
+        .with("event_tolerance", 1e-7)
+        .with("vtu", false)
+        .build();
+    let model = common::model(&text);
+    let r = asperity::app::driver::solve(&model, &mut common::Quiet)
+        .unwrap_or_else(|e| panic!("the run ends at its torque limit, not in an error: {e}"));
+    assert_eq!(r.stopped, Some(asperity::interrupt::Stop::TorqueLimit));
+    let e = (r.events.iter())
+        .find(|e| e.kind == Kind::TorqueLimit)
+        .cloned()
+        .expect("a torque_limit event");
+    (model, r, e)
+}
+
 /// The fit of [`a_spinning_fit_loses_its_pressure_and_opens_at_the_closed_form_speed`]
 /// with friction (μ = 0.15), twisting: a torque T on the hub, then the speed
 /// raised under it. The hub is held about the axis by friction alone, so at
@@ -451,28 +484,11 @@ fn a_spinning_fit_under_a_torque_lets_go_at_the_closed_form_speed() {
     let slip_rpm = 1000.0 * ((p0 - hold) / (p0 - p1)).sqrt();
     let top = 1.3 * slip_rpm;
     eprintln!("closed form: p = {hold:.5} MPa holds T at {slip_rpm:.3} rpm");
-    let text = fit_case(true, true)
-        .tangential("fit", 0.9, 0.5, 0.05, MU)
-        .raw("[history]\ntorque = [[0, 0], [1, 1], [2, 1]]\nspin = [[0, 0], [1, 0], [2, 1]]")
-        .raw("[[boundary]]\nset = \"shaft.bottom\"\nrotation = 0.0")
-        .raw("[[load]]\nedges = \"hub.right\"")
-        .with("torque", T)
-        .history("torque")
-        .raw("[speed]")
-        .with("rpm", top)
-        .history("spin")
-        .solver("increments = 20\nstep_control = \"fixed\"")
-        .raw("[output]")
-        .with("event_tolerance", 1e-7)
-        .with("vtu", false)
-        .build();
-    let model = common::model(&text);
-    let r = asperity::app::driver::solve(&model, &mut common::Quiet)
-        .unwrap_or_else(|e| panic!("the run ends at its torque limit, not in an error: {e}"));
-    assert_eq!(r.stopped, Some(asperity::interrupt::Stop::TorqueLimit));
-    let e = (r.events.iter())
-        .find(|e| e.kind == Kind::TorqueLimit)
-        .expect("a torque_limit event");
+    let (model, r, e) = torque_limit_run(
+        T,
+        "torque = [[0, 0], [1, 1], [2, 1]]\nspin = [[0, 0], [1, 0], [2, 1]]",
+        Some(top),
+    );
     let at = model.rpm(e.load_factor).expect("a speed");
     let last = model.rpm(e.before).expect("a speed");
     eprintln!(
@@ -503,25 +519,7 @@ fn a_torque_past_what_friction_holds_ends_the_run_at_the_slip_torque() {
     )
     .2;
     let slip = MU * p * 2.0 * std::f64::consts::PI * B * B * L;
-    let text = fit_case(true, true)
-        .tangential("fit", 0.9, 0.5, 0.05, MU)
-        .raw("[history]\ntorque = [[0, 0], [1, 0], [2, 1.3]]")
-        .raw("[[boundary]]\nset = \"shaft.bottom\"\nrotation = 0.0")
-        .raw("[[load]]\nedges = \"hub.right\"")
-        .with("torque", slip)
-        .history("torque")
-        .solver("increments = 20\nstep_control = \"fixed\"")
-        .raw("[output]")
-        .with("event_tolerance", 1e-7)
-        .with("vtu", false)
-        .build();
-    let model = common::model(&text);
-    let r = asperity::app::driver::solve(&model, &mut common::Quiet)
-        .unwrap_or_else(|e| panic!("the run ends at its torque limit, not in an error: {e}"));
-    assert_eq!(r.stopped, Some(asperity::interrupt::Stop::TorqueLimit));
-    let e = (r.events.iter())
-        .find(|e| e.kind == Kind::TorqueLimit)
-        .expect("a torque_limit event");
+    let (_, _, e) = torque_limit_run(slip, "torque = [[0, 0], [1, 0], [2, 1.3]]", None);
     let held = e.values[4].abs();
     eprintln!(
         "slip torque {slip:.6e} N·mm (p = {p:.6} MPa); held {held:.6e} ({:+.2e}) at λ = {:.7}, none past {:.7}",
