@@ -71,7 +71,7 @@ pub enum Kind {
     /// never searched nor stored in a restart file.
     HoldingPlateau(Motion),
     /// Where a body held about the axis only by friction can no longer hold
-    /// the torque on it ([`super::limit`]): the run ends there; never
+    /// the torque on it (src/solve/limit.rs): the run ends there; never
     /// stored in a restart file (a resumed run finds it again).
     TorqueLimit,
 }
