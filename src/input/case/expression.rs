@@ -447,10 +447,11 @@ impl Parser<'_> {
         }
     }
 
-    /// One level deeper, refused past [`MAX_DEPTH`].
+    /// One level deeper, refused past [`MAX_DEPTH`] levels of nesting
+    /// (the expression itself is the level before the first).
     fn deeper(&mut self) -> Result<(), SyntaxError> {
         self.depth += 1;
-        if self.depth > MAX_DEPTH {
+        if self.depth > MAX_DEPTH + 1 {
             return Err(self.error(format!(
                 "nested deeper than {MAX_DEPTH} levels (parentheses, signs and powers)"
             )));

@@ -135,6 +135,12 @@ pub(super) fn read(
         let m = &case.materials[&t.body];
         let field = super::field::read(t, mesh, (body, section), &at)?;
         let peak = field.as_ref().map_or(1.0, |f| f.largest());
+        if peak == 0.0 {
+            return Err(Error::input(
+                format!("{at} field"),
+                "it is 0 over the whole body, so ΔT is 0 everywhere: give a field that is not zero somewhere, or leave the [[temperature]] out",
+            ));
+        }
         let label = match &field {
             Some(Field::Profile(_)) => {
                 format!("{at} change (× its profile's largest factor, {peak})")

@@ -119,6 +119,12 @@ fn depth_and_length_are_bounded() {
     let deep = format!("{}1{}", "(".repeat(200), ")".repeat(200));
     let e = Expression::parse(&deep).expect_err("deep");
     assert!(e.message.contains("nested deeper"), "{e}");
+    // 64 levels of nesting are the most, 65 too many
+    use super::MAX_DEPTH;
+    let nest = |n: usize| format!("{}1{}", "(".repeat(n), ")".repeat(n));
+    assert!(Expression::parse(&nest(MAX_DEPTH)).is_ok());
+    assert!(Expression::parse(&nest(MAX_DEPTH + 1)).is_err());
+    assert!(Expression::parse(&format!("{}1", "-".repeat(MAX_DEPTH))).is_ok());
     assert!(Expression::parse(&"-".repeat(100)).is_err());
     let long = format!("1{}", " + 1".repeat(300));
     let e = Expression::parse(&long).expect_err("long");
