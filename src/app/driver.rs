@@ -677,10 +677,8 @@ fn limit_end(log: &Log, model: &Model, dir: &Path, r: &RunResult, stop: crate::i
     let Some(e) = (r.events.iter()).find(|e| e.kind == solve::events::Kind::TorqueLimit) else {
         return;
     };
-    let body = model
-        .mesh
-        .bodies
-        .get(e.place[3] as usize)
+    let body = (e.body())
+        .and_then(|b| model.mesh.bodies.get(b))
         .cloned()
         .unwrap_or_default();
     let lambda = r.increments.last().map_or(0.0, |i| i.load_factor);

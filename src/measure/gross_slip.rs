@@ -53,8 +53,7 @@ impl Motion {
 /// that moment, not a capacity in service.
 pub fn imposed(model: &Model, i: usize, motion: Motion) -> bool {
     let dofs = model.node_dofs();
-    let k = dofs.per_node();
-    let twist = |dof: usize| dofs.twist() && dof % k == 2;
+    let twist = |dof: usize| dofs.twist() && dofs.node_of(dof).1 == 2;
     let moved = (model.prescribed.iter())
         .any(|&(d, v)| v != 0.0 && twist(d) == (motion == Motion::Turning));
     if !moved {
@@ -67,7 +66,7 @@ pub fn imposed(model: &Model, i: usize, motion: Motion) -> bool {
     let body_of = model.mesh.node_bodies();
     let torqued = |b: usize| {
         model.patterns().any(|(_, f)| {
-            (body_of.iter().enumerate()).any(|(n, &nb)| nb == b && f[n * k + 2] != 0.0)
+            (body_of.iter().enumerate()).any(|(n, &nb)| nb == b && f[dofs.dof(n, 2)] != 0.0)
         })
     };
     !torqued(im.body_a) && !torqued(im.body_b)

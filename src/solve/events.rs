@@ -39,6 +39,7 @@
 use super::{Checkpoint, Engine, State, StepFailure};
 use crate::error::Result;
 pub use crate::measure::gross_slip::Motion;
+use crate::measure::joint::JointMeasures;
 use crate::model::interface::InterfaceModel;
 use crate::model::Model;
 use crate::physics::contact::Status;
@@ -155,6 +156,12 @@ pub struct Event {
 }
 
 impl Event {
+    /// The body that lets go at a torque limit (its place's fourth value).
+    pub fn body(&self) -> Option<usize> {
+        let b = self.place[3];
+        (self.kind == Kind::TorqueLimit && b >= 0.0).then_some(b as usize)
+    }
+
     /// Its row in a restart file: `FIXED` values, then the record.
     pub fn pack(&self) -> Vec<f64> {
         let mut v = vec![
@@ -529,8 +536,11 @@ pub(super) fn search(
     for (i, im) in model.interfaces.iter().enumerate() {
         // an interface that carried a force at some increment has been in
         // contact: its closing again is no first contact
-        let touched = (ck.increments.iter())
-            .any(|inc| inc.joints.get(i).is_some_and(|j| j.normal_force != 0.0));
+        // (once its first contact is found it has, and the increments need
+        // not be read again)
+        let touched = found(&ck.events, Kind::FirstContact, Some(i))
+            || (ck.increments.iter())
+                .any(|inc| inc.joints.get(i).is_some_and(|j| j.normal_force != 0.0));
         for kind in [
             Kind::FirstContact,
             Kind::FirstOpening,
@@ -633,16 +643,7 @@ fn bisect(
     }
     let i = m.interface;
     let meas = engine.measures(&sb);
-    let joint = crate::measure::joint::measures(
-        &model.interfaces[i..=i],
-        model.section,
-        sb.time,
-        &sb.u,
-        &sb.status[m.base..m.base + model.interfaces[i].points.len()],
-        &sb.contact[m.base..m.base + model.interfaces[i].points.len()],
-        &[],
-    );
-    let j = joint.first().copied().unwrap_or_default();
+    let j = joint_in(model, &sb, i);
     Ok(Ok(Event {
         kind: m.kind,
         interface: Some(i),
@@ -663,6 +664,23 @@ fn bisect(
         ],
         record: engine.record(&sb),
     }))
+}
+
+/// Interface `i`'s joint measures (forces, torque, status shares) in a
+/// state.
+pub(super) fn joint_in(model: &Model, state: &State, i: usize) -> JointMeasures {
+    let base: usize = model.interfaces[..i].iter().map(|im| im.points.len()).sum();
+    let points = base..base + model.interfaces[i].points.len();
+    let joint = crate::measure::joint::measures(
+        &model.interfaces[i..=i],
+        model.section,
+        state.time,
+        &state.u,
+        &state.status[points.clone()],
+        &state.contact[points],
+        &[],
+    );
+    joint.first().copied().unwrap_or_default()
 }
 
 /// Within this share of its largest value a joint's held load is on its

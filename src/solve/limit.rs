@@ -76,25 +76,11 @@ pub(super) fn locate(engine: &mut Engine, ck: &Checkpoint, target: f64) -> Resul
     engine.stats.event_iterations += engine.stats.iterations - before;
     // the body's clamp: the normal forces of all its interfaces with
     // friction; the torque on it, which they hold between them
-    let mut normal = 0.0;
-    for &i in &limit.interfaces {
-        let base: usize = model.interfaces[..i].iter().map(|im| im.points.len()).sum();
-        let n = model.interfaces[i].points.len();
-        let joint = crate::measure::joint::measures(
-            &model.interfaces[i..=i],
-            model.section,
-            held.time,
-            &held.u,
-            &held.status[base..base + n],
-            &held.contact[base..base + n],
-            &[],
-        );
-        normal += joint.first().map_or(0.0, |j| j.normal_force);
-    }
-    let torque = engine
-        .stabilizer
-        .as_ref()
-        .map_or(f64::NAN, |st| st.applied_torque(model, limit.body, a));
+    let normal: f64 = (limit.interfaces.iter())
+        .map(|&i| super::events::joint_in(model, &held, i).normal_force)
+        .sum();
+    let st = engine.stabilizer.as_ref().expect("it named the limit");
+    let torque = st.applied_torque(model, limit.body, a);
     let meas = engine.measures(&held);
     Ok(Some(Limited::At(Event {
         kind: Kind::TorqueLimit,

@@ -217,8 +217,9 @@ fn run(g: &Gold) -> Result<(Value, String), String> {
     // 3: stopped by --stop-after with the converged increments written;
     // 4: ended at a torque limit, which summary.json says (a case's gold
     // values hold its `stopped_by`)
-    let text = std::fs::read_to_string(out.join("summary.json")).unwrap_or_default();
-    let limited = text.contains("\"stopped_by\": \"torque_limit\"");
+    let written = std::fs::read_to_string(out.join("summary.json")).unwrap_or_default();
+    let limited =
+        serde_json::from_str::<Value>(&written).is_ok_and(|s| s["stopped_by"] == "torque_limit");
     let want_code = match (g.prefix.is_string(), limited) {
         (true, _) => 3,
         (false, true) => 4,

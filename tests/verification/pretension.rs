@@ -165,17 +165,26 @@ history = "service""#
     assert!(common::rel(force, f) < 1e-9, "unlocked: {force}");
 }
 
-/// A solid rod of revolution, radius R, length 2L₀, held in z at both
-/// ends, cut at mid-length: uniaxial σ_zz = F/(πR²), shortening F 2L₀/(EπR²)
-/// (the cut's node on the axis has u_r = 0 on both sides).
-#[test]
-fn a_rod_of_revolution_cut_across_its_axis() {
-    let (r0, l0, f) = (6.0, 20.0, 30_000.0);
+/// The rod of revolution of the two tests below: radius `r0`, length
+/// 2`l0`, held in z at both ends, cut at mid-length by a section of force
+/// `f`; with `torque`, twisting, held about the axis at its bottom and
+/// turned by the torque on its top. Solved: the model, the run, and the
+/// section's force and shortening checked against the uniaxial rod's
+/// (F, F 2L₀/(EπR²)).
+fn cut_rod(r0: f64, l0: f64, f: f64, torque: Option<f64>) -> (Model, RunResult, Vec<State>) {
+    let (twist, held, load) = match torque {
+        Some(t) => (
+            "twist = true\n",
+            "rotation = 0.0\n",
+            format!("[[load]]\nedges = \"rod.top\"\ntorque = {t}\n"),
+        ),
+        None => ("", "", String::new()),
+    };
     let text = format!(
         r#"
 [model]
 plane = "axisymmetric"
-[[mesh.block]]
+{twist}[[mesh.block]]
 body = "rod"
 x = [0.0, {r0}]
 nx = [3]
@@ -187,10 +196,10 @@ poisson = 0.3
 [[boundary]]
 set = "rod.bottom"
 uy = 0.0
-[[boundary]]
+{held}[[boundary]]
 set = "rod.top"
 uy = 0.0
-[[pretension]]
+{load}[[pretension]]
 name = "shank"
 body = "rod"
 y = {l0}
@@ -209,6 +218,17 @@ vtu_every = 1000
         common::rel(s, f * 2.0 * l0 / (E * a)) < 1e-9,
         "shortening {s}"
     );
+    (model, r, states)
+}
+
+/// A solid rod of revolution, radius R, length 2L₀, held in z at both
+/// ends, cut at mid-length: uniaxial σ_zz = F/(πR²), shortening F 2L₀/(EπR²)
+/// (the cut's node on the axis has u_r = 0 on both sides).
+#[test]
+fn a_rod_of_revolution_cut_across_its_axis() {
+    let (r0, l0, f) = (6.0, 20.0, 30_000.0);
+    let (_, _, states) = cut_rod(r0, l0, f, None);
+    let a = std::f64::consts::PI * r0 * r0;
     for g in &states.last().unwrap().gauss {
         // axisymmetric stress order: rr, zz, rz, θθ
         assert!(
@@ -229,51 +249,10 @@ vtu_every = 1000
 #[test]
 fn a_twisted_rod_of_revolution_cut_across_its_axis_twists_as_the_uncut_rod() {
     let (r0, l0, f, t) = (6.0, 20.0, 30_000.0, 2.0e5);
-    let text = format!(
-        r#"
-[model]
-plane = "axisymmetric"
-twist = true
-[[mesh.block]]
-body = "rod"
-x = [0.0, {r0}]
-nx = [3]
-y = [0.0, {l0}, {}]
-ny = [4, 4]
-[materials.rod]
-young = {E}
-poisson = 0.3
-[[boundary]]
-set = "rod.bottom"
-uy = 0.0
-rotation = 0.0
-[[boundary]]
-set = "rod.top"
-uy = 0.0
-[[load]]
-edges = "rod.top"
-torque = {t}
-[[pretension]]
-name = "shank"
-body = "rod"
-y = {l0}
-force = {f}
-[output]
-vtu_every = 1000
-"#,
-        2.0 * l0
-    );
-    let model = common::model(&text);
-    let (r, states) = solve(&model);
-    let [force, s] = r.increments.last().unwrap().sections[0];
+    let (model, _, states) = cut_rod(r0, l0, f, Some(t));
     let a = std::f64::consts::PI * r0 * r0;
     let j = std::f64::consts::PI * r0.powi(4) / 2.0;
     let g = E / 2.6;
-    assert!(common::rel(force, f) < 1e-10, "force {force}");
-    assert!(
-        common::rel(s, f * 2.0 * l0 / (E * a)) < 1e-9,
-        "shortening {s}"
-    );
     let last = states.last().unwrap();
     let nd = model.node_dofs();
     let scale = t * r0 * 2.0 * l0 / (g * j);

@@ -583,37 +583,27 @@ fn a_hub_heated_for_assembly_grips_as_it_cools_to_the_closed_form_pressure() {
     assert!(common::rel(end, p) < 1e-4, "{end} vs {p}");
     // the run starts from a hub not yet expanded: no event at λ ≈ 0; heated
     // again (t > 1), the fit opens where it gripped (elastic, frictionless)
-    let open = (r.events.iter())
-        .find(|e| e.kind == Kind::FirstOpening)
-        .expect("the fit opens when the hub is heated again");
-    let reopen = 1.0 + close_dt / HOT;
-    eprintln!(
-        "opens again at t = {:.7} (closed form {reopen:.7})",
-        open.load_factor
-    );
-    assert!(
-        (open.load_factor - reopen).abs() < 1e-6,
-        "{} vs {reopen}",
-        open.load_factor
-    );
+    located(&r, Kind::FirstOpening, 1.0 + close_dt / HOT, "opens again");
     // it grips as it cools: its first contact where the bore's free growth
     // is the interference, the only event before t = 1
-    let grip = (r.events.iter())
-        .find(|e| e.kind == Kind::FirstContact)
-        .expect("the hub grips the shaft as it cools");
-    eprintln!(
-        "grips at t = {:.7} (closed form {t_close:.7})",
-        grip.load_factor
-    );
-    assert!(
-        (grip.load_factor - t_close).abs() < 1e-6,
-        "{} vs {t_close}",
-        grip.load_factor
-    );
+    located(&r, Kind::FirstContact, t_close, "grips");
     assert!(
         (r.events.iter()).all(|e| e.load_factor > 1.0 || e.kind == Kind::FirstContact),
         "{:?}",
         r.events
+    );
+}
+
+/// The event `kind` of a run at the pseudo-time `want` (1e-6), printed.
+fn located(r: &RunResult, kind: Kind, want: f64, what: &str) {
+    let e = (r.events.iter())
+        .find(|e| e.kind == kind)
+        .unwrap_or_else(|| panic!("no {} event: {:?}", kind.name(), r.events));
+    eprintln!("{what} at t = {:.7} (closed form {want:.7})", e.load_factor);
+    assert!(
+        (e.load_factor - want).abs() < 1e-6,
+        "{what}: {} vs {want}",
+        e.load_factor
     );
 }
 
@@ -650,15 +640,7 @@ fn the_shipped_hub_in_service_follows_its_hand_check() {
         }
     }
     // the event says where it grips (event_tolerance 1e-6)
-    let grip = (r.events.iter())
-        .find(|e| e.kind == Kind::FirstContact)
-        .expect("the hub grips as it cools");
-    eprintln!(
-        "grips at t = {:.6} (hand {t_close:.6}): ΔT_hub = {:.3} K",
-        grip.load_factor,
-        150.0 * (1.0 - grip.load_factor)
-    );
-    assert!((grip.load_factor - t_close).abs() < 2e-6);
+    located(&r, Kind::FirstContact, t_close, "grips");
     for (t, dt, rpm) in [(1.0, 0.0, 0.0), (2.0, 60.0, 0.0), (3.0, 60.0, 6000.0)] {
         let fe = pressures.iter().find(|x| x.0 == t).unwrap().1;
         let hand = p(dt, rpm);

@@ -33,7 +33,8 @@ fn shipped() -> Vec<String> {
         // gold values say it ends so
         .filter(|p| {
             let gold = std::fs::read_to_string(p.join("expected.json")).unwrap_or_default();
-            !gold.contains("\"stopped_by\": \"torque_limit\"")
+            serde_json::from_str::<Value>(&gold)
+                .map_or(true, |g| g["checked"]["stopped_by"] != "torque_limit")
         })
         .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
         .collect();

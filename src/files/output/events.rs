@@ -93,12 +93,9 @@ pub(crate) fn event_json(model: &Model, e: &Event) -> Value {
     } else {
         o["element"] = Value::Null;
         // the body that can no longer hold its torque
-        o["body"] = match (e.kind, e.place[3]) {
-            (Kind::TorqueLimit, b) if b >= 0.0 && (b as usize) < model.mesh.bodies.len() => {
-                json!(model.mesh.bodies[b as usize])
-            }
-            _ => Value::Null,
-        };
+        o["body"] = (e.body())
+            .and_then(|b| model.mesh.bodies.get(b))
+            .map_or(Value::Null, |b| json!(b));
     }
     o
 }
@@ -165,7 +162,9 @@ pub fn line(model: &Model, e: &Event) -> String {
     let torque = torque(model, e).map_or(String::new(), |t| format!(", T {t:.4e} N·m"));
     let speed = (model.rpm(e.load_factor)).map_or(String::new(), |n| format!(" at {n:.6e} rpm"));
     if e.kind == Kind::TorqueLimit {
-        let body = (model.mesh.bodies.get(e.place[3] as usize)).map_or("", String::as_str);
+        let body = (e.body())
+            .and_then(|b| model.mesh.bodies.get(b))
+            .map_or("", String::as_str);
         return format!(
             "torque limit of body {body} (held by {}): λ = {:.6}{speed} (bracket {:.6} … {:.6}{}); at the last state that held: ΣF_N {:.4e} N{torque}",
             iface.trim_start_matches(" of "),
