@@ -348,7 +348,7 @@ pub fn measures(
                 status: status[base + j],
                 hoop: radii
                     .as_ref()
-                    .map(|r| [r[j], im.point_hoop_slip(pt, u), contact[base + j].p_h]),
+                    .map(|r| [r[j], im.point_second_slip(pt, u), contact[base + j].p_h]),
             }
         });
         let tot = totals.get(i).copied().unwrap_or_default();

@@ -114,7 +114,7 @@ fn straight_normal(im: &InterfaceModel, axisymmetric: bool) -> Option<[f64; 2]> 
     if !im.points.iter().all(same) || (axisymmetric && n[0].abs() > 1e-9) {
         return None;
     }
-    Some(n)
+    Some([n[0], n[1]])
 }
 
 /// A body of interface `im` that nothing but `im` holds in the dof

@@ -868,11 +868,11 @@ impl Model {
     /// a load.
     pub(crate) fn applied_pressure(&self, i: usize, t: f64) -> f64 {
         let im = &self.interfaces[i];
-        let n = im.pairs.first().map_or([0.0, 1.0], |p| p.normal);
-        let nd = self.mesh.node_dofs;
+        let n = im.pairs.first().map_or([0.0, 1.0, 0.0], |p| p.normal);
+        let (nd, dim) = (self.mesh.node_dofs, self.mesh.dim());
         let normal = |f: &[f64]| -> f64 {
             (0..self.mesh.nodes.len())
-                .map(|i| f[nd.dof(i, 0)] * n[0] + f[nd.dof(i, 1)] * n[1])
+                .map(|i| (0..dim).map(|c| f[nd.dof(i, c)] * n[c]).sum::<f64>())
                 .sum()
         };
         if self.histories.is_empty() {

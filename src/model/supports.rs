@@ -18,7 +18,7 @@ pub(super) fn check_supports(
     place: &str,
 ) -> Result<()> {
     if mesh.dim() == 3 {
-        return check_solid_supports(mesh, prescribed, place);
+        return check_solid_supports(mesh, prescribed, interfaces, place);
     }
     // a body of revolution cannot move rigidly in r: u_r = c strains it by c/r
     // in the hoop direction (and nodes on the axis are held by u_r = 0)
@@ -35,7 +35,7 @@ pub(super) fn check_supports(
     loop {
         let mut changed = false;
         for im in interfaces {
-            let n = im.pairs.first().map_or([0.0, 1.0], |p| p.normal);
+            let n = im.pairs.first().map_or([0.0, 1.0, 0.0], |p| p.normal);
             let normal = usize::from(n[1].abs() >= n[0].abs());
             // springs carry the normal direction, and with friction the tangential one too
             let dirs: &[usize] = if im.tangential.is_some() {
@@ -111,8 +111,15 @@ pub(super) fn check_supports(
 /// of its prescribed dofs span R⁶ (RᵀR, 6 × 6, has no eigenvalue below
 /// 1e-10 of the largest); an eigenvector of a smaller one is a motion they
 /// leave free, and is named: a translation, a rotation about an axis
-/// through the centroid, or both.
-fn check_solid_supports(mesh: &Mesh, prescribed: &[(usize, f64)], place: &str) -> Result<()> {
+/// through the centroid, or both. An interface to a body that is held adds
+/// its pairs' rows along the normal (and the tangent plane's two
+/// directions with a tangential law), as the springs would once closed.
+fn check_solid_supports(
+    mesh: &Mesh,
+    prescribed: &[(usize, f64)],
+    interfaces: &[InterfaceModel],
+    place: &str,
+) -> Result<()> {
     let node_body = mesh.node_bodies();
     let nb = mesh.bodies.len();
     let mut centre = vec![[0.0; 3]; nb];
@@ -128,36 +135,72 @@ fn check_solid_supports(mesh: &Mesh, prescribed: &[(usize, f64)], place: &str) -
         }
         count[b] += 1;
     }
+    for (c, k) in centre.iter_mut().zip(&count) {
+        *c = c.map(|v| v / (*k).max(1) as f64);
+    }
+    let size: Vec<f64> = (0..nb)
+        .map(|b| {
+            (0..3)
+                .map(|k| (hi[b][k] - lo[b][k]).powi(2))
+                .sum::<f64>()
+                .sqrt()
+        })
+        .collect();
+    let row = |b: usize, x: [f64; 3], e: [f64; 3]| {
+        let r: [f64; 3] = std::array::from_fn(|k| (x[k] - centre[b][k]) / size[b]);
+        let w = crate::numbers::vec3::cross(r, e);
+        let row = nalgebra::Vector6::new(e[0], e[1], e[2], w[0], w[1], w[2]);
+        row * row.transpose()
+    };
     let mut rtr = vec![nalgebra::Matrix6::<f64>::zeros(); nb];
     for &(d, _) in prescribed.iter().filter(|p| p.0 < mesh.num_dofs()) {
         let (n, c) = mesh.node_dofs.node_of(d);
-        let b = node_body[n];
-        let size = (0..3)
-            .map(|k| (hi[b][k] - lo[b][k]).powi(2))
-            .sum::<f64>()
-            .sqrt();
-        let r: [f64; 3] =
-            std::array::from_fn(|k| (mesh.nodes[n][k] - centre[b][k] / count[b] as f64) / size);
         let mut e = [0.0; 3];
         e[c] = 1.0;
-        let w = crate::numbers::vec3::cross(r, e);
-        let row = nalgebra::Vector6::new(e[0], e[1], e[2], w[0], w[1], w[2]);
-        rtr[b] += row * row.transpose();
+        rtr[node_body[n]] += row(node_body[n], mesh.nodes[n], e);
     }
-    for (b, m) in rtr.iter().enumerate() {
+    let free = |m: &nalgebra::Matrix6<f64>| {
         let eig = m.symmetric_eigen();
         let largest = eig.eigenvalues.max().max(1.0);
-        let Some(k) = (0..6).find(|&k| eig.eigenvalues[k] < 1e-10 * largest) else {
+        (0..6)
+            .find(|&k| eig.eigenvalues[k] < 1e-10 * largest)
+            .map(|k| eig.eigenvectors.column(k).into_owned())
+    };
+    let mut held: Vec<bool> = rtr.iter().map(|m| free(m).is_none()).collect();
+    loop {
+        let mut changed = false;
+        for im in interfaces {
+            let (a, b) = (im.body_a, im.body_b);
+            if held[a] == held[b] {
+                continue;
+            }
+            let (loose, node) = if held[a] { (b, 1) } else { (a, 0) };
+            for pr in &im.pairs {
+                let x = mesh.nodes[if node == 0 { pr.a } else { pr.b }];
+                rtr[loose] += row(loose, x, pr.normal);
+                if im.tangential.is_some() {
+                    let t = crate::model::interface::frame(pr.normal);
+                    rtr[loose] += row(loose, x, t);
+                    rtr[loose] += row(loose, x, crate::numbers::vec3::cross(pr.normal, t));
+                }
+            }
+            held[loose] = free(&rtr[loose]).is_none();
+            changed |= held[loose];
+        }
+        if !changed {
+            break;
+        }
+    }
+    for (b, m) in rtr.iter().enumerate() {
+        let Some(v) = free(m) else {
             continue;
         };
-        let v = eig.eigenvectors.column(k);
-        let c: [f64; 3] = std::array::from_fn(|k| centre[b][k] / count[b] as f64);
         return Err(Error::input(
             place,
             format!(
-                "body \"{}\" is held by nothing against {} (a rigid-body motion: a 3D body needs its six held by [[boundary]] ux, uy, uz); hold it, e.g. fix a corner, or give symmetry planes",
+                "body \"{}\" is held by nothing against {} (a rigid-body motion: a 3D body needs its six held by [[boundary]] ux, uy, uz, or through an interface to a body that is held); hold it, e.g. fix a corner, or give symmetry planes",
                 mesh.bodies[b],
-                motion([v[0], v[1], v[2]], [v[3], v[4], v[5]], c)
+                motion([v[0], v[1], v[2]], [v[3], v[4], v[5]], centre[b])
             ),
         ));
     }

@@ -381,7 +381,7 @@ fn swapped_gmsh_curves_make_the_coarser_side_the_slave_and_still_carry_the_load(
         let (model, r) = run(&name, &text);
         let im = &model.interfaces[0];
         assert_eq!(model.mesh.bodies[im.body_a], "lower");
-        assert!(im.points.iter().all(|pt| pt.normal == [0.0, -1.0]));
+        assert!(im.points.iter().all(|pt| pt.normal == [0.0, -1.0, 0.0]));
         let p = pressures(im, &r.final_state);
         let force: f64 = p.iter().map(|(pn, a)| pn * a).sum();
         let dev = p.iter().fold(0.0f64, |a, q| a.max((q.0 - 100.0).abs()));
@@ -506,7 +506,7 @@ fn a_slave_point_facing_the_node_between_two_rounding_edges_is_accepted() {
             .points
             .iter()
             .zip(&im.pairs)
-            .find(|(_, pr)| pr.x == [20.0, 0.0])
+            .find(|(_, pr)| pr.x == [20.0, 0.0, 0.0])
             .map(|(pt, _)| pt)
             .expect("a spring at the punch corner");
         let g = segment_of(corner);

@@ -466,7 +466,7 @@ pub fn interface_csv(model: &Model, state: &State) -> String {
                 let u_h = if lumped && im.tangential.is_some() {
                     c.u_h
                 } else {
-                    im.pair_hoop_slip(pr, &state.u)
+                    im.pair_second_slip(pr, &state.u)
                 };
                 let _ = write!(s, ",{:.9e},{:.9e},{:.9e}", c.p_h, u_h, c.slip2.u_p[1]);
             }

@@ -103,18 +103,6 @@ fn check_solid(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
     if case.mesh.refine_region.is_some() {
         return not_yet(at("[mesh] refine_region"), "local refinement");
     }
-    if let Some(i) = case.mesh.interface.first() {
-        return not_yet(
-            at(&format!("[[mesh.interface]] \"{}\"", clip(&i.name))),
-            "a contact interface",
-        );
-    }
-    if let Some(name) = case.interface.keys().next() {
-        return not_yet(
-            at(&format!("[interface.{}]", clip(name))),
-            "a contact interface",
-        );
-    }
     if let Some(p) = case.pretension.first() {
         return not_yet(
             at(&format!("[[pretension]] \"{}\"", clip(&p.name))),

@@ -469,6 +469,7 @@ fn pair_blocks(mesh: &Mesh, grids: &[Grid], spec: &InterfaceSpec) -> Result<Inte
             body_b,
             edges: Vec::new(),
             nonmatching: Some(nonmatching_sides(mesh, &spec.name, &f)?),
+            ..Default::default()
         });
     }
     Ok(Interface {
@@ -477,6 +478,7 @@ fn pair_blocks(mesh: &Mesh, grids: &[Grid], spec: &InterfaceSpec) -> Result<Inte
         body_b,
         edges: match_sides(mesh, &spec.name, &f)?,
         nonmatching: None,
+        ..Default::default()
     })
 }
 

@@ -23,7 +23,7 @@
 //! A revolution about the y axis is the same sweep with z read as the angle
 //! ([`super::revolve`]).
 
-use super::{Element, Face, Family, Mesh, MeshError};
+use super::{ContactFace, Element, Face, Family, Interface, Mesh, MeshError, NonMatchingFaces};
 use std::collections::BTreeMap;
 
 /// The layout `plane` swept through the z levels `zs` (the layer planes,
@@ -40,12 +40,6 @@ pub(super) fn sweep(plane: &Mesh, zs: &[f64], ends: [&str; 2]) -> Result<Mesh, M
             "a sweep (extrude, revolve) takes 8-node quads; the layout has a {}",
             el.family.name()
         )));
-    }
-    if !plane.interfaces.is_empty() {
-        return Err(MeshError(
-            "a sweep (extrude, revolve): a 3D model has no interfaces yet ([[mesh.interface]])"
-                .into(),
-        ));
     }
     let layers = zs.len() - 1;
     let levels: Vec<f64> = (0..=2 * layers)
@@ -103,28 +97,82 @@ pub(super) fn sweep(plane: &Mesh, zs: &[f64], ends: [&str; 2]) -> Result<Mesh, M
     for (name, edges) in &plane.edge_sets {
         let faces = edges
             .iter()
-            .flat_map(|&[a, mid, e]| {
-                let copy = &copy;
-                (0..layers).map(move |j| {
-                    let (b, m, t) = (2 * j, 2 * j + 1, 2 * j + 2);
-                    let nodes = [
-                        copy[a][b],
-                        copy[e][b],
-                        copy[e][t],
-                        copy[a][t],
-                        copy[mid][b],
-                        copy[e][m],
-                        copy[mid][t],
-                        copy[a][m],
-                    ];
-                    Face::new(Family::Q8, &nodes)
-                })
-            })
+            .flat_map(|edge| (0..layers).map(|j| swept_face(&copy, edge, j)))
             .collect();
         mesh.face_sets.insert(name.clone(), faces);
     }
+    mesh.interfaces = plane
+        .interfaces
+        .iter()
+        .map(|i| swept_interface(&copy, layers, i))
+        .collect();
     add_end_sets(plane, &copy, ends, &mut mesh);
     Ok(mesh)
+}
+
+/// The face edge [a, mid, e] of the layout sweeps through layer j: an
+/// 8-node quad walked counter-clockwise seen from the edge's right (the
+/// edge walked, then up: (e − a) × e_z, the outward normal of a body on
+/// the edge's left).
+fn swept_face(copy: &[Vec<usize>], &[a, mid, e]: &[usize; 3], j: usize) -> Face {
+    let (b, m, t) = (2 * j, 2 * j + 1, 2 * j + 2);
+    let nodes = [
+        copy[a][b],
+        copy[e][b],
+        copy[e][t],
+        copy[a][t],
+        copy[mid][b],
+        copy[e][m],
+        copy[mid][t],
+        copy[a][m],
+    ];
+    Face::new(Family::Q8, &nodes)
+}
+
+/// The edge swept through layer j as a face of an interface: walked the
+/// other way round, so that ∂x/∂ξ × ∂x/∂η points to the edge's left (a
+/// contact edge has A on its left: the normal from B into A).
+fn interface_face(copy: &[Vec<usize>], edge: &[usize; 3], j: usize) -> Face {
+    let face = swept_face(copy, edge, j);
+    let nodes: Vec<usize> = Family::Q8
+        .reversed()
+        .iter()
+        .map(|&k| face.nodes()[k])
+        .collect();
+    Face::new(Family::Q8, &nodes)
+}
+
+/// A layout interface swept through every layer: its contact edges into
+/// contact faces (node i of A's face paired with node i of B's), a
+/// non-matching one's slave and master edges into slave and master faces.
+fn swept_interface(copy: &[Vec<usize>], layers: usize, plane: &Interface) -> Interface {
+    let sweep = |edges: &[[usize; 3]]| -> Vec<Face> {
+        edges
+            .iter()
+            .flat_map(|e| (0..layers).map(move |j| interface_face(copy, e, j)))
+            .collect()
+    };
+    let faces = plane
+        .edges
+        .iter()
+        .flat_map(|e| {
+            (0..layers).map(move |j| ContactFace {
+                a: interface_face(copy, &e.a, j),
+                b: interface_face(copy, &e.b, j),
+            })
+        })
+        .collect();
+    Interface {
+        name: plane.name.clone(),
+        body_a: plane.body_a,
+        body_b: plane.body_b,
+        faces,
+        nonmatching_faces: plane.nonmatching.as_ref().map(|nm| NonMatchingFaces {
+            slave: sweep(&nm.slave),
+            master: sweep(&nm.master),
+        }),
+        ..Default::default()
+    }
 }
 
 /// `<name>.<ends[0]>` and `<name>.<ends[1]>` (`zmin`, `zmax` of a sweep

@@ -116,17 +116,54 @@ pub struct ContactEdge {
     pub b: [usize; 3],
 }
 
+/// One contact face of a 3D interface: a face of body A and the facing
+/// face of body B (8-node quadrilaterals or 6-node triangles), node i of
+/// one paired with node i of the other (coincident), both numbered so that
+/// ∂x/∂ξ × ∂x/∂η points from B into A.
 #[derive(Clone, Debug)]
+pub struct ContactFace {
+    pub a: Face,
+    pub b: Face,
+}
+
+#[derive(Clone, Debug, Default)]
 pub struct Interface {
     pub name: String,
     pub body_a: usize,
     pub body_b: usize,
-    /// Coincident node pairs (a matching interface); empty when the sides
-    /// are meshed apart ([`Interface::nonmatching`]).
+    /// Coincident node pairs (a matching interface of a plane model); empty
+    /// when the sides are meshed apart ([`Interface::nonmatching`]) or in 3D.
     pub edges: Vec<ContactEdge>,
     /// A non-matching interface (`matching = false`): the two sides' edges,
     /// node-to-segment springs instead of node pairs ([`crate::model::interface`]).
     pub nonmatching: Option<NonMatching>,
+    /// A 3D interface: its coincident faces (matching); empty when the
+    /// sides are meshed apart ([`Interface::nonmatching_faces`]).
+    pub faces: Vec<ContactFace>,
+    /// A 3D interface meshed apart: the slave faces (body A) and the master
+    /// faces (body B), node-to-surface springs.
+    pub nonmatching_faces: Option<NonMatchingFaces>,
+}
+
+/// The two sides of a 3D non-matching interface: faces of body A (slave,
+/// where the spring points live) and of body B (master, onto which they are
+/// projected), each numbered so that ∂x/∂ξ × ∂x/∂η points from B into A.
+#[derive(Clone, Debug)]
+pub struct NonMatchingFaces {
+    pub slave: Vec<Face>,
+    pub master: Vec<Face>,
+}
+
+impl Interface {
+    /// Whether the sides are meshed apart (2D or 3D).
+    pub fn is_nonmatching(&self) -> bool {
+        self.nonmatching.is_some() || self.nonmatching_faces.is_some()
+    }
+
+    /// Whether the interface lies on faces (a 3D model).
+    pub fn on_faces(&self) -> bool {
+        !self.faces.is_empty() || self.nonmatching_faces.is_some()
+    }
 }
 
 /// The two sides of a non-matching interface: quadratic edges [end, mid,

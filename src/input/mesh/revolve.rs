@@ -81,6 +81,14 @@ pub(crate) fn revolve(plane: &Mesh, angle: f64, n: usize) -> Result<Mesh, MeshEr
         return revolved(plane, angle, n);
     }
     let first = &plane.nodes[plane.elements[axis[0]].corners()[0]];
+    if let Some(i) = plane.interfaces.first() {
+        return Err(MeshError(format!(
+            "revolve: the layout reaches the axis at (x, y) = (0, {}) and has the interface \"{}\": \
+             an interface in a revolved part with a core on the axis is not available yet; revolve \
+             a layout with x > 0 (a hollow part), or extrude",
+            first[1], i.name
+        )));
+    }
     if (angle - std::f64::consts::FRAC_PI_2).abs() > 1e-12 || n % 2 != 0 {
         return Err(MeshError(format!(
             "revolve: the layout reaches the axis at (x, y) = (0, {}): its elements there become \

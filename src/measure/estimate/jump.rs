@@ -60,9 +60,14 @@ pub fn add(model: &Model, state: &State, recovered: &Recovered, out: &mut [f64])
             let (u_n, _) = im.point_kinematics_at(pt, &state.u, gap);
             let p_n = im.law.pressure(u_n).0;
             let cs = &state.contact[base + k];
-            let (n, t) = (pt.normal, [pt.normal[1], -pt.normal[0]]);
-            let p_h = if twist { cs.p_h } else { 0.0 };
-            let tau = [p_n * n[0] + cs.p_t * t[0], p_n * n[1] + cs.p_t * t[1], p_h];
+            let (n, t) = (pt.normal, pt.tangent);
+            // the second shear's direction: e_θ with twist, t₂ in 3D
+            let h = match (twist, model.mesh.dim()) {
+                (true, _) => [0.0, 0.0, 1.0],
+                (_, 3) => pt.binormal(),
+                _ => [0.0; 3],
+            };
+            let tau: [f64; 3] = std::array::from_fn(|c| p_n * n[c] + cs.p_t * t[c] + cs.p_h * h[c]);
             for side in 0..2 {
                 let map = &maps[side];
                 let weights = &sides[k][side];
@@ -75,10 +80,12 @@ pub fn add(model: &Model, state: &State, recovered: &Recovered, out: &mut [f64])
                 }
                 // the outward normal of the side and the traction on it
                 let (m, sign) = if side == 0 { (-1.0, 1.0) } else { (1.0, -1.0) };
+                // σ n in the Voigt order (xx, yy, xy, zz, xz, yz) = (rr, zz,
+                // rz, θθ, rθ, zθ); n_z = 0 in a plane
                 let tr = [
-                    m * (sigma[0] * n[0] + sigma[2] * n[1]),
-                    m * (sigma[2] * n[0] + sigma[1] * n[1]),
-                    m * (sigma[4] * n[0] + sigma[5] * n[1]),
+                    m * (sigma[0] * n[0] + sigma[2] * n[1] + sigma[4] * n[2]),
+                    m * (sigma[2] * n[0] + sigma[1] * n[1] + sigma[5] * n[2]),
+                    m * (sigma[4] * n[0] + sigma[5] * n[1] + sigma[3] * n[2]),
                 ];
                 let r2: f64 = (0..3).map(|c| (tr[c] - sign * tau[c]).powi(2)).sum();
                 let jump = pt.area * r2;
@@ -111,7 +118,7 @@ fn sides(im: &InterfaceModel, pt: &Point) -> [Vec<(usize, f64)>; 2] {
         }
         Coupling::NodeToSegment { segment: g, .. } => {
             out[0] = (0..g.len_a).map(|i| (g.a[i], g.na[i])).collect();
-            out[1] = (0..3).map(|j| (g.b[j], g.nb[j])).collect();
+            out[1] = (0..g.len_b).map(|j| (g.b[j], g.nb[j])).collect();
         }
         Coupling::Coincident { .. } => {
             for (pair, w) in pt.coupling.pairs() {
@@ -142,7 +149,19 @@ fn mean(at: &[(usize, usize)], recovered: &Recovered) -> Stress {
 }
 
 /// The element's diameter: the longer diagonal between its corners (a
-/// quad), its longest side (a triangle).
+/// quad), its longest side (a triangle); in 3D the largest distance
+/// between two of its corners.
 pub fn diameter(mesh: &crate::input::mesh::Mesh, e: usize) -> f64 {
+    if mesh.dim() == 3 {
+        let c = mesh.elements[e].corners();
+        let x = |a: usize| mesh.nodes[c[a]];
+        let d = |a: usize, b: usize| {
+            let v = crate::numbers::vec3::sub(x(a), x(b));
+            crate::numbers::vec3::dot(v, v).sqrt()
+        };
+        return (0..c.len())
+            .flat_map(|a| (a + 1..c.len()).map(move |b| (a, b)))
+            .fold(0.0, |m, (a, b)| m.max(d(a, b)));
+    }
     mesh.elements[e].family.diameter(&mesh.element_coords(e))
 }

@@ -46,9 +46,11 @@ impl InterfaceModel {
     pub(crate) fn point_nodes(&self, pt: &Point) -> Vec<usize> {
         match &pt.coupling {
             Coupling::Mortar { mortar: m, .. } => m.nodes.clone(),
-            Coupling::NodeToSegment { segment: g, .. } => {
-                g.a[..g.len_a].iter().chain(&g.b).copied().collect()
-            }
+            Coupling::NodeToSegment { segment: g, .. } => g.a[..g.len_a]
+                .iter()
+                .chain(&g.b[..g.len_b])
+                .copied()
+                .collect(),
             Coupling::Coincident { pairs, len, .. } => {
                 let pairs = || pairs[..*len].iter().map(|&p| &self.pairs[p]);
                 pairs().map(|p| p.a).chain(pairs().map(|p| p.b)).collect()
@@ -56,14 +58,16 @@ impl InterfaceModel {
         }
     }
 
-    /// The weight of each local node's u_θ in u_Tθ (order of
-    /// [`InterfaceModel::point_nodes`]).
-    fn hoop_weights(&self, pt: &Point) -> Vec<f64> {
+    /// The weight of each local node's displacement in the relative
+    /// displacement B − A at the point (−N_i on A's side, +N_j on B's; the
+    /// weight of its u_θ in u_Tθ with twist), order of
+    /// [`InterfaceModel::point_nodes`].
+    pub(crate) fn node_weights(&self, pt: &Point) -> Vec<f64> {
         match &pt.coupling {
             Coupling::Mortar { mortar: m, .. } => m.dh.clone(),
             Coupling::NodeToSegment { segment: g, .. } => {
                 let a = g.na[..g.len_a].iter().map(|v| -v);
-                a.chain(g.nb).collect()
+                a.chain(g.nb[..g.len_b].iter().copied()).collect()
             }
             Coupling::Coincident { shape, len, .. } => {
                 let s = &shape[..*len];
@@ -97,15 +101,19 @@ impl InterfaceModel {
         pt.ndofs() / 2 * self.node_dofs.per_node()
     }
 
-    /// The circumferential slip u_Tθ = u_θB − u_θA at a point, mm (0
-    /// without twist).
-    pub(crate) fn point_hoop_slip(&self, pt: &Point, u: &[f64]) -> f64 {
+    /// The second component of a point's slip, mm: with twist the
+    /// circumferential slip u_Tθ = u_θB − u_θA, in 3D the slip along t₂
+    /// ([`Point::binormal`]); 0 in a plane model.
+    pub(crate) fn point_second_slip(&self, pt: &Point, u: &[f64]) -> f64 {
+        if self.node_dofs.solid() {
+            return self.point_kinematics_3d(pt, u, 0.0)[2];
+        }
         if !self.twist() {
             return 0.0;
         }
         let nd = self.node_dofs;
         let nodes = self.point_nodes(pt);
-        let w = self.hoop_weights(pt);
+        let w = self.node_weights(pt);
         nodes
             .iter()
             .zip(&w)
@@ -113,14 +121,19 @@ impl InterfaceModel {
             .sum()
     }
 
-    /// u_Tθ at a pair (nodal value, 0 without twist): u_θB − u_θA, or on a
-    /// non-matching interface that of the pair's spring point.
-    pub(crate) fn pair_hoop_slip(&self, pair: &super::Pair, u: &[f64]) -> f64 {
+    /// The second slip at a pair (nodal value, 0 in a plane model): with
+    /// twist u_θB − u_θA, in 3D (u_B − u_A)·t₂ of the pair's own point (a
+    /// pair of lumped weights); on a non-matching interface that of the
+    /// pair's spring point.
+    pub(crate) fn pair_second_slip(&self, pair: &super::Pair, u: &[f64]) -> f64 {
+        if let Some(j) = pair.spring {
+            return self.point_second_slip(&self.points[j], u);
+        }
+        if self.node_dofs.solid() {
+            return self.pair_slip_3d(pair, u)[1];
+        }
         if !self.twist() {
             return 0.0;
-        }
-        if let Some(j) = pair.spring {
-            return self.point_hoop_slip(&self.points[j], u);
         }
         let nd = self.node_dofs;
         u[nd.dof(pair.b, 2)] - u[nd.dof(pair.a, 2)]
@@ -130,6 +143,9 @@ impl InterfaceModel {
     /// ([`InterfaceModel::point_dofs`]); without twist exactly
     /// [`Point::gradients`].
     pub(crate) fn point_gradients(&self, pt: &Point) -> Gradients {
+        if self.node_dofs.solid() {
+            return self.gradients_3d(pt);
+        }
         let (n, t) = pt.gradients();
         if !self.twist() {
             return Gradients {
@@ -141,7 +157,7 @@ impl InterfaceModel {
         let widen =
             |v: &[f64]| -> Vec<f64> { v.chunks_exact(2).flat_map(|c| [c[0], c[1], 0.0]).collect() };
         let h = self
-            .hoop_weights(pt)
+            .node_weights(pt)
             .iter()
             .flat_map(|&w| [0.0, 0.0, w])
             .collect();
@@ -152,10 +168,11 @@ impl InterfaceModel {
         }
     }
 
-    /// [`InterfaceModel::eval_point_parts`] of a twisting model (see the
-    /// module comment): the vector law on (u_T1, u_Tθ).
+    /// [`InterfaceModel::eval_point_parts`] of a twisting or a 3D model
+    /// (see the module comment): the vector law on (u_T1, u_Tθ), or in 3D
+    /// on (u_T1, u_T2) with g_θ read as g_T2 (`crate::model::interface::faces`).
     #[allow(clippy::too_many_arguments)] // eval_point_parts' arguments
-    pub(super) fn eval_point_twist(
+    pub(super) fn eval_point_vector(
         &self,
         pt: &Point,
         u: &[f64],
@@ -166,8 +183,12 @@ impl InterfaceModel {
         k: Option<&mut [f64]>,
         with_coupling: bool,
     ) -> PointEval {
-        let (u_n, u_t) = self.point_kinematics_at(pt, u, gap);
-        let u_h = self.point_hoop_slip(pt, u);
+        let [u_n, u_t, u_h] = if self.node_dofs.solid() {
+            self.point_kinematics_3d(pt, u, gap)
+        } else {
+            let (u_n, u_t) = self.point_kinematics_at(pt, u, gap);
+            [u_n, u_t, self.point_second_slip(pt, u)]
+        };
         let (p_n, k_law) = self.law.pressure(u_n);
         let k_n = match k_floor {
             Some(kf) if u_n <= 0.0 => kf,

@@ -24,22 +24,30 @@
 pub mod arcs;
 mod circumferential;
 pub mod extrapolation;
+mod faces;
 mod segment;
 
 use crate::input::case::settings::{FrictionScheme, Weights};
 use crate::input::mesh::{Interface, Mesh};
+use crate::numbers::vec3::cross;
 use crate::physics::contact::{NormalLaw, PointState, Slip, Status, TangentialLaw};
 pub(crate) use circumferential::Gradients;
+pub(crate) use faces::frame;
 pub use segment::{project, OVERLAP_LIMIT};
+
+/// The most nodes of one side of an interface element: a quadratic edge's
+/// three, a 6-node triangle's or an 8-node quadrilateral's face.
+pub const MAX_SIDE: usize = 8;
 
 /// A node pair across the interface.
 #[derive(Clone, Debug)]
 pub struct Pair {
     pub a: usize,
     pub b: usize,
-    pub x: [f64; 2],
-    /// Unit normal from B into A.
-    pub normal: [f64; 2],
+    /// Position (z = 0 in a plane or axisymmetric model), mm.
+    pub x: [f64; 3],
+    /// Unit normal from B into A (z component 0 in 2D).
+    pub normal: [f64; 3],
     /// Tributary (lumped) area, mm².
     pub area: f64,
     /// On a non-matching interface: the spring point this row stands for
@@ -55,12 +63,14 @@ pub struct Pair {
 #[derive(Clone, Copy, Debug)]
 pub struct Segment {
     /// Slave nodes and their shape values (first `len_a` used).
-    pub a: [usize; 3],
-    pub na: [f64; 3],
+    pub a: [usize; MAX_SIDE],
+    pub na: [f64; MAX_SIDE],
     pub(crate) len_a: usize,
-    /// The master edge's nodes and its shape functions N(ξ) at the projection.
-    pub b: [usize; 3],
-    pub nb: [f64; 3],
+    /// The master side's nodes (an edge's three, a face's six or eight) and
+    /// its shape functions N(ξ) at the projection (first `len_b` used).
+    pub b: [usize; MAX_SIDE],
+    pub nb: [f64; MAX_SIDE],
+    pub(crate) len_b: usize,
     /// Geometric initial gap (x_A − x_B(ξ))·n, mm (0 on a straight common
     /// line); the interface's `gap` adds to it.
     pub gap: f64,
@@ -107,7 +117,12 @@ pub struct Mortar {
 pub struct Point {
     /// Integration weight: area represented, mm².
     pub area: f64,
-    pub normal: [f64; 2],
+    /// Unit normal from B into A (z component 0 in 2D).
+    pub normal: [f64; 3],
+    /// The first unit tangent t₁ of the slip: in 2D (n_y, −n_x, 0); in 3D a
+    /// direction of the face's tangent plane, the second t₂ = n × t₁
+    /// ([`Point::binormal`]).
+    pub tangent: [f64; 3],
     /// How the point couples the two sides' nodes.
     pub coupling: Coupling,
 }
@@ -121,8 +136,8 @@ pub enum Coupling {
     /// `len` of `pairs`, indices into [`InterfaceModel::pairs`]) by the
     /// edge's shape values.
     Coincident {
-        pairs: [usize; 3],
-        shape: [f64; 3],
+        pairs: [usize; MAX_SIDE],
+        shape: [f64; MAX_SIDE],
         len: usize,
     },
     /// A non-matching interface's node-to-segment spring; `pair` is its row
@@ -184,15 +199,27 @@ impl Point {
         }
     }
 
-    /// Number of local dofs: 4·len for coincident pairs, 2·(slave nodes + 3)
-    /// for a node-to-segment point (at most 12 either way), 2 per node of a
-    /// mortar spring.
-    pub fn ndofs(&self) -> usize {
+    /// Number of nodes the point couples: 2·len for coincident pairs (A's,
+    /// then B's), the slave and master nodes of a node-to-segment (or
+    /// node-to-surface) spring, the nodes of a mortar spring.
+    pub fn node_count(&self) -> usize {
         match &self.coupling {
-            Coupling::Coincident { len, .. } => 4 * len,
-            Coupling::NodeToSegment { segment: g, .. } => 2 * (g.len_a + 3),
-            Coupling::Mortar { mortar: m, .. } => 2 * m.nodes.len(),
+            Coupling::Coincident { len, .. } => 2 * len,
+            Coupling::NodeToSegment { segment: g, .. } => g.len_a + g.len_b,
+            Coupling::Mortar { mortar: m, .. } => m.nodes.len(),
         }
+    }
+
+    /// Number of in-plane local dofs, two per node
+    /// ([`Point::node_count`]); [`InterfaceModel::point_ndofs`] counts every
+    /// dof of the nodes.
+    pub fn ndofs(&self) -> usize {
+        2 * self.node_count()
+    }
+
+    /// The second unit tangent of a 3D point, t₂ = n × t₁.
+    pub fn binormal(&self) -> [f64; 3] {
+        cross(self.normal, self.tangent)
     }
 
     /// The derivatives of the relative approach u_N and slip u_T (eq. 3.29-3.31:
@@ -200,12 +227,8 @@ impl Point {
     /// functions, along the normal and the tangent t = (n_y, −n_x)) with
     /// respect to the point's local dofs (A pairs (x, y), then B pairs); the
     /// first 4·len entries of each are used.
-    /// On a non-matching interface the A entries are −N_i^A n and the B
-    /// entries +N_j(ξ) n (slave nodes, then the master edge's three nodes).
-    /// On a mortar interface the entries are the coefficients dn, dt of
-    /// [`Mortar`]. The vectors have [`Point::ndofs`] entries.
     pub(crate) fn gradients(&self) -> (Vec<f64>, Vec<f64>) {
-        let t = [self.normal[1], -self.normal[0]];
+        let t = self.tangent;
         let zeros = || (vec![0.0f64; self.ndofs()], vec![0.0f64; self.ndofs()]);
         match &self.coupling {
             Coupling::Mortar { mortar: m, .. } => {
@@ -220,7 +243,7 @@ impl Point {
                         gn[2 * i + c] = -g.na[i] * self.normal[c];
                         gt[2 * i + c] = -g.na[i] * t[c];
                     }
-                    for j in 0..3 {
+                    for j in 0..g.len_b {
                         gn[2 * m + 2 * j + c] = g.nb[j] * self.normal[c];
                         gt[2 * m + 2 * j + c] = g.nb[j] * t[c];
                     }
@@ -301,6 +324,7 @@ impl InterfaceModel {
         tangential: Option<(TangentialLaw, FrictionScheme)>,
     ) -> Result<Self, String> {
         let (pairs, points) = match &iface.nonmatching {
+            _ if iface.on_faces() => faces::on_faces(mesh, iface, weights)?,
             None if weights == Weights::Mortar => {
                 return Err(format!(
                     "interface \"{}\": weights = \"mortar\" couples two sides meshed apart; it needs matching = false",
@@ -340,15 +364,15 @@ impl InterfaceModel {
         let mut index = std::collections::HashMap::new();
         let mut edge_pairs = Vec::with_capacity(iface.edges.len());
         for edge in &iface.edges {
-            let mut ids = [0usize; 3];
-            for (i, id) in ids.iter_mut().enumerate() {
+            let mut ids = [0usize; MAX_SIDE];
+            for (i, id) in ids.iter_mut().take(3).enumerate() {
                 let key = (edge.a[i], edge.b[i]);
                 *id = *index.entry(key).or_insert_with(|| {
                     pairs.push(Pair {
                         a: edge.a[i],
                         b: edge.b[i],
-                        x: mesh.xy(edge.b[i]),
-                        normal: [0.0; 2],
+                        x: mesh.nodes[edge.b[i]],
+                        normal: [0.0; 3],
                         area: 0.0,
                         spring: None,
                     });
@@ -382,10 +406,11 @@ impl InterfaceModel {
                     let x = [0, 1].map(|c| (0..3).map(|k| shape[k] * xb[k][c]).sum::<f64>());
                     points.push(Point {
                         area: wg * ds * section.measure(x),
-                        normal: n,
+                        normal: [n[0], n[1], 0.0],
+                        tangent: [n[1], -n[0], 0.0],
                         coupling: Coupling::Coincident {
                             pairs: *ids,
-                            shape,
+                            shape: side(&shape),
                             len: 3,
                         },
                     });
@@ -394,22 +419,10 @@ impl InterfaceModel {
         }
         for p in &mut pairs {
             let l = p.normal[0].hypot(p.normal[1]);
-            p.normal = [p.normal[0] / l, p.normal[1] / l];
+            p.normal = [p.normal[0] / l, p.normal[1] / l, 0.0];
         }
         if weights == Weights::Lumped {
-            points = pairs
-                .iter()
-                .enumerate()
-                .map(|(i, p)| Point {
-                    area: p.area,
-                    normal: p.normal,
-                    coupling: Coupling::Coincident {
-                        pairs: [i, i, i],
-                        shape: [1.0, 0.0, 0.0],
-                        len: 1,
-                    },
-                })
-                .collect();
+            points = lumped_points(&pairs, |n| [n[1], -n[0], 0.0]);
         }
         (pairs, points)
     }
@@ -457,11 +470,8 @@ impl InterfaceModel {
             return self.point_kinematics_at(&self.points[j], u, gap).0;
         }
         let (n, nd) = (pair.normal, self.node_dofs);
-        let du = [
-            u[nd.dof(pair.b, 0)] - u[nd.dof(pair.a, 0)],
-            u[nd.dof(pair.b, 1)] - u[nd.dof(pair.a, 1)],
-        ];
-        du[0] * n[0] + du[1] * n[1] - gap
+        let du = |c: usize| u[nd.dof(pair.b, c)] - u[nd.dof(pair.a, c)];
+        (0..self.dim()).map(|c| du(c) * n[c]).sum::<f64>() - gap
     }
 
     /// Normal approach and tangential displacement at a point, interpolated from
@@ -475,8 +485,12 @@ impl InterfaceModel {
     /// and u_T = (u_B(ξ) − u_A)·t, u_B(ξ) = Σ N_j(ξ) u_{b_j} on the master
     /// edge and u_A = Σ N_i^A u_{a_i} at the slave point.
     pub fn point_kinematics_at(&self, pt: &Point, u: &[f64], gap: f64) -> (f64, f64) {
+        if self.node_dofs.solid() {
+            let [u_n, u_t, _] = self.point_kinematics_3d(pt, u, gap);
+            return (u_n, u_t);
+        }
         let nd = self.node_dofs;
-        let (n, t) = (pt.normal, [pt.normal[1], -pt.normal[0]]);
+        let (n, t) = (pt.normal, pt.tangent);
         match &pt.coupling {
             Coupling::Mortar { mortar: m, .. } => {
                 let (mut un, mut ut) = (-m.gap - gap, 0.0);
@@ -490,7 +504,7 @@ impl InterfaceModel {
             Coupling::NodeToSegment { segment: g, .. } => {
                 let mut du = [0.0f64; 2];
                 for c in 0..2 {
-                    for j in 0..3 {
+                    for j in 0..g.len_b {
                         du[c] += g.nb[j] * u[nd.dof(g.b[j], c)];
                     }
                     for i in 0..g.len_a {
@@ -583,8 +597,8 @@ impl InterfaceModel {
         k: Option<&mut [f64]>,
         with_coupling: bool,
     ) -> PointEval {
-        if self.twist() {
-            return self.eval_point_twist(pt, u, gap, committed, k_floor, r, k, with_coupling);
+        if self.node_dofs.vector_slip() {
+            return self.eval_point_vector(pt, u, gap, committed, k_floor, r, k, with_coupling);
         }
         let (u_n, u_t) = self.point_kinematics_at(pt, u, gap);
         let (p_n, k_law) = self.law.pressure(u_n);
@@ -677,6 +691,32 @@ fn edge_normal(x: &[[f64; 2]; 3], s: f64) -> ([f64; 2], f64) {
     // into A, on the left of the walk direction t, is (−t_y, t_x); the
     // internal tangent (n_y, −n_x) is then t itself.
     ([-t[1] / l, t[0] / l], l)
+}
+
+/// The points of lumped weights: one per pair, at the pair, with its
+/// area and normal; `tangent` gives t₁ from the normal.
+fn lumped_points(pairs: &[Pair], tangent: impl Fn([f64; 3]) -> [f64; 3]) -> Vec<Point> {
+    pairs
+        .iter()
+        .enumerate()
+        .map(|(i, p)| Point {
+            area: p.area,
+            normal: p.normal,
+            tangent: tangent(p.normal),
+            coupling: Coupling::Coincident {
+                pairs: [i; MAX_SIDE],
+                shape: side(&[1.0]),
+                len: 1,
+            },
+        })
+        .collect()
+}
+
+/// A side's values in a [`MAX_SIDE`] array, zeros after them.
+pub(crate) fn side<T: Copy + Default>(values: &[T]) -> [T; MAX_SIDE] {
+    let mut out = [T::default(); MAX_SIDE];
+    out[..values.len()].copy_from_slice(values);
+    out
 }
 
 fn gauss4() -> [(f64, f64); 4] {

@@ -42,25 +42,28 @@ pub(super) fn node_to_segment(
                 .unwrap_or(0);
             nodes[i]
         };
+        let normal = [n[0], n[1], 0.0];
         pairs.push(Pair {
             a: near(&a[..len_a], &na[..len_a]),
             b: near(&b, &nb),
-            x,
-            normal: n,
+            x: [x[0], x[1], 0.0],
+            normal,
             area,
             spring: Some(points.len()),
         });
         points.push(Point {
             area,
-            normal: n,
+            normal,
+            tangent: [n[1], -n[0], 0.0],
             coupling: Coupling::NodeToSegment {
                 pair: pairs.len() - 1,
                 segment: Segment {
-                    a,
-                    na,
+                    a: side(&a[..len_a]),
+                    na: side(&na[..len_a]),
                     len_a,
-                    b,
-                    nb,
+                    b: side(&b),
+                    nb: side(&nb),
+                    len_b: 3,
                     gap,
                     s,
                 },
@@ -295,7 +298,7 @@ impl MortarSum {
     /// in its approach.
     fn spring(self, slave_nodes: &std::collections::HashSet<usize>, index: usize) -> (Pair, Point) {
         let l = self.normal[0].hypot(self.normal[1]);
-        let normal = [self.normal[0] / l, self.normal[1] / l];
+        let normal = [self.normal[0] / l, self.normal[1] / l, 0.0];
         let inv = 1.0 / self.area;
         let nodes: Vec<usize> = self.coef.keys().copied().collect();
         let dn: Vec<[f64; 2]> = self.coef.values().map(|c| c.0.map(|v| v * inv)).collect();
@@ -310,7 +313,7 @@ impl MortarSum {
         let pair = Pair {
             a: self.node,
             b,
-            x: self.x,
+            x: [self.x[0], self.x[1], 0.0],
             normal,
             area: self.area,
             spring: Some(index),
@@ -327,6 +330,7 @@ impl MortarSum {
         let point = Point {
             area: self.area,
             normal,
+            tangent: [normal[1], -normal[0], 0.0],
             coupling: Coupling::Mortar {
                 pair: index,
                 mortar: std::sync::Arc::new(mortar),
@@ -698,7 +702,7 @@ mod tests {
         for p in &points {
             let g = segment_of(p);
             assert!((g.gap - 0.3).abs() < 1e-14, "{}", g.gap);
-            assert_eq!(p.normal, [0.0, 1.0]);
+            assert_eq!(p.normal, [0.0, 1.0, 0.0]);
         }
         // an overlap up to 1 % of the slave edge (2 mm) is geometry round-off
         assert!(springs(-0.019, 1.0).is_ok());
@@ -768,8 +772,8 @@ mod tests {
         let g = segment_of(p);
         // the node's lower-numbered edge, at its end ξ = 1, normal along
         // the 45° ray, gap the distance to the node
-        assert_eq!(g.b, [5, 6, 7]);
-        assert_eq!(g.nb, [0.0, 0.0, 1.0]);
+        assert_eq!(g.b[..g.len_b], [5, 6, 7]);
+        assert_eq!(g.nb[..g.len_b], [0.0, 0.0, 1.0]);
         assert!((p.normal[0] - r2).abs() < 1e-12 && (p.normal[1] - r2).abs() < 1e-12);
         let d = (20.0 - node[0]).hypot(node[1]);
         assert!((g.gap - d).abs() < 1e-12, "gap {} vs {d}", g.gap);

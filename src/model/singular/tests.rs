@@ -167,6 +167,7 @@ fn a_punch_on_a_block_is_singular_at_its_edge_not_on_its_mirror() {
         body_b: 0,
         edges,
         nonmatching: None,
+        ..Default::default()
     });
     let mesh = &b.mesh;
     let left = nodes_where(mesh, |x| x[0] == 0.0);

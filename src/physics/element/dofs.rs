@@ -76,6 +76,18 @@ impl NodeDofs {
         self.1
     }
 
+    /// Whether the nodes are a 3D model's (u_x, u_y, u_z).
+    pub fn solid(self) -> bool {
+        self.0 == 3 && !self.1
+    }
+
+    /// Whether an interface point's slip is a 2-vector of its tangent plane
+    /// (twist: meridian and hoop; 3D: t₁ and t₂), so it carries the vector
+    /// tangential law's state.
+    pub fn vector_slip(self) -> bool {
+        self.0 == 3
+    }
+
     /// Whether a Gauss point carries all six stress components (twist, 3D).
     pub(crate) fn six_components(self) -> bool {
         self.0 == 3
@@ -104,5 +116,8 @@ mod tests {
         assert_eq!(NodeDofs::default(), NodeDofs::PLANE);
         assert!(NodeDofs::TWIST.twist() && !NodeDofs::PLANE.twist() && !NodeDofs::SOLID.twist());
         assert!(NodeDofs::SOLID.six_components() && !NodeDofs::PLANE.six_components());
+        assert!(NodeDofs::SOLID.solid() && !NodeDofs::TWIST.solid() && !NodeDofs::PLANE.solid());
+        assert!(NodeDofs::SOLID.vector_slip() && NodeDofs::TWIST.vector_slip());
+        assert!(!NodeDofs::PLANE.vector_slip());
     }
 }

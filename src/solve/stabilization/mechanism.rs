@@ -33,14 +33,17 @@ const SUPPORT: f64 = 1e-8;
 const NEAR_SLIP: f64 = 0.98;
 
 /// Rigid-body constraint data of one body: centroid, size and the Gram matrix
-/// of the rows its boundary conditions impose on (t_x, t_y, θ·L, then the
-/// motion of each pretension section that cuts it in two, [`Cut`]); with
+/// of the rows its boundary conditions impose on its rigid motions (t_x,
+/// t_y, θ·L in a plane; t_x, t_y, t_z, θ_x·L, θ_y·L, θ_z·L in 3D), then the
+/// motion of each pretension section that cuts it in two, [`Cut`]; with
 /// twist also the rotation about the axis, u_θ = ω r, whose rows (r/L) ω are
 /// gathered in the scalar `turn`.
 #[derive(Clone, Debug)]
 struct Body {
-    centre: [f64; 2],
+    centre: [f64; 3],
     size: f64,
+    /// The rigid motions: 3 in a plane, 6 in 3D.
+    motions: usize,
     /// The body's cuts (indices into [`Stabilizer::cuts`]), in the order of
     /// their motions after the first three.
     cuts: Vec<usize>,
@@ -117,10 +120,10 @@ fn fixes(g: &Gram, turn: f64) -> bool {
 
 impl Body {
     /// The constraint row of a displacement along unit vector `e` at node
-    /// `node`, at `x`: on the three in-plane motions, then on each cut's
-    /// (the component along the cut's normal on the side beyond it).
-    fn row(&self, cuts: &[Cut], model: &Model, node: usize, x: [f64; 2], e: [f64; 2]) -> Vec<f64> {
-        let mut r = self.plane_row(x, e).to_vec();
+    /// `node`, at `x`: on the rigid motions, then on each cut's (the
+    /// component along the cut's normal on the side beyond it).
+    fn row(&self, cuts: &[Cut], model: &Model, node: usize, x: [f64; 3], e: [f64; 3]) -> Vec<f64> {
+        let mut r = self.rigid_row(x, e);
         r.extend(self.cuts.iter().map(|&c| {
             let cut = &cuts[c];
             match cut.beyond.get(node) {
@@ -131,27 +134,34 @@ impl Body {
         r
     }
 
-    /// The row of a displacement along `e` at `x` on the three in-plane
-    /// motions.
-    fn plane_row(&self, x: [f64; 2], e: [f64; 2]) -> [f64; 3] {
+    /// The row of a displacement along `e` at `x` on the rigid motions
+    /// u = a + ω × (x − x̄): u·e = a·e + ω·((x − x̄) × e), with ω scaled by
+    /// the size L; in a plane the in-plane three (the z of the cross
+    /// product).
+    fn rigid_row(&self, x: [f64; 3], e: [f64; 3]) -> Vec<f64> {
         let (rx, ry) = (
             (x[0] - self.centre[0]) / self.size,
             (x[1] - self.centre[1]) / self.size,
         );
-        [e[0], e[1], e[1] * rx - e[0] * ry]
+        if self.motions == 3 {
+            return vec![e[0], e[1], e[1] * rx - e[0] * ry];
+        }
+        let r = [rx, ry, (x[2] - self.centre[2]) / self.size];
+        let w = crate::numbers::vec3::cross(r, e);
+        vec![e[0], e[1], e[2], w[0], w[1], w[2]]
     }
 
     /// The row holding the motion of the body's `k`-th cut (its section's
     /// shortening locked or prescribed).
     fn cut_row(&self, k: usize) -> Vec<f64> {
-        let mut r = vec![0.0; 3 + self.cuts.len()];
-        r[3 + k] = 1.0;
+        let mut r = vec![0.0; self.motions + self.cuts.len()];
+        r[self.motions + k] = 1.0;
         r
     }
 
     /// The row (r/L) of a u_θ at `x` on the rotation about the axis; zero
     /// on the axis, where u_θ = ω r vanishes.
-    fn turn_row(&self, x: [f64; 2]) -> f64 {
+    fn turn_row(&self, x: [f64; 3]) -> f64 {
         let r = x[0].abs() / self.size;
         if r > 1e-9 {
             r * r
@@ -168,11 +178,18 @@ fn rigid_bodies(model: &Model, body_of: &[usize], cuts: &[Cut]) -> Vec<Body> {
     let mesh = &model.mesh;
     let nb = mesh.bodies.len();
     let twist = model.node_dofs().twist();
-    let mut lo = vec![[f64::INFINITY; 2]; nb];
-    let mut hi = vec![[f64::NEG_INFINITY; 2]; nb];
+    let dim = mesh.dim();
+    let motions = if dim == 3 { 6 } else { 3 };
+    let mut lo = vec![[0.0f64; 3]; nb];
+    let mut hi = vec![[0.0f64; 3]; nb];
+    for b in 0..nb {
+        for c in 0..dim {
+            (lo[b][c], hi[b][c]) = (f64::INFINITY, f64::NEG_INFINITY);
+        }
+    }
     for (n, x) in mesh.nodes.iter().enumerate() {
         if let Some(b) = body_of.get(n).copied().filter(|&b| b < nb) {
-            for c in 0..2 {
+            for c in 0..dim {
                 lo[b][c] = lo[b][c].min(x[c]);
                 hi[b][c] = hi[b][c].max(x[c]);
             }
@@ -184,11 +201,12 @@ fn rigid_bodies(model: &Model, body_of: &[usize], cuts: &[Cut]) -> Vec<Body> {
                 .filter(|&c| model.sections[cuts[c].section].body == b)
                 .collect();
             Body {
-                centre: [0.5 * (lo[b][0] + hi[b][0]), 0.5 * (lo[b][1] + hi[b][1])],
-                size: (hi[b][0] - lo[b][0])
-                    .max(hi[b][1] - lo[b][1])
-                    .max(f64::MIN_POSITIVE),
-                bc: Gram::new(3 + cuts.len()),
+                centre: std::array::from_fn(|c| 0.5 * (lo[b][c] + hi[b][c])),
+                size: (0..3)
+                    .map(|c| hi[b][c] - lo[b][c])
+                    .fold(f64::MIN_POSITIVE, f64::max),
+                motions,
+                bc: Gram::new(motions + cuts.len()),
                 cuts,
                 turn: if twist { 0.0 } else { 1.0 },
                 load: vec![0.0; model.patterns().count()],
@@ -202,7 +220,7 @@ fn rigid_bodies(model: &Model, body_of: &[usize], cuts: &[Cut]) -> Vec<Body> {
         // radial translation strains it around the hoop, and it cannot
         // rotate in the meridian plane
         for b in &mut bodies {
-            let n = 3 + b.cuts.len();
+            let n = b.motions + b.cuts.len();
             let unit = |i: usize| {
                 (0..n)
                     .map(|j| f64::from(u8::from(i == j)))
@@ -236,12 +254,13 @@ fn hold_by_supports(model: &Model, body_of: &[usize], cuts: &[Cut], bodies: &mut
         };
         match c {
             _ if n >= mesh.nodes.len() => {}
-            0 | 1 => {
-                let e = if c == 0 { [1.0, 0.0] } else { [0.0, 1.0] };
-                let r = bodies[b].row(cuts, model, n, mesh.xy(n), e);
+            _ if c < mesh.dim() => {
+                let mut e = [0.0; 3];
+                e[c] = 1.0;
+                let r = bodies[b].row(cuts, model, n, mesh.nodes[n], e);
                 bodies[b].bc.add(&r);
             }
-            _ => bodies[b].turn += bodies[b].turn_row(mesh.xy(n)),
+            _ => bodies[b].turn += bodies[b].turn_row(mesh.nodes[n]),
         }
         if v != 0.0 && !bodies[b].driven.contains(&h) {
             bodies[b].driven.push(h);
@@ -382,7 +401,9 @@ impl Stabilizer {
                             let row = |e| body.row(&self.cuts, model, node, pr.x, e);
                             g.add(&row(pr.normal));
                             if im.tangential.is_some() && un > 0.0 {
-                                g.add(&row([pr.normal[1], -pr.normal[0]]));
+                                for t in tangents(pr.normal, model.mesh.dim()) {
+                                    g.add(&row(t));
+                                }
                                 // friction around the axis as well (twist)
                                 turn += body.turn_row(pr.x);
                             }
@@ -482,6 +503,16 @@ impl Stabilizer {
     }
 }
 
+/// The unit tangents of the plane normal to `n`: (n_y, −n_x) in a plane,
+/// t₁ and t₂ = n × t₁ of the slip frame in 3D.
+fn tangents(n: [f64; 3], dim: usize) -> Vec<[f64; 3]> {
+    if dim == 2 {
+        return vec![[n[1], -n[0], 0.0]];
+    }
+    let t1 = crate::model::interface::frame(n);
+    vec![t1, crate::numbers::vec3::cross(n, t1)]
+}
+
 /// Adds the stabilization spring of one interface point to its local residual
 /// `r` and matrix `k` (the layout of [`InterfaceModel::eval_point`]): stiffness
 /// `ks` per area on the change of the relative displacement since `committed`.
@@ -529,7 +560,7 @@ pub(in crate::solve) fn increment(
 ) -> [f64; 3] {
     let (n1, t1) = im.point_kinematics(pt, u);
     let (n0, t0) = im.point_kinematics(pt, committed);
-    let dh = im.point_hoop_slip(pt, u) - im.point_hoop_slip(pt, committed);
+    let dh = im.point_second_slip(pt, u) - im.point_second_slip(pt, committed);
     [n1 - n0, t1 - t0, dh]
 }
 
@@ -539,8 +570,9 @@ mod tests {
 
     fn body() -> Body {
         Body {
-            centre: [10.0, 10.0],
+            centre: [10.0, 10.0, 0.0],
             size: 20.0,
+            motions: 3,
             cuts: Vec::new(),
             bc: Gram::new(3),
             turn: 0.0,
@@ -556,16 +588,16 @@ mod tests {
         let mut g = Gram::new(3);
         g.add(&[1.0, 0.0, 0.0]);
         g.add(&[0.0, 0.0, 1.0]);
-        g.add(&b.plane_row([3.0, 0.0], [0.0, 1.0]));
+        g.add(&b.rigid_row([3.0, 0.0, 0.0], [0.0, 1.0, 0.0]));
         assert!(g.fixes_all());
         // in-plane held, but nothing about the axis (twist)
         assert!(!fixes(&g, b.turn));
         // a u_θ on the axis holds nothing (u_θ = ω r vanishes there)
-        assert_eq!(b.turn_row([0.0, 5.0]), 0.0);
-        assert!(!fixes(&g, b.turn + b.turn_row([0.0, 5.0])));
+        assert_eq!(b.turn_row([0.0, 5.0, 0.0]), 0.0);
+        assert!(!fixes(&g, b.turn + b.turn_row([0.0, 5.0, 0.0])));
         // one off the axis holds it: (r/L)² = (5/20)²
-        assert_eq!(b.turn_row([5.0, 5.0]), 0.0625);
-        assert!(fixes(&g, b.turn + b.turn_row([5.0, 5.0])));
+        assert_eq!(b.turn_row([5.0, 5.0, 0.0]), 0.0625);
+        assert!(fixes(&g, b.turn + b.turn_row([5.0, 5.0, 0.0])));
     }
 
     #[test]
@@ -574,24 +606,24 @@ mod tests {
         // u_x = 0 along the left edge: x translation and rotation, not y
         let mut g = Gram::new(3);
         for y in [0.0, 5.0, 10.0, 20.0] {
-            g.add(&b.plane_row([0.0, y], [1.0, 0.0]));
+            g.add(&b.rigid_row([0.0, y, 0.0], [1.0, 0.0, 0.0]));
         }
         assert!(!g.fixes_all());
         // one vertical support more fixes all three
         let mut h = g.clone();
-        h.add(&b.plane_row([3.0, 0.0], [0.0, 1.0]));
+        h.add(&b.rigid_row([3.0, 0.0, 0.0], [0.0, 1.0, 0.0]));
         assert!(h.fixes_all());
         // normal springs along a horizontal interface: y and rotation, with
         // the left edge's x: all three
         let mut s = g.clone();
         for x in [0.0, 10.0, 20.0] {
-            s.add(&b.plane_row([x, 0.0], [0.0, 1.0]));
+            s.add(&b.rigid_row([x, 0.0, 0.0], [0.0, 1.0, 0.0]));
         }
         assert!(s.fixes_all());
         // vertical springs at one point only leave the rotation free without x
         let mut one = Gram::new(3);
-        one.add(&b.plane_row([5.0, 0.0], [0.0, 1.0]));
-        one.add(&b.plane_row([5.0, 0.0], [0.0, 1.0]));
+        one.add(&b.rigid_row([5.0, 0.0, 0.0], [0.0, 1.0, 0.0]));
+        one.add(&b.rigid_row([5.0, 0.0, 0.0], [0.0, 1.0, 0.0]));
         assert!(!one.fixes_all());
         assert!(!Gram::new(3).fixes_all());
     }

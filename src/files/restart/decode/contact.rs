@@ -147,7 +147,7 @@ fn check_vector_against_u(
     st: &ContactState,
 ) -> std::result::Result<(), String> {
     let (u_n, u_t) = im.point_kinematics_at(pt, u, gap);
-    let u_h = im.point_hoop_slip(pt, u);
+    let u_h = im.point_second_slip(pt, u);
     for (name, got, want) in [("u_T", st.u_t, u_t), ("u_Tθ", st.u_h, u_h)] {
         if (got - want).abs() > 1e-6 * u_max + 1e-12 {
             return Err(format!(

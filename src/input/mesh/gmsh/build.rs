@@ -382,6 +382,7 @@ fn pair_curves(
             body_b: lb,
             edges: vec![],
             nonmatching: Some(sides),
+            ..Default::default()
         });
     }
     Ok(Interface {
@@ -390,6 +391,7 @@ fn pair_curves(
         body_b: lb,
         edges: coincident_edges(msh, mesh, tag_of, upper, lower, &at)?,
         nonmatching: None,
+        ..Default::default()
     })
 }
 
