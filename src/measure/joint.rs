@@ -229,7 +229,7 @@ pub(crate) fn accumulate(
 ) {
     let mut q = 0;
     for (im, tot) in interfaces.iter().zip(totals.iter_mut()) {
-        let energy = if im.twist() {
+        let energy = if im.node_dofs.vector_slip() {
             point_energy_twist
         } else {
             point_energy

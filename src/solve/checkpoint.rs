@@ -43,10 +43,13 @@ pub struct Checkpoint {
     pub table_reach: Vec<crate::model::interface::extrapolation::Reach>,
     /// The events located so far ([`events`]).
     pub events: Vec<events::Event>,
-    /// The model has twist: its interface points carry the vector law's
-    /// state (their restart layout, `ContactState::packed_len`; the Gauss
-    /// states' width is their own, `GaussStates::twist`).
+    /// The model has twist: its joints' records carry a torque and a twist
+    /// (restart section `joints_twist`; the Gauss states' width is their
+    /// own, `GaussStates::twist`).
     pub twist: bool,
+    /// The interface points carry the vector law's state (twist, 3D):
+    /// their restart layout, `ContactState::packed_len`.
+    pub vector_slip: bool,
     /// The values of one designer's record (the model's
     /// [`Plan::width`](crate::model::outputs::Plan::width)): the layout of
     /// every increment's and event's record.
@@ -75,6 +78,7 @@ impl Checkpoint {
             table_reach: vec![Default::default(); model.interfaces.len()],
             events: Vec::new(),
             twist: model.node_dofs().twist(),
+            vector_slip: model.node_dofs().vector_slip(),
             record_width: model.plan.width(),
         }
     }

@@ -29,6 +29,7 @@ mod gold;
 mod hanging;
 mod hertz;
 mod histories;
+mod interface3d;
 mod joints;
 mod limit_load;
 mod memory;

@@ -112,7 +112,7 @@ impl Bounds {
         let events = (1 + 3 * ni) * (crate::solve::events::FIXED as u64 + record);
         let words = 2 * nu
             + PointState::packed_len(model.node_dofs().six_components()) as u64 * ng
-            + ContactState::packed_len(model.node_dofs().twist()) as u64 * np
+            + ContactState::packed_len(model.node_dofs().vector_slip()) as u64 * np
             + (2 + Reach::PACKED as u64) * ni
             + 2 * (st.pending.len() as u64 + st.max_cutbacks() as u64 + 1)
             + st.waypoints.len() as u64

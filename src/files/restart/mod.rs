@@ -453,12 +453,12 @@ fn state_sections(e: &mut Encoder, ck: &Checkpoint) -> std::io::Result<()> {
         "status",
         &s.status.iter().map(|&st| st as u8).collect::<Vec<_>>(),
     )?;
-    // with twist the vector law's layout (ContactState::pack_twist)
-    let wc = ContactState::packed_len(ck.twist);
+    // with twist and in 3D the vector law's layout (ContactState::pack_twist)
+    let wc = ContactState::packed_len(ck.vector_slip);
     e.f64_iter(
         "contact",
         wc * s.contact.len(),
-        s.contact.iter().flat_map(|c| c.pack_as(ck.twist)),
+        s.contact.iter().flat_map(|c| c.pack_as(ck.vector_slip)),
     )?;
     e.f64s("prescribed_reaction", &[s.prescribed_reaction])?;
     Ok(())

@@ -225,10 +225,9 @@ impl fmt::Display for MeshError {
 impl std::error::Error for MeshError {}
 
 impl Mesh {
-    /// Every node's dofs ([`Mesh::node_dofs`] per node).
     /// The body of every node (the last element's that holds it; usize::MAX
     /// for a node of no element).
-    pub(crate) fn node_bodies(&self) -> Vec<usize> {
+    pub fn node_bodies(&self) -> Vec<usize> {
         let mut node_body = vec![usize::MAX; self.nodes.len()];
         for el in &self.elements {
             for &n in el.nodes() {

@@ -397,7 +397,7 @@ impl<'m> Engine<'m> {
             return;
         }
         use crate::physics::contact::PointState;
-        let twist = self.model.node_dofs().twist();
+        let twist = self.model.node_dofs().vector_slip();
         let w = PointState::packed_len(twist);
         let mut g = Vec::with_capacity(SHARE_CHUNK * w);
         let mut start = 0;

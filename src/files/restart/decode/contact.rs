@@ -21,7 +21,8 @@ pub(super) fn restore(
         .interfaces
         .iter()
         .flat_map(|im| im.points.iter().map(move |_| im));
-    let twist = model.node_dofs().twist();
+    // twist and 3D: the vector law's layout
+    let twist = model.node_dofs().vector_slip();
     let width = ContactState::packed_len(twist);
     for (i, ((p, v), im)) in contact
         .iter_mut()
@@ -59,7 +60,7 @@ fn check_contact_against_u(
             q += 1;
             let at = || format!("section contact: interface point {q} ({})", im.name);
             let (u_n, u_t) = im.point_kinematics_at(pt, u, gap);
-            if im.twist() {
+            if im.node_dofs.vector_slip() {
                 check_vector_against_u(im, pt, u, gap, u_max, st)
                     .map_err(|m| format!("{}: {m}", at()))?;
                 continue;
