@@ -281,9 +281,11 @@ impl Stabilizer {
         let nb = mesh.bodies.len();
         let body_of = mesh.node_bodies();
         // a prescribed shortening holds its cut: only a force-controlled
-        // section adds a motion (held again once it is locked)
+        // section adds a motion (held again once it is locked); the motions
+        // counted here are a plane body's (a body of a 3D model has no
+        // interface, so nothing here stabilizes it: its cuts add none)
         let cuts: Vec<Cut> = (model.sections.iter().enumerate())
-            .filter(|(_, s)| s.control == "force")
+            .filter(|(_, s)| s.control == "force" && mesh.dim() == 2)
             .filter_map(|(k, s)| {
                 crate::model::pretension::sides(mesh, s).map(|beyond| Cut { section: k, beyond })
             })
