@@ -46,6 +46,8 @@ use crate::model::constraint::Constraint;
 use std::collections::{BTreeMap, HashMap};
 
 mod cut;
+#[cfg(test)]
+mod tests;
 
 /// The most sections a case may have.
 pub(crate) const MAX_SECTIONS: usize = 64;
@@ -228,8 +230,9 @@ fn plane_of(
     };
     if !crate::input::case::ranges::COORDINATE.admits(value) {
         return Err(format!(
-            "{} = {value}: {}",
+            "{} = {}: {}",
             ["x", "y", "z"][axis],
+            crate::numbers::exact(value),
             crate::input::case::ranges::COORDINATE.refusal(value)
         ));
     }

@@ -336,17 +336,16 @@ fn a_section_of_tetrahedra_takes_its_share_of_a_later_load() {
     locked_share(&model, 0, f, p_node);
 }
 
-/// A Gmsh 4.1 mesh of 10-node tetrahedra: `cells` cells of size `h` along
-/// x, y, z from the origin, six tetrahedra per cell (module text of the
-/// test above), physical volume "bar" and surfaces "bar.xmin", "bar.xmax",
-/// "bar.ymin", "bar.zmin" (6-node triangles).
-fn tet_bar_msh(cells: [usize; 3], h: [f64; 3]) -> String {
-    // the lattice of half cells: every corner and midside node is a point
-    let m = cells.map(|c| 2 * c + 1);
-    let id = |p: [usize; 3]| 1 + p[0] + m[0] * (p[1] + m[1] * p[2]);
-    let x = |p: [usize; 3]| -> [f64; 3] { std::array::from_fn(|d| 0.5 * h[d] * p[d] as f64) };
-    let mut tets: Vec<[usize; 10]> = Vec::new();
-    let mut tris: [Vec<[usize; 6]>; 4] = Default::default();
+/// The tetrahedra of `cells` cells (module text of the test above), as
+/// points of the half-cell lattice: each in Gmsh's node order (corners,
+/// then the midsides of 0–1, 1–2, 2–0, 0–3, 2–3, 1–3), with a positive
+/// volume; and the 6-node triangles on the box's sides x = 0, x = max,
+/// y = 0, z = 0.
+#[allow(clippy::type_complexity)]
+fn kuhn_tetrahedra(cells: [usize; 3]) -> (Vec<[[usize; 3]; 10]>, [Vec<[[usize; 3]; 6]>; 4]) {
+    let mut tets = Vec::new();
+    let mut tris: [Vec<[[usize; 3]; 6]>; 4] = Default::default();
+    let sides = [(0, 0), (0, 2 * cells[0]), (1, 0), (2, 0)];
     for k in 0..cells[2] {
         for j in 0..cells[1] {
             for i in 0..cells[0] {
@@ -363,21 +362,22 @@ fn tet_bar_msh(cells: [usize; 3], h: [f64; 3]) -> String {
                         c[s + 1] = c[s];
                         c[s + 1][path[s]] += 2;
                     }
-                    // a positive volume: (x1 − x0) × (x2 − x0) · (x3 − x0) > 0
-                    let d =
-                        |a: usize| -> [f64; 3] { std::array::from_fn(|q| x(c[a])[q] - x(c[0])[q]) };
+                    // a positive volume: (x1 − x0) × (x2 − x0) · (x3 − x0) > 0 on the
+                    // lattice (the box's cells are all alike)
+                    let d = |a: usize| -> [i64; 3] {
+                        std::array::from_fn(|q| c[a][q] as i64 - c[0][q] as i64)
+                    };
                     let (a, b, e) = (d(1), d(2), d(3));
                     let vol = e[0] * (a[1] * b[2] - a[2] * b[1])
                         + e[1] * (a[2] * b[0] - a[0] * b[2])
                         + e[2] * (a[0] * b[1] - a[1] * b[0]);
-                    if vol < 0.0 {
+                    if vol < 0 {
                         c.swap(1, 2);
                     }
                     let mid = |u: usize, v: usize| -> [usize; 3] {
                         std::array::from_fn(|q| (c[u][q] + c[v][q]) / 2)
                     };
-                    // Gmsh's order: corners, then 0–1, 1–2, 2–0, 0–3, 2–3, 1–3
-                    let pts = [
+                    tets.push([
                         c[0],
                         c[1],
                         c[2],
@@ -388,23 +388,28 @@ fn tet_bar_msh(cells: [usize; 3], h: [f64; 3]) -> String {
                         mid(0, 3),
                         mid(2, 3),
                         mid(1, 3),
-                    ];
-                    tets.push(pts.map(id));
-                    // faces on the box's sides x = 0, x = max, y = 0, z = 0
+                    ]);
                     for [u, v, w] in [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]] {
                         let on = |q: usize, at: usize| [u, v, w].iter().all(|&a| c[a][q] == at);
-                        let side = [(0, 0), (0, 2 * cells[0]), (1, 0), (2, 0)]
-                            .iter()
-                            .position(|&(q, at)| on(q, at));
-                        if let Some(s) = side {
-                            let t = [c[u], c[v], c[w], mid(u, v), mid(v, w), mid(w, u)];
-                            tris[s].push(t.map(id));
+                        if let Some(s) = sides.iter().position(|&(q, at)| on(q, at)) {
+                            tris[s].push([c[u], c[v], c[w], mid(u, v), mid(v, w), mid(w, u)]);
                         }
                     }
                 }
             }
         }
     }
+    (tets, tris)
+}
+
+/// A Gmsh 4.1 mesh of 10-node tetrahedra ([`kuhn_tetrahedra`]) of
+/// `cells` cells of size `h` along x, y, z from the origin: physical volume
+/// "bar" and surfaces "bar.xmin", "bar.xmax", "bar.ymin", "bar.zmin"
+/// (6-node triangles); every point of the half-cell lattice a node.
+fn tet_bar_msh(cells: [usize; 3], h: [f64; 3]) -> String {
+    let m = cells.map(|c| 2 * c + 1);
+    let id = |p: [usize; 3]| 1 + p[0] + m[0] * (p[1] + m[1] * p[2]);
+    let (tets, tris) = kuhn_tetrahedra(cells);
     let names = ["bar.xmin", "bar.xmax", "bar.ymin", "bar.zmin"];
     let points = m[0] * m[1] * m[2];
     let mut out = String::from("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n5\n");
@@ -428,28 +433,36 @@ fn tet_bar_msh(cells: [usize; 3], h: [f64; 3]) -> String {
     for k in 0..m[2] {
         for j in 0..m[1] {
             for i in 0..m[0] {
-                let [a, b, c] = x([i, j, k]);
-                out += &format!("{a} {b} {c}\n");
+                let [a, b, c] = [i, j, k].map(|v| v as f64);
+                out += &format!("{} {} {}\n", 0.5 * h[0] * a, 0.5 * h[1] * b, 0.5 * h[2] * c);
             }
         }
     }
     let count = tets.len() + tris.iter().map(Vec::len).sum::<usize>();
     out += &format!("$EndNodes\n$Elements\n5 {count} 1 {count}\n");
     let mut tag = 0;
-    for (s, list) in tris.iter().enumerate() {
-        out += &format!("2 {} 9 {}\n", s + 1, list.len());
-        for t in list {
+    let mut block = |out: &mut String, head: String, list: Vec<Vec<usize>>| {
+        *out += &head;
+        for nodes in list {
             tag += 1;
-            let nodes: Vec<String> = t.iter().map(usize::to_string).collect();
-            out += &format!("{tag} {}\n", nodes.join(" "));
+            let nodes: Vec<String> = nodes.iter().map(usize::to_string).collect();
+            *out += &format!("{tag} {}\n", nodes.join(" "));
         }
+    };
+    for (s, list) in tris.iter().enumerate() {
+        let head = format!("2 {} 9 {}\n", s + 1, list.len());
+        block(
+            &mut out,
+            head,
+            list.iter().map(|t| t.map(id).to_vec()).collect(),
+        );
     }
-    out += &format!("3 1 11 {}\n", tets.len());
-    for t in &tets {
-        tag += 1;
-        let nodes: Vec<String> = t.iter().map(usize::to_string).collect();
-        out += &format!("{tag} {}\n", nodes.join(" "));
-    }
+    let head = format!("3 1 11 {}\n", tets.len());
+    block(
+        &mut out,
+        head,
+        tets.iter().map(|t| t.map(id).to_vec()).collect(),
+    );
     out + "$EndElements\n"
 }
 

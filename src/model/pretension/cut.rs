@@ -118,12 +118,13 @@ pub(super) fn split(mesh: &mut Mesh, cut: &Cut<'_>) -> Result<Vec<(usize, usize)
 }
 
 /// Each element of the body beyond the cut (or before it), and for each
-/// node on the cut the sides its elements lie on. Refused: a cut with no
-/// side of the body on it held from both sides (it misses the body, or
-/// only touches its outside), and a cut that an element of the body
+/// node on the cut the sides its elements lie on. Refused: a cut where no
+/// node of the body is held by elements of both sides (it misses the body,
+/// or only touches its outside: no side of an element, edge or face, on
+/// it has the body on both sides), and a cut that an element of the body
 /// crosses (through elements alone: it follows no edges or faces; beside
-/// sides on the cut: the body is not cut through, its two sides stay
-/// joined by that element).
+/// such nodes: the body is not cut through, its two sides stay joined by
+/// that element).
 #[allow(clippy::type_complexity)]
 fn sides_of_cut(mesh: &Mesh, cut: &Cut<'_>) -> Result<(Vec<bool>, HashMap<usize, [bool; 2]>)> {
     let tol = crate::model::consistency::tolerance(mesh);
@@ -140,8 +141,6 @@ fn sides_of_cut(mesh: &Mesh, cut: &Cut<'_>) -> Result<(Vec<bool>, HashMap<usize,
     let mut beyond = vec![false; mesh.elements.len()];
     let mut on_sides: HashMap<usize, [bool; 2]> = HashMap::new();
     let mut crossing = None;
-    // each side of an element on the cut: the sides of the cut it is held from
-    let mut held: HashMap<Vec<usize>, [bool; 2]> = HashMap::new();
     for (e, el) in mesh.elements.iter().enumerate() {
         if el.body != cut.body {
             continue;
@@ -158,17 +157,12 @@ fn sides_of_cut(mesh: &Mesh, cut: &Cut<'_>) -> Result<(Vec<bool>, HashMap<usize,
                 on_sides.entry(n).or_default()[usize::from(plus)] = true;
             }
         }
-        for f in element_sides(el) {
-            if f.iter().all(|&n| side(n) == 0) {
-                held.entry(key(&f)).or_default()[usize::from(plus)] = true;
-            }
-        }
     }
-    let cut_sides = held.values().filter(|h| h[0] && h[1]).count();
+    let cut_nodes = on_sides.values().filter(|h| h[0] && h[1]).count();
     if let Some(e) = crossing {
-        return Err(crossed(mesh, cut, e, cut_sides > 0));
+        return Err(crossed(mesh, cut, e, cut_nodes > 0));
     }
-    if cut_sides == 0 {
+    if cut_nodes == 0 {
         return Err(Error::input(
             cut.place,
             format!(
@@ -183,7 +177,8 @@ fn sides_of_cut(mesh: &Mesh, cut: &Cut<'_>) -> Result<(Vec<bool>, HashMap<usize,
 }
 
 /// The refusal of a cut that element `e` crosses: `through`, whether the
-/// cut holds sides of the body elsewhere (then the body is not cut through).
+/// cut holds nodes of both sides elsewhere (then the body is not cut
+/// through).
 fn crossed(mesh: &Mesh, cut: &Cut<'_>, e: usize, through: bool) -> Error {
     let near = if cut.dim == 3 {
         let c = mesh.corner_mean(e);
