@@ -531,7 +531,7 @@ fn held_twice(
 }
 
 /// The two sides of a section's cut when the cut divides its body in two
-/// (the nodes of the elements beyond the line and those of the elements
+/// (the nodes of the elements beyond the cut and those of the elements
 /// before it share none): each node's side, `true` beyond (the side the
 /// normal points to; nodes of other bodies `false`). `None` when the body
 /// stays in one piece around the cut's end (a cut part way across): then
