@@ -2,10 +2,13 @@
 //! SECTION and CalculiX's pre-tension section: a bolt is tightened by cutting
 //! its shank and pulling the two sides of the cut together.
 //!
-//! The cut follows element edges: every node of the body on the line
-//! (y = h, or x = c in plane models) that elements on both sides share is
-//! doubled, the elements beyond the line (on the side the normal n = +y or
-//! +x points to) take the copy. One more unknown, the shortening s, lives on
+//! The cut follows element edges in a plane or axisymmetric model (the line
+//! y = h, or x = c in plane models) and element faces in a 3D one (the plane
+//! x = c, y = h or z = c: its normal along an axis, a bolt along that axis):
+//! every node of the body on the cut that elements on both sides share is
+//! doubled (in 3D the corners and midsides of the faces in the plane), the
+//! elements beyond the cut (on the side the normal n = +x, +y or +z points
+//! to) take the copy ([`cut`]). One more unknown, the shortening s, lives on
 //! a reference node of its own after the mesh's N nodes (section k's first
 //! dof, K (N + k) with K dofs per node; its other dofs always 0), and the
 //! copies follow the originals through the model's linear constraints
@@ -13,6 +16,7 @@
 //!
 //! ```text
 //!   u_n(copy) = u_n(node) − s,   u_t(copy) = u_t(node),   u_θ(copy) = u_θ(node) (twist)
+//!   3D: u_n(copy) = u_n(node) − s,   the two in-plane components equal
 //! ```
 //!
 //! so s > 0 shortens the body across the cut, rigidly over the whole cut.
@@ -41,6 +45,10 @@ use crate::input::mesh::{Mesh, NodeDofs};
 use crate::model::constraint::Constraint;
 use std::collections::{BTreeMap, HashMap};
 
+mod cut;
+#[cfg(test)]
+mod tests;
+
 /// The most sections a case may have.
 pub(crate) const MAX_SECTIONS: usize = 64;
 
@@ -49,9 +57,9 @@ pub(crate) const MAX_SECTIONS: usize = 64;
 pub struct Section {
     pub name: String,
     pub body: usize,
-    /// The normal's component: 0 (x = c) or 1 (y = h).
+    /// The normal's component: 0 (x = c), 1 (y = h) or 2 (z = c, 3D).
     pub axis: usize,
-    /// The line's coordinate (mm).
+    /// The cut's coordinate (mm).
     pub at: f64,
     /// (node, its copy beyond the cut) of every cut node.
     pub pairs: Vec<(usize, usize)>,
@@ -90,7 +98,7 @@ fn at(place: &str, k: usize, spec: &PretensionSpec) -> String {
 /// Checks every `[[pretension]]` by itself and cuts the mesh along each:
 /// the sections with their node pairs (dofs and lock times come from
 /// [`finish`]). The mesh gains the copies; the elements beyond each cut, and
-/// their edges in edge sets and interfaces, take them.
+/// their edges in edge sets and interfaces (faces in face sets), take them.
 pub fn cut(case: &Case, mesh: &mut Mesh, place: &str) -> Result<Vec<Section>> {
     let mut out: Vec<Section> = Vec::new();
     if case.pretension.len() > MAX_SECTIONS {
@@ -115,18 +123,35 @@ pub fn cut(case: &Case, mesh: &mut Mesh, place: &str) -> Result<Vec<Section>> {
                 mesh.bodies.join(", ")
             ));
         };
-        let (axis, value) = line_of(case, spec).map_err(blame)?;
+        let dim = mesh.dim();
+        let (axis, value) = plane_of(case, spec, dim).map_err(blame)?;
         check_control(spec).map_err(blame)?;
         if let Some(other) = out
             .iter()
             .find(|s| s.body == body && s.axis == axis && (s.at - value).abs() <= tol)
         {
             return err(format!(
-                "cuts body \"{}\" along the same line as pretension \"{}\"",
-                spec.body, other.name
+                "cuts body \"{}\" {} as pretension \"{}\"",
+                spec.body,
+                if dim == 3 {
+                    "in the same plane"
+                } else {
+                    "along the same line"
+                },
+                other.name
             ));
         }
-        let pairs = split(mesh, body, axis, value, &at, &spec.body)?;
+        let pairs = cut::split(
+            mesh,
+            &cut::Cut {
+                body,
+                axis,
+                at: value,
+                dim,
+                name: &spec.body,
+                place: &at,
+            },
+        )?;
         out.push(Section {
             name: spec.name.clone(),
             body,
@@ -170,26 +195,44 @@ fn check_name(spec: &PretensionSpec, out: &[Section]) -> std::result::Result<(),
     Ok(())
 }
 
-/// The line of a section's cut: (axis, value) of x_axis = value.
-fn line_of(case: &Case, spec: &PretensionSpec) -> std::result::Result<(usize, f64), String> {
-    let (axis, value) = match (spec.x, spec.y) {
-        (None, Some(y)) => (1, y),
-        (Some(x), None) => {
-            if case.model.plane == crate::physics::material::Plane::Axisymmetric {
-                return Err("x = c cuts a body of revolution along a cylinder: in an axisymmetric model a section is a cut y = h across the axis (a bolt along y)".into());
-            }
-            (0, x)
+/// The line (plane in 3D) of a section's cut in a mesh of dimension
+/// `dim`: (axis, value) of x_axis = value.
+fn plane_of(
+    case: &Case,
+    spec: &PretensionSpec,
+    dim: usize,
+) -> std::result::Result<(usize, f64), String> {
+    let given: Vec<(usize, f64)> = [spec.x, spec.y, spec.z]
+        .into_iter()
+        .enumerate()
+        .filter_map(|(k, v)| Some((k, v?)))
+        .collect();
+    let (axis, value) = match given[..] {
+        [(2, _)] if dim != 3 => {
+            return Err("z = c is the cut of a 3D model (plane = \"3d\"); a plane or axisymmetric model is cut along y = h or x = c".into());
         }
-        (Some(_), Some(_)) => return Err("give x or y (the line of the cut), not both".into()),
-        (None, None) => return Err(
+        [(0, _)] if case.model.plane == crate::physics::material::Plane::Axisymmetric => {
+            return Err("x = c cuts a body of revolution along a cylinder: in an axisymmetric model a section is a cut y = h across the axis (a bolt along y)".into());
+        }
+        [one] => one,
+        [] if dim == 3 => return Err(
+            "give the plane of the cut: x = c, y = h or z = c (normal +x, +y or +z: a bolt along that axis)"
+                .into(),
+        ),
+        [] => return Err(
             "give the line of the cut: y = h (normal +y) or, in plane models, x = c (normal +x)"
                 .into(),
         ),
+        _ if dim == 3 => {
+            return Err("give one of x, y and z (the plane of the cut, its normal along that axis), not two".into())
+        }
+        _ => return Err("give x or y (the line of the cut), not both".into()),
     };
     if !crate::input::case::ranges::COORDINATE.admits(value) {
         return Err(format!(
-            "{} = {value}: {}",
-            ["x", "y"][axis],
+            "{} = {}: {}",
+            ["x", "y", "z"][axis],
+            crate::numbers::exact(value),
             crate::input::case::ranges::COORDINATE.refusal(value)
         ));
     }
@@ -247,216 +290,29 @@ pub(crate) fn origins(sections: &[Section], nodes: usize) -> Vec<usize> {
     origin
 }
 
-/// The pairs of elements that face each other across a section's line in
-/// the uncut `mesh` (an element edge of the body on the line, one element
-/// on each side): an adaptive run splits both together
+/// The pairs of elements that face each other across a section's cut in
+/// the uncut `mesh` (an element edge, or face in 3D, of the body on the
+/// cut, one element on each side): an adaptive run splits both together
 /// (`crate::input::mesh::refine::Refined::refine_tied`), so that no hanging node
 /// lies on a cut, where it would hang across the cut from the nodes of the
 /// other side. A section the cut would refuse (an unknown body, no line)
 /// gives none.
 pub fn facing(case: &Case, mesh: &Mesh) -> Vec<(usize, usize)> {
-    let tol = crate::model::consistency::tolerance(mesh);
     let mut out = Vec::new();
     for spec in &case.pretension {
         let Some(body) = mesh.bodies.iter().position(|b| *b == spec.body) else {
             continue;
         };
-        let (axis, value) = match (spec.x, spec.y) {
-            (None, Some(y)) => (1, y),
-            (Some(x), None) => (0, x),
+        let (axis, value) = match (spec.x, spec.y, spec.z) {
+            (Some(x), None, None) => (0, x),
+            (None, Some(y), None) => (1, y),
+            (None, None, Some(z)) => (2, z),
             _ => continue,
         };
-        let d = |n: usize| mesh.nodes[n][axis] - value;
-        // each edge on the line: the element before it and the one beyond
-        let mut sides: HashMap<(usize, usize), [Option<usize>; 2]> = HashMap::new();
-        for (e, el) in mesh.elements.iter().enumerate() {
-            if el.body != body {
-                continue;
-            }
-            let beyond = el.nodes().iter().any(|&n| d(n) > tol);
-            for [a, m, b] in el.edges() {
-                if [a, m, b].iter().all(|&n| d(n).abs() <= tol) {
-                    sides.entry((a.min(b), a.max(b))).or_default()[usize::from(beyond)] = Some(e);
-                }
-            }
-        }
-        out.extend(sides.values().filter_map(|s| Some((s[0]?, s[1]?))));
+        out.extend(cut::facing(mesh, body, axis, value));
     }
     out.sort_unstable();
     out
-}
-
-/// Splits body `body` along the line x_axis = value: the node pairs.
-fn split(
-    mesh: &mut Mesh,
-    body: usize,
-    axis: usize,
-    value: f64,
-    at: &str,
-    name: &str,
-) -> Result<Vec<(usize, usize)>> {
-    let line = format!("{} = {value}", ["x", "y"][axis]);
-    let (beyond, on_sides) = sides_of_line(mesh, body, axis, value, at, name)?;
-    let mut cut: Vec<usize> = on_sides
-        .iter()
-        .filter(|(_, s)| s[0] && s[1])
-        .map(|(&n, _)| n)
-        .collect();
-    cut.sort_unstable();
-    if cut.is_empty() {
-        return Err(Error::input(
-            at,
-            format!(
-                "does not cut body \"{name}\": no element edge of the body on {line} has elements of the body on both sides"
-            ),
-        ));
-    }
-    let copy: HashMap<usize, usize> = cut
-        .iter()
-        .enumerate()
-        .map(|(i, &n)| (n, mesh.nodes.len() + i))
-        .collect();
-    let pairs: Vec<(usize, usize)> = cut.iter().map(|&n| (n, copy[&n])).collect();
-    for &n in &cut {
-        let x = mesh.nodes[n];
-        mesh.nodes.push(x);
-    }
-    carry_to_copies(mesh, body, &beyond, &copy);
-    Ok(pairs)
-}
-
-/// Each element of `body` beyond the line x_axis = value (or before it),
-/// and for each node on the line the sides its elements lie on; an element
-/// the line runs through is refused.
-#[allow(clippy::type_complexity)]
-fn sides_of_line(
-    mesh: &Mesh,
-    body: usize,
-    axis: usize,
-    value: f64,
-    at: &str,
-    name: &str,
-) -> Result<(Vec<bool>, HashMap<usize, [bool; 2]>)> {
-    let tol = crate::model::consistency::tolerance(mesh);
-    let line = format!("{} = {value}", ["x", "y"][axis]);
-    let side = |n: usize| -> i8 {
-        let d = mesh.nodes[n][axis] - value;
-        if d > tol {
-            1
-        } else if d < -tol {
-            -1
-        } else {
-            0
-        }
-    };
-    // each element of the body: beyond the line (+1), before it (−1)
-    let mut beyond = vec![false; mesh.elements.len()];
-    let mut on_sides: HashMap<usize, [bool; 2]> = HashMap::new();
-    for (e, el) in mesh.elements.iter().enumerate() {
-        if el.body != body {
-            continue;
-        }
-        let s: Vec<i8> = el.nodes().iter().map(|&n| side(n)).collect();
-        let (plus, minus) = (s.contains(&1), s.contains(&-1));
-        if plus && minus {
-            let c = mesh.node_mean(e);
-            return Err(Error::input(
-                at,
-                format!(
-                    "the cut {line} runs through {} of body \"{name}\" near ({:.4}, {:.4}): a cut follows element edges (a block breakpoint at {line}, or a mesh line there in a Gmsh mesh)",
-                    mesh.element_label(e),
-                    c[0],
-                    c[1]
-                ),
-            ));
-        }
-        beyond[e] = plus;
-        for (&n, &sn) in el.nodes().iter().zip(&s) {
-            if sn == 0 {
-                on_sides.entry(n).or_default()[usize::from(plus)] = true;
-            }
-        }
-    }
-    Ok((beyond, on_sides))
-}
-
-/// The elements beyond the cut, and the edges, interface sides and node
-/// sets that belong to them, take the copies of the cut's nodes.
-fn carry_to_copies(mesh: &mut Mesh, body: usize, beyond: &[bool], copy: &HashMap<usize, usize>) {
-    // edges [end, mid, end] of the elements beyond: their owner decides
-    let mut owner: HashMap<[usize; 3], bool> = HashMap::new();
-    for (e, el) in mesh.elements.iter().enumerate() {
-        if el.body != body || !el.nodes().iter().any(|n| copy.contains_key(n)) {
-            continue;
-        }
-        for mut key in el.edges() {
-            key.sort_unstable();
-            owner.insert(key, beyond[e]);
-        }
-    }
-    let remap = |edge: &mut [usize; 3]| {
-        let mut key = *edge;
-        key.sort_unstable();
-        if owner.get(&key) == Some(&true) {
-            for n in edge.iter_mut() {
-                if let Some(&c) = copy.get(n) {
-                    *n = c;
-                }
-            }
-        }
-    };
-    for edges in mesh.edge_sets.values_mut() {
-        edges.iter_mut().for_each(remap);
-    }
-    for iface in &mut mesh.interfaces {
-        for e in &mut iface.edges {
-            remap(&mut e.a);
-            remap(&mut e.b);
-        }
-        if let Some(nm) = &mut iface.nonmatching {
-            nm.slave.iter_mut().for_each(remap);
-            nm.master.iter_mut().for_each(remap);
-        }
-    }
-    // node sets: a set whose other nodes all lie on the far side (a side
-    // of a block beyond the cut) takes the copies; one that reaches the
-    // near side, or lies on the cut alone, keeps the nodes (their copies
-    // follow them through the constraints)
-    let mut far_side = vec![[false; 2]; mesh.nodes.len()];
-    for (e, el) in mesh.elements.iter().enumerate() {
-        if el.body == body {
-            for &n in el.nodes() {
-                far_side[n][usize::from(beyond[e])] = true;
-            }
-        }
-    }
-    for set in mesh.node_sets.values_mut() {
-        if !set.iter().any(|n| copy.contains_key(n)) {
-            continue;
-        }
-        let others = set.iter().filter(|n| !copy.contains_key(n));
-        let (near, far) = others.fold((false, false), |(a, b), &n| {
-            let s = far_side.get(n).copied().unwrap_or([false; 2]);
-            (a || s[0], b || s[1])
-        });
-        if far && !near {
-            for n in set.iter_mut() {
-                if let Some(&c) = copy.get(n) {
-                    *n = c;
-                }
-            }
-            set.sort_unstable();
-        }
-    }
-    for (e, el) in mesh.elements.iter_mut().enumerate() {
-        if beyond[e] {
-            for n in el.nodes_mut() {
-                if let Some(&c) = copy.get(n) {
-                    *n = c;
-                }
-            }
-        }
-    }
 }
 
 /// Completes the sections once the loads are known: each one's dof after
@@ -556,9 +412,9 @@ pub fn constraints(
                     if through.is_empty() && Some(v) == held(*master) {
                         continue;
                     }
-                    return Err(held_twice(
-                        nodes, r, comp, &path_all, &through, place, &names,
-                    ));
+                    let node = node_words(nd, nodes, r);
+                    let what = component(nd, comp);
+                    return Err(held_twice(&node, what, &path_all, &through, place, &names));
                 }
                 made.insert(
                     nd.dof(*m, comp),
@@ -624,22 +480,36 @@ fn groups_by_root(sections: &[Section]) -> BTreeMap<usize, Vec<(usize, Vec<usize
     groups
 }
 
-/// The refusal of a cut node held on both sides of a cut: `through`, the
-/// sections whose shortening the two holds would fix (none: held with two
-/// values where no section enters), `sections_at` all sections through it.
-#[allow(clippy::too_many_arguments)]
+/// Node `node` in a message: at (x, y), or (x, y, z) in a 3D model.
+fn node_words(nd: NodeDofs, nodes: &[[f64; 3]], node: usize) -> String {
+    let [x, y, z] = nodes[node];
+    if nd.per_node() == 3 && !nd.twist() {
+        format!("node {node} at ({x}, {y}, {z})")
+    } else {
+        format!("node {node} at ({x}, {y})")
+    }
+}
+
+/// Component `comp` in a message.
+fn component(nd: NodeDofs, comp: usize) -> &'static str {
+    match comp {
+        2 if nd.twist() => "u_θ (a rotation about the axis)",
+        _ => ["ux", "uy", "uz"][comp],
+    }
+}
+
+/// The refusal of a cut node (`at`, named by [`node_words`]) held in `x`
+/// on both sides of a cut: `through`, the sections whose shortening the
+/// two holds would fix (none: held with two values where no section
+/// enters), `sections_at` all sections through it.
 fn held_twice(
-    nodes: &[[f64; 3]],
-    node: usize,
-    comp: usize,
+    at: &str,
+    x: &str,
     sections_at: &[usize],
     through: &[usize],
     place: &str,
     names: &dyn Fn(&[usize]) -> String,
 ) -> Error {
-    let x = ["ux", "uy", "u_θ (a rotation about the axis)"][comp];
-    let [px, py, _] = nodes[node];
-    let at = format!("node {node} at ({px}, {py})");
     let where_ = if sections_at.len() > 1 {
         format!(
             "{at}, where the cuts of pretension {} meet,",
@@ -661,7 +531,7 @@ fn held_twice(
 }
 
 /// The two sides of a section's cut when the cut divides its body in two
-/// (the nodes of the elements beyond the line and those of the elements
+/// (the nodes of the elements beyond the cut and those of the elements
 /// before it share none): each node's side, `true` beyond (the side the
 /// normal points to; nodes of other bodies `false`). `None` when the body
 /// stays in one piece around the cut's end (a cut part way across): then

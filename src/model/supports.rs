@@ -284,8 +284,9 @@ pub(super) fn check_sections_held(
         }
         for im in interfaces {
             for p in &im.pairs {
-                let carries =
-                    im.tangential.is_some() || p.normal[s.axis].abs() >= p.normal[1 - s.axis].abs();
+                // the normal's largest component along the cut's normal
+                let along = p.normal.get(s.axis).map_or(0.0, |v| v.abs());
+                let carries = im.tangential.is_some() || p.normal.iter().all(|v| v.abs() <= along);
                 for (body, n) in [(im.body_a, p.a), (im.body_b, p.b)] {
                     if carries && body == s.body {
                         held[usize::from(beyond[n])] = true;
@@ -294,7 +295,7 @@ pub(super) fn check_sections_held(
             }
         }
         if let Some(side) = held.iter().position(|h| !h) {
-            let line = ["x", "y"][s.axis];
+            let line = ["x", "y", "z"][s.axis];
             return Err(Error::input(
                 format!("{place}: pretension \"{}\"", crate::error::clip(&s.name)),
                 format!(

@@ -61,6 +61,41 @@ fn a_stopped_pretension_run_resumes_to_the_same_section_forces() {
     assert!((p["force_at_lock_n"].as_f64().unwrap() - 1000.0).abs() < 1e-7);
 }
 
+/// cases/bolt-pretension-3d (a revolved shank, 3D) stopped after 6 of its
+/// 8 increments, past the lock at t = 1, and resumed: its pretension.csv
+/// and reactions.csv byte for byte those of the run that was not stopped
+/// (the section's shortening, locked, travels in restart.bin with the three
+/// components of every node and copy).
+#[test]
+fn a_stopped_3d_pretension_run_resumes_byte_for_byte() {
+    let case = common::root().join("cases/bolt-pretension-3d");
+    let root = common::scratch("pretension-3d-restart");
+    let (c, o) = (case.display().to_string(), |n: &str| {
+        root.join(n).display().to_string()
+    });
+    let (full, stopped, resumed) = (o("full"), o("stopped"), o("resumed"));
+    let (code, e) = asperity(&["run", &c, "--out", &full, "--quiet"]);
+    assert_eq!(code, 0, "{e}");
+    let (code, e) = asperity(&["run", &c, "--out", &stopped, "--quiet", "--stop-after", "6"]);
+    assert_eq!(code, 3, "{e}");
+    let (code, e) = asperity(&[
+        "run",
+        &c,
+        "--out",
+        &resumed,
+        "--quiet",
+        "--restart",
+        &stopped,
+    ]);
+    assert_eq!(code, 0, "{e}");
+    for file in ["pretension.csv", "reactions.csv"] {
+        let read = |d: &str| std::fs::read(std::path::Path::new(d).join(file)).unwrap();
+        let (a, b) = (read(&full), read(&resumed));
+        assert!(a.len() > 200, "{file}");
+        assert_eq!(a, b, "{file} differs after a restart");
+    }
+}
+
 /// A restart file is input: a locked shortening that disagrees with the
 /// file's own record and a section force out of any range are refused
 /// (exit 2, one line naming restart.bin); a forged locked shortening would

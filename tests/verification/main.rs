@@ -36,6 +36,7 @@ mod memory;
 mod nonmatching;
 mod patch;
 mod pretension;
+mod pretension3d;
 mod punch;
 mod punch_rounded;
 mod ratings;

@@ -124,7 +124,7 @@ fn sections<'a>(model: &Model, r: &RunResult) -> Vec<Entry<'a>> {
             kind: format!("pretension ({})", s.control),
             selection: format!(
                 "cut {} = {} through {}",
-                axes[s.axis.min(2)],
+                axes[s.axis],
                 crate::numbers::num(s.at),
                 model.mesh.bodies[s.body]
             ),

@@ -772,7 +772,7 @@ fn pretension_summary(model: &Model, r: &RunResult) -> serde_json::Value {
             json!({
                 "name": s.name,
                 "body": model.mesh.bodies[s.body],
-                "cut": format!("{} = {}", ["x", "y"][s.axis], s.at),
+                "cut": format!("{} = {}", ["x", "y", "z"][s.axis], s.at),
                 "control": s.control,
                 "locked_after": s.lock_after.is_finite().then_some(s.lock_after),
                 "force_n": last[0],

@@ -96,7 +96,7 @@ pub struct Case {
 }
 
 /// A pretension section (`[[pretension]]`, after Abaqus *PRE-TENSION SECTION):
-/// a cut across a body along an element line, whose two sides are tied but
+/// a cut across a body along an element line (element faces in 3D), whose two sides are tied but
 /// for a relative displacement s along the cut's normal (the shortening),
 /// loaded by a force or a prescribed shortening ([`crate::model::pretension`]).
 #[derive(Clone, Debug, Deserialize, Serialize)]
@@ -105,10 +105,13 @@ pub struct PretensionSpec {
     pub name: String,
     /// The body the section cuts.
     pub body: String,
-    /// The cut along x = this value (plane models): its normal is +x.
+    /// The cut along x = this value (plane and 3D models): its normal is +x.
     pub x: Option<f64>,
     /// The cut along y = this value: its normal is +y.
     pub y: Option<f64>,
+    /// The cut in the plane z = this value (3D models): its normal is +z.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub z: Option<f64>,
     /// The section force at factor 1 (N; the whole ring in axisymmetry,
     /// the model's thickness in plane models): tension positive.
     pub force: Option<f64>,

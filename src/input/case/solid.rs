@@ -4,10 +4,11 @@
 //! Keys: `[mesh] extrude` (the block layout swept along z,
 //! `input::mesh::extrude`), `[[load]] faces` with `pressure` and
 //! `traction = [t_x, t_y, t_z]`, `uz` of `[[boundary]]`, `fz` of
-//! `[[force]]`, and `z_range` of all three. A 3D key in a plane model, a
+//! `[[force]]`, `z_range` of all three, and `z` of `[[pretension]]`. A 3D key in a plane model, a
 //! plane-only key in a 3D one, and every feature not yet built in 3D
-//! (interfaces, pretension sections, twist, a half model, local and
-//! adaptive refinement) are refused here, each naming its key. Whether a
+//! (interfaces, twist, a half model, local and adaptive refinement) are
+//! refused here, each naming its key. A pretension section's plane is
+//! checked with the mesh ([`crate::model::pretension`]). Whether a
 //! Gmsh file holds volumes is checked when it is read
 //! ([`crate::model::Model::build`]).
 
@@ -69,6 +70,12 @@ fn refuse_solid_keys(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
             }
         }
     }
+    if let Some(k) = case.pretension.iter().position(|p| p.z.is_some()) {
+        return Err(Error::input(
+            at(&format!("pretension[{k}] z")),
+            "is the cut of a 3D model (plane = \"3d\"), the plane z = c; a plane or axisymmetric model is cut along y = h (or x = c in plane models)",
+        ));
+    }
     Ok(())
 }
 
@@ -102,12 +109,6 @@ fn check_solid(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
     check_mesh_source(case, at)?;
     if case.mesh.refine_region.is_some() {
         return not_yet(at("[mesh] refine_region"), "local refinement");
-    }
-    if let Some(p) = case.pretension.first() {
-        return not_yet(
-            at(&format!("[[pretension]] \"{}\"", clip(&p.name))),
-            "a pretension section",
-        );
     }
     if case.adapt.is_some() {
         return not_yet(at("[adapt]"), "an adaptive run");

@@ -490,6 +490,7 @@ fn every_key_of_the_schema_changes_the_key() {
         ("body = \"a\"\ny = 0.5", "body = \"b\"\ny = 0.5"),
         ("y = 0.5\n", "y = 0.25\n"),
         ("y = 0.5\n", "x = 0.5\n"),
+        ("y = 0.5\n", "z = 0.5\n"),
         ("force = 100.0", "force = 101.0"),
         ("force = 100.0", "shortening = 0.01"),
         ("lock = true", "lock = false"),

@@ -219,7 +219,7 @@ impl Stabilizer {
                 first.get_or_insert(s);
                 continue;
             };
-            let line = ["x", "y"][s.axis];
+            let line = ["x", "y", "z"][s.axis];
             let via = match via[side].as_slice() {
                 [] => "it has no interface".to_string(),
                 v => format!(
