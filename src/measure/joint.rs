@@ -85,9 +85,45 @@ pub struct JointMeasures {
     pub hoop_slip: f64,
     /// With twist: φ̄ = −Σ A u_Tθ/r / Σ A, A's twist relative to B, rad.
     pub twist: f64,
+    /// In 3D: F_T2 = −Σ A p_T2, the drag of A relative to B along t₂, N.
+    pub tangential_force_2: f64,
+    /// In 3D: ū_T2 = −Σ A u_T2 / Σ A, A's motion relative to B along t₂, mm.
+    pub mean_slip_2: f64,
+    /// In 3D: the force the interface exerts on A, Σ A (p_N n + p_T1 t₁ +
+    /// p_T2 t₂) in global axes (x, y, z), N; B takes the opposite.
+    pub force: [f64; 3],
+    /// In 3D: its moment about the interface's moment point
+    /// ([`InterfaceModel::moment_point`]), Σ A (x − x₀) × τ, N·mm.
+    pub moment: [f64; 3],
 }
 
 impl JointMeasures {
+    /// Doubles per interface and increment in [`JointMeasures::pack_space`].
+    pub(crate) const PACKED_SPACE: usize = 8;
+
+    /// The measures of a 3D interface (restart section `joints_space`):
+    /// F_T2, ū_T2, the force and the moment on A.
+    pub(crate) fn pack_space(&self) -> [f64; Self::PACKED_SPACE] {
+        let (f, m) = (self.force, self.moment);
+        [
+            self.tangential_force_2,
+            self.mean_slip_2,
+            f[0],
+            f[1],
+            f[2],
+            m[0],
+            m[1],
+            m[2],
+        ]
+    }
+
+    /// Sets the measures of [`JointMeasures::pack_space`] from `v`.
+    pub(crate) fn unpack_space(&mut self, v: &[f64]) {
+        (self.tangential_force_2, self.mean_slip_2) = (v[0], v[1]);
+        self.force = [v[2], v[3], v[4]];
+        self.moment = [v[5], v[6], v[7]];
+    }
+
     /// Doubles per interface and increment in [`JointMeasures::pack_twist`].
     pub(crate) const PACKED_TWIST: usize = 3;
 
@@ -266,6 +302,19 @@ pub(crate) struct PointSample {
     /// With twist: the radius, u_Tθ and p_Tθ (internal convention); None
     /// without.
     pub hoop: Option<[f64; 3]>,
+    /// In 3D: the point's place, frame and second slip and shear.
+    pub space: Option<SpaceSample>,
+}
+
+/// What a point of a 3D interface adds: where it is (relative to the
+/// moment point), its normal and slip frame, u_T2 and p_T2 (internal
+/// convention).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct SpaceSample {
+    pub arm: [f64; 3],
+    pub frame: [[f64; 3]; 3],
+    pub u_t2: f64,
+    pub p_t2: f64,
 }
 
 /// Sums point samples into joint measures (joint convention); `per_measure`
@@ -287,6 +336,18 @@ pub(crate) fn aggregate(
         m.tangential_force -= s.area * s.p_t;
         m.mean_approach += s.area * s.u_n;
         m.mean_slip -= s.area * s.u_t;
+        if let Some(sp) = s.space {
+            m.tangential_force_2 -= s.area * sp.p_t2;
+            m.mean_slip_2 -= s.area * sp.u_t2;
+            let [n, t1, t2] = sp.frame;
+            let tau: [f64; 3] =
+                std::array::from_fn(|c| s.area * (s.p_n * n[c] + s.p_t * t1[c] + sp.p_t2 * t2[c]));
+            let arm = crate::numbers::vec3::cross(sp.arm, tau);
+            for c in 0..3 {
+                m.force[c] += tau[c];
+                m.moment[c] += arm[c];
+            }
+        }
         if let Some([r, u_h, p_h]) = s.hoop {
             m.torque -= s.area * r * p_h;
             m.hoop_slip -= s.area * u_h;
@@ -306,6 +367,7 @@ pub(crate) fn aggregate(
     if area > 0.0 {
         m.mean_approach /= area;
         m.mean_slip /= area;
+        m.mean_slip_2 /= area;
         m.hoop_slip /= area;
         m.twist /= area;
     }
@@ -337,8 +399,15 @@ pub fn measures(
         // by its gap_history), as the solver and the interface CSV take it
         let gap = im.gap_at(time);
         let radii = im.twist().then(|| im.point_radii());
-        let samples = im.points.iter().enumerate().map(|(j, pt)| {
+        let solid = im.node_dofs.solid();
+        let samples = im.points.iter().enumerate().map(move |(j, pt)| {
             let (u_n, u_t) = im.point_kinematics_at(pt, u, gap);
+            let space = solid.then(|| SpaceSample {
+                arm: crate::numbers::vec3::sub(im.point_position(pt), im.moment_point),
+                frame: [pt.normal, pt.tangent, pt.binormal()],
+                u_t2: im.point_second_slip(pt, u),
+                p_t2: contact[base + j].p_h,
+            });
             PointSample {
                 area: pt.area,
                 p_n: im.law.pressure(u_n).0,
@@ -349,6 +418,7 @@ pub fn measures(
                 hoop: radii
                     .as_ref()
                     .map(|r| [r[j], im.point_second_slip(pt, u), contact[base + j].p_h]),
+                space,
             }
         });
         let tot = totals.get(i).copied().unwrap_or_default();

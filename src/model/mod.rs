@@ -1119,19 +1119,21 @@ fn interface_models(
             )
         })?;
         let spec = &case.interface[&iface.name];
-        interfaces.push(
-            InterfaceModel::new(
-                mesh,
-                iface,
-                law.clone(),
-                spec.gap,
-                spec.weights,
-                section,
-                spec.start_pressure,
-                checked.tangential.get(&iface.name).cloned(),
-            )
-            .map_err(|m| Error::input(place, m))?,
-        );
+        let mut im = InterfaceModel::new(
+            mesh,
+            iface,
+            law.clone(),
+            spec.gap,
+            spec.weights,
+            section,
+            spec.start_pressure,
+            checked.tangential.get(&iface.name).cloned(),
+        )
+        .map_err(|m| Error::input(place, m))?;
+        if let Some(p) = &spec.moment_point {
+            im.moment_point = [p[0], p[1], p[2]];
+        }
+        interfaces.push(im);
     }
     for name in case.interface.keys() {
         if !mesh.interfaces.iter().any(|i| &i.name == name) {

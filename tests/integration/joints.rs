@@ -283,7 +283,7 @@ fn a_restart_carries_the_joint_energies_and_a_file_without_them_is_refused() {
     assert_eq!(
         err.trim_end(),
         format!(
-            "error: {}: section joint_totals missing: every restart file of format 4 holds it",
+            "error: {}: section joint_totals missing: every restart file of format 5 holds it",
             rs.display()
         )
     );

@@ -403,23 +403,23 @@ fn a_forged_schedule_state_or_section_table_is_refused() {
         (
             "format-1",
             with(&|f| f.head[8..12].copy_from_slice(&1u32.to_le_bytes())),
-            "restart.bin was written by an earlier asperity (restart format 1); this build reads format 4 only: run the case again from the start",
+            "restart.bin was written by an earlier asperity (restart format 1); this build reads format 5 only: run the case again from the start",
         ),
         (
-            "format-5",
-            with(&|f| f.head[8..12].copy_from_slice(&5u32.to_le_bytes())),
-            "restart.bin was written by a later asperity (restart format 5); this build reads format 4 only",
+            "format-6",
+            with(&|f| f.head[8..12].copy_from_slice(&6u32.to_le_bytes())),
+            "restart.bin was written by a later asperity (restart format 6); this build reads format 5 only",
         ),
         // every section of the format is required, none other allowed
         (
             "no-event-counters",
             with(&|f| f.sections.retain(|s| s.name != "event_counters")),
-            "section event_counters missing: every restart file of format 4 holds it",
+            "section event_counters missing: every restart file of format 5 holds it",
         ),
         (
             "no-last-du",
             with(&|f| f.sections.retain(|s| s.name != "last_du")),
-            "section last_du missing: every restart file of format 4 holds it",
+            "section last_du missing: every restart file of format 5 holds it",
         ),
         (
             "unknown-section",
@@ -428,7 +428,7 @@ fn a_forged_schedule_state_or_section_table_is_refused() {
                 s.name = "later_section".into();
                 f.sections.push(s);
             }),
-            "section \"later_section\" is no section of restart format 4",
+            "section \"later_section\" is no section of restart format 5",
         ),
     ];
     let runs = dir.join("runs");
@@ -847,7 +847,7 @@ fn a_restart_file_of_format_1_is_refused() {
     copy_dir(&corpus.join("stopped"), &old);
     let bin = std::fs::read(old.join("restart.bin")).unwrap();
     assert_eq!(&bin[..12], b"ASPRSTRT\x01\0\0\0", "a file of format 1");
-    let needle = "restart.bin was written by an earlier asperity (restart format 1); this build reads format 4 only: run the case again from the start";
+    let needle = "restart.bin was written by an earlier asperity (restart format 1); this build reads format 5 only: run the case again from the start";
     for out in [dir.join("new"), old.clone()] {
         refused_case(&corpus, &dir, &old, &out, &[], needle, "format 1");
     }

@@ -143,7 +143,7 @@ fn a_restart_keeps_how_far_the_tables_were_used() {
     assert_eq!(
         err.lines().last().unwrap_or(""),
         format!(
-            "error: {}: section table_reach missing: every restart file of format 4 holds it",
+            "error: {}: section table_reach missing: every restart file of format 5 holds it",
             rs.display()
         )
     );

@@ -22,9 +22,10 @@ pub(crate) fn csv_field(s: &str) -> String {
     }
 }
 
-/// `mm` for plane models (lengths of interface), `mm2` in axisymmetry (areas).
+/// `mm` for plane models (lengths of interface), `mm2` in axisymmetry and
+/// in 3D (areas).
 fn measure_unit(model: &Model) -> &'static str {
-    if model.section.axisymmetric {
+    if model.section.axisymmetric || model.mesh.dim() == 3 {
         "mm2"
     } else {
         "mm"
@@ -36,21 +37,32 @@ pub const JOINTS_HEADER: &str = "increment,time,interface,normal_force_n,tangent
 /// The columns a twisting model's `joints.csv` adds at the end of a row.
 pub const JOINTS_TWIST_COLUMNS: &str = ",torque_nmm,mean_hoop_slip_mm,mean_twist_rad";
 
+/// The columns a 3D model's `joints.csv` adds at the end of a row.
+pub const JOINTS_SPACE_COLUMNS: &str = ",tangential_force_2_n,mean_slip_2_mm,force_x_n,force_y_n,force_z_n,moment_x_nmm,moment_y_nmm,moment_z_nmm";
+
 /// `joints.csv`: one row per committed increment and interface.
-/// A twisting model's rows end with T, ū_θ and φ̄ ([`JOINTS_TWIST_COLUMNS`]).
+/// A twisting model's rows end with T, ū_θ and φ̄ ([`JOINTS_TWIST_COLUMNS`]),
+/// a 3D model's with F_T2, ū_T2 and the force and moment on A
+/// ([`JOINTS_SPACE_COLUMNS`]).
 pub fn joints_csv(model: &Model, r: &RunResult) -> String {
     let twist = model.node_dofs().twist();
+    let space = model.node_dofs().solid();
     let mut s = String::from(JOINTS_HEADER);
-    if twist {
-        s.pop();
-        s += JOINTS_TWIST_COLUMNS;
-        s.push('\n');
+    for (on, columns) in [(twist, JOINTS_TWIST_COLUMNS), (space, JOINTS_SPACE_COLUMNS)] {
+        if on {
+            s.pop();
+            s += columns;
+            s.push('\n');
+        }
     }
     for inc in &r.increments {
         for (im, m) in model.interfaces.iter().zip(&inc.joints) {
             let mut values = m.pack().to_vec();
             if twist {
                 values.extend(m.pack_twist());
+            }
+            if space {
+                values.extend(m.pack_space());
             }
             let _ = writeln!(
                 s,
@@ -178,7 +190,7 @@ pub fn cycle_json(number: usize, c: &Cycle, twist: bool) -> Value {
 
 /// The joint measures of one increment as a `summary.json` object (with
 /// twist, the torque, circumferential slip and twist too).
-fn measures_json(time: f64, m: &JointMeasures, twist: bool) -> Value {
+fn measures_json(time: f64, m: &JointMeasures, twist: bool, space: bool) -> Value {
     let mut v = json!({
         "time": time,
         "normal_force_n": m.normal_force,
@@ -198,6 +210,12 @@ fn measures_json(time: f64, m: &JointMeasures, twist: bool) -> Value {
         v["mean_hoop_slip_mm"] = json!(m.hoop_slip);
         v["mean_twist_rad"] = json!(m.twist);
     }
+    if space {
+        v["tangential_force_2_n"] = json!(m.tangential_force_2);
+        v["mean_slip_2_mm"] = json!(m.mean_slip_2);
+        v["force_n"] = json!(m.force);
+        v["moment_nmm"] = json!(m.moment);
+    }
     v
 }
 
@@ -213,7 +231,8 @@ pub fn summary(model: &Model, r: &RunResult, cycles: &[Vec<Cycle>]) -> Value {
             let fin = last
                 .and_then(|i| {
                     let m = i.joints.get(k)?;
-                    Some(measures_json(i.load_factor, m, im.twist()))
+                    let space = im.node_dofs.solid();
+                    Some(measures_json(i.load_factor, m, im.twist(), space))
                 })
                 .unwrap_or(Value::Null);
             let cyc: Vec<Value> = cycles
@@ -225,7 +244,7 @@ pub fn summary(model: &Model, r: &RunResult, cycles: &[Vec<Cycle>]) -> Value {
                         .collect()
                 })
                 .unwrap_or_default();
-            json!({
+            let mut v = json!({
                 "interface": im.name,
                 "body_a": model.mesh.bodies[im.body_a],
                 "body_b": model.mesh.bodies[im.body_b],
@@ -233,7 +252,17 @@ pub fn summary(model: &Model, r: &RunResult, cycles: &[Vec<Cycle>]) -> Value {
                 "measure_unit": measure_unit(model),
                 "final": fin,
                 "cycles": cyc,
-            })
+            });
+            if im.node_dofs.solid() {
+                // the slip frame of the first pair: F_T and ū_T along t₁,
+                // F_T2 and ū_T2 along t₂
+                let n = im.pairs.first().map_or([0.0, 1.0, 0.0], |p| p.normal);
+                let t1 = crate::model::interface::frame(n);
+                v["direction"] = json!(t1.map(|c| c + 0.0));
+                v["direction_2"] = json!(crate::numbers::vec3::cross(n, t1).map(|c| c + 0.0));
+                v["moment_point_mm"] = json!(im.moment_point);
+            }
+            v
         })
         .collect();
     Value::Array(list)

@@ -409,6 +409,10 @@ pub const INTERFACE_HEADER: &str = "x_mm,p_n_mpa,u_n_mm,status,p_t_mpa,u_t_mm,u_
 /// The columns a twisting model's `interface/NNNN.csv` adds, and the line's end.
 pub const INTERFACE_TWIST_COLUMNS: &str = ",p_t_theta_mpa,u_t_theta_mm,u_t_theta_plastic_mm\n";
 
+/// The columns a 3D model's `interface/NNNN.csv` adds, and the line's end:
+/// the pair's z, and the shear, slip and plastic slip along t₂.
+pub const INTERFACE_SPACE_COLUMNS: &str = ",z_mm,p_t2_mpa,u_t2_mm,u_t2_plastic_mm\n";
+
 /// The header of `curve.csv`.
 pub const CURVE_HEADER: &str = "increment,load_factor,total_load_kn,mean_pressure_mpa,load_ratio,center_displacement_mm,max_peeq,iterations\n";
 
@@ -422,8 +426,13 @@ pub const CURVE_HEADER: &str = "increment,load_factor,total_load_kn,mean_pressur
 /// its u_t_plastic_mm is the meridional component of the vector plastic slip.
 pub fn interface_csv(model: &Model, state: &State) -> String {
     let twist = model.node_dofs().twist();
+    let space = model.node_dofs().solid();
     let mut s = String::from(INTERFACE_HEADER);
-    s += if twist { INTERFACE_TWIST_COLUMNS } else { "\n" };
+    s += match (twist, space) {
+        (true, _) => INTERFACE_TWIST_COLUMNS,
+        (_, true) => INTERFACE_SPACE_COLUMNS,
+        _ => "\n",
+    };
     let mut base = 0;
     for (im, iface) in model.interfaces.iter().zip(&model.mesh.interfaces) {
         let lumped = im.points.len() == im.pairs.len();
@@ -445,7 +454,11 @@ pub fn interface_csv(model: &Model, state: &State) -> String {
                 };
                 (Default::default(), st)
             };
-            let u_p = if twist { c.slip2.u_p[0] } else { c.slip.u_p };
+            let u_p = if twist || space {
+                c.slip2.u_p[0]
+            } else {
+                c.slip.u_p
+            };
             let _ = write!(
                 s,
                 "{},{:.9e},{:.9e},{},{:.9e},{:.9e},{:.9e},{:.6},{},{},{:.9e},{name}",
@@ -461,13 +474,16 @@ pub fn interface_csv(model: &Model, state: &State) -> String {
                 pr.x[1],
                 arc[i],
             );
-            if twist {
-                // u_Tθ from the displacements where the pair carries no state
+            if twist || space {
+                // u_Tθ (u_T2) from the displacements where the pair carries no state
                 let u_h = if lumped && im.tangential.is_some() {
                     c.u_h
                 } else {
                     im.pair_second_slip(pr, &state.u)
                 };
+                if space {
+                    let _ = write!(s, ",{}", pr.x[2]);
+                }
                 let _ = write!(s, ",{:.9e},{:.9e},{:.9e}", c.p_h, u_h, c.slip2.u_p[1]);
             }
             s.push('\n');

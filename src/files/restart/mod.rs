@@ -144,12 +144,12 @@ use std::io::Write;
 use std::path::Path;
 
 pub(crate) const MAGIC: &[u8; 8] = b"ASPRSTRT";
-pub(crate) const VERSION: u32 = 4;
+pub(crate) const VERSION: u32 = 5;
 pub(crate) const FILE: &str = "restart.bin";
 
 /// The sections of a restart file of this [`VERSION`], each exactly once
 /// (in the order they are written).
-pub(crate) const SECTIONS: [&str; 32] = [
+pub(crate) const SECTIONS: [&str; 33] = [
     "increment",
     "load_factor",
     "last_step",
@@ -175,6 +175,7 @@ pub(crate) const SECTIONS: [&str; 32] = [
     "joint_totals",
     "joints",
     "joints_twist",
+    "joints_space",
     "pretension",
     "record_width",
     "records",
@@ -524,6 +525,13 @@ fn record_sections(e: &mut Encoder, ck: &Checkpoint) -> std::io::Result<()> {
         "joints_twist",
         JointMeasures::PACKED_TWIST * twist,
         joints().take(twist).flat_map(JointMeasures::pack_twist),
+    )?;
+    // 3D: F_T2, ū_T2, the force and moment on A; empty in 2D
+    let space = if ck.vector_slip && !ck.twist { n } else { 0 };
+    e.f64_iter(
+        "joints_space",
+        JointMeasures::PACKED_SPACE * space,
+        joints().take(space).flat_map(JointMeasures::pack_space),
     )?;
     // every pretension section's force and shortening per increment (empty
     // in a model without sections)

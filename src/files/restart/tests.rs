@@ -607,7 +607,7 @@ fn a_file_holds_exactly_the_sections_of_its_format() {
         let e = decode(&file_of(&head, &without), &model).unwrap_err();
         assert_eq!(
             e,
-            format!("section {name} missing: every restart file of format 4 holds it")
+            format!("section {name} missing: every restart file of format 5 holds it")
         );
     }
     let mut more = sections.clone();
@@ -618,7 +618,7 @@ fn a_file_holds_exactly_the_sections_of_its_format() {
     extra.extend_from_slice(&7u64.to_le_bytes());
     more.push(("extra".into(), extra));
     let e = decode(&file_of(&head, &more), &model).unwrap_err();
-    assert_eq!(e, "section \"extra\" is no section of restart format 4");
+    assert_eq!(e, "section \"extra\" is no section of restart format 5");
     // a body of a first yield the file does not have
     let mut body = sections.clone();
     let k = names.iter().position(|n| *n == "first_yield_body").unwrap();
@@ -645,14 +645,15 @@ fn a_file_holds_exactly_the_sections_of_its_format() {
         (2u32, "an earlier asperity (restart format 2)"),
         (0, "an earlier asperity (restart format 0)"),
         (3, "an earlier asperity (restart format 3)"),
-        (5, "a later asperity (restart format 5)"),
+        (4, "an earlier asperity (restart format 4)"),
+        (6, "a later asperity (restart format 6)"),
     ] {
         let mut other = bytes.clone();
         other[8..12].copy_from_slice(&version.to_le_bytes());
         let e = decode(&other, &model).unwrap_err();
         assert!(
             e.starts_with(&format!(
-                "restart.bin was written by {words}; this build reads format 4 only: "
+                "restart.bin was written by {words}; this build reads format 5 only: "
             )),
             "{e}"
         );

@@ -340,6 +340,9 @@ pub struct InterfaceLawSpec {
     /// The gap at pseudo-time t is g₀ · h(t) (an interference pressed in
     /// gradually); none: g₀ from the start.
     pub gap_history: Option<HistoryRef>,
+    /// 3D: [x, y, z] (mm), the point the joint's moment is taken about;
+    /// none: the interface's centroid.
+    pub moment_point: Option<Vec<f64>>,
 }
 
 impl InterfaceLawSpec {

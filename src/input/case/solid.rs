@@ -39,6 +39,14 @@ fn refuse_solid_keys(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
     if case.mesh.revolve.is_some() {
         return need(at("[mesh] revolve"));
     }
+    if let Some(name) = case
+        .interface
+        .iter()
+        .find(|i| i.1.moment_point.is_some())
+        .map(|i| i.0)
+    {
+        return need(at(&format!("[interface.{}] moment_point", clip(name))));
+    }
     for (i, bc) in case.boundary.iter().enumerate() {
         for (k, given) in [("uz", bc.uz.is_some()), ("z_range", bc.z_range.is_some())] {
             if given {
@@ -141,6 +149,23 @@ fn check_solid(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
         .map_err(|m| Error::input(at("[mesh] extrude"), m.0))?;
         for &z in &e.z {
             ranges::COORDINATE.check(at("[mesh] extrude z"), z)?;
+        }
+    }
+    for (name, spec) in &case.interface {
+        if let Some(p) = &spec.moment_point {
+            let key = at(&format!("[interface.{}] moment_point", clip(name)));
+            if p.len() != 3 {
+                return Err(Error::input(
+                    key,
+                    format!(
+                        "expected exactly 3 numbers [x, y, z] (mm), found {}",
+                        p.len()
+                    ),
+                ));
+            }
+            for &v in p {
+                ranges::COORDINATE.check(key.clone(), v)?;
+            }
         }
     }
     check_solid_loads(case, at)

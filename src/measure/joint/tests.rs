@@ -103,6 +103,7 @@ fn an_elastic_perfectly_plastic_loop_dissipates_the_limit_times_the_slip() {
 fn aggregation_reports_the_joint_convention_and_the_measures() {
     let s = |area, p_n, u_n, u_t, p_t, status| PointSample {
         hoop: None,
+        space: None,
         area,
         p_n,
         u_n,

@@ -151,6 +151,35 @@ impl InterfaceModel {
         ]
     }
 
+    /// Where a point is: its pairs' places interpolated by its shape values
+    /// (coincident pairs), or its slave point (a spring).
+    pub(crate) fn point_position(&self, pt: &Point) -> [f64; 3] {
+        match &pt.coupling {
+            Coupling::Coincident { pairs, shape, len } => std::array::from_fn(|c| {
+                (0..*len)
+                    .map(|i| shape[i] * self.pairs[pairs[i]].x[c])
+                    .sum()
+            }),
+            Coupling::NodeToSegment { pair, .. } | Coupling::Mortar { pair, .. } => {
+                self.pairs[*pair].x
+            }
+        }
+    }
+
+    /// The area-weighted centroid of the interface's points.
+    pub(crate) fn centroid(&self) -> [f64; 3] {
+        let mut c = [0.0; 3];
+        let mut area = 0.0;
+        for pt in &self.points {
+            let x = self.point_position(pt);
+            area += pt.area;
+            for k in 0..3 {
+                c[k] += pt.area * x[k];
+            }
+        }
+        c.map(|v| if area > 0.0 { v / area } else { 0.0 })
+    }
+
     /// The slip (u_T1, u_T2) at a coincident pair of a 3D interface, in the
     /// frame of its normal (a point of lumped weights).
     pub(super) fn pair_slip_3d(&self, pair: &Pair, u: &[f64]) -> [f64; 2] {

@@ -288,6 +288,10 @@ pub struct InterfaceModel {
     /// The mesh's dofs per node: a point's local dofs are the in-plane
     /// (x, y) ones of its nodes, at these global dofs.
     pub node_dofs: crate::input::mesh::NodeDofs,
+    /// In 3D: the point the joint's moment is taken about
+    /// (`[interface.<name>] moment_point`, by default the interface's
+    /// centroid, set by [`InterfaceModel::new`]); the origin in 2D.
+    pub moment_point: [f64; 3],
 }
 
 /// Result of evaluating one point.
@@ -337,7 +341,7 @@ impl InterfaceModel {
             }
             Some(nm) => segment::node_to_segment(mesh, &iface.name, nm, weights, section)?,
         };
-        Ok(InterfaceModel {
+        let mut im = InterfaceModel {
             name: iface.name.clone(),
             body_a: iface.body_a,
             body_b: iface.body_b,
@@ -350,7 +354,12 @@ impl InterfaceModel {
             scheme: tangential.as_ref().map(|t| t.1).unwrap_or_default(),
             tangential: tangential.map(|t| t.0),
             node_dofs: mesh.node_dofs,
-        })
+            moment_point: [0.0; 3],
+        };
+        if im.node_dofs.solid() {
+            im.moment_point = im.centroid();
+        }
+        Ok(im)
     }
 
     /// The pairs and points of a matching interface (coincident node pairs).

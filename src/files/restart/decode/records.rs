@@ -49,6 +49,19 @@ pub(super) fn restore_joints(ck: &mut Checkpoint, s: &Sections, model: &Model) -
             (m.torque, m.hoop_slip, m.twist) = (t[0], t[1], t[2]);
         }
     }
+    // 3D: F_T2, ū_T2, the force and the moment on A of every row
+    let space = if model.node_dofs().solid() { n } else { 0 };
+    let w = JointMeasures::PACKED_SPACE * interfaces;
+    let v = s.finite("joints_space", Some(w * space))?;
+    for (inc, row) in ck.increments.iter_mut().zip(v.chunks_exact(w.max(1))) {
+        for (m, t) in inc
+            .joints
+            .iter_mut()
+            .zip(row.chunks_exact(JointMeasures::PACKED_SPACE))
+        {
+            m.unpack_space(t);
+        }
+    }
     for inc in &ck.increments {
         for (im, m) in model.interfaces.iter().zip(&inc.joints) {
             check_joint_row(model, im, m).map_err(|e| {
@@ -73,7 +86,11 @@ pub(super) fn restore_joints(ck: &mut Checkpoint, s: &Sections, model: &Model) -
             if let Some(k) = (0..g.len()).find(|&k| g[k].to_bits() != w[k].to_bits()) {
                 return Err(format!(
                     "section {}: increment {} (the last): interface {:?}: {} = {}, but the restored state (sections u, status, contact, joint_totals) gives {}",
-                    if k >= JointMeasures::PACKED { "joints_twist" } else { "joints" },
+                    match k {
+                        _ if k >= JointMeasures::PACKED + JointMeasures::PACKED_TWIST => "joints_space",
+                        _ if k >= JointMeasures::PACKED => "joints_twist",
+                        _ => "joints",
+                    },
                     last.increment,
                     im.name,
                     JOINT_NAMES[k],
@@ -87,7 +104,8 @@ pub(super) fn restore_joints(ck: &mut Checkpoint, s: &Sections, model: &Model) -
 }
 
 /// The names of [`joint_values`], for messages.
-const JOINT_NAMES: [&str; JointMeasures::PACKED + JointMeasures::PACKED_TWIST] = [
+const JOINT_NAMES: [&str;
+    JointMeasures::PACKED + JointMeasures::PACKED_TWIST + JointMeasures::PACKED_SPACE] = [
     "normal force",
     "tangential force",
     "mean approach",
@@ -102,11 +120,23 @@ const JOINT_NAMES: [&str; JointMeasures::PACKED + JointMeasures::PACKED_TWIST] =
     "torque",
     "circumferential slip",
     "twist",
+    "tangential force along t2",
+    "mean slip along t2",
+    "force on A along x",
+    "force on A along y",
+    "force on A along z",
+    "moment on A about x",
+    "moment on A about y",
+    "moment on A about z",
 ];
 
 /// A row's values, the twist ones last.
 fn joint_values(m: &JointMeasures) -> Vec<f64> {
-    m.pack().into_iter().chain(m.pack_twist()).collect()
+    m.pack()
+        .into_iter()
+        .chain(m.pack_twist())
+        .chain(m.pack_space())
+        .collect()
 }
 
 /// One interface's joint measures of an increment against what it can

@@ -57,6 +57,7 @@ fn model(node_dofs: NodeDofs) -> InterfaceModel {
         tangential: Some(TangentialLaw::new(0.9, 0.5, 0.5, 0.15, 1.0, 0.0, 0.625).unwrap()),
         scheme: FrictionScheme::ReturnMapping,
         node_dofs,
+        moment_point: [0.0; 3],
     }
 }
 
