@@ -114,8 +114,9 @@ fn at_key(place: &str, key: &str) -> String {
 /// faces' nodes, each node of the second paired with the node of the first
 /// it is the image of, the nodes on the axis. Refused: an unknown face set,
 /// a face with no node off the axis, a node off the axis on both faces, a
-/// sector whose angle is not 360°/N, a node without a partner within
-/// [`PARTNER_TOLERANCE`] of the model's size, a pair in two bodies.
+/// sector whose angle is not 360°/N, a node without a partner of its body
+/// within [`PARTNER_TOLERANCE`] of the model's size; and a support or a load
+/// on a cut face (`check_faces_free`).
 pub(crate) fn build(case: &Case, mesh: &Mesh, place: &str) -> Result<Option<Cyclic>> {
     let Some(spec) = &case.model.cyclic else {
         return Ok(None);
@@ -166,8 +167,9 @@ pub(crate) fn build(case: &Case, mesh: &Mesh, place: &str) -> Result<Option<Cycl
     let tol = PARTNER_TOLERANCE * size;
     let alpha = std::f64::consts::TAU / spec.sectors as f64;
     let grid = Grid::new(mesh, &off[0], tol);
+    let body = mesh.node_bodies();
     // the sense in which the first face turns onto the second
-    let tries = [alpha, -alpha].map(|a| partners(mesh, &grid, &off[1], a, tol));
+    let tries = [alpha, -alpha].map(|a| partners(mesh, &grid, &body, &off[1], a, tol));
     let Some(k) = (0..2).find(|&k| tries[k].iter().all(Option::is_some)) else {
         let best = usize::from(count(&tries[1]) > count(&tries[0]));
         let a = [alpha, -alpha][best];
@@ -188,25 +190,30 @@ pub(crate) fn build(case: &Case, mesh: &Mesh, place: &str) -> Result<Option<Cycl
         .map(|(&s, m)| (m.unwrap_or(s), s))
         .collect();
     check_pairs(mesh, &faces, &off, &pairs, angle, tol, place)?;
-    Ok(Some(Cyclic {
+    let c = Cyclic {
         sectors: spec.sectors,
         angle,
         faces,
         pairs,
         axis,
         held_alike: 0,
-    }))
+    };
+    check_faces_free(&c, case, mesh, place)?;
+    Ok(Some(c))
 }
 
 fn count(found: &[Option<usize>]) -> usize {
     found.iter().filter(|m| m.is_some()).count()
 }
 
-/// For each node of `second`, the node of the first face (in `grid`) within
-/// `tol` of its image rotated back by `angle`, the nearest.
+/// For each node of `second`, the node of the first face (in `grid`) of
+/// its body within `tol` of its image rotated back by `angle`, the nearest
+/// (a sector's body turns onto itself in the next sector; two bodies may
+/// have nodes at one place).
 fn partners(
     mesh: &Mesh,
     grid: &Grid,
+    body: &[usize],
     second: &[usize],
     angle: f64,
     tol: f64,
@@ -214,13 +221,15 @@ fn partners(
     let back = rotation(-angle);
     second
         .iter()
-        .map(|&s| grid.nearest(mesh, apply(&back, mesh.nodes[s]), tol))
+        .map(|&s| {
+            let within = |m: usize| body[m] == body[s];
+            grid.nearest(mesh, apply(&back, mesh.nodes[s]), tol, within)
+        })
         .collect()
 }
 
 /// Every node of the first face is the partner of exactly one node of the
-/// second (the faces are images, not one a part of the other), in the same
-/// body.
+/// second (the faces are images, not one a part of the other).
 fn check_pairs(
     mesh: &Mesh,
     faces: &[String; 2],
@@ -230,13 +239,14 @@ fn check_pairs(
     tol: f64,
     place: &str,
 ) -> Result<()> {
+    let tol_mm = crate::numbers::num(tol);
     let mut taken: HashMap<usize, usize> = HashMap::new();
     for &(m, s) in pairs {
         if let Some(&other) = taken.get(&m) {
             return Err(Error::input(
                 at_key(place, "faces"),
                 format!(
-                    "nodes {other} and {s} of \"{}\" are both the image of node {m} at {} of \"{}\": two nodes of the second face at one place (within {tol:e} mm)",
+                    "nodes {other} and {s} of \"{}\" are both the image of node {m} at {} of \"{}\": two nodes of the second face at one place (within {tol_mm} mm)",
                     clip(&faces[1]),
                     crate::model::loads::point(mesh.nodes[m], true),
                     clip(&faces[0])
@@ -250,25 +260,12 @@ fn check_pairs(
         return Err(Error::input(
             at_key(place, "faces"),
             format!(
-                "node {m} at {} of \"{}\" has no image on \"{}\" (no node within {tol:e} mm of {}, the node rotated by {}° about the y axis): every node of one cut face has its partner on the other",
+                "node {m} at {} of \"{}\" has no image on \"{}\" (no node within {tol_mm} mm of {}, the node rotated by {}° about the y axis): every node of one cut face has its partner on the other",
                 crate::model::loads::point(mesh.nodes[m], true),
                 clip(&faces[0]),
                 clip(&faces[1]),
                 crate::model::loads::point(image.map(round), true),
                 crate::numbers::num(angle.to_degrees())
-            ),
-        ));
-    }
-    let body = mesh.node_bodies();
-    if let Some(&(m, s)) = pairs.iter().find(|&&(m, s)| body[m] != body[s]) {
-        return Err(Error::input(
-            at_key(place, "faces"),
-            format!(
-                "node {s} of \"{}\" (body \"{}\") is the image of node {m} of \"{}\" (body \"{}\"): a sector's body turns onto itself in the next sector",
-                clip(&faces[1]),
-                mesh.bodies[body[s]],
-                clip(&faces[0]),
-                mesh.bodies[body[m]]
             ),
         ));
     }
@@ -337,13 +334,14 @@ fn unmatched(
             ),
         );
     }
+    let tol_mm = crate::numbers::num(tol);
     let k = found.iter().position(Option::is_none).unwrap_or(0);
     let s = off[1][k];
     let image = apply(&rotation(-angle), mesh.nodes[s]);
     Error::input(
         at_key(place, "faces"),
         format!(
-            "node {s} at {} of \"{}\" has no partner on \"{}\": no node within {tol:e} mm of {}, the node rotated back by {}° about the y axis (every node of one cut face has its partner on the other)",
+            "node {s} at {} of \"{}\" has no partner on \"{}\": no node within {tol_mm} mm of {}, the node rotated back by {}° about the y axis (every node of one cut face has its partner on the other)",
             crate::model::loads::point(mesh.nodes[s], true),
             clip(&faces[1]),
             clip(&faces[0]),
@@ -370,15 +368,28 @@ impl Grid {
         Grid { cell, cubes }
     }
 
-    /// The node nearest to `x` within `tol` (the lowest index among equals).
-    fn nearest(&self, mesh: &Mesh, x: [f64; 3], tol: f64) -> Option<usize> {
+    /// The node nearest to `x` within `tol` that `take` takes (the lowest
+    /// index among equals).
+    fn nearest(
+        &self,
+        mesh: &Mesh,
+        x: [f64; 3],
+        tol: f64,
+        take: impl Fn(usize) -> bool,
+    ) -> Option<usize> {
         let c = cube(x, self.cell);
         let mut best: Option<(f64, usize)> = None;
         for dx in -1..=1 {
             for dy in -1..=1 {
                 for dz in -1..=1 {
                     let key = [c[0] + dx, c[1] + dy, c[2] + dz];
-                    for &n in self.cubes.get(&key).into_iter().flatten() {
+                    for &n in self
+                        .cubes
+                        .get(&key)
+                        .into_iter()
+                        .flatten()
+                        .filter(|&&n| take(n))
+                    {
                         let p = mesh.nodes[n];
                         let d = (0..3).map(|k| (p[k] - x[k]).powi(2)).sum::<f64>().sqrt();
                         if d <= tol && best.is_none_or(|(bd, bn)| (d, n) < (bd, bn)) {
@@ -466,15 +477,7 @@ fn in_ranges(bc: &crate::input::case::BoundarySpec, x: [f64; 3]) -> bool {
 
 /// A support on a whole cut face (a symmetry plane) and a load on a cut
 /// face are refused: the cut lies inside the part.
-pub(crate) fn check_faces_free(
-    cyclic: Option<&Cyclic>,
-    case: &Case,
-    mesh: &Mesh,
-    place: &str,
-) -> Result<()> {
-    let Some(c) = cyclic else {
-        return Ok(());
-    };
+fn check_faces_free(c: &Cyclic, case: &Case, mesh: &Mesh, place: &str) -> Result<()> {
     let mut on: [Vec<bool>; 2] = [vec![false; mesh.nodes.len()], vec![false; mesh.nodes.len()]];
     for &(m, s) in &c.pairs {
         on[0][m] = true;

@@ -352,9 +352,7 @@ impl Model {
             axisymmetric: plane == Plane::Axisymmetric,
             thickness,
         };
-        let full = case.model.integration == Integration::Full;
-        let rules = Family::ALL.map(|f| f.rule(full));
-        let rules3 = [Family3::H20, Family3::T10].map(|f| f.rule(full));
+        let (rules, rules3) = gauss_rules(case.model.integration);
         // each node's original across the cuts; the start mesh's nodes (and
         // their copies): where a [[force]] acts and the probe is read on
         // every adaptive cycle
@@ -363,7 +361,6 @@ impl Model {
         let materials = materials(&case, &mesh, &place)?;
         check_elements(&mesh, (&rules, &rules3), &section, &place)?;
         let mut cyclic = cyclic::build(&case, &mesh, &place)?;
-        cyclic::check_faces_free(cyclic.as_ref(), &case, &mesh, &place)?;
         let mut interfaces = interface_models(&case, &checked, &mesh, section, &place)?;
         let mut loads = crate::model::loads::build(&case, &mesh, &start, section, &place)?;
         let f_ext = loads.patterns.remove(0).f;
@@ -936,6 +933,15 @@ impl Model {
         let sym = if self.symmetric_half { 2.0 } else { 1.0 };
         sym / self.thickness / 1000.0
     }
+}
+
+/// Each plane family's and each solid family's Gauss rule at `integration`.
+fn gauss_rules(integration: Integration) -> ([GaussRule; 2], [GaussRule3; 2]) {
+    let full = integration == Integration::Full;
+    (
+        Family::ALL.map(|f| f.rule(full)),
+        [Family3::H20, Family3::T10].map(|f| f.rule(full)),
+    )
 }
 
 /// The dof map: prescribed dofs and the constraints' slaves have no equation.

@@ -186,13 +186,13 @@ fn check_solid_supports(
         return Err(Error::input(
             place,
             format!(
-                "body \"{}\" is held by nothing against {} (a rigid-body motion: a 3D body needs its six held by [[boundary]] ux, uy, uz); hold it, e.g. fix a corner, or give symmetry planes{}",
+                "body \"{}\" is held by nothing against {} (a rigid-body motion: a 3D body needs its six held by [[boundary]] ux, uy, uz); {}",
                 mesh.bodies[b],
                 motion([v[0], v[1], v[2]], [v[3], v[4], v[5]], c, size(b)),
                 if ties.iter().any(|t| t.origin.starts_with("cyclic")) {
-                    "; the cyclic ties hold a sector but for its rotation about the y axis and its translation along it: hold those (an end's uy, and one node's hoop displacement, e.g. uz at a node of the face in the plane z = 0)"
+                    "the cyclic ties hold a sector but for its rotation about the y axis and its translation along it: hold those (an end's uy, and one node's hoop displacement, e.g. uz at a node of the face in the plane z = 0)"
                 } else {
-                    ""
+                    "hold it, e.g. fix a corner, or give symmetry planes"
                 }
             ),
         ));

@@ -156,8 +156,8 @@ fn twisted(text: &str, radii: [f64; 2], length: f64, sectors: f64, torque: f64) 
     let mut nodes: f64 = 0.0;
     for (n, x) in m.mesh.nodes.iter().enumerate() {
         let want = [phi(x[1]) * x[2], 0.0, -phi(x[1]) * x[0]];
-        for c in 0..3 {
-            nodes = nodes.max((s.u[3 * n + c] - want[c]).abs() / (phi(length) * b));
+        for (c, w) in want.iter().enumerate() {
+            nodes = nodes.max((s.u[3 * n + c] - w).abs() / (phi(length) * b));
         }
     }
     let mut shear: f64 = 0.0;

@@ -76,3 +76,20 @@ pub fn check_case(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// docs/case-schema.md states the range of `sectors` as the code holds it.
+    #[test]
+    fn the_documented_range_of_sectors_is_the_codes() {
+        let doc = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/case-schema.md"));
+        for text in [
+            format!("from **{MIN_SECTORS} to {MAX_SECTORS}**"),
+            format!("N outside {MIN_SECTORS} … {MAX_SECTORS}"),
+        ] {
+            assert!(doc.contains(&text), "docs/case-schema.md: {text}");
+        }
+    }
+}

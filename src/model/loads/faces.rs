@@ -60,7 +60,7 @@ pub(super) fn face_traction(ld: &LoadSpec, mesh: &Mesh, at: &str) -> Result<Vec<
     }
     if let Some(torque) = ld.torque {
         // J > 0 on any face of positive area (r = 0 only along the axis)
-        if !(polar > 0.0) {
+        if !(polar.is_finite() && polar > 0.0) {
             return Err(Error::input(
                 format!("{at} torque"),
                 "acts on faces without a polar moment ∫ r² dA about the y axis",

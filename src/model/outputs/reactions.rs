@@ -7,7 +7,7 @@
 //! corner in two fixed sets) counts in the first of them only, so the groups
 //! together hold every prescribed dof once and their sum balances the
 //! applied loads. A cyclic sector's groups add the moment about the y axis
-//! and the whole part's axial force and moment ([`whole_part`]); its axis
+//! and the whole part's axial force and moment (`whole_part`); its axis
 //! (u_x = u_z = 0 at r = 0) is the group `axis` with `fx_n` and `fz_n`.
 //!
 //! The groups are a list of (name, components) reductions ([`Group`]): the
