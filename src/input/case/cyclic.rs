@@ -87,7 +87,7 @@ mod tests {
         let doc = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/case-schema.md"));
         for text in [
             format!("from **{MIN_SECTORS} to {MAX_SECTORS}**"),
-            format!("N outside {MIN_SECTORS} … {MAX_SECTORS}"),
+            format!("outside {MIN_SECTORS} … {MAX_SECTORS};"),
         ] {
             assert!(doc.contains(&text), "docs/case-schema.md: {text}");
         }
