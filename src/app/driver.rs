@@ -820,7 +820,29 @@ fn plane_text(model: &Model) -> String {
         model.dofs.n_eq,
         model.pattern().nnz()
     );
+    if let Some(c) = &model.cyclic {
+        s += &cyclic_text(c);
+    }
     s
+}
+
+/// `check`'s line of a cyclic sector: its angle, its faces, its ties, and
+/// which numbers are the whole part's.
+fn cyclic_text(c: &crate::model::cyclic::Cyclic) -> String {
+    let ties = 3 * c.pairs.len() - c.held_alike;
+    format!(
+        "  cyclic sector, 1 of {n}: \"{}\" turned {}° about the y axis is \"{}\"; {} node pairs tied (u = R u, {ties} constraints{}), {} nodes on the axis (u_x = u_z = 0); loads and reactions are the sector's, a reaction's fy_part_n and my_part_nmm the whole part's ({n} ×)\n",
+        c.faces[0],
+        crate::numbers::num(c.degrees()),
+        c.faces[1],
+        c.pairs.len(),
+        match c.held_alike {
+            0 => String::new(),
+            k => format!(", {k} held alike by the supports"),
+        },
+        c.axis.len(),
+        n = c.sectors,
+    )
 }
 
 /// `check`'s line of each body: its material, and a body held about the

@@ -20,6 +20,7 @@ pub mod axis;
 pub mod consistency;
 use consistency as whole;
 pub mod constraint;
+pub mod cyclic;
 pub mod excluded;
 mod hanging;
 pub mod history;
@@ -226,6 +227,9 @@ pub struct Model {
     n_dofs: usize,
     /// The linear constraints u_s = Σ c u_m + g(t) ([`crate::model::constraint`]).
     pub constraints: crate::model::constraint::Constraints,
+    /// A cyclic sector's ties and axis (`[model] cyclic`,
+    /// [`crate::model::cyclic`]); None: the mesh is the whole part.
+    pub cyclic: Option<crate::model::cyclic::Cyclic>,
     /// The transformation of every block ([`Model::blocks`]) that holds a
     /// slave dof, by block index.
     expansions: std::collections::HashMap<usize, crate::model::constraint::Expansion>,
@@ -250,6 +254,16 @@ impl Model {
     /// Every dof: the mesh's, then the pretension sections' reference dofs.
     pub fn n_dofs(&self) -> usize {
         self.n_dofs
+    }
+
+    /// The number of sectors N of a cyclic sector model (`[model] cyclic`):
+    /// the part is N copies of the mesh about the y axis, each loaded alike,
+    /// so a force along the axis or a moment about it over the part is N
+    /// times the sector's (a force across the axis sums to zero over the
+    /// part). None: the mesh is the whole part (or its symmetric half,
+    /// [`Model::symmetric_half`]).
+    pub fn cyclic_sectors(&self) -> Option<usize> {
+        self.cyclic.as_ref().map(|c| c.sectors)
     }
 
     /// The block of interface `i`'s point `j` in [`Model::blocks`].
@@ -338,9 +352,7 @@ impl Model {
             axisymmetric: plane == Plane::Axisymmetric,
             thickness,
         };
-        let full = case.model.integration == Integration::Full;
-        let rules = Family::ALL.map(|f| f.rule(full));
-        let rules3 = [Family3::H20, Family3::T10].map(|f| f.rule(full));
+        let (rules, rules3) = gauss_rules(case.model.integration);
         // each node's original across the cuts; the start mesh's nodes (and
         // their copies): where a [[force]] acts and the probe is read on
         // every adaptive cycle
@@ -348,11 +360,12 @@ impl Model {
         let start: Vec<bool> = origin.iter().map(|&o| o < start_nodes).collect();
         let materials = materials(&case, &mesh, &place)?;
         check_elements(&mesh, (&rules, &rules3), &section, &place)?;
+        let mut cyclic = cyclic::build(&case, &mesh, &place)?;
         let mut interfaces = interface_models(&case, &checked, &mesh, section, &place)?;
         let mut loads = crate::model::loads::build(&case, &mesh, &start, section, &place)?;
         let f_ext = loads.patterns.remove(0).f;
         gap_histories(&mut interfaces, &loads);
-        let prescribed = supports(&case, &mesh, &mut loads, &place)?;
+        let prescribed = supports(&case, &mesh, cyclic.as_ref(), &mut loads, &place)?;
         finish_sections(&case, &mut sections, &mesh, &loads);
         let n_dofs = crate::model::pretension::total_dofs(&case, &mesh);
         let held = Held {
@@ -364,8 +377,8 @@ impl Model {
             loads: &loads,
             interfaces: &interfaces,
         };
-        let constraints = held.constraints(&hanging_nodes, n_dofs)?;
-        held.check(&f_ext, section.axisymmetric)?;
+        let constraints = held.constraints(&hanging_nodes, cyclic.as_mut(), n_dofs)?;
+        held.check(&f_ext, section.axisymmetric, &constraints)?;
         let dofs = dof_map(n_dofs, &prescribed, &constraints);
         let (blocks, interface_block_base, expansions) =
             block_dofs(&mesh, &interfaces, &constraints, &sections);
@@ -401,6 +414,7 @@ impl Model {
             interface_block_base,
             n_dofs,
             constraints,
+            cyclic,
             expansions,
             sections,
             singular,
@@ -921,6 +935,15 @@ impl Model {
     }
 }
 
+/// Each plane family's and each solid family's Gauss rule at `integration`.
+fn gauss_rules(integration: Integration) -> ([GaussRule; 2], [GaussRule3; 2]) {
+    let full = integration == Integration::Full;
+    (
+        Family::ALL.map(|f| f.rule(full)),
+        [Family3::H20, Family3::T10].map(|f| f.rule(full)),
+    )
+}
+
 /// The dof map: prescribed dofs and the constraints' slaves have no equation.
 fn dof_map(
     n_dofs: usize,
@@ -1246,11 +1269,13 @@ struct Held<'a> {
 }
 
 impl Held<'_> {
-    /// The constraints of the pretension sections and the hanging nodes
+    /// The constraints of the pretension sections, the hanging nodes and a
+    /// cyclic sector's ties (counting the ties the supports hold alike)
     /// over `n_dofs` dofs.
     fn constraints(
         &self,
         hanging_nodes: &[crate::input::mesh::refine::HangingNode],
+        cyclic: Option<&mut crate::model::cyclic::Cyclic>,
         n_dofs: usize,
     ) -> Result<crate::model::constraint::Constraints> {
         let (mesh, sections, prescribed, loads, place) = (
@@ -1276,13 +1301,30 @@ impl Held<'_> {
             sections,
             place,
         )?);
+        if let Some(c) = cyclic {
+            let (ties, alike) = crate::model::cyclic::ties(
+                c,
+                self.case,
+                mesh,
+                prescribed,
+                &loads.prescribed_history,
+                place,
+            )?;
+            c.held_alike = alike;
+            list.extend(ties);
+        }
         crate::model::constraint::Constraints::new(list, n_dofs).map_err(|m| Error::input(place, m))
     }
 
     /// Checks that the loads act where they can, that something loads the
     /// model, and that the supports hold its bodies, its sections and, on a
     /// symmetric half, the symmetry plane.
-    fn check(&self, f_ext: &[f64], axisymmetric: bool) -> Result<()> {
+    fn check(
+        &self,
+        f_ext: &[f64],
+        axisymmetric: bool,
+        constraints: &crate::model::constraint::Constraints,
+    ) -> Result<()> {
         let (case, mesh, sections, prescribed, loads, interfaces, place) = (
             self.case,
             self.mesh,
@@ -1294,7 +1336,8 @@ impl Held<'_> {
         );
         crate::model::loads::check_acting(&loads.acting, mesh, prescribed, axisymmetric)?;
         check_loaded(f_ext, loads, prescribed, interfaces, place)?;
-        check_supports(mesh, prescribed, interfaces, axisymmetric, place)?;
+        let ties = &constraints.list;
+        check_supports(mesh, prescribed, ties, interfaces, axisymmetric, place)?;
         supports::check_sections_held(mesh, sections, prescribed, interfaces, place)?;
         let tied: std::collections::HashMap<usize, usize> = sections
             .iter()
@@ -1306,10 +1349,12 @@ impl Held<'_> {
 }
 
 /// The prescribed dofs with u_r = 0 added on the axis of an axisymmetric
-/// model (no history: always 0); `loads.prescribed_history` follows them.
+/// model, u_x = u_z = 0 on the axis of a cyclic sector (no history: always
+/// 0); `loads.prescribed_history` follows them.
 fn supports(
     case: &Case,
     mesh: &Mesh,
+    cyclic: Option<&crate::model::cyclic::Cyclic>,
     loads: &mut crate::model::loads::Loads,
     place: &str,
 ) -> Result<Vec<(usize, f64)>> {
@@ -1321,6 +1366,7 @@ fn supports(
         .collect();
     let prescribed =
         crate::model::axis::hold_axis(case, mesh, std::mem::take(&mut loads.prescribed), place)?;
+    let prescribed = cyclic::hold_axis(cyclic, case, mesh, prescribed, place)?;
     loads.prescribed_history = prescribed
         .iter()
         .map(|(d, _)| given.get(d).copied().flatten())

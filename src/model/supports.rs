@@ -4,6 +4,7 @@
 
 use crate::error::{Error, Result};
 use crate::input::mesh::Mesh;
+use crate::model::constraint::Constraint;
 use crate::model::interface::InterfaceModel;
 
 /// Every body must be held in x and in y, by its own prescribed dofs or through
@@ -13,12 +14,13 @@ use crate::model::interface::InterfaceModel;
 pub(super) fn check_supports(
     mesh: &Mesh,
     prescribed: &[(usize, f64)],
+    ties: &[Constraint],
     interfaces: &[InterfaceModel],
     axisymmetric: bool,
     place: &str,
 ) -> Result<()> {
     if mesh.dim() == 3 {
-        return check_solid_supports(mesh, prescribed, interfaces, place);
+        return check_solid_supports(mesh, prescribed, ties, interfaces, place);
     }
     // a body of revolution cannot move rigidly in r: u_r = c strains it by c/r
     // in the hoop direction (and nodes on the axis are held by u_r = 0)
@@ -103,20 +105,23 @@ pub(super) fn check_supports(
     Ok(())
 }
 
-/// A 3D body is held when its prescribed dofs stop all six rigid motions:
-/// with x̄ its nodes' centroid and L its size, the rows
+/// A 3D body is held when its prescribed dofs and its ties stop all six
+/// rigid motions: with x̄ its nodes' centroid and L its size, the rows
 /// ```text
 ///   r(n, c) = [e_c, (e_c × (x_n − x̄)) / L]     (u_c of the motion u = a + ω × (x − x̄))
 /// ```
-/// of its prescribed dofs span R⁶ (RᵀR, 6 × 6, has no eigenvalue below
-/// 1e-10 of the largest); an eigenvector of a smaller one is a motion they
-/// leave free, and is named: a translation, a rotation about an axis
-/// through the centroid, or both. An interface to a body that is held adds
-/// its pairs' rows along the normal (and the tangent plane's two
-/// directions with a tangential law), as the springs would once closed.
+/// of its prescribed dofs, and r(s) − Σ c_i r(m_i) of each tie u_s = Σ c_i
+/// u_(m_i) within it (a cyclic sector's: the motions that break it), span
+/// R⁶ (RᵀR, 6 × 6, has no eigenvalue below 1e-10 of the largest); an
+/// eigenvector of a smaller one is a motion they leave free, and is named:
+/// a translation, a rotation about an axis through the centroid, or both.
+/// An interface to a body that is held adds its pairs' rows along the
+/// normal (and the tangent plane's two directions with a tangential law),
+/// as the springs would once closed.
 fn check_solid_supports(
     mesh: &Mesh,
     prescribed: &[(usize, f64)],
+    ties: &[Constraint],
     interfaces: &[InterfaceModel],
     place: &str,
 ) -> Result<()> {
@@ -146,18 +151,36 @@ fn check_solid_supports(
                 .sqrt()
         })
         .collect();
-    let row = |b: usize, x: [f64; 3], e: [f64; 3]| {
+    let mut rtr = vec![nalgebra::Matrix6::<f64>::zeros(); nb];
+    let vector = |b: usize, x: [f64; 3], e: [f64; 3]| {
         let r: [f64; 3] = std::array::from_fn(|k| (x[k] - centre[b][k]) / size[b]);
         let w = crate::numbers::vec3::cross(r, e);
-        let row = nalgebra::Vector6::new(e[0], e[1], e[2], w[0], w[1], w[2]);
-        row * row.transpose()
+        nalgebra::Vector6::new(e[0], e[1], e[2], w[0], w[1], w[2])
     };
-    let mut rtr = vec![nalgebra::Matrix6::<f64>::zeros(); nb];
-    for &(d, _) in prescribed.iter().filter(|p| p.0 < mesh.num_dofs()) {
+    // the row of dof d, and its node's body
+    let dof_row = |d: usize| {
         let (n, c) = mesh.node_dofs.node_of(d);
         let mut e = [0.0; 3];
         e[c] = 1.0;
-        rtr[node_body[n]] += row(node_body[n], mesh.nodes[n], e);
+        (node_body[n], vector(node_body[n], mesh.nodes[n], e))
+    };
+    for &(d, _) in prescribed.iter().filter(|p| p.0 < mesh.num_dofs()) {
+        let (b, r) = dof_row(d);
+        rtr[b] += r * r.transpose();
+    }
+    let n_dofs = mesh.num_dofs();
+    for t in ties.iter().filter(|t| t.slave < n_dofs) {
+        let (b, mut r) = dof_row(t.slave);
+        let within = t.terms.iter().all(|&(d, c)| {
+            d < n_dofs && {
+                let (bm, rm) = dof_row(d);
+                r -= c * rm;
+                bm == b
+            }
+        });
+        if within {
+            rtr[b] += r * r.transpose();
+        }
     }
     let free = |m: &nalgebra::Matrix6<f64>| {
         let eig = m.symmetric_eigen();
@@ -177,11 +200,14 @@ fn check_solid_supports(
             let (loose, node) = if held[a] { (b, 1) } else { (a, 0) };
             for pr in &im.pairs {
                 let x = mesh.nodes[if node == 0 { pr.a } else { pr.b }];
-                rtr[loose] += row(loose, x, pr.normal);
+                let mut dirs = vec![pr.normal];
                 if im.tangential.is_some() {
                     let t = crate::model::interface::frame(pr.normal);
-                    rtr[loose] += row(loose, x, t);
-                    rtr[loose] += row(loose, x, crate::numbers::vec3::cross(pr.normal, t));
+                    dirs.extend([t, crate::numbers::vec3::cross(pr.normal, t)]);
+                }
+                for e in dirs {
+                    let r = vector(loose, x, e);
+                    rtr[loose] += r * r.transpose();
                 }
             }
             held[loose] = free(&rtr[loose]).is_none();
@@ -198,18 +224,26 @@ fn check_solid_supports(
         return Err(Error::input(
             place,
             format!(
-                "body \"{}\" is held by nothing against {} (a rigid-body motion: a 3D body needs its six held by [[boundary]] ux, uy, uz, or through an interface to a body that is held); hold it, e.g. fix a corner, or give symmetry planes",
+                "body \"{}\" is held by nothing against {} (a rigid-body motion: a 3D body needs its six held by [[boundary]] ux, uy, uz, or through an interface to a body that is held); {}",
                 mesh.bodies[b],
-                motion([v[0], v[1], v[2]], [v[3], v[4], v[5]], centre[b])
+                motion([v[0], v[1], v[2]], [v[3], v[4], v[5]], centre[b], size[b]),
+                if ties.iter().any(|t| t.origin.starts_with("cyclic")) {
+                    "the cyclic ties hold a sector but for its rotation about the y axis and its translation along it: hold those (an end's uy, and one node's hoop displacement, e.g. uz at a node of the face in the plane z = 0)"
+                } else {
+                    "hold it, e.g. fix a corner, or give symmetry planes"
+                }
             ),
         ));
     }
     Ok(())
 }
 
-/// A free rigid motion in words: a translation along t, a rotation about
-/// the axis along ω through the centroid `c`, or both.
-fn motion(t: [f64; 3], w: [f64; 3], c: [f64; 3]) -> String {
+/// A free rigid motion u = t + (ω / L) × (x − c) in words (ω scaled by the
+/// body's size L, as the rows): a translation along t, a rotation about the
+/// axis along ω through the centroid `c`, a rotation about a parallel axis
+/// through p = c + L ω × t / |ω|² when t ⟂ ω (a cyclic sector turning about
+/// the y axis), or a translation with a rotation.
+fn motion(t: [f64; 3], w: [f64; 3], c: [f64; 3], size: f64) -> String {
     let norm = |v: [f64; 3]| crate::numbers::vec3::dot(v, v).sqrt();
     let dir = |v: [f64; 3]| {
         let n = norm(v);
@@ -223,8 +257,22 @@ fn motion(t: [f64; 3], w: [f64; 3], c: [f64; 3]) -> String {
         });
         format!("({}, {}, {})", r[0], r[1], r[2])
     };
-    let centre = format!("({:.4}, {:.4}, {:.4})", c[0], c[1], c[2]);
-    match (norm(t) > 1e-3, norm(w) > 1e-3) {
+    let point = |c: [f64; 3]| {
+        let c = c.map(|v| if v.abs() < 1e-9 * size { 0.0 } else { v });
+        format!("({:.4}, {:.4}, {:.4})", c[0], c[1], c[2])
+    };
+    let centre = point(c);
+    let (nt, nw) = (norm(t), norm(w));
+    if nt > 1e-3 && nw > 1e-3 && crate::numbers::vec3::dot(t, w).abs() < 1e-6 * nt * nw {
+        let wt = crate::numbers::vec3::cross(w, t);
+        let p: [f64; 3] = std::array::from_fn(|k| c[k] + size * wt[k] / (nw * nw));
+        return format!(
+            "a rotation about the axis along {} through {}",
+            dir(w),
+            point(p)
+        );
+    }
+    match (nt > 1e-3, nw > 1e-3) {
         (true, false) => format!("a translation along {}", dir(t)),
         (false, _) => format!(
             "a rotation about the axis along {} through {centre}",

@@ -251,6 +251,10 @@ fn summary_json_matches_the_documented_schema() {
         let v: Vec<f64> = row.split(',').map(|x| x.parse().unwrap()).collect();
         assert!((v[4] - v[1] / fy_lambda).abs() < 1e-8, "{row}");
     }
+    // a cyclic sector: its `cyclic` object and the `forces` line
+    let cyclic = summary_of("cyclic", &cases.join("tube-sector-cyclic"), &[]);
+    assert_eq!(cyclic["cyclic"]["sectors"], 12, "{cyclic}");
+    assert!(cyclic["forces"].is_string() && solid.get("cyclic").is_none());
     assert!(torque["joints"][0]["final"]["torque_nmm"].as_f64().unwrap() > 0.0);
     assert!(
         with["joints"][0]["final"].get("torque_nmm").is_none(),
@@ -268,6 +272,7 @@ fn summary_json_matches_the_documented_schema() {
         &face,
         &solid,
         &slide,
+        &cyclic,
     ] {
         let mut l = Vec::new();
         leaves("", s, &mut l);

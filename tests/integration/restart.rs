@@ -900,3 +900,44 @@ fn a_run_with_a_yield_stress_following_a_temperature_field_resumes() {
         );
     }
 }
+
+/// A cyclic sector (cases/tube-sector-cyclic, its torque in 10 steps)
+/// stopped after 3 resumes to the bit: its ties are the case's and the
+/// mesh's, which the restart file's fingerprint identifies. The same sector
+/// with its faces named the other way round (ties turned by −30°, the same
+/// mesh) is another model: its restart from that file is refused.
+#[test]
+fn a_cyclic_sector_resumes_and_a_restart_with_other_ties_is_refused() {
+    let text =
+        std::fs::read_to_string(common::root().join("cases/tube-sector-cyclic/case.toml")).unwrap();
+    let case = common::case_dir("restart-cyclic", &text);
+    let dir = case.parent().unwrap().to_path_buf();
+    let (s, r, full) = (dir.join("stopped"), dir.join("resumed"), dir.join("full"));
+    stopped_case(&case, &s, &[]);
+    let (code, err) = run_case(&case, &r, &["--restart", s.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    let (code, err) = run_case(&case, &full, &[]);
+    assert_eq!(code, 0, "{err}");
+    for f in ["restart.bin", "reactions.csv", "probes.csv", "peaks.csv"] {
+        assert!(
+            std::fs::read(r.join(f)).unwrap() == std::fs::read(full.join(f)).unwrap(),
+            "{f} of the resumed run differs"
+        );
+    }
+    let turned = text.replace(
+        "faces = [\"tube.theta0\", \"tube.theta1\"]",
+        "faces = [\"tube.theta1\", \"tube.theta0\"]",
+    );
+    assert_ne!(turned, text);
+    let other = common::case_dir("restart-cyclic-turned", &turned);
+    let out = other.parent().unwrap().join("out");
+    refused_case(
+        &other,
+        &dir,
+        &s,
+        &out,
+        &[],
+        "fingerprint mismatch",
+        "faces turned",
+    );
+}

@@ -16,6 +16,7 @@ mod bolted_hub;
 mod calibration;
 mod column;
 mod cycles;
+mod cyclic;
 mod damping_line;
 mod dissipation;
 mod estimate;

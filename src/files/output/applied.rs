@@ -107,6 +107,7 @@ fn moment_label(l: &str) -> &'static str {
         "mx_nmm" => "mx_nm",
         "my_nmm" => "my_nm",
         "mz_nmm" => "mz_nm",
+        "my_part_nmm" => "my_part_nm",
         _ => "torque_nm",
     }
 }

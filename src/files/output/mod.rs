@@ -595,6 +595,19 @@ pub fn summary(model: &Model, r: &RunResult, wall: f64) -> serde_json::Value {
             "full revolution: forces, areas and kN are for the whole body of revolution (2π r)"
         );
     }
+    if let Some(c) = &model.cyclic {
+        s["forces"] = json!(format!(
+            "cyclic sector, 1 of {}: forces, moments and loads are the sector's as meshed, but the reactions' fy_part_n and my_part_nmm, the whole part's ({} × the sector's fy_n and my_nmm; the sector's fx_n and fz_n sum to zero over the part)",
+            c.sectors, c.sectors
+        ));
+        s["cyclic"] = json!({
+            "sectors": c.sectors,
+            "angle_deg": c.degrees(),
+            "faces": c.faces,
+            "node_pairs": c.pairs.len(),
+            "axis_nodes": c.axis.len(),
+        });
+    }
     let cycles = r.cycles(model);
     s["joints"] = joints_csv::summary(model, r, &cycles);
     s["damping"] = damping::summary(model, &crate::measure::sweep::sweeps(&cycles));

@@ -6,6 +6,7 @@
 //! carries the same text.
 
 pub mod adapt;
+pub mod cyclic;
 pub mod expression;
 pub mod outputs;
 pub mod overrides;
@@ -154,6 +155,11 @@ pub struct ModelSpec {
     /// (torsion about the axis; [`crate::input::case::twist`]).
     #[serde(default)]
     pub twist: bool,
+    /// The mesh is one sector of a part of `sectors` equal sectors about
+    /// the y axis, its cut faces tied by rotational periodicity
+    /// ([`cyclic`], [`crate::model::cyclic`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cyclic: Option<cyclic::CyclicSpec>,
 }
 
 /// `[model] thickness` as given (None: not in the case file).

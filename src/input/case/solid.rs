@@ -2,8 +2,8 @@
 //! together, before the mesh exists.
 //!
 //! Keys: `[mesh] extrude` (the block layout swept along z,
-//! `input::mesh::extrude`), `[[load]] faces` with `pressure` and
-//! `traction = [t_x, t_y, t_z]`, `uz` of `[[boundary]]`, `fz` of
+//! `input::mesh::extrude`), `[[load]] faces` with `pressure`,
+//! `traction = [t_x, t_y, t_z]` and `torque` (about the y axis), `uz` of `[[boundary]]`, `fz` of
 //! `[[force]]`, `z_range` of all three, and `z` of `[[pretension]]`. A 3D key in a plane model, a
 //! plane-only key in a 3D one, and every feature not yet built in 3D
 //! (interfaces, twist, a half model, local and adaptive refinement) are
@@ -171,7 +171,8 @@ fn check_solid(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
     check_solid_loads(case, at)
 }
 
-/// Loads of a 3D model: on faces, pressure and traction only.
+/// Loads of a 3D model: on faces, pressure, traction and a torque about the
+/// y axis ([`crate::model::loads`]) only.
 fn check_solid_loads(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
     for (i, ld) in case.load.iter().enumerate() {
         let key = |k: &str| at(&format!("load[{i}] {k}"));
@@ -190,14 +191,22 @@ fn check_solid_loads(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
         for (k, given) in [
             ("shear", ld.shear != 0.0),
             ("hoop_shear", ld.hoop_shear.is_some()),
-            ("torque", ld.torque.is_some()),
         ] {
             if given {
                 return Err(Error::input(
                     key(k),
-                    "is a plane model's key; in 3D give the traction vector, traction = [t_x, t_y, t_z] (MPa)",
+                    "is a plane model's key; in 3D give the traction vector, traction = [t_x, t_y, t_z] (MPa), or a torque about the y axis, torque = T (N·mm)",
                 ));
             }
+        }
+        if let Some(t) = ld.torque {
+            if !t.is_finite() || t == 0.0 {
+                return Err(Error::input(
+                    key("torque"),
+                    format!("{t} must be a finite, non-zero number (N·mm)"),
+                ));
+            }
+            crate::input::case::twist::TORQUE.check(key("torque"), t)?;
         }
         if let Some(t) = &ld.traction {
             if t.len() != 3 {
@@ -217,10 +226,10 @@ fn check_solid_loads(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
             .traction
             .as_ref()
             .is_some_and(|t| t.iter().any(|&v| v != 0.0));
-        if ld.pressure == 0.0 && !traction {
+        if ld.pressure == 0.0 && !traction && ld.torque.is_none() {
             return Err(Error::input(
                 key("pressure"),
-                "and traction are both 0 or absent: the load does nothing",
+                "and traction are both 0 or absent, and no torque: the load does nothing",
             ));
         }
     }

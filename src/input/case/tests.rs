@@ -16,6 +16,7 @@ thickness = 2.0
 integration = "reduced"
 symmetric_half = true
 twist = false
+cyclic = { sectors = 12, faces = ["a1.left", "b.right"] }
 
 [mesh]
 refine = 1
@@ -380,6 +381,11 @@ fn every_key_of_the_schema_changes_the_key() {
         ("integration = \"reduced\"", "integration = \"full\""),
         ("symmetric_half = true", "symmetric_half = false"),
         ("twist = false", "twist = true"),
+        ("sectors = 12", "sectors = 13"),
+        (
+            "faces = [\"a1.left\", \"b.right\"]",
+            "faces = [\"b.right\", \"a1.left\"]",
+        ),
         ("refine = 1\n", "refine = 2\n"),
         ("levels = 1 }", "levels = 2 }"),
         ("y = [0.0, 0.5], levels", "y = [0.0, 0.6], levels"),

@@ -75,7 +75,10 @@ pub fn check_case(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
             ));
         }
     }
-    for (i, ld) in case.load.iter().enumerate() {
+    // a 3D model's torque on faces is checked with its loads
+    // (`crate::input::case::solid`)
+    let edges = case.model.plane != Plane::Solid;
+    for (i, ld) in case.load.iter().enumerate().filter(|_| edges) {
         let key = |k: &str| at(&format!("load[{i}] (edges \"{}\") {k}", clip(&ld.edges)));
         for (k, v) in [("hoop_shear", ld.hoop_shear), ("torque", ld.torque)] {
             let Some(v) = v else { continue };

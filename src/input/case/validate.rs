@@ -60,6 +60,7 @@ pub fn check_case(case: &Case) -> Result<Checked> {
     check_model_and_mesh(case, &at)?;
     crate::input::case::solid::check_case(case, &at)?;
     crate::input::case::twist::check_case(case, &at)?;
+    crate::input::case::cyclic::check_case(case, &at)?;
     check_element_count(case, &at)?;
     check_names(case, &at)?;
     check_block_coordinates(case, &at)?;

@@ -1,11 +1,13 @@
 //! The `[[load]]` of a 3D model: a uniform pressure and traction vector on a
 //! face set, integrated consistently on each face
-//! ([`crate::physics::element::face::face_forces`]).
+//! ([`crate::physics::element::face::face_forces`]), and a torque T about
+//! the y axis, the hoop traction τ_θ = T r / J over the selected faces, J =
+//! ∫ r² dA ([`crate::physics::element::face::torque_forces`]).
 
 use crate::error::{Error, Result};
 use crate::input::case::LoadSpec;
 use crate::input::mesh::Mesh;
-use crate::physics::element::face::face_forces;
+use crate::physics::element::face::{face_forces, torque_forces};
 
 /// The (dof, force) terms at factor 1 of `ld` on its face set (those faces
 /// whose centre passes the x, y and z ranges).
@@ -27,6 +29,8 @@ pub(super) fn face_traction(ld: &LoadSpec, mesh: &Mesh, at: &str) -> Result<Vec<
     };
     let nd = mesh.node_dofs;
     let mut terms = Vec::new();
+    // a torque's forces per unit T / J, and J = Σ ∫ r² dA
+    let (mut twist, mut polar) = (Vec::new(), 0.0);
     for face in faces {
         let nodes = face.nodes();
         let x: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.nodes[n]).collect();
@@ -40,12 +44,29 @@ pub(super) fn face_traction(ld: &LoadSpec, mesh: &Mesh, at: &str) -> Result<Vec<
         for (a, &n) in nodes.iter().enumerate() {
             terms.extend((0..3).map(|c| (nd.dof(n, c), f[a][c])));
         }
+        if ld.torque.is_some() {
+            let (f, j) = torque_forces(face.family, &x);
+            polar += j;
+            for (a, &n) in nodes.iter().enumerate() {
+                twist.extend((0..3).map(|c| (nd.dof(n, c), f[a][c])));
+            }
+        }
     }
     if terms.is_empty() {
         return Err(Error::input(
             at,
             super::selects_none("face", faces.is_empty(), true),
         ));
+    }
+    if let Some(torque) = ld.torque {
+        // J > 0 on any face of positive area (r = 0 only along the axis)
+        if !(polar.is_finite() && polar > 0.0) {
+            return Err(Error::input(
+                format!("{at} torque"),
+                "acts on faces without a polar moment ∫ r² dA about the y axis",
+            ));
+        }
+        terms.extend(twist.into_iter().map(|(d, v)| (d, v * torque / polar)));
     }
     Ok(terms)
 }

@@ -6,7 +6,9 @@
 //! (`fx_n`: the radial component). A dof that several entries prescribe (a
 //! corner in two fixed sets) counts in the first of them only, so the groups
 //! together hold every prescribed dof once and their sum balances the
-//! applied loads.
+//! applied loads. A cyclic sector's groups add the moment about the y axis
+//! and the whole part's axial force and moment (`whole_part`); its axis
+//! (u_x = u_z = 0 at r = 0) is the group `axis` with `fx_n` and `fz_n`.
 //!
 //! The groups are a list of (name, components) reductions ([`Group`]): the
 //! columns of `reactions.csv` and the entries of `reactions` in
@@ -24,9 +26,24 @@ pub struct Component {
     pub label: &'static str,
     pub terms: Vec<usize>,
     /// Each term's lever arm, when the component is a moment (`torque_nmm`:
-    /// the radius r of each prescribed u_θ, T = Σ r R_θ); empty: a force,
-    /// the plain sum.
+    /// the radius r of each prescribed u_θ, T = Σ r R_θ; `my_nmm` of a
+    /// cyclic sector: z for a u_x, −x for a u_z); empty: a force, the plain
+    /// sum.
     pub(crate) arms: Vec<f64>,
+    /// The factor on the sum: 1, or N for a cyclic sector's whole-part
+    /// component (`fy_part_n`, `my_part_nmm`).
+    pub(crate) scale: f64,
+}
+
+impl Component {
+    fn new(label: &'static str, terms: Vec<usize>, arms: Vec<f64>) -> Component {
+        Component {
+            label,
+            terms,
+            arms,
+            scale: 1.0,
+        }
+    }
 }
 
 /// A named reduction of reaction forces.
@@ -49,16 +66,16 @@ impl Group {
         self.components.iter().map(move |c| {
             let at = |k: usize| residual.get(k).copied().unwrap_or(f64::NAN);
             // + 0.0: no negative zero (an empty sum)
-            if c.arms.is_empty() {
-                c.terms.iter().map(|&k| at(k)).sum::<f64>() + 0.0
+            let sum = if c.arms.is_empty() {
+                c.terms.iter().map(|&k| at(k)).sum::<f64>()
             } else {
                 c.terms
                     .iter()
                     .zip(&c.arms)
                     .map(|(&k, r)| r * at(k))
                     .sum::<f64>()
-                    + 0.0
-            }
+            };
+            c.scale * sum + 0.0
         })
     }
 }
@@ -113,7 +130,10 @@ pub fn groups(case: &Case, mesh: &Mesh, prescribed: &[(usize, f64)]) -> Vec<Grou
                     }
                 }
             }
-            components.push(Component { label, terms, arms });
+            components.push(Component::new(label, terms, arms));
+        }
+        if let Some(c) = &case.model.cyclic {
+            whole_part(&mut components, mesh, prescribed, c.sectors);
         }
         let shared = case.boundary.iter().filter(|b| b.set == bc.set).count() > 1;
         out.push(Group {
@@ -131,25 +151,70 @@ pub fn groups(case: &Case, mesh: &Mesh, prescribed: &[(usize, f64)]) -> Vec<Grou
     // pretension section's reference node is no node: its force is in
     // pretension.csv)
     // (with twist the axis's u_θ = 0 too, whose reactions have no lever arm)
-    let axis: Vec<usize> = (0..prescribed.len())
-        .filter(|&k| {
-            let d = prescribed[k].0;
-            !owned[k] && d < mesh.num_dofs() && mesh.node_dofs.node_of(d).1 == 0
-        })
-        .collect();
-    if !axis.is_empty() {
+    // (a cyclic sector's axis holds u_x and u_z)
+    let on_axis = |c: usize| -> Vec<usize> {
+        (0..prescribed.len())
+            .filter(|&k| {
+                let d = prescribed[k].0;
+                !owned[k] && d < mesh.num_dofs() && mesh.node_dofs.node_of(d).1 == c
+            })
+            .collect()
+    };
+    let mut components = vec![Component::new("fx_n", on_axis(0), Vec::new())];
+    if mesh.dim() == 3 {
+        components.push(Component::new("fz_n", on_axis(2), Vec::new()));
+    }
+    if components.iter().any(|c| !c.terms.is_empty()) {
         out.push(Group {
             name: "axis".into(),
             source: "axis".into(),
             set: None,
-            components: vec![Component {
-                label: "fx_n",
-                terms: axis,
-                arms: Vec::new(),
-            }],
+            components,
         });
     }
     out
+}
+
+/// A cyclic sector's group gains the moment of its reactions about the y
+/// axis, `my_nmm` = Σ (z R_x − x R_z) (where it prescribes u_x or u_z), and
+/// the whole part's axial force and moment, N × `fy_n` (`fy_part_n`) and N ×
+/// `my_nmm` (`my_part_nmm`): every sector carries the same about the axis.
+/// Its `fx_n` and `fz_n` stay the sector's: rotated through the N sectors
+/// they sum to zero over the part.
+fn whole_part(
+    components: &mut Vec<Component>,
+    mesh: &Mesh,
+    prescribed: &[(usize, f64)],
+    sectors: usize,
+) {
+    let (mut terms, mut arms) = (Vec::new(), Vec::new());
+    for c in components.iter().filter(|c| c.label != "fy_n") {
+        for &k in &c.terms {
+            let (n, comp) = mesh.node_dofs.node_of(prescribed[k].0);
+            let x = mesh.nodes[n];
+            terms.push(k);
+            arms.push(if comp == 0 { x[2] } else { -x[0] });
+        }
+    }
+    let n = sectors as f64;
+    let axial = components
+        .iter()
+        .find(|c| c.label == "fy_n")
+        .map(|c| Component {
+            label: "fy_part_n",
+            scale: n,
+            ..c.clone()
+        });
+    let moment = (components.iter().any(|c| c.label != "fy_n"))
+        .then(|| Component::new("my_nmm", terms, arms));
+    let whole = moment.as_ref().map(|c| Component {
+        label: "my_part_nmm",
+        scale: n,
+        ..c.clone()
+    });
+    components.extend(moment);
+    components.extend(axial);
+    components.extend(whole);
 }
 
 /// Values per group and component, flattened in group order.

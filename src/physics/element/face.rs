@@ -57,6 +57,46 @@ pub(crate) fn face_forces(
     f
 }
 
+/// The nodal forces (N) of the hoop traction of a unit torque density on a
+/// face, t(x) = ŷ × x = (z, 0, −x) (MPa per N·mm/mm⁴: τ_θ = r along the
+/// right-handed hoop direction about the y axis), and the face's polar
+/// moment ∫ r² dA (r² = x² + z², mm⁴), by the family's full Gauss rule as
+/// [`face_forces`]. A torque T on faces of polar moment J = Σ ∫ r² dA is
+/// T / J times these forces: τ_θ = T r / J, the end-face shear of an
+/// elastic shaft (Timoshenko & Goodier, *Theory of Elasticity*, § 104: the
+/// circular shaft, τ = G θ r, T = G θ J), whose moment about the
+/// axis is ∫ r τ_θ dA = T.
+pub(crate) fn torque_forces(family: Family, x: &[[f64; 3]]) -> ([[f64; 3]; MAX_NODES], f64) {
+    let nn = family.nodes();
+    let mut f = [[0.0; 3]; MAX_NODES];
+    let mut polar = 0.0;
+    for &(xi, w) in &family.rule(true).points {
+        let (n, d) = (family.shape(xi), family.shape_derivs(xi));
+        let mut g = [[0.0; 3]; 2];
+        let mut p = [0.0; 3];
+        for a in 0..nn {
+            for (k, tk) in g.iter_mut().enumerate() {
+                for c in 0..3 {
+                    tk[c] += d[a][k] * x[a][c];
+                }
+            }
+            for c in 0..3 {
+                p[c] += n[a] * x[a][c];
+            }
+        }
+        let normal = crate::numbers::vec3::cross(g[0], g[1]);
+        let da = crate::numbers::vec3::dot(normal, normal).sqrt() * w;
+        let t = [p[2], 0.0, -p[0]];
+        for a in 0..nn {
+            for c in 0..3 {
+                f[a][c] += n[a] * t[c] * da;
+            }
+        }
+        polar += (p[0] * p[0] + p[2] * p[2]) * da;
+    }
+    (f, polar)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -111,6 +151,49 @@ mod tests {
                 let want = share * a * b * t[c];
                 assert!((fk[c] - want).abs() < 1e-12 * total, "node {k}: {fk:?}");
             }
+        }
+    }
+
+    /// An annular sector a ≤ r ≤ b, 0 ≤ θ ≤ β in the plane y = 0 (one
+    /// 8-node face, its nodes on the arcs): the forces' moment about the y
+    /// axis is their ∫ r² dA, which is (b⁴ − a⁴) β / 4 but for the quadratic
+    /// arcs, and their resultant is the hoop traction's,
+    /// ∫ (z, 0, −x) dA = ((b³ − a³)/3) (1 − cos β, 0, −sin β).
+    #[test]
+    fn a_unit_torque_density_on_an_annular_face_has_its_polar_moment() {
+        let (a, b, beta): (f64, f64, f64) = (10.0, 25.0, 0.3);
+        // (the face's orientation does not enter a traction)
+        let at = |r: f64, th: f64| [r * th.cos(), 0.0, r * th.sin()];
+        let x = [
+            at(a, 0.0),
+            at(b, 0.0),
+            at(b, beta),
+            at(a, beta),
+            at(0.5 * (a + b), 0.0),
+            at(b, 0.5 * beta),
+            at(0.5 * (a + b), beta),
+            at(a, 0.5 * beta),
+        ];
+        let (f, polar) = torque_forces(Family::Q8, &x);
+        let exact = (b.powi(4) - a.powi(4)) * beta / 4.0;
+        assert!((polar / exact - 1.0).abs() < 1e-4, "{polar} vs {exact}");
+        let mut my = 0.0;
+        let mut total = [0.0; 3];
+        for k in 0..8 {
+            my += x[k][2] * f[k][0] - x[k][0] * f[k][2];
+            for c in 0..3 {
+                total[c] += f[k][c];
+            }
+        }
+        // Σ x_a × f_a = ∫ x × t dA on the isoparametric face: r² exactly
+        assert!((my / polar - 1.0).abs() < 1e-12, "{my} vs {polar}");
+        let cube = (b.powi(3) - a.powi(3)) / 3.0;
+        let want = [cube * (1.0 - beta.cos()), 0.0, -cube * beta.sin()];
+        for c in 0..3 {
+            assert!(
+                (total[c] - want[c]).abs() < 1e-4 * cube,
+                "{total:?} vs {want:?}"
+            );
         }
     }
 }
