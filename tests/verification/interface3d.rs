@@ -105,7 +105,7 @@ fn compare(friction: bool) {
     // both faces' pairs, and the corners' on the midplane
     assert_eq!(
         i3.pairs.len(),
-        2 * i2.pairs.len() + (i2.pairs.len() + 1) / 2
+        2 * i2.pairs.len() + i2.pairs.len().div_ceil(2)
     );
     assert!(worst < 1e-8 * scale, "{worst:e} of {scale:e}");
     assert!(worst_p < 1e-8 * p_max, "{worst_p:e} of {p_max:e}");
@@ -135,4 +135,97 @@ fn the_slab_without_friction_is_the_plane_strain_run() {
 #[test]
 fn the_slab_with_friction_is_the_plane_strain_run() {
     compare(true);
+}
+
+/// A block pressed on half of its top onto another, held in x only by the
+/// interface's friction: the interface's force on A balances the load,
+/// F = (0, p A_load, 0), and its moment about the z axis through the
+/// centroid balances the load's, −F × (x_load − x_centroid); the supports
+/// in z on A's end add forces along z only, no moment about z.
+#[test]
+fn the_force_and_moment_on_a_balance_an_eccentric_load() {
+    let text = r#"
+[model]
+plane = "3d"
+[mesh]
+extrude = { z = [0.0, 10.0], nz = [2] }
+[[mesh.block]]
+body = "top"
+x = [0.0, 20.0]
+nx = [4]
+y = [0.0, 10.0]
+ny = [2]
+[[mesh.block]]
+body = "base"
+x = [0.0, 20.0]
+nx = [4]
+y = [-10.0, 0.0]
+ny = [2]
+[[mesh.interface]]
+name = "joint"
+upper = "top"
+lower = "base"
+[materials.top]
+young = 200000.0
+poisson = 0.3
+yield_stress = 1000.0
+hardening = 2000.0
+[materials.base]
+young = 200000.0
+poisson = 0.3
+yield_stress = 1000.0
+hardening = 2000.0
+[interface.joint]
+law = "power"
+c_n = 0.001
+m = 0.5
+weights = "consistent"
+[interface.joint.tangential]
+r = 0.9
+s = 0.5
+kp_ratio = 1.0
+mu = 0.3
+beta = 1.0
+n = 275.0
+yield_ratio = 0.625
+[[boundary]]
+set = "base.bottom"
+uy = 0.0
+[[boundary]]
+set = "base.left"
+ux = 0.0
+[[boundary]]
+set = "base.zmin"
+uz = 0.0
+[[boundary]]
+set = "top.zmin"
+uz = 0.0
+[[load]]
+faces = "top.top"
+pressure = 100.0
+x_range = [0.0, 10.0]
+[solver]
+increments = 2
+residual_tolerance = 1e-10
+"#;
+    let (m, r) = run(text);
+    let j = r.increments.last().unwrap().joints[0];
+    let f = 100.0 * 10.0 * 10.0;
+    let c = m.interfaces[0].moment_point;
+    println!(
+        "eccentric block: force on A {:?} N, moment {:?} N·mm about {c:?}; F = {f} N, F e = {} N·mm",
+        j.force,
+        j.moment,
+        f * 5.0
+    );
+    assert!((c[0] - 10.0).abs() < 1e-12 && c[1].abs() < 1e-12 && (c[2] - 5.0).abs() < 1e-12);
+    assert!((j.force[1] - f).abs() < 1e-8 * f, "{:?}", j.force);
+    assert!(j.force[0].abs() < 1e-8 * f, "{:?}", j.force);
+    assert!((j.normal_force - f).abs() < 1e-8 * f);
+    // the load's moment about z through the centroid is F · 5 mm
+    assert!(
+        (j.moment[2] + 5.0 * f).abs() < 1e-8 * 5.0 * f,
+        "{:?}",
+        j.moment
+    );
 }
