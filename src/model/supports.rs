@@ -127,30 +127,7 @@ fn check_solid_supports(
 ) -> Result<()> {
     let node_body = mesh.node_bodies();
     let nb = mesh.bodies.len();
-    let mut centre = vec![[0.0; 3]; nb];
-    let mut count = vec![0usize; nb];
-    let mut lo = vec![[f64::INFINITY; 3]; nb];
-    let mut hi = vec![[f64::NEG_INFINITY; 3]; nb];
-    for (n, x) in mesh.nodes.iter().enumerate() {
-        let b = node_body[n];
-        for c in 0..3 {
-            centre[b][c] += x[c];
-            lo[b][c] = lo[b][c].min(x[c]);
-            hi[b][c] = hi[b][c].max(x[c]);
-        }
-        count[b] += 1;
-    }
-    for (c, k) in centre.iter_mut().zip(&count) {
-        *c = c.map(|v| v / (*k).max(1) as f64);
-    }
-    let size: Vec<f64> = (0..nb)
-        .map(|b| {
-            (0..3)
-                .map(|k| (hi[b][k] - lo[b][k]).powi(2))
-                .sum::<f64>()
-                .sqrt()
-        })
-        .collect();
+    let (centre, size) = body_boxes(mesh, &node_body);
     let mut rtr = vec![nalgebra::Matrix6::<f64>::zeros(); nb];
     let vector = |b: usize, x: [f64; 3], e: [f64; 3]| {
         let r: [f64; 3] = std::array::from_fn(|k| (x[k] - centre[b][k]) / size[b]);
@@ -236,6 +213,37 @@ fn check_solid_supports(
         ));
     }
     Ok(())
+}
+
+/// Each body's centroid (of its nodes) and size (its box's diagonal): the
+/// origin and scale of the rows of its rigid motions.
+fn body_boxes(mesh: &Mesh, node_body: &[usize]) -> (Vec<[f64; 3]>, Vec<f64>) {
+    let nb = mesh.bodies.len();
+    let mut centre = vec![[0.0; 3]; nb];
+    let mut count = vec![0usize; nb];
+    let mut lo = vec![[f64::INFINITY; 3]; nb];
+    let mut hi = vec![[f64::NEG_INFINITY; 3]; nb];
+    for (n, x) in mesh.nodes.iter().enumerate() {
+        let b = node_body[n];
+        for c in 0..3 {
+            centre[b][c] += x[c];
+            lo[b][c] = lo[b][c].min(x[c]);
+            hi[b][c] = hi[b][c].max(x[c]);
+        }
+        count[b] += 1;
+    }
+    for (c, k) in centre.iter_mut().zip(&count) {
+        *c = c.map(|v| v / (*k).max(1) as f64);
+    }
+    let size = (0..nb)
+        .map(|b| {
+            (0..3)
+                .map(|k| (hi[b][k] - lo[b][k]).powi(2))
+                .sum::<f64>()
+                .sqrt()
+        })
+        .collect();
+    (centre, size)
 }
 
 /// A free rigid motion u = t + (ω / L) × (x − c) in words (ω scaled by the

@@ -24,6 +24,7 @@ mod features_together;
 mod figures;
 mod gmsh;
 mod help;
+mod interface3d_restart;
 mod joints;
 mod links;
 mod output_schema;

@@ -754,3 +754,11 @@ fn serial_petsc1_and_petsc2_agree_on_a_3d_block() {
         assert_eq!(s["newton_iterations"], p["newton_iterations"], "{name}");
     }
 }
+
+/// A 3D joint (cases/punch-slab-3d: rough, frictional contact faces, the
+/// vector slip, plasticity): serial, PETSc on 1 and on 2 ranks agree as
+/// the plane cases do (increments, statuses, pressures, joints).
+#[test]
+fn serial_petsc1_and_petsc2_agree_on_a_3d_joint() {
+    compare("punch-slab-3d", "1");
+}

@@ -67,10 +67,10 @@ pub(super) fn restore_joints(ck: &mut Checkpoint, s: &Sections, model: &Model) -
             check_joint_row(model, im, m).map_err(|e| {
                 format!(
                     "section joints{}: increment {}: interface {:?}: {e}",
-                    if e.starts_with("torque") {
-                        "_twist"
-                    } else {
-                        ""
+                    match e.split(' ').next() {
+                        Some("torque") => "_twist",
+                        _ if e.contains("along t2") || e.contains(" on A ") => "_space",
+                        _ => "",
                     },
                     inc.increment,
                     im.name
@@ -146,7 +146,10 @@ fn joint_values(m: &JointMeasures) -> Vec<f64> {
 /// |F_T| ≤ μ F_N and |T| ≤ μ r_max F_N (|p_T| ≤ μ_F p_N ≤ μ p_N at every
 /// point: the return mapping's cap, eq. 2.21-2.22; zero without a
 /// tangential law); approaches and slips within the displacement range.
-/// Round-off is allowed ([`REACH_REL`] of the bound, [`REACH_ABS`]).
+/// In 3D also F_T2 within μ F_N, the force on A within (1 + μ) F_N (its
+/// normal and shear parts at every point) and its moment within
+/// (1 + μ) F_N r_max (r_max the points' largest distance from the moment
+/// point). Round-off is allowed ([`REACH_REL`] of the bound, [`REACH_ABS`]).
 fn check_joint_row(
     model: &Model,
     im: &crate::model::interface::InterfaceModel,
@@ -197,10 +200,14 @@ fn check_joint_row(
             ));
         }
     }
+    if im.node_dofs.solid() {
+        check_space_row(im, m, hold, &slack)?;
+    }
     for (name, v) in [
         ("mean approach", m.mean_approach),
         ("mean slip", m.mean_slip),
         ("circumferential slip", m.hoop_slip),
+        ("mean slip along t2", m.mean_slip_2),
     ] {
         if v.abs() > MAX_DISPLACEMENT {
             return Err(format!(
@@ -209,6 +216,45 @@ fn check_joint_row(
                 num(MAX_DISPLACEMENT)
             ));
         }
+    }
+    Ok(())
+}
+
+/// The 3D measures of a joint row (see [`check_joint_row`]); `hold` is
+/// μ F_N.
+fn check_space_row(
+    im: &crate::model::interface::InterfaceModel,
+    m: &JointMeasures,
+    hold: f64,
+    slack: &dyn Fn(f64) -> f64,
+) -> std::result::Result<(), String> {
+    let norm = |v: [f64; 3]| crate::numbers::vec3::dot(v, v).sqrt();
+    if m.tangential_force_2.abs() > hold + slack(hold) {
+        return Err(format!(
+            "tangential force along t2 {} N, beyond what friction holds at its normal force, μ F_N = {} N",
+            num(m.tangential_force_2),
+            num(hold)
+        ));
+    }
+    let most = m.normal_force.max(0.0) + hold;
+    if norm(m.force) > most + slack(most) {
+        return Err(format!(
+            "force on A of size {} N, beyond F_N + μ F_N = {} N",
+            num(norm(m.force)),
+            num(most)
+        ));
+    }
+    let r_max = im.points.iter().fold(0.0f64, |a, pt| {
+        let d = crate::numbers::vec3::sub(im.point_position(pt), im.moment_point);
+        a.max(norm(d))
+    });
+    let turn = most * r_max;
+    if norm(m.moment) > turn + slack(turn) {
+        return Err(format!(
+            "moment on A of size {} N·mm, beyond (F_N + μ F_N) r_max = {} N·mm",
+            num(norm(m.moment)),
+            num(turn)
+        ));
     }
     Ok(())
 }
