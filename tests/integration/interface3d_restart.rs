@@ -7,6 +7,9 @@ use crate::common;
 use common::read_out as read;
 use common::run_case as run;
 
+/// A forgery: the text its refusal must hold, and the edit of the file.
+type Forgery<'a> = (&'a str, &'a dyn Fn(&mut common::Forge));
+
 #[test]
 fn a_stopped_3d_joint_resumes_to_the_same_files() {
     let case = common::root().join("cases/punch-slab-3d");
@@ -54,7 +57,7 @@ fn a_forged_3d_joint_row_is_refused() {
         t[8 * 3 + 7] *= 1.0 + 1e-9; // increment 4: the moment about z
         f.set_f64s("joints_space", &t);
     };
-    let forgeries: [(&str, &dyn Fn(&mut common::Forge)); 2] = [
+    let forgeries: [Forgery; 2] = [
         (
             "section joints_space: increment 2: interface \"contact\": force on A of size",
             &early,
