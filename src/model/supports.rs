@@ -179,8 +179,7 @@ fn check_solid_supports(
                 let x = mesh.nodes[if node == 0 { pr.a } else { pr.b }];
                 let mut dirs = vec![pr.normal];
                 if im.tangential.is_some() {
-                    let t = crate::model::interface::frame(pr.normal);
-                    dirs.extend([t, crate::numbers::vec3::cross(pr.normal, t)]);
+                    dirs.extend(crate::model::interface::tangents(pr.normal));
                 }
                 for e in dirs {
                     let r = vector(loose, x, e);

@@ -257,9 +257,9 @@ pub fn summary(model: &Model, r: &RunResult, cycles: &[Vec<Cycle>]) -> Value {
                 // the slip frame of the first pair: F_T and ū_T along t₁,
                 // F_T2 and ū_T2 along t₂
                 let n = im.pairs.first().map_or([0.0, 1.0, 0.0], |p| p.normal);
-                let t1 = crate::model::interface::frame(n);
+                let [t1, t2] = crate::model::interface::tangents(n);
                 v["direction"] = json!(t1.map(|c| c + 0.0));
-                v["direction_2"] = json!(crate::numbers::vec3::cross(n, t1).map(|c| c + 0.0));
+                v["direction_2"] = json!(t2.map(|c| c + 0.0));
                 v["moment_point_mm"] = json!(im.moment_point);
             }
             v

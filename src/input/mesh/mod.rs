@@ -155,11 +155,6 @@ pub struct NonMatchingFaces {
 }
 
 impl Interface {
-    /// Whether the sides are meshed apart (2D or 3D).
-    pub fn is_nonmatching(&self) -> bool {
-        self.nonmatching.is_some() || self.nonmatching_faces.is_some()
-    }
-
     /// Whether the interface lies on faces (a 3D model).
     pub fn on_faces(&self) -> bool {
         !self.faces.is_empty() || self.nonmatching_faces.is_some()

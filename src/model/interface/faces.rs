@@ -185,8 +185,7 @@ impl InterfaceModel {
     pub(super) fn pair_slip_3d(&self, pair: &Pair, u: &[f64]) -> [f64; 2] {
         let nd = self.node_dofs;
         let du: [f64; 3] = std::array::from_fn(|c| u[nd.dof(pair.b, c)] - u[nd.dof(pair.a, c)]);
-        let t1 = frame(pair.normal);
-        [dot(du, t1), dot(du, cross(pair.normal, t1))]
+        tangents(pair.normal).map(|t| dot(du, t))
     }
 
     /// g_N, g_T1 and g_T2 (as `h`) of a 3D point over its local dofs, three
@@ -211,6 +210,13 @@ pub(crate) fn frame(n: [f64; 3]) -> [f64; 3] {
     } else {
         unit(cross([0.0, 1.0, 0.0], n))
     }
+}
+
+/// The slip frame's two tangents at unit normal n: t₁ ([`frame`]) and
+/// t₂ = n × t₁.
+pub(crate) fn tangents(n: [f64; 3]) -> [[f64; 3]; 2] {
+    let t1 = frame(n);
+    [t1, cross(n, t1)]
 }
 
 fn unit(v: [f64; 3]) -> [f64; 3] {

@@ -32,7 +32,7 @@ use crate::input::mesh::{Interface, Mesh};
 use crate::numbers::vec3::cross;
 use crate::physics::contact::{NormalLaw, PointState, Slip, Status, TangentialLaw};
 pub(crate) use circumferential::Gradients;
-pub(crate) use faces::frame;
+pub(crate) use faces::tangents;
 pub use segment::{project, OVERLAP_LIMIT};
 
 /// The most nodes of one side of an interface element: a quadratic edge's

@@ -509,8 +509,7 @@ fn tangents(n: [f64; 3], dim: usize) -> Vec<[f64; 3]> {
     if dim == 2 {
         return vec![[n[1], -n[0], 0.0]];
     }
-    let t1 = crate::model::interface::frame(n);
-    vec![t1, crate::numbers::vec3::cross(n, t1)]
+    crate::model::interface::tangents(n).to_vec()
 }
 
 /// Adds the stabilization spring of one interface point to its local residual
