@@ -28,6 +28,7 @@ mod gap;
 mod gold;
 mod hanging;
 mod hertz;
+mod hertz3d;
 mod histories;
 mod interface3d;
 mod joints;
