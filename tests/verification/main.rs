@@ -50,6 +50,7 @@ mod solid;
 mod solid_patch;
 mod status_convergence;
 mod stepping;
+mod surface3d;
 mod tables;
 mod tangents;
 mod thermal;
