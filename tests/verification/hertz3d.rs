@@ -171,9 +171,17 @@ fn a_quarter_sphere_in_3d_reproduces_hertz_and_its_axisymmetric_model() {
         100.0 * (q.peak / p0 - 1.0),
         100.0 * q.worst
     );
-    assert!(q.edge.1 > q.edge.0, "an open spring inside the contact: {:?}", q.edge);
+    assert!(
+        q.edge.1 > q.edge.0,
+        "an open spring inside the contact: {:?}",
+        q.edge
+    );
     assert!(common::rel(a_fe, a) < 0.02, "a: FE {a_fe} vs Hertz {a}");
-    assert!(common::rel(q.peak, p0) < 0.02, "p0: FE {} vs Hertz {p0}", q.peak);
+    assert!(
+        common::rel(q.peak, p0) < 0.02,
+        "p0: FE {} vs Hertz {p0}",
+        q.peak
+    );
 
     // the axisymmetric model of the same layout
     let (m2, st2) = run(&axisymmetric(&text));
@@ -189,7 +197,12 @@ fn a_quarter_sphere_in_3d_reproduces_hertz_and_its_axisymmetric_model() {
         100.0 * (q.peak / q2.peak - 1.0),
         100.0 * q2.worst
     );
-    assert!(common::rel(q.load, q2.load) < 0.02, "P: 3D {} vs axisymmetric {}", q.load, q2.load);
+    assert!(
+        common::rel(q.load, q2.load) < 0.02,
+        "P: 3D {} vs axisymmetric {}",
+        q.load,
+        q2.load
+    );
     assert!(common::rel(q.peak, q2.peak) < 0.02);
     assert!(common::rel(a_fe, a2) < 0.02);
 }
@@ -222,7 +235,10 @@ fn slide(text: &str, mu: f64) -> (Vec<Slide>, usize, f64) {
         let slipping = |q: &Spring| matches!(q.status, Status::MacroSlip | Status::MicroSlip);
         for q in s.iter().filter(|q| slipping(q)) {
             let shear = q.shear[0].hypot(q.shear[1]);
-            assert!((shear - mu * q.p_n).abs() <= 1e-8 * mu * q.p_n, "|p_T| {shear} vs μp");
+            assert!(
+                (shear - mu * q.p_n).abs() <= 1e-8 * mu * q.p_n,
+                "|p_T| {shear} vs μp"
+            );
         }
         let area = |f: &dyn Fn(&Spring) -> bool| -> f64 {
             s.iter().filter(|q| f(q)).map(|q| q.area).sum()
@@ -259,10 +275,9 @@ fn slide(text: &str, mu: f64) -> (Vec<Slide>, usize, f64) {
 /// (c/a as the ratio of the two disks' radii).
 #[test]
 fn the_stick_zone_of_a_sphere_shrinks_as_cattaneo_and_mindlin_say() {
-    let text = std::fs::read_to_string(
-        common::root().join("tests/data/hertz-sphere-3d-slide/case.toml"),
-    )
-    .unwrap();
+    let text =
+        std::fs::read_to_string(common::root().join("tests/data/hertz-sphere-3d-slide/case.toml"))
+            .unwrap();
     assert!(text.contains("poisson = 0.0"));
     let e_star = E / 2.0;
     let (rows, dofs, seconds) = slide(&text, 0.3);
@@ -284,14 +299,26 @@ fn the_stick_zone_of_a_sphere_shrinks_as_cattaneo_and_mindlin_say() {
             w.band.0.min(w.band.1),
             w.band.1.max(w.band.0),
         );
-        assert!(common::rel(w.load, p_held) < 1e-3, "P {} vs {p_held}", w.load);
+        assert!(
+            common::rel(w.load, p_held) < 1e-3,
+            "P {} vs {p_held}",
+            w.load
+        );
         // the coarser half has its edge within 3 % of Hertz's a (the
         // quarter of cases/hertz-sphere-3d within 2 %), pressed and open
         // springs mixing over two rings there
         assert!(common::rel(a_fe, a) < 0.03, "a {a_fe} vs {a}");
-        assert!(w.edge.0 - w.edge.1 < 0.02 * a, "pressed and open mix over {:?}", w.edge);
+        assert!(
+            w.edge.0 - w.edge.1 < 0.02 * a,
+            "pressed and open mix over {:?}",
+            w.edge
+        );
         assert!(w.ratio > 0.2 && w.ratio < 0.9, "{}", w.ratio);
-        assert!(common::rel(w.c / w.a, want) < 0.03, "c/a {} vs {want}", w.c / w.a);
+        assert!(
+            common::rel(w.c / w.a, want) < 0.03,
+            "c/a {} vs {want}",
+            w.c / w.a
+        );
         assert!(
             w.band.0 > w.c - 0.05 * a && w.band.1 < w.c + 0.05 * a,
             "stick and slip mix over {:?} about c = {}",
@@ -311,17 +338,22 @@ fn the_stick_zone_of_a_sphere_shrinks_as_cattaneo_and_mindlin_say() {
 #[test]
 #[ignore]
 fn the_stick_zone_with_poissons_ratio_0_3_finer() {
-    let text = std::fs::read_to_string(
-        common::root().join("tests/data/hertz-sphere-3d-slide/case.toml"),
-    )
-    .unwrap()
-    .replace("poisson = 0.0", "poisson = 0.3")
-    .replace("revolve = { angle = 180.0, n = 8 }", "revolve = { angle = 180.0, n = 12 }")
-    .replace("x = [0.0, 1.6, 15.0]\nnx = [16, 3]", "x = [0.0, 1.6, 15.0]\nnx = [24, 3]")
-    .replace(
-        "x = [0.0, 0.1, 2.5, 30.0]",
-        "x = [0.0, 0.0666666666666667, 2.4666666666666667, 30.0]",
-    );
+    let text =
+        std::fs::read_to_string(common::root().join("tests/data/hertz-sphere-3d-slide/case.toml"))
+            .unwrap()
+            .replace("poisson = 0.0", "poisson = 0.3")
+            .replace(
+                "revolve = { angle = 180.0, n = 8 }",
+                "revolve = { angle = 180.0, n = 12 }",
+            )
+            .replace(
+                "x = [0.0, 1.6, 15.0]\nnx = [16, 3]",
+                "x = [0.0, 1.6, 15.0]\nnx = [24, 3]",
+            )
+            .replace(
+                "x = [0.0, 0.1, 2.5, 30.0]",
+                "x = [0.0, 0.0666666666666667, 2.4666666666666667, 30.0]",
+            );
     assert!(text.contains("n = 12") && text.contains("nx = [24, 3]") && text.contains("0.0666"));
     let (rows, dofs, seconds) = slide(&text, 0.3);
     println!("hertz-sphere-3d-slide with ν = 0.3, finer: {dofs} dofs, {seconds:.1} s");

@@ -105,7 +105,7 @@ fn compare(friction: bool) {
     // both faces' pairs, and the corners' on the midplane
     assert_eq!(
         i3.pairs.len(),
-        2 * i2.pairs.len() + (i2.pairs.len() + 1) / 2
+        2 * i2.pairs.len() + i2.pairs.len().div_ceil(2)
     );
     assert!(worst < 1e-8 * scale, "{worst:e} of {scale:e}");
     assert!(worst_p < 1e-8 * p_max, "{worst_p:e} of {p_max:e}");

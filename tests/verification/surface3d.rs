@@ -36,8 +36,14 @@ fn apart(text: &str) -> String {
 fn compare(name: &str, text: &str) -> [f64; 4] {
     let (m1, r1) = run(text);
     let (m2, r2) = run(&apart(text));
-    assert!(m1.interfaces[0].points.iter().all(|p| p.geometric_gap().is_none()));
-    assert!(m2.interfaces[0].points.iter().all(|p| p.geometric_gap().is_some()));
+    assert!(m1.interfaces[0]
+        .points
+        .iter()
+        .all(|p| p.geometric_gap().is_none()));
+    assert!(m2.interfaces[0]
+        .points
+        .iter()
+        .all(|p| p.geometric_gap().is_some()));
     assert_eq!(m1.num_dofs(), m2.num_dofs());
     let (u1, u2) = (&r1.final_state.u, &r2.final_state.u);
     let scale = u1.iter().fold(0.0f64, |m, v| m.max(v.abs()));
@@ -201,7 +207,10 @@ increments = 2
         .join("\n\n");
     let (m2, r2) = run(&axi);
     let f2 = r2.increments.last().unwrap().joints[0].normal_force;
-    assert!(common::rel(f2, 10_000.0 * std::f64::consts::PI) < 1e-8, "{f2}");
+    assert!(
+        common::rel(f2, 10_000.0 * std::f64::consts::PI) < 1e-8,
+        "{f2}"
+    );
     // the settlement of the punch's top on the axis
     let on_axis = |m: &Model| {
         let punch = m.mesh.bodies.iter().position(|b| b == "punch").unwrap();
@@ -212,6 +221,8 @@ increments = 2
     };
     let s3 = r.final_state.u[3 * on_axis(&m) + 1];
     let s2 = r2.final_state.u[2 * on_axis(&m2) + 1];
-    println!("revolved punch: the top's settlement on the axis {s3:.6e} mm, axisymmetric {s2:.6e} mm");
+    println!(
+        "revolved punch: the top's settlement on the axis {s3:.6e} mm, axisymmetric {s2:.6e} mm"
+    );
     assert!(common::rel(s3, s2) < 1e-3, "{s3} vs {s2}");
 }

@@ -288,7 +288,11 @@ impl<'a> Master<'a> {
         let nf = geometry(face.family, &self.coords[k], c.xi).1;
         let n = match c.on {
             On::Inside => nf,
-            On::Edge(e) if self.free_edges.contains(&face.nodes()[face.family.edges()[e][1]]) => {
+            On::Edge(e)
+                if self
+                    .free_edges
+                    .contains(&face.nodes()[face.family.edges()[e][1]]) =>
+            {
                 return Err(outside())
             }
             On::Corner(a) if self.free_nodes.contains(&face.nodes()[a]) => return Err(outside()),

@@ -354,7 +354,15 @@ impl Core {
                 x[0] == 0.0 && x[2] == 0.0
             }));
         }
-        add_sets(plane, shape, mesh, [&bottom_faces, &top_faces], &ends, &all, &axis_nodes);
+        add_sets(
+            plane,
+            shape,
+            mesh,
+            [&bottom_faces, &top_faces],
+            &ends,
+            &all,
+            &axis_nodes,
+        );
         self.carry_interfaces(plane, shape, mesh, [&bottom_faces, &top_faces]);
     }
 

@@ -253,8 +253,16 @@ fn a_sphere_on_a_flat_meshed_apart_revolves_with_its_interface_through_the_cores
         // the slave faces: the ball's cap, on its bodies' nodes, walked into
         // the ball (+y); the master faces the flat's top, walked out of it
         let a = mesh.bodies.iter().position(|b| b == "ball").unwrap();
-        assert!(nm.slave.iter().flat_map(|f| f.nodes()).all(|&k| bodies[k] == a));
-        assert!(nm.master.iter().flat_map(|f| f.nodes()).all(|&k| bodies[k] != a));
+        assert!(nm
+            .slave
+            .iter()
+            .flat_map(|f| f.nodes())
+            .all(|&k| bodies[k] == a));
+        assert!(nm
+            .master
+            .iter()
+            .flat_map(|f| f.nodes())
+            .all(|&k| bodies[k] != a));
         let share = angle / (2.0 * std::f64::consts::PI);
         let (r, h) = (10.0f64, 10.0 - (100.0f64 - 9.0).sqrt());
         let (cap, n_cap) = face_area(&mesh, &nm.slave);
@@ -290,7 +298,10 @@ fn a_matching_interface_through_the_cores_pairs_their_faces_node_for_node() {
         for (&a, &b) in f.a.nodes().iter().zip(f.b.nodes()) {
             assert_ne!(a, b);
             let (xa, xb) = (mesh.nodes[a], mesh.nodes[b]);
-            assert!((0..3).all(|c| (xa[c] - xb[c]).abs() < 1e-12), "{xa:?} {xb:?}");
+            assert!(
+                (0..3).all(|c| (xa[c] - xb[c]).abs() < 1e-12),
+                "{xa:?} {xb:?}"
+            );
         }
     }
     // the punch's whole bottom, walked from the flat into the punch (+y)

@@ -146,7 +146,7 @@ pub(crate) fn project(family: Family, x: &[[f64; 3]], p: [f64; 3]) -> Option<[f6
             gn
         };
         let dh = det(h);
-        if !(dh > 0.0) || !dh.is_finite() {
+        if dh.is_nan() || dh <= 0.0 || !dh.is_finite() {
             return None;
         }
         let step = [
@@ -185,10 +185,11 @@ fn on_edge(e: [[f64; 3]; 3], p: [f64; 3]) -> (f64, f64) {
     let mut s = 0.0f64;
     for _ in 0..50 {
         let dn = [s - 0.5, -2.0 * s, s + 0.5];
-        let d: [f64; 3] = std::array::from_fn(|c| dn[0] * e[0][c] + dn[1] * e[1][c] + dn[2] * e[2][c]);
+        let d: [f64; 3] =
+            std::array::from_fn(|c| dn[0] * e[0][c] + dn[1] * e[1][c] + dn[2] * e[2][c]);
         let r = sub(at(s), p);
         let (f, df) = (dot(r, d), dot(d, d) + dot(r, dd));
-        if !(df > 0.0) {
+        if df.is_nan() || df <= 0.0 {
             break;
         }
         let step = f / df;

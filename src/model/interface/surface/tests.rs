@@ -186,7 +186,10 @@ fn two_sides(h: f64, x0: f64, z0: f64, bow: f64) -> (Mesh, NonMatchingFaces) {
     }) {
         mesh.nodes.push(p);
     }
-    let slave = vec![Face::new(Family::Q8, &(first..first + 8).collect::<Vec<_>>())];
+    let slave = vec![Face::new(
+        Family::Q8,
+        &(first..first + 8).collect::<Vec<_>>(),
+    )];
     (mesh, NonMatchingFaces { slave, master })
 }
 
@@ -281,10 +284,12 @@ fn a_point_in_the_wedge_of_a_kink_takes_the_shared_edge() {
         let ids: Vec<usize> = x
             .iter()
             .map(|p| {
-                *index.entry(p.map(|v| (v + 0.0).to_bits())).or_insert_with(|| {
-                    mesh.nodes.push(*p);
-                    mesh.nodes.len() - 1
-                })
+                *index
+                    .entry(p.map(|v| (v + 0.0).to_bits()))
+                    .or_insert_with(|| {
+                        mesh.nodes.push(*p);
+                        mesh.nodes.len() - 1
+                    })
             })
             .collect();
         faces.push(Face::new(Family::Q8, &ids));
@@ -363,7 +368,10 @@ fn the_tree_finds_the_nearest_face_as_a_scan_of_all_does() {
         let scan = (0..faces.len())
             .map(|g| closest(Family::Q8, &master.coords[g], p).d2)
             .fold(f64::INFINITY, f64::min);
-        assert!((c.d2 - scan).abs() <= 1e-12 * scan.max(1.0), "{p:?}: face {f}");
+        assert!(
+            (c.d2 - scan).abs() <= 1e-12 * scan.max(1.0),
+            "{p:?}: face {f}"
+        );
         master.tree.nearest(p, |g| {
             tested += 1;
             closest(Family::Q8, &master.coords[g], p).d2

@@ -28,10 +28,8 @@ impl Aabb {
     };
 
     pub(crate) fn grow(&mut self, x: [f64; 3]) {
-        for c in 0..3 {
-            self.lo[c] = self.lo[c].min(x[c]);
-            self.hi[c] = self.hi[c].max(x[c]);
-        }
+        self.lo = std::array::from_fn(|c| self.lo[c].min(x[c]));
+        self.hi = std::array::from_fn(|c| self.hi[c].max(x[c]));
     }
 
     fn join(a: Aabb, b: Aabb) -> Aabb {
