@@ -215,7 +215,7 @@ impl Point {
     }
 
     /// Number of in-plane local dofs, two per node
-    /// ([`Point::node_count`]); [`InterfaceModel::point_ndofs`] counts every
+    /// ([`Point::node_count`]); `InterfaceModel::point_ndofs` counts every
     /// dof of the nodes.
     pub fn ndofs(&self) -> usize {
         2 * self.node_count()
