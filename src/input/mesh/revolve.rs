@@ -85,7 +85,8 @@ pub(crate) fn revolve(plane: &Mesh, angle: f64, n: usize) -> Result<Mesh, MeshEr
                  layers or a half through 180° in a multiple of 4 (angle = {}°, n = {n}); revolve a \
                  quarter or a half, or a layout with x > 0 (a hollow part)",
                 first[1],
-                angle.to_degrees()
+                // the case's degrees, not their round trip through radians
+                (angle.to_degrees() * 1e9).round() / 1e9
             )))
         }
     };
