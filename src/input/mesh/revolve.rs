@@ -87,7 +87,7 @@ pub(crate) fn revolve(plane: &Mesh, angle: f64, n: usize) -> Result<Mesh, MeshEr
                 first[1],
                 // the case's degrees, not their round trip through radians
                 (angle.to_degrees() * 1e9).round() / 1e9
-            )))
+            )));
         }
     };
     let shapes = axis
