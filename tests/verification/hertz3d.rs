@@ -144,10 +144,11 @@ fn axisymmetric(text: &str) -> String {
 }
 
 /// The quarter sphere of cases/hertz-sphere-3d: Hertz's contact radius
-/// (midway between the last pressed and the first open spring) and peak
-/// pressure within 2 % at the load P the springs carry; then the
-/// axisymmetric model of the same layout, whose load, contact edge and
-/// peak the 3D run is compared with (printed with `--nocapture`).
+/// (midway between the last pressed and the first open spring, the pressed
+/// ones a disk) and peak pressure within 2 % at the load P the springs carry
+/// (measured −0.67 % and −0.38 %); then the axisymmetric model of the same
+/// layout, whose load (within 1e-3), contact edge and peak (within 1 %) the
+/// 3D run gives (measured 1e-5, 0, 0.08 %; printed with `--nocapture`).
 #[test]
 fn a_quarter_sphere_in_3d_reproduces_hertz_and_its_axisymmetric_model() {
     let text =
@@ -197,14 +198,15 @@ fn a_quarter_sphere_in_3d_reproduces_hertz_and_its_axisymmetric_model() {
         100.0 * (q.peak / q2.peak - 1.0),
         100.0 * q2.worst
     );
+    // measured: the load to 1e-5, the edge on the same rings, the peak 0.08 %
     assert!(
-        common::rel(q.load, q2.load) < 0.02,
+        common::rel(q.load, q2.load) < 1e-3,
         "P: 3D {} vs axisymmetric {}",
         q.load,
         q2.load
     );
-    assert!(common::rel(q.peak, q2.peak) < 0.02);
-    assert!(common::rel(a_fe, a2) < 0.02);
+    assert!(common::rel(q.peak, q2.peak) < 0.01);
+    assert!(common::rel(a_fe, a2) < 0.01);
 }
 
 /// A half sphere pressed by a platen (P held), then pulled along x; at each
