@@ -963,6 +963,8 @@ fn interfaces_text(model: &Model) -> String {
         if !gaps.is_empty() {
             let kind = if im.points.iter().any(|p| p.coupling.is_mortar()) {
                 "mortar springs at A's nodes"
+            } else if model.mesh.dim() == 3 {
+                "node-to-surface springs at A's quadrature points"
             } else {
                 "node-to-segment springs at A's quadrature points"
             };

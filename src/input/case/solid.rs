@@ -6,7 +6,8 @@
 //! `traction = [t_x, t_y, t_z]` and `torque` (about the y axis), `uz` of `[[boundary]]`, `fz` of
 //! `[[force]]`, `z_range` of all three, and `z` of `[[pretension]]`. A 3D key in a plane model, a
 //! plane-only key in a 3D one, and every feature not yet built in 3D
-//! (interfaces, twist, a half model, local and adaptive refinement) are
+//! (twist, a half model, local and adaptive refinement, a rounded or
+//! chamfered block side) are
 //! refused here, each naming its key. A pretension section's plane is
 //! checked with the mesh ([`crate::model::pretension`]). Whether a
 //! Gmsh file holds volumes is checked when it is read
@@ -122,10 +123,11 @@ fn check_solid(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
         return not_yet(at("[adapt]"), "an adaptive run");
     }
     for (i, b) in case.mesh.block.iter().enumerate() {
-        // an arc, a rounding or a chamfer (a concave fillet is swept as the
-        // layout's nodes are: it moves them before the sweep)
+        // a rounding or a chamfer (an arc is swept as the layout's nodes
+        // are, a cylinder along z or a sphere's cap about the axis, and so
+        // is a concave fillet: it moves them before the sweep)
         let cuts = |s: &Option<crate::input::mesh::blocks::SideShape>| {
-            s.as_ref().is_some_and(|s| s.cuts())
+            s.as_ref().is_some_and(|s| s.cuts() && s.radius.is_none())
         };
         for (k, given) in [("bottom", cuts(&b.bottom)), ("top", cuts(&b.top))] {
             if given {

@@ -53,11 +53,8 @@ pub(super) fn on_faces(
             iface.name
         ));
     }
-    if iface.nonmatching_faces.is_some() {
-        return Err(format!(
-            "interface \"{}\": matching = false (sides meshed apart) is not available yet in a 3D model; mesh the two sides alike",
-            iface.name
-        ));
+    if let Some(nm) = &iface.nonmatching_faces {
+        return super::surface::node_to_surface(mesh, &iface.name, nm, weights);
     }
     Ok(InterfaceModel::coincident_faces(mesh, iface, weights))
 }
@@ -219,7 +216,7 @@ pub(crate) fn tangents(n: [f64; 3]) -> [[f64; 3]; 2] {
     [t1, cross(n, t1)]
 }
 
-fn unit(v: [f64; 3]) -> [f64; 3] {
+pub(super) fn unit(v: [f64; 3]) -> [f64; 3] {
     let l = dot(v, v).sqrt();
     v.map(|c| c / l)
 }

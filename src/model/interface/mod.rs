@@ -20,12 +20,16 @@
 //! the closest quadratic edge of the master side (body B) and coupled to
 //! its three nodes through the edge's shape functions N(ξ) (node-to-segment,
 //! small sliding: docs/theory.md, "Non-matching interfaces"); see [`Segment`].
+//! In a 3D model the same springs stand on faces: each slave point projected
+//! once onto the closest 8-node quadrilateral or 6-node triangle of the
+//! master side (node-to-surface, `surface.rs`).
 
 pub mod arcs;
 mod circumferential;
 pub mod extrapolation;
 mod faces;
 mod segment;
+mod surface;
 
 use crate::input::case::settings::{FrictionScheme, Weights};
 use crate::input::mesh::{Interface, Mesh};

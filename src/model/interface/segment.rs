@@ -592,7 +592,7 @@ fn check(
 /// this along the master's outward normal faces away from the master side
 /// (the angle between the two is below 90°, about 89.9° at the limit; the
 /// end of a quarter-circle rounding sits at exactly 90°).
-const FACING_TOL: f64 = 1e-3;
+pub(super) const FACING_TOL: f64 = 1e-3;
 
 /// The largest initial overlap of the two sides at a spring point, as a
 /// fraction of the slave edge's length: more is two meshes that overlap,

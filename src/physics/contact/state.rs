@@ -85,6 +85,13 @@ pub struct PointState {
 }
 
 impl PointState {
+    /// The second component of the shear, MPa: with twist the
+    /// circumferential p_Tθ, in a 3D model the shear along the slip frame's
+    /// t₂ (0 in a plane model).
+    pub fn second_shear(&self) -> f64 {
+        self.p_h
+    }
+
     /// Doubles per state in [`PointState::pack_twist`] (a model with twist).
     pub(crate) const PACKED_TWIST: usize = 5 + SlipState2::PACKED;
 
