@@ -228,4 +228,53 @@ residual_tolerance = 1e-10
         "{:?}",
         j.moment
     );
+    contact_map_of_the_eccentric_block(&m, &r, j.normal_force);
+}
+
+/// The eccentric block's contact map: drawn on (x, z), its cells tile the
+/// 20 × 10 mm face, Σ p A over its points is the joint's normal force, the
+/// loaded half presses harder than the other, and a cell shows the point
+/// nearest its centre (each of the 16 Gauss points of a face is some
+/// cell's own).
+fn contact_map_of_the_eccentric_block(m: &Model, r: &RunResult, normal_force: f64) {
+    use asperity::files::output::contact_map::contact_maps;
+    let maps = contact_maps(m, &r.final_state);
+    assert_eq!(maps.len(), 1);
+    let map = &maps[0];
+    assert_eq!(map.labels, ("x (mm)".to_string(), "z (mm)".to_string()));
+    let shoelace = |c: &[[f64; 2]]| {
+        let n = c.len();
+        (0..n)
+            .map(|i| c[i][0] * c[(i + 1) % n][1] - c[(i + 1) % n][0] * c[i][1])
+            .sum::<f64>()
+            .abs()
+            / 2.0
+    };
+    let tiled: f64 = map.cells.iter().map(|c| shoelace(&c.corners)).sum();
+    assert!((tiled - 200.0).abs() < 1e-10, "{tiled}");
+    let force: f64 = map.points.iter().map(|p| p.p_n * p.area).sum();
+    assert!(
+        (force - normal_force).abs() < 1e-10 * normal_force,
+        "{force} {normal_force}"
+    );
+    let mean = |left: bool| {
+        let sel: Vec<_> = map
+            .points
+            .iter()
+            .filter(|p| (p.x[0] < 10.0) == left)
+            .collect();
+        sel.iter().map(|p| p.p_n * p.area).sum::<f64>() / sel.iter().map(|p| p.area).sum::<f64>()
+    };
+    println!(
+        "contact map: Σ p A = {force} N, mean p under the load {} MPa, beyond {} MPa",
+        mean(true),
+        mean(false)
+    );
+    assert!(mean(true) > 1.5 * mean(false));
+    let mut shown = vec![false; map.points.len()];
+    for c in &map.cells {
+        shown[c.point] = true;
+    }
+    assert!(shown.iter().all(|&s| s), "a Gauss point no cell shows");
+    assert_eq!(map.cells.len(), map.points.len());
 }

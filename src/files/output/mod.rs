@@ -1,7 +1,8 @@
 //! Results on disk: `summary.json`, `curve.csv`, `interface/<increment>.csv`,
 //! the joint outputs (`joints.csv`, `cycles.csv`, the hysteresis figure:
 //! `joints`; `damping.csv`, `backbone.csv`, the damping figure: [`damping`]), the designer's outputs (`reactions.csv`, `probes.csv`,
-//! `peaks.csv`, `contact.csv` and the events: `plan`, [`events`]) and a
+//! `peaks.csv`, `contact.csv` and the events: `plan`, [`events`]), a 3D run's
+//! contact maps ([`contact_map`]) and a
 //! VTU/PVD series. Everything is written into a hidden sibling folder that is
 //! renamed into place only when the run succeeds, so a failed run leaves no
 //! partial output folder behind. The per-increment files are encoded and
@@ -9,6 +10,7 @@
 
 mod applied;
 mod background;
+pub mod contact_map;
 pub mod damping;
 pub mod events;
 pub mod joints_csv;
@@ -53,6 +55,8 @@ pub(crate) struct Writer {
     /// increments and the last one; [`crate::measure::estimate`]), with that
     /// increment and its load factor: summary.json's `estimate`.
     estimate: Option<(usize, f64, crate::measure::estimate::Estimate)>,
+    /// A 3D run's contact maps of the last converged state (drawn at the end).
+    maps: Vec<contact_map::ContactMap>,
 }
 
 /// Where a resumed run takes its earlier increments from.
@@ -103,6 +107,7 @@ impl Writer {
             layout: None,
             last_vtu: 0,
             estimate: None,
+            maps: Vec::new(),
         };
         if let Some(r) = resume {
             // restart.bin is kept as is if no further increment converges;
@@ -155,6 +160,7 @@ impl Writer {
             &damping::damping_csv(model, &cycles, &sweeps),
         )?;
         damping::figure(model, &cycles, &sweeps, &self.tmp_dir)?;
+        contact_map::save_maps(&self.maps, &self.tmp_dir)?;
         self.write("backbone.csv", &damping::backbone_csv(model, result))?;
         if !model.sections.is_empty() {
             self.write("pretension.csv", &pretension_csv(model, result))?;
@@ -316,6 +322,7 @@ impl Observer for Writer {
     fn increment(&mut self, model: &Model, state: &State, inc: &Increment) -> Result<()> {
         // a file of an earlier increment that could not be written ends the run here
         self.background.check()?;
+        self.maps = contact_map::contact_maps(model, state);
         self.queue_text(
             crate::files::restart::interface_name(inc.increment),
             interface_csv(model, state),
@@ -395,6 +402,7 @@ impl Observer for Writer {
             self.queue_vtu(model, state, inc)?;
         }
         self.estimate_of(model, state, inc);
+        self.maps = contact_map::contact_maps(model, state);
         Ok(())
     }
 
