@@ -144,7 +144,7 @@ pub struct Event {
     /// A step of the search did not converge: the bracket reached.
     pub solve_failed: bool,
     /// Where: x, y (mm), the arc length s of the pair (interface events;
-    /// z of a first yield in 3D) and the element (first yield) or the body
+    /// in 3D z, of the pair or of a first yield) and the element (first yield) or the body
     /// (torque limit); NaN where it does not apply.
     pub place: [f64; 4],
     /// total_load_kn, mean_pressure_mpa ([`super::Measures`]), and the
@@ -446,8 +446,8 @@ impl Monitor {
         }
     }
 
-    /// Where, in the states on either side of the bracket: the first pair
-    /// to open (the smallest approach after), the last in contact (the
+    /// Where (x, y and the arc length s, or z in 3D), in the states on
+    /// either side of the bracket: the first pair to open (the smallest approach after), the last in contact (the
     /// largest approach before), none for full slip; the lowest pair on a tie.
     fn place(&self, model: &Model, before: &State, after: &State) -> [f64; 4] {
         let im = &model.interfaces[self.interface];
@@ -455,12 +455,13 @@ impl Monitor {
         let pick = |k: Option<usize>| {
             k.map_or([f64::NAN; 4], |k| {
                 let x = im.pairs[k].x;
-                [
-                    x[0],
-                    x[1],
-                    arc.get(k).copied().unwrap_or(f64::NAN),
-                    f64::NAN,
-                ]
+                // a face has no arc length: in 3D the third place is z
+                let third = if model.mesh.dim() == 3 {
+                    x[2]
+                } else {
+                    arc.get(k).copied().unwrap_or(f64::NAN)
+                };
+                [x[0], x[1], third, f64::NAN]
             })
         };
         match self.kind {

@@ -21,6 +21,7 @@ mod damping_line;
 mod dissipation;
 mod estimate;
 mod events;
+mod events3d;
 mod face_coupling;
 mod factorization;
 mod fillet;
