@@ -117,6 +117,27 @@ impl JointMeasures {
         ]
     }
 
+    /// The whole part's numbers of a joint measured on one of `sectors`
+    /// equal sectors of a cyclic model (the y axis its axis): the normal
+    /// force N F_N, the axial force on A N F_y, the moment on A about the
+    /// axis N (M_P + P × F)_y (M_P the moment about the moment point P,
+    /// so that P × F moves it to the origin, which lies on the axis), the
+    /// area in contact N (A_closed + A_stick + A_micro + A_macro) and the
+    /// dissipation N D. The forces across the
+    /// axis are left out: turned through the N sectors they sum to zero.
+    pub fn part(&self, sectors: usize, moment_point: [f64; 3]) -> [f64; 5] {
+        let n = sectors as f64;
+        let (f, p) = (self.force, moment_point);
+        let about_axis = self.moment[1] + (p[2] * f[0] - p[0] * f[2]);
+        [
+            n * self.normal_force,
+            n * f[1],
+            n * about_axis,
+            n * (self.closed + self.stick + self.micro_slip + self.macro_slip),
+            n * self.dissipation,
+        ]
+    }
+
     /// Sets the measures of [`JointMeasures::pack_space`] from `v`.
     pub(crate) fn unpack_space(&mut self, v: &[f64]) {
         (self.tangential_force_2, self.mean_slip_2) = (v[0], v[1]);

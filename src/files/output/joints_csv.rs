@@ -40,15 +40,25 @@ pub const JOINTS_TWIST_COLUMNS: &str = ",torque_nmm,mean_hoop_slip_mm,mean_twist
 /// The columns a 3D model's `joints.csv` adds at the end of a row.
 pub const JOINTS_SPACE_COLUMNS: &str = ",tangential_force_2_n,mean_slip_2_mm,force_x_n,force_y_n,force_z_n,moment_x_nmm,moment_y_nmm,moment_z_nmm";
 
+/// The columns a cyclic sector's `joints.csv` adds at the end of a row:
+/// the whole part's numbers ([`JointMeasures::part`]).
+pub const JOINTS_CYCLIC_COLUMNS: &str = ",part_normal_force_n,part_axial_force_n,part_torque_nmm,part_contact_measure,part_dissipation_nmm";
+
 /// `joints.csv`: one row per committed increment and interface.
 /// A twisting model's rows end with T, ū_θ and φ̄ ([`JOINTS_TWIST_COLUMNS`]),
 /// a 3D model's with F_T2, ū_T2 and the force and moment on A
-/// ([`JOINTS_SPACE_COLUMNS`]).
+/// ([`JOINTS_SPACE_COLUMNS`]), a cyclic sector's then with the whole
+/// part's numbers ([`JOINTS_CYCLIC_COLUMNS`]).
 pub fn joints_csv(model: &Model, r: &RunResult) -> String {
     let twist = model.node_dofs().twist();
     let space = model.node_dofs().solid();
+    let sectors = model.cyclic_sectors();
     let mut s = String::from(JOINTS_HEADER);
-    for (on, columns) in [(twist, JOINTS_TWIST_COLUMNS), (space, JOINTS_SPACE_COLUMNS)] {
+    for (on, columns) in [
+        (twist, JOINTS_TWIST_COLUMNS),
+        (space, JOINTS_SPACE_COLUMNS),
+        (sectors.is_some(), JOINTS_CYCLIC_COLUMNS),
+    ] {
         if on {
             s.pop();
             s += columns;
@@ -63,6 +73,9 @@ pub fn joints_csv(model: &Model, r: &RunResult) -> String {
             }
             if space {
                 values.extend(m.pack_space());
+            }
+            if let Some(n) = sectors {
+                values.extend(m.part(n, im.moment_point));
             }
             let _ = writeln!(
                 s,
@@ -232,7 +245,19 @@ pub fn summary(model: &Model, r: &RunResult, cycles: &[Vec<Cycle>]) -> Value {
                 .and_then(|i| {
                     let m = i.joints.get(k)?;
                     let space = im.node_dofs.solid();
-                    Some(measures_json(i.load_factor, m, im.twist(), space))
+                    let mut v = measures_json(i.load_factor, m, im.twist(), space);
+                    if let Some(n) = model.cyclic_sectors() {
+                        let p = m.part(n, im.moment_point);
+                        v["part"] = json!({
+                            "sectors": n,
+                            "normal_force_n": p[0],
+                            "axial_force_n": p[1],
+                            "torque_nmm": p[2],
+                            "contact_measure": p[3],
+                            "dissipation_nmm": p[4],
+                        });
+                    }
+                    Some(v)
                 })
                 .unwrap_or(Value::Null);
             let cyc: Vec<Value> = cycles
