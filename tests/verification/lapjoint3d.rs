@@ -203,7 +203,10 @@ fn loops(model: &Model, r: &RunResult, all: &[(State, Increment)]) -> Vec<(f64, 
         assert!(gap < 1e-2, "loop at {want} open by {gap:e} of u_a");
         // the bolt path carries a few per cent of the applied shear
         assert!((f_a / (want * MU * F_V) - 0.98).abs() < 0.02, "{f_a}");
-        assert!(c.dissipation > 0.0 && c.dissipation <= 4.0 * f_a * u_a, "{c:?}");
+        assert!(
+            c.dissipation > 0.0 && c.dissipation <= 4.0 * f_a * u_a,
+            "{c:?}"
+        );
         let eta = c.loss_factor().unwrap();
         let k = c.secant_stiffness.unwrap();
         assert!(k < last_k, "the secant stiffness falls: {k} after {last_k}");
@@ -224,11 +227,18 @@ fn lap_joint_slips_at_mu_f_v_and_dissipates_below() {
     let (between, _) = interface(&model, "between");
 
     // one full slip, of the joint plane, in the last leg (t in [10, 11])
-    let slips: Vec<_> = r.events.iter().filter(|e| e.kind == Kind::FullSlip).collect();
+    let slips: Vec<_> = r
+        .events
+        .iter()
+        .filter(|e| e.kind == Kind::FullSlip)
+        .collect();
     assert_eq!(slips.len(), 1, "{slips:?}");
     let ev = slips[0];
     assert_eq!(ev.interface, Some(between));
-    assert!(ev.converged && ev.before > 10.0 && ev.after - ev.before <= 1e-3, "{ev:?}");
+    assert!(
+        ev.converged && ev.before > 10.0 && ev.after - ev.before <= 1e-3,
+        "{ev:?}"
+    );
 
     // the applied shear there: μ F_V (half) and the bolt path's share
     let q = |t: f64| {
@@ -281,7 +291,10 @@ fn lap_joint_slips_at_mu_f_v_and_dissipates_below() {
         deficit(first),
         deficit(all.len() - 1)
     );
-    assert!(worst[0] < 1e-9 && worst[1] < 1e-9 && worst[2] < 1e-8, "{worst:?}");
+    assert!(
+        worst[0] < 1e-9 && worst[1] < 1e-9 && worst[2] < 1e-8,
+        "{worst:?}"
+    );
     let at_event = 1.0 - ev.values[3] / (MU * ev.values[2]);
     println!("F_T below μ F_N by {at_event:.2e} at the event (the bracket's end)");
     assert!(at_event < 1e-3 && deficit(first) < 1e-4 && deficit(all.len() - 1) < 1e-4);
