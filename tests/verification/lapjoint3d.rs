@@ -226,6 +226,18 @@ fn lap_joint_slips_at_mu_f_v_and_dissipates_below() {
     let (model, r, all) = run();
     let (between, _) = interface(&model, "between");
 
+    // the plates dish under the clamp: the joint plane first opens at its
+    // rim (r = 25 mm), placed in space (x, y, z of the pair)
+    let opening = r
+        .events
+        .iter()
+        .find(|e| e.kind == Kind::FirstOpening)
+        .unwrap();
+    assert_eq!(opening.interface, Some(between));
+    let [x, y, z, _] = opening.place;
+    assert!(opening.after < 1.0 && y.abs() < 1e-12, "{opening:?}");
+    assert!((x.hypot(z) - 25.0).abs() < 1e-9, "{opening:?}");
+
     // one full slip, of the joint plane, in the last leg (t in [10, 11])
     let slips: Vec<_> = r
         .events
