@@ -270,6 +270,14 @@ fn lap_joint_slips_at_mu_f_v_and_dissipates_below() {
         ev.values[2]
     );
     assert!(q_slip > MU * F_V && q_slip < 1.1 * MU * F_V, "{q_slip}");
+    // what the joint plane does not carry goes through the bolt: the head's
+    // friction, the shank in bending, the nut's friction
+    let bolt_path = q_slip - ev.values[3];
+    println!(
+        "the bolt path carries {bolt_path:.1} N, {:.2} % of the applied shear",
+        100.0 * bolt_path / q_slip
+    );
+    assert!(bolt_path > 0.0 && bolt_path < 0.1 * MU * F_V, "{bolt_path}");
 
     // the first increment that slides whole is the event's; from there on
     // the joint plane holds μ F_N at every point and F_N = F_S
