@@ -46,7 +46,7 @@
 use crate::common;
 use asperity::model::Model;
 use asperity::physics::contact::Status;
-use asperity::solve::events::Kind;
+use asperity::solve::events::{Event, Kind};
 use asperity::solve::{Increment, Observer, RunResult, State};
 
 const MU: f64 = 0.2;
@@ -221,11 +221,10 @@ fn loops(model: &Model, r: &RunResult, all: &[(State, Increment)]) -> Vec<(f64, 
     out
 }
 
-#[test]
-fn lap_joint_slips_at_mu_f_v_and_dissipates_below() {
-    let (model, r, all) = run();
-    let (between, _) = interface(&model, "between");
-
+/// The events: the joint plane first opens at its rim while the clamp comes
+/// in, and slides whole once, in the last leg; the full slip event.
+fn events(model: &Model, r: &RunResult) -> Event {
+    let (between, _) = interface(model, "between");
     // the plates dish under the clamp: the joint plane first opens at its
     // rim (r = 25 mm), placed in space (x, y, z of the pair)
     let opening = r
@@ -251,17 +250,16 @@ fn lap_joint_slips_at_mu_f_v_and_dissipates_below() {
         ev.converged && ev.before > 10.0 && ev.after - ev.before <= 1e-3,
         "{ev:?}"
     );
+    ev.clone()
+}
 
-    // the applied shear there: μ F_V (half) and the bolt path's share
-    let q = |t: f64| {
-        let mut f = vec![0.0; all[0].0.u.len()];
-        model.external_force(t, &mut f);
-        let nd = model.node_dofs();
-        (0..model.mesh.nodes.len())
-            .map(|n| f[nd.dof(n, 0)])
-            .sum::<f64>()
-    };
-    let q_slip = q(ev.load_factor);
+/// The applied shear at gross slip against μ F_V (on the half), and the
+/// bolt path's share.
+fn slip_load(model: &Model, dofs: usize, ev: &Event) {
+    let mut f = vec![0.0; dofs];
+    model.external_force(ev.load_factor, &mut f);
+    let nd = model.node_dofs();
+    let q_slip: f64 = (0..model.mesh.nodes.len()).map(|n| f[nd.dof(n, 0)]).sum();
     println!(
         "gross slip at t = {:.6}: applied {q_slip:.1} N = {:.4} μ F_V; joint plane F_T {:.1} N, F_N {:.1} N",
         ev.load_factor,
@@ -278,18 +276,21 @@ fn lap_joint_slips_at_mu_f_v_and_dissipates_below() {
         100.0 * bolt_path / q_slip
     );
     assert!(bolt_path > 0.0 && bolt_path < 0.1 * MU * F_V, "{bolt_path}");
+}
 
-    // the first increment that slides whole is the event's; from there on
-    // the joint plane holds μ F_N at every point and F_N = F_S
+/// From the first increment that slides whole (the event's) on: μ p_N at
+/// every point of the joint plane, F_N = F_S, F_T close to μ F_N.
+fn sliding(model: &Model, all: &[(State, Increment)], ev: &Event) {
+    let (between, _) = interface(model, "between");
     let first = all
         .iter()
-        .position(|(s, _)| plane(&model, s, "between").sliding)
+        .position(|(s, _)| plane(model, s, "between").sliding)
         .unwrap();
     assert_eq!(all[first].1.increment, ev.increment);
-    assert!(!plane(&model, &all[first - 1].0, "between").sliding);
+    assert!(!plane(model, &all[first - 1].0, "between").sliding);
     let mut worst = [0.0f64; 3];
     for (s, inc) in &all[first..] {
-        let p = plane(&model, s, "between");
+        let p = plane(model, s, "between");
         let j = &inc.joints[between];
         let f_s = inc.sections[0][0];
         worst[0] = worst[0].max(p.off_cap);
@@ -318,6 +319,14 @@ fn lap_joint_slips_at_mu_f_v_and_dissipates_below() {
     let at_event = 1.0 - ev.values[3] / (MU * ev.values[2]);
     println!("F_T below μ F_N by {at_event:.2e} at the event (the bracket's end)");
     assert!(at_event < 1e-3 && deficit(first) < 1e-4 && deficit(all.len() - 1) < 1e-4);
+}
+
+#[test]
+fn lap_joint_slips_at_mu_f_v_and_dissipates_below() {
+    let (model, r, all) = run();
+    let ev = events(&model, &r);
+    slip_load(&model, all[0].0.u.len(), &ev);
+    sliding(&model, &all, &ev);
 
     // every body in balance at every increment
     let mut off: f64 = 0.0;
