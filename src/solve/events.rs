@@ -144,7 +144,7 @@ pub struct Event {
     /// A step of the search did not converge: the bracket reached.
     pub solve_failed: bool,
     /// Where: x, y (mm), the arc length s of the pair (interface events;
-    /// in 3D z, of the pair or of a first yield) and the element (first yield) or the body
+    /// z in 3D, and of a first yield in 3D) and the element (first yield) or the body
     /// (torque limit); NaN where it does not apply.
     pub place: [f64; 4],
     /// total_load_kn, mean_pressure_mpa ([`super::Measures`]), and the
@@ -446,17 +446,19 @@ impl Monitor {
         }
     }
 
-    /// Where (x, y and the arc length s, or z in 3D), in the states on
-    /// either side of the bracket: the first pair to open (the smallest approach after), the last in contact (the
+    /// Where, in the states on either side of the bracket: the first pair
+    /// to open (the smallest approach after), the last in contact (the
     /// largest approach before), none for full slip; the lowest pair on a tie.
+    /// Its x, y and arc length s, or in 3D (where a face has no arc length)
+    /// its x, y and z.
     fn place(&self, model: &Model, before: &State, after: &State) -> [f64; 4] {
         let im = &model.interfaces[self.interface];
         let arc = &model.plan.arcs[self.interface];
+        let space = model.mesh.dim() == 3;
         let pick = |k: Option<usize>| {
             k.map_or([f64::NAN; 4], |k| {
                 let x = im.pairs[k].x;
-                // a face has no arc length: in 3D the third place is z
-                let third = if model.mesh.dim() == 3 {
+                let third = if space {
                     x[2]
                 } else {
                     arc.get(k).copied().unwrap_or(f64::NAN)

@@ -34,6 +34,7 @@ mod hertz3d;
 mod histories;
 mod interface3d;
 mod joints;
+mod lapjoint3d;
 mod limit_load;
 mod memory;
 mod nonmatching;

@@ -73,7 +73,8 @@ pub(crate) fn event_json(model: &Model, e: &Event) -> Value {
         "phase": phase(model, t),
         "meaning": meaning(model, e),
     });
-    // in 3D the third place is z (a face has no arc length)
+    // in 3D the third place is z: a first yield has no arc length, nor
+    // has a pair of an interface on faces
     if model.mesh.dim() == 3 {
         o["z_mm"] = number(e.place[2]);
         o["s_mm"] = Value::Null;
