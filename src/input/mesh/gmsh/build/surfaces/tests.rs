@@ -221,3 +221,23 @@ fn refusals_name_the_interface_and_the_surface() {
         "{e}"
     );
 }
+
+/// A node of one body in an element of the other: refused before any
+/// interface, named with its three coordinates.
+#[test]
+fn a_node_shared_by_two_volumes_is_named_in_space() {
+    let text = STACKED.replacen(
+        "\n13 33 35 46 44 59 61 72 70 ",
+        "\n13 1 35 46 44 59 61 72 70 ",
+        1,
+    );
+    assert_ne!(text, STACKED);
+    let msh = parse_msh(text.as_bytes(), "s.msh").unwrap();
+    let e = build_mesh(&msh, &[spec("top.bottom", "base.top", None)], "case.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("node 1 at (0, 0, 0) belongs to both bodies \"top\" and \"base\""),
+        "{e}"
+    );
+}
