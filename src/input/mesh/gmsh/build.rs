@@ -6,6 +6,7 @@
 use super::parse::MshFile;
 
 mod solid;
+mod surfaces;
 use crate::error::{Error, Result};
 use crate::input::mesh::blocks::InterfaceSpec;
 use crate::input::mesh::{
@@ -198,11 +199,16 @@ fn check_bodies_apart(mesh: &Mesh, tag_of: &[u64], file: &str) -> Result<()> {
     for el in &mesh.elements {
         for &n in el.nodes() {
             if node_body[n] != usize::MAX && node_body[n] != el.body {
+                let x = mesh.nodes[n];
+                let at = match el.family.dim() {
+                    3 => format!("({}, {}, {})", x[0], x[1], x[2]),
+                    _ => format!("({}, {})", x[0], x[1]),
+                };
                 return mesh_err(
                     file,
                     format!(
-                        "node {} at ({}, {}) belongs to both bodies \"{}\" and \"{}\": bodies in contact need their own nodes along the interface (Gmsh: separate points and curves there, Geometry.AutoCoherence = 0)",
-                        tag_of[n], mesh.nodes[n][0], mesh.nodes[n][1], mesh.bodies[node_body[n]], mesh.bodies[el.body]
+                        "node {} at {at} belongs to both bodies \"{}\" and \"{}\": bodies in contact need their own nodes along the interface (Gmsh: separate points and curves there, Geometry.AutoCoherence = 0; a generator writes each body's nodes)",
+                        tag_of[n], mesh.bodies[node_body[n]], mesh.bodies[el.body]
                     ),
                 );
             }
@@ -337,6 +343,12 @@ fn pair_curves(
             "left / right name blocks of a generated mesh ([[mesh.block]]); a mesh read from a file pairs upper_curve (body A) with lower_curve (body B)"
                 .into(),
         ));
+    }
+    if spec.upper_surface.is_some() || spec.lower_surface.is_some() {
+        return Err(bad(format!(
+            "upper_surface / lower_surface name physical surfaces of a mesh of volumes; {} is a plane mesh (its physical surfaces are bodies): give upper_curve and lower_curve (physical curves)",
+            msh.name
+        )));
     }
     let (Some(upper), Some(lower)) = (&spec.upper_curve, &spec.lower_curve) else {
         return Err(bad(
