@@ -31,7 +31,8 @@ placed by the map of its block (the arcs' nodes lie on the arcs), and the cut
 faces' nodes are the same radii on θ = −15° and θ = +15°.
 
 Physical volumes: upper, lower, bolt. Physical surfaces (8-node quads):
-<flange>.theta0 (θ = −15°), .theta1 (θ = +15°), .end (the stub's end),
+sector.theta0 (θ = −15°) and sector.theta1 (θ = +15°), the cut faces of both
+flanges (the bolt has none); per flange <flange>.end (the stub's end),
 .bore (r = 50), .outside (r = 110), .joint (the face on y = 0), .bearing
 (the annulus under the head / nut), .hole (the hole's wall);
 bolt.head_bearing and bolt.nut_bearing (the annuli against the flanges).
@@ -108,13 +109,13 @@ class Plane:
                 self.quads.append((q, region))
 
     def boundary_edges(self):
-        """Edges [end, mid, end] that bound one quad only."""
+        """Edges [end, mid, end] that bound one quad only, with its region."""
         count = {}
-        for q, _ in self.quads:
+        for q, region in self.quads:
             for k in range(4):
                 e = (q[k], q[4 + k], q[(k + 1) % 4])
                 key = (min(e[0], e[2]), max(e[0], e[2]))
-                count.setdefault(key, []).append(e)
+                count.setdefault(key, []).append((e, region))
         return [v[0] for v in count.values() if len(v) == 1]
 
 
@@ -234,12 +235,12 @@ class Body:
             if region in regions:
                 out.append([self.node(q[i], y) for i in range(8)])
 
-    def side(self, name, on_edge, ys, counts):
-        """The face set of the boundary edges for which on_edge(points) holds,
-        swept through the layers of ys (as `extrude`)."""
+    def side(self, name, on_edge, regions, ys, counts):
+        """The face set of the boundary edges of the regions for which
+        on_edge(points) holds, swept through the layers of ys (as `extrude`)."""
         out = self.faces.setdefault(name, [])
-        for a, mid, b in self.plane.boundary_edges():
-            if not on_edge([self.plane.xz[n] for n in (a, mid, b)]):
+        for (a, mid, b), region in self.plane.boundary_edges():
+            if region not in regions or not on_edge([self.plane.xz[n] for n in (a, mid, b)]):
                 continue
             for y0, y1, n in zip(ys, ys[1:], counts):
                 for i in range(n):
@@ -274,11 +275,12 @@ def flange(name, sign, plane, k):
     body.extrude(everything, [f0, f1], [2 * k])
     body.extrude(("ring",), [s0, s1], [3 * k])
     for setname, th in (("theta0", -HALF), ("theta1", HALF)):
-        body.side(f"{name}.{setname}", on_angle(th), [f0, f1, s1] if sign > 0 else [s0, f0, f1], [2 * k, 3 * k] if sign > 0 else [3 * k, 2 * k])
-    full = ([f0, f1, s1], [2 * k, 3 * k]) if sign > 0 else ([s0, f0, f1], [3 * k, 2 * k])
-    body.side(f"{name}.bore", on_radius(R_BORE), *full)
-    body.side(f"{name}.outside", on_radius(R_OUT), [f0, f1], [2 * k])
-    body.side(f"{name}.hole", on_hole, [f0, f1], [2 * k])
+        body.side(f"sector.{setname}", on_angle(th), everything, [f0, f1], [2 * k])
+        body.side(f"sector.{setname}", on_angle(th), ("ring",), [s0, s1], [3 * k])
+    body.side(f"{name}.bore", on_radius(R_BORE), everything, [f0, f1], [2 * k])
+    body.side(f"{name}.bore", on_radius(R_BORE), ("ring",), [s0, s1], [3 * k])
+    body.side(f"{name}.outside", on_radius(R_OUT), everything, [f0, f1], [2 * k])
+    body.side(f"{name}.hole", on_hole, everything, [f0, f1], [2 * k])
     body.cap(f"{name}.end", ("ring",), sign * (T_FLANGE + L_STUB))
     body.cap(f"{name}.joint", everything, 0.0)
     body.cap(f"{name}.bearing", ("bearing",), sign * T_FLANGE)
@@ -318,11 +320,14 @@ def write_msh(bodies, out):
     for b in bodies:
         base.append(total)
         total += len(b.nodes)
+    # one entity per body and face set, one physical surface per name (the
+    # cut faces of both flanges are one physical surface per side)
     surfaces = [(bi, name) for bi, b in enumerate(bodies) for name in b.faces]
+    names = list(dict.fromkeys(name for _, name in surfaces))
     w = out.write
     w("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n")
-    w(f"$PhysicalNames\n{len(bodies) + len(surfaces)}\n")
-    for t, (_, name) in enumerate(surfaces, 1):
+    w(f"$PhysicalNames\n{len(bodies) + len(names)}\n")
+    for t, name in enumerate(names, 1):
         w(f'2 {t} "{name}"\n')
     for t, b in enumerate(bodies, 1):
         w(f'3 {t} "{b.name}"\n')
@@ -336,7 +341,7 @@ def write_msh(bodies, out):
     w(f"$Entities\n0 0 {len(surfaces)} {len(bodies)}\n")
     for t, (bi, name) in enumerate(surfaces, 1):
         pts = [bodies[bi].nodes[n] for f in bodies[bi].faces[name] for n in f]
-        w(f"{t} {bbox(pts)} 1 {t} 0\n")
+        w(f"{t} {bbox(pts)} 1 {names.index(name) + 1} 0\n")
     for t, b in enumerate(bodies, 1):
         w(f"{t} {bbox(b.nodes)} 1 {t} 0\n")
     w("$EndEntities\n")
@@ -460,10 +465,10 @@ def check(bodies, k):
         ok &= rel_q < 1e-9
     turn = 2 * HALF
     for b in bodies:
-        if f"{b.name}.theta0" not in b.faces:
+        if "sector.theta0" not in b.faces:
             continue
-        n0 = sorted({n for f in b.faces[f"{b.name}.theta0"] for n in f})
-        n1 = sorted({n for f in b.faces[f"{b.name}.theta1"] for n in f})
+        n0 = sorted({n for f in b.faces["sector.theta0"] for n in f})
+        n1 = sorted({n for f in b.faces["sector.theta1"] for n in f})
         target = {}
         for n in n1:
             x, y, z = b.nodes[n]
