@@ -24,6 +24,7 @@ mod events;
 mod face_coupling;
 mod factorization;
 mod fillet;
+mod flange3d;
 mod friction;
 mod gap;
 mod gold;

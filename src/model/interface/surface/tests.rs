@@ -401,6 +401,7 @@ fn model(gap: f64) -> (InterfaceModel, usize) {
         tangential: Some(TangentialLaw::new(0.9, 0.5, 0.5, 0.15, 1.0, 0.0, 0.625).unwrap()),
         scheme: FrictionScheme::ReturnMapping,
         node_dofs: NodeDofs::SOLID,
+        moment_point: [0.0; 3],
     };
     (im, mesh.nodes.len())
 }
