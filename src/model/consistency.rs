@@ -15,6 +15,8 @@ use crate::input::case::{Case, MAX_ELEMENTS};
 use crate::input::mesh::Mesh;
 use std::collections::{BTreeMap, HashMap, HashSet};
 
+mod faces;
+
 fn mesh_err(place: &str, message: String) -> Error {
     Error::Mesh {
         place: place.to_string(),
@@ -172,7 +174,8 @@ fn names(mesh: &Mesh, place: &str) -> Result<()> {
             }
         }
     }
-    shared_sides(mesh, place)
+    shared_sides(mesh, place)?;
+    faces::shared_faces(mesh, place)
 }
 
 /// No boundary edge on a side of two interfaces, whatever their coupling: two

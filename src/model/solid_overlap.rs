@@ -7,7 +7,12 @@
 //! (beyond 1e-6 of the element's size) a tetrahedron of an element of
 //! another body. Elements are binned by their bounding boxes on a grid of
 //! about one element per cell. It finds any overlap deeper than about half
-//! an element; curved sides are taken by their chords.
+//! an element; curved sides are taken by their chords. Between two bodies
+//! joined by a non-matching interface (their surfaces are two meshes of one
+//! surface: a midside node on a curved side lies beyond the other side's
+//! chords) the depth allowed is [`crate::model::interface::OVERLAP_LIMIT`]
+//! of the element's size, as in the plane check; the springs check the
+//! overlap at each of their points.
 
 use crate::error::{clip, Error, Result};
 use crate::input::mesh::{Family, Mesh};
@@ -94,6 +99,12 @@ pub(crate) fn check(mesh: &Mesh, place: &str) -> Result<()> {
             }
         }
     }
+    let apart: std::collections::HashSet<(usize, usize)> = mesh
+        .interfaces
+        .iter()
+        .filter(|i| i.nonmatching_faces.is_some())
+        .map(|i| (i.body_a.min(i.body_b), i.body_a.max(i.body_b)))
+        .collect();
     for (b, el) in mesh.elements.iter().enumerate() {
         let corners = el.family.corners();
         let centre = mesh.corner_mean(b);
@@ -108,9 +119,15 @@ pub(crate) fn check(mesh: &Mesh, place: &str) -> Result<()> {
                 }
                 let (l, h) = boxes[a];
                 let size = (0..3).map(|c| (h[c] - l[c]).powi(2)).sum::<f64>().sqrt();
+                let pair = (el.body.min(other.body), el.body.max(other.body));
+                let depth = if apart.contains(&pair) {
+                    crate::model::interface::OVERLAP_LIMIT
+                } else {
+                    1e-6
+                };
                 if tets(mesh, a)
                     .into_iter()
-                    .any(|t| strictly_inside(p, t, 1e-6 * size))
+                    .any(|t| strictly_inside(p, t, depth * size))
                 {
                     return Err(Error::Mesh {
                         place: place.to_string(),

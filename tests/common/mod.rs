@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod corpus;
+pub mod msh;
 
 use asperity::input::case::Case;
 use asperity::model::Model;

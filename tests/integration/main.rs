@@ -23,6 +23,7 @@ mod doc_paths;
 mod features_together;
 mod figures;
 mod gmsh;
+mod gmsh_surfaces;
 mod help;
 mod interface3d_restart;
 mod joints;

@@ -27,6 +27,7 @@ mod fillet;
 mod flange3d;
 mod friction;
 mod gap;
+mod gmsh_interface3d;
 mod gold;
 mod hanging;
 mod hertz;

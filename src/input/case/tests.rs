@@ -418,6 +418,14 @@ fn every_key_of_the_schema_changes_the_key() {
         ("matching = false", "matching = false\nright = \"b\""),
         ("matching = false", "matching = false\nupper_curve = \"u\""),
         ("matching = false", "matching = false\nlower_curve = \"l\""),
+        (
+            "matching = false",
+            "matching = false\nupper_surface = \"u\"",
+        ),
+        (
+            "matching = false",
+            "matching = false\nlower_surface = \"l\"",
+        ),
         ("young = 1000.0", "young = 1001.0"),
         ("poisson = 0.25", "poisson = 0.26"),
         ("yield_stress = 10.0", "yield_stress = 11.0"),

@@ -71,8 +71,10 @@ impl BlockSpec {
 /// (generated meshes, a horizontal interface: A = upper, B = lower), between
 /// the right side of block `left` and the left side of block `right`
 /// (generated meshes, a vertical interface: A = left, B = right), or between the physical curves `upper_curve` and
-/// `lower_curve` (meshes read from a file; `upper` / `lower` then optional,
-/// checked against the bodies the curves lie on).
+/// `lower_curve` (plane meshes read from a file; `upper` / `lower` then optional,
+/// checked against the bodies the curves lie on), or between the physical
+/// surfaces `upper_surface` and `lower_surface` (meshes of volumes read from
+/// a file, likewise).
 #[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct InterfaceSpec {
@@ -83,6 +85,14 @@ pub struct InterfaceSpec {
     pub upper_curve: Option<String>,
     /// File meshes: physical curve on the lower body (its top).
     pub lower_curve: Option<String>,
+    /// File meshes of volumes: physical surface on the upper body (body A;
+    /// the slave side with `matching = false`). Left out of the case's key
+    /// when not given (the key of a case without it stays as it was).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub upper_surface: Option<String>,
+    /// File meshes of volumes: physical surface on the lower body (body B).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lower_surface: Option<String>,
     /// Generated meshes, vertical interface: the block whose right side is
     /// in contact (body A).
     #[serde(default)]
@@ -338,6 +348,9 @@ fn sides_of(spec: &InterfaceSpec) -> Result<(&str, &str, bool), MeshError> {
     let err = |m: &str| Err(MeshError(format!("interface \"{}\": {m}", spec.name)));
     if spec.upper_curve.is_some() || spec.lower_curve.is_some() {
         return err("upper_curve / lower_curve name physical curves of a mesh file ([mesh] file); generated blocks use upper / lower or left / right");
+    }
+    if spec.upper_surface.is_some() || spec.lower_surface.is_some() {
+        return err("upper_surface / lower_surface name physical surfaces of a mesh file of volumes ([mesh] file); generated blocks (swept or not) use upper / lower or left / right");
     }
     let horizontal = spec.upper.is_some() || spec.lower.is_some();
     let vertical = spec.left.is_some() || spec.right.is_some();

@@ -6,6 +6,7 @@
 use super::parse::MshFile;
 
 mod solid;
+mod surfaces;
 use crate::error::{Error, Result};
 use crate::input::mesh::blocks::InterfaceSpec;
 use crate::input::mesh::{
@@ -337,6 +338,12 @@ fn pair_curves(
             "left / right name blocks of a generated mesh ([[mesh.block]]); a mesh read from a file pairs upper_curve (body A) with lower_curve (body B)"
                 .into(),
         ));
+    }
+    if spec.upper_surface.is_some() || spec.lower_surface.is_some() {
+        return Err(bad(format!(
+            "upper_surface / lower_surface name physical surfaces of a mesh of volumes; {} is a plane mesh (its physical surfaces are bodies): give upper_curve and lower_curve (physical curves)",
+            msh.name
+        )));
     }
     let (Some(upper), Some(lower)) = (&spec.upper_curve, &spec.lower_curve) else {
         return Err(bad(

@@ -59,6 +59,8 @@ mod tests {
             lower: None,
             upper_curve: Some("punch.bottom".into()),
             lower_curve: Some("foundation.top".into()),
+            upper_surface: None,
+            lower_surface: None,
             left: None,
             right: None,
             matching: None,

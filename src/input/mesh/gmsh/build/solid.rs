@@ -2,14 +2,15 @@
 //! 11) to the solver's [`Mesh`]: physical volumes → bodies, physical
 //! surfaces (8-node quadrangles, 6-node triangles) → face sets walked
 //! outward and node sets of the same name, physical curves and points →
-//! node sets.
+//! node sets; each `[[mesh.interface]]` between two physical surfaces
+//! ([`super::surfaces`]).
 
 use super::super::parse::{ElementBlock, MshFile};
 use super::mesh_err;
 use crate::error::Result;
 use crate::input::mesh::blocks::InterfaceSpec;
 use crate::input::mesh::{Element, Face, Family, Mesh};
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 
 /// Builds a 3D mesh: the file holds volume elements.
 pub(super) fn build_solid_mesh(
@@ -18,17 +19,13 @@ pub(super) fn build_solid_mesh(
     place: &str,
 ) -> Result<Mesh> {
     let file = msh.name.as_str();
-    if let Some(spec) = interfaces.first() {
-        return mesh_err(
-            place,
-            format!(
-                "[[mesh.interface]] \"{}\": a mesh of volumes has no interfaces yet",
-                spec.name
-            ),
-        );
+    let (mut mesh, new_id, tag_of) = super::bodies(msh, 3)?;
+    let surface_bodies = add_boundary_sets(msh, &new_id, &mut mesh, file)?;
+    for spec in interfaces {
+        let iface =
+            super::surfaces::pair_surfaces(msh, &mesh, &surface_bodies, &tag_of, spec, place)?;
+        mesh.interfaces.push(iface);
     }
-    let (mut mesh, new_id, _) = super::bodies(msh, 3)?;
-    add_boundary_sets(msh, &new_id, &mut mesh, file)?;
     Ok(mesh)
 }
 
@@ -53,10 +50,17 @@ pub(super) fn add_elements_of(b: &ElementBlock, body: usize, new_id: &[usize], m
 
 /// Physical surfaces → face sets (each face as the element it bounds walks
 /// it: outward) and node sets; physical curves and points → node sets.
-fn add_boundary_sets(msh: &MshFile, new_id: &[usize], mesh: &mut Mesh, file: &str) -> Result<()> {
+/// Returns the bodies each physical surface lies on (sorted; a surface
+/// without elements is not listed).
+fn add_boundary_sets(
+    msh: &MshFile,
+    new_id: &[usize],
+    mesh: &mut Mesh,
+    file: &str,
+) -> Result<BTreeMap<String, Vec<usize>>> {
     // every element face by its sorted corners: the face as the element
-    // walks it, and how many elements hold it
-    let mut faces: HashMap<Vec<usize>, (Face, usize)> = HashMap::new();
+    // walks it, how many elements hold it, and the body of the (first) one
+    let mut faces: HashMap<Vec<usize>, (Face, usize, usize)> = HashMap::new();
     for el in &mesh.elements {
         let solid = el.family.solid().expect("a mesh of volumes");
         for local in solid.faces() {
@@ -68,9 +72,13 @@ fn add_boundary_sets(msh: &MshFile, new_id: &[usize], mesh: &mut Mesh, file: &st
             };
             let mut key = nodes[..family.corners()].to_vec();
             key.sort_unstable();
-            faces.entry(key).or_insert((Face::new(family, &nodes), 0)).1 += 1;
+            faces
+                .entry(key)
+                .or_insert((Face::new(family, &nodes), 0, el.body))
+                .1 += 1;
         }
     }
+    let mut surface_bodies: BTreeMap<String, Vec<usize>> = BTreeMap::new();
     for b in msh.blocks.iter().filter(|b| b.dim < 3) {
         let Some(phys) = msh.entities.get(&(b.dim, b.entity)) else {
             return mesh_err(
@@ -110,7 +118,13 @@ fn add_boundary_sets(msh: &MshFile, new_id: &[usize], mesh: &mut Mesh, file: &st
                 let mut key = ids[..corners].to_vec();
                 key.sort_unstable();
                 match faces.get(&key) {
-                    Some((face, 1)) => mesh.face_sets.entry(name.clone()).or_default().push(face.clone()),
+                    Some((face, 1, body)) => {
+                        mesh.face_sets.entry(name.clone()).or_default().push(face.clone());
+                        let on = surface_bodies.entry(name.clone()).or_default();
+                        if let Err(at) = on.binary_search(body) {
+                            on.insert(at, *body);
+                        }
+                    }
                     Some(_) => return mesh_err(&b.at, format!("face {} of physical surface \"{name}\" lies between two elements: a face set is on a body's boundary", b.tags[k])),
                     None => return mesh_err(&b.at, format!("element {} of physical surface \"{name}\" is no face of a volume element", b.tags[k])),
                 }
@@ -121,7 +135,7 @@ fn add_boundary_sets(msh: &MshFile, new_id: &[usize], mesh: &mut Mesh, file: &st
             set.dedup();
         }
     }
-    Ok(())
+    Ok(surface_bodies)
 }
 
 #[cfg(test)]

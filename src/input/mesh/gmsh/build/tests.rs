@@ -20,6 +20,8 @@ fn spec(upper: &str, lower: &str) -> InterfaceSpec {
         lower: None,
         upper_curve: Some(upper.into()),
         lower_curve: Some(lower.into()),
+        upper_surface: None,
+        lower_surface: None,
         left: None,
         right: None,
         matching: Some(false),
