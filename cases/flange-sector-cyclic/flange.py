@@ -33,8 +33,10 @@ faces' nodes are the same radii on θ = −15° and θ = +15°.
 Physical volumes: upper, lower, bolt. Physical surfaces (8-node quads):
 sector.theta0 (θ = −15°) and sector.theta1 (θ = +15°), the cut faces of both
 flanges (the bolt has none); per flange <flange>.end (the stub's end),
-.bore (r = 50), .outside (r = 110), .joint (the face on y = 0), .bearing
-(the annulus under the head / nut), .hole (the hole's wall);
+.bore (r = 50), .outside (r = 110), .joint_bolt (the annulus 8.75 … 12
+about the hole on y = 0, under the washer circle) and .joint (the rest of the
+face on y = 0), .bearing (the annulus under the head / nut), .hole (the
+hole's wall);
 bolt.head_bearing and bolt.nut_bearing (the annuli against the flanges).
 
 `--check` integrates every element's volume by its 3 × 3 × 3 Gauss rule
@@ -282,7 +284,8 @@ def flange(name, sign, plane, k):
     body.side(f"{name}.outside", on_radius(R_OUT), everything, [f0, f1], [2 * k])
     body.side(f"{name}.hole", on_hole, everything, [f0, f1], [2 * k])
     body.cap(f"{name}.end", ("ring",), sign * (T_FLANGE + L_STUB))
-    body.cap(f"{name}.joint", everything, 0.0)
+    body.cap(f"{name}.joint", ("ring", "inner", "blend"), 0.0)
+    body.cap(f"{name}.joint_bolt", ("bearing",), 0.0)
     body.cap(f"{name}.bearing", ("bearing",), sign * T_FLANGE)
     return body
 
