@@ -11,9 +11,19 @@
 //!   through its joint face (the sector's and the part's, 12 ×), the ties
 //!   are met, the symmetry line carries nothing, and the bolt between rigid
 //!   bearing faces takes its 80 kN through the pretension cut y = 0.
+//! - The case as shipped (three interfaces, the joint face in two: the
+//!   annulus under the washer circle and the rest): at every increment the
+//!   joint's force is the bolt's force less the sector's end thrust, and the
+//!   head and the nut carry the bolt's force (the upper flange's and the
+//!   bolt's equilibrium along y: the ties' forces on the two cut faces
+//!   cancel along the axis); the lower end holds the thrust, the whole
+//!   pipe's 12 ×; the symmetry line carries nothing; the joint face opens
+//!   up to the bolt (its annulus's first opening) inside the service ramp,
+//!   and the bolt takes a larger share of the thrust after it than before.
 
 use crate::common;
 use asperity::model::Model;
+use asperity::solve::events::Kind;
 use asperity::solve::{RunResult, State};
 use std::path::PathBuf;
 use std::process::Command;
@@ -212,4 +222,72 @@ fn each_body_of_the_flange_mesh_alone_carries_its_load_through_the_cyclic_ties()
     assert!((force - 8.0e4).abs() < 1e-8 * 8.0e4, "{force}");
     assert!((head - 8.0e4).abs() < 1e-8 * 8.0e4, "{head}");
     assert!((nut + 8.0e4).abs() < 1e-8 * 8.0e4, "{nut}");
+}
+
+/// The shipped case, run as it is: its equilibrium increment by increment,
+/// its supports, and where the joint opens up to the bolt.
+#[test]
+fn the_flange_sector_balances_bolt_joint_and_thrust_and_opens_at_the_bolt() {
+    let case = asperity::input::case::Case::load(&case_dir().join("case.toml"))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let m = Model::build(case).unwrap_or_else(|e| panic!("{e}"));
+    let r = asperity::app::driver::solve(&m, &mut common::Quiet).unwrap_or_else(|e| panic!("{e}"));
+    let index = |name: &str| (m.interfaces.iter()).position(|i| i.name == name).unwrap();
+    let (joint, at_bolt) = (index("joint"), index("joint_bolt"));
+    let (head, nut) = (index("under_head"), index("under_nut"));
+    // the end thrust at factor 1: 180 MPa on the stub's end; its history
+    // ramps it over t in [1, 2]
+    let thrust = 180.0 * stub_end_area();
+    let mut worst: f64 = 0.0;
+    let mut rows = Vec::new();
+    for inc in &r.increments {
+        let f_a = thrust * (inc.load_factor - 1.0).max(0.0);
+        let bolt = inc.sections[0][0];
+        let j = inc.joints[joint].force[1] + inc.joints[at_bolt].force[1];
+        // the force on body A: the head (A of under_head) pushed up, the
+        // lower flange (A of under_nut) pushed up by the nut
+        let (h, n) = (inc.joints[head].force[1], inc.joints[nut].force[1]);
+        worst = worst
+            .max((bolt - f_a - j).abs())
+            .max((h - bolt).abs())
+            .max((n - bolt).abs());
+        rows.push((inc.load_factor, f_a, bolt, j, inc.joints[at_bolt].open));
+    }
+    for (lam, f_a, bolt, j, open) in &rows {
+        println!("t {lam:.4}: thrust {f_a:10.2} N, bolt {bolt:10.2} N, joint {j:10.2} N, annulus open {open:.3} mm²");
+    }
+    println!("largest |bolt − thrust − joint|, |head − bolt|, |nut − bolt| {worst:.2e} N");
+    // Newton's tolerance on 80 kN
+    assert!(worst < 1e-6 * 8.0e4, "{worst}");
+    let s = &r.final_state;
+    let end = reaction(&m, s, "lower.end boundary[0]", "fy_n");
+    let part = reaction(&m, s, "lower.end boundary[0]", "fy_part_n");
+    assert!((end + thrust).abs() < 1e-6 * thrust, "{end} vs {thrust}");
+    assert_eq!(part, 12.0 * end);
+    for group in ["lower.end boundary[1]", "upper.end", "bolt.all"] {
+        let fz = reaction(&m, s, group, "fz_n");
+        assert!(fz.abs() < 1e-9 * thrust, "{group}: {fz}");
+    }
+    // the annulus under the washer circle: closed whole after the preload,
+    // open in part at the end; its first opening is located in between
+    let preloaded = rows.iter().find(|row| row.0 == 1.0).expect("t = 1 is a breakpoint");
+    assert_eq!(preloaded.4, 0.0);
+    assert!(rows.last().unwrap().4 > 0.0);
+    let opening = (r.events.iter())
+        .find(|e| e.kind == Kind::FirstOpening && e.interface == Some(at_bolt))
+        .expect("the joint opens up to the bolt");
+    assert!(opening.converged);
+    let lam = opening.load_factor;
+    assert!(lam > 1.0 && lam < 2.0, "{lam}");
+    // the bolt's share of the thrust, before and after the opening
+    let share = |a: &(f64, f64, f64, f64, f64), b: &(f64, f64, f64, f64, f64)| (b.2 - a.2) / (b.1 - a.1);
+    let service: Vec<_> = rows.iter().filter(|row| row.0 >= 1.0).collect();
+    let before = share(service[0], service.iter().rev().find(|row| row.0 <= lam).unwrap());
+    let after = share(service.iter().find(|row| row.0 >= lam).unwrap(), service.last().unwrap());
+    println!(
+        "opening up to the bolt at t = {lam:.6}: thrust {:.1} N per bolt, {:.1} N on the pipe; the bolt's share of the thrust {before:.4} before, {after:.4} after",
+        thrust * (lam - 1.0),
+        12.0 * thrust * (lam - 1.0)
+    );
+    assert!(after > before + 0.1, "{before} {after}");
 }
