@@ -38,11 +38,11 @@ fn run_on_mesh(name: &str, text: &str) -> (Model, RunResult) {
     let dir = common::scratch(name);
     std::fs::copy(case_dir().join("flange.msh"), dir.join("flange.msh")).unwrap();
     std::fs::write(dir.join("case.toml"), text).unwrap();
-    let case = asperity::input::case::Case::load(&dir.join("case.toml"))
-        .unwrap_or_else(|e| panic!("{e}"));
+    let case =
+        asperity::input::case::Case::load(&dir.join("case.toml")).unwrap_or_else(|e| panic!("{e}"));
     let model = Model::build(case).unwrap_or_else(|e| panic!("{e}"));
-    let r = asperity::app::driver::solve(&model, &mut common::Quiet)
-        .unwrap_or_else(|e| panic!("{e}"));
+    let r =
+        asperity::app::driver::solve(&model, &mut common::Quiet).unwrap_or_else(|e| panic!("{e}"));
     (model, r)
 }
 
@@ -97,7 +97,11 @@ fn the_shipped_flange_mesh_is_its_generators_and_passes_its_checks() {
     }
     let script = case_dir().join("flange.py");
     let out = Command::new("python3").arg(&script).output().unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let shipped = std::fs::read(case_dir().join("flange.msh")).unwrap();
     assert!(
         out.stdout == shipped,
@@ -270,7 +274,10 @@ fn the_flange_sector_balances_bolt_joint_and_thrust_and_opens_at_the_bolt() {
     }
     // the annulus under the washer circle: closed whole after the preload,
     // open in part at the end; its first opening is located in between
-    let preloaded = rows.iter().find(|row| row.0 == 1.0).expect("t = 1 is a breakpoint");
+    let preloaded = rows
+        .iter()
+        .find(|row| row.0 == 1.0)
+        .expect("t = 1 is a breakpoint");
     assert_eq!(preloaded.4, 0.0);
     assert!(rows.last().unwrap().4 > 0.0);
     let opening = (r.events.iter())
@@ -280,10 +287,17 @@ fn the_flange_sector_balances_bolt_joint_and_thrust_and_opens_at_the_bolt() {
     let lam = opening.load_factor;
     assert!(lam > 1.0 && lam < 2.0, "{lam}");
     // the bolt's share of the thrust, before and after the opening
-    let share = |a: &(f64, f64, f64, f64, f64), b: &(f64, f64, f64, f64, f64)| (b.2 - a.2) / (b.1 - a.1);
+    let share =
+        |a: &(f64, f64, f64, f64, f64), b: &(f64, f64, f64, f64, f64)| (b.2 - a.2) / (b.1 - a.1);
     let service: Vec<_> = rows.iter().filter(|row| row.0 >= 1.0).collect();
-    let before = share(service[0], service.iter().rev().find(|row| row.0 <= lam).unwrap());
-    let after = share(service.iter().find(|row| row.0 >= lam).unwrap(), service.last().unwrap());
+    let before = share(
+        service[0],
+        service.iter().rev().find(|row| row.0 <= lam).unwrap(),
+    );
+    let after = share(
+        service.iter().find(|row| row.0 >= lam).unwrap(),
+        service.last().unwrap(),
+    );
     println!(
         "opening up to the bolt at t = {lam:.6}: thrust {:.1} N per bolt, {:.1} N on the pipe; the bolt's share of the thrust {before:.4} before, {after:.4} after",
         thrust * (lam - 1.0),
