@@ -25,6 +25,7 @@ mod events3d;
 mod face_coupling;
 mod factorization;
 mod fillet;
+mod flange3d;
 mod friction;
 mod gap;
 mod gmsh_interface3d;

@@ -268,6 +268,35 @@ fn hold_by_supports(model: &Model, body_of: &[usize], cuts: &[Cut], bodies: &mut
     }
 }
 
+/// Adds the rows of a cyclic sector's ties ([`crate::model::cyclic`]): a
+/// pair (m, s) of one body holds the rigid motions u = a + ω × (x − x̄)
+/// to u(x_s) = R u(x_m), three rows eᵢ·u(x_s) − (Rᵀeᵢ)·u(x_m) (docs/theory.md,
+/// "Cyclic symmetry"). A body tied across its cut faces is so held against
+/// every motion but the translation along the axis and the rotation about
+/// it, as the model's rigid-body check counts them.
+fn hold_by_ties(model: &Model, body_of: &[usize], cuts: &[Cut], bodies: &mut [Body]) {
+    let Some(cyclic) = model.cyclic.as_ref() else {
+        return;
+    };
+    let rot = crate::model::cyclic::rotation(cyclic.angle);
+    let nodes = &model.mesh.nodes;
+    for &(m, s) in &cyclic.pairs {
+        let b = body_of[s];
+        if b >= bodies.len() || body_of[m] != b {
+            continue;
+        }
+        for i in 0..3 {
+            let mut e = [0.0; 3];
+            e[i] = 1.0;
+            let back = [rot[i][0], rot[i][1], rot[i][2]];
+            let at_s = bodies[b].row(cuts, model, s, nodes[s], e);
+            let at_m = bodies[b].row(cuts, model, m, nodes[m], back);
+            let r: Vec<f64> = at_s.iter().zip(&at_m).map(|(p, q)| p - q).collect();
+            bodies[b].bc.add(&r);
+        }
+    }
+}
+
 /// Adds the size of each load pattern's forces on a body (and, with twist,
 /// their torque about the axis): the scale of the forces that move it.
 fn add_loads(model: &Model, body_of: &[usize], bodies: &mut [Body]) {
@@ -309,6 +338,7 @@ impl Stabilizer {
             .collect();
         let mut bodies = rigid_bodies(model, &body_of, &cuts);
         hold_by_supports(model, &body_of, &cuts, &mut bodies);
+        hold_by_ties(model, &body_of, &cuts, &mut bodies);
         add_loads(model, &body_of, &mut bodies);
         // a body without an interface and without enough supports is a
         // mechanism no interface spring can hold (and mostly refused up front)
