@@ -268,6 +268,24 @@ fn the_flange_sector_balances_bolt_joint_and_thrust_and_opens_at_the_bolt() {
     let part = reaction(&m, s, "lower.end boundary[0]", "fy_part_n");
     assert!((end + thrust).abs() < 1e-6 * thrust, "{end} vs {thrust}");
     assert_eq!(part, 12.0 * end);
+    // the whole flange's joint numbers (joints.csv's part columns): the
+    // joint face's clamp force over the 12 bolts is 12 (bolt − thrust),
+    // the head's 12 bolts; no torque about the axis (nothing turns it)
+    let last = r.increments.last().unwrap();
+    let whole = |k: usize| last.joints[k].part(12, m.interfaces[k].moment_point);
+    let (pj, pb, ph) = (whole(joint), whole(at_bolt), whole(head));
+    let bolt = last.sections[0][0];
+    println!(
+        "the whole flange: joint face {:.1} N (12 (bolt − thrust) = {:.1} N), heads {:.1} N, torque {:.1e} N·mm",
+        pj[1] + pb[1],
+        12.0 * (bolt - thrust),
+        ph[1],
+        pj[2] + pb[2]
+    );
+    assert!((pj[1] + pb[1] - 12.0 * (bolt - thrust)).abs() < 1e-6 * 12.0 * 8.0e4);
+    assert!((ph[1] - 12.0 * bolt).abs() < 1e-6 * 12.0 * 8.0e4);
+    assert_eq!(pj[0], 12.0 * last.joints[joint].normal_force);
+    assert!((pj[2] + pb[2] + ph[2]).abs() < 1e-6 * 8.0e4 * 85.0);
     for group in ["lower.end boundary[1]", "upper.end", "bolt.all"] {
         let fz = reaction(&m, s, group, "fz_n");
         assert!(fz.abs() < 1e-9 * thrust, "{group}: {fz}");
