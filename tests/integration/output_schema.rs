@@ -255,6 +255,13 @@ fn summary_json_matches_the_documented_schema() {
     let cyclic = summary_of("cyclic", &cases.join("tube-sector-cyclic"), &[]);
     assert_eq!(cyclic["cyclic"]["sectors"], 12, "{cyclic}");
     assert!(cyclic["forces"].is_string() && solid.get("cyclic").is_none());
+    // a cyclic sector with interfaces: the whole part's joint numbers
+    let flange = summary_of("flange", &cases.join("flange-sector-cyclic"), &[]);
+    let part = &flange["joints"][0]["final"]["part"];
+    assert_eq!(part["sectors"], 12, "{flange}");
+    assert!(solid["joints"]
+        .as_array()
+        .is_none_or(|j| j.iter().all(|j| j["final"].get("part").is_none())));
     assert!(torque["joints"][0]["final"]["torque_nmm"].as_f64().unwrap() > 0.0);
     assert!(
         with["joints"][0]["final"].get("torque_nmm").is_none(),
@@ -273,6 +280,7 @@ fn summary_json_matches_the_documented_schema() {
         &solid,
         &slide,
         &cyclic,
+        &flange,
     ] {
         let mut l = Vec::new();
         leaves("", s, &mut l);

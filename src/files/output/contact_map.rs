@@ -548,14 +548,21 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, map: &ContactMap) -> R
             root.draw(&Polygon::new(px, colour.filled())).map_err(err)?;
         }
         let bottom = frame.origin.1 + frame.size.1 + 14;
+        let span = |c: usize| {
+            format!(
+                "{} … {}",
+                crate::numbers::sig(frame.lo[c], 4),
+                crate::numbers::sig(frame.hi[c], 4)
+            )
+        };
         root.draw(&Text::new(
-            format!("→ {}", map.labels.0),
+            format!("→ {}: {}", map.labels.0, span(0)),
             (x0, bottom),
             font.clone(),
         ))
         .map_err(err)?;
         root.draw(&Text::new(
-            format!("↑ {}", map.labels.1),
+            format!("↑ {}: {}", map.labels.1, span(1)),
             (x0, bottom + 20),
             font.clone(),
         ))

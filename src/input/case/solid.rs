@@ -166,6 +166,12 @@ fn check_solid(case: &Case, at: &dyn Fn(&str) -> String) -> Result<()> {
                 ));
             }
             for &v in p {
+                if !v.is_finite() {
+                    return Err(Error::input(
+                        key,
+                        format!("{v} is not a number of mm: give a point [x, y, z]"),
+                    ));
+                }
                 ranges::COORDINATE.check(key.clone(), v)?;
             }
         }
