@@ -38,27 +38,6 @@ use crate::input::case::settings::Weights;
 use crate::input::mesh::{Face, Family, Interface, Mesh};
 use crate::numbers::vec3::{cross, dot};
 
-/// The pairs and points of a 3D interface: coincident faces; a
-/// non-matching one's node-to-surface springs.
-pub(super) fn on_faces(
-    mesh: &Mesh,
-    iface: &Interface,
-    weights: Weights,
-) -> Result<(Vec<Pair>, Vec<Point>), String> {
-    if weights == Weights::Mortar {
-        return Err(format!(
-            "interface \"{}\": weights = \"mortar\" is not available on the faces of a 3D model \
-             (a segment-to-segment integral on faces needs the two sides' faces clipped against \
-             each other); give weights = \"consistent\" or \"lumped\"",
-            iface.name
-        ));
-    }
-    if let Some(nm) = &iface.nonmatching_faces {
-        return super::surface::node_to_surface(mesh, &iface.name, nm, weights);
-    }
-    Ok(InterfaceModel::coincident_faces(mesh, iface, weights))
-}
-
 impl InterfaceModel {
     /// The spatial dimension the interface lives in: 3 in a 3D model, else 2.
     pub(crate) fn dim(&self) -> usize {

@@ -332,7 +332,7 @@ impl InterfaceModel {
         tangential: Option<(TangentialLaw, FrictionScheme)>,
     ) -> Result<Self, String> {
         let (pairs, points) = match &iface.nonmatching {
-            _ if iface.on_faces() => faces::on_faces(mesh, iface, weights)?,
+            _ if iface.on_faces() => on_faces(mesh, iface, weights)?,
             None if weights == Weights::Mortar => {
                 return Err(format!(
                     "interface \"{}\": weights = \"mortar\" couples two sides meshed apart; it needs matching = false",
@@ -738,4 +738,25 @@ fn gauss4() -> [(f64, f64); 4] {
     let wa = (18.0 + 30f64.sqrt()) / 36.0;
     let wb = (18.0 - 30f64.sqrt()) / 36.0;
     [(-b, wb), (-a, wa), (a, wa), (b, wb)]
+}
+
+/// The pairs and points of a 3D interface: coincident faces; a
+/// non-matching one's node-to-surface springs.
+fn on_faces(
+    mesh: &Mesh,
+    iface: &Interface,
+    weights: Weights,
+) -> Result<(Vec<Pair>, Vec<Point>), String> {
+    if weights == Weights::Mortar {
+        return Err(format!(
+            "interface \"{}\": weights = \"mortar\" is not available on the faces of a 3D model \
+             (a segment-to-segment integral on faces needs the two sides' faces clipped against \
+             each other); give weights = \"consistent\" or \"lumped\"",
+            iface.name
+        ));
+    }
+    if let Some(nm) = &iface.nonmatching_faces {
+        return surface::node_to_surface(mesh, &iface.name, nm, weights);
+    }
+    Ok(InterfaceModel::coincident_faces(mesh, iface, weights))
 }
