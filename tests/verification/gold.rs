@@ -431,6 +431,8 @@ fn check(case: &str) -> Result<(), String> {
     let started = std::time::Instant::now();
     let (summary, shown) = run(&g)?;
     eprintln!("{case}: ran in {:.1} s", started.elapsed().as_secs_f64());
+    // issue 29's target on this same run
+    crate::status_convergence::target(case, &summary)?;
     if bless() {
         write_expected(&g, &summary, &shown)?;
         eprintln!("{case}: wrote {}", expected_path(case).display());
