@@ -193,6 +193,11 @@ fn check_solid_supports(
             break;
         }
     }
+    // the bodies some cyclic tie holds
+    let mut cyclic_tied = vec![false; rtr.len()];
+    for t in ties.iter().filter(|t| cyclic(t) && t.slave < n_dofs) {
+        cyclic_tied[dof_row(t.slave).0] = true;
+    }
     for (b, m) in rtr.iter().enumerate() {
         let Some(v) = free(m) else {
             continue;
@@ -203,11 +208,7 @@ fn check_solid_supports(
                 "body \"{}\" is held by nothing against {} (a rigid-body motion: a 3D body needs its six held by [[boundary]] ux, uy, uz, or through an interface to a body that is held); {}",
                 mesh.bodies[b],
                 motion([v[0], v[1], v[2]], [v[3], v[4], v[5]], centre[b], size[b]),
-                if ties.iter().any(|t| t.origin.starts_with("cyclic")) {
-                    "the cyclic ties hold a sector but for its rotation about the y axis and its translation along it: hold those (an end's uy, and one node's hoop displacement, e.g. uz at a node of the face in the plane z = 0)"
-                } else {
-                    "hold it, e.g. fix a corner, or give symmetry planes"
-                }
+                rigid_hint(cyclic_tied[b], ties),
             ),
         ));
     }
@@ -364,4 +365,21 @@ pub(super) fn check_sections_held(
         }
     }
     Ok(())
+}
+
+fn cyclic(t: &Constraint) -> bool {
+    t.origin.starts_with("cyclic")
+}
+
+/// What to do about a 3D body left free: hold the rotation and axial
+/// translation the ties of a cyclic sector leave, tie the body's own cut
+/// faces, or hold it.
+fn rigid_hint(cyclic_tied: bool, ties: &[Constraint]) -> &'static str {
+    if cyclic_tied {
+        "the cyclic ties hold a sector but for its rotation about the y axis and its translation along it: hold those (an end's uy, and one node's hoop displacement, e.g. uz at a node of the face in the plane z = 0)"
+    } else if ties.iter().any(cyclic) {
+        "the cyclic faces ([model] cyclic faces) name no node of this body, so no tie holds its cut faces: name node sets that hold every body's cut (in a Gmsh mesh one physical surface per side over all bodies), or hold it"
+    } else {
+        "hold it, e.g. fix a corner, or give symmetry planes"
+    }
 }
