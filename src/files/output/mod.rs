@@ -55,7 +55,8 @@ pub(crate) struct Writer {
     /// increments and the last one; [`crate::measure::estimate`]), with that
     /// increment and its load factor: summary.json's `estimate`.
     estimate: Option<(usize, f64, crate::measure::estimate::Estimate)>,
-    /// A 3D run's contact maps of the last converged state (drawn at the end).
+    /// A 3D run's contact maps of the last converged state (made at the
+    /// history's last increment or a stopped run's last state, drawn at the end).
     maps: Vec<contact_map::ContactMap>,
 }
 
@@ -322,7 +323,11 @@ impl Observer for Writer {
     fn increment(&mut self, model: &Model, state: &State, inc: &Increment) -> Result<()> {
         // a file of an earlier increment that could not be written ends the run here
         self.background.check()?;
-        self.maps = contact_map::contact_maps(model, state);
+        // the maps of the state the run ends on (a stopped run's come
+        // through last_state)
+        if self.is_last(inc) {
+            self.maps = contact_map::contact_maps(model, state);
+        }
         self.queue_text(
             crate::files::restart::interface_name(inc.increment),
             interface_csv(model, state),
