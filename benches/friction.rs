@@ -15,7 +15,13 @@
 //!    of the force-controlled Hertzian sphere (tests/data/hertz-sphere);
 //! 3. whole-run wall time of the 50-increment plane-strain punch
 //!    (cases/punch-plane-strain `--increments 50`) against the same case with
-//!    the tangential law of punch-friction-b added, at refine 1 and 2.
+//!    the tangential law of punch-friction-b added, at refine 1 and 2;
+//! 4. in 3D: time per Newton iteration of cases/punch-slab-3d (the punch as
+//!    a slab, friction on faces: 4 × 4 points per face, a slip vector in the
+//!    tangent plane) against the same case without its tangential law, at
+//!    refine 1 and 2, and the same with `--interface-loop off`.
+//!
+//! `cargo bench --bench friction -- 3d` prints table 4 alone.
 //!
 //! docs/performance.md ("Friction against frictionless") quotes the tables.
 
@@ -103,6 +109,12 @@ fn run_on(
 fn main() {
     let started = Instant::now();
     let _ = std::fs::remove_dir_all(scratch());
+    if std::env::args().any(|a| a == "3d") {
+        slab_3d();
+        println!();
+        println!("bench total: {:.0} s", started.elapsed().as_secs_f64());
+        return;
+    }
     let fric_b = cases_dir().join("punch-friction-b");
     let text_b = std::fs::read_to_string(fric_b.join("case.toml")).unwrap();
     let frictionless_b = write_case(
@@ -307,6 +319,72 @@ fn main() {
             median(f.iter().zip(&s).map(|(a, b)| a.wall / b.wall).collect()),
         );
     }
+    slab_3d();
     println!();
     println!("bench total: {:.0} s", started.elapsed().as_secs_f64());
+}
+
+/// Table 4: friction against frictionless in 3D, cases/punch-slab-3d, serial.
+fn slab_3d() {
+    let slab = cases_dir().join("punch-slab-3d");
+    let text = std::fs::read_to_string(slab.join("case.toml")).unwrap();
+    let frictionless = write_case("punch-slab-3d-frictionless", &without_tangential(&text));
+    let looped = |on: bool| {
+        let t = text.replace("[solver]\n", &format!("[solver]\ninterface_loop = {on}\n"));
+        assert_ne!(t, text, "punch-slab-3d has a [solver] table");
+        t
+    };
+    let loop_off = write_case("punch-slab-3d-loop-off", &looped(false));
+    println!();
+    println!(
+        "## 4. 3D: time per Newton iteration, punch-slab-3d with and without its tangential law"
+    );
+    println!();
+    println!("serial, full Newton, 5 equal increments; ms per iteration as in table 1 (work = assembly +");
+    println!(
+        "solve); medians over alternating pairs, ratio = median of the pairs' ratios; the friction"
+    );
+    println!("case also with `interface_loop = false` (one run).");
+    println!();
+    println!("| refine | dofs | pairs | iterations fric / frictionless | work ms/it fric | work ms/it frictionless | ratio work | ratio wall | loop off: iterations, work ms/it |");
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    for (refine, pairs) in [(1, 3), (2, 1)] {
+        let mut f = Vec::new();
+        let mut s = Vec::new();
+        for k in 0..pairs {
+            f.push(run(
+                &slab,
+                &format!("3d-f-{refine}-{k}"),
+                Some(refine),
+                Some(5),
+            ));
+            s.push(run(
+                &frictionless,
+                &format!("3d-s-{refine}-{k}"),
+                Some(refine),
+                Some(5),
+            ));
+        }
+        let off = run(
+            &loop_off,
+            &format!("3d-off-{refine}"),
+            Some(refine),
+            Some(5),
+        );
+        let med = |v: &[Run], g: fn(&Run) -> f64| median(v.iter().map(g).collect());
+        let ratio =
+            |g: fn(&Run) -> f64| median(f.iter().zip(&s).map(|(a, b)| g(a) / g(b)).collect());
+        println!(
+            "| {refine} | {} | {pairs} | {} / {} | {:.1} | {:.1} | {:.2} | {:.2} | {}, {:.1} |",
+            f[0].dofs,
+            f[0].iterations(),
+            s[0].iterations(),
+            med(&f, Run::work_per_it),
+            med(&s, Run::work_per_it),
+            ratio(Run::work_per_it),
+            ratio(Run::wall_per_it),
+            off.iterations(),
+            off.work_per_it(),
+        );
+    }
 }

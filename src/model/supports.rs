@@ -319,6 +319,11 @@ pub(crate) fn own_rotation(mesh: &Mesh, prescribed: &[(usize, f64)]) -> Vec<bool
 /// loads: a bolt without an interface under its head. Refused, naming the
 /// section and the side. (A side with an interface whose pairs are open
 /// is held, or not, at run time: [`crate::solve::stabilization`].)
+/// And a body held along the normal by friction alone (no support along
+/// it, no interface of the body bearing along it, no fit's interference to
+/// clamp one) is refused too: friction holds nothing before a normal force
+/// clamps its faces, and nothing would (a cut through a bolt's axis, where
+/// its head and nut bear across the cut's normal).
 pub(super) fn check_sections_held(
     mesh: &Mesh,
     sections: &[crate::model::pretension::Section],
@@ -330,30 +335,12 @@ pub(super) fn check_sections_held(
         let Some(beyond) = crate::model::pretension::sides(mesh, s) else {
             continue;
         };
-        let node_body = mesh.node_bodies();
-        let mut held = [false; 2];
-        for &(d, _) in prescribed.iter().filter(|p| p.0 < mesh.num_dofs()) {
-            let (n, c) = mesh.node_dofs.node_of(d);
-            if c == s.axis && node_body[n] == s.body {
-                held[usize::from(beyond[n])] = true;
-            }
-        }
-        for im in interfaces {
-            for p in &im.pairs {
-                // the normal's largest component along the cut's normal
-                let along = p.normal.get(s.axis).map_or(0.0, |v| v.abs());
-                let carries = im.tangential.is_some() || p.normal.iter().all(|v| v.abs() <= along);
-                for (body, n) in [(im.body_a, p.a), (im.body_b, p.b)] {
-                    if carries && body == s.body {
-                        held[usize::from(beyond[n])] = true;
-                    }
-                }
-            }
-        }
-        if let Some(side) = held.iter().position(|h| !h) {
-            let line = ["x", "y", "z"][s.axis];
+        let h = Holds::of(mesh, s, &beyond, prescribed, interfaces);
+        let line = ["x", "y", "z"][s.axis];
+        let at = || format!("{place}: pretension \"{}\"", crate::error::clip(&s.name));
+        if let Some(side) = h.held.iter().position(|h| !h) {
             return Err(Error::input(
-                format!("{place}: pretension \"{}\"", crate::error::clip(&s.name)),
+                at(),
                 format!(
                     "cuts body \"{}\" in two at {line} = {}, and its side {line} {} {} has no support in u{line} and no interface that carries u{line}: nothing holds that side against the section's force, which moves it freely (force control); give that side an interface (a bolt needs one under its head and one under its nut) or a support",
                     mesh.bodies[s.body],
@@ -363,8 +350,83 @@ pub(super) fn check_sections_held(
                 ),
             ));
         }
+        if !h.bears {
+            let most = (0..3).fold(0, |m, k| if h.across[k] > h.across[m] { k } else { m });
+            let most = ["x", "y", "z"][most];
+            return Err(Error::input(
+                at(),
+                format!(
+                    "cuts body \"{}\" at {line} = {}, but the body bears on its interfaces ({}) along {most} and nothing holds it along {line} but their friction, which holds nothing before a normal force clamps them: the section's force would pull its two sides sideways; cut across the bolt's axis ({most} = c), where its head and its nut bear",
+                    mesh.bodies[s.body],
+                    s.at,
+                    h.names.join(", "),
+                ),
+            ));
+        }
     }
     Ok(())
+}
+
+/// What holds the body of a section along the cut's normal.
+struct Holds {
+    /// Each side (before, beyond the cut): a support along the normal, or
+    /// an interface that carries it (its normal along it, or friction).
+    held: [bool; 2],
+    /// Anything but friction: a support along the normal, an interface of
+    /// the body bearing along it, or a fit's interference clamping one.
+    bears: bool,
+    /// The largest |n_x|, |n_y|, |n_z| of the body's interface pairs.
+    across: [f64; 3],
+    /// The body's interfaces, quoted.
+    names: Vec<String>,
+}
+
+impl Holds {
+    fn of(
+        mesh: &Mesh,
+        s: &crate::model::pretension::Section,
+        beyond: &[bool],
+        prescribed: &[(usize, f64)],
+        interfaces: &[InterfaceModel],
+    ) -> Holds {
+        let node_body = mesh.node_bodies();
+        let mut h = Holds {
+            held: [false; 2],
+            bears: false,
+            across: [0.0; 3],
+            names: Vec::new(),
+        };
+        for &(d, _) in prescribed.iter().filter(|p| p.0 < mesh.num_dofs()) {
+            let (n, c) = mesh.node_dofs.node_of(d);
+            if c == s.axis && node_body[n] == s.body {
+                h.held[usize::from(beyond[n])] = true;
+                h.bears = true;
+            }
+        }
+        for im in interfaces {
+            let mut touches = false;
+            for p in &im.pairs {
+                // the normal's largest component along the cut's normal
+                let along = p.normal.get(s.axis).map_or(0.0, |v| v.abs());
+                let normal = p.normal.iter().all(|v| v.abs() <= along);
+                for (body, n) in [(im.body_a, p.a), (im.body_b, p.b)] {
+                    if body == s.body {
+                        touches = true;
+                        h.held[usize::from(beyond[n])] |= im.tangential.is_some() || normal;
+                        h.bears |= normal || im.gap < 0.0;
+                        for (m, v) in h.across.iter_mut().zip(p.normal) {
+                            *m = m.max(v.abs());
+                        }
+                    }
+                }
+            }
+            if touches {
+                h.names
+                    .push(format!("\"{}\"", crate::error::clip(&im.name)));
+            }
+        }
+        h
+    }
 }
 
 fn cyclic(t: &Constraint) -> bool {

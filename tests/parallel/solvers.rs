@@ -39,7 +39,7 @@ fn krylov_solvers_from_the_options_database_give_the_same_answer() {
 }
 
 /// `--memory lean` with GAMG applies its settings (seen in PETSc's own
-/// views), names itself in summary.json, and changes the answer only within
+/// views) beside asperity's smoothers under GMRES, names itself in summary.json, and changes the answer only within
 /// the solver tolerance; it is refused with the built-in Newton loop and on
 /// the serial backend.
 #[test]
@@ -56,10 +56,12 @@ fn memory_lean_applies_its_gamg_settings_and_gives_the_same_answer() {
     ]);
     let text = String::from_utf8_lossy(&out.stdout);
     for setting in [
-        // lean's three
+        // lean's lag and product (its widened Chebyshev interval is seen
+        // under CG, below: under GMRES the smoothers are Gauss-Seidel's)
         "rebuilt every 1000 new Jacobians",
-        "eigenvalues estimated using gmres with transform: [0. 0.1; 0. 1.5]",
         "using allatonce MatPtAP() implementation",
+        "type: sor",
+        "restart=150",
         // GAMG's own smoothed aggregation and V-cycle, as without lean
         "Number smoothing steps 1",
         "cycles=v",
@@ -248,7 +250,8 @@ fn the_default_linear_solver_follows_the_size_of_the_model() {
 /// and cut back where LU did not (116 iterations, 3 cutbacks, 7 increments
 /// against 134, 2, 6), and at refine 8 gave up at 99% of the load. With CG
 /// outside, the smoothers' eigenvalue estimates are made by CG as well (seen
-/// in `-snes_view`; the lean test above sees GMRES under an outer GMRES).
+/// in `-snes_view`; under an outer GMRES the smoothers are Gauss-Seidel's,
+/// the test below).
 /// Plain Newton on all three (`interface_loop = false`): the interface loop
 /// needs a factor, which GAMG has not, so with it on the LU run would take
 /// the loop's path (33 Newton iterations against 39).
@@ -317,5 +320,71 @@ fn cg_with_gamg_follows_lu_through_the_plastic_steps() {
             );
             assert!(close(x, y, x.abs()), "{name}: {key}: {x} vs {y}");
         }
+    }
+}
+
+/// GMRES + GAMG (an unsymmetric tangent: friction) smooths by Gauss-Seidel
+/// (Richardson + SOR) with GMRES restarting after 150 iterations, asperity's
+/// defaults under GMRES (seen in `-ksp_view`), and follows MUMPS LU: the same
+/// Newton iterations and answer (1e-6) at a Krylov tolerance of 1e-12. The punch with friction at refine 4
+/// on two ranks has GAMG coarse operators with zero rows (aggregates of fewer
+/// dofs than rigid modes): without the smoothers' diagonal shift every solve
+/// failed there (`DIVERGED_PC_FAILED`, a zero pivot in SOR).
+#[test]
+fn gmres_with_gamg_smooths_by_gauss_seidel_and_follows_lu_with_friction() {
+    let root = common::scratch("parallel-gamg-friction");
+    let case = common::root().join("cases/punch-friction-a");
+    let run = |name: &str, petsc: &[&str]| {
+        let dir = root.join(name);
+        let mut args = vec![
+            "run",
+            case.to_str().unwrap(),
+            "--quiet",
+            "--refine",
+            "4",
+            "--stop-after",
+            "2",
+            "--out",
+            dir.to_str().unwrap(),
+            "--",
+        ];
+        args.extend_from_slice(petsc);
+        let out = mpirun_output(2, &args);
+        // exit code 3: stopped by --stop-after, with its results
+        assert_eq!(
+            out.status.code(),
+            Some(3),
+            "{name}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        (
+            json(&dir),
+            String::from_utf8_lossy(&out.stdout).into_owned(),
+        )
+    };
+    let (lu, _) = run("lu", &[]);
+    assert_eq!(lu["linear_solver"], "preonly + lu (mumps)");
+    // -ksp_rtol 1e-12: at the default 1e-10 this run took one Newton
+    // iteration more than LU's (9 against 8, the same answer to 1e-14): an
+    // iterate 1e-10 away crossed the convergence test's line one step later
+    #[rustfmt::skip]
+    let (mg, view) = run("gamg", &[
+        "-ksp_type", "gmres", "-pc_type", "gamg", "-ksp_rtol", "1e-12", "-ksp_view",
+        "-ksp_converged_reason",
+    ]);
+    assert_eq!(mg["linear_solver"], "gmres + gamg");
+    for setting in ["type: richardson", "type: sor", "restart=150"] {
+        assert!(view.contains(setting), "no '{setting}' in:\n{view}");
+    }
+    assert!(!view.contains("chebyshev"), "{view}");
+    assert!(!view.contains("DIVERGED"), "{view}");
+    assert_eq!(lu["newton_iterations"], mg["newton_iterations"]);
+    assert_eq!(mg["cutbacks"], 0);
+    for key in ["center_displacement_mm", "total_load_kn"] {
+        let (x, y) = (
+            lu["final"][key].as_f64().unwrap(),
+            mg["final"][key].as_f64().unwrap(),
+        );
+        assert!(close(x, y, x.abs()), "{key}: {x} vs {y}");
     }
 }

@@ -132,6 +132,7 @@ pub(crate) fn meaning(model: &Model, e: &Event) -> String {
         },
         Kind::FirstOpening if preload => "part of the interface opened while the preload was brought in (the clamped parts dish under the bolt): a state of assembly, not a failure of the joint".into(),
         Kind::FirstOpening => "part of the interface first opened: its contact is no longer whole, though it still clamps".into(),
+        Kind::FullSlip if preload => "the whole interface slid while the preload was brought in (a head's or a nut's bearing face slides radially as the bolt stretches and the clamped parts compress and dish under it: a shear self-equilibrated about the bolt, F_T near zero): a state of assembly, not a loss of the joint's grip, which a service load's slip rates".into(),
         Kind::FullSlip => "the whole interface first in macro-slip: its first gross slip, not the load it holds; where friction was locked in by an earlier step (a fit pressed, then turned) the joint takes more after it, up to its holding plateau".into(),
         Kind::HoldingPlateau(m) => format!("the {} the joint holds as it slides on as a whole (its plateau, within 0.1 %): its capacity in this motion, a rating's transmissible {}", m.quantity(), if m == crate::solve::events::Motion::Turning { "torque" } else { "force" }),
         Kind::FullSeparation => "the interface carries no normal force any more: the joint has separated".into(),

@@ -7,7 +7,9 @@
 //! set outward; the midside nodes of the circumferential edges sit on their
 //! arcs (at the mid angle), the element edges in the layout's plane stay as
 //! they were. Its end sets are `<name>.theta0` (the plane z = 0) and
-//! `<name>.theta1` (θ = the angle).
+//! `<name>.theta1` (θ = the angle) of every block and body, and `theta0`,
+//! `theta1` of the whole mesh (every body's end at once: the two faces of a
+//! cyclic sector of several bodies).
 //!
 //! A layout that reaches the axis (a bolt, a solid shaft, a sphere) cannot
 //! be swept there: its elements on the axis would collapse into a line.
@@ -38,6 +40,47 @@ mod ogrid;
 /// the angle is 90° and n even, or 180° and n a multiple of 4, and are
 /// refused otherwise.
 pub(crate) fn revolve(plane: &Mesh, angle: f64, n: usize) -> Result<Mesh, MeshError> {
+    let mut mesh = revolve_bodies(plane, angle, n)?;
+    add_mesh_ends(&mut mesh);
+    Ok(mesh)
+}
+
+/// The ends of the whole mesh, `theta0` and `theta1`: the union of every
+/// body's `<body>.theta0` / `.theta1` (nodes and faces), unless the layout
+/// named a set so already.
+fn add_mesh_ends(mesh: &mut Mesh) {
+    for end in ["theta0", "theta1"] {
+        let names: Vec<String> = mesh.bodies.iter().map(|b| format!("{b}.{end}")).collect();
+        let mut nodes: Vec<usize> = names
+            .iter()
+            .filter_map(|k| mesh.node_sets.get(k))
+            .flatten()
+            .copied()
+            .collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        let mut seen = std::collections::HashSet::new();
+        let faces: Vec<super::Face> = names
+            .iter()
+            .filter_map(|k| mesh.face_sets.get(k))
+            .flatten()
+            .filter(|f| {
+                let mut key = f.nodes().to_vec();
+                key.sort_unstable();
+                seen.insert(key)
+            })
+            .cloned()
+            .collect();
+        if nodes.is_empty() || mesh.node_sets.contains_key(end) {
+            continue;
+        }
+        mesh.node_sets.insert(end.to_string(), nodes);
+        mesh.face_sets.entry(end.to_string()).or_insert(faces);
+    }
+}
+
+/// [`revolve`] but for the mesh-wide end sets.
+fn revolve_bodies(plane: &Mesh, angle: f64, n: usize) -> Result<Mesh, MeshError> {
     let size = plane
         .nodes
         .iter()

@@ -311,3 +311,36 @@ fn a_matching_interface_through_the_cores_pairs_their_faces_node_for_node() {
     assert!((area - want).abs() < 1e-3 * want, "{area} vs {want}");
     assert!((n_da[1] - want).abs() < 1e-3 * want, "{n_da:?}");
 }
+
+/// `theta0` and `theta1` name every body's end at once: the union of the
+/// bodies' `<body>.theta0` / `.theta1` (through the O-grid cores too), nodes
+/// and faces, each face once, all in its plane (z = 0, and x = 0 for a
+/// quarter), and nodes of both bodies.
+#[test]
+fn the_mesh_wide_end_sets_are_every_bodys_ends() {
+    let mesh = revolve(&sphere_on_flat(true), std::f64::consts::FRAC_PI_2, 4).unwrap();
+    let bodies = mesh.node_bodies();
+    for (end, c) in [("theta0", 2), ("theta1", 0)] {
+        let mut union: Vec<usize> = mesh
+            .bodies
+            .iter()
+            .flat_map(|b| mesh.node_sets[&format!("{b}.{end}")].clone())
+            .collect();
+        union.sort_unstable();
+        union.dedup();
+        assert_eq!(mesh.node_sets[end], union, "{end}");
+        let faces: usize = (mesh.bodies.iter())
+            .map(|b| mesh.face_sets[&format!("{b}.{end}")].len())
+            .sum();
+        assert_eq!(mesh.face_sets[end].len(), faces, "{end}");
+        assert!(mesh.node_sets[end]
+            .iter()
+            .all(|&n| mesh.nodes[n][c].abs() < 1e-9));
+        for b in 0..mesh.bodies.len() {
+            assert!(
+                mesh.node_sets[end].iter().any(|&n| bodies[n] == b),
+                "{end} {b}"
+            );
+        }
+    }
+}
