@@ -106,6 +106,27 @@ fn run_on(
     }
 }
 
+/// `pairs` runs of `fric` and of `plain` at `refine` in `increments` equal
+/// steps, alternating (friction first), so a shared host's drift reaches
+/// both; tagged `TAG-f-REFINE-K` and `TAG-s-REFINE-K`.
+fn alternate(
+    fric: &Path,
+    plain: &Path,
+    tag: &str,
+    refine: usize,
+    increments: usize,
+    pairs: usize,
+) -> (Vec<Run>, Vec<Run>) {
+    let mut f = Vec::new();
+    let mut s = Vec::new();
+    for k in 0..pairs {
+        let at = |side: &str| format!("{tag}-{side}-{refine}-{k}");
+        f.push(run(fric, &at("f"), Some(refine), Some(increments)));
+        s.push(run(plain, &at("s"), Some(refine), Some(increments)));
+    }
+    (f, s)
+}
+
 fn main() {
     let started = Instant::now();
     let _ = std::fs::remove_dir_all(scratch());
@@ -139,22 +160,7 @@ fn main() {
     let mut last_solvers = (String::new(), String::new());
     let mut stats = Vec::new();
     for (refine, pairs) in [(2, 3), (4, 3), (8, 1), (12, 1)] {
-        let mut f = Vec::new();
-        let mut s = Vec::new();
-        for k in 0..pairs {
-            f.push(run(
-                &fric_b,
-                &format!("it-f-{refine}-{k}"),
-                Some(refine),
-                Some(5),
-            ));
-            s.push(run(
-                &frictionless_b,
-                &format!("it-s-{refine}-{k}"),
-                Some(refine),
-                Some(5),
-            ));
-        }
+        let (f, s) = alternate(&fric_b, &frictionless_b, "it", refine, 5, pairs);
         let med = |v: &[Run], g: fn(&Run) -> f64| median(v.iter().map(g).collect());
         let ratio =
             |g: fn(&Run) -> f64| median(f.iter().zip(&s).map(|(a, b)| g(a) / g(b)).collect());
@@ -288,22 +294,7 @@ fn main() {
     println!("| refine | dofs | pairs | iterations fric / frictionless | it/inc fric / frictionless | cutbacks fric / frictionless | wall fric | wall frictionless | ratio |");
     println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for (refine, pairs) in [(1, 3), (2, 3)] {
-        let mut f = Vec::new();
-        let mut s = Vec::new();
-        for k in 0..pairs {
-            f.push(run(
-                &friction_s,
-                &format!("x50-f-{refine}-{k}"),
-                Some(refine),
-                Some(50),
-            ));
-            s.push(run(
-                &strain,
-                &format!("x50-s-{refine}-{k}"),
-                Some(refine),
-                Some(50),
-            ));
-        }
+        let (f, s) = alternate(&friction_s, &strain, "x50", refine, 50, pairs);
         let per_inc = |r: &Run| r.iterations() as f64 / r.result.increments.len() as f64;
         println!(
             "| {refine} | {} | {pairs} | {} / {} | {:.2} / {:.2} | {} / {} | {:.2} s | {:.2} s | {:.2} |",
@@ -349,22 +340,7 @@ fn slab_3d() {
     println!("| refine | dofs | pairs | iterations fric / frictionless | work ms/it fric | work ms/it frictionless | ratio work | ratio wall | loop off: iterations, work ms/it |");
     println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for (refine, pairs) in [(1, 3), (2, 1)] {
-        let mut f = Vec::new();
-        let mut s = Vec::new();
-        for k in 0..pairs {
-            f.push(run(
-                &slab,
-                &format!("3d-f-{refine}-{k}"),
-                Some(refine),
-                Some(5),
-            ));
-            s.push(run(
-                &frictionless,
-                &format!("3d-s-{refine}-{k}"),
-                Some(refine),
-                Some(5),
-            ));
-        }
+        let (f, s) = alternate(&slab, &frictionless, "3d", refine, 5, pairs);
         let off = run(
             &loop_off,
             &format!("3d-off-{refine}"),

@@ -46,34 +46,29 @@ pub(crate) fn revolve(plane: &Mesh, angle: f64, n: usize) -> Result<Mesh, MeshEr
 }
 
 /// The ends of the whole mesh, `theta0` and `theta1`: the union of every
-/// body's `<body>.theta0` / `.theta1` (nodes and faces), unless the layout
-/// named a set so already.
+/// body's `<body>.theta0` / `.theta1` (nodes and faces; bodies share no
+/// node, so neither a node nor a face comes twice), unless the layout named
+/// a set so already.
 fn add_mesh_ends(mesh: &mut Mesh) {
     for end in ["theta0", "theta1"] {
+        if mesh.node_sets.contains_key(end) {
+            continue;
+        }
         let names: Vec<String> = mesh.bodies.iter().map(|b| format!("{b}.{end}")).collect();
-        let mut nodes: Vec<usize> = names
-            .iter()
+        let mut nodes: Vec<usize> = (names.iter())
             .filter_map(|k| mesh.node_sets.get(k))
             .flatten()
             .copied()
             .collect();
-        nodes.sort_unstable();
-        nodes.dedup();
-        let mut seen = std::collections::HashSet::new();
-        let faces: Vec<super::Face> = names
-            .iter()
-            .filter_map(|k| mesh.face_sets.get(k))
-            .flatten()
-            .filter(|f| {
-                let mut key = f.nodes().to_vec();
-                key.sort_unstable();
-                seen.insert(key)
-            })
-            .cloned()
-            .collect();
-        if nodes.is_empty() || mesh.node_sets.contains_key(end) {
+        if nodes.is_empty() {
             continue;
         }
+        nodes.sort_unstable();
+        let faces: Vec<super::Face> = (names.iter())
+            .filter_map(|k| mesh.face_sets.get(k))
+            .flatten()
+            .cloned()
+            .collect();
         mesh.node_sets.insert(end.to_string(), nodes);
         mesh.face_sets.entry(end.to_string()).or_insert(faces);
     }
