@@ -601,21 +601,6 @@ fn default_option(name: &std::ffi::CStr, value: &std::ffi::CStr) -> Result<()> {
     Ok(())
 }
 
-/// Puts the flag `name` (an option without a value) into the options
-/// database unless the command line gave it.
-fn default_flag(name: &std::ffi::CStr) -> Result<()> {
-    if !option_given(name)? {
-        // SAFETY: NUL-terminated name, no value; PETSc copies it.
-        chk(
-            unsafe {
-                ffi::PetscOptionsSetValue(std::ptr::null_mut(), name.as_ptr(), std::ptr::null())
-            },
-            "PetscOptionsSetValue",
-        )?;
-    }
-    Ok(())
-}
-
 /// Whether a PETSc type name (from `KSPGetType`, `PCGetType`; null when unset)
 /// is `name`.
 ///
@@ -688,15 +673,10 @@ unsafe fn gamg_defaults(ksp: ffi::KSP) -> Result<bool> {
 pub(crate) const GMRES_RESTART: i32 = 150;
 
 /// The smoothers of GAMG under GMRES (an unsymmetric tangent: friction),
-/// unless the command line sets them: Gauss-Seidel (`-mg_levels_ksp_type
-/// richardson -mg_levels_pc_type sor`, two sweeps per smoothing, PETSc's
-/// default count) instead of PETSc's Chebyshev, whose polynomial is fitted to
-/// an interval of the real axis that an unsymmetric operator's spectrum does
-/// not keep to. Unless a sweep direction is given, the sweeps before the
-/// coarse correction run forward through each rank's rows and those after it
-/// backward (`-pc_mg_distinct_smoothup`, `-mg_levels_pc_sor_local_forward`,
-/// `-mg_levels_up_pc_sor_local_backward`): half the work of symmetric
-/// sweeps, and the pair is a symmetric Gauss-Seidel across the V-cycle.
+/// unless the command line sets them: one symmetric Gauss-Seidel sweep per
+/// smoothing (`-mg_levels_ksp_type richardson -mg_levels_pc_type sor`)
+/// instead of PETSc's Chebyshev, whose polynomial is fitted to an interval of
+/// the real axis that an unsymmetric operator's spectrum does not keep to.
 /// GAMG's coarse operators may have zero rows (an aggregate of fewer dofs
 /// than near-null modes gives P a zero column); Gauss-Seidel divides by the
 /// diagonal, so it is shifted by [`SOR_DIAGONAL_SHIFT`]: no change to any
@@ -705,20 +685,11 @@ pub(crate) const GMRES_RESTART: i32 = 150;
 /// Measured (docs/performance.md, "3D: the flange sector"): GMRES + GAMG
 /// iterations per solve 130-230 → 68-81 on the flange sector at 29k dofs
 /// (solve time 55 → 27 s, 2 ranks), 36 → 20 on the plane punch with friction
-/// at 94k; at 90k dofs forward-then-backward against symmetric sweeps:
-/// 98 → 71 s of solves, 80 → 76 GMRES iterations a solve.
+/// at 94k.
 ///
 /// # Safety
 /// `ksp` must be a valid KSP handle whose PC is GAMG, after KSPSetFromOptions.
 unsafe fn unsymmetric_smoothers(ksp: ffi::KSP) -> Result<()> {
-    if !smoothers_given()? {
-        default_flag(c"-pc_mg_distinct_smoothup")?;
-        default_flag(c"-mg_levels_pc_sor_local_forward")?;
-        default_option(c"-mg_levels_up_ksp_type", c"richardson")?;
-        default_option(c"-mg_levels_up_pc_type", c"sor")?;
-        default_flag(c"-mg_levels_up_pc_sor_local_backward")?;
-        default_option(c"-mg_levels_up_pc_sor_diagonal_shift", SOR_DIAGONAL_SHIFT)?;
-    }
     default_option(c"-mg_levels_ksp_type", c"richardson")?;
     default_option(c"-mg_levels_pc_type", c"sor")?;
     default_option(c"-mg_levels_pc_sor_diagonal_shift", SOR_DIAGONAL_SHIFT)?;
@@ -730,29 +701,6 @@ unsafe fn unsymmetric_smoothers(ksp: ffi::KSP) -> Result<()> {
         )?;
     }
     Ok(())
-}
-
-/// Whether the command line chose the levels' smoothers itself (their type,
-/// a sweep direction, distinct post-smoothers, or the number of sweeps):
-/// then [`unsymmetric_smoothers`] leaves the sweeps' directions to it.
-fn smoothers_given() -> Result<bool> {
-    for name in [
-        c"-mg_levels_ksp_type",
-        c"-mg_levels_pc_type",
-        c"-mg_levels_ksp_max_it",
-        c"-pc_mg_distinct_smoothup",
-        c"-mg_levels_pc_sor_symmetric",
-        c"-mg_levels_pc_sor_forward",
-        c"-mg_levels_pc_sor_backward",
-        c"-mg_levels_pc_sor_local_symmetric",
-        c"-mg_levels_pc_sor_local_forward",
-        c"-mg_levels_pc_sor_local_backward",
-    ] {
-        if option_given(name)? {
-            return Ok(true);
-        }
-    }
-    Ok(false)
 }
 
 /// The shift of the Gauss-Seidel smoothers' diagonal ([`unsymmetric_smoothers`]):
