@@ -673,10 +673,14 @@ unsafe fn gamg_defaults(ksp: ffi::KSP) -> Result<bool> {
 pub(crate) const GMRES_RESTART: i32 = 150;
 
 /// The smoothers of GAMG under GMRES (an unsymmetric tangent: friction),
-/// unless the command line sets them: one symmetric Gauss-Seidel sweep per
-/// smoothing (`-mg_levels_ksp_type richardson -mg_levels_pc_type sor`)
-/// instead of PETSc's Chebyshev, whose polynomial is fitted to an interval of
-/// the real axis that an unsymmetric operator's spectrum does not keep to.
+/// unless the command line sets them: symmetric Gauss-Seidel, each rank's
+/// rows swept forward and back twice per smoothing (`-mg_levels_ksp_type
+/// richardson -mg_levels_pc_type sor`, PETSc's two smoothing steps), instead
+/// of PETSc's Chebyshev, whose polynomial is fitted to an interval of the
+/// real axis that an unsymmetric operator's spectrum does not keep to.
+/// (Forward sweeps before the coarse correction and backward after it, half
+/// the work, were faster up to 90k dofs and slower at 387k: the log of
+/// docs/performance.md.)
 /// GAMG's coarse operators may have zero rows (an aggregate of fewer dofs
 /// than near-null modes gives P a zero column); Gauss-Seidel divides by the
 /// diagonal, so it is shifted by [`SOR_DIAGONAL_SHIFT`]: no change to any
