@@ -57,7 +57,8 @@ fn memory_lean_applies_its_gamg_settings_and_gives_the_same_answer() {
     let text = String::from_utf8_lossy(&out.stdout);
     for setting in [
         // lean's lag and product (its widened Chebyshev interval is seen
-        // under CG, below: under GMRES the smoothers are Gauss-Seidel's)
+        // below, where Chebyshev is chosen: asperity's smoothers are
+        // Gauss-Seidel's)
         "rebuilt every 1000 new Jacobians",
         "using allatonce MatPtAP() implementation",
         "type: sor",
@@ -243,7 +244,9 @@ fn the_default_linear_solver_follows_the_size_of_the_model() {
 /// CG + GAMG, asperity's multigrid default, through the plastic steps of the
 /// fine punch (refine 4: 23,716 dofs, the whole load, heavy yielding under the
 /// punch edge) takes the same path as MUMPS LU: the same increments, cutbacks
-/// and Newton iterations, and the same answer to 1e-6. Both GAMG modes: with
+/// and Newton iterations, and the same answer to 1e-6, with asperity's
+/// Gauss-Seidel smoothers (one symmetric sweep, seen in `-snes_view`) and with
+/// PETSc's Chebyshev smoothers chosen on the command line. Both GAMG modes: with
 /// PETSc's default eigenvalue bounds for the Chebyshev smoothers (reused from
 /// the prolongator smoothing; 1.1 times the estimate under the lagged
 /// preconditioner of `--memory lean`) CG met an indefinite preconditioner here
@@ -298,18 +301,44 @@ fn cg_with_gamg_follows_lu_through_the_plastic_steps() {
         "-snes_view",
     ];
     let lean: Vec<&str> = ["--memory", "lean"].iter().chain(&gamg).copied().collect();
+    let chebyshev = [
+        "-mg_levels_ksp_type",
+        "chebyshev",
+        "-mg_levels_pc_type",
+        "jacobi",
+    ];
+    let with_chebyshev =
+        |v: &[&'static str]| -> Vec<&'static str> { v.iter().chain(&chebyshev).copied().collect() };
     for (name, extra, transform) in [
-        ("fast", &gamg[..], "[0. 0.1; 0. 1.1]"),
-        ("lean", &lean[..], "[0. 0.1; 0. 1.5]"),
+        ("fast", gamg.to_vec(), None),
+        ("lean", lean.clone(), None),
+        (
+            "fast-chebyshev",
+            with_chebyshev(&gamg),
+            Some("[0. 0.1; 0. 1.1]"),
+        ),
+        (
+            "lean-chebyshev",
+            with_chebyshev(&lean),
+            Some("[0. 0.1; 0. 1.5]"),
+        ),
     ] {
-        let (b, view) = run(name, extra);
-        // the smoothers' eigenvalue estimates are made by CG, as the outer solve
-        let cg = format!("eigenvalues estimated using cg with transform: {transform}");
-        assert!(
-            view.contains(&cg),
-            "{name}: no '{cg}' in the -snes_view output"
-        );
-        assert!(!view.contains("estimated using gmres"), "{name}");
+        let (b, view) = run(name, &extra);
+        if let Some(transform) = transform {
+            // the smoothers' eigenvalue estimates are made by CG, as the outer solve
+            let cg = format!("eigenvalues estimated using cg with transform: {transform}");
+            assert!(
+                view.contains(&cg),
+                "{name}: no '{cg}' in the -snes_view output"
+            );
+            assert!(!view.contains("estimated using gmres"), "{name}");
+        } else {
+            // asperity's default: one symmetric Gauss-Seidel sweep
+            for setting in ["type: richardson", "type: sor", "maximum iterations=1,"] {
+                assert!(view.contains(setting), "{name}: no '{setting}' in:\n{view}");
+            }
+            assert!(!view.contains("chebyshev"), "{name}: {view}");
+        }
         for key in ["increments", "cutbacks", "newton_iterations"] {
             assert_eq!(lu[key], b[key], "{name}: {key}");
         }

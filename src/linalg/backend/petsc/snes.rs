@@ -285,8 +285,10 @@ pub(crate) const LEAN_ESTEIG: &std::ffi::CStr = c"0,0.1,0,1.5";
 ///   `-snes_lag_preconditioner` [`MULTIGRID_LAG`]: the Newton step still
 ///   solves the current tangent to the Krylov tolerance, only the
 ///   preconditioner lags;
-/// * the smoothers' eigenvalue interval widened to cover the drift of the
-///   tangent within the step ([`LEAN_ESTEIG`]).
+/// * the Chebyshev smoothers' eigenvalue interval widened to cover the drift
+///   of the tangent within the step ([`LEAN_ESTEIG`]), read only when the
+///   command line chooses Chebyshev: asperity's Gauss-Seidel smoothers need
+///   no eigenvalue and stay positive definite under a lagged preconditioner.
 ///
 /// # Safety
 /// `snes` must be a valid handle, after SNESSetFromOptions.
