@@ -114,6 +114,18 @@ pub fn fails_cleanly_on_two_ranks(root: &Path, case: &Path, extra: &[&str]) -> S
 /// `asperity run CASE --quiet --out DIR EXTRA…` on `n` ranks; panics with
 /// stderr if it fails.
 pub fn run_on(n: usize, case: &Path, dir: &Path, extra: &[&str]) -> std::process::Output {
+    run_on_ending(n, case, dir, extra, 0)
+}
+
+/// [`run_on`] ending with exit code `code` (3: stopped by `--stop-after`,
+/// with its results); panics with stderr otherwise.
+pub fn run_on_ending(
+    n: usize,
+    case: &Path,
+    dir: &Path,
+    extra: &[&str],
+    code: i32,
+) -> std::process::Output {
     let mut args = vec![
         "run",
         case.to_str().unwrap(),
@@ -123,8 +135,9 @@ pub fn run_on(n: usize, case: &Path, dir: &Path, extra: &[&str]) -> std::process
     ];
     args.extend_from_slice(extra);
     let out = mpirun_output(n, &args);
-    assert!(
-        out.status.success(),
+    assert_eq!(
+        out.status.code(),
+        Some(code),
         "{} on {n} rank(s): {}",
         case.display(),
         String::from_utf8_lossy(&out.stderr)

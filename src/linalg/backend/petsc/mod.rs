@@ -613,8 +613,8 @@ unsafe fn type_is(p: *const std::os::raw::c_char, name: &[u8]) -> bool {
 
 /// asperity's default for GAMG, whichever way GAMG was chosen (the size
 /// default or `-pc_type gamg`), unless the command line sets it: the levels
-/// smooth by Gauss-Seidel, under CG one symmetric sweep
-/// ([`symmetric_smoothers`]), under GMRES two ([`unsymmetric_smoothers`]).
+/// smooth by Gauss-Seidel ([`gauss_seidel_smoothers`]), under CG one
+/// symmetric sweep, under GMRES two ([`unsymmetric_smoothers`]).
 /// When the command line chooses PETSc's Chebyshev smoothers instead, they
 /// estimate their own eigenvalue bounds
 /// (`-pc_gamg_use_sa_esteig false`) instead of reusing the estimate made while
@@ -655,7 +655,7 @@ unsafe fn gamg_defaults(ksp: ffi::KSP) -> Result<bool> {
         chk(ffi::KSPGetType(ksp, &mut kt), "KSPGetType")?;
         if type_is(kt, b"cg") {
             default_option(c"-mg_levels_esteig_ksp_type", c"cg")?;
-            symmetric_smoothers()?;
+            gauss_seidel_smoothers(Some(c"1"))?;
         }
         if type_is(kt, b"gmres") {
             unsymmetric_smoothers(ksp)?;
@@ -671,25 +671,34 @@ unsafe fn gamg_defaults(ksp: ffi::KSP) -> Result<bool> {
     }
 }
 
-/// The smoothers of GAMG under CG (a symmetric tangent), unless the command
-/// line names the levels' KSP or PC type: one symmetric Gauss-Seidel sweep
-/// per smoothing, each rank's rows forward and back (`-mg_levels_ksp_type
-/// richardson -mg_levels_pc_type sor -mg_levels_ksp_max_it 1`), the diagonal
-/// shifted as under GMRES ([`SOR_DIAGONAL_SHIFT`]). The V-cycle stays
-/// symmetric positive definite, so CG keeps its preconditioner, also when it
-/// lags (`--memory lean`); and it needs no eigenvalue estimate. Measured
-/// against PETSc's Chebyshev (docs/performance.md, "GAMG settings"): the 3D
-/// block at 395k dofs on two ranks 40-75 CG iterations a solve against
-/// 63-120, 25.2 against 41.0 s a Newton iteration; the plastic fine punch at
-/// 93.5k dofs 2,830 against 4,033 CG iterations, 32 against 62 s of solves,
-/// 102 against 105 Newton iterations (MUMPS 96), the same answer.
-fn symmetric_smoothers() -> Result<()> {
+/// The smoothers of GAMG, unless the command line names the levels' KSP or
+/// PC type (then they are its own, e.g. PETSc's Chebyshev with Jacobi):
+/// symmetric Gauss-Seidel, each rank's rows swept forward and back
+/// (`-mg_levels_ksp_type richardson -mg_levels_pc_type sor`), `sweeps` times
+/// per smoothing (`-mg_levels_ksp_max_it`; `None`: PETSc's two). GAMG's
+/// coarse operators may have zero rows (an aggregate of fewer dofs than
+/// near-null modes gives P a zero column); Gauss-Seidel divides by the
+/// diagonal, so it is shifted by [`SOR_DIAGONAL_SHIFT`]: no change to any
+/// nonzero diagonal, and a zero row's unknown stays zero (its right-hand side
+/// is zero too). The V-cycle is symmetric positive definite for a symmetric
+/// positive definite tangent, also when it lags (`--memory lean`), and needs
+/// no eigenvalue estimate.
+/// Under CG one sweep ([`gamg_defaults`]), measured against PETSc's Chebyshev
+/// (docs/performance.md, "GAMG settings"): the 3D block at 395k dofs on two
+/// ranks 40-75 CG iterations a solve against 63-120, 25.2 against 41.0 s a
+/// Newton iteration; the plastic fine punch at 93.5k dofs 2,830 against 4,033
+/// CG iterations, 32 against 62 s of solves, 102 against 105 Newton
+/// iterations (MUMPS 96), the same answer. Under GMRES two
+/// ([`unsymmetric_smoothers`]).
+fn gauss_seidel_smoothers(sweeps: Option<&std::ffi::CStr>) -> Result<()> {
     if option_given(c"-mg_levels_ksp_type")? || option_given(c"-mg_levels_pc_type")? {
         return Ok(());
     }
     default_option(c"-mg_levels_ksp_type", c"richardson")?;
     default_option(c"-mg_levels_pc_type", c"sor")?;
-    default_option(c"-mg_levels_ksp_max_it", c"1")?;
+    if let Some(n) = sweeps {
+        default_option(c"-mg_levels_ksp_max_it", n)?;
+    }
     default_option(c"-mg_levels_pc_sor_diagonal_shift", SOR_DIAGONAL_SHIFT)
 }
 
@@ -698,20 +707,13 @@ fn symmetric_smoothers() -> Result<()> {
 /// 29k dofs, past PETSc's 30, where a restart loses what the basis held.
 pub(crate) const GMRES_RESTART: i32 = 150;
 
-/// The smoothers of GAMG under GMRES (an unsymmetric tangent: friction),
-/// unless the command line sets them: symmetric Gauss-Seidel, each rank's
-/// rows swept forward and back twice per smoothing (`-mg_levels_ksp_type
-/// richardson -mg_levels_pc_type sor`, PETSc's two smoothing steps), instead
-/// of PETSc's Chebyshev, whose polynomial is fitted to an interval of the
-/// real axis that an unsymmetric operator's spectrum does not keep to.
-/// (Forward sweeps before the coarse correction and backward after it, half
-/// the work, were faster up to 90k dofs and slower at 387k: the log of
-/// docs/performance.md.)
-/// GAMG's coarse operators may have zero rows (an aggregate of fewer dofs
-/// than near-null modes gives P a zero column); Gauss-Seidel divides by the
-/// diagonal, so it is shifted by [`SOR_DIAGONAL_SHIFT`]: no change to any
-/// nonzero diagonal, and a zero row's unknown stays zero (its right-hand
-/// side is zero too). And GMRES restarts after [`GMRES_RESTART`] iterations.
+/// GAMG under GMRES (an unsymmetric tangent: friction): two Gauss-Seidel
+/// sweeps per smoothing ([`gauss_seidel_smoothers`]) instead of PETSc's
+/// Chebyshev, whose polynomial is fitted to an interval of the real axis that
+/// an unsymmetric operator's spectrum does not keep to (forward sweeps before
+/// the coarse correction and backward after it, half the work, were faster
+/// up to 90k dofs and slower at 387k: the log of docs/performance.md); and
+/// GMRES restarts after [`GMRES_RESTART`] iterations.
 /// Measured (docs/performance.md, "3D: the flange sector"): GMRES + GAMG
 /// iterations per solve 130-230 → 68-81 on the flange sector at 29k dofs
 /// (solve time 55 → 27 s, 2 ranks), 36 → 20 on the plane punch with friction
@@ -720,9 +722,7 @@ pub(crate) const GMRES_RESTART: i32 = 150;
 /// # Safety
 /// `ksp` must be a valid KSP handle whose PC is GAMG, after KSPSetFromOptions.
 unsafe fn unsymmetric_smoothers(ksp: ffi::KSP) -> Result<()> {
-    default_option(c"-mg_levels_ksp_type", c"richardson")?;
-    default_option(c"-mg_levels_pc_type", c"sor")?;
-    default_option(c"-mg_levels_pc_sor_diagonal_shift", SOR_DIAGONAL_SHIFT)?;
+    gauss_seidel_smoothers(None)?;
     if !option_given(c"-ksp_gmres_restart")? {
         // SAFETY: valid KSP of type GMRES (caller).
         chk(
@@ -733,7 +733,7 @@ unsafe fn unsymmetric_smoothers(ksp: ffi::KSP) -> Result<()> {
     Ok(())
 }
 
-/// The shift of the Gauss-Seidel smoothers' diagonal ([`unsymmetric_smoothers`]):
+/// The shift of the Gauss-Seidel smoothers' diagonal ([`gauss_seidel_smoothers`]):
 /// far below any stiffness (N/mm) a model can have, so only a zero diagonal
 /// feels it.
 const SOR_DIAGONAL_SHIFT: &std::ffi::CStr = c"1e-100";
